@@ -1,0 +1,170 @@
+"""The ``cube4`` command line.
+
+    cube4 render VOLUME --scene S.toml --engine {reference,golden,rtl} --out IMG.png
+                 [--baseplane BP.npy] [--stats STATS.json] [--pipelines P]
+                 [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
+    cube4 volumes | cube4 scenes      list the built-ins
+
+Bad input gives one line on stderr and exit status 2; nothing is written unless the
+whole render succeeded (outputs go to a temporary file in the target folder first).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .config import MAX_PIPELINES
+from .errors import UserError
+from .render import ENGINES, config_for, image_metrics, render
+from .scene import builtin_scene_names, load_scene
+from .volumes import BUILTINS, load_volume
+
+IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
+
+
+def _dims(text: str) -> tuple[int, int, int]:
+    try:
+        parts = tuple(int(p) for p in text.replace("x", ",").split(","))
+    except ValueError:
+        raise UserError(f"--dims must be NX,NY,NZ (three integers), got {text!r}") from None
+    if len(parts) != 3:
+        raise UserError(f"--dims must be NX,NY,NZ (three integers), got {text!r}")
+    return parts  # type: ignore[return-value]
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="cube4", description="Cube-4 volume renderer (golden model, reference, RTL).")
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("render", help="render a volume with a scene into an image")
+    r.add_argument("volume", help="a volume file (.raw, .nrrd, .nii[.gz]) or a built-in like sphere:64, ml:41")
+    r.add_argument("--scene", default="default", help="scene TOML file or built-in scene name (default: default)")
+    r.add_argument("--engine", default="golden", choices=ENGINES)
+    r.add_argument("--out", required=True, help="output image (.png, .exr, .tif)")
+    r.add_argument("--baseplane", help="write the exact integer base-plane RGBA (rows, cols, 4) as .npy")
+    r.add_argument("--stats", help="write run statistics as JSON")
+    r.add_argument("--pipelines", type=int, help=f"number of pipelines p (1..{MAX_PIPELINES})")
+    r.add_argument("--compare-to", choices=["reference"], help="also render the reference and report the error")
+    r.add_argument("--dims", help="raw volumes: NX,NY,NZ")
+    r.add_argument("--dtype", help="raw volumes: uint8, uint16, int16, uint32, int32, float32, float64")
+    r.add_argument("--voxel-bits", type=int, help="voxel width VOXEL_W (default: the scene's, else 8)")
+    r.add_argument("--background", default="0,0,0", help="R,G,B in [0,1] behind the volume in PNG/TIFF output")
+    r.add_argument("--quiet", action="store_true", help="no progress bars or summary")
+    sub.add_parser("volumes", help="list the built-in volumes")
+    sub.add_parser("scenes", help="list the built-in scenes")
+    return ap
+
+
+def _check_output(path: str, suffixes: tuple[str, ...], what: str) -> Path:
+    p = Path(path)
+    if p.suffix.lower() not in suffixes:
+        raise UserError(f"{what} {path!r} must end in {', '.join(suffixes)}")
+    if p.exists() and p.is_dir():
+        raise UserError(f"{what} {path!r} is a directory")
+    return p
+
+
+def _atomic_write(path: Path, write) -> None:
+    """Write through a temporary file in the same folder, then rename into place."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=".cube4-", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def write_image(path: str, rgba: np.ndarray, background=(0.0, 0.0, 0.0)) -> None:
+    """Premultiplied RGBA -> file: EXR keeps float RGBA; PNG/TIFF get 8-bit RGB over the
+    background colour."""
+    import OpenImageIO as oiio
+
+    if path.lower().endswith(".exr"):
+        data, fmt = rgba.astype(np.float32), oiio.HALF
+    else:
+        bg = np.asarray(background, dtype=np.float64)
+        rgb = rgba[..., :3] + (1.0 - rgba[..., 3:4]) * bg
+        data, fmt = np.clip(rgb, 0.0, 1.0).astype(np.float32), oiio.UINT8
+    buf = oiio.ImageBuf(np.ascontiguousarray(data))
+    if not buf.write(path, fmt):
+        raise UserError(f"cannot write image {path}: {buf.geterror()}")
+
+
+def _background(text: str) -> tuple[float, float, float]:
+    try:
+        vals = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        vals = ()
+    if len(vals) != 3 or not all(0.0 <= v <= 1.0 for v in vals):
+        raise UserError(f"--background must be R,G,B with values in [0, 1], got {text!r}")
+    return vals  # type: ignore[return-value]
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    out = _check_output(args.out, IMAGE_SUFFIXES, "--out")
+    bp = _check_output(args.baseplane, (".npy",), "--baseplane") if args.baseplane else None
+    st = _check_output(args.stats, (".json",), "--stats") if args.stats else None
+    bg = _background(args.background)
+    if args.baseplane and args.engine == "reference":
+        raise UserError("--baseplane needs a Cube-4 engine (golden or rtl); the reference has no base plane")
+    if args.pipelines is not None and not 1 <= args.pipelines <= MAX_PIPELINES:
+        raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
+    scene = load_scene(args.scene)
+    cfg = config_for(scene, pipelines=args.pipelines, voxel_bits=args.voxel_bits)
+    raw_dims = _dims(args.dims) if args.dims else None
+    vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
+    progress = not args.quiet and sys.stderr.isatty()
+    res = render(vol, scene, cfg, args.engine, progress=progress)
+    stats = dict(res.stats)
+    stats["volume"] = args.volume
+    stats["scene"] = scene.name
+    if args.compare_to:
+        ref = render(vol, scene, cfg, "reference", progress=progress)
+        stats.update(image_metrics(res.image, ref.image))
+        stats["reference_wall_s"] = ref.wall_s
+
+    _atomic_write(out, lambda tmp: write_image(tmp, res.image, bg))
+    if bp is not None and res.frame is not None:
+        _atomic_write(bp, lambda tmp: np.save(tmp, res.frame.baseplane))
+    if st is not None:
+        _atomic_write(st, lambda tmp: Path(tmp).write_text(json.dumps(stats, indent=2) + "\n"))
+    if not args.quiet:
+        line = f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} in {res.wall_s:.2f} s -> {out}"
+        if args.compare_to:
+            line += f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, max {stats['max_abs']:.3f}"
+        print(line)
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        if args.cmd == "render":
+            return cmd_render(args)
+        if args.cmd == "volumes":
+            for name, (_, desc) in sorted(BUILTINS.items()):
+                print(f"{name:10s} {desc}")
+            return 0
+        if args.cmd == "scenes":
+            print("\n".join(builtin_scene_names()))
+            return 0
+    except UserError as e:
+        print(f"cube4: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("cube4: interrupted", file=sys.stderr)
+        return 130
+    return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,246 @@
+"""The bit-exact Cube-4 model: the specification the RTL matches bit for bit.
+
+Every step below is written down in ``docs/numerics.md`` (section numbers in the
+comments); the RTL implements the same integer arithmetic. The model walks the volume
+the way the hardware does -- sample slice by sample slice in the traversal frame
+(``view.Traversal``) -- and is vectorised over each slice, so a 256^3 frame takes a
+few seconds.
+
+Streams (kept when ``keep_streams=True``), all indexed [m, j, i] in the traversal frame:
+
+* ``samples``   tri-linear samples, unsigned VOXEL_W bits
+* ``inside``    the sample lies inside the volume and is composited (bool)
+* ``gradients`` (gi, gj, gk), twice the central differences, signed, traversal frame
+* ``rmap_index`` reflectance-map entry of the gradient direction
+* ``shaded``    (R, G, B) Q0.8 and A Q0.ALPHA_W of the classified, shaded sample
+* ``pixels``    finished rays in emission order: (m, by, bx, R, G, B, A) with colour and
+  opacity in Q0.ACC_W (0 .. 2^ACC_W inclusive)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from tqdm import tqdm
+
+from .config import COLOR_W, RMAP_FRAC, Cube4Config
+from .fixed import lerp, round_shift
+from .view import Traversal
+
+PIXEL_DTYPE = np.dtype(
+    [("m", np.int32), ("by", np.int32), ("bx", np.int32),
+     ("r", np.int64), ("g", np.int64), ("b", np.int64), ("a", np.int64)]
+)
+
+
+@dataclass
+class Frame:
+    """One rendered view: the base plane and (optionally) every stream."""
+
+    trav: Traversal
+    cfg: Cube4Config
+    baseplane: np.ndarray  # (rows, cols, 4) int64: R, G, B, A in Q0.ACC_W, 0..2^ACC_W
+    pixels: np.ndarray  # PIXEL_DTYPE, emission order
+    streams: dict = field(default_factory=dict)
+
+    @property
+    def baseplane_float(self) -> np.ndarray:
+        """Premultiplied RGBA in [0, 1] (float64)."""
+        return self.baseplane.astype(np.float64) / float(1 << self.cfg.acc_bits)
+
+
+# ---------------------------------------------------------------- numerics.md §4
+def interpolate_slice(tp: np.ndarray, trav: Traversal, m: int, weight_bits: int) -> np.ndarray:
+    """Tri-linear samples of sample slice m, shape (nj, ni), int32.
+
+    tp is the traversal-frame volume zero-padded by one voxel at the high end of each
+    axis, shape (nk + 1, nj + 1, ni + 1). Seven lerps, in the order x (four), y (two),
+    z (one); each rounds half up (fixed.lerp). Sample (m, j, i) sits at
+    (i + wx, j + wy, m / S).
+    """
+    wx, wy, wz = (int(w) for w in trav.weights(m))
+    k0 = m // trav.supersample
+
+    def bilinear(vs: np.ndarray) -> np.ndarray:
+        ax = lerp(vs[:, :-1], vs[:, 1:], wx, weight_bits)  # x lerps: rows j and j + 1
+        return lerp(ax[:-1], ax[1:], wy, weight_bits)  # y lerp
+
+    s0 = bilinear(tp[k0])
+    if wz == 0:
+        # lerp(s0, s1, 0) == s0 exactly; the hardware still runs the z lerp.
+        return s0
+    return lerp(s0, bilinear(tp[k0 + 1]), wz, weight_bits)
+
+
+def inside_mask(trav: Traversal, m: int) -> np.ndarray:
+    """Samples of slice m that lie inside the volume box [0, n-1]^3 (numerics.md §4):
+    the last column is outside when wx > 0, the last row when wy > 0."""
+    wx, wy, _ = (int(w) for w in trav.weights(m))
+    mask = np.ones((trav.nj, trav.ni), dtype=bool)
+    if wx:
+        mask[:, -1] = False
+    if wy:
+        mask[-1, :] = False
+    return mask
+
+
+# ---------------------------------------------------------------- numerics.md §5
+def gradient(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
+    """Gradient of sample slice m from sample slices m-1, m, m+1 (each zero-padded by
+    one sample on every side, shape (nj + 2, ni + 2)). Returns (3, nj, ni) int64:
+
+    gi = s[m, j, i+1] - s[m, j, i-1]
+    gj = s[m, j+1, i] - s[m, j-1, i]
+    gr = s[m+1, along the ray] - s[m-1, along the ray]      (X/Y-step, old-X/Y-step)
+    gk = S * gr - round_shift(VIEW_X * gi + VIEW_Y * gj, W)  (the shear correction)
+
+    i.e. twice the central differences, in traversal-frame axes.
+    """
+    nj, ni = trav.nj, trav.ni
+    sx0, sy0 = (int(v) for v in trav.steps(m))
+    sxf, syf = (int(v) for v in trav.steps(m + 1))
+    sxb, syb = (int(v) for v in trav.steps(m - 1))
+    dxf, dyf = sxf - sx0, syf - sy0  # X-step, Y-step: 0 or 1
+    dxb, dyb = sx0 - sxb, sy0 - syb  # old-X-step, old-Y-step
+    c = cur.astype(np.int64)
+    gi = c[1:-1, 2:] - c[1:-1, :-2]
+    gj = c[2:, 1:-1] - c[:-2, 1:-1]
+    fwd = nxt[1 + dyf:1 + dyf + nj, 1 + dxf:1 + dxf + ni].astype(np.int64)
+    back = prev[1 - dyb:1 - dyb + nj, 1 - dxb:1 - dxb + ni].astype(np.int64)
+    gr = fwd - back
+    gk = trav.supersample * gr - round_shift(trav.view_x * gi + trav.view_y * gj, trav.weight_bits)
+    return np.stack([gi, gj, gk])
+
+
+# ---------------------------------------------------------------- numerics.md §6
+def rmap_index(g: np.ndarray, rmap_bits: int) -> np.ndarray:
+    """Reflectance-map entry of gradient directions g (3, ...) (cube map).
+
+    Face axis f = the largest |g| (ties: i, then j, then k); face = 2 f + (g_f < 0).
+    With A = |g_f| and (g_b, g_c) the other two components in axis order,
+    u = min(R-1, floor((g_b + A) R / (2A))), v likewise from g_c;
+    entry = face R^2 + v R + u. A zero gradient selects the last entry, 6 R^2.
+    """
+    r = 1 << rmap_bits
+    a = np.abs(g)
+    f = np.where((a[0] >= a[1]) & (a[0] >= a[2]), 0, np.where(a[1] >= a[2], 1, 2))
+    big = np.take_along_axis(a, f[None], axis=0)[0]
+    neg = np.take_along_axis(g, f[None], axis=0)[0] < 0
+    gb = np.where(f == 0, g[1], g[0])
+    gc = np.where(f == 2, g[1], g[2])
+    den = np.maximum(2 * big, 1)
+    u = np.minimum(r - 1, ((gb + big) * r) // den)
+    v = np.minimum(r - 1, ((gc + big) * r) // den)
+    idx = (2 * f + neg) * r * r + v * r + u
+    return np.where(big == 0, 6 * r * r, idx)
+
+
+def shade(samples: np.ndarray, grad: np.ndarray, lut: np.ndarray, rmap: np.ndarray, rmap_bits: int):
+    """Classify and shade: returns (rgba (4, ...) int64, rmap index).
+
+    (R, G, B, A) = LUT[sample]; (D, P) = RMAP[index(gradient)];
+    C' = min(2^8 - 1, round_shift(C * D, 8) + P) for C in R, G, B; A unchanged.
+    """
+    entry = lut[samples]  # (..., 4)
+    idx = rmap_index(grad, rmap_bits)
+    dp = rmap[idx]
+    top = (1 << COLOR_W) - 1
+    col = np.minimum(top, round_shift(entry[..., :3] * dp[..., 0:1], RMAP_FRAC) + dp[..., 1:2])
+    rgba = np.concatenate([col, entry[..., 3:4]], axis=-1)
+    return np.moveaxis(rgba, -1, 0), idx
+
+
+# ---------------------------------------------------------------- numerics.md §7
+def composite(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, inside: np.ndarray, cfg: Cube4Config) -> None:
+    """Front-to-back compositing, in place, of one slice of shaded samples.
+
+    acc (3, ...) colour and trans (...) transmittance, Q0.ACC_W, trans starts at 2^ACC_W.
+    w = round_shift(T * A, ALPHA_W);  C += round_shift(w * C', 8);  T -= w.
+    0 <= w <= T, so T never wraps and C <= 2^ACC_W - T (numerics.md §7).
+    """
+    w = np.where(inside, round_shift(trans * rgba[3], cfg.alpha_bits), 0)
+    acc += round_shift(w * rgba[:3], COLOR_W)
+    trans -= w
+
+
+# ---------------------------------------------------------------- the frame
+def render_frame(
+    vol: np.ndarray,
+    trav: Traversal,
+    cfg: Cube4Config,
+    lut: np.ndarray,
+    rmap: np.ndarray,
+    keep_streams: bool = False,
+    progress: bool = False,
+) -> Frame:
+    """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly."""
+    W = cfg.weight_bits
+    one = 1 << cfg.acc_bits
+    t = trav.to_traversal(vol)
+    nk, nj, ni = t.shape
+    tp = np.zeros((nk + 1, nj + 1, ni + 1), dtype=np.int32)
+    tp[:nk, :nj, :ni] = t
+    M = trav.num_sample_slices
+    rows, cols = trav.baseplane_shape
+    sxm, sym = trav.max_steps
+    acc = np.zeros((3, rows, cols), dtype=np.int64)
+    trans = np.full((rows, cols), one, dtype=np.int64)
+
+    def padded(m: int) -> np.ndarray:
+        sp = np.zeros((nj + 2, ni + 2), dtype=np.int32)
+        if 0 <= m < M:
+            sp[1:-1, 1:-1] = interpolate_slice(tp, trav, m, W)
+        return sp
+
+    streams: dict = {}
+    if keep_streams:
+        streams = {
+            "samples": np.zeros((M, nj, ni), dtype=np.int32),
+            "inside": np.zeros((M, nj, ni), dtype=bool),
+            "gradients": np.zeros((M, 3, nj, ni), dtype=np.int64),
+            "rmap_index": np.zeros((M, nj, ni), dtype=np.int64),
+            "shaded": np.zeros((M, 4, nj, ni), dtype=np.int64),
+        }
+    pix_chunks = []
+    prev, cur, nxt = padded(-1), padded(0), padded(1)
+    jj, ii = np.mgrid[0:nj, 0:ni]
+    for m in tqdm(range(M), desc="golden", unit="slice", disable=not progress, leave=False):
+        s = cur[1:-1, 1:-1]
+        inside = inside_mask(trav, m)
+        g = gradient(prev, cur, nxt, trav, m)
+        rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits)
+        stx, sty = (int(v) for v in trav.steps(m))
+        r0, c0 = sym - sty, sxm - stx
+        win = (slice(r0, r0 + nj), slice(c0, c0 + ni))
+        a_win, t_win = acc[:, win[0], win[1]], trans[win]
+        composite(a_win, t_win, rgba, inside, cfg)
+        # rays whose next sample (slice m + 1, along the ray) is outside finish here
+        if m + 1 < M:
+            sxf, syf = (int(v) for v in trav.steps(m + 1))
+            nxt_in = np.zeros((nj + 1, ni + 1), dtype=bool)
+            nxt_in[:nj, :ni] = inside_mask(trav, m + 1)
+            fin = inside & ~nxt_in[jj + (syf - sty), ii + (sxf - stx)]
+        else:
+            fin = inside
+        if fin.any():
+            fj, fi = np.nonzero(fin)  # row-major: (j, i) order within the slice
+            chunk = np.empty(fj.size, dtype=PIXEL_DTYPE)
+            chunk["m"] = m
+            chunk["by"], chunk["bx"] = fj + r0, fi + c0
+            chunk["r"], chunk["g"], chunk["b"] = a_win[0][fin], a_win[1][fin], a_win[2][fin]
+            chunk["a"] = one - t_win[fin]
+            pix_chunks.append(chunk)
+        if keep_streams:
+            streams["samples"][m] = s
+            streams["inside"][m] = inside
+            streams["gradients"][m] = g
+            streams["rmap_index"][m] = idx
+            streams["shaded"][m] = rgba
+        prev, cur, nxt = cur, nxt, padded(m + 2)
+
+    base = np.empty((rows, cols, 4), dtype=np.int64)
+    base[..., :3] = np.moveaxis(acc, 0, -1)
+    base[..., 3] = one - trans
+    pixels = np.concatenate(pix_chunks) if pix_chunks else np.empty(0, dtype=PIXEL_DTYPE)
+    return Frame(trav=trav, cfg=cfg, baseplane=base, pixels=pixels, streams=streams)

@@ -1,0 +1,178 @@
+"""Scene files (TOML): transfer function, lights, material, view, output, mode.
+
+See docs/scenes.md for the format; every key is optional except where stated.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from .errors import UserError
+from .view import direction_from_angles, normalize_direction
+
+MODES = ("composite",)  # MIP and X-ray arrive with the hardware back end
+PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
+
+
+@dataclass(frozen=True)
+class Light:
+    direction: np.ndarray  # unit vector: the direction the light travels (volume axes)
+    intensity: float
+
+
+@dataclass
+class Scene:
+    direction: np.ndarray
+    up: np.ndarray | None = None
+    width: int = 256
+    height: int = 256
+    mode: str = "composite"
+    supersample: int = 1
+    ambient: float = 0.25
+    diffuse: float = 0.65
+    specular: float = 0.35
+    shininess: float = 24.0
+    lights: list[Light] = field(default_factory=list)
+    tf_points: np.ndarray = field(default_factory=lambda: np.array([[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]], float))
+    precision: dict = field(default_factory=dict)
+    name: str = "scene"
+
+    def tf(self, x) -> np.ndarray:
+        """Transfer function at normalised values x in [0, 1]: (..., 4) RGBA, alpha per
+        voxel of distance. Piecewise linear between control points, clamped outside."""
+        x = np.asarray(x, dtype=np.float64)
+        p = self.tf_points
+        return np.stack([np.interp(x, p[:, 0], p[:, c]) for c in range(1, 5)], axis=-1)
+
+
+def _num(tbl: dict, key: str, default, lo=None, hi=None, where=""):
+    val = tbl.get(key, default)
+    if isinstance(val, bool) or not isinstance(val, (int, float)):
+        raise UserError(f"scene: {where}{key} must be a number, got {val!r}")
+    if not math.isfinite(val) or (lo is not None and val < lo) or (hi is not None and val > hi):
+        raise UserError(f"scene: {where}{key} = {val!r} is out of range [{lo}, {hi}]")
+    return val
+
+
+def _int(tbl: dict, key: str, default, lo, hi, where=""):
+    val = tbl.get(key, default)
+    if isinstance(val, bool) or not isinstance(val, int) or not lo <= val <= hi:
+        raise UserError(f"scene: {where}{key} must be an integer in {lo}..{hi}, got {val!r}")
+    return val
+
+
+def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
+    if not isinstance(tbl, dict):
+        raise UserError(f"scene: [{where}] must be a table")
+    extra = sorted(set(tbl) - set(allowed))
+    if extra:
+        raise UserError(f"scene: unknown key(s) in [{where}]: {', '.join(extra)}")
+
+
+def parse_scene(data: dict, name: str = "scene") -> Scene:
+    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision"), "top level")
+    view = data.get("view", {})
+    _check_keys(view, ("direction", "azimuth", "elevation", "up"), "view")
+    if "direction" in view:
+        if "azimuth" in view or "elevation" in view:
+            raise UserError("scene: [view] takes either direction or azimuth/elevation, not both")
+        direction = normalize_direction(view["direction"])
+    else:
+        az = _num(view, "azimuth", 30.0, -360, 360, "view.")
+        el = _num(view, "elevation", 20.0, -90, 90, "view.")
+        direction = direction_from_angles(az, el)
+    up = normalize_direction(view["up"]) if "up" in view else None
+
+    out = data.get("output", {})
+    _check_keys(out, ("width", "height"), "output")
+    width = _int(out, "width", 256, 8, 8192, "output.")
+    height = _int(out, "height", width, 8, 8192, "output.")
+
+    rnd = data.get("render", {})
+    _check_keys(rnd, ("mode", "supersample"), "render")
+    mode = rnd.get("mode", "composite")
+    if mode not in MODES:
+        raise UserError(f"scene: render.mode {mode!r} is not supported (supported: {', '.join(MODES)})")
+    supersample = rnd.get("supersample", 1)
+    if supersample not in (1, 2, 4, 8) or isinstance(supersample, bool):
+        raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {supersample!r}")
+
+    mat = data.get("material", {})
+    _check_keys(mat, ("ambient", "diffuse", "specular", "shininess"), "material")
+    ka = _num(mat, "ambient", 0.25, 0, 4, "material.")
+    kd = _num(mat, "diffuse", 0.65, 0, 4, "material.")
+    ks = _num(mat, "specular", 0.35, 0, 4, "material.")
+    shin = _num(mat, "shininess", 24.0, 0, 1000, "material.")
+
+    lights = []
+    raw_lights = data.get("light", [])
+    if not isinstance(raw_lights, list):
+        raise UserError("scene: lights are given as [[light]] tables")
+    for n, lt in enumerate(raw_lights):
+        _check_keys(lt, ("direction", "intensity", "headlight"), f"light #{n + 1}")
+        inten = _num(lt, "intensity", 1.0, 0, 100, f"light #{n + 1} ")
+        if lt.get("headlight", False):
+            if "direction" in lt:
+                raise UserError(f"scene: light #{n + 1} is a headlight and also has a direction")
+            ldir = direction
+        elif "direction" in lt:
+            ldir = normalize_direction(lt["direction"])
+        else:
+            raise UserError(f"scene: light #{n + 1} needs a direction or headlight = true")
+        lights.append(Light(direction=ldir, intensity=float(inten)))
+
+    tf = data.get("transfer", {})
+    _check_keys(tf, ("points",), "transfer")
+    pts = tf.get("points", [[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]])
+    try:
+        arr = np.asarray(pts, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise UserError("scene: transfer.points must be a list of [value, r, g, b, a] rows") from None
+    if arr.ndim != 2 or arr.shape[1] != 5 or arr.shape[0] < 1:
+        raise UserError("scene: transfer.points must be a list of [value, r, g, b, a] rows")
+    if not np.all(np.isfinite(arr)) or arr.min() < 0 or arr.max() > 1:
+        raise UserError("scene: transfer.points values must lie in [0, 1]")
+    if np.any(np.diff(arr[:, 0]) < 0):
+        raise UserError("scene: transfer.points must be sorted by value")
+
+    prec = data.get("precision", {})
+    _check_keys(prec, PRECISION_KEYS, "precision")
+    precision = {k: prec[k] for k in PRECISION_KEYS if k in prec}
+
+    return Scene(
+        direction=direction, up=up, width=width, height=height, mode=mode,
+        supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
+        shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
+    )
+
+
+def builtin_scene_names() -> list[str]:
+    return sorted(p.name[:-5] for p in resources.files("cube4.scenes").iterdir() if p.name.endswith(".toml"))
+
+
+def load_scene(spec: str) -> Scene:
+    """A scene from a TOML file path or a built-in name (see builtin_scene_names())."""
+    path = Path(spec)
+    if path.suffix == ".toml" or path.exists():
+        try:
+            text = path.read_text()
+        except OSError as e:
+            raise UserError(f"cannot read scene {spec}: {e.strerror}") from None
+        name = path.stem
+    else:
+        names = builtin_scene_names()
+        if spec not in names:
+            raise UserError(f"unknown scene {spec!r}: not a file, and built-in scenes are {', '.join(names)}")
+        text = resources.files("cube4.scenes").joinpath(spec + ".toml").read_text()
+        name = spec
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise UserError(f"scene {spec}: malformed TOML: {e}") from None
+    return parse_scene(data, name=name)

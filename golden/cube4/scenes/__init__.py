@@ -1,0 +1,1 @@
+"""Built-in scene files (TOML); see docs/scenes.md."""

@@ -1,0 +1,258 @@
+"""View geometry: traversal frame, quantised slopes, base plane and the warp.
+
+Conventions (docs/numerics.md, "Traversal frame"):
+
+* A volume is an array ``vol[z, y, x]``; dims are reported as (nx, ny, nz).
+* The view direction ``d`` is the direction rays travel, in volume axes (x, y, z).
+* The major axis k is the axis of largest |d| (ties: z before y before x).  The minor
+  axes are the other two in x, y, z order: i (the beam axis, the one the pipelines
+  span) and j (the beam index).  Each axis whose component of d is negative is
+  traversed backwards, so that in the traversal frame rays go towards +i, +j, +k with
+  slopes 0 <= sx, sy <= 1 per slice.
+* Slopes are quantised to VIEW_X = round(sx * 2^W), VIEW_Y = round(sy * 2^W), in
+  [0, 2^W]; the hardware renders the quantised direction.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import UserError
+
+AXIS_NAMES = "xyz"
+ARRAY_AXIS = {0: 2, 1: 1, 2: 0}  # volume axis (x=0, y=1, z=2) -> numpy axis of vol[z, y, x]
+
+
+def normalize_direction(d) -> np.ndarray:
+    """Validate a view or light direction: three finite numbers, not all zero."""
+    try:
+        v = np.asarray([float(c) for c in d], dtype=np.float64)
+    except (TypeError, ValueError):
+        raise UserError(f"a direction must be three numbers, got {d!r}") from None
+    if v.shape != (3,):
+        raise UserError(f"a direction must have three components, got {len(v)}")
+    if not np.all(np.isfinite(v)):
+        raise UserError(f"direction {list(d)} is not finite (NaN or infinity)")
+    n = float(np.linalg.norm(v))
+    if n < 1e-12:
+        raise UserError(f"direction {list(d)} is zero: a view needs a non-zero vector")
+    return v / n
+
+
+def direction_from_angles(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
+    """Camera at azimuth (about +z, from +x towards +y) and elevation (above the x-y
+    plane) looking at the volume centre: the returned vector is the ray direction."""
+    az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
+    eye = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+    return -eye
+
+
+@dataclass(frozen=True)
+class Traversal:
+    """How the hardware walks the volume for one view, and the base-plane geometry."""
+
+    dims: tuple[int, int, int]  # (nx, ny, nz)
+    direction: tuple[float, float, float]  # unit view direction, volume axes
+    weight_bits: int
+    supersample: int
+    major: int  # volume axis used as k
+    axis_i: int  # volume axis used as i (beam axis)
+    axis_j: int  # volume axis used as j
+    flip: tuple[bool, bool, bool]  # per volume axis (x, y, z): traversed backwards
+    view_x: int  # VIEW_X in [0, 2^W]
+    view_y: int  # VIEW_Y in [0, 2^W]
+
+    # --- sizes in the traversal frame ---
+    @property
+    def ni(self) -> int:
+        return self.dims[self.axis_i]
+
+    @property
+    def nj(self) -> int:
+        return self.dims[self.axis_j]
+
+    @property
+    def nk(self) -> int:
+        return self.dims[self.major]
+
+    @property
+    def guard_bits(self) -> int:
+        return self.supersample.bit_length() - 1
+
+    @property
+    def phase_bits(self) -> int:
+        return self.weight_bits + self.guard_bits
+
+    @property
+    def num_sample_slices(self) -> int:
+        """M = (nk - 1) * S + 1 sample slices, at k = m / S."""
+        return (self.nk - 1) * self.supersample + 1
+
+    # --- per-sample-slice template (vectorised over m) ---
+    def steps(self, m):
+        """Accumulated discrete steps (stepx(m), stepy(m)) = floor(m * VIEW / 2^(W+g))."""
+        m = np.asarray(m, dtype=np.int64)
+        return (m * self.view_x) >> self.phase_bits, (m * self.view_y) >> self.phase_bits
+
+    def weights(self, m):
+        """Resampling weights (wx, wy, wz) of sample slice m, each Q0.W in [0, 2^W-1]."""
+        m = np.asarray(m, dtype=np.int64)
+        mask = (1 << self.phase_bits) - 1
+        g = self.guard_bits
+        wx = ((m * self.view_x) & mask) >> g
+        wy = ((m * self.view_y) & mask) >> g
+        wz = (m & (self.supersample - 1)) << (self.weight_bits - g)
+        return wx, wy, wz
+
+    @property
+    def max_steps(self) -> tuple[int, int]:
+        sx, sy = self.steps(self.num_sample_slices - 1)
+        return int(sx), int(sy)
+
+    @property
+    def baseplane_shape(self) -> tuple[int, int]:
+        """(rows, cols) = (nj + stepy_max, ni + stepx_max)."""
+        sx, sy = self.max_steps
+        return self.nj + sy, self.ni + sx
+
+    # --- distances ---
+    @property
+    def slope(self) -> tuple[float, float]:
+        """Quantised slopes per voxel slice, as the hardware uses them."""
+        s = float(1 << self.weight_bits)
+        return self.view_x / s, self.view_y / s
+
+    @property
+    def sample_distance(self) -> float:
+        """Distance between consecutive samples of a ray, in voxels: sqrt(1+sx^2+sy^2)/S."""
+        sx, sy = self.slope
+        return math.sqrt(1.0 + sx * sx + sy * sy) / self.supersample
+
+    # --- frames ---
+    def to_traversal(self, vol: np.ndarray) -> np.ndarray:
+        """A view (no copy) of vol[z, y, x] as t[k, j, i] in the traversal frame."""
+        t = np.transpose(vol, (ARRAY_AXIS[self.major], ARRAY_AXIS[self.axis_j], ARRAY_AXIS[self.axis_i]))
+        flips = []
+        for pos, ax in enumerate((self.major, self.axis_j, self.axis_i)):
+            if self.flip[ax]:
+                flips.append(pos)
+        return np.flip(t, axis=flips) if flips else t
+
+    def vector_to_traversal(self, v) -> np.ndarray:
+        """A direction (x, y, z) expressed in the traversal frame (i, j, k)."""
+        v = np.asarray(v, dtype=np.float64)
+        out = []
+        for ax in (self.axis_i, self.axis_j, self.major):
+            out.append(-v[..., ax] if self.flip[ax] else v[..., ax])
+        return np.stack(out, axis=-1)
+
+    def traversal_to_volume_points(self, ti, tj, tk) -> np.ndarray:
+        """Traversal-frame coordinates -> volume coordinates (x, y, z) (float arrays)."""
+        pts = [None, None, None]
+        for coord, ax in ((ti, self.axis_i), (tj, self.axis_j), (tk, self.major)):
+            coord = np.asarray(coord, dtype=np.float64)
+            pts[ax] = (self.dims[ax] - 1) - coord if self.flip[ax] else coord
+        return np.stack(np.broadcast_arrays(*pts), axis=-1)
+
+    def baseplane_to_volume(self, bx, by) -> np.ndarray:
+        """Base-plane pixel -> the point of its (quantised) ray at mid depth."""
+        sxm, sym = self.max_steps
+        sx, sy = self.slope
+        km = (self.nk - 1) / 2.0
+        u = np.asarray(bx, dtype=np.float64) - sxm
+        v = np.asarray(by, dtype=np.float64) - sym
+        return self.traversal_to_volume_points(u + sx * km, v + sy * km, np.full(np.shape(u), km))
+
+
+def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1) -> Traversal:
+    """Choose major axis, signs and quantised slopes for a view direction."""
+    d = normalize_direction(direction)
+    a = np.abs(d)
+    major = 2 if a[2] >= a[0] and a[2] >= a[1] else (1 if a[1] >= a[0] else 0)
+    minors = [ax for ax in (0, 1, 2) if ax != major]
+    axis_i, axis_j = minors
+    flip = tuple(bool(d[ax] < 0) for ax in range(3))
+    one = 1 << weight_bits
+    vx = min(one, int(math.floor(a[axis_i] / a[major] * one + 0.5)))
+    vy = min(one, int(math.floor(a[axis_j] / a[major] * one + 0.5)))
+    nx, ny, nz = (int(n) for n in dims)
+    return Traversal(
+        dims=(nx, ny, nz),
+        direction=tuple(float(c) for c in d),
+        weight_bits=weight_bits,
+        supersample=supersample,
+        major=major,
+        axis_i=axis_i,
+        axis_j=axis_j,
+        flip=flip,
+        view_x=vx,
+        view_y=vy,
+    )
+
+
+@dataclass(frozen=True)
+class Camera:
+    """The final image plane: orthographic, centred on the volume centre."""
+
+    dims: tuple[int, int, int]
+    direction: np.ndarray  # unit, volume axes
+    right: np.ndarray
+    up: np.ndarray
+    width: int
+    height: int
+    pixel: float  # voxels per image pixel
+
+    @property
+    def centre(self) -> np.ndarray:
+        return (np.asarray(self.dims, dtype=np.float64) - 1.0) / 2.0
+
+    def project(self, pts: np.ndarray) -> np.ndarray:
+        """Volume points (..., 3) -> continuous pixel coordinates (col, row), pixel
+        centres at integers."""
+        rel = pts - self.centre
+        col = rel @ self.right / self.pixel + (self.width - 1) / 2.0
+        row = -(rel @ self.up) / self.pixel + (self.height - 1) / 2.0
+        return np.stack([col, row], axis=-1)
+
+    def ray_origins(self) -> tuple[np.ndarray, np.ndarray]:
+        """For every pixel (row-major), a point on its ray in the plane through the
+        volume centre; shape (H*W, 3)."""
+        cols = (np.arange(self.width) - (self.width - 1) / 2.0) * self.pixel
+        rows = (np.arange(self.height) - (self.height - 1) / 2.0) * self.pixel
+        cc, rr = np.meshgrid(cols, rows)
+        pts = self.centre + cc[..., None] * self.right - rr[..., None] * self.up
+        return pts.reshape(-1, 3), self.direction
+
+
+def make_camera(dims, direction, width: int, height: int, up=None) -> Camera:
+    d = normalize_direction(direction)
+    if up is None:
+        up = (0.0, 0.0, 1.0) if abs(d[2]) < 0.99 else (0.0, -1.0, 0.0)
+    u = normalize_direction(up)
+    right = np.cross(d, u)
+    if np.linalg.norm(right) < 1e-6:
+        raise UserError("view 'up' vector is parallel to the view direction")
+    right /= np.linalg.norm(right)
+    true_up = np.cross(right, d)
+    diag = float(np.linalg.norm(np.asarray(dims, dtype=np.float64)))
+    return Camera(
+        dims=tuple(int(n) for n in dims),
+        direction=d,
+        right=right,
+        up=true_up,
+        width=int(width),
+        height=int(height),
+        pixel=diag / min(width, height),
+    )
+
+
+def warp_matrix(trav: Traversal, cam: Camera) -> np.ndarray:
+    """3x3 affine matrix taking base-plane pixel (bx, by, 1) to image pixel (col, row, 1),
+    both with pixel centres at integer coordinates."""
+    pts = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    img = cam.project(trav.baseplane_to_volume(pts[:, 0], pts[:, 1]))
+    o, ex, ey = img[0], img[1] - img[0], img[2] - img[0]
+    return np.array([[ex[0], ey[0], o[0]], [ex[1], ey[1], o[1]], [0.0, 0.0, 1.0]])
