@@ -408,7 +408,7 @@ def _load_raw(path: str, raw_dims: Dims | None, raw_dtype: str | None, max_dim: 
         try:
             dims: tuple[int, ...] | None = tuple(int(n) for n in raw_dims)
         except (TypeError, ValueError):
-            raise UserError(f"raw file {path}: raw_dims must be (nx, ny, nz), got {raw_dims!r}") from None
+            raise UserError(f"raw file {path}: --dims must be NX,NY,NZ, got {raw_dims!r}") from None
     else:
         dims = _dims_from_name(stem)
     dtype_name = raw_dtype if raw_dtype is not None else _dtype_from_name(stem)
@@ -417,12 +417,12 @@ def _load_raw(path: str, raw_dims: Dims | None, raw_dtype: str | None, max_dim: 
             w for w, v in (("dimensions", dims), ("voxel type", dtype_name)) if v is None
         )
         raise UserError(
-            f"raw file {path}: {missing} unknown; pass them (raw_dims=(nx, ny, nz), "
-            f"raw_dtype=...) or name the file like vol_64x48x32_uint8.raw "
+            f"raw file {path}: {missing} unknown; pass --dims NX,NY,NZ and "
+            f"--dtype TYPE, or name the file like vol_64x48x32_uint8.raw "
             f"(types: {', '.join(RAW_DTYPES)}; also u8, u16, i16, f32)"
         )
     if len(dims) != 3:
-        raise UserError(f"raw file {path}: raw_dims must be (nx, ny, nz), got {raw_dims!r}")
+        raise UserError(f"raw file {path}: --dims must be NX,NY,NZ, got {raw_dims!r}")
     dtype = _raw_dtype(dtype_name)
     nx, ny, nz = _check_dims(dims, max_dim, path)  # type: ignore[misc]
     expected = nx * ny * nz * dtype.itemsize
