@@ -278,7 +278,7 @@ def test_raw_truncated_and_oversized(tmp_path):
 def test_raw_missing_dims_or_type(tmp_path):
     p = tmp_path / "mystery.raw"
     p.write_bytes(b"\0" * 64)
-    with pytest.raises(UserError, match="raw_dims"):
+    with pytest.raises(UserError, match="--dims"):
         load_volume(str(p))
     with pytest.raises(UserError, match="voxel type"):
         load_volume(str(p), raw_dims=(4, 4, 4))
