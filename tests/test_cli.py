@@ -94,6 +94,9 @@ BAD_SCENES = {
     "unsorted transfer": '[transfer]\npoints = [[0.5, 1, 1, 1, 1], [0.2, 0, 0, 0, 0]]\n',
     "light without direction": '[[light]]\nintensity = 1.0\n',
     "bad precision": '[precision]\nacc_bits = 99\n',
+    "float supersample": '[render]\nsupersample = 2.0\n',
+    "string headlight": '[[light]]\nheadlight = "no"\n',
+    "string direction": '[view]\ndirection = "123"\n',
 }
 
 
@@ -136,3 +139,24 @@ def test_bad_input_as_a_subprocess_has_no_traceback(tmp_path):
                         "--out", str(tmp_path / "out.png")], capture_output=True, text=True)
     assert r.returncode == 2
     assert r.stderr.strip().count("\n") == 0 and "Traceback" not in r.stderr
+
+
+def test_unwritable_output_leaves_nothing(tmp_path, scene_file, capsys):
+    blocker = tmp_path / "afile"
+    blocker.write_text("x")
+    out = tmp_path / "out.png"
+    rc, _, err = run_cli(["render", "sphere:16", "--scene", str(scene_file), "--out", str(out),
+                          "--stats", str(blocker / "s.json")], capsys)
+    assert rc == 2 and err.startswith("cube4: error: ") and "Traceback" not in err
+    assert not out.exists() and not list(tmp_path.glob(".cube4-*"))
+
+
+def test_stats_are_strict_json_and_files_world_readable(tmp_path, scene_file, capsys):
+    stats = tmp_path / "s.json"
+    out = tmp_path / "r.png"
+    rc, _, err = run_cli(["render", "sphere:16", "--scene", str(scene_file), "--engine", "reference",
+                          "--compare-to", "reference", "--stats", str(stats), "--out", str(out)], capsys)
+    assert rc == 0, err
+    d = json.loads(stats.read_text(), parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
+    assert d["psnr"] is None and d["rmse"] == 0.0
+    assert out.stat().st_mode & 0o044 == 0o044

@@ -70,17 +70,33 @@ def _check_output(path: str, suffixes: tuple[str, ...], what: str) -> Path:
     return p
 
 
-def _atomic_write(path: Path, write) -> None:
-    """Write through a temporary file in the same folder, then rename into place."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".cube4-", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
+def _write_all(outputs: list[tuple[Path, object]]) -> None:
+    """Write every output to a temporary file beside it, then rename them all into
+    place; if any write fails, remove the temporaries and report one line."""
+    umask = os.umask(0)
+    os.umask(umask)
+    temps: list[tuple[str, Path]] = []
     try:
-        write(tmp)
-        os.replace(tmp, path)
+        for path, write in outputs:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=".cube4-", suffix=path.suffix, dir=path.parent)
+            os.close(fd)
+            temps.append((tmp, path))
+            os.chmod(tmp, 0o666 & ~umask)
+            write(tmp)
+        for tmp, path in temps:
+            os.replace(tmp, path)
+    except OSError as e:
+        raise UserError(f"cannot write {e.filename or 'output'}: {e.strerror}") from None
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        for tmp, _ in temps:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+
+
+def _json_safe(d: dict) -> dict:
+    """inf/NaN are not JSON: an identical image has PSNR null ("infinite")."""
+    return {k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in d.items()}
 
 
 def write_image(path: str, rgba: np.ndarray, background=(0.0, 0.0, 0.0)) -> None:
@@ -132,11 +148,14 @@ def cmd_render(args: argparse.Namespace) -> int:
         stats.update(image_metrics(res.image, ref.image))
         stats["reference_wall_s"] = ref.wall_s
 
-    _atomic_write(out, lambda tmp: write_image(tmp, res.image, bg))
+    outputs: list[tuple[Path, object]] = [(out, lambda tmp: write_image(tmp, res.image, bg))]
     if bp is not None and res.frame is not None:
-        _atomic_write(bp, lambda tmp: np.save(tmp, res.frame.baseplane))
+        base = res.frame.baseplane
+        outputs.append((bp, lambda tmp: np.save(tmp, base)))
     if st is not None:
-        _atomic_write(st, lambda tmp: Path(tmp).write_text(json.dumps(stats, indent=2) + "\n"))
+        text = json.dumps(_json_safe(stats), indent=2, allow_nan=False) + "\n"
+        outputs.append((st, lambda tmp: Path(tmp).write_text(text)))
+    _write_all(outputs)
     if not args.quiet:
         line = f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} in {res.wall_s:.2f} s -> {out}"
         if args.compare_to:

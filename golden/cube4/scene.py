@@ -100,7 +100,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if mode not in MODES:
         raise UserError(f"scene: render.mode {mode!r} is not supported (supported: {', '.join(MODES)})")
     supersample = rnd.get("supersample", 1)
-    if supersample not in (1, 2, 4, 8) or isinstance(supersample, bool):
+    if not isinstance(supersample, int) or isinstance(supersample, bool) or supersample not in (1, 2, 4, 8):
         raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {supersample!r}")
 
     mat = data.get("material", {})
@@ -117,7 +117,10 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     for n, lt in enumerate(raw_lights):
         _check_keys(lt, ("direction", "intensity", "headlight"), f"light #{n + 1}")
         inten = _num(lt, "intensity", 1.0, 0, 100, f"light #{n + 1} ")
-        if lt.get("headlight", False):
+        headlight = lt.get("headlight", False)
+        if not isinstance(headlight, bool):
+            raise UserError(f"scene: light #{n + 1} headlight must be true or false, got {headlight!r}")
+        if headlight:
             if "direction" in lt:
                 raise UserError(f"scene: light #{n + 1} is a headlight and also has a direction")
             ldir = direction

@@ -28,6 +28,8 @@ ARRAY_AXIS = {0: 2, 1: 1, 2: 0}  # volume axis (x=0, y=1, z=2) -> numpy axis of 
 
 def normalize_direction(d) -> np.ndarray:
     """Validate a view or light direction: three finite numbers, not all zero."""
+    if isinstance(d, (str, bytes)):
+        raise UserError(f"a direction must be three numbers, got {d!r}")
     try:
         v = np.asarray([float(c) for c in d], dtype=np.float64)
     except (TypeError, ValueError):
