@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import make_scene, random_volume, sphere_volume
+from cube4_testutil import make_scene, random_volume, sphere_volume
 
 from cube4.config import Cube4Config
 from cube4.fixed import lerp, round_shift

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import make_scene
+from cube4_testutil import make_scene
 
 from cube4.render import config_for, render
 from cube4.scene import load_scene

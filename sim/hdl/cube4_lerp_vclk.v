@@ -1,0 +1,52 @@
+`default_nettype none
+// =============================================================================
+// cube4_lerp_vclk  (SIMULATION ONLY: needs Verilator --timing)
+// -----------------------------------------------------------------------------
+// Purpose
+//   cube4_lerp with its clock generated in Verilog by cube4_sim_clock: the
+//   pattern for testbenches whose clock should not be driven from Python.
+//   Same parameters and ports as cube4_lerp except clk, which is an internal
+//   signal here (cocotb still sees it as dut.clk, to wait on its edges).
+//
+// Parameters
+//   DATA_W, WEIGHT_W, LATENCY  passed to cube4_lerp (same ranges).
+//   HALF_PERIOD                passed to cube4_sim_clock (ns).
+//
+// Latency, ports and fixed-point formats: as cube4_lerp.
+// =============================================================================
+module cube4_lerp_vclk #(
+    parameter integer DATA_W      = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer LATENCY     = 0,
+    parameter integer HALF_PERIOD = 5
+) (
+    input  wire                en,
+    input  wire [DATA_W-1:0]   a,
+    input  wire [DATA_W-1:0]   b,
+    input  wire [WEIGHT_W-1:0] w,
+    output wire [DATA_W-1:0]   y
+);
+
+    wire clk;
+
+    cube4_sim_clock #(
+        .HALF_PERIOD (HALF_PERIOD)
+    ) u_clock (
+        .clk (clk)
+    );
+
+    cube4_lerp #(
+        .DATA_W   (DATA_W),
+        .WEIGHT_W (WEIGHT_W),
+        .LATENCY  (LATENCY)
+    ) u_lerp (
+        .clk (clk),
+        .en  (en),
+        .a   (a),
+        .b   (b),
+        .w   (w),
+        .y   (y)
+    );
+
+endmodule
+`default_nettype wire

@@ -1,0 +1,47 @@
+`default_nettype none
+// =============================================================================
+// cube4_sim_clock  (SIMULATION ONLY: needs Verilator --timing)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Free-running clock generated in Verilog, for long tests: the simulator
+//   toggles it by itself instead of cocotb scheduling every edge through VPI.
+//   Instantiate it in a small sim-only wrapper around the DUT (see
+//   cube4_lerp_vclk.v) and build with run_test(..., timing=True). The cocotb
+//   test must then NOT start a cocotb Clock on the same signal.
+//
+// Parameters
+//   HALF_PERIOD  half clock period in time units of the runner's timescale
+//                (1 ns). Range >= 1. Default 5 (10 ns period).
+//
+// Latency
+//   n/a. clk starts at 0 and rises first at t = HALF_PERIOD.
+//
+// Ports
+//   clk  out  1 bit  the clock
+// =============================================================================
+module cube4_sim_clock #(
+    parameter integer HALF_PERIOD = 5
+) (
+    output wire clk
+);
+
+    generate
+        if (HALF_PERIOD < 1) begin : g_bad_half_period
+            $error("cube4_sim_clock: HALF_PERIOD = %0d must be >= 1", HALF_PERIOD);
+        end
+    endgenerate
+
+    reg clk_q;
+
+    initial begin
+        clk_q = 1'b0;
+    end
+
+    always begin
+        #(HALF_PERIOD) clk_q = ~clk_q;
+    end
+
+    assign clk = clk_q;
+
+endmodule
+`default_nettype wire
