@@ -53,8 +53,6 @@ class Cube4Config:
                 raise UserError(f"{name} must be an integer in {lo}..{hi}, got {val!r}")
         if self.supersample not in (1, 2, 4, 8):
             raise UserError(f"supersample must be 1, 2, 4 or 8, got {self.supersample!r}")
-        if self.guard_bits > self.weight_bits:
-            raise UserError("supersample must not exceed 2^weight_bits")
 
     @property
     def guard_bits(self) -> int:
