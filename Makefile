@@ -3,6 +3,7 @@
 #   make setup   create/refresh .venv (scripts/setup.sh; idempotent)
 #   make lint    verilator --lint-only -Wall on every module in rtl/ (waivers: rtl/lint_waivers.vlt)
 #   make sim     RTL regression: cocotb + Verilator testbenches in tb/ (WAVES=1 dumps FST)
+#   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
 #   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
 #   make demo    render the demo volume with the golden model, compared to the reference
 #   make clean   delete build/ and out/
@@ -30,20 +31,30 @@ SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
 LINT_WAIVERS := rtl/lint_waivers.vlt
 LINT_FLAGS   := --lint-only -Wall --quiet
 
+comma := ,
+
 # Parameter sets linted in addition to each module's defaults (generate
 # branches are only checked when elaborated). Sets are space-separated;
 # parameters within a set are comma-separated.
 LINT_SETS_cube4_lerp        := LATENCY=0 LATENCY=1 LATENCY=2 \
                                DATA_W=1,WEIGHT_W=1,LATENCY=1 DATA_W=16,WEIGHT_W=12,LATENCY=2
 LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
+FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
+                               P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
+LINT_SETS_cube4_cfb         := $(FE_SETS)
+LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
+LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4
+LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,VOXEL_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1
+LINT_SETS_cube4_ring_shift  := P=1 P=2,DATA_W=1 P=64,DATA_W=256
+LINT_SETS_cube4_beam_ext    := P=1 P=2,DATA_W=1 P=64,DATA_W=256
+LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096
 
-comma := ,
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim test demo clean
+.PHONY: help setup lint sim bench test demo clean
 
 help:
-	@sed -n '3,9p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,10p' Makefile | sed 's/^# \{0,1\}//'
 
 setup: $(SETUP_STAMP)
 
@@ -62,6 +73,11 @@ lint: setup
 
 sim: setup
 	$(PY) -m pytest tb -q
+
+bench: setup
+	$(PY) -m pytest tb/cube4_frontend/test_cube4_frontend.py::test_cube4_frontend_cycles_128 -q -s \
+	    -p no:cacheprovider 2>&1 | grep -E "^front end|passed|failed|Error"
+	@echo "report: build/reports/frontend_cycles.json"
 
 test: setup
 	$(PY) -m pytest $(wildcard tests) tb -q

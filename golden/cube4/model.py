@@ -85,6 +85,22 @@ def inside_mask(trav: Traversal, m: int) -> np.ndarray:
     return mask
 
 
+def sample_stream(vol: np.ndarray, trav: Traversal) -> tuple[np.ndarray, np.ndarray]:
+    """The tri-linear sample stream alone (what the RTL front end emits):
+    samples (M, nj, ni) int32 and inside (M, nj, ni) bool, indexed [m, j, i]."""
+    t = trav.to_traversal(vol)
+    nk, nj, ni = t.shape
+    tp = np.zeros((nk + 1, nj + 1, ni + 1), dtype=np.int32)
+    tp[:nk, :nj, :ni] = t
+    M = trav.num_sample_slices
+    samples = np.empty((M, nj, ni), dtype=np.int32)
+    inside = np.empty((M, nj, ni), dtype=bool)
+    for m in range(M):
+        samples[m] = interpolate_slice(tp, trav, m, trav.weight_bits)
+        inside[m] = inside_mask(trav, m)
+    return samples, inside
+
+
 # ---------------------------------------------------------------- numerics.md §5
 def gradient(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
     """Gradient of sample slice m from sample slices m-1, m, m+1 (each zero-padded by

@@ -179,6 +179,7 @@ def run_test(
     defines: Mapping[str, object] | None = None,
     includes: Sequence[str | os.PathLike] = (),
     seed: int | None = None,
+    plusargs: Sequence[str] = (),
 ) -> Path:
     """Build ``top`` from ``sources`` with ``params`` and run cocotb tests on it.
 
@@ -201,6 +202,7 @@ def run_test(
         defines: Verilog defines (``-D``).
         includes: include directories.
         seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random).
+        plusargs: simulator plusargs (``+NAME=value``), read by ``$value$plusargs``.
 
     Returns:
         The cocotb results XML file.
@@ -281,6 +283,7 @@ def run_test(
             testcase=testcase,
             seed=seed,
             test_args=test_args,
+            plusargs=list(plusargs),
             extra_env=dict(extra_env or {}),  # (re-applied last by FastVerilator)
             waves=waves,
             parameters=params,

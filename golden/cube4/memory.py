@@ -1,0 +1,166 @@
+"""Skewed voxel memory and the front end's view registers: the host side of the RTL.
+
+One implementation, used by the tests, the RTL render engine and anyone who wants to
+know where a voxel lives (docs/architecture.md, "Voxel memory"):
+
+* **Skew (Teramac eq. 1):** voxel (x, y, z) lives in bank ``(x + y + z) mod p``. Any
+  ``p`` consecutive voxels along any axis fall in ``p`` different banks, so a partial
+  beam along x, y or z is read in one cycle, conflict free, for every view.
+* **Partition (eq. 2, generalised):** within a bank the address is
+  ``floor(x / p) + NBX * (y + ny * z)`` with ``NBX = ceil(nx / p)``. Each beam along x
+  occupies ``NBX`` words of every bank, as in eq. 2 (``n / p`` words), but the words are
+  ordered by ``floor(x / p)`` rather than by ``floor(((x + y + z) mod n) / p)``, so a
+  partial beam is always x-contiguous and beam extension only ever needs the next
+  partial beam (eq. 2's order wraps x around inside a partial beam). x is padded to
+  ``NBX * p`` with zeros; y and z need no padding, and any nx, ny, nz work with any p.
+
+``frontend_regs`` turns a ``view.Traversal`` into the register values the CFB needs
+(start coordinates, per-axis address strides, partial-beam counts); ``lane_positions``
+says which sample position each pipeline lane of an output beat holds.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .errors import UserError
+from .view import Traversal
+
+
+def words_per_bank(dims, p: int) -> int:
+    """Words each bank needs for a volume of dims (nx, ny, nz)."""
+    nx, ny, nz = (int(n) for n in dims)
+    return -(-nx // p) * ny * nz
+
+
+def bank_of(x, y, z, p: int):
+    """Bank (= pipeline) holding voxel (x, y, z)."""
+    return (np.asarray(x) + np.asarray(y) + np.asarray(z)) % p
+
+
+def address_of(x, y, z, dims, p: int):
+    """Word address of voxel (x, y, z) inside its bank."""
+    nx, ny, _ = (int(n) for n in dims)
+    nbx = -(-nx // p)
+    return np.asarray(x) // p + nbx * (np.asarray(y) + ny * np.asarray(z))
+
+
+def pack_volume(vol: np.ndarray, p: int) -> np.ndarray:
+    """Bank images of vol[z, y, x]: array (p, words_per_bank) of the voxel values."""
+    if vol.ndim != 3:
+        raise UserError(f"a volume must be 3-D, got shape {vol.shape}")
+    if not 1 <= p <= 64:
+        raise UserError(f"p must be in 1..64, got {p}")
+    nz, ny, nx = vol.shape
+    nbx = -(-nx // p)
+    vp = np.zeros((nz, ny, nbx * p), dtype=np.int64)
+    vp[:, :, :nx] = vol
+    z, y, x = np.meshgrid(np.arange(nz), np.arange(ny), np.arange(nbx * p), indexing="ij")
+    banks = np.zeros((p, nbx * ny * nz), dtype=np.int64)
+    banks[bank_of(x, y, z, p), x // p + nbx * (y + ny * z)] = vp
+    return banks
+
+
+def unpack_volume(banks: np.ndarray, dims) -> np.ndarray:
+    """Inverse of pack_volume: vol[z, y, x] from the bank images."""
+    p = banks.shape[0]
+    nx, ny, nz = (int(n) for n in dims)
+    z, y, x = np.meshgrid(np.arange(nz), np.arange(ny), np.arange(nx), indexing="ij")
+    return banks[bank_of(x, y, z, p), address_of(x, y, z, dims, p)]
+
+
+def write_bank_hex(banks: np.ndarray, prefix: str | Path, voxel_bits: int, depth: int | None = None) -> list[Path]:
+    """Write one ``$readmemh`` file per bank: ``<prefix>_bank<q>.hex``.
+
+    ``depth`` pads each image with zero words (the RTL memory depth); files are written
+    to a temporary name and renamed, so a reader never sees half a file.
+    """
+    p, words = banks.shape
+    depth = words if depth is None else depth
+    if depth < words:
+        raise UserError(f"volume needs {words} words per bank, the memory has {depth}")
+    digits = -(-voxel_bits // 4)
+    out = []
+    for q in range(p):
+        path = Path(f"{prefix}_bank{q}.hex")
+        tmp = path.with_suffix(".hex.tmp")
+        data = np.zeros(depth, dtype=np.int64)
+        data[:words] = banks[q]
+        tmp.write_text("\n".join(f"{int(v):0{digits}x}" for v in data) + "\n")
+        tmp.replace(path)
+        out.append(path)
+    return out
+
+
+# ----------------------------------------------------------------- view registers
+def _axis_addr(axis: int, c: int, dims, p: int) -> int:
+    """Address contribution of coordinate c along a volume axis."""
+    nx, ny, _ = dims
+    nbx = -(-nx // p)
+    return (c // p, nbx * c, nbx * ny * c)[axis]
+
+
+def _axis_strides(axis: int, dims, p: int) -> tuple[int, int]:
+    """(LIN, BLK): address change for a unit step that stays inside / crosses a
+    p-block of the coordinate. Linear axes (y, z) have LIN == BLK; x has (0, 1)."""
+    nx, ny, _ = dims
+    nbx = -(-nx // p)
+    return ((0, 1), (nbx, nbx), (nbx * ny, nbx * ny))[axis]
+
+
+def frontend_regs(trav: Traversal, p: int) -> dict[str, int]:
+    """Register values of cube4_frontend for one view (docs/architecture.md, "CFB").
+
+    The host computes them the way it computes VIEW_X / VIEW_Y: a handful of
+    additions and multiplications per frame, none per voxel.
+    """
+    dims = tuple(int(n) for n in trav.dims)
+    ni, nj, nk = trav.ni, trav.nj, trav.nk
+    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    cj0 = nj - 1 if fj else 0
+    ck0 = nk - 1 if fk else 0
+    j_lin, j_blk = _axis_strides(trav.axis_j, dims, p)
+    k_lin, k_blk = _axis_strides(trav.major, dims, p)
+    i_lin, i_blk = _axis_strides(trav.axis_i, dims, p)
+    i_block = trav.axis_i == 0  # x: address is floor(c / p)
+    return {
+        "NI": ni,
+        "NJ": nj,
+        "NK": nk,
+        "NB": -(-ni // p),
+        "FLIP_I": int(fi),
+        "FLIP_J": int(fj),
+        "FLIP_K": int(fk),
+        "SS_LOG2": trav.guard_bits,
+        "VIEW_X": trav.view_x,
+        "VIEW_Y": trav.view_y,
+        # axis j (beam index): start coordinate mod p, start address, strides
+        "J_R0": cj0 % p,
+        "J_A0": _axis_addr(trav.axis_j, cj0, dims, p),
+        "J_LIN": j_lin,
+        "J_BLK": j_blk,
+        # axis k (slices)
+        "K_R0": ck0 % p,
+        "K_A0": _axis_addr(trav.major, ck0, dims, p),
+        "K_LIN": k_lin,
+        "K_BLK": k_blk,
+        # axis i (along the beam): address = I_A0 +/- (pb * I_PB + t * I_LIN + [t > I_RT])
+        "I_A0": _axis_addr(trav.axis_i, ni - 1, dims, p) if fi else 0,
+        "I_PB": i_blk if i_block else i_lin * p,
+        "I_LIN": 0 if i_block else i_lin,
+        "I_RT": ((ni - 1) % p) if (fi and i_block) else p - 1,
+        "I_R1": (ni - 1) % p,
+    }
+
+
+def lane_positions(skew: int, pb: int, p: int, ni: int, flip_i: bool) -> np.ndarray:
+    """Position i held by each lane q of a beat with the given skew and partial beam.
+
+    Lane q holds the position whose bank is q: t = (q - skew) mod p, or for a flipped
+    i axis t = ((ni - 1) + skew - q) mod p; i = pb * p + t. Positions >= ni are padding.
+    """
+    q = np.arange(p)
+    t = (((ni - 1) + skew - q) if flip_i else (q - skew)) % p
+    return pb * p + t

@@ -1,0 +1,469 @@
+`default_nettype none
+// =============================================================================
+// cube4_cfb
+// -----------------------------------------------------------------------------
+// Purpose
+//   The CFB of Cube-4 (Teramac paper, section 5, Fig. 12): the traversal unit
+//   (pass / beam / partial-beam counters), the template unit (incremental
+//   resampling weights, X/Y steps from the carry), the address unit (one
+//   address per bank for the partial beam being read, any of the six major
+//   viewing directions and any slope signs, from the one skewed memory image)
+//   and the control unit (the bits that travel with the data to TRI and on).
+//   It issues one memory request beat per partial beam; the memory returns the
+//   voxels with the beat's tag, and cube4_tri turns beats into samples.
+//
+//   Schedule (docs/architecture.md, "Front end"): passes m = 0 .. M-1, one per
+//   sample slice, M = (NK - 1) * S + 1, pass m = k0 * S + r. Each pass walks
+//   beams j = 0 .. NJ-1 and partial beams pb = 0 .. NB-1. Voxel slice k is
+//   read from memory exactly once: by pass 0 (k = 0, as the lower slice) or by
+//   the pass k0 * S + 1 with k0 = k - 1 (as the upper slice); with S = 1 every
+//   pass reads its own slice. Sample row j of pass m leaves with beam j + 1, and
+//   row NJ-1 with beam 0 of the next pass (Y-wrap: the row above is zero); a
+//   last "flush" beam (NB beats, no reads) emits the last row of the frame and
+//   one "drain" beat pushes the beam-extension delay of cube4_tri empty.
+//   Beats per frame: (M * NJ + 1) * NB + 1.
+//
+//   Lane q reads bank q. With c_i, c_j, c_k the volume coordinates along the
+//   traversal axes, lane q holds the position t of the partial beam with
+//   (c_i + c_j + c_k) mod P = q (eq. 1):
+//     t = (q - skew) mod P              (i not flipped)
+//     t = (I_R1 + skew - q) mod P       (i flipped), skew = (c_j + c_k) mod P
+//   and reads address  A_j(c_j) + A_k(c_k) + I_A0 +/- (pb*I_PB + t*I_LIN + [t > I_RT])
+//   with the per-axis terms kept incrementally (golden/cube4/memory.py).
+//
+// Parameters
+//   P            pipelines = memory banks.                 1..64.  Default 8.
+//   MAX_DIM      largest volume dimension on any axis.      2..2048. Default 256.
+//   ADDR_W       memory address width (words per bank).     1..30.  Default 16.
+//   WEIGHT_W     resampling weight width W (Q0.W).          4..12.  Default 8.
+//   MAX_SS_LOG2  log2 of the largest supersampling S.       0..3.   Default 0.
+//
+// Latency
+//   One register stage: a beat leaves (req_valid) the cycle after the state
+//   that describes it; the state advances only when the output register is
+//   free or accepted (req_ready). req_valid never depends on req_ready.
+//
+// Ports (formats as in docs/numerics.md; all cfg_* are view/volume registers
+// written by the host, see golden/cube4/memory.py frontend_regs; they must be
+// stable from start until the frame is done)
+//   clk, rst         clock, synchronous active-high reset (control state only)
+//   start            in   pulse: start a frame (ignored while busy)
+//   busy             out  a frame is being issued
+//   cfg_ni/nj/nk     in   [DIM_W]   traversal-frame dims (1..MAX_DIM)
+//   cfg_nb           in   [NB_W]    partial beams per beam, ceil(NI / P)
+//   cfg_flip_i/j/k   in   1 bit     axis traversed backwards
+//   cfg_ss_log2      in   [2]       log2 S, 0..MAX_SS_LOG2
+//   cfg_view_x/y     in   [W+1]     VIEW_X / VIEW_Y, slopes Q1.W in [0, 1]
+//   cfg_j_r0, cfg_k_r0 in [LANE_W]  start coordinate mod P of axes j, k
+//   cfg_i_r1, cfg_i_rt in [LANE_W]  (NI-1) mod P; block threshold of axis i
+//   cfg_j_a0/lin/blk, cfg_k_a0/lin/blk, cfg_i_a0/pb/lin  in [ADDR_W]
+//                                   address start values and strides
+//   req_valid/ready                 memory request handshake
+//   req_addr         out  [P*ADDR_W] word address per bank (lane q at q*ADDR_W)
+//   req_rden         out  [P]       read bank q (0: padding or no read this beat)
+//   tag_*            out            control bits of the beat (cube4_tri header)
+//
+// Bit growth and rounding
+//   None: counters and modular address arithmetic (ADDR_W bits, exact for
+//   every enabled lane; disabled lanes may wrap and are never read). The phase
+//   accumulators are W + log2 S bits and wrap by design (the carry is the step).
+// =============================================================================
+module cube4_cfb #(
+    parameter integer P           = 8,
+    parameter integer MAX_DIM     = 256,
+    parameter integer ADDR_W      = 16,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_SS_LOG2 = 0,
+    // derived widths (not to be overridden)
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
+    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
+    parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P))
+) (
+    input  wire                  clk,
+    input  wire                  rst,
+    input  wire                  start,
+    output wire                  busy,
+    // view / volume registers
+    input  wire [DIM_W-1:0]      cfg_ni,
+    input  wire [DIM_W-1:0]      cfg_nj,
+    input  wire [DIM_W-1:0]      cfg_nk,
+    input  wire [NB_W-1:0]       cfg_nb,
+    input  wire                  cfg_flip_i,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire [1:0]            cfg_ss_log2,
+    input  wire [WEIGHT_W:0]     cfg_view_x,
+    input  wire [WEIGHT_W:0]     cfg_view_y,
+    input  wire [LANE_W-1:0]     cfg_j_r0,
+    input  wire [LANE_W-1:0]     cfg_k_r0,
+    input  wire [LANE_W-1:0]     cfg_i_r1,
+    input  wire [LANE_W-1:0]     cfg_i_rt,
+    input  wire [ADDR_W-1:0]     cfg_j_a0,
+    input  wire [ADDR_W-1:0]     cfg_j_lin,
+    input  wire [ADDR_W-1:0]     cfg_j_blk,
+    input  wire [ADDR_W-1:0]     cfg_k_a0,
+    input  wire [ADDR_W-1:0]     cfg_k_lin,
+    input  wire [ADDR_W-1:0]     cfg_k_blk,
+    input  wire [ADDR_W-1:0]     cfg_i_a0,
+    input  wire [ADDR_W-1:0]     cfg_i_pb,
+    input  wire [ADDR_W-1:0]     cfg_i_lin,
+    // memory request stream
+    output wire                  req_valid,
+    input  wire                  req_ready,
+    output wire [P*ADDR_W-1:0]   req_addr,
+    output wire [P-1:0]          req_rden,
+    // beat tag (travels with the data through the memory to cube4_tri)
+    output wire                  tag_emit,      // beat outputs a sample row
+    output wire                  tag_sop,       // first sample beat of the frame
+    output wire                  tag_eop,       // last sample beat of the frame
+    output wire                  tag_drain,     // drain beat: no data
+    output wire                  tag_ywrap,     // current row is zero (row above the last)
+    output wire                  tag_bb_we,     // write the beam buffers
+    output wire                  tag_lower_mem, // lower slice comes from memory
+    output wire                  tag_upper_mem, // upper slice comes from memory
+    output wire                  tag_upper_use, // upper slice used (r > 0)
+    output wire                  tag_k0_odd,    // slice-buffer parity of the lower slice
+    output wire [SB_W-1:0]       tag_sb_addr,   // slice-buffer slot j * NB + pb
+    output wire [PB_W-1:0]       tag_pb,        // partial beam (beam-buffer slot)
+    output wire [WEIGHT_W-1:0]   tag_wx,        // weights of the emitted sample row
+    output wire [WEIGHT_W-1:0]   tag_wy,
+    output wire [WEIGHT_W-1:0]   tag_wz,
+    output wire [M_W-1:0]        tag_m,         // sample slice of the emitted row
+    output wire [DIM_W-1:0]      tag_j,         // sample row j of the emitted row
+    output wire [LANE_W-1:0]     tag_skew,      // lane alignment of the emitted row
+    output wire                  tag_y_last,    // emitted row is j = NJ-1
+    output wire [3:0]            tag_steps,     // {old_y, old_x, y, x} steps of tag_m
+    output wire [P-1:0]          tag_lane_valid,// lane holds a position < NI
+    output wire [P-1:0]          tag_lane_nbr,  // lane's position + 1 < NI
+    output wire [P-1:0]          tag_lane_wrap  // lane holds t = P-1 (beam extension)
+);
+    // ---- parameter checks ----
+    generate
+        if (P < 1 || P > 64) begin : g_bad_p
+            $error("cube4_cfb: P = %0d is out of range 1..64", P);
+        end
+        if (MAX_DIM < 2 || MAX_DIM > 2048) begin : g_bad_max_dim
+            $error("cube4_cfb: MAX_DIM = %0d is out of range 2..2048", MAX_DIM);
+        end
+        if (ADDR_W < 1 || ADDR_W > 30) begin : g_bad_addr_w
+            $error("cube4_cfb: ADDR_W = %0d is out of range 1..30", ADDR_W);
+        end
+        if (WEIGHT_W < 4 || WEIGHT_W > 12) begin : g_bad_weight_w
+            $error("cube4_cfb: WEIGHT_W = %0d is out of range 4..12", WEIGHT_W);
+        end
+        if (MAX_SS_LOG2 < 0 || MAX_SS_LOG2 > 3) begin : g_bad_ss
+            $error("cube4_cfb: MAX_SS_LOG2 = %0d is out of range 0..3", MAX_SS_LOG2);
+        end
+    endgenerate
+
+    localparam integer PH_W = WEIGHT_W + MAX_SS_LOG2;  // phase accumulator
+    localparam integer R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1;
+    localparam integer IW   = $clog2(MAX_DIM + 2 * P + 1); // positions pb*P + t + 1
+    localparam [LANE_W:0] PL = P[LANE_W:0];
+
+    // mod-P normalisation of a value in (-P, 2P)
+    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v);
+        reg signed [LANE_W+2:0] w;
+        begin
+            w = v;
+            if (w < 0) w = w + $signed({2'b00, PL});
+            if (w >= $signed({2'b00, PL})) w = w - $signed({2'b00, PL});
+            mod_p = w[LANE_W-1:0];
+        end
+    endfunction
+
+    // step a coordinate by +/-1: (c mod P, address term)
+    function automatic [LANE_W-1:0] r_step(input [LANE_W-1:0] r, input down);
+        begin
+            if (down) r_step = (r == '0) ? PL[LANE_W-1:0] - 1'b1 : r - 1'b1;
+            else      r_step = ({1'b0, r} == PL - 1'b1) ? '0 : r + 1'b1;
+        end
+    endfunction
+    function automatic [ADDR_W-1:0] a_step(input [ADDR_W-1:0] a, input [LANE_W-1:0] r,
+                                           input down, input [ADDR_W-1:0] lin,
+                                           input [ADDR_W-1:0] blk);
+        begin
+            if (down) a_step = a - ((r == '0) ? blk : lin);
+            else      a_step = a + (({1'b0, r} == PL - 1'b1) ? blk : lin);
+        end
+    endfunction
+    function automatic [LANE_W-1:0] add_p(input [LANE_W-1:0] a, input [LANE_W-1:0] b);
+        add_p = mod_p($signed({3'b000, a}) + $signed({3'b000, b}));
+    endfunction
+
+    // resampling weight = phase bits g .. g+W-1 (the g guard bits are below)
+    function automatic [WEIGHT_W-1:0] phase_weight(input [PH_W-1:0] ph, input [1:0] gg);
+        reg [PH_W-1:0] sh;
+        begin
+            sh = ph >> gg;
+            phase_weight = sh[WEIGHT_W-1:0];
+        end
+    endfunction
+
+    // ------------------------------------------------------------------ state
+    localparam [1:0] ST_IDLE = 2'd0, ST_RUN = 2'd1, ST_FLUSH = 2'd2, ST_DRAIN = 2'd3;
+    reg [1:0]          state_q;
+    reg [M_W-1:0]      m_q;        // pass (sample slice)
+    reg [DIM_W-1:0]    k0_q;       // lower voxel slice of the pass
+    reg [R_W-1:0]      r_q;        // m mod S
+    reg [DIM_W-1:0]    j_q;        // beam
+    reg [PB_W-1:0]     pb_q;       // partial beam
+    reg [SB_W-1:0]     sb_q;       // j * NB + pb
+    reg [IW-1:0]       pbp_q;      // pb * P
+    reg [ADDR_W-1:0]   pba_q;      // pb * I_PB
+    reg [LANE_W-1:0]   rj_q;       // c_j mod P
+    reg [ADDR_W-1:0]   aj_q;       // A_j(c_j)
+    reg [LANE_W-1:0]   rk_q;       // c_k mod P of the next slice to read
+    reg [ADDR_W-1:0]   ak_q;       // A_k(c_k) of the next slice to read
+    reg [LANE_W-1:0]   rk0_q;      // c_k mod P of the pass's lower slice
+    reg [PH_W-1:0]     phx_q, phy_q;  // template phases of pass m
+    reg                old_sx_q, old_sy_q;
+    // the previous pass, for the row emitted at beam 0 and in the flush beam
+    reg [WEIGHT_W-1:0] pwx_q, pwy_q, pwz_q;
+    reg [3:0]          psteps_q;
+    reg [LANE_W-1:0]   pskew_q;
+
+    // ---- template unit (combinational from the phases) ----
+    wire [2:0]          g = {1'b0, cfg_ss_log2};
+    wire [PH_W:0]       phx_sum = {1'b0, phx_q} + {{(PH_W - WEIGHT_W){1'b0}}, cfg_view_x};
+    wire [PH_W:0]       phy_sum = {1'b0, phy_q} + {{(PH_W - WEIGHT_W){1'b0}}, cfg_view_y};
+    wire [PH_W:0]       ph_one  = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g});
+    wire                sx_step = (phx_sum >= ph_one);   // X-step of pass m
+    wire                sy_step = (phy_sum >= ph_one);   // Y-step of pass m
+    wire [PH_W-1:0]     phx_next = sx_step ? phx_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phx_sum[PH_W-1:0];
+    wire [PH_W-1:0]     phy_next = sy_step ? phy_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phy_sum[PH_W-1:0];
+    wire [WEIGHT_W-1:0] wx = phase_weight(phx_q, cfg_ss_log2);
+    wire [WEIGHT_W-1:0] wy = phase_weight(phy_q, cfg_ss_log2);
+    // wz = r / S in Q0.W: r < 2^g, so the shift loses nothing
+    wire [WEIGHT_W-1:0] r_ext = {{(WEIGHT_W - R_W){1'b0}}, r_q};
+    wire [WEIGHT_W-1:0] wz = r_ext << (WEIGHT_W[3:0] - {1'b0, g});
+    wire [3:0]          steps = {old_sy_q, old_sx_q, sy_step, sx_step};
+
+    // ---- traversal unit: where the counters go next ----
+    wire [R_W-1:0] ss_m1 = R_W'((1 << g) - 1);
+    wire last_pb    = (NB_W'(pb_q) == cfg_nb - 1'b1);
+    wire last_j     = (j_q == cfg_nj - 1'b1);
+    wire last_r     = (r_q == ss_m1);
+    wire last_pass  = (k0_q == cfg_nk - 1'b1) && (r_q == '0);
+    wire lower_mem  = (g == 3'd0) || (m_q == '0);
+    wire upper_mem  = (g != 3'd0) && (r_q == R_W'(1));
+    wire any_read   = lower_mem || upper_mem;
+    wire s_j_down   = cfg_flip_j;
+    wire s_k_down   = cfg_flip_k;
+
+    wire [LANE_W-1:0] rk_rd    = rk_q;                         // read slice
+    wire [LANE_W-1:0] skew_rd  = add_p(rj_q, rk_rd);
+    wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk0_q);
+    wire [LANE_W-1:0] skew_vrt = r_step(skew_pas, s_j_down);   // virtual beam NJ
+    wire              at_beam0 = (j_q == '0);
+    wire              in_flush = (state_q == ST_FLUSH);
+    wire              use_prev = at_beam0 || in_flush;          // emitted row is from pass m-1
+    wire [LANE_W-1:0] skew_out = use_prev ? pskew_q : skew_pas;
+
+    // ---- address unit and lane masks (one per lane) ----
+    wire [P*ADDR_W-1:0] addr_d;
+    wire [P-1:0]        rden_d, lval_d, lnbr_d, lwrap_d;
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_lane
+            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
+            // position held by this lane for the read and for the emitted row
+            wire [LANE_W-1:0] t_rd = cfg_flip_i
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, skew_rd}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, skew_rd}));
+            wire [LANE_W-1:0] t_out = cfg_flip_i
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, skew_out}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, skew_out}));
+            wire [IW-1:0] i_rd  = pbp_q + {{(IW - LANE_W){1'b0}}, t_rd};
+            wire [IW-1:0] i_out = pbp_q + {{(IW - LANE_W){1'b0}}, t_out};
+            wire [IW-1:0] ni_ext = {{(IW - DIM_W){1'b0}}, cfg_ni};
+            // address: A_j + A_k + I_A0 +/- (pb*I_PB + t*I_LIN + [t > I_RT])
+            wire [ADDR_W-1:0] t_lin = cfg_i_lin * {{(ADDR_W - LANE_W){1'b0}}, t_rd};
+            wire [ADDR_W-1:0] off   = pba_q + t_lin + {{(ADDR_W - 1){1'b0}}, (t_rd > cfg_i_rt)};
+            wire [ADDR_W-1:0] a_i   = cfg_flip_i ? cfg_i_a0 - off : off;
+            assign addr_d[q*ADDR_W +: ADDR_W] = aj_q + ak_q + a_i;
+            assign rden_d[q]  = (state_q == ST_RUN) && any_read && (i_rd < ni_ext);
+            assign lval_d[q]  = (i_out < ni_ext);
+            assign lnbr_d[q]  = (i_out + 1'b1 < ni_ext);
+            assign lwrap_d[q] = ({1'b0, t_out} == PL - 1'b1);
+        end
+    endgenerate
+
+    // ---- the beat described by the state ----
+    wire              issue   = (state_q != ST_IDLE);
+    wire              emit_d  = (state_q == ST_RUN) ? !(at_beam0 && m_q == '0) : in_flush;
+    wire [M_W-1:0]    mout_d  = (state_q == ST_RUN && at_beam0) ? m_q - 1'b1 : m_q;  // flush: m stays M-1
+    wire [DIM_W-1:0]  jout_d  = use_prev ? cfg_nj - 1'b1 : j_q - 1'b1;
+    wire              sop_d   = emit_d && (mout_d == '0) && (jout_d == '0) && (pb_q == '0);
+    wire              eop_d   = in_flush && last_pb;
+
+    // ---- output register (one stage) ----
+    reg                 v_q;
+    reg [P*ADDR_W-1:0]  addr_q;
+    reg [P-1:0]         rden_q, lval_q, lnbr_q, lwrap_q;
+    reg                 emit_q, sop_q, eop_q, drain_q, ywrap_q, bbwe_q, lmem_q, umem_q, uuse_q, k0odd_q;
+    reg [SB_W-1:0]      sbo_q;
+    reg [PB_W-1:0]      pbo_q;
+    reg [WEIGHT_W-1:0]  wxo_q, wyo_q, wzo_q;
+    reg [M_W-1:0]       mo_q;
+    reg [DIM_W-1:0]     jo_q;
+    reg [LANE_W-1:0]    skewo_q;
+    reg                 ylast_q;
+    reg [3:0]           stepso_q;
+
+    wire advance = !v_q || req_ready;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            v_q <= 1'b0;
+        end else if (advance) begin
+            v_q <= issue;
+        end
+    end
+
+    always @(posedge clk) begin
+        if (advance && issue) begin
+            addr_q   <= addr_d;
+            rden_q   <= rden_d;
+            lval_q   <= lval_d;
+            lnbr_q   <= lnbr_d;
+            lwrap_q  <= lwrap_d;
+            emit_q   <= emit_d;
+            sop_q    <= sop_d;
+            eop_q    <= eop_d;
+            drain_q  <= (state_q == ST_DRAIN);
+            ywrap_q  <= use_prev;
+            bbwe_q   <= (state_q == ST_RUN);
+            lmem_q   <= (state_q == ST_RUN) && lower_mem;
+            umem_q   <= (state_q == ST_RUN) && upper_mem;
+            uuse_q   <= (state_q == ST_RUN) && (r_q != '0);
+            k0odd_q  <= k0_q[0];
+            sbo_q    <= sb_q;
+            pbo_q    <= pb_q;
+            wxo_q    <= use_prev ? pwx_q : wx;
+            wyo_q    <= use_prev ? pwy_q : wy;
+            wzo_q    <= use_prev ? pwz_q : wz;
+            mo_q     <= mout_d;
+            jo_q     <= jout_d;
+            skewo_q  <= skew_out;
+            ylast_q  <= (jout_d == cfg_nj - 1'b1);
+            stepso_q <= use_prev ? psteps_q : steps;
+        end
+    end
+
+    // ---- state update ----
+    always @(posedge clk) begin
+        if (rst) begin
+            state_q <= ST_IDLE;
+        end else if (state_q == ST_IDLE) begin
+            if (start) begin
+                state_q  <= ST_RUN;
+                m_q      <= '0;
+                k0_q     <= '0;
+                r_q      <= '0;
+                j_q      <= '0;
+                pb_q     <= '0;
+                sb_q     <= '0;
+                pbp_q    <= '0;
+                pba_q    <= '0;
+                rj_q     <= cfg_j_r0;
+                aj_q     <= cfg_j_a0;
+                rk_q     <= cfg_k_r0;
+                ak_q     <= cfg_k_a0;
+                rk0_q    <= cfg_k_r0;
+                phx_q    <= '0;
+                phy_q    <= '0;
+                old_sx_q <= (cfg_view_x != '0);
+                old_sy_q <= (cfg_view_y != '0);
+            end
+        end else if (advance) begin
+            // partial beam
+            if (!last_pb) begin
+                pb_q  <= pb_q + 1'b1;
+                pbp_q <= pbp_q + IW'(P);
+                pba_q <= pba_q + cfg_i_pb;
+                sb_q  <= sb_q + 1'b1;
+            end else begin
+                pb_q  <= '0;
+                pbp_q <= '0;
+                pba_q <= '0;
+            end
+            case (state_q)
+                ST_RUN: if (last_pb) begin
+                    if (!last_j) begin
+                        j_q  <= j_q + 1'b1;
+                        sb_q <= sb_q + 1'b1;
+                        rj_q <= r_step(rj_q, s_j_down);
+                        aj_q <= a_step(aj_q, rj_q, s_j_down, cfg_j_lin, cfg_j_blk);
+                    end else begin
+                        // end of pass m: remember it, then the next pass
+                        j_q      <= '0;
+                        sb_q     <= '0;
+                        rj_q     <= cfg_j_r0;
+                        aj_q     <= cfg_j_a0;
+                        pwx_q    <= wx;
+                        pwy_q    <= wy;
+                        pwz_q    <= wz;
+                        psteps_q <= steps;
+                        pskew_q  <= skew_vrt;
+                        if (any_read) begin
+                            rk_q <= r_step(rk_q, s_k_down);
+                            ak_q <= a_step(ak_q, rk_q, s_k_down, cfg_k_lin, cfg_k_blk);
+                        end
+                        if (last_pass) begin
+                            state_q <= ST_FLUSH;
+                        end else begin
+                            m_q      <= m_q + 1'b1;
+                            phx_q    <= phx_next;
+                            phy_q    <= phy_next;
+                            old_sx_q <= sx_step;
+                            old_sy_q <= sy_step;
+                            if (last_r) begin
+                                r_q   <= '0;
+                                k0_q  <= k0_q + 1'b1;
+                                rk0_q <= r_step(rk0_q, s_k_down);
+                            end else begin
+                                r_q <= r_q + 1'b1;
+                            end
+                        end
+                    end
+                end
+                ST_FLUSH: if (last_pb) state_q <= ST_DRAIN;
+                default:  state_q <= ST_IDLE;  // ST_DRAIN: one beat
+            endcase
+        end
+    end
+
+    assign busy           = (state_q != ST_IDLE);
+    assign req_valid      = v_q;
+    assign req_addr       = addr_q;
+    assign req_rden       = rden_q;
+    assign tag_emit       = emit_q;
+    assign tag_sop        = sop_q;
+    assign tag_eop        = eop_q;
+    assign tag_drain      = drain_q;
+    assign tag_ywrap      = ywrap_q;
+    assign tag_bb_we      = bbwe_q;
+    assign tag_lower_mem  = lmem_q;
+    assign tag_upper_mem  = umem_q;
+    assign tag_upper_use  = uuse_q;
+    assign tag_k0_odd     = k0odd_q;
+    assign tag_sb_addr    = sbo_q;
+    assign tag_pb         = pbo_q;
+    assign tag_wx         = wxo_q;
+    assign tag_wy         = wyo_q;
+    assign tag_wz         = wzo_q;
+    assign tag_m          = mo_q;
+    assign tag_j          = jo_q;
+    assign tag_skew       = skewo_q;
+    assign tag_y_last     = ylast_q;
+    assign tag_steps      = stepso_q;
+    assign tag_lane_valid = lval_q;
+    assign tag_lane_nbr   = lnbr_q;
+    assign tag_lane_wrap  = lwrap_q;
+
+endmodule
+`default_nettype wire

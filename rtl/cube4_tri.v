@@ -1,0 +1,462 @@
+`default_nettype none
+// =============================================================================
+// cube4_tri
+// -----------------------------------------------------------------------------
+// Purpose
+//   The TRI units of all P pipelines (Teramac paper, section 5, eq. 4): turns
+//   the voxel beats read by cube4_cfb into tri-linear samples, one sample per
+//   lane per beat, with seven lerps per lane (four in x, two in y, one in z;
+//   docs/numerics.md section 4), all of them the shared cube4_lerp.
+//
+//   Buffers (each voxel is read from memory once per frame):
+//   * slice buffers (only when MAX_SS_LOG2 > 0): two slices of raw voxels per
+//     lane, by slice parity, replayed for the S sample slices between two
+//     voxel slices;
+//   * beam buffers: the previous row (beam) of the lower and upper slice per
+//     lane, NB entries, so the 2 x 2 neighbourhood in (i, j) is complete when
+//     row j + 1 arrives.
+//   Ring traffic (cube4_ring_shift / cube4_beam_ext, one hop, fixed width):
+//   * the upper slice is one lane off (its skew differs by the k step);
+//   * the beam buffer is written one lane over (the skew changes by the j step
+//     from one beam to the next), so its output is aligned with the new row;
+//   * beam extension: position i + 1 from the neighbour lane, for the last
+//     lane of a partial beam from the next beat (Fig. 6).
+//
+// Parameters
+//   P            pipelines.                           1..64.   Default 8.
+//   VOXEL_W      voxel / sample width.                1..16.   Default 8.
+//   WEIGHT_W     weight width W.                      4..12.   Default 8.
+//   MAX_DIM      largest volume dimension.            2..2048. Default 256.
+//   MAX_SS_LOG2  log2 of the largest supersampling.   0..3.    Default 0.
+//   (DIM_W, NB_W, LANE_W, M_W, SB_W: derived, as in cube4_cfb.)
+//
+// Latency
+//   Fixed 7-stage pipeline under one stall enable (en = the output skid
+//   buffer's registered ready) plus a 2-entry skid buffer: s0 input, s1
+//   slice-buffer select, s2 beam buffer, s3 beam-extension hold (a beat waits
+//   there for the next beat, so the drain beat pushes out the last one), s4,
+//   s5 x-lerps, s6 y-lerps, s7 z-lerp. in_ready = en.
+//
+// Ports
+//   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
+//           unsigned integer, 0 for lanes not read); in_t_* = the cube4_cfb tag.
+//   out_*   sample beats: out_sample lane q (unsigned VOXEL_W, Q0.VOXEL_W),
+//           out_lane_valid (lane holds a position < NI), out_lane_inside (the
+//           sample is inside the volume box, numerics.md section 4), out_m,
+//           out_j, out_pb, out_skew (lane q holds i = pb*P + t, t from the
+//           skew as in cube4_cfb), out_ctrl = {y_last, eop, sop, steps[3:0]}
+//           with steps = {old_y, old_x, y, x}.
+//
+// Bit growth and rounding
+//   Each lerp rounds half up once (cube4_lerp); samples stay VOXEL_W bits.
+//   Order of the seven lerps as in the golden model: x in rows j and j + 1 of
+//   both slices, then y, then z.
+// =============================================================================
+module cube4_tri #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_DIM     = 256,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
+    parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P))
+) (
+    input  wire                  clk,
+    input  wire                  rst,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire                  cfg_flip_i,
+    // input beats
+    input  wire                  in_valid,
+    output wire                  in_ready,
+    input  wire [P*VOXEL_W-1:0]  in_data,
+    input  wire                  in_t_emit,
+    input  wire                  in_t_sop,
+    input  wire                  in_t_eop,
+    input  wire                  in_t_ywrap,
+    input  wire                  in_t_bb_we,
+    input  wire                  in_t_lower_mem,
+    input  wire                  in_t_upper_mem,
+    input  wire                  in_t_upper_use,
+    input  wire                  in_t_k0_odd,
+    input  wire [SB_W-1:0]       in_t_sb_addr,
+    input  wire [PB_W-1:0]       in_t_pb,
+    input  wire [WEIGHT_W-1:0]   in_t_wx,
+    input  wire [WEIGHT_W-1:0]   in_t_wy,
+    input  wire [WEIGHT_W-1:0]   in_t_wz,
+    input  wire [M_W-1:0]        in_t_m,
+    input  wire [DIM_W-1:0]      in_t_j,
+    input  wire [LANE_W-1:0]     in_t_skew,
+    input  wire                  in_t_y_last,
+    input  wire [3:0]            in_t_steps,
+    input  wire [P-1:0]          in_t_lane_valid,
+    input  wire [P-1:0]          in_t_lane_nbr,
+    input  wire [P-1:0]          in_t_lane_wrap,
+    // output samples
+    output wire                  out_valid,
+    input  wire                  out_ready,
+    output wire [P*VOXEL_W-1:0]  out_sample,
+    output wire [P-1:0]          out_lane_valid,
+    output wire [P-1:0]          out_lane_inside,
+    output wire [M_W-1:0]        out_m,
+    output wire [DIM_W-1:0]      out_j,
+    output wire [PB_W-1:0]       out_pb,
+    output wire [LANE_W-1:0]     out_skew,
+    output wire [6:0]            out_ctrl
+);
+    generate
+        if (P < 1 || P > 64) begin : g_bad_p
+            $error("cube4_tri: P = %0d is out of range 1..64", P);
+        end
+        if (VOXEL_W < 1 || VOXEL_W > 16) begin : g_bad_voxel_w
+            $error("cube4_tri: VOXEL_W = %0d is out of range 1..16", VOXEL_W);
+        end
+        if (MAX_SS_LOG2 < 0 || MAX_SS_LOG2 > 3) begin : g_bad_ss
+            $error("cube4_tri: MAX_SS_LOG2 = %0d is out of range 0..3", MAX_SS_LOG2);
+        end
+    endgenerate
+
+    localparam integer VW    = VOXEL_W;
+    localparam integer PV    = P * VW;
+    localparam integer BBMAX = 1 << PB_W;   // beam-buffer entries (>= NBMAX)
+    // metadata that rides along unchanged to the output
+    localparam integer META_W = M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;
+
+    wire en;   // the one stall enable of the fixed-latency pipeline
+    assign in_ready = en;
+
+    // ------------------------------------------------------------- s0: input
+    reg               s0_v;
+    reg [PV-1:0]      s0_data;
+    reg               s0_emit, s0_ywrap, s0_bbwe, s0_lmem, s0_umem, s0_uuse, s0_k0odd;
+    reg [SB_W-1:0]    s0_sb;
+    reg [PB_W-1:0]    s0_pb;
+    reg [WEIGHT_W-1:0] s0_wx, s0_wy, s0_wz;
+    reg [P-1:0]       s0_nbr, s0_wrap;
+    reg [META_W-1:0]  s0_meta;
+
+    // inside = valid, and not in the last column when wx > 0, nor the last row when wy > 0
+    wire [P-1:0] in_inside = in_t_lane_valid
+                           & ~(in_t_lane_valid & ~in_t_lane_nbr & {P{in_t_wx != '0}})
+                           & ~{P{in_t_y_last && in_t_wy != '0}};
+
+    always @(posedge clk) begin
+        if (rst) s0_v <= 1'b0;
+        else if (en) s0_v <= in_valid;
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            s0_data  <= in_data;
+            s0_emit  <= in_t_emit;
+            s0_ywrap <= in_t_ywrap;
+            s0_bbwe  <= in_t_bb_we;
+            s0_lmem  <= in_t_lower_mem;
+            s0_umem  <= in_t_upper_mem;
+            s0_uuse  <= in_t_upper_use;
+            s0_k0odd <= in_t_k0_odd;
+            s0_sb    <= in_t_sb_addr;
+            s0_pb    <= in_t_pb;
+            s0_wx    <= in_t_wx;
+            s0_wy    <= in_t_wy;
+            s0_wz    <= in_t_wz;
+            s0_nbr   <= in_t_lane_nbr;
+            s0_wrap  <= in_t_lane_wrap;
+            s0_meta  <= {in_t_m, in_t_j, in_t_pb, in_t_skew,
+                         in_t_y_last, in_t_eop, in_t_sop, in_t_steps,
+                         in_t_lane_valid, in_inside};
+        end
+    end
+
+    // ------------------------------------- s1: slice buffers and source select
+    reg               s1_v;
+    reg [PV-1:0]      s1_data;
+    reg               s1_emit, s1_ywrap, s1_bbwe, s1_lmem, s1_umem, s1_uuse, s1_k0odd;
+    reg [PB_W-1:0]    s1_pb;
+    reg [WEIGHT_W-1:0] s1_wx, s1_wy, s1_wz;
+    reg [P-1:0]       s1_nbr, s1_wrap;
+    reg [META_W-1:0]  s1_meta;
+    wire [PV-1:0]     s1_sb_lower, s1_sb_upper;  // slice-buffer words for the s1 beat
+
+    always @(posedge clk) begin
+        if (rst) s1_v <= 1'b0;
+        else if (en) s1_v <= s0_v;
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            s1_data  <= s0_data;
+            s1_emit  <= s0_emit;
+            s1_ywrap <= s0_ywrap;
+            s1_bbwe  <= s0_bbwe;
+            s1_lmem  <= s0_lmem;
+            s1_umem  <= s0_umem;
+            s1_uuse  <= s0_uuse;
+            s1_k0odd <= s0_k0odd;
+            s1_pb    <= s0_pb;
+            s1_wx    <= s0_wx;
+            s1_wy    <= s0_wy;
+            s1_wz    <= s0_wz;
+            s1_nbr   <= s0_nbr;
+            s1_wrap  <= s0_wrap;
+            s1_meta  <= s0_meta;
+        end
+    end
+
+    genvar q;
+    generate
+        if (MAX_SS_LOG2 > 0) begin : g_slice_buf
+            // Two slices per lane, by parity. Written at s0 by the beat that
+            // reads the slice from memory; read at s0 (data at s1) by later passes.
+            for (q = 0; q < P; q = q + 1) begin : g_lane
+                reg [VW-1:0] sbuf0 [0:(1 << SB_W)-1];
+                reg [VW-1:0] sbuf1 [0:(1 << SB_W)-1];
+                reg [VW-1:0] rd0_q, rd1_q;
+                wire [VW-1:0] d = s0_data[q*VW +: VW];
+                wire wr_lo = en && s0_v && s0_lmem;   // lower slice, parity k0
+                wire wr_up = en && s0_v && s0_umem;   // upper slice, parity k0 + 1
+                always @(posedge clk) begin
+                    if ((wr_lo && !s0_k0odd) || (wr_up && s0_k0odd)) sbuf0[s0_sb] <= d;
+                    if ((wr_lo && s0_k0odd) || (wr_up && !s0_k0odd)) sbuf1[s0_sb] <= d;
+                end
+                always @(posedge clk) begin
+                    if (en) begin
+                        rd0_q <= sbuf0[s0_sb];
+                        rd1_q <= sbuf1[s0_sb];
+                    end
+                end
+                assign s1_sb_lower[q*VW +: VW] = s1_k0odd ? rd1_q : rd0_q;
+                assign s1_sb_upper[q*VW +: VW] = s1_k0odd ? rd0_q : rd1_q;
+            end
+        end else begin : g_no_slice_buf
+            // S = 1 only: every pass reads its own slice, the upper slice is unused.
+            assign s1_sb_lower = {PV{1'b0}};
+            assign s1_sb_upper = {PV{1'b0}};
+            wire unused_sb = ^{s0_sb, s1_k0odd};
+        end
+    endgenerate
+
+    wire [PV-1:0] s1_lower   = s1_lmem ? s1_data : s1_sb_lower;
+    wire [PV-1:0] s1_upper_r = s1_umem ? s1_data : s1_sb_upper;
+    wire [PV-1:0] s1_upper_a;   // realigned to the lower slice's lanes
+    cube4_ring_shift #(
+        .P      (P),
+        .DATA_W (VW)
+    ) u_upper_align (
+        .down (!cfg_flip_k),
+        .x    (s1_upper_r),
+        .y    (s1_upper_a)
+    );
+    wire [PV-1:0] s1_upper = s1_uuse ? s1_upper_a : {PV{1'b0}};
+
+    // ------------------------------------------------------ s2: beam buffers
+    // Lane q's beam buffer holds, per partial beam, the previous row's voxels
+    // of the position lane q holds now: it is written from lane q - s_j.
+    wire [2*PV-1:0] s1_pair;     // {upper, lower} per lane
+    wire [2*PV-1:0] s1_pair_sh;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_pair
+            assign s1_pair[q*2*VW +: 2*VW] = {s1_upper[q*VW +: VW], s1_lower[q*VW +: VW]};
+        end
+    endgenerate
+    cube4_ring_shift #(
+        .P      (P),
+        .DATA_W (2 * VW)
+    ) u_bb_shift (
+        .down (cfg_flip_j),
+        .x    (s1_pair),
+        .y    (s1_pair_sh)
+    );
+
+    reg               s2_v;
+    reg [2*PV-1:0]    s2_cur;    // current row (zero on Y-wrap)
+    reg               s2_emit;
+    reg [WEIGHT_W-1:0] s2_wx, s2_wy, s2_wz;
+    reg [P-1:0]       s2_nbr, s2_wrap;
+    reg [META_W-1:0]  s2_meta;
+    wire [2*PV-1:0]   s2_prev;   // previous row, from the beam buffers
+
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_beam_buf
+            reg [2*VW-1:0] bbuf [0:BBMAX-1];
+            reg [2*VW-1:0] rd_q;
+            always @(posedge clk) begin
+                if (en) begin
+                    rd_q <= bbuf[s1_pb];   // read first: the row before this one
+                    if (s1_v && s1_bbwe) bbuf[s1_pb] <= s1_pair_sh[q*2*VW +: 2*VW];
+                end
+            end
+            assign s2_prev[q*2*VW +: 2*VW] = rd_q;
+        end
+    endgenerate
+
+    always @(posedge clk) begin
+        if (rst) s2_v <= 1'b0;
+        else if (en) s2_v <= s1_v;
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            s2_cur  <= s1_ywrap ? {2*PV{1'b0}} : s1_pair;
+            s2_emit <= s1_emit;
+            s2_wx   <= s1_wx;
+            s2_wy   <= s1_wy;
+            s2_wz   <= s1_wz;
+            s2_nbr  <= s1_nbr;
+            s2_wrap <= s1_wrap;
+            s2_meta <= s1_meta;
+        end
+    end
+
+    // ---------------------------------------- s3: hold for beam extension
+    // Per lane, 4 values: {prev upper, prev lower, cur upper, cur lower}.
+    wire [4*PV-1:0] s2_vals;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_vals
+            assign s2_vals[q*4*VW +: 4*VW] = {s2_prev[q*2*VW +: 2*VW], s2_cur[q*2*VW +: 2*VW]};
+        end
+    endgenerate
+
+    reg               s3_v;
+    reg [4*PV-1:0]    s3_vals;
+    reg               s3_emit;
+    reg [WEIGHT_W-1:0] s3_wx, s3_wy, s3_wz;
+    reg [P-1:0]       s3_nbr, s3_wrap;
+    reg [META_W-1:0]  s3_meta;
+    wire              s3_take = en && s2_v;   // a new beat completes the held one
+
+    always @(posedge clk) begin
+        if (rst) s3_v <= 1'b0;
+        else if (s3_take) s3_v <= 1'b1;
+    end
+    always @(posedge clk) begin
+        if (s3_take) begin
+            s3_vals <= s2_vals;
+            s3_emit <= s2_emit;
+            s3_wx   <= s2_wx;
+            s3_wy   <= s2_wy;
+            s3_wz   <= s2_wz;
+            s3_nbr  <= s2_nbr;
+            s3_wrap <= s2_wrap;
+            s3_meta <= s2_meta;
+        end
+    end
+
+    wire [4*PV-1:0] s3_nvals;   // the four values at position i + 1
+    cube4_beam_ext #(
+        .P      (P),
+        .DATA_W (4 * VW)
+    ) u_beam_ext (
+        .down   (cfg_flip_i),
+        .prev   (s3_vals),
+        .cur    (s2_vals),
+        .wrap   (s3_wrap),
+        .nbr_ok (s3_nbr),
+        .nbr    (s3_nvals)
+    );
+
+    // ------------------------------------------------ s4: the 2x2x2 cell
+    reg               s4_v;
+    reg [4*PV-1:0]    s4_vals, s4_nvals;
+    reg [WEIGHT_W-1:0] s4_wx, s4_wy, s4_wz;
+    reg [META_W-1:0]  s4_meta;
+
+    always @(posedge clk) begin
+        if (rst) s4_v <= 1'b0;
+        else if (en) s4_v <= s3_take && s3_v && s3_emit;
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            s4_vals  <= s3_vals;
+            s4_nvals <= s3_nvals;
+            s4_wx    <= s3_wx;
+            s4_wy    <= s3_wy;
+            s4_wz    <= s3_wz;
+            s4_meta  <= s3_meta;
+        end
+    end
+
+    // ----------------------------------- s5..s7: seven lerps per lane
+    reg               s5_v, s6_v, s7_v;
+    reg [WEIGHT_W-1:0] s5_wy, s5_wz, s6_wz;
+    reg [META_W-1:0]  s5_meta, s6_meta, s7_meta;
+    wire [PV-1:0]     s7_sample;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            s5_v <= 1'b0;
+            s6_v <= 1'b0;
+            s7_v <= 1'b0;
+        end else if (en) begin
+            s5_v <= s4_v;
+            s6_v <= s5_v;
+            s7_v <= s6_v;
+        end
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            s5_wy   <= s4_wy;
+            s5_wz   <= s4_wz;
+            s6_wz   <= s5_wz;
+            s5_meta <= s4_meta;
+            s6_meta <= s5_meta;
+            s7_meta <= s6_meta;
+        end
+    end
+
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_lerp
+            // values of this lane: index 0 cur lower (row j+1), 1 cur upper,
+            // 2 prev lower (row j), 3 prev upper; n* = the same at i + 1
+            wire [VW-1:0] cl  = s4_vals[q*4*VW + 0*VW +: VW];
+            wire [VW-1:0] cu  = s4_vals[q*4*VW + 1*VW +: VW];
+            wire [VW-1:0] pl  = s4_vals[q*4*VW + 2*VW +: VW];
+            wire [VW-1:0] pu  = s4_vals[q*4*VW + 3*VW +: VW];
+            wire [VW-1:0] ncl = s4_nvals[q*4*VW + 0*VW +: VW];
+            wire [VW-1:0] ncu = s4_nvals[q*4*VW + 1*VW +: VW];
+            wire [VW-1:0] npl = s4_nvals[q*4*VW + 2*VW +: VW];
+            wire [VW-1:0] npu = s4_nvals[q*4*VW + 3*VW +: VW];
+            wire [VW-1:0] x_l0, x_l1, x_u0, x_u1, y_l, y_u, z;
+
+            // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_l0 (
+                .clk(clk), .en(en), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_l1 (
+                .clk(clk), .en(en), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_u0 (
+                .clk(clk), .en(en), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_u1 (
+                .clk(clk), .en(en), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
+            // y
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_y_l (
+                .clk(clk), .en(en), .a(x_l0), .b(x_l1), .w(s5_wy), .y(y_l));
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_y_u (
+                .clk(clk), .en(en), .a(x_u0), .b(x_u1), .w(s5_wy), .y(y_u));
+            // z
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_z (
+                .clk(clk), .en(en), .a(y_l), .b(y_u), .w(s6_wz), .y(z));
+            assign s7_sample[q*VW +: VW] = z;
+        end
+    endgenerate
+
+    // ------------------------------------------------------ output skid
+    localparam integer OUT_W = PV + META_W;
+    wire [OUT_W-1:0] skid_out;
+    cube4_skid #(
+        .DATA_W (OUT_W)
+    ) u_skid (
+        .clk       (clk),
+        .rst       (rst),
+        .in_valid  (s7_v),
+        .in_ready  (en),
+        .in_data   ({s7_meta, s7_sample}),
+        .out_valid (out_valid),
+        .out_ready (out_ready),
+        .out_data  (skid_out)
+    );
+
+    assign out_sample = skid_out[PV-1:0];
+    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside} = skid_out[OUT_W-1:PV];
+
+endmodule
+`default_nettype wire

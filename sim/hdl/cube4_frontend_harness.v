@@ -1,0 +1,287 @@
+`default_nettype none
+// =============================================================================
+// cube4_frontend_harness  (simulation only)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Test harness around cube4_frontend: a Verilog clock, cube4_voxel_mem, a
+//   loader that streams a $readmemh image through the memory's load port,
+//   random stall injection (cube4_sim_stall) on the memory request, the memory
+//   response and the sample output, and a dump of every sample beat to a text
+//   file. Python sets registers, pulses load / start and waits for load_done /
+//   done; it never touches individual clocks, so a 128^3 frame simulates at the
+//   speed of the compiled model.
+//
+//   Plusargs: +CUBE4_MEMFILE=<path>  image, one hex word per line, line
+//             a*P + q = bank q, word a (golden/cube4/memory.py);
+//             +CUBE4_DUMP=<path>     sample dump, one line per beat:
+//             "m j pb skew ctrl(hex) lane_valid(hex) lane_inside(hex) samples(hex)",
+//             after a line "start" at every frame start (flushed at done).
+//             Input dump_en = 0 leaves the sample lines out (speed measurements).
+//
+// Parameters: as cube4_frontend, plus DEPTH (words per bank).
+// =============================================================================
+module cube4_frontend_harness #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_DIM     = 64,
+    parameter integer DEPTH       = 4096,
+    parameter integer ADDR_W      = 12,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
+    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
+    parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P)),
+    // the front end's tag width (cube4_frontend's TAG_W for these parameters)
+    parameter integer TAG_W  = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 5 + 3 * P
+) (
+    output wire                  clk,
+    input  wire                  rst,
+    // loader
+    input  wire                  load,        // pulse: read the image file, stream it in
+    input  wire [31:0]           load_words,  // words per bank to load
+    output wire                  load_done,   // level: the last load finished
+    // stall injection, probability /256 per port and cycle
+    input  wire [7:0]            stall_req,
+    input  wire [7:0]            stall_rsp,
+    input  wire [7:0]            stall_out,
+    input  wire                  dump_en,     // write sample beats to the dump file
+    // frame
+    input  wire                  start,
+    output wire                  busy,
+    output wire                  done,
+    output wire [31:0]           cycles,
+    output wire [31:0]           beats,       // sample beats of the last frame
+    input  wire [DIM_W-1:0]      cfg_ni,
+    input  wire [DIM_W-1:0]      cfg_nj,
+    input  wire [DIM_W-1:0]      cfg_nk,
+    input  wire [NB_W-1:0]       cfg_nb,
+    input  wire                  cfg_flip_i,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire [1:0]            cfg_ss_log2,
+    input  wire [WEIGHT_W:0]     cfg_view_x,
+    input  wire [WEIGHT_W:0]     cfg_view_y,
+    input  wire [LANE_W-1:0]     cfg_j_r0,
+    input  wire [LANE_W-1:0]     cfg_k_r0,
+    input  wire [LANE_W-1:0]     cfg_i_r1,
+    input  wire [LANE_W-1:0]     cfg_i_rt,
+    input  wire [ADDR_W-1:0]     cfg_j_a0,
+    input  wire [ADDR_W-1:0]     cfg_j_lin,
+    input  wire [ADDR_W-1:0]     cfg_j_blk,
+    input  wire [ADDR_W-1:0]     cfg_k_a0,
+    input  wire [ADDR_W-1:0]     cfg_k_lin,
+    input  wire [ADDR_W-1:0]     cfg_k_blk,
+    input  wire [ADDR_W-1:0]     cfg_i_a0,
+    input  wire [ADDR_W-1:0]     cfg_i_pb,
+    input  wire [ADDR_W-1:0]     cfg_i_lin
+);
+    cube4_sim_clock u_clock (.clk(clk));
+
+    localparam integer PV = P * VOXEL_W;
+
+    // ------------------------------------------------------------ loader
+    reg [VOXEL_W-1:0] img [0:P*DEPTH-1];
+    string            memfile;
+    integer           dump_fd;
+    reg               load_busy_q, load_done_q;
+    reg [31:0]        load_addr_q;
+    reg [PV-1:0]      ld_data;
+    integer           b;
+
+    initial begin
+        if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile)) memfile = "cube4_mem.hex";
+        begin : open_dump
+            string dumpfile;
+            if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile)) dumpfile = "cube4_samples.txt";
+            dump_fd = $fopen(dumpfile, "w");
+        end
+    end
+
+    always @(posedge clk) begin
+        if (rst) begin
+            load_busy_q <= 1'b0;
+            load_done_q <= 1'b0;
+        end else if (load && !load_busy_q) begin
+            $readmemh(memfile, img);
+            load_busy_q <= 1'b1;
+            load_done_q <= 1'b0;
+            load_addr_q <= 32'd0;
+        end else if (load_busy_q) begin
+            if (load_addr_q + 32'd1 >= load_words) begin
+                load_busy_q <= 1'b0;
+                load_done_q <= 1'b1;
+            end
+            load_addr_q <= load_addr_q + 32'd1;
+        end
+    end
+    always @(*) begin
+        for (b = 0; b < P; b = b + 1) begin
+            ld_data[b*VOXEL_W +: VOXEL_W] = img[load_addr_q * P + b];
+        end
+    end
+    assign load_done = load_done_q;
+
+    // ------------------------------------------------------------ front end
+    wire              req_valid, req_ready, req_valid_m, req_ready_m;
+    wire [P*ADDR_W-1:0] req_addr, req_addr_m;
+    wire [P-1:0]      req_rden, req_rden_m;
+    wire [TAG_W-1:0]  req_tag, req_tag_m;
+    wire              rsp_valid_m, rsp_ready_m, rsp_valid, rsp_ready;
+    wire [PV-1:0]     rsp_data_m, rsp_data;
+    wire [TAG_W-1:0]  rsp_tag_m, rsp_tag;
+    wire              smp_valid_f, smp_ready_f;
+    wire [PV-1:0]     smp_sample;
+    wire [P-1:0]      smp_lane_valid, smp_lane_inside;
+    wire [M_W-1:0]    smp_m;
+    wire [DIM_W-1:0]  smp_j;
+    wire [PB_W-1:0]   smp_pb;
+    wire [LANE_W-1:0] smp_skew;
+    wire [6:0]        smp_ctrl;
+
+    cube4_frontend #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .WEIGHT_W    (WEIGHT_W),
+        .MAX_DIM     (MAX_DIM),
+        .ADDR_W      (ADDR_W),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_fe (
+        .clk             (clk),
+        .rst             (rst),
+        .start           (start),
+        .busy            (busy),
+        .done            (done),
+        .cycles          (cycles),
+        .cfg_ni          (cfg_ni),
+        .cfg_nj          (cfg_nj),
+        .cfg_nk          (cfg_nk),
+        .cfg_nb          (cfg_nb),
+        .cfg_flip_i      (cfg_flip_i),
+        .cfg_flip_j      (cfg_flip_j),
+        .cfg_flip_k      (cfg_flip_k),
+        .cfg_ss_log2     (cfg_ss_log2),
+        .cfg_view_x      (cfg_view_x),
+        .cfg_view_y      (cfg_view_y),
+        .cfg_j_r0        (cfg_j_r0),
+        .cfg_k_r0        (cfg_k_r0),
+        .cfg_i_r1        (cfg_i_r1),
+        .cfg_i_rt        (cfg_i_rt),
+        .cfg_j_a0        (cfg_j_a0),
+        .cfg_j_lin       (cfg_j_lin),
+        .cfg_j_blk       (cfg_j_blk),
+        .cfg_k_a0        (cfg_k_a0),
+        .cfg_k_lin       (cfg_k_lin),
+        .cfg_k_blk       (cfg_k_blk),
+        .cfg_i_a0        (cfg_i_a0),
+        .cfg_i_pb        (cfg_i_pb),
+        .cfg_i_lin       (cfg_i_lin),
+        .mem_req_valid   (req_valid),
+        .mem_req_ready   (req_ready),
+        .mem_req_addr    (req_addr),
+        .mem_req_rden    (req_rden),
+        .mem_req_tag     (req_tag),
+        .mem_rsp_valid   (rsp_valid),
+        .mem_rsp_ready   (rsp_ready),
+        .mem_rsp_data    (rsp_data),
+        .mem_rsp_tag     (rsp_tag),
+        .smp_valid       (smp_valid_f),
+        .smp_ready       (smp_ready_f),
+        .smp_sample      (smp_sample),
+        .smp_lane_valid  (smp_lane_valid),
+        .smp_lane_inside (smp_lane_inside),
+        .smp_m           (smp_m),
+        .smp_j           (smp_j),
+        .smp_pb          (smp_pb),
+        .smp_skew        (smp_skew),
+        .smp_ctrl        (smp_ctrl)
+    );
+
+    // request: front end -> stall -> memory
+    cube4_sim_stall #(
+        .DATA_W (P * ADDR_W + P + TAG_W),
+        .SEED   (32'hACE1)
+    ) u_stall_req (
+        .clk       (clk),
+        .rst       (rst),
+        .stall     (stall_req),
+        .in_valid  (req_valid),
+        .in_ready  (req_ready),
+        .in_data   ({req_addr, req_rden, req_tag}),
+        .out_valid (req_valid_m),
+        .out_ready (req_ready_m),
+        .out_data  ({req_addr_m, req_rden_m, req_tag_m})
+    );
+
+    wire unused_ld_ready;   // always 1: the loader writes one word per bank per cycle
+    cube4_voxel_mem #(
+        .P       (P),
+        .VOXEL_W (VOXEL_W),
+        .DEPTH   (DEPTH),
+        .ADDR_W  (ADDR_W),
+        .TAG_W   (TAG_W)
+    ) u_mem (
+        .clk       (clk),
+        .rst       (rst),
+        .ld_valid  (load_busy_q),
+        .ld_ready  (unused_ld_ready),
+        .ld_addr   (load_addr_q[ADDR_W-1:0]),
+        .ld_data   (ld_data),
+        .req_valid (req_valid_m),
+        .req_ready (req_ready_m),
+        .req_addr  (req_addr_m),
+        .req_rden  (req_rden_m),
+        .req_tag   (req_tag_m),
+        .rsp_valid (rsp_valid_m),
+        .rsp_ready (rsp_ready_m),
+        .rsp_data  (rsp_data_m),
+        .rsp_tag   (rsp_tag_m)
+    );
+
+    // response: memory -> stall -> front end
+    cube4_sim_stall #(
+        .DATA_W (PV + TAG_W),
+        .SEED   (32'h1D2C)
+    ) u_stall_rsp (
+        .clk       (clk),
+        .rst       (rst),
+        .stall     (stall_rsp),
+        .in_valid  (rsp_valid_m),
+        .in_ready  (rsp_ready_m),
+        .in_data   ({rsp_data_m, rsp_tag_m}),
+        .out_valid (rsp_valid),
+        .out_ready (rsp_ready),
+        .out_data  ({rsp_data, rsp_tag})
+    );
+
+    // sample sink: random ready, dump every accepted beat
+    reg [15:0] lfsr_q;
+    reg [31:0] beats_q;
+    always @(posedge clk) begin
+        if (rst) lfsr_q <= 16'h5A5A;
+        else     lfsr_q <= {lfsr_q[14:0], lfsr_q[15] ^ lfsr_q[13] ^ lfsr_q[12] ^ lfsr_q[10]};
+    end
+    assign smp_ready_f = (lfsr_q[7:0] >= stall_out);
+
+    always @(posedge clk) begin
+        if (rst) begin
+            beats_q <= 32'd0;
+        end else begin
+            if (start && !busy) begin
+                beats_q <= 32'd0;
+                $fwrite(dump_fd, "start\n");   // frame marker: the reader takes what follows the last one
+            end
+            if (smp_valid_f && smp_ready_f) begin
+                beats_q <= beats_q + 32'd1;
+                if (dump_en) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h\n", smp_m, smp_j, smp_pb, smp_skew,
+                        smp_ctrl, smp_lane_valid, smp_lane_inside, smp_sample);
+                if (done) $fflush(dump_fd);
+            end
+        end
+    end
+    assign beats = beats_q;
+
+endmodule
+`default_nettype wire

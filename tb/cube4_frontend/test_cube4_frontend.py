@@ -1,0 +1,396 @@
+"""Testbench for the Cube-4 front end: cube4_cfb + cube4_voxel_mem + cube4_tri.
+
+The DUT is ``sim/hdl/cube4_frontend_harness.v``: the front end, the skewed voxel
+memory loaded through its load port from a ``$readmemh`` image that
+``cube4.memory.pack_volume`` writes (the one host packer), random stall injection
+on the memory request, the memory response and the sample output (LFSRs in
+Verilog), and a dump of every sample beat to a text file. Python only sets
+registers, pulses ``load`` / ``start`` and waits for ``load_done`` / ``done``, so
+whole frames run at compiled-model speed.
+
+Every frame is checked against the golden model (``cube4.model.sample_stream``):
+beat order (m, j, pb), the skew of each beat against the memory layout (bank
+(x + y + z) mod P), each lane's validity, sample value and inside flag bit for
+bit, and the control bits (start, end, y-last, X/Y-steps and old X/Y-steps).
+Views: all three major axes with all eight sign combinations, exactly 45
+degrees, exactly on an axis, next to 45 degrees, supersampled passes where the
+build allows; half the frames with random stalls on every port. Two volumes
+per build (non-cubic, random voxels over the full range) are loaded one after
+the other, and several views are rendered from each load.
+
+Reproduce a failure with the printed COCOTB_RANDOM_SEED.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+
+import cocotb
+import numpy as np
+import pytest
+from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
+
+from cube4.memory import frontend_regs, lane_positions, pack_volume
+from cube4.model import sample_stream
+from cube4.view import make_traversal
+from cube4_sim import BUILD_ROOT, RTL_DIR, SIM_HDL_DIR, run_test
+
+CLK_NS = 10
+MAX_MISMATCH_LOGS = 8
+
+SOURCES = [
+    RTL_DIR / "cube4_round_shift.v",
+    RTL_DIR / "cube4_lerp.v",
+    RTL_DIR / "cube4_skid.v",
+    RTL_DIR / "cube4_ring_shift.v",
+    RTL_DIR / "cube4_beam_ext.v",
+    RTL_DIR / "cube4_voxel_mem.v",
+    RTL_DIR / "cube4_cfb.v",
+    RTL_DIR / "cube4_tri.v",
+    RTL_DIR / "cube4_frontend.v",
+    SIM_HDL_DIR / "cube4_sim_clock.v",
+    SIM_HDL_DIR / "cube4_sim_stall.v",
+    SIM_HDL_DIR / "cube4_frontend_harness.v",
+]
+
+
+# --------------------------------------------------------------------------- checks
+def parse_beats(lines: list[str], p: int, vw: int) -> dict[str, np.ndarray]:
+    """Dump lines -> arrays: m, j, pb, skew, ctrl (n,), lval, lins, smp (n, p)."""
+    n = len(lines)
+    head = np.zeros((n, 5), dtype=np.int64)
+    lval = np.zeros((n, p), dtype=bool)
+    lins = np.zeros((n, p), dtype=bool)
+    smp = np.zeros((n, p), dtype=np.int64)
+    mask = (1 << vw) - 1
+    bits = np.arange(p)
+    for r, line in enumerate(lines):
+        f = line.split()
+        head[r] = (int(f[0]), int(f[1]), int(f[2]), int(f[3]), int(f[4], 16))
+        lv, li, s = int(f[5], 16), int(f[6], 16), int(f[7], 16)
+        lval[r] = (lv >> bits) & 1
+        lins[r] = (li >> bits) & 1
+        smp[r] = [(s >> (q * vw)) & mask for q in range(p)]
+    return {"m": head[:, 0], "j": head[:, 1], "pb": head[:, 2], "skew": head[:, 3],
+            "ctrl": head[:, 4], "lval": lval, "lins": lins, "smp": smp}
+
+
+def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log) -> None:
+    """Compare one frame's sample beats with the golden model; raise on mismatch."""
+    gold, gin = sample_stream(vol, trav)
+    M, nj, ni = gold.shape
+    nk = trav.nk
+    nb = -(-ni // p)
+    n = len(beats["m"])
+    assert n == M * nj * nb, f"{n} sample beats, expected M*NJ*NB = {M}*{nj}*{nb} = {M * nj * nb}"
+    idx = np.arange(n)
+    exp = {"m": idx // (nj * nb), "j": (idx // nb) % nj, "pb": idx % nb}
+    for key, want in exp.items():
+        bad = np.nonzero(beats[key] != want)[0]
+        assert bad.size == 0, f"beat {bad[0]}: {key} = {beats[key][bad[0]]}, expected {want[bad[0]]} (order m, j, pb)"
+
+    # skew: lane q holds the position whose bank (c_i + c_j + c_k) mod p is q, for the
+    # row above the sample (j + 1) of the pass's lower voxel slice k0 = m // S
+    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    k0 = exp["m"] // trav.supersample
+    cj = np.where(fj, nj - 1 - (exp["j"] + 1), exp["j"] + 1)
+    ck = np.where(fk, nk - 1 - k0, k0)
+    want_skew = (cj + ck) % p
+    bad = np.nonzero(beats["skew"] != want_skew)[0]
+    assert bad.size == 0, f"beat {bad[0]}: skew {beats['skew'][bad[0]]}, expected {want_skew[bad[0]]}"
+
+    pos = np.stack([lane_positions(int(s), int(b), p, ni, fi) for s, b in zip(beats["skew"], beats["pb"])]) \
+        if n else np.zeros((0, p), dtype=np.int64)
+    valid = pos < ni
+    bad = np.nonzero(beats["lval"] != valid)
+    assert bad[0].size == 0, f"beat {bad[0][0]} lane {bad[1][0]}: lane_valid wrong"
+    mm = np.broadcast_to(exp["m"][:, None], pos.shape)
+    jj = np.broadcast_to(exp["j"][:, None], pos.shape)
+    ii = np.minimum(pos, ni - 1)
+    g = np.where(valid, gold[mm, jj, ii], 0)
+    gi = np.where(valid, gin[mm, jj, ii], False)
+    got = np.where(valid, beats["smp"], 0)
+    bad = np.argwhere((got != g) | (beats["lins"] != gi))
+    if bad.size:
+        for r, q in bad[:MAX_MISMATCH_LOGS]:
+            log.error("sample (m=%d, j=%d, i=%d) lane %d: RTL %d inside %d, golden %d inside %d",
+                      exp["m"][r], exp["j"][r], pos[r, q], q, beats["smp"][r, q], beats["lins"][r, q],
+                      g[r, q], gi[r, q])
+        raise AssertionError(f"{len(bad)} sample mismatches against the golden model")
+
+    # control bits: {y_last, eop, sop, old_y, old_x, y, x}
+    ctrl = beats["ctrl"]
+    m = exp["m"]
+    sx, sy = trav.steps(m)
+    sx1, sy1 = trav.steps(m + 1)
+    sxb, syb = trav.steps(m - 1)
+    want = ((sx1 - sx) | ((sy1 - sy) << 1) | ((sx - sxb) << 2) | ((sy - syb) << 3)
+            | ((idx == 0) << 4) | ((idx == n - 1) << 5) | ((exp["j"] == nj - 1) << 6))
+    bad = np.nonzero(ctrl != want)[0]
+    assert bad.size == 0, f"beat {bad[0]}: control bits {ctrl[bad[0]]:07b}, expected {want[bad[0]]:07b}"
+
+
+def view_set(rng: np.random.Generator, max_ss_log2: int) -> list[tuple[tuple[float, float, float], int]]:
+    """(direction, supersample) pairs: every major axis and sign combination,
+    exact 45 degrees, on-axis, next to 45 degrees, and supersampled views."""
+    views = []
+    for major in range(3):
+        for signs in range(8):
+            d = [0.0, 0.0, 0.0]
+            for ax in range(3):
+                mag = 1.0 if ax == major else float(rng.uniform(0.05, 0.95))
+                d[ax] = -mag if (signs >> ax) & 1 else mag
+            views.append((tuple(d), 1))
+    views += [((1.0, 1.0, 1.0), 1), ((-1.0, 1.0, -1.0), 1), ((1.0, -1.0, 0.3), 1),
+              ((0.0, 0.0, 1.0), 1), ((0.0, -1.0, 0.0), 1), ((-1.0, 0.0, 0.0), 1),
+              ((0.999, 1.0, 0.5), 1), ((1.0, 0.0, 1.0), 1)]
+    for g in range(1, max_ss_log2 + 1):
+        views += [((0.3, -0.7, 1.0), 1 << g), ((-1.0, 0.45, -0.2), 1 << g), ((1.0, 1.0, -1.0), 1 << g)]
+    return views
+
+
+def volume_dims(p: int, max_dim: int) -> tuple[tuple[int, int, int], tuple[int, int, int]]:
+    """Two non-cubic volumes per build, with several partial beams along every axis."""
+    a = (min(max_dim, max(13, 3 * p + 1)), min(max_dim, max(11, 2 * p + 3)), min(max_dim, max(9, p + 6)))
+    b = (min(max_dim, max(7, p + 2)), min(max_dim, max(15, 2 * p + 5)), min(max_dim, max(12, 3 * p - 1)))
+    return a, b
+
+
+# --------------------------------------------------------------------------- cocotb side
+class TB:
+    """Drives cube4_frontend_harness: load, configure, start, wait, check."""
+
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        self.log = dut._log
+        self.p = int(dut.P.value)
+        self.vw = int(dut.VOXEL_W.value)
+        self.w = int(dut.WEIGHT_W.value)
+        self.max_dim = int(dut.MAX_DIM.value)
+        self.depth = int(dut.DEPTH.value)
+        self.max_ss_log2 = int(dut.MAX_SS_LOG2.value)
+        self.memfile = Path(os.environ["CUBE4_FE_MEMFILE"])
+        self.dumpfile = Path(os.environ["CUBE4_FE_DUMP"])
+        self.dump_pos = 0
+        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        self.log.info("front end P=%d VOXEL_W=%d W=%d MAX_DIM=%d DEPTH=%d MAX_SS_LOG2=%d, seed %d",
+                      self.p, self.vw, self.w, self.max_dim, self.depth, self.max_ss_log2,
+                      cocotb.RANDOM_SEED)
+
+    async def cycles(self, n: int) -> None:
+        for _ in range(n):
+            await RisingEdge(self.dut.clk)
+
+    async def reset(self) -> None:
+        d = self.dut
+        d.rst.value = 1
+        d.start.value = 0
+        d.load.value = 0
+        d.load_words.value = 0
+        d.stall_req.value = 0
+        d.stall_rsp.value = 0
+        d.stall_out.value = 0
+        d.dump_en.value = 1
+        await self.cycles(4)
+        d.rst.value = 0
+        await self.cycles(2)
+
+    async def load(self, vol: np.ndarray) -> None:
+        """Pack the volume (cube4.memory) and stream it in through the load port."""
+        banks = pack_volume(vol, self.p)
+        words = banks.shape[1]
+        assert words <= self.depth, f"volume needs {words} words per bank, DEPTH = {self.depth}"
+        digits = -(-self.vw // 4)
+        tmp = self.memfile.with_suffix(".tmp")
+        tmp.write_text("\n".join(f"{int(v):0{digits}x}" for v in banks.T.reshape(-1)) + "\n")
+        tmp.replace(self.memfile)
+        self.dut.load_words.value = words
+        self.dut.load.value = 1
+        await RisingEdge(self.dut.clk)
+        self.dut.load.value = 0
+        res = await First(RisingEdge(self.dut.load_done), Timer((words + 100) * CLK_NS, unit="ns"))
+        assert int(self.dut.load_done.value) == 1, "load did not finish"
+        del res
+
+    async def frame(self, vol: np.ndarray, trav, stalls=(0, 0, 0)) -> tuple[dict, int, float]:
+        """Render one view; returns (beats, cycles, wall seconds of the simulation)."""
+        d = self.dut
+        for key, val in frontend_regs(trav, self.p).items():
+            getattr(d, "cfg_" + key.lower()).value = int(val)
+        d.stall_req.value, d.stall_rsp.value, d.stall_out.value = stalls
+        await RisingEdge(d.clk)
+        d.start.value = 1
+        await RisingEdge(d.clk)
+        d.start.value = 0
+        M, nj, ni = trav.num_sample_slices, trav.nj, trav.ni
+        beats = (M * nj + 1) * -(-ni // self.p) + 1
+        slow = 1.0 / max(1e-3, min(1 - s / 256 for s in stalls)) ** 3
+        t0 = time.perf_counter()
+        await First(RisingEdge(d.done), Timer(int((beats * slow * 4 + 1000) * CLK_NS), unit="ns"))
+        wall = time.perf_counter() - t0
+        await RisingEdge(d.clk)
+        await ReadOnly()
+        assert int(d.busy.value) == 0, f"frame did not finish within the time limit ({beats} beats)"
+        cycles = int(d.cycles.value)
+        await Timer(1, unit="ns")   # leave the read-only phase: callers drive inputs next
+        with self.dumpfile.open() as fh:
+            fh.seek(self.dump_pos)
+            text = fh.read()
+            self.dump_pos = fh.tell()
+        lines = text.splitlines()
+        # beats of this frame follow the last "start" marker (a frame cut short
+        # by a reset leaves its beats before the marker)
+        starts = [n for n, line in enumerate(lines) if line == "start"]
+        assert starts, "no frame start marker in the sample dump"
+        lines = lines[starts[-1] + 1:]
+        return parse_beats(lines, self.p, self.vw), cycles, wall
+
+    async def render_and_check(self, vol, direction, supersample, stalls) -> int:
+        trav = make_traversal(vol.shape[::-1], direction, self.w, supersample)
+        beats, cycles, _ = await self.frame(vol, trav, stalls)
+        check_frame(beats, vol, trav, self.p, self.log)
+        await RisingEdge(self.dut.clk)
+        return cycles
+
+
+def random_volume(rng, dims, vw) -> np.ndarray:
+    nx, ny, nz = dims
+    return rng.integers(0, 1 << vw, size=(nz, ny, nx), dtype=np.int64)
+
+
+@cocotb.test()
+async def test_views(dut):
+    """Two volumes, every view class, with and without stalls, bit-exact."""
+    tb = TB(dut)
+    await tb.reset()
+    dims_a, dims_b = volume_dims(tb.p, tb.max_dim)
+    views = view_set(tb.rng, tb.max_ss_log2)
+    stall_sets = [(0, 0, 0), (70, 70, 70), (0, 0, 200), (200, 0, 0), (0, 200, 30)]
+    for vi, dims in enumerate((dims_a, dims_b)):
+        vol = random_volume(tb.rng, dims, tb.vw)
+        await tb.load(vol)
+        subset = views if vi == 0 else views[::3]
+        for n, (direction, ss) in enumerate(subset):
+            stalls = stall_sets[n % len(stall_sets)]
+            cycles = await tb.render_and_check(vol, direction, ss, stalls)
+            tb.log.info("dims %s view %s S=%d stalls %s: %d cycles, bit-exact",
+                        dims, direction, ss, stalls, cycles)
+
+
+@cocotb.test()
+async def test_reset_mid_frame(dut):
+    """A reset in the middle of a frame, then a clean frame from the same memory."""
+    tb = TB(dut)
+    await tb.reset()
+    dims, _ = volume_dims(tb.p, tb.max_dim)
+    vol = random_volume(tb.rng, dims, tb.vw)
+    await tb.load(vol)
+    trav = make_traversal(dims, (0.4, -0.3, 1.0), tb.w, 1)
+    for key, val in frontend_regs(trav, tb.p).items():
+        getattr(dut, "cfg_" + key.lower()).value = int(val)
+    dut.start.value = 1
+    await RisingEdge(dut.clk)
+    dut.start.value = 0
+    await tb.cycles(37)
+    dut.rst.value = 1
+    await tb.cycles(3)
+    dut.rst.value = 0
+    await tb.cycles(2)
+    await tb.render_and_check(vol, (0.4, -0.3, 1.0), 1, (40, 40, 40))
+
+
+@cocotb.test()
+async def test_frame_cycles(dut):
+    """One frame of a cubic random volume of MAX_DIM^3 (or the CUBE4_FE_BENCH_DIM
+    given), no stalls: bit-exact, and cycles against the nx*ny*nz/P ideal."""
+    tb = TB(dut)
+    await tb.reset()
+    n = int(os.environ.get("CUBE4_FE_BENCH_DIM", "0")) or min(tb.max_dim, 32)
+    dims = (n, n, n)
+    vol = random_volume(tb.rng, dims, tb.vw)
+    await tb.load(vol)
+    results = []
+    for direction in ((0.0, 0.0, 1.0), (0.6, -0.35, 1.0)):
+        trav = make_traversal(dims, direction, tb.w, 1)
+        beats, cycles, _ = await tb.frame(vol, trav)
+        check_frame(beats, vol, trav, tb.p, tb.log)
+        # the same frame again without the sample dump: the simulator's own speed
+        dut.dump_en.value = 0
+        _, cycles2, wall = await tb.frame(vol, trav)
+        dut.dump_en.value = 1
+        assert cycles2 == cycles, f"the same frame took {cycles} and then {cycles2} cycles"
+        ideal = n * n * n / tb.p
+        res = {"p": tb.p, "dims": list(dims), "direction": list(direction), "cycles": cycles,
+               "ideal_cycles": ideal, "efficiency": ideal / cycles,
+               "overhead_cycles": cycles - ideal, "sim_wall_s": wall,
+               "sim_cycles_per_s": cycles / wall if wall > 0 else None}
+        results.append(res)
+        tb.log.info("FRAME %d^3 P=%d view %s: %d cycles, ideal %.0f, efficiency %.5f, "
+                    "%.2f M simulated cycles/s", n, tb.p, direction, cycles, ideal, ideal / cycles,
+                    cycles / wall / 1e6)
+        # exactly the documented schedule: (M*NJ + 1)*NB + 1 beats plus a fixed fill
+        nb = -(-trav.ni // tb.p)
+        fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
+        assert 0 <= fill <= 16, f"pipeline fill of {fill} cycles: the schedule has bubbles"
+        await RisingEdge(dut.clk)
+    out = os.environ.get("CUBE4_FE_BENCH_OUT")
+    if out:
+        Path(out).write_text(json.dumps(results, indent=2) + "\n")
+
+
+# --------------------------------------------------------------------------- pytest side
+# (P, VOXEL_W, MAX_DIM, MAX_SS_LOG2): every p the issue names, 8- and 12-bit
+# voxels, supersampling on some builds.
+BUILDS = [
+    (1, 8, 32, 1),
+    (2, 8, 32, 0),
+    (4, 12, 32, 2),
+    (5, 8, 32, 1),
+    (8, 8, 64, 3),
+    (16, 12, 64, 0),
+]
+
+
+def _params(p: int, vw: int, max_dim: int, ss: int) -> dict[str, int]:
+    words = -(-max_dim // p) * max_dim * max_dim
+    addr_w = max(1, (words - 1).bit_length())
+    return {"P": p, "VOXEL_W": vw, "MAX_DIM": max_dim, "MAX_SS_LOG2": ss,
+            "DEPTH": words, "ADDR_W": addr_w}
+
+
+def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
+    key = "_".join(f"{k}{v}" for k, v in params.items())
+    work = BUILD_ROOT / "frontend_io" / key
+    work.mkdir(parents=True, exist_ok=True)
+    env = {"CUBE4_FE_MEMFILE": str(work / "mem.hex"), "CUBE4_FE_DUMP": str(work / "samples.txt")}
+    env.update(extra_env or {})
+    run_test(
+        top="cube4_frontend_harness",
+        sources=SOURCES,
+        params=params,
+        test_module=__file__,
+        testcase=testcase,
+        timing=True,
+        extra_env=env,
+        plusargs=[f"+CUBE4_MEMFILE={env['CUBE4_FE_MEMFILE']}", f"+CUBE4_DUMP={env['CUBE4_FE_DUMP']}"],
+    )
+
+
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_ss{b[3]}" for b in BUILDS])
+def test_cube4_frontend(build):
+    _run(_params(*build), ["test_views", "test_reset_mid_frame", "test_frame_cycles"])
+
+
+def test_cube4_frontend_cycles_128():
+    """128^3, P = 8: bit-exact frames and cycles per frame against nx*ny*nz/P
+    (printed, and written to build/reports/frontend_cycles.json)."""
+    report = BUILD_ROOT / "reports" / "frontend_cycles.json"
+    report.parent.mkdir(parents=True, exist_ok=True)
+    _run(_params(8, 8, 128, 0), "test_frame_cycles",
+         {"CUBE4_FE_BENCH_DIM": "128", "CUBE4_FE_BENCH_OUT": str(report)})
+    for r in json.loads(report.read_text()):
+        print(f"front end 128^3 P=8 view {r['direction']}: {r['cycles']} cycles, ideal {r['ideal_cycles']:.0f}, "
+              f"efficiency {r['efficiency']:.5f}, {r['sim_cycles_per_s'] / 1e6:.2f} M cycles/s simulated")
