@@ -48,6 +48,8 @@ LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,VOXEL_W=12,DEPTH=1000,A
 LINT_SETS_cube4_ring_shift  := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_beam_ext    := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096
+LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
+LINT_SETS_cube4_delay_line  := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=300
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

@@ -129,6 +129,17 @@ def gradient(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal
     return np.stack([gi, gj, gk])
 
 
+def gradient_stream(samples: np.ndarray, trav: Traversal) -> np.ndarray:
+    """Gradients (M, 3, nj, ni) of a whole sample stream (what the RTL GRA emits)."""
+    M, nj, ni = samples.shape
+    pad = np.zeros((M + 2, nj + 2, ni + 2), dtype=np.int32)
+    pad[1:-1, 1:-1, 1:-1] = samples
+    out = np.empty((M, 3, nj, ni), dtype=np.int64)
+    for m in range(M):
+        out[m] = gradient(pad[m], pad[m + 1], pad[m + 2], trav, m)
+    return out
+
+
 # ---------------------------------------------------------------- numerics.md §6
 def rmap_index(g: np.ndarray, rmap_bits: int) -> np.ndarray:
     """Reflectance-map entry of gradient directions g (3, ...) (cube map).

@@ -14,7 +14,8 @@
 //   Plusargs: +CUBE4_MEMFILE=<path>  image, one hex word per line, line
 //             a*P + q = bank q, word a (golden/cube4/memory.py);
 //             +CUBE4_DUMP=<path>     sample dump, one line per beat:
-//             "m j pb skew ctrl(hex) lane_valid(hex) lane_inside(hex) samples(hex)",
+//             "m j pb skew ctrl lane_valid lane_inside samples {gi,gj,gk}" (all but
+//             the first four in hex; gradients zero unless OPT_GRA),
 //             after a line "start" at every frame start (flushed at done).
 //             Input dump_en = 0 leaves the sample lines out (speed measurements).
 //
@@ -28,6 +29,7 @@ module cube4_frontend_harness #(
     parameter integer DEPTH       = 4096,
     parameter integer ADDR_W      = 12,
     parameter integer MAX_SS_LOG2 = 0,
+    parameter integer OPT_GRA     = 0,    // 1: cube4_gra after the front end, gradients dumped too
     parameter integer DIM_W  = $clog2(MAX_DIM + 1),
     parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
     parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
@@ -35,6 +37,7 @@ module cube4_frontend_harness #(
     parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
     parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P)),
     // the front end's tag width (cube4_frontend's TAG_W for these parameters)
+    parameter integer GRAD_W = VOXEL_W + 5,
     parameter integer TAG_W  = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 5 + 3 * P
 ) (
     output wire                  clk,
@@ -133,6 +136,8 @@ module cube4_frontend_harness #(
     wire [PV-1:0]     rsp_data_m, rsp_data;
     wire [TAG_W-1:0]  rsp_tag_m, rsp_tag;
     wire              smp_valid_f, smp_ready_f;
+    wire              unused_fe_busy, unused_fe_done;
+    wire [31:0]       unused_fe_cycles;
     wire [PV-1:0]     smp_sample;
     wire [P-1:0]      smp_lane_valid, smp_lane_inside;
     wire [M_W-1:0]    smp_m;
@@ -152,9 +157,9 @@ module cube4_frontend_harness #(
         .clk             (clk),
         .rst             (rst),
         .start           (start),
-        .busy            (busy),
-        .done            (done),
-        .cycles          (cycles),
+        .busy            (unused_fe_busy),
+        .done            (unused_fe_done),
+        .cycles          (unused_fe_cycles),
         .cfg_ni          (cfg_ni),
         .cfg_nj          (cfg_nj),
         .cfg_nk          (cfg_nk),
@@ -256,32 +261,116 @@ module cube4_frontend_harness #(
         .out_data  ({rsp_data, rsp_tag})
     );
 
-    // sample sink: random ready, dump every accepted beat
+    // ------------------------------------------------------------ optional GRA
+    wire              snk_valid, snk_ready;
+    wire [PV-1:0]     snk_sample;
+    wire [P-1:0]      snk_lval, snk_lins;
+    wire [M_W-1:0]    snk_m;
+    wire [DIM_W-1:0]  snk_j;
+    wire [PB_W-1:0]   snk_pb;
+    wire [LANE_W-1:0] snk_skew;
+    wire [6:0]        snk_ctrl;
+    wire [3*P*GRAD_W-1:0] snk_grad;   // {gi, gj, gk}, zero without GRA
+
+    generate
+        if (OPT_GRA != 0) begin : g_gra
+            cube4_gra #(
+                .P           (P),
+                .VOXEL_W     (VOXEL_W),
+                .WEIGHT_W    (WEIGHT_W),
+                .MAX_DIM     (MAX_DIM),
+                .MAX_SS_LOG2 (MAX_SS_LOG2)
+            ) u_gra (
+                .clk             (clk),
+                .rst             (rst),
+                .cfg_ni          (cfg_ni),
+                .cfg_nj          (cfg_nj),
+                .cfg_nb          (cfg_nb),
+                .cfg_flip_i      (cfg_flip_i),
+                .cfg_flip_j      (cfg_flip_j),
+                .cfg_flip_k      (cfg_flip_k),
+                .cfg_ss_log2     (cfg_ss_log2),
+                .cfg_i_r1        (cfg_i_r1),
+                .cfg_view_x      (cfg_view_x),
+                .cfg_view_y      (cfg_view_y),
+                .in_valid        (smp_valid_f),
+                .in_ready        (smp_ready_f),
+                .in_sample       (smp_sample),
+                .in_lane_valid   (smp_lane_valid),
+                .in_lane_inside  (smp_lane_inside),
+                .in_m            (smp_m),
+                .in_j            (smp_j),
+                .in_pb           (smp_pb),
+                .in_skew         (smp_skew),
+                .in_ctrl         (smp_ctrl),
+                .out_valid       (snk_valid),
+                .out_ready       (snk_ready),
+                .out_sample      (snk_sample),
+                .out_gi          (snk_grad[2*P*GRAD_W +: P*GRAD_W]),
+                .out_gj          (snk_grad[P*GRAD_W +: P*GRAD_W]),
+                .out_gk          (snk_grad[0 +: P*GRAD_W]),
+                .out_lane_valid  (snk_lval),
+                .out_lane_inside (snk_lins),
+                .out_m           (snk_m),
+                .out_j           (snk_j),
+                .out_pb          (snk_pb),
+                .out_skew        (snk_skew),
+                .out_ctrl        (snk_ctrl)
+            );
+        end else begin : g_no_gra
+            assign snk_valid   = smp_valid_f;
+            assign smp_ready_f = snk_ready;
+            assign snk_sample  = smp_sample;
+            assign snk_lval    = smp_lane_valid;
+            assign snk_lins    = smp_lane_inside;
+            assign snk_m       = smp_m;
+            assign snk_j       = smp_j;
+            assign snk_pb      = smp_pb;
+            assign snk_skew    = smp_skew;
+            assign snk_ctrl    = smp_ctrl;
+            assign snk_grad    = {(3*P*GRAD_W){1'b0}};
+        end
+    endgenerate
+
+    // ------------------------------------------------------------ sink
+    // random ready, dump every accepted beat; the frame ends with the eop beat
     reg [15:0] lfsr_q;
-    reg [31:0] beats_q;
+    reg [31:0] beats_q, cycles_q;
+    reg        busy_q;
     always @(posedge clk) begin
         if (rst) lfsr_q <= 16'h5A5A;
         else     lfsr_q <= {lfsr_q[14:0], lfsr_q[15] ^ lfsr_q[13] ^ lfsr_q[12] ^ lfsr_q[10]};
     end
-    assign smp_ready_f = (lfsr_q[7:0] >= stall_out);
+    assign snk_ready = (lfsr_q[7:0] >= stall_out);
+    wire last_beat = snk_valid && snk_ready && snk_ctrl[5];
 
     always @(posedge clk) begin
         if (rst) begin
-            beats_q <= 32'd0;
+            beats_q  <= 32'd0;
+            cycles_q <= 32'd0;
+            busy_q   <= 1'b0;
         end else begin
-            if (start && !busy) begin
-                beats_q <= 32'd0;
+            if (start && !busy_q) begin
+                beats_q  <= 32'd0;
+                cycles_q <= 32'd1;
+                busy_q   <= 1'b1;
                 $fwrite(dump_fd, "start\n");   // frame marker: the reader takes what follows the last one
+            end else if (busy_q) begin
+                cycles_q <= cycles_q + 32'd1;
+                if (last_beat) busy_q <= 1'b0;
             end
-            if (smp_valid_f && smp_ready_f) begin
+            if (snk_valid && snk_ready) begin
                 beats_q <= beats_q + 32'd1;
-                if (dump_en) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h\n", smp_m, smp_j, smp_pb, smp_skew,
-                        smp_ctrl, smp_lane_valid, smp_lane_inside, smp_sample);
-                if (done) $fflush(dump_fd);
+                if (dump_en) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h %h\n", snk_m, snk_j, snk_pb, snk_skew,
+                        snk_ctrl, snk_lval, snk_lins, snk_sample, snk_grad);
+                if (last_beat) $fflush(dump_fd);
             end
         end
     end
-    assign beats = beats_q;
+    assign beats  = beats_q;
+    assign busy   = busy_q;
+    assign done   = busy_q && last_beat;
+    assign cycles = cycles_q;
 
 endmodule
 `default_nettype wire

@@ -7,7 +7,7 @@ r (slice k, beam j, partial beam pb in traversal order) lane q must read exactly
 the voxel of that partial beam whose bank (x + y + z) mod P is q, at
 ``address_of(x, y, z)``, and padding lanes must not read. Over a frame every voxel
 is read exactly once. All six major directions with both signs of both minor
-slopes (24 views, plus 45-degree and on-axis views), non-cubic volumes, several P.
+slopes (24 views, plus 45-degree and on-axis views), non-cubic volumes, P = 1, 5, 16.
 """
 
 from __future__ import annotations
@@ -113,7 +113,9 @@ async def test_addresses(dut):
     dut._log.info("P=%d: %d views x %d volumes, every voxel read once at its address", p, len(views), len(dims_list))
 
 
-@pytest.mark.parametrize("p", [1, 2, 4, 5, 8, 16])
+# P = 2, 4 and 8 are covered by the front-end builds (tb/cube4_frontend), which
+# check every sample and therefore every address too.
+@pytest.mark.parametrize("p", [1, 5, 16])
 def test_cube4_cfb(p):
     run_test(
         top="cube4_cfb",

@@ -34,7 +34,7 @@ import pytest
 from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 
 from cube4.memory import frontend_regs, lane_positions, pack_volume
-from cube4.model import sample_stream
+from cube4.model import gradient_stream, sample_stream
 from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, RTL_DIR, SIM_HDL_DIR, run_test
 
@@ -51,6 +51,8 @@ SOURCES = [
     RTL_DIR / "cube4_cfb.v",
     RTL_DIR / "cube4_tri.v",
     RTL_DIR / "cube4_frontend.v",
+    RTL_DIR / "cube4_delay_line.v",
+    RTL_DIR / "cube4_gra.v",
     SIM_HDL_DIR / "cube4_sim_clock.v",
     SIM_HDL_DIR / "cube4_sim_stall.v",
     SIM_HDL_DIR / "cube4_frontend_harness.v",
@@ -59,13 +61,17 @@ SOURCES = [
 
 # --------------------------------------------------------------------------- checks
 def parse_beats(lines: list[str], p: int, vw: int) -> dict[str, np.ndarray]:
-    """Dump lines -> arrays: m, j, pb, skew, ctrl (n,), lval, lins, smp (n, p)."""
+    """Dump lines -> arrays: m, j, pb, skew, ctrl (n,), lval, lins, smp (n, p),
+    grad (n, 3, p) signed (zero when the build has no GRA)."""
     n = len(lines)
     head = np.zeros((n, 5), dtype=np.int64)
     lval = np.zeros((n, p), dtype=bool)
     lins = np.zeros((n, p), dtype=bool)
     smp = np.zeros((n, p), dtype=np.int64)
+    grad = np.zeros((n, 3, p), dtype=np.int64)
     mask = (1 << vw) - 1
+    gw = vw + 5
+    gmask = (1 << gw) - 1
     bits = np.arange(p)
     for r, line in enumerate(lines):
         f = line.split()
@@ -74,12 +80,18 @@ def parse_beats(lines: list[str], p: int, vw: int) -> dict[str, np.ndarray]:
         lval[r] = (lv >> bits) & 1
         lins[r] = (li >> bits) & 1
         smp[r] = [(s >> (q * vw)) & mask for q in range(p)]
+        g = int(f[8], 16)
+        for c in range(3):  # {gi, gj, gk}: gi in the top bits
+            gc = g >> ((2 - c) * p * gw)
+            grad[r, c] = [(gc >> (q * gw)) & gmask for q in range(p)]
+    grad = np.where(grad >= (1 << (gw - 1)), grad - (1 << gw), grad)
     return {"m": head[:, 0], "j": head[:, 1], "pb": head[:, 2], "skew": head[:, 3],
-            "ctrl": head[:, 4], "lval": lval, "lins": lins, "smp": smp}
+            "ctrl": head[:, 4], "lval": lval, "lins": lins, "smp": smp, "grad": grad}
 
 
-def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log) -> None:
-    """Compare one frame's sample beats with the golden model; raise on mismatch."""
+def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log, gra: bool = False) -> None:
+    """Compare one frame's sample (and, with GRA, gradient) beats with the golden
+    model; raise on mismatch."""
     gold, gin = sample_stream(vol, trav)
     M, nj, ni = gold.shape
     nk = trav.nk
@@ -120,6 +132,18 @@ def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log
                       exp["m"][r], exp["j"][r], pos[r, q], q, beats["smp"][r, q], beats["lins"][r, q],
                       g[r, q], gi[r, q])
         raise AssertionError(f"{len(bad)} sample mismatches against the golden model")
+
+    if gra:
+        ggold = gradient_stream(gold, trav)  # (M, 3, nj, ni)
+        for c, name in enumerate(("gi", "gj", "gk")):
+            want_g = np.where(valid, ggold[mm, c, jj, ii], 0)
+            got_g = np.where(valid, beats["grad"][:, c, :], 0)
+            bad = np.argwhere(got_g != want_g)
+            if bad.size:
+                for r, q in bad[:MAX_MISMATCH_LOGS]:
+                    log.error("%s (m=%d, j=%d, i=%d) lane %d: RTL %d, golden %d", name, exp["m"][r],
+                              exp["j"][r], pos[r, q], q, got_g[r, q], want_g[r, q])
+                raise AssertionError(f"{len(bad)} {name} mismatches against the golden model")
 
     # control bits: {y_last, eop, sop, old_y, old_x, y, x}
     ctrl = beats["ctrl"]
@@ -172,6 +196,7 @@ class TB:
         self.max_dim = int(dut.MAX_DIM.value)
         self.depth = int(dut.DEPTH.value)
         self.max_ss_log2 = int(dut.MAX_SS_LOG2.value)
+        self.gra = bool(int(dut.OPT_GRA.value))
         self.memfile = Path(os.environ["CUBE4_FE_MEMFILE"])
         self.dumpfile = Path(os.environ["CUBE4_FE_DUMP"])
         self.dump_pos = 0
@@ -226,7 +251,7 @@ class TB:
         await RisingEdge(d.clk)
         d.start.value = 0
         M, nj, ni = trav.num_sample_slices, trav.nj, trav.ni
-        beats = (M * nj + 1) * -(-ni // self.p) + 1
+        beats = (M * nj + 1) * -(-ni // self.p) + 1 + (nj + 1) * -(-ni // self.p) + 1
         slow = 1.0 / max(1e-3, min(1 - s / 256 for s in stalls)) ** 3
         t0 = time.perf_counter()
         await First(RisingEdge(d.done), Timer(int((beats * slow * 4 + 1000) * CLK_NS), unit="ns"))
@@ -251,7 +276,7 @@ class TB:
     async def render_and_check(self, vol, direction, supersample, stalls) -> int:
         trav = make_traversal(vol.shape[::-1], direction, self.w, supersample)
         beats, cycles, _ = await self.frame(vol, trav, stalls)
-        check_frame(beats, vol, trav, self.p, self.log)
+        check_frame(beats, vol, trav, self.p, self.log, self.gra)
         await RisingEdge(self.dut.clk)
         return cycles
 
@@ -316,7 +341,7 @@ async def test_frame_cycles(dut):
     for direction in ((0.0, 0.0, 1.0), (0.6, -0.35, 1.0)):
         trav = make_traversal(dims, direction, tb.w, 1)
         beats, cycles, _ = await tb.frame(vol, trav)
-        check_frame(beats, vol, trav, tb.p, tb.log)
+        check_frame(beats, vol, trav, tb.p, tb.log, tb.gra)
         # the same frame again without the sample dump: the simulator's own speed
         dut.dump_en.value = 0
         _, cycles2, wall = await tb.frame(vol, trav)
@@ -334,7 +359,9 @@ async def test_frame_cycles(dut):
         # exactly the documented schedule: (M*NJ + 1)*NB + 1 beats plus a fixed fill
         nb = -(-trav.ni // tb.p)
         fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
-        assert 0 <= fill <= 16, f"pipeline fill of {fill} cycles: the schedule has bubbles"
+        if tb.gra:  # GRA finishes the last slice with NJ*NB + NB + 1 zero steps
+            fill -= trav.nj * nb + nb + 1
+        assert 0 <= fill <= 24, f"pipeline fill of {fill} cycles: the schedule has bubbles"
         await RisingEdge(dut.clk)
     out = os.environ.get("CUBE4_FE_BENCH_OUT")
     if out:
@@ -342,23 +369,23 @@ async def test_frame_cycles(dut):
 
 
 # --------------------------------------------------------------------------- pytest side
-# (P, VOXEL_W, MAX_DIM, MAX_SS_LOG2): every p the issue names, 8- and 12-bit
-# voxels, supersampling on some builds.
+# (P, VOXEL_W, MAX_DIM, MAX_SS_LOG2, OPT_GRA): every p the issue names, 8- and
+# 12-bit voxels, supersampling on some builds, the gradient unit after the front end.
 BUILDS = [
-    (1, 8, 32, 1),
-    (2, 8, 32, 0),
-    (4, 12, 32, 2),
-    (5, 8, 32, 1),
-    (8, 8, 64, 3),
-    (16, 12, 64, 0),
+    (1, 8, 32, 1, 1),
+    (2, 8, 32, 0, 1),
+    (4, 12, 32, 2, 1),
+    (5, 8, 32, 1, 1),
+    (8, 8, 64, 3, 1),
+    (16, 12, 64, 0, 1),
 ]
 
 
-def _params(p: int, vw: int, max_dim: int, ss: int) -> dict[str, int]:
+def _params(p: int, vw: int, max_dim: int, ss: int, gra: int = 0) -> dict[str, int]:
     words = -(-max_dim // p) * max_dim * max_dim
     addr_w = max(1, (words - 1).bit_length())
     return {"P": p, "VOXEL_W": vw, "MAX_DIM": max_dim, "MAX_SS_LOG2": ss,
-            "DEPTH": words, "ADDR_W": addr_w}
+            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": gra}
 
 
 def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
@@ -379,7 +406,7 @@ def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
     )
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_ss{b[3]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_ss{b[3]}_gra{b[4]}" for b in BUILDS])
 def test_cube4_frontend(build):
     _run(_params(*build), ["test_views", "test_reset_mid_frame", "test_frame_cycles"])
 

@@ -1,0 +1,427 @@
+`default_nettype none
+// =============================================================================
+// cube4_gra
+// -----------------------------------------------------------------------------
+// Purpose
+//   The GRA units of all P pipelines (Teramac paper, section 5): central
+//   differences on interpolated samples over three sample slices, with the
+//   shear correction, exactly as docs/numerics.md section 5:
+//     gi = s[m, j, i+1] - s[m, j, i-1]
+//     gj = s[m, j+1, i] - s[m, j-1, i]
+//     gr = s[m+1, j+dyf, i+dxf] - s[m-1, j-dyb, i-dxb]   (X/Y-step, old X/Y-step)
+//     gk = S * gr - round_shift(VIEW_X * gi + VIEW_Y * gj, W)
+//   with zero outside the volume (rows -1 and NJ, columns -1 and NI, slices -1
+//   and M).
+//
+//   Plane and beam buffers (cube4_delay_line, in beats): the incoming sample
+//   beat X = (m+1, j+1) meets B1 = (m+1, j), P1 = (m, j+1), C = (m, j),
+//   P1b2 = (m, j-1), P2b1 = (m-1, j), P2b2 = (m-1, j-1). Their lane skews differ
+//   from C's by the j step and (when the voxel slice changes) the k step, one
+//   ring hop each (cube4_ring_shift); i +/- 1 come from the ring neighbours with
+//   beam extension in both directions (the lane at t = P-1 takes the next beat,
+//   the lane at t = 0 the previous one). After the last beat of a frame GRA
+//   runs NJ*NB + NB + 1 zero "flush" steps, the samples of slice M and beyond,
+//   to finish the last slice; then it accepts the next frame.
+//
+// Parameters
+//   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_tri (derived widths too)
+//   GRAD_W  gradient width = VOXEL_W + 5 (derived; signed)
+//
+// Latency
+//   A sample beat leaves NJ*NB + NB + 1 beats after it entered (the plane and
+//   beam delays), plus 3 register stages and the output skid buffer. All under
+//   one stall enable (the skid buffer's registered ready).
+//
+// Ports
+//   in_*   the sample stream of cube4_tri (same fields and formats)
+//   out_sample  [P*VOXEL_W]  the sample s[m, j, i] (unsigned, Q0.VOXEL_W)
+//   out_gi/gj/gk [P*GRAD_W]  gradient per lane, signed integers, 2x the central
+//                            differences in traversal axes (numerics.md 5)
+//   out_lane_valid, out_lane_inside, out_m, out_j, out_pb, out_skew, out_ctrl
+//                            the sample beat's fields, unchanged
+//   cfg_*                    view registers (see cube4_cfb)
+//
+// Bit growth and rounding
+//   gi, gj, gr: VOXEL_W + 1 bits signed, exact. VIEW_X * gi + VIEW_Y * gj:
+//   W + VOXEL_W + 4 bits signed, exact; round_shift by W (half up, the only
+//   rounding) gives VOXEL_W + 5 bits; |gk| < 2^(VOXEL_W+3) + 2^(VOXEL_W+1),
+//   so GRAD_W = VOXEL_W + 5 holds every result exactly. No saturation.
+// =============================================================================
+module cube4_gra #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_DIM     = 256,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
+    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
+    parameter integer GRAD_W = VOXEL_W + 5
+) (
+    input  wire                  clk,
+    input  wire                  rst,
+    input  wire [DIM_W-1:0]      cfg_ni,
+    input  wire [DIM_W-1:0]      cfg_nj,
+    input  wire [NB_W-1:0]       cfg_nb,
+    input  wire                  cfg_flip_i,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire [1:0]            cfg_ss_log2,
+    input  wire [LANE_W-1:0]     cfg_i_r1,
+    input  wire [WEIGHT_W:0]     cfg_view_x,
+    input  wire [WEIGHT_W:0]     cfg_view_y,
+    // sample stream in
+    input  wire                  in_valid,
+    output wire                  in_ready,
+    input  wire [P*VOXEL_W-1:0]  in_sample,
+    input  wire [P-1:0]          in_lane_valid,
+    input  wire [P-1:0]          in_lane_inside,
+    input  wire [M_W-1:0]        in_m,
+    input  wire [DIM_W-1:0]      in_j,
+    input  wire [PB_W-1:0]       in_pb,
+    input  wire [LANE_W-1:0]     in_skew,
+    input  wire [6:0]            in_ctrl,
+    // gradient stream out
+    output wire                  out_valid,
+    input  wire                  out_ready,
+    output wire [P*VOXEL_W-1:0]  out_sample,
+    output wire [P*GRAD_W-1:0]   out_gi,
+    output wire [P*GRAD_W-1:0]   out_gj,
+    output wire [P*GRAD_W-1:0]   out_gk,
+    output wire [P-1:0]          out_lane_valid,
+    output wire [P-1:0]          out_lane_inside,
+    output wire [M_W-1:0]        out_m,
+    output wire [DIM_W-1:0]      out_j,
+    output wire [PB_W-1:0]       out_pb,
+    output wire [LANE_W-1:0]     out_skew,
+    output wire [6:0]            out_ctrl
+);
+    generate
+        if (P < 1 || P > 64) begin : g_bad_p
+            $error("cube4_gra: P = %0d is out of range 1..64", P);
+        end
+        if (VOXEL_W < 1 || VOXEL_W > 16) begin : g_bad_voxel_w
+            $error("cube4_gra: VOXEL_W = %0d is out of range 1..16", VOXEL_W);
+        end
+        if (GRAD_W != VOXEL_W + 5) begin : g_bad_grad_w
+            $error("cube4_gra: GRAD_W is derived (VOXEL_W + 5), do not set it");
+        end
+    endgenerate
+
+    localparam integer VW     = VOXEL_W;
+    localparam integer PV     = P * VW;
+    localparam integer DW     = VW + 1;                     // differences, signed
+    localparam integer NBMAX  = (MAX_DIM + P - 1) / P;
+    localparam integer META_W = 1 + M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;  // {real, beat fields}
+    localparam integer PROD_W = WEIGHT_W + VW + 4;
+    localparam [LANE_W:0] PL  = P[LANE_W:0];
+    localparam integer IW     = $clog2(MAX_DIM + 2 * P + 1);
+
+    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v);
+        reg signed [LANE_W+2:0] w;
+        begin
+            w = v;
+            if (w < 0) w = w + $signed({2'b00, PL});
+            if (w >= $signed({2'b00, PL})) w = w - $signed({2'b00, PL});
+            mod_p = w[LANE_W-1:0];
+        end
+    endfunction
+
+    // ------------------------------------------------------------ stepping
+    wire en;                      // stall enable = output skid buffer ready
+    reg  flush_q;                 // running the zero steps after a frame
+    reg  [DIM_W:0]   f_row_q;     // flush: beam 0 .. NJ, then one beat (NJ + 1)
+    reg  [PB_W-1:0]  f_pb_q;
+    wire step = en && (flush_q || in_valid);
+    assign in_ready = en && !flush_q;
+
+    wire real_beat = !flush_q;
+    wire sop       = real_beat && in_ctrl[4];
+    wire eop       = real_beat && in_ctrl[5];
+
+    // position counters of the delay lines (beat index within a beam / slice)
+    reg  [PB_W-1:0]  pb_q;
+    reg  [DIM_W-1:0] row_q;
+    wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
+    wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
+    wire last_beam  = (NB_W'(pos_pb) == cfg_nb - 1'b1);
+    wire last_slice = last_beam && (pos_row == cfg_nj - 1'b1);
+
+    always @(posedge clk) begin
+        if (rst) begin
+            pb_q    <= {PB_W{1'b0}};
+            row_q   <= {DIM_W{1'b0}};
+            flush_q <= 1'b0;
+            f_row_q <= {(DIM_W + 1){1'b0}};
+            f_pb_q  <= {PB_W{1'b0}};
+        end else if (step) begin
+            pb_q  <= last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
+            row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
+            if (flush_q) begin
+                if (f_row_q == {1'b0, cfg_nj} + 1'b1) begin
+                    flush_q <= 1'b0;                      // the single extra beat
+                end else if (NB_W'(f_pb_q) == cfg_nb - 1'b1) begin
+                    f_pb_q  <= {PB_W{1'b0}};
+                    f_row_q <= f_row_q + 1'b1;
+                end else begin
+                    f_pb_q <= f_pb_q + 1'b1;
+                end
+            end else if (eop) begin
+                flush_q <= 1'b1;
+                f_row_q <= {(DIM_W + 1){1'b0}};
+                f_pb_q  <= {PB_W{1'b0}};
+            end
+        end
+    end
+
+    // ------------------------------------------------------------ delay lines
+    wire [PV-1:0] x_data;
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_mask
+            assign x_data[q*VW +: VW] = (real_beat && in_lane_valid[q]) ? in_sample[q*VW +: VW] : {VW{1'b0}};
+        end
+    endgenerate
+    wire [META_W-1:0] x_meta = {real_beat, in_m, in_j, in_pb, in_skew, in_ctrl, in_lane_valid, in_lane_inside};
+
+    wire [PV-1:0]        b1, p1, c_d, p1b2, p2b1, p2b2;
+    wire [META_W-1:0]    p1_meta, c_meta;
+
+    cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_x_b1 (
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .din(x_data), .dout(b1));
+    cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(MAX_DIM * NBMAX)) u_x_p1 (
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice),
+        .din({x_meta, x_data}), .dout({p1_meta, p1}));
+    cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(NBMAX)) u_p1_c (
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .din({p1_meta, p1}), .dout({c_meta, c_d}));
+    cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .din(c_d), .dout(p1b2));
+    cube4_delay_line #(.DATA_W(PV), .DEPTH(MAX_DIM * NBMAX)) u_c_p2b1 (
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice),
+        .din(c_d), .dout(p2b1));
+    cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_p2b1_p2b2 (
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .din(p2b1), .dout(p2b2));
+
+    // fields of the incoming centre beat c' (becomes c after this step)
+    wire [M_W-1:0]    c_m    = c_meta[META_W-2 -: M_W];
+    wire [DIM_W-1:0]  c_j    = c_meta[META_W-2-M_W -: DIM_W];
+    wire              c_dyf  = c_meta[2*P + 1];   // ctrl bit 1: Y-step of slice m
+    wire              c_dyb  = c_meta[2*P + 3];   // ctrl bit 3: old Y-step
+    wire [M_W-1:0]    ss_mask = M_W'((1 << cfg_ss_log2) - 1);
+    wire dk_f = ((c_m + 1'b1) & ss_mask) == '0;   // voxel slice changes m -> m+1
+    wire dk_b = (c_m & ss_mask) == '0;            // voxel slice changes m-1 -> m
+    wire y_last = c_meta[2*P + 6];   // ctrl bit 6: row j = NJ-1
+    wire j_first = (c_j == '0);
+    wire m_first = (c_m == '0);
+
+    // ------------------------------------------------------------ alignment hops
+    // source skew - centre skew: P1 +s_j, P1b2 -s_j, X +s_j (+s_k), B1 (+s_k),
+    // P2b1 (-s_k), P2b2 -s_j (-s_k); a +1 difference means y[q] = x[q + 1].
+    wire [PV-1:0] p1_a, p1b2_a, x_j, x_a, b1_a, p2b1_a, p2b2_j, p2b2_a;
+    wire [PV-1:0] x_jk, b1_k, p2b1_k, p2b2_jk;
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p1   (.down(!cfg_flip_j), .x(p1),     .y(p1_a));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p1b2 (.down(cfg_flip_j),  .x(p1b2),   .y(p1b2_a));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_xj   (.down(!cfg_flip_j), .x(x_data), .y(x_j));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_xk   (.down(!cfg_flip_k), .x(x_j),    .y(x_jk));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_b1k  (.down(!cfg_flip_k), .x(b1),     .y(b1_k));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p2k  (.down(cfg_flip_k),  .x(p2b1),   .y(p2b1_k));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p22j (.down(cfg_flip_j),  .x(p2b2),   .y(p2b2_j));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p22k (.down(cfg_flip_k),  .x(p2b2_j), .y(p2b2_jk));
+    assign x_a    = dk_f ? x_jk : x_j;
+    assign b1_a   = dk_f ? b1_k : b1;
+    assign p2b1_a = dk_b ? p2b1_k : p2b1;
+    assign p2b2_a = dk_b ? p2b2_jk : p2b2_j;
+
+    // zero rows and slices outside the volume, pick the ray neighbours
+    wire [PV-1:0] row_up   = y_last  ? {PV{1'b0}} : p1_a;                     // (m, j+1)
+    wire [PV-1:0] row_dn   = j_first ? {PV{1'b0}} : p1b2_a;                   // (m, j-1)
+    wire [PV-1:0] fwd_row  = c_dyf ? (y_last ? {PV{1'b0}} : x_a) : b1_a;  // (m+1, j+dyf)
+    wire [PV-1:0] back_row = m_first ? {PV{1'b0}}
+                           : (c_dyb ? (j_first ? {PV{1'b0}} : p2b2_a) : p2b1_a); // (m-1, j-dyb)
+
+    // gj of c' per lane
+    wire [P*DW-1:0] gj_in;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_gj
+            assign gj_in[q*DW +: DW] = $signed({1'b0, row_up[q*VW +: VW]}) - $signed({1'b0, row_dn[q*VW +: VW]});
+        end
+    endgenerate
+
+    // ------------------------------------------------------------ window hold
+    // h1 = beat c (centre of the output), h2 = beat c - 1; the incoming c' = c + 1
+    reg               h1_v;
+    reg               h1_live;   // h1 is a beat of the current frame (not a stale RAM word)
+    reg               live_q;    // the current frame's first beat has reached the centre
+    wire              c_sop  = c_meta[2*P + 4];
+    wire              c_live = c_sop || live_q;
+    reg [META_W-1:0]  h1_meta;
+    reg [PV-1:0]      h1_c, h2_c, h1_f, h1_b, h2_b;
+    reg [P*DW-1:0]    h1_gj;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            h1_v    <= 1'b0;
+            h1_live <= 1'b0;
+            live_q  <= 1'b0;
+        end else if (step) begin
+            h1_v    <= 1'b1;
+            h1_live <= c_live;
+            // after a reset the plane buffers still hold beats of an interrupted
+            // frame; centres count only from the current frame's first beat on
+            if (sop)        live_q <= 1'b0;
+            else if (c_sop) live_q <= 1'b1;
+        end
+    end
+    always @(posedge clk) begin
+        if (step) begin
+            h1_meta <= c_meta;
+            h1_c    <= c_d;
+            h2_c    <= h1_c;
+            h1_f    <= fwd_row;
+            h1_b    <= back_row;
+            h2_b    <= h1_b;
+            h1_gj   <= gj_in;
+        end
+    end
+
+    wire              h_real = h1_meta[META_W-1] && h1_live;
+    wire [PB_W-1:0]   h_pb   = h1_meta[2*P + 7 + LANE_W +: PB_W];
+    wire [LANE_W-1:0] h_skew = h1_meta[2*P + 7 +: LANE_W];
+    wire              h_dxf  = h1_meta[2*P + 0];   // ctrl bit 0: X-step of slice m
+    wire              h_dxb  = h1_meta[2*P + 2];   // ctrl bit 2: old X-step
+    wire [IW-1:0]     h_pbp  = IW'(h_pb) * IW'(P);
+    wire [IW-1:0]     ni_ext = IW'(cfg_ni);
+
+    // neighbours i+1 (from lane q + s_i; the lane at t = P-1 from beat c + 1) and
+    // i-1 (from lane q - s_i; the lane at t = 0 from beat c - 1)
+    wire [PV-1:0] c_next_same, c_next_new, c_prev_same, c_prev_old;
+    wire [PV-1:0] f_next_same, f_next_new, b_prev_same, b_prev_old;
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cn_s (.down(!cfg_flip_i), .x(h1_c),     .y(c_next_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cn_n (.down(!cfg_flip_i), .x(c_d),      .y(c_next_new));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cp_s (.down(cfg_flip_i),  .x(h1_c),     .y(c_prev_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cp_o (.down(cfg_flip_i),  .x(h2_c),     .y(c_prev_old));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_fn_s (.down(!cfg_flip_i), .x(h1_f),     .y(f_next_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_fn_n (.down(!cfg_flip_i), .x(fwd_row),  .y(f_next_new));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_bp_s (.down(cfg_flip_i),  .x(h1_b),     .y(b_prev_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_bp_o (.down(cfg_flip_i),  .x(h2_b),     .y(b_prev_old));
+
+    wire [P*DW-1:0] gi_d, gr_d;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_win
+            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
+            wire [LANE_W-1:0] t = cfg_flip_i
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, h_skew}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, h_skew}));
+            wire [IW-1:0] i_pos  = h_pbp + IW'(t);
+            wire          hi_ok  = (i_pos + 1'b1 < ni_ext);
+            wire          lo_ok  = (i_pos != '0);
+            wire          hi_new = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
+            wire          lo_old = (t == '0);                  // i - 1 is in the previous beat
+            wire [VW-1:0] c_hi = !hi_ok ? {VW{1'b0}} : hi_new ? c_next_new[q*VW +: VW] : c_next_same[q*VW +: VW];
+            wire [VW-1:0] c_lo = !lo_ok ? {VW{1'b0}} : lo_old ? c_prev_old[q*VW +: VW] : c_prev_same[q*VW +: VW];
+            wire [VW-1:0] f_hi = !hi_ok ? {VW{1'b0}} : hi_new ? f_next_new[q*VW +: VW] : f_next_same[q*VW +: VW];
+            wire [VW-1:0] b_lo = !lo_ok ? {VW{1'b0}} : lo_old ? b_prev_old[q*VW +: VW] : b_prev_same[q*VW +: VW];
+            wire [VW-1:0] fwd  = h_dxf ? f_hi : h1_f[q*VW +: VW];   // i + dxf
+            wire [VW-1:0] back = h_dxb ? b_lo : h1_b[q*VW +: VW];   // i - dxb
+            assign gi_d[q*DW +: DW] = $signed({1'b0, c_hi}) - $signed({1'b0, c_lo});
+            assign gr_d[q*DW +: DW] = $signed({1'b0, fwd}) - $signed({1'b0, back});
+        end
+    endgenerate
+
+    // ------------------------------------------------------------ arithmetic
+    // g1: differences; g2: VIEW_X*gi + VIEW_Y*gj; g3: gk; then the skid buffer
+    reg               g1_v, g2_v, g3_v;
+    reg [META_W-2:0]  g1_meta, g2_meta, g3_meta;
+    reg [PV-1:0]      g1_s, g2_s, g3_s;
+    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj, g2_gr;
+    reg [P*PROD_W-1:0] g2_prod;
+    reg [P*GRAD_W-1:0] g3_gi, g3_gj, g3_gk;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            g1_v <= 1'b0;
+            g2_v <= 1'b0;
+            g3_v <= 1'b0;
+        end else if (en) begin
+            g1_v <= step && h1_v && h_real;
+            g2_v <= g1_v;
+            g3_v <= g2_v;
+        end
+    end
+
+    wire [P*PROD_W-1:0] prod_d;
+    wire [P*GRAD_W-1:0] gk_d, gi_x, gj_x;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_arith
+            wire signed [DW-1:0]     gi = g1_gi[q*DW +: DW];
+            wire signed [DW-1:0]     gj = g1_gj[q*DW +: DW];
+            wire signed [PROD_W-1:0] vx = $signed({{(PROD_W - WEIGHT_W - 1){1'b0}}, cfg_view_x});
+            wire signed [PROD_W-1:0] vy = $signed({{(PROD_W - WEIGHT_W - 1){1'b0}}, cfg_view_y});
+            wire signed [PROD_W-1:0] gi_e = {{(PROD_W - DW){gi[DW-1]}}, gi};
+            wire signed [PROD_W-1:0] gj_e = {{(PROD_W - DW){gj[DW-1]}}, gj};
+            assign prod_d[q*PROD_W +: PROD_W] = vx * gi_e + vy * gj_e;
+
+            wire signed [GRAD_W-1:0] rs;
+            cube4_round_shift #(
+                .IN_W  (PROD_W),
+                .SHIFT (WEIGHT_W)
+            ) u_rs (
+                .x (g2_prod[q*PROD_W +: PROD_W]),
+                .y (rs)
+            );
+            wire signed [DW-1:0]     gr = g2_gr[q*DW +: DW];
+            wire signed [GRAD_W-1:0] gr_e = {{(GRAD_W - DW){gr[DW-1]}}, gr};
+            assign gk_d[q*GRAD_W +: GRAD_W] = (gr_e <<< cfg_ss_log2) - rs;
+            wire signed [DW-1:0] gi2 = g2_gi[q*DW +: DW];
+            wire signed [DW-1:0] gj2 = g2_gj[q*DW +: DW];
+            assign gi_x[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gi2[DW-1]}}, gi2};
+            assign gj_x[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gj2[DW-1]}}, gj2};
+        end
+    endgenerate
+
+    always @(posedge clk) begin
+        if (en) begin
+            g1_meta <= h1_meta[META_W-2:0];
+            g1_s    <= h1_c;
+            g1_gi   <= gi_d;
+            g1_gj   <= h1_gj;
+            g1_gr   <= gr_d;
+            g2_meta <= g1_meta;
+            g2_s    <= g1_s;
+            g2_gi   <= g1_gi;
+            g2_gj   <= g1_gj;
+            g2_gr   <= g1_gr;
+            g2_prod <= prod_d;
+            g3_meta <= g2_meta;
+            g3_s    <= g2_s;
+            g3_gi   <= gi_x;
+            g3_gj   <= gj_x;
+            g3_gk   <= gk_d;
+        end
+    end
+
+    localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
+    wire [OUT_W-1:0] skid_out;
+    cube4_skid #(
+        .DATA_W (OUT_W)
+    ) u_skid (
+        .clk       (clk),
+        .rst       (rst),
+        .in_valid  (g3_v),
+        .in_ready  (en),
+        .in_data   ({g3_meta, g3_s, g3_gi, g3_gj, g3_gk}),
+        .out_valid (out_valid),
+        .out_ready (out_ready),
+        .out_data  (skid_out)
+    );
+    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside,
+            out_sample, out_gi, out_gj, out_gk} = skid_out;
+
+endmodule
+`default_nettype wire
