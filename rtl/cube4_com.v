@@ -1,0 +1,317 @@
+`default_nettype none
+// =============================================================================
+// cube4_com
+// -----------------------------------------------------------------------------
+// Purpose
+//   The COM units of all P pipelines (Teramac paper, section 5, Fig. 13, 14):
+//   front-to-back compositing in fixed point (docs/numerics.md section 7)
+//     w = round_shift(T * A', ALPHA_W);  C += round_shift(w * C', 8);  T -= w
+//   with C, T in Q0.ACC_W (T starts at 2^ACC_W), and the finished-ray stream
+//   (numerics.md section 8).
+//
+//   Base-plane buffers: the partial result of every ray lives in the lane and
+//   slot of its latest sample. A one-slice delay line (NJ*NB beats per lane,
+//   the paper's "base-plane buffer for one slice of intermediate compositing
+//   results") and a one-beam delay line return, for sample (m, j, i), the
+//   ray's partial result at its previous sample (m-1, j - dyb, i - dxb): one
+//   ring hop for the k step of the skew, one for the j step, and one for the
+//   X-step, which for the lane at t = 0 comes from the previous beat (Fig. 13:
+//   results forwarded across partial beams and beams). A ray starts fresh
+//   (C = 0, T = 1) when its previous sample is outside the slice (m = 0,
+//   j - dyb < 0, i - dxb < 0). Compositing is done within the step, so the
+//   recurrence holds for any slice size, down to one beat per slice.
+//
+//   Finished rays: a sample that is inside and whose next sample along the ray
+//   (m+1, j+dyf, i+dxf) is not (or m = M-1) finishes its ray; the ray leaves as
+//   (R, G, B, A = 2^ACC_W - T) with its base-plane address
+//   (bx, by) = (i - stepx(m) + SX, j - stepy(m) + SY). Output beats carry up to
+//   P finished rays (lane mask) and the frame's last beat (eop) always leaves.
+//
+// Parameters
+//   P, VOXEL_W (unused here but for widths), WEIGHT_W, MAX_DIM, MAX_SS_LOG2 and
+//   the derived widths as cube4_gra.
+//   ALPHA_W   opacity width AW.                 8..16.  Default 12.
+//   ACC_W     accumulator fraction bits F.      8..24.  Default 16.
+//
+// Latency
+//   1 register stage after the step plus the output skid buffer; the partial
+//   results take exactly one slice (NJ*NB steps) round the base-plane buffer.
+//
+// Ports
+//   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
+//             A (Q0.ALPHA_W)}
+//   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
+//             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
+//             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame)
+//   cfg_*     view registers; cfg_sx, cfg_sy = stepx(M-1), stepy(M-1)
+//
+// Bit growth and rounding
+//   T * A: (F+1) x AW bits; round_shift by AW (half up) gives w <= T (F+1 bits).
+//   w * C': (F+1) x 8 bits; round_shift by 8 gives at most w; C + that <= 2^F - T.
+//   Nothing wraps and nothing saturates (numerics.md section 7).
+// =============================================================================
+module cube4_com #(
+    parameter integer P           = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer ALPHA_W     = 12,
+    parameter integer ACC_W       = 16,
+    parameter integer MAX_DIM     = 256,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
+    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
+    parameter integer BX_W   = DIM_W + 1
+) (
+    input  wire                      clk,
+    input  wire                      rst,
+    input  wire [DIM_W-1:0]          cfg_ni,
+    input  wire [DIM_W-1:0]          cfg_nj,
+    input  wire [DIM_W-1:0]          cfg_nk,
+    input  wire [NB_W-1:0]           cfg_nb,
+    input  wire                      cfg_flip_i,
+    input  wire                      cfg_flip_j,
+    input  wire                      cfg_flip_k,
+    input  wire [1:0]                cfg_ss_log2,
+    input  wire [LANE_W-1:0]         cfg_i_r1,
+    input  wire [WEIGHT_W:0]         cfg_view_x,
+    input  wire [WEIGHT_W:0]         cfg_view_y,
+    input  wire [DIM_W-1:0]          cfg_sx,
+    input  wire [DIM_W-1:0]          cfg_sy,
+    // shaded stream in
+    input  wire                      in_valid,
+    output wire                      in_ready,
+    input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
+    input  wire [P-1:0]              in_lane_valid,
+    input  wire [P-1:0]              in_lane_inside,
+    input  wire [M_W-1:0]            in_m,
+    input  wire [DIM_W-1:0]          in_j,
+    input  wire [PB_W-1:0]           in_pb,
+    input  wire [LANE_W-1:0]         in_skew,
+    input  wire [6:0]                in_ctrl,
+    // finished rays out
+    output wire                      pix_valid,
+    input  wire                      pix_ready,
+    output wire [P-1:0]              pix_mask,
+    output wire [M_W-1:0]            pix_m,
+    output wire [BX_W-1:0]           pix_by,
+    output wire [P*BX_W-1:0]         pix_bx,
+    output wire [P*4*(ACC_W+1)-1:0]  pix_rgba,
+    output wire                      pix_eop
+);
+    generate
+        if (P < 1 || P > 64) begin : g_bad_p
+            $error("cube4_com: P = %0d is out of range 1..64", P);
+        end
+        if (ALPHA_W < 8 || ALPHA_W > 16) begin : g_bad_alpha_w
+            $error("cube4_com: ALPHA_W = %0d is out of range 8..16", ALPHA_W);
+        end
+        if (ACC_W < 8 || ACC_W > 24) begin : g_bad_acc_w
+            $error("cube4_com: ACC_W = %0d is out of range 8..24", ACC_W);
+        end
+    endgenerate
+
+    localparam integer CW     = ACC_W + 1;          // one accumulator channel
+    localparam integer AC_W   = 4 * CW;             // {R, G, B, T}
+    localparam integer PA     = P * AC_W;
+    localparam integer LUT_W  = 24 + ALPHA_W;
+    localparam integer NBMAX  = (MAX_DIM + P - 1) / P;
+    localparam integer PH_W   = WEIGHT_W + MAX_SS_LOG2;
+    localparam integer IW     = $clog2(MAX_DIM + 2 * P + 1);
+    localparam [LANE_W:0] PL  = P[LANE_W:0];
+    localparam [CW-1:0]   ONE = {1'b1, {ACC_W{1'b0}}};  // T = 1.0
+
+    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v);
+        reg signed [LANE_W+2:0] w;
+        begin
+            w = v;
+            if (w < 0) w = w + $signed({2'b00, PL});
+            if (w >= $signed({2'b00, PL})) w = w - $signed({2'b00, PL});
+            mod_p = w[LANE_W-1:0];
+        end
+    endfunction
+
+    wire en;
+    wire step = en && in_valid;
+    assign in_ready = en;
+
+    wire sop   = in_ctrl[4];
+    wire eop   = in_ctrl[5];
+    wire dxf   = in_ctrl[0];
+    wire dyf   = in_ctrl[1];
+    wire dxb   = in_ctrl[2];
+    wire dyb   = in_ctrl[3];
+    wire first_of_slice = (in_j == '0) && (in_pb == '0);
+    wire unused_y_last = in_ctrl[6];   // rows are checked against cfg_nj directly
+
+    // ---- delay-line positions (as cube4_gra) ----
+    reg  [PB_W-1:0]  pb_q;
+    reg  [DIM_W-1:0] row_q;
+    wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
+    wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
+    wire last_beam  = (NB_W'(pos_pb) == cfg_nb - 1'b1);
+    wire last_slice = last_beam && (pos_row == cfg_nj - 1'b1);
+
+    // ---- template of slice m+1 (for "next sample inside") and steps of slice m ----
+    reg  [PH_W-1:0]  phx_q, phy_q;      // phase of slice m + 1
+    reg  [DIM_W-1:0] stx_q, sty_q;      // stepx(m), stepy(m)
+    wire [PH_W:0]    ph_one  = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {2'b00, cfg_ss_log2});
+    wire [PH_W:0]    phx_sum = {1'b0, sop ? {PH_W{1'b0}} : phx_q} + (PH_W + 1)'(cfg_view_x);
+    wire [PH_W:0]    phy_sum = {1'b0, sop ? {PH_W{1'b0}} : phy_q} + (PH_W + 1)'(cfg_view_y);
+    wire [PH_W-1:0]  phx_add = (phx_sum >= ph_one) ? PH_W'(phx_sum - ph_one) : phx_sum[PH_W-1:0];
+    wire [PH_W-1:0]  phy_add = (phy_sum >= ph_one) ? PH_W'(phy_sum - ph_one) : phy_sum[PH_W-1:0];
+    wire [PH_W-1:0]  phx_n   = first_of_slice ? phx_add : phx_q;
+    wire [PH_W-1:0]  phy_n   = first_of_slice ? phy_add : phy_q;
+    // wx(m+1) = phase >> g, and phase < 2^(W+g): every bit above g is a weight bit
+    wire             wxn_nz  = ((phx_n >> cfg_ss_log2) != '0);   // wx(m+1) > 0
+    wire             wyn_nz  = ((phy_n >> cfg_ss_log2) != '0);
+    wire [DIM_W-1:0] stx_n   = !first_of_slice ? stx_q : (sop ? {DIM_W{1'b0}} : stx_q + DIM_W'(dxb));
+    wire [DIM_W-1:0] sty_n   = !first_of_slice ? sty_q : (sop ? {DIM_W{1'b0}} : sty_q + DIM_W'(dyb));
+    wire [M_W-1:0]   m_last  = M_W'(cfg_nk - 1'b1) << cfg_ss_log2;
+    wire             in_last_slice = (in_m == m_last);
+    wire [M_W-1:0]   ss_mask = M_W'((1 << cfg_ss_log2) - 1);
+    wire             dk_b    = (in_m & ss_mask) == '0;   // voxel slice changed from m-1
+
+    always @(posedge clk) begin
+        if (rst) begin
+            pb_q  <= {PB_W{1'b0}};
+            row_q <= {DIM_W{1'b0}};
+        end else if (step) begin
+            pb_q  <= last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
+            row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
+        end
+    end
+    always @(posedge clk) begin
+        if (step) begin
+            phx_q <= phx_n;
+            phy_q <= phy_n;
+            stx_q <= stx_n;
+            sty_q <= sty_n;
+        end
+    end
+
+    // ---- base-plane buffers: partial results of slice m-1 ----
+    wire [PA-1:0] acc_new;              // written this step: results after slice m
+    wire [PA-1:0] a1, a2;               // (m-1, j), (m-1, j-1) in their own skews
+    cube4_delay_line #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX)) u_bp_slice (
+        .clk(clk), .rst(rst), .clear(sop && step), .step(step), .last(last_slice),
+        .din(acc_new), .dout(a1));
+    cube4_delay_line #(.DATA_W(PA), .DEPTH(NBMAX)) u_bp_beam (
+        .clk(clk), .rst(rst), .clear(sop && step), .step(step), .last(last_beam),
+        .din(a1), .dout(a2));
+
+    wire [PA-1:0] a1_k, a2_j, a2_jk, back, back_sh, prevb_sh;
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a1k  (.down(cfg_flip_k), .x(a1),   .y(a1_k));
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2j  (.down(cfg_flip_j), .x(a2),   .y(a2_j));
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2jk (.down(cfg_flip_k), .x(a2_j), .y(a2_jk));
+    assign back = dyb ? (dk_b ? a2_jk : a2_j) : (dk_b ? a1_k : a1);   // (m-1, j-dyb, i)
+
+    reg [PA-1:0] prevb_q;   // the previous beat's "back" (same row: only used at t = 0)
+    always @(posedge clk) begin
+        if (step) prevb_q <= back;
+    end
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(back),    .y(back_sh));
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(prevb_q), .y(prevb_sh));
+
+    // ---- compositing, per lane, within the step ----
+    wire [BX_W-1:0] by_d = BX_W'(in_j) - BX_W'(sty_n) + BX_W'(cfg_sy);
+    wire [P-1:0]         fin_d;
+    wire [P*BX_W-1:0]    bx_d;
+    wire [P*AC_W-1:0]    pix_d;
+    wire [IW-1:0]        pbp    = IW'(in_pb) * IW'(P);
+    wire [IW-1:0]        ni_ext = IW'(cfg_ni);
+    wire [IW-1:0]        nj_ext = IW'(cfg_nj);
+    wire [IW-1:0]        j_ext  = IW'(in_j);
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_lane
+            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
+            wire [LANE_W-1:0] t = cfg_flip_i
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, in_skew}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, in_skew}));
+            wire [IW-1:0] i_pos = pbp + IW'(t);
+            // the ray's previous partial result
+            wire fresh = (in_m == '0) || (dyb && in_j == '0) || (dxb && i_pos == '0);
+            wire [AC_W-1:0] prev = dxb ? ((t == '0) ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
+                                       : back[q*AC_W +: AC_W];
+            wire [CW-1:0] c_r = fresh ? {CW{1'b0}} : prev[3*CW +: CW];
+            wire [CW-1:0] c_g = fresh ? {CW{1'b0}} : prev[2*CW +: CW];
+            wire [CW-1:0] c_b = fresh ? {CW{1'b0}} : prev[1*CW +: CW];
+            wire [CW-1:0] tt  = fresh ? ONE        : prev[0*CW +: CW];
+            // the shaded sample
+            wire [LUT_W-1:0]   s  = in_rgba[q*LUT_W +: LUT_W];
+            wire [ALPHA_W-1:0] sa = s[ALPHA_W-1:0];
+            wire               ins = in_lane_valid[q] && in_lane_inside[q];
+            // w = round_shift(T * A, AW)
+            wire [CW+ALPHA_W-1:0] ta = {{ALPHA_W{1'b0}}, tt} * {{CW{1'b0}}, sa};
+            wire signed [CW+1:0]  w_rs;
+            cube4_round_shift #(.IN_W(CW + ALPHA_W + 1), .SHIFT(ALPHA_W)) u_w (
+                .x($signed({1'b0, ta})), .y(w_rs));
+            wire [CW-1:0] w = ins ? w_rs[CW-1:0] : {CW{1'b0}};   // 0 <= w <= T
+            // C += round_shift(w * C', 8)
+            wire [3*CW-1:0] c_in  = {c_r, c_g, c_b};
+            wire [3*CW-1:0] c_out;
+            genvar ch;
+            for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
+                wire [7:0]      cs  = s[ALPHA_W + 8 * ch +: 8];   // B, G, R for ch = 0, 1, 2
+                wire [CW+7:0]   wc  = {8'd0, w} * {{CW{1'b0}}, cs};
+                wire signed [CW+1:0] add;
+                cube4_round_shift #(.IN_W(CW + 9), .SHIFT(8)) u_c (
+                    .x($signed({1'b0, wc})), .y(add));
+                assign c_out[ch*CW +: CW] = c_in[ch*CW +: CW] + add[CW-1:0];
+            end
+            wire [CW-1:0] t_out = tt - w;
+            assign acc_new[q*AC_W +: AC_W] = {c_out, t_out};
+            // finished? the next sample along the ray is not inside
+            wire [IW-1:0] i_nx = i_pos + IW'(dxf);
+            wire [IW-1:0] j_nx = j_ext + IW'(dyf);
+            wire nx_in = !in_last_slice && (i_nx < ni_ext) && (j_nx < nj_ext)
+                       && !(i_nx + 1'b1 == ni_ext && wxn_nz) && !(j_nx + 1'b1 == nj_ext && wyn_nz);
+            assign fin_d[q] = ins && !nx_in;
+            assign bx_d[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(stx_n) + BX_W'(cfg_sx);
+            assign pix_d[q*AC_W +: AC_W] = {c_out, ONE - t_out};   // {R, G, B, A}
+        end
+    endgenerate
+
+    // ---- output register and skid ----
+    reg               o_v;
+    reg [P-1:0]       o_mask;
+    reg [M_W-1:0]     o_m;
+    reg [BX_W-1:0]    o_by;
+    reg [P*BX_W-1:0]  o_bx;
+    reg [PA-1:0]      o_rgba;
+    reg               o_eop;
+    always @(posedge clk) begin
+        if (rst) o_v <= 1'b0;
+        else if (en) o_v <= step && ((fin_d != '0) || eop);
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            o_mask <= fin_d;
+            o_m    <= in_m;
+            o_by   <= by_d;
+            o_bx   <= bx_d;
+            o_rgba <= pix_d;
+            o_eop  <= eop;
+        end
+    end
+
+    localparam integer OUT_W = P + M_W + BX_W + P * BX_W + PA + 1;
+    wire [OUT_W-1:0] skid_out;
+    cube4_skid #(
+        .DATA_W (OUT_W)
+    ) u_skid (
+        .clk       (clk),
+        .rst       (rst),
+        .in_valid  (o_v),
+        .in_ready  (en),
+        .in_data   ({o_mask, o_m, o_by, o_bx, o_rgba, o_eop}),
+        .out_valid (pix_valid),
+        .out_ready (pix_ready),
+        .out_data  (skid_out)
+    );
+    assign {pix_mask, pix_m, pix_by, pix_bx, pix_rgba, pix_eop} = skid_out;
+
+endmodule
+`default_nettype wire
