@@ -50,6 +50,9 @@ LINT_SETS_cube4_beam_ext    := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096
 LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
 LINT_SETS_cube4_delay_line  := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=300
+LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8
+LINT_SETS_cube4_com         := P=1 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3 P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8
+LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

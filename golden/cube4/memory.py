@@ -155,6 +155,14 @@ def frontend_regs(trav: Traversal, p: int) -> dict[str, int]:
     }
 
 
+def top_regs(trav: Traversal, p: int) -> dict[str, int]:
+    """Registers of cube4_top: the front end's plus the base-plane offsets
+    SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8)."""
+    regs = frontend_regs(trav, p)
+    regs["SX"], regs["SY"] = trav.max_steps
+    return regs
+
+
 def lane_positions(skew: int, pb: int, p: int, ni: int, flip_i: bool) -> np.ndarray:
     """Position i held by each lane q of a beat with the given skew and partial beam.
 

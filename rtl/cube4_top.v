@@ -1,0 +1,420 @@
+`default_nettype none
+// =============================================================================
+// cube4_top
+// -----------------------------------------------------------------------------
+// Purpose
+//   The whole Cube-4: P pipelines, each with its voxel memory bank, CFB, TRI,
+//   GRA, SHA and COM (docs/architecture.md). The host loads the volume once
+//   (load port; golden/cube4/memory.py packs it), writes the classification
+//   LUT and the reflectance map (load ports, any time between frames), sets
+//   the view registers (frontend_regs + SX, SY) and pulses start; the frame's
+//   finished rays leave on the pixel stream, and done pulses with the last
+//   beat. Frames may follow each other with other views and tables, without
+//   a reset; a reset in mid-frame leaves the design ready for a clean frame.
+//
+// Parameters
+//   P            pipelines = memory banks.              1..64.    Default 8.
+//   VOXEL_W      voxel width.                           1..16.    Default 8.
+//   WEIGHT_W     resampling weight width W.             4..12.    Default 8.
+//   ALPHA_W      LUT opacity width.                     8..16.    Default 12.
+//   ACC_W        compositing accumulator fraction bits. 8..24.    Default 16.
+//   RMAP_BITS    reflectance-map resolution log2 R.     2..6.     Default 5.
+//   MAX_DIM      largest volume dimension.              2..2048.  Default 256.
+//   MAX_SS_LOG2  log2 of the largest supersampling.     0..3.     Default 0.
+//   DEPTH        voxel words per bank.                  2..2^30.  Default 65536.
+//   ADDR_W       bank address width.                    1..30.    Default 16.
+//
+// Latency
+//   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
+//   last slice (NJ*NB + NB + 1 steps), plus about 30 cycles of pipeline fill.
+//   cycles counts the clock cycles from start to the last pixel beat.
+//
+// Ports
+//   ld_*           voxel load port (cube4_voxel_mem)
+//   lut_*, rmap_*  table load ports (cube4_sha)
+//   cfg_*          view registers, stable from start to done
+//   start, busy, done, cycles   frame control
+//   pix_*          finished rays (cube4_com)
+//   dbg_hold       [5] verification only, tie to 0: hold the internal streams
+//                  {memory request, memory response, samples, gradients, shaded}
+//
+// Bit growth and rounding: see the units; every format is in docs/numerics.md.
+// =============================================================================
+module cube4_top #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer ALPHA_W     = 12,
+    parameter integer ACC_W       = 16,
+    parameter integer RMAP_BITS   = 5,
+    parameter integer MAX_DIM     = 256,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer DEPTH       = 65536,
+    parameter integer ADDR_W      = 16,
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
+    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
+    parameter integer BX_W   = DIM_W + 1,
+    parameter integer RI_W   = 2 * RMAP_BITS + 3
+) (
+    input  wire                      clk,
+    input  wire                      rst,
+    // voxel memory load port
+    input  wire                      ld_valid,
+    output wire                      ld_ready,
+    input  wire [ADDR_W-1:0]         ld_addr,
+    input  wire [P*VOXEL_W-1:0]      ld_data,
+    // table load ports
+    input  wire                      lut_we,
+    input  wire [VOXEL_W-1:0]        lut_addr,
+    input  wire [24+ALPHA_W-1:0]     lut_data,
+    input  wire                      rmap_we,
+    input  wire [RI_W-1:0]           rmap_addr,
+    input  wire [19:0]               rmap_data,
+    // view registers
+    input  wire [DIM_W-1:0]            cfg_ni,
+    input  wire [DIM_W-1:0]            cfg_nj,
+    input  wire [DIM_W-1:0]            cfg_nk,
+    input  wire [NB_W-1:0]             cfg_nb,
+    input  wire                        cfg_flip_i,
+    input  wire                        cfg_flip_j,
+    input  wire                        cfg_flip_k,
+    input  wire [1:0]                  cfg_ss_log2,
+    input  wire [WEIGHT_W:0]           cfg_view_x,
+    input  wire [WEIGHT_W:0]           cfg_view_y,
+    input  wire [LANE_W-1:0]           cfg_j_r0,
+    input  wire [LANE_W-1:0]           cfg_k_r0,
+    input  wire [LANE_W-1:0]           cfg_i_r1,
+    input  wire [LANE_W-1:0]           cfg_i_rt,
+    input  wire [ADDR_W-1:0]           cfg_j_a0,
+    input  wire [ADDR_W-1:0]           cfg_j_lin,
+    input  wire [ADDR_W-1:0]           cfg_j_blk,
+    input  wire [ADDR_W-1:0]           cfg_k_a0,
+    input  wire [ADDR_W-1:0]           cfg_k_lin,
+    input  wire [ADDR_W-1:0]           cfg_k_blk,
+    input  wire [ADDR_W-1:0]           cfg_i_a0,
+    input  wire [ADDR_W-1:0]           cfg_i_pb,
+    input  wire [ADDR_W-1:0]           cfg_i_lin,
+    input  wire [DIM_W-1:0]            cfg_sx,
+    input  wire [DIM_W-1:0]            cfg_sy,
+    // frame control
+    input  wire                      start,
+    output wire                      busy,
+    output wire                      done,
+    output wire [31:0]               cycles,
+    // finished rays
+    output wire                      pix_valid,
+    input  wire                      pix_ready,
+    output wire [P-1:0]              pix_mask,
+    output wire [M_W-1:0]            pix_m,
+    output wire [BX_W-1:0]           pix_by,
+    output wire [P*BX_W-1:0]         pix_bx,
+    output wire [P*4*(ACC_W+1)-1:0]  pix_rgba,
+    output wire                      pix_eop,
+    // verification hook
+    input  wire [4:0]                dbg_hold
+);
+    localparam integer PV     = P * VOXEL_W;
+    localparam integer GRAD_W = VOXEL_W + 5;
+    localparam integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P));
+    reg        busy_q;     // a frame runs: start accepted, last pixel beat not yet out
+    reg [31:0] cycles_q;
+    localparam integer TAG_W  = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 5 + 3 * P;
+
+    // ---------------------------------------------------------------- front end + memory
+    wire                 fe_req_valid, fe_req_ready, mem_req_valid, mem_req_ready;
+    wire [P*ADDR_W-1:0]  req_addr;
+    wire [P-1:0]         req_rden;
+    wire [TAG_W-1:0]     req_tag;
+    wire                 mem_rsp_valid, mem_rsp_ready, fe_rsp_valid, fe_rsp_ready;
+    wire [PV-1:0]        rsp_data;
+    wire [TAG_W-1:0]     rsp_tag;
+    wire                 smp_valid, smp_ready, gra_in_valid, gra_in_ready;
+    wire [PV-1:0]        smp_sample;
+    wire [P-1:0]         smp_lval, smp_lins;
+    wire [M_W-1:0]       smp_m;
+    wire [DIM_W-1:0]     smp_j;
+    wire [PB_W-1:0]      smp_pb;
+    wire [LANE_W-1:0]    smp_skew;
+    wire [6:0]           smp_ctrl;
+    wire                 unused_fe_busy, unused_fe_done;
+    wire [31:0]          unused_fe_cycles;
+
+    cube4_frontend #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .WEIGHT_W    (WEIGHT_W),
+        .MAX_DIM     (MAX_DIM),
+        .ADDR_W      (ADDR_W),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_frontend (
+        .clk             (clk),
+        .rst             (rst),
+        .start           (start && !busy_q),
+        .busy            (unused_fe_busy),
+        .done            (unused_fe_done),
+        .cycles          (unused_fe_cycles),
+        .cfg_ni            (cfg_ni),
+        .cfg_nj            (cfg_nj),
+        .cfg_nk            (cfg_nk),
+        .cfg_nb            (cfg_nb),
+        .cfg_flip_i        (cfg_flip_i),
+        .cfg_flip_j        (cfg_flip_j),
+        .cfg_flip_k        (cfg_flip_k),
+        .cfg_ss_log2       (cfg_ss_log2),
+        .cfg_view_x        (cfg_view_x),
+        .cfg_view_y        (cfg_view_y),
+        .cfg_j_r0          (cfg_j_r0),
+        .cfg_k_r0          (cfg_k_r0),
+        .cfg_i_r1          (cfg_i_r1),
+        .cfg_i_rt          (cfg_i_rt),
+        .cfg_j_a0          (cfg_j_a0),
+        .cfg_j_lin         (cfg_j_lin),
+        .cfg_j_blk         (cfg_j_blk),
+        .cfg_k_a0          (cfg_k_a0),
+        .cfg_k_lin         (cfg_k_lin),
+        .cfg_k_blk         (cfg_k_blk),
+        .cfg_i_a0          (cfg_i_a0),
+        .cfg_i_pb          (cfg_i_pb),
+        .cfg_i_lin         (cfg_i_lin),
+        .mem_req_valid   (fe_req_valid),
+        .mem_req_ready   (fe_req_ready),
+        .mem_req_addr    (req_addr),
+        .mem_req_rden    (req_rden),
+        .mem_req_tag     (req_tag),
+        .mem_rsp_valid   (fe_rsp_valid),
+        .mem_rsp_ready   (fe_rsp_ready),
+        .mem_rsp_data    (rsp_data),
+        .mem_rsp_tag     (rsp_tag),
+        .smp_valid       (smp_valid),
+        .smp_ready       (smp_ready),
+        .smp_sample      (smp_sample),
+        .smp_lane_valid  (smp_lval),
+        .smp_lane_inside (smp_lins),
+        .smp_m           (smp_m),
+        .smp_j           (smp_j),
+        .smp_pb          (smp_pb),
+        .smp_skew        (smp_skew),
+        .smp_ctrl        (smp_ctrl)
+    );
+
+    cube4_stream_hold u_hold_req (
+        .hold (dbg_hold[4]), .in_valid (fe_req_valid), .in_ready (fe_req_ready),
+        .out_valid (mem_req_valid), .out_ready (mem_req_ready));
+
+    cube4_voxel_mem #(
+        .P       (P),
+        .VOXEL_W (VOXEL_W),
+        .DEPTH   (DEPTH),
+        .ADDR_W  (ADDR_W),
+        .TAG_W   (TAG_W)
+    ) u_mem (
+        .clk       (clk),
+        .rst       (rst),
+        .ld_valid  (ld_valid),
+        .ld_ready  (ld_ready),
+        .ld_addr   (ld_addr),
+        .ld_data   (ld_data),
+        .req_valid (mem_req_valid),
+        .req_ready (mem_req_ready),
+        .req_addr  (req_addr),
+        .req_rden  (req_rden),
+        .req_tag   (req_tag),
+        .rsp_valid (mem_rsp_valid),
+        .rsp_ready (mem_rsp_ready),
+        .rsp_data  (rsp_data),
+        .rsp_tag   (rsp_tag)
+    );
+
+    cube4_stream_hold u_hold_rsp (
+        .hold (dbg_hold[3]), .in_valid (mem_rsp_valid), .in_ready (mem_rsp_ready),
+        .out_valid (fe_rsp_valid), .out_ready (fe_rsp_ready));
+
+    cube4_stream_hold u_hold_smp (
+        .hold (dbg_hold[2]), .in_valid (smp_valid), .in_ready (smp_ready),
+        .out_valid (gra_in_valid), .out_ready (gra_in_ready));
+
+    // ---------------------------------------------------------------- GRA
+    wire                 gra_valid, gra_ready, sha_in_valid, sha_in_ready;
+    wire [PV-1:0]        gra_sample;
+    wire [P*GRAD_W-1:0]  gra_gi, gra_gj, gra_gk;
+    wire [P-1:0]         gra_lval, gra_lins;
+    wire [M_W-1:0]       gra_m;
+    wire [DIM_W-1:0]     gra_j;
+    wire [PB_W-1:0]      gra_pb;
+    wire [LANE_W-1:0]    gra_skew;
+    wire [6:0]           gra_ctrl;
+
+    cube4_gra #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .WEIGHT_W    (WEIGHT_W),
+        .MAX_DIM     (MAX_DIM),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_gra (
+        .clk             (clk),
+        .rst             (rst),
+        .cfg_ni          (cfg_ni),
+        .cfg_nj          (cfg_nj),
+        .cfg_nb          (cfg_nb),
+        .cfg_flip_i      (cfg_flip_i),
+        .cfg_flip_j      (cfg_flip_j),
+        .cfg_flip_k      (cfg_flip_k),
+        .cfg_ss_log2     (cfg_ss_log2),
+        .cfg_i_r1        (cfg_i_r1),
+        .cfg_view_x      (cfg_view_x),
+        .cfg_view_y      (cfg_view_y),
+        .in_valid        (gra_in_valid),
+        .in_ready        (gra_in_ready),
+        .in_sample       (smp_sample),
+        .in_lane_valid   (smp_lval),
+        .in_lane_inside  (smp_lins),
+        .in_m            (smp_m),
+        .in_j            (smp_j),
+        .in_pb           (smp_pb),
+        .in_skew         (smp_skew),
+        .in_ctrl         (smp_ctrl),
+        .out_valid       (gra_valid),
+        .out_ready       (gra_ready),
+        .out_sample      (gra_sample),
+        .out_gi          (gra_gi),
+        .out_gj          (gra_gj),
+        .out_gk          (gra_gk),
+        .out_lane_valid  (gra_lval),
+        .out_lane_inside (gra_lins),
+        .out_m           (gra_m),
+        .out_j           (gra_j),
+        .out_pb          (gra_pb),
+        .out_skew        (gra_skew),
+        .out_ctrl        (gra_ctrl)
+    );
+
+    cube4_stream_hold u_hold_gra (
+        .hold (dbg_hold[1]), .in_valid (gra_valid), .in_ready (gra_ready),
+        .out_valid (sha_in_valid), .out_ready (sha_in_ready));
+
+    // ---------------------------------------------------------------- SHA
+    wire                       sha_valid, sha_ready, com_in_valid, com_in_ready;
+    wire [P*(24+ALPHA_W)-1:0]  sha_rgba;
+    wire [P*RI_W-1:0]          unused_sha_idx;
+    wire [P-1:0]               sha_lval, sha_lins;
+    wire [M_W-1:0]             sha_m;
+    wire [DIM_W-1:0]           sha_j;
+    wire [PB_W-1:0]            sha_pb;
+    wire [LANE_W-1:0]          sha_skew;
+    wire [6:0]                 sha_ctrl;
+
+    cube4_sha #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .ALPHA_W     (ALPHA_W),
+        .RMAP_BITS   (RMAP_BITS),
+        .MAX_DIM     (MAX_DIM),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_sha (
+        .clk             (clk),
+        .rst             (rst),
+        .lut_we          (lut_we),
+        .lut_addr        (lut_addr),
+        .lut_data        (lut_data),
+        .rmap_we         (rmap_we),
+        .rmap_addr       (rmap_addr),
+        .rmap_data       (rmap_data),
+        .in_valid        (sha_in_valid),
+        .in_ready        (sha_in_ready),
+        .in_sample       (gra_sample),
+        .in_gi           (gra_gi),
+        .in_gj           (gra_gj),
+        .in_gk           (gra_gk),
+        .in_lane_valid   (gra_lval),
+        .in_lane_inside  (gra_lins),
+        .in_m            (gra_m),
+        .in_j            (gra_j),
+        .in_pb           (gra_pb),
+        .in_skew         (gra_skew),
+        .in_ctrl         (gra_ctrl),
+        .out_valid       (sha_valid),
+        .out_ready       (sha_ready),
+        .out_rgba        (sha_rgba),
+        .out_idx         (unused_sha_idx),
+        .out_lane_valid  (sha_lval),
+        .out_lane_inside (sha_lins),
+        .out_m           (sha_m),
+        .out_j           (sha_j),
+        .out_pb          (sha_pb),
+        .out_skew        (sha_skew),
+        .out_ctrl        (sha_ctrl)
+    );
+
+    cube4_stream_hold u_hold_sha (
+        .hold (dbg_hold[0]), .in_valid (sha_valid), .in_ready (sha_ready),
+        .out_valid (com_in_valid), .out_ready (com_in_ready));
+
+    // ---------------------------------------------------------------- COM
+    cube4_com #(
+        .P           (P),
+        .WEIGHT_W    (WEIGHT_W),
+        .ALPHA_W     (ALPHA_W),
+        .ACC_W       (ACC_W),
+        .MAX_DIM     (MAX_DIM),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_com (
+        .clk            (clk),
+        .rst            (rst),
+        .cfg_ni         (cfg_ni),
+        .cfg_nj         (cfg_nj),
+        .cfg_nk         (cfg_nk),
+        .cfg_nb         (cfg_nb),
+        .cfg_flip_i     (cfg_flip_i),
+        .cfg_flip_j     (cfg_flip_j),
+        .cfg_flip_k     (cfg_flip_k),
+        .cfg_ss_log2    (cfg_ss_log2),
+        .cfg_i_r1       (cfg_i_r1),
+        .cfg_view_x     (cfg_view_x),
+        .cfg_view_y     (cfg_view_y),
+        .cfg_sx         (cfg_sx),
+        .cfg_sy         (cfg_sy),
+        .in_valid       (com_in_valid),
+        .in_ready       (com_in_ready),
+        .in_rgba        (sha_rgba),
+        .in_lane_valid  (sha_lval),
+        .in_lane_inside (sha_lins),
+        .in_m           (sha_m),
+        .in_j           (sha_j),
+        .in_pb          (sha_pb),
+        .in_skew        (sha_skew),
+        .in_ctrl        (sha_ctrl),
+        .pix_valid      (pix_valid),
+        .pix_ready      (pix_ready),
+        .pix_mask       (pix_mask),
+        .pix_m          (pix_m),
+        .pix_by         (pix_by),
+        .pix_bx         (pix_bx),
+        .pix_rgba       (pix_rgba),
+        .pix_eop        (pix_eop)
+    );
+
+    // ---------------------------------------------------------------- frame control
+    wire       last_beat = pix_valid && pix_ready && pix_eop;
+    always @(posedge clk) begin
+        if (rst) begin
+            busy_q   <= 1'b0;
+            cycles_q <= 32'd0;
+        end else if (!busy_q) begin
+            if (start) begin
+                busy_q   <= 1'b1;
+                cycles_q <= 32'd1;
+            end
+        end else begin
+            cycles_q <= cycles_q + 32'd1;
+            if (last_beat) busy_q <= 1'b0;
+        end
+    end
+    assign busy   = busy_q;
+    assign done   = busy_q && last_beat;
+    assign cycles = cycles_q;
+
+endmodule
+`default_nettype wire

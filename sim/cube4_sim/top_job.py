@@ -1,0 +1,144 @@
+"""cocotb side of an RTL render: runs a job (JSON) on cube4_top_harness.
+
+The host side (``cube4_sim.rtl``) writes the job: image files, and per frame the
+register values, the stall probabilities, whether to reload the tables and
+whether to reset in mid-frame first. This module loads the volume once, runs the
+frames back to back without a reset (unless asked), and writes each frame's
+finished rays (``.npy``, PIXEL_DTYPE of the golden model) and its cycle count to
+the job's result file. Python never touches individual clocks: it waits for
+``load_done`` and ``done``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+
+import cocotb
+import numpy as np
+from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
+
+from cube4.model import PIXEL_DTYPE
+
+CLK_NS = 10
+
+
+def parse_pixels(lines: list[str], p: int, dim_w: int, acc_w: int) -> np.ndarray:
+    """Pixel-dump lines -> PIXEL_DTYPE array (m, by, bx, r, g, b, a)."""
+    bx_w = dim_w + 1
+    cw = acc_w + 1
+    cmask, bmask = (1 << cw) - 1, (1 << bx_w) - 1
+    rows = []
+    for line in lines:
+        f = line.split()
+        m, by = int(f[0]), int(f[1])
+        mask, bx, rgba = int(f[3], 16), int(f[4], 16), int(f[5], 16)
+        for q in range(p):
+            if (mask >> q) & 1:
+                v = rgba >> (q * 4 * cw)
+                rows.append((m, by, (bx >> (q * bx_w)) & bmask, (v >> 3 * cw) & cmask,
+                             (v >> 2 * cw) & cmask, (v >> cw) & cmask, v & cmask))
+    return np.array(rows, dtype=PIXEL_DTYPE)
+
+
+class TopDriver:
+    def __init__(self, dut, dump: Path) -> None:
+        self.dut = dut
+        self.p = int(dut.P.value)
+        self.dim_w = int(dut.DIM_W.value)
+        self.acc_w = int(dut.ACC_W.value)
+        self.dump = dump
+        self.dump_pos = 0
+
+    async def cycles(self, n: int) -> None:
+        for _ in range(n):
+            await RisingEdge(self.dut.clk)
+
+    async def reset(self) -> None:
+        d = self.dut
+        d.rst.value = 1
+        for name in ("start", "load_mem", "load_tables", "load_words", "stall", "stall_out"):
+            getattr(d, name).value = 0
+        d.dump_en.value = 1
+        await self.cycles(4)
+        d.rst.value = 0
+        await self.cycles(2)
+
+    async def _load(self, signal, words: int) -> None:
+        signal.value = 1
+        await RisingEdge(self.dut.clk)
+        signal.value = 0
+        await First(RisingEdge(self.dut.load_done), Timer((words + 10000) * CLK_NS, unit="ns"))
+        assert int(self.dut.load_done.value) == 1, "load did not finish"
+
+    async def load_volume(self, words: int) -> None:
+        self.dut.load_words.value = words
+        await self._load(self.dut.load_mem, words)
+
+    async def load_tables(self) -> None:
+        await self._load(self.dut.load_tables, 1 << 16)
+
+    def set_regs(self, regs: dict) -> None:
+        for key, val in regs.items():
+            getattr(self.dut, "cfg_" + key.lower()).value = int(val)
+
+    async def frame(self, regs: dict, stall: int = 0, stall_out: int = 0, budget: int = 10**9):
+        """One frame; returns (pixels, cycles, wall seconds)."""
+        d = self.dut
+        self.set_regs(regs)
+        d.stall.value, d.stall_out.value = stall, stall_out
+        await RisingEdge(d.clk)
+        d.start.value = 1
+        await RisingEdge(d.clk)
+        d.start.value = 0
+        t0 = time.perf_counter()
+        await First(RisingEdge(d.done), Timer(budget * CLK_NS, unit="ns"))
+        wall = time.perf_counter() - t0
+        await RisingEdge(d.clk)
+        await ReadOnly()
+        assert int(d.busy.value) == 0, f"frame did not finish within {budget} cycles"
+        cycles = int(d.cycles.value)
+        await Timer(1, unit="ns")
+        with self.dump.open() as fh:
+            fh.seek(self.dump_pos)
+            text = fh.read()
+            self.dump_pos = fh.tell()
+        lines = text.splitlines()
+        starts = [n for n, line in enumerate(lines) if line == "start"]
+        assert starts, "no frame start marker in the pixel dump"
+        pix = parse_pixels(lines[starts[-1] + 1:], self.p, self.dim_w, self.acc_w)
+        return pix, cycles, wall
+
+
+@cocotb.test()
+async def run_job(dut):
+    """Run the frames of the job in CUBE4_JOB."""
+    job_path = Path(os.environ["CUBE4_JOB"])
+    job = json.loads(job_path.read_text())
+    drv = TopDriver(dut, Path(job["dump"]))
+    await drv.reset()
+    await drv.load_volume(job["words"])
+    results = []
+    for n, fr in enumerate(job["frames"]):
+        if fr.get("tables_reload", n == 0):
+            # the harness reads the files named by its plusargs; the host rewrote them
+            Path(job["lut"]).write_text(Path(fr["lut"]).read_text())
+            Path(job["rmap"]).write_text(Path(fr["rmap"]).read_text())
+            await drv.load_tables()
+        if fr.get("reset_after_cycles"):
+            # start a frame, reset it part way, then render cleanly
+            drv.set_regs(fr["regs"])
+            dut.start.value = 1
+            await RisingEdge(dut.clk)
+            dut.start.value = 0
+            await drv.cycles(int(fr["reset_after_cycles"]))
+            await drv.reset()
+        beats = int(fr.get("budget", 10**9))
+        pix, cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats)
+        out = Path(fr["out"])
+        np.save(out, pix)
+        results.append({"pixels": str(out), "cycles": cycles, "sim_wall_s": wall})
+        dut._log.info("frame %d: %d cycles, %d finished rays, %.2f s", n, cycles, pix.size, wall)
+    Path(job["result"]).write_text(json.dumps(results, indent=2) + "\n")

@@ -1,0 +1,240 @@
+`default_nettype none
+// =============================================================================
+// cube4_top_harness  (simulation only)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Drives cube4_top for tests and for `cube4 render --engine rtl`: a Verilog
+//   clock; loaders that read $readmemh images (volume: line a*P + q = bank q,
+//   word a; LUT: one {R,G,B,A} word per line; reflectance map: one {D,P} word
+//   per line) and stream them through the top's load ports; random holds on
+//   every internal stream (dbg_hold) and random ready on the pixel port, from
+//   LFSRs; and a dump of every pixel beat:
+//     "m by eop mask(hex) bx(hex) rgba(hex)"  after a line "start" per frame.
+//   Python only sets registers and pulses load_* / start.
+//
+//   Plusargs: +CUBE4_MEMFILE= +CUBE4_LUTFILE= +CUBE4_RMAPFILE= +CUBE4_DUMP=
+//
+// Parameters: as cube4_top.
+// =============================================================================
+module cube4_top_harness #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer ALPHA_W     = 12,
+    parameter integer ACC_W       = 16,
+    parameter integer RMAP_BITS   = 5,
+    parameter integer MAX_DIM     = 64,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer DEPTH       = 4096,
+    parameter integer ADDR_W      = 12,
+    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
+    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
+    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
+    parameter integer RI_W   = 2 * RMAP_BITS + 3
+) (
+    output wire                  clk,
+    input  wire                  rst,
+    input  wire                  load_mem,     // pulse: stream the volume image in
+    input  wire                  load_tables,  // pulse: stream LUT and reflectance map in
+    input  wire [31:0]           load_words,   // volume words per bank
+    output wire                  load_done,    // level: the last load finished
+    input  wire [7:0]            stall,        // hold probability /256, every internal stream
+    input  wire [7:0]            stall_out,    // pixel-port not-ready probability /256
+    input  wire                  dump_en,
+    input  wire                  start,
+    output wire                  busy,
+    output wire                  done,
+    output wire [31:0]           cycles,
+    input  wire [DIM_W-1:0]      cfg_ni,
+    input  wire [DIM_W-1:0]      cfg_nj,
+    input  wire [DIM_W-1:0]      cfg_nk,
+    input  wire [NB_W-1:0]       cfg_nb,
+    input  wire                  cfg_flip_i,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire [1:0]            cfg_ss_log2,
+    input  wire [WEIGHT_W:0]     cfg_view_x,
+    input  wire [WEIGHT_W:0]     cfg_view_y,
+    input  wire [LANE_W-1:0]     cfg_j_r0,
+    input  wire [LANE_W-1:0]     cfg_k_r0,
+    input  wire [LANE_W-1:0]     cfg_i_r1,
+    input  wire [LANE_W-1:0]     cfg_i_rt,
+    input  wire [ADDR_W-1:0]     cfg_j_a0,
+    input  wire [ADDR_W-1:0]     cfg_j_lin,
+    input  wire [ADDR_W-1:0]     cfg_j_blk,
+    input  wire [ADDR_W-1:0]     cfg_k_a0,
+    input  wire [ADDR_W-1:0]     cfg_k_lin,
+    input  wire [ADDR_W-1:0]     cfg_k_blk,
+    input  wire [ADDR_W-1:0]     cfg_i_a0,
+    input  wire [ADDR_W-1:0]     cfg_i_pb,
+    input  wire [ADDR_W-1:0]     cfg_i_lin,
+    input  wire [DIM_W-1:0]      cfg_sx,
+    input  wire [DIM_W-1:0]      cfg_sy
+);
+    cube4_sim_clock u_clock (.clk(clk));
+
+    localparam integer PV     = P * VOXEL_W;
+    localparam integer LUT_W  = 24 + ALPHA_W;
+    localparam integer RMAP_N = 6 * (1 << (2 * RMAP_BITS)) + 1;
+    localparam integer BX_W   = DIM_W + 1;
+    localparam integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2);
+
+    // ------------------------------------------------------------ loaders
+    reg [VOXEL_W-1:0] img  [0:P*DEPTH-1];
+    reg [LUT_W-1:0]   luti [0:(1 << VOXEL_W)-1];
+    reg [19:0]        rmi  [0:RMAP_N-1];
+    string memfile, lutfile, rmapfile, dumpfile;
+    integer dump_fd, b;
+    initial begin
+        if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile))   memfile  = "cube4_mem.hex";
+        if (!$value$plusargs("CUBE4_LUTFILE=%s", lutfile))   lutfile  = "cube4_lut.hex";
+        if (!$value$plusargs("CUBE4_RMAPFILE=%s", rmapfile)) rmapfile = "cube4_rmap.hex";
+        if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.txt";
+        dump_fd = $fopen(dumpfile, "w");
+    end
+
+    reg        mem_busy_q, tab_busy_q, done_q;
+    reg [31:0] la_q;
+    reg [PV-1:0] ld_data;
+    always @(posedge clk) begin
+        if (rst) begin
+            mem_busy_q <= 1'b0;
+            tab_busy_q <= 1'b0;
+            done_q     <= 1'b0;
+        end else if (load_mem && !mem_busy_q && !tab_busy_q) begin
+            $readmemh(memfile, img);
+            mem_busy_q <= 1'b1;
+            done_q     <= 1'b0;
+            la_q       <= 32'd0;
+        end else if (load_tables && !mem_busy_q && !tab_busy_q) begin
+            $readmemh(lutfile, luti);
+            $readmemh(rmapfile, rmi);
+            tab_busy_q <= 1'b1;
+            done_q     <= 1'b0;
+            la_q       <= 32'd0;
+        end else if (mem_busy_q) begin
+            if (la_q + 32'd1 >= load_words) begin
+                mem_busy_q <= 1'b0;
+                done_q     <= 1'b1;
+            end
+            la_q <= la_q + 32'd1;
+        end else if (tab_busy_q) begin
+            if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= (1 << VOXEL_W)) begin
+                tab_busy_q <= 1'b0;
+                done_q     <= 1'b1;
+            end
+            la_q <= la_q + 32'd1;
+        end
+    end
+    always @(*) begin
+        for (b = 0; b < P; b = b + 1) ld_data[b*VOXEL_W +: VOXEL_W] = img[la_q * P + b];
+    end
+    assign load_done = done_q;
+    wire lut_we  = tab_busy_q && (la_q < (1 << VOXEL_W));
+    wire rmap_we = tab_busy_q && (la_q < RMAP_N);
+
+    // ------------------------------------------------------------ random holds
+    reg [15:0] lfsr_q [0:5];
+    integer    s;
+    always @(posedge clk) begin
+        for (s = 0; s < 6; s = s + 1) begin
+            if (rst) lfsr_q[s] <= 16'hACE1 ^ (16'h1357 * s[15:0] + 16'h0F0F * s[15:0]);
+            else     lfsr_q[s] <= {lfsr_q[s][14:0], lfsr_q[s][15] ^ lfsr_q[s][13] ^ lfsr_q[s][12] ^ lfsr_q[s][10]};
+        end
+    end
+    wire [4:0] hold;
+    genvar h;
+    generate
+        for (h = 0; h < 5; h = h + 1) begin : g_hold
+            assign hold[h] = (lfsr_q[h][7:0] < stall);
+        end
+    endgenerate
+    wire pix_ready = (lfsr_q[5][7:0] >= stall_out);
+
+    // ------------------------------------------------------------ DUT
+    wire                      unused_ld_ready;
+    wire                      pix_valid, pix_eop;
+    wire [P-1:0]              pix_mask;
+    wire [M_W-1:0]            pix_m;
+    wire [BX_W-1:0]           pix_by;
+    wire [P*BX_W-1:0]         pix_bx;
+    wire [P*4*(ACC_W+1)-1:0]  pix_rgba;
+
+    cube4_top #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .WEIGHT_W    (WEIGHT_W),
+        .ALPHA_W     (ALPHA_W),
+        .ACC_W       (ACC_W),
+        .RMAP_BITS   (RMAP_BITS),
+        .MAX_DIM     (MAX_DIM),
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .DEPTH       (DEPTH),
+        .ADDR_W      (ADDR_W)
+    ) u_top (
+        .clk         (clk),
+        .rst         (rst),
+        .ld_valid    (mem_busy_q),
+        .ld_ready    (unused_ld_ready),
+        .ld_addr     (la_q[ADDR_W-1:0]),
+        .ld_data     (ld_data),
+        .lut_we      (lut_we),
+        .lut_addr    (la_q[VOXEL_W-1:0]),
+        .lut_data    (luti[la_q[VOXEL_W-1:0]]),
+        .rmap_we     (rmap_we),
+        .rmap_addr   (la_q[RI_W-1:0]),
+        .rmap_data   (rmi[la_q[RI_W-1:0]]),
+        .cfg_ni      (cfg_ni),
+        .cfg_nj      (cfg_nj),
+        .cfg_nk      (cfg_nk),
+        .cfg_nb      (cfg_nb),
+        .cfg_flip_i  (cfg_flip_i),
+        .cfg_flip_j  (cfg_flip_j),
+        .cfg_flip_k  (cfg_flip_k),
+        .cfg_ss_log2 (cfg_ss_log2),
+        .cfg_view_x  (cfg_view_x),
+        .cfg_view_y  (cfg_view_y),
+        .cfg_j_r0    (cfg_j_r0),
+        .cfg_k_r0    (cfg_k_r0),
+        .cfg_i_r1    (cfg_i_r1),
+        .cfg_i_rt    (cfg_i_rt),
+        .cfg_j_a0    (cfg_j_a0),
+        .cfg_j_lin   (cfg_j_lin),
+        .cfg_j_blk   (cfg_j_blk),
+        .cfg_k_a0    (cfg_k_a0),
+        .cfg_k_lin   (cfg_k_lin),
+        .cfg_k_blk   (cfg_k_blk),
+        .cfg_i_a0    (cfg_i_a0),
+        .cfg_i_pb    (cfg_i_pb),
+        .cfg_i_lin   (cfg_i_lin),
+        .cfg_sx      (cfg_sx),
+        .cfg_sy      (cfg_sy),
+        .start       (start),
+        .busy        (busy),
+        .done        (done),
+        .cycles      (cycles),
+        .pix_valid   (pix_valid),
+        .pix_ready   (pix_ready),
+        .pix_mask    (pix_mask),
+        .pix_m       (pix_m),
+        .pix_by      (pix_by),
+        .pix_bx      (pix_bx),
+        .pix_rgba    (pix_rgba),
+        .pix_eop     (pix_eop),
+        .dbg_hold    (hold)
+    );
+
+    // ------------------------------------------------------------ pixel dump
+    always @(posedge clk) begin
+        if (!rst) begin
+            if (start && !busy) $fwrite(dump_fd, "start\n");
+            if (pix_valid && pix_ready) begin
+                if (dump_en) $fwrite(dump_fd, "%0d %0d %0d %h %h %h\n", pix_m, pix_by, pix_eop,
+                                     pix_mask, pix_bx, pix_rgba);
+                if (pix_eop) $fflush(dump_fd);
+            end
+        end
+    end
+
+endmodule
+`default_nettype wire
