@@ -5,7 +5,7 @@
 #   make sim     RTL regression: cocotb + Verilator testbenches in tb/ (WAVES=1 dumps FST)
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
 #   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
-#   make demo    render the demo volume with the golden model, compared to the reference
+#   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.
@@ -90,8 +90,8 @@ test: setup
 
 demo: setup
 	mkdir -p out/demo
-	$(VENV)/bin/cube4 render sphere:64 --scene default --engine golden --compare-to reference \
-	    --stats out/demo/stats.json --out out/demo/demo.png
+	$(VENV)/bin/cube4 render sphere:64 --scene default --engine rtl --compare-to reference \
+	    --stats out/demo/stats.json --baseplane out/demo/baseplane.npy --out out/demo/demo.png
 
 clean:
 	rm -rf build out .pytest_cache

@@ -71,7 +71,8 @@ def write_tables(lut: np.ndarray, rmap: np.ndarray, cfg: Cube4Config, lut_path: 
 
 
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
-                  waves: bool | None = None, workdir: Path | None = None) -> list[dict]:
+                  waves: bool | None = None, workdir: Path | None = None,
+                  progress: bool = False, quiet: bool = False) -> list[dict]:
     """Render every frame through the RTL; returns per frame
     {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}."""
     from . import runner  # cocotb is imported only when the RTL engine is used
@@ -115,7 +116,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             testcase="run_job",
             waves=waves,
             timing=True,
-            extra_env={"CUBE4_JOB": str(job_path)},
+            extra_env={"CUBE4_JOB": str(job_path), "CUBE4_PROGRESS": "1" if progress else "0",
+                       **({"COCOTB_LOG_LEVEL": "WARNING"} if quiet else {})},
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
                       f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_DUMP={job['dump']}"],
         )

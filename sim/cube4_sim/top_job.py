@@ -20,6 +20,8 @@ import cocotb
 import numpy as np
 from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 
+from tqdm import tqdm
+
 from cube4.model import PIXEL_DTYPE
 
 CLK_NS = 10
@@ -84,8 +86,10 @@ class TopDriver:
         for key, val in regs.items():
             getattr(self.dut, "cfg_" + key.lower()).value = int(val)
 
-    async def frame(self, regs: dict, stall: int = 0, stall_out: int = 0, budget: int = 10**9):
-        """One frame; returns (pixels, cycles, wall seconds)."""
+    async def frame(self, regs: dict, stall: int = 0, stall_out: int = 0, budget: int = 10**9,
+                    expected: int = 0, label: str = "frame"):
+        """One frame; returns (pixels, cycles, wall seconds). With CUBE4_PROGRESS=1
+        a progress bar (wakes Python every ~2% of the expected cycles only)."""
         d = self.dut
         self.set_regs(regs)
         d.stall.value, d.stall_out.value = stall, stall_out
@@ -94,7 +98,18 @@ class TopDriver:
         await RisingEdge(d.clk)
         d.start.value = 0
         t0 = time.perf_counter()
-        await First(RisingEdge(d.done), Timer(budget * CLK_NS, unit="ns"))
+        if os.environ.get("CUBE4_PROGRESS") == "1" and expected > 0:
+            chunk = max(20000, expected // 50)
+            waited = 0
+            with tqdm(total=expected, unit="cycle", unit_scale=True, desc=label, leave=False) as bar:
+                while waited < budget:
+                    trig = await First(RisingEdge(d.done), Timer(chunk * CLK_NS, unit="ns"))
+                    if isinstance(trig, RisingEdge) or int(d.done.value):
+                        break
+                    waited += chunk
+                    bar.update(min(chunk, max(0, expected - bar.n)))
+        else:
+            await First(RisingEdge(d.done), Timer(budget * CLK_NS, unit="ns"))
         wall = time.perf_counter() - t0
         await RisingEdge(d.clk)
         await ReadOnly()
@@ -136,7 +151,8 @@ async def run_job(dut):
             await drv.cycles(int(fr["reset_after_cycles"]))
             await drv.reset()
         beats = int(fr.get("budget", 10**9))
-        pix, cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats)
+        pix, cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats,
+                                            int(fr.get("expected_cycles", 0)), f"rtl frame {n + 1}/{len(job['frames'])}")
         out = Path(fr["out"])
         np.save(out, pix)
         results.append({"pixels": str(out), "cycles": cycles, "sim_wall_s": wall})

@@ -84,3 +84,24 @@ def test_phantoms(name, p):
     nb = -(-trav.ni // p)
     ideal = nx * ny * nz / p
     print(f"{name} P={p}: {res['cycles']} cycles, ideal {ideal:.0f}, efficiency {ideal / res['cycles']:.4f}")
+
+
+def test_cli_rtl_baseplane_equals_golden(tmp_path):
+    """`cube4 render --engine rtl` writes the golden engine's base plane bit for bit,
+    and STATS.json with the cycle and speed figures."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    exe = Path(sys.executable).parent / "cube4"
+    for eng in ("rtl", "golden"):
+        subprocess.run([str(exe), "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
+                        str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
+                        "--out", str(tmp_path / f"{eng}.png")], check=True)
+    a, b = np.load(tmp_path / "rtl.npy"), np.load(tmp_path / "golden.npy")
+    assert a.shape == b.shape and (a == b).all(), "RTL base plane differs from the golden engine's"
+    st = json.loads((tmp_path / "rtl.json").read_text())
+    for key in ("cycles", "ideal_cycles", "sim_cycles_per_s", "wall_s"):
+        assert st[key] and st[key] > 0, key
+    assert st["cycles"] >= st["ideal_cycles"]
