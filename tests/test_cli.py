@@ -128,10 +128,12 @@ def test_bad_scene(case, tmp_path, capsys):
     _assert_clean_failure(rc, err, tmp_path)
 
 
-def test_rtl_engine_not_built_yet(tmp_path, scene_file, capsys):
+def test_rtl_engine_bad_input_fails_before_simulating(tmp_path, scene_file, capsys):
+    """Bad input is reported in one line before the RTL engine builds anything.
+    (Rendering through the RTL itself is tested in tb/cube4_top.)"""
     rc, _, err = run_cli(["render", "sphere:16", "--scene", str(scene_file), "--engine", "rtl",
-                          "--out", str(tmp_path / "out.png")], capsys)
-    _assert_clean_failure(rc, err, tmp_path, "rtl")
+                          "--pipelines", "0", "--out", str(tmp_path / "out.png")], capsys)
+    _assert_clean_failure(rc, err, tmp_path, "pipelines")
 
 
 def test_bad_input_as_a_subprocess_has_no_traceback(tmp_path):
