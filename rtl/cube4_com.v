@@ -28,7 +28,7 @@
 //   P finished rays (lane mask) and the frame's last beat (eop) always leaves.
 //
 // Parameters
-//   P, VOXEL_W (unused here but for widths), WEIGHT_W, MAX_DIM, MAX_SS_LOG2 and
+//   P, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 and
 //   the derived widths as cube4_gra.
 //   ALPHA_W   opacity width AW.                 8..16.  Default 12.
 //   ACC_W     accumulator fraction bits F.      8..24.  Default 16.

@@ -26,7 +26,7 @@
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
-//   last slice (NJ*NB + NB + 1 steps), plus about 30 cycles of pipeline fill.
+//   last slice (NJ*NB + NB + 1 steps), plus a fixed pipeline fill (23 cycles at P = 8).
 //   cycles counts the clock cycles from start to the last pixel beat.
 //
 // Ports
