@@ -83,6 +83,76 @@ module cube4_frontend_harness #(
 );
     cube4_sim_clock u_clock (.clk(clk));
 
+    // ------------------------------------------------------------ input registers
+    // Every input Python drives is registered once, so no logic of the design
+    // depends combinationally on a top-level input: Verilator evaluates such logic
+    // on every eval() (twice per clock with the Verilog clock). Python sees a
+    // one-cycle delay on every input, which it never depends on.
+    reg              rst_q;
+    reg              load_q;
+    reg [31:0]       load_words_q;
+    reg [7:0]        stall_req_q;
+    reg [7:0]        stall_rsp_q;
+    reg [7:0]        stall_out_q;
+    reg              dump_en_q;
+    reg              start_q;
+    reg [DIM_W-1:0]  cfg_ni_q;
+    reg [DIM_W-1:0]  cfg_nj_q;
+    reg [DIM_W-1:0]  cfg_nk_q;
+    reg [NB_W-1:0]   cfg_nb_q;
+    reg              cfg_flip_i_q;
+    reg              cfg_flip_j_q;
+    reg              cfg_flip_k_q;
+    reg [1:0]        cfg_ss_log2_q;
+    reg [WEIGHT_W:0] cfg_view_x_q;
+    reg [WEIGHT_W:0] cfg_view_y_q;
+    reg [LANE_W-1:0] cfg_j_r0_q;
+    reg [LANE_W-1:0] cfg_k_r0_q;
+    reg [LANE_W-1:0] cfg_i_r1_q;
+    reg [LANE_W-1:0] cfg_i_rt_q;
+    reg [ADDR_W-1:0] cfg_j_a0_q;
+    reg [ADDR_W-1:0] cfg_j_lin_q;
+    reg [ADDR_W-1:0] cfg_j_blk_q;
+    reg [ADDR_W-1:0] cfg_k_a0_q;
+    reg [ADDR_W-1:0] cfg_k_lin_q;
+    reg [ADDR_W-1:0] cfg_k_blk_q;
+    reg [ADDR_W-1:0] cfg_i_a0_q;
+    reg [ADDR_W-1:0] cfg_i_pb_q;
+    reg [ADDR_W-1:0] cfg_i_lin_q;
+    always @(posedge clk) begin
+        rst_q         <= rst;
+        load_q        <= load;
+        load_words_q  <= load_words;
+        stall_req_q   <= stall_req;
+        stall_rsp_q   <= stall_rsp;
+        stall_out_q   <= stall_out;
+        dump_en_q     <= dump_en;
+        start_q       <= start;
+        cfg_ni_q      <= cfg_ni;
+        cfg_nj_q      <= cfg_nj;
+        cfg_nk_q      <= cfg_nk;
+        cfg_nb_q      <= cfg_nb;
+        cfg_flip_i_q  <= cfg_flip_i;
+        cfg_flip_j_q  <= cfg_flip_j;
+        cfg_flip_k_q  <= cfg_flip_k;
+        cfg_ss_log2_q <= cfg_ss_log2;
+        cfg_view_x_q  <= cfg_view_x;
+        cfg_view_y_q  <= cfg_view_y;
+        cfg_j_r0_q    <= cfg_j_r0;
+        cfg_k_r0_q    <= cfg_k_r0;
+        cfg_i_r1_q    <= cfg_i_r1;
+        cfg_i_rt_q    <= cfg_i_rt;
+        cfg_j_a0_q    <= cfg_j_a0;
+        cfg_j_lin_q   <= cfg_j_lin;
+        cfg_j_blk_q   <= cfg_j_blk;
+        cfg_k_a0_q    <= cfg_k_a0;
+        cfg_k_lin_q   <= cfg_k_lin;
+        cfg_k_blk_q   <= cfg_k_blk;
+        cfg_i_a0_q    <= cfg_i_a0;
+        cfg_i_pb_q    <= cfg_i_pb;
+        cfg_i_lin_q   <= cfg_i_lin;
+    end
+
     localparam integer PV = P * VOXEL_W;
 
     // ------------------------------------------------------------ loader
@@ -104,16 +174,16 @@ module cube4_frontend_harness #(
     end
 
     always @(posedge clk) begin
-        if (rst) begin
+        if (rst_q) begin
             load_busy_q <= 1'b0;
             load_done_q <= 1'b0;
-        end else if (load && !load_busy_q) begin
+        end else if (load_q && !load_busy_q) begin
             $readmemh(memfile, img);
             load_busy_q <= 1'b1;
             load_done_q <= 1'b0;
             load_addr_q <= 32'd0;
         end else if (load_busy_q) begin
-            if (load_addr_q + 32'd1 >= load_words) begin
+            if (load_addr_q + 32'd1 >= load_words_q) begin
                 load_busy_q <= 1'b0;
                 load_done_q <= 1'b1;
             end
@@ -155,34 +225,34 @@ module cube4_frontend_harness #(
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_fe (
         .clk             (clk),
-        .rst             (rst),
-        .start           (start),
+        .rst             (rst_q),
+        .start           (start_q),
         .busy            (unused_fe_busy),
         .done            (unused_fe_done),
         .cycles          (unused_fe_cycles),
-        .cfg_ni          (cfg_ni),
-        .cfg_nj          (cfg_nj),
-        .cfg_nk          (cfg_nk),
-        .cfg_nb          (cfg_nb),
-        .cfg_flip_i      (cfg_flip_i),
-        .cfg_flip_j      (cfg_flip_j),
-        .cfg_flip_k      (cfg_flip_k),
-        .cfg_ss_log2     (cfg_ss_log2),
-        .cfg_view_x      (cfg_view_x),
-        .cfg_view_y      (cfg_view_y),
-        .cfg_j_r0        (cfg_j_r0),
-        .cfg_k_r0        (cfg_k_r0),
-        .cfg_i_r1        (cfg_i_r1),
-        .cfg_i_rt        (cfg_i_rt),
-        .cfg_j_a0        (cfg_j_a0),
-        .cfg_j_lin       (cfg_j_lin),
-        .cfg_j_blk       (cfg_j_blk),
-        .cfg_k_a0        (cfg_k_a0),
-        .cfg_k_lin       (cfg_k_lin),
-        .cfg_k_blk       (cfg_k_blk),
-        .cfg_i_a0        (cfg_i_a0),
-        .cfg_i_pb        (cfg_i_pb),
-        .cfg_i_lin       (cfg_i_lin),
+        .cfg_ni          (cfg_ni_q),
+        .cfg_nj          (cfg_nj_q),
+        .cfg_nk          (cfg_nk_q),
+        .cfg_nb          (cfg_nb_q),
+        .cfg_flip_i      (cfg_flip_i_q),
+        .cfg_flip_j      (cfg_flip_j_q),
+        .cfg_flip_k      (cfg_flip_k_q),
+        .cfg_ss_log2     (cfg_ss_log2_q),
+        .cfg_view_x      (cfg_view_x_q),
+        .cfg_view_y      (cfg_view_y_q),
+        .cfg_j_r0        (cfg_j_r0_q),
+        .cfg_k_r0        (cfg_k_r0_q),
+        .cfg_i_r1        (cfg_i_r1_q),
+        .cfg_i_rt        (cfg_i_rt_q),
+        .cfg_j_a0        (cfg_j_a0_q),
+        .cfg_j_lin       (cfg_j_lin_q),
+        .cfg_j_blk       (cfg_j_blk_q),
+        .cfg_k_a0        (cfg_k_a0_q),
+        .cfg_k_lin       (cfg_k_lin_q),
+        .cfg_k_blk       (cfg_k_blk_q),
+        .cfg_i_a0        (cfg_i_a0_q),
+        .cfg_i_pb        (cfg_i_pb_q),
+        .cfg_i_lin       (cfg_i_lin_q),
         .mem_req_valid   (req_valid),
         .mem_req_ready   (req_ready),
         .mem_req_addr    (req_addr),
@@ -210,8 +280,8 @@ module cube4_frontend_harness #(
         .SEED   (32'hACE1)
     ) u_stall_req (
         .clk       (clk),
-        .rst       (rst),
-        .stall     (stall_req),
+        .rst       (rst_q),
+        .stall     (stall_req_q),
         .in_valid  (req_valid),
         .in_ready  (req_ready),
         .in_data   ({req_addr, req_rden, req_tag}),
@@ -229,7 +299,7 @@ module cube4_frontend_harness #(
         .TAG_W   (TAG_W)
     ) u_mem (
         .clk       (clk),
-        .rst       (rst),
+        .rst       (rst_q),
         .ld_valid  (load_busy_q),
         .ld_ready  (unused_ld_ready),
         .ld_addr   (load_addr_q[ADDR_W-1:0]),
@@ -251,8 +321,8 @@ module cube4_frontend_harness #(
         .SEED   (32'h1D2C)
     ) u_stall_rsp (
         .clk       (clk),
-        .rst       (rst),
-        .stall     (stall_rsp),
+        .rst       (rst_q),
+        .stall     (stall_rsp_q),
         .in_valid  (rsp_valid_m),
         .in_ready  (rsp_ready_m),
         .in_data   ({rsp_data_m, rsp_tag_m}),
@@ -282,17 +352,17 @@ module cube4_frontend_harness #(
                 .MAX_SS_LOG2 (MAX_SS_LOG2)
             ) u_gra (
                 .clk             (clk),
-                .rst             (rst),
-                .cfg_ni          (cfg_ni),
-                .cfg_nj          (cfg_nj),
-                .cfg_nb          (cfg_nb),
-                .cfg_flip_i      (cfg_flip_i),
-                .cfg_flip_j      (cfg_flip_j),
-                .cfg_flip_k      (cfg_flip_k),
-                .cfg_ss_log2     (cfg_ss_log2),
-                .cfg_i_r1        (cfg_i_r1),
-                .cfg_view_x      (cfg_view_x),
-                .cfg_view_y      (cfg_view_y),
+                .rst             (rst_q),
+                .cfg_ni          (cfg_ni_q),
+                .cfg_nj          (cfg_nj_q),
+                .cfg_nb          (cfg_nb_q),
+                .cfg_flip_i      (cfg_flip_i_q),
+                .cfg_flip_j      (cfg_flip_j_q),
+                .cfg_flip_k      (cfg_flip_k_q),
+                .cfg_ss_log2     (cfg_ss_log2_q),
+                .cfg_i_r1        (cfg_i_r1_q),
+                .cfg_view_x      (cfg_view_x_q),
+                .cfg_view_y      (cfg_view_y_q),
                 .in_valid        (smp_valid_f),
                 .in_ready        (smp_ready_f),
                 .in_sample       (smp_sample),
@@ -338,19 +408,19 @@ module cube4_frontend_harness #(
     reg [31:0] beats_q, cycles_q;
     reg        busy_q;
     always @(posedge clk) begin
-        if (rst) lfsr_q <= 16'h5A5A;
+        if (rst_q) lfsr_q <= 16'h5A5A;
         else     lfsr_q <= {lfsr_q[14:0], lfsr_q[15] ^ lfsr_q[13] ^ lfsr_q[12] ^ lfsr_q[10]};
     end
-    assign snk_ready = (lfsr_q[7:0] >= stall_out);
+    assign snk_ready = (lfsr_q[7:0] >= stall_out_q);
     wire last_beat = snk_valid && snk_ready && snk_ctrl[5];
 
     always @(posedge clk) begin
-        if (rst) begin
+        if (rst_q) begin
             beats_q  <= 32'd0;
             cycles_q <= 32'd0;
             busy_q   <= 1'b0;
         end else begin
-            if (start && !busy_q) begin
+            if (start_q && !busy_q) begin
                 beats_q  <= 32'd0;
                 cycles_q <= 32'd1;
                 busy_q   <= 1'b1;
@@ -361,7 +431,7 @@ module cube4_frontend_harness #(
             end
             if (snk_valid && snk_ready) begin
                 beats_q <= beats_q + 32'd1;
-                if (dump_en) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h %h\n", snk_m, snk_j, snk_pb, snk_skew,
+                if (dump_en_q) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h %h\n", snk_m, snk_j, snk_pb, snk_skew,
                         snk_ctrl, snk_lval, snk_lins, snk_sample, snk_grad);
                 if (last_beat) $fflush(dump_fd);
             end

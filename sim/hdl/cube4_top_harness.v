@@ -73,6 +73,59 @@ module cube4_top_harness #(
 );
     cube4_sim_clock u_clock (.clk(clk));
 
+    // ------------------------------------------------------------ input registers
+    // Every input Python drives is registered once here, so that no logic of the
+    // design depends combinationally on a top-level input. Verilator evaluates
+    // input-dependent logic on every eval() (twice per clock with the Verilog
+    // clock); registered, the datapath is evaluated once per clock. Python sees a
+    // one-cycle delay on every input, which it never depends on.
+    reg                  rst_q, load_mem_q, load_tables_q, dump_en_q, start_q;
+    reg [31:0]           load_words_q;
+    reg [7:0]            stall_q, stall_out_q;
+    reg [DIM_W-1:0]      cfg_ni_q, cfg_nj_q, cfg_nk_q, cfg_sx_q, cfg_sy_q;
+    reg [NB_W-1:0]       cfg_nb_q;
+    reg                  cfg_flip_i_q, cfg_flip_j_q, cfg_flip_k_q;
+    reg [1:0]            cfg_ss_log2_q;
+    reg [WEIGHT_W:0]     cfg_view_x_q, cfg_view_y_q;
+    reg [LANE_W-1:0]     cfg_j_r0_q, cfg_k_r0_q, cfg_i_r1_q, cfg_i_rt_q;
+    reg [ADDR_W-1:0]     cfg_j_a0_q, cfg_j_lin_q, cfg_j_blk_q, cfg_k_a0_q, cfg_k_lin_q, cfg_k_blk_q;
+    reg [ADDR_W-1:0]     cfg_i_a0_q, cfg_i_pb_q, cfg_i_lin_q;
+    always @(posedge clk) begin
+        rst_q         <= rst;
+        load_mem_q    <= load_mem;
+        load_tables_q <= load_tables;
+        load_words_q  <= load_words;
+        dump_en_q     <= dump_en;
+        start_q       <= start;
+        stall_q       <= stall;
+        stall_out_q   <= stall_out;
+        cfg_ni_q      <= cfg_ni;
+        cfg_nj_q      <= cfg_nj;
+        cfg_nk_q      <= cfg_nk;
+        cfg_nb_q      <= cfg_nb;
+        cfg_flip_i_q  <= cfg_flip_i;
+        cfg_flip_j_q  <= cfg_flip_j;
+        cfg_flip_k_q  <= cfg_flip_k;
+        cfg_ss_log2_q <= cfg_ss_log2;
+        cfg_view_x_q  <= cfg_view_x;
+        cfg_view_y_q  <= cfg_view_y;
+        cfg_j_r0_q    <= cfg_j_r0;
+        cfg_k_r0_q    <= cfg_k_r0;
+        cfg_i_r1_q    <= cfg_i_r1;
+        cfg_i_rt_q    <= cfg_i_rt;
+        cfg_j_a0_q    <= cfg_j_a0;
+        cfg_j_lin_q   <= cfg_j_lin;
+        cfg_j_blk_q   <= cfg_j_blk;
+        cfg_k_a0_q    <= cfg_k_a0;
+        cfg_k_lin_q   <= cfg_k_lin;
+        cfg_k_blk_q   <= cfg_k_blk;
+        cfg_i_a0_q    <= cfg_i_a0;
+        cfg_i_pb_q    <= cfg_i_pb;
+        cfg_i_lin_q   <= cfg_i_lin;
+        cfg_sx_q      <= cfg_sx;
+        cfg_sy_q      <= cfg_sy;
+    end
+
     localparam integer PV     = P * VOXEL_W;
     localparam integer LUT_W  = 24 + ALPHA_W;
     localparam integer RMAP_N = 6 * (1 << (2 * RMAP_BITS)) + 1;
@@ -97,23 +150,23 @@ module cube4_top_harness #(
     reg [31:0] la_q;
     reg [PV-1:0] ld_data;
     always @(posedge clk) begin
-        if (rst) begin
+        if (rst_q) begin
             mem_busy_q <= 1'b0;
             tab_busy_q <= 1'b0;
             done_q     <= 1'b0;
-        end else if (load_mem && !mem_busy_q && !tab_busy_q) begin
+        end else if (load_mem_q && !mem_busy_q && !tab_busy_q) begin
             $readmemh(memfile, img);
             mem_busy_q <= 1'b1;
             done_q     <= 1'b0;
             la_q       <= 32'd0;
-        end else if (load_tables && !mem_busy_q && !tab_busy_q) begin
+        end else if (load_tables_q && !mem_busy_q && !tab_busy_q) begin
             $readmemh(lutfile, luti);
             $readmemh(rmapfile, rmi);
             tab_busy_q <= 1'b1;
             done_q     <= 1'b0;
             la_q       <= 32'd0;
         end else if (mem_busy_q) begin
-            if (la_q + 32'd1 >= load_words) begin
+            if (la_q + 32'd1 >= load_words_q) begin
                 mem_busy_q <= 1'b0;
                 done_q     <= 1'b1;
             end
@@ -138,7 +191,7 @@ module cube4_top_harness #(
     integer    s;
     always @(posedge clk) begin
         for (s = 0; s < 6; s = s + 1) begin
-            if (rst) lfsr_q[s] <= 16'hACE1 ^ (16'h1357 * s[15:0] + 16'h0F0F * s[15:0]);
+            if (rst_q) lfsr_q[s] <= 16'hACE1 ^ (16'h1357 * s[15:0] + 16'h0F0F * s[15:0]);
             else     lfsr_q[s] <= {lfsr_q[s][14:0], lfsr_q[s][15] ^ lfsr_q[s][13] ^ lfsr_q[s][12] ^ lfsr_q[s][10]};
         end
     end
@@ -146,10 +199,10 @@ module cube4_top_harness #(
     genvar h;
     generate
         for (h = 0; h < 5; h = h + 1) begin : g_hold
-            assign hold[h] = (lfsr_q[h][7:0] < stall);
+            assign hold[h] = (lfsr_q[h][7:0] < stall_q);
         end
     endgenerate
-    wire pix_ready = (lfsr_q[5][7:0] >= stall_out);
+    wire pix_ready = (lfsr_q[5][7:0] >= stall_out_q);
 
     // ------------------------------------------------------------ DUT
     wire                      unused_ld_ready;
@@ -173,7 +226,7 @@ module cube4_top_harness #(
         .ADDR_W      (ADDR_W)
     ) u_top (
         .clk         (clk),
-        .rst         (rst),
+        .rst         (rst_q),
         .ld_valid    (mem_busy_q),
         .ld_ready    (unused_ld_ready),
         .ld_addr     (la_q[ADDR_W-1:0]),
@@ -184,32 +237,32 @@ module cube4_top_harness #(
         .rmap_we     (rmap_we),
         .rmap_addr   (la_q[RI_W-1:0]),
         .rmap_data   (rmi[la_q[RI_W-1:0]]),
-        .cfg_ni      (cfg_ni),
-        .cfg_nj      (cfg_nj),
-        .cfg_nk      (cfg_nk),
-        .cfg_nb      (cfg_nb),
-        .cfg_flip_i  (cfg_flip_i),
-        .cfg_flip_j  (cfg_flip_j),
-        .cfg_flip_k  (cfg_flip_k),
-        .cfg_ss_log2 (cfg_ss_log2),
-        .cfg_view_x  (cfg_view_x),
-        .cfg_view_y  (cfg_view_y),
-        .cfg_j_r0    (cfg_j_r0),
-        .cfg_k_r0    (cfg_k_r0),
-        .cfg_i_r1    (cfg_i_r1),
-        .cfg_i_rt    (cfg_i_rt),
-        .cfg_j_a0    (cfg_j_a0),
-        .cfg_j_lin   (cfg_j_lin),
-        .cfg_j_blk   (cfg_j_blk),
-        .cfg_k_a0    (cfg_k_a0),
-        .cfg_k_lin   (cfg_k_lin),
-        .cfg_k_blk   (cfg_k_blk),
-        .cfg_i_a0    (cfg_i_a0),
-        .cfg_i_pb    (cfg_i_pb),
-        .cfg_i_lin   (cfg_i_lin),
-        .cfg_sx      (cfg_sx),
-        .cfg_sy      (cfg_sy),
-        .start       (start),
+        .cfg_ni      (cfg_ni_q),
+        .cfg_nj      (cfg_nj_q),
+        .cfg_nk      (cfg_nk_q),
+        .cfg_nb      (cfg_nb_q),
+        .cfg_flip_i  (cfg_flip_i_q),
+        .cfg_flip_j  (cfg_flip_j_q),
+        .cfg_flip_k  (cfg_flip_k_q),
+        .cfg_ss_log2 (cfg_ss_log2_q),
+        .cfg_view_x  (cfg_view_x_q),
+        .cfg_view_y  (cfg_view_y_q),
+        .cfg_j_r0    (cfg_j_r0_q),
+        .cfg_k_r0    (cfg_k_r0_q),
+        .cfg_i_r1    (cfg_i_r1_q),
+        .cfg_i_rt    (cfg_i_rt_q),
+        .cfg_j_a0    (cfg_j_a0_q),
+        .cfg_j_lin   (cfg_j_lin_q),
+        .cfg_j_blk   (cfg_j_blk_q),
+        .cfg_k_a0    (cfg_k_a0_q),
+        .cfg_k_lin   (cfg_k_lin_q),
+        .cfg_k_blk   (cfg_k_blk_q),
+        .cfg_i_a0    (cfg_i_a0_q),
+        .cfg_i_pb    (cfg_i_pb_q),
+        .cfg_i_lin   (cfg_i_lin_q),
+        .cfg_sx      (cfg_sx_q),
+        .cfg_sy      (cfg_sy_q),
+        .start       (start_q),
         .busy        (busy),
         .done        (done),
         .cycles      (cycles),
@@ -226,10 +279,10 @@ module cube4_top_harness #(
 
     // ------------------------------------------------------------ pixel dump
     always @(posedge clk) begin
-        if (!rst) begin
-            if (start && !busy) $fwrite(dump_fd, "start\n");
+        if (!rst_q) begin
+            if (start_q && !busy) $fwrite(dump_fd, "start\n");
             if (pix_valid && pix_ready) begin
-                if (dump_en) $fwrite(dump_fd, "%0d %0d %0d %h %h %h\n", pix_m, pix_by, pix_eop,
+                if (dump_en_q) $fwrite(dump_fd, "%0d %0d %0d %h %h %h\n", pix_m, pix_by, pix_eop,
                                      pix_mask, pix_bx, pix_rgba);
                 if (pix_eop) $fflush(dump_fd);
             end
