@@ -162,3 +162,39 @@ def test_stats_are_strict_json_and_files_world_readable(tmp_path, scene_file, ca
     d = json.loads(stats.read_text(), parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
     assert d["psnr"] is None and d["rmse"] == 0.0
     assert out.stat().st_mode & 0o044 == 0o044
+
+
+def test_several_views_numbered_outputs_and_stats(tmp_path, capsys):
+    """--view repeated and --orbit: one numbered image and base plane per view, the
+    stats list every frame, and each view equals a single render from that view."""
+    out, bp, st = tmp_path / "v.png", tmp_path / "v.npy", tmp_path / "v.json"
+    rc, text, err = run_cli(["render", "sphere:16", "--view", "10,20", "--view=-100,-45", "--out", str(out),
+                             "--baseplane", str(bp), "--stats", str(st)], capsys)
+    assert rc == 0, err
+    assert text.count("cube4: golden render") == 2
+    d = json.loads(st.read_text())
+    assert d["views"] == 2 and [round(f["azimuth"]) for f in d["frames"]] == [10, -100]
+    for n, view in enumerate(["10,20", "-100,-45"]):
+        assert (tmp_path / f"v_{n:03d}.png").is_file()
+        single = tmp_path / f"single{n}.npy"
+        assert run_cli(["render", "sphere:16", f"--view={view}", "--out", str(tmp_path / f"s{n}.png"),
+                        "--baseplane", str(single), "--quiet"], capsys)[0] == 0
+        assert np.array_equal(np.load(tmp_path / f"v_{n:03d}.npy"), np.load(single))
+    rc, text, err = run_cli(["render", "sphere:16", "--orbit", "4", "--out", str(tmp_path / "o{n}.png"),
+                             "--stats", str(tmp_path / "o.json"), "--quiet"], capsys)
+    assert rc == 0, err
+    assert sorted(p.name for p in tmp_path.glob("o0*.png")) == [f"o{n:03d}.png" for n in range(4)]
+    az = [f["azimuth"] for f in json.loads((tmp_path / "o.json").read_text())["frames"]]
+    steps = [(b - a) % 360 for a, b in zip(az, az[1:])]
+    assert all(abs(s - 90) < 1e-6 for s in steps), az
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--view", "10,20", "--orbit", "3"], "exclude"),
+    (["--view", "10"], "--view"),
+    (["--view", "0,95"], "elevation"),
+    (["--orbit", "0"], "--orbit"),
+])
+def test_bad_views_fail_cleanly(tmp_path, capsys, args, needle):
+    rc, _, err = run_cli(["render", "sphere:16", *args, "--out", str(tmp_path / "out.png")], capsys)
+    _assert_clean_failure(rc, err, tmp_path, needle)

@@ -3,6 +3,7 @@
     cube4 render VOLUME --scene S.toml --engine {reference,golden,rtl} --out IMG.png
                  [--baseplane BP.npy] [--stats STATS.json] [--pipelines P]
                  [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
+                 [--view AZ,EL ... | --orbit N]
     cube4 volumes | cube4 scenes      list the built-ins
 
 Bad input gives one line on stderr and exit status 2; nothing is written unless the
@@ -22,8 +23,9 @@ import numpy as np
 
 from .config import MAX_PIPELINES
 from .errors import UserError
-from .render import ENGINES, config_for, image_metrics, render
-from .scene import builtin_scene_names, load_scene
+from .render import ENGINES, config_for, image_metrics, render, render_views
+from .scene import Scene, builtin_scene_names, load_scene, with_view
+from .view import angles_from_direction, direction_from_angles
 from .volumes import BUILTINS, load_volume
 
 IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
@@ -55,6 +57,11 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--dtype", help="raw volumes: uint8, uint16, int16, uint32, int32, float32, float64")
     r.add_argument("--voxel-bits", type=int, help="voxel width VOXEL_W (default: the scene's, else 8)")
     r.add_argument("--background", default="0,0,0", help="R,G,B in [0,1] behind the volume in PNG/TIFF output")
+    r.add_argument("--view", action="append", metavar="AZ,EL",
+                   help="render from azimuth,elevation in degrees instead of the scene's view; repeat for "
+                        "several views (outputs get _000, _001, ... before the suffix, or put {n} in the name)")
+    r.add_argument("--orbit", type=int, metavar="N",
+                   help="render N views evenly spaced in azimuth around the scene's view (elevation kept)")
     r.add_argument("--quiet", action="store_true", help="no progress bars or summary")
     sub.add_parser("volumes", help="list the built-in volumes")
     sub.add_parser("scenes", help="list the built-in scenes")
@@ -125,6 +132,44 @@ def _background(text: str) -> tuple[float, float, float]:
     return vals  # type: ignore[return-value]
 
 
+MAX_VIEWS = 360
+
+
+def _views(args: argparse.Namespace, scene: Scene) -> list[Scene]:
+    """The scenes to render: the scene's own view, the --view list, or an --orbit."""
+    if args.view and args.orbit is not None:
+        raise UserError("--view and --orbit exclude each other")
+    if args.orbit is not None:
+        if not 1 <= args.orbit <= MAX_VIEWS:
+            raise UserError(f"--orbit must be in 1..{MAX_VIEWS}, got {args.orbit}")
+        az0, el = angles_from_direction(scene.direction)
+        return [with_view(scene, direction_from_angles(az0 + 360.0 * n / args.orbit, el))
+                for n in range(args.orbit)]
+    if not args.view:
+        return [scene]
+    if len(args.view) > MAX_VIEWS:
+        raise UserError(f"at most {MAX_VIEWS} views per call, got {len(args.view)}")
+    scenes = []
+    for text in args.view:
+        try:
+            az, el = (float(v) for v in text.split(","))
+        except ValueError:
+            raise UserError(f"--view must be AZ,EL in degrees, got {text!r}") from None
+        if not (-360.0 <= az <= 360.0 and -90.0 <= el <= 90.0):
+            raise UserError(f"--view {text!r}: azimuth must be in -360..360 and elevation in -90..90")
+        scenes.append(with_view(scene, direction_from_angles(az, el)))
+    return scenes
+
+
+def _numbered(path: Path, n: int, count: int) -> Path:
+    """Output path of view n: {n} in the name is replaced, else _NNN is appended."""
+    if count == 1 and "{n}" not in path.name:
+        return path
+    if "{n}" in path.name:
+        return path.with_name(path.name.replace("{n}", f"{n:03d}"))
+    return path.with_name(f"{path.stem}_{n:03d}{path.suffix}")
+
+
 def cmd_render(args: argparse.Namespace) -> int:
     out = _check_output(args.out, IMAGE_SUFFIXES, "--out")
     bp = _check_output(args.baseplane, (".npy",), "--baseplane") if args.baseplane else None
@@ -135,32 +180,53 @@ def cmd_render(args: argparse.Namespace) -> int:
     if args.pipelines is not None and not 1 <= args.pipelines <= MAX_PIPELINES:
         raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
     scene = load_scene(args.scene)
+    scenes = _views(args, scene)
     cfg = config_for(scene, pipelines=args.pipelines, voxel_bits=args.voxel_bits)
     raw_dims = _dims(args.dims) if args.dims else None
     vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
     progress = not args.quiet and sys.stderr.isatty()
-    res = render(vol, scene, cfg, args.engine, progress=progress)
-    stats = dict(res.stats)
-    stats["volume"] = args.volume
-    stats["scene"] = scene.name
-    if args.compare_to:
-        ref = render(vol, scene, cfg, "reference", progress=progress)
-        stats.update(image_metrics(res.image, ref.image))
-        stats["reference_wall_s"] = ref.wall_s
+    results = render_views(vol, scenes, cfg, args.engine, progress=progress)
+    frames = []
+    for res, sc in zip(results, scenes):
+        stats = dict(res.stats)
+        stats["volume"] = args.volume
+        stats["scene"] = scene.name
+        stats["azimuth"], stats["elevation"] = angles_from_direction(sc.direction)
+        if args.compare_to:
+            ref = render(vol, sc, cfg, "reference", progress=progress)
+            stats.update(image_metrics(res.image, ref.image))
+            stats["reference_wall_s"] = ref.wall_s
+        frames.append(stats)
 
-    outputs: list[tuple[Path, object]] = [(out, lambda tmp: write_image(tmp, res.image, bg))]
-    if bp is not None and res.frame is not None:
-        base = res.frame.baseplane
-        outputs.append((bp, lambda tmp: np.save(tmp, base)))
+    count = len(results)
+    outputs: list[tuple[Path, object]] = []
+    for n, res in enumerate(results):
+        outputs.append((_numbered(out, n, count), lambda tmp, img=res.image: write_image(tmp, img, bg)))
+        if bp is not None and res.frame is not None:
+            outputs.append((_numbered(bp, n, count), lambda tmp, base=res.frame.baseplane: np.save(tmp, base)))
     if st is not None:
-        text = json.dumps(_json_safe(stats), indent=2, allow_nan=False) + "\n"
+        if count == 1:
+            doc = _json_safe(frames[0])
+        else:
+            doc = {"views": count, "frames": [_json_safe(f) for f in frames],
+                   "wall_s": sum(f["wall_s"] for f in frames)}
+            if all("cycles" in f for f in frames):
+                doc["cycles"] = sum(f["cycles"] for f in frames)
+                doc["sim_wall_s"] = sum(f["sim_wall_s"] for f in frames)
+                doc["sim_cycles_per_s"] = doc["cycles"] / doc["sim_wall_s"] if doc["sim_wall_s"] > 0 else None
+        text = json.dumps(doc, indent=2, allow_nan=False) + "\n"
         outputs.append((st, lambda tmp: Path(tmp).write_text(text)))
     _write_all(outputs)
     if not args.quiet:
-        line = f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} in {res.wall_s:.2f} s -> {out}"
-        if args.compare_to:
-            line += f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, max {stats['max_abs']:.3f}"
-        print(line)
+        for n, (stats, res) in enumerate(zip(frames, results)):
+            line = (f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} "
+                    f"in {res.wall_s:.2f} s -> {_numbered(out, n, count)}")
+            if count > 1:
+                line += f" (azimuth {stats['azimuth']:.1f}, elevation {stats['elevation']:.1f})"
+            if args.compare_to:
+                line += (f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
+                         f"max {stats['max_abs']:.3f}")
+            print(line)
     return 0
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
@@ -24,6 +24,7 @@ PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_b
 class Light:
     direction: np.ndarray  # unit vector: the direction the light travels (volume axes)
     intensity: float
+    headlight: bool = False  # travels along the view direction (follows the view)
 
 
 @dataclass
@@ -128,7 +129,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
             ldir = normalize_direction(lt["direction"])
         else:
             raise UserError(f"scene: light #{n + 1} needs a direction or headlight = true")
-        lights.append(Light(direction=ldir, intensity=float(inten)))
+        lights.append(Light(direction=ldir, intensity=float(inten), headlight=headlight))
 
     tf = data.get("transfer", {})
     _check_keys(tf, ("points",), "transfer")
@@ -153,6 +154,13 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
     )
+
+
+def with_view(scene: Scene, direction) -> Scene:
+    """The scene seen along another view direction; headlights follow the view."""
+    d = normalize_direction(direction)
+    lights = [replace(lt, direction=d) if lt.headlight else lt for lt in scene.lights]
+    return replace(scene, direction=d, lights=lights)
 
 
 def builtin_scene_names() -> list[str]:

@@ -52,6 +52,15 @@ def direction_from_angles(azimuth_deg: float, elevation_deg: float) -> np.ndarra
     return -eye
 
 
+def angles_from_direction(direction) -> tuple[float, float]:
+    """Inverse of direction_from_angles: (azimuth, elevation) in degrees."""
+    eye = -np.asarray(direction, dtype=np.float64)
+    eye = eye / np.linalg.norm(eye)
+    el = math.degrees(math.asin(max(-1.0, min(1.0, float(eye[2])))))
+    az = math.degrees(math.atan2(float(eye[1]), float(eye[0])))
+    return az, el
+
+
 @dataclass(frozen=True)
 class Traversal:
     """How the hardware walks the volume for one view, and the base-plane geometry."""

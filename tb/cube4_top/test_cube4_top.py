@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 
 from cube4.config import Cube4Config
-from cube4.model import render_frame
 from cube4.view import make_traversal
 from cube4.volumes import load_volume
-from cube4_sim.rtl import FrameJob, baseplane_from_pixels, render_frames
+from cube4_sim.golden_check import assert_frame_matches_golden
+from cube4_sim.rtl import FrameJob, render_frames
 
 VIEWS = [
     (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (-1.0, -0.8, 0.2),
@@ -37,16 +37,7 @@ def random_tables(rng, cfg: Cube4Config):
     return lut, rmap
 
 
-def check(vol, trav, cfg, lut, rmap, res, label):
-    gold = render_frame(vol, trav, cfg, lut, rmap)
-    want = np.sort(gold.pixels, order=["m", "by", "bx"])
-    got = np.sort(res["pixels"], order=["m", "by", "bx"])
-    assert got.size == want.size, f"{label}: {got.size} finished rays, golden {want.size}"
-    bad = np.nonzero(got != want)[0]
-    assert bad.size == 0, f"{label}: ray {got[bad[0]]} differs from golden {want[bad[0]]} ({bad.size} rays differ)"
-    print(f"{label}: {got.size} finished rays bit-exact, {res['cycles']} cycles")
-    base = baseplane_from_pixels(res["pixels"], trav.baseplane_shape)
-    assert (base == gold.baseplane).all(), f"{label}: base plane differs"
+check = assert_frame_matches_golden
 
 
 @pytest.mark.parametrize("p", [1, 4, 5, 8])
@@ -106,3 +97,30 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     for key in ("cycles", "ideal_cycles", "sim_cycles_per_s", "wall_s"):
         assert st[key] and st[key] > 0, key
     assert st["cycles"] >= st["ideal_cycles"]
+
+
+def test_cli_rtl_several_views_in_one_simulation(tmp_path):
+    """`cube4 render --engine rtl --view ... --view ...` renders every view in one
+    simulation (volume loaded once) and each base plane equals the golden engine's."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    exe = Path(sys.executable).parent / "cube4"
+    views = ["-150,35", "0,90", "75,-10"]  # y-major mixed signs, exactly on the z axis, x-major
+    for eng in ("rtl", "golden"):
+        args = [str(exe), "render", "ml:41", "--scene", "ml", "--engine", eng, "--quiet",
+                "--baseplane", str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
+                "--out", str(tmp_path / f"{eng}.png")]
+        for v in views:
+            args.append(f"--view={v}")
+        subprocess.run(args, check=True)
+    for n in range(len(views)):
+        a, b = np.load(tmp_path / f"rtl_{n:03d}.npy"), np.load(tmp_path / f"golden_{n:03d}.npy")
+        assert a.shape == b.shape and (a == b).all(), f"view {views[n]}: RTL base plane differs from golden"
+        assert (tmp_path / f"rtl_{n:03d}.png").is_file()
+    st = json.loads((tmp_path / "rtl.json").read_text())
+    assert st["views"] == len(views) and len(st["frames"]) == len(views)
+    assert st["cycles"] == sum(f["cycles"] for f in st["frames"]) > 0
+    assert len({f["major_axis"] for f in st["frames"]}) == 3
