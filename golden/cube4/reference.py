@@ -22,7 +22,7 @@ from tqdm import tqdm
 
 from .scene import Scene
 from .tables import phong_terms, unshaded_terms
-from .view import Camera
+from .view import Camera, Traversal
 
 
 def _padded_grids(vol: np.ndarray, voxel_bits: int) -> np.ndarray:
@@ -85,11 +85,49 @@ def render_reference(
     progress: bool = False,
 ) -> np.ndarray:
     """Render vol[z, y, x] into the image plane: (H, W, 4) premultiplied RGBA float64."""
+    origins, d = cam.ray_origins()
+    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress)
+    return img.reshape(cam.height, cam.width, 4)
+
+
+def reference_baseplane(
+    vol: np.ndarray,
+    voxel_bits: int,
+    scene: Scene,
+    trav: Traversal,
+    step: float = 0.125,
+    progress: bool = False,
+) -> np.ndarray:
+    """The reference on the hardware's base-plane grid: for every base-plane pixel one ray
+    along the exact view direction through the point where the pixel's (quantised)
+    ray is at mid depth. (rows, cols, 4) premultiplied RGBA float64. Compared with the
+    golden base plane it measures the datapath's numerics alone, without the warp's
+    resampling (docs/numerics.md section 11)."""
+    rows, cols = trav.baseplane_shape
+    by, bx = np.mgrid[0:rows, 0:cols]
+    origins = trav.baseplane_to_volume(bx.ravel(), by.ravel())
+    d = np.asarray(scene.direction, dtype=np.float64)
+    d = d / np.linalg.norm(d)
+    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress)
+    return img.reshape(rows, cols, 4)
+
+
+def cast_rays(
+    vol: np.ndarray,
+    voxel_bits: int,
+    scene: Scene,
+    origins: np.ndarray,
+    d: np.ndarray,
+    step: float = 0.125,
+    progress: bool = False,
+) -> np.ndarray:
+    """Composite the rays o + t d (origins (N, 3) in volume coordinates, one unit
+    direction d) front to back through vol[z, y, x]: (N, 4) premultiplied RGBA."""
     if not 0 < step <= 0.125:
         raise ValueError("reference step must be in (0, 1/8] voxel")
+    nz, ny, nx = vol.shape
     grid = _padded_grids(vol, voxel_bits)
-    origins, d = cam.ray_origins()
-    t_in, t_out = _box_interval(origins, d, cam.dims)
+    t_in, t_out = _box_interval(origins, d, (nx, ny, nz))
     hit = np.nonzero(t_out >= t_in)[0]
     n_rays = origins.shape[0]
     color = np.zeros((n_rays, 3))
@@ -125,5 +163,4 @@ def render_reference(
         keep = (q < steps_of[active]) & (trans[active] > 1e-7)
         active = active[keep]
     bar.close()
-    img = np.concatenate([color, (1.0 - trans)[:, None]], axis=1)
-    return img.reshape(cam.height, cam.width, 4)
+    return np.concatenate([color, (1.0 - trans)[:, None]], axis=1)

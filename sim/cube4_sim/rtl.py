@@ -42,10 +42,11 @@ class FrameJob:
     extra: dict = field(default_factory=dict)
 
 
-def build_params(cfg: Cube4Config, max_dim: int) -> dict[str, int]:
-    """cube4_top_harness parameters for a configuration and a largest dimension."""
+def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None) -> dict[str, int]:
+    """cube4_top_harness parameters for a configuration and a largest dimension; the
+    voxel memory holds a max_dim^3 volume unless ``depth`` (words per bank) is given."""
     p = cfg.pipelines
-    depth = words_per_bank((max_dim, max_dim, max_dim), p)
+    depth = depth or words_per_bank((max_dim, max_dim, max_dim), p)
     return {
         "P": p, "VOXEL_W": cfg.voxel_bits, "WEIGHT_W": cfg.weight_bits, "ALPHA_W": cfg.alpha_bits,
         "ACC_W": cfg.acc_bits, "RMAP_BITS": cfg.rmap_bits, "MAX_DIM": max_dim,
@@ -71,15 +72,23 @@ def write_tables(lut: np.ndarray, rmap: np.ndarray, cfg: Cube4Config, lut_path: 
 
 
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
-                  waves: bool | None = None, workdir: Path | None = None,
+                  fit_memory: bool = False, waves: bool | None = None, workdir: Path | None = None,
                   progress: bool = False, quiet: bool = False) -> list[dict]:
     """Render every frame through the RTL; returns per frame
-    {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}."""
+    {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}.
+
+    The build is chosen by the configuration and max_dim (default: the volume's size
+    class). ``fit_memory`` sizes the voxel memory to this volume (the next power of two
+    of its words per bank) instead of a max_dim^3 cube: a long, thin volume then needs
+    no memory for a cube it never fills (a separate build)."""
     from . import runner  # cocotb is imported only when the RTL engine is used
 
     nz, ny, nx = vol.shape
     max_dim = max_dim or build_max_dim((nx, ny, nz))
-    params = build_params(cfg, max_dim)
+    depth = None
+    if fit_memory:
+        depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
+    params = build_params(cfg, max_dim, depth)
     own_tmp = None
     if workdir is None:
         runner.BUILD_ROOT.mkdir(parents=True, exist_ok=True)

@@ -37,6 +37,8 @@ It wraps ``cocotb_tools.runner.Verilator`` (cocotb 2.1) with these changes:
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import hashlib
 import json
 import os
@@ -156,6 +158,19 @@ def top_interface(sources: Sequence[Path], top: str) -> list[str]:
                     break
             return names
     return []
+
+
+@contextlib.contextmanager
+def _build_lock(build_dir: Path):
+    """An exclusive lock on a build directory (``.build.lock``) while Verilator and make
+    run: parallel tests or renders that share a build wait for each other instead of
+    compiling over each other's files."""
+    with open(build_dir / ".build.lock", "w") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
 
 
 def build_key(
@@ -287,17 +302,18 @@ def run_test(
         extra_python_path=extra_python_path,
         forced_env=extra_env,
     )
-    runner.build(
-        sources=all_sources,
-        includes=[Path(i).resolve() for i in includes],
-        defines=defines,
-        parameters=params,
-        build_args=all_build_args,
-        hdl_toplevel=top,
-        build_dir=build_dir,
-        waves=waves,
-        timescale=TIMESCALE,
-    )
+    with _build_lock(build_dir):  # two processes must not compile into one directory at once
+        runner.build(
+            sources=all_sources,
+            includes=[Path(i).resolve() for i in includes],
+            defines=defines,
+            parameters=params,
+            build_args=all_build_args,
+            hdl_toplevel=top,
+            build_dir=build_dir,
+            waves=waves,
+            timescale=TIMESCALE,
+        )
 
     test_args: list[str] = []
     wave_file: Path | None = None
