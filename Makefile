@@ -6,6 +6,7 @@
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
 #   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
+#   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.
@@ -56,10 +57,10 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test demo clean
+.PHONY: help setup lint sim bench test demo report clean
 
 help:
-	@sed -n '3,10p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
 
 setup: $(SETUP_STAMP)
 
@@ -85,13 +86,16 @@ bench: setup
 	@echo "report: build/reports/frontend_cycles.json"
 
 test: setup
-	$(PY) -m pytest $(wildcard tests) tb -q
+	$(PY) -m pytest $(wildcard tests) tb -q --durations=12
 	$(MAKE) --no-print-directory lint
 
 demo: setup
 	mkdir -p out/demo
 	$(VENV)/bin/cube4 render sphere:64 --scene default --engine rtl --compare-to reference \
 	    --stats out/demo/stats.json --baseplane out/demo/baseplane.npy --out out/demo/demo.png
+
+report: setup
+	$(PY) -m cube4_sim.report
 
 clean:
 	rm -rf build out .pytest_cache

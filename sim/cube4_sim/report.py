@@ -1,0 +1,683 @@
+"""Error against run time: ``make report`` (``python -m cube4_sim.report``).
+
+For every configuration (the default, then one parameter varied at a time: supersampling
+S, weight bits W, accumulator bits F, pipelines p) and every volume/scene pair it
+
+* renders the float64 reference once per volume/scene (it does not depend on the
+  hardware configuration except VOXEL_W, which is not varied),
+* renders the golden model (bit-exact integer model of the RTL) and measures the image
+  error against the reference: RMSE, max |error| and PSNR over premultiplied RGBA,
+* renders through the Verilated ``cube4_top`` (one build per parameter set, cached under
+  build/sim) for the measured cycles and simulation seconds, and checks that its base
+  plane equals the golden one bit for bit (``bit_exact``),
+* converts cycles to a frame time at the Fmax measured by ``make fpga``
+  (build/reports/fpga.json, per p), or writes "n/a (run make fpga)".
+
+Outputs: ``<out>/error_vs_runtime.{md,csv,png}`` and build/reports/error_vs_runtime.json;
+the Verilator/cocotb output goes to build/reports/error_vs_runtime.log.
+
+``--no-rtl`` takes the cycles from the formula of docs/architecture.md instead (marked
+"formula"); ``--quick`` renders one volume and five configurations.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import csv
+import hashlib
+import io
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import asdict, dataclass
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any, TextIO
+
+import numpy as np
+
+from cube4.config import Cube4Config
+from cube4.errors import UserError
+from cube4.render import config_for, image_metrics, render, setup_view
+from cube4.scene import Scene, load_scene
+from cube4.view import Traversal
+from cube4.volumes import load_volume
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+REPORTS_BUILD = REPO_ROOT / "build" / "reports"
+DEFAULT_OUT = REPO_ROOT / "reports"
+FPGA_JSON = REPORTS_BUILD / "fpga.json"
+STEM = "error_vs_runtime"
+
+#: Pipeline fill of cube4_top (docs/architecture.md, "Cycles per frame"; measured at 128³, P = 8).
+FILL_CYCLES = 23
+
+#: (volume, scene) pairs. 64³ (and 41³, same build size class) keeps the RTL runs short.
+CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"), ("head:64", "head"), ("ml:41", "ml"))
+QUICK_CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"),)
+
+#: Parameter sweeps, one parameter at a time from the scene's default configuration.
+SWEEPS: dict[str, tuple[int, ...]] = {
+    "supersample": (1, 2, 4),
+    "weight_bits": (4, 6, 8, 10, 12),
+    "acc_bits": (8, 12, 16, 24),
+    "pipelines": (1, 2, 4, 8),
+}
+QUICK_SWEEPS: dict[str, tuple[int, ...]] = {
+    "supersample": (2,),
+    "weight_bits": (4,),
+    "acc_bits": (8,),
+    "pipelines": (1,),
+}
+SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p"}
+CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
+NA_FMAX = "n/a (run make fpga)"
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One configuration: the default, or one parameter changed from it."""
+
+    varied: str  # "default" or a SWEEPS key
+    value: int | None
+
+    @property
+    def label(self) -> str:
+        return "default" if self.varied == "default" else f"{SHORT[self.varied]}={self.value}"
+
+    def config(self, scene: Scene) -> Cube4Config:
+        if self.varied == "default":
+            return config_for(scene)
+        return config_for(scene, **{self.varied: self.value})
+
+
+@dataclass
+class Row:
+    """One (volume/scene, configuration) result; every number comes from a run."""
+
+    volume: str
+    scene: str
+    varied: str
+    label: str
+    pipelines: int
+    weight_bits: int
+    acc_bits: int
+    supersample: int
+    voxel_bits: int
+    alpha_bits: int
+    rmap_bits: int
+    rmse: float
+    max_abs: float
+    psnr: float
+    rmse_rgb: float  # RMSE over R, G, B only (shading and colour)
+    rmse_alpha: float  # RMSE over A only (opacity, compositing)
+    golden_wall_s: float
+    formula_cycles: int
+    cycles: int | None = None
+    cycles_source: str = "formula"  # "rtl", "formula", or "formula (RTL failed)"
+    sim_wall_s: float | None = None
+    sim_cycles_per_s: float | None = None
+    rtl_wall_s: float | None = None  # whole RTL render incl. build check/build, packing, warp
+    bit_exact: bool | None = None  # RTL base plane == golden base plane
+    rtl_psnr: float | None = None
+    rtl_error: str | None = None
+    fmax_mhz: float | None = None
+    frame_time_ms: float | None = None
+    d_psnr_db: float | None = None  # PSNR - PSNR of the default configuration
+    cycles_ratio: float | None = None  # cycles / cycles of the default configuration
+    baseplane_sha: str = ""  # identifies identical golden base planes (e.g. across p)
+
+
+# ---------------------------------------------------------------------------- configs
+def variants(quick: bool) -> list[Variant]:
+    """The default first, then each sweep value (the default's own value is skipped per
+    scene in `case_variants`)."""
+    sweeps = QUICK_SWEEPS if quick else SWEEPS
+    return [Variant("default", None)] + [Variant(k, v) for k, vals in sweeps.items() for v in vals]
+
+
+def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Variant, Cube4Config]]:
+    """Variants with their configurations, dropping those equal to the default."""
+    default = config_for(scene)
+    out: list[tuple[Variant, Cube4Config]] = []
+    for v in all_variants:
+        cfg = v.config(scene)
+        if v.varied != "default" and cfg == default:
+            continue
+        out.append((v, cfg))
+    return out
+
+
+def formula_cycles(trav: Traversal, pipelines: int) -> int:
+    """Cycles per frame without stalls (docs/architecture.md):
+    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 1 + fill."""
+    nb = -(-trav.ni // pipelines)
+    m, nj = trav.num_sample_slices, trav.nj
+    return (m * nj + 1) * nb + 1 + nj * nb + nb + 1 + FILL_CYCLES
+
+
+# ------------------------------------------------------------------------------- Fmax
+def _rel(path: Path) -> Path:
+    return path.relative_to(REPO_ROOT) if path.is_relative_to(REPO_ROOT) else path
+
+
+def read_fpga(path: Path | None = None) -> dict | None:
+    """build/reports/fpga.json of `make fpga`, or None if it has not been run."""
+    path = path or FPGA_JSON
+    if not path.exists():
+        return None
+    try:
+        data = json.loads(path.read_text())
+        if not isinstance(data["results"], list):
+            raise TypeError
+        return data
+    except (OSError, ValueError, KeyError, TypeError):
+        raise UserError(f"{path} is not a `make fpga` result (expected {{\"results\": [{{\"p\": .., "
+                        f"\"fmax_mhz\": ..}}]}}); rerun make fpga or delete it") from None
+
+
+def load_fmax(path: Path | None = None) -> list[dict] | None:
+    """The results of `make fpga` that have an Fmax (placed and routed, fitting the part),
+    or None if it has not been run."""
+    data = read_fpga(path)
+    if data is None:
+        return None
+    return [r for r in data["results"] if isinstance(r, dict) and "p" in r
+            and r.get("fmax_mhz") is not None and r.get("fits", True) is not False]
+
+
+def fmax_note(path: Path | None = None) -> str:
+    """Where the Fmax comes from, for the Markdown report."""
+    path = path or FPGA_JSON
+    data = read_fpga(path)
+    fmax = load_fmax(path)
+    rel = _rel(path)
+    if not fmax:
+        return f"no Fmax: {rel} is missing or has no routed result, run `make fpga`"
+    ps = ", ".join(f"p = {r['p']}: {float(r['fmax_mhz']):.1f} MHz" for r in fmax)
+    where = ", ".join(f"{k} {data[k]}" for k in ("part", "max_dim") if k in data)
+    return (f"`make fpga` ({rel}{'; ' + where if where else ''}): {ps}. The Fmax is that of the p's build with "
+            "the default word widths, also used for the W, F and S variants of the same p")
+
+
+def fmax_for(results: list[dict] | None, cfg: Cube4Config) -> float | None:
+    """Fmax (MHz) measured for this p. An entry that states other parameters (directly or
+    under "config") must agree with cfg; parameters it does not state are not checked."""
+    if not results:
+        return None
+    want = cfg.as_dict()
+    for r in results:
+        stated = {**r.get("config", {}), **r} if isinstance(r.get("config"), dict) else r
+        if int(stated["p"]) != cfg.pipelines:
+            continue
+        if any(k in stated and stated[k] != want[k] for k in CONFIG_KEYS):
+            continue
+        return float(stated["fmax_mhz"])
+    return None
+
+
+# ---------------------------------------------------------------------------- running
+@contextlib.contextmanager
+def output_to(log: TextIO) -> Iterator[None]:
+    """Send file descriptors 1 and 2 (Verilator, make, cocotb, simulator) to the log."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = os.dup(1), os.dup(2)
+    log.flush()
+    try:
+        os.dup2(log.fileno(), 1)
+        os.dup2(log.fileno(), 2)
+        yield
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        os.close(saved[0])
+        os.close(saved[1])
+
+
+def _sha(a: np.ndarray) -> str:
+    return hashlib.sha1(np.ascontiguousarray(a).tobytes()).hexdigest()[:12]
+
+
+def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg: Cube4Config,
+               ref_img: np.ndarray) -> tuple[Row, np.ndarray]:
+    """Golden render and its error; returns the row and the golden base plane."""
+    res = render(vol, scene, cfg, "golden")
+    m = image_metrics(res.image, ref_img)
+    err = res.image - ref_img
+    nz, ny, nx = vol.shape
+    trav, _ = setup_view((nx, ny, nz), scene, cfg)
+    d = cfg.as_dict()
+    row = Row(volume=volume, scene=scene.name, varied=variant.varied, label=variant.label,
+              pipelines=d["pipelines"], weight_bits=d["weight_bits"], acc_bits=d["acc_bits"],
+              supersample=d["supersample"], voxel_bits=d["voxel_bits"], alpha_bits=d["alpha_bits"],
+              rmap_bits=d["rmap_bits"], rmse=m["rmse"], max_abs=m["max_abs"], psnr=m["psnr"],
+              rmse_rgb=float(np.sqrt(np.mean(err[..., :3] ** 2))), rmse_alpha=float(np.sqrt(np.mean(err[..., 3] ** 2))),
+              golden_wall_s=res.wall_s, formula_cycles=formula_cycles(trav, cfg.pipelines),
+              baseplane_sha=_sha(res.frame.baseplane))
+    return row, res.frame.baseplane
+
+
+def add_rtl(row: Row, vol: np.ndarray, scene: Scene, cfg: Cube4Config, golden_base: np.ndarray,
+            ref_img: np.ndarray, log: TextIO) -> None:
+    """Render through the RTL; fill cycles, simulation time and the bit-exactness check.
+    A failure is recorded in the row (rtl_error), not raised."""
+    try:
+        with output_to(log):
+            res = render(vol, scene, cfg, "rtl")
+    except Exception as e:  # noqa: BLE001 - any build/simulation failure is reported in the table
+        row.rtl_error = (str(e).strip().splitlines() or [type(e).__name__])[0][:200]
+        row.cycles, row.cycles_source = row.formula_cycles, "formula (RTL failed)"
+        return
+    st = res.stats
+    row.cycles, row.cycles_source = int(st["cycles"]), "rtl"
+    row.sim_wall_s = float(st["sim_wall_s"])
+    row.sim_cycles_per_s = st["sim_cycles_per_s"]
+    row.rtl_wall_s = res.wall_s
+    row.bit_exact = bool(np.array_equal(res.frame.baseplane, golden_base))
+    row.rtl_psnr = image_metrics(res.image, ref_img)["psnr"]
+
+
+def finish_rows(rows: list[Row], fmax: list[dict] | None) -> None:
+    """Frame time at Fmax, and PSNR / cycles relative to each case's default."""
+    defaults = {(r.volume, r.scene): r for r in rows if r.varied == "default"}
+    for r in rows:
+        cfg = Cube4Config(pipelines=r.pipelines, voxel_bits=r.voxel_bits, weight_bits=r.weight_bits,
+                          alpha_bits=r.alpha_bits, acc_bits=r.acc_bits, rmap_bits=r.rmap_bits,
+                          supersample=r.supersample)
+        r.fmax_mhz = fmax_for(fmax, cfg)
+        if r.fmax_mhz and r.cycles is not None:
+            r.frame_time_ms = r.cycles / (r.fmax_mhz * 1e6) * 1e3
+        base = defaults.get((r.volume, r.scene))
+        if base is not None:
+            r.d_psnr_db = r.psnr - base.psnr
+            if r.cycles is not None and base.cycles:
+                r.cycles_ratio = r.cycles / base.cycles
+
+
+# ---------------------------------------------------------------------------- writing
+def _f(x: float | None, fmt: str, none: str = "n/a") -> str:
+    if x is None:
+        return none
+    if isinstance(x, float) and math.isinf(x):
+        return "inf"
+    return format(x, fmt)
+
+
+def _bit_exact_text(r: Row) -> str:
+    if r.rtl_error:
+        return f"RTL failed: {r.rtl_error}"
+    if r.bit_exact is None:
+        return "n/a (no RTL)"
+    return "yes" if r.bit_exact else f"**NO** (RTL PSNR {_f(r.rtl_psnr, '.2f')} dB)"
+
+
+def _param_cells(r: Row) -> list[str]:
+    cells = []
+    for key in ("supersample", "weight_bits", "acc_bits", "pipelines"):
+        v = str(getattr(r, key))
+        cells.append(f"**{v}**" if r.varied == key else v)
+    return cells
+
+
+def markdown_table(rows: list[Row]) -> str:
+    head = ("| config | S | W | F | p | RMSE | max \\|err\\| | PSNR (dB) | ΔPSNR (dB) | cycles | × cycles "
+            "| source | frame time at Fmax (ms) | sim (s) | sim cycles/s | bit_exact |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1 - head.count("\\|"))]
+    for r in rows:
+        frame = _f(r.frame_time_ms, ".4f", NA_FMAX)
+        if r.frame_time_ms is not None:
+            frame += f" @ {r.fmax_mhz:.1f} MHz"
+        lines.append("| " + " | ".join([
+            r.label, *_param_cells(r), _f(r.rmse, ".5f"), _f(r.max_abs, ".3f"), _f(r.psnr, ".2f"),
+            _f(r.d_psnr_db, "+.2f"), _f(r.cycles, ","), _f(r.cycles_ratio, ".2f"), r.cycles_source, frame,
+            _f(r.sim_wall_s, ".2f"), _f(r.sim_cycles_per_s, ",.0f"), _bit_exact_text(r),
+        ]) + " |")
+    return "\n".join(lines)
+
+
+def p_invariance_note(rows: list[Row]) -> list[str]:
+    """Whether the golden base planes (and so the errors) are identical across p."""
+    notes = []
+    for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
+        ps = [r for r in rows if (r.volume, r.scene) == (vol, scn) and r.varied in ("default", "pipelines")]
+        if len(ps) < 2:
+            continue
+        same = len({r.baseplane_sha for r in ps}) == 1
+        plist = ", ".join(str(r.pipelines) for r in sorted(ps, key=lambda r: r.pipelines))
+        notes.append(f"- {vol} / {scn}: golden base planes for p = {plist} are "
+                     f"{'byte-identical' if same else '**not identical**'}, so their errors are "
+                     f"{'identical' if same else 'not identical'}.")
+    return notes
+
+
+def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
+    out = io.StringIO()
+    out.write("# Error against run time\n\n")
+    out.write(f"Generated by `{meta['command']}` on {meta['finished']} in {meta['wall_s'] / 60:.1f} min "
+              f"(commit {meta['git']['commit']}{', uncommitted changes in rtl/ or sim/hdl/' if meta['git']['rtl_dirty'] else ''}). "
+              f"{'Tables and plot rewritten from that run (`--tables-only`, current Fmax) on ' + meta['tables_rewritten'] + '. ' if meta.get('tables_rewritten') else ''}"
+              "Do not edit: rerun `make report`. Explained in [docs/reports.md](../docs/reports.md#error-against-run-time).\n\n")
+    out.write(f"![PSNR against cycles]({STEM}.png)\n\n")
+    d = next((r for r in rows if r.varied == "default"), rows[0])
+    out.write(f"Each configuration is the default (`S = {d.supersample}, W = {d.weight_bits}, F = {d.acc_bits}, "
+              f"p = {d.pipelines}`, V = {d.voxel_bits}, AW = {d.alpha_bits}, RMAP_BITS = {d.rmap_bits}) "
+              "with one parameter changed (**bold**). Error: golden model image against the float64 reference, "
+              "over the premultiplied RGBA of the 256×256 image (PSNR peak 1.0). "
+              f"Cycles: {meta['cycles_note']}. Frame time = cycles / Fmax; {meta['fmax_note']}. "
+              "sim (s): wall-clock seconds of the Verilator simulation of the frame alone "
+              f"(machine load average {meta['loadavg_start']} at the start, {meta['loadavg_end']} at the end). "
+              "bit_exact: the RTL base plane equals the golden one.\n\n")
+    for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
+        out.write(f"## {vol}, scene `{scn}`\n\n")
+        out.write(markdown_table([r for r in rows if (r.volume, r.scene) == (vol, scn)]) + "\n\n")
+    notes = p_invariance_note(rows)
+    failed = [r for r in rows if r.rtl_error]
+    mismatched = [r for r in rows if r.bit_exact is False]
+    out.write("## Checks\n\n")
+    out.write("\n".join(notes) + ("\n" if notes else ""))
+    if meta["rtl"]:
+        out.write(f"- RTL runs: {sum(r.cycles_source == 'rtl' for r in rows)} of {len(rows)} succeeded; "
+                  f"{len(mismatched)} base-plane mismatches against golden.\n")
+        for r in failed:
+            out.write(f"- RTL failed for {r.volume} {r.label}: {r.rtl_error}\n")
+        ok = [r for r in rows if r.cycles_source == "rtl"]
+        if ok:
+            dev = [r.cycles - r.formula_cycles for r in ok]
+            out.write(f"- Measured cycles minus the formula of docs/architecture.md: {min(dev):+d} .. {max(dev):+d}.\n")
+    path.write_text(out.getvalue())
+
+
+def write_csv(path: Path, rows: list[Row]) -> None:
+    names = list(asdict(rows[0]))
+    with path.open("w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=names)
+        w.writeheader()
+        for r in rows:
+            d = asdict(r)
+            w.writerow({k: ("" if v is None else v) for k, v in d.items()})
+
+
+def _json_safe(x: Any) -> Any:
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {k: _json_safe(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_json_safe(v) for v in x]
+    return x
+
+
+def write_json(path: Path, rows: list[Row], meta: dict) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    data = {"meta": meta, "rows": [asdict(r) for r in rows]}
+    path.write_text(json.dumps(_json_safe(data), indent=1, allow_nan=False) + "\n")
+
+
+SERIES_STYLE = {  # marker, colour
+    "supersample": ("o", "tab:blue"),
+    "pipelines": ("D", "tab:purple"),
+    "weight_bits": ("s", "tab:green"),
+    "acc_bits": ("^", "tab:red"),
+}
+
+
+def _series(rs: list[Row], key: str) -> list[Row]:
+    """The rows varying `key`, with the default, in order of the parameter."""
+    return sorted([r for r in rs if r.varied in ("default", key)], key=lambda r: getattr(r, key))
+
+
+def _plot_runtime(ax: Any, rs: list[Row]) -> None:
+    """PSNR against cycles: S and p as annotated lines; W and F (no extra cycles) as
+    bare markers at the default's cycle count."""
+    for key in ("supersample", "pipelines"):
+        marker, colour = SERIES_STYLE[key]
+        series = _series(rs, key)
+        ax.plot([r.cycles for r in series], [r.psnr for r in series], marker=marker, color=colour,
+                label=f"{SHORT[key]} ({key})", alpha=0.8)
+        for r in series:
+            if r.varied == key:
+                ax.annotate(f"{SHORT[key]}={getattr(r, key)}", (r.cycles, r.psnr), textcoords="offset points",
+                            xytext=(4, 6 if key == "supersample" else -12), fontsize=8, color=colour)
+    for key in ("weight_bits", "acc_bits"):
+        marker, colour = SERIES_STYLE[key]
+        pts = [r for r in rs if r.varied == key]
+        ax.plot([r.cycles for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker, color=colour,
+                alpha=0.6, label=f"{SHORT[key]} variants (same cycles; lower row)")
+    for r in rs:
+        if r.varied == "default":
+            ax.plot([r.cycles], [r.psnr], marker="*", color="black", markersize=14, zorder=5, label="default")
+    ax.set_xscale("log", base=2)
+    ax.set_xlabel("cycles per frame (measured)" if any(r.cycles_source == "rtl" for r in rs) else
+                  "cycles per frame (formula)")
+    ax.set_ylabel("PSNR vs float64 reference (dB)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+
+
+def _plot_widths(ax: Any, rs: list[Row]) -> None:
+    """PSNR against word width for W and F (their cycles equal the default's)."""
+    for key in ("weight_bits", "acc_bits"):
+        marker, colour = SERIES_STYLE[key]
+        series = _series(rs, key)
+        ax.plot([getattr(r, key) for r in series], [r.psnr for r in series], marker=marker, color=colour,
+                label=f"{SHORT[key]} ({key})", alpha=0.8)
+        for r in series:
+            ax.annotate(f"{r.psnr:.2f}", (getattr(r, key), r.psnr), textcoords="offset points",
+                        xytext=(3, 5 if key == "weight_bits" else -11), fontsize=7, color=colour)
+    for r in rs:
+        if r.varied == "default":
+            ax.axhline(r.psnr, color="black", linestyle=":", linewidth=1, label="default")
+    lo, hi = ax.get_ylim()
+    if hi - lo < 1.0:  # at least 1 dB tall, so that noise-level differences do not look like trends
+        mid = (lo + hi) / 2
+        ax.set_ylim(mid - 0.5, mid + 0.5)
+    ax.set_xlabel("bits (W: weights, F: accumulators); no change in cycles")
+    ax.set_ylabel("PSNR vs float64 reference (dB)")
+    ax.set_xticks(sorted({getattr(r, k) for r in rs for k in ("weight_bits", "acc_bits")}))
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right")
+
+
+def write_plot(path: Path, rows: list[Row], title_note: str) -> None:
+    """One column per volume/scene: PSNR against cycles (top) and against the word widths
+    W and F, which cost no cycles (bottom)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cases = list(dict.fromkeys((r.volume, r.scene) for r in rows))
+    fig, axes = plt.subplots(2, len(cases), figsize=(6.0 * len(cases), 9.0), squeeze=False,
+                             gridspec_kw={"height_ratios": [3, 2]})
+    for col, case in enumerate(cases):
+        rs = [r for r in rows if (r.volume, r.scene) == case and r.cycles is not None]
+        _plot_runtime(axes[0][col], rs)
+        axes[0][col].set_title(f"{case[0]}, scene {case[1]}")
+        _plot_widths(axes[1][col], rs)
+    fig.suptitle(f"Cube-4: image error against run time ({title_note})")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+# ------------------------------------------------------------------------------- main
+def _git_info() -> dict:
+    def git(*args: str) -> str:
+        try:
+            return subprocess.run(["git", *args], cwd=REPO_ROOT, capture_output=True, text=True,
+                                  check=True).stdout.strip()
+        except (OSError, subprocess.CalledProcessError):
+            return ""
+
+    return {"commit": git("rev-parse", "--short", "HEAD") or "unknown",
+            "rtl_dirty": bool(git("status", "--porcelain", "--", "rtl", "sim/hdl"))}
+
+
+def _loadavg() -> str:
+    try:
+        return " / ".join(f"{x:.1f}" for x in os.getloadavg())
+    except OSError:
+        return "n/a"
+
+
+def _progress_line(r: Row) -> str:
+    line = f"{r.volume:10s} {r.label:8s} PSNR {r.psnr:6.2f} dB  RMSE {r.rmse:.5f}  cycles {r.cycles:>9,} ({r.cycles_source})"
+    if r.sim_wall_s is not None:
+        line += f"  sim {r.sim_wall_s:6.2f} s  bit_exact {'yes' if r.bit_exact else 'NO'}"
+    if r.rtl_error:
+        line += f"  RTL FAILED: {r.rtl_error}"
+    return line
+
+
+def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[Row], dict]:
+    from tqdm import tqdm
+
+    t0 = time.perf_counter()
+    load_fmax()  # fail early on a malformed file; read again at the end (make fpga may finish meanwhile)
+    cases = QUICK_CASES if quick else CASES
+    all_variants = variants(quick)
+    scenes = {name: load_scene(name) for _, name in cases}
+    vols = {(v, s): load_volume(v, voxel_bits=config_for(scenes[s]).voxel_bits) for v, s in cases}
+    plan = {case: case_variants(scenes[case[1]], all_variants) for case in cases}
+    out_dir.mkdir(parents=True, exist_ok=True)
+    REPORTS_BUILD.mkdir(parents=True, exist_ok=True)
+    log_path = REPORTS_BUILD / f"{STEM}.log"
+    meta: dict = {"loadavg_start": _loadavg(), "git": _git_info(), "rtl": use_rtl, "quick": quick,
+                  "log": str(log_path.relative_to(REPO_ROOT))}
+
+    total = len(cases) + sum(len(v) for v in plan.values())
+    bar = tqdm(total=total, desc="report", unit="render", file=term, disable=None, dynamic_ncols=True)
+    refs: dict[tuple[str, str], np.ndarray] = {}
+    rows: list[Row] = []
+    with bar, log_path.open("w") as log:
+        for case in cases:
+            bar.set_postfix_str(f"reference {case[0]}")
+            refs[case] = render(vols[case], scenes[case[1]], config_for(scenes[case[1]]), "reference").image
+            bar.update()
+        # Configurations outermost: every volume of a configuration reuses its RTL build.
+        for variant in all_variants:
+            for case in cases:
+                match = [cfg for v, cfg in plan[case] if v == variant]
+                if not match:
+                    continue
+                scene, vol = scenes[case[1]], vols[case]
+                bar.set_postfix_str(f"{case[0]} {variant.label}" + (" (RTL build/sim)" if use_rtl else ""))
+                row, golden_base = golden_row(vol, case[0], scene, variant, match[0], refs[case])
+                if use_rtl:
+                    add_rtl(row, vol, scene, match[0], golden_base, refs[case], log)
+                else:
+                    row.cycles = row.formula_cycles
+                rows.append(row)
+                bar.write(_progress_line(row), file=term)
+                bar.update()
+    finish_rows(rows, load_fmax())
+    meta.update({
+        "loadavg_end": _loadavg(),
+        "wall_s": time.perf_counter() - t0,
+        "finished": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        "command": "make report" + (" (--quick)" if quick else "") + (" (--no-rtl)" if not use_rtl else ""),
+        "cycles_note": ("measured by simulating cube4_top in Verilator (source `rtl`)" if use_rtl else
+                        "from the formula of docs/architecture.md, not simulated (source `formula`)"),
+        "fmax_note": fmax_note(),
+    })
+    return rows, meta
+
+
+def json_path(out_dir: Path) -> Path:
+    """The run's data: build/reports/ for the default --out, else beside the tables (so
+    that a trial run elsewhere does not replace the data behind reports/)."""
+    same = out_dir.resolve() == DEFAULT_OUT.resolve()
+    return REPORTS_BUILD / f"{STEM}.json" if same else out_dir / f"{STEM}.json"
+
+
+def write_outputs(rows: list[Row], meta: dict, out_dir: Path) -> list[Path]:
+    md, csv_p, png = (out_dir / f"{STEM}.{ext}" for ext in ("md", "csv", "png"))
+    js = json_path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    write_markdown(md, rows, meta)
+    write_csv(csv_p, rows)
+    write_plot(png, rows, "cycles measured in RTL simulation" if meta["rtl"] else "cycles from the formula")
+    write_json(js, rows, meta)
+    return [md, csv_p, png, js]
+
+
+def rewrite_tables(out_dir: Path) -> tuple[list[Row], dict]:
+    """The rows and metadata of the last run into out_dir (see `json_path`), with the
+    frame times recomputed from the current fpga.json."""
+    path = json_path(out_dir)
+    try:
+        data = json.loads(path.read_text())
+        rows = [Row(**{k: (math.inf if k == "psnr" and v is None else v) for k, v in r.items()})
+                for r in data["rows"]]
+        meta = dict(data["meta"])
+    except FileNotFoundError:
+        raise UserError(f"{_rel(path)} does not exist: run make report first") from None
+    except (OSError, ValueError, KeyError, TypeError):
+        raise UserError(f"{_rel(path)} is not a report of this version: rerun make report") from None
+    if not rows:
+        raise UserError(f"{_rel(path)} has no rows: rerun make report")
+    finish_rows(rows, load_fmax())
+    meta["fmax_note"] = fmax_note()
+    meta["tables_rewritten"] = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    return rows, meta
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="python -m cube4_sim.report",
+        description="Image error against the float64 reference beside run time (cycles, frame time at "
+                    "the measured Fmax, simulation seconds) for S, W, F and p: make report.")
+    ap.add_argument("--quick", action="store_true",
+                    help="one volume (sphere:64) and five configurations: default, S=2, W=4, F=8, p=1")
+    ap.add_argument("--no-rtl", action="store_true",
+                    help="no Verilator: cycles from the formula of docs/architecture.md (marked 'formula')")
+    ap.add_argument("--tables-only", action="store_true",
+                    help="render nothing: rewrite the tables and plot from the last run into --out "
+                         "(build/reports/error_vs_runtime.json) with the current Fmax of make fpga")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="folder for error_vs_runtime.{md,csv,png} (default: reports/ of the repository, "
+                         "with the data in build/reports/error_vs_runtime.json; elsewhere the JSON goes "
+                         "into the folder too)")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    term = os.fdopen(os.dup(2), "w", buffering=1)  # survives the redirection of fd 2 during RTL runs
+    try:
+        out_dir = Path(args.out)
+        if out_dir.exists() and not out_dir.is_dir():
+            raise UserError(f"--out {args.out!r} is not a folder")
+        if args.tables_only and (args.quick or args.no_rtl):
+            raise UserError("--tables-only renders nothing, so --quick and --no-rtl do not apply")
+        rows, meta = rewrite_tables(out_dir) if args.tables_only else run(args.quick, not args.no_rtl, out_dir, term)
+        paths = write_outputs(rows, meta, out_dir)
+    except UserError as e:
+        print(f"cube4 report: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("cube4 report: interrupted", file=sys.stderr)
+        return 130
+    except OSError as e:
+        print(f"cube4 report: error: cannot write {e.filename or 'output'}: {e.strerror}", file=sys.stderr)
+        return 2
+    finally:
+        term.close()
+    bad = [r for r in rows if r.rtl_error or r.bit_exact is False]
+    done = "tables rewritten" if args.tables_only else f"{len(rows)} renders in {meta['wall_s'] / 60:.1f} min"
+    print(f"cube4 report: {done} -> "
+          + ", ".join(str(_rel(p)) for p in paths)
+          + (f"; {len(bad)} RTL failures or mismatches, see the table" if bad else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

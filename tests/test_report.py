@@ -1,0 +1,101 @@
+"""`make report` helpers (sim/cube4_sim/report.py): configurations, the cycle formula,
+Fmax look-up and the table. Fast: no reference render and no RTL build."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from cube4.config import Cube4Config
+from cube4.errors import UserError
+from cube4.render import config_for, setup_view
+from cube4.scene import load_scene
+from cube4_sim import report
+
+
+def test_variants_one_parameter_at_a_time() -> None:
+    scene = load_scene("default")
+    plan = report.case_variants(scene, report.variants(quick=False))
+    cfgs = [cfg for _, cfg in plan]
+    assert plan[0][0].varied == "default" and cfgs[0] == Cube4Config()
+    assert len(cfgs) == len(set(cfgs)) == 13  # 1 + S 2 + W 4 + F 3 + p 3
+    default = Cube4Config().as_dict()
+    for v, cfg in plan[1:]:
+        changed = {k for k, x in cfg.as_dict().items() if x != default[k]}
+        assert changed == {v.varied}, v.label
+    quick = [v.label for v, _ in report.case_variants(scene, report.variants(quick=True))]
+    assert quick == ["default", "S=2", "W=4", "F=8", "p=1"]
+
+
+def test_formula_cycles_matches_docs() -> None:
+    """(M·NJ + 1)·NB + 1 + NJ·NB + NB + 1 + 23 for the default view of a 64³ volume."""
+    scene = load_scene("default")
+    for p, s in ((8, 1), (1, 1), (8, 4), (5, 2)):
+        cfg = config_for(scene, pipelines=p, supersample=s)
+        trav, _ = setup_view((64, 64, 64), scene, cfg)
+        m, nj, nb = 63 * s + 1, 64, -(-64 // p)
+        assert report.formula_cycles(trav, p) == (m * nj + 1) * nb + 1 + nj * nb + nb + 1 + 23
+
+
+def test_fmax_lookup(tmp_path: Path) -> None:
+    assert report.load_fmax(tmp_path / "missing.json") is None
+    f = tmp_path / "fpga.json"
+    f.write_text(json.dumps({"results": [
+        {"p": 8, "fmax_mhz": 97.3},
+        {"p": 4, "fmax_mhz": 80.0, "config": {"acc_bits": 24}},
+        {"p": 2, "fmax_mhz": None},
+    ]}))
+    res = report.load_fmax(f)
+    assert report.fmax_for(res, Cube4Config()) == 97.3
+    assert report.fmax_for(res, Cube4Config(pipelines=4)) is None  # entry states acc_bits 24
+    assert report.fmax_for(res, Cube4Config(pipelines=4, acc_bits=24)) == 80.0
+    assert report.fmax_for(res, Cube4Config(pipelines=2)) is None  # no Fmax measured
+    assert report.fmax_for(None, Cube4Config()) is None
+    f.write_text("{not json")
+    with pytest.raises(UserError, match="make fpga"):
+        report.load_fmax(f)
+
+
+def _row(varied: str, label: str, psnr: float, cycles: int, **cfg) -> report.Row:
+    c = Cube4Config(**cfg).as_dict()
+    return report.Row(volume="sphere:64", scene="default", varied=varied, label=label,
+                      pipelines=c["pipelines"], weight_bits=c["weight_bits"], acc_bits=c["acc_bits"],
+                      supersample=c["supersample"], voxel_bits=c["voxel_bits"], alpha_bits=c["alpha_bits"],
+                      rmap_bits=c["rmap_bits"], rmse=10 ** (-psnr / 20), max_abs=0.5, psnr=psnr, rmse_rgb=0.0,
+                      rmse_alpha=0.0, golden_wall_s=0.1, formula_cycles=cycles, cycles=cycles)
+
+
+def test_table_frame_time_and_failures() -> None:
+    rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1)]
+    rows[1].rtl_error, rows[1].cycles_source = "build failed", "formula (RTL failed)"
+    report.finish_rows(rows, [{"p": 8, "fmax_mhz": 100.0}])
+    assert rows[0].frame_time_ms == pytest.approx(0.01)
+    assert rows[1].frame_time_ms is None and rows[1].cycles_ratio == 8.0
+    table = report.markdown_table(rows)
+    lines = table.splitlines()
+    assert all(line.count("|") - line.count("\\|") == lines[0].count("|") - lines[0].count("\\|") for line in lines)
+    assert "0.0100 @ 100.0 MHz" in lines[2] and report.NA_FMAX in lines[3]
+    assert "RTL failed: build failed" in lines[3] and "**1**" in lines[3]
+
+
+def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A finished run's JSON gets frame times once fpga.json (make fpga's schema) exists."""
+    monkeypatch.setattr(report, "REPORTS_BUILD", tmp_path)
+    monkeypatch.setattr(report, "FPGA_JSON", tmp_path / "fpga.json")
+    with pytest.raises(UserError, match="run make report first"):
+        report.rewrite_tables(tmp_path / "out")
+    rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1)]
+    meta = {"command": "make report", "finished": "then", "wall_s": 60.0, "git": {"commit": "x", "rtl_dirty": False},
+            "rtl": True, "cycles_note": "measured", "loadavg_start": "0", "loadavg_end": "0"}
+    report.write_json(report.json_path(tmp_path / "out"), rows, meta)
+    (tmp_path / "fpga.json").write_text(json.dumps({"part": "LFE5U-85F", "max_dim": 128, "results": [
+        {"p": 1, "fmax_mhz": 50.0, "fits": True}, {"p": 8, "fmax_mhz": 99.0, "fits": False}]}))
+    new_rows, new_meta = report.rewrite_tables(tmp_path / "out")
+    assert new_rows[1].frame_time_ms == pytest.approx(8000 / 50e6 * 1e3)
+    assert new_rows[0].frame_time_ms is None  # p = 8 does not fit: no Fmax
+    assert "p = 1: 50.0 MHz" in new_meta["fmax_note"] and new_meta["tables_rewritten"]
+    paths = report.write_outputs(new_rows, new_meta, tmp_path / "out")
+    assert all(p.exists() for p in paths)
+    assert "0.1600 @ 50.0 MHz" in (tmp_path / "out" / f"{report.STEM}.md").read_text()
