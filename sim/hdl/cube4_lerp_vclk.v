@@ -5,8 +5,8 @@
 // Purpose
 //   cube4_lerp with its clock generated in Verilog by cube4_sim_clock: the
 //   pattern for testbenches whose clock should not be driven from Python.
-//   Same parameters and ports as cube4_lerp except clk, which is an internal
-//   signal here (cocotb still sees it as dut.clk, to wait on its edges).
+//   Same parameters and ports as cube4_lerp, except clk, which is an output
+//   here: the clock is generated inside, and cocotb waits on its edges.
 //
 // Parameters
 //   DATA_W, WEIGHT_W, LATENCY  passed to cube4_lerp (same ranges).
@@ -20,14 +20,13 @@ module cube4_lerp_vclk #(
     parameter integer LATENCY     = 0,
     parameter integer HALF_PERIOD = 5
 ) (
+    output wire                clk,    // generated here; Python waits on its edges
     input  wire                en,
     input  wire [DATA_W-1:0]   a,
     input  wire [DATA_W-1:0]   b,
     input  wire [WEIGHT_W-1:0] w,
     output wire [DATA_W-1:0]   y
 );
-
-    wire clk;
 
     cube4_sim_clock #(
         .HALF_PERIOD (HALF_PERIOD)
