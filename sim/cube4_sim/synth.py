@@ -9,6 +9,7 @@ copy to reports/*.md. Nothing here imports cocotb or the golden model.
 from __future__ import annotations
 
 import hashlib
+import os
 import re
 import shutil
 import subprocess
@@ -183,9 +184,12 @@ def addr_bits(depth: int) -> int:
     return max(1, (depth - 1).bit_length())
 
 
-def read_verilog_cmd() -> str:
-    """The yosys command that reads the whole design as SystemVerilog."""
-    return "read_verilog -sv " + " ".join(str(s) for s in rtl_sources())
+def read_verilog_cmd(cwd: Path) -> str:
+    """The yosys command that reads the whole design as SystemVerilog, for a script run
+    in ``cwd``. The paths are relative: the YoWASP runtime mounts its own private
+    directory at /tmp inside the tool, so an absolute path under /tmp (a checkout
+    there) would not be found."""
+    return "read_verilog -sv " + " ".join(os.path.relpath(s, cwd) for s in rtl_sources())
 
 
 def chparam_args(params: dict[str, int]) -> str:
