@@ -18,8 +18,9 @@
 //   X-step, which for the lane at t = 0 comes from the previous beat (Fig. 13:
 //   results forwarded across partial beams and beams). A ray starts fresh
 //   (C = 0, T = 1) when its previous sample is outside the slice (m = 0,
-//   j - dyb < 0, i - dxb < 0). Compositing is done within the step, so the
-//   recurrence holds for any slice size, down to one beat per slice.
+//   j - dyb < 0, i - dxb < 0). The compositing arithmetic is pipelined
+//   (S3..S6); the recurrence closes through the buffer one slice later, and a
+//   beat waits while the beat it depends on is still in flight.
 //
 //   Finished rays: a sample that is inside and whose next sample along the ray
 //   (m+1, j+dyf, i+dxf) is not (or m = M-1) finishes its ray; the ray leaves as
@@ -34,8 +35,12 @@
 //   ACC_W     accumulator fraction bits F.      8..24.  Default 16.
 //
 // Latency
-//   1 register stage after the step plus the output skid buffer; the partial
-//   results take exactly one slice (NJ*NB steps) round the base-plane buffer.
+//   7 register stages (S0 -> S1 .. S6 -> output register, below) under one
+//   stall enable, then the output skid buffer. The partial results take
+//   exactly one slice (NJ*NB steps) round the base-plane buffer. Throughput
+//   is one beat per cycle when a slice has NJ*NB >= 6 beats; a smaller slice
+//   runs at NJ*NB beats per 6 cycles (the read-after-write hazard on the
+//   base-plane buffer, see "pipeline" below).
 //
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
@@ -132,9 +137,31 @@ module cube4_com #(
         end
     endfunction
 
-    wire en;
-    wire step = en && in_valid;
-    assign in_ready = en;
+    // ---- pipeline (docs/architecture.md, "COM pipeline") ----
+    //   S0  input beat: counters, template, lane positions, fresh / finished
+    //   S1  base-plane buffer read (address = the beat's slice position)
+    //   S2  select the ray's previous partial result (beam delay, ring hops)
+    //   S3  T * A (multiplier)
+    //   S4  w = round_shift(T * A, AW)
+    //   S5  w * C' (multipliers), T - w
+    //   S6  C += round_shift(w * C', 8); write the base-plane buffer; output register
+    // Every stage moves under en (the skid's ready) and carries a valid bit.
+    // A beat's slice position is read at the en-edge after its acceptance
+    // (S1 -> S2) and written at the edge where it leaves S6. The ray's previous
+    // partial result was written by the beat L = NJ*NB steps earlier at the same
+    // position, so a beat is accepted only if no beat in S1..S5 has its
+    // position (one in S6 is written at the acceptance edge, before the read).
+    // Slices of L >= 6 beats never wait; smaller ones (volumes of fewer than 6
+    // beats per slice) run at L beats per 6 cycles.
+    localparam integer SP_W  = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1;
+    localparam integer TA_W  = CW + ALPHA_W;    // T * A
+    localparam integer WC_W  = CW + 8;          // w * C'
+
+    wire en;                            // the pipeline advances
+    reg  s1_v, s2_v, s3_v, s4_v, s5_v, s6_v;
+    wire hazard;                        // a beat in S1..S5 writes this beat's position
+    assign in_ready = en && !hazard;
+    wire step = in_valid && in_ready;
 
     wire sop   = in_ctrl[4];
     wire eop   = in_ctrl[5];
@@ -145,11 +172,14 @@ module cube4_com #(
     wire first_of_slice = (in_j == '0) && (in_pb == '0);
     wire unused_y_last = in_ctrl[6];   // rows are checked against cfg_nj directly
 
-    // ---- delay-line positions (as cube4_gra) ----
+    // ==== S0 ====
+    // ---- positions: partial beam, row and slice position (as cube4_gra) ----
     reg  [PB_W-1:0]  pb_q;
     reg  [DIM_W-1:0] row_q;
+    reg  [SP_W-1:0]  sp_q;
     wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
     wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
+    wire [SP_W-1:0]  pos_sp  = sop ? {SP_W{1'b0}} : sp_q;
     wire last_beam  = (NB_W'(pos_pb) == cfg_nb - 1'b1);
     wire last_slice = last_beam && (pos_row == cfg_nj - 1'b1);
 
@@ -177,9 +207,11 @@ module cube4_com #(
         if (rst) begin
             pb_q  <= {PB_W{1'b0}};
             row_q <= {DIM_W{1'b0}};
+            sp_q  <= {SP_W{1'b0}};
         end else if (step) begin
             pb_q  <= last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
             row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
+            sp_q  <= last_slice ? {SP_W{1'b0}} : pos_sp + 1'b1;
         end
     end
     always @(posedge clk) begin
@@ -191,90 +223,165 @@ module cube4_com #(
         end
     end
 
-    // ---- base-plane buffers: partial results of slice m-1 ----
-    wire [PA-1:0] acc_new;              // written this step: results after slice m
-    wire [PA-1:0] a1, a2;               // (m-1, j), (m-1, j-1) in their own skews
-    cube4_delay_line #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX)) u_bp_slice (
-        .clk(clk), .rst(rst), .clear(sop && step), .step(step), .last(last_slice),
-        .din(acc_new), .dout(a1));
+    // ---- per lane: position in the beam, fresh ray, finished ray ----
+    wire [BX_W-1:0]   by_d = BX_W'(in_j) - BX_W'(sty_n) + BX_W'(cfg_sy);
+    wire [P-1:0]      fresh_d, t0_d, ins_d, fin_d;
+    wire [P*BX_W-1:0] bx_d;
+    wire [IW-1:0]     pbp    = IW'(in_pb) * IW'(P);
+    wire [IW-1:0]     ni_ext = IW'(cfg_ni);
+    wire [IW-1:0]     nj_ext = IW'(cfg_nj);
+    wire [IW-1:0]     j_ext  = IW'(in_j);
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_pos
+            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
+            wire [LANE_W-1:0] t = cfg_flip_i
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, in_skew}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, in_skew}));
+            wire [IW-1:0] i_pos = pbp + IW'(t);
+            assign t0_d[q]    = (t == '0);
+            // the ray starts here: its previous sample is outside the slice
+            assign fresh_d[q] = (in_m == '0) || (dyb && in_j == '0) || (dxb && i_pos == '0);
+            assign ins_d[q]   = in_lane_valid[q] && in_lane_inside[q];
+            // finished? the next sample along the ray is not inside
+            wire [IW-1:0] i_nx = i_pos + IW'(dxf);
+            wire [IW-1:0] j_nx = j_ext + IW'(dyf);
+            wire nx_in = !in_last_slice && (i_nx < ni_ext) && (j_nx < nj_ext)
+                       && !(i_nx + 1'b1 == ni_ext && wxn_nz) && !(j_nx + 1'b1 == nj_ext && wyn_nz);
+            assign fin_d[q] = ins_d[q] && !nx_in;
+            assign bx_d[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(stx_n) + BX_W'(cfg_sx);
+        end
+    endgenerate
+
+    // ---- the beat's fields, carried along the pipeline ----
+    // (the output fields m, by, bx, eop ride with it to S6)
+    reg [SP_W-1:0]   s1_sp, s2_sp, s3_sp, s4_sp, s5_sp, s6_sp;
+    reg              s1_sop, s2_sop, s1_lb, s2_lb;      // frame start, last beam (beam delay)
+    reg              s1_dxb, s2_dxb, s1_dyb, s2_dyb, s1_dkb, s2_dkb;
+    reg [P-1:0]      s1_fresh, s2_fresh, s1_t0, s2_t0;
+    reg [P-1:0]      s1_ins, s2_ins, s3_ins, s4_ins;
+    reg [P-1:0]      s1_fin, s2_fin, s3_fin, s4_fin, s5_fin, s6_fin;
+    reg [M_W-1:0]    s1_m, s2_m, s3_m, s4_m, s5_m, s6_m;
+    reg [BX_W-1:0]   s1_by, s2_by, s3_by, s4_by, s5_by, s6_by;
+    reg [P*BX_W-1:0] s1_bx, s2_bx, s3_bx, s4_bx, s5_bx, s6_bx;
+    reg              s1_eop, s2_eop, s3_eop, s4_eop, s5_eop, s6_eop;
+    reg [P*LUT_W-1:0] s1_rgba, s2_rgba;
+    assign hazard = (s1_v && s1_sp == pos_sp) || (s2_v && s2_sp == pos_sp) || (s3_v && s3_sp == pos_sp)
+                 || (s4_v && s4_sp == pos_sp) || (s5_v && s5_sp == pos_sp);
+    always @(posedge clk) begin
+        if (rst) begin
+            {s1_v, s2_v, s3_v, s4_v, s5_v, s6_v} <= 6'b0;
+        end else if (en) begin
+            {s1_v, s2_v, s3_v, s4_v, s5_v, s6_v} <= {step, s1_v, s2_v, s3_v, s4_v, s5_v};
+        end
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            {s1_sp, s2_sp, s3_sp, s4_sp, s5_sp, s6_sp} <= {pos_sp, s1_sp, s2_sp, s3_sp, s4_sp, s5_sp};
+            {s1_sop, s2_sop, s1_lb, s2_lb}             <= {sop, s1_sop, last_beam, s1_lb};
+            {s1_dxb, s2_dxb, s1_dyb, s2_dyb}           <= {dxb, s1_dxb, dyb, s1_dyb};
+            {s1_dkb, s2_dkb}                           <= {dk_b, s1_dkb};
+            {s1_fresh, s2_fresh, s1_t0, s2_t0}         <= {fresh_d, s1_fresh, t0_d, s1_t0};
+            {s1_ins, s2_ins, s3_ins, s4_ins}           <= {ins_d, s1_ins, s2_ins, s3_ins};
+            {s1_fin, s2_fin, s3_fin, s4_fin, s5_fin, s6_fin} <= {fin_d, s1_fin, s2_fin, s3_fin, s4_fin, s5_fin};
+            {s1_m, s2_m, s3_m, s4_m, s5_m, s6_m}       <= {in_m, s1_m, s2_m, s3_m, s4_m, s5_m};
+            {s1_by, s2_by, s3_by, s4_by, s5_by, s6_by} <= {by_d, s1_by, s2_by, s3_by, s4_by, s5_by};
+            {s1_bx, s2_bx, s3_bx, s4_bx, s5_bx, s6_bx} <= {bx_d, s1_bx, s2_bx, s3_bx, s4_bx, s5_bx};
+            {s1_eop, s2_eop, s3_eop, s4_eop, s5_eop, s6_eop} <= {eop, s1_eop, s2_eop, s3_eop, s4_eop, s5_eop};
+            {s1_rgba, s2_rgba}                         <= {in_rgba, s1_rgba};
+        end
+    end
+
+    // ==== S1: base-plane buffers: partial results of slice m-1 ====
+    wire [PA-1:0] acc_new;              // written at the end of S6: results after slice m
+    wire [PA-1:0] a1, a2;               // (m-1, j), (m-1, j-1) in their own skews (S2)
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX)) u_bp_slice (
+        .clk(clk), .rd_en(en), .rd_addr(s1_sp), .rd_data(a1),
+        .wr_en(en && s6_v), .wr_addr(s6_sp), .wr_data(acc_new));
+
+    // ==== S2: the ray's previous partial result ====
+    wire step2 = en && s2_v;
     cube4_delay_line #(.DATA_W(PA), .DEPTH(NBMAX)) u_bp_beam (
-        .clk(clk), .rst(rst), .clear(sop && step), .step(step), .last(last_beam),
+        .clk(clk), .rst(rst), .clear(s2_sop && step2), .step(step2), .last(s2_lb),
         .din(a1), .dout(a2));
 
     wire [PA-1:0] a1_k, a2_j, a2_jk, back, back_sh, prevb_sh;
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a1k  (.down(cfg_flip_k), .x(a1),   .y(a1_k));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2j  (.down(cfg_flip_j), .x(a2),   .y(a2_j));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2jk (.down(cfg_flip_k), .x(a2_j), .y(a2_jk));
-    assign back = dyb ? (dk_b ? a2_jk : a2_j) : (dk_b ? a1_k : a1);   // (m-1, j-dyb, i)
+    assign back = s2_dyb ? (s2_dkb ? a2_jk : a2_j) : (s2_dkb ? a1_k : a1);   // (m-1, j-dyb, i)
 
     reg [PA-1:0] prevb_q;   // the previous beat's "back" (same row: only used at t = 0)
     always @(posedge clk) begin
-        if (step) prevb_q <= back;
+        if (step2) prevb_q <= back;
     end
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(back),    .y(back_sh));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(prevb_q), .y(prevb_sh));
 
-    // ---- compositing, per lane, within the step ----
-    wire [BX_W-1:0] by_d = BX_W'(in_j) - BX_W'(sty_n) + BX_W'(cfg_sy);
-    wire [P-1:0]         fin_d;
-    wire [P*BX_W-1:0]    bx_d;
-    wire [P*AC_W-1:0]    pix_d;
-    wire [IW-1:0]        pbp    = IW'(in_pb) * IW'(P);
-    wire [IW-1:0]        ni_ext = IW'(cfg_ni);
-    wire [IW-1:0]        nj_ext = IW'(cfg_nj);
-    wire [IW-1:0]        j_ext  = IW'(in_j);
-    genvar q;
+    // ==== S3 .. S6: compositing, per lane ====
+    wire [P*AC_W-1:0] pix_d;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
-            wire [LANE_W-1:0] t = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, in_skew}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, in_skew}));
-            wire [IW-1:0] i_pos = pbp + IW'(t);
-            // the ray's previous partial result
-            wire fresh = (in_m == '0) || (dyb && in_j == '0) || (dxb && i_pos == '0);
-            wire [AC_W-1:0] prev = dxb ? ((t == '0) ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
-                                       : back[q*AC_W +: AC_W];
-            wire [CW-1:0] c_r = fresh ? {CW{1'b0}} : prev[3*CW +: CW];
-            wire [CW-1:0] c_g = fresh ? {CW{1'b0}} : prev[2*CW +: CW];
-            wire [CW-1:0] c_b = fresh ? {CW{1'b0}} : prev[1*CW +: CW];
-            wire [CW-1:0] tt  = fresh ? ONE        : prev[0*CW +: CW];
-            // the shaded sample
-            wire [LUT_W-1:0]   s  = in_rgba[q*LUT_W +: LUT_W];
-            wire [ALPHA_W-1:0] sa = s[ALPHA_W-1:0];
-            wire               ins = in_lane_valid[q] && in_lane_inside[q];
-            // w = round_shift(T * A, AW)
-            wire [CW+ALPHA_W-1:0] ta = {{ALPHA_W{1'b0}}, tt} * {{CW{1'b0}}, sa};
-            wire signed [CW+1:0]  w_rs;
-            cube4_round_shift #(.IN_W(CW + ALPHA_W + 1), .SHIFT(ALPHA_W)) u_w (
-                .x($signed({1'b0, ta})), .y(w_rs));
-            wire [CW-1:0] w = ins ? w_rs[CW-1:0] : {CW{1'b0}};   // 0 <= w <= T
-            // C += round_shift(w * C', 8)
-            wire [3*CW-1:0] c_in  = {c_r, c_g, c_b};
-            wire [3*CW-1:0] c_out;
-            genvar ch;
-            for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                wire [7:0]      cs  = s[ALPHA_W + 8 * ch +: 8];   // B, G, R for ch = 0, 1, 2
-                wire [CW+7:0]   wc  = {8'd0, w} * {{CW{1'b0}}, cs};
-                wire signed [CW+1:0] add;
-                cube4_round_shift #(.IN_W(CW + 9), .SHIFT(8)) u_c (
-                    .x($signed({1'b0, wc})), .y(add));
-                assign c_out[ch*CW +: CW] = c_in[ch*CW +: CW] + add[CW-1:0];
+            // S2: previous partial result {R, G, B, T}, or a fresh ray
+            wire [AC_W-1:0] prev = s2_dxb
+                ? (s2_t0[q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
+                : back[q*AC_W +: AC_W];
+            wire [AC_W-1:0] acc_in = s2_fresh[q] ? {{(3*CW){1'b0}}, ONE} : prev;
+            reg  [AC_W-1:0] s3_acc, s4_acc, s5_acc;          // {C_R, C_G, C_B, T}
+            reg  [23:0]     s3_c, s4_c, s5_c;                 // the sample's {R', G', B'}
+            reg  [ALPHA_W-1:0] s3_a;                          // the sample's A
+            always @(posedge clk) begin
+                if (en) begin
+                    s3_acc <= acc_in;
+                    s3_c   <= s2_rgba[q*LUT_W + ALPHA_W +: 24];
+                    s3_a   <= s2_rgba[q*LUT_W +: ALPHA_W];
+                    {s4_acc, s5_acc} <= {s3_acc, s4_acc};
+                    {s4_c, s5_c}     <= {s3_c, s4_c};
+                end
             end
-            wire [CW-1:0] t_out = tt - w;
-            assign acc_new[q*AC_W +: AC_W] = {c_out, t_out};
-            // finished? the next sample along the ray is not inside
-            wire [IW-1:0] i_nx = i_pos + IW'(dxf);
-            wire [IW-1:0] j_nx = j_ext + IW'(dyf);
-            wire nx_in = !in_last_slice && (i_nx < ni_ext) && (j_nx < nj_ext)
-                       && !(i_nx + 1'b1 == ni_ext && wxn_nz) && !(j_nx + 1'b1 == nj_ext && wyn_nz);
-            assign fin_d[q] = ins && !nx_in;
-            assign bx_d[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(stx_n) + BX_W'(cfg_sx);
-            assign pix_d[q*AC_W +: AC_W] = {c_out, ONE - t_out};   // {R, G, B, A}
+            // S3: T * A
+            reg [TA_W-1:0] s4_ta;
+            always @(posedge clk) begin
+                if (en) s4_ta <= {{ALPHA_W{1'b0}}, s3_acc[0 +: CW]} * {{CW{1'b0}}, s3_a};
+            end
+            // S4: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
+            wire signed [CW+1:0] w_rs;
+            cube4_round_shift #(.IN_W(TA_W + 1), .SHIFT(ALPHA_W)) u_w (
+                .x($signed({1'b0, s4_ta})), .y(w_rs));
+            reg [CW-1:0] s5_w;
+            always @(posedge clk) begin
+                if (en) s5_w <= s4_ins[q] ? w_rs[CW-1:0] : {CW{1'b0}};
+            end
+            // S5: w * C' per channel, T - w
+            reg [3*WC_W-1:0] s6_wc;
+            reg [3*CW-1:0]   s6_cin;
+            reg [CW-1:0]     s6_t;
+            genvar ch;
+            for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
+                always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
+                    if (en) s6_wc[ch*WC_W +: WC_W] <= {8'd0, s5_w} * {{CW{1'b0}}, s5_c[8 * ch +: 8]};
+                end
+            end
+            always @(posedge clk) begin
+                if (en) begin
+                    s6_cin <= s5_acc[CW +: 3*CW];
+                    s6_t   <= s5_acc[0 +: CW] - s5_w;
+                end
+            end
+            // S6: C += round_shift(w * C', 8)
+            wire [3*CW-1:0] c_out;
+            for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
+                wire signed [CW+1:0] add;
+                cube4_round_shift #(.IN_W(WC_W + 1), .SHIFT(8)) u_c (
+                    .x($signed({1'b0, s6_wc[ch*WC_W +: WC_W]})), .y(add));
+                assign c_out[ch*CW +: CW] = s6_cin[ch*CW +: CW] + add[CW-1:0];
+            end
+            assign acc_new[q*AC_W +: AC_W] = {c_out, s6_t};
+            assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s6_t};   // {R, G, B, A}
         end
     endgenerate
 
-    // ---- output register and skid ----
+    // ---- output register (end of S6) and skid ----
     reg               o_v;
     reg [P-1:0]       o_mask;
     reg [M_W-1:0]     o_m;
@@ -284,16 +391,16 @@ module cube4_com #(
     reg               o_eop;
     always @(posedge clk) begin
         if (rst) o_v <= 1'b0;
-        else if (en) o_v <= step && ((fin_d != '0) || eop);
+        else if (en) o_v <= s6_v && ((s6_fin != '0) || s6_eop);
     end
     always @(posedge clk) begin
         if (en) begin
-            o_mask <= fin_d;
-            o_m    <= in_m;
-            o_by   <= by_d;
-            o_bx   <= bx_d;
+            o_mask <= s6_fin;
+            o_m    <= s6_m;
+            o_by   <= s6_by;
+            o_bx   <= s6_bx;
             o_rgba <= pix_d;
-            o_eop  <= eop;
+            o_eop  <= s6_eop;
         end
     end
 

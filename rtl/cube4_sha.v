@@ -23,8 +23,10 @@
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
-//   5 register stages (input, LUT read + face select, division, reflectance-map
-//   read, shading) under one stall enable, then the output skid buffer.
+//   4 + (RMAP_BITS + 1) + 3 register stages (input; LUT read and |g|; face;
+//   numerators; one stage per quotient bit of the division; reflectance-map
+//   read; C * D; shading) under one stall enable, then the output skid
+//   buffer: 13 at RMAP_BITS = 5.
 //
 // Ports
 //   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)}
@@ -113,25 +115,18 @@ module cube4_sha #(
     localparam integer META_W = M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;
     localparam integer RMAP_N = 6 * (1 << (2 * RB)) + 1;
 
-    // restoring division, quotient in 0 .. R (RB + 1 bits), then min(R - 1, q)
-    function automatic [RB-1:0] rmap_cell(input [NUM_W-1:0] num, input [GW:0] den);
-        reg [NUM_W-1:0] rem;
-        reg [NUM_W-1:0] d;
-        reg [RB:0]      qq;
-        integer         k;
-        begin
-            rem = num;
-            qq  = {(RB + 1){1'b0}};
-            for (k = RB; k >= 0; k = k - 1) begin
-                d = {{(NUM_W - GW - 1){1'b0}}, den} << k;
-                if (rem >= d) begin
-                    rem   = rem - d;
-                    qq[k] = 1'b1;
-                end
-            end
-            rmap_cell = qq[RB] ? {RB{1'b1}} : qq[RB-1:0];
-        end
-    endfunction
+    // ---- pipeline ----
+    //   a      input register
+    //   b1     LUT read; |gi|, |gj|, |gk|
+    //   b2     cube-map face: the largest |g| (A), its sign, the other two (g_b, g_c)
+    //   b3     numerators (g + A) * R, denominator 2A
+    //   c0..cR restoring division, one quotient bit per stage, for u and v at once
+    //   d      reflectance-map read (address: face and the quotients, min(R-1, q))
+    //   e1     C * D (multipliers)
+    //   e2     round_shift(C * D, 8) + P, min 255
+    // Every stage moves under en (the skid's ready); the beat's fields ride along.
+    localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
+    localparam integer NST  = 3 + NDIV + 3;      // stages after a: b1..b3, c*, d, e1, e2
 
     wire en;
     assign in_ready = en;
@@ -155,34 +150,26 @@ module cube4_sha #(
         end
     end
 
-    // ---- stages b..e per lane ----
-    reg               b_v, c_v, d_v, e_v;
-    reg [META_W-1:0]  b_meta, c_meta, d_meta, e_meta;
-    wire [P*LUT_W-1:0] e_rgba;
-    wire [P*RI_W-1:0]  e_idx;
+    // ---- valid bits and the beat's fields, stages 1 .. NST ----
+    reg [NST:1]      st_v;
+    reg [META_W-1:0] st_meta [1:NST];
     always @(posedge clk) begin
-        if (rst) begin
-            b_v <= 1'b0;
-            c_v <= 1'b0;
-            d_v <= 1'b0;
-            e_v <= 1'b0;
-        end else if (en) begin
-            b_v <= a_v;
-            c_v <= b_v;
-            d_v <= c_v;
-            e_v <= d_v;
-        end
+        if (rst) st_v <= '0;
+        else if (en) st_v <= {st_v[NST-1:1], a_v};
     end
+    integer k_st;
     always @(posedge clk) begin
         if (en) begin
-            b_meta <= a_meta;
-            c_meta <= b_meta;
-            d_meta <= c_meta;
-            e_meta <= d_meta;
+            st_meta[1] <= a_meta;
+            for (k_st = 2; k_st <= NST; k_st = k_st + 1) st_meta[k_st] <= st_meta[k_st - 1];
         end
     end
+    wire               e_v    = st_v[NST];
+    wire [META_W-1:0]  e_meta = st_meta[NST];
+    wire [P*LUT_W-1:0] e_rgba;
+    wire [P*RI_W-1:0]  e_idx;
 
-    genvar q;
+    genvar q, it;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
             // tables (this lane's copies)
@@ -192,89 +179,142 @@ module cube4_sha #(
                 if (lut_we)  lut[lut_addr]   <= lut_data;
                 if (rmap_we) rmap[rmap_addr] <= rmap_data;
             end
+            // the sample's LUT entry rides along from b1 to d
+            reg [LUT_W-1:0] lut_q [1:NST-2];
+            integer k_l;
+            always @(posedge clk) begin
+                if (en) begin
+                    lut_q[1] <= lut[a_s[q*VW +: VW]];
+                    for (k_l = 2; k_l <= NST - 2; k_l = k_l + 1) lut_q[k_l] <= lut_q[k_l - 1];
+                end
+            end
 
-            // b: LUT read, cube-map face
+            // b1: |g|; |g| < 2^(GW-1): no overflow
             wire signed [GW-1:0] gi = a_gi[q*GW +: GW];
             wire signed [GW-1:0] gj = a_gj[q*GW +: GW];
             wire signed [GW-1:0] gk = a_gk[q*GW +: GW];
-            wire [GW-1:0] ai = gi[GW-1] ? -gi : gi;   // |g| < 2^(GW-1): no overflow
-            wire [GW-1:0] aj = gj[GW-1] ? -gj : gj;
-            wire [GW-1:0] ak = gk[GW-1] ? -gk : gk;
-            wire [1:0] f = (ai >= aj && ai >= ak) ? 2'd0 : (aj >= ak ? 2'd1 : 2'd2);
-            wire [GW-1:0]        amax = (f == 2'd0) ? ai : (f == 2'd1) ? aj : ak;
-            wire                 neg  = (f == 2'd0) ? gi[GW-1] : (f == 2'd1) ? gj[GW-1] : gk[GW-1];
-            wire signed [GW-1:0] gb   = (f == 2'd0) ? gj : gi;
-            wire signed [GW-1:0] gc   = (f == 2'd2) ? gj : gk;
-            // g_b + A in 0 .. 2A: GW + 1 bits unsigned
-            wire [GW:0] nb = $unsigned($signed({gb[GW-1], gb}) + $signed({1'b0, amax}));
-            wire [GW:0] nc = $unsigned($signed({gc[GW-1], gc}) + $signed({1'b0, amax}));
-
-            reg [LUT_W-1:0] b_lut;
-            reg [2:0]       b_face;
-            reg             b_zero;
-            reg [GW:0]      b_den;
-            reg [NUM_W-1:0] b_nb, b_nc;
+            reg  signed [GW-1:0] b1_gi, b1_gj, b1_gk;
+            reg         [GW-1:0] b1_ai, b1_aj, b1_ak;
             always @(posedge clk) begin
                 if (en) begin
-                    b_lut  <= lut[a_s[q*VW +: VW]];
-                    b_face <= {f, neg};
-                    b_zero <= (amax == {GW{1'b0}});
-                    b_den  <= {amax, 1'b0};
-                    b_nb   <= {{RB{1'b0}}, nb} << RB;
-                    b_nc   <= {{RB{1'b0}}, nc} << RB;
+                    {b1_gi, b1_gj, b1_gk} <= {gi, gj, gk};
+                    b1_ai <= gi[GW-1] ? -gi : gi;
+                    b1_aj <= gj[GW-1] ? -gj : gj;
+                    b1_ak <= gk[GW-1] ? -gk : gk;
                 end
             end
 
-            // c: division -> entry
-            reg [LUT_W-1:0] c_lut;
-            reg [RI_W-1:0]  c_idx;
+            // b2: face
+            wire [1:0] f = (b1_ai >= b1_aj && b1_ai >= b1_ak) ? 2'd0 : (b1_aj >= b1_ak ? 2'd1 : 2'd2);
+            reg  [2:0]           b2_face;   // {f, sign}
+            reg  [GW-1:0]        b2_amax;
+            reg  signed [GW-1:0] b2_gb, b2_gc;
             always @(posedge clk) begin
                 if (en) begin
-                    c_lut <= b_lut;
-                    c_idx <= b_zero ? RI_W'(6 << (2 * RB))
-                                    : {b_face, rmap_cell(b_nc, b_den), rmap_cell(b_nb, b_den)};
+                    b2_face <= {f, (f == 2'd0) ? b1_gi[GW-1] : (f == 2'd1) ? b1_gj[GW-1] : b1_gk[GW-1]};
+                    b2_amax <= (f == 2'd0) ? b1_ai : (f == 2'd1) ? b1_aj : b1_ak;
+                    b2_gb   <= (f == 2'd0) ? b1_gj : b1_gi;
+                    b2_gc   <= (f == 2'd2) ? b1_gj : b1_gk;
                 end
             end
+
+            // b3: g_b + A and g_c + A in 0 .. 2A (GW + 1 bits unsigned), times R
+            wire [GW:0] nb = $unsigned($signed({b2_gb[GW-1], b2_gb}) + $signed({1'b0, b2_amax}));
+            wire [GW:0] nc = $unsigned($signed({b2_gc[GW-1], b2_gc}) + $signed({1'b0, b2_amax}));
+            reg  [NUM_W-1:0] rb_q [0:NDIV];     // remainders; rb_q[0] = numerator (b3)
+            reg  [NUM_W-1:0] rc_q [0:NDIV];
+            reg  [RB:0]      qb_q [0:NDIV];     // quotient bits found so far
+            reg  [RB:0]      qc_q [0:NDIV];
+            reg  [GW:0]      den_q  [0:NDIV];   // 2A
+            reg  [2:0]       face_q [0:NDIV];
+            reg              zero_q [0:NDIV];   // g = 0
+            always @(posedge clk) begin
+                if (en) begin
+                    rb_q[0]   <= {{RB{1'b0}}, nb} << RB;
+                    rc_q[0]   <= {{RB{1'b0}}, nc} << RB;
+                    qb_q[0]   <= '0;
+                    qc_q[0]   <= '0;
+                    den_q[0]  <= {b2_amax, 1'b0};
+                    face_q[0] <= b2_face;
+                    zero_q[0] <= (b2_amax == {GW{1'b0}});
+                end
+            end
+
+            // c0 .. cR: quotient bit RB - it (exact restoring division, no rounding)
+            for (it = 0; it < NDIV; it = it + 1) begin : g_div
+                localparam integer KB = RB - it;
+                wire [NUM_W-1:0] d  = {{(NUM_W - GW - 1){1'b0}}, den_q[it]} << KB;
+                wire             ge_b = (rb_q[it] >= d);
+                wire             ge_c = (rc_q[it] >= d);
+                always @(posedge clk) begin
+                    if (en) begin
+                        rb_q[it + 1]   <= ge_b ? rb_q[it] - d : rb_q[it];
+                        rc_q[it + 1]   <= ge_c ? rc_q[it] - d : rc_q[it];
+                        qb_q[it + 1]   <= qb_q[it] | ((RB + 1)'(ge_b) << KB);
+                        qc_q[it + 1]   <= qc_q[it] | ((RB + 1)'(ge_c) << KB);
+                        den_q[it + 1]  <= den_q[it];
+                        face_q[it + 1] <= face_q[it];
+                        zero_q[it + 1] <= zero_q[it];
+                    end
+                end
+            end
+            wire [RB:0]   qb = qb_q[NDIV];
+            wire [RB:0]   qc = qc_q[NDIV];
+            wire [RB-1:0] ub = qb[RB] ? {RB{1'b1}} : qb[RB-1:0];   // min(R - 1, q)
+            wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
+            wire [RI_W-1:0] idx = zero_q[NDIV] ? RI_W'(6 << (2 * RB)) : {face_q[NDIV], uc, ub};
 
             // d: reflectance-map read
-            reg [LUT_W-1:0] d_lut;
             reg [RI_W-1:0]  d_idx;
             reg [19:0]      d_dp;
             always @(posedge clk) begin
                 if (en) begin
-                    d_lut <= c_lut;
-                    d_idx <= c_idx;
-                    d_dp  <= rmap[c_idx];
+                    d_idx <= idx;
+                    d_dp  <= rmap[idx];
+                end
+            end
+            wire [LUT_W-1:0] d_lut = lut_q[NST - 2];
+
+            // e1: C * D, 8 x 10 bits, exact
+            reg [3*18-1:0]    e1_cd;
+            reg [9:0]         e1_pp;
+            reg [ALPHA_W-1:0] e1_a;
+            reg [RI_W-1:0]    e1_idx;
+            genvar ch;
+            for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
+                always @(posedge clk) begin
+                    if (en) e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d_dp[19:10]};
+                end
+            end
+            always @(posedge clk) begin
+                if (en) begin
+                    e1_pp  <= d_dp[9:0];
+                    e1_a   <= d_lut[ALPHA_W-1:0];
+                    e1_idx <= d_idx;
                 end
             end
 
-            // e: shade
-            wire [9:0] dd = d_dp[19:10];
-            wire [9:0] pp = d_dp[9:0];
+            // e2: shade
             wire [23:0] col_d;
-            genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                wire [7:0]         cc   = d_lut[ALPHA_W + 8 * (2 - ch) +: 8];   // R, G, B
-                wire [17:0]        cd   = {10'd0, cc} * {8'd0, dd};   // 8 x 10 bits, exact
-                wire signed [18:0] prod = $signed({1'b0, cd});
                 wire signed [11:0] rs;
                 cube4_round_shift #(
                     .IN_W  (19),
                     .SHIFT (8)
                 ) u_rs (
-                    .x (prod),
+                    .x ($signed({1'b0, e1_cd[18*ch +: 18]})),
                     .y (rs)
                 );
                 // rs >= 0 and < 2^11; rs + P < 2^12
-                wire [11:0] sum = rs + {2'b00, pp};
+                wire [11:0] sum = rs + {2'b00, e1_pp};
                 assign col_d[8 * (2 - ch) +: 8] = (sum > 12'd255) ? 8'd255 : sum[7:0];
             end
             reg [LUT_W-1:0] e_q;
             reg [RI_W-1:0]  e_idx_q;
             always @(posedge clk) begin
                 if (en) begin
-                    e_q     <= {col_d, d_lut[ALPHA_W-1:0]};
-                    e_idx_q <= d_idx;
+                    e_q     <= {col_d, e1_a};
+                    e_idx_q <= e1_idx;
                 end
             end
             assign e_rgba[q*LUT_W +: LUT_W] = e_q;

@@ -288,10 +288,12 @@ def unit_table(res: dict) -> str:
 
 def memory_role(module: str, memid: str, words: int, p: int, max_dim: int) -> str:
     """What a memory is, for the table ('plane delay', 'beam delay', or the RTL's name)."""
-    if module != "cube4_delay_line":
-        return f"`{module}` `{memid}`"
     nb = -(-max_dim // p)
     pow2 = lambda n: 1 << max(0, (n - 1).bit_length())  # noqa: E731 - the RTL's 1 << clog2(DEPTH)
+    if module == "cube4_sdp_ram" and words == pow2(max_dim * nb):
+        return f"`cube4_sdp_ram`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
+    if module != "cube4_delay_line":
+        return f"`{module}` `{memid}`"
     if words == pow2(max_dim * nb):
         return f"`cube4_delay_line`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
     if words == pow2(nb):

@@ -1,0 +1,62 @@
+`default_nettype none
+// =============================================================================
+// cube4_sdp_ram
+// -----------------------------------------------------------------------------
+// Purpose
+//   Simple dual-port RAM: one write port, one registered read port, one clock.
+//   It maps to block RAM (an ECP5 DP16KD, an FPGA's BRAM, an ASIC's SRAM
+//   macro) with the read register inside the macro. Used where the caller
+//   computes both addresses itself, e.g. cube4_com's base-plane buffer, whose
+//   write lands several pipeline stages after the read of the same position.
+//
+// Parameters
+//   DATA_W  word width.                     1..4096.  Default 8.
+//   DEPTH   words.                          1..2^24.  Default 16.
+//   AW      address width (derived; do not set).
+//
+// Latency
+//   Read: 1 cycle (rd_data is mem[rd_addr] of the last cycle with rd_en = 1;
+//   it holds while rd_en = 0). Write: visible to a read one cycle later. A
+//   read of the word being written in the same cycle returns the old word.
+//
+// Ports
+//   rd_en, rd_addr  in   read this cycle, address  [AW]
+//   rd_data         out  [DATA_W] any format
+//   wr_en, wr_addr, wr_data  in   write port
+//
+// Bit growth and rounding: none. No reset: the contents are data.
+// =============================================================================
+module cube4_sdp_ram #(
+    parameter integer DATA_W = 8,
+    parameter integer DEPTH  = 16,
+    parameter integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
+) (
+    input  wire              clk,
+    input  wire              rd_en,
+    input  wire [AW-1:0]     rd_addr,
+    output wire [DATA_W-1:0] rd_data,
+    input  wire              wr_en,
+    input  wire [AW-1:0]     wr_addr,
+    input  wire [DATA_W-1:0] wr_data
+);
+    generate
+        if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
+            $error("cube4_sdp_ram: DATA_W = %0d is out of range 1..4096", DATA_W);
+        end
+        if (DEPTH < 1 || DEPTH > (1 << 24)) begin : g_bad_depth
+            $error("cube4_sdp_ram: DEPTH = %0d is out of range 1..2^24", DEPTH);
+        end
+    endgenerate
+
+    reg [DATA_W-1:0] mem [0:(1 << AW)-1];
+    reg [DATA_W-1:0] rd_q;
+
+    always @(posedge clk) begin
+        if (wr_en) mem[wr_addr] <= wr_data;
+        if (rd_en) rd_q <= mem[rd_addr];
+    end
+
+    assign rd_data = rd_q;
+
+endmodule
+`default_nettype wire
