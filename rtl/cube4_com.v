@@ -10,16 +10,16 @@
 //   (numerics.md section 8).
 //
 //   Base-plane buffers: the partial result of every ray lives in the lane and
-//   slot of its latest sample. A one-slice delay line (NJ*NB beats per lane,
+//   slot of its latest sample. A one-slice buffer (NJ*NB beats per lane,
 //   the paper's "base-plane buffer for one slice of intermediate compositing
-//   results") and a one-beam delay line return, for sample (m, j, i), the
+//   results") and a one-beam buffer return, for sample (m, j, i), the
 //   ray's partial result at its previous sample (m-1, j - dyb, i - dxb): one
 //   ring hop for the k step of the skew, one for the j step, and one for the
 //   X-step, which for the lane at t = 0 comes from the previous beat (Fig. 13:
 //   results forwarded across partial beams and beams). A ray starts fresh
 //   (C = 0, T = 1) when its previous sample is outside the slice (m = 0,
 //   j - dyb < 0, i - dxb < 0). The compositing arithmetic is pipelined
-//   (S3..S6); the recurrence closes through the buffer one slice later, and a
+//   (S6..S9); the recurrence closes through the buffer one slice later, and a
 //   beat waits while the beat it depends on is still in flight.
 //
 //   Finished rays: a sample that is inside and whose next sample along the ray
@@ -35,11 +35,11 @@
 //   ACC_W     accumulator fraction bits F.      8..24.  Default 16.
 //
 // Latency
-//   7 register stages (S0 -> S1 .. S6 -> output register, below) under one
+//   10 register stages (S1 .. S9 and the output register, below) under one
 //   stall enable, then the output skid buffer. The partial results take
 //   exactly one slice (NJ*NB steps) round the base-plane buffer. Throughput
-//   is one beat per cycle when a slice has NJ*NB >= 6 beats; a smaller slice
-//   runs at NJ*NB beats per 6 cycles (the read-after-write hazard on the
+//   is one beat per cycle when a slice has NJ*NB >= 9 beats; a smaller slice
+//   runs at NJ*NB beats per 9 cycles (the read-after-write hazard on the
 //   base-plane buffer, see "pipeline" below).
 //
 // Ports
@@ -137,29 +137,33 @@ module cube4_com #(
         end
     endfunction
 
-    // ---- pipeline (docs/architecture.md, "COM pipeline") ----
+    // ---- pipeline (docs/architecture.md, "COM") ----
     //   S0  input beat: counters, template, lane positions, fresh / finished
-    //   S1  base-plane buffer read (address = the beat's slice position)
-    //   S2  select the ray's previous partial result (beam delay, ring hops)
-    //   S3  T * A (multiplier)
-    //   S4  w = round_shift(T * A, AW)
-    //   S5  w * C' (multipliers), T - w
-    //   S6  C += round_shift(w * C', 8); write the base-plane buffer; output register
+    //   S1  read the base-plane (slice) buffer at the beat's slice position
+    //   S2  slice buffer output; read the beam buffer at the beat's beam position
+    //   S3  register the slice word; beam buffer output; write it to the beam buffer
+    //   S4  select (m-1, j-dyb, i): beam or slice word, j and k ring hops
+    //   S5  the X-step hop; the previous partial result, or a fresh ray
+    //   S6  T * A (multiplier)
+    //   S7  w = round_shift(T * A, AW)
+    //   S8  w * C' (multipliers), T - w
+    //   S9  C += round_shift(w * C', 8); write the slice buffer; output register
     // Every stage moves under en (the skid's ready) and carries a valid bit.
     // A beat's slice position is read at the en-edge after its acceptance
-    // (S1 -> S2) and written at the edge where it leaves S6. The ray's previous
+    // (S1 -> S2) and written at the edge where it leaves S9. The ray's previous
     // partial result was written by the beat L = NJ*NB steps earlier at the same
-    // position, so a beat is accepted only if no beat in S1..S5 has its
-    // position (one in S6 is written at the acceptance edge, before the read).
-    // Slices of L >= 6 beats never wait; smaller ones (volumes of fewer than 6
-    // beats per slice) run at L beats per 6 cycles.
+    // position, so a beat is accepted only if no beat in S1..S8 has its
+    // position (one in S9 is written at the acceptance edge, before the read).
+    // Slices of L >= 9 beats never wait; smaller ones (volumes of fewer than 9
+    // beats per slice) run at L beats per 9 cycles.
     localparam integer SP_W  = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1;
     localparam integer TA_W  = CW + ALPHA_W;    // T * A
     localparam integer WC_W  = CW + 8;          // w * C'
 
+    localparam integer NS    = 9;               // stages S1 .. S9
     wire en;                            // the pipeline advances
-    reg  s1_v, s2_v, s3_v, s4_v, s5_v, s6_v;
-    wire hazard;                        // a beat in S1..S5 writes this beat's position
+    reg  [NS:1] v_s;                    // stage valid bits
+    wire hazard;                        // a beat in S1..S8 writes this beat's position
     assign in_ready = en && !hazard;
     wire step = in_valid && in_ready;
 
@@ -253,135 +257,164 @@ module cube4_com #(
         end
     endgenerate
 
-    // ---- the beat's fields, carried along the pipeline ----
-    // (the output fields m, by, bx, eop ride with it to S6)
-    reg [SP_W-1:0]   s1_sp, s2_sp, s3_sp, s4_sp, s5_sp, s6_sp;
-    reg              s1_sop, s2_sop, s1_lb, s2_lb;      // frame start, last beam (beam delay)
-    reg              s1_dxb, s2_dxb, s1_dyb, s2_dyb, s1_dkb, s2_dkb;
-    reg [P-1:0]      s1_fresh, s2_fresh, s1_t0, s2_t0;
-    reg [P-1:0]      s1_ins, s2_ins, s3_ins, s4_ins;
-    reg [P-1:0]      s1_fin, s2_fin, s3_fin, s4_fin, s5_fin, s6_fin;
-    reg [M_W-1:0]    s1_m, s2_m, s3_m, s4_m, s5_m, s6_m;
-    reg [BX_W-1:0]   s1_by, s2_by, s3_by, s4_by, s5_by, s6_by;
-    reg [P*BX_W-1:0] s1_bx, s2_bx, s3_bx, s4_bx, s5_bx, s6_bx;
-    reg              s1_eop, s2_eop, s3_eop, s4_eop, s5_eop, s6_eop;
-    reg [P*LUT_W-1:0] s1_rgba, s2_rgba;
-    assign hazard = (s1_v && s1_sp == pos_sp) || (s2_v && s2_sp == pos_sp) || (s3_v && s3_sp == pos_sp)
-                 || (s4_v && s4_sp == pos_sp) || (s5_v && s5_sp == pos_sp);
+    // ---- the beat's fields, carried along the pipeline (index = stage) ----
+    reg [SP_W-1:0]    sp_s   [1:NS];    // slice position: read at S1, written at the end of S9
+    reg [PB_W-1:0]    pb_s   [1:3];     // beam position: read at S2, written at the end of S3
+    reg [P-1:0]       ins_s  [1:7];
+    reg [P-1:0]       fin_s  [1:NS];
+    reg [M_W-1:0]     m_s    [1:NS];
+    reg [BX_W-1:0]    by_s   [1:NS];
+    reg [P*BX_W-1:0]  bx_s   [1:NS];
+    reg [NS:1]        eop_s;
+    reg [5:1]         dxb_s;
+    reg [4:1]         dyb_s, dkb_s;
+    reg [P-1:0]       fresh_s [1:5];
+    reg [P-1:0]       t0_s    [1:5];
+    reg [P*LUT_W-1:0] rgba_s  [1:5];
+    integer k;
     always @(posedge clk) begin
         if (rst) begin
-            {s1_v, s2_v, s3_v, s4_v, s5_v, s6_v} <= 6'b0;
+            v_s <= '0;
         end else if (en) begin
-            {s1_v, s2_v, s3_v, s4_v, s5_v, s6_v} <= {step, s1_v, s2_v, s3_v, s4_v, s5_v};
+            v_s <= {v_s[NS-1:1], step};
         end
     end
     always @(posedge clk) begin
         if (en) begin
-            {s1_sp, s2_sp, s3_sp, s4_sp, s5_sp, s6_sp} <= {pos_sp, s1_sp, s2_sp, s3_sp, s4_sp, s5_sp};
-            {s1_sop, s2_sop, s1_lb, s2_lb}             <= {sop, s1_sop, last_beam, s1_lb};
-            {s1_dxb, s2_dxb, s1_dyb, s2_dyb}           <= {dxb, s1_dxb, dyb, s1_dyb};
-            {s1_dkb, s2_dkb}                           <= {dk_b, s1_dkb};
-            {s1_fresh, s2_fresh, s1_t0, s2_t0}         <= {fresh_d, s1_fresh, t0_d, s1_t0};
-            {s1_ins, s2_ins, s3_ins, s4_ins}           <= {ins_d, s1_ins, s2_ins, s3_ins};
-            {s1_fin, s2_fin, s3_fin, s4_fin, s5_fin, s6_fin} <= {fin_d, s1_fin, s2_fin, s3_fin, s4_fin, s5_fin};
-            {s1_m, s2_m, s3_m, s4_m, s5_m, s6_m}       <= {in_m, s1_m, s2_m, s3_m, s4_m, s5_m};
-            {s1_by, s2_by, s3_by, s4_by, s5_by, s6_by} <= {by_d, s1_by, s2_by, s3_by, s4_by, s5_by};
-            {s1_bx, s2_bx, s3_bx, s4_bx, s5_bx, s6_bx} <= {bx_d, s1_bx, s2_bx, s3_bx, s4_bx, s5_bx};
-            {s1_eop, s2_eop, s3_eop, s4_eop, s5_eop, s6_eop} <= {eop, s1_eop, s2_eop, s3_eop, s4_eop, s5_eop};
-            {s1_rgba, s2_rgba}                         <= {in_rgba, s1_rgba};
+            sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[1] <= fin_d;
+            m_s[1]  <= in_m;     by_s[1] <= by_d;    bx_s[1]  <= bx_d;   fresh_s[1] <= fresh_d;
+            t0_s[1] <= t0_d;     rgba_s[1] <= in_rgba;
+            eop_s <= {eop_s[NS-1:1], eop};
+            dxb_s <= {dxb_s[4:1], dxb};
+            dyb_s <= {dyb_s[3:1], dyb};
+            dkb_s <= {dkb_s[3:1], dk_b};
+            for (k = 2; k <= NS; k = k + 1) begin
+                sp_s[k] <= sp_s[k-1];  fin_s[k] <= fin_s[k-1];  m_s[k] <= m_s[k-1];
+                by_s[k] <= by_s[k-1];  bx_s[k]  <= bx_s[k-1];
+            end
+            for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
+            for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
+            for (k = 2; k <= 5; k = k + 1) begin
+                fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];  rgba_s[k] <= rgba_s[k-1];
+            end
         end
     end
+    assign hazard = (v_s[1] && sp_s[1] == pos_sp) || (v_s[2] && sp_s[2] == pos_sp)
+                 || (v_s[3] && sp_s[3] == pos_sp) || (v_s[4] && sp_s[4] == pos_sp)
+                 || (v_s[5] && sp_s[5] == pos_sp) || (v_s[6] && sp_s[6] == pos_sp)
+                 || (v_s[7] && sp_s[7] == pos_sp) || (v_s[8] && sp_s[8] == pos_sp);
 
-    // ==== S1: base-plane buffers: partial results of slice m-1 ====
-    wire [PA-1:0] acc_new;              // written at the end of S6: results after slice m
-    wire [PA-1:0] a1, a2;               // (m-1, j), (m-1, j-1) in their own skews (S2)
+    // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
+    // Both RAM outputs go straight into a register (a block RAM's clock-to-out
+    // is most of a cycle on an FPGA).
+    wire [PA-1:0] acc_new;              // written at the end of S9: results after slice m
+    wire [PA-1:0] a1_ram, a2_ram;       // S2, S3: RAM outputs
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX)) u_bp_slice (
-        .clk(clk), .rd_en(en), .rd_addr(s1_sp), .rd_data(a1),
-        .wr_en(en && s6_v), .wr_addr(s6_sp), .wr_data(acc_new));
+        .clk(clk), .rd_en(en), .rd_addr(sp_s[1]), .rd_data(a1_ram),
+        .wr_en(en && v_s[NS]), .wr_addr(sp_s[NS]), .wr_data(acc_new));
+    reg [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;
+    // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
+    // steps earlier, at the same beam position): read at the end of S2, written
+    // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
+    // previous beat's a1 (prev_a1_q).
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX)) u_bp_beam (
+        .clk(clk), .rd_en(en), .rd_addr(pb_s[2]), .rd_data(a2_ram),
+        .wr_en(en && v_s[3]), .wr_addr(pb_s[3]), .wr_data(s3_a1));
+    reg nb1_q;                          // NB = 1
+    always @(posedge clk) begin
+        nb1_q <= (cfg_nb == NB_W'(1));
+        if (en) begin
+            s3_a1 <= a1_ram;
+            s4_a1 <= s3_a1;
+            s4_a2 <= a2_ram;
+        end
+        if (en && v_s[4]) prev_a1_q <= s4_a1;
+    end
 
-    // ==== S2: the ray's previous partial result ====
-    wire step2 = en && s2_v;
-    cube4_delay_line #(.DATA_W(PA), .DEPTH(NBMAX)) u_bp_beam (
-        .clk(clk), .rst(rst), .clear(s2_sop && step2), .step(step2), .last(s2_lb),
-        .din(a1), .dout(a2));
-
-    wire [PA-1:0] a1_k, a2_j, a2_jk, back, back_sh, prevb_sh;
+    // ==== S4: (m-1, j-dyb, i) in this beat's skew ====
+    wire [PA-1:0] a1 = s4_a1;
+    wire [PA-1:0] a2 = nb1_q ? prev_a1_q : s4_a2;
+    wire [PA-1:0] a1_k, a2_j, a2_jk, back;
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a1k  (.down(cfg_flip_k), .x(a1),   .y(a1_k));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2j  (.down(cfg_flip_j), .x(a2),   .y(a2_j));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2jk (.down(cfg_flip_k), .x(a2_j), .y(a2_jk));
-    assign back = s2_dyb ? (s2_dkb ? a2_jk : a2_j) : (s2_dkb ? a1_k : a1);   // (m-1, j-dyb, i)
-
-    reg [PA-1:0] prevb_q;   // the previous beat's "back" (same row: only used at t = 0)
+    assign back = dyb_s[4] ? (dkb_s[4] ? a2_jk : a2_j) : (dkb_s[4] ? a1_k : a1);
+    reg [PA-1:0] s5_back, s5_prevb, lastb_q;   // this beat's and the previous beat's "back"
     always @(posedge clk) begin
-        if (step2) prevb_q <= back;
+        if (en) s5_back <= back;
+        if (en && v_s[4]) {s5_prevb, lastb_q} <= {lastb_q, back};
     end
-    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(back),    .y(back_sh));
-    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(prevb_q), .y(prevb_sh));
 
-    // ==== S3 .. S6: compositing, per lane ====
+    // ==== S5: the X-step hop (the lane at t = 0 takes the previous beat) ====
+    wire [PA-1:0] back_sh, prevb_sh;
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(s5_back),  .y(back_sh));
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(s5_prevb), .y(prevb_sh));
+
+    // ==== S6 .. S9: compositing, per lane ====
     wire [P*AC_W-1:0] pix_d;
+    wire [P*LUT_W-1:0] rgba5 = rgba_s[5];
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // S2: previous partial result {R, G, B, T}, or a fresh ray
-            wire [AC_W-1:0] prev = s2_dxb
-                ? (s2_t0[q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
-                : back[q*AC_W +: AC_W];
-            wire [AC_W-1:0] acc_in = s2_fresh[q] ? {{(3*CW){1'b0}}, ONE} : prev;
-            reg  [AC_W-1:0] s3_acc, s4_acc, s5_acc;          // {C_R, C_G, C_B, T}
-            reg  [23:0]     s3_c, s4_c, s5_c;                 // the sample's {R', G', B'}
-            reg  [ALPHA_W-1:0] s3_a;                          // the sample's A
+            // S5: previous partial result {R, G, B, T}, or a fresh ray
+            wire [AC_W-1:0] prev = dxb_s[5]
+                ? (t0_s[5][q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
+                : s5_back[q*AC_W +: AC_W];
+            wire [AC_W-1:0] acc_in = fresh_s[5][q] ? {{(3*CW){1'b0}}, ONE} : prev;
+            reg  [AC_W-1:0] s6_acc, s7_acc, s8_acc;          // {C_R, C_G, C_B, T}
+            reg  [23:0]     s6_c, s7_c, s8_c;                 // the sample's {R', G', B'}
+            reg  [ALPHA_W-1:0] s6_a;                          // the sample's A
             always @(posedge clk) begin
                 if (en) begin
-                    s3_acc <= acc_in;
-                    s3_c   <= s2_rgba[q*LUT_W + ALPHA_W +: 24];
-                    s3_a   <= s2_rgba[q*LUT_W +: ALPHA_W];
-                    {s4_acc, s5_acc} <= {s3_acc, s4_acc};
-                    {s4_c, s5_c}     <= {s3_c, s4_c};
+                    s6_acc <= acc_in;
+                    s6_c   <= rgba5[q*LUT_W + ALPHA_W +: 24];
+                    s6_a   <= rgba5[q*LUT_W +: ALPHA_W];
+                    {s7_acc, s8_acc} <= {s6_acc, s7_acc};
+                    {s7_c, s8_c}     <= {s6_c, s7_c};
                 end
             end
-            // S3: T * A
-            reg [TA_W-1:0] s4_ta;
+            // S6: T * A
+            reg [TA_W-1:0] s7_ta;
             always @(posedge clk) begin
-                if (en) s4_ta <= {{ALPHA_W{1'b0}}, s3_acc[0 +: CW]} * {{CW{1'b0}}, s3_a};
+                if (en) s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
             end
-            // S4: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
+            // S7: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
             wire signed [CW+1:0] w_rs;
             cube4_round_shift #(.IN_W(TA_W + 1), .SHIFT(ALPHA_W)) u_w (
-                .x($signed({1'b0, s4_ta})), .y(w_rs));
-            reg [CW-1:0] s5_w;
+                .x($signed({1'b0, s7_ta})), .y(w_rs));
+            reg [CW-1:0] s8_w;
             always @(posedge clk) begin
-                if (en) s5_w <= s4_ins[q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                if (en) s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
             end
-            // S5: w * C' per channel, T - w
-            reg [3*WC_W-1:0] s6_wc;
-            reg [3*CW-1:0]   s6_cin;
-            reg [CW-1:0]     s6_t;
+            // S8: w * C' per channel, T - w
+            reg [3*WC_W-1:0] s9_wc;
+            reg [3*CW-1:0]   s9_cin;
+            reg [CW-1:0]     s9_t;
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
                 always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
-                    if (en) s6_wc[ch*WC_W +: WC_W] <= {8'd0, s5_w} * {{CW{1'b0}}, s5_c[8 * ch +: 8]};
+                    if (en) s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
                 end
             end
             always @(posedge clk) begin
                 if (en) begin
-                    s6_cin <= s5_acc[CW +: 3*CW];
-                    s6_t   <= s5_acc[0 +: CW] - s5_w;
+                    s9_cin <= s8_acc[CW +: 3*CW];
+                    s9_t   <= s8_acc[0 +: CW] - s8_w;
                 end
             end
-            // S6: C += round_shift(w * C', 8)
+            // S9: C += round_shift(w * C', 8)
             wire [3*CW-1:0] c_out;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
                 wire signed [CW+1:0] add;
                 cube4_round_shift #(.IN_W(WC_W + 1), .SHIFT(8)) u_c (
-                    .x($signed({1'b0, s6_wc[ch*WC_W +: WC_W]})), .y(add));
-                assign c_out[ch*CW +: CW] = s6_cin[ch*CW +: CW] + add[CW-1:0];
+                    .x($signed({1'b0, s9_wc[ch*WC_W +: WC_W]})), .y(add));
+                assign c_out[ch*CW +: CW] = s9_cin[ch*CW +: CW] + add[CW-1:0];
             end
-            assign acc_new[q*AC_W +: AC_W] = {c_out, s6_t};
-            assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s6_t};   // {R, G, B, A}
+            assign acc_new[q*AC_W +: AC_W] = {c_out, s9_t};
+            assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s9_t};   // {R, G, B, A}
         end
     endgenerate
 
-    // ---- output register (end of S6) and skid ----
+    // ---- output register (end of S9) and skid ----
     reg               o_v;
     reg [P-1:0]       o_mask;
     reg [M_W-1:0]     o_m;
@@ -391,16 +424,16 @@ module cube4_com #(
     reg               o_eop;
     always @(posedge clk) begin
         if (rst) o_v <= 1'b0;
-        else if (en) o_v <= s6_v && ((s6_fin != '0) || s6_eop);
+        else if (en) o_v <= v_s[NS] && ((fin_s[NS] != '0) || eop_s[NS]);
     end
     always @(posedge clk) begin
         if (en) begin
-            o_mask <= s6_fin;
-            o_m    <= s6_m;
-            o_by   <= s6_by;
-            o_bx   <= s6_bx;
+            o_mask <= fin_s[NS];
+            o_m    <= m_s[NS];
+            o_by   <= by_s[NS];
+            o_bx   <= bx_s[NS];
             o_rgba <= pix_d;
-            o_eop  <= s6_eop;
+            o_eop  <= eop_s[NS];
         end
     end
 

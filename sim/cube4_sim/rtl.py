@@ -21,13 +21,13 @@ from cube4.config import Cube4Config
 from cube4.memory import pack_volume, top_regs, words_per_bank
 from cube4.view import Traversal
 
+from .cycles import frame_cycles, slow_slice_factor
+
 RTL_SOURCES = [
     "cube4_round_shift.v", "cube4_lerp.v", "cube4_skid.v", "cube4_ring_shift.v", "cube4_beam_ext.v",
     "cube4_voxel_mem.v", "cube4_cfb.v", "cube4_tri.v", "cube4_frontend.v", "cube4_delay_line.v", "cube4_sdp_ram.v",
     "cube4_gra.v", "cube4_sha.v", "cube4_com.v", "cube4_stream_hold.v", "cube4_top.v",
 ]
-#: cube4_com runs a slice of L = NJ*NB beats at full rate only if L >= this (its pipeline depth).
-COM_MIN_SLICE = 6
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
 
 
@@ -105,10 +105,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
             write_tables(fr.lut, fr.rmap, cfg, lut_p, rmap_p)
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
-            nb = -(-ni // cfg.pipelines)
-            ideal = (M * nj + 1) * nb + 1 + (nj + 1) * nb + 1 + 100
-            # COM takes L = NJ*NB beats per COM_MIN_SLICE cycles when a slice is shorter (cube4_com)
-            ideal *= max(1.0, COM_MIN_SLICE / (nj * nb))
+            ideal = (frame_cycles(M, nj, ni, cfg.pipelines) + 100) * slow_slice_factor(nj, ni, cfg.pipelines)
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines), "lut": str(lut_p), "rmap": str(rmap_p),

@@ -1,0 +1,29 @@
+"""Cycles per frame of cube4_top, the one formula the reports, the RTL engine and the docs share.
+
+    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 1 + FILL_CYCLES        (docs/architecture.md, "Cycles per frame")
+
+M sample slices, NJ rows, NB = ⌈NI/P⌉ partial beams per row. It holds while a slice has at least
+``COM_MIN_SLICE`` beats (NJ·NB); a smaller slice makes COM wait for its own results
+(rtl/cube4_com.v: a beat waits while the beat that writes its base-plane position is in flight).
+"""
+from __future__ import annotations
+
+#: Pipeline fill of cube4_top: cycles beyond the stream terms, measured at 128³, P = 8
+#: (``cube4 render sphere:128 --engine rtl --stats``; tests/test_cycles.py checks it against the RTL).
+FILL_CYCLES = 36
+
+#: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
+#: slice takes L beats per COM_MIN_SLICE cycles.
+COM_MIN_SLICE = 9
+
+
+def frame_cycles(m: int, nj: int, ni: int, p: int) -> int:
+    """Cycles of one frame without stalls, for M sample slices of NJ rows of NI samples on P pipelines."""
+    nb = -(-ni // p)
+    return (m * nj + 1) * nb + 1 + nj * nb + nb + 1 + FILL_CYCLES
+
+
+def slow_slice_factor(nj: int, ni: int, p: int) -> float:
+    """How much slower than frame_cycles a frame with short slices (NJ·NB < COM_MIN_SLICE) runs, at most."""
+    nb = -(-ni // p)
+    return max(1.0, COM_MIN_SLICE / (nj * nb))
