@@ -4,12 +4,14 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   A run-time length delay line in a RAM, counted in steps (accepted beats),
-//   not clocks: dout during step b is din of step b - L, where L is the period
-//   of the caller's position counter (last = 1 on the step at position L-1).
-//   Cube-4 uses it for beam delays (L = NB partial beams) and plane delays
-//   (L = NJ * NB beats, one slice): the plane buffers of the paper's Fig. 3.
-//   dout is a register, read one step ahead (read address = next position);
-//   L = 1 is bypassed. Between steps everything holds.
+//   not clocks: dout during step b is din of step b - L, where L = len is the
+//   period of the caller's position counter (last = 1 on the step at position
+//   L-1). Cube-4 uses it for beam delays (L = NB partial beams) and plane
+//   delays (L = NJ * NB beats, one slice): the plane buffers of the paper's
+//   Fig. 3. dout is a register outside the RAM: the RAM is read two steps
+//   ahead at a registered address, so neither the RAM's address nor its output
+//   has logic in series (a block RAM's clock-to-out is most of a cycle on an
+//   FPGA). L = 1 and L = 2 are bypassed. Between steps everything holds.
 //
 // Parameters
 //   DATA_W  word width.                  1..4096.
@@ -23,6 +25,7 @@
 //   clear  in   this step is position 0 (frame start)
 //   step   in   a beat is accepted this cycle (din valid, dout consumed)
 //   last   in   this step's position is L - 1 (the caller's counter)
+//   len    in   [AW+1]  L, 1..DEPTH, constant from a clear to the next
 //   din    in   [DATA_W]  any format
 //   dout   out  [DATA_W]  din delayed by L steps
 //
@@ -38,6 +41,7 @@ module cube4_delay_line #(
     input  wire              clear,
     input  wire              step,
     input  wire              last,
+    input  wire [AW:0]       len,
     input  wire [DATA_W-1:0] din,
     output wire [DATA_W-1:0] dout
 );
@@ -51,24 +55,46 @@ module cube4_delay_line #(
     endgenerate
 
     reg [DATA_W-1:0] mem [0:(1 << AW)-1];
-    reg [DATA_W-1:0] rd_q;
-    reg [AW-1:0]     ptr_q;
+    reg [DATA_W-1:0] rd_q;    // RAM read register: the word for the step after next
+    reg [DATA_W-1:0] out_q;   // dout
+    reg [DATA_W-1:0] din_q;   // din of the previous step (L = 2)
+    reg [AW-1:0]     ptr_q;   // position of the next step (without a clear)
+    reg [AW-1:0]     ra_q;    // position two steps after the next one: the read address
+    reg              l1_q, l2_q;
 
     wire [AW-1:0] pos = clear ? {AW{1'b0}} : ptr_q;     // position of this step
     wire [AW-1:0] nxt = last ? {AW{1'b0}} : pos + 1'b1; // position of the next step
+    // (x + 1) mod L, and 3 mod L (the read address after a clear, L >= 3)
+    wire [AW-1:0] ra_inc = ({1'b0, ra_q} + 1'b1 == len) ? {AW{1'b0}} : ra_q + 1'b1;
+    wire [AW-1:0] three  = (len == (AW + 1)'(3)) ? {AW{1'b0}} : AW'(3);   // (AW = 1: L <= 2, unused)
 
     always @(posedge clk) begin
-        if (rst) ptr_q <= {AW{1'b0}};
-        else if (step) ptr_q <= nxt;
+        l1_q <= (len == (AW + 1)'(1));
+        l2_q <= (len == (AW + 1)'(2));
     end
+    always @(posedge clk) begin
+        if (rst) begin
+            ptr_q <= {AW{1'b0}};
+            ra_q  <= {AW{1'b0}};
+        end else if (step) begin
+            ptr_q <= nxt;
+            ra_q  <= clear ? three : ra_inc;
+        end
+    end
+    // Step b writes position pos(b) and reads position pos(b + 2) (= ra_q; a
+    // word written at step b + 2 - L <= b - 1 when L >= 3); dout for step b + 1
+    // is the word read at step b - 1. Right after a clear ra_q is off for two
+    // steps; those outputs fall in the first L steps, which the caller ignores.
     always @(posedge clk) begin
         if (step) begin
             mem[pos] <= din;
-            rd_q     <= (nxt == pos) ? din : mem[nxt];   // L = 1: the word just written
+            rd_q     <= mem[ra_q];
+            din_q    <= din;
+            out_q    <= l1_q ? din : (l2_q ? din_q : rd_q);
         end
     end
 
-    assign dout = rd_q;
+    assign dout = out_q;
 
 endmodule
 `default_nettype wire

@@ -189,23 +189,31 @@ module cube4_gra #(
     wire [PV-1:0]        b1, p1, c_d, p1b2, p2b1, p2b2;
     wire [META_W-1:0]    p1_meta, c_meta;
 
+    // period of each delay line: NB (beam) and NJ*NB (plane), constant in a frame
+    localparam integer BL_W = ((NBMAX > 1) ? $clog2(NBMAX) : 1) + 1;
+    localparam integer PL_W = ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1) + 1;
+    wire [BL_W-1:0] beam_len = BL_W'(cfg_nb);
+    reg  [PL_W-1:0] plane_len;
+    always @(posedge clk) begin
+        plane_len <= PL_W'(PL_W'(cfg_nj) * PL_W'(cfg_nb));
+    end
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_x_b1 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
         .din(x_data), .dout(b1));
     cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(MAX_DIM * NBMAX)) u_x_p1 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice),
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice), .len(plane_len),
         .din({x_meta, x_data}), .dout({p1_meta, p1}));
     cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(NBMAX)) u_p1_c (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
         .din({p1_meta, p1}), .dout({c_meta, c_d}));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
         .din(c_d), .dout(p1b2));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(MAX_DIM * NBMAX)) u_c_p2b1 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice),
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice), .len(plane_len),
         .din(c_d), .dout(p2b1));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_p2b1_p2b2 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam),
+        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
         .din(p2b1), .dout(p2b2));
 
     // fields of the incoming centre beat c' (becomes c after this step)

@@ -9,8 +9,9 @@ M sample slices, NJ rows, NB = ⌈NI/P⌉ partial beams per row. It holds while 
 from __future__ import annotations
 
 #: Pipeline fill of cube4_top: cycles beyond the stream terms, measured at 128³, P = 8
-#: (``cube4 render sphere:128 --engine rtl --stats``; tests/test_cycles.py checks it against the RTL).
-FILL_CYCLES = 36
+#: (``cube4 render sphere:128 --engine rtl --stats``); tb/cube4_top's phantom tests check the formula
+#: against the RTL for P = 1, 4, 5, 8.
+FILL_CYCLES = 40
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.

@@ -31,7 +31,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import gates
+from . import cycles, gates
+from .cycles import FILL_CYCLES
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError,
                     addr_bits, check_max_dim, chparam_args, cli_main, fmt_int, git_describe, last_error,
                     md_table, parse_int_list, progress, read_verilog_cmd, rel, rtl_digest, run_tool,
@@ -53,7 +54,6 @@ DEFAULT_SEED = 1
 DEFAULT_ROUTER = "router2"          # router1 gave 7 % more Fmax at P = 8 but took 2.6x as long (docs/reports.md)
 DEFAULT_TIMEOUT = 3600.0
 GOAL_P, GOAL_MHZ = 8, 125.0
-FILL_CYCLES = 23                    # pipeline fill of cube4_top, measured at 128^3, P = 8
 FRAME_SIZES = (128, 256, 512)
 BUDGET_DIMS = (128, 256, 512)
 
@@ -98,8 +98,7 @@ class BuildConfig:
 # ------------------------------------------------------------------ frame rates
 def frame_cycles(n: int, p: int) -> int:
     """Cycles of one axis-aligned n^3 frame (docs/architecture.md, 'Cycles per frame')."""
-    m, nj, nb = n, n, -(-n // p)
-    return (m * nj + 1) * nb + 1 + nj * nb + nb + 1 + FILL_CYCLES
+    return cycles.frame_cycles(n, n, n, p)
 
 
 def rates(fmax_mhz: float, p: int) -> dict:

@@ -48,14 +48,13 @@ from cube4.scene import Scene, load_scene
 from cube4.view import Traversal
 from cube4.volumes import load_volume
 
+from .cycles import frame_cycles
+
 REPO_ROOT = Path(__file__).resolve().parents[2]
 REPORTS_BUILD = REPO_ROOT / "build" / "reports"
 DEFAULT_OUT = REPO_ROOT / "reports"
 FPGA_JSON = REPORTS_BUILD / "fpga.json"
 STEM = "error_vs_runtime"
-
-#: Pipeline fill of cube4_top (docs/architecture.md, "Cycles per frame"; measured at 128³, P = 8).
-FILL_CYCLES = 23
 
 #: (volume, scene) pairs. 64³ (and 41³, same build size class) keeps the RTL runs short.
 CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"), ("head:64", "head"), ("ml:41", "ml"))
@@ -154,11 +153,9 @@ def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Varia
 
 
 def formula_cycles(trav: Traversal, pipelines: int) -> int:
-    """Cycles per frame without stalls (docs/architecture.md):
+    """Cycles per frame without stalls (docs/architecture.md; cube4_sim.cycles):
     (M·NJ + 1)·NB + 1 + NJ·NB + NB + 1 + fill."""
-    nb = -(-trav.ni // pipelines)
-    m, nj = trav.num_sample_slices, trav.nj
-    return (m * nj + 1) * nb + 1 + nj * nb + nb + 1 + FILL_CYCLES
+    return frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, pipelines)
 
 
 # ------------------------------------------------------------------------------- Fmax

@@ -20,6 +20,7 @@ from cube4.config import Cube4Config
 from cube4.view import make_traversal
 from cube4.volumes import load_volume
 from cube4_sim.golden_check import assert_frame_matches_golden
+from cube4_sim.cycles import frame_cycles
 from cube4_sim.rtl import FrameJob, render_frames
 
 VIEWS = [
@@ -73,9 +74,10 @@ def test_phantoms(name, p):
     lut, rmap = host_tables(scene, cfg, trav)
     res = render_frames(vol, [FrameJob(trav, lut, rmap)], cfg)[0]
     check(vol, trav, cfg, lut, rmap, res, name)
-    nb = -(-trav.ni // p)
     ideal = nx * ny * nz / p
     print(f"{name} P={p}: {res['cycles']} cycles, ideal {ideal:.0f}, efficiency {ideal / res['cycles']:.4f}")
+    # the cycles formula of docs/architecture.md (and of the reports), exactly, for an unstalled frame
+    assert res["cycles"] == frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, p), res["cycles"]
 
 
 def test_cli_rtl_baseplane_equals_golden(tmp_path):
