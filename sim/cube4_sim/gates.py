@@ -201,6 +201,21 @@ def memories_turned_into_gates(log: Path) -> list[str]:
     return sorted(set(hits))
 
 
+def group_mem2reg(lines: list[str]) -> list[str]:
+    """'Replacing memory' warnings grouped by source line, per-lane copies counted once with their number."""
+    groups: Counter = Counter()
+    other = []
+    for ln in lines:
+        m = re.search(r"Replacing memory \\(\S+) with list of registers\. See (\S+):(\d+)", ln)
+        if not m:
+            other.append(f"`{ln}`")
+            continue
+        name = re.sub(r"^(g_\w+\[\d+\]\.)+", "", m.group(1))
+        groups[(Path(m.group(2)).name, int(m.group(3)), name)] += 1
+    out = [f"`{name}` ({f}:{line}){f', {n} copies' if n > 1 else ''}" for (f, line, name), n in sorted(groups.items())]
+    return out + other
+
+
 def attribute(stat: dict[str, Counter], mems: dict[str, list[Memory]]) -> dict[str, UnitTotals]:
     """Walk the instance tree from the top; every instance's own cells go to its unit."""
     totals = {u: UnitTotals() for u in UNITS}
@@ -292,6 +307,8 @@ def memory_role(module: str, memid: str, words: int, p: int, max_dim: int) -> st
     pow2 = lambda n: 1 << max(0, (n - 1).bit_length())  # noqa: E731 - the RTL's 1 << clog2(DEPTH)
     if module == "cube4_sdp_ram" and words == pow2(max_dim * nb):
         return f"`cube4_sdp_ram`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
+    if module == "cube4_sdp_ram" and words == pow2(nb):
+        return f"`cube4_sdp_ram`: one beam (NB = {nb} beats)"
     if module != "cube4_delay_line":
         return f"`{module}` `{memid}`"
     if words == pow2(max_dim * nb):
@@ -350,8 +367,10 @@ def render_markdown(results: list[dict], meta: dict) -> str:
                 f"Cell mix (whole design): {mix_line(res)}.", "",
                 "Memories:", "", memory_table(res), ""]
         if res["memories_as_gates"]:
-            out += ["**Memories that Yosys turned into registers (counted as gates):**", ""]
-            out += [f"- `{ln}`" for ln in res["memories_as_gates"]] + [""]
+            out += ["Arrays that Yosys turned into registers (counted as gates). Pipeline stages written as "
+                    "arrays indexed by constants (`x_s[k] <= x_s[k-1]`) belong here: every element is a "
+                    "register anyway. A RAM (an array indexed by a signal) should never be listed.", ""]
+            out += [f"- {ln}" for ln in group_mem2reg(res["memories_as_gates"])] + [""]
         else:
             out += ["No memory was turned into registers (no mem2reg in the log).", ""]
     return "\n".join(out)
