@@ -19,7 +19,8 @@
 //
 // Latency
 //   Exactly L steps (step b sees din(b - L)); 0 clock cycles of extra delay.
-//   The first L steps after clear see stale words, which the caller ignores.
+//   The first L steps after clear see stale words (for L >= 3 the second and
+//   third are zero words), which the caller ignores.
 //
 // Ports
 //   clear  in   this step is position 0 (frame start)
@@ -61,6 +62,7 @@ module cube4_delay_line #(
     reg [AW-1:0]     ptr_q;   // position of the next step (without a clear)
     reg [AW-1:0]     ra_q;    // position two steps after the next one: the read address
     reg              l1_q, l2_q;
+    reg              clr1_q;  // the last step was a clear
 
     wire [AW-1:0] pos = clear ? {AW{1'b0}} : ptr_q;     // position of this step
     wire [AW-1:0] nxt = last ? {AW{1'b0}} : pos + 1'b1; // position of the next step
@@ -84,13 +86,19 @@ module cube4_delay_line #(
     // Step b writes position pos(b) and reads position pos(b + 2) (= ra_q; a
     // word written at step b + 2 - L <= b - 1 when L >= 3); dout for step b + 1
     // is the word read at step b - 1. Right after a clear ra_q is off for two
-    // steps; those outputs fall in the first L steps, which the caller ignores.
+    // steps, so the two outputs after a clear are zero words instead (they
+    // fall in the first L steps, which the caller ignores; a zero word carries
+    // no stale frame-start flag).
+    always @(posedge clk) begin
+        if (rst) clr1_q <= 1'b0;
+        else if (step) clr1_q <= clear;
+    end
     always @(posedge clk) begin
         if (step) begin
             mem[pos] <= din;
             rd_q     <= mem[ra_q];
             din_q    <= din;
-            out_q    <= l1_q ? din : (l2_q ? din_q : rd_q);
+            out_q    <= l1_q ? din : (l2_q ? din_q : ((clear || clr1_q) ? {DATA_W{1'b0}} : rd_q));
         end
     end
 
