@@ -299,10 +299,13 @@ module cube4_com #(
             end
         end
     end
-    assign hazard = (v_s[1] && sp_s[1] == pos_sp) || (v_s[2] && sp_s[2] == pos_sp)
-                 || (v_s[3] && sp_s[3] == pos_sp) || (v_s[4] && sp_s[4] == pos_sp)
-                 || (v_s[5] && sp_s[5] == pos_sp) || (v_s[6] && sp_s[6] == pos_sp)
-                 || (v_s[7] && sp_s[7] == pos_sp) || (v_s[8] && sp_s[8] == pos_sp);
+    reg hazard_c;
+    integer kh;
+    always @* begin
+        hazard_c = 1'b0;
+        for (kh = 1; kh < NS; kh = kh + 1) hazard_c = hazard_c || (v_s[kh] && sp_s[kh] == pos_sp);
+    end
+    assign hazard = hazard_c;
 
     // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
     // Both RAM outputs go straight into a register (a block RAM's clock-to-out

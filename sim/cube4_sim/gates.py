@@ -305,17 +305,13 @@ def memory_role(module: str, memid: str, words: int, p: int, max_dim: int) -> st
     """What a memory is, for the table ('plane delay', 'beam delay', or the RTL's name)."""
     nb = -(-max_dim // p)
     pow2 = lambda n: 1 << max(0, (n - 1).bit_length())  # noqa: E731 - the RTL's 1 << clog2(DEPTH)
-    if module == "cube4_sdp_ram" and words == pow2(max_dim * nb):
-        return f"`cube4_sdp_ram`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
-    if module == "cube4_sdp_ram" and words == pow2(nb):
-        return f"`cube4_sdp_ram`: one beam (NB = {nb} beats)"
-    if module != "cube4_delay_line":
+    if module not in ("cube4_delay_line", "cube4_sdp_ram"):
         return f"`{module}` `{memid}`"
     if words == pow2(max_dim * nb):
-        return f"`cube4_delay_line`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
+        return f"`{module}`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
     if words == pow2(nb):
-        return f"`cube4_delay_line`: one beam (NB = {nb} beats)"
-    return f"`cube4_delay_line` `{memid}`"
+        return f"`{module}`: one beam (NB = {nb} beats)"
+    return f"`{module}` `{memid}`"
 
 
 def memory_table(res: dict) -> str:
