@@ -29,7 +29,8 @@
 //     t = (q - skew) mod P              (i not flipped)
 //     t = (I_R1 + skew - q) mod P       (i flipped), skew = (c_j + c_k) mod P
 //   and reads address  A_j(c_j) + A_k(c_k) + I_A0 +/- (pb*I_PB + t*I_LIN + [t > I_RT])
-//   with the per-axis terms kept incrementally (golden/cube4/memory.py).
+//   with the per-axis terms kept incrementally (golden/cube4/memory.py); the
+//   partial-beam term is kept with its sign and I_A0 folded in (pbx_q).
 //
 // Parameters
 //   P            pipelines = memory banks.                 1..64.  Default 8.
@@ -39,16 +40,21 @@
 //   MAX_SS_LOG2  log2 of the largest supersampling S.       0..3.   Default 0.
 //
 // Latency
-//   One register stage: a beat leaves (req_valid) the cycle after the state
-//   that describes it; the state advances only when the output register is
-//   free or accepted (req_ready). req_valid never depends on req_ready.
+//   Three register stages: a beat leaves (req_valid) three cycles after the
+//   state that describes it. s1 registers the beat's fields, each lane's
+//   position t and A_j + A_k; s2 adds the partial-beam term (base address);
+//   the output register adds the lane's +/-(t*I_LIN + [t > I_RT]) from a
+//   table of P entries (lin_tab_q, recomputed every cycle from cfg_i_lin and
+//   cfg_i_rt, which are stable during a frame). All three stages and the
+//   state move under one enable (the output register free or accepted by
+//   req_ready); req_valid never depends on req_ready.
 //
 // Ports (formats as in docs/numerics.md; all cfg_* are view/volume registers
 // written by the host, see golden/cube4/memory.py frontend_regs; they must be
 // stable from start until the frame is done)
 //   clk, rst         clock, synchronous active-high reset (control state only)
 //   start            in   pulse: start a frame (ignored while busy)
-//   busy             out  a frame is being issued
+//   busy             out  a frame is being issued (state or s1, s2 hold a beat)
 //   cfg_ni/nj/nk     in   [DIM_W]   traversal-frame dims (1..MAX_DIM)
 //   cfg_nb           in   [NB_W]    partial beams per beam, ceil(NI / P)
 //   cfg_flip_i/j/k   in   1 bit     axis traversed backwards
@@ -213,7 +219,7 @@ module cube4_cfb #(
     reg [PB_W-1:0]     pb_q;       // partial beam
     reg [SB_W-1:0]     sb_q;       // j * NB + pb
     reg [IW-1:0]       pbp_q;      // pb * P
-    reg [ADDR_W-1:0]   pba_q;      // pb * I_PB
+    reg [ADDR_W-1:0]   pbx_q;      // I_A0 - pb * I_PB (i flipped), pb * I_PB (not)
     reg [LANE_W-1:0]   rj_q;       // c_j mod P
     reg [ADDR_W-1:0]   aj_q;       // A_j(c_j)
     reg [LANE_W-1:0]   rk_q;       // c_k mod P of the next slice to read
@@ -264,7 +270,24 @@ module cube4_cfb #(
     wire [LANE_W-1:0] skew_out = use_prev ? pskew_q : skew_pas;
 
     // ---- address unit and lane masks (one per lane) ----
-    wire [P*ADDR_W-1:0] addr_d;
+    // t*I_LIN + [t > I_RT] for t = 0 .. P-1, by shifts and adds of the constant t
+    function automatic [ADDR_W-1:0] lin_of(input integer t);
+        integer b;
+        begin
+            lin_of = {{(ADDR_W - 1){1'b0}}, (LANE_W'(t) > cfg_i_rt)};
+            for (b = 0; b < LANE_W; b = b + 1) begin
+                if (((t >> b) & 1) == 1) lin_of = lin_of + (cfg_i_lin << b);
+            end
+        end
+    endfunction
+    reg [ADDR_W-1:0] lin_tab_q [0:P-1];
+    genvar tl;
+    generate
+        for (tl = 0; tl < P; tl = tl + 1) begin : g_lin_tab
+            always @(posedge clk) lin_tab_q[tl] <= lin_of(tl);
+        end
+    endgenerate
+    wire [P*LANE_W-1:0] t_d;
     wire [P-1:0]        rden_d, lval_d, lnbr_d, lwrap_d;
     genvar q;
     generate
@@ -280,11 +303,7 @@ module cube4_cfb #(
             wire [IW-1:0] i_rd  = pbp_q + {{(IW - LANE_W){1'b0}}, t_rd};
             wire [IW-1:0] i_out = pbp_q + {{(IW - LANE_W){1'b0}}, t_out};
             wire [IW-1:0] ni_ext = {{(IW - DIM_W){1'b0}}, cfg_ni};
-            // address: A_j + A_k + I_A0 +/- (pb*I_PB + t*I_LIN + [t > I_RT])
-            wire [ADDR_W-1:0] t_lin = cfg_i_lin * {{(ADDR_W - LANE_W){1'b0}}, t_rd};
-            wire [ADDR_W-1:0] off   = pba_q + t_lin + {{(ADDR_W - 1){1'b0}}, (t_rd > cfg_i_rt)};
-            wire [ADDR_W-1:0] a_i   = cfg_flip_i ? cfg_i_a0 - off : off;
-            assign addr_d[q*ADDR_W +: ADDR_W] = aj_q + ak_q + a_i;
+            assign t_d[q*LANE_W +: LANE_W] = t_rd;
             assign rden_d[q]  = (state_q == ST_RUN) && any_read && (i_rd < ni_ext);
             assign lval_d[q]  = (i_out < ni_ext);
             assign lnbr_d[q]  = (i_out + 1'b1 < ni_ext);
@@ -300,57 +319,61 @@ module cube4_cfb #(
     wire              sop_d   = emit_d && (mout_d == '0) && (jout_d == '0) && (pb_q == '0);
     wire              eop_d   = in_flush && last_pb;
 
-    // ---- output register (one stage) ----
-    reg                 v_q;
+    // ---- the beat's fields, as they travel s1 -> s2 -> output register ----
+    localparam integer F_W = 4 * P + 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 1 + 4;
+    wire [F_W-1:0] f_d = {rden_d, lval_d, lnbr_d, lwrap_d,
+                          emit_d, sop_d, eop_d, (state_q == ST_DRAIN), use_prev,
+                          (state_q == ST_RUN), (state_q == ST_RUN) && lower_mem,
+                          (state_q == ST_RUN) && upper_mem, (state_q == ST_RUN) && (r_q != '0),
+                          k0_q[0], sb_q, pb_q,
+                          use_prev ? pwx_q : wx, use_prev ? pwy_q : wy, use_prev ? pwz_q : wz,
+                          mout_d, jout_d, skew_out, (jout_d == cfg_nj - 1'b1),
+                          use_prev ? psteps_q : steps};
+
+    reg                 v1_q, v2_q, v_q;
+    reg [F_W-1:0]       f1_q, f2_q, f_q;
+    reg [P*LANE_W-1:0]  t1_q, t2_q;        // lane positions t of the read
+    reg [ADDR_W-1:0]    ajk1_q;            // A_j + A_k
+    reg [ADDR_W-1:0]    pbx1_q;
+    reg [ADDR_W-1:0]    base2_q;           // A_j + A_k + I_A0 - pb*I_PB  or  A_j + A_k + pb*I_PB
+    reg                 flip1_q, flip2_q;
     reg [P*ADDR_W-1:0]  addr_q;
-    reg [P-1:0]         rden_q, lval_q, lnbr_q, lwrap_q;
-    reg                 emit_q, sop_q, eop_q, drain_q, ywrap_q, bbwe_q, lmem_q, umem_q, uuse_q, k0odd_q;
-    reg [SB_W-1:0]      sbo_q;
-    reg [PB_W-1:0]      pbo_q;
-    reg [WEIGHT_W-1:0]  wxo_q, wyo_q, wzo_q;
-    reg [M_W-1:0]       mo_q;
-    reg [DIM_W-1:0]     jo_q;
-    reg [LANE_W-1:0]    skewo_q;
-    reg                 ylast_q;
-    reg [3:0]           stepso_q;
 
     wire advance = !v_q || req_ready;
 
     always @(posedge clk) begin
         if (rst) begin
-            v_q <= 1'b0;
+            v1_q <= 1'b0;
+            v2_q <= 1'b0;
+            v_q  <= 1'b0;
         end else if (advance) begin
-            v_q <= issue;
+            v1_q <= issue;
+            v2_q <= v1_q;
+            v_q  <= v2_q;
         end
     end
 
+    integer ql;
     always @(posedge clk) begin
-        if (advance && issue) begin
-            addr_q   <= addr_d;
-            rden_q   <= rden_d;
-            lval_q   <= lval_d;
-            lnbr_q   <= lnbr_d;
-            lwrap_q  <= lwrap_d;
-            emit_q   <= emit_d;
-            sop_q    <= sop_d;
-            eop_q    <= eop_d;
-            drain_q  <= (state_q == ST_DRAIN);
-            ywrap_q  <= use_prev;
-            bbwe_q   <= (state_q == ST_RUN);
-            lmem_q   <= (state_q == ST_RUN) && lower_mem;
-            umem_q   <= (state_q == ST_RUN) && upper_mem;
-            uuse_q   <= (state_q == ST_RUN) && (r_q != '0);
-            k0odd_q  <= k0_q[0];
-            sbo_q    <= sb_q;
-            pbo_q    <= pb_q;
-            wxo_q    <= use_prev ? pwx_q : wx;
-            wyo_q    <= use_prev ? pwy_q : wy;
-            wzo_q    <= use_prev ? pwz_q : wz;
-            mo_q     <= mout_d;
-            jo_q     <= jout_d;
-            skewo_q  <= skew_out;
-            ylast_q  <= (jout_d == cfg_nj - 1'b1);
-            stepso_q <= use_prev ? psteps_q : steps;
+        if (advance) begin
+            // s1
+            f1_q    <= f_d;
+            t1_q    <= t_d;
+            ajk1_q  <= aj_q + ak_q;
+            pbx1_q  <= pbx_q;
+            flip1_q <= cfg_flip_i;
+            // s2
+            f2_q    <= f1_q;
+            t2_q    <= t1_q;
+            base2_q <= ajk1_q + pbx1_q;
+            flip2_q <= flip1_q;
+            // output register
+            f_q     <= f2_q;
+            for (ql = 0; ql < P; ql = ql + 1) begin
+                addr_q[ql*ADDR_W +: ADDR_W] <= flip2_q
+                    ? base2_q - lin_tab_q[t2_q[ql*LANE_W +: LANE_W]]
+                    : base2_q + lin_tab_q[t2_q[ql*LANE_W +: LANE_W]];
+            end
         end
     end
 
@@ -359,7 +382,7 @@ module cube4_cfb #(
         if (rst) begin
             state_q <= ST_IDLE;
         end else if (state_q == ST_IDLE) begin
-            if (start) begin
+            if (start && !busy) begin
                 state_q  <= ST_RUN;
                 m_q      <= '0;
                 k0_q     <= '0;
@@ -368,7 +391,7 @@ module cube4_cfb #(
                 pb_q     <= '0;
                 sb_q     <= '0;
                 pbp_q    <= '0;
-                pba_q    <= '0;
+                pbx_q    <= cfg_flip_i ? cfg_i_a0 : '0;
                 rj_q     <= cfg_j_r0;
                 aj_q     <= cfg_j_a0;
                 rk_q     <= cfg_k_r0;
@@ -384,12 +407,12 @@ module cube4_cfb #(
             if (!last_pb) begin
                 pb_q  <= pb_q + 1'b1;
                 pbp_q <= pbp_q + IW'(P);
-                pba_q <= pba_q + cfg_i_pb;
+                pbx_q <= cfg_flip_i ? pbx_q - cfg_i_pb : pbx_q + cfg_i_pb;
                 sb_q  <= sb_q + 1'b1;
             end else begin
                 pb_q  <= '0;
                 pbp_q <= '0;
-                pba_q <= '0;
+                pbx_q <= cfg_flip_i ? cfg_i_a0 : '0;
             end
             case (state_q)
                 ST_RUN: if (last_pb) begin
@@ -437,33 +460,16 @@ module cube4_cfb #(
         end
     end
 
-    assign busy           = (state_q != ST_IDLE);
-    assign req_valid      = v_q;
-    assign req_addr       = addr_q;
-    assign req_rden       = rden_q;
-    assign tag_emit       = emit_q;
-    assign tag_sop        = sop_q;
-    assign tag_eop        = eop_q;
-    assign tag_drain      = drain_q;
-    assign tag_ywrap      = ywrap_q;
-    assign tag_bb_we      = bbwe_q;
-    assign tag_lower_mem  = lmem_q;
-    assign tag_upper_mem  = umem_q;
-    assign tag_upper_use  = uuse_q;
-    assign tag_k0_odd     = k0odd_q;
-    assign tag_sb_addr    = sbo_q;
-    assign tag_pb         = pbo_q;
-    assign tag_wx         = wxo_q;
-    assign tag_wy         = wyo_q;
-    assign tag_wz         = wzo_q;
-    assign tag_m          = mo_q;
-    assign tag_j          = jo_q;
-    assign tag_skew       = skewo_q;
-    assign tag_y_last     = ylast_q;
-    assign tag_steps      = stepso_q;
-    assign tag_lane_valid = lval_q;
-    assign tag_lane_nbr   = lnbr_q;
-    assign tag_lane_wrap  = lwrap_q;
+    assign busy      = (state_q != ST_IDLE) || v1_q || v2_q;
+    assign req_valid = v_q;
+    assign req_addr  = addr_q;
+    assign {req_rden, tag_lane_valid, tag_lane_nbr, tag_lane_wrap,
+            tag_emit, tag_sop, tag_eop, tag_drain, tag_ywrap,
+            tag_bb_we, tag_lower_mem, tag_upper_mem, tag_upper_use,
+            tag_k0_odd, tag_sb_addr, tag_pb,
+            tag_wx, tag_wy, tag_wz,
+            tag_m, tag_j, tag_skew, tag_y_last,
+            tag_steps} = f_q;
 
 endmodule
 `default_nettype wire

@@ -299,12 +299,39 @@ module cube4_gra #(
     end
 
     wire              h_real = h1_meta[META_W-1] && h1_live;
-    wire [PB_W-1:0]   h_pb   = h1_meta[2*P + 7 + LANE_W +: PB_W];
-    wire [LANE_W-1:0] h_skew = h1_meta[2*P + 7 +: LANE_W];
     wire              h_dxf  = h1_meta[2*P + 0];   // ctrl bit 0: X-step of slice m
     wire              h_dxb  = h1_meta[2*P + 2];   // ctrl bit 2: old X-step
-    wire [IW-1:0]     h_pbp  = IW'(h_pb) * IW'(P);
+
+    // Per lane of the incoming centre c', where its i - 1 and i + 1 are: inside
+    // the volume (hi_ok, lo_ok) and in the next / previous beat (hi_new,
+    // lo_old). Registered with c' into h1 (the window of h1 uses them).
+    wire [PB_W-1:0]   c_pb   = c_meta[2*P + 7 + LANE_W +: PB_W];
+    wire [LANE_W-1:0] c_skew = c_meta[2*P + 7 +: LANE_W];
+    wire [IW-1:0]     c_pbp  = IW'(c_pb) * IW'(P);
     wire [IW-1:0]     ni_ext = IW'(cfg_ni);
+    wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
+    reg  [P-1:0]      h1_hi_ok, h1_lo_ok, h1_hi_new, h1_lo_old;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_pos
+            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
+            wire [LANE_W-1:0] t = cfg_flip_i
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, c_skew}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, c_skew}));
+            wire [IW-1:0] i_pos = c_pbp + IW'(t);
+            assign hi_ok_d[q]  = (i_pos + 1'b1 < ni_ext);
+            assign lo_ok_d[q]  = (i_pos != '0);
+            assign hi_new_d[q] = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
+            assign lo_old_d[q] = (t == '0);                  // i - 1 is in the previous beat
+        end
+    endgenerate
+    always @(posedge clk) begin
+        if (step) begin
+            h1_hi_ok  <= hi_ok_d;
+            h1_lo_ok  <= lo_ok_d;
+            h1_hi_new <= hi_new_d;
+            h1_lo_old <= lo_old_d;
+        end
+    end
 
     // neighbours i+1 (from lane q + s_i; the lane at t = P-1 from beat c + 1) and
     // i-1 (from lane q - s_i; the lane at t = 0 from beat c - 1)
@@ -322,15 +349,10 @@ module cube4_gra #(
     wire [P*DW-1:0] gi_d, gr_d;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_win
-            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
-            wire [LANE_W-1:0] t = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, h_skew}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, h_skew}));
-            wire [IW-1:0] i_pos  = h_pbp + IW'(t);
-            wire          hi_ok  = (i_pos + 1'b1 < ni_ext);
-            wire          lo_ok  = (i_pos != '0);
-            wire          hi_new = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
-            wire          lo_old = (t == '0);                  // i - 1 is in the previous beat
+            wire          hi_ok  = h1_hi_ok[q];
+            wire          lo_ok  = h1_lo_ok[q];
+            wire          hi_new = h1_hi_new[q];
+            wire          lo_old = h1_lo_old[q];
             wire [VW-1:0] c_hi = !hi_ok ? {VW{1'b0}} : hi_new ? c_next_new[q*VW +: VW] : c_next_same[q*VW +: VW];
             wire [VW-1:0] c_lo = !lo_ok ? {VW{1'b0}} : lo_old ? c_prev_old[q*VW +: VW] : c_prev_same[q*VW +: VW];
             wire [VW-1:0] f_hi = !hi_ok ? {VW{1'b0}} : hi_new ? f_next_new[q*VW +: VW] : f_next_same[q*VW +: VW];

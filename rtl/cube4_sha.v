@@ -23,10 +23,11 @@
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
-//   4 + (RMAP_BITS + 1) + 3 register stages (input; LUT read and |g|; face;
+//   4 + (RMAP_BITS + 1) + 4 register stages (input; LUT read and |g|; face;
 //   numerators; one stage per quotient bit of the division; reflectance-map
-//   read; C * D; shading) under one stall enable, then the output skid
-//   buffer: 13 at RMAP_BITS = 5.
+//   read; its output register; C * D; shading) under one stall enable, then
+//   the output skid buffer: 14 at RMAP_BITS = 5. Both tables' RAM outputs go
+//   straight into a register (an FPGA block RAM's clock-to-output is long).
 //
 // Ports
 //   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)}
@@ -122,11 +123,12 @@ module cube4_sha #(
     //   b3     numerators (g + A) * R, denominator 2A
     //   c0..cR restoring division, one quotient bit per stage, for u and v at once
     //   d      reflectance-map read (address: face and the quotients, min(R-1, q))
+    //   d2     the read word registered
     //   e1     C * D (multipliers)
     //   e2     round_shift(C * D, 8) + P, min 255
     // Every stage moves under en (the skid's ready); the beat's fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    localparam integer NST  = 3 + NDIV + 3;      // stages after a: b1..b3, c*, d, e1, e2
+    localparam integer NST  = 3 + NDIV + 4;      // stages after a: b1..b3, c*, d, d2, e1, e2
 
     wire en;
     assign in_ready = en;
@@ -179,7 +181,7 @@ module cube4_sha #(
                 if (lut_we)  lut[lut_addr]   <= lut_data;
                 if (rmap_we) rmap[rmap_addr] <= rmap_data;
             end
-            // the sample's LUT entry rides along from b1 to d
+            // the sample's LUT entry rides along from b1 to d2
             reg [LUT_W-1:0] lut_q [1:NST-2];
             integer k_l;
             always @(posedge clk) begin
@@ -273,6 +275,15 @@ module cube4_sha #(
                     d_dp  <= rmap[idx];
                 end
             end
+            // d2: the RAM word registered
+            reg [RI_W-1:0]  d2_idx;
+            reg [19:0]      d2_dp;
+            always @(posedge clk) begin
+                if (en) begin
+                    d2_idx <= d_idx;
+                    d2_dp  <= d_dp;
+                end
+            end
             wire [LUT_W-1:0] d_lut = lut_q[NST - 2];
 
             // e1: C * D, 8 x 10 bits, exact
@@ -283,14 +294,14 @@ module cube4_sha #(
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
                 always @(posedge clk) begin
-                    if (en) e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d_dp[19:10]};
+                    if (en) e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
                 end
             end
             always @(posedge clk) begin
                 if (en) begin
-                    e1_pp  <= d_dp[9:0];
+                    e1_pp  <= d2_dp[9:0];
                     e1_a   <= d_lut[ALPHA_W-1:0];
-                    e1_idx <= d_idx;
+                    e1_idx <= d2_idx;
                 end
             end
 

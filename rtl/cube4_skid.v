@@ -8,13 +8,20 @@
 //   that advances under one stall enable: the pipeline's enable is in_ready,
 //   and an item already on its way when out_ready drops lands in the second
 //   entry. Full throughput: one item per cycle when out_ready stays high.
+//   Built as a two-entry FIFO (entries written at a write pointer, read
+//   through a multiplexer at a read pointer): the wide data registers load
+//   only on push, which depends on in_valid and a register, never on
+//   out_ready. out_ready moves only the read pointer and the two state bits,
+//   so a late out_ready (e.g. a downstream hazard check) does not fan out
+//   to every data flip-flop's clock enable.
 //
 // Parameters
 //   DATA_W  width of the payload.  Range 1..4096.  Default 8.
 //
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
-//   lost or duplicated under any pattern of out_ready.
+//   lost or duplicated under any pattern of out_ready. out_data is a 2:1
+//   multiplexer after the entry registers, selected by a register.
 //
 // Ports
 //   clk, rst                 clock, synchronous active-high reset (empties it)
@@ -41,43 +48,41 @@ module cube4_skid #(
         end
     endgenerate
 
-    reg              a_v_q, b_v_q;   // a: head (output), b: the skid entry
-    reg [DATA_W-1:0] a_q, b_q;
+    reg              nonempty_q;     // at least one entry holds an item
+    reg              full_q;         // both entries hold items
+    reg              wp_q, rp_q;     // write / read pointer
+    reg [DATA_W-1:0] e0_q, e1_q;     // the entries
 
-    wire pop  = a_v_q && out_ready;
-    wire push = in_valid && !b_v_q;
+    wire push = in_valid && !full_q;
+    wire pop  = nonempty_q && out_ready;
 
     always @(posedge clk) begin
         if (rst) begin
-            a_v_q <= 1'b0;
-            b_v_q <= 1'b0;
-        end else if (b_v_q) begin
-            if (pop) begin
-                b_v_q <= 1'b0;   // b moves to a (data below)
+            nonempty_q <= 1'b0;
+            full_q     <= 1'b0;
+            wp_q       <= 1'b0;
+            rp_q       <= 1'b0;
+        end else begin
+            if (push) wp_q <= !wp_q;
+            if (pop)  rp_q <= !rp_q;
+            if (push && !pop) begin
+                nonempty_q <= 1'b1;
+                full_q     <= nonempty_q;
+            end else if (pop && !push) begin
+                full_q     <= 1'b0;
+                nonempty_q <= full_q;
             end
-        end else if (push) begin
-            if (a_v_q && !pop) begin
-                b_v_q <= 1'b1;
-            end else begin
-                a_v_q <= 1'b1;
-            end
-        end else if (pop) begin
-            a_v_q <= 1'b0;
         end
     end
 
     always @(posedge clk) begin
-        if (b_v_q) begin
-            if (pop) a_q <= b_q;
-        end else if (push) begin
-            if (a_v_q && !pop) b_q <= in_data;
-            else               a_q <= in_data;
-        end
+        if (push && !wp_q) e0_q <= in_data;
+        if (push &&  wp_q) e1_q <= in_data;
     end
 
-    assign in_ready  = !b_v_q;
-    assign out_valid = a_v_q;
-    assign out_data  = a_q;
+    assign in_ready  = !full_q;
+    assign out_valid = nonempty_q;
+    assign out_data  = rp_q ? e1_q : e0_q;
 
 endmodule
 `default_nettype wire

@@ -31,11 +31,12 @@
 //   (DIM_W, NB_W, LANE_W, M_W, SB_W: derived, as in cube4_cfb.)
 //
 // Latency
-//   Fixed 7-stage pipeline under one stall enable (en = the output skid
+//   Fixed 10-stage pipeline under one stall enable (en = the output skid
 //   buffer's registered ready) plus a 2-entry skid buffer: s0 input, s1
 //   slice-buffer select, s2 beam buffer, s3 beam-extension hold (a beat waits
 //   there for the next beat, so the drain beat pushes out the last one), s4,
-//   s5 x-lerps, s6 y-lerps, s7 z-lerp. in_ready = en.
+//   then x-lerps, y-lerps and the z-lerp, LERP_LAT = 2 stages each (the
+//   multiply (b - a) * w, then the rounding add). in_ready = en.
 //
 // Ports
 //   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
@@ -376,31 +377,32 @@ module cube4_tri #(
         end
     end
 
-    // ----------------------------------- s5..s7: seven lerps per lane
-    reg               s5_v, s6_v, s7_v;
-    reg [WEIGHT_W-1:0] s5_wy, s5_wz, s6_wz;
-    reg [META_W-1:0]  s5_meta, s6_meta, s7_meta;
-    wire [PV-1:0]     s7_sample;
+    // ------------------------- after s4: seven lerps per lane, LERP_LAT each
+    // Stage n after s4 holds lv_q[n] / lmeta_q[n]; the y-lerps take the weight
+    // LERP_LAT stages after s4, the z-lerp 2 * LERP_LAT stages after.
+    localparam integer LERP_LAT = 2;
+    localparam integer NL       = 3 * LERP_LAT;
+    reg [NL:1]         lv_q;
+    reg [META_W-1:0]   lmeta_q [1:NL];
+    reg [WEIGHT_W-1:0] lwy_q   [1:LERP_LAT];
+    reg [WEIGHT_W-1:0] lwz_q   [1:2*LERP_LAT];
+    wire [PV-1:0]      l_sample;
+    wire [WEIGHT_W-1:0] y_w = lwy_q[LERP_LAT];
+    wire [WEIGHT_W-1:0] z_w = lwz_q[2*LERP_LAT];
 
     always @(posedge clk) begin
-        if (rst) begin
-            s5_v <= 1'b0;
-            s6_v <= 1'b0;
-            s7_v <= 1'b0;
-        end else if (en) begin
-            s5_v <= s4_v;
-            s6_v <= s5_v;
-            s7_v <= s6_v;
-        end
+        if (rst) lv_q <= '0;
+        else if (en) lv_q <= {lv_q[NL-1:1], s4_v};
     end
+    integer kl;
     always @(posedge clk) begin
         if (en) begin
-            s5_wy   <= s4_wy;
-            s5_wz   <= s4_wz;
-            s6_wz   <= s5_wz;
-            s5_meta <= s4_meta;
-            s6_meta <= s5_meta;
-            s7_meta <= s6_meta;
+            lmeta_q[1] <= s4_meta;
+            for (kl = 2; kl <= NL; kl = kl + 1) lmeta_q[kl] <= lmeta_q[kl - 1];
+            lwy_q[1] <= s4_wy;
+            for (kl = 2; kl <= LERP_LAT; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
+            lwz_q[1] <= s4_wz;
+            for (kl = 2; kl <= 2 * LERP_LAT; kl = kl + 1) lwz_q[kl] <= lwz_q[kl - 1];
         end
     end
 
@@ -419,23 +421,23 @@ module cube4_tri #(
             wire [VW-1:0] x_l0, x_l1, x_u0, x_u1, y_l, y_u, z;
 
             // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_l0 (
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l0 (
                 .clk(clk), .en(en), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_l1 (
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l1 (
                 .clk(clk), .en(en), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_u0 (
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u0 (
                 .clk(clk), .en(en), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_x_u1 (
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u1 (
                 .clk(clk), .en(en), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
             // y
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_y_l (
-                .clk(clk), .en(en), .a(x_l0), .b(x_l1), .w(s5_wy), .y(y_l));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_y_u (
-                .clk(clk), .en(en), .a(x_u0), .b(x_u1), .w(s5_wy), .y(y_u));
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_l (
+                .clk(clk), .en(en), .a(x_l0), .b(x_l1), .w(y_w), .y(y_l));
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_u (
+                .clk(clk), .en(en), .a(x_u0), .b(x_u1), .w(y_w), .y(y_u));
             // z
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(1)) u_z (
-                .clk(clk), .en(en), .a(y_l), .b(y_u), .w(s6_wz), .y(z));
-            assign s7_sample[q*VW +: VW] = z;
+            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_z (
+                .clk(clk), .en(en), .a(y_l), .b(y_u), .w(z_w), .y(z));
+            assign l_sample[q*VW +: VW] = z;
         end
     endgenerate
 
@@ -447,9 +449,9 @@ module cube4_tri #(
     ) u_skid (
         .clk       (clk),
         .rst       (rst),
-        .in_valid  (s7_v),
+        .in_valid  (lv_q[NL]),
         .in_ready  (en),
-        .in_data   ({s7_meta, s7_sample}),
+        .in_data   ({lmeta_q[NL], l_sample}),
         .out_valid (out_valid),
         .out_ready (out_ready),
         .out_data  (skid_out)
