@@ -35,8 +35,9 @@
 //   ACC_W     accumulator fraction bits F.      8..24.  Default 16.
 //
 // Latency
-//   10 register stages (S1 .. S9 and the output register, below) under one
-//   stall enable, then the output skid buffer. The partial results take
+//   11 register stages (R0, S1 .. S9 and the output register, below) under
+//   one stall enable, then the output skid buffer. in_ready depends on
+//   registers only (the skid's ready and the valid bits of R0 .. S7). The partial results take
 //   exactly one slice (NJ*NB steps) round the base-plane buffer. Throughput
 //   is one beat per cycle when a slice has NJ*NB >= 9 beats; a smaller slice
 //   runs at NJ*NB beats per 9 cycles (the read-after-write hazard on the
@@ -138,7 +139,9 @@ module cube4_com #(
     endfunction
 
     // ---- pipeline (docs/architecture.md, "COM") ----
-    //   S0  input beat: counters, template, lane positions, fresh / finished
+    //   R0  input register
+    //   S0  (R0's beat) counters, template, lane positions, fresh; parts of finished
+    //   S1  ... finished rays and bx computed from S1's registered parts
     //   S1  read the base-plane (slice) buffer at the beat's slice position
     //   S2  slice buffer output; read the beam buffer at the beat's beam position
     //   S3  register the slice word; beam buffer output; write it to the beam buffer
@@ -149,11 +152,12 @@ module cube4_com #(
     //   S8  w * C' (multipliers), T - w
     //   S9  C += round_shift(w * C', 8); write the slice buffer; output register
     // Every stage moves under en (the skid's ready) and carries a valid bit.
-    // A beat's slice position is read at the en-edge after its acceptance
-    // (S1 -> S2) and written at the edge where it leaves S9. The ray's previous
-    // partial result was written by the beat L = NJ*NB steps earlier at the same
-    // position, so a beat is accepted only if no beat in S1..S8 has its
-    // position (one in S9 is written at the acceptance edge, before the read).
+    // A beat's slice position is read two en-edges after its acceptance into
+    // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
+    // previous partial result was written by the beat L = NJ*NB steps earlier
+    // at the same position, so a beat is accepted only if that beat is not in
+    // R0..S7 (one in S8 is written at the edge after acceptance, before the
+    // read).
     // Slices of L >= 9 beats never wait; smaller ones (volumes of fewer than 9
     // beats per slice) run at L beats per 9 cycles.
     localparam integer SP_W  = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1;
@@ -163,18 +167,44 @@ module cube4_com #(
     localparam integer NS    = 9;               // stages S1 .. S9
     wire en;                            // the pipeline advances
     reg  [NS:1] v_s;                    // stage valid bits
-    wire hazard;                        // a beat in S1..S8 writes this beat's position
+    wire hazard;                        // the beat L back is in R0..S7 (see above)
     assign in_ready = en && !hazard;
-    wire step = in_valid && in_ready;
 
-    wire sop   = in_ctrl[4];
-    wire eop   = in_ctrl[5];
-    wire dxf   = in_ctrl[0];
-    wire dyf   = in_ctrl[1];
-    wire dxb   = in_ctrl[2];
-    wire dyb   = in_ctrl[3];
-    wire first_of_slice = (in_j == '0) && (in_pb == '0);
-    wire unused_y_last = in_ctrl[6];   // rows are checked against cfg_nj directly
+    // ==== R0: input register ====
+    reg                 r0_v;
+    reg [P*LUT_W-1:0]   r0_rgba;
+    reg [P-1:0]         r0_lane_valid, r0_lane_inside;
+    reg [M_W-1:0]       r0_m;
+    reg [DIM_W-1:0]     r0_j;
+    reg [PB_W-1:0]      r0_pb;
+    reg [LANE_W-1:0]    r0_skew;
+    reg [6:0]           r0_ctrl;
+    always @(posedge clk) begin
+        if (rst) r0_v <= 1'b0;
+        else if (en) r0_v <= in_valid && !hazard;
+    end
+    always @(posedge clk) begin
+        if (en) begin
+            r0_rgba        <= in_rgba;
+            r0_lane_valid  <= in_lane_valid;
+            r0_lane_inside <= in_lane_inside;
+            r0_m           <= in_m;
+            r0_j           <= in_j;
+            r0_pb          <= in_pb;
+            r0_skew        <= in_skew;
+            r0_ctrl        <= in_ctrl;
+        end
+    end
+    wire step = en && r0_v;             // the R0 beat enters S1
+
+    wire sop   = r0_ctrl[4];
+    wire eop   = r0_ctrl[5];
+    wire dxf   = r0_ctrl[0];
+    wire dyf   = r0_ctrl[1];
+    wire dxb   = r0_ctrl[2];
+    wire dyb   = r0_ctrl[3];
+    wire first_of_slice = (r0_j == '0) && (r0_pb == '0);
+    wire unused_y_last = r0_ctrl[6];   // rows are checked against cfg_nj directly
 
     // ==== S0 ====
     // ---- positions: partial beam, row and slice position (as cube4_gra) ----
@@ -203,9 +233,9 @@ module cube4_com #(
     wire [DIM_W-1:0] stx_n   = !first_of_slice ? stx_q : (sop ? {DIM_W{1'b0}} : stx_q + DIM_W'(dxb));
     wire [DIM_W-1:0] sty_n   = !first_of_slice ? sty_q : (sop ? {DIM_W{1'b0}} : sty_q + DIM_W'(dyb));
     wire [M_W-1:0]   m_last  = M_W'(cfg_nk - 1'b1) << cfg_ss_log2;
-    wire             in_last_slice = (in_m == m_last);
+    wire             in_last_slice = (r0_m == m_last);
     wire [M_W-1:0]   ss_mask = M_W'((1 << cfg_ss_log2) - 1);
-    wire             dk_b    = (in_m & ss_mask) == '0;   // voxel slice changed from m-1
+    wire             dk_b    = (r0_m & ss_mask) == '0;   // voxel slice changed from m-1
 
     always @(posedge clk) begin
         if (rst) begin
@@ -228,32 +258,59 @@ module cube4_com #(
     end
 
     // ---- per lane: position in the beam, fresh ray, finished ray ----
-    wire [BX_W-1:0]   by_d = BX_W'(in_j) - BX_W'(sty_n) + BX_W'(cfg_sy);
-    wire [P-1:0]      fresh_d, t0_d, ins_d, fin_d;
-    wire [P*BX_W-1:0] bx_d;
-    wire [IW-1:0]     pbp    = IW'(in_pb) * IW'(P);
+    wire [BX_W-1:0]   by_d = BX_W'(r0_j) - BX_W'(sty_n) + BX_W'(cfg_sy);
+    wire [P-1:0]      fresh_d, t0_d, ins_d;
+    wire [P*IW-1:0]   ipos_d;            // i of each lane
+    wire [IW-1:0]     pbp    = IW'(r0_pb) * IW'(P);
     wire [IW-1:0]     ni_ext = IW'(cfg_ni);
     wire [IW-1:0]     nj_ext = IW'(cfg_nj);
-    wire [IW-1:0]     j_ext  = IW'(in_j);
+    wire [IW-1:0]     j_ext  = IW'(r0_j);
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
             localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
             wire [LANE_W-1:0] t = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, in_skew}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, in_skew}));
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, r0_skew}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, r0_skew}));
             wire [IW-1:0] i_pos = pbp + IW'(t);
             assign t0_d[q]    = (t == '0);
             // the ray starts here: its previous sample is outside the slice
-            assign fresh_d[q] = (in_m == '0) || (dyb && in_j == '0) || (dxb && i_pos == '0);
-            assign ins_d[q]   = in_lane_valid[q] && in_lane_inside[q];
-            // finished? the next sample along the ray is not inside
-            wire [IW-1:0] i_nx = i_pos + IW'(dxf);
-            wire [IW-1:0] j_nx = j_ext + IW'(dyf);
-            wire nx_in = !in_last_slice && (i_nx < ni_ext) && (j_nx < nj_ext)
-                       && !(i_nx + 1'b1 == ni_ext && wxn_nz) && !(j_nx + 1'b1 == nj_ext && wyn_nz);
-            assign fin_d[q] = ins_d[q] && !nx_in;
-            assign bx_d[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(stx_n) + BX_W'(cfg_sx);
+            assign fresh_d[q] = (r0_m == '0) || (dyb && r0_j == '0) || (dxb && i_pos == '0);
+            assign ins_d[q]   = r0_lane_valid[q] && r0_lane_inside[q];
+            assign ipos_d[q*IW +: IW] = i_pos;
+        end
+    endgenerate
+
+    // ---- S1 -> S2: finished rays and base-plane x, from registered parts ----
+    // fin: the next sample along the ray (m+1, j+dyf, i+dxf) is not inside
+    // (numerics.md section 8); bx = i - stepx(m) + SX.
+    reg [P*IW-1:0]   f1_ipos;
+    reg [IW-1:0]     f1_j;
+    reg              f1_dxf, f1_dyf, f1_last, f1_wxn, f1_wyn;
+    reg [DIM_W-1:0]  f1_stx;
+    always @(posedge clk) begin
+        if (en) begin
+            f1_ipos <= ipos_d;
+            f1_j    <= j_ext;
+            f1_dxf  <= dxf;
+            f1_dyf  <= dyf;
+            f1_last <= in_last_slice;
+            f1_wxn  <= wxn_nz;
+            f1_wyn  <= wyn_nz;
+            f1_stx  <= stx_n;
+        end
+    end
+    wire [P-1:0]      fin_1;
+    wire [P*BX_W-1:0] bx_1;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_fin
+            wire [IW-1:0] i_pos = f1_ipos[q*IW +: IW];
+            wire [IW-1:0] i_nx  = i_pos + IW'(f1_dxf);
+            wire [IW-1:0] j_nx  = f1_j + IW'(f1_dyf);
+            wire nx_in = !f1_last && (i_nx < ni_ext) && (j_nx < nj_ext)
+                       && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
+            assign fin_1[q] = ins_s[1][q] && !nx_in;
+            assign bx_1[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(f1_stx) + BX_W'(cfg_sx);
         end
     endgenerate
 
@@ -261,10 +318,10 @@ module cube4_com #(
     reg [SP_W-1:0]    sp_s   [1:NS];    // slice position: read at S1, written at the end of S9
     reg [PB_W-1:0]    pb_s   [1:3];     // beam position: read at S2, written at the end of S3
     reg [P-1:0]       ins_s  [1:7];
-    reg [P-1:0]       fin_s  [1:NS];
+    reg [P-1:0]       fin_s  [2:NS];    // from S2 on (computed from S1's parts)
     reg [M_W-1:0]     m_s    [1:NS];
     reg [BX_W-1:0]    by_s   [1:NS];
-    reg [P*BX_W-1:0]  bx_s   [1:NS];
+    reg [P*BX_W-1:0]  bx_s   [2:NS];
     reg [NS:1]        eop_s;
     reg [5:1]         dxb_s;
     reg [4:1]         dyb_s, dkb_s;
@@ -281,16 +338,18 @@ module cube4_com #(
     end
     always @(posedge clk) begin
         if (en) begin
-            sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[1] <= fin_d;
-            m_s[1]  <= in_m;     by_s[1] <= by_d;    bx_s[1]  <= bx_d;   fresh_s[1] <= fresh_d;
-            t0_s[1] <= t0_d;     rgba_s[1] <= in_rgba;
+            sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
+            m_s[1]  <= r0_m;     by_s[1] <= by_d;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
+            t0_s[1] <= t0_d;     rgba_s[1] <= r0_rgba;
             eop_s <= {eop_s[NS-1:1], eop};
             dxb_s <= {dxb_s[4:1], dxb};
             dyb_s <= {dyb_s[3:1], dyb};
             dkb_s <= {dkb_s[3:1], dk_b};
             for (k = 2; k <= NS; k = k + 1) begin
-                sp_s[k] <= sp_s[k-1];  fin_s[k] <= fin_s[k-1];  m_s[k] <= m_s[k-1];
-                by_s[k] <= by_s[k-1];  bx_s[k]  <= bx_s[k-1];
+                sp_s[k] <= sp_s[k-1];  m_s[k] <= m_s[k-1];  by_s[k] <= by_s[k-1];
+            end
+            for (k = 3; k <= NS; k = k + 1) begin
+                fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];
             end
             for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
             for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
@@ -299,13 +358,21 @@ module cube4_com #(
             end
         end
     end
-    reg hazard_c;
+    // Read-after-write rule: a beat's position repeats every L = NJ*NB beats,
+    // so the beat it depends on is the L-th most recent one, and that one is
+    // in R0..S7 exactly when R0..S7 hold L or more valid beats. Counting them
+    // needs no field of the incoming beat: in_ready depends on registers only.
+    reg  [3:0] lim_q;                   // min(NJ*NB, 9): 9 never stalls
+    always @(posedge clk) begin
+        lim_q <= (32'(cfg_nj) * 32'(cfg_nb) >= 32'd9) ? 4'd9 : 4'(32'(cfg_nj) * 32'(cfg_nb));
+    end
+    reg [3:0] n_fly;
     integer kh;
     always @* begin
-        hazard_c = 1'b0;
-        for (kh = 1; kh < NS; kh = kh + 1) hazard_c = hazard_c || (v_s[kh] && sp_s[kh] == pos_sp);
+        n_fly = {3'b000, r0_v};
+        for (kh = 1; kh < NS - 1; kh = kh + 1) n_fly = n_fly + {3'b000, v_s[kh]};
     end
-    assign hazard = hazard_c;
+    assign hazard = (n_fly >= lim_q);
 
     // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
     // Both RAM outputs go straight into a register (a block RAM's clock-to-out
