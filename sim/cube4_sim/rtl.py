@@ -130,6 +130,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                        **({"COCOTB_LOG_LEVEL": "WARNING"} if quiet else {})},
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
                       f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_DUMP={job['dump']}"],
+            quiet_logs=quiet,
         )
         results = json.loads(Path(job["result"]).read_text())
         for r in results:

@@ -225,6 +225,7 @@ def run_test(
     includes: Sequence[str | os.PathLike] = (),
     seed: int | None = None,
     plusargs: Sequence[str] = (),
+    quiet_logs: bool = False,
 ) -> Path:
     """Build ``top`` from ``sources`` with ``params`` and run cocotb tests on it.
 
@@ -248,6 +249,9 @@ def run_test(
         includes: include directories.
         seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random).
         plusargs: simulator plusargs (``+NAME=value``), read by ``$value$plusargs``.
+        quiet_logs: write the Verilator/C++ build output and the simulator's
+            output to ``build.log`` and ``sim.log`` in the build directory
+            instead of the terminal (errors name the file).
 
     Returns:
         The cocotb results XML file.
@@ -302,18 +306,27 @@ def run_test(
         extra_python_path=extra_python_path,
         forced_env=extra_env,
     )
+    build_log = build_dir / "build.log" if quiet_logs else None
+    sim_log = build_dir / "sim.log" if quiet_logs else None
+    log_hint = f"see {sim_log}" if sim_log else "see the log above"
     with _build_lock(build_dir):  # two processes must not compile into one directory at once
-        runner.build(
-            sources=all_sources,
-            includes=[Path(i).resolve() for i in includes],
-            defines=defines,
-            parameters=params,
-            build_args=all_build_args,
-            hdl_toplevel=top,
-            build_dir=build_dir,
-            waves=waves,
-            timescale=TIMESCALE,
-        )
+        try:
+            runner.build(
+                sources=all_sources,
+                includes=[Path(i).resolve() for i in includes],
+                defines=defines,
+                parameters=params,
+                build_args=all_build_args,
+                hdl_toplevel=top,
+                build_dir=build_dir,
+                waves=waves,
+                timescale=TIMESCALE,
+                log_file=build_log,
+            )
+        except Exception as exc:
+            if build_log is None:
+                raise
+            raise AssertionError(f"{top}: the Verilator build failed ({exc}); see {build_log}") from exc
 
     test_args: list[str] = []
     wave_file: Path | None = None
@@ -337,6 +350,7 @@ def run_test(
             build_dir=build_dir,
             results_xml=str(results),
             timescale=TIMESCALE,
+            log_file=sim_log,
         )
     except SystemExit as exc:  # cocotb_tools exits on failures (and crashes) under pytest
         exit_status = exc.code
@@ -348,14 +362,14 @@ def run_test(
     if not results.is_file():
         raise AssertionError(
             f"{top}: simulation crashed (exit status {exit_status}), no results file; "
-            f"see the log above. Build directory: {build_dir}"
+            f"{log_hint}. Build directory: {build_dir}"
         )
     num_tests, num_failed = get_results(results)
     if num_tests == 0:
         raise AssertionError(f"{top}: no cocotb test ran (test_module={module_name}, testcase={testcase})")
     if num_failed:
         raise AssertionError(
-            f"{top}: {num_failed} of {num_tests} cocotb tests failed (log above; results {results})"
+            f"{top}: {num_failed} of {num_tests} cocotb tests failed ({log_hint}; results {results})"
         )
     if exit_status not in (0, None):
         raise AssertionError(f"{top}: all tests passed but the simulator exited with status {exit_status}")

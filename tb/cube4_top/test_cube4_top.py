@@ -82,7 +82,8 @@ def test_phantoms(name, p):
 
 def test_cli_rtl_baseplane_equals_golden(tmp_path):
     """`cube4 render --engine rtl` writes the golden engine's base plane bit for bit,
-    and STATS.json with the cycle and speed figures."""
+    and STATS.json with the cycle and speed figures; with --quiet it prints nothing
+    (the Verilator build and simulator output go to build.log / sim.log)."""
     import json
     import subprocess
     import sys
@@ -90,9 +91,10 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
 
     exe = Path(sys.executable).parent / "cube4"
     for eng in ("rtl", "golden"):
-        subprocess.run([str(exe), "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
-                        str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
-                        "--out", str(tmp_path / f"{eng}.png")], check=True)
+        run = subprocess.run([str(exe), "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
+                              str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
+                              "--out", str(tmp_path / f"{eng}.png")], check=True, capture_output=True, text=True)
+        assert run.stdout == "" and run.stderr == "", (eng, run.stdout[-2000:], run.stderr[-2000:])
     a, b = np.load(tmp_path / "rtl.npy"), np.load(tmp_path / "golden.npy")
     assert a.shape == b.shape and (a == b).all(), "RTL base plane differs from the golden engine's"
     st = json.loads((tmp_path / "rtl.json").read_text())
