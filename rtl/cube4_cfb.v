@@ -280,11 +280,12 @@ module cube4_cfb #(
             end
         end
     endfunction
-    reg [ADDR_W-1:0] lin_tab_q [0:P-1];
+    // a packed vector (entry t at t*ADDR_W): a table of registers, not a RAM
+    reg [P*ADDR_W-1:0] lin_tab_q;
     genvar tl;
     generate
         for (tl = 0; tl < P; tl = tl + 1) begin : g_lin_tab
-            always @(posedge clk) lin_tab_q[tl] <= lin_of(tl);
+            always @(posedge clk) lin_tab_q[tl*ADDR_W +: ADDR_W] <= lin_of(tl);
         end
     endgenerate
     wire [P*LANE_W-1:0] t_d;
@@ -371,8 +372,8 @@ module cube4_cfb #(
             f_q     <= f2_q;
             for (ql = 0; ql < P; ql = ql + 1) begin
                 addr_q[ql*ADDR_W +: ADDR_W] <= flip2_q
-                    ? base2_q - lin_tab_q[t2_q[ql*LANE_W +: LANE_W]]
-                    : base2_q + lin_tab_q[t2_q[ql*LANE_W +: LANE_W]];
+                    ? base2_q - lin_tab_q[32'(t2_q[ql*LANE_W +: LANE_W]) * ADDR_W +: ADDR_W]
+                    : base2_q + lin_tab_q[32'(t2_q[ql*LANE_W +: LANE_W]) * ADDR_W +: ADDR_W];
             end
         end
     end
