@@ -39,8 +39,8 @@ comma := ,
 # Parameter sets linted in addition to each module's defaults (generate
 # branches are only checked when elaborated). Sets are space-separated;
 # parameters within a set are comma-separated.
-LINT_SETS_cube4_lerp        := LATENCY=0 LATENCY=1 LATENCY=2 \
-                               DATA_W=1,WEIGHT_W=1,LATENCY=1 DATA_W=16,WEIGHT_W=12,LATENCY=2
+LINT_SETS_cube4_lerp        := LATENCY=0 LATENCY=1 LATENCY=2 LATENCY=3 \
+                               DATA_W=1,WEIGHT_W=1,LATENCY=1 DATA_W=16,WEIGHT_W=12,LATENCY=3
 LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
 FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64

@@ -12,10 +12,13 @@
 // Parameters
 //   DATA_W    width of the samples a, b, y.          Range 1..16.  Default 8.
 //   WEIGHT_W  width of the weight w.                  Range 1..12.  Default 8.
-//   LATENCY   clock cycles from inputs to y.          Range 0..2.   Default 0.
+//   LATENCY   clock cycles from inputs to y.          Range 0..3.   Default 0.
 //               0: combinational (clk and en unused).
 //               1: y registered.
 //               2: (b - a) * w and a registered, then y registered.
+//               3: b - a, w and a registered, then (b - a) * w and a, then
+//                  y: the multiplier (a DSP on an FPGA) has a register on
+//                  each side and no other logic in series.
 //
 // Latency
 //   LATENCY cycles. Registers advance only on a rising clk edge with en = 1
@@ -69,8 +72,8 @@ module cube4_lerp #(
         if (WEIGHT_W < 1 || WEIGHT_W > 12) begin : g_bad_weight_w
             $error("cube4_lerp: WEIGHT_W = %0d is out of range 1..12", WEIGHT_W);
         end
-        if (LATENCY < 0 || LATENCY > 2) begin : g_bad_latency
-            $error("cube4_lerp: LATENCY = %0d is out of range 0..2", LATENCY);
+        if (LATENCY < 0 || LATENCY > 3) begin : g_bad_latency
+            $error("cube4_lerp: LATENCY = %0d is out of range 0..3", LATENCY);
         end
     endgenerate
 
@@ -78,33 +81,60 @@ module cube4_lerp #(
     localparam integer PROD_W = DIFF_W + WEIGHT_W;      // (b - a) * w, signed
     localparam integer RND_W  = PROD_W - WEIGHT_W + 1;  // round_shift output = DATA_W + 2
 
-    // ---- stage 0 (combinational): difference and product ----
-    wire signed [DIFF_W-1:0] diff = $signed({1'b0, b}) - $signed({1'b0, a});
+    // ---- difference (combinational, or registered with LATENCY == 3) ----
+    wire signed [DIFF_W-1:0] diff_c = $signed({1'b0, b}) - $signed({1'b0, a});
+    wire signed [DIFF_W-1:0] diff;
+    wire        [WEIGHT_W-1:0] w_s0;
+    wire        [DATA_W-1:0] a_s0;
+
+    generate
+        if (LATENCY == 3) begin : g_stage0_reg
+            reg signed [DIFF_W-1:0]   diff_q;
+            reg        [WEIGHT_W-1:0] w_q;
+            reg        [DATA_W-1:0]   a_q;
+            always @(posedge clk) begin
+                if (en) begin
+                    diff_q <= diff_c;
+                    w_q    <= w;
+                    a_q    <= a;
+                end
+            end
+            assign diff = diff_q;
+            assign w_s0 = w_q;
+            assign a_s0 = a_q;
+        end else begin : g_stage0_comb
+            assign diff = diff_c;
+            assign w_s0 = w;
+            assign a_s0 = a;
+        end
+    endgenerate
+
+    // ---- product ----
     // Both operands extended to PROD_W bits so the product is formed at the
     // width it needs; the true product fits in PROD_W signed bits, so the
     // modulo-2^PROD_W multiply is exact.
     wire signed [PROD_W-1:0] diff_ext = {{WEIGHT_W{diff[DIFF_W-1]}}, diff};
-    wire signed [PROD_W-1:0] w_ext    = $signed({{DIFF_W{1'b0}}, w});
+    wire signed [PROD_W-1:0] w_ext    = $signed({{DIFF_W{1'b0}}, w_s0});
     wire signed [PROD_W-1:0] prod     = diff_ext * w_ext;
 
-    // ---- optional stage-1 register (LATENCY == 2): split at the multiplier ----
+    // ---- optional product register (LATENCY >= 2): split at the multiplier ----
     wire        [DATA_W-1:0] a_s1;
     wire signed [PROD_W-1:0] prod_s1;
 
     generate
-        if (LATENCY == 2) begin : g_stage1_reg
+        if (LATENCY >= 2) begin : g_stage1_reg
             reg        [DATA_W-1:0] a_q;
             reg signed [PROD_W-1:0] prod_q;
             always @(posedge clk) begin
                 if (en) begin
-                    a_q    <= a;
+                    a_q    <= a_s0;
                     prod_q <= prod;
                 end
             end
             assign a_s1    = a_q;
             assign prod_s1 = prod_q;
         end else begin : g_stage1_comb
-            assign a_s1    = a;
+            assign a_s1    = a_s0;
             assign prod_s1 = prod;
         end
     endgenerate

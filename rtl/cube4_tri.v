@@ -31,12 +31,12 @@
 //   (DIM_W, NB_W, LANE_W, M_W, SB_W: derived, as in cube4_cfb.)
 //
 // Latency
-//   Fixed 10-stage pipeline under one stall enable (en = the output skid
+//   Fixed 13-stage pipeline under one stall enable (en = the output skid
 //   buffer's registered ready) plus a 2-entry skid buffer: s0 input, s1
 //   slice-buffer select, s2 beam buffer, s3 beam-extension hold (a beat waits
 //   there for the next beat, so the drain beat pushes out the last one), s4,
-//   then x-lerps, y-lerps and the z-lerp, LERP_LAT = 2 stages each (the
-//   multiply (b - a) * w, then the rounding add). in_ready = en.
+//   then x-lerps, y-lerps and the z-lerp, LERP_LAT = 3 stages each (b - a,
+//   the multiply (b - a) * w, then the rounding add). in_ready = en.
 //
 // Ports
 //   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
@@ -380,7 +380,7 @@ module cube4_tri #(
     // ------------------------- after s4: seven lerps per lane, LERP_LAT each
     // Stage n after s4 holds lv_q[n] / lmeta_q[n]; the y-lerps take the weight
     // LERP_LAT stages after s4, the z-lerp 2 * LERP_LAT stages after.
-    localparam integer LERP_LAT = 2;
+    localparam integer LERP_LAT = 3;
     localparam integer NL       = 3 * LERP_LAT;
     reg [NL:1]         lv_q;
     reg [META_W-1:0]   lmeta_q [1:NL];
