@@ -168,6 +168,7 @@ module cube4_cfb #(
     localparam integer PH_W = WEIGHT_W + MAX_SS_LOG2;  // phase accumulator
     localparam integer R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1;
     localparam integer IW   = $clog2(MAX_DIM + 2 * P + 1); // positions pb*P + t + 1
+    localparam integer REM_W = $clog2(P + 2);               // 0 .. P + 1
     localparam [LANE_W:0] PL = P[LANE_W:0];
 
     // mod-P normalisation of a value in (-P, 2P)
@@ -288,8 +289,14 @@ module cube4_cfb #(
             always @(posedge clk) lin_tab_q[tl*ADDR_W +: ADDR_W] <= lin_of(tl);
         end
     endgenerate
-    wire [P*LANE_W-1:0] t_d;
-    wire [P-1:0]        rden_d, lval_d, lnbr_d, lwrap_d;
+    // Lane masks: i = pb*P + t < NI  <=>  t < NI - pb*P. The difference is
+    // registered at s1 (clamped to P + 1: t + 1 <= P), t of both rows too; the
+    // compares run at s2 on registers only.
+    wire [P*LANE_W-1:0] t_d, tout_d;
+    wire [IW-1:0]       ni_ext  = {{(IW - DIM_W){1'b0}}, cfg_ni};
+    wire [IW-1:0]       rem_all = ni_ext - pbp_q;
+    wire [REM_W-1:0]    rem_d   = (pbp_q >= ni_ext) ? {REM_W{1'b0}}
+                                : (rem_all > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(rem_all);
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
@@ -301,14 +308,8 @@ module cube4_cfb #(
             wire [LANE_W-1:0] t_out = cfg_flip_i
                 ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, skew_out}) - $signed(QV))
                 : mod_p($signed(QV) - $signed({3'b000, skew_out}));
-            wire [IW-1:0] i_rd  = pbp_q + {{(IW - LANE_W){1'b0}}, t_rd};
-            wire [IW-1:0] i_out = pbp_q + {{(IW - LANE_W){1'b0}}, t_out};
-            wire [IW-1:0] ni_ext = {{(IW - DIM_W){1'b0}}, cfg_ni};
-            assign t_d[q*LANE_W +: LANE_W] = t_rd;
-            assign rden_d[q]  = (state_q == ST_RUN) && any_read && (i_rd < ni_ext);
-            assign lval_d[q]  = (i_out < ni_ext);
-            assign lnbr_d[q]  = (i_out + 1'b1 < ni_ext);
-            assign lwrap_d[q] = ({1'b0, t_out} == PL - 1'b1);
+            assign t_d[q*LANE_W +: LANE_W]    = t_rd;
+            assign tout_d[q*LANE_W +: LANE_W] = t_out;
         end
     endgenerate
 
@@ -321,19 +322,36 @@ module cube4_cfb #(
     wire              eop_d   = in_flush && last_pb;
 
     // ---- the beat's fields, as they travel s1 -> s2 -> output register ----
-    localparam integer F_W = 4 * P + 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 1 + 4;
-    wire [F_W-1:0] f_d = {rden_d, lval_d, lnbr_d, lwrap_d,
-                          emit_d, sop_d, eop_d, (state_q == ST_DRAIN), use_prev,
-                          (state_q == ST_RUN), (state_q == ST_RUN) && lower_mem,
-                          (state_q == ST_RUN) && upper_mem, (state_q == ST_RUN) && (r_q != '0),
-                          k0_q[0], sb_q, pb_q,
-                          use_prev ? pwx_q : wx, use_prev ? pwy_q : wy, use_prev ? pwz_q : wz,
-                          mout_d, jout_d, skew_out, (jout_d == cfg_nj - 1'b1),
-                          use_prev ? psteps_q : steps};
+    // s1 holds the fields but the lane masks (F1_W bits); s2 adds the masks.
+    localparam integer F1_W = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 1 + 4;
+    localparam integer F_W  = 4 * P + F1_W;
+    wire [F1_W-1:0] f_d = {emit_d, sop_d, eop_d, (state_q == ST_DRAIN), use_prev,
+                           (state_q == ST_RUN), (state_q == ST_RUN) && lower_mem,
+                           (state_q == ST_RUN) && upper_mem, (state_q == ST_RUN) && (r_q != '0),
+                           k0_q[0], sb_q, pb_q,
+                           use_prev ? pwx_q : wx, use_prev ? pwy_q : wy, use_prev ? pwz_q : wz,
+                           mout_d, jout_d, skew_out, (jout_d == cfg_nj - 1'b1),
+                           use_prev ? psteps_q : steps};
+
+    reg [F1_W-1:0]      f1_q;
+    reg [P*LANE_W-1:0]  tout1_q;           // lane positions t of the emitted row
+    reg [REM_W-1:0]     rem1_q;            // min(NI - pb*P, P + 1)
+    reg                 rd1_q;             // the beat reads memory (RUN and a read pass)
+    reg [P*LANE_W-1:0]  t1_q, t2_q;        // lane positions t of the read
+    wire [P-1:0]        rden_2, lval_2, lnbr_2, lwrap_2;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_mask
+            wire [REM_W-1:0] tr = REM_W'(t1_q[q*LANE_W +: LANE_W]);
+            wire [REM_W-1:0] to = REM_W'(tout1_q[q*LANE_W +: LANE_W]);
+            assign rden_2[q]  = rd1_q && (tr < rem1_q);
+            assign lval_2[q]  = (to < rem1_q);
+            assign lnbr_2[q]  = (to + 1'b1 < rem1_q);
+            assign lwrap_2[q] = (to == REM_W'(P - 1));
+        end
+    endgenerate
 
     reg                 v1_q, v2_q, v_q;
-    reg [F_W-1:0]       f1_q, f2_q, f_q;
-    reg [P*LANE_W-1:0]  t1_q, t2_q;        // lane positions t of the read
+    reg [F_W-1:0]       f2_q, f_q;
     reg [ADDR_W-1:0]    ajk1_q;            // A_j + A_k
     reg [ADDR_W-1:0]    pbx1_q;
     reg [ADDR_W-1:0]    base2_q;           // A_j + A_k + I_A0 - pb*I_PB  or  A_j + A_k + pb*I_PB
@@ -360,11 +378,14 @@ module cube4_cfb #(
             // s1
             f1_q    <= f_d;
             t1_q    <= t_d;
+            tout1_q <= tout_d;
+            rem1_q  <= rem_d;
+            rd1_q   <= (state_q == ST_RUN) && any_read;
             ajk1_q  <= aj_q + ak_q;
             pbx1_q  <= pbx_q;
             flip1_q <= cfg_flip_i;
             // s2
-            f2_q    <= f1_q;
+            f2_q    <= {rden_2, lval_2, lnbr_2, lwrap_2, f1_q};
             t2_q    <= t1_q;
             base2_q <= ajk1_q + pbx1_q;
             flip2_q <= flip1_q;
