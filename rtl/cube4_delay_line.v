@@ -8,10 +8,12 @@
 //   period of the caller's position counter (last = 1 on the step at position
 //   L-1). Cube-4 uses it for beam delays (L = NB partial beams) and plane
 //   delays (L = NJ * NB beats, one slice): the plane buffers of the paper's
-//   Fig. 3. dout is a register outside the RAM: the RAM is read two steps
-//   ahead at a registered address, so neither the RAM's address nor its output
-//   has logic in series (a block RAM's clock-to-out is most of a cycle on an
-//   FPGA). L = 1 and L = 2 are bypassed. Between steps everything holds.
+//   Fig. 3. The RAM is read three steps ahead at a registered address, and
+//   its word passes two registers (rd_q, a plain copy rd2_q that can sit
+//   beside the block RAM, then dout's register with the bypass multiplexer),
+//   so neither the RAM's address nor its output has logic in series (a block
+//   RAM's clock-to-out is most of a cycle on an FPGA). L = 1, 2 and 3 are
+//   bypassed. Between steps everything holds.
 //
 // Parameters
 //   DATA_W  word width.                  1..4096.
@@ -19,8 +21,8 @@
 //
 // Latency
 //   Exactly L steps (step b sees din(b - L)); 0 clock cycles of extra delay.
-//   The first L steps after clear see stale words (for L >= 3 the second and
-//   third are zero words), which the caller ignores.
+//   The first L steps after clear see stale words (for L >= 4 the second,
+//   third and fourth are zero words), which the caller ignores.
 //
 // Ports
 //   clear  in   this step is position 0 (frame start)
@@ -56,23 +58,26 @@ module cube4_delay_line #(
     endgenerate
 
     reg [DATA_W-1:0] mem [0:(1 << AW)-1];
-    reg [DATA_W-1:0] rd_q;    // RAM read register: the word for the step after next
+    reg [DATA_W-1:0] rd_q;    // RAM read register: the word for three steps on
+    reg [DATA_W-1:0] rd2_q;   // rd_q one step later: no logic after the RAM
     reg [DATA_W-1:0] out_q;   // dout
     reg [DATA_W-1:0] din_q;   // din of the previous step (L = 2)
+    reg [DATA_W-1:0] din2_q;  // din of two steps back (L = 3)
     reg [AW-1:0]     ptr_q;   // position of the next step (without a clear)
-    reg [AW-1:0]     ra_q;    // position two steps after the next one: the read address
-    reg              l1_q, l2_q;
-    reg              clr1_q;  // the last step was a clear
+    reg [AW-1:0]     ra_q;    // position three steps after the next one: the read address
+    reg              l1_q, l2_q, l3_q;
+    reg              clr1_q, clr2_q;  // the last / the second-last step was a clear
 
     wire [AW-1:0] pos = clear ? {AW{1'b0}} : ptr_q;     // position of this step
     wire [AW-1:0] nxt = last ? {AW{1'b0}} : pos + 1'b1; // position of the next step
-    // (x + 1) mod L, and 3 mod L (the read address after a clear, L >= 3)
+    // (x + 1) mod L, and 4 mod L (the read address after a clear, L >= 4)
     wire [AW-1:0] ra_inc = ({1'b0, ra_q} + 1'b1 == len) ? {AW{1'b0}} : ra_q + 1'b1;
-    wire [AW-1:0] three  = (len == (AW + 1)'(3)) ? {AW{1'b0}} : AW'(3);   // (AW = 1: L <= 2, unused)
+    wire [AW-1:0] four   = (len == (AW + 1)'(4)) ? {AW{1'b0}} : AW'(32'd4);   // (AW <= 2: L <= 4)
 
     always @(posedge clk) begin
         l1_q <= (len == (AW + 1)'(1));
         l2_q <= (len == (AW + 1)'(2));
+        l3_q <= (len == (AW + 1)'(3));
     end
     always @(posedge clk) begin
         if (rst) begin
@@ -80,25 +85,33 @@ module cube4_delay_line #(
             ra_q  <= {AW{1'b0}};
         end else if (step) begin
             ptr_q <= nxt;
-            ra_q  <= clear ? three : ra_inc;
+            ra_q  <= clear ? four : ra_inc;
         end
     end
-    // Step b writes position pos(b) and reads position pos(b + 2) (= ra_q; a
-    // word written at step b + 2 - L <= b - 1 when L >= 3); dout for step b + 1
-    // is the word read at step b - 1. Right after a clear ra_q is off for two
-    // steps, so the two outputs after a clear are zero words instead (they
+    // Step b writes position pos(b) and reads position pos(b + 3) (= ra_q; a
+    // word written at step b + 3 - L <= b - 1 when L >= 4); dout for step b + 1
+    // is the word read at step b - 2. Right after a clear ra_q is off for three
+    // steps, so the three outputs after a clear are zero words instead (they
     // fall in the first L steps, which the caller ignores; a zero word carries
     // no stale frame-start flag).
     always @(posedge clk) begin
-        if (rst) clr1_q <= 1'b0;
-        else if (step) clr1_q <= clear;
+        if (rst) begin
+            clr1_q <= 1'b0;
+            clr2_q <= 1'b0;
+        end else if (step) begin
+            clr1_q <= clear;
+            clr2_q <= clr1_q;
+        end
     end
     always @(posedge clk) begin
         if (step) begin
             mem[pos] <= din;
             rd_q     <= mem[ra_q];
+            rd2_q    <= rd_q;
             din_q    <= din;
-            out_q    <= l1_q ? din : (l2_q ? din_q : ((clear || clr1_q) ? {DATA_W{1'b0}} : rd_q));
+            din2_q   <= din_q;
+            out_q    <= l1_q ? din : (l2_q ? din_q : (l3_q ? din2_q
+                        : ((clear || clr1_q || clr2_q) ? {DATA_W{1'b0}} : rd2_q)));
         end
     end
 
