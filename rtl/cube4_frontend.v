@@ -21,7 +21,7 @@
 // Latency
 //   A frame: (M * NJ + 1) * NB + 1 request beats (M = (NK-1) * S + 1 passes,
 //   NB = ceil(NI / P)), i.e. NI*NJ*NK/P cycles plus padding of the last
-//   partial beam, one flush beam and the pipeline fill (18 cycles), when no
+//   partial beam, one flush beam and the pipeline fill (21 cycles), when no
 //   port stalls. done pulses the cycle the last sample beat is accepted;
 //   cycles counts the clock cycles from start to that beat inclusive.
 //
