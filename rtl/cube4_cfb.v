@@ -218,6 +218,8 @@ module cube4_cfb #(
     reg [R_W-1:0]      r_q;        // m mod S
     reg [DIM_W-1:0]    j_q;        // beam
     reg [PB_W-1:0]     pb_q;       // partial beam
+    reg                lpb_q;      // pb_q is the last partial beam (NB - 1)
+    reg                lj_q;       // j_q is the last beam (NJ - 1)
     reg [SB_W-1:0]     sb_q;       // j * NB + pb
     reg [IW-1:0]       pbp_q;      // pb * P
     reg [ADDR_W-1:0]   pbx_q;      // I_A0 - pb * I_PB (i flipped), pb * I_PB (not)
@@ -251,8 +253,10 @@ module cube4_cfb #(
 
     // ---- traversal unit: where the counters go next ----
     wire [R_W-1:0] ss_m1 = R_W'((1 << g) - 1);
-    wire last_pb    = (NB_W'(pb_q) == cfg_nb - 1'b1);
-    wire last_j     = (j_q == cfg_nj - 1'b1);
+    wire last_pb    = lpb_q;       // (pb_q == NB - 1), kept with the counter
+    wire last_j     = lj_q;        // (j_q == NJ - 1)
+    wire nb_one     = (cfg_nb == NB_W'(1));
+    wire nj_one     = (cfg_nj == DIM_W'(1));
     wire last_r     = (r_q == ss_m1);
     wire last_pass  = (k0_q == cfg_nk - 1'b1) && (r_q == '0);
     wire lower_mem  = (g == 3'd0) || (m_q == '0);
@@ -404,35 +408,39 @@ module cube4_cfb #(
         if (rst) begin
             state_q <= ST_IDLE;
         end else if (state_q == ST_IDLE) begin
-            if (start && !busy) begin
-                state_q  <= ST_RUN;
-                m_q      <= '0;
-                k0_q     <= '0;
-                r_q      <= '0;
-                j_q      <= '0;
-                pb_q     <= '0;
-                sb_q     <= '0;
-                pbp_q    <= '0;
-                pbx_q    <= cfg_flip_i ? cfg_i_a0 : '0;
-                rj_q     <= cfg_j_r0;
-                aj_q     <= cfg_j_a0;
-                rk_q     <= cfg_k_r0;
-                ak_q     <= cfg_k_a0;
-                rk0_q    <= cfg_k_r0;
-                phx_q    <= '0;
-                phy_q    <= '0;
-                old_sx_q <= (cfg_view_x != '0);
-                old_sy_q <= (cfg_view_y != '0);
-            end
+            // Idle: the counters hold their first values all the time, so
+            // start only moves the state (start and busy reach no counter).
+            if (start && !busy) state_q <= ST_RUN;
+            m_q      <= '0;
+            k0_q     <= '0;
+            r_q      <= '0;
+            j_q      <= '0;
+            pb_q     <= '0;
+            lpb_q    <= nb_one;
+            lj_q     <= nj_one;
+            sb_q     <= '0;
+            pbp_q    <= '0;
+            pbx_q    <= cfg_flip_i ? cfg_i_a0 : '0;
+            rj_q     <= cfg_j_r0;
+            aj_q     <= cfg_j_a0;
+            rk_q     <= cfg_k_r0;
+            ak_q     <= cfg_k_a0;
+            rk0_q    <= cfg_k_r0;
+            phx_q    <= '0;
+            phy_q    <= '0;
+            old_sx_q <= (cfg_view_x != '0);
+            old_sy_q <= (cfg_view_y != '0);
         end else if (advance) begin
             // partial beam
             if (!last_pb) begin
                 pb_q  <= pb_q + 1'b1;
+                lpb_q <= (NB_W'(pb_q) + 1'b1 == cfg_nb - 1'b1);
                 pbp_q <= pbp_q + IW'(P);
                 pbx_q <= cfg_flip_i ? pbx_q - cfg_i_pb : pbx_q + cfg_i_pb;
                 sb_q  <= sb_q + 1'b1;
             end else begin
                 pb_q  <= '0;
+                lpb_q <= nb_one;
                 pbp_q <= '0;
                 pbx_q <= cfg_flip_i ? cfg_i_a0 : '0;
             end
@@ -440,12 +448,14 @@ module cube4_cfb #(
                 ST_RUN: if (last_pb) begin
                     if (!last_j) begin
                         j_q  <= j_q + 1'b1;
+                        lj_q <= (j_q + 1'b1 == cfg_nj - 1'b1);
                         sb_q <= sb_q + 1'b1;
                         rj_q <= r_step(rj_q, s_j_down);
                         aj_q <= a_step(aj_q, rj_q, s_j_down, cfg_j_lin, cfg_j_blk);
                     end else begin
                         // end of pass m: remember it, then the next pass
                         j_q      <= '0;
+                        lj_q     <= nj_one;
                         sb_q     <= '0;
                         rj_q     <= cfg_j_r0;
                         aj_q     <= cfg_j_a0;

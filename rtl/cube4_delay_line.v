@@ -8,12 +8,17 @@
 //   period of the caller's position counter (last = 1 on the step at position
 //   L-1). Cube-4 uses it for beam delays (L = NB partial beams) and plane
 //   delays (L = NJ * NB beats, one slice): the plane buffers of the paper's
-//   Fig. 3. The RAM is read three steps ahead at a registered address, and
-//   its word passes two registers (rd_q, a plain copy rd2_q that can sit
-//   beside the block RAM, then dout's register with the bypass multiplexer),
-//   so neither the RAM's address nor its output has logic in series (a block
-//   RAM's clock-to-out is most of a cycle on an FPGA). L = 1, 2 and 3 are
-//   bypassed. Between steps everything holds.
+//   Fig. 3. The RAM is read RA steps ahead at a registered address, and its
+//   word passes plain registers before dout's register with the bypass
+//   multiplexer, so neither the RAM's address nor its output has logic in
+//   series (a block RAM's clock-to-out is most of a cycle on an FPGA):
+//     up to 2048 words: one bank; rd_q, then rd2_q (a plain copy that can sit
+//       beside the block RAM), then dout; RA = 3;
+//     more: banks of 2048 words (one block RAM deep each, 2048 x 9 on ECP5),
+//       each with its rd_q and plain rd2_q; the bank multiplexer, selected by
+//       a register, loads rd3_q; then dout; RA = 4.
+//   L = 1 .. RA are bypassed (din and its last RA - 1 values). Between steps
+//   everything holds.
 //
 // Parameters
 //   DATA_W  word width.                  1..4096.
@@ -21,8 +26,8 @@
 //
 // Latency
 //   Exactly L steps (step b sees din(b - L)); 0 clock cycles of extra delay.
-//   The first L steps after clear see stale words (for L >= 4 the second,
-//   third and fourth are zero words), which the caller ignores.
+//   The first L steps after clear see stale words (for L > RA the RA outputs
+//   after the clear are zero words), which the caller ignores.
 //
 // Ports
 //   clear  in   this step is position 0 (frame start)
@@ -57,61 +62,110 @@ module cube4_delay_line #(
         end
     endgenerate
 
-    reg [DATA_W-1:0] mem [0:(1 << AW)-1];
-    reg [DATA_W-1:0] rd_q;    // RAM read register: the word for three steps on
-    reg [DATA_W-1:0] rd2_q;   // rd_q one step later: no logic after the RAM
-    reg [DATA_W-1:0] out_q;   // dout
-    reg [DATA_W-1:0] din_q;   // din of the previous step (L = 2)
-    reg [DATA_W-1:0] din2_q;  // din of two steps back (L = 3)
-    reg [AW-1:0]     ptr_q;   // position of the next step (without a clear)
-    reg [AW-1:0]     ra_q;    // position three steps after the next one: the read address
-    reg              l1_q, l2_q, l3_q;
-    reg              clr1_q, clr2_q;  // the last / the second-last step was a clear
+    localparam integer BW    = (AW > 11) ? 11 : AW;      // bank address bits
+    localparam integer SW    = (AW > BW) ? AW - BW : 1;  // bank select bits
+    localparam integer NBANK = 1 << (AW - BW);
+    localparam integer RA    = (NBANK > 1) ? 4 : 3;      // steps read ahead
+
+    reg [DATA_W-1:0] out_q;             // dout
+    reg [DATA_W-1:0] dh_q [1:RA-1];     // din of 1 .. RA-1 steps back (bypass)
+    reg [AW-1:0]     ptr_q;             // position of the next step (without a clear)
+    reg [AW-1:0]     ra_q;              // position RA steps after the next one: the read address
+    reg [RA:1]       l_q;               // l_q[k]: L = k
+    reg [RA-1:1]     clr_q;             // clr_q[k]: the step k back was a clear
+    wire [DATA_W-1:0] rd_word;          // the RAM word for this step's dout
 
     wire [AW-1:0] pos = clear ? {AW{1'b0}} : ptr_q;     // position of this step
     wire [AW-1:0] nxt = last ? {AW{1'b0}} : pos + 1'b1; // position of the next step
-    // (x + 1) mod L, and 4 mod L (the read address after a clear, L >= 4)
+    // (x + 1) mod L, and (RA + 1) mod L (the read address after a clear, L > RA)
     wire [AW-1:0] ra_inc = ({1'b0, ra_q} + 1'b1 == len) ? {AW{1'b0}} : ra_q + 1'b1;
-    wire [AW-1:0] four   = (len == (AW + 1)'(4)) ? {AW{1'b0}} : AW'(32'd4);   // (AW <= 2: L <= 4)
+    wire [AW-1:0] ra_clr = (len == (AW + 1)'(RA + 1)) ? {AW{1'b0}} : AW'(RA + 1);
 
-    always @(posedge clk) begin
-        l1_q <= (len == (AW + 1)'(1));
-        l2_q <= (len == (AW + 1)'(2));
-        l3_q <= (len == (AW + 1)'(3));
-    end
+    genvar k;
+    generate
+        for (k = 1; k <= RA; k = k + 1) begin : g_len
+            always @(posedge clk) l_q[k] <= (len == (AW + 1)'(k));
+        end
+    endgenerate
     always @(posedge clk) begin
         if (rst) begin
             ptr_q <= {AW{1'b0}};
             ra_q  <= {AW{1'b0}};
         end else if (step) begin
             ptr_q <= nxt;
-            ra_q  <= clear ? four : ra_inc;
+            ra_q  <= clear ? ra_clr : ra_inc;
         end
     end
-    // Step b writes position pos(b) and reads position pos(b + 3) (= ra_q; a
-    // word written at step b + 3 - L <= b - 1 when L >= 4); dout for step b + 1
-    // is the word read at step b - 2. Right after a clear ra_q is off for three
-    // steps, so the three outputs after a clear are zero words instead (they
-    // fall in the first L steps, which the caller ignores; a zero word carries
-    // no stale frame-start flag).
+    // Step b writes position pos(b) and reads position pos(b + RA) (= ra_q; a
+    // word written at step b + RA - L <= b - 1 when L > RA); dout for step
+    // b + 1 is the word read at step b + 1 - RA. Right after a clear ra_q is
+    // off for RA steps, so the RA outputs after a clear are zero words instead
+    // (they fall in the first L steps, which the caller ignores; a zero word
+    // carries no stale frame-start flag). "keep": each delay line has its own
+    // copies, not one set shared by every line of the caller.
+    (* keep *)
     always @(posedge clk) begin
-        if (rst) begin
-            clr1_q <= 1'b0;
-            clr2_q <= 1'b0;
-        end else if (step) begin
-            clr1_q <= clear;
-            clr2_q <= clr1_q;
+        if (rst) clr_q <= '0;
+        else if (step) clr_q <= (RA - 1)'({clr_q, clear});
+    end
+
+    generate
+        if (NBANK == 1) begin : g_one_bank
+            reg [DATA_W-1:0] mem [0:(1 << AW)-1];
+            reg [DATA_W-1:0] rd_q;    // RAM read register
+            reg [DATA_W-1:0] rd2_q;   // rd_q one step later: no logic after the RAM
+            always @(posedge clk) begin
+                if (step) begin
+                    mem[pos] <= din;
+                    rd_q     <= mem[ra_q];
+                    rd2_q    <= rd_q;
+                end
+            end
+            assign rd_word = rd2_q;
+        end else begin : g_banks
+            wire [DATA_W-1:0] rd2_w [0:NBANK-1];
+            reg  [SW-1:0]     sel1_q, sel2_q;   // bank of the word in rd_q / rd2_q
+            reg  [DATA_W-1:0] rd3_q;            // the selected bank's word
+            genvar b;
+            for (b = 0; b < NBANK; b = b + 1) begin : g_bank
+                reg [DATA_W-1:0] mem [0:(1 << BW)-1];
+                reg [DATA_W-1:0] rd_q;
+                reg [DATA_W-1:0] rd2_q;
+                always @(posedge clk) begin
+                    if (step) begin
+                        if (pos[AW-1:BW] == SW'(b)) mem[pos[BW-1:0]] <= din;
+                        rd_q  <= mem[ra_q[BW-1:0]];
+                        rd2_q <= rd_q;
+                    end
+                end
+                assign rd2_w[b] = rd2_q;
+            end
+            always @(posedge clk) begin
+                if (step) begin
+                    sel1_q <= ra_q[AW-1:BW];
+                    sel2_q <= sel1_q;
+                    rd3_q  <= rd2_w[sel2_q];
+                end
+            end
+            assign rd_word = rd3_q;
+        end
+    endgenerate
+
+    // dout: the bypass for L <= RA, the zero words after a clear, else the RAM
+    reg [DATA_W-1:0] byp;
+    integer kb;
+    always @(*) begin
+        byp = din;
+        for (kb = RA; kb >= 2; kb = kb - 1) begin
+            if (l_q[kb]) byp = dh_q[kb - 1];
         end
     end
+    integer kd;
     always @(posedge clk) begin
         if (step) begin
-            mem[pos] <= din;
-            rd_q     <= mem[ra_q];
-            rd2_q    <= rd_q;
-            din_q    <= din;
-            din2_q   <= din_q;
-            out_q    <= l1_q ? din : (l2_q ? din_q : (l3_q ? din2_q
-                        : ((clear || clr1_q || clr2_q) ? {DATA_W{1'b0}} : rd2_q)));
+            dh_q[1] <= din;
+            for (kd = 2; kd < RA; kd = kd + 1) dh_q[kd] <= dh_q[kd - 1];
+            out_q <= (|l_q) ? byp : ((clear || (|clr_q)) ? {DATA_W{1'b0}} : rd_word);
         end
     end
 

@@ -30,7 +30,9 @@
 // Latency
 //   A sample beat leaves NJ*NB + NB + 1 beats after it entered (the plane and
 //   beam delays), plus 3 register stages and the output skid buffer. All under
-//   one stall enable (the skid buffer's registered ready).
+//   one stall enable (the skid buffer's registered ready), which comes as
+//   eight flip-flops, one per group of registers (each delay line, the
+//   window, the arithmetic), so that no single net reaches every clock enable.
 //
 // Ports
 //   in_*   the sample stream of cube4_tri (same fields and formats)
@@ -130,46 +132,87 @@ module cube4_gra #(
     endfunction
 
     // ------------------------------------------------------------ stepping
-    wire en;                      // stall enable = output skid buffer ready
-    reg  flush_q;                 // running the zero steps after a frame
-    reg  [DIM_W:0]   f_row_q;     // flush: beam 0 .. NJ, then one beat (NJ + 1)
+    // The stall enable (the output skid buffer's ready) comes as NCOPY
+    // flip-flops and flush_q has NCOPY copies too, so each group of registers
+    // (each delay line, the window, the arithmetic) gets its own step net:
+    // no single net drives every clock enable of the unit.
+    localparam integer NCOPY = 8;    // 0..5 the delay lines, 6 window and counters, 7 arithmetic
+    localparam integer NSTEP = 7;    // copies with a step (0..6)
+    wire [NCOPY-1:0] en_rep;         // copies of the stall enable
+    wire             en = en_rep[7];
+    reg              flush_q;        // running the zero steps after a frame
+    wire [NSTEP-1:0] flush_rep;      // copies of flush_q
+    reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then one beat (NJ + 1)
     reg  [PB_W-1:0]  f_pb_q;
-    wire step = en && (flush_q || in_valid);
-    assign in_ready = en && !flush_q;
+    wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{in_valid}});
+    wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{in_ctrl[4]}};   // frame start, per copy
+    wire step = step_rep[6];
+    assign in_ready = en_rep[6] && !flush_rep[6];
 
     wire real_beat = !flush_q;
-    wire sop       = real_beat && in_ctrl[4];
+    wire sop       = sop_rep[6];
     wire eop       = real_beat && in_ctrl[5];
 
-    // position counters of the delay lines (beat index within a beam / slice)
+    // position counters of the delay lines (beat index within a beam / slice);
+    // lb_q / ls_q: the position in pb_q / row_q is the last beam / the last
+    // beat of a slice (kept with the counters, so that the delay lines' last
+    // inputs are a multiplexer on registers)
     reg  [PB_W-1:0]  pb_q;
     reg  [DIM_W-1:0] row_q;
+    reg              lb_q, ls_q;
+    reg              nb1_q, nj1_q;   // NB = 1, NJ = 1
+    always @(posedge clk) begin
+        nb1_q <= (cfg_nb == NB_W'(1));
+        nj1_q <= (cfg_nj == DIM_W'(1));
+    end
     wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
     wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
-    wire last_beam  = (NB_W'(pos_pb) == cfg_nb - 1'b1);
-    wire last_slice = last_beam && (pos_row == cfg_nj - 1'b1);
+    wire last_beam  = sop ? nb1_q : lb_q;
+    wire last_slice = sop ? (nb1_q && nj1_q) : ls_q;
+    wire [PB_W-1:0]  pb_n  = last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
+    wire [DIM_W-1:0] row_n = !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
+    wire             lb_n  = (NB_W'(pb_n) == cfg_nb - 1'b1);
+
+    // flush_q and its copies
+    reg flush_d;
+    always @(*) begin
+        flush_d = flush_q;
+        if (rst)                    flush_d = 1'b0;
+        else if (step && flush_q)   flush_d = (f_row_q != {1'b0, cfg_nj} + 1'b1);  // ends after the extra beat
+        else if (step && eop)       flush_d = 1'b1;
+    end
+    always @(posedge clk) flush_q <= flush_d;
+    genvar q;
+    generate
+        for (q = 0; q < NSTEP; q = q + 1) begin : g_flush
+            reg fl_q;
+            (* keep *)
+            always @(posedge clk) fl_q <= flush_d;
+            assign flush_rep[q] = fl_q;
+        end
+    endgenerate
 
     always @(posedge clk) begin
         if (rst) begin
             pb_q    <= {PB_W{1'b0}};
             row_q   <= {DIM_W{1'b0}};
-            flush_q <= 1'b0;
+            lb_q    <= 1'b0;
+            ls_q    <= 1'b0;
             f_row_q <= {(DIM_W + 1){1'b0}};
             f_pb_q  <= {PB_W{1'b0}};
         end else if (step) begin
-            pb_q  <= last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
-            row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
+            pb_q  <= pb_n;
+            row_q <= row_n;
+            lb_q  <= lb_n;
+            ls_q  <= lb_n && (row_n == cfg_nj - 1'b1);
             if (flush_q) begin
-                if (f_row_q == {1'b0, cfg_nj} + 1'b1) begin
-                    flush_q <= 1'b0;                      // the single extra beat
-                end else if (NB_W'(f_pb_q) == cfg_nb - 1'b1) begin
+                if (NB_W'(f_pb_q) == cfg_nb - 1'b1) begin
                     f_pb_q  <= {PB_W{1'b0}};
                     f_row_q <= f_row_q + 1'b1;
                 end else begin
                     f_pb_q <= f_pb_q + 1'b1;
                 end
             end else if (eop) begin
-                flush_q <= 1'b1;
                 f_row_q <= {(DIM_W + 1){1'b0}};
                 f_pb_q  <= {PB_W{1'b0}};
             end
@@ -178,7 +221,6 @@ module cube4_gra #(
 
     // ------------------------------------------------------------ delay lines
     wire [PV-1:0] x_data;
-    genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_mask
             assign x_data[q*VW +: VW] = (real_beat && in_lane_valid[q]) ? in_sample[q*VW +: VW] : {VW{1'b0}};
@@ -198,22 +240,22 @@ module cube4_gra #(
         plane_len <= PL_W'(PL_W'(cfg_nj) * PL_W'(cfg_nb));
     end
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_x_b1 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
+        .clk(clk), .rst(rst), .clear(sop_rep[0]), .step(step_rep[0]), .last(last_beam), .len(beam_len),
         .din(x_data), .dout(b1));
     cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(MAX_DIM * NBMAX)) u_x_p1 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice), .len(plane_len),
+        .clk(clk), .rst(rst), .clear(sop_rep[1]), .step(step_rep[1]), .last(last_slice), .len(plane_len),
         .din({x_meta, x_data}), .dout({p1_meta, p1}));
     cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(NBMAX)) u_p1_c (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
+        .clk(clk), .rst(rst), .clear(sop_rep[2]), .step(step_rep[2]), .last(last_beam), .len(beam_len),
         .din({p1_meta, p1}), .dout({c_meta, c_d}));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
+        .clk(clk), .rst(rst), .clear(sop_rep[3]), .step(step_rep[3]), .last(last_beam), .len(beam_len),
         .din(c_d), .dout(p1b2));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(MAX_DIM * NBMAX)) u_c_p2b1 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_slice), .len(plane_len),
+        .clk(clk), .rst(rst), .clear(sop_rep[4]), .step(step_rep[4]), .last(last_slice), .len(plane_len),
         .din(c_d), .dout(p2b1));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_p2b1_p2b2 (
-        .clk(clk), .rst(rst), .clear(sop), .step(step), .last(last_beam), .len(beam_len),
+        .clk(clk), .rst(rst), .clear(sop_rep[5]), .step(step_rep[5]), .last(last_beam), .len(beam_len),
         .din(p2b1), .dout(p2b2));
 
     // fields of the incoming centre beat c' (becomes c after this step)
@@ -439,12 +481,13 @@ module cube4_gra #(
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
     wire [OUT_W-1:0] skid_out;
     cube4_skid #(
-        .DATA_W (OUT_W)
+        .DATA_W       (OUT_W),
+        .READY_COPIES (NCOPY)
     ) u_skid (
         .clk       (clk),
         .rst       (rst),
         .in_valid  (g3_v),
-        .in_ready  (en),
+        .in_ready  (en_rep),
         .in_data   ({g3_meta, g3_s, g3_gi, g3_gj, g3_gk}),
         .out_valid (out_valid),
         .out_ready (out_ready),

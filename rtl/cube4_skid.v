@@ -14,9 +14,13 @@
 //   out_ready. out_ready moves only the read pointer and the two state bits,
 //   so a late out_ready (e.g. a downstream hazard check) does not fan out
 //   to every data flip-flop's clock enable.
+//   in_ready can be had as READY_COPIES identical registers (kept apart in
+//   synthesis), so that a unit's stall enable is driven by one register per
+//   group of flip-flops instead of one register for all of them.
 //
 // Parameters
-//   DATA_W  width of the payload.  Range 1..4096.  Default 8.
+//   DATA_W        width of the payload.  Range 1..4096.  Default 8.
+//   READY_COPIES  copies of in_ready.    Range 1..64.    Default 1.
 //
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
@@ -25,18 +29,21 @@
 //
 // Ports
 //   clk, rst                 clock, synchronous active-high reset (empties it)
-//   in_valid/in_ready/in_data   input stream  (in_data: any format, DATA_W bits)
+//   in_valid/in_ready/in_data   input stream  (in_data: any format, DATA_W bits);
+//                            in_ready [READY_COPIES]: every bit is the same
+//                            ready, each from its own flip-flop
 //   out_valid/out_ready/out_data output stream (same format)
 //
 // Bit growth and rounding: none (storage only).
 // =============================================================================
 module cube4_skid #(
-    parameter integer DATA_W = 8
+    parameter integer DATA_W       = 8,
+    parameter integer READY_COPIES = 1
 ) (
     input  wire              clk,
     input  wire              rst,
     input  wire              in_valid,
-    output wire              in_ready,
+    output wire [READY_COPIES-1:0] in_ready,
     input  wire [DATA_W-1:0] in_data,
     output wire              out_valid,
     input  wire              out_ready,
@@ -45,6 +52,9 @@ module cube4_skid #(
     generate
         if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
             $error("cube4_skid: DATA_W = %0d is out of range 1..4096", DATA_W);
+        end
+        if (READY_COPIES < 1 || READY_COPIES > 64) begin : g_bad_copies
+            $error("cube4_skid: READY_COPIES = %0d is out of range 1..64", READY_COPIES);
         end
     endgenerate
 
@@ -80,7 +90,21 @@ module cube4_skid #(
         if (push &&  wp_q) e1_q <= in_data;
     end
 
-    assign in_ready  = !full_q;
+    // in_ready: READY_COPIES flip-flops holding !full_q. "keep" stops
+    // synthesis from merging them back into one (they have the same input).
+    wire full_d = (push && !pop) ? nonempty_q : ((pop && !push) ? 1'b0 : full_q);
+    genvar c;
+    generate
+        for (c = 0; c < READY_COPIES; c = c + 1) begin : g_ready
+            reg ready_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) ready_q <= 1'b1;
+                else     ready_q <= !full_d;
+            end
+            assign in_ready[c] = ready_q;
+        end
+    endgenerate
     assign out_valid = nonempty_q;
     assign out_data  = rp_q ? e1_q : e0_q;
 
