@@ -25,7 +25,8 @@
 // Latency
 //   4 + (RMAP_BITS + 1) + 4 register stages (input; LUT read and |g|; face;
 //   numerators; one stage per quotient bit of the division; reflectance-map
-//   read; its output register; C * D; shading) under one stall enable, then
+//   read; its output register; C * D; shading) under one stall enable (one
+//   flip-flop copy of it per lane and one for the shared fields), then
 //   the output skid buffer: 14 at RMAP_BITS = 5. Both tables' RAM outputs go
 //   straight into a register (an FPGA block RAM's clock-to-output is long).
 //
@@ -126,11 +127,15 @@ module cube4_sha #(
     //   d2     the read word registered
     //   e1     C * D (multipliers)
     //   e2     round_shift(C * D, 8) + P, min 255
-    // Every stage moves under en (the skid's ready); the beat's fields ride along.
+    // Every stage moves under en (the skid's ready; each lane has its own copy of
+    // it, en_l); the beat's fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
     localparam integer NST  = 3 + NDIV + 4;      // stages after a: b1..b3, c*, d, d2, e1, e2
 
-    wire en;
+    // The stall enable (the output skid buffer's ready) comes as P + 1
+    // flip-flops: one for the beat's fields and valid bits, one per lane.
+    wire [P:0] en_rep;
+    wire       en = en_rep[0];
     assign in_ready = en;
 
     // ---- stage a: input register ----
@@ -174,6 +179,7 @@ module cube4_sha #(
     genvar q, it;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
+            wire en_l = en_rep[q + 1];   // this lane's copy of the stall enable
             // tables (this lane's copies)
             reg [LUT_W-1:0] lut  [0:(1 << VW)-1];
             reg [19:0]      rmap [0:RMAP_N-1];
@@ -185,7 +191,7 @@ module cube4_sha #(
             reg [LUT_W-1:0] lut_q [1:NST-2];
             integer k_l;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     lut_q[1] <= lut[a_s[q*VW +: VW]];
                     for (k_l = 2; k_l <= NST - 2; k_l = k_l + 1) lut_q[k_l] <= lut_q[k_l - 1];
                 end
@@ -198,7 +204,7 @@ module cube4_sha #(
             reg  signed [GW-1:0] b1_gi, b1_gj, b1_gk;
             reg         [GW-1:0] b1_ai, b1_aj, b1_ak;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     {b1_gi, b1_gj, b1_gk} <= {gi, gj, gk};
                     b1_ai <= gi[GW-1] ? -gi : gi;
                     b1_aj <= gj[GW-1] ? -gj : gj;
@@ -212,7 +218,7 @@ module cube4_sha #(
             reg  [GW-1:0]        b2_amax;
             reg  signed [GW-1:0] b2_gb, b2_gc;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     b2_face <= {f, (f == 2'd0) ? b1_gi[GW-1] : (f == 2'd1) ? b1_gj[GW-1] : b1_gk[GW-1]};
                     b2_amax <= (f == 2'd0) ? b1_ai : (f == 2'd1) ? b1_aj : b1_ak;
                     b2_gb   <= (f == 2'd0) ? b1_gj : b1_gi;
@@ -231,7 +237,7 @@ module cube4_sha #(
             reg  [2:0]       face_q [0:NDIV];
             reg              zero_q [0:NDIV];   // g = 0
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     rb_q[0]   <= {{RB{1'b0}}, nb} << RB;
                     rc_q[0]   <= {{RB{1'b0}}, nc} << RB;
                     qb_q[0]   <= '0;
@@ -249,7 +255,7 @@ module cube4_sha #(
                 wire             ge_b = (rb_q[it] >= d);
                 wire             ge_c = (rc_q[it] >= d);
                 always @(posedge clk) begin
-                    if (en) begin
+                    if (en_l) begin
                         rb_q[it + 1]   <= ge_b ? rb_q[it] - d : rb_q[it];
                         rc_q[it + 1]   <= ge_c ? rc_q[it] - d : rc_q[it];
                         qb_q[it + 1]   <= qb_q[it] | ((RB + 1)'(ge_b) << KB);
@@ -270,7 +276,7 @@ module cube4_sha #(
             reg [RI_W-1:0]  d_idx;
             reg [19:0]      d_dp;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     d_idx <= idx;
                     d_dp  <= rmap[idx];
                 end
@@ -279,7 +285,7 @@ module cube4_sha #(
             reg [RI_W-1:0]  d2_idx;
             reg [19:0]      d2_dp;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     d2_idx <= d_idx;
                     d2_dp  <= d_dp;
                 end
@@ -294,11 +300,11 @@ module cube4_sha #(
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
                 always @(posedge clk) begin
-                    if (en) e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
+                    if (en_l) e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
                 end
             end
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     e1_pp  <= d2_dp[9:0];
                     e1_a   <= d_lut[ALPHA_W-1:0];
                     e1_idx <= d2_idx;
@@ -323,7 +329,7 @@ module cube4_sha #(
             reg [LUT_W-1:0] e_q;
             reg [RI_W-1:0]  e_idx_q;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     e_q     <= {col_d, e1_a};
                     e_idx_q <= e1_idx;
                 end
@@ -336,12 +342,13 @@ module cube4_sha #(
     localparam integer OUT_W = META_W + P * LUT_W + P * RI_W;
     wire [OUT_W-1:0] skid_out;
     cube4_skid #(
-        .DATA_W (OUT_W)
+        .DATA_W       (OUT_W),
+        .READY_COPIES (P + 1)
     ) u_skid (
         .clk       (clk),
         .rst       (rst),
         .in_valid  (e_v),
-        .in_ready  (en),
+        .in_ready  (en_rep),
         .in_data   ({e_meta, e_rgba, e_idx}),
         .out_valid (out_valid),
         .out_ready (out_ready),

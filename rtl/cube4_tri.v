@@ -32,7 +32,8 @@
 //
 // Latency
 //   Fixed 13-stage pipeline under one stall enable (en = the output skid
-//   buffer's registered ready) plus a 2-entry skid buffer: s0 input, s1
+//   buffer's registered ready, as P + 1 flip-flops: one per lane for its beam
+//   buffer and lerps, one for the rest) plus a 2-entry skid buffer: s0 input, s1
 //   slice-buffer select, s2 beam buffer, s3 beam-extension hold (a beat waits
 //   there for the next beat, so the drain beat pushes out the last one), s4,
 //   then x-lerps, y-lerps and the z-lerp, LERP_LAT = 3 stages each (b - a,
@@ -126,7 +127,11 @@ module cube4_tri #(
     // metadata that rides along unchanged to the output
     localparam integer META_W = M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;
 
-    wire en;   // the one stall enable of the fixed-latency pipeline
+    // The one stall enable of the fixed-latency pipeline, the output skid
+    // buffer's ready, as P + 1 flip-flops: en for the shared stages, en_rep[q+1]
+    // for lane q's beam buffer and lerps.
+    wire [P:0] en_rep;
+    wire       en = en_rep[0];
     assign in_ready = en;
 
     // ------------------------------------------------------------- s0: input
@@ -280,10 +285,11 @@ module cube4_tri #(
 
     generate
         for (q = 0; q < P; q = q + 1) begin : g_beam_buf
+            wire en_l = en_rep[q + 1];
             reg [2*VW-1:0] bbuf [0:BBMAX-1];
             reg [2*VW-1:0] rd_q;
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     rd_q <= bbuf[s1_pb];   // read first: the row before this one
                     if (s1_v && s1_bbwe) bbuf[s1_pb] <= s1_pair_sh[q*2*VW +: 2*VW];
                 end
@@ -408,6 +414,7 @@ module cube4_tri #(
 
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lerp
+            wire en_l = en_rep[q + 1];   // this lane's copy of the stall enable
             // values of this lane: index 0 cur lower (row j+1), 1 cur upper,
             // 2 prev lower (row j), 3 prev upper; n* = the same at i + 1
             wire [VW-1:0] cl  = s4_vals[q*4*VW + 0*VW +: VW];
@@ -422,21 +429,21 @@ module cube4_tri #(
 
             // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l0 (
-                .clk(clk), .en(en), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
+                .clk(clk), .en(en_l), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l1 (
-                .clk(clk), .en(en), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
+                .clk(clk), .en(en_l), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u0 (
-                .clk(clk), .en(en), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
+                .clk(clk), .en(en_l), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u1 (
-                .clk(clk), .en(en), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
+                .clk(clk), .en(en_l), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
             // y
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_l (
-                .clk(clk), .en(en), .a(x_l0), .b(x_l1), .w(y_w), .y(y_l));
+                .clk(clk), .en(en_l), .a(x_l0), .b(x_l1), .w(y_w), .y(y_l));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_u (
-                .clk(clk), .en(en), .a(x_u0), .b(x_u1), .w(y_w), .y(y_u));
+                .clk(clk), .en(en_l), .a(x_u0), .b(x_u1), .w(y_w), .y(y_u));
             // z
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_z (
-                .clk(clk), .en(en), .a(y_l), .b(y_u), .w(z_w), .y(z));
+                .clk(clk), .en(en_l), .a(y_l), .b(y_u), .w(z_w), .y(z));
             assign l_sample[q*VW +: VW] = z;
         end
     endgenerate
@@ -445,12 +452,13 @@ module cube4_tri #(
     localparam integer OUT_W = PV + META_W;
     wire [OUT_W-1:0] skid_out;
     cube4_skid #(
-        .DATA_W (OUT_W)
+        .DATA_W       (OUT_W),
+        .READY_COPIES (P + 1)
     ) u_skid (
         .clk       (clk),
         .rst       (rst),
         .in_valid  (lv_q[NL]),
-        .in_ready  (en),
+        .in_ready  (en_rep),
         .in_data   ({lmeta_q[NL], l_sample}),
         .out_valid (out_valid),
         .out_ready (out_ready),
