@@ -21,7 +21,7 @@
 // Latency
 //   A frame: (M * NJ + 1) * NB + 1 request beats (M = (NK-1) * S + 1 passes,
 //   NB = ceil(NI / P)), i.e. NI*NJ*NK/P cycles plus padding of the last
-//   partial beam, one flush beam and the pipeline fill (21 cycles), when no
+//   partial beam, one flush beam and the pipeline fill (22 cycles), when no
 //   port stalls. done pulses the cycle the last sample beat is accepted;
 //   cycles counts the clock cycles from start to that beat inclusive.
 //
@@ -112,6 +112,9 @@ module cube4_frontend #(
     wire [3:0]          t_steps;
     wire [P-1:0]        t_lval, t_lnbr, t_lwrap;
 
+    wire                c_req_valid, c_req_ready;   // CFB's request, into u_req_skid
+    wire [P*ADDR_W-1:0] c_req_addr;
+    wire [P-1:0]        c_req_rden;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
@@ -146,10 +149,10 @@ module cube4_frontend #(
         .cfg_i_a0       (cfg_i_a0),
         .cfg_i_pb       (cfg_i_pb),
         .cfg_i_lin      (cfg_i_lin),
-        .req_valid      (mem_req_valid),
-        .req_ready      (mem_req_ready),
-        .req_addr       (mem_req_addr),
-        .req_rden       (mem_req_rden),
+        .req_valid      (c_req_valid),
+        .req_ready      (c_req_ready),
+        .req_addr       (c_req_addr),
+        .req_rden       (c_req_rden),
         .tag_emit       (t_emit),
         .tag_sop        (t_sop),
         .tag_eop        (t_eop),
@@ -175,9 +178,24 @@ module cube4_frontend #(
         .tag_lane_wrap  (t_lwrap)
     );
 
-    assign mem_req_tag = {t_emit, t_sop, t_eop, t_drain, t_ywrap, t_bbwe, t_lmem, t_umem, t_uuse,
-                          t_k0odd, t_sb, t_pb, t_wx, t_wy, t_wz, t_m, t_j, t_skew, t_ylast,
-                          t_steps, t_lval, t_lnbr, t_lwrap};
+    // CFB's requests pass a skid buffer: CFB advances on the skid's registered
+    // ready, so the memory's ready (and what feeds it) never reaches CFB's
+    // traversal counters in the same cycle. One cycle of latency.
+    wire [TAG_W-1:0] c_req_tag = {t_emit, t_sop, t_eop, t_drain, t_ywrap, t_bbwe, t_lmem, t_umem, t_uuse,
+                                  t_k0odd, t_sb, t_pb, t_wx, t_wy, t_wz, t_m, t_j, t_skew, t_ylast,
+                                  t_steps, t_lval, t_lnbr, t_lwrap};
+    cube4_skid #(
+        .DATA_W (P * ADDR_W + P + TAG_W)
+    ) u_req_skid (
+        .clk       (clk),
+        .rst       (rst),
+        .in_valid  (c_req_valid),
+        .in_ready  (c_req_ready),
+        .in_data   ({c_req_addr, c_req_rden, c_req_tag}),
+        .out_valid (mem_req_valid),
+        .out_ready (mem_req_ready),
+        .out_data  ({mem_req_addr, mem_req_rden, mem_req_tag})
+    );
 
     // ---- TRI ----
     wire                r_emit, r_sop, r_eop, r_drain, r_ywrap, r_bbwe, r_lmem, r_umem, r_uuse, r_k0odd;
