@@ -8,6 +8,12 @@
 //   macro) with the read register inside the macro. Used where the caller
 //   computes both addresses itself, e.g. cube4_com's base-plane buffer, whose
 //   write lands several pipeline stages after the read of the same position.
+//   Deeper than 2048 words (more than one ECP5 block RAM deep in its 2048 x 9
+//   shape) the word is stored as slices of 4, 2 or 1 bits (4096, 8192, 16384+
+//   words), one memory each: each slice maps to block RAMs in their 4K x 4,
+//   8K x 2 or 16K x 1 shape, so that up to 16384 words the read data needs no
+//   multiplexer between the block RAMs and the next register (about as many
+//   block RAMs as the 2048 x 9 shape plus a multiplexer).
 //
 // Parameters
 //   DATA_W  word width.                     1..4096.  Default 8.
@@ -48,15 +54,24 @@ module cube4_sdp_ram #(
         end
     endgenerate
 
-    reg [DATA_W-1:0] mem [0:(1 << AW)-1];
-    reg [DATA_W-1:0] rd_q;
+    // slice width: 4, 2, 1 bits from 4096, 8192, 16384 words on; else the word
+    localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : DATA_W));
+    localparam integer N_SL = (DATA_W + SL_W - 1) / SL_W;
 
-    always @(posedge clk) begin
-        if (wr_en) mem[wr_addr] <= wr_data;
-        if (rd_en) rd_q <= mem[rd_addr];
-    end
-
-    assign rd_data = rd_q;
+    genvar sl;
+    generate
+        for (sl = 0; sl < N_SL; sl = sl + 1) begin : g_slice
+            localparam integer LO = sl * SL_W;
+            localparam integer W  = (DATA_W - LO < SL_W) ? DATA_W - LO : SL_W;
+            reg [W-1:0] mem [0:(1 << AW)-1];
+            reg [W-1:0] rd_q;
+            always @(posedge clk) begin
+                if (wr_en) mem[wr_addr] <= wr_data[LO +: W];
+                if (rd_en) rd_q <= mem[rd_addr];
+            end
+            assign rd_data[LO +: W] = rd_q;
+        end
+    endgenerate
 
 endmodule
 `default_nettype wire
