@@ -84,6 +84,7 @@ module cube4_delay_line #(
     genvar k;
     generate
         for (k = 1; k <= RA; k = k + 1) begin : g_len
+            (* keep *)   // this line's own copy (lines with the same len would share one)
             always @(posedge clk) l_q[k] <= (len == (AW + 1)'(k));
         end
     endgenerate
