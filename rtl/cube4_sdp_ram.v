@@ -8,12 +8,17 @@
 //   macro) with the read register inside the macro. Used where the caller
 //   computes both addresses itself, e.g. cube4_com's base-plane buffer, whose
 //   write lands several pipeline stages after the read of the same position.
-//   Deeper than 2048 words (more than one ECP5 block RAM deep in its 2048 x 9
-//   shape) the word is stored as slices of 4, 2 or 1 bits (4096, 8192, 16384+
-//   words), one memory each: each slice maps to block RAMs in their 4K x 4,
-//   8K x 2 or 16K x 1 shape, so that up to 16384 words the read data needs no
+//   For synthesis (`ifdef SYNTHESIS`, which Yosys defines), a RAM deeper than
+//   2048 words (more than one ECP5 block RAM deep in its 2048 x 9 shape)
+//   stores its word as slices of 4, 2 or 1 bits (4096, 8192, 16384+ words),
+//   one memory each: each slice maps to block RAMs in their 4K x 4, 8K x 2 or
+//   16K x 1 shape, so that up to 16384 words the read data needs no
 //   multiplexer between the block RAMs and the next register (about as many
-//   block RAMs as the 2048 x 9 shape plus a multiplexer).
+//   block RAMs as the 2048 x 9 shape plus a multiplexer). Simulation keeps one
+//   word-wide memory: the same contents and timing, and Verilator evaluates
+//   one wide array far faster than hundreds of narrow ones (256 two-bit
+//   slices at MAX_DIM = 256, P = 8 halved the simulated cycles/s).
+//   tb/cube4_top test_synthesis_ram_form_p1 simulates the sliced form too.
 //
 // Parameters
 //   DATA_W  word width.                     1..4096.  Default 8.
@@ -54,8 +59,12 @@ module cube4_sdp_ram #(
         end
     endgenerate
 
+`ifdef SYNTHESIS
     // slice width: 4, 2, 1 bits from 4096, 8192, 16384 words on; else the word
     localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : DATA_W));
+`else
+    localparam integer SL_W = DATA_W;   // simulation: one word-wide memory
+`endif
     localparam integer N_SL = (DATA_W + SL_W - 1) / SL_W;
 
     genvar sl;

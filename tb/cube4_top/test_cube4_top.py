@@ -128,3 +128,30 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     assert st["views"] == len(views) and len(st["frames"]) == len(views)
     assert st["cycles"] == sum(f["cycles"] for f in st["frames"]) > 0
     assert len({f["major_axis"] for f in st["frames"]}) == 3
+
+
+def test_synthesis_ram_form_p1(monkeypatch):
+    """The RAMs as synthesis builds them. cube4_sdp_ram keeps a word-wide memory for
+    simulation (Verilator evaluates one wide array much faster than many narrow ones)
+    and, under `ifdef SYNTHESIS` (Yosys defines it), stores words deeper than 2048 as
+    4-, 2- or 1-bit slices. Here the model is built with SYNTHESIS defined, at P = 1
+    (COM's slice buffer: 4096 words, 4-bit slices): a phantom and random stalled frames
+    must still match the golden model bit for bit."""
+    from cube4.render import host_tables, setup_view
+    from cube4.scene import load_scene
+
+    monkeypatch.setenv("CUBE4_VERILATOR_ARGS", "-DSYNTHESIS")
+    cfg = Cube4Config(pipelines=1)
+    vol = load_volume("sphere:64", voxel_bits=cfg.voxel_bits)
+    nz, ny, nx = vol.shape
+    trav, _ = setup_view((nx, ny, nz), load_scene("default"), cfg)
+    lut, rmap = host_tables(load_scene("default"), cfg, trav)
+    rng = np.random.default_rng(11)
+    jobs = [FrameJob(trav, lut, rmap)]
+    for n, d in enumerate(VIEWS[:3]):
+        t = make_traversal((nx, ny, nz), d, cfg.weight_bits, 1)
+        lt, rm = random_tables(rng, cfg)
+        jobs.append(FrameJob(t, lt, rm, stall=60, stall_out=90 if n else 0))
+    results = render_frames(vol, jobs, cfg)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        check(vol, job.trav, cfg, job.lut, job.rmap, res, f"SYNTHESIS RAMs, frame {n}")
