@@ -133,24 +133,25 @@ class TB:
         assert self.checked > 0
 
 
-@cocotb.test()
-async def delay_line_streaming(dut):
-    """A step on every cycle, every length in turn without a reset between frames."""
+async def run_every_length(dut, step_prob: float) -> None:
+    """Every length in turn, frame after frame without a reset between them."""
     tb = TB(dut)
     await tb.reset()
     for length in tb.lengths():
-        await tb.frame(length, tb.steps_for(length), step_prob=1.0)
+        await tb.frame(length, tb.steps_for(length), step_prob=step_prob)
     tb.finish()
+
+
+@cocotb.test()
+async def delay_line_streaming(dut):
+    """A step on every cycle."""
+    await run_every_length(dut, step_prob=1.0)
 
 
 @cocotb.test()
 async def delay_line_random_steps(dut):
     """Steps at random (the unit stalls), random inputs on the cycles between them."""
-    tb = TB(dut)
-    await tb.reset()
-    for length in tb.lengths():
-        await tb.frame(length, tb.steps_for(length), step_prob=0.7)
-    tb.finish()
+    await run_every_length(dut, step_prob=0.7)
 
 
 @cocotb.test()
