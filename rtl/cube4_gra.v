@@ -133,7 +133,7 @@ module cube4_gra #(
 
     // ------------------------------------------------------------ stepping
     // The stall enable (the output skid buffer's ready) comes as NCOPY
-    // flip-flops and flush_q has NCOPY copies too, so each group of registers
+    // flip-flops and flush_q has NSTEP copies, so each group of registers
     // (each delay line, the window, the arithmetic) gets its own step net:
     // no single net drives every clock enable of the unit.
     localparam integer NCOPY = 8;    // 0..5 the delay lines, 6 window and counters, 7 arithmetic
