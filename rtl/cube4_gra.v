@@ -19,17 +19,20 @@
 //   from C's by the j step and (when the voxel slice changes) the k step, one
 //   ring hop each (cube4_ring_shift); i +/- 1 come from the ring neighbours with
 //   beam extension in both directions (the lane at t = P-1 takes the next beat,
-//   the lane at t = 0 the previous one). After the last beat of a frame GRA
-//   runs NJ*NB + NB + 1 zero "flush" steps, the samples of slice M and beyond,
-//   to finish the last slice; then it accepts the next frame.
+//   the lane at t = 0 the previous one). The window is three registered beats
+//   (c + 1, the centre c, c - 1), so a beat's gradient is computed in the step
+//   that brings in beat c + 2. After the last beat of a frame GRA runs
+//   NJ*NB + NB + 2 zero "flush" steps, the samples of slice M and beyond, to
+//   finish the last slice; then it accepts the next frame.
 //
 // Parameters
 //   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_tri (derived widths too)
 //   GRAD_W  gradient width = VOXEL_W + 5 (derived; signed)
 //
 // Latency
-//   A sample beat leaves NJ*NB + NB + 1 beats after it entered (the plane and
-//   beam delays), plus 3 register stages and the output skid buffer. All under
+//   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
+//   beam delays and the window), plus 3 register stages and the output skid
+//   buffer. All under
 //   one stall enable (the skid buffer's registered ready), which comes as
 //   eight flip-flops, one per group of registers (each delay line, the
 //   window, the arithmetic), so that no single net reaches every clock enable.
@@ -142,8 +145,10 @@ module cube4_gra #(
     wire             en = en_rep[7];
     reg              flush_q;        // running the zero steps after a frame
     wire [NSTEP-1:0] flush_rep;      // copies of flush_q
-    reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then one beat (NJ + 1)
+    reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then two beats (row NJ + 1)
     reg  [PB_W-1:0]  f_pb_q;
+    reg              f_tail_q;       // the previous flush step was in row NJ + 1
+    reg  [DIM_W:0]   nj_p1_q;        // NJ + 1
     wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{in_valid}});
     wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{in_ctrl[4]}};   // frame start, per copy
     wire step = step_rep[6];
@@ -162,8 +167,9 @@ module cube4_gra #(
     reg              lb_q, ls_q;
     reg              nb1_q, nj1_q;   // NB = 1, NJ = 1
     always @(posedge clk) begin
-        nb1_q <= (cfg_nb == NB_W'(1));
-        nj1_q <= (cfg_nj == DIM_W'(1));
+        nb1_q   <= (cfg_nb == NB_W'(1));
+        nj1_q   <= (cfg_nj == DIM_W'(1));
+        nj_p1_q <= {1'b0, cfg_nj} + 1'b1;
     end
     wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
     wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
@@ -178,7 +184,7 @@ module cube4_gra #(
     always @(*) begin
         flush_d = flush_q;
         if (rst)                    flush_d = 1'b0;
-        else if (step && flush_q)   flush_d = (f_row_q != {1'b0, cfg_nj} + 1'b1);  // ends after the extra beat
+        else if (step && flush_q)   flush_d = !f_tail_q;   // ends after the second step of row NJ + 1
         else if (step && eop)       flush_d = 1'b1;
     end
     always @(posedge clk) flush_q <= flush_d;
@@ -200,12 +206,14 @@ module cube4_gra #(
             ls_q    <= 1'b0;
             f_row_q <= {(DIM_W + 1){1'b0}};
             f_pb_q  <= {PB_W{1'b0}};
+            f_tail_q <= 1'b0;
         end else if (step) begin
             pb_q  <= pb_n;
             row_q <= row_n;
             lb_q  <= lb_n;
             ls_q  <= lb_n && (row_n == cfg_nj - 1'b1);
             if (flush_q) begin
+                f_tail_q <= (f_row_q == nj_p1_q);
                 if (NB_W'(f_pb_q) == cfg_nb - 1'b1) begin
                     f_pb_q  <= {PB_W{1'b0}};
                     f_row_q <= f_row_q + 1'b1;
@@ -213,8 +221,9 @@ module cube4_gra #(
                     f_pb_q <= f_pb_q + 1'b1;
                 end
             end else if (eop) begin
-                f_row_q <= {(DIM_W + 1){1'b0}};
-                f_pb_q  <= {PB_W{1'b0}};
+                f_row_q  <= {(DIM_W + 1){1'b0}};
+                f_pb_q   <= {PB_W{1'b0}};
+                f_tail_q <= 1'b0;
             end
         end
     end
@@ -230,6 +239,7 @@ module cube4_gra #(
 
     wire [PV-1:0]        b1, p1, c_d, p1b2, p2b1, p2b2;
     wire [META_W-1:0]    p1_meta, c_meta;
+    wire [3:0]           p1_flags, c_flags;   // {dk_f, dk_b, j_first, m_first} of the beat
 
     // period of each delay line: NB (beam) and NJ*NB (plane), constant in a frame
     localparam integer BL_W = ((NBMAX > 1) ? $clog2(NBMAX) : 1) + 1;
@@ -245,9 +255,18 @@ module cube4_gra #(
     cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(MAX_DIM * NBMAX)) u_x_p1 (
         .clk(clk), .rst(rst), .clear(sop_rep[1]), .step(step_rep[1]), .last(last_slice), .len(plane_len),
         .din({x_meta, x_data}), .dout({p1_meta, p1}));
-    cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(NBMAX)) u_p1_c (
+    // The centre's slice and row flags are computed from the beat one beam
+    // earlier (p1, a register) and travel with it, so they are registers at c.
+    wire [M_W-1:0]    p1_m    = p1_meta[META_W-2 -: M_W];
+    wire [DIM_W-1:0]  p1_j    = p1_meta[META_W-2-M_W -: DIM_W];
+    wire [M_W-1:0]    ss_mask = M_W'((1 << cfg_ss_log2) - 1);
+    assign p1_flags = {((p1_m + 1'b1) & ss_mask) == '0,   // dk_f: voxel slice changes m -> m+1
+                       (p1_m & ss_mask) == '0,            // dk_b: voxel slice changes m-1 -> m
+                       p1_j == '0,                        // j_first
+                       p1_m == '0};                       // m_first
+    cube4_delay_line #(.DATA_W(4 + META_W + PV), .DEPTH(NBMAX)) u_p1_c (
         .clk(clk), .rst(rst), .clear(sop_rep[2]), .step(step_rep[2]), .last(last_beam), .len(beam_len),
-        .din({p1_meta, p1}), .dout({c_meta, c_d}));
+        .din({p1_flags, p1_meta, p1}), .dout({c_flags, c_meta, c_d}));
     cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
         .clk(clk), .rst(rst), .clear(sop_rep[3]), .step(step_rep[3]), .last(last_beam), .len(beam_len),
         .din(c_d), .dout(p1b2));
@@ -258,17 +277,12 @@ module cube4_gra #(
         .clk(clk), .rst(rst), .clear(sop_rep[5]), .step(step_rep[5]), .last(last_beam), .len(beam_len),
         .din(p2b1), .dout(p2b2));
 
-    // fields of the incoming centre beat c' (becomes c after this step)
-    wire [M_W-1:0]    c_m    = c_meta[META_W-2 -: M_W];
-    wire [DIM_W-1:0]  c_j    = c_meta[META_W-2-M_W -: DIM_W];
+    // fields of the incoming centre beat c' (becomes h1 after this step)
     wire              c_dyf  = c_meta[2*P + 1];   // ctrl bit 1: Y-step of slice m
     wire              c_dyb  = c_meta[2*P + 3];   // ctrl bit 3: old Y-step
-    wire [M_W-1:0]    ss_mask = M_W'((1 << cfg_ss_log2) - 1);
-    wire dk_f = ((c_m + 1'b1) & ss_mask) == '0;   // voxel slice changes m -> m+1
-    wire dk_b = (c_m & ss_mask) == '0;            // voxel slice changes m-1 -> m
-    wire y_last = c_meta[2*P + 6];   // ctrl bit 6: row j = NJ-1
-    wire j_first = (c_j == '0);
-    wire m_first = (c_m == '0);
+    wire              y_last = c_meta[2*P + 6];   // ctrl bit 6: row j = NJ-1
+    wire              dk_f, dk_b, j_first, m_first;
+    assign {dk_f, dk_b, j_first, m_first} = c_flags;
 
     // ------------------------------------------------------------ alignment hops
     // source skew - centre skew: P1 +s_j, P1b2 -s_j, X +s_j (+s_k), B1 (+s_k),
@@ -304,24 +318,30 @@ module cube4_gra #(
     endgenerate
 
     // ------------------------------------------------------------ window hold
-    // h1 = beat c (centre of the output), h2 = beat c - 1; the incoming c' = c + 1
-    reg               h1_v;
-    reg               h1_live;   // h1 is a beat of the current frame (not a stale RAM word)
+    // h1 = beat c + 1 (the incoming c' of the last step), h2 = beat c (the
+    // centre of the output), h3 = beat c - 1. All window inputs are registers:
+    // the incoming beat only reaches h1.
+    reg               h1_v, h2_v;
+    reg               h1_live, h2_live;   // a beat of the current frame (not a stale RAM word)
     reg               live_q;    // the current frame's first beat has reached the centre
     wire              c_sop  = c_meta[2*P + 4];
     wire              c_live = c_sop || live_q;
-    reg [META_W-1:0]  h1_meta;
-    reg [PV-1:0]      h1_c, h2_c, h1_f, h1_b, h2_b;
-    reg [P*DW-1:0]    h1_gj;
+    reg [META_W-1:0]  h1_meta, h2_meta;
+    reg [PV-1:0]      h1_c, h2_c, h3_c, h1_f, h2_f, h1_b, h2_b, h3_b;
+    reg [P*DW-1:0]    h1_gj, h2_gj;
 
     always @(posedge clk) begin
         if (rst) begin
             h1_v    <= 1'b0;
+            h2_v    <= 1'b0;
             h1_live <= 1'b0;
+            h2_live <= 1'b0;
             live_q  <= 1'b0;
         end else if (step) begin
             h1_v    <= 1'b1;
+            h2_v    <= h1_v;
             h1_live <= c_live;
+            h2_live <= h1_live;
             // after a reset the plane buffers still hold beats of an interrupted
             // frame; centres count only from the current frame's first beat on
             if (sop)        live_q <= 1'b0;
@@ -331,35 +351,40 @@ module cube4_gra #(
     always @(posedge clk) begin
         if (step) begin
             h1_meta <= c_meta;
+            h2_meta <= h1_meta;
             h1_c    <= c_d;
             h2_c    <= h1_c;
+            h3_c    <= h2_c;
             h1_f    <= fwd_row;
+            h2_f    <= h1_f;
             h1_b    <= back_row;
             h2_b    <= h1_b;
+            h3_b    <= h2_b;
             h1_gj   <= gj_in;
+            h2_gj   <= h1_gj;
         end
     end
 
-    wire              h_real = h1_meta[META_W-1] && h1_live;
-    wire              h_dxf  = h1_meta[2*P + 0];   // ctrl bit 0: X-step of slice m
-    wire              h_dxb  = h1_meta[2*P + 2];   // ctrl bit 2: old X-step
+    wire              h_real = h2_meta[META_W-1] && h2_live;
+    wire              h_dxf  = h2_meta[2*P + 0];   // ctrl bit 0: X-step of slice m
+    wire              h_dxb  = h2_meta[2*P + 2];   // ctrl bit 2: old X-step
 
-    // Per lane of the incoming centre c', where its i - 1 and i + 1 are: inside
+    // Per lane of h1 (the next centre), where its i - 1 and i + 1 are: inside
     // the volume (hi_ok, lo_ok) and in the next / previous beat (hi_new,
-    // lo_old). Registered with c' into h1 (the window of h1 uses them).
-    wire [PB_W-1:0]   c_pb   = c_meta[2*P + 7 + LANE_W +: PB_W];
-    wire [LANE_W-1:0] c_skew = c_meta[2*P + 7 +: LANE_W];
-    wire [IW-1:0]     c_pbp  = IW'(c_pb) * IW'(P);
-    wire [IW-1:0]     ni_ext = IW'(cfg_ni);
+    // lo_old). Registered with h1 into h2 (the window of h2 uses them).
+    wire [PB_W-1:0]   h1_pb   = h1_meta[2*P + 7 + LANE_W +: PB_W];
+    wire [LANE_W-1:0] h1_skew = h1_meta[2*P + 7 +: LANE_W];
+    wire [IW-1:0]     h1_pbp  = IW'(h1_pb) * IW'(P);
+    wire [IW-1:0]     ni_ext  = IW'(cfg_ni);
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
-    reg  [P-1:0]      h1_hi_ok, h1_lo_ok, h1_hi_new, h1_lo_old;
+    reg  [P-1:0]      h2_hi_ok, h2_lo_ok, h2_hi_new, h2_lo_old;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
             localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
             wire [LANE_W-1:0] t = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, c_skew}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, c_skew}));
-            wire [IW-1:0] i_pos = c_pbp + IW'(t);
+                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, h1_skew}) - $signed(QV))
+                : mod_p($signed(QV) - $signed({3'b000, h1_skew}));
+            wire [IW-1:0] i_pos = h1_pbp + IW'(t);
             assign hi_ok_d[q]  = (i_pos + 1'b1 < ni_ext);
             assign lo_ok_d[q]  = (i_pos != '0);
             assign hi_new_d[q] = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
@@ -368,10 +393,10 @@ module cube4_gra #(
     endgenerate
     always @(posedge clk) begin
         if (step) begin
-            h1_hi_ok  <= hi_ok_d;
-            h1_lo_ok  <= lo_ok_d;
-            h1_hi_new <= hi_new_d;
-            h1_lo_old <= lo_old_d;
+            h2_hi_ok  <= hi_ok_d;
+            h2_lo_ok  <= lo_ok_d;
+            h2_hi_new <= hi_new_d;
+            h2_lo_old <= lo_old_d;
         end
     end
 
@@ -379,28 +404,28 @@ module cube4_gra #(
     // i-1 (from lane q - s_i; the lane at t = 0 from beat c - 1)
     wire [PV-1:0] c_next_same, c_next_new, c_prev_same, c_prev_old;
     wire [PV-1:0] f_next_same, f_next_new, b_prev_same, b_prev_old;
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cn_s (.down(!cfg_flip_i), .x(h1_c),     .y(c_next_same));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cn_n (.down(!cfg_flip_i), .x(c_d),      .y(c_next_new));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cp_s (.down(cfg_flip_i),  .x(h1_c),     .y(c_prev_same));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cp_o (.down(cfg_flip_i),  .x(h2_c),     .y(c_prev_old));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_fn_s (.down(!cfg_flip_i), .x(h1_f),     .y(f_next_same));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_fn_n (.down(!cfg_flip_i), .x(fwd_row),  .y(f_next_new));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_bp_s (.down(cfg_flip_i),  .x(h1_b),     .y(b_prev_same));
-    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_bp_o (.down(cfg_flip_i),  .x(h2_b),     .y(b_prev_old));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cn_s (.down(!cfg_flip_i), .x(h2_c), .y(c_next_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cn_n (.down(!cfg_flip_i), .x(h1_c), .y(c_next_new));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cp_s (.down(cfg_flip_i),  .x(h2_c), .y(c_prev_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_cp_o (.down(cfg_flip_i),  .x(h3_c), .y(c_prev_old));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_fn_s (.down(!cfg_flip_i), .x(h2_f), .y(f_next_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_fn_n (.down(!cfg_flip_i), .x(h1_f), .y(f_next_new));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_bp_s (.down(cfg_flip_i),  .x(h2_b), .y(b_prev_same));
+    cube4_ring_shift #(.P(P), .DATA_W(VW)) u_bp_o (.down(cfg_flip_i),  .x(h3_b), .y(b_prev_old));
 
     wire [P*DW-1:0] gi_d, gr_d;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_win
-            wire          hi_ok  = h1_hi_ok[q];
-            wire          lo_ok  = h1_lo_ok[q];
-            wire          hi_new = h1_hi_new[q];
-            wire          lo_old = h1_lo_old[q];
+            wire          hi_ok  = h2_hi_ok[q];
+            wire          lo_ok  = h2_lo_ok[q];
+            wire          hi_new = h2_hi_new[q];
+            wire          lo_old = h2_lo_old[q];
             wire [VW-1:0] c_hi = !hi_ok ? {VW{1'b0}} : hi_new ? c_next_new[q*VW +: VW] : c_next_same[q*VW +: VW];
             wire [VW-1:0] c_lo = !lo_ok ? {VW{1'b0}} : lo_old ? c_prev_old[q*VW +: VW] : c_prev_same[q*VW +: VW];
             wire [VW-1:0] f_hi = !hi_ok ? {VW{1'b0}} : hi_new ? f_next_new[q*VW +: VW] : f_next_same[q*VW +: VW];
             wire [VW-1:0] b_lo = !lo_ok ? {VW{1'b0}} : lo_old ? b_prev_old[q*VW +: VW] : b_prev_same[q*VW +: VW];
-            wire [VW-1:0] fwd  = h_dxf ? f_hi : h1_f[q*VW +: VW];   // i + dxf
-            wire [VW-1:0] back = h_dxb ? b_lo : h1_b[q*VW +: VW];   // i - dxb
+            wire [VW-1:0] fwd  = h_dxf ? f_hi : h2_f[q*VW +: VW];   // i + dxf
+            wire [VW-1:0] back = h_dxb ? b_lo : h2_b[q*VW +: VW];   // i - dxb
             assign gi_d[q*DW +: DW] = $signed({1'b0, c_hi}) - $signed({1'b0, c_lo});
             assign gr_d[q*DW +: DW] = $signed({1'b0, fwd}) - $signed({1'b0, back});
         end
@@ -421,7 +446,7 @@ module cube4_gra #(
             g2_v <= 1'b0;
             g3_v <= 1'b0;
         end else if (en) begin
-            g1_v <= step && h1_v && h_real;
+            g1_v <= step && h2_v && h_real;
             g2_v <= g1_v;
             g3_v <= g2_v;
         end
@@ -459,10 +484,10 @@ module cube4_gra #(
 
     always @(posedge clk) begin
         if (en) begin
-            g1_meta <= h1_meta[META_W-2:0];
-            g1_s    <= h1_c;
+            g1_meta <= h2_meta[META_W-2:0];
+            g1_s    <= h2_c;
             g1_gi   <= gi_d;
-            g1_gj   <= h1_gj;
+            g1_gj   <= h2_gj;
             g1_gr   <= gr_d;
             g2_meta <= g1_meta;
             g2_s    <= g1_s;

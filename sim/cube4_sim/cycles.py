@@ -1,6 +1,6 @@
 """Cycles per frame of cube4_top, the one formula the reports, the RTL engine and the docs share.
 
-    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 1 + FILL_CYCLES        (docs/architecture.md, "Cycles per frame")
+    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 2 + FILL_CYCLES        (docs/architecture.md, "Cycles per frame")
 
 M sample slices, NJ rows, NB = ⌈NI/P⌉ partial beams per row. It holds while a slice has at least
 ``COM_MIN_SLICE`` beats (NJ·NB); a smaller slice makes COM wait for its own results
@@ -21,7 +21,7 @@ COM_MIN_SLICE = 9
 def frame_cycles(m: int, nj: int, ni: int, p: int) -> int:
     """Cycles of one frame without stalls, for M sample slices of NJ rows of NI samples on P pipelines."""
     nb = -(-ni // p)
-    return (m * nj + 1) * nb + 1 + nj * nb + nb + 1 + FILL_CYCLES
+    return (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + FILL_CYCLES
 
 
 def slow_slice_factor(nj: int, ni: int, p: int) -> float:

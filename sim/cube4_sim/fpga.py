@@ -451,7 +451,7 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
             out.append(f"  - from `{cp['from']}` to `{cp['to']}`; full path in `{r['log']}`")
     out += ["", "## Samples and frames per second at the measured Fmax", "",
             "Peak samples/s = P · Fmax. Frames/s = Fmax / cycles per frame, with cycles = "
-            f"(M·NJ+1)·NB + 1 + NJ·NB + NB + 1 + {cycles.FILL_CYCLES} for an axis-aligned n³ view (M = NJ = n, "
+            f"(M·NJ+1)·NB + 1 + NJ·NB + NB + 2 + {cycles.FILL_CYCLES} for an axis-aligned n³ view (M = NJ = n, "
             "NB = ⌈n/P⌉), about n³/P. 256³ and 512³ assume the voxel memory and the slice-sized buffers "
             f"below are off-chip and keep up; this build (MAX_DIM = {meta['max_dim']}) renders up to "
             f"{meta['max_dim']}³ only.", "",

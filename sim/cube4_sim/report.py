@@ -154,7 +154,7 @@ def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Varia
 
 def formula_cycles(trav: Traversal, pipelines: int) -> int:
     """Cycles per frame without stalls (docs/architecture.md; cube4_sim.cycles):
-    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 1 + fill."""
+    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 2 + fill."""
     return frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, pipelines)
 
 

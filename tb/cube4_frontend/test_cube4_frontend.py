@@ -359,8 +359,8 @@ async def test_frame_cycles(dut):
         # exactly the documented schedule: (M*NJ + 1)*NB + 1 beats plus a fixed fill
         nb = -(-trav.ni // tb.p)
         fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
-        if tb.gra:  # GRA finishes the last slice with NJ*NB + NB + 1 zero steps
-            fill -= trav.nj * nb + nb + 1
+        if tb.gra:  # GRA finishes the last slice with NJ*NB + NB + 2 zero steps
+            fill -= trav.nj * nb + nb + 2
         assert 0 <= fill <= 28, f"pipeline fill of {fill} cycles: the schedule has bubbles"
         await RisingEdge(dut.clk)
     out = os.environ.get("CUBE4_FE_BENCH_OUT")
