@@ -379,16 +379,19 @@ module cube4_com #(
     // is most of a cycle on an FPGA).
     wire [PA-1:0] acc_new;              // written at the end of S9: results after slice m
     wire [PA-1:0] a1_ram, a2_ram;       // S2, S3: RAM outputs
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX)) u_bp_slice (
-        .clk(clk), .rd_en(en), .rd_addr(sp_s[1]), .rd_data(a1_ram),
-        .wr_en(en && v_s[NS]), .wr_addr(sp_s[NS]), .wr_data(acc_new));
+    // The slice buffer registers its addresses itself (copies of sp_s[1] and
+    // sp_s[NS], one per two slices of its block RAMs): it gets them one stage
+    // early, loaded at the same enable.
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .ADDR_REG(1)) u_bp_slice (
+        .clk(clk), .addr_ld(en), .rd_en(en), .rd_addr(pos_sp), .rd_data(a1_ram),
+        .wr_en(en && v_s[NS]), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
     reg [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;
     // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
     // previous beat's a1 (prev_a1_q).
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX)) u_bp_beam (
-        .clk(clk), .rd_en(en), .rd_addr(pb_s[2]), .rd_data(a2_ram),
+        .clk(clk), .addr_ld(1'b0), .rd_en(en), .rd_addr(pb_s[2]), .rd_data(a2_ram),
         .wr_en(en && v_s[3]), .wr_addr(pb_s[3]), .wr_data(s3_a1));
     reg nb1_q;                          // NB = 1
     always @(posedge clk) begin
