@@ -23,11 +23,11 @@
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
-//   4 + (RMAP_BITS + 1) + 4 register stages (input; LUT read and |g|; face;
-//   numerators; one stage per quotient bit of the division; reflectance-map
-//   read; its output register; C * D; shading) under one stall enable (one
-//   flip-flop copy of it per lane and one for the shared fields), then
-//   the output skid buffer: 14 at RMAP_BITS = 5. Both tables' RAM outputs go
+//   5 + (RMAP_BITS + 1) + 4 register stages (input; LUT read and |g|; the
+//   three |g| comparisons; face; numerators; one stage per quotient bit of the
+//   division; reflectance-map read; its output register; C * D; shading)
+//   under one stall enable (one flip-flop copy of it per lane and one for the
+//   shared fields), then the output skid buffer: 15 at RMAP_BITS = 5. Both tables' RAM outputs go
 //   straight into a register (an FPGA block RAM's clock-to-output is long).
 //
 // Ports
@@ -120,6 +120,7 @@ module cube4_sha #(
     // ---- pipeline ----
     //   a      input register
     //   b1     LUT read; |gi|, |gj|, |gk|
+    //   bc     the comparisons |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|
     //   b2     cube-map face: the largest |g| (A), its sign, the other two (g_b, g_c)
     //   b3     numerators (g + A) * R, denominator 2A
     //   c0..cR restoring division, one quotient bit per stage, for u and v at once
@@ -130,7 +131,7 @@ module cube4_sha #(
     // Every stage moves under en (the skid's ready; each lane has its own copy of
     // it, en_l); the beat's fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    localparam integer NST  = 3 + NDIV + 4;      // stages after a: b1..b3, c*, d, d2, e1, e2
+    localparam integer NST  = 4 + NDIV + 4;      // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2
 
     // The stall enable (the output skid buffer's ready) comes as P + 1
     // flip-flops: one for the beat's fields and valid bits, one per lane.
@@ -212,17 +213,31 @@ module cube4_sha #(
                 end
             end
 
+            // bc: the three comparisons (each a carry chain) in their own stage
+            reg  signed [GW-1:0] bc_gi, bc_gj, bc_gk;
+            reg         [GW-1:0] bc_ai, bc_aj, bc_ak;
+            reg                  bc_ij, bc_ik, bc_jk;   // |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|
+            always @(posedge clk) begin
+                if (en_l) begin
+                    {bc_gi, bc_gj, bc_gk} <= {b1_gi, b1_gj, b1_gk};
+                    {bc_ai, bc_aj, bc_ak} <= {b1_ai, b1_aj, b1_ak};
+                    bc_ij <= (b1_ai >= b1_aj);
+                    bc_ik <= (b1_ai >= b1_ak);
+                    bc_jk <= (b1_aj >= b1_ak);
+                end
+            end
+
             // b2: face
-            wire [1:0] f = (b1_ai >= b1_aj && b1_ai >= b1_ak) ? 2'd0 : (b1_aj >= b1_ak ? 2'd1 : 2'd2);
+            wire [1:0] f = (bc_ij && bc_ik) ? 2'd0 : (bc_jk ? 2'd1 : 2'd2);
             reg  [2:0]           b2_face;   // {f, sign}
             reg  [GW-1:0]        b2_amax;
             reg  signed [GW-1:0] b2_gb, b2_gc;
             always @(posedge clk) begin
                 if (en_l) begin
-                    b2_face <= {f, (f == 2'd0) ? b1_gi[GW-1] : (f == 2'd1) ? b1_gj[GW-1] : b1_gk[GW-1]};
-                    b2_amax <= (f == 2'd0) ? b1_ai : (f == 2'd1) ? b1_aj : b1_ak;
-                    b2_gb   <= (f == 2'd0) ? b1_gj : b1_gi;
-                    b2_gc   <= (f == 2'd2) ? b1_gj : b1_gk;
+                    b2_face <= {f, (f == 2'd0) ? bc_gi[GW-1] : (f == 2'd1) ? bc_gj[GW-1] : bc_gk[GW-1]};
+                    b2_amax <= (f == 2'd0) ? bc_ai : (f == 2'd1) ? bc_aj : bc_ak;
+                    b2_gb   <= (f == 2'd0) ? bc_gj : bc_gi;
+                    b2_gc   <= (f == 2'd2) ? bc_gj : bc_gk;
                 end
             end
 
