@@ -152,6 +152,11 @@ module cube4_com #(
     //   S8  w * C' (multipliers), T - w
     //   S9  C += round_shift(w * C', 8); write the slice buffer; output register
     // Every stage moves under en (the skid's ready) and carries a valid bit.
+    // The skid gives its ready as 1 + P + NRAM_EN flip-flop copies: one for
+    // the beat's fields and valid bits, one per lane (the lane's slice of the
+    // wide buffer words and its compositing), NRAM_EN for the base-plane
+    // buffers' block RAMs (enables and address registers): no single net
+    // reaches every clock enable of the unit.
     // A beat's slice position is read two en-edges after its acceptance into
     // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
@@ -165,7 +170,11 @@ module cube4_com #(
     localparam integer WC_W  = CW + 8;          // w * C'
 
     localparam integer NS    = 9;               // stages S1 .. S9
-    wire en;                            // the pipeline advances
+    localparam integer NRAM_EN = 8;             // enable copies for the buffers' RAMs
+    localparam integer NEN   = 1 + P + NRAM_EN;
+    wire [NEN-1:0] en_rep;              // copies of the stall enable
+    wire en = en_rep[0];                // the pipeline advances (shared fields)
+    wire [NRAM_EN-1:0] en_ram = en_rep[1 + P +: NRAM_EN];
     reg  [NS:1] v_s;                    // stage valid bits
     wire hazard;                        // the beat L back is in R0..S7 (see above)
     assign in_ready = en && !hazard;
@@ -185,7 +194,6 @@ module cube4_com #(
     end
     always @(posedge clk) begin
         if (en) begin
-            r0_rgba        <= in_rgba;
             r0_lane_valid  <= in_lane_valid;
             r0_lane_inside <= in_lane_inside;
             r0_m           <= in_m;
@@ -195,6 +203,14 @@ module cube4_com #(
             r0_ctrl        <= in_ctrl;
         end
     end
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_r0
+            always @(posedge clk) begin
+                if (en_rep[1 + q]) r0_rgba[q*LUT_W +: LUT_W] <= in_rgba[q*LUT_W +: LUT_W];
+            end
+        end
+    endgenerate
     wire step = en && r0_v;             // the R0 beat enters S1
 
     wire sop   = r0_ctrl[4];
@@ -265,7 +281,6 @@ module cube4_com #(
     wire [IW-1:0]     ni_ext = IW'(cfg_ni);
     wire [IW-1:0]     nj_ext = IW'(cfg_nj);
     wire [IW-1:0]     j_ext  = IW'(r0_j);
-    genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
             localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
@@ -315,19 +330,19 @@ module cube4_com #(
     endgenerate
 
     // ---- the beat's fields, carried along the pipeline (index = stage) ----
-    reg [SP_W-1:0]    sp_s   [1:NS];    // slice position: read at S1, written at the end of S9
-    reg [PB_W-1:0]    pb_s   [1:3];     // beam position: read at S2, written at the end of S3
-    reg [P-1:0]       ins_s  [1:7];
-    reg [P-1:0]       fin_s  [2:NS];    // from S2 on (computed from S1's parts)
-    reg [M_W-1:0]     m_s    [1:NS];
-    reg [BX_W-1:0]    by_s   [1:NS];
-    reg [P*BX_W-1:0]  bx_s   [2:NS];
-    reg [NS:1]        eop_s;
-    reg [5:1]         dxb_s;
-    reg [4:1]         dyb_s, dkb_s;
-    reg [P-1:0]       fresh_s [1:5];
-    reg [P-1:0]       t0_s    [1:5];
-    reg [P*LUT_W-1:0] rgba_s  [1:5];
+    // (packed arrays: Verilator shifts them as words, without a delayed write per element)
+    reg [NS:1][SP_W-1:0]   sp_s;      // slice position: read at S1, written at the end of S9
+    reg [3:1][PB_W-1:0]    pb_s;      // beam position: read at S2, written at the end of S3
+    reg [7:1][P-1:0]       ins_s;
+    reg [NS:2][P-1:0]      fin_s;     // from S2 on (computed from S1's parts)
+    reg [NS:1][M_W-1:0]    m_s;
+    reg [NS:1][BX_W-1:0]   by_s;
+    reg [NS:2][P*BX_W-1:0] bx_s;
+    reg [NS:1]             eop_s;
+    reg [5:1]              dxb_s;
+    reg [4:1]              dyb_s, dkb_s;
+    reg [5:1][P-1:0]       fresh_s;
+    reg [5:1][P-1:0]       t0_s;
     integer k;
     always @(posedge clk) begin
         if (rst) begin
@@ -340,7 +355,7 @@ module cube4_com #(
         if (en) begin
             sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
             m_s[1]  <= r0_m;     by_s[1] <= by_d;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
-            t0_s[1] <= t0_d;     rgba_s[1] <= r0_rgba;
+            t0_s[1] <= t0_d;
             eop_s <= {eop_s[NS-1:1], eop};
             dxb_s <= {dxb_s[4:1], dxb};
             dyb_s <= {dyb_s[3:1], dyb};
@@ -354,7 +369,7 @@ module cube4_com #(
             for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
             for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
             for (k = 2; k <= 5; k = k + 1) begin
-                fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];  rgba_s[k] <= rgba_s[k-1];
+                fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
             end
         end
     end
@@ -382,41 +397,51 @@ module cube4_com #(
     // The slice buffer registers its addresses itself (copies of sp_s[1] and
     // sp_s[NS], one per two slices of its block RAMs): it gets them one stage
     // early, loaded at the same enable.
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .ADDR_REG(1)) u_bp_slice (
-        .clk(clk), .addr_ld(en), .rd_en(en), .rd_addr(pos_sp), .rd_data(a1_ram),
-        .wr_en(en && v_s[NS]), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .ADDR_REG(1), .EN_COPIES(NRAM_EN)) u_bp_slice (
+        .clk(clk), .addr_ld(en_ram), .rd_en(en_ram), .rd_addr(pos_sp), .rd_data(a1_ram),
+        .wr_en(en_ram & {NRAM_EN{v_s[NS]}}), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
     reg [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;
     // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
     // previous beat's a1 (prev_a1_q).
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX)) u_bp_beam (
-        .clk(clk), .addr_ld(1'b0), .rd_en(en), .rd_addr(pb_s[2]), .rd_data(a2_ram),
-        .wr_en(en && v_s[3]), .wr_addr(pb_s[3]), .wr_data(s3_a1));
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .EN_COPIES(NRAM_EN)) u_bp_beam (
+        .clk(clk), .addr_ld({NRAM_EN{1'b0}}), .rd_en(en_ram), .rd_addr(pb_s[2]), .rd_data(a2_ram),
+        .wr_en(en_ram & {NRAM_EN{v_s[3]}}), .wr_addr(pb_s[3]), .wr_data(s3_a1));
     reg nb1_q;                          // NB = 1
     always @(posedge clk) begin
         nb1_q <= (cfg_nb == NB_W'(1));
-        if (en) begin
-            s3_a1 <= a1_ram;
-            s4_a1 <= s3_a1;
-            s4_a2 <= a2_ram;
-        end
-        if (en && v_s[4]) prev_a1_q <= s4_a1;
     end
+    // the wide buffer words: each lane's slice under the lane's enable copy
+    reg [PA-1:0] s5_back, s5_prevb, lastb_q;   // this beat's and the previous beat's "back"
+    wire [PA-1:0] back;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_buf
+            localparam integer LO = q * AC_W;
+            always @(posedge clk) begin
+                if (en_rep[1 + q]) begin
+                    s3_a1[LO +: AC_W]   <= a1_ram[LO +: AC_W];
+                    s4_a1[LO +: AC_W]   <= s3_a1[LO +: AC_W];
+                    s4_a2[LO +: AC_W]   <= a2_ram[LO +: AC_W];
+                    s5_back[LO +: AC_W] <= back[LO +: AC_W];
+                    if (v_s[4]) begin
+                        prev_a1_q[LO +: AC_W] <= s4_a1[LO +: AC_W];
+                        s5_prevb[LO +: AC_W]  <= lastb_q[LO +: AC_W];
+                        lastb_q[LO +: AC_W]   <= back[LO +: AC_W];
+                    end
+                end
+            end
+        end
+    endgenerate
 
     // ==== S4: (m-1, j-dyb, i) in this beat's skew ====
     wire [PA-1:0] a1 = s4_a1;
     wire [PA-1:0] a2 = nb1_q ? prev_a1_q : s4_a2;
-    wire [PA-1:0] a1_k, a2_j, a2_jk, back;
+    wire [PA-1:0] a1_k, a2_j, a2_jk;
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a1k  (.down(cfg_flip_k), .x(a1),   .y(a1_k));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2j  (.down(cfg_flip_j), .x(a2),   .y(a2_j));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2jk (.down(cfg_flip_k), .x(a2_j), .y(a2_jk));
     assign back = dyb_s[4] ? (dkb_s[4] ? a2_jk : a2_j) : (dkb_s[4] ? a1_k : a1);
-    reg [PA-1:0] s5_back, s5_prevb, lastb_q;   // this beat's and the previous beat's "back"
-    always @(posedge clk) begin
-        if (en) s5_back <= back;
-        if (en && v_s[4]) {s5_prevb, lastb_q} <= {lastb_q, back};
-    end
 
     // ==== S5: the X-step hop (the lane at t = 0 takes the previous beat) ====
     wire [PA-1:0] back_sh, prevb_sh;
@@ -425,22 +450,30 @@ module cube4_com #(
 
     // ==== S6 .. S9: compositing, per lane ====
     wire [P*AC_W-1:0] pix_d;
-    wire [P*LUT_W-1:0] rgba5 = rgba_s[5];
+    reg  [PA-1:0]     o_rgba;           // the output register's pixels (written per lane)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
             // S5: previous partial result {R, G, B, T}, or a fresh ray
             wire [AC_W-1:0] prev = dxb_s[5]
                 ? (t0_s[5][q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
                 : s5_back[q*AC_W +: AC_W];
+            wire en_l = en_rep[1 + q];      // this lane's copy of the stall enable
             wire [AC_W-1:0] acc_in = fresh_s[5][q] ? {{(3*CW){1'b0}}, ONE} : prev;
+            // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
+            // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
+            reg  [5*LUT_W-1:0] rgba_l;
+            always @(posedge clk) begin
+                if (en_l) rgba_l <= {rgba_l[4*LUT_W-1:0], r0_rgba[q*LUT_W +: LUT_W]};
+            end
+            wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
             reg  [AC_W-1:0] s6_acc, s7_acc, s8_acc;          // {C_R, C_G, C_B, T}
             reg  [23:0]     s6_c, s7_c, s8_c;                 // the sample's {R', G', B'}
             reg  [ALPHA_W-1:0] s6_a;                          // the sample's A
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     s6_acc <= acc_in;
-                    s6_c   <= rgba5[q*LUT_W + ALPHA_W +: 24];
-                    s6_a   <= rgba5[q*LUT_W +: ALPHA_W];
+                    s6_c   <= rgba5[ALPHA_W +: 24];
+                    s6_a   <= rgba5[0 +: ALPHA_W];
                     {s7_acc, s8_acc} <= {s6_acc, s7_acc};
                     {s7_c, s8_c}     <= {s6_c, s7_c};
                 end
@@ -448,7 +481,7 @@ module cube4_com #(
             // S6: T * A
             reg [TA_W-1:0] s7_ta;
             always @(posedge clk) begin
-                if (en) s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
+                if (en_l) s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
             end
             // S7: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
             wire signed [CW+1:0] w_rs;
@@ -456,7 +489,7 @@ module cube4_com #(
                 .x($signed({1'b0, s7_ta})), .y(w_rs));
             reg [CW-1:0] s8_w;
             always @(posedge clk) begin
-                if (en) s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                if (en_l) s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
             end
             // S8: w * C' per channel, T - w
             reg [3*WC_W-1:0] s9_wc;
@@ -465,11 +498,11 @@ module cube4_com #(
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
                 always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
-                    if (en) s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
+                    if (en_l) s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
                 end
             end
             always @(posedge clk) begin
-                if (en) begin
+                if (en_l) begin
                     s9_cin <= s8_acc[CW +: 3*CW];
                     s9_t   <= s8_acc[0 +: CW] - s8_w;
                 end
@@ -484,6 +517,9 @@ module cube4_com #(
             end
             assign acc_new[q*AC_W +: AC_W] = {c_out, s9_t};
             assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s9_t};   // {R, G, B, A}
+            always @(posedge clk) begin     // the output register's slice of this lane
+                if (en_l) o_rgba[q*AC_W +: AC_W] <= pix_d[q*AC_W +: AC_W];
+            end
         end
     endgenerate
 
@@ -493,7 +529,6 @@ module cube4_com #(
     reg [M_W-1:0]     o_m;
     reg [BX_W-1:0]    o_by;
     reg [P*BX_W-1:0]  o_bx;
-    reg [PA-1:0]      o_rgba;
     reg               o_eop;
     always @(posedge clk) begin
         if (rst) o_v <= 1'b0;
@@ -505,7 +540,6 @@ module cube4_com #(
             o_m    <= m_s[NS];
             o_by   <= by_s[NS];
             o_bx   <= bx_s[NS];
-            o_rgba <= pix_d;
             o_eop  <= eop_s[NS];
         end
     end
@@ -513,12 +547,13 @@ module cube4_com #(
     localparam integer OUT_W = P + M_W + BX_W + P * BX_W + PA + 1;
     wire [OUT_W-1:0] skid_out;
     cube4_skid #(
-        .DATA_W (OUT_W)
+        .DATA_W       (OUT_W),
+        .READY_COPIES (NEN)
     ) u_skid (
         .clk       (clk),
         .rst       (rst),
         .in_valid  (o_v),
-        .in_ready  (en),
+        .in_ready  (en_rep),
         .in_data   ({o_mask, o_m, o_by, o_bx, o_rgba, o_eop}),
         .out_valid (pix_valid),
         .out_ready (pix_ready),

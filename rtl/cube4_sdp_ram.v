@@ -26,7 +26,10 @@
 //   words deep are then sliced into 18-bit words, two 2048 x 9 block RAMs),
 //   so no single flip-flop drives the address of every block RAM: a RAM
 //   spread over dozens of block RAMs across the die otherwise spends most of
-//   a cycle routing one address net.
+//   a cycle routing one address net. For the same reason the enables may
+//   come as EN_COPIES identical copies (flip-flop copies made by the caller);
+//   for synthesis each slice and address copy uses one of them, in
+//   contiguous groups; simulation uses copy 0.
 //
 // Parameters
 //   DATA_W  word width.                     1..4096.  Default 8.
@@ -34,6 +37,8 @@
 //   ADDR_REG  0: rd_addr / wr_addr address this cycle's access; 1: they are
 //           loaded into the RAM's address registers at addr_ld, and the
 //           access uses the registered addresses.  0..1.  Default 0.
+//   EN_COPIES  copies of rd_en, wr_en and addr_ld (all bits equal).
+//           1..64.  Default 1.
 //   AW      address width (derived; do not set).
 //
 // Latency
@@ -44,10 +49,11 @@
 //   they had at the last cycle with addr_ld = 1 (one register stage).
 //
 // Ports
-//   rd_en, rd_addr  in   read this cycle, address  [AW]
+//   rd_en, rd_addr  in   read this cycle [EN_COPIES], address  [AW]
 //   rd_data         out  [DATA_W] any format
-//   wr_en, wr_addr, wr_data  in   write port
-//   addr_ld         in   ADDR_REG = 1: load rd_addr and wr_addr (else unused)
+//   wr_en, wr_addr, wr_data  in   write port (wr_en [EN_COPIES])
+//   addr_ld         in   [EN_COPIES] ADDR_REG = 1: load rd_addr and wr_addr
+//                        (else unused)
 //
 // Bit growth and rounding: none. No reset: the contents are data.
 // =============================================================================
@@ -55,14 +61,15 @@ module cube4_sdp_ram #(
     parameter integer DATA_W = 8,
     parameter integer DEPTH  = 16,
     parameter integer ADDR_REG = 0,
+    parameter integer EN_COPIES = 1,
     parameter integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
-    input  wire              clk,
-    input  wire              addr_ld,
-    input  wire              rd_en,
-    input  wire [AW-1:0]     rd_addr,
-    output wire [DATA_W-1:0] rd_data,
-    input  wire              wr_en,
+    input  wire                 clk,
+    input  wire [EN_COPIES-1:0] addr_ld,
+    input  wire [EN_COPIES-1:0] rd_en,
+    input  wire [AW-1:0]        rd_addr,
+    output wire [DATA_W-1:0]    rd_data,
+    input  wire [EN_COPIES-1:0] wr_en,
     input  wire [AW-1:0]     wr_addr,
     input  wire [DATA_W-1:0] wr_data
 );
@@ -75,6 +82,9 @@ module cube4_sdp_ram #(
         end
         if (ADDR_REG < 0 || ADDR_REG > 1) begin : g_bad_addr_reg
             $error("cube4_sdp_ram: ADDR_REG = %0d is out of range 0..1", ADDR_REG);
+        end
+        if (EN_COPIES < 1 || EN_COPIES > 64) begin : g_bad_en_copies
+            $error("cube4_sdp_ram: EN_COPIES = %0d is out of range 1..64", EN_COPIES);
         end
     endgenerate
 
@@ -93,7 +103,8 @@ module cube4_sdp_ram #(
     localparam integer N_CP = (N_SL + SPC - 1) / SPC;   // address copies (ADDR_REG = 1)
 
     wire [N_CP*AW-1:0] ra_cp, wa_cp;    // the registered addresses, one per copy
-    wire unused_addr_ld = addr_ld;      // ADDR_REG = 0 has no address registers
+    // ADDR_REG = 0 has no address registers; simulation uses enable copy 0
+    wire unused_en = ^{addr_ld, rd_en, wr_en};
     genvar sl, cp;
     generate
         for (cp = 0; cp < N_CP; cp = cp + 1) begin : g_acopy
@@ -101,7 +112,7 @@ module cube4_sdp_ram #(
                 reg [AW-1:0] ra_q, wa_q;
                 (* keep *)              // one copy per SPC slices: never merged
                 always @(posedge clk) begin
-                    if (addr_ld) begin
+                    if (addr_ld[(cp * EN_COPIES) / N_CP]) begin
                         ra_q <= rd_addr;
                         wa_q <= wr_addr;
                     end
@@ -116,13 +127,14 @@ module cube4_sdp_ram #(
         for (sl = 0; sl < N_SL; sl = sl + 1) begin : g_slice
             localparam integer LO = sl * SL_W;
             localparam integer W  = (DATA_W - LO < SL_W) ? DATA_W - LO : SL_W;
+            localparam integer E  = (sl * EN_COPIES) / N_SL;   // this slice's enable copy
             wire [AW-1:0] ra = ra_cp[(sl / SPC) * AW +: AW];
             wire [AW-1:0] wa = wa_cp[(sl / SPC) * AW +: AW];
             reg [W-1:0] mem [0:(1 << AW)-1];
             reg [W-1:0] rd_q;
             always @(posedge clk) begin
-                if (wr_en) mem[wa] <= wr_data[LO +: W];
-                if (rd_en) rd_q <= mem[ra];
+                if (wr_en[E]) mem[wa] <= wr_data[LO +: W];
+                if (rd_en[E]) rd_q <= mem[ra];
             end
             assign rd_data[LO +: W] = rd_q;
         end

@@ -160,20 +160,18 @@ module cube4_sha #(
 
     // ---- valid bits and the beat's fields, stages 1 .. NST ----
     reg [NST:1]      st_v;
-    reg [META_W-1:0] st_meta [1:NST];
+    // st_meta_q: the fields at stage k in bits [(k-1)*META_W +: META_W] (one
+    // packed shift register, not an array: Verilator copies it as words)
+    reg [NST*META_W-1:0] st_meta_q;
     always @(posedge clk) begin
         if (rst) st_v <= '0;
         else if (en) st_v <= {st_v[NST-1:1], a_v};
     end
-    integer k_st;
     always @(posedge clk) begin
-        if (en) begin
-            st_meta[1] <= a_meta;
-            for (k_st = 2; k_st <= NST; k_st = k_st + 1) st_meta[k_st] <= st_meta[k_st - 1];
-        end
+        if (en) st_meta_q <= {st_meta_q[(NST-1)*META_W-1:0], a_meta};
     end
     wire               e_v    = st_v[NST];
-    wire [META_W-1:0]  e_meta = st_meta[NST];
+    wire [META_W-1:0]  e_meta = st_meta_q[(NST-1)*META_W +: META_W];
     wire [P*LUT_W-1:0] e_rgba;
     wire [P*RI_W-1:0]  e_idx;
 
@@ -189,13 +187,10 @@ module cube4_sha #(
                 if (rmap_we) rmap[rmap_addr] <= rmap_data;
             end
             // the sample's LUT entry rides along from b1 to d2
-            reg [LUT_W-1:0] lut_q [1:NST-2];
-            integer k_l;
+            // (stage k's entry in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
+            reg [(NST-2)*LUT_W-1:0] lut_q;
             always @(posedge clk) begin
-                if (en_l) begin
-                    lut_q[1] <= lut[a_s[q*VW +: VW]];
-                    for (k_l = 2; k_l <= NST - 2; k_l = k_l + 1) lut_q[k_l] <= lut_q[k_l - 1];
-                end
+                if (en_l) lut_q <= {lut_q[(NST-3)*LUT_W-1:0], lut[a_s[q*VW +: VW]]};
             end
 
             // b1: |g|; |g| < 2^(GW-1): no overflow
@@ -244,48 +239,51 @@ module cube4_sha #(
             // b3: g_b + A and g_c + A in 0 .. 2A (GW + 1 bits unsigned), times R
             wire [GW:0] nb = $unsigned($signed({b2_gb[GW-1], b2_gb}) + $signed({1'b0, b2_amax}));
             wire [GW:0] nc = $unsigned($signed({b2_gc[GW-1], b2_gc}) + $signed({1'b0, b2_amax}));
-            reg  [NUM_W-1:0] rb_q [0:NDIV];     // remainders; rb_q[0] = numerator (b3)
-            reg  [NUM_W-1:0] rc_q [0:NDIV];
-            reg  [RB:0]      qb_q [0:NDIV];     // quotient bits found so far
-            reg  [RB:0]      qc_q [0:NDIV];
-            reg  [GW:0]      den_q  [0:NDIV];   // 2A
-            reg  [2:0]       face_q [0:NDIV];
-            reg              zero_q [0:NDIV];   // g = 0
+            // The division's state after b3 (0) and after each quotient bit
+            // (1 .. NDIV), one packed word per stage on one bus (per-stage
+            // registers, not arrays: Verilator copies plain registers in place):
+            //   {rb, rc: remainders, NUM_W each; qb, qc: quotient bits found so
+            //    far, RB+1 each; den: 2A, GW+1; face: 3; zero: g = 0}
+            localparam integer DV_W = 2 * NUM_W + 2 * (RB + 1) + (GW + 1) + 3 + 1;
+            wire [(NDIV + 1)*DV_W-1:0] dv;
+            reg  [DV_W-1:0]            dv0_q;   // b3: numerators (g + A) * R, 2A
             always @(posedge clk) begin
-                if (en_l) begin
-                    rb_q[0]   <= {{RB{1'b0}}, nb} << RB;
-                    rc_q[0]   <= {{RB{1'b0}}, nc} << RB;
-                    qb_q[0]   <= '0;
-                    qc_q[0]   <= '0;
-                    den_q[0]  <= {b2_amax, 1'b0};
-                    face_q[0] <= b2_face;
-                    zero_q[0] <= (b2_amax == {GW{1'b0}});
-                end
+                if (en_l) dv0_q <= {{{RB{1'b0}}, nb} << RB, {{RB{1'b0}}, nc} << RB,
+                                    {(RB + 1){1'b0}}, {(RB + 1){1'b0}},
+                                    {b2_amax, 1'b0}, b2_face, (b2_amax == {GW{1'b0}})};
             end
+            assign dv[0 +: DV_W] = dv0_q;
 
             // c0 .. cR: quotient bit RB - it (exact restoring division, no rounding)
             for (it = 0; it < NDIV; it = it + 1) begin : g_div
                 localparam integer KB = RB - it;
-                wire [NUM_W-1:0] d  = {{(NUM_W - GW - 1){1'b0}}, den_q[it]} << KB;
-                wire             ge_b = (rb_q[it] >= d);
-                wire             ge_c = (rc_q[it] >= d);
+                wire [NUM_W-1:0] rb, rc;
+                wire [RB:0]      qb, qc;
+                wire [GW:0]      den;
+                wire [2:0]       face;
+                wire             zero;
+                assign {rb, rc, qb, qc, den, face, zero} = dv[it*DV_W +: DV_W];
+                wire [NUM_W-1:0] d  = {{(NUM_W - GW - 1){1'b0}}, den} << KB;
+                wire             ge_b = (rb >= d);
+                wire             ge_c = (rc >= d);
+                reg  [DV_W-1:0]  dv_q;
                 always @(posedge clk) begin
-                    if (en_l) begin
-                        rb_q[it + 1]   <= ge_b ? rb_q[it] - d : rb_q[it];
-                        rc_q[it + 1]   <= ge_c ? rc_q[it] - d : rc_q[it];
-                        qb_q[it + 1]   <= qb_q[it] | ((RB + 1)'(ge_b) << KB);
-                        qc_q[it + 1]   <= qc_q[it] | ((RB + 1)'(ge_c) << KB);
-                        den_q[it + 1]  <= den_q[it];
-                        face_q[it + 1] <= face_q[it];
-                        zero_q[it + 1] <= zero_q[it];
-                    end
+                    if (en_l) dv_q <= {ge_b ? rb - d : rb, ge_c ? rc - d : rc,
+                                       qb | ((RB + 1)'(ge_b) << KB), qc | ((RB + 1)'(ge_c) << KB),
+                                       den, face, zero};
                 end
+                assign dv[(it + 1)*DV_W +: DV_W] = dv_q;
             end
-            wire [RB:0]   qb = qb_q[NDIV];
-            wire [RB:0]   qc = qc_q[NDIV];
+            wire [NUM_W-1:0] rb_n, rc_n;     // the last remainders (unused)
+            wire [RB:0]      qb, qc;
+            wire [GW:0]      den_n;          // (unused)
+            wire [2:0]       face_n;
+            wire             zero_n;
+            assign {rb_n, rc_n, qb, qc, den_n, face_n, zero_n} = dv[NDIV*DV_W +: DV_W];
+            wire unused_div = ^{rb_n, rc_n, den_n};
             wire [RB-1:0] ub = qb[RB] ? {RB{1'b1}} : qb[RB-1:0];   // min(R - 1, q)
             wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
-            wire [RI_W-1:0] idx = zero_q[NDIV] ? RI_W'(6 << (2 * RB)) : {face_q[NDIV], uc, ub};
+            wire [RI_W-1:0] idx = zero_n ? RI_W'(6 << (2 * RB)) : {face_n, uc, ub};
 
             // d: reflectance-map read
             reg [RI_W-1:0]  d_idx;
@@ -305,7 +303,7 @@ module cube4_sha #(
                     d2_dp  <= d_dp;
                 end
             end
-            wire [LUT_W-1:0] d_lut = lut_q[NST - 2];
+            wire [LUT_W-1:0] d_lut = lut_q[(NST-3)*LUT_W +: LUT_W];
 
             // e1: C * D, 8 x 10 bits, exact
             reg [3*18-1:0]    e1_cd;

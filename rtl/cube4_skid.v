@@ -9,11 +9,13 @@
 //   and an item already on its way when out_ready drops lands in the second
 //   entry. Full throughput: one item per cycle when out_ready stays high.
 //   Built as a two-entry FIFO (entries written at a write pointer, read
-//   through a multiplexer at a read pointer): the wide data registers load
-//   only on push, which depends on in_valid and a register, never on
-//   out_ready. out_ready moves only the read pointer and the two state bits,
-//   so a late out_ready (e.g. a downstream hazard check) does not fan out
-//   to every data flip-flop's clock enable.
+//   through a multiplexer at a read pointer). An entry's data registers load
+//   in_data on every cycle while the entry is free, so their clock enable is
+//   a register (the entry's "free" flag, one flip-flop copy per 64 data bits),
+//   never logic of in_valid or out_ready: a push marks the entry used in the
+//   cycle it loads the pushed item. out_ready moves only the read pointer
+//   and the state bits, so a late out_ready (e.g. a downstream hazard check)
+//   does not fan out to every data flip-flop's clock enable.
 //   in_ready can be had as READY_COPIES identical registers (kept apart in
 //   synthesis), so that a unit's stall enable is driven by one register per
 //   group of flip-flops instead of one register for all of them.
@@ -85,10 +87,40 @@ module cube4_skid #(
         end
     end
 
-    always @(posedge clk) begin
-        if (push && !wp_q) e0_q <= in_data;
-        if (push &&  wp_q) e1_q <= in_data;
-    end
+    // Entry e is free when it holds no unread item. A push writes entry wp_q,
+    // which is free (a push needs !full_q). A pop and a push never hit the
+    // same entry in one cycle (that would need both entries full).
+    wire free0_now, free1_now;          // the flags (copy 0)
+    wire free0_d = !(push && !wp_q) && (free0_now || (pop && !rp_q));
+    wire free1_d = !(push &&  wp_q) && (free1_now || (pop &&  rp_q));
+    localparam integer GRP_W = 64;                           // data bits per flag copy
+    localparam integer NGRP  = (DATA_W + GRP_W - 1) / GRP_W;
+    genvar g;
+    generate
+        for (g = 0; g < NGRP; g = g + 1) begin : g_grp
+            localparam integer LO = g * GRP_W;
+            localparam integer W  = (DATA_W - LO < GRP_W) ? DATA_W - LO : GRP_W;
+            reg free0_q, free1_q;
+            (* keep *)   // one copy per group: never merged
+            always @(posedge clk) begin
+                if (rst) begin
+                    free0_q <= 1'b1;
+                    free1_q <= 1'b1;
+                end else begin
+                    free0_q <= free0_d;
+                    free1_q <= free1_d;
+                end
+            end
+            always @(posedge clk) begin
+                if (free0_q) e0_q[LO +: W] <= in_data[LO +: W];
+                if (free1_q) e1_q[LO +: W] <= in_data[LO +: W];
+            end
+            if (g == 0) begin : g_flags
+                assign free0_now = free0_q;
+                assign free1_now = free1_q;
+            end
+        end
+    endgenerate
 
     // in_ready: READY_COPIES flip-flops holding !full_q. "keep" stops
     // synthesis from merging them back into one (they have the same input).
