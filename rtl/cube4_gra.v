@@ -31,8 +31,8 @@
 //
 // Latency
 //   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
-//   beam delays and the window), plus 3 register stages and the output skid
-//   buffer. All under
+//   beam delays and the window), plus the input register, 3 register stages
+//   and the output skid buffer. All under
 //   one stall enable (the skid buffer's registered ready), which comes as
 //   eight flip-flops, one per group of registers (each delay line, the
 //   window, the arithmetic), so that no single net reaches every clock enable.
@@ -149,14 +149,45 @@ module cube4_gra #(
     reg  [PB_W-1:0]  f_pb_q;
     reg              f_tail_q;       // the previous flush step was in row NJ + 1
     reg  [DIM_W:0]   nj_p1_q;        // NJ + 1
-    wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{in_valid}});
-    wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{in_ctrl[4]}};   // frame start, per copy
+
+    // ------------------------------------------------------------ input register
+    // The incoming beat is registered (i0) before anything uses it: a stream
+    // register, loaded whenever it is empty or its beat is taken by a step, so
+    // it passes one beat per cycle. in_ready depends on registers only.
+    reg               i0_v;
+    reg [P*VOXEL_W-1:0] i0_sample;
+    reg [P-1:0]       i0_lane_valid, i0_lane_inside;
+    reg [M_W-1:0]     i0_m;
+    reg [DIM_W-1:0]   i0_j;
+    reg [PB_W-1:0]    i0_pb;
+    reg [LANE_W-1:0]  i0_skew;
+    reg [6:0]         i0_ctrl;
+    wire i0_take = !i0_v || (en_rep[6] && !flush_rep[6]);   // i0 is free, or its beat steps now
+    assign in_ready = i0_take;
+    always @(posedge clk) begin
+        if (rst)          i0_v <= 1'b0;
+        else if (i0_take) i0_v <= in_valid;
+    end
+    always @(posedge clk) begin
+        if (i0_take) begin
+            i0_sample      <= in_sample;
+            i0_lane_valid  <= in_lane_valid;
+            i0_lane_inside <= in_lane_inside;
+            i0_m           <= in_m;
+            i0_j           <= in_j;
+            i0_pb          <= in_pb;
+            i0_skew        <= in_skew;
+            i0_ctrl        <= in_ctrl;
+        end
+    end
+
+    wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{i0_v}});
+    wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{i0_ctrl[4]}};   // frame start, per copy
     wire step = step_rep[6];
-    assign in_ready = en_rep[6] && !flush_rep[6];
 
     wire real_beat = !flush_q;
     wire sop       = sop_rep[6];
-    wire eop       = real_beat && in_ctrl[5];
+    wire eop       = real_beat && i0_ctrl[5];
 
     // position counters of the delay lines (beat index within a beam / slice);
     // lb_q / ls_q: the position in pb_q / row_q is the last beam / the last
@@ -232,10 +263,10 @@ module cube4_gra #(
     wire [PV-1:0] x_data;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_mask
-            assign x_data[q*VW +: VW] = (real_beat && in_lane_valid[q]) ? in_sample[q*VW +: VW] : {VW{1'b0}};
+            assign x_data[q*VW +: VW] = (real_beat && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
         end
     endgenerate
-    wire [META_W-1:0] x_meta = {real_beat, in_m, in_j, in_pb, in_skew, in_ctrl, in_lane_valid, in_lane_inside};
+    wire [META_W-1:0] x_meta = {real_beat, i0_m, i0_j, i0_pb, i0_skew, i0_ctrl, i0_lane_valid, i0_lane_inside};
 
     wire [PV-1:0]        b1, p1, c_d, p1b2, p2b1, p2b2;
     wire [META_W-1:0]    p1_meta, c_meta;
