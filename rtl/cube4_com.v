@@ -152,11 +152,13 @@ module cube4_com #(
     //   S8  w * C' (multipliers), T - w
     //   S9  C += round_shift(w * C', 8); write the slice buffer; output register
     // Every stage moves under en (the skid's ready) and carries a valid bit.
-    // The skid gives its ready as 1 + P + NRAM_EN flip-flop copies: one for
-    // the beat's fields and valid bits, one per lane (the lane's slice of the
-    // wide buffer words and its compositing), NRAM_EN for the base-plane
-    // buffers' block RAMs (enables and address registers): no single net
-    // reaches every clock enable of the unit.
+    // The skid gives its ready as NSH + NLG * P + NRAM_EN flip-flop copies:
+    // NSH for the beat's fields and valid bits (valid bits and counters; R0 and
+    // S0's registers; the fields carried along S1..S9; the output register),
+    // NLG per lane (the lane's share of the wide buffer words, twice, and of
+    // the compositing stages, twice) and NRAM_EN for the base-plane buffers'
+    // block RAMs (enables and address registers): no net reaches more than a
+    // few hundred clock enables.
     // A beat's slice position is read two en-edges after its acceptance into
     // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
@@ -170,11 +172,14 @@ module cube4_com #(
     localparam integer WC_W  = CW + 8;          // w * C'
 
     localparam integer NS    = 9;               // stages S1 .. S9
+    localparam integer NSH     = 4;             // enable copies for the shared fields
+    localparam integer NLG     = 4;             // enable copies per lane
     localparam integer NRAM_EN = 8;             // enable copies for the buffers' RAMs
-    localparam integer NEN   = 1 + P + NRAM_EN;
+    localparam integer NEN     = NSH + NLG * P + NRAM_EN;
     wire [NEN-1:0] en_rep;              // copies of the stall enable
-    wire en = en_rep[0];                // the pipeline advances (shared fields)
-    wire [NRAM_EN-1:0] en_ram = en_rep[1 + P +: NRAM_EN];
+    wire [NSH-1:0] en_sh = en_rep[0 +: NSH];
+    wire en = en_sh[0];                 // the pipeline advances (valid bits, counters)
+    wire [NRAM_EN-1:0] en_ram = en_rep[NSH + NLG * P +: NRAM_EN];
     reg  [NS:1] v_s;                    // stage valid bits
     wire hazard;                        // the beat L back is in R0..S7 (see above)
     assign in_ready = en && !hazard;
@@ -193,7 +198,7 @@ module cube4_com #(
         else if (en) r0_v <= in_valid && !hazard;
     end
     always @(posedge clk) begin
-        if (en) begin
+        if (en_sh[1]) begin
             r0_lane_valid  <= in_lane_valid;
             r0_lane_inside <= in_lane_inside;
             r0_m           <= in_m;
@@ -207,7 +212,7 @@ module cube4_com #(
     generate
         for (q = 0; q < P; q = q + 1) begin : g_r0
             always @(posedge clk) begin
-                if (en_rep[1 + q]) r0_rgba[q*LUT_W +: LUT_W] <= in_rgba[q*LUT_W +: LUT_W];
+                if (en_rep[NSH + NLG * q + 1]) r0_rgba[q*LUT_W +: LUT_W] <= in_rgba[q*LUT_W +: LUT_W];
             end
         end
     endgenerate
@@ -304,7 +309,7 @@ module cube4_com #(
     reg              f1_dxf, f1_dyf, f1_last, f1_wxn, f1_wyn;
     reg [DIM_W-1:0]  f1_stx;
     always @(posedge clk) begin
-        if (en) begin
+        if (en_sh[1]) begin
             f1_ipos <= ipos_d;
             f1_j    <= j_ext;
             f1_dxf  <= dxf;
@@ -352,7 +357,7 @@ module cube4_com #(
         end
     end
     always @(posedge clk) begin
-        if (en) begin
+        if (en_sh[2]) begin
             sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
             m_s[1]  <= r0_m;     by_s[1] <= by_d;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
             t0_s[1] <= t0_d;
@@ -419,13 +424,17 @@ module cube4_com #(
         for (q = 0; q < P; q = q + 1) begin : g_buf
             localparam integer LO = q * AC_W;
             always @(posedge clk) begin
-                if (en_rep[1 + q]) begin
+                if (en_rep[NSH + NLG * q]) begin
                     s3_a1[LO +: AC_W]   <= a1_ram[LO +: AC_W];
                     s4_a1[LO +: AC_W]   <= s3_a1[LO +: AC_W];
                     s4_a2[LO +: AC_W]   <= a2_ram[LO +: AC_W];
+                    if (v_s[4]) prev_a1_q[LO +: AC_W] <= s4_a1[LO +: AC_W];
+                end
+            end
+            always @(posedge clk) begin
+                if (en_rep[NSH + NLG * q + 1]) begin
                     s5_back[LO +: AC_W] <= back[LO +: AC_W];
                     if (v_s[4]) begin
-                        prev_a1_q[LO +: AC_W] <= s4_a1[LO +: AC_W];
                         s5_prevb[LO +: AC_W]  <= lastb_q[LO +: AC_W];
                         lastb_q[LO +: AC_W]   <= back[LO +: AC_W];
                     end
@@ -457,7 +466,8 @@ module cube4_com #(
             wire [AC_W-1:0] prev = dxb_s[5]
                 ? (t0_s[5][q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
                 : s5_back[q*AC_W +: AC_W];
-            wire en_l = en_rep[1 + q];      // this lane's copy of the stall enable
+            wire en_l  = en_rep[NSH + NLG * q + 2];   // this lane's copies of the stall enable:
+            wire en_l2 = en_rep[NSH + NLG * q + 3];   // S5/S6 (en_l), S7..S9 (en_l2)
             wire [AC_W-1:0] acc_in = fresh_s[5][q] ? {{(3*CW){1'b0}}, ONE} : prev;
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
@@ -481,7 +491,7 @@ module cube4_com #(
             // S6: T * A
             reg [TA_W-1:0] s7_ta;
             always @(posedge clk) begin
-                if (en_l) s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
+                if (en_l2) s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
             end
             // S7: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
             wire signed [CW+1:0] w_rs;
@@ -489,7 +499,7 @@ module cube4_com #(
                 .x($signed({1'b0, s7_ta})), .y(w_rs));
             reg [CW-1:0] s8_w;
             always @(posedge clk) begin
-                if (en_l) s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                if (en_l2) s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
             end
             // S8: w * C' per channel, T - w
             reg [3*WC_W-1:0] s9_wc;
@@ -498,11 +508,11 @@ module cube4_com #(
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
                 always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
-                    if (en_l) s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
+                    if (en_l2) s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
                 end
             end
             always @(posedge clk) begin
-                if (en_l) begin
+                if (en_l2) begin
                     s9_cin <= s8_acc[CW +: 3*CW];
                     s9_t   <= s8_acc[0 +: CW] - s8_w;
                 end
@@ -518,7 +528,7 @@ module cube4_com #(
             assign acc_new[q*AC_W +: AC_W] = {c_out, s9_t};
             assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s9_t};   // {R, G, B, A}
             always @(posedge clk) begin     // the output register's slice of this lane
-                if (en_l) o_rgba[q*AC_W +: AC_W] <= pix_d[q*AC_W +: AC_W];
+                if (en_l2) o_rgba[q*AC_W +: AC_W] <= pix_d[q*AC_W +: AC_W];
             end
         end
     endgenerate
@@ -535,7 +545,7 @@ module cube4_com #(
         else if (en) o_v <= v_s[NS] && ((fin_s[NS] != '0) || eop_s[NS]);
     end
     always @(posedge clk) begin
-        if (en) begin
+        if (en_sh[3]) begin
             o_mask <= fin_s[NS];
             o_m    <= m_s[NS];
             o_by   <= by_s[NS];

@@ -22,7 +22,7 @@
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
-//   READY_COPIES  copies of in_ready.    Range 1..128.   Default 1.
+//   READY_COPIES  copies of in_ready.    Range 1..512.   Default 1.
 //
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
@@ -55,8 +55,8 @@ module cube4_skid #(
         if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
             $error("cube4_skid: DATA_W = %0d is out of range 1..4096", DATA_W);
         end
-        if (READY_COPIES < 1 || READY_COPIES > 128) begin : g_bad_copies
-            $error("cube4_skid: READY_COPIES = %0d is out of range 1..128", READY_COPIES);
+        if (READY_COPIES < 1 || READY_COPIES > 512) begin : g_bad_copies
+            $error("cube4_skid: READY_COPIES = %0d is out of range 1..512", READY_COPIES);
         end
     endgenerate
 
