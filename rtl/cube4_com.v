@@ -186,7 +186,7 @@ module cube4_com #(
 
     // ==== R0: input register ====
     reg                 r0_v;
-    reg [P*LUT_W-1:0]   r0_rgba;
+    wire [P*LUT_W-1:0]  r0_rgba;        // per lane registers (g_r0)
     reg [P-1:0]         r0_lane_valid, r0_lane_inside;
     reg [M_W-1:0]       r0_m;
     reg [DIM_W-1:0]     r0_j;
@@ -211,8 +211,10 @@ module cube4_com #(
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_r0
+            reg [LUT_W-1:0] r0_rgba_q;
+            assign r0_rgba[q*LUT_W +: LUT_W] = r0_rgba_q;
             always @(posedge clk) begin
-                if (en_rep[NSH + NLG * q + 1]) r0_rgba[q*LUT_W +: LUT_W] <= in_rgba[q*LUT_W +: LUT_W];
+                if (en_rep[NSH + NLG * q + 1]) r0_rgba_q <= in_rgba[q*LUT_W +: LUT_W];
             end
         end
     endgenerate
@@ -405,7 +407,7 @@ module cube4_com #(
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .ADDR_REG(1), .EN_COPIES(NRAM_EN)) u_bp_slice (
         .clk(clk), .addr_ld(en_ram), .rd_en(en_ram), .rd_addr(pos_sp), .rd_data(a1_ram),
         .wr_en(en_ram & {NRAM_EN{v_s[NS]}}), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
-    reg [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;
+    wire [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;   // per lane registers (g_buf)
     // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
@@ -417,29 +419,38 @@ module cube4_com #(
     always @(posedge clk) begin
         nb1_q <= (cfg_nb == NB_W'(1));
     end
-    // the wide buffer words: each lane's slice under the lane's enable copy
-    reg [PA-1:0] s5_back, s5_prevb, lastb_q;   // this beat's and the previous beat's "back"
+    // the wide buffer words: each lane's slice under the lane's enable copies
+    // (registers of the lane's own, so that a simulator writes each in place)
+    wire [PA-1:0] s5_back, s5_prevb;   // this beat's and the previous beat's "back" (g_buf)
     wire [PA-1:0] back;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_buf
             localparam integer LO = q * AC_W;
+            reg [AC_W-1:0] s3_a1_q, s4_a1_q, s4_a2_q, prev_a1_q_l;
+            reg [AC_W-1:0] s5_back_q, s5_prevb_q, lastb_q;
             always @(posedge clk) begin
                 if (en_rep[NSH + NLG * q]) begin
-                    s3_a1[LO +: AC_W]   <= a1_ram[LO +: AC_W];
-                    s4_a1[LO +: AC_W]   <= s3_a1[LO +: AC_W];
-                    s4_a2[LO +: AC_W]   <= a2_ram[LO +: AC_W];
-                    if (v_s[4]) prev_a1_q[LO +: AC_W] <= s4_a1[LO +: AC_W];
+                    s3_a1_q <= a1_ram[LO +: AC_W];
+                    s4_a1_q <= s3_a1_q;
+                    s4_a2_q <= a2_ram[LO +: AC_W];
+                    if (v_s[4]) prev_a1_q_l <= s4_a1_q;
                 end
             end
             always @(posedge clk) begin
                 if (en_rep[NSH + NLG * q + 1]) begin
-                    s5_back[LO +: AC_W] <= back[LO +: AC_W];
+                    s5_back_q <= back[LO +: AC_W];
                     if (v_s[4]) begin
-                        s5_prevb[LO +: AC_W]  <= lastb_q[LO +: AC_W];
-                        lastb_q[LO +: AC_W]   <= back[LO +: AC_W];
+                        s5_prevb_q <= lastb_q;
+                        lastb_q    <= back[LO +: AC_W];
                     end
                 end
             end
+            assign s3_a1[LO +: AC_W]     = s3_a1_q;
+            assign s4_a1[LO +: AC_W]     = s4_a1_q;
+            assign s4_a2[LO +: AC_W]     = s4_a2_q;
+            assign prev_a1_q[LO +: AC_W] = prev_a1_q_l;
+            assign s5_back[LO +: AC_W]   = s5_back_q;
+            assign s5_prevb[LO +: AC_W]  = s5_prevb_q;
         end
     endgenerate
 
@@ -459,7 +470,7 @@ module cube4_com #(
 
     // ==== S6 .. S9: compositing, per lane ====
     wire [P*AC_W-1:0] pix_d;
-    reg  [PA-1:0]     o_rgba;           // the output register's pixels (written per lane)
+    wire [PA-1:0]     o_rgba;           // the output register's pixels (per lane registers)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
             // S5: previous partial result {R, G, B, T}, or a fresh ray
@@ -527,9 +538,11 @@ module cube4_com #(
             end
             assign acc_new[q*AC_W +: AC_W] = {c_out, s9_t};
             assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s9_t};   // {R, G, B, A}
-            always @(posedge clk) begin     // the output register's slice of this lane
-                if (en_l2) o_rgba[q*AC_W +: AC_W] <= pix_d[q*AC_W +: AC_W];
+            reg [AC_W-1:0] o_rgba_q;        // the output register's slice of this lane
+            always @(posedge clk) begin
+                if (en_l2) o_rgba_q <= pix_d[q*AC_W +: AC_W];
             end
+            assign o_rgba[q*AC_W +: AC_W] = o_rgba_q;
         end
     endgenerate
 

@@ -63,7 +63,7 @@ module cube4_skid #(
     reg              nonempty_q;     // at least one entry holds an item
     reg              full_q;         // both entries hold items
     reg              wp_q, rp_q;     // write / read pointer
-    reg [DATA_W-1:0] e0_q, e1_q;     // the entries
+    wire [DATA_W-1:0] e0_q, e1_q;    // the entries (registers per group, g_grp)
 
     wire push = in_valid && !full_q;
     wire pop  = nonempty_q && out_ready;
@@ -111,10 +111,13 @@ module cube4_skid #(
                     free1_q <= free1_d;
                 end
             end
+            reg [W-1:0] d0_q, d1_q;     // this group's bits of the two entries
             always @(posedge clk) begin
-                if (free0_q) e0_q[LO +: W] <= in_data[LO +: W];
-                if (free1_q) e1_q[LO +: W] <= in_data[LO +: W];
+                if (free0_q) d0_q <= in_data[LO +: W];
+                if (free1_q) d1_q <= in_data[LO +: W];
             end
+            assign e0_q[LO +: W] = d0_q;
+            assign e1_q[LO +: W] = d1_q;
             if (g == 0) begin : g_flags
                 assign free0_now = free0_q;
                 assign free1_now = free1_q;
