@@ -68,7 +68,7 @@ module cube4_delay_line #(
     localparam integer RA    = (NBANK > 1) ? 4 : 3;      // steps read ahead
 
     reg [DATA_W-1:0] out_q;             // dout
-    reg [RA-1:1][DATA_W-1:0] dh_q;     // din of 1 .. RA-1 steps back (bypass)
+    reg [DATA_W-1:0] dh_q [1:RA-1];     // din of 1 .. RA-1 steps back (bypass)
     reg [AW-1:0]     ptr_q;             // position of the next step (without a clear)
     reg [AW-1:0]     ra_q;              // position RA steps after the next one: the read address
     reg [RA:1]       l_q;               // l_q[k]: L = k

@@ -389,9 +389,9 @@ module cube4_tri #(
     localparam integer LERP_LAT = 3;
     localparam integer NL       = 3 * LERP_LAT;
     reg [NL:1]                       lv_q;
-    reg [NL:1][META_W-1:0]           lmeta_q;   // packed arrays (see cube4_com)
-    reg [LERP_LAT:1][WEIGHT_W-1:0]   lwy_q;
-    reg [2*LERP_LAT:1][WEIGHT_W-1:0] lwz_q;
+    reg [META_W-1:0]   lmeta_q [1:NL];
+    reg [WEIGHT_W-1:0] lwy_q [1:LERP_LAT];
+    reg [WEIGHT_W-1:0] lwz_q [1:2*LERP_LAT];
     wire [PV-1:0]      l_sample;
     wire [WEIGHT_W-1:0] y_w = lwy_q[LERP_LAT];
     wire [WEIGHT_W-1:0] z_w = lwz_q[2*LERP_LAT];
