@@ -34,7 +34,7 @@ def test_formula_cycles_matches_docs() -> None:
     fill that docs/architecture.md states (tb/cube4_top checks the same formula against the RTL)."""
     import re
     doc = (Path(__file__).resolve().parents[1] / "docs" / "architecture.md").read_text()
-    found = re.search(r"NJ·NB \+ NB \+ 1 \+ fill \((\d+) cycles\)", doc)
+    found = re.search(r"NJ·NB \+ NB \+ 2 \+ fill \((\d+) cycles\)", doc)
     assert found, "docs/architecture.md no longer states the fill of the cycles formula"
     fill = int(found.group(1))
     scene = load_scene("default")
