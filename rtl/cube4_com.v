@@ -35,13 +35,19 @@
 //   ACC_W     accumulator fraction bits F.      8..24.  Default 16.
 //
 // Latency
-//   11 register stages (R0, S1 .. S9 and the output register, below) under
-//   one stall enable, then the output skid buffer. in_ready depends on
-//   registers only (the skid's ready and the valid bits of R0 .. S7). The partial results take
-//   exactly one slice (NJ*NB steps) round the base-plane buffer. Throughput
-//   is one beat per cycle when a slice has NJ*NB >= 9 beats; a smaller slice
-//   runs at NJ*NB beats per 9 cycles (the read-after-write hazard on the
-//   base-plane buffer, see "pipeline" below).
+//   10 register stages (R0, S1 .. S9, below) that move on every cycle and
+//   carry a valid bit each (no stall enable); S9's results are written into
+//   the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
+//   for a last register: a finished-ray beat is on pix_* 10 cycles after it
+//   entered R0 when the FIFO was empty.
+//   Back-pressure is credit-based: a beat enters R0 only when the FIFO has an
+//   entry reserved for it, so pix_ready reaches only in_ready and the FIFO's
+//   pointers, never a datapath register. in_ready depends on registers only
+//   (the FIFO's credit and the valid bits of R0 .. S7). The partial results
+//   take exactly one slice (NJ*NB steps) round the base-plane buffer.
+//   Throughput is one beat per cycle when a slice has NJ*NB >= 9 beats; a
+//   smaller slice runs at NJ*NB beats per 9 cycles (the read-after-write
+//   hazard on the base-plane buffer, see "pipeline" below).
 //
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
@@ -150,16 +156,13 @@ module cube4_com #(
     //   S6  T * A (multiplier)
     //   S7  w = round_shift(T * A, AW)
     //   S8  w * C' (multipliers), T - w
-    //   S9  C += round_shift(w * C', 8); write the slice buffer; output register
-    // Every stage moves under en (the skid's ready) and carries a valid bit.
-    // The skid gives its ready as NSH + NLG * P + NRAM_EN flip-flop copies:
-    // NSH for the beat's fields and valid bits (valid bits and counters; R0 and
-    // S0's registers; the fields carried along S1..S9; the output register),
-    // NLG per lane (the lane's share of the wide buffer words, twice, and of
-    // the compositing stages, twice) and NRAM_EN for the base-plane buffers'
-    // block RAMs (enables and address registers): no net reaches more than a
-    // few hundred clock enables.
-    // A beat's slice position is read two en-edges after its acceptance into
+    //   S9  C += round_shift(w * C', 8); write the slice buffer; push into the FIFO
+    // Every stage moves on every cycle and carries a valid bit; the datapath
+    // registers have no clock enable. The registers that must hold across
+    // bubbles (the position counters, the last beat's words for the X-step and
+    // NB = 1) load under a valid bit, of which each lane and each group of
+    // block RAMs has a flip-flop copy of its own.
+    // A beat's slice position is read two edges after its acceptance into
     // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
     // at the same position, so a beat is accepted only if that beat is not in
@@ -171,20 +174,16 @@ module cube4_com #(
     localparam integer TA_W  = CW + ALPHA_W;    // T * A
     localparam integer WC_W  = CW + 8;          // w * C'
 
-    localparam integer NS    = 9;               // stages S1 .. S9
-    localparam integer NSH     = 4;             // enable copies for the shared fields
-    localparam integer NLG     = 4;             // enable copies per lane
-    localparam integer NRAM_EN = 8;             // enable copies for the buffers' RAMs
-    localparam integer NEN     = NSH + NLG * P + NRAM_EN;
-    wire [NEN-1:0] en_rep;              // copies of the stall enable
-    wire [NSH-1:0] en_sh = en_rep[0 +: NSH];
-    wire en = en_sh[0];                 // the pipeline advances (valid bits, counters)
-    wire [NRAM_EN-1:0] en_ram = en_rep[NSH + NLG * P +: NRAM_EN];
+    localparam integer NS      = 9;             // stages S1 .. S9
+    localparam integer NRAM_EN = 8;             // valid-bit copies for the buffers' block RAMs
+    localparam integer FIFO_DEPTH = 16;         // >= 12 cycles from acceptance to the FIFO's read
     reg  [NS:1] v_s;                    // stage valid bits
-    wire hazard;                        // the beat L back is in R0..S7 (see above)
-    assign in_ready = en && !hazard;
+    wire        hazard;                 // the beat L back is in R0..S7 (see above)
+    wire        credit;                 // the output FIFO has an entry for one more beat
+    assign in_ready = credit && !hazard;
+    wire take = in_valid && in_ready;   // a beat enters R0
 
-    // ==== R0: input register ====
+    // ==== R0: input register (loads on every cycle; r0_v marks a beat) ====
     reg                 r0_v;
     wire [P*LUT_W-1:0]  r0_rgba;        // per lane registers (g_r0)
     reg [P-1:0]         r0_lane_valid, r0_lane_inside;
@@ -195,18 +194,16 @@ module cube4_com #(
     reg [6:0]           r0_ctrl;
     always @(posedge clk) begin
         if (rst) r0_v <= 1'b0;
-        else if (en) r0_v <= in_valid && !hazard;
+        else     r0_v <= take;
     end
     always @(posedge clk) begin
-        if (en_sh[1]) begin
-            r0_lane_valid  <= in_lane_valid;
-            r0_lane_inside <= in_lane_inside;
-            r0_m           <= in_m;
-            r0_j           <= in_j;
-            r0_pb          <= in_pb;
-            r0_skew        <= in_skew;
-            r0_ctrl        <= in_ctrl;
-        end
+        r0_lane_valid  <= in_lane_valid;
+        r0_lane_inside <= in_lane_inside;
+        r0_m           <= in_m;
+        r0_j           <= in_j;
+        r0_pb          <= in_pb;
+        r0_skew        <= in_skew;
+        r0_ctrl        <= in_ctrl;
     end
     genvar q;
     generate
@@ -214,11 +211,11 @@ module cube4_com #(
             reg [LUT_W-1:0] r0_rgba_q;
             assign r0_rgba[q*LUT_W +: LUT_W] = r0_rgba_q;
             always @(posedge clk) begin
-                if (en_rep[NSH + NLG * q + 1]) r0_rgba_q <= in_rgba[q*LUT_W +: LUT_W];
+                r0_rgba_q <= in_rgba[q*LUT_W +: LUT_W];
             end
         end
     endgenerate
-    wire step = en && r0_v;             // the R0 beat enters S1
+    wire step = r0_v;                   // the R0 beat enters S1
 
     wire sop   = r0_ctrl[4];
     wire eop   = r0_ctrl[5];
@@ -228,7 +225,6 @@ module cube4_com #(
     wire dyb   = r0_ctrl[3];
     wire first_of_slice = (r0_j == '0) && (r0_pb == '0);
     wire unused_y_last = r0_ctrl[6];   // rows are checked against cfg_nj directly
-
     // ==== S0 ====
     // ---- positions: partial beam, row and slice position (as cube4_gra) ----
     reg  [PB_W-1:0]  pb_q;
@@ -311,16 +307,14 @@ module cube4_com #(
     reg              f1_dxf, f1_dyf, f1_last, f1_wxn, f1_wyn;
     reg [DIM_W-1:0]  f1_stx;
     always @(posedge clk) begin
-        if (en_sh[1]) begin
-            f1_ipos <= ipos_d;
-            f1_j    <= j_ext;
-            f1_dxf  <= dxf;
-            f1_dyf  <= dyf;
-            f1_last <= in_last_slice;
-            f1_wxn  <= wxn_nz;
-            f1_wyn  <= wyn_nz;
-            f1_stx  <= stx_n;
-        end
+        f1_ipos <= ipos_d;
+        f1_j    <= j_ext;
+        f1_dxf  <= dxf;
+        f1_dyf  <= dyf;
+        f1_last <= in_last_slice;
+        f1_wxn  <= wxn_nz;
+        f1_wyn  <= wyn_nz;
+        f1_stx  <= stx_n;
     end
     wire [P-1:0]      fin_1;
     wire [P*BX_W-1:0] bx_1;
@@ -353,32 +347,27 @@ module cube4_com #(
     reg [P-1:0]       t0_s    [1:5];
     integer k;
     always @(posedge clk) begin
-        if (rst) begin
-            v_s <= '0;
-        end else if (en) begin
-            v_s <= {v_s[NS-1:1], step};
-        end
+        if (rst) v_s <= '0;
+        else     v_s <= {v_s[NS-1:1], step};
     end
     always @(posedge clk) begin
-        if (en_sh[2]) begin
-            sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
-            m_s[1]  <= r0_m;     by_s[1] <= by_d;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
-            t0_s[1] <= t0_d;
-            eop_s <= {eop_s[NS-1:1], eop};
-            dxb_s <= {dxb_s[4:1], dxb};
-            dyb_s <= {dyb_s[3:1], dyb};
-            dkb_s <= {dkb_s[3:1], dk_b};
-            for (k = 2; k <= NS; k = k + 1) begin
-                sp_s[k] <= sp_s[k-1];  m_s[k] <= m_s[k-1];  by_s[k] <= by_s[k-1];
-            end
-            for (k = 3; k <= NS; k = k + 1) begin
-                fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];
-            end
-            for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
-            for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
-            for (k = 2; k <= 5; k = k + 1) begin
-                fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
-            end
+        sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
+        m_s[1]  <= r0_m;     by_s[1] <= by_d;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
+        t0_s[1] <= t0_d;
+        eop_s <= {eop_s[NS-1:1], eop};
+        dxb_s <= {dxb_s[4:1], dxb};
+        dyb_s <= {dyb_s[3:1], dyb};
+        dkb_s <= {dkb_s[3:1], dk_b};
+        for (k = 2; k <= NS; k = k + 1) begin
+            sp_s[k] <= sp_s[k-1];  m_s[k] <= m_s[k-1];  by_s[k] <= by_s[k-1];
+        end
+        for (k = 3; k <= NS; k = k + 1) begin
+            fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];
+        end
+        for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
+        for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
+        for (k = 2; k <= 5; k = k + 1) begin
+            fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
         end
     end
     // Read-after-write rule: a beat's position repeats every L = NJ*NB beats,
@@ -397,6 +386,29 @@ module cube4_com #(
     end
     assign hazard = (n_fly >= lim_q);
 
+    // Valid-bit copies (flip-flops of their own, kept apart in synthesis) for
+    // the block RAMs' write enables: v_s[3] (beam buffer) and v_s[NS] (slice
+    // buffer), NRAM_EN copies each.
+    wire [NRAM_EN-1:0] v3_ram, v9_ram;
+    genvar c;
+    generate
+        for (c = 0; c < NRAM_EN; c = c + 1) begin : g_vram
+            reg v3_q, v9_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) begin
+                    v3_q <= 1'b0;
+                    v9_q <= 1'b0;
+                end else begin
+                    v3_q <= v_s[2];
+                    v9_q <= v_s[NS-1];
+                end
+            end
+            assign v3_ram[c] = v3_q;
+            assign v9_ram[c] = v9_q;
+        end
+    endgenerate
+
     // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
     // Both RAM outputs go straight into a register (a block RAM's clock-to-out
     // is most of a cycle on an FPGA).
@@ -404,46 +416,46 @@ module cube4_com #(
     wire [PA-1:0] a1_ram, a2_ram;       // S2, S3: RAM outputs
     // The slice buffer registers its addresses itself (copies of sp_s[1] and
     // sp_s[NS], one per two slices of its block RAMs): it gets them one stage
-    // early, loaded at the same enable.
+    // early, on every cycle.
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .ADDR_REG(1), .EN_COPIES(NRAM_EN)) u_bp_slice (
-        .clk(clk), .addr_ld(en_ram), .rd_en(en_ram), .rd_addr(pos_sp), .rd_data(a1_ram),
-        .wr_en(en_ram & {NRAM_EN{v_s[NS]}}), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
+        .clk(clk), .addr_ld({NRAM_EN{1'b1}}), .rd_en({NRAM_EN{1'b1}}), .rd_addr(pos_sp), .rd_data(a1_ram),
+        .wr_en(v9_ram), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
     wire [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;   // per lane registers (g_buf)
     // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
     // previous beat's a1 (prev_a1_q).
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .EN_COPIES(NRAM_EN)) u_bp_beam (
-        .clk(clk), .addr_ld({NRAM_EN{1'b0}}), .rd_en(en_ram), .rd_addr(pb_s[2]), .rd_data(a2_ram),
-        .wr_en(en_ram & {NRAM_EN{v_s[3]}}), .wr_addr(pb_s[3]), .wr_data(s3_a1));
+        .clk(clk), .addr_ld({NRAM_EN{1'b0}}), .rd_en({NRAM_EN{1'b1}}), .rd_addr(pb_s[2]), .rd_data(a2_ram),
+        .wr_en(v3_ram), .wr_addr(pb_s[3]), .wr_data(s3_a1));
     reg nb1_q;                          // NB = 1
     always @(posedge clk) begin
         nb1_q <= (cfg_nb == NB_W'(1));
     end
-    // the wide buffer words: each lane's slice under the lane's enable copies
-    // (registers of the lane's own, so that a simulator writes each in place)
+    // the wide buffer words, per lane (registers of the lane's own, so that a
+    // simulator writes each in place); v4_q is the lane's copy of v_s[4]
     wire [PA-1:0] s5_back, s5_prevb;   // this beat's and the previous beat's "back" (g_buf)
     wire [PA-1:0] back;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_buf
             localparam integer LO = q * AC_W;
+            reg v4_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) v4_q <= 1'b0;
+                else     v4_q <= v_s[3];
+            end
             reg [AC_W-1:0] s3_a1_q, s4_a1_q, s4_a2_q, prev_a1_q_l;
             reg [AC_W-1:0] s5_back_q, s5_prevb_q, lastb_q;
             always @(posedge clk) begin
-                if (en_rep[NSH + NLG * q]) begin
-                    s3_a1_q <= a1_ram[LO +: AC_W];
-                    s4_a1_q <= s3_a1_q;
-                    s4_a2_q <= a2_ram[LO +: AC_W];
-                    if (v_s[4]) prev_a1_q_l <= s4_a1_q;
-                end
-            end
-            always @(posedge clk) begin
-                if (en_rep[NSH + NLG * q + 1]) begin
-                    s5_back_q <= back[LO +: AC_W];
-                    if (v_s[4]) begin
-                        s5_prevb_q <= lastb_q;
-                        lastb_q    <= back[LO +: AC_W];
-                    end
+                s3_a1_q    <= a1_ram[LO +: AC_W];
+                s4_a1_q    <= s3_a1_q;
+                s4_a2_q    <= a2_ram[LO +: AC_W];
+                s5_back_q  <= back[LO +: AC_W];
+                s5_prevb_q <= lastb_q;      // the "back" of the last beat before this one
+                if (v4_q) begin
+                    prev_a1_q_l <= s4_a1_q;
+                    lastb_q     <= back[LO +: AC_W];
                 end
             end
             assign s3_a1[LO +: AC_W]     = s3_a1_q;
@@ -470,40 +482,35 @@ module cube4_com #(
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(s5_prevb), .y(prevb_sh));
 
     // ==== S6 .. S9: compositing, per lane ====
-    wire [P*AC_W-1:0] pix_d;
-    wire [PA-1:0]     o_rgba;           // the output register's pixels (per lane registers)
+    wire [P*AC_W-1:0] pix_d;            // S9: the lane's {R, G, B, A}
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
             // S5: previous partial result {R, G, B, T}, or a fresh ray
             wire [AC_W-1:0] prev = dxb_s[5]
                 ? (t0_s[5][q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
                 : s5_back[q*AC_W +: AC_W];
-            wire en_l  = en_rep[NSH + NLG * q + 2];   // this lane's copies of the stall enable:
-            wire en_l2 = en_rep[NSH + NLG * q + 3];   // S5/S6 (en_l), S7..S9 (en_l2)
             wire [AC_W-1:0] acc_in = fresh_s[5][q] ? {{(3*CW){1'b0}}, ONE} : prev;
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
             reg  [5*LUT_W-1:0] rgba_l;
             always @(posedge clk) begin
-                if (en_l) rgba_l <= {rgba_l[4*LUT_W-1:0], r0_rgba[q*LUT_W +: LUT_W]};
+                rgba_l <= {rgba_l[4*LUT_W-1:0], r0_rgba[q*LUT_W +: LUT_W]};
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
             reg  [AC_W-1:0] s6_acc, s7_acc, s8_acc;          // {C_R, C_G, C_B, T}
             reg  [23:0]     s6_c, s7_c, s8_c;                 // the sample's {R', G', B'}
             reg  [ALPHA_W-1:0] s6_a;                          // the sample's A
             always @(posedge clk) begin
-                if (en_l) begin
-                    s6_acc <= acc_in;
-                    s6_c   <= rgba5[ALPHA_W +: 24];
-                    s6_a   <= rgba5[0 +: ALPHA_W];
-                    {s7_acc, s8_acc} <= {s6_acc, s7_acc};
-                    {s7_c, s8_c}     <= {s6_c, s7_c};
-                end
+                s6_acc <= acc_in;
+                s6_c   <= rgba5[ALPHA_W +: 24];
+                s6_a   <= rgba5[0 +: ALPHA_W];
+                {s7_acc, s8_acc} <= {s6_acc, s7_acc};
+                {s7_c, s8_c}     <= {s6_c, s7_c};
             end
             // S6: T * A
             reg [TA_W-1:0] s7_ta;
             always @(posedge clk) begin
-                if (en_l2) s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
+                s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
             end
             // S7: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
             wire signed [CW+1:0] w_rs;
@@ -511,7 +518,7 @@ module cube4_com #(
                 .x($signed({1'b0, s7_ta})), .y(w_rs));
             reg [CW-1:0] s8_w;
             always @(posedge clk) begin
-                if (en_l2) s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
             end
             // S8: w * C' per channel, T - w
             reg [3*WC_W-1:0] s9_wc;
@@ -520,14 +527,12 @@ module cube4_com #(
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
                 always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
-                    if (en_l2) s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
+                    s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
                 end
             end
             always @(posedge clk) begin
-                if (en_l2) begin
-                    s9_cin <= s8_acc[CW +: 3*CW];
-                    s9_t   <= s8_acc[0 +: CW] - s8_w;
-                end
+                s9_cin <= s8_acc[CW +: 3*CW];
+                s9_t   <= s8_acc[0 +: CW] - s8_w;
             end
             // S9: C += round_shift(w * C', 8)
             wire [3*CW-1:0] c_out;
@@ -539,51 +544,55 @@ module cube4_com #(
             end
             assign acc_new[q*AC_W +: AC_W] = {c_out, s9_t};
             assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s9_t};   // {R, G, B, A}
-            reg [AC_W-1:0] o_rgba_q;        // the output register's slice of this lane
-            always @(posedge clk) begin
-                if (en_l2) o_rgba_q <= pix_d[q*AC_W +: AC_W];
-            end
-            assign o_rgba[q*AC_W +: AC_W] = o_rgba_q;
         end
     endgenerate
 
-    // ---- output register (end of S9) and skid ----
-    reg               o_v;
-    reg [P-1:0]       o_mask;
-    reg [M_W-1:0]     o_m;
-    reg [BX_W-1:0]    o_by;
-    reg [P*BX_W-1:0]  o_bx;
-    reg               o_eop;
+    // ---- output FIFO: an S9 beat with a finished ray, or the frame's last beat ----
+    // push: P + 1 flip-flop copies, one per group of the FIFO's word (each
+    // about a lane's width); give: an S9 beat that leaves nothing returns its
+    // FIFO entry.
+    localparam integer NPUSH = P + 1;
+    wire out_d = v_s[NS-1] && ((fin_s[NS-1] != '0) || eop_s[NS-1]);   // S8: will push
+    wire [NPUSH-1:0] push;
+    reg              give_q;
     always @(posedge clk) begin
-        if (rst) o_v <= 1'b0;
-        else if (en) o_v <= v_s[NS] && ((fin_s[NS] != '0) || eop_s[NS]);
+        if (rst) give_q <= 1'b0;
+        else     give_q <= v_s[NS-1] && !out_d;
     end
-    always @(posedge clk) begin
-        if (en_sh[3]) begin
-            o_mask <= fin_s[NS];
-            o_m    <= m_s[NS];
-            o_by   <= by_s[NS];
-            o_bx   <= bx_s[NS];
-            o_eop  <= eop_s[NS];
+    generate
+        for (c = 0; c < NPUSH; c = c + 1) begin : g_push
+            reg push_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) push_q <= 1'b0;
+                else     push_q <= out_d;
+            end
+            assign push[c] = push_q;
         end
-    end
+    endgenerate
 
-    localparam integer OUT_W = P + M_W + BX_W + P * BX_W + PA + 1;
-    wire [OUT_W-1:0] skid_out;
-    cube4_skid #(
-        .DATA_W       (OUT_W),
-        .READY_COPIES (NEN)
-    ) u_skid (
+    // the word: P lane groups of AC_W bits (pixels), then the shared fields
+    localparam integer SH_W  = P + M_W + BX_W + P * BX_W + 1;
+    localparam integer OUT_W = PA + SH_W;
+    wire [OUT_W-1:0] fifo_out;
+    cube4_credit_fifo #(
+        .DATA_W        (OUT_W),
+        .DEPTH         (FIFO_DEPTH),
+        .NGRP          (NPUSH),
+        .CREDIT_COPIES (1)
+    ) u_fifo (
         .clk       (clk),
         .rst       (rst),
-        .in_valid  (o_v),
-        .in_ready  (en_rep),
-        .in_data   ({o_mask, o_m, o_by, o_bx, o_rgba, o_eop}),
+        .take      (take),
+        .give      (give_q),
+        .credit    (credit),
+        .push      (push),
+        .in_data   ({fin_s[NS], m_s[NS], by_s[NS], bx_s[NS], eop_s[NS], pix_d}),
         .out_valid (pix_valid),
         .out_ready (pix_ready),
-        .out_data  (skid_out)
+        .out_data  (fifo_out)
     );
-    assign {pix_mask, pix_m, pix_by, pix_bx, pix_rgba, pix_eop} = skid_out;
+    assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
 
 endmodule
 `default_nettype wire

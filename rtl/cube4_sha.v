@@ -23,12 +23,17 @@
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
-//   5 + (RMAP_BITS + 1) + 4 register stages (input; LUT read and |g|; the
-//   three |g| comparisons; face; numerators; one stage per quotient bit of the
-//   division; reflectance-map read; its output register; C * D; shading)
-//   under one stall enable (one flip-flop copy of it per lane and one for the
-//   shared fields), then the output skid buffer: 15 at RMAP_BITS = 5. Both tables' RAM outputs go
-//   straight into a register (an FPGA block RAM's clock-to-output is long).
+//   5 + (RMAP_BITS + 1) + 4 stages (input; LUT read and |g|; the three |g|
+//   comparisons; face; numerators; one stage per quotient bit of the
+//   division; reflectance-map read; its output register; C * D; shading),
+//   15 at RMAP_BITS = 5: a beat is on out_* 14 cycles after it entered the
+//   input register when the output FIFO was empty. The stages move on every
+//   cycle and carry a valid bit (no stall enable); the last one is the
+//   memory of the output FIFO (cube4_credit_fifo), and a beat
+//   enters the input register only when that FIFO has an entry reserved for
+//   it (credit-based flow control), so out_ready reaches in_ready and the
+//   FIFO's pointers only. Both tables' RAM outputs go straight into a
+//   register (an FPGA block RAM's clock-to-output is long).
 //
 // Ports
 //   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)}
@@ -127,58 +132,55 @@ module cube4_sha #(
     //   d      reflectance-map read (address: face and the quotients, min(R-1, q))
     //   d2     the read word registered
     //   e1     C * D (multipliers)
-    //   e2     round_shift(C * D, 8) + P, min 255
-    // Every stage moves under en (the skid's ready; each lane has its own copy of
-    // it, en_l); the beat's fields ride along.
+    //   e2     round_shift(C * D, 8) + P, min 255: written into the output FIFO
+    // Every stage moves on every cycle and carries a valid bit; the beat's
+    // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
     localparam integer NST  = 4 + NDIV + 4;      // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2
+    // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
+    // FIFO's read into its skid)
+    localparam integer FIFO_DEPTH = (NST + 2 <= 16) ? 16 : 32;
 
-    // The stall enable (the output skid buffer's ready) comes as P + 1
-    // flip-flops: one for the beat's fields and valid bits, one per lane.
-    wire [P:0] en_rep;
-    wire       en = en_rep[0];
-    assign in_ready = en;
+    wire credit;                        // the output FIFO has an entry for one more beat
+    assign in_ready = credit;
+    wire take = in_valid && credit;
 
-    // ---- stage a: input register ----
+    // ---- stage a: input register (loads on every cycle; a_v marks a beat) ----
     reg               a_v;
     reg [P*VW-1:0]    a_s;
     reg [P*GW-1:0]    a_gi, a_gj, a_gk;
     reg [META_W-1:0]  a_meta;
     always @(posedge clk) begin
         if (rst) a_v <= 1'b0;
-        else if (en) a_v <= in_valid;
+        else     a_v <= take;
     end
     always @(posedge clk) begin
-        if (en) begin
-            a_s    <= in_sample;
-            a_gi   <= in_gi;
-            a_gj   <= in_gj;
-            a_gk   <= in_gk;
-            a_meta <= {in_m, in_j, in_pb, in_skew, in_ctrl, in_lane_valid, in_lane_inside};
-        end
+        a_s    <= in_sample;
+        a_gi   <= in_gi;
+        a_gj   <= in_gj;
+        a_gk   <= in_gk;
+        a_meta <= {in_m, in_j, in_pb, in_skew, in_ctrl, in_lane_valid, in_lane_inside};
     end
 
-    // ---- valid bits and the beat's fields, stages 1 .. NST ----
-    reg [NST:1]      st_v;
+    // ---- valid bits and the beat's fields, stages 1 .. NST - 1 ----
+    reg [NST-1:1]    st_v;
     // st_meta_q: the fields at stage k in bits [(k-1)*META_W +: META_W] (one
     // packed shift register, not an array: Verilator copies it as words)
-    reg [NST*META_W-1:0] st_meta_q;
+    reg [(NST-1)*META_W-1:0] st_meta_q;
     always @(posedge clk) begin
         if (rst) st_v <= '0;
-        else if (en) st_v <= {st_v[NST-1:1], a_v};
+        else     st_v <= {st_v[NST-2:1], a_v};
     end
     always @(posedge clk) begin
-        if (en) st_meta_q <= {st_meta_q[(NST-1)*META_W-1:0], a_meta};
+        st_meta_q <= {st_meta_q[(NST-2)*META_W-1:0], a_meta};
     end
-    wire               e_v    = st_v[NST];
-    wire [META_W-1:0]  e_meta = st_meta_q[(NST-1)*META_W +: META_W];
-    wire [P*LUT_W-1:0] e_rgba;
+    wire [META_W-1:0]  e_meta = st_meta_q[(NST-2)*META_W +: META_W];   // stage e1
+    wire [P*LUT_W-1:0] e_rgba;          // e2's results, written into the FIFO
     wire [P*RI_W-1:0]  e_idx;
 
     genvar q, it;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            wire en_l = en_rep[q + 1];   // this lane's copy of the stall enable
             // tables (this lane's copies)
             reg [LUT_W-1:0] lut  [0:(1 << VW)-1];
             reg [19:0]      rmap [0:RMAP_N-1];
@@ -190,7 +192,7 @@ module cube4_sha #(
             // (stage k's entry in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
             reg [(NST-2)*LUT_W-1:0] lut_q;
             always @(posedge clk) begin
-                if (en_l) lut_q <= {lut_q[(NST-3)*LUT_W-1:0], lut[a_s[q*VW +: VW]]};
+                lut_q <= {lut_q[(NST-3)*LUT_W-1:0], lut[a_s[q*VW +: VW]]};
             end
 
             // b1: |g|; |g| < 2^(GW-1): no overflow
@@ -200,12 +202,10 @@ module cube4_sha #(
             reg  signed [GW-1:0] b1_gi, b1_gj, b1_gk;
             reg         [GW-1:0] b1_ai, b1_aj, b1_ak;
             always @(posedge clk) begin
-                if (en_l) begin
-                    {b1_gi, b1_gj, b1_gk} <= {gi, gj, gk};
-                    b1_ai <= gi[GW-1] ? -gi : gi;
-                    b1_aj <= gj[GW-1] ? -gj : gj;
-                    b1_ak <= gk[GW-1] ? -gk : gk;
-                end
+                {b1_gi, b1_gj, b1_gk} <= {gi, gj, gk};
+                b1_ai <= gi[GW-1] ? -gi : gi;
+                b1_aj <= gj[GW-1] ? -gj : gj;
+                b1_ak <= gk[GW-1] ? -gk : gk;
             end
 
             // bc: the three comparisons (each a carry chain) in their own stage
@@ -213,13 +213,11 @@ module cube4_sha #(
             reg         [GW-1:0] bc_ai, bc_aj, bc_ak;
             reg                  bc_ij, bc_ik, bc_jk;   // |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|
             always @(posedge clk) begin
-                if (en_l) begin
-                    {bc_gi, bc_gj, bc_gk} <= {b1_gi, b1_gj, b1_gk};
-                    {bc_ai, bc_aj, bc_ak} <= {b1_ai, b1_aj, b1_ak};
-                    bc_ij <= (b1_ai >= b1_aj);
-                    bc_ik <= (b1_ai >= b1_ak);
-                    bc_jk <= (b1_aj >= b1_ak);
-                end
+                {bc_gi, bc_gj, bc_gk} <= {b1_gi, b1_gj, b1_gk};
+                {bc_ai, bc_aj, bc_ak} <= {b1_ai, b1_aj, b1_ak};
+                bc_ij <= (b1_ai >= b1_aj);
+                bc_ik <= (b1_ai >= b1_ak);
+                bc_jk <= (b1_aj >= b1_ak);
             end
 
             // b2: face
@@ -228,12 +226,10 @@ module cube4_sha #(
             reg  [GW-1:0]        b2_amax;
             reg  signed [GW-1:0] b2_gb, b2_gc;
             always @(posedge clk) begin
-                if (en_l) begin
-                    b2_face <= {f, (f == 2'd0) ? bc_gi[GW-1] : (f == 2'd1) ? bc_gj[GW-1] : bc_gk[GW-1]};
-                    b2_amax <= (f == 2'd0) ? bc_ai : (f == 2'd1) ? bc_aj : bc_ak;
-                    b2_gb   <= (f == 2'd0) ? bc_gj : bc_gi;
-                    b2_gc   <= (f == 2'd2) ? bc_gj : bc_gk;
-                end
+                b2_face <= {f, (f == 2'd0) ? bc_gi[GW-1] : (f == 2'd1) ? bc_gj[GW-1] : bc_gk[GW-1]};
+                b2_amax <= (f == 2'd0) ? bc_ai : (f == 2'd1) ? bc_aj : bc_ak;
+                b2_gb   <= (f == 2'd0) ? bc_gj : bc_gi;
+                b2_gc   <= (f == 2'd2) ? bc_gj : bc_gk;
             end
 
             // b3: g_b + A and g_c + A in 0 .. 2A (GW + 1 bits unsigned), times R
@@ -248,7 +244,7 @@ module cube4_sha #(
             wire [(NDIV + 1)*DV_W-1:0] dv;
             reg  [DV_W-1:0]            dv0_q;   // b3: numerators (g + A) * R, 2A
             always @(posedge clk) begin
-                if (en_l) dv0_q <= {{{RB{1'b0}}, nb} << RB, {{RB{1'b0}}, nc} << RB,
+                dv0_q <= {{{RB{1'b0}}, nb} << RB, {{RB{1'b0}}, nc} << RB,
                                     {(RB + 1){1'b0}}, {(RB + 1){1'b0}},
                                     {b2_amax, 1'b0}, b2_face, (b2_amax == {GW{1'b0}})};
             end
@@ -268,7 +264,7 @@ module cube4_sha #(
                 wire             ge_c = (rc >= d);
                 reg  [DV_W-1:0]  dv_q;
                 always @(posedge clk) begin
-                    if (en_l) dv_q <= {ge_b ? rb - d : rb, ge_c ? rc - d : rc,
+                    dv_q <= {ge_b ? rb - d : rb, ge_c ? rc - d : rc,
                                        qb | ((RB + 1)'(ge_b) << KB), qc | ((RB + 1)'(ge_c) << KB),
                                        den, face, zero};
                 end
@@ -289,19 +285,15 @@ module cube4_sha #(
             reg [RI_W-1:0]  d_idx;
             reg [19:0]      d_dp;
             always @(posedge clk) begin
-                if (en_l) begin
-                    d_idx <= idx;
-                    d_dp  <= rmap[idx];
-                end
+                d_idx <= idx;
+                d_dp  <= rmap[idx];
             end
             // d2: the RAM word registered
             reg [RI_W-1:0]  d2_idx;
             reg [19:0]      d2_dp;
             always @(posedge clk) begin
-                if (en_l) begin
-                    d2_idx <= d_idx;
-                    d2_dp  <= d_dp;
-                end
+                d2_idx <= d_idx;
+                d2_dp  <= d_dp;
             end
             wire [LUT_W-1:0] d_lut = lut_q[(NST-3)*LUT_W +: LUT_W];
 
@@ -313,15 +305,13 @@ module cube4_sha #(
             genvar ch;
             for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
                 always @(posedge clk) begin
-                    if (en_l) e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
+                    e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
                 end
             end
             always @(posedge clk) begin
-                if (en_l) begin
-                    e1_pp  <= d2_dp[9:0];
-                    e1_a   <= d_lut[ALPHA_W-1:0];
-                    e1_idx <= d2_idx;
-                end
+                e1_pp  <= d2_dp[9:0];
+                e1_a   <= d_lut[ALPHA_W-1:0];
+                e1_idx <= d2_idx;
             end
 
             // e2: shade
@@ -339,36 +329,49 @@ module cube4_sha #(
                 wire [11:0] sum = rs + {2'b00, e1_pp};
                 assign col_d[8 * (2 - ch) +: 8] = (sum > 12'd255) ? 8'd255 : sum[7:0];
             end
-            reg [LUT_W-1:0] e_q;
-            reg [RI_W-1:0]  e_idx_q;
-            always @(posedge clk) begin
-                if (en_l) begin
-                    e_q     <= {col_d, e1_a};
-                    e_idx_q <= e1_idx;
-                end
-            end
-            assign e_rgba[q*LUT_W +: LUT_W] = e_q;
-            assign e_idx[q*RI_W +: RI_W]    = e_idx_q;
+            assign e_rgba[q*LUT_W +: LUT_W] = {col_d, e1_a};
+            assign e_idx[q*RI_W +: RI_W]    = e1_idx;
         end
     endgenerate
 
+    // ---- e2: the output FIFO's memory; push = stage e1 holds a beat ----
+    // push comes as P + 1 flip-flop copies, one per group of the FIFO's word.
+    localparam integer NPUSH = P + 1;
+    wire [NPUSH-1:0] push;
+    genvar c;
+    generate
+        for (c = 0; c < NPUSH; c = c + 1) begin : g_push
+            reg push_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) push_q <= 1'b0;
+                else     push_q <= st_v[NST-2];
+            end
+            assign push[c] = push_q;
+        end
+    endgenerate
     localparam integer OUT_W = META_W + P * LUT_W + P * RI_W;
-    wire [OUT_W-1:0] skid_out;
-    cube4_skid #(
-        .DATA_W       (OUT_W),
-        .READY_COPIES (P + 1)
-    ) u_skid (
+    wire [OUT_W-1:0] fifo_out;
+    cube4_credit_fifo #(
+        .DATA_W        (OUT_W),
+        .DEPTH         (FIFO_DEPTH),
+        .NGRP          (NPUSH),
+        .CREDIT_COPIES (1)
+    ) u_fifo (
         .clk       (clk),
         .rst       (rst),
-        .in_valid  (e_v),
-        .in_ready  (en_rep),
+        .take      (take),
+        .give      (1'b0),
+        .credit    (credit),
+        .push      (push),
         .in_data   ({e_meta, e_rgba, e_idx}),
         .out_valid (out_valid),
         .out_ready (out_ready),
-        .out_data  (skid_out)
+        .out_data  (fifo_out)
     );
     assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside,
-            out_rgba, out_idx} = skid_out;
+            out_rgba, out_idx} = fifo_out;
+    wire unused_st_v = st_v[NST-1];     // e1's valid bit: push_q is its copy
 
 endmodule
 `default_nettype wire

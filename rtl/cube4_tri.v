@@ -31,13 +31,17 @@
 //   (DIM_W, NB_W, LANE_W, M_W, SB_W: derived, as in cube4_cfb.)
 //
 // Latency
-//   Fixed 13-stage pipeline under one stall enable (en = the output skid
-//   buffer's registered ready, as P + 1 flip-flops: one per lane for its beam
-//   buffer and lerps, one for the rest) plus a 2-entry skid buffer: s0 input, s1
-//   slice-buffer select, s2 beam buffer, s3 beam-extension hold (a beat waits
-//   there for the next beat, so the drain beat pushes out the last one), s4,
-//   then x-lerps, y-lerps and the z-lerp, LERP_LAT = 3 stages each (b - a,
-//   the multiply (b - a) * w, then the rounding add). in_ready = en.
+//   Fixed 13-stage pipeline that moves on every cycle and carries a valid bit
+//   per stage (no stall enable): s0 input, s1 slice-buffer select, s2 beam
+//   buffer, s3 beam-extension hold (a beat waits there for the next beat, so
+//   the drain beat pushes out the last one), s4, then x-lerps, y-lerps and
+//   the z-lerp, LERP_LAT = 3 stages each (b - a, the multiply (b - a) * w,
+//   then the rounding add). The results are written into the output FIFO
+//   (cube4_credit_fifo, 32 entries), which is on out_* one cycle after the
+//   z-lerp's register. A beat enters s0 only when the FIFO has an entry
+//   reserved for it (in_ready = the FIFO's credit), so out_ready reaches
+//   in_ready and the FIFO's pointers only; a beat that s3 does not emit
+//   returns its entry.
 //
 // Ports
 //   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
@@ -127,12 +131,11 @@ module cube4_tri #(
     // metadata that rides along unchanged to the output
     localparam integer META_W = M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;
 
-    // The one stall enable of the fixed-latency pipeline, the output skid
-    // buffer's ready, as P + 1 flip-flops: en for the shared stages, en_rep[q+1]
-    // for lane q's beam buffer and lerps.
-    wire [P:0] en_rep;
-    wire       en = en_rep[0];
-    assign in_ready = en;
+    // Credit-based flow control (see Latency): the output FIFO's credit.
+    localparam integer FIFO_DEPTH = 32;     // >= 18 cycles from s0 to the FIFO's read
+    wire credit;
+    assign in_ready = credit;
+    wire take = in_valid && credit;         // a beat enters s0
 
     // ------------------------------------------------------------- s0: input
     reg               s0_v;
@@ -151,29 +154,27 @@ module cube4_tri #(
 
     always @(posedge clk) begin
         if (rst) s0_v <= 1'b0;
-        else if (en) s0_v <= in_valid;
+        else     s0_v <= take;
     end
     always @(posedge clk) begin
-        if (en) begin
-            s0_data  <= in_data;
-            s0_emit  <= in_t_emit;
-            s0_ywrap <= in_t_ywrap;
-            s0_bbwe  <= in_t_bb_we;
-            s0_lmem  <= in_t_lower_mem;
-            s0_umem  <= in_t_upper_mem;
-            s0_uuse  <= in_t_upper_use;
-            s0_k0odd <= in_t_k0_odd;
-            s0_sb    <= in_t_sb_addr;
-            s0_pb    <= in_t_pb;
-            s0_wx    <= in_t_wx;
-            s0_wy    <= in_t_wy;
-            s0_wz    <= in_t_wz;
-            s0_nbr   <= in_t_lane_nbr;
-            s0_wrap  <= in_t_lane_wrap;
-            s0_meta  <= {in_t_m, in_t_j, in_t_pb, in_t_skew,
-                         in_t_y_last, in_t_eop, in_t_sop, in_t_steps,
-                         in_t_lane_valid, in_inside};
-        end
+        s0_data  <= in_data;
+        s0_emit  <= in_t_emit;
+        s0_ywrap <= in_t_ywrap;
+        s0_bbwe  <= in_t_bb_we;
+        s0_lmem  <= in_t_lower_mem;
+        s0_umem  <= in_t_upper_mem;
+        s0_uuse  <= in_t_upper_use;
+        s0_k0odd <= in_t_k0_odd;
+        s0_sb    <= in_t_sb_addr;
+        s0_pb    <= in_t_pb;
+        s0_wx    <= in_t_wx;
+        s0_wy    <= in_t_wy;
+        s0_wz    <= in_t_wz;
+        s0_nbr   <= in_t_lane_nbr;
+        s0_wrap  <= in_t_lane_wrap;
+        s0_meta  <= {in_t_m, in_t_j, in_t_pb, in_t_skew,
+                     in_t_y_last, in_t_eop, in_t_sop, in_t_steps,
+                     in_t_lane_valid, in_inside};
     end
 
     // ------------------------------------- s1: slice buffers and source select
@@ -188,26 +189,24 @@ module cube4_tri #(
 
     always @(posedge clk) begin
         if (rst) s1_v <= 1'b0;
-        else if (en) s1_v <= s0_v;
+        else     s1_v <= s0_v;
     end
     always @(posedge clk) begin
-        if (en) begin
-            s1_data  <= s0_data;
-            s1_emit  <= s0_emit;
-            s1_ywrap <= s0_ywrap;
-            s1_bbwe  <= s0_bbwe;
-            s1_lmem  <= s0_lmem;
-            s1_umem  <= s0_umem;
-            s1_uuse  <= s0_uuse;
-            s1_k0odd <= s0_k0odd;
-            s1_pb    <= s0_pb;
-            s1_wx    <= s0_wx;
-            s1_wy    <= s0_wy;
-            s1_wz    <= s0_wz;
-            s1_nbr   <= s0_nbr;
-            s1_wrap  <= s0_wrap;
-            s1_meta  <= s0_meta;
-        end
+        s1_data  <= s0_data;
+        s1_emit  <= s0_emit;
+        s1_ywrap <= s0_ywrap;
+        s1_bbwe  <= s0_bbwe;
+        s1_lmem  <= s0_lmem;
+        s1_umem  <= s0_umem;
+        s1_uuse  <= s0_uuse;
+        s1_k0odd <= s0_k0odd;
+        s1_pb    <= s0_pb;
+        s1_wx    <= s0_wx;
+        s1_wy    <= s0_wy;
+        s1_wz    <= s0_wz;
+        s1_nbr   <= s0_nbr;
+        s1_wrap  <= s0_wrap;
+        s1_meta  <= s0_meta;
     end
 
     genvar q;
@@ -220,17 +219,15 @@ module cube4_tri #(
                 reg [VW-1:0] sbuf1 [0:(1 << SB_W)-1];
                 reg [VW-1:0] rd0_q, rd1_q;
                 wire [VW-1:0] d = s0_data[q*VW +: VW];
-                wire wr_lo = en && s0_v && s0_lmem;   // lower slice, parity k0
-                wire wr_up = en && s0_v && s0_umem;   // upper slice, parity k0 + 1
+                wire wr_lo = s0_v && s0_lmem;   // lower slice, parity k0
+                wire wr_up = s0_v && s0_umem;   // upper slice, parity k0 + 1
                 always @(posedge clk) begin
                     if ((wr_lo && !s0_k0odd) || (wr_up && s0_k0odd)) sbuf0[s0_sb] <= d;
                     if ((wr_lo && s0_k0odd) || (wr_up && !s0_k0odd)) sbuf1[s0_sb] <= d;
                 end
                 always @(posedge clk) begin
-                    if (en) begin
-                        rd0_q <= sbuf0[s0_sb];
-                        rd1_q <= sbuf1[s0_sb];
-                    end
+                    rd0_q <= sbuf0[s0_sb];
+                    rd1_q <= sbuf1[s0_sb];
                 end
                 assign s1_sb_lower[q*VW +: VW] = s1_k0odd ? rd1_q : rd0_q;
                 assign s1_sb_upper[q*VW +: VW] = s1_k0odd ? rd0_q : rd1_q;
@@ -285,14 +282,11 @@ module cube4_tri #(
 
     generate
         for (q = 0; q < P; q = q + 1) begin : g_beam_buf
-            wire en_l = en_rep[q + 1];
             reg [2*VW-1:0] bbuf [0:BBMAX-1];
             reg [2*VW-1:0] rd_q;
             always @(posedge clk) begin
-                if (en_l) begin
-                    rd_q <= bbuf[s1_pb];   // read first: the row before this one
-                    if (s1_v && s1_bbwe) bbuf[s1_pb] <= s1_pair_sh[q*2*VW +: 2*VW];
-                end
+                rd_q <= bbuf[s1_pb];   // read first: the row before this one
+                if (s1_v && s1_bbwe) bbuf[s1_pb] <= s1_pair_sh[q*2*VW +: 2*VW];
             end
             assign s2_prev[q*2*VW +: 2*VW] = rd_q;
         end
@@ -300,19 +294,17 @@ module cube4_tri #(
 
     always @(posedge clk) begin
         if (rst) s2_v <= 1'b0;
-        else if (en) s2_v <= s1_v;
+        else     s2_v <= s1_v;
     end
     always @(posedge clk) begin
-        if (en) begin
-            s2_cur  <= s1_ywrap ? {2*PV{1'b0}} : s1_pair;
-            s2_emit <= s1_emit;
-            s2_wx   <= s1_wx;
-            s2_wy   <= s1_wy;
-            s2_wz   <= s1_wz;
-            s2_nbr  <= s1_nbr;
-            s2_wrap <= s1_wrap;
-            s2_meta <= s1_meta;
-        end
+        s2_cur  <= s1_ywrap ? {2*PV{1'b0}} : s1_pair;
+        s2_emit <= s1_emit;
+        s2_wx   <= s1_wx;
+        s2_wy   <= s1_wy;
+        s2_wz   <= s1_wz;
+        s2_nbr  <= s1_nbr;
+        s2_wrap <= s1_wrap;
+        s2_meta <= s1_meta;
     end
 
     // ---------------------------------------- s3: hold for beam extension
@@ -330,7 +322,7 @@ module cube4_tri #(
     reg [WEIGHT_W-1:0] s3_wx, s3_wy, s3_wz;
     reg [P-1:0]       s3_nbr, s3_wrap;
     reg [META_W-1:0]  s3_meta;
-    wire              s3_take = en && s2_v;   // a new beat completes the held one
+    wire              s3_take = s2_v;   // a new beat completes the held one
 
     always @(posedge clk) begin
         if (rst) s3_v <= 1'b0;
@@ -370,17 +362,15 @@ module cube4_tri #(
 
     always @(posedge clk) begin
         if (rst) s4_v <= 1'b0;
-        else if (en) s4_v <= s3_take && s3_v && s3_emit;
+        else     s4_v <= s3_take && s3_v && s3_emit;
     end
     always @(posedge clk) begin
-        if (en) begin
-            s4_vals  <= s3_vals;
-            s4_nvals <= s3_nvals;
-            s4_wx    <= s3_wx;
-            s4_wy    <= s3_wy;
-            s4_wz    <= s3_wz;
-            s4_meta  <= s3_meta;
-        end
+        s4_vals  <= s3_vals;
+        s4_nvals <= s3_nvals;
+        s4_wx    <= s3_wx;
+        s4_wy    <= s3_wy;
+        s4_wz    <= s3_wz;
+        s4_meta  <= s3_meta;
     end
 
     // ------------------------- after s4: seven lerps per lane, LERP_LAT each
@@ -398,23 +388,20 @@ module cube4_tri #(
 
     always @(posedge clk) begin
         if (rst) lv_q <= '0;
-        else if (en) lv_q <= {lv_q[NL-1:1], s4_v};
+        else     lv_q <= {lv_q[NL-1:1], s4_v};
     end
     integer kl;
     always @(posedge clk) begin
-        if (en) begin
-            lmeta_q[1] <= s4_meta;
-            for (kl = 2; kl <= NL; kl = kl + 1) lmeta_q[kl] <= lmeta_q[kl - 1];
-            lwy_q[1] <= s4_wy;
-            for (kl = 2; kl <= LERP_LAT; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
-            lwz_q[1] <= s4_wz;
-            for (kl = 2; kl <= 2 * LERP_LAT; kl = kl + 1) lwz_q[kl] <= lwz_q[kl - 1];
-        end
+        lmeta_q[1] <= s4_meta;
+        for (kl = 2; kl <= NL; kl = kl + 1) lmeta_q[kl] <= lmeta_q[kl - 1];
+        lwy_q[1] <= s4_wy;
+        for (kl = 2; kl <= LERP_LAT; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
+        lwz_q[1] <= s4_wz;
+        for (kl = 2; kl <= 2 * LERP_LAT; kl = kl + 1) lwz_q[kl] <= lwz_q[kl - 1];
     end
 
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lerp
-            wire en_l = en_rep[q + 1];   // this lane's copy of the stall enable
             // values of this lane: index 0 cur lower (row j+1), 1 cur upper,
             // 2 prev lower (row j), 3 prev upper; n* = the same at i + 1
             wire [VW-1:0] cl  = s4_vals[q*4*VW + 0*VW +: VW];
@@ -429,44 +416,56 @@ module cube4_tri #(
 
             // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l0 (
-                .clk(clk), .en(en_l), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
+                .clk(clk), .en(1'b1), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l1 (
-                .clk(clk), .en(en_l), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
+                .clk(clk), .en(1'b1), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u0 (
-                .clk(clk), .en(en_l), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
+                .clk(clk), .en(1'b1), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u1 (
-                .clk(clk), .en(en_l), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
+                .clk(clk), .en(1'b1), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
             // y
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_l (
-                .clk(clk), .en(en_l), .a(x_l0), .b(x_l1), .w(y_w), .y(y_l));
+                .clk(clk), .en(1'b1), .a(x_l0), .b(x_l1), .w(y_w), .y(y_l));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_u (
-                .clk(clk), .en(en_l), .a(x_u0), .b(x_u1), .w(y_w), .y(y_u));
+                .clk(clk), .en(1'b1), .a(x_u0), .b(x_u1), .w(y_w), .y(y_u));
             // z
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_z (
-                .clk(clk), .en(en_l), .a(y_l), .b(y_u), .w(z_w), .y(z));
+                .clk(clk), .en(1'b1), .a(y_l), .b(y_u), .w(z_w), .y(z));
             assign l_sample[q*VW +: VW] = z;
         end
     endgenerate
 
-    // ------------------------------------------------------ output skid
+    // ------------------------------------------------------ output FIFO
+    // lv_q[NL] (a register) is the push; an s3 beat that leaves without being
+    // emitted gives its entry back.
     localparam integer OUT_W = PV + META_W;
-    wire [OUT_W-1:0] skid_out;
-    cube4_skid #(
-        .DATA_W       (OUT_W),
-        .READY_COPIES (P + 1)
-    ) u_skid (
+    localparam integer NGRP  = (OUT_W + 63) / 64;
+    reg give_q;
+    always @(posedge clk) begin
+        if (rst) give_q <= 1'b0;
+        else     give_q <= s3_take && s3_v && !s3_emit;
+    end
+    wire [OUT_W-1:0] fifo_out;
+    cube4_credit_fifo #(
+        .DATA_W        (OUT_W),
+        .DEPTH         (FIFO_DEPTH),
+        .NGRP          (NGRP),
+        .CREDIT_COPIES (1)
+    ) u_fifo (
         .clk       (clk),
         .rst       (rst),
-        .in_valid  (lv_q[NL]),
-        .in_ready  (en_rep),
+        .take      (take),
+        .give      (give_q),
+        .credit    (credit),
+        .push      ({NGRP{lv_q[NL]}}),
         .in_data   ({lmeta_q[NL], l_sample}),
         .out_valid (out_valid),
         .out_ready (out_ready),
-        .out_data  (skid_out)
+        .out_data  (fifo_out)
     );
 
-    assign out_sample = skid_out[PV-1:0];
-    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside} = skid_out[OUT_W-1:PV];
+    assign out_sample = fifo_out[PV-1:0];
+    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside} = fifo_out[OUT_W-1:PV];
 
 endmodule
 `default_nettype wire

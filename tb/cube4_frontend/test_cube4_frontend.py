@@ -45,6 +45,7 @@ SOURCES = [
     RTL_DIR / "cube4_round_shift.v",
     RTL_DIR / "cube4_lerp.v",
     RTL_DIR / "cube4_skid.v",
+    RTL_DIR / "cube4_credit_fifo.v",
     RTL_DIR / "cube4_ring_shift.v",
     RTL_DIR / "cube4_beam_ext.v",
     RTL_DIR / "cube4_voxel_mem.v",

@@ -1,0 +1,160 @@
+`default_nettype none
+// =============================================================================
+// cube4_credit_fifo
+// -----------------------------------------------------------------------------
+// Purpose
+//   The output FIFO of a pipeline that never stalls (credit-based flow
+//   control). The pipeline in front of it moves on every cycle and carries a
+//   valid bit per stage; it accepts a new item only when this FIFO grants a
+//   credit, so every item in flight has a FIFO entry reserved for it and
+//   nothing is lost however long out_ready stays low. No clock enable of the
+//   pipeline's datapath depends on out_ready: back-pressure reaches only the
+//   pipeline's input (its in_ready) and this FIFO's read pointers.
+//
+//   Reservations: `take` reserves an entry (an item entered the pipeline),
+//   `give` returns one unused (an item left the pipeline without producing
+//   an output), and an entry read out of the FIFO returns its reservation. credit is 1 while fewer than DEPTH reservations
+//   are held, counting this cycle's take / give / read, so `take` may be 1
+//   in a cycle with credit = 1 and the FIFO never overflows.
+//
+//   Storage: DEPTH words with an asynchronous read (distributed / LUT RAM on
+//   an FPGA): out_data is the memory's read port at the read pointer (a
+//   register), out_valid a register; the consumer registers the data. The
+//   words are stored as NGRP groups of bits; each group has its own copy
+//   of the write enable (push[g], which the caller gives as NGRP copies of
+//   one flip-flop) and its own write and read pointers, so that no single
+//   net drives every memory cell of a wide word. The memory takes the place
+//   of the pipeline's last register: the caller pushes the results of its
+//   last stage.
+//
+// Parameters
+//   DATA_W     width of an item.                        1..4096.  Default 8.
+//   DEPTH      entries; a power of two.                 4..64.    Default 16.
+//              For full throughput DEPTH must be at least the number of
+//              cycles from a `take` to the first cycle its item could be read
+//              (the pipeline's stages + 2).
+//   NGRP       groups of the word (copies of push).     1..64.    Default 1.
+//   CREDIT_COPIES  copies of credit (flip-flops).       1..64.    Default 1.
+//
+// Latency
+//   An item pushed at a clock edge is on out_valid/out_data right after that
+//   edge (when the FIFO was empty): the memory is the last pipeline register.
+//   credit and out_valid are registers; out_data comes from the memory's
+//   read port, addressed by registers.
+//
+// Ports
+//   clk, rst        clock, synchronous active-high reset (empties the FIFO and
+//                   drops every reservation)
+//   take            in   an item was accepted by the pipeline this cycle
+//                        (allowed only when credit[0] = 1)
+//   give            in   an item left the pipeline this cycle without a push
+//   credit          out  [CREDIT_COPIES] registers, all equal: a take is allowed
+//   push            in   [NGRP] store in_data this cycle (all bits equal; each
+//                        should be a flip-flop of its own). Each push uses the
+//                        reservation of its item.
+//   in_data         in   [DATA_W] any format
+//   out_valid/out_ready/out_data   output stream (same format)
+//
+// Bit growth and rounding: none (storage only).
+// =============================================================================
+module cube4_credit_fifo #(
+    parameter integer DATA_W        = 8,
+    parameter integer DEPTH         = 16,
+    parameter integer NGRP          = 1,
+    parameter integer CREDIT_COPIES = 1
+) (
+    input  wire                     clk,
+    input  wire                     rst,
+    input  wire                     take,
+    input  wire                     give,
+    output wire [CREDIT_COPIES-1:0] credit,
+    input  wire [NGRP-1:0]          push,
+    input  wire [DATA_W-1:0]        in_data,
+    output wire                     out_valid,
+    input  wire                     out_ready,
+    output wire [DATA_W-1:0]        out_data
+);
+    localparam integer AW = (DEPTH > 1) ? $clog2(DEPTH) : 1;
+    generate
+        if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
+            $error("cube4_credit_fifo: DATA_W = %0d is out of range 1..4096", DATA_W);
+        end
+        if (DEPTH < 4 || DEPTH > 64 || (1 << AW) != DEPTH) begin : g_bad_depth
+            $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
+        end
+        if (NGRP < 1 || NGRP > 64 || NGRP > DATA_W) begin : g_bad_ngrp
+            $error("cube4_credit_fifo: NGRP = %0d is out of range 1..min(64, DATA_W)", NGRP);
+        end
+        if (CREDIT_COPIES < 1 || CREDIT_COPIES > 64) begin : g_bad_copies
+            $error("cube4_credit_fifo: CREDIT_COPIES = %0d is out of range 1..64", CREDIT_COPIES);
+        end
+    endgenerate
+
+    localparam integer GW = (DATA_W + NGRP - 1) / NGRP;     // bits per group (the last may be fewer)
+    localparam [AW:0]  DEPTH_C = DEPTH[AW:0];
+
+    // ---- occupancy of the memory: pushes - reads (push[0] is the reference copy) ----
+    reg  [AW:0] cnt_q;                  // items stored in the memory
+    reg         nonempty_q;
+    wire        rd = nonempty_q && out_ready;    // an item leaves
+    wire [AW:0] cnt_d = cnt_q + {{AW{1'b0}}, push[0]} - {{AW{1'b0}}, rd};
+    always @(posedge clk) begin
+        if (rst) begin
+            cnt_q      <= '0;
+            nonempty_q <= 1'b0;
+        end else begin
+            cnt_q      <= cnt_d;
+            nonempty_q <= (cnt_d != '0);
+        end
+    end
+
+    // ---- reservations ----
+    reg  [AW:0] res_q;                  // reservations held: 0 .. DEPTH
+    wire [AW:0] res_d = res_q + {{AW{1'b0}}, take} - {{AW{1'b0}}, give} - {{AW{1'b0}}, rd};
+    always @(posedge clk) begin
+        if (rst) res_q <= '0;
+        else     res_q <= res_d;
+    end
+    genvar c;
+    generate
+        for (c = 0; c < CREDIT_COPIES; c = c + 1) begin : g_credit
+            reg credit_q;
+            (* keep *)                  // one copy per consumer: never merged
+            always @(posedge clk) begin
+                if (rst) credit_q <= 1'b1;
+                else     credit_q <= (res_d < DEPTH_C);
+            end
+            assign credit[c] = credit_q;
+        end
+    endgenerate
+
+    // ---- the memory, per group: own pointers, own write enable ----
+    wire [DATA_W-1:0] rd_data;
+    genvar g;
+    generate
+        for (g = 0; g < NGRP; g = g + 1) begin : g_grp
+            localparam integer LO = g * GW;
+            localparam integer W  = (DATA_W - LO < GW) ? DATA_W - LO : GW;
+            reg [AW-1:0] wp_q, rp_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) begin
+                    wp_q <= '0;
+                    rp_q <= '0;
+                end else begin
+                    if (push[g]) wp_q <= wp_q + 1'b1;
+                    if (rd)      rp_q <= rp_q + 1'b1;
+                end
+            end
+            reg [W-1:0] mem [0:DEPTH-1];
+            always @(posedge clk) begin
+                if (push[g]) mem[wp_q] <= in_data[LO +: W];
+            end
+            assign rd_data[LO +: W] = mem[rp_q];
+        end
+    endgenerate
+    assign out_valid = nonempty_q;
+    assign out_data  = rd_data;
+
+endmodule
+`default_nettype wire
