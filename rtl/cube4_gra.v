@@ -31,11 +31,16 @@
 //
 // Latency
 //   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
-//   beam delays and the window), plus the input register, 3 register stages
-//   and the output skid buffer. All under
-//   one stall enable (the skid buffer's registered ready), which comes as
-//   eight flip-flops, one per group of registers (each delay line, the
-//   window, the arithmetic), so that no single net reaches every clock enable.
+//   beam delays and the window), plus the input register, 2 register stages
+//   and the output FIFO's memory (cube4_credit_fifo, 16 entries), which
+//   stands in for a third. The delay lines and the window move on GRA's step
+//   (a beat is taken or a flush step runs), which needs a credit of the
+//   output FIFO (an entry reserved for the gradient beat the step may
+//   produce); the credit comes as seven flip-flop copies, one per group of
+//   registers (each delay line, the window and counters), so that no single
+//   net reaches every clock enable. The arithmetic after the window moves on
+//   every cycle with valid bits (no clock enable); out_ready reaches only the
+//   step and the FIFO's read pointers.
 //
 // Ports
 //   in_*   the sample stream of cube4_tri (same fields and formats)
@@ -135,14 +140,13 @@ module cube4_gra #(
     endfunction
 
     // ------------------------------------------------------------ stepping
-    // The stall enable (the output skid buffer's ready) comes as NCOPY
-    // flip-flops and flush_q has NSTEP copies, so each group of registers
-    // (each delay line, the window, the arithmetic) gets its own step net:
-    // no single net drives every clock enable of the unit.
-    localparam integer NCOPY = 8;    // 0..5 the delay lines, 6 window and counters, 7 arithmetic
-    localparam integer NSTEP = 7;    // copies with a step (0..6)
-    wire [NCOPY-1:0] en_rep;         // copies of the stall enable
-    wire             en = en_rep[7];
+    // The output FIFO's credit comes as NSTEP flip-flops and flush_q has NSTEP
+    // copies, so each group of registers (each delay line, the window and
+    // counters) gets its own step net: no single net drives every clock
+    // enable of the unit.
+    localparam integer NSTEP = 7;    // 0..5 the delay lines, 6 window and counters
+    localparam integer FIFO_DEPTH = 16;   // >= 4 cycles from a step to the FIFO's read
+    wire [NSTEP-1:0] en_rep;         // copies of the output FIFO's credit
     reg              flush_q;        // running the zero steps after a frame
     wire [NSTEP-1:0] flush_rep;      // copies of flush_q
     reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then two beats (row NJ + 1)
@@ -463,23 +467,23 @@ module cube4_gra #(
     endgenerate
 
     // ------------------------------------------------------------ arithmetic
-    // g1: differences; g2: VIEW_X*gi + VIEW_Y*gj; g3: gk; then the skid buffer
-    reg               g1_v, g2_v, g3_v;
-    reg [META_W-2:0]  g1_meta, g2_meta, g3_meta;
-    reg [PV-1:0]      g1_s, g2_s, g3_s;
+    // g1: differences; g2: VIEW_X*gi + VIEW_Y*gj; g3: gk, written into the
+    // output FIFO. g1 and g2 load on every cycle; g1_v marks a step whose
+    // centre is a real beat (the take of its FIFO entry).
+    reg               g1_v, g2_v;
+    reg [META_W-2:0]  g1_meta, g2_meta;
+    reg [PV-1:0]      g1_s, g2_s;
     reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj, g2_gr;
     reg [P*PROD_W-1:0] g2_prod;
-    reg [P*GRAD_W-1:0] g3_gi, g3_gj, g3_gk;
+    wire              take = step && h2_v && h_real;
 
     always @(posedge clk) begin
         if (rst) begin
             g1_v <= 1'b0;
             g2_v <= 1'b0;
-            g3_v <= 1'b0;
-        end else if (en) begin
-            g1_v <= step && h2_v && h_real;
+        end else begin
+            g1_v <= take;
             g2_v <= g1_v;
-            g3_v <= g2_v;
         end
     end
 
@@ -514,43 +518,57 @@ module cube4_gra #(
     endgenerate
 
     always @(posedge clk) begin
-        if (en) begin
-            g1_meta <= h2_meta[META_W-2:0];
-            g1_s    <= h2_c;
-            g1_gi   <= gi_d;
-            g1_gj   <= h2_gj;
-            g1_gr   <= gr_d;
-            g2_meta <= g1_meta;
-            g2_s    <= g1_s;
-            g2_gi   <= g1_gi;
-            g2_gj   <= g1_gj;
-            g2_gr   <= g1_gr;
-            g2_prod <= prod_d;
-            g3_meta <= g2_meta;
-            g3_s    <= g2_s;
-            g3_gi   <= gi_x;
-            g3_gj   <= gj_x;
-            g3_gk   <= gk_d;
-        end
+        g1_meta <= h2_meta[META_W-2:0];
+        g1_s    <= h2_c;
+        g1_gi   <= gi_d;
+        g1_gj   <= h2_gj;
+        g1_gr   <= gr_d;
+        g2_meta <= g1_meta;
+        g2_s    <= g1_s;
+        g2_gi   <= g1_gi;
+        g2_gj   <= g1_gj;
+        g2_gr   <= g1_gr;
+        g2_prod <= prod_d;
     end
 
+    // ---- g3: the output FIFO's memory; push = g2 holds a beat ----
+    // push comes as NGRP flip-flop copies of g2_v (one per 64 bits of the word)
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
-    wire [OUT_W-1:0] skid_out;
-    cube4_skid #(
-        .DATA_W       (OUT_W),
-        .READY_COPIES (NCOPY)
-    ) u_skid (
+    localparam integer NGRP  = (OUT_W + 63) / 64;
+    wire [NGRP-1:0] push;
+    genvar c;
+    generate
+        for (c = 0; c < NGRP; c = c + 1) begin : g_push
+            reg push_q;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) push_q <= 1'b0;
+                else     push_q <= g1_v;
+            end
+            assign push[c] = push_q;
+        end
+    endgenerate
+    wire [OUT_W-1:0] fifo_out;
+    cube4_credit_fifo #(
+        .DATA_W        (OUT_W),
+        .DEPTH         (FIFO_DEPTH),
+        .NGRP          (NGRP),
+        .CREDIT_COPIES (NSTEP)
+    ) u_fifo (
         .clk       (clk),
         .rst       (rst),
-        .in_valid  (g3_v),
-        .in_ready  (en_rep),
-        .in_data   ({g3_meta, g3_s, g3_gi, g3_gj, g3_gk}),
+        .take      (take),
+        .give      (1'b0),
+        .credit    (en_rep),
+        .push      (push),
+        .in_data   ({g2_meta, g2_s, gi_x, gj_x, gk_d}),
         .out_valid (out_valid),
         .out_ready (out_ready),
-        .out_data  (skid_out)
+        .out_data  (fifo_out)
     );
     assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside,
-            out_sample, out_gi, out_gj, out_gk} = skid_out;
+            out_sample, out_gi, out_gj, out_gk} = fifo_out;
+    wire unused_g2_v = g2_v;            // push_q is its copy
 
 endmodule
 `default_nettype wire

@@ -11,7 +11,7 @@ from __future__ import annotations
 #: Pipeline fill of cube4_top: cycles beyond the stream terms, measured at 128³, P = 8
 #: (``cube4 render sphere:128 --engine rtl --stats``); tb/cube4_top's phantom tests check the formula
 #: against the RTL for P = 1, 4, 5, 8.
-FILL_CYCLES = 51
+FILL_CYCLES = 50
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.
