@@ -373,18 +373,25 @@ module cube4_com #(
     // Read-after-write rule: a beat's position repeats every L = NJ*NB beats,
     // so the beat it depends on is the L-th most recent one, and that one is
     // in R0..S7 exactly when R0..S7 hold L or more valid beats. Counting them
-    // needs no field of the incoming beat: in_ready depends on registers only.
+    // needs no field of the incoming beat. The count is made for the next
+    // cycle (R0..S7 after this edge hold take, r0_v, v_s[1..6]) and the
+    // comparison registered, so hazard, like in_ready, is a register.
     reg  [3:0] lim_q;                   // min(NJ*NB, 9): 9 never stalls
     always @(posedge clk) begin
         lim_q <= (32'(cfg_nj) * 32'(cfg_nb) >= 32'd9) ? 4'd9 : 4'(32'(cfg_nj) * 32'(cfg_nb));
     end
-    reg [3:0] n_fly;
+    reg [3:0] n_fly_d;                  // valid beats in R0..S7 in the next cycle
     integer kh;
     always @* begin
-        n_fly = {3'b000, r0_v};
-        for (kh = 1; kh < NS - 1; kh = kh + 1) n_fly = n_fly + {3'b000, v_s[kh]};
+        n_fly_d = {3'b000, take} + {3'b000, r0_v};
+        for (kh = 1; kh < NS - 2; kh = kh + 1) n_fly_d = n_fly_d + {3'b000, v_s[kh]};
     end
-    assign hazard = (n_fly >= lim_q);
+    reg hazard_q;
+    always @(posedge clk) begin
+        if (rst) hazard_q <= 1'b0;
+        else     hazard_q <= (n_fly_d >= lim_q);
+    end
+    assign hazard = hazard_q;
 
     // Valid-bit copies (flip-flops of their own, kept apart in synthesis) for
     // the block RAMs' write enables: v_s[3] (beam buffer) and v_s[NS] (slice

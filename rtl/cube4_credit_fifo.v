@@ -93,18 +93,24 @@ module cube4_credit_fifo #(
     localparam integer GW = (DATA_W + NGRP - 1) / NGRP;     // bits per group (the last may be fewer)
     localparam [AW:0]  DEPTH_C = DEPTH[AW:0];
 
+    // out_ready comes from the next unit, often from far away on a chip, so
+    // it (through rd) reaches only a few flip-flops, each through one small
+    // gate: the next values of nonempty and credit are chosen by rd (and
+    // push, take, give) among flags computed from registers.
     // ---- occupancy of the memory: pushes - reads (push[0] is the reference copy) ----
     reg  [AW:0] cnt_q;                  // items stored in the memory
     reg         nonempty_q;
     wire        rd = nonempty_q && out_ready;    // an item leaves
     wire [AW:0] cnt_d = cnt_q + {{AW{1'b0}}, push[0]} - {{AW{1'b0}}, rd};
+    wire        cnt_ge2 = (cnt_q >= (AW + 1)'(2));
     always @(posedge clk) begin
         if (rst) begin
             cnt_q      <= '0;
             nonempty_q <= 1'b0;
         end else begin
             cnt_q      <= cnt_d;
-            nonempty_q <= (cnt_d != '0);
+            // cnt_d != 0
+            nonempty_q <= push[0] || cnt_ge2 || (nonempty_q && !rd);
         end
     end
 
@@ -115,6 +121,13 @@ module cube4_credit_fifo #(
         if (rst) res_q <= '0;
         else     res_q <= res_d;
     end
+    // credit_d = (res_d < DEPTH): res_d - res_q = take - give - rd is +1, 0 or
+    // negative, and res_q <= DEPTH
+    wire res_lt_dm1 = (res_q < DEPTH_C - 1'b1);
+    wire res_lt_d   = (res_q < DEPTH_C);
+    wire up   = take && !give && !rd;                       // res_d = res_q + 1
+    wire same = take ? (give != rd) : (!give && !rd);       // res_d = res_q
+    wire credit_d = up ? res_lt_dm1 : (same ? res_lt_d : 1'b1);
     genvar c;
     generate
         for (c = 0; c < CREDIT_COPIES; c = c + 1) begin : g_credit
@@ -122,7 +135,7 @@ module cube4_credit_fifo #(
             (* keep *)                  // one copy per consumer: never merged
             always @(posedge clk) begin
                 if (rst) credit_q <= 1'b1;
-                else     credit_q <= (res_d < DEPTH_C);
+                else     credit_q <= credit_d;
             end
             assign credit[c] = credit_q;
         end
