@@ -192,11 +192,13 @@ module cube4_com #(
     reg [PB_W-1:0]      r0_pb;
     reg [LANE_W-1:0]    r0_skew;
     reg [6:0]           r0_ctrl;
+    reg                 r0_first;       // j = 0 and pb = 0: the first beat of a slice
     always @(posedge clk) begin
         if (rst) r0_v <= 1'b0;
         else     r0_v <= take;
     end
     always @(posedge clk) begin
+        r0_first       <= (in_j == '0) && (in_pb == '0);
         r0_lane_valid  <= in_lane_valid;
         r0_lane_inside <= in_lane_inside;
         r0_m           <= in_m;
@@ -223,7 +225,7 @@ module cube4_com #(
     wire dyf   = r0_ctrl[1];
     wire dxb   = r0_ctrl[2];
     wire dyb   = r0_ctrl[3];
-    wire first_of_slice = (r0_j == '0) && (r0_pb == '0);
+    wire first_of_slice = r0_first;
     wire unused_y_last = r0_ctrl[6];   // rows are checked against cfg_nj directly
     // ==== S0 ====
     // ---- positions: partial beam, row and slice position (as cube4_gra) ----
@@ -277,7 +279,6 @@ module cube4_com #(
     end
 
     // ---- per lane: position in the beam, fresh ray, finished ray ----
-    wire [BX_W-1:0]   by_d = BX_W'(r0_j) - BX_W'(sty_n) + BX_W'(cfg_sy);
     wire [P-1:0]      fresh_d, t0_d, ins_d;
     wire [P*IW-1:0]   ipos_d;            // i of each lane
     wire [IW-1:0]     pbp    = IW'(r0_pb) * IW'(P);
@@ -299,13 +300,13 @@ module cube4_com #(
         end
     endgenerate
 
-    // ---- S1 -> S2: finished rays and base-plane x, from registered parts ----
+    // ---- S1 -> S2: finished rays and base-plane x, y, from registered parts ----
     // fin: the next sample along the ray (m+1, j+dyf, i+dxf) is not inside
-    // (numerics.md section 8); bx = i - stepx(m) + SX.
+    // (numerics.md section 8); bx = i - stepx(m) + SX, by = j - stepy(m) + SY.
     reg [P*IW-1:0]   f1_ipos;
     reg [IW-1:0]     f1_j;
     reg              f1_dxf, f1_dyf, f1_last, f1_wxn, f1_wyn;
-    reg [DIM_W-1:0]  f1_stx;
+    reg [DIM_W-1:0]  f1_stx, f1_sty;
     always @(posedge clk) begin
         f1_ipos <= ipos_d;
         f1_j    <= j_ext;
@@ -315,9 +316,11 @@ module cube4_com #(
         f1_wxn  <= wxn_nz;
         f1_wyn  <= wyn_nz;
         f1_stx  <= stx_n;
+        f1_sty  <= sty_n;
     end
     wire [P-1:0]      fin_1;
     wire [P*BX_W-1:0] bx_1;
+    wire [BX_W-1:0]   by_1 = BX_W'(f1_j) - BX_W'(f1_sty) + BX_W'(cfg_sy);   // by = j - stepy(m) + SY
     generate
         for (q = 0; q < P; q = q + 1) begin : g_fin
             wire [IW-1:0] i_pos = f1_ipos[q*IW +: IW];
@@ -338,7 +341,7 @@ module cube4_com #(
     reg [P-1:0]       ins_s   [1:7];
     reg [P-1:0]       fin_s   [2:NS];    // from S2 on (computed from S1's parts)
     reg [M_W-1:0]     m_s     [1:NS];
-    reg [BX_W-1:0]    by_s    [1:NS];
+    reg [BX_W-1:0]    by_s    [2:NS];    // from S2 on (computed from S1's parts)
     reg [P*BX_W-1:0]  bx_s    [2:NS];
     reg [NS:1]        eop_s;
     reg [5:1]         dxb_s;
@@ -352,17 +355,17 @@ module cube4_com #(
     end
     always @(posedge clk) begin
         sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
-        m_s[1]  <= r0_m;     by_s[1] <= by_d;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
+        m_s[1]  <= r0_m;     by_s[2] <= by_1;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
         t0_s[1] <= t0_d;
         eop_s <= {eop_s[NS-1:1], eop};
         dxb_s <= {dxb_s[4:1], dxb};
         dyb_s <= {dyb_s[3:1], dyb};
         dkb_s <= {dkb_s[3:1], dk_b};
         for (k = 2; k <= NS; k = k + 1) begin
-            sp_s[k] <= sp_s[k-1];  m_s[k] <= m_s[k-1];  by_s[k] <= by_s[k-1];
+            sp_s[k] <= sp_s[k-1];  m_s[k] <= m_s[k-1];
         end
         for (k = 3; k <= NS; k = k + 1) begin
-            fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];
+            fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];  by_s[k] <= by_s[k-1];
         end
         for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
         for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];

@@ -11,7 +11,9 @@
 //   P words (0 for banks not read) and the request's tag unchanged.
 //   The load port writes one word into every bank at the same address per
 //   beat (a column of the packer's bank images); it is independent of the
-//   read port (simple dual port RAM), and is meant for use between frames.
+//   read port (simple dual port RAM), and is meant for use between frames:
+//   a read of a word that is loaded in the same cycle returns an undefined
+//   word (the memories are marked no_rw_check for synthesis).
 //
 // Parameters
 //   P        banks.                          1..64.     Default 8.
@@ -98,6 +100,11 @@ module cube4_voxel_mem #(
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_bank
+            // Loads and reads never meet in one cycle in use (loads come between
+            // frames), so synthesis needs no read-during-write logic: without
+            // no_rw_check Yosys adds an address comparator and a bypass after
+            // the block RAM (the P = 8 critical path of an FPGA build).
+            (* no_rw_check *)
             reg [VOXEL_W-1:0] mem [0:DEPTH-1];
             reg [VOXEL_W-1:0] rd_q;
             always @(posedge clk) begin
