@@ -95,9 +95,15 @@ module cube4_lerp #(
             always @(posedge clk) begin
                 if (en) begin
                     diff_q <= diff_c;
-                    w_q    <= w;
                     a_q    <= a;
                 end
+            end
+            // every lerp keeps its own weight register next to its multiplier
+            // (lerps that share a weight would otherwise share one flip-flop
+            // whose net spans the chip)
+            (* keep *)
+            always @(posedge clk) begin
+                if (en) w_q <= w;
             end
             assign diff = diff_q;
             assign w_s0 = w_q;

@@ -357,7 +357,7 @@ module cube4_tri #(
     // ------------------------------------------------ s4: the 2x2x2 cell
     reg               s4_v;
     reg [4*PV-1:0]    s4_vals, s4_nvals;
-    reg [WEIGHT_W-1:0] s4_wx, s4_wy, s4_wz;
+    reg [WEIGHT_W-1:0] s4_wy, s4_wz;   // (wx: each lane's copy, g_lerp)
     reg [META_W-1:0]  s4_meta;
 
     always @(posedge clk) begin
@@ -367,7 +367,6 @@ module cube4_tri #(
     always @(posedge clk) begin
         s4_vals  <= s3_vals;
         s4_nvals <= s3_nvals;
-        s4_wx    <= s3_wx;
         s4_wy    <= s3_wy;
         s4_wz    <= s3_wz;
         s4_meta  <= s3_meta;
@@ -380,11 +379,9 @@ module cube4_tri #(
     localparam integer NL       = 3 * LERP_LAT;
     reg [NL:1]                       lv_q;
     reg [META_W-1:0]   lmeta_q [1:NL];
-    reg [WEIGHT_W-1:0] lwy_q [1:LERP_LAT];
-    reg [WEIGHT_W-1:0] lwz_q [1:2*LERP_LAT];
+    reg [WEIGHT_W-1:0] lwy_q [1:LERP_LAT-1];     // (the last stage: each lane's wy_l)
+    reg [WEIGHT_W-1:0] lwz_q [1:2*LERP_LAT-1];   // (the last stage: each lane's wz_l)
     wire [PV-1:0]      l_sample;
-    wire [WEIGHT_W-1:0] y_w = lwy_q[LERP_LAT];
-    wire [WEIGHT_W-1:0] z_w = lwz_q[2*LERP_LAT];
 
     always @(posedge clk) begin
         if (rst) lv_q <= '0;
@@ -395,9 +392,9 @@ module cube4_tri #(
         lmeta_q[1] <= s4_meta;
         for (kl = 2; kl <= NL; kl = kl + 1) lmeta_q[kl] <= lmeta_q[kl - 1];
         lwy_q[1] <= s4_wy;
-        for (kl = 2; kl <= LERP_LAT; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
+        for (kl = 2; kl <= LERP_LAT - 1; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
         lwz_q[1] <= s4_wz;
-        for (kl = 2; kl <= 2 * LERP_LAT; kl = kl + 1) lwz_q[kl] <= lwz_q[kl - 1];
+        for (kl = 2; kl <= 2 * LERP_LAT - 1; kl = kl + 1) lwz_q[kl] <= lwz_q[kl - 1];
     end
 
     generate
@@ -413,24 +410,34 @@ module cube4_tri #(
             wire [VW-1:0] npl = s4_nvals[q*4*VW + 2*VW +: VW];
             wire [VW-1:0] npu = s4_nvals[q*4*VW + 3*VW +: VW];
             wire [VW-1:0] x_l0, x_l1, x_u0, x_u1, y_l, y_u, z;
+            // the lane's own copies of the weights, wx at s4, wy / wz when the
+            // y / z lerps start: one shared register would drive the
+            // multipliers of every lane
+            reg [WEIGHT_W-1:0] wx_l, wy_l, wz_l;
+            (* keep *)
+            always @(posedge clk) begin
+                wx_l <= s3_wx;
+                wy_l <= lwy_q[LERP_LAT - 1];
+                wz_l <= lwz_q[2 * LERP_LAT - 1];
+            end
 
             // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l0 (
-                .clk(clk), .en(1'b1), .a(pl), .b(npl), .w(s4_wx), .y(x_l0));
+                .clk(clk), .en(1'b1), .a(pl), .b(npl), .w(wx_l), .y(x_l0));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l1 (
-                .clk(clk), .en(1'b1), .a(cl), .b(ncl), .w(s4_wx), .y(x_l1));
+                .clk(clk), .en(1'b1), .a(cl), .b(ncl), .w(wx_l), .y(x_l1));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u0 (
-                .clk(clk), .en(1'b1), .a(pu), .b(npu), .w(s4_wx), .y(x_u0));
+                .clk(clk), .en(1'b1), .a(pu), .b(npu), .w(wx_l), .y(x_u0));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u1 (
-                .clk(clk), .en(1'b1), .a(cu), .b(ncu), .w(s4_wx), .y(x_u1));
+                .clk(clk), .en(1'b1), .a(cu), .b(ncu), .w(wx_l), .y(x_u1));
             // y
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_l (
-                .clk(clk), .en(1'b1), .a(x_l0), .b(x_l1), .w(y_w), .y(y_l));
+                .clk(clk), .en(1'b1), .a(x_l0), .b(x_l1), .w(wy_l), .y(y_l));
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_u (
-                .clk(clk), .en(1'b1), .a(x_u0), .b(x_u1), .w(y_w), .y(y_u));
+                .clk(clk), .en(1'b1), .a(x_u0), .b(x_u1), .w(wy_l), .y(y_u));
             // z
             cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_z (
-                .clk(clk), .en(1'b1), .a(y_l), .b(y_u), .w(z_w), .y(z));
+                .clk(clk), .en(1'b1), .a(y_l), .b(y_u), .w(wz_l), .y(z));
             assign l_sample[q*VW +: VW] = z;
         end
     endgenerate
