@@ -6,9 +6,10 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
-# --- Debian packages (FST waves need lz4 and zlib headers; venv needs python3-venv) ---
+# --- Debian packages (FST waves need lz4 and zlib headers; venv needs python3-venv;
+#     ccache keeps Verilator's runtime from being recompiled for every testbench build) ---
 need=()
-for pkg in g++ make liblz4-dev zlib1g-dev python3-venv; do
+for pkg in g++ make ccache liblz4-dev zlib1g-dev python3-venv; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need+=("$pkg")
 done
 if [ ${#need[@]} -gt 0 ]; then
