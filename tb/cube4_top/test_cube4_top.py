@@ -63,6 +63,18 @@ def test_random_volumes_all_views(p):
 @pytest.mark.parametrize("name", ["sphere:64", "ml:64", "head:64"])
 def test_phantoms(name, p):
     """Sphere, Marschner-Lobb and the head phantom, scene tables, bit-exact base planes."""
+    render_phantom(name, p)
+
+
+@pytest.mark.parametrize(("name", "p"), [("sphere:128", 8), ("ml:128", 1), ("head:128", 5), ("head:128", 4)])
+def test_phantoms_128(name, p):
+    """The same at 128^3 (builds with MAX_DIM = 128): each phantom once, each P once."""
+    render_phantom(name, p)
+
+
+def render_phantom(name: str, p: int) -> None:
+    """Render one phantom with its scene's tables through the RTL; check it bit for bit
+    against the golden model and its cycle count against the formula."""
     from cube4.render import host_tables, setup_view
     from cube4.scene import load_scene
 
