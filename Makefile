@@ -35,7 +35,7 @@ RTL_MODULES  := $(basename $(notdir $(RTL_SRCS)))   # one module per file, named
 SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v))
 SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
 LINT_WAIVERS := rtl/lint_waivers.vlt
-LINT_FLAGS   := --lint-only -Wall --quiet
+LINT_FLAGS   := --lint-only -Wall --quiet -Irtl
 
 comma := ,
 

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_cfb
 // -----------------------------------------------------------------------------
@@ -32,7 +33,7 @@
 //   with the per-axis terms kept incrementally (golden/cube4/memory.py); the
 //   partial-beam term is kept with its sign and I_A0 folded in (pbx_q).
 //
-// Parameters
+// Parameters (derived widths and layouts: cube4_defs.vh)
 //   P            pipelines = memory banks.                 1..64.  Default 8.
 //   MAX_DIM      largest volume dimension on any axis.      2..2048. Default 256.
 //   ADDR_W       memory address width (words per bank).     1..30.  Default 16.
@@ -49,25 +50,19 @@
 //   state move under one enable (the output register free or accepted by
 //   req_ready); req_valid never depends on req_ready.
 //
-// Ports (formats as in docs/numerics.md; all cfg_* are view/volume registers
-// written by the host, see golden/cube4/memory.py frontend_regs; they must be
-// stable from start until the frame is done)
+// Ports (formats as in docs/numerics.md; cfg and cfg_addr are the host's
+// view and address registers, laid out in cube4_defs.vh, see
+// golden/cube4/memory.py frontend_regs; stable from start until done)
 //   clk, rst         clock, synchronous active-high reset (control state only)
 //   start            in   pulse: start a frame (ignored while busy)
 //   busy             out  a frame is being issued (state or s1, s2 hold a beat)
-//   cfg_ni/nj/nk     in   [DIM_W]   traversal-frame dims (1..MAX_DIM)
-//   cfg_nb           in   [NB_W]    partial beams per beam, ceil(NI / P)
-//   cfg_flip_i/j/k   in   1 bit     axis traversed backwards
-//   cfg_ss_log2      in   [2]       log2 S, 0..MAX_SS_LOG2
-//   cfg_view_x/y     in   [W+1]     VIEW_X / VIEW_Y, slopes Q1.W in [0, 1]
-//   cfg_j_r0, cfg_k_r0 in [LANE_W]  start coordinate mod P of axes j, k
-//   cfg_i_r1, cfg_i_rt in [LANE_W]  (NI-1) mod P; block threshold of axis i
-//   cfg_j_a0/lin/blk, cfg_k_a0/lin/blk, cfg_i_a0/pb/lin  in [ADDR_W]
-//                                   address start values and strides
+//   cfg              in   [VIEW_W]  NI, NJ, NK, NB, flips, log2 S, VIEW_X/Y
+//                                   (Q1.W), lane residues J_R0, K_R0, I_R1, I_RT
+//   cfg_addr         in   [9*ADDR_W] address start values and strides
 //   req_valid/ready                 memory request handshake
 //   req_addr         out  [P*ADDR_W] word address per bank (lane q at q*ADDR_W)
 //   req_rden         out  [P]       read bank q (0: padding or no read this beat)
-//   tag_*            out            control bits of the beat (cube4_tri header)
+//   req_tag          out  [TAG_W]   the beat's control bits (CUBE4_TAG_LAYOUT)
 //
 // Bit growth and rounding
 //   None: counters and modular address arithmetic (ADDR_W bits, exact for
@@ -80,71 +75,23 @@ module cube4_cfb #(
     parameter integer ADDR_W      = 16,
     parameter integer WEIGHT_W    = 8,
     parameter integer MAX_SS_LOG2 = 0,
-    // derived widths (not to be overridden)
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P))
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_ADDR_LAYOUT,
+    `CUBE4_TAG_LAYOUT
 ) (
     input  wire                  clk,
     input  wire                  rst,
     input  wire                  start,
     output wire                  busy,
-    // view / volume registers
-    input  wire [DIM_W-1:0]      cfg_ni,
-    input  wire [DIM_W-1:0]      cfg_nj,
-    input  wire [DIM_W-1:0]      cfg_nk,
-    input  wire [NB_W-1:0]       cfg_nb,
-    input  wire                  cfg_flip_i,
-    input  wire                  cfg_flip_j,
-    input  wire                  cfg_flip_k,
-    input  wire [1:0]            cfg_ss_log2,
-    input  wire [WEIGHT_W:0]     cfg_view_x,
-    input  wire [WEIGHT_W:0]     cfg_view_y,
-    input  wire [LANE_W-1:0]     cfg_j_r0,
-    input  wire [LANE_W-1:0]     cfg_k_r0,
-    input  wire [LANE_W-1:0]     cfg_i_r1,
-    input  wire [LANE_W-1:0]     cfg_i_rt,
-    input  wire [ADDR_W-1:0]     cfg_j_a0,
-    input  wire [ADDR_W-1:0]     cfg_j_lin,
-    input  wire [ADDR_W-1:0]     cfg_j_blk,
-    input  wire [ADDR_W-1:0]     cfg_k_a0,
-    input  wire [ADDR_W-1:0]     cfg_k_lin,
-    input  wire [ADDR_W-1:0]     cfg_k_blk,
-    input  wire [ADDR_W-1:0]     cfg_i_a0,
-    input  wire [ADDR_W-1:0]     cfg_i_pb,
-    input  wire [ADDR_W-1:0]     cfg_i_lin,
+    input  wire [VIEW_W-1:0]     cfg,        // view registers (cube4_defs.vh)
+    input  wire [ADR_W_ALL-1:0]  cfg_addr,   // address registers (cube4_defs.vh)
     // memory request stream
     output wire                  req_valid,
     input  wire                  req_ready,
     output wire [P*ADDR_W-1:0]   req_addr,
     output wire [P-1:0]          req_rden,
-    // beat tag (travels with the data through the memory to cube4_tri)
-    output wire                  tag_emit,      // beat outputs a sample row
-    output wire                  tag_sop,       // first sample beat of the frame
-    output wire                  tag_eop,       // last sample beat of the frame
-    output wire                  tag_drain,     // drain beat: no data
-    output wire                  tag_ywrap,     // current row is zero (row above the last)
-    output wire                  tag_bb_we,     // write the beam buffers
-    output wire                  tag_lower_mem, // lower slice comes from memory
-    output wire                  tag_upper_mem, // upper slice comes from memory
-    output wire                  tag_upper_use, // upper slice used (r > 0)
-    output wire                  tag_k0_odd,    // slice-buffer parity of the lower slice
-    output wire [SB_W-1:0]       tag_sb_addr,   // slice-buffer slot j * NB + pb
-    output wire [PB_W-1:0]       tag_pb,        // partial beam (beam-buffer slot)
-    output wire [WEIGHT_W-1:0]   tag_wx,        // weights of the emitted sample row
-    output wire [WEIGHT_W-1:0]   tag_wy,
-    output wire [WEIGHT_W-1:0]   tag_wz,
-    output wire [M_W-1:0]        tag_m,         // sample slice of the emitted row
-    output wire [DIM_W-1:0]      tag_j,         // sample row j of the emitted row
-    output wire [LANE_W-1:0]     tag_skew,      // lane alignment of the emitted row
-    output wire                  tag_y_last,    // emitted row is j = NJ-1
-    output wire [3:0]            tag_steps,     // {old_y, old_x, y, x} steps of tag_m
-    output wire [P-1:0]          tag_lane_valid,// lane holds a position < NI
-    output wire [P-1:0]          tag_lane_nbr,  // lane's position + 1 < NI
-    output wire [P-1:0]          tag_lane_wrap  // lane holds t = P-1 (beam extension)
+    output wire [TAG_W-1:0]      req_tag     // travels with the beat to cube4_tri
 );
     // ---- parameter checks ----
     generate
@@ -167,20 +114,20 @@ module cube4_cfb #(
 
     localparam integer PH_W = WEIGHT_W + MAX_SS_LOG2;  // phase accumulator
     localparam integer R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1;
-    localparam integer IW   = $clog2(MAX_DIM + 2 * P + 1); // positions pb*P + t + 1
     localparam integer REM_W = $clog2(P + 2);               // 0 .. P + 1
     localparam [LANE_W:0] PL = P[LANE_W:0];
 
-    // mod-P normalisation of a value in (-P, 2P)
-    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v);
-        reg signed [LANE_W+2:0] w;
-        begin
-            w = v;
-            if (w < 0) w = w + $signed({2'b00, PL});
-            if (w >= $signed({2'b00, PL})) w = w - $signed({2'b00, PL});
-            mod_p = w[LANE_W-1:0];
-        end
-    endfunction
+    `CUBE4_VIEW_FIELDS(cfg);
+    wire [ADDR_W-1:0] cfg_j_a0  = cfg_addr[ADR_J_A0 +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_j_lin = cfg_addr[ADR_J_LIN +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_j_blk = cfg_addr[ADR_J_BLK +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_k_a0  = cfg_addr[ADR_K_A0 +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_k_lin = cfg_addr[ADR_K_LIN +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_k_blk = cfg_addr[ADR_K_BLK +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_i_a0  = cfg_addr[ADR_I_A0 +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_i_pb  = cfg_addr[ADR_I_PB +: ADDR_W];
+    wire [ADDR_W-1:0] cfg_i_lin = cfg_addr[ADR_I_LIN +: ADDR_W];
+    `CUBE4_LANE_FUNCTIONS
 
     // step a coordinate by +/-1: (c mod P, address term)
     function automatic [LANE_W-1:0] r_step(input [LANE_W-1:0] r, input down);
@@ -304,14 +251,9 @@ module cube4_cfb #(
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
             // position held by this lane for the read and for the emitted row
-            wire [LANE_W-1:0] t_rd = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, skew_rd}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, skew_rd}));
-            wire [LANE_W-1:0] t_out = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, skew_out}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, skew_out}));
+            wire [LANE_W-1:0] t_rd  = lane_pos(q, skew_rd, cfg_flip_i, cfg_i_r1);
+            wire [LANE_W-1:0] t_out = lane_pos(q, skew_out, cfg_flip_i, cfg_i_r1);
             assign t_d[q*LANE_W +: LANE_W]    = t_rd;
             assign tout_d[q*LANE_W +: LANE_W] = t_out;
         end
@@ -327,9 +269,10 @@ module cube4_cfb #(
 
     // ---- the beat's fields, as they travel s1 -> s2 -> output register ----
     // s1 holds the fields but the lane masks (F1_W bits); s2 adds the masks.
-    localparam integer F1_W = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 1 + 4;
-    localparam integer F_W  = 4 * P + F1_W;
-    wire [F1_W-1:0] f_d = {emit_d, sop_d, eop_d, (state_q == ST_DRAIN), use_prev,
+    // The order is the tag's (cube4_defs.vh, CUBE4_TAG_LAYOUT), MSB first.
+    localparam integer F1_W = TAG_W - 3 * P;
+    localparam integer F_W  = P + TAG_W;
+    wire [F1_W-1:0] f_d = {emit_d, sop_d, eop_d, use_prev,
                            (state_q == ST_RUN), (state_q == ST_RUN) && lower_mem,
                            (state_q == ST_RUN) && upper_mem, (state_q == ST_RUN) && (r_q != '0),
                            k0_q[0], sb_q, pb_q,
@@ -495,13 +438,7 @@ module cube4_cfb #(
     assign busy      = (state_q != ST_IDLE) || v1_q || v2_q;
     assign req_valid = v_q;
     assign req_addr  = addr_q;
-    assign {req_rden, tag_lane_valid, tag_lane_nbr, tag_lane_wrap,
-            tag_emit, tag_sop, tag_eop, tag_drain, tag_ywrap,
-            tag_bb_we, tag_lower_mem, tag_upper_mem, tag_upper_use,
-            tag_k0_odd, tag_sb_addr, tag_pb,
-            tag_wx, tag_wy, tag_wz,
-            tag_m, tag_j, tag_skew, tag_y_last,
-            tag_steps} = f_q;
+    assign {req_rden, req_tag} = f_q;   // f2: {rden, LVAL, LNBR, LWRAP, f1}
 
 endmodule
 `default_nettype wire

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_com
 // -----------------------------------------------------------------------------
@@ -55,7 +56,7 @@
 //   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
 //             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
 //             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame)
-//   cfg_*     view registers; cfg_sx, cfg_sy = stepx(M-1), stepy(M-1)
+//   cfg       view registers (cube4_defs.vh); SX, SY = stepx(M-1), stepy(M-1)
 //
 // Bit growth and rounding
 //   T * A: (F+1) x AW bits; round_shift by AW (half up) gives w <= T (F+1 bits).
@@ -69,39 +70,18 @@ module cube4_com #(
     parameter integer ACC_W       = 16,
     parameter integer MAX_DIM     = 256,
     parameter integer MAX_SS_LOG2 = 0,
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer BX_W   = DIM_W + 1
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    localparam integer BX_W = DIM_W + 1
 ) (
     input  wire                      clk,
     input  wire                      rst,
-    input  wire [DIM_W-1:0]          cfg_ni,
-    input  wire [DIM_W-1:0]          cfg_nj,
-    input  wire [DIM_W-1:0]          cfg_nk,
-    input  wire [NB_W-1:0]           cfg_nb,
-    input  wire                      cfg_flip_i,
-    input  wire                      cfg_flip_j,
-    input  wire                      cfg_flip_k,
-    input  wire [1:0]                cfg_ss_log2,
-    input  wire [LANE_W-1:0]         cfg_i_r1,
-    input  wire [WEIGHT_W:0]         cfg_view_x,
-    input  wire [WEIGHT_W:0]         cfg_view_y,
-    input  wire [DIM_W-1:0]          cfg_sx,
-    input  wire [DIM_W-1:0]          cfg_sy,
+    input  wire [VIEW_W-1:0]         cfg,
     // shaded stream in
     input  wire                      in_valid,
     output wire                      in_ready,
+    input  wire [HDR_W-1:0]          in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
-    input  wire [P-1:0]              in_lane_valid,
-    input  wire [P-1:0]              in_lane_inside,
-    input  wire [M_W-1:0]            in_m,
-    input  wire [DIM_W-1:0]          in_j,
-    input  wire [PB_W-1:0]           in_pb,
-    input  wire [LANE_W-1:0]         in_skew,
-    input  wire [6:0]                in_ctrl,
     // finished rays out
     output wire                      pix_valid,
     input  wire                      pix_ready,
@@ -128,21 +108,11 @@ module cube4_com #(
     localparam integer AC_W   = 4 * CW;             // {R, G, B, T}
     localparam integer PA     = P * AC_W;
     localparam integer LUT_W  = 24 + ALPHA_W;
-    localparam integer NBMAX  = (MAX_DIM + P - 1) / P;
     localparam integer PH_W   = WEIGHT_W + MAX_SS_LOG2;
-    localparam integer IW     = $clog2(MAX_DIM + 2 * P + 1);
-    localparam [LANE_W:0] PL  = P[LANE_W:0];
     localparam [CW-1:0]   ONE = {1'b1, {ACC_W{1'b0}}};  // T = 1.0
 
-    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v);
-        reg signed [LANE_W+2:0] w;
-        begin
-            w = v;
-            if (w < 0) w = w + $signed({2'b00, PL});
-            if (w >= $signed({2'b00, PL})) w = w - $signed({2'b00, PL});
-            mod_p = w[LANE_W-1:0];
-        end
-    endfunction
+    `CUBE4_VIEW_FIELDS(cfg);
+    `CUBE4_LANE_FUNCTIONS
 
     // ---- pipeline (docs/architecture.md, "COM") ----
     //   R0  input register
@@ -186,26 +156,22 @@ module cube4_com #(
     // ==== R0: input register (loads on every cycle; r0_v marks a beat) ====
     reg                 r0_v;
     wire [P*LUT_W-1:0]  r0_rgba;        // per lane registers (g_r0)
-    reg [P-1:0]         r0_lane_valid, r0_lane_inside;
-    reg [M_W-1:0]       r0_m;
-    reg [DIM_W-1:0]     r0_j;
-    reg [PB_W-1:0]      r0_pb;
-    reg [LANE_W-1:0]    r0_skew;
-    reg [6:0]           r0_ctrl;
+    reg [HDR_W-1:0]     r0_hdr;
+    wire [P-1:0]        r0_lane_valid  = r0_hdr[HDR_LVALID +: P];
+    wire [P-1:0]        r0_lane_inside = r0_hdr[HDR_INSIDE +: P];
+    wire [M_W-1:0]      r0_m           = r0_hdr[HDR_M +: M_W];
+    wire [DIM_W-1:0]    r0_j           = r0_hdr[HDR_J +: DIM_W];
+    wire [PB_W-1:0]     r0_pb          = r0_hdr[HDR_PB +: PB_W];
+    wire [LANE_W-1:0]   r0_skew        = r0_hdr[HDR_SKEW +: LANE_W];
+    wire [6:0]          r0_ctrl        = r0_hdr[HDR_CTRL +: 7];
     reg                 r0_first;       // j = 0 and pb = 0: the first beat of a slice
     always @(posedge clk) begin
         if (rst) r0_v <= 1'b0;
         else     r0_v <= take;
     end
     always @(posedge clk) begin
-        r0_first       <= (in_j == '0) && (in_pb == '0);
-        r0_lane_valid  <= in_lane_valid;
-        r0_lane_inside <= in_lane_inside;
-        r0_m           <= in_m;
-        r0_j           <= in_j;
-        r0_pb          <= in_pb;
-        r0_skew        <= in_skew;
-        r0_ctrl        <= in_ctrl;
+        r0_first <= (in_hdr[HDR_J +: DIM_W] == '0) && (in_hdr[HDR_PB +: PB_W] == '0);
+        r0_hdr   <= in_hdr;
     end
     genvar q;
     generate
@@ -219,14 +185,14 @@ module cube4_com #(
     endgenerate
     wire step = r0_v;                   // the R0 beat enters S1
 
-    wire sop   = r0_ctrl[4];
-    wire eop   = r0_ctrl[5];
-    wire dxf   = r0_ctrl[0];
-    wire dyf   = r0_ctrl[1];
-    wire dxb   = r0_ctrl[2];
-    wire dyb   = r0_ctrl[3];
+    wire sop   = r0_ctrl[CTRL_SOP];
+    wire eop   = r0_ctrl[CTRL_EOP];
+    wire dxf   = r0_ctrl[CTRL_SX];
+    wire dyf   = r0_ctrl[CTRL_SY];
+    wire dxb   = r0_ctrl[CTRL_OSX];
+    wire dyb   = r0_ctrl[CTRL_OSY];
     wire first_of_slice = r0_first;
-    wire unused_y_last = r0_ctrl[6];   // rows are checked against cfg_nj directly
+    wire unused_y_last = r0_ctrl[CTRL_YLAST];   // rows are checked against cfg_nj directly
     // ==== S0 ====
     // ---- positions: partial beam, row and slice position (as cube4_gra) ----
     reg  [PB_W-1:0]  pb_q;
@@ -287,10 +253,7 @@ module cube4_com #(
     wire [IW-1:0]     j_ext  = IW'(r0_j);
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
-            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
-            wire [LANE_W-1:0] t = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, r0_skew}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, r0_skew}));
+            wire [LANE_W-1:0] t = lane_pos(q, r0_skew, cfg_flip_i, cfg_i_r1);
             wire [IW-1:0] i_pos = pbp + IW'(t);
             assign t0_d[q]    = (t == '0);
             // the ray starts here: its previous sample is outside the slice

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_gra
 // -----------------------------------------------------------------------------
@@ -47,9 +48,8 @@
 //   out_sample  [P*VOXEL_W]  the sample s[m, j, i] (unsigned, Q0.VOXEL_W)
 //   out_gi/gj/gk [P*GRAD_W]  gradient per lane, signed integers, 2x the central
 //                            differences in traversal axes (numerics.md 5)
-//   out_lane_valid, out_lane_inside, out_m, out_j, out_pb, out_skew, out_ctrl
-//                            the sample beat's fields, unchanged
-//   cfg_*                    view registers (see cube4_cfb)
+//   out_hdr                  the sample beat's header, unchanged (cube4_defs.vh)
+//   cfg                      view registers (cube4_defs.vh)
 //
 // Bit growth and rounding
 //   gi, gj, gr: VOXEL_W + 1 bits signed, exact. VIEW_X * gi + VIEW_Y * gj:
@@ -63,50 +63,26 @@ module cube4_gra #(
     parameter integer WEIGHT_W    = 8,
     parameter integer MAX_DIM     = 256,
     parameter integer MAX_SS_LOG2 = 0,
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer GRAD_W = VOXEL_W + 5
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    localparam integer GRAD_W = VOXEL_W + 5
 ) (
     input  wire                  clk,
     input  wire                  rst,
-    input  wire [DIM_W-1:0]      cfg_ni,
-    input  wire [DIM_W-1:0]      cfg_nj,
-    input  wire [NB_W-1:0]       cfg_nb,
-    input  wire                  cfg_flip_i,
-    input  wire                  cfg_flip_j,
-    input  wire                  cfg_flip_k,
-    input  wire [1:0]            cfg_ss_log2,
-    input  wire [LANE_W-1:0]     cfg_i_r1,
-    input  wire [WEIGHT_W:0]     cfg_view_x,
-    input  wire [WEIGHT_W:0]     cfg_view_y,
+    input  wire [VIEW_W-1:0]     cfg,
     // sample stream in
     input  wire                  in_valid,
     output wire                  in_ready,
+    input  wire [HDR_W-1:0]      in_hdr,
     input  wire [P*VOXEL_W-1:0]  in_sample,
-    input  wire [P-1:0]          in_lane_valid,
-    input  wire [P-1:0]          in_lane_inside,
-    input  wire [M_W-1:0]        in_m,
-    input  wire [DIM_W-1:0]      in_j,
-    input  wire [PB_W-1:0]       in_pb,
-    input  wire [LANE_W-1:0]     in_skew,
-    input  wire [6:0]            in_ctrl,
     // gradient stream out
     output wire                  out_valid,
     input  wire                  out_ready,
+    output wire [HDR_W-1:0]      out_hdr,
     output wire [P*VOXEL_W-1:0]  out_sample,
     output wire [P*GRAD_W-1:0]   out_gi,
     output wire [P*GRAD_W-1:0]   out_gj,
-    output wire [P*GRAD_W-1:0]   out_gk,
-    output wire [P-1:0]          out_lane_valid,
-    output wire [P-1:0]          out_lane_inside,
-    output wire [M_W-1:0]        out_m,
-    output wire [DIM_W-1:0]      out_j,
-    output wire [PB_W-1:0]       out_pb,
-    output wire [LANE_W-1:0]     out_skew,
-    output wire [6:0]            out_ctrl
+    output wire [P*GRAD_W-1:0]   out_gk
 );
     generate
         if (P < 1 || P > 64) begin : g_bad_p
@@ -115,29 +91,17 @@ module cube4_gra #(
         if (VOXEL_W < 1 || VOXEL_W > 16) begin : g_bad_voxel_w
             $error("cube4_gra: VOXEL_W = %0d is out of range 1..16", VOXEL_W);
         end
-        if (GRAD_W != VOXEL_W + 5) begin : g_bad_grad_w
-            $error("cube4_gra: GRAD_W is derived (VOXEL_W + 5), do not set it");
-        end
     endgenerate
 
     localparam integer VW     = VOXEL_W;
     localparam integer PV     = P * VW;
     localparam integer DW     = VW + 1;                     // differences, signed
-    localparam integer NBMAX  = (MAX_DIM + P - 1) / P;
-    localparam integer META_W = 1 + M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;  // {real, beat fields}
+    localparam integer META_W = 1 + HDR_W;                  // {real, header}
     localparam integer PROD_W = WEIGHT_W + VW + 4;
     localparam [LANE_W:0] PL  = P[LANE_W:0];
-    localparam integer IW     = $clog2(MAX_DIM + 2 * P + 1);
 
-    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v);
-        reg signed [LANE_W+2:0] w;
-        begin
-            w = v;
-            if (w < 0) w = w + $signed({2'b00, PL});
-            if (w >= $signed({2'b00, PL})) w = w - $signed({2'b00, PL});
-            mod_p = w[LANE_W-1:0];
-        end
-    endfunction
+    `CUBE4_VIEW_FIELDS(cfg);
+    `CUBE4_LANE_FUNCTIONS
 
     // ------------------------------------------------------------ stepping
     // The output FIFO's credit comes as NSTEP flip-flops and flush_q has NSTEP
@@ -160,12 +124,8 @@ module cube4_gra #(
     // it passes one beat per cycle. in_ready depends on registers only.
     reg               i0_v;
     reg [P*VOXEL_W-1:0] i0_sample;
-    reg [P-1:0]       i0_lane_valid, i0_lane_inside;
-    reg [M_W-1:0]     i0_m;
-    reg [DIM_W-1:0]   i0_j;
-    reg [PB_W-1:0]    i0_pb;
-    reg [LANE_W-1:0]  i0_skew;
-    reg [6:0]         i0_ctrl;
+    reg [HDR_W-1:0]   i0_hdr;
+    wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
     wire i0_take = !i0_v || (en_rep[6] && !flush_rep[6]);   // i0 is free, or its beat steps now
     assign in_ready = i0_take;
     always @(posedge clk) begin
@@ -174,24 +134,18 @@ module cube4_gra #(
     end
     always @(posedge clk) begin
         if (i0_take) begin
-            i0_sample      <= in_sample;
-            i0_lane_valid  <= in_lane_valid;
-            i0_lane_inside <= in_lane_inside;
-            i0_m           <= in_m;
-            i0_j           <= in_j;
-            i0_pb          <= in_pb;
-            i0_skew        <= in_skew;
-            i0_ctrl        <= in_ctrl;
+            i0_sample <= in_sample;
+            i0_hdr    <= in_hdr;
         end
     end
 
     wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{i0_v}});
-    wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{i0_ctrl[4]}};   // frame start, per copy
+    wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{i0_hdr[HDR_CTRL + CTRL_SOP]}};   // frame start, per copy
     wire step = step_rep[6];
 
     wire real_beat = !flush_q;
     wire sop       = sop_rep[6];
-    wire eop       = real_beat && i0_ctrl[5];
+    wire eop       = real_beat && i0_hdr[HDR_CTRL + CTRL_EOP];
 
     // position counters of the delay lines (beat index within a beam / slice);
     // lb_q / ls_q: the position in pb_q / row_q is the last beam / the last
@@ -270,7 +224,7 @@ module cube4_gra #(
             assign x_data[q*VW +: VW] = (real_beat && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
         end
     endgenerate
-    wire [META_W-1:0] x_meta = {real_beat, i0_m, i0_j, i0_pb, i0_skew, i0_ctrl, i0_lane_valid, i0_lane_inside};
+    wire [META_W-1:0] x_meta = {real_beat, i0_hdr};
 
     wire [PV-1:0]        b1, p1, c_d, p1b2, p2b1, p2b2;
     wire [META_W-1:0]    p1_meta, c_meta;
@@ -292,8 +246,8 @@ module cube4_gra #(
         .din({x_meta, x_data}), .dout({p1_meta, p1}));
     // The centre's slice and row flags are computed from the beat one beam
     // earlier (p1, a register) and travel with it, so they are registers at c.
-    wire [M_W-1:0]    p1_m    = p1_meta[META_W-2 -: M_W];
-    wire [DIM_W-1:0]  p1_j    = p1_meta[META_W-2-M_W -: DIM_W];
+    wire [M_W-1:0]    p1_m    = p1_meta[HDR_M +: M_W];
+    wire [DIM_W-1:0]  p1_j    = p1_meta[HDR_J +: DIM_W];
     wire [M_W-1:0]    ss_mask = M_W'((1 << cfg_ss_log2) - 1);
     assign p1_flags = {((p1_m + 1'b1) & ss_mask) == '0,   // dk_f: voxel slice changes m -> m+1
                        (p1_m & ss_mask) == '0,            // dk_b: voxel slice changes m-1 -> m
@@ -313,9 +267,9 @@ module cube4_gra #(
         .din(p2b1), .dout(p2b2));
 
     // fields of the incoming centre beat c' (becomes h1 after this step)
-    wire              c_dyf  = c_meta[2*P + 1];   // ctrl bit 1: Y-step of slice m
-    wire              c_dyb  = c_meta[2*P + 3];   // ctrl bit 3: old Y-step
-    wire              y_last = c_meta[2*P + 6];   // ctrl bit 6: row j = NJ-1
+    wire              c_dyf  = c_meta[HDR_CTRL + CTRL_SY];    // Y-step of slice m
+    wire              c_dyb  = c_meta[HDR_CTRL + CTRL_OSY];   // old Y-step
+    wire              y_last = c_meta[HDR_CTRL + CTRL_YLAST]; // row j = NJ-1
     wire              dk_f, dk_b, j_first, m_first;
     assign {dk_f, dk_b, j_first, m_first} = c_flags;
 
@@ -359,7 +313,7 @@ module cube4_gra #(
     reg               h1_v, h2_v;
     reg               h1_live, h2_live;   // a beat of the current frame (not a stale RAM word)
     reg               live_q;    // the current frame's first beat has reached the centre
-    wire              c_sop  = c_meta[2*P + 4];
+    wire              c_sop  = c_meta[HDR_CTRL + CTRL_SOP];
     wire              c_live = c_sop || live_q;
     reg [META_W-1:0]  h1_meta, h2_meta;
     reg [PV-1:0]      h1_c, h2_c, h3_c, h1_f, h2_f, h1_b, h2_b, h3_b;
@@ -401,24 +355,21 @@ module cube4_gra #(
     end
 
     wire              h_real = h2_meta[META_W-1] && h2_live;
-    wire              h_dxf  = h2_meta[2*P + 0];   // ctrl bit 0: X-step of slice m
-    wire              h_dxb  = h2_meta[2*P + 2];   // ctrl bit 2: old X-step
+    wire              h_dxf  = h2_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m
+    wire              h_dxb  = h2_meta[HDR_CTRL + CTRL_OSX];   // old X-step
 
     // Per lane of h1 (the next centre), where its i - 1 and i + 1 are: inside
     // the volume (hi_ok, lo_ok) and in the next / previous beat (hi_new,
     // lo_old). Registered with h1 into h2 (the window of h2 uses them).
-    wire [PB_W-1:0]   h1_pb   = h1_meta[2*P + 7 + LANE_W +: PB_W];
-    wire [LANE_W-1:0] h1_skew = h1_meta[2*P + 7 +: LANE_W];
+    wire [PB_W-1:0]   h1_pb   = h1_meta[HDR_PB +: PB_W];
+    wire [LANE_W-1:0] h1_skew = h1_meta[HDR_SKEW +: LANE_W];
     wire [IW-1:0]     h1_pbp  = IW'(h1_pb) * IW'(P);
     wire [IW-1:0]     ni_ext  = IW'(cfg_ni);
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
     reg  [P-1:0]      h2_hi_ok, h2_lo_ok, h2_hi_new, h2_lo_old;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
-            localparam [LANE_W+2:0] QV = (LANE_W+3)'(q);
-            wire [LANE_W-1:0] t = cfg_flip_i
-                ? mod_p($signed({3'b000, cfg_i_r1}) + $signed({3'b000, h1_skew}) - $signed(QV))
-                : mod_p($signed(QV) - $signed({3'b000, h1_skew}));
+            wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
             wire [IW-1:0] i_pos = h1_pbp + IW'(t);
             assign hi_ok_d[q]  = (i_pos + 1'b1 < ni_ext);
             assign lo_ok_d[q]  = (i_pos != '0);
@@ -566,8 +517,7 @@ module cube4_gra #(
         .out_ready (out_ready),
         .out_data  (fifo_out)
     );
-    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside,
-            out_sample, out_gi, out_gj, out_gk} = fifo_out;
+    assign {out_hdr, out_sample, out_gi, out_gj, out_gk} = fifo_out;
     wire unused_g2_v = g2_v;            // push_q is its copy
 
 endmodule

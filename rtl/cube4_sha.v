@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_sha
 // -----------------------------------------------------------------------------
@@ -41,7 +42,7 @@
 //   in_*    the gradient stream of cube4_gra (gi, gj, gk signed GRAD_W bits)
 //   out_rgba  [P*(24+ALPHA_W)]  per lane {R', G', B' (Q0.8), A (Q0.ALPHA_W)}
 //   out_idx   [P*RI_W]          reflectance-map entry used (for checking and waves)
-//   out_lane_valid ... out_ctrl  the beat's fields, unchanged
+//   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
 //
 // Bit growth and rounding
 //   Face select: |g| is GRAD_W bits unsigned. u = min(R-1, floor((g_b + A) R / 2A))
@@ -56,12 +57,9 @@ module cube4_sha #(
     parameter integer RMAP_BITS   = 5,
     parameter integer MAX_DIM     = 256,
     parameter integer MAX_SS_LOG2 = 0,
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer GRAD_W = VOXEL_W + 5,
-    parameter integer RI_W   = 2 * RMAP_BITS + 3
+    `CUBE4_GEOMETRY,
+    localparam integer GRAD_W = VOXEL_W + 5,
+    localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
     input  wire                    clk,
     input  wire                    rst,
@@ -75,29 +73,17 @@ module cube4_sha #(
     // gradient stream in
     input  wire                    in_valid,
     output wire                    in_ready,
+    input  wire [HDR_W-1:0]        in_hdr,
     input  wire [P*VOXEL_W-1:0]    in_sample,
     input  wire [P*GRAD_W-1:0]     in_gi,
     input  wire [P*GRAD_W-1:0]     in_gj,
     input  wire [P*GRAD_W-1:0]     in_gk,
-    input  wire [P-1:0]            in_lane_valid,
-    input  wire [P-1:0]            in_lane_inside,
-    input  wire [M_W-1:0]          in_m,
-    input  wire [DIM_W-1:0]        in_j,
-    input  wire [PB_W-1:0]         in_pb,
-    input  wire [LANE_W-1:0]       in_skew,
-    input  wire [6:0]              in_ctrl,
     // shaded stream out
     output wire                    out_valid,
     input  wire                    out_ready,
+    output wire [HDR_W-1:0]        out_hdr,
     output wire [P*(24+ALPHA_W)-1:0] out_rgba,
-    output wire [P*RI_W-1:0]       out_idx,
-    output wire [P-1:0]            out_lane_valid,
-    output wire [P-1:0]            out_lane_inside,
-    output wire [M_W-1:0]          out_m,
-    output wire [DIM_W-1:0]        out_j,
-    output wire [PB_W-1:0]         out_pb,
-    output wire [LANE_W-1:0]       out_skew,
-    output wire [6:0]              out_ctrl
+    output wire [P*RI_W-1:0]       out_idx
 );
     generate
         if (P < 1 || P > 64) begin : g_bad_p
@@ -109,9 +95,6 @@ module cube4_sha #(
         if (RMAP_BITS < 2 || RMAP_BITS > 6) begin : g_bad_rmap_bits
             $error("cube4_sha: RMAP_BITS = %0d is out of range 2..6", RMAP_BITS);
         end
-        if (GRAD_W != VOXEL_W + 5 || RI_W != 2 * RMAP_BITS + 3) begin : g_bad_derived
-            $error("cube4_sha: GRAD_W and RI_W are derived, do not set them");
-        end
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -119,7 +102,7 @@ module cube4_sha #(
     localparam integer RB     = RMAP_BITS;
     localparam integer LUT_W  = 24 + ALPHA_W;
     localparam integer NUM_W  = GW + 1 + RB;     // (g_b + A) * R
-    localparam integer META_W = M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;
+    localparam integer META_W = HDR_W;
     localparam integer RMAP_N = 6 * (1 << (2 * RB)) + 1;
 
     // ---- pipeline ----
@@ -159,7 +142,7 @@ module cube4_sha #(
         a_gi   <= in_gi;
         a_gj   <= in_gj;
         a_gk   <= in_gk;
-        a_meta <= {in_m, in_j, in_pb, in_skew, in_ctrl, in_lane_valid, in_lane_inside};
+        a_meta <= in_hdr;
     end
 
     // ---- valid bits and the beat's fields, stages 1 .. NST - 1 ----
@@ -369,8 +352,7 @@ module cube4_sha #(
         .out_ready (out_ready),
         .out_data  (fifo_out)
     );
-    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside,
-            out_rgba, out_idx} = fifo_out;
+    assign {out_hdr, out_rgba, out_idx} = fifo_out;
     wire unused_st_v = st_v[NST-1];     // e1's valid bit: push_q is its copy
 
 endmodule

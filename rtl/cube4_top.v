@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_top
 // -----------------------------------------------------------------------------
@@ -52,13 +53,12 @@ module cube4_top #(
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer DEPTH       = 65536,
     parameter integer ADDR_W      = 16,
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer BX_W   = DIM_W + 1,
-    parameter integer RI_W   = 2 * RMAP_BITS + 3
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_ADDR_LAYOUT,
+    `CUBE4_TAG_LAYOUT,
+    localparam integer BX_W   = DIM_W + 1,
+    localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
     input  wire                      clk,
     input  wire                      rst,
@@ -119,10 +119,9 @@ module cube4_top #(
 );
     localparam integer PV     = P * VOXEL_W;
     localparam integer GRAD_W = VOXEL_W + 5;
-    localparam integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P));
-    reg        busy_q;     // a frame runs: start accepted, last pixel beat not yet out
-    reg [31:0] cycles_q;
-    localparam integer TAG_W  = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 5 + 3 * P;
+    wire [VIEW_W-1:0]    cfg      = `CUBE4_VIEW_PACK;
+    wire [ADR_W_ALL-1:0] cfg_addr = `CUBE4_ADDR_PACK;
+    wire                 busy_q;   // a frame runs: start accepted, last pixel beat not yet out
 
     // ---------------------------------------------------------------- front end + memory
     wire                 fe_req_valid, fe_req_ready, mem_req_valid, mem_req_ready;
@@ -133,13 +132,8 @@ module cube4_top #(
     wire [PV-1:0]        rsp_data;
     wire [TAG_W-1:0]     rsp_tag;
     wire                 smp_valid, smp_ready, gra_in_valid, gra_in_ready;
+    wire [HDR_W-1:0]     smp_hdr;
     wire [PV-1:0]        smp_sample;
-    wire [P-1:0]         smp_lval, smp_lins;
-    wire [M_W-1:0]       smp_m;
-    wire [DIM_W-1:0]     smp_j;
-    wire [PB_W-1:0]      smp_pb;
-    wire [LANE_W-1:0]    smp_skew;
-    wire [6:0]           smp_ctrl;
     wire                 unused_fe_busy, unused_fe_done;
     wire [31:0]          unused_fe_cycles;
 
@@ -151,54 +145,27 @@ module cube4_top #(
         .ADDR_W      (ADDR_W),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_frontend (
-        .clk             (clk),
-        .rst             (rst),
-        .start           (start && !busy_q),
-        .busy            (unused_fe_busy),
-        .done            (unused_fe_done),
-        .cycles          (unused_fe_cycles),
-        .cfg_ni            (cfg_ni),
-        .cfg_nj            (cfg_nj),
-        .cfg_nk            (cfg_nk),
-        .cfg_nb            (cfg_nb),
-        .cfg_flip_i        (cfg_flip_i),
-        .cfg_flip_j        (cfg_flip_j),
-        .cfg_flip_k        (cfg_flip_k),
-        .cfg_ss_log2       (cfg_ss_log2),
-        .cfg_view_x        (cfg_view_x),
-        .cfg_view_y        (cfg_view_y),
-        .cfg_j_r0          (cfg_j_r0),
-        .cfg_k_r0          (cfg_k_r0),
-        .cfg_i_r1          (cfg_i_r1),
-        .cfg_i_rt          (cfg_i_rt),
-        .cfg_j_a0          (cfg_j_a0),
-        .cfg_j_lin         (cfg_j_lin),
-        .cfg_j_blk         (cfg_j_blk),
-        .cfg_k_a0          (cfg_k_a0),
-        .cfg_k_lin         (cfg_k_lin),
-        .cfg_k_blk         (cfg_k_blk),
-        .cfg_i_a0          (cfg_i_a0),
-        .cfg_i_pb          (cfg_i_pb),
-        .cfg_i_lin         (cfg_i_lin),
-        .mem_req_valid   (fe_req_valid),
-        .mem_req_ready   (fe_req_ready),
-        .mem_req_addr    (req_addr),
-        .mem_req_rden    (req_rden),
-        .mem_req_tag     (req_tag),
-        .mem_rsp_valid   (fe_rsp_valid),
-        .mem_rsp_ready   (fe_rsp_ready),
-        .mem_rsp_data    (rsp_data),
-        .mem_rsp_tag     (rsp_tag),
-        .smp_valid       (smp_valid),
-        .smp_ready       (smp_ready),
-        .smp_sample      (smp_sample),
-        .smp_lane_valid  (smp_lval),
-        .smp_lane_inside (smp_lins),
-        .smp_m           (smp_m),
-        .smp_j           (smp_j),
-        .smp_pb          (smp_pb),
-        .smp_skew        (smp_skew),
-        .smp_ctrl        (smp_ctrl)
+        .clk           (clk),
+        .rst           (rst),
+        .start         (start && !busy_q),
+        .busy          (unused_fe_busy),
+        .done          (unused_fe_done),
+        .cycles        (unused_fe_cycles),
+        .cfg           (cfg),
+        .cfg_addr      (cfg_addr),
+        .mem_req_valid (fe_req_valid),
+        .mem_req_ready (fe_req_ready),
+        .mem_req_addr  (req_addr),
+        .mem_req_rden  (req_rden),
+        .mem_req_tag   (req_tag),
+        .mem_rsp_valid (fe_rsp_valid),
+        .mem_rsp_ready (fe_rsp_ready),
+        .mem_rsp_data  (rsp_data),
+        .mem_rsp_tag   (rsp_tag),
+        .smp_valid     (smp_valid),
+        .smp_ready     (smp_ready),
+        .smp_hdr       (smp_hdr),
+        .smp_sample    (smp_sample)
     );
 
     cube4_stream_hold u_hold_req (
@@ -239,14 +206,9 @@ module cube4_top #(
 
     // ---------------------------------------------------------------- GRA
     wire                 gra_valid, gra_ready, sha_in_valid, sha_in_ready;
+    wire [HDR_W-1:0]     gra_hdr;
     wire [PV-1:0]        gra_sample;
     wire [P*GRAD_W-1:0]  gra_gi, gra_gj, gra_gk;
-    wire [P-1:0]         gra_lval, gra_lins;
-    wire [M_W-1:0]       gra_m;
-    wire [DIM_W-1:0]     gra_j;
-    wire [PB_W-1:0]      gra_pb;
-    wire [LANE_W-1:0]    gra_skew;
-    wire [6:0]           gra_ctrl;
 
     cube4_gra #(
         .P           (P),
@@ -255,41 +217,20 @@ module cube4_top #(
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_gra (
-        .clk             (clk),
-        .rst             (rst),
-        .cfg_ni          (cfg_ni),
-        .cfg_nj          (cfg_nj),
-        .cfg_nb          (cfg_nb),
-        .cfg_flip_i      (cfg_flip_i),
-        .cfg_flip_j      (cfg_flip_j),
-        .cfg_flip_k      (cfg_flip_k),
-        .cfg_ss_log2     (cfg_ss_log2),
-        .cfg_i_r1        (cfg_i_r1),
-        .cfg_view_x      (cfg_view_x),
-        .cfg_view_y      (cfg_view_y),
-        .in_valid        (gra_in_valid),
-        .in_ready        (gra_in_ready),
-        .in_sample       (smp_sample),
-        .in_lane_valid   (smp_lval),
-        .in_lane_inside  (smp_lins),
-        .in_m            (smp_m),
-        .in_j            (smp_j),
-        .in_pb           (smp_pb),
-        .in_skew         (smp_skew),
-        .in_ctrl         (smp_ctrl),
-        .out_valid       (gra_valid),
-        .out_ready       (gra_ready),
-        .out_sample      (gra_sample),
-        .out_gi          (gra_gi),
-        .out_gj          (gra_gj),
-        .out_gk          (gra_gk),
-        .out_lane_valid  (gra_lval),
-        .out_lane_inside (gra_lins),
-        .out_m           (gra_m),
-        .out_j           (gra_j),
-        .out_pb          (gra_pb),
-        .out_skew        (gra_skew),
-        .out_ctrl        (gra_ctrl)
+        .clk        (clk),
+        .rst        (rst),
+        .cfg        (cfg),
+        .in_valid   (gra_in_valid),
+        .in_ready   (gra_in_ready),
+        .in_hdr     (smp_hdr),
+        .in_sample  (smp_sample),
+        .out_valid  (gra_valid),
+        .out_ready  (gra_ready),
+        .out_hdr    (gra_hdr),
+        .out_sample (gra_sample),
+        .out_gi     (gra_gi),
+        .out_gj     (gra_gj),
+        .out_gk     (gra_gk)
     );
 
     cube4_stream_hold u_hold_gra (
@@ -298,14 +239,9 @@ module cube4_top #(
 
     // ---------------------------------------------------------------- SHA
     wire                       sha_valid, sha_ready, com_in_valid, com_in_ready;
+    wire [HDR_W-1:0]           sha_hdr;
     wire [P*(24+ALPHA_W)-1:0]  sha_rgba;
     wire [P*RI_W-1:0]          unused_sha_idx;
-    wire [P-1:0]               sha_lval, sha_lins;
-    wire [M_W-1:0]             sha_m;
-    wire [DIM_W-1:0]           sha_j;
-    wire [PB_W-1:0]            sha_pb;
-    wire [LANE_W-1:0]          sha_skew;
-    wire [6:0]                 sha_ctrl;
 
     cube4_sha #(
         .P           (P),
@@ -315,38 +251,26 @@ module cube4_top #(
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_sha (
-        .clk             (clk),
-        .rst             (rst),
-        .lut_we          (lut_we),
-        .lut_addr        (lut_addr),
-        .lut_data        (lut_data),
-        .rmap_we         (rmap_we),
-        .rmap_addr       (rmap_addr),
-        .rmap_data       (rmap_data),
-        .in_valid        (sha_in_valid),
-        .in_ready        (sha_in_ready),
-        .in_sample       (gra_sample),
-        .in_gi           (gra_gi),
-        .in_gj           (gra_gj),
-        .in_gk           (gra_gk),
-        .in_lane_valid   (gra_lval),
-        .in_lane_inside  (gra_lins),
-        .in_m            (gra_m),
-        .in_j            (gra_j),
-        .in_pb           (gra_pb),
-        .in_skew         (gra_skew),
-        .in_ctrl         (gra_ctrl),
-        .out_valid       (sha_valid),
-        .out_ready       (sha_ready),
-        .out_rgba        (sha_rgba),
-        .out_idx         (unused_sha_idx),
-        .out_lane_valid  (sha_lval),
-        .out_lane_inside (sha_lins),
-        .out_m           (sha_m),
-        .out_j           (sha_j),
-        .out_pb          (sha_pb),
-        .out_skew        (sha_skew),
-        .out_ctrl        (sha_ctrl)
+        .clk       (clk),
+        .rst       (rst),
+        .lut_we    (lut_we),
+        .lut_addr  (lut_addr),
+        .lut_data  (lut_data),
+        .rmap_we   (rmap_we),
+        .rmap_addr (rmap_addr),
+        .rmap_data (rmap_data),
+        .in_valid  (sha_in_valid),
+        .in_ready  (sha_in_ready),
+        .in_hdr    (gra_hdr),
+        .in_sample (gra_sample),
+        .in_gi     (gra_gi),
+        .in_gj     (gra_gj),
+        .in_gk     (gra_gk),
+        .out_valid (sha_valid),
+        .out_ready (sha_ready),
+        .out_hdr   (sha_hdr),
+        .out_rgba  (sha_rgba),
+        .out_idx   (unused_sha_idx)
     );
 
     cube4_stream_hold u_hold_sha (
@@ -362,60 +286,34 @@ module cube4_top #(
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
-        .clk            (clk),
-        .rst            (rst),
-        .cfg_ni         (cfg_ni),
-        .cfg_nj         (cfg_nj),
-        .cfg_nk         (cfg_nk),
-        .cfg_nb         (cfg_nb),
-        .cfg_flip_i     (cfg_flip_i),
-        .cfg_flip_j     (cfg_flip_j),
-        .cfg_flip_k     (cfg_flip_k),
-        .cfg_ss_log2    (cfg_ss_log2),
-        .cfg_i_r1       (cfg_i_r1),
-        .cfg_view_x     (cfg_view_x),
-        .cfg_view_y     (cfg_view_y),
-        .cfg_sx         (cfg_sx),
-        .cfg_sy         (cfg_sy),
-        .in_valid       (com_in_valid),
-        .in_ready       (com_in_ready),
-        .in_rgba        (sha_rgba),
-        .in_lane_valid  (sha_lval),
-        .in_lane_inside (sha_lins),
-        .in_m           (sha_m),
-        .in_j           (sha_j),
-        .in_pb          (sha_pb),
-        .in_skew        (sha_skew),
-        .in_ctrl        (sha_ctrl),
-        .pix_valid      (pix_valid),
-        .pix_ready      (pix_ready),
-        .pix_mask       (pix_mask),
-        .pix_m          (pix_m),
-        .pix_by         (pix_by),
-        .pix_bx         (pix_bx),
-        .pix_rgba       (pix_rgba),
-        .pix_eop        (pix_eop)
+        .clk       (clk),
+        .rst       (rst),
+        .cfg       (cfg),
+        .in_valid  (com_in_valid),
+        .in_ready  (com_in_ready),
+        .in_hdr    (sha_hdr),
+        .in_rgba   (sha_rgba),
+        .pix_valid (pix_valid),
+        .pix_ready (pix_ready),
+        .pix_mask  (pix_mask),
+        .pix_m     (pix_m),
+        .pix_by    (pix_by),
+        .pix_bx    (pix_bx),
+        .pix_rgba  (pix_rgba),
+        .pix_eop   (pix_eop)
     );
 
     // ---------------------------------------------------------------- frame control
-    wire       last_beat = pix_valid && pix_ready && pix_eop;
-    always @(posedge clk) begin
-        if (rst) begin
-            busy_q   <= 1'b0;
-            cycles_q <= 32'd0;
-        end else if (!busy_q) begin
-            if (start) begin
-                busy_q   <= 1'b1;
-                cycles_q <= 32'd1;
-            end
-        end else begin
-            cycles_q <= cycles_q + 32'd1;
-            if (last_beat) busy_q <= 1'b0;
-        end
-    end
-    assign busy   = busy_q;
-    assign done   = busy_q && last_beat;
-    assign cycles = cycles_q;
+    cube4_frame_ctl u_frame (
+        .clk       (clk),
+        .rst       (rst),
+        .start     (start),
+        .last_beat (pix_valid && pix_ready && pix_eop),
+        .busy      (busy_q),
+        .done      (done),
+        .cycles    (cycles)
+    );
+    assign busy = busy_q;
 
 endmodule
 `default_nettype wire

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_tri
 // -----------------------------------------------------------------------------
@@ -28,7 +29,7 @@
 //   WEIGHT_W     weight width W.                      4..12.   Default 8.
 //   MAX_DIM      largest volume dimension.            2..2048. Default 256.
 //   MAX_SS_LOG2  log2 of the largest supersampling.   0..3.    Default 0.
-//   (DIM_W, NB_W, LANE_W, M_W, SB_W: derived, as in cube4_cfb.)
+//   Derived widths and the layouts of cfg, in_tag and out_hdr: cube4_defs.vh.
 //
 // Latency
 //   Fixed 13-stage pipeline that moves on every cycle and carries a valid bit
@@ -44,14 +45,14 @@
 //   returns its entry.
 //
 // Ports
+//   cfg     view registers (cube4_defs.vh); TRI reads the three flips.
 //   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
-//           unsigned integer, 0 for lanes not read); in_t_* = the cube4_cfb tag.
-//   out_*   sample beats: out_sample lane q (unsigned VOXEL_W, Q0.VOXEL_W),
-//           out_lane_valid (lane holds a position < NI), out_lane_inside (the
-//           sample is inside the volume box, numerics.md section 4), out_m,
-//           out_j, out_pb, out_skew (lane q holds i = pb*P + t, t from the
-//           skew as in cube4_cfb), out_ctrl = {y_last, eop, sop, steps[3:0]}
-//           with steps = {old_y, old_x, y, x}.
+//           unsigned integer, 0 for lanes not read); in_tag = cube4_cfb's tag.
+//   out_*   sample beats: out_sample lane q (unsigned VOXEL_W, Q0.VOXEL_W);
+//           out_hdr the stream header (CUBE4_GEOMETRY): lane valid (position
+//           < NI), lane inside (the sample is inside the volume box, numerics.md
+//           section 4), m, j, pb, skew (lane q holds i = pb*P + t, lane_pos)
+//           and the control bits.
 //
 // Bit growth and rounding
 //   Each lerp rounds half up once (cube4_lerp); samples stay VOXEL_W bits.
@@ -64,54 +65,23 @@ module cube4_tri #(
     parameter integer WEIGHT_W    = 8,
     parameter integer MAX_DIM     = 256,
     parameter integer MAX_SS_LOG2 = 0,
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P))
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_TAG_LAYOUT
 ) (
     input  wire                  clk,
     input  wire                  rst,
-    input  wire                  cfg_flip_j,
-    input  wire                  cfg_flip_k,
-    input  wire                  cfg_flip_i,
+    input  wire [VIEW_W-1:0]     cfg,
     // input beats
     input  wire                  in_valid,
     output wire                  in_ready,
+    input  wire [TAG_W-1:0]      in_tag,
     input  wire [P*VOXEL_W-1:0]  in_data,
-    input  wire                  in_t_emit,
-    input  wire                  in_t_sop,
-    input  wire                  in_t_eop,
-    input  wire                  in_t_ywrap,
-    input  wire                  in_t_bb_we,
-    input  wire                  in_t_lower_mem,
-    input  wire                  in_t_upper_mem,
-    input  wire                  in_t_upper_use,
-    input  wire                  in_t_k0_odd,
-    input  wire [SB_W-1:0]       in_t_sb_addr,
-    input  wire [PB_W-1:0]       in_t_pb,
-    input  wire [WEIGHT_W-1:0]   in_t_wx,
-    input  wire [WEIGHT_W-1:0]   in_t_wy,
-    input  wire [WEIGHT_W-1:0]   in_t_wz,
-    input  wire [M_W-1:0]        in_t_m,
-    input  wire [DIM_W-1:0]      in_t_j,
-    input  wire [LANE_W-1:0]     in_t_skew,
-    input  wire                  in_t_y_last,
-    input  wire [3:0]            in_t_steps,
-    input  wire [P-1:0]          in_t_lane_valid,
-    input  wire [P-1:0]          in_t_lane_nbr,
-    input  wire [P-1:0]          in_t_lane_wrap,
     // output samples
     output wire                  out_valid,
     input  wire                  out_ready,
-    output wire [P*VOXEL_W-1:0]  out_sample,
-    output wire [P-1:0]          out_lane_valid,
-    output wire [P-1:0]          out_lane_inside,
-    output wire [M_W-1:0]        out_m,
-    output wire [DIM_W-1:0]      out_j,
-    output wire [PB_W-1:0]       out_pb,
-    output wire [LANE_W-1:0]     out_skew,
-    output wire [6:0]            out_ctrl
+    output wire [HDR_W-1:0]      out_hdr,
+    output wire [P*VOXEL_W-1:0]  out_sample
 );
     generate
         if (P < 1 || P > 64) begin : g_bad_p
@@ -125,11 +95,36 @@ module cube4_tri #(
         end
     endgenerate
 
+    `CUBE4_VIEW_FIELDS(cfg);
+    // the tag's fields (CUBE4_TAG_LAYOUT)
+    wire                in_t_emit      = in_tag[TAG_EMIT];
+    wire                in_t_sop       = in_tag[TAG_SOP];
+    wire                in_t_eop       = in_tag[TAG_EOP];
+    wire                in_t_ywrap     = in_tag[TAG_YWRAP];
+    wire                in_t_bb_we     = in_tag[TAG_BBWE];
+    wire                in_t_lower_mem = in_tag[TAG_LMEM];
+    wire                in_t_upper_mem = in_tag[TAG_UMEM];
+    wire                in_t_upper_use = in_tag[TAG_UUSE];
+    wire                in_t_k0_odd    = in_tag[TAG_K0ODD];
+    wire [SB_W-1:0]     in_t_sb_addr   = in_tag[TAG_SB +: SB_W];
+    wire [PB_W-1:0]     in_t_pb        = in_tag[TAG_PB +: PB_W];
+    wire [WEIGHT_W-1:0] in_t_wx        = in_tag[TAG_WX +: WEIGHT_W];
+    wire [WEIGHT_W-1:0] in_t_wy        = in_tag[TAG_WY +: WEIGHT_W];
+    wire [WEIGHT_W-1:0] in_t_wz        = in_tag[TAG_WZ +: WEIGHT_W];
+    wire [M_W-1:0]      in_t_m         = in_tag[TAG_M +: M_W];
+    wire [DIM_W-1:0]    in_t_j         = in_tag[TAG_J +: DIM_W];
+    wire [LANE_W-1:0]   in_t_skew      = in_tag[TAG_SKEW +: LANE_W];
+    wire                in_t_y_last    = in_tag[TAG_YLAST];
+    wire [3:0]          in_t_steps     = in_tag[TAG_STEPS +: 4];
+    wire [P-1:0]        in_t_lane_valid = in_tag[TAG_LVAL +: P];
+    wire [P-1:0]        in_t_lane_nbr  = in_tag[TAG_LNBR +: P];
+    wire [P-1:0]        in_t_lane_wrap = in_tag[TAG_LWRAP +: P];
+
     localparam integer VW    = VOXEL_W;
     localparam integer PV    = P * VW;
     localparam integer BBMAX = 1 << PB_W;   // beam-buffer entries (>= NBMAX)
-    // metadata that rides along unchanged to the output
-    localparam integer META_W = M_W + DIM_W + PB_W + LANE_W + 7 + 2 * P;
+    // the stream header, formed at s0, rides along unchanged to the output
+    localparam integer META_W = HDR_W;
 
     // Credit-based flow control (see Latency): the output FIFO's credit.
     localparam integer FIFO_DEPTH = 32;     // >= 18 cycles from s0 to the FIFO's read
@@ -172,6 +167,7 @@ module cube4_tri #(
         s0_wz    <= in_t_wz;
         s0_nbr   <= in_t_lane_nbr;
         s0_wrap  <= in_t_lane_wrap;
+        // CUBE4_GEOMETRY's header, MSB first
         s0_meta  <= {in_t_m, in_t_j, in_t_pb, in_t_skew,
                      in_t_y_last, in_t_eop, in_t_sop, in_t_steps,
                      in_t_lane_valid, in_inside};
@@ -472,7 +468,7 @@ module cube4_tri #(
     );
 
     assign out_sample = fifo_out[PV-1:0];
-    assign {out_m, out_j, out_pb, out_skew, out_ctrl, out_lane_valid, out_lane_inside} = fifo_out[OUT_W-1:PV];
+    assign out_hdr    = fifo_out[OUT_W-1:PV];
 
 endmodule
 `default_nettype wire

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_frontend_harness  (simulation only)
 // -----------------------------------------------------------------------------
@@ -30,15 +31,11 @@ module cube4_frontend_harness #(
     parameter integer ADDR_W      = 12,
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer OPT_GRA     = 0,    // 1: cube4_gra after the front end, gradients dumped too
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
-    parameter integer PB_W   = ((MAX_DIM + P - 1) / P > 1) ? $clog2((MAX_DIM + P - 1) / P) : 1,
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2),
-    parameter integer SB_W   = $clog2(MAX_DIM * ((MAX_DIM + P - 1) / P)),
-    // the front end's tag width (cube4_frontend's TAG_W for these parameters)
-    parameter integer GRAD_W = VOXEL_W + 5,
-    parameter integer TAG_W  = 10 + SB_W + PB_W + 3 * WEIGHT_W + M_W + DIM_W + LANE_W + 5 + 3 * P
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_ADDR_LAYOUT,
+    `CUBE4_TAG_LAYOUT,
+    localparam integer GRAD_W = VOXEL_W + 5
 ) (
     output wire                  clk,
     input  wire                  rst,
@@ -46,7 +43,9 @@ module cube4_frontend_harness #(
     input  wire                  load,        // pulse: read the image file, stream it in
     input  wire [31:0]           load_words,  // words per bank to load
     output wire                  load_done,   // level: the last load finished
-    // stall injection, probability /256 per port and cycle
+    // stall injection, probability /256 per port and cycle; seed: the test's
+    // random seed (COCOTB_RANDOM_SEED), taken at reset
+    input  wire [31:0]           seed,
     input  wire [7:0]            stall_req,
     input  wire [7:0]            stall_rsp,
     input  wire [7:0]            stall_out,
@@ -96,61 +95,24 @@ module cube4_frontend_harness #(
     reg [7:0]        stall_out_q;
     reg              dump_en_q;
     reg              start_q;
-    reg [DIM_W-1:0]  cfg_ni_q;
-    reg [DIM_W-1:0]  cfg_nj_q;
-    reg [DIM_W-1:0]  cfg_nk_q;
-    reg [NB_W-1:0]   cfg_nb_q;
-    reg              cfg_flip_i_q;
-    reg              cfg_flip_j_q;
-    reg              cfg_flip_k_q;
-    reg [1:0]        cfg_ss_log2_q;
-    reg [WEIGHT_W:0] cfg_view_x_q;
-    reg [WEIGHT_W:0] cfg_view_y_q;
-    reg [LANE_W-1:0] cfg_j_r0_q;
-    reg [LANE_W-1:0] cfg_k_r0_q;
-    reg [LANE_W-1:0] cfg_i_r1_q;
-    reg [LANE_W-1:0] cfg_i_rt_q;
-    reg [ADDR_W-1:0] cfg_j_a0_q;
-    reg [ADDR_W-1:0] cfg_j_lin_q;
-    reg [ADDR_W-1:0] cfg_j_blk_q;
-    reg [ADDR_W-1:0] cfg_k_a0_q;
-    reg [ADDR_W-1:0] cfg_k_lin_q;
-    reg [ADDR_W-1:0] cfg_k_blk_q;
-    reg [ADDR_W-1:0] cfg_i_a0_q;
-    reg [ADDR_W-1:0] cfg_i_pb_q;
-    reg [ADDR_W-1:0] cfg_i_lin_q;
+    reg [31:0]       seed_q;
+    // the register ports as the design's buses (cube4_defs.vh); the front end
+    // has no use for SX and SY
+    wire [DIM_W-1:0]     cfg_sx = '0, cfg_sy = '0;
+    reg [VIEW_W-1:0]     cfg_q;
+    reg [ADR_W_ALL-1:0]  cfg_addr_q;
     always @(posedge clk) begin
         rst_q         <= rst;
         load_q        <= load;
         load_words_q  <= load_words;
+        seed_q        <= seed;
         stall_req_q   <= stall_req;
         stall_rsp_q   <= stall_rsp;
         stall_out_q   <= stall_out;
         dump_en_q     <= dump_en;
         start_q       <= start;
-        cfg_ni_q      <= cfg_ni;
-        cfg_nj_q      <= cfg_nj;
-        cfg_nk_q      <= cfg_nk;
-        cfg_nb_q      <= cfg_nb;
-        cfg_flip_i_q  <= cfg_flip_i;
-        cfg_flip_j_q  <= cfg_flip_j;
-        cfg_flip_k_q  <= cfg_flip_k;
-        cfg_ss_log2_q <= cfg_ss_log2;
-        cfg_view_x_q  <= cfg_view_x;
-        cfg_view_y_q  <= cfg_view_y;
-        cfg_j_r0_q    <= cfg_j_r0;
-        cfg_k_r0_q    <= cfg_k_r0;
-        cfg_i_r1_q    <= cfg_i_r1;
-        cfg_i_rt_q    <= cfg_i_rt;
-        cfg_j_a0_q    <= cfg_j_a0;
-        cfg_j_lin_q   <= cfg_j_lin;
-        cfg_j_blk_q   <= cfg_j_blk;
-        cfg_k_a0_q    <= cfg_k_a0;
-        cfg_k_lin_q   <= cfg_k_lin;
-        cfg_k_blk_q   <= cfg_k_blk;
-        cfg_i_a0_q    <= cfg_i_a0;
-        cfg_i_pb_q    <= cfg_i_pb;
-        cfg_i_lin_q   <= cfg_i_lin;
+        cfg_q         <= `CUBE4_VIEW_PACK;
+        cfg_addr_q    <= `CUBE4_ADDR_PACK;
     end
 
     localparam integer PV = P * VOXEL_W;
@@ -208,13 +170,8 @@ module cube4_frontend_harness #(
     wire              smp_valid_f, smp_ready_f;
     wire              unused_fe_busy, unused_fe_done;
     wire [31:0]       unused_fe_cycles;
+    wire [HDR_W-1:0]  smp_hdr;
     wire [PV-1:0]     smp_sample;
-    wire [P-1:0]      smp_lane_valid, smp_lane_inside;
-    wire [M_W-1:0]    smp_m;
-    wire [DIM_W-1:0]  smp_j;
-    wire [PB_W-1:0]   smp_pb;
-    wire [LANE_W-1:0] smp_skew;
-    wire [6:0]        smp_ctrl;
 
     cube4_frontend #(
         .P           (P),
@@ -230,29 +187,8 @@ module cube4_frontend_harness #(
         .busy            (unused_fe_busy),
         .done            (unused_fe_done),
         .cycles          (unused_fe_cycles),
-        .cfg_ni          (cfg_ni_q),
-        .cfg_nj          (cfg_nj_q),
-        .cfg_nk          (cfg_nk_q),
-        .cfg_nb          (cfg_nb_q),
-        .cfg_flip_i      (cfg_flip_i_q),
-        .cfg_flip_j      (cfg_flip_j_q),
-        .cfg_flip_k      (cfg_flip_k_q),
-        .cfg_ss_log2     (cfg_ss_log2_q),
-        .cfg_view_x      (cfg_view_x_q),
-        .cfg_view_y      (cfg_view_y_q),
-        .cfg_j_r0        (cfg_j_r0_q),
-        .cfg_k_r0        (cfg_k_r0_q),
-        .cfg_i_r1        (cfg_i_r1_q),
-        .cfg_i_rt        (cfg_i_rt_q),
-        .cfg_j_a0        (cfg_j_a0_q),
-        .cfg_j_lin       (cfg_j_lin_q),
-        .cfg_j_blk       (cfg_j_blk_q),
-        .cfg_k_a0        (cfg_k_a0_q),
-        .cfg_k_lin       (cfg_k_lin_q),
-        .cfg_k_blk       (cfg_k_blk_q),
-        .cfg_i_a0        (cfg_i_a0_q),
-        .cfg_i_pb        (cfg_i_pb_q),
-        .cfg_i_lin       (cfg_i_lin_q),
+        .cfg             (cfg_q),
+        .cfg_addr        (cfg_addr_q),
         .mem_req_valid   (req_valid),
         .mem_req_ready   (req_ready),
         .mem_req_addr    (req_addr),
@@ -264,23 +200,18 @@ module cube4_frontend_harness #(
         .mem_rsp_tag     (rsp_tag),
         .smp_valid       (smp_valid_f),
         .smp_ready       (smp_ready_f),
-        .smp_sample      (smp_sample),
-        .smp_lane_valid  (smp_lane_valid),
-        .smp_lane_inside (smp_lane_inside),
-        .smp_m           (smp_m),
-        .smp_j           (smp_j),
-        .smp_pb          (smp_pb),
-        .smp_skew        (smp_skew),
-        .smp_ctrl        (smp_ctrl)
+        .smp_hdr         (smp_hdr),
+        .smp_sample      (smp_sample)
     );
 
     // request: front end -> stall -> memory
     cube4_sim_stall #(
         .DATA_W (P * ADDR_W + P + TAG_W),
-        .SEED   (32'hACE1)
+        .STREAM (0)
     ) u_stall_req (
         .clk       (clk),
         .rst       (rst_q),
+        .seed      (seed_q),
         .stall     (stall_req_q),
         .in_valid  (req_valid),
         .in_ready  (req_ready),
@@ -318,10 +249,11 @@ module cube4_frontend_harness #(
     // response: memory -> stall -> front end
     cube4_sim_stall #(
         .DATA_W (PV + TAG_W),
-        .SEED   (32'h1D2C)
+        .STREAM (1)
     ) u_stall_rsp (
         .clk       (clk),
         .rst       (rst_q),
+        .seed      (seed_q),
         .stall     (stall_rsp_q),
         .in_valid  (rsp_valid_m),
         .in_ready  (rsp_ready_m),
@@ -333,13 +265,8 @@ module cube4_frontend_harness #(
 
     // ------------------------------------------------------------ optional GRA
     wire              snk_valid, snk_ready;
+    wire [HDR_W-1:0]  snk_hdr;
     wire [PV-1:0]     snk_sample;
-    wire [P-1:0]      snk_lval, snk_lins;
-    wire [M_W-1:0]    snk_m;
-    wire [DIM_W-1:0]  snk_j;
-    wire [PB_W-1:0]   snk_pb;
-    wire [LANE_W-1:0] snk_skew;
-    wire [6:0]        snk_ctrl;
     wire [3*P*GRAD_W-1:0] snk_grad;   // {gi, gj, gk}, zero without GRA
 
     generate
@@ -351,68 +278,49 @@ module cube4_frontend_harness #(
                 .MAX_DIM     (MAX_DIM),
                 .MAX_SS_LOG2 (MAX_SS_LOG2)
             ) u_gra (
-                .clk             (clk),
-                .rst             (rst_q),
-                .cfg_ni          (cfg_ni_q),
-                .cfg_nj          (cfg_nj_q),
-                .cfg_nb          (cfg_nb_q),
-                .cfg_flip_i      (cfg_flip_i_q),
-                .cfg_flip_j      (cfg_flip_j_q),
-                .cfg_flip_k      (cfg_flip_k_q),
-                .cfg_ss_log2     (cfg_ss_log2_q),
-                .cfg_i_r1        (cfg_i_r1_q),
-                .cfg_view_x      (cfg_view_x_q),
-                .cfg_view_y      (cfg_view_y_q),
-                .in_valid        (smp_valid_f),
-                .in_ready        (smp_ready_f),
-                .in_sample       (smp_sample),
-                .in_lane_valid   (smp_lane_valid),
-                .in_lane_inside  (smp_lane_inside),
-                .in_m            (smp_m),
-                .in_j            (smp_j),
-                .in_pb           (smp_pb),
-                .in_skew         (smp_skew),
-                .in_ctrl         (smp_ctrl),
-                .out_valid       (snk_valid),
-                .out_ready       (snk_ready),
-                .out_sample      (snk_sample),
-                .out_gi          (snk_grad[2*P*GRAD_W +: P*GRAD_W]),
-                .out_gj          (snk_grad[P*GRAD_W +: P*GRAD_W]),
-                .out_gk          (snk_grad[0 +: P*GRAD_W]),
-                .out_lane_valid  (snk_lval),
-                .out_lane_inside (snk_lins),
-                .out_m           (snk_m),
-                .out_j           (snk_j),
-                .out_pb          (snk_pb),
-                .out_skew        (snk_skew),
-                .out_ctrl        (snk_ctrl)
+                .clk        (clk),
+                .rst        (rst_q),
+                .cfg        (cfg_q),
+                .in_valid   (smp_valid_f),
+                .in_ready   (smp_ready_f),
+                .in_hdr     (smp_hdr),
+                .in_sample  (smp_sample),
+                .out_valid  (snk_valid),
+                .out_ready  (snk_ready),
+                .out_hdr    (snk_hdr),
+                .out_sample (snk_sample),
+                .out_gi     (snk_grad[2*P*GRAD_W +: P*GRAD_W]),
+                .out_gj     (snk_grad[P*GRAD_W +: P*GRAD_W]),
+                .out_gk     (snk_grad[0 +: P*GRAD_W])
             );
         end else begin : g_no_gra
             assign snk_valid   = smp_valid_f;
             assign smp_ready_f = snk_ready;
+            assign snk_hdr     = smp_hdr;
             assign snk_sample  = smp_sample;
-            assign snk_lval    = smp_lane_valid;
-            assign snk_lins    = smp_lane_inside;
-            assign snk_m       = smp_m;
-            assign snk_j       = smp_j;
-            assign snk_pb      = smp_pb;
-            assign snk_skew    = smp_skew;
-            assign snk_ctrl    = smp_ctrl;
             assign snk_grad    = {(3*P*GRAD_W){1'b0}};
         end
     endgenerate
+    wire [P-1:0]      snk_lins = snk_hdr[HDR_INSIDE +: P];
+    wire [P-1:0]      snk_lval = snk_hdr[HDR_LVALID +: P];
+    wire [6:0]        snk_ctrl = snk_hdr[HDR_CTRL +: 7];
+    wire [LANE_W-1:0] snk_skew = snk_hdr[HDR_SKEW +: LANE_W];
+    wire [PB_W-1:0]   snk_pb   = snk_hdr[HDR_PB +: PB_W];
+    wire [DIM_W-1:0]  snk_j    = snk_hdr[HDR_J +: DIM_W];
+    wire [M_W-1:0]    snk_m    = snk_hdr[HDR_M +: M_W];
 
     // ------------------------------------------------------------ sink
     // random ready, dump every accepted beat; the frame ends with the eop beat
-    reg [15:0] lfsr_q;
-    reg [31:0] beats_q, cycles_q;
+    reg  [15:0] lfsr_q;
+    wire [15:0] snk_mix = seed_q[15:0] ^ seed_q[31:16] ^ 16'h5A5A;   // the sink's stall pattern
+    reg  [31:0] beats_q, cycles_q;
     reg        busy_q;
     always @(posedge clk) begin
-        if (rst_q) lfsr_q <= 16'h5A5A;
+        if (rst_q) lfsr_q <= (snk_mix == 16'h0) ? 16'h5A5A : snk_mix;
         else     lfsr_q <= {lfsr_q[14:0], lfsr_q[15] ^ lfsr_q[13] ^ lfsr_q[12] ^ lfsr_q[10]};
     end
     assign snk_ready = (lfsr_q[7:0] >= stall_out_q);
-    wire last_beat = snk_valid && snk_ready && snk_ctrl[5];
+    wire last_beat = snk_valid && snk_ready && snk_ctrl[CTRL_EOP];
 
     always @(posedge clk) begin
         if (rst_q) begin

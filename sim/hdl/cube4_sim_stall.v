@@ -12,18 +12,21 @@
 //
 // Parameters
 //   DATA_W  payload width.   1..4096.
-//   SEED    LFSR seed.       any non-zero 16-bit value.
+//   STREAM  which stream of the testbench (0..255): streams with the same
+//           seed get different stall patterns.
 //
 // Ports
+//   seed   in  [32]  the test's random seed (COCOTB_RANDOM_SEED), taken at reset
 //   stall  in  [8]   stall probability, /256 (0: never, 255: almost always)
 //   in_*, out_*      the stream (any format)
 // =============================================================================
 module cube4_sim_stall #(
     parameter integer DATA_W = 8,
-    parameter integer SEED   = 32'hACE1
+    parameter integer STREAM = 0
 ) (
     input  wire              clk,
     input  wire              rst,
+    input  wire [31:0]       seed,
     input  wire [7:0]        stall,
     input  wire              in_valid,
     output wire              in_ready,
@@ -32,9 +35,12 @@ module cube4_sim_stall #(
     input  wire              out_ready,
     output wire [DATA_W-1:0] out_data
 );
-    reg [15:0] lfsr_q;
+    // the LFSR's start state from the seed and the stream (never zero)
+    wire [15:0] mix  = seed[15:0] ^ seed[31:16] ^ (16'h9E37 * 16'(STREAM + 1));
+    wire [15:0] init = (mix == 16'd0) ? 16'hACE1 : mix;
+    reg  [15:0] lfsr_q;
     always @(posedge clk) begin
-        if (rst) lfsr_q <= SEED[15:0];
+        if (rst) lfsr_q <= init;
         else     lfsr_q <= {lfsr_q[14:0], lfsr_q[15] ^ lfsr_q[13] ^ lfsr_q[12] ^ lfsr_q[10]};
     end
     wire go = (lfsr_q[7:0] >= stall);

@@ -51,6 +51,7 @@ SOURCES = [
     RTL_DIR / "cube4_voxel_mem.v",
     RTL_DIR / "cube4_cfb.v",
     RTL_DIR / "cube4_tri.v",
+    RTL_DIR / "cube4_frame_ctl.v",
     RTL_DIR / "cube4_frontend.v",
     RTL_DIR / "cube4_delay_line.v",
     RTL_DIR / "cube4_gra.v",

@@ -1,0 +1,214 @@
+// =============================================================================
+// cube4_defs.vh -- the one definitions file of the Cube-4 RTL
+// -----------------------------------------------------------------------------
+// Everything that more than one unit must agree on is defined here once:
+//   * the derived widths, as functions of the top parameters
+//     (P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W, ADDR_W);
+//   * the layout of the view-register bus (cfg), of the address-register bus
+//     (cfg_addr), of the CFB's beat tag (CFB -> memory -> TRI) and of the
+//     stream header that travels TRI -> GRA -> SHA -> COM, with named fields;
+//   * the lane arithmetic: mod P and the position t a lane holds (eq. 1).
+//
+// Use
+//   `include "cube4_defs.vh" at the top of the file (include directory rtl/).
+//   The layouts are localparam lists to be placed in a module's parameter port
+//   list after its own parameters, so that ports can use them:
+//       module cube4_x #(
+//           parameter integer P = 8, parameter integer MAX_DIM = 256,
+//           parameter integer MAX_SS_LOG2 = 0,
+//           `CUBE4_GEOMETRY
+//       ) ( ... input wire [HDR_W-1:0] in_hdr, ... );
+//   A list needs the parameters it names in scope:
+//       CUBE4_GEOMETRY    P, MAX_DIM, MAX_SS_LOG2
+//       CUBE4_VIEW_LAYOUT the above and WEIGHT_W
+//       CUBE4_TAG_LAYOUT  the above
+//       CUBE4_ADDR_LAYOUT ADDR_W
+//   `CUBE4_LANE_FUNCTIONS in a module body (after CUBE4_GEOMETRY) defines the
+//   lane functions. `CUBE4_VIEW_FIELDS(bus) in a module body declares one wire
+//   cfg_<name> per view register, read from the bus.
+//   Localparams are not overridable: a unit's instantiation sets only the top
+//   parameters it names.
+//
+// Bit growth and rounding: none here (widths and bit positions only).
+// =============================================================================
+`ifndef CUBE4_DEFS_VH
+`define CUBE4_DEFS_VH
+
+// ---------------------------------------------------------------- geometry
+//   DIM_W    a dimension 0..MAX_DIM
+//   NBMAX    partial beams per beam at most, ceil(MAX_DIM / P)
+//   NB_W     a partial-beam count 0..NBMAX;  PB_W  a partial-beam index
+//   LANE_W   a lane index or a coordinate mod P
+//   M_W      a sample slice index 0..M (M = (MAX_DIM - 1) * S + 1)
+//   SB_W     a slot j * NB + pb of a slice (slice buffers)
+//   IW       a position pb * P + t + 1 along i
+//   HDR_*    the stream header (LSB first):
+//              INSIDE [P]   the lane's sample is inside the volume box
+//              LVALID [P]   the lane holds a position i < NI
+//              CTRL   [7]   bit 0 X-step, 1 Y-step of slice m; 2 old X-step,
+//                           3 old Y-step (slice m - 1); 4 sop; 5 eop;
+//                           6 the row is j = NJ - 1
+//              SKEW   [LANE_W]  lane alignment of the row (lane_pos)
+//              PB     [PB_W], J [DIM_W], M [M_W]   partial beam, row, slice
+`define CUBE4_GEOMETRY \
+    localparam integer DIM_W  = $clog2(MAX_DIM + 1), \
+    localparam integer NBMAX  = (MAX_DIM + P - 1) / P, \
+    localparam integer NB_W   = $clog2(NBMAX + 1), \
+    localparam integer PB_W   = (NBMAX > 1) ? $clog2(NBMAX) : 1, \
+    localparam integer LANE_W = (P > 1) ? $clog2(P) : 1, \
+    localparam integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2), \
+    localparam integer SB_W   = $clog2(MAX_DIM * NBMAX), \
+    localparam integer IW     = $clog2(MAX_DIM + 2 * P + 1), \
+    localparam integer HDR_INSIDE = 0, \
+    localparam integer HDR_LVALID = P, \
+    localparam integer HDR_CTRL   = 2 * P, \
+    localparam integer HDR_SKEW   = 2 * P + 7, \
+    localparam integer HDR_PB     = HDR_SKEW + LANE_W, \
+    localparam integer HDR_J      = HDR_PB + PB_W, \
+    localparam integer HDR_M      = HDR_J + DIM_W, \
+    localparam integer HDR_W      = HDR_M + M_W, \
+    localparam integer CTRL_SX = 0, \
+    localparam integer CTRL_SY = 1, \
+    localparam integer CTRL_OSX = 2, \
+    localparam integer CTRL_OSY = 3, \
+    localparam integer CTRL_SOP = 4, \
+    localparam integer CTRL_EOP = 5, \
+    localparam integer CTRL_YLAST = 6
+
+// ---------------------------------------------------------------- view registers
+// The host's view registers (golden/cube4/memory.py frontend_regs, top_regs),
+// stable from start to done, as one bus (LSB first):
+//   NI, NJ, NK [DIM_W]   traversal-frame dims;  NB [NB_W] = ceil(NI / P)
+//   FLIP_I/J/K [1]       axis traversed backwards;  SS_LOG2 [2] = log2 S
+//   VIEW_X/Y [W+1]       slopes Q1.W in [0, 1]
+//   J_R0, K_R0 [LANE_W]  start coordinate mod P of axes j, k
+//   I_R1, I_RT [LANE_W]  (NI - 1) mod P; block threshold of axis i
+//   SX, SY [DIM_W]       stepx(M-1), stepy(M-1) (COM's pixel addresses)
+`define CUBE4_VIEW_LAYOUT \
+    localparam integer VIEW_NI      = 0, \
+    localparam integer VIEW_NJ      = VIEW_NI + DIM_W, \
+    localparam integer VIEW_NK      = VIEW_NJ + DIM_W, \
+    localparam integer VIEW_NB      = VIEW_NK + DIM_W, \
+    localparam integer VIEW_FLIP_I  = VIEW_NB + NB_W, \
+    localparam integer VIEW_FLIP_J  = VIEW_FLIP_I + 1, \
+    localparam integer VIEW_FLIP_K  = VIEW_FLIP_J + 1, \
+    localparam integer VIEW_SS_LOG2 = VIEW_FLIP_K + 1, \
+    localparam integer VIEW_VIEW_X  = VIEW_SS_LOG2 + 2, \
+    localparam integer VIEW_VIEW_Y  = VIEW_VIEW_X + WEIGHT_W + 1, \
+    localparam integer VIEW_J_R0    = VIEW_VIEW_Y + WEIGHT_W + 1, \
+    localparam integer VIEW_K_R0    = VIEW_J_R0 + LANE_W, \
+    localparam integer VIEW_I_R1    = VIEW_K_R0 + LANE_W, \
+    localparam integer VIEW_I_RT    = VIEW_I_R1 + LANE_W, \
+    localparam integer VIEW_SX      = VIEW_I_RT + LANE_W, \
+    localparam integer VIEW_SY      = VIEW_SX + DIM_W, \
+    localparam integer VIEW_W       = VIEW_SY + DIM_W
+
+// The view bus from the individual register ports (cube4_top and the harnesses).
+`define CUBE4_VIEW_PACK {cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
+    cfg_view_y, cfg_view_x, cfg_ss_log2, cfg_flip_k, cfg_flip_j, cfg_flip_i, \
+    cfg_nb, cfg_nk, cfg_nj, cfg_ni}
+
+// One wire per view register, read from a view bus (module body).
+`define CUBE4_VIEW_FIELDS(bus) \
+    wire [DIM_W-1:0]    cfg_ni      = bus[VIEW_NI +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_nj      = bus[VIEW_NJ +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_nk      = bus[VIEW_NK +: DIM_W]; \
+    wire [NB_W-1:0]     cfg_nb      = bus[VIEW_NB +: NB_W]; \
+    wire                cfg_flip_i  = bus[VIEW_FLIP_I]; \
+    wire                cfg_flip_j  = bus[VIEW_FLIP_J]; \
+    wire                cfg_flip_k  = bus[VIEW_FLIP_K]; \
+    wire [1:0]          cfg_ss_log2 = bus[VIEW_SS_LOG2 +: 2]; \
+    wire [WEIGHT_W:0]   cfg_view_x  = bus[VIEW_VIEW_X +: WEIGHT_W + 1]; \
+    wire [WEIGHT_W:0]   cfg_view_y  = bus[VIEW_VIEW_Y +: WEIGHT_W + 1]; \
+    wire [LANE_W-1:0]   cfg_j_r0    = bus[VIEW_J_R0 +: LANE_W]; \
+    wire [LANE_W-1:0]   cfg_k_r0    = bus[VIEW_K_R0 +: LANE_W]; \
+    wire [LANE_W-1:0]   cfg_i_r1    = bus[VIEW_I_R1 +: LANE_W]; \
+    wire [LANE_W-1:0]   cfg_i_rt    = bus[VIEW_I_RT +: LANE_W]; \
+    wire [DIM_W-1:0]    cfg_sx      = bus[VIEW_SX +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_sy      = bus[VIEW_SY +: DIM_W]
+
+// ---------------------------------------------------------------- address registers
+// The address unit's start values and strides (golden/cube4/memory.py), ADDR_W
+// bits each, as one bus (LSB first): J_A0, J_LIN, J_BLK, K_A0, K_LIN, K_BLK,
+// I_A0, I_PB, I_LIN.
+`define CUBE4_ADDR_LAYOUT \
+    localparam integer ADR_J_A0  = 0 * ADDR_W, \
+    localparam integer ADR_J_LIN = 1 * ADDR_W, \
+    localparam integer ADR_J_BLK = 2 * ADDR_W, \
+    localparam integer ADR_K_A0  = 3 * ADDR_W, \
+    localparam integer ADR_K_LIN = 4 * ADDR_W, \
+    localparam integer ADR_K_BLK = 5 * ADDR_W, \
+    localparam integer ADR_I_A0  = 6 * ADDR_W, \
+    localparam integer ADR_I_PB  = 7 * ADDR_W, \
+    localparam integer ADR_I_LIN = 8 * ADDR_W, \
+    localparam integer ADR_W_ALL = 9 * ADDR_W
+
+`define CUBE4_ADDR_PACK {cfg_i_lin, cfg_i_pb, cfg_i_a0, cfg_k_blk, cfg_k_lin, cfg_k_a0, \
+    cfg_j_blk, cfg_j_lin, cfg_j_a0}
+
+// ---------------------------------------------------------------- CFB beat tag
+// Travels with a memory read beat, unchanged, from cube4_cfb through the
+// memory to cube4_tri (LSB first):
+//   STEPS [4]   {old Y, old X, Y, X} steps of the emitted row's slice
+//   YLAST       the emitted row is j = NJ - 1
+//   SKEW [LANE_W], J [DIM_W], M [M_W]   the emitted row (as the header)
+//   WZ, WY, WX [W]   resampling weights of the emitted row (Q0.W)
+//   PB [PB_W]   partial beam (beam-buffer slot);  SB [SB_W] slice-buffer slot
+//   K0ODD       slice-buffer parity of the lower slice
+//   UUSE        upper slice used (r > 0);  UMEM / LMEM  upper / lower slice
+//               comes from memory
+//   BBWE        write the beam buffers;  YWRAP  the current row is zero
+//   EOP, SOP    last / first sample beat of the frame;  EMIT  beat emits a row
+//   LWRAP [P]   lane holds t = P - 1 (beam extension)
+//   LNBR [P]    lane's position + 1 < NI;  LVAL [P]  lane's position < NI
+`define CUBE4_TAG_LAYOUT \
+    localparam integer TAG_STEPS = 0, \
+    localparam integer TAG_YLAST = 4, \
+    localparam integer TAG_SKEW  = 5, \
+    localparam integer TAG_J     = TAG_SKEW + LANE_W, \
+    localparam integer TAG_M     = TAG_J + DIM_W, \
+    localparam integer TAG_WZ    = TAG_M + M_W, \
+    localparam integer TAG_WY    = TAG_WZ + WEIGHT_W, \
+    localparam integer TAG_WX    = TAG_WY + WEIGHT_W, \
+    localparam integer TAG_PB    = TAG_WX + WEIGHT_W, \
+    localparam integer TAG_SB    = TAG_PB + PB_W, \
+    localparam integer TAG_K0ODD = TAG_SB + SB_W, \
+    localparam integer TAG_UUSE  = TAG_K0ODD + 1, \
+    localparam integer TAG_UMEM  = TAG_UUSE + 1, \
+    localparam integer TAG_LMEM  = TAG_UMEM + 1, \
+    localparam integer TAG_BBWE  = TAG_LMEM + 1, \
+    localparam integer TAG_YWRAP = TAG_BBWE + 1, \
+    localparam integer TAG_EOP   = TAG_YWRAP + 1, \
+    localparam integer TAG_SOP   = TAG_EOP + 1, \
+    localparam integer TAG_EMIT  = TAG_SOP + 1, \
+    localparam integer TAG_LWRAP = TAG_EMIT + 1, \
+    localparam integer TAG_LNBR  = TAG_LWRAP + P, \
+    localparam integer TAG_LVAL  = TAG_LNBR + P, \
+    localparam integer TAG_W     = TAG_LVAL + P
+
+// ---------------------------------------------------------------- lane arithmetic
+// Lane q reads bank q and holds the position t of the partial beam with
+// (c_i + c_j + c_k) mod P = q (Teramac paper, eq. 1), skew = (c_j + c_k) mod P:
+//   t = (q - skew) mod P               i not flipped
+//   t = (I_R1 + skew - q) mod P        i flipped
+// mod_p normalises a value in (-P, 2P).
+`define CUBE4_LANE_FUNCTIONS \
+    function automatic [LANE_W-1:0] mod_p(input signed [LANE_W+2:0] v); \
+        reg signed [LANE_W+2:0] w; \
+        begin \
+            w = v; \
+            if (w < 0) w = w + $signed((LANE_W+3)'(P)); \
+            if (w >= $signed((LANE_W+3)'(P))) w = w - $signed((LANE_W+3)'(P)); \
+            mod_p = w[LANE_W-1:0]; \
+        end \
+    endfunction \
+    function automatic [LANE_W-1:0] lane_pos(input integer q, input [LANE_W-1:0] skew, \
+                                             input flip_i, input [LANE_W-1:0] i_r1); \
+        begin \
+            lane_pos = flip_i \
+                ? mod_p($signed({3'b000, i_r1}) + $signed({3'b000, skew}) - $signed((LANE_W+3)'(q))) \
+                : mod_p($signed((LANE_W+3)'(q)) - $signed({3'b000, skew})); \
+        end \
+    endfunction
+
+`endif

@@ -1,0 +1,89 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_cfb_harness  (simulation only)
+// -----------------------------------------------------------------------------
+// Purpose
+//   cube4_cfb for tb/cube4_cfb: the host's register ports one by one (packed
+//   into the view and address buses as cube4_top packs them) and the tag
+//   fields the testbench checks, read from the tag by its layout
+//   (cube4_defs.vh), so that the testbench needs no copy of either layout.
+//
+// Parameters: as cube4_cfb.   Latency: that of cube4_cfb (no registers here).
+// =============================================================================
+module cube4_cfb_harness #(
+    parameter integer P           = 8,
+    parameter integer MAX_DIM     = 256,
+    parameter integer ADDR_W      = 16,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_ADDR_LAYOUT,
+    `CUBE4_TAG_LAYOUT
+) (
+    input  wire                  clk,
+    input  wire                  rst,
+    input  wire                  start,
+    output wire                  busy,
+    input  wire [DIM_W-1:0]      cfg_ni,
+    input  wire [DIM_W-1:0]      cfg_nj,
+    input  wire [DIM_W-1:0]      cfg_nk,
+    input  wire [NB_W-1:0]       cfg_nb,
+    input  wire                  cfg_flip_i,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire [1:0]            cfg_ss_log2,
+    input  wire [WEIGHT_W:0]     cfg_view_x,
+    input  wire [WEIGHT_W:0]     cfg_view_y,
+    input  wire [LANE_W-1:0]     cfg_j_r0,
+    input  wire [LANE_W-1:0]     cfg_k_r0,
+    input  wire [LANE_W-1:0]     cfg_i_r1,
+    input  wire [LANE_W-1:0]     cfg_i_rt,
+    input  wire [ADDR_W-1:0]     cfg_j_a0,
+    input  wire [ADDR_W-1:0]     cfg_j_lin,
+    input  wire [ADDR_W-1:0]     cfg_j_blk,
+    input  wire [ADDR_W-1:0]     cfg_k_a0,
+    input  wire [ADDR_W-1:0]     cfg_k_lin,
+    input  wire [ADDR_W-1:0]     cfg_k_blk,
+    input  wire [ADDR_W-1:0]     cfg_i_a0,
+    input  wire [ADDR_W-1:0]     cfg_i_pb,
+    input  wire [ADDR_W-1:0]     cfg_i_lin,
+    output wire                  req_valid,
+    input  wire                  req_ready,
+    output wire [P*ADDR_W-1:0]   req_addr,
+    output wire [P-1:0]          req_rden,
+    output wire [M_W-1:0]        tag_m,
+    output wire [PB_W-1:0]       tag_pb,
+    output wire                  tag_emit,
+    output wire                  tag_lower_mem,
+    output wire                  tag_upper_mem
+);
+    wire [DIM_W-1:0] cfg_sx = '0, cfg_sy = '0;   // COM's registers: not used by CFB
+    wire [TAG_W-1:0] tag;
+    cube4_cfb #(
+        .P           (P),
+        .MAX_DIM     (MAX_DIM),
+        .ADDR_W      (ADDR_W),
+        .WEIGHT_W    (WEIGHT_W),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_cfb (
+        .clk       (clk),
+        .rst       (rst),
+        .start     (start),
+        .busy      (busy),
+        .cfg       (`CUBE4_VIEW_PACK),
+        .cfg_addr  (`CUBE4_ADDR_PACK),
+        .req_valid (req_valid),
+        .req_ready (req_ready),
+        .req_addr  (req_addr),
+        .req_rden  (req_rden),
+        .req_tag   (tag)
+    );
+    assign tag_m         = tag[TAG_M +: M_W];
+    assign tag_pb        = tag[TAG_PB +: PB_W];
+    assign tag_emit      = tag[TAG_EMIT];
+    assign tag_lower_mem = tag[TAG_LMEM];
+    assign tag_upper_mem = tag[TAG_UMEM];
+endmodule
+`default_nettype wire
