@@ -34,6 +34,10 @@ RTL_SRCS     := $(sort $(wildcard rtl/*.v))
 RTL_MODULES  := $(basename $(notdir $(RTL_SRCS)))   # one module per file, named as the file
 SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v))
 SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
+# the vendor layer: each file replaces the generic module of the same name
+ECP5_SRCS    := $(sort $(wildcard rtl/ecp5/*.v))
+ECP5_MODULES := $(basename $(notdir $(ECP5_SRCS)))
+ECP5_BASE    := $(filter-out $(addprefix rtl/,$(notdir $(ECP5_SRCS))),$(RTL_SRCS))
 LINT_WAIVERS := rtl/lint_waivers.vlt
 LINT_FLAGS   := --lint-only -Wall --quiet -Irtl
 
@@ -53,11 +57,12 @@ LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4
 LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,VOXEL_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1
 LINT_SETS_cube4_ring_shift  := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_beam_ext    := P=1 P=2,DATA_W=1 P=64,DATA_W=256
-LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096 READY_COPIES=8
-LINT_SETS_cube4_credit_fifo := DEPTH=4 DATA_W=1 DATA_W=643,DEPTH=32,NGRP=9,CREDIT_COPIES=4 DATA_W=64,DEPTH=64,NGRP=64
+LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096 DATA_W=65
+LINT_SETS_cube4_credit_fifo := DEPTH=4 DATA_W=1 DATA_W=643,DEPTH=32 DATA_W=64,DEPTH=64
+LINT_SETS_cube4_prim_copies := N=8 W=64,N=512 N=3,W=2,RESET=0
 LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
 LINT_SETS_cube4_delay_line  := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=300
-LINT_SETS_cube4_sdp_ram     := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=544
+LINT_SETS_cube4_sdp_ram     := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=544 DEPTH=5000,DATA_W=544,IN_REG=1 DEPTH=32,DATA_W=68,IN_REG=1
 LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8
 LINT_SETS_cube4_com         := P=1 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3 P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8
 LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1
@@ -79,6 +84,9 @@ lint: setup
 	@$(foreach m,$(RTL_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
 	    echo "lint rtl    $(m) [$(s)]" && \
 	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS) && )) \
+	$(foreach m,$(ECP5_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
+	    echo "lint ecp5   $(m) [$(s)]" && \
+	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS) && )) \
 	$(foreach m,$(SIM_MODULES),\
 	    echo "lint sim    $(m) [default, --timing]" && \
 	    $(VERILATOR) $(LINT_FLAGS) --timing --top-module $(m) $(LINT_WAIVERS) $(RTL_SRCS) $(SIM_HDL_SRCS) && ) \

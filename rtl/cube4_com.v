@@ -145,7 +145,6 @@ module cube4_com #(
     localparam integer WC_W  = CW + 8;          // w * C'
 
     localparam integer NS      = 9;             // stages S1 .. S9
-    localparam integer NRAM_EN = 8;             // valid-bit copies for the buffers' block RAMs
     localparam integer FIFO_DEPTH = 16;         // >= 12 cycles from acceptance to the FIFO's read
     reg  [NS:1] v_s;                    // stage valid bits
     wire        hazard;                 // the beat L back is in R0..S7 (see above)
@@ -300,7 +299,7 @@ module cube4_com #(
     // (unpacked arrays: a packed [stage][field] array of fields that are not word
     // aligned made Verilator's model about 20% slower at P = 8)
     reg [SP_W-1:0]    sp_s    [1:NS];    // slice position: read at S1, written at the end of S9
-    reg [PB_W-1:0]    pb_s    [1:3];     // beam position: read at S2, written at the end of S3
+    reg [PB_W-1:0]    pb_s    [1:2];     // beam position: read at S2, written at the end of S3 (RAM's registers)
     reg [P-1:0]       ins_s   [1:7];
     reg [P-1:0]       fin_s   [2:NS];    // from S2 on (computed from S1's parts)
     reg [M_W-1:0]     m_s     [1:NS];
@@ -330,7 +329,7 @@ module cube4_com #(
         for (k = 3; k <= NS; k = k + 1) begin
             fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];  by_s[k] <= by_s[k-1];
         end
-        for (k = 2; k <= 3; k = k + 1) pb_s[k] <= pb_s[k-1];
+        pb_s[2] <= pb_s[1];
         for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
         for (k = 2; k <= 5; k = k + 1) begin
             fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
@@ -359,48 +358,27 @@ module cube4_com #(
     end
     assign hazard = hazard_q;
 
-    // Valid-bit copies (flip-flops of their own, kept apart in synthesis) for
-    // the block RAMs' write enables: v_s[3] (beam buffer) and v_s[NS] (slice
-    // buffer), NRAM_EN copies each.
-    wire [NRAM_EN-1:0] v3_ram, v9_ram;
-    genvar c;
-    generate
-        for (c = 0; c < NRAM_EN; c = c + 1) begin : g_vram
-            reg v3_q, v9_q;
-            (* keep *)
-            always @(posedge clk) begin
-                if (rst) begin
-                    v3_q <= 1'b0;
-                    v9_q <= 1'b0;
-                end else begin
-                    v3_q <= v_s[2];
-                    v9_q <= v_s[NS-1];
-                end
-            end
-            assign v3_ram[c] = v3_q;
-            assign v9_ram[c] = v9_q;
-        end
-    endgenerate
-
     // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
     // Both RAM outputs go straight into a register (a block RAM's clock-to-out
     // is most of a cycle on an FPGA).
     wire [PA-1:0] acc_new;              // written at the end of S9: results after slice m
     wire [PA-1:0] a1_ram, a2_ram;       // S2, S3: RAM outputs
-    // The slice buffer registers its addresses itself (copies of sp_s[1] and
-    // sp_s[NS], one per two slices of its block RAMs): it gets them one stage
-    // early, on every cycle.
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .ADDR_REG(1), .EN_COPIES(NRAM_EN)) u_bp_slice (
-        .clk(clk), .addr_ld({NRAM_EN{1'b1}}), .rd_en({NRAM_EN{1'b1}}), .rd_addr(pos_sp), .rd_data(a1_ram),
-        .wr_en(v9_ram), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
+    // Both buffers register their addresses and write enables themselves (with
+    // copies for their block RAMs, cube4_sdp_ram IN_REG): they get them one
+    // stage early. The slice buffer is read at S1 (sp_s[1]) and written at the
+    // end of S9 (sp_s[NS], v_s[NS]).
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .IN_REG(1)) u_bp_slice (
+        .clk(clk), .rd_en(1'b1), .rd_addr(pos_sp), .rd_data(a1_ram),
+        .wr_en(v_s[NS-1]), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
     wire [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;   // per lane registers (g_buf)
     // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
     // previous beat's a1 (prev_a1_q).
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .EN_COPIES(NRAM_EN)) u_bp_beam (
-        .clk(clk), .addr_ld({NRAM_EN{1'b0}}), .rd_en({NRAM_EN{1'b1}}), .rd_addr(pb_s[2]), .rd_data(a2_ram),
-        .wr_en(v3_ram), .wr_addr(pb_s[3]), .wr_data(s3_a1));
+    // (read at S2: pb_s[2]; written at the end of S3: pb_s[3], v_s[3])
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1)) u_bp_beam (
+        .clk(clk), .rd_en(1'b1), .rd_addr(pb_s[1]), .rd_data(a2_ram),
+        .wr_en(v_s[2]), .wr_addr(pb_s[2]), .wr_data(s3_a1));
     reg nb1_q;                          // NB = 1
     always @(posedge clk) begin
         nb1_q <= (cfg_nb == NB_W'(1));
@@ -409,15 +387,11 @@ module cube4_com #(
     // simulator writes each in place); v4_q is the lane's copy of v_s[4]
     wire [PA-1:0] s5_back, s5_prevb;   // this beat's and the previous beat's "back" (g_buf)
     wire [PA-1:0] back;
+    wire [P-1:0]  v4;
+    cube4_prim_copies #(.N(P)) u_v4 (.clk(clk), .rst(rst), .d(v_s[3]), .q(v4));
     generate
         for (q = 0; q < P; q = q + 1) begin : g_buf
             localparam integer LO = q * AC_W;
-            reg v4_q;
-            (* keep *)
-            always @(posedge clk) begin
-                if (rst) v4_q <= 1'b0;
-                else     v4_q <= v_s[3];
-            end
             reg [AC_W-1:0] s3_a1_q, s4_a1_q, s4_a2_q, prev_a1_q_l;
             reg [AC_W-1:0] s5_back_q, s5_prevb_q, lastb_q;
             always @(posedge clk) begin
@@ -426,7 +400,7 @@ module cube4_com #(
                 s4_a2_q    <= a2_ram[LO +: AC_W];
                 s5_back_q  <= back[LO +: AC_W];
                 s5_prevb_q <= lastb_q;      // the "back" of the last beat before this one
-                if (v4_q) begin
+                if (v4[q]) begin
                     prev_a1_q_l <= s4_a1_q;
                     lastb_q     <= back[LO +: AC_W];
                 end
@@ -521,45 +495,30 @@ module cube4_com #(
     endgenerate
 
     // ---- output FIFO: an S9 beat with a finished ray, or the frame's last beat ----
-    // push: P + 1 flip-flop copies, one per group of the FIFO's word (each
-    // about a lane's width); give: an S9 beat that leaves nothing returns its
-    // FIFO entry.
-    localparam integer NPUSH = P + 1;
+    // give: an S9 beat that leaves nothing returns its FIFO entry.
     wire out_d = v_s[NS-1] && ((fin_s[NS-1] != '0) || eop_s[NS-1]);   // S8: will push
-    wire [NPUSH-1:0] push;
-    reg              give_q;
+    reg  give_q;
     always @(posedge clk) begin
         if (rst) give_q <= 1'b0;
         else     give_q <= v_s[NS-1] && !out_d;
     end
-    generate
-        for (c = 0; c < NPUSH; c = c + 1) begin : g_push
-            reg push_q;
-            (* keep *)
-            always @(posedge clk) begin
-                if (rst) push_q <= 1'b0;
-                else     push_q <= out_d;
-            end
-            assign push[c] = push_q;
-        end
-    endgenerate
 
     // the word: P lane groups of AC_W bits (pixels), then the shared fields
     localparam integer SH_W  = P + M_W + BX_W + P * BX_W + 1;
     localparam integer OUT_W = PA + SH_W;
     wire [OUT_W-1:0] fifo_out;
+    wire unused_credit_d;
     cube4_credit_fifo #(
-        .DATA_W        (OUT_W),
-        .DEPTH         (FIFO_DEPTH),
-        .NGRP          (NPUSH),
-        .CREDIT_COPIES (1)
+        .DATA_W (OUT_W),
+        .DEPTH  (FIFO_DEPTH)
     ) u_fifo (
         .clk       (clk),
         .rst       (rst),
         .take      (take),
         .give      (give_q),
         .credit    (credit),
-        .push      (push),
+        .credit_d  (unused_credit_d),
+        .push_d    (out_d),
         .in_data   ({fin_s[NS], m_s[NS], by_s[NS], bx_s[NS], eop_s[NS], pix_d}),
         .out_valid (pix_valid),
         .out_ready (pix_ready),

@@ -20,12 +20,12 @@
 //   Storage: DEPTH words with an asynchronous read (distributed / LUT RAM on
 //   an FPGA): out_data is the memory's read port at the read pointer (a
 //   register), out_valid a register; the consumer registers the data. The
-//   words are stored as NGRP groups of bits; each group has its own copy
-//   of the write enable (push[g], which the caller gives as NGRP copies of
-//   one flip-flop) and its own write and read pointers, so that no single
-//   net drives every memory cell of a wide word. The memory takes the place
-//   of the pipeline's last register: the caller pushes the results of its
-//   last stage.
+//   words are stored as groups of 64 bits; each group has its own copy of
+//   the write enable (cube4_prim_copies of push_d) and its own write and
+//   read pointers, so that no single net drives every memory cell of a wide
+//   word. The memory takes the place of the pipeline's last register: the
+//   caller says one cycle ahead (push_d) that its last stage will hold an
+//   item, and the FIFO stores that stage's results.
 //
 // Parameters
 //   DATA_W     width of an item.                        1..4096.  Default 8.
@@ -33,8 +33,6 @@
 //              For full throughput DEPTH must be at least the number of
 //              cycles from a `take` to the first cycle its item could be read
 //              (the pipeline's stages + 2).
-//   NGRP       groups of the word (copies of push).     1..64.    Default 1.
-//   CREDIT_COPIES  copies of credit (flip-flops).       1..64.    Default 1.
 //
 // Latency
 //   An item pushed at a clock edge is on out_valid/out_data right after that
@@ -46,12 +44,14 @@
 //   clk, rst        clock, synchronous active-high reset (empties the FIFO and
 //                   drops every reservation)
 //   take            in   an item was accepted by the pipeline this cycle
-//                        (allowed only when credit[0] = 1)
+//                        (allowed only when credit = 1)
 //   give            in   an item left the pipeline this cycle without a push
-//   credit          out  [CREDIT_COPIES] registers, all equal: a take is allowed
-//   push            in   [NGRP] store in_data this cycle (all bits equal; each
-//                        should be a flip-flop of its own). Each push uses the
-//                        reservation of its item.
+//   credit          out  a register: a take is allowed
+//   credit_d        out  the value credit takes at the next edge, for a
+//                        consumer that keeps its own register copies of credit
+//                        (cube4_prim_copies, reset to 1)
+//   push_d          in   in_data of the next cycle is an item: it is stored
+//                        then. Each push uses the reservation of its item.
 //   in_data         in   [DATA_W] any format
 //   out_valid/out_ready/out_data   output stream (same format)
 //
@@ -59,16 +59,15 @@
 // =============================================================================
 module cube4_credit_fifo #(
     parameter integer DATA_W        = 8,
-    parameter integer DEPTH         = 16,
-    parameter integer NGRP          = 1,
-    parameter integer CREDIT_COPIES = 1
+    parameter integer DEPTH         = 16
 ) (
     input  wire                     clk,
     input  wire                     rst,
     input  wire                     take,
     input  wire                     give,
-    output wire [CREDIT_COPIES-1:0] credit,
-    input  wire [NGRP-1:0]          push,
+    output wire                     credit,
+    output wire                     credit_d,
+    input  wire                     push_d,
     input  wire [DATA_W-1:0]        in_data,
     output wire                     out_valid,
     input  wire                     out_ready,
@@ -82,15 +81,13 @@ module cube4_credit_fifo #(
         if (DEPTH < 4 || DEPTH > 64 || (1 << AW) != DEPTH) begin : g_bad_depth
             $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
         end
-        if (NGRP < 1 || NGRP > 64 || NGRP > DATA_W) begin : g_bad_ngrp
-            $error("cube4_credit_fifo: NGRP = %0d is out of range 1..min(64, DATA_W)", NGRP);
-        end
-        if (CREDIT_COPIES < 1 || CREDIT_COPIES > 64) begin : g_bad_copies
-            $error("cube4_credit_fifo: CREDIT_COPIES = %0d is out of range 1..64", CREDIT_COPIES);
-        end
     endgenerate
 
-    localparam integer GW = (DATA_W + NGRP - 1) / NGRP;     // bits per group (the last may be fewer)
+    localparam integer GW   = 64;                            // bits per group (the last may be fewer)
+    localparam integer NGRP = (DATA_W + GW - 1) / GW;
+    // the write enable: one flip-flop copy per group
+    wire [NGRP-1:0] push;
+    cube4_prim_copies #(.N(NGRP)) u_push (.clk(clk), .rst(rst), .d(push_d), .q(push));
     localparam [AW:0]  DEPTH_C = DEPTH[AW:0];
 
     // out_ready comes from the next unit, often from far away on a chip, so
@@ -127,19 +124,13 @@ module cube4_credit_fifo #(
     wire res_lt_d   = (res_q < DEPTH_C);
     wire up   = take && !give && !rd;                       // res_d = res_q + 1
     wire same = take ? (give != rd) : (!give && !rd);       // res_d = res_q
-    wire credit_d = up ? res_lt_dm1 : (same ? res_lt_d : 1'b1);
-    genvar c;
-    generate
-        for (c = 0; c < CREDIT_COPIES; c = c + 1) begin : g_credit
-            reg credit_q;
-            (* keep *)                  // one copy per consumer: never merged
-            always @(posedge clk) begin
-                if (rst) credit_q <= 1'b1;
-                else     credit_q <= credit_d;
-            end
-            assign credit[c] = credit_q;
-        end
-    endgenerate
+    assign credit_d = up ? res_lt_dm1 : (same ? res_lt_d : 1'b1);
+    reg credit_q;
+    always @(posedge clk) begin
+        if (rst) credit_q <= 1'b1;
+        else     credit_q <= credit_d;
+    end
+    assign credit = credit_q;
 
     // ---- the memory, per group: own pointers, own write enable ----
     wire [DATA_W-1:0] rd_data;

@@ -104,8 +104,8 @@ module cube4_gra #(
     `CUBE4_LANE_FUNCTIONS
 
     // ------------------------------------------------------------ stepping
-    // The output FIFO's credit comes as NSTEP flip-flops and flush_q has NSTEP
-    // copies, so each group of registers (each delay line, the window and
+    // The output FIFO's credit and flush_q have NSTEP register copies each
+    // (cube4_prim_copies), so each group of registers (each delay line, the window and
     // counters) gets its own step net: no single net drives every clock
     // enable of the unit.
     localparam integer NSTEP = 7;    // 0..5 the delay lines, 6 window and counters
@@ -177,15 +177,9 @@ module cube4_gra #(
         else if (step && eop)       flush_d = 1'b1;
     end
     always @(posedge clk) flush_q <= flush_d;
+    cube4_prim_copies #(.N(NSTEP), .RESET(0)) u_flush (
+        .clk(clk), .rst(rst), .d(flush_d), .q(flush_rep));
     genvar q;
-    generate
-        for (q = 0; q < NSTEP; q = q + 1) begin : g_flush
-            reg fl_q;
-            (* keep *)
-            always @(posedge clk) fl_q <= flush_d;
-            assign flush_rep[q] = fl_q;
-        end
-    endgenerate
 
     always @(posedge clk) begin
         if (rst) begin
@@ -482,43 +476,31 @@ module cube4_gra #(
         g2_prod <= prod_d;
     end
 
-    // ---- g3: the output FIFO's memory; push = g2 holds a beat ----
-    // push comes as NGRP flip-flop copies of g2_v (one per 64 bits of the word)
+    // ---- g3: the output FIFO's memory; g1 holds a beat: push at g3 ----
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
-    localparam integer NGRP  = (OUT_W + 63) / 64;
-    wire [NGRP-1:0] push;
-    genvar c;
-    generate
-        for (c = 0; c < NGRP; c = c + 1) begin : g_push
-            reg push_q;
-            (* keep *)
-            always @(posedge clk) begin
-                if (rst) push_q <= 1'b0;
-                else     push_q <= g1_v;
-            end
-            assign push[c] = push_q;
-        end
-    endgenerate
     wire [OUT_W-1:0] fifo_out;
+    wire unused_credit;                 // (en_rep: the step nets' own copies)
+    wire credit_d;
+    cube4_prim_copies #(.N(NSTEP), .RST_VAL(64'd1)) u_credit (
+        .clk(clk), .rst(rst), .d(credit_d), .q(en_rep));
     cube4_credit_fifo #(
-        .DATA_W        (OUT_W),
-        .DEPTH         (FIFO_DEPTH),
-        .NGRP          (NGRP),
-        .CREDIT_COPIES (NSTEP)
+        .DATA_W (OUT_W),
+        .DEPTH  (FIFO_DEPTH)
     ) u_fifo (
         .clk       (clk),
         .rst       (rst),
         .take      (take),
         .give      (1'b0),
-        .credit    (en_rep),
-        .push      (push),
+        .credit    (unused_credit),
+        .credit_d  (credit_d),
+        .push_d    (g1_v),
         .in_data   ({g2_meta, g2_s, gi_x, gj_x, gk_d}),
         .out_valid (out_valid),
         .out_ready (out_ready),
         .out_data  (fifo_out)
     );
     assign {out_hdr, out_sample, out_gi, out_gj, out_gk} = fifo_out;
-    wire unused_g2_v = g2_v;            // push_q is its copy
+    wire unused_g2_v = g2_v;            // the FIFO's push copies are its copies
 
 endmodule
 `default_nettype wire

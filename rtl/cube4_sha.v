@@ -317,43 +317,28 @@ module cube4_sha #(
         end
     endgenerate
 
-    // ---- e2: the output FIFO's memory; push = stage e1 holds a beat ----
-    // push comes as P + 1 flip-flop copies, one per group of the FIFO's word.
-    localparam integer NPUSH = P + 1;
-    wire [NPUSH-1:0] push;
-    genvar c;
-    generate
-        for (c = 0; c < NPUSH; c = c + 1) begin : g_push
-            reg push_q;
-            (* keep *)
-            always @(posedge clk) begin
-                if (rst) push_q <= 1'b0;
-                else     push_q <= st_v[NST-2];
-            end
-            assign push[c] = push_q;
-        end
-    endgenerate
+    // ---- e2: the output FIFO's memory; stage e1 holds a beat: push at e2 ----
     localparam integer OUT_W = META_W + P * LUT_W + P * RI_W;
     wire [OUT_W-1:0] fifo_out;
+    wire unused_credit_d;
     cube4_credit_fifo #(
-        .DATA_W        (OUT_W),
-        .DEPTH         (FIFO_DEPTH),
-        .NGRP          (NPUSH),
-        .CREDIT_COPIES (1)
+        .DATA_W (OUT_W),
+        .DEPTH  (FIFO_DEPTH)
     ) u_fifo (
         .clk       (clk),
         .rst       (rst),
         .take      (take),
         .give      (1'b0),
         .credit    (credit),
-        .push      (push),
+        .credit_d  (unused_credit_d),
+        .push_d    (st_v[NST-2]),
         .in_data   ({e_meta, e_rgba, e_idx}),
         .out_valid (out_valid),
         .out_ready (out_ready),
         .out_data  (fifo_out)
     );
     assign {out_hdr, out_rgba, out_idx} = fifo_out;
-    wire unused_st_v = st_v[NST-1];     // e1's valid bit: push_q is its copy
+    wire unused_st_v = st_v[NST-1];     // e1's valid bit: the FIFO's push copies are its copies
 
 endmodule
 `default_nettype wire

@@ -16,13 +16,11 @@
 //   cycle it loads the pushed item. out_ready moves only the read pointer
 //   and the state bits, so a late out_ready (e.g. a downstream hazard check)
 //   does not fan out to every data flip-flop's clock enable.
-//   in_ready can be had as READY_COPIES identical registers (kept apart in
-//   synthesis), so that a unit's stall enable is driven by one register per
-//   group of flip-flops instead of one register for all of them.
+//   The free flags are register copies (cube4_prim_copies), one per 64 data
+//   bits.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
-//   READY_COPIES  copies of in_ready.    Range 1..512.   Default 1.
 //
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
@@ -32,20 +30,18 @@
 // Ports
 //   clk, rst                 clock, synchronous active-high reset (empties it)
 //   in_valid/in_ready/in_data   input stream  (in_data: any format, DATA_W bits);
-//                            in_ready [READY_COPIES]: every bit is the same
-//                            ready, each from its own flip-flop
+//                            in_ready is a register
 //   out_valid/out_ready/out_data output stream (same format)
 //
 // Bit growth and rounding: none (storage only).
 // =============================================================================
 module cube4_skid #(
-    parameter integer DATA_W       = 8,
-    parameter integer READY_COPIES = 1
+    parameter integer DATA_W = 8
 ) (
     input  wire              clk,
     input  wire              rst,
     input  wire              in_valid,
-    output wire [READY_COPIES-1:0] in_ready,
+    output wire              in_ready,
     input  wire [DATA_W-1:0] in_data,
     output wire              out_valid,
     input  wire              out_ready,
@@ -54,9 +50,6 @@ module cube4_skid #(
     generate
         if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
             $error("cube4_skid: DATA_W = %0d is out of range 1..4096", DATA_W);
-        end
-        if (READY_COPIES < 1 || READY_COPIES > 512) begin : g_bad_copies
-            $error("cube4_skid: READY_COPIES = %0d is out of range 1..512", READY_COPIES);
         end
     endgenerate
 
@@ -95,51 +88,33 @@ module cube4_skid #(
     wire free1_d = !(push &&  wp_q) && (free1_now || (pop &&  rp_q));
     localparam integer GRP_W = 64;                           // data bits per flag copy
     localparam integer NGRP  = (DATA_W + GRP_W - 1) / GRP_W;
+    wire [2*NGRP-1:0] free_q;           // copy g: {free1, free0}
+    cube4_prim_copies #(.N(NGRP), .W(2), .RST_VAL(64'd3)) u_free (
+        .clk(clk), .rst(rst), .d({free1_d, free0_d}), .q(free_q));
+    assign {free1_now, free0_now} = free_q[1:0];
     genvar g;
     generate
         for (g = 0; g < NGRP; g = g + 1) begin : g_grp
             localparam integer LO = g * GRP_W;
             localparam integer W  = (DATA_W - LO < GRP_W) ? DATA_W - LO : GRP_W;
-            reg free0_q, free1_q;
-            (* keep *)   // one copy per group: never merged
-            always @(posedge clk) begin
-                if (rst) begin
-                    free0_q <= 1'b1;
-                    free1_q <= 1'b1;
-                end else begin
-                    free0_q <= free0_d;
-                    free1_q <= free1_d;
-                end
-            end
             reg [W-1:0] d0_q, d1_q;     // this group's bits of the two entries
             always @(posedge clk) begin
-                if (free0_q) d0_q <= in_data[LO +: W];
-                if (free1_q) d1_q <= in_data[LO +: W];
+                if (free_q[2*g])     d0_q <= in_data[LO +: W];
+                if (free_q[2*g + 1]) d1_q <= in_data[LO +: W];
             end
             assign e0_q[LO +: W] = d0_q;
             assign e1_q[LO +: W] = d1_q;
-            if (g == 0) begin : g_flags
-                assign free0_now = free0_q;
-                assign free1_now = free1_q;
-            end
         end
     endgenerate
 
-    // in_ready: READY_COPIES flip-flops holding !full_q. "keep" stops
-    // synthesis from merging them back into one (they have the same input).
+    // in_ready: a register holding !full_q
     wire full_d = (push && !pop) ? nonempty_q : ((pop && !push) ? 1'b0 : full_q);
-    genvar c;
-    generate
-        for (c = 0; c < READY_COPIES; c = c + 1) begin : g_ready
-            reg ready_q;
-            (* keep *)
-            always @(posedge clk) begin
-                if (rst) ready_q <= 1'b1;
-                else     ready_q <= !full_d;
-            end
-            assign in_ready[c] = ready_q;
-        end
-    endgenerate
+    reg  ready_q;
+    always @(posedge clk) begin
+        if (rst) ready_q <= 1'b1;
+        else     ready_q <= !full_d;
+    end
+    assign in_ready = ready_q;
     assign out_valid = nonempty_q;
     assign out_data  = rp_q ? e1_q : e0_q;
 

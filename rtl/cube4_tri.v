@@ -373,7 +373,7 @@ module cube4_tri #(
     // LERP_LAT stages after s4, the z-lerp 2 * LERP_LAT stages after.
     localparam integer LERP_LAT = 3;
     localparam integer NL       = 3 * LERP_LAT;
-    reg [NL:1]                       lv_q;
+    reg [NL-1:1]                     lv_q;     // (stage NL: the FIFO's push copies)
     reg [META_W-1:0]   lmeta_q [1:NL];
     reg [WEIGHT_W-1:0] lwy_q [1:LERP_LAT-1];     // (the last stage: each lane's wy_l)
     reg [WEIGHT_W-1:0] lwz_q [1:2*LERP_LAT-1];   // (the last stage: each lane's wz_l)
@@ -381,7 +381,7 @@ module cube4_tri #(
 
     always @(posedge clk) begin
         if (rst) lv_q <= '0;
-        else     lv_q <= {lv_q[NL-1:1], s4_v};
+        else     lv_q <= {lv_q[NL-2:1], s4_v};
     end
     integer kl;
     always @(posedge clk) begin
@@ -439,28 +439,27 @@ module cube4_tri #(
     endgenerate
 
     // ------------------------------------------------------ output FIFO
-    // lv_q[NL] (a register) is the push; an s3 beat that leaves without being
-    // emitted gives its entry back.
+    // lv_q[NL-1] says the z-lerp's result is an item at the next cycle; an s3
+    // beat that leaves without being emitted gives its entry back.
     localparam integer OUT_W = PV + META_W;
-    localparam integer NGRP  = (OUT_W + 63) / 64;
     reg give_q;
     always @(posedge clk) begin
         if (rst) give_q <= 1'b0;
         else     give_q <= s3_take && s3_v && !s3_emit;
     end
     wire [OUT_W-1:0] fifo_out;
+    wire unused_credit_d;
     cube4_credit_fifo #(
-        .DATA_W        (OUT_W),
-        .DEPTH         (FIFO_DEPTH),
-        .NGRP          (NGRP),
-        .CREDIT_COPIES (1)
+        .DATA_W (OUT_W),
+        .DEPTH  (FIFO_DEPTH)
     ) u_fifo (
         .clk       (clk),
         .rst       (rst),
         .take      (take),
         .give      (give_q),
         .credit    (credit),
-        .push      ({NGRP{lv_q[NL]}}),
+        .credit_d  (unused_credit_d),
+        .push_d    (lv_q[NL-1]),
         .in_data   ({lmeta_q[NL], l_sample}),
         .out_valid (out_valid),
         .out_ready (out_ready),

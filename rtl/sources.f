@@ -3,6 +3,7 @@
 # synthesis. For synthesis, a file with a counterpart of the same name in rtl/ecp5/
 # (the vendor layer) is replaced by that counterpart. Include directory: rtl/.
 cube4_round_shift.v
+cube4_prim_copies.v
 cube4_lerp.v
 cube4_skid.v
 cube4_credit_fifo.v

@@ -1,20 +1,22 @@
 """Testbench for rtl/cube4_credit_fifo.v: the output FIFO of a credit-based pipeline.
 
 The testbench plays the pipeline in front of the FIFO: a fixed latency of L cycles
-from a `take` (allowed only while credit = 1) to the item's `push`, or to its `give`
-when the item produces no output (chosen at random). The next unit's `out_ready` is
+from a `take` (allowed only while credit = 1) to the item's push (announced by
+`push_d` the cycle before, with the item's data on `in_data` in the cycle of the
+push), or to its `give` when the item produces no output (chosen at random). The next unit's `out_ready` is
 random. Checked on every cycle:
 
 * the items come out in order, none lost, none duplicated (a FIFO overrun would
   overwrite an unread item and show as a wrong word);
-* every copy of credit is equal, out_valid holds while out_ready is low;
+* credit is the credit_d of the cycle before; out_valid holds while out_ready is low;
 * with out_ready low for a long time the FIFO fills to exactly DEPTH items and the
   credit drops; nothing is lost when it drains;
 * full rate: with L + 2 <= DEPTH, input valid and out_ready high, a take happens on
   every cycle (the credit never drops), which is what TRI, GRA, SHA and COM size
   their FIFOs for.
 
-The testbench reads DATA_W, DEPTH, NGRP and CREDIT_COPIES from the DUT.
+The testbench reads DATA_W and DEPTH from the DUT (DATA_W > 64 has several write
+enable copies inside).
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ import cocotb
 import numpy as np
 import pytest
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge, RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4_sim import RTL_DIR, run_test
 
@@ -40,20 +42,18 @@ class TB:
         self.log = dut._log
         self.data_w = int(dut.DATA_W.value)
         self.depth = int(dut.DEPTH.value)
-        self.ngrp = int(dut.NGRP.value)
-        self.copies = int(dut.CREDIT_COPIES.value)
+        self.credit_next: int | None = None
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.expected: deque[int] = deque()
         self.received = 0
         self.takes = 0
         Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
-        self.log.info("cube4_credit_fifo DATA_W=%d DEPTH=%d NGRP=%d CREDIT_COPIES=%d",
-                      self.data_w, self.depth, self.ngrp, self.copies)
+        self.log.info("cube4_credit_fifo DATA_W=%d DEPTH=%d", self.data_w, self.depth)
 
     def _idle_inputs(self) -> None:
         self.dut.take.value = 0
         self.dut.give.value = 0
-        self.dut.push.value = 0
+        self.dut.push_d.value = 0
         self.dut.in_data.value = 0
         self.dut.out_ready.value = 0
 
@@ -65,12 +65,29 @@ class TB:
         await FallingEdge(self.dut.clk)
         self.dut.rst.value = 0
         self.expected.clear()
+        self.credit_next = None
 
     def _credit(self) -> int:
-        word = int(self.dut.credit.value)
-        full = (1 << self.copies) - 1
-        assert word in (0, full), f"credit copies differ: {word:#x}"
-        return 1 if word else 0
+        credit = int(self.dut.credit.value)
+        if self.credit_next is not None:
+            assert credit == self.credit_next, "credit is not the last cycle's credit_d"
+        return credit
+
+    async def _edge(self) -> None:
+        """Inputs of this cycle are set: remember credit_d, then the next cycle."""
+        await ReadOnly()
+        self.credit_next = int(self.dut.credit_d.value)
+        await FallingEdge(self.dut.clk)
+
+    def _word(self) -> int:
+        """A random DATA_W-bit word (wider than numpy's integers)."""
+        return int.from_bytes(self.rng.bytes((self.data_w + 7) // 8), "little") & ((1 << self.data_w) - 1)
+
+    @staticmethod
+    def _push_next(pipe) -> int:
+        """push_d: the item leaving the pipeline next cycle is pushed."""
+        nxt = pipe[-1]
+        return int(nxt is not None and not nxt[1])
 
     async def run(self, cycles: int, latency: int, p_valid: float, p_ready: float,
                   p_drop: float, ready_low_until: int = 0) -> list[int]:
@@ -78,7 +95,6 @@ class TB:
         pipe: deque[tuple[int, bool] | None] = deque([None] * latency)
         takes: list[int] = []
         held: int | None = None      # out_data while out_valid and not read
-        all_ones = (1 << self.ngrp) - 1
         for cyc in range(cycles):
             # inputs of this cycle; outputs are the registers after the last edge
             credit = self._credit()
@@ -99,7 +115,7 @@ class TB:
                 else:
                     held = word
             item = pipe.pop()
-            pipe.appendleft((int(self.rng.integers(0, 1 << self.data_w)),
+            pipe.appendleft((self._word(),
                              bool(self.rng.random() < p_drop)) if take else None)
             push = give = 0
             data = 0
@@ -112,12 +128,12 @@ class TB:
                     self.expected.append(data)
             self.dut.take.value = int(take)
             self.dut.give.value = give
-            self.dut.push.value = all_ones if push else 0
-            self.dut.in_data.value = data
+            self.dut.push_d.value = self._push_next(pipe)
+            self.dut.in_data.value = data if push else self._word()
             self.dut.out_ready.value = ready
             takes.append(int(take))
             self.takes += int(take)
-            await FallingEdge(self.dut.clk)
+            await self._edge()
         # let the pipeline and the FIFO drain with the consumer always ready
         self.dut.take.value = 0
         for _ in range(latency + self.depth + 4):
@@ -136,10 +152,10 @@ class TB:
                 assert word == want, f"drain: got {word:#x}, expected {want:#x}"
                 self.received += 1
             self.dut.give.value = give
-            self.dut.push.value = all_ones if push else 0
+            self.dut.push_d.value = self._push_next(pipe)
             self.dut.in_data.value = data
             self.dut.out_ready.value = 1
-            await FallingEdge(self.dut.clk)
+            await self._edge()
         assert not self.expected, f"{len(self.expected)} items never came out"
         assert int(self.dut.out_valid.value) == 0, "out_valid with nothing pushed"
         assert self._credit() == 1, "credit not back after the drain"
@@ -185,8 +201,8 @@ async def full_rate(dut):
 
 
 PARAM_SETS = [
-    {"DATA_W": 5, "DEPTH": 4, "NGRP": 1, "CREDIT_COPIES": 1},
-    {"DATA_W": 40, "DEPTH": 32, "NGRP": 5, "CREDIT_COPIES": 7},
+    {"DATA_W": 5, "DEPTH": 4},
+    {"DATA_W": 140, "DEPTH": 32},
 ]
 
 
@@ -194,7 +210,7 @@ PARAM_SETS = [
 def test_cube4_credit_fifo(params):
     run_test(
         top="cube4_credit_fifo",
-        sources=[RTL_DIR / "cube4_credit_fifo.v"],
+        sources=[RTL_DIR / "cube4_prim_copies.v", RTL_DIR / "cube4_credit_fifo.v"],
         params=params,
         test_module=__file__,
     )

@@ -43,6 +43,7 @@ MAX_MISMATCH_LOGS = 8
 
 SOURCES = [
     RTL_DIR / "cube4_round_shift.v",
+    RTL_DIR / "cube4_prim_copies.v",
     RTL_DIR / "cube4_lerp.v",
     RTL_DIR / "cube4_skid.v",
     RTL_DIR / "cube4_credit_fifo.v",

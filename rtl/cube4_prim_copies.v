@@ -1,0 +1,66 @@
+`default_nettype none
+// =============================================================================
+// cube4_prim_copies
+// -----------------------------------------------------------------------------
+// Purpose
+//   Register copies for fan-out: N flip-flop copies of one W-bit register,
+//   each kept apart in synthesis (`keep`), so that a signal that drives
+//   hundreds of loads (a write enable, a credit, a stream's valid bit, a RAM
+//   address) is driven by one register per group of loads instead of one
+//   register for all. Neither Yosys nor nextpnr replicates registers for
+//   fan-out, so the copies are made here, in this one primitive; a block
+//   that needs copies instantiates it inside itself and keeps a one-bit
+//   interface. Simulation: every copy holds the same value.
+//
+// Parameters
+//   N        copies.                               1..512.  Default 1.
+//   W        bits of the register.                 1..64.   Default 1.
+//   RESET    1: synchronous reset to RST_VAL; 0: no reset (data registers).
+//                                                  0..1.    Default 1.
+//   RST_VAL  reset value of each copy.             W bits.  Default 0.
+//
+// Latency: 1 cycle (q is d of the last clock edge).
+//
+// Ports
+//   d   in   [W]     the value to register (any format)
+//   q   out  [N*W]   copy c at bits [c*W +: W], all equal
+//
+// Bit growth and rounding: none.
+// =============================================================================
+module cube4_prim_copies #(
+    parameter integer N       = 1,
+    parameter integer W       = 1,
+    parameter integer RESET   = 1,
+    parameter [63:0]  RST_VAL = 64'd0
+) (
+    input  wire           clk,
+    input  wire           rst,
+    input  wire [W-1:0]   d,
+    output wire [N*W-1:0] q
+);
+    generate
+        if (N < 1 || N > 512) begin : g_bad_n
+            $error("cube4_prim_copies: N = %0d is out of range 1..512", N);
+        end
+        if (W < 1 || W > 64) begin : g_bad_w
+            $error("cube4_prim_copies: W = %0d is out of range 1..64", W);
+        end
+    endgenerate
+
+    genvar c;
+    generate
+        for (c = 0; c < N; c = c + 1) begin : g_copy
+            reg [W-1:0] q_q;
+            (* keep *)                  // one copy per group of loads: never merged
+            always @(posedge clk) begin
+                if (RESET != 0 && rst) q_q <= RST_VAL[W-1:0];
+                else                   q_q <= d;
+            end
+            assign q[c*W +: W] = q_q;
+        end
+        if (RESET == 0) begin : g_no_reset
+            wire unused_rst = rst;
+        end
+    endgenerate
+endmodule
+`default_nettype wire
