@@ -99,11 +99,10 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     import json
     import subprocess
     import sys
-    from pathlib import Path
 
-    exe = Path(sys.executable).parent / "cube4"
+    exe = [sys.executable, "-m", "cube4_sim.cli"]  # what the installed `cube4` runs
     for eng in ("rtl", "golden"):
-        run = subprocess.run([str(exe), "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
+        run = subprocess.run([*exe, "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
                               str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
                               "--out", str(tmp_path / f"{eng}.png")], check=True, capture_output=True, text=True)
         assert run.stdout == "" and run.stderr == "", (eng, run.stdout[-2000:], run.stderr[-2000:])
@@ -121,12 +120,11 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     import json
     import subprocess
     import sys
-    from pathlib import Path
 
-    exe = Path(sys.executable).parent / "cube4"
+    exe = [sys.executable, "-m", "cube4_sim.cli"]  # what the installed `cube4` runs
     views = ["-150,35", "0,90", "75,-10"]  # y-major mixed signs, exactly on the z axis, x-major
     for eng in ("rtl", "golden"):
-        args = [str(exe), "render", "ml:41", "--scene", "ml", "--engine", eng, "--quiet",
+        args = [*exe, "render", "ml:41", "--scene", "ml", "--engine", eng, "--quiet",
                 "--baseplane", str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
                 "--out", str(tmp_path / f"{eng}.png")]
         for v in views:
