@@ -30,7 +30,7 @@ TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 SETUP_STAMP := $(VENV)/.make-setup-stamp
 
 # ---- lint ------------------------------------------------------------------
-RTL_SRCS     := $(sort $(wildcard rtl/*.v))
+RTL_SRCS     := $(addprefix rtl/,$(shell sed -e 's/\#.*//' rtl/sources.f))   # the one list, dependencies first
 RTL_MODULES  := $(basename $(notdir $(RTL_SRCS)))   # one module per file, named as the file
 SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v))
 SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))

@@ -22,12 +22,8 @@ from cube4.memory import pack_volume, top_regs, words_per_bank
 from cube4.view import Traversal
 
 from .cycles import frame_cycles, slow_slice_factor
+from .sources import rtl_sources
 
-RTL_SOURCES = [
-    "cube4_round_shift.v", "cube4_lerp.v", "cube4_skid.v", "cube4_credit_fifo.v", "cube4_ring_shift.v", "cube4_beam_ext.v",
-    "cube4_voxel_mem.v", "cube4_cfb.v", "cube4_tri.v", "cube4_frontend.v", "cube4_delay_line.v", "cube4_sdp_ram.v",
-    "cube4_gra.v", "cube4_sha.v", "cube4_com.v", "cube4_stream_hold.v", "cube4_top.v",
-]
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
 
 
@@ -120,7 +116,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         job_path.write_text(json.dumps(job, indent=1))
         runner.run_test(
             top="cube4_top_harness",
-            sources=[*(runner.RTL_DIR / s for s in RTL_SOURCES), *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
+            sources=[*rtl_sources(), *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
             params=params,
             test_module="cube4_sim.top_job",
             testcase="run_job",

@@ -20,7 +20,7 @@ from cocotb.triggers import FallingEdge, RisingEdge
 
 from cube4.memory import address_of, bank_of, frontend_regs
 from cube4.view import make_traversal
-from cube4_sim import RTL_DIR, run_test
+from cube4_sim import rtl_sources, run_test
 
 
 def expected_lanes(trav, p: int, k: int, j: int, pb: int) -> tuple[list[int | None], list[tuple]]:
@@ -119,7 +119,7 @@ async def test_addresses(dut):
 def test_cube4_cfb(p):
     run_test(
         top="cube4_cfb",
-        sources=[RTL_DIR / "cube4_cfb.v"],
+        sources=rtl_sources(),
         params={"P": p, "MAX_DIM": 64, "ADDR_W": 16, "MAX_SS_LOG2": 1},
         test_module=__file__,
     )

@@ -36,24 +36,13 @@ from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 from cube4.memory import frontend_regs, lane_positions, pack_volume
 from cube4.model import gradient_stream, sample_stream
 from cube4.view import make_traversal
-from cube4_sim import BUILD_ROOT, RTL_DIR, SIM_HDL_DIR, run_test
+from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
 
 CLK_NS = 10
 MAX_MISMATCH_LOGS = 8
 
 SOURCES = [
-    RTL_DIR / "cube4_round_shift.v",
-    RTL_DIR / "cube4_lerp.v",
-    RTL_DIR / "cube4_skid.v",
-    RTL_DIR / "cube4_credit_fifo.v",
-    RTL_DIR / "cube4_ring_shift.v",
-    RTL_DIR / "cube4_beam_ext.v",
-    RTL_DIR / "cube4_voxel_mem.v",
-    RTL_DIR / "cube4_cfb.v",
-    RTL_DIR / "cube4_tri.v",
-    RTL_DIR / "cube4_frontend.v",
-    RTL_DIR / "cube4_delay_line.v",
-    RTL_DIR / "cube4_gra.v",
+    *rtl_sources(),
     SIM_HDL_DIR / "cube4_sim_clock.v",
     SIM_HDL_DIR / "cube4_sim_stall.v",
     SIM_HDL_DIR / "cube4_frontend_harness.v",
