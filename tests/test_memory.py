@@ -7,9 +7,8 @@ import itertools
 import numpy as np
 import pytest
 
-from cube4.errors import UserError
-from cube4.memory import (address_of, bank_of, frontend_regs, lane_positions, pack_volume,
-                          unpack_volume, words_per_bank, write_bank_hex)
+from cube4.memory import (address_of, bank_of, frontend_regs, lane_positions, load_image, pack_volume,
+                          unpack_volume, words_per_bank, write_hex)
 from cube4.view import make_traversal
 
 DIMS = [(4, 4, 4), (13, 7, 5), (5, 9, 3), (1, 1, 1), (17, 2, 11)]
@@ -86,12 +85,24 @@ def test_lane_positions_match_banks():
             assert ((c_i + skew) % p == np.arange(p)).all()
 
 
-def test_write_bank_hex(tmp_path):
+def test_load_image_interleaves_the_banks():
+    """Line a * p + q of the image is word a of bank q (the harnesses' load order)."""
     vol = np.arange(2 * 3 * 5).reshape(2, 3, 5) * 100
     banks = pack_volume(vol, 4)
-    files = write_bank_hex(banks, tmp_path / "v", voxel_bits=12, depth=banks.shape[1] + 2)
-    assert len(files) == 4
-    words = [int(s, 16) for s in files[1].read_text().split()]
-    assert words == list(banks[1]) + [0, 0]
-    with pytest.raises(UserError):
-        write_bank_hex(banks, tmp_path / "w", 12, depth=1)
+    img = load_image(banks)
+    assert img.size == banks.size
+    for q, a in itertools.product(range(4), range(banks.shape[1])):
+        assert img[a * 4 + q] == banks[q, a]
+
+
+def test_write_hex(tmp_path):
+    """The one $readmemh writer: fixed width, one word per line, nothing left behind."""
+    path = write_hex(tmp_path / "m.hex", np.array([0, 5, 4095, 256]), 12)
+    assert path.read_text() == "000\n005\nfff\n100\n"
+    assert write_hex(tmp_path / "t.hex", [0x3FF, 1], 10).read_text() == "3ff\n001\n"  # 10 bits: 3 digits
+    assert write_hex(tmp_path / "e.hex", [], 8).read_text() == ""
+    with pytest.raises(ValueError, match="does not fit in 12"):
+        write_hex(tmp_path / "bad.hex", [4096], 12)
+    with pytest.raises(ValueError, match="does not fit"):
+        write_hex(tmp_path / "neg.hex", [-1], 12)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["e.hex", "m.hex", "t.hex"]

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from cube4.config import Cube4Config
-from cube4.memory import pack_volume, top_regs, words_per_bank
+from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
 from .cycles import frame_cycles, slow_slice_factor
@@ -58,15 +58,13 @@ def build_max_dim(dims) -> int:
     return 1 << (n - 1).bit_length()
 
 
-def _hex_lines(values, digits: int) -> str:
-    return "\n".join(f"{int(v):0{digits}x}" for v in values) + "\n"
-
-
 def write_tables(lut: np.ndarray, rmap: np.ndarray, cfg: Cube4Config, lut_path: Path, rmap_path: Path) -> None:
+    """The harness's table images: one {R, G, B, A} word per LUT entry, one {D, P} word
+    per reflectance-map entry."""
     aw = cfg.alpha_bits
     words = (lut[:, 0] << (aw + 16)) | (lut[:, 1] << (aw + 8)) | (lut[:, 2] << aw) | lut[:, 3]
-    lut_path.write_text(_hex_lines(words, -(-(24 + aw) // 4)))
-    rmap_path.write_text(_hex_lines((rmap[:, 0] << 10) | rmap[:, 1], 5))
+    write_hex(lut_path, words, 24 + aw)
+    write_hex(rmap_path, (rmap[:, 0] << 10) | rmap[:, 1], 20)
 
 
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
@@ -95,7 +93,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     workdir.mkdir(parents=True, exist_ok=True)
     try:
         banks = pack_volume(vol, cfg.pipelines)
-        (workdir / "mem.hex").write_text(_hex_lines(banks.T.reshape(-1), -(-cfg.voxel_bits // 4)))
+        write_hex(workdir / "mem.hex", load_image(banks), cfg.voxel_bits)
         job_frames = []
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"

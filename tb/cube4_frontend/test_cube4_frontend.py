@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 
-from cube4.memory import frontend_regs, lane_positions, pack_volume
+from cube4.memory import frontend_regs, lane_positions, load_image, pack_volume, write_hex
 from cube4.model import gradient_stream, sample_stream
 from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
@@ -214,14 +214,12 @@ class TB:
         await self.cycles(2)
 
     async def load(self, vol: np.ndarray) -> None:
-        """Pack the volume (cube4.memory) and stream it in through the load port."""
+        """Pack the volume (cube4.memory), write its load image and stream it in
+        through the load port."""
         banks = pack_volume(vol, self.p)
         words = banks.shape[1]
         assert words <= self.depth, f"volume needs {words} words per bank, DEPTH = {self.depth}"
-        digits = -(-self.vw // 4)
-        tmp = self.memfile.with_suffix(".tmp")
-        tmp.write_text("\n".join(f"{int(v):0{digits}x}" for v in banks.T.reshape(-1)) + "\n")
-        tmp.replace(self.memfile)
+        write_hex(self.memfile, load_image(banks), self.vw)
         self.dut.load_words.value = words
         self.dut.load.value = 1
         await RisingEdge(self.dut.clk)
