@@ -4,8 +4,9 @@
 build/sim) the cube4_top harness, packs the volume with ``cube4.memory``, writes
 the tables of every frame, and runs all frames in one simulation: the volume is
 loaded once, the frames run back to back. It returns each frame's finished rays
-(the golden model's PIXEL_DTYPE) and cycle count; ``baseplane_from_pixels``
-assembles the base-plane image from them.
+(the golden model's PIXEL_DTYPE, read from the harness's binary pixel dump by
+``cube4_sim.dump``) and cycle count; ``baseplane_from_pixels`` assembles the
+base-plane image from them.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, writ
 from cube4.view import Traversal
 
 from .cycles import frame_cycles, slow_slice_factor
+from .dump import read_pixel_frames
 from .sources import rtl_sources
 
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
@@ -104,10 +106,10 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines), "lut": str(lut_p), "rmap": str(rmap_p),
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
-                "reset_after_cycles": fr.reset_after_cycles, "out": str(workdir / f"pix{n}.npy"),
+                "reset_after_cycles": fr.reset_after_cycles,
                 "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,
             })
-        job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.txt"),
+        job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
                "result": str(workdir / "result.json")}
         job_path = workdir / "job.json"
@@ -127,8 +129,10 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             quiet_logs=quiet,
         )
         results = json.loads(Path(job["result"]).read_text())
-        for r in results:
-            r["pixels"] = np.load(r["pixels"])
+        # a frame reset in mid-frame leaves a start and no last beat before the frame run after it
+        unfinished = [flag for fr in frames for flag in ([True, False] if fr.reset_after_cycles else [False])]
+        for r, pix in zip(results, read_pixel_frames(Path(job["dump"]), cfg.pipelines, unfinished)):
+            r["pixels"] = pix
         return results
     finally:
         if own_tmp is not None:
