@@ -75,14 +75,21 @@ def test_frontend_regs_reproduce_the_layout(p):
             assert a == address_of(x, y, z, dims, p), (d, p, (i, j, k))
 
 
-def test_lane_positions_match_banks():
-    p, ni = 5, 13
+@pytest.mark.parametrize("p", [1, 2, 3, 4, 5, 8, 16])
+@pytest.mark.parametrize("ni", [1, 7, 13, 32])
+def test_lane_positions_match_banks(p, ni):
+    """Where the P lanes of a beat sit along the beam, for every skew and partial beam:
+    lane q holds the position whose bank is q, and over a row's partial beams every
+    position 0 .. NB*P - 1 is held once (positions >= ni are padding)."""
+    nb = -(-ni // p)
     for flip_i in (False, True):
         for skew in range(p):
-            pos = lane_positions(skew, 1, p, ni, flip_i)
-            assert sorted(pos) == list(range(p, 2 * p))
-            c_i = (ni - 1 - pos) if flip_i else pos
-            assert ((c_i + skew) % p == np.arange(p)).all()
+            pos = np.stack([lane_positions(skew, pb, p, ni, flip_i) for pb in range(nb)])
+            assert sorted(pos.reshape(-1)) == list(range(nb * p))
+            for pb in range(nb):
+                assert sorted(pos[pb]) == list(range(pb * p, (pb + 1) * p))
+                c_i = (ni - 1 - pos[pb]) if flip_i else pos[pb]
+                assert ((c_i + skew) % p == np.arange(p)).all()
 
 
 def test_load_image_interleaves_the_banks():
