@@ -56,7 +56,7 @@ from pathlib import Path
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator
 
-from .sources import REPO_ROOT, RTL_DIR, RTL_INCLUDE_DIR
+from .sources import REPO_ROOT, RTL_INCLUDE_DIR
 
 SIM_HDL_DIR = REPO_ROOT / "sim" / "hdl"
 BUILD_ROOT = REPO_ROOT / "build" / "sim"
