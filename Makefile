@@ -30,7 +30,7 @@ TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 SETUP_STAMP := $(VENV)/.make-setup-stamp
 
 # ---- lint ------------------------------------------------------------------
-RTL_SRCS     := $(sort $(wildcard rtl/*.v))
+RTL_SRCS     := $(addprefix rtl/,$(shell sed -e 's/\#.*//' rtl/sources.f))   # the one list, dependencies first
 RTL_MODULES  := $(basename $(notdir $(RTL_SRCS)))   # one module per file, named as the file
 SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v))
 SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
@@ -110,15 +110,15 @@ demo: setup
 	    --stats out/demo/stats.json --baseplane out/demo/baseplane.npy --out out/demo/demo.png
 
 report: setup
-	$(PY) -m cube4_sim.report
+	$(PY) -m cube4_reports.report
 
 # Synthesis reports (not part of `make test`; docs/reports.md). Arguments: GATES_ARGS / FPGA_ARGS,
 # e.g. make fpga FPGA_ARGS="--p 1,8".
 gates: setup
-	$(PY) -m cube4_sim.gates $(GATES_ARGS)
+	$(PY) -m cube4_reports.gates $(GATES_ARGS)
 
 fpga: setup
-	$(PY) -m cube4_sim.fpga $(FPGA_ARGS)
+	$(PY) -m cube4_reports.fpga $(FPGA_ARGS)
 
 clean:
 	rm -rf build out .pytest_cache

@@ -131,8 +131,11 @@ def test_bad_scene(case, tmp_path, capsys):
 def test_rtl_engine_bad_input_fails_before_simulating(tmp_path, scene_file, capsys):
     """Bad input is reported in one line before the RTL engine builds anything.
     (Rendering through the RTL itself is tested in tb/cube4_top.)"""
-    rc, _, err = run_cli(["render", "sphere:16", "--scene", str(scene_file), "--engine", "rtl",
-                          "--pipelines", "0", "--out", str(tmp_path / "out.png")], capsys)
+    from cube4_sim.cli import main as sim_main
+
+    rc = sim_main(["render", "sphere:16", "--scene", str(scene_file), "--engine", "rtl",
+                   "--pipelines", "0", "--out", str(tmp_path / "out.png")])
+    _, err = capsys.readouterr()
     _assert_clean_failure(rc, err, tmp_path, "pipelines")
 
 

@@ -7,9 +7,8 @@ import itertools
 import numpy as np
 import pytest
 
-from cube4.errors import UserError
-from cube4.memory import (address_of, bank_of, frontend_regs, lane_positions, pack_volume,
-                          unpack_volume, words_per_bank, write_bank_hex)
+from cube4.memory import (address_of, bank_of, frontend_regs, lane_positions, load_image, pack_volume,
+                          unpack_volume, words_per_bank, write_hex)
 from cube4.view import make_traversal
 
 DIMS = [(4, 4, 4), (13, 7, 5), (5, 9, 3), (1, 1, 1), (17, 2, 11)]
@@ -76,22 +75,41 @@ def test_frontend_regs_reproduce_the_layout(p):
             assert a == address_of(x, y, z, dims, p), (d, p, (i, j, k))
 
 
-def test_lane_positions_match_banks():
-    p, ni = 5, 13
+@pytest.mark.parametrize("p", [1, 2, 3, 4, 5, 8, 16])
+@pytest.mark.parametrize("ni", [1, 7, 13, 32])
+def test_lane_positions_match_banks(p, ni):
+    """Where the P lanes of a beat sit along the beam, for every skew and partial beam:
+    lane q holds the position whose bank is q, and over a row's partial beams every
+    position 0 .. NB*P - 1 is held once (positions >= ni are padding)."""
+    nb = -(-ni // p)
     for flip_i in (False, True):
         for skew in range(p):
-            pos = lane_positions(skew, 1, p, ni, flip_i)
-            assert sorted(pos) == list(range(p, 2 * p))
-            c_i = (ni - 1 - pos) if flip_i else pos
-            assert ((c_i + skew) % p == np.arange(p)).all()
+            pos = np.stack([lane_positions(skew, pb, p, ni, flip_i) for pb in range(nb)])
+            assert sorted(pos.reshape(-1)) == list(range(nb * p))
+            for pb in range(nb):
+                assert sorted(pos[pb]) == list(range(pb * p, (pb + 1) * p))
+                c_i = (ni - 1 - pos[pb]) if flip_i else pos[pb]
+                assert ((c_i + skew) % p == np.arange(p)).all()
 
 
-def test_write_bank_hex(tmp_path):
+def test_load_image_interleaves_the_banks():
+    """Line a * p + q of the image is word a of bank q (the harnesses' load order)."""
     vol = np.arange(2 * 3 * 5).reshape(2, 3, 5) * 100
     banks = pack_volume(vol, 4)
-    files = write_bank_hex(banks, tmp_path / "v", voxel_bits=12, depth=banks.shape[1] + 2)
-    assert len(files) == 4
-    words = [int(s, 16) for s in files[1].read_text().split()]
-    assert words == list(banks[1]) + [0, 0]
-    with pytest.raises(UserError):
-        write_bank_hex(banks, tmp_path / "w", 12, depth=1)
+    img = load_image(banks)
+    assert img.size == banks.size
+    for q, a in itertools.product(range(4), range(banks.shape[1])):
+        assert img[a * 4 + q] == banks[q, a]
+
+
+def test_write_hex(tmp_path):
+    """The one $readmemh writer: fixed width, one word per line, nothing left behind."""
+    path = write_hex(tmp_path / "m.hex", np.array([0, 5, 4095, 256]), 12)
+    assert path.read_text() == "000\n005\nfff\n100\n"
+    assert write_hex(tmp_path / "t.hex", [0x3FF, 1], 10).read_text() == "3ff\n001\n"  # 10 bits: 3 digits
+    assert write_hex(tmp_path / "e.hex", [], 8).read_text() == ""
+    with pytest.raises(ValueError, match="does not fit in 12"):
+        write_hex(tmp_path / "bad.hex", [4096], 12)
+    with pytest.raises(ValueError, match="does not fit"):
+        write_hex(tmp_path / "neg.hex", [-1], 12)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["e.hex", "m.hex", "t.hex"]

@@ -1,4 +1,4 @@
-"""`make report` helpers (sim/cube4_sim/report.py): configurations, the cycle formula,
+"""`make report` helpers (sim/cube4_reports/report.py): configurations, the cycle formula,
 Fmax look-up and the table. Fast: no reference render and no RTL build."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from cube4.config import Cube4Config
 from cube4.errors import UserError
 from cube4.render import config_for, setup_view
 from cube4.scene import load_scene
-from cube4_sim import report
+from cube4_reports import report
 
 
 def test_variants_one_parameter_at_a_time() -> None:

@@ -1,10 +1,15 @@
 """The ``cube4`` command line.
 
-    cube4 render VOLUME --scene S.toml --engine {reference,golden,rtl} --out IMG.png
+    cube4 render VOLUME --scene S.toml --engine ENGINE --out IMG.png
                  [--baseplane BP.npy] [--stats STATS.json] [--pipelines P]
                  [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
     cube4 volumes | cube4 scenes      list the built-ins
+
+Engines: those registered with ``cube4.render.register_engine`` when ``main`` runs:
+``reference`` and ``golden`` from this package. The installed ``cube4`` command is the
+simulation package's entry point, which registers ``rtl`` (the simulated hardware) and
+then runs this ``main``.
 
 Bad input gives one line on stderr and exit status 2; nothing is written unless the
 whole render succeeded (outputs go to a temporary file in the target folder first).
@@ -23,7 +28,7 @@ import numpy as np
 
 from .config import MAX_PIPELINES
 from .errors import UserError
-from .render import ENGINES, config_for, image_metrics, render, render_views
+from .render import config_for, engine_names, image_metrics, render, render_views
 from .scene import Scene, builtin_scene_names, load_scene, with_view
 from .view import angles_from_direction, direction_from_angles
 from .volumes import BUILTINS, load_volume
@@ -47,7 +52,7 @@ def _parser() -> argparse.ArgumentParser:
     r = sub.add_parser("render", help="render a volume with a scene into an image")
     r.add_argument("volume", help="a volume file (.raw, .nrrd, .nii[.gz]) or a built-in like sphere:64, ml:41")
     r.add_argument("--scene", default="default", help="scene TOML file or built-in scene name (default: default)")
-    r.add_argument("--engine", default="golden", choices=ENGINES)
+    r.add_argument("--engine", default="golden", choices=engine_names())
     r.add_argument("--out", required=True, help="output image (.png, .exr, .tif)")
     r.add_argument("--baseplane", help="write the exact integer base-plane RGBA (rows, cols, 4) as .npy")
     r.add_argument("--stats", help="write run statistics as JSON")

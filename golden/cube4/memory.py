@@ -71,27 +71,25 @@ def unpack_volume(banks: np.ndarray, dims) -> np.ndarray:
     return banks[bank_of(x, y, z, p), address_of(x, y, z, dims, p)]
 
 
-def write_bank_hex(banks: np.ndarray, prefix: str | Path, voxel_bits: int, depth: int | None = None) -> list[Path]:
-    """Write one ``$readmemh`` file per bank: ``<prefix>_bank<q>.hex``.
+def load_image(banks: np.ndarray) -> np.ndarray:
+    """The voxel memory's load image: word a of bank q at position a * p + q, the order
+    in which the simulation harnesses stream it through the load port."""
+    return np.asarray(banks).T.reshape(-1)
 
-    ``depth`` pads each image with zero words (the RTL memory depth); files are written
-    to a temporary name and renamed, so a reader never sees half a file.
-    """
-    p, words = banks.shape
-    depth = words if depth is None else depth
-    if depth < words:
-        raise UserError(f"volume needs {words} words per bank, the memory has {depth}")
-    digits = -(-voxel_bits // 4)
-    out = []
-    for q in range(p):
-        path = Path(f"{prefix}_bank{q}.hex")
-        tmp = path.with_suffix(".hex.tmp")
-        data = np.zeros(depth, dtype=np.int64)
-        data[:words] = banks[q]
-        tmp.write_text("\n".join(f"{int(v):0{digits}x}" for v in data) + "\n")
-        tmp.replace(path)
-        out.append(path)
-    return out
+
+def write_hex(path: str | Path, words, bits: int) -> Path:
+    """Write unsigned words as a ``$readmemh`` image, one word per line, ``ceil(bits / 4)``
+    hex digits each. The file is written under a temporary name and renamed into place,
+    so a reader never sees half a file."""
+    path = Path(path)
+    words = np.asarray(words, dtype=np.int64).reshape(-1)
+    if words.size and (words.min() < 0 or int(words.max()) >> bits):
+        raise ValueError(f"{path.name}: a word does not fit in {bits} unsigned bits")
+    digits = -(-bits // 4)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text("".join(f"{int(v):0{digits}x}\n" for v in words))
+    tmp.replace(path)
+    return path
 
 
 # ----------------------------------------------------------------- view registers

@@ -1,13 +1,15 @@
 """One render, any engine: volume + scene -> image-plane RGBA (+ base plane, stats).
 
-Engines: ``reference`` (float64 truth, straight into the image plane), ``golden`` (the
-bit-exact Cube-4 model, base plane warped to the image plane by OpenImageIO) and
-``rtl`` (the Verilated cube4_top, sim/cube4_sim/rtl.py).
+This package owns two engines: ``reference`` (float64 truth, straight into the image
+plane) and ``golden`` (the bit-exact Cube-4 model, base plane warped to the image plane
+by OpenImageIO). Other engines are added from outside with ``register_engine``; the
+package never imports them (the ``cube4`` command registers the simulated RTL, ``rtl``).
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -19,9 +21,6 @@ from .reference import render_reference
 from .scene import Scene
 from .tables import classification_lut, reflectance_map
 from .view import Camera, Traversal, make_camera, make_traversal, warp_matrix
-
-ENGINES = ("reference", "golden", "rtl")
-
 
 @dataclass
 class RenderResult:
@@ -83,7 +82,7 @@ def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:
     return {"rmse": rmse, "max_abs": float(np.max(np.abs(err))), "psnr": psnr}
 
 
-def _view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
+def view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
     return {
         "engine": engine,
         "dims": list(dims),
@@ -93,7 +92,7 @@ def _view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
     }
 
 
-def _trav_stats(trav: Traversal) -> dict:
+def trav_stats(trav: Traversal) -> dict:
     return {
         "major_axis": "xyz"[trav.major],
         "view_x": trav.view_x,
@@ -101,6 +100,68 @@ def _trav_stats(trav: Traversal) -> dict:
         "sample_distance": trav.sample_distance,
         "baseplane_shape": list(trav.baseplane_shape),
     }
+
+
+#: An engine renders one or more views of one volume:
+#: (vol[z, y, x], scenes, cfg, progress) -> one RenderResult per scene, in order.
+Engine = Callable[[np.ndarray, list[Scene], Cube4Config, bool], list[RenderResult]]
+
+_ENGINES: dict[str, Engine] = {}
+
+
+def register_engine(name: str, fn: Engine) -> None:
+    """Make an engine available to ``render``, ``render_views`` and the command line."""
+    _ENGINES[name] = fn
+
+
+def engine_names() -> tuple[str, ...]:
+    """The registered engines, in registration order."""
+    return tuple(_ENGINES)
+
+
+def _engine(name: str) -> Engine:
+    if name not in _ENGINES:
+        raise UserError(f"unknown engine {name!r} (engines: {', '.join(_ENGINES)})")
+    return _ENGINES[name]
+
+
+def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progress: bool = False) -> RenderResult:
+    """The float64 reference image of one view."""
+    nz, ny, nx = vol.shape
+    dims = (nx, ny, nz)
+    _, cam = setup_view(dims, scene, cfg)
+    stats = view_stats("reference", dims, scene, cfg)
+    t0 = time.perf_counter()
+    img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=progress)
+    return _timed(RenderResult("reference", img, 0.0, stats=stats), t0)
+
+
+def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
+                       progress: bool = False) -> RenderResult:
+    """One view through the bit-exact model, warped to the image plane."""
+    nz, ny, nx = vol.shape
+    dims = (nx, ny, nz)
+    trav, cam = setup_view(dims, scene, cfg)
+    stats = view_stats("golden", dims, scene, cfg)
+    t0 = time.perf_counter()
+    lut, rmap = host_tables(scene, cfg, trav)
+    frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=keep_streams, progress=progress)
+    img = warp_to_image(frame.baseplane_float, trav, cam)
+    stats.update(trav_stats(trav))
+    stats["pixels"] = int(frame.pixels.size)
+    return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)
+
+
+def _timed(res: RenderResult, t0: float) -> RenderResult:
+    res.wall_s = time.perf_counter() - t0
+    res.stats["wall_s"] = res.wall_s
+    return res
+
+
+register_engine("reference", lambda vol, scenes, cfg, progress: [
+    render_reference_view(vol, sc, cfg, progress) for sc in scenes])
+register_engine("golden", lambda vol, scenes, cfg, progress: [
+    render_golden_view(vol, sc, cfg, progress=progress) for sc in scenes])
 
 
 def render(
@@ -111,29 +172,11 @@ def render(
     keep_streams: bool = False,
     progress: bool = False,
 ) -> RenderResult:
-    """Render vol[z, y, x] (VOXEL_W-bit unsigned) with one engine."""
-    if engine not in ENGINES:
-        raise UserError(f"unknown engine {engine!r} (engines: {', '.join(ENGINES)})")
-    if engine == "rtl":
-        return render_views(vol, [scene], cfg, engine, progress=progress)[0]
-    nz, ny, nx = vol.shape
-    dims = (nx, ny, nz)
-    trav, cam = setup_view(dims, scene, cfg)
-    stats = _view_stats(engine, dims, scene, cfg)
-    t0 = time.perf_counter()
-    if engine == "reference":
-        img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=progress)
-        res = RenderResult(engine, img, 0.0, stats=stats)
-    else:  # golden
-        lut, rmap = host_tables(scene, cfg, trav)
-        frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=keep_streams, progress=progress)
-        img = warp_to_image(frame.baseplane_float, trav, cam)
-        res = RenderResult(engine, img, 0.0, frame=frame, stats=stats)
-        stats.update(_trav_stats(trav))
-        stats["pixels"] = int(frame.pixels.size)
-    res.wall_s = time.perf_counter() - t0
-    stats["wall_s"] = res.wall_s
-    return res
+    """Render vol[z, y, x] (VOXEL_W-bit unsigned) with one engine; ``keep_streams``
+    (golden only) keeps the model's intermediate streams in the frame."""
+    if engine == "golden":
+        return render_golden_view(vol, scene, cfg, keep_streams=keep_streams, progress=progress)
+    return render_views(vol, [scene], cfg, engine, progress=progress)[0]
 
 
 def render_views(
@@ -144,47 +187,9 @@ def render_views(
     progress: bool = False,
 ) -> list[RenderResult]:
     """Render several views (one scene each, e.g. ``scene.with_view``) of one volume.
-
-    The ``rtl`` engine runs all of them in one simulation: the volume is loaded into
-    the simulated voxel memory once and the frames run back to back, each with its
-    own view registers and tables. Each result's ``wall_s`` is then its share of the
-    whole run (simulation time of its frame plus an equal part of the rest)."""
-    if engine not in ENGINES:
-        raise UserError(f"unknown engine {engine!r} (engines: {', '.join(ENGINES)})")
+    An engine may run them together (the RTL engine loads the volume once and runs the
+    frames back to back)."""
+    fn = _engine(engine)
     if not scenes:
         raise UserError("no view to render")
-    if engine != "rtl":
-        return [render(vol, sc, cfg, engine, progress=progress) for sc in scenes]
-
-    from cube4_sim.rtl import FrameJob, baseplane_from_pixels, render_frames
-
-    nz, ny, nx = vol.shape
-    dims = (nx, ny, nz)
-    t0 = time.perf_counter()
-    views = [setup_view(dims, sc, cfg) for sc in scenes]
-    jobs = [FrameJob(trav, *host_tables(sc, cfg, trav)) for sc, (trav, _) in zip(scenes, views)]
-    outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True)
-    run_s = time.perf_counter() - t0
-    sim_total = sum(o["sim_wall_s"] for o in outs)
-    results = []
-    for sc, (trav, cam), out in zip(scenes, views, outs):
-        t1 = time.perf_counter()
-        base = baseplane_from_pixels(out["pixels"], trav.baseplane_shape)
-        frame = Frame(trav=trav, cfg=cfg, baseplane=base, pixels=out["pixels"])
-        img = warp_to_image(frame.baseplane_float, trav, cam)
-        cycles = int(out["cycles"])
-        ideal = nx * ny * nz / cfg.pipelines
-        stats = _view_stats(engine, dims, sc, cfg)
-        stats.update(_trav_stats(trav))
-        stats.update({
-            "pixels": int(out["pixels"].size),
-            "cycles": cycles,
-            "ideal_cycles": ideal,
-            "efficiency": ideal / cycles,
-            "sim_wall_s": out["sim_wall_s"],
-            "sim_cycles_per_s": cycles / out["sim_wall_s"] if out["sim_wall_s"] > 0 else None,
-        })
-        wall = out["sim_wall_s"] + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
-        stats["wall_s"] = wall
-        results.append(RenderResult(engine, img, wall, frame=frame, stats=stats))
-    return results
+    return fn(vol, scenes, cfg, progress)

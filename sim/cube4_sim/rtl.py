@@ -4,8 +4,9 @@
 build/sim) the cube4_top harness, packs the volume with ``cube4.memory``, writes
 the tables of every frame, and runs all frames in one simulation: the volume is
 loaded once, the frames run back to back. It returns each frame's finished rays
-(the golden model's PIXEL_DTYPE) and cycle count; ``baseplane_from_pixels``
-assembles the base-plane image from them.
+(the golden model's PIXEL_DTYPE, read from the harness's binary pixel dump by
+``cube4_sim.dump``) and cycle count; ``baseplane_from_pixels`` assembles the
+base-plane image from them.
 """
 
 from __future__ import annotations
@@ -18,16 +19,13 @@ from pathlib import Path
 import numpy as np
 
 from cube4.config import Cube4Config
-from cube4.memory import pack_volume, top_regs, words_per_bank
+from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
 from .cycles import frame_cycles, slow_slice_factor
+from .dump import read_pixel_frames
+from .sources import rtl_sources, synth_sources
 
-RTL_SOURCES = [
-    "cube4_round_shift.v", "cube4_prim_copies.v", "cube4_lerp.v", "cube4_skid.v", "cube4_credit_fifo.v", "cube4_ring_shift.v", "cube4_beam_ext.v",
-    "cube4_voxel_mem.v", "cube4_cfb.v", "cube4_tri.v", "cube4_frontend.v", "cube4_delay_line.v", "cube4_sdp_ram.v",
-    "cube4_gra.v", "cube4_sha.v", "cube4_com.v", "cube4_stream_hold.v", "cube4_frame_ctl.v", "cube4_top.v",
-]
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
 
 
@@ -62,20 +60,18 @@ def build_max_dim(dims) -> int:
     return 1 << (n - 1).bit_length()
 
 
-def _hex_lines(values, digits: int) -> str:
-    return "\n".join(f"{int(v):0{digits}x}" for v in values) + "\n"
-
-
 def write_tables(lut: np.ndarray, rmap: np.ndarray, cfg: Cube4Config, lut_path: Path, rmap_path: Path) -> None:
+    """The harness's table images: one {R, G, B, A} word per LUT entry, one {D, P} word
+    per reflectance-map entry."""
     aw = cfg.alpha_bits
     words = (lut[:, 0] << (aw + 16)) | (lut[:, 1] << (aw + 8)) | (lut[:, 2] << aw) | lut[:, 3]
-    lut_path.write_text(_hex_lines(words, -(-(24 + aw) // 4)))
-    rmap_path.write_text(_hex_lines((rmap[:, 0] << 10) | rmap[:, 1], 5))
+    write_hex(lut_path, words, 24 + aw)
+    write_hex(rmap_path, (rmap[:, 0] << 10) | rmap[:, 1], 20)
 
 
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
                   fit_memory: bool = False, waves: bool | None = None, workdir: Path | None = None,
-                  progress: bool = False, quiet: bool = False) -> list[dict]:
+                  progress: bool = False, quiet: bool = False, rtl_form: str = "generic") -> list[dict]:
     """Render every frame through the RTL; returns per frame
     {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}.
 
@@ -99,7 +95,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     workdir.mkdir(parents=True, exist_ok=True)
     try:
         banks = pack_volume(vol, cfg.pipelines)
-        (workdir / "mem.hex").write_text(_hex_lines(banks.T.reshape(-1), -(-cfg.voxel_bits // 4)))
+        write_hex(workdir / "mem.hex", load_image(banks), cfg.voxel_bits)
         job_frames = []
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
@@ -110,17 +106,20 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines), "lut": str(lut_p), "rmap": str(rmap_p),
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
-                "reset_after_cycles": fr.reset_after_cycles, "out": str(workdir / f"pix{n}.npy"),
+                "reset_after_cycles": fr.reset_after_cycles,
                 "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,
             })
-        job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.txt"),
+        job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
                "result": str(workdir / "result.json")}
         job_path = workdir / "job.json"
         job_path.write_text(json.dumps(job, indent=1))
         runner.run_test(
             top="cube4_top_harness",
-            sources=[*(runner.RTL_DIR / s for s in RTL_SOURCES), *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
+            # rtl_form "ecp5": the vendor layer's forms (rtl/ecp5/), as synthesis reads them
+            sources=[*(synth_sources() if rtl_form == "ecp5" else rtl_sources()),
+                     *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
+            build_args=["-DCUBE4_RTL_FORM_ECP5"] if rtl_form == "ecp5" else [],
             params=params,
             test_module="cube4_sim.top_job",
             testcase="run_job",
@@ -133,8 +132,10 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             quiet_logs=quiet,
         )
         results = json.loads(Path(job["result"]).read_text())
-        for r in results:
-            r["pixels"] = np.load(r["pixels"])
+        # a frame reset in mid-frame leaves a start and no last beat before the frame run after it
+        unfinished = [flag for fr in frames for flag in ([True, False] if fr.reset_after_cycles else [False])]
+        for r, pix in zip(results, read_pixel_frames(Path(job["dump"]), cfg.pipelines, unfinished)):
+            r["pixels"] = pix
         return results
     finally:
         if own_tmp is not None:

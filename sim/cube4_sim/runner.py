@@ -56,8 +56,8 @@ from pathlib import Path
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-RTL_DIR = REPO_ROOT / "rtl"
+from .sources import REPO_ROOT, RTL_INCLUDE_DIR
+
 SIM_HDL_DIR = REPO_ROOT / "sim" / "hdl"
 BUILD_ROOT = REPO_ROOT / "build" / "sim"
 
@@ -258,7 +258,7 @@ def run_test(
             ``CUBE4_PUBLIC_FLAT_RW`` environment variable, default off.
         build_args: extra Verilator arguments.
         defines: Verilog defines (``-D``).
-        includes: include directories.
+        includes: include directories besides ``rtl/`` (always searched).
         seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random).
         plusargs: simulator plusargs (``+NAME=value``), read by ``$value$plusargs``.
         quiet_logs: write the Verilator/C++ build output and the simulator's
@@ -326,7 +326,7 @@ def run_test(
         try:
             runner.build(
                 sources=all_sources,
-                includes=[Path(i).resolve() for i in includes],
+                includes=[Path(i).resolve() for i in (RTL_INCLUDE_DIR, *includes)],
                 defines=defines,
                 parameters=params,
                 build_args=all_build_args,

@@ -8,9 +8,20 @@
 //   word a; LUT: one {R,G,B,A} word per line; reflectance map: one {D,P} word
 //   per line) and stream them through the top's load ports; random holds on
 //   every internal stream (dbg_hold) and random ready on the pixel port, from
-//   LFSRs; and a dump of every pixel beat:
-//     "m by eop mask(hex) bx(hex) rgba(hex)"  after a line "start" per frame.
+//   LFSRs; and a binary dump of every pixel beat (cube4_sim.dump reads it).
 //   Python only sets registers and pulses load_* / start.
+//
+//   Pixel dump: records of REC_WORDS 32-bit little-endian words ($fwrite "%u"):
+//     word 0              header {8'hC4, kind, frame}: kind 1 = frame start,
+//                         2 = pixel beat, 3 = the frame's last beat (eop);
+//                         frame = number of start records before this frame's
+//                         own, mod 2^16 (not reset)
+//     word 1, 2           m, by
+//     words 3 ..          mask, MASK_WORDS words (lane q: bit q % 32 of word q / 32)
+//     next P words        bx of lane q
+//     next 4P words       R, G, B, A of lane q at 4q .. 4q + 3
+//   A start record is zero after its header. The file is flushed after each
+//   last beat and after any beat outside a frame, so stray beats are seen.
 //
 //   Plusargs: +CUBE4_MEMFILE= +CUBE4_LUTFILE= +CUBE4_RMAPFILE= +CUBE4_DUMP=
 //
@@ -142,8 +153,8 @@ module cube4_top_harness #(
         if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile))   memfile  = "cube4_mem.hex";
         if (!$value$plusargs("CUBE4_LUTFILE=%s", lutfile))   lutfile  = "cube4_lut.hex";
         if (!$value$plusargs("CUBE4_RMAPFILE=%s", rmapfile)) rmapfile = "cube4_rmap.hex";
-        if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.txt";
-        dump_fd = $fopen(dumpfile, "w");
+        if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.bin";
+        dump_fd = $fopen(dumpfile, "wb");
     end
 
     reg        mem_busy_q, tab_busy_q, done_q;
@@ -278,13 +289,44 @@ module cube4_top_harness #(
     );
 
     // ------------------------------------------------------------ pixel dump
+    localparam integer CW         = ACC_W + 1;
+    localparam integer MASK_WORDS = (P + 31) / 32;
+    localparam integer BX_WORD0   = 3 + MASK_WORDS;
+    localparam integer RGBA_WORD0 = BX_WORD0 + P;
+    localparam integer REC_WORDS  = RGBA_WORD0 + 4 * P;
+    localparam [7:0]   REC_MAGIC  = 8'hC4;
+    localparam [7:0]   REC_START  = 8'd1;
+    localparam [7:0]   REC_BEAT   = 8'd2;
+    localparam [7:0]   REC_LAST   = 8'd3;
+
+    reg [15:0]             frame_q;     // start records written so far
+    reg [32*REC_WORDS-1:0] start_rec, beat_rec;
+    integer                l, c;
+    initial frame_q = 16'd0;
+    always @(*) begin
+        start_rec       = {(32*REC_WORDS){1'b0}};
+        start_rec[31:0] = {REC_MAGIC, REC_START, frame_q};
+        beat_rec        = {(32*REC_WORDS){1'b0}};
+        beat_rec[31:0]  = {REC_MAGIC, pix_eop ? REC_LAST : REC_BEAT, frame_q - 16'd1};
+        beat_rec[32 +: M_W]  = pix_m;
+        beat_rec[64 +: BX_W] = pix_by;
+        beat_rec[96 +: P]    = pix_mask;
+        for (l = 0; l < P; l = l + 1) begin
+            beat_rec[32 * (BX_WORD0 + l) +: BX_W] = pix_bx[l * BX_W +: BX_W];
+            for (c = 0; c < 4; c = c + 1)   // pix_rgba lane l: {R, G, B, A}, R on top
+                beat_rec[32 * (RGBA_WORD0 + 4 * l + c) +: CW] = pix_rgba[(4 * l + 3 - c) * CW +: CW];
+        end
+    end
+
     always @(posedge clk) begin
         if (!rst_q) begin
-            if (start_q && !busy) $fwrite(dump_fd, "start\n");
+            if (start_q && !busy) begin
+                $fwrite(dump_fd, "%u", start_rec);
+                frame_q <= frame_q + 16'd1;
+            end
             if (pix_valid && pix_ready) begin
-                if (dump_en_q) $fwrite(dump_fd, "%0d %0d %0d %h %h %h\n", pix_m, pix_by, pix_eop,
-                                     pix_mask, pix_bx, pix_rgba);
-                if (pix_eop) $fflush(dump_fd);
+                if (dump_en_q) $fwrite(dump_fd, "%u", beat_rec);
+                if (pix_eop || !busy) $fflush(dump_fd);
             end
         end
     end

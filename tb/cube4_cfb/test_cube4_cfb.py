@@ -20,7 +20,7 @@ from cocotb.triggers import FallingEdge, RisingEdge
 
 from cube4.memory import address_of, bank_of, frontend_regs
 from cube4.view import make_traversal
-from cube4_sim import RTL_DIR, SIM_HDL_DIR, run_test
+from cube4_sim import SIM_HDL_DIR, rtl_sources, run_test
 
 
 def expected_lanes(trav, p: int, k: int, j: int, pb: int) -> tuple[list[int | None], list[tuple]]:
@@ -119,7 +119,7 @@ async def test_addresses(dut):
 def test_cube4_cfb(p):
     run_test(
         top="cube4_cfb_harness",
-        sources=[RTL_DIR / "cube4_cfb.v", SIM_HDL_DIR / "cube4_cfb_harness.v"],
+        sources=[*rtl_sources(), SIM_HDL_DIR / "cube4_cfb_harness.v"],
         params={"P": p, "MAX_DIM": 64, "ADDR_W": 16, "MAX_SS_LOG2": 1},
         test_module=__file__,
     )

@@ -29,7 +29,7 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
-from cube4_sim import RTL_DIR, run_test
+from cube4_sim import rtl_sources, run_test
 
 CLK_PERIOD_NS = 10
 
@@ -210,7 +210,7 @@ PARAM_SETS = [
 def test_cube4_credit_fifo(params):
     run_test(
         top="cube4_credit_fifo",
-        sources=[RTL_DIR / "cube4_prim_copies.v", RTL_DIR / "cube4_credit_fifo.v"],
+        sources=rtl_sources(),
         params=params,
         test_module=__file__,
     )

@@ -24,7 +24,7 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
-from cube4_sim import RTL_DIR, run_test
+from cube4_sim import rtl_sources, run_test
 
 CLK_PERIOD_NS = 10
 MAX_MISMATCH_LOGS = 10
@@ -183,7 +183,7 @@ PARAM_SETS = [
 def test_cube4_delay_line(params):
     run_test(
         top="cube4_delay_line",
-        sources=[RTL_DIR / "cube4_delay_line.v"],
+        sources=rtl_sources(),
         params=params,
         test_module=__file__,
     )

@@ -1,10 +1,11 @@
 """Testbench for the Cube-4 front end: cube4_cfb + cube4_voxel_mem + cube4_tri.
 
 The DUT is ``sim/hdl/cube4_frontend_harness.v``: the front end, the skewed voxel
-memory loaded through its load port from a ``$readmemh`` image that
-``cube4.memory.pack_volume`` writes (the one host packer), random stall injection
+memory loaded through its load port from a ``$readmemh`` image
+(``cube4.memory``: ``pack_volume``, the one host packer, and ``write_hex``), random stall injection
 on the memory request, the memory response and the sample output (LFSRs in
-Verilog), and a dump of every sample beat to a text file. Python only sets
+Verilog), and a dump of every sample beat to a text file, read strictly
+(``cube4_sim.dump.frame_bounds``: no beat outside its frame). Python only sets
 registers, pulses ``load`` / ``start`` and waits for ``load_done`` / ``done``, so
 whole frames run at compiled-model speed.
 
@@ -33,29 +34,20 @@ import numpy as np
 import pytest
 from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 
-from cube4.memory import frontend_regs, lane_positions, pack_volume
+from cube4.memory import frontend_regs, lane_positions, load_image, pack_volume, write_hex
 from cube4.model import gradient_stream, sample_stream
 from cube4.view import make_traversal
-from cube4_sim import BUILD_ROOT, RTL_DIR, SIM_HDL_DIR, run_test
+from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
+from cube4_sim.dump import BEAT, LAST, START, frame_bounds
 
 CLK_NS = 10
 MAX_MISMATCH_LOGS = 8
+#: How far each sample dump has been read, across the cocotb tests of one simulation
+#: (the harness opens the file once; each test reads on from where the last one stopped).
+_DUMP_POS: dict[Path, int] = {}
 
 SOURCES = [
-    RTL_DIR / "cube4_round_shift.v",
-    RTL_DIR / "cube4_prim_copies.v",
-    RTL_DIR / "cube4_lerp.v",
-    RTL_DIR / "cube4_skid.v",
-    RTL_DIR / "cube4_credit_fifo.v",
-    RTL_DIR / "cube4_ring_shift.v",
-    RTL_DIR / "cube4_beam_ext.v",
-    RTL_DIR / "cube4_voxel_mem.v",
-    RTL_DIR / "cube4_cfb.v",
-    RTL_DIR / "cube4_tri.v",
-    RTL_DIR / "cube4_frame_ctl.v",
-    RTL_DIR / "cube4_frontend.v",
-    RTL_DIR / "cube4_delay_line.v",
-    RTL_DIR / "cube4_gra.v",
+    *rtl_sources(),
     SIM_HDL_DIR / "cube4_sim_clock.v",
     SIM_HDL_DIR / "cube4_sim_stall.v",
     SIM_HDL_DIR / "cube4_frontend_harness.v",
@@ -63,6 +55,12 @@ SOURCES = [
 
 
 # --------------------------------------------------------------------------- checks
+def line_kinds(lines: list[str]) -> np.ndarray:
+    """START, BEAT or LAST (control bit 5, eop) per dump line, for frame_bounds."""
+    return np.array([START if line == "start" else (LAST if (int(line.split()[4], 16) >> 5) & 1 else BEAT)
+                     for line in lines], dtype=np.int64)
+
+
 def parse_beats(lines: list[str], p: int, vw: int) -> dict[str, np.ndarray]:
     """Dump lines -> arrays: m, j, pb, skew, ctrl (n,), lval, lins, smp (n, p),
     grad (n, 3, p) signed (zero when the build has no GRA)."""
@@ -202,7 +200,6 @@ class TB:
         self.gra = bool(int(dut.OPT_GRA.value))
         self.memfile = Path(os.environ["CUBE4_FE_MEMFILE"])
         self.dumpfile = Path(os.environ["CUBE4_FE_DUMP"])
-        self.dump_pos = 0
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.log.info("front end P=%d VOXEL_W=%d W=%d MAX_DIM=%d DEPTH=%d MAX_SS_LOG2=%d, seed %d",
                       self.p, self.vw, self.w, self.max_dim, self.depth, self.max_ss_log2,
@@ -227,14 +224,12 @@ class TB:
         await self.cycles(2)
 
     async def load(self, vol: np.ndarray) -> None:
-        """Pack the volume (cube4.memory) and stream it in through the load port."""
+        """Pack the volume (cube4.memory), write its load image and stream it in
+        through the load port."""
         banks = pack_volume(vol, self.p)
         words = banks.shape[1]
         assert words <= self.depth, f"volume needs {words} words per bank, DEPTH = {self.depth}"
-        digits = -(-self.vw // 4)
-        tmp = self.memfile.with_suffix(".tmp")
-        tmp.write_text("\n".join(f"{int(v):0{digits}x}" for v in banks.T.reshape(-1)) + "\n")
-        tmp.replace(self.memfile)
+        write_hex(self.memfile, load_image(banks), self.vw)
         self.dut.load_words.value = words
         self.dut.load.value = 1
         await RisingEdge(self.dut.clk)
@@ -243,8 +238,11 @@ class TB:
         assert int(self.dut.load_done.value) == 1, "load did not finish"
         del res
 
-    async def frame(self, vol: np.ndarray, trav, stalls=(0, 0, 0)) -> tuple[dict, int, float]:
-        """Render one view; returns (beats, cycles, wall seconds of the simulation)."""
+    async def frame(self, vol: np.ndarray, trav, stalls=(0, 0, 0), after_reset: bool = False,
+                    dumped: bool = True) -> tuple[dict, int, float]:
+        """Render one view; returns (beats, cycles, wall seconds of the simulation).
+        ``after_reset``: a frame reset in mid-frame precedes this one in the dump;
+        ``dumped``: False when dump_en is 0 (the dump has the start marker only)."""
         d = self.dut
         for key, val in frontend_regs(trav, self.p).items():
             getattr(d, "cfg_" + key.lower()).value = int(val)
@@ -265,20 +263,18 @@ class TB:
         cycles = int(d.cycles.value)
         await Timer(1, unit="ns")   # leave the read-only phase: callers drive inputs next
         with self.dumpfile.open() as fh:
-            fh.seek(self.dump_pos)
+            fh.seek(_DUMP_POS.get(self.dumpfile, 0))
             text = fh.read()
-            self.dump_pos = fh.tell()
+            _DUMP_POS[self.dumpfile] = fh.tell()
         lines = text.splitlines()
-        # beats of this frame follow the last "start" marker (a frame cut short
-        # by a reset leaves its beats before the marker)
-        starts = [n for n, line in enumerate(lines) if line == "start"]
-        assert starts, "no frame start marker in the sample dump"
-        lines = lines[starts[-1] + 1:]
-        return parse_beats(lines, self.p, self.vw), cycles, wall
+        unfinished = [True] * after_reset + [not dumped]
+        a, b = frame_bounds(line_kinds(lines), unfinished, "sample dump")[-1]
+        assert dumped or a == b, f"sample dump: {b - a} beats of a frame run with dump_en = 0"
+        return parse_beats(lines[a:b], self.p, self.vw), cycles, wall
 
-    async def render_and_check(self, vol, direction, supersample, stalls) -> int:
+    async def render_and_check(self, vol, direction, supersample, stalls, after_reset: bool = False) -> int:
         trav = make_traversal(vol.shape[::-1], direction, self.w, supersample)
-        beats, cycles, _ = await self.frame(vol, trav, stalls)
+        beats, cycles, _ = await self.frame(vol, trav, stalls, after_reset)
         check_frame(beats, vol, trav, self.p, self.log, self.gra)
         await RisingEdge(self.dut.clk)
         return cycles
@@ -327,7 +323,7 @@ async def test_reset_mid_frame(dut):
     await tb.cycles(3)
     dut.rst.value = 0
     await tb.cycles(2)
-    await tb.render_and_check(vol, (0.4, -0.3, 1.0), 1, (40, 40, 40))
+    await tb.render_and_check(vol, (0.4, -0.3, 1.0), 1, (40, 40, 40), after_reset=True)
 
 
 @cocotb.test()
@@ -347,7 +343,7 @@ async def test_frame_cycles(dut):
         check_frame(beats, vol, trav, tb.p, tb.log, tb.gra)
         # the same frame again without the sample dump: the simulator's own speed
         dut.dump_en.value = 0
-        _, cycles2, wall = await tb.frame(vol, trav)
+        _, cycles2, wall = await tb.frame(vol, trav, dumped=False)
         dut.dump_en.value = 1
         assert cycles2 == cycles, f"the same frame took {cycles} and then {cycles2} cycles"
         ideal = n * n * n / tb.p

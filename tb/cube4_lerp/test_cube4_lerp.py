@@ -216,9 +216,7 @@ async def lerp_random_streaming(dut):
 # pytest: build and run for several parameter sets
 # ----------------------------------------------------------------------------
 
-from cube4_sim import RTL_DIR, SIM_HDL_DIR, run_test  # noqa: E402  (pytest half)
-
-SOURCES = ["cube4_round_shift.v", "cube4_lerp.v"]
+from cube4_sim import SIM_HDL_DIR, rtl_sources, run_test  # noqa: E402  (pytest half)
 
 PARAM_SETS = [
     *(
@@ -244,7 +242,7 @@ def _param_id(params: dict) -> str:
 def test_cube4_lerp(params):
     run_test(
         top="cube4_lerp",
-        sources=[RTL_DIR / s for s in SOURCES],
+        sources=rtl_sources(),
         params=params,
         test_module=__file__,
     )
@@ -255,7 +253,7 @@ def test_cube4_lerp_verilog_clock():
     run_test(
         top="cube4_lerp_vclk",
         sources=[
-            *(RTL_DIR / s for s in SOURCES),
+            *rtl_sources(),
             SIM_HDL_DIR / "cube4_sim_clock.v",
             SIM_HDL_DIR / "cube4_lerp_vclk.v",
         ],
@@ -279,7 +277,7 @@ def test_cube4_lerp_illegal_params(params):
         "--top-module",
         "cube4_lerp",
         *(f"-G{k}={v}" for k, v in params.items()),
-        *(str(RTL_DIR / s) for s in SOURCES),
+        *(str(s) for s in rtl_sources()),
     ]
     proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
     name = next(iter(params))

@@ -15,7 +15,7 @@ import pytest
 from cocotb.triggers import Timer
 
 from cube4.fixed import round_shift
-from cube4_sim import RTL_DIR, run_test
+from cube4_sim import rtl_sources, run_test
 
 MAX_MISMATCH_LOGS = 10
 
@@ -64,7 +64,7 @@ PARAM_SETS = [
 def test_cube4_round_shift(params):
     run_test(
         top="cube4_round_shift",
-        sources=[RTL_DIR / "cube4_round_shift.v"],
+        sources=rtl_sources(),
         params=params,
         test_module=__file__,
     )

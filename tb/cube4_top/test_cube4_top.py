@@ -99,11 +99,10 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     import json
     import subprocess
     import sys
-    from pathlib import Path
 
-    exe = Path(sys.executable).parent / "cube4"
+    exe = [sys.executable, "-m", "cube4_sim.cli"]  # what the installed `cube4` runs
     for eng in ("rtl", "golden"):
-        run = subprocess.run([str(exe), "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
+        run = subprocess.run([*exe, "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
                               str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
                               "--out", str(tmp_path / f"{eng}.png")], check=True, capture_output=True, text=True)
         assert run.stdout == "" and run.stderr == "", (eng, run.stdout[-2000:], run.stderr[-2000:])
@@ -121,12 +120,11 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     import json
     import subprocess
     import sys
-    from pathlib import Path
 
-    exe = Path(sys.executable).parent / "cube4"
+    exe = [sys.executable, "-m", "cube4_sim.cli"]  # what the installed `cube4` runs
     views = ["-150,35", "0,90", "75,-10"]  # y-major mixed signs, exactly on the z axis, x-major
     for eng in ("rtl", "golden"):
-        args = [str(exe), "render", "ml:41", "--scene", "ml", "--engine", eng, "--quiet",
+        args = [*exe, "render", "ml:41", "--scene", "ml", "--engine", eng, "--quiet",
                 "--baseplane", str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
                 "--out", str(tmp_path / f"{eng}.png")]
         for v in views:
@@ -142,17 +140,16 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     assert len({f["major_axis"] for f in st["frames"]}) == 3
 
 
-def test_synthesis_ram_form_p1(monkeypatch):
-    """The RAMs as synthesis builds them. cube4_sdp_ram keeps a word-wide memory for
-    simulation (Verilator evaluates one wide array much faster than many narrow ones)
-    and, under `ifdef SYNTHESIS` (Yosys defines it), stores words deeper than 2048 as
-    4-, 2- or 1-bit slices. Here the model is built with SYNTHESIS defined, at P = 1
-    (COM's slice buffer: 4096 words, 4-bit slices): a phantom and random stalled frames
-    must still match the golden model bit for bit."""
+def test_synthesis_ram_form_p1():
+    """The RTL as synthesis reads it: the vendor layer's forms (rtl/ecp5/) in place of the
+    generic ones. cube4_sdp_ram's ECP5 form stores words deeper than 2048 as 4-, 2- or
+    1-bit slices with register copies per two slices; the generic form keeps one
+    word-wide memory (Verilator evaluates one wide array much faster than many narrow
+    ones). Built here at P = 1 (COM's slice buffer: 4096 words, 4-bit slices): a phantom
+    and random stalled frames must still match the golden model bit for bit."""
     from cube4.render import host_tables, setup_view
     from cube4.scene import load_scene
 
-    monkeypatch.setenv("CUBE4_VERILATOR_ARGS", "-DSYNTHESIS")
     cfg = Cube4Config(pipelines=1)
     vol = load_volume("sphere:64", voxel_bits=cfg.voxel_bits)
     nz, ny, nx = vol.shape
@@ -164,6 +161,6 @@ def test_synthesis_ram_form_p1(monkeypatch):
         t = make_traversal((nx, ny, nz), d, cfg.weight_bits, 1)
         lt, rm = random_tables(rng, cfg)
         jobs.append(FrameJob(t, lt, rm, stall=60, stall_out=90 if n else 0))
-    results = render_frames(vol, jobs, cfg)
+    results = render_frames(vol, jobs, cfg, rtl_form="ecp5")
     for n, (job, res) in enumerate(zip(jobs, results)):
         check(vol, job.trav, cfg, job.lut, job.rmap, res, f"SYNTHESIS RAMs, frame {n}")

@@ -1,4 +1,4 @@
-"""Error against run time: ``make report`` (``python -m cube4_sim.report``).
+"""Error against run time: ``make report`` (``python -m cube4_reports.report``).
 
 For every configuration (the default, then one parameter varied at a time: supersampling
 S, weight bits W, accumulator bits F, pipelines p) and every volume/scene pair it
@@ -30,7 +30,6 @@ import io
 import json
 import math
 import os
-import subprocess
 import sys
 import time
 from collections.abc import Iterator
@@ -48,9 +47,11 @@ from cube4.scene import Scene, load_scene
 from cube4.view import Traversal
 from cube4.volumes import load_volume
 
-from .cycles import frame_cycles
+from cube4_sim.cycles import frame_cycles
+from cube4_sim.engine import register as register_rtl_engine
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
+from .markdown import REPO_ROOT, git_state, md_table
+
 REPORTS_BUILD = REPO_ROOT / "build" / "reports"
 DEFAULT_OUT = REPO_ROOT / "reports"
 FPGA_JSON = REPORTS_BUILD / "fpga.json"
@@ -324,20 +325,22 @@ def _param_cells(r: Row) -> list[str]:
     return cells
 
 
+TABLE_HEADERS = ["config", "S", "W", "F", "p", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
+                 "× cycles", "source", "frame time at Fmax (ms)", "sim (s)", "sim cycles/s", "bit_exact"]
+
+
 def markdown_table(rows: list[Row]) -> str:
-    head = ("| config | S | W | F | p | RMSE | max \\|err\\| | PSNR (dB) | ΔPSNR (dB) | cycles | × cycles "
-            "| source | frame time at Fmax (ms) | sim (s) | sim cycles/s | bit_exact |")
-    lines = [head, "|" + "---|" * (head.count("|") - 1 - head.count("\\|"))]
+    cells = []
     for r in rows:
         frame = _f(r.frame_time_ms, ".4f", NA_FMAX)
         if r.frame_time_ms is not None:
             frame += f" @ {r.fmax_mhz:.1f} MHz"
-        lines.append("| " + " | ".join([
+        cells.append([
             r.label, *_param_cells(r), _f(r.rmse, ".5f"), _f(r.max_abs, ".3f"), _f(r.psnr, ".2f"),
             _f(r.d_psnr_db, "+.2f"), _f(r.cycles, ","), _f(r.cycles_ratio, ".2f"), r.cycles_source, frame,
             _f(r.sim_wall_s, ".2f"), _f(r.sim_cycles_per_s, ",.0f"), _bit_exact_text(r),
-        ]) + " |")
-    return "\n".join(lines)
+        ])
+    return md_table(TABLE_HEADERS, cells, "l" * len(TABLE_HEADERS))
 
 
 def p_invariance_note(rows: list[Row]) -> list[str]:
@@ -506,18 +509,6 @@ def write_plot(path: Path, rows: list[Row], title_note: str) -> None:
 
 
 # ------------------------------------------------------------------------------- main
-def _git_info() -> dict:
-    def git(*args: str) -> str:
-        try:
-            return subprocess.run(["git", *args], cwd=REPO_ROOT, capture_output=True, text=True,
-                                  check=True).stdout.strip()
-        except (OSError, subprocess.CalledProcessError):
-            return ""
-
-    return {"commit": git("rev-parse", "--short", "HEAD") or "unknown",
-            "rtl_dirty": bool(git("status", "--porcelain", "--", "rtl", "sim/hdl"))}
-
-
 def _loadavg() -> str:
     try:
         return " / ".join(f"{x:.1f}" for x in os.getloadavg())
@@ -547,7 +538,9 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
     out_dir.mkdir(parents=True, exist_ok=True)
     REPORTS_BUILD.mkdir(parents=True, exist_ok=True)
     log_path = REPORTS_BUILD / f"{STEM}.log"
-    meta: dict = {"loadavg_start": _loadavg(), "git": _git_info(), "rtl": use_rtl, "quick": quick,
+    if use_rtl:
+        register_rtl_engine()
+    meta: dict = {"loadavg_start": _loadavg(), "git": git_state(("rtl", "sim/hdl")), "rtl": use_rtl, "quick": quick,
                   "log": str(log_path.relative_to(REPO_ROOT))}
 
     total = len(cases) + sum(len(v) for v in plan.values())
@@ -629,7 +622,7 @@ def rewrite_tables(out_dir: Path) -> tuple[list[Row], dict]:
 
 def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
-        prog="python -m cube4_sim.report",
+        prog="python -m cube4_reports.report",
         description="Image error against the float64 reference beside run time (cycles, frame time at "
                     "the measured Fmax, simulation seconds) for S, W, F and p: make report.")
     ap.add_argument("--quick", action="store_true",

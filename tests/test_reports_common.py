@@ -1,0 +1,51 @@
+"""The reports' shared pieces: Markdown tables, the provenance stamp, and what Yosys reads."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from cube4_reports import markdown, synth
+from cube4_sim.sources import RTL_DIR, rtl_sources
+
+
+def test_md_table_alignment_and_shape():
+    t = markdown.md_table(["a", "b", "c"], [["1", "2", "3"], ["x", "y", "z"]])
+    assert t.splitlines() == ["| a | b | c |", "| --- | ---: | ---: |", "| 1 | 2 | 3 |", "| x | y | z |"]
+    assert markdown.md_table(["a", "b"], [], "ll").splitlines()[1] == "| --- | --- |"
+    assert markdown.fmt_int(12345.6) == "12,346"
+
+
+def test_rtl_digest_covers_names_and_contents(tmp_path):
+    a, b = tmp_path / "a.v", tmp_path / "b.v"
+    a.write_text("module a; endmodule\n")
+    b.write_text("module b; endmodule\n")
+    d = markdown.rtl_digest([a, b])
+    assert re.fullmatch(r"[0-9a-f]{12}", d) and d == markdown.rtl_digest([b, a])
+    b.write_text("module b; wire w; endmodule\n")
+    assert markdown.rtl_digest([a, b]) != d
+
+
+def test_git_stamp():
+    state = markdown.git_state(("rtl", "sim/hdl"))
+    assert set(state) == {"commit", "rtl_dirty"} and isinstance(state["rtl_dirty"], bool)
+    desc = markdown.git_describe()
+    assert desc == "unknown" or desc.startswith(state["commit"])
+
+
+def test_yosys_reads_the_source_list_with_the_include_dir(tmp_path):
+    cmd = synth.read_verilog_cmd(tmp_path)
+    words = cmd.split()
+    assert words[:2] == ["read_verilog", "-sv"]
+    inc = words[2]
+    assert inc.startswith("-I") and (tmp_path / inc[2:]).resolve() == RTL_DIR.resolve()
+    assert [(tmp_path / w).resolve() for w in words[3:]] == [p.resolve() for p in rtl_sources()]
+    assert all(not Path(w).is_absolute() for w in words[2:])  # YoWASP mounts its own /tmp
+
+
+def test_design_sources_error_is_one_line(monkeypatch):
+    monkeypatch.setattr(synth, "synth_sources", lambda: [RTL_DIR / "cube4_lerp.v"])
+    with pytest.raises(synth.UserError, match="does not list cube4_top.v"):
+        synth.design_sources()
