@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from cube4_reports import markdown, synth
-from cube4_sim.sources import RTL_DIR, rtl_sources
+from cube4_sim.sources import RTL_DIR, synth_sources
 
 
 def test_md_table_alignment_and_shape():
@@ -41,7 +41,7 @@ def test_yosys_reads_the_source_list_with_the_include_dir(tmp_path):
     assert words[:2] == ["read_verilog", "-sv"]
     inc = words[2]
     assert inc.startswith("-I") and (tmp_path / inc[2:]).resolve() == RTL_DIR.resolve()
-    assert [(tmp_path / w).resolve() for w in words[3:]] == [p.resolve() for p in rtl_sources()]
+    assert [(tmp_path / w).resolve() for w in words[3:]] == [p.resolve() for p in synth_sources()]
     assert all(not Path(w).is_absolute() for w in words[2:])  # YoWASP mounts its own /tmp
 
 

