@@ -26,7 +26,8 @@ from .cycles import frame_cycles, slow_slice_factor
 RTL_SOURCES = [
     "cube4_round_shift.v", "cube4_lerp.v", "cube4_skid.v", "cube4_credit_fifo.v", "cube4_ring_shift.v", "cube4_beam_ext.v",
     "cube4_voxel_mem.v", "cube4_cfb.v", "cube4_tri.v", "cube4_frontend.v", "cube4_delay_line.v", "cube4_sdp_ram.v",
-    "cube4_gra.v", "cube4_sha.v", "cube4_com.v", "cube4_stream_hold.v", "cube4_frame_ctl.v", "cube4_top.v",
+    "cube4_gra.v", "cube4_sha.v", "cube4_com.v", "cube4_stream_hold.v", "cube4_stream_check.v", "cube4_frame_ctl.v",
+    "cube4_top.v",
 ]
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
 
