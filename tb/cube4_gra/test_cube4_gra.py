@@ -22,9 +22,9 @@ and P = 8; the P = 8 build (MAX_SS_LOG2 = 1) runs the views supersampled (S = 2)
 
 The test can fail (tried with deliberately corrupted expectations, not kept):
 with the golden gk of lane 0 of beat 40 raised by one, P = 1 fails with
-"gk beat 40 (m=0, j=4, pb=4, lane 0: i=4): RTL 87, golden 88" and "1 gk lanes
-differ from the golden model"; expecting one beat fewer fails with "504 output
-beats, expected 503: 1 extra beat(s) within 300 cycles of the last one".
+"gk beat 40 (m=0, j=3, pb=7, lane 0: i=7): RTL 89, golden 90" and "1 gk lanes
+differ from the golden model"; expecting one beat fewer fails with "N output
+beats, expected N-1: 1 extra beat(s) within 300 cycles of the last one".
 """
 
 from __future__ import annotations
