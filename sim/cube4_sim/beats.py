@@ -100,10 +100,12 @@ def pack_lanes(values, width: int) -> int:
     return word
 
 
-def unpack_lanes(word: int, p: int, width: int, signed: bool = False) -> np.ndarray:
-    """A lane bus -> per-lane integers (lane 0 first)."""
+def unpack_lanes(word: int, p: int, width: int, signed: bool = False, stride: int | None = None) -> np.ndarray:
+    """A lane bus -> per-lane integers (lane 0 first): lane q is ``width`` bits at
+    q * ``stride`` (default ``width``); shift ``word`` first to pick a field of a lane."""
     mask = (1 << width) - 1
-    vals = np.array([(int(word) >> (q * width)) & mask for q in range(p)], dtype=np.int64)
+    step = width if stride is None else stride
+    vals = np.array([(int(word) >> (q * step)) & mask for q in range(p)], dtype=np.int64)
     if signed:
         vals = np.where(vals >= (1 << (width - 1)), vals - (1 << width), vals)
     return vals

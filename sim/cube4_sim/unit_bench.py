@@ -129,10 +129,14 @@ def check_headers(got: list[int], want: list[int], geo, sched, log, stream: str)
     assert not bad, f"{stream}: {len(bad)} beat headers differ from the golden model, first at {sched.describe(bad[0])}"
 
 
-def check_lanes(got: np.ndarray, want: np.ndarray, valid: np.ndarray, sched, log, what: str) -> None:
-    """Per-lane values (beats, P) equal the golden ones in every lane that holds a
-    position (lanes beyond NI carry no sample and are not compared)."""
+def check_lanes(got: np.ndarray, want: np.ndarray, valid: np.ndarray, sched, log, what: str,
+                beat: np.ndarray | None = None) -> None:
+    """Per-lane values (beats, P) equal the golden ones in every lane where ``valid``
+    (by default the lanes that hold a position: lanes beyond NI carry no sample).
+    ``beat``: the schedule's beat of each compared beat (default: the same index)."""
+    where = np.arange(len(got)) if beat is None else beat
     bad = np.argwhere(valid & (got != want))
     for n, q in bad[:MAX_MISMATCH_LOGS]:
-        log.error("%s %s: RTL %d, golden %d", what, sched.describe(n, q), got[n, q], want[n, q])
-    assert bad.size == 0, f"{len(bad)} {what} lanes differ from the golden model, first at {sched.describe(*bad[0])}"
+        log.error("%s %s: RTL %d, golden %d", what, sched.describe(where[n], q), got[n, q], want[n, q])
+    assert bad.size == 0, (f"{len(bad)} {what} lanes differ from the golden model, first at "
+                           f"{sched.describe(where[bad[0][0]], bad[0][1])}")
