@@ -324,7 +324,9 @@ module cube4_top #(
     cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W))) u_chk_sha (
         .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
         .data ({sha_hdr, sha_rgba}));
-    cube4_stream_check #(.NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1)) u_chk_pix (
+    cube4_stream_check #(
+        .NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1)
+    ) u_chk_pix (
         .clk (clk), .rst (rst), .valid (pix_valid), .ready (pix_ready),
         .data ({pix_mask, pix_m, pix_by, pix_bx, pix_rgba, pix_eop}));
 
