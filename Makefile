@@ -60,6 +60,7 @@ LINT_SETS_cube4_delay_line  := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=300
 LINT_SETS_cube4_sdp_ram     := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=544
 LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8
 LINT_SETS_cube4_com         := P=1 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3 P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8
+LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
 LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
