@@ -39,6 +39,9 @@
 //   pix_*          finished rays (cube4_com)
 //   dbg_hold       [5] verification only, tie to 0: hold the internal streams
 //                  {memory request, memory response, samples, gradients, shaded}
+//   Every internal stream and the pixel stream are checked in simulation by
+//   cube4_stream_check (valid held and data stable while stalled, no unknown
+//   bits on a valid beat); synthesis sees empty modules.
 //
 // Bit growth and rounding: see the units; every format is in docs/numerics.md.
 // =============================================================================
@@ -302,6 +305,30 @@ module cube4_top #(
         .pix_rgba  (pix_rgba),
         .pix_eop   (pix_eop)
     );
+
+    // ---------------------------------------------------------------- stream checks
+    // Every internal stream's rules (cube4_stream_check; simulation only, empty
+    // under SYNTHESIS), on the producer's side, before the verification holds.
+    cube4_stream_check #(.NAME ("top.mem_req"), .DATA_W (P * ADDR_W + P + TAG_W)) u_chk_req (
+        .clk (clk), .rst (rst), .valid (fe_req_valid), .ready (fe_req_ready),
+        .data ({req_addr, req_rden, req_tag}));
+    cube4_stream_check #(.NAME ("top.mem_rsp"), .DATA_W (PV + TAG_W)) u_chk_rsp (
+        .clk (clk), .rst (rst), .valid (mem_rsp_valid), .ready (mem_rsp_ready),
+        .data ({rsp_data, rsp_tag}));
+    cube4_stream_check #(.NAME ("top.samples"), .DATA_W (HDR_W + PV)) u_chk_smp (
+        .clk (clk), .rst (rst), .valid (smp_valid), .ready (smp_ready),
+        .data ({smp_hdr, smp_sample}));
+    cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_gra (
+        .clk (clk), .rst (rst), .valid (gra_valid), .ready (gra_ready),
+        .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
+    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W))) u_chk_sha (
+        .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
+        .data ({sha_hdr, sha_rgba}));
+    cube4_stream_check #(
+        .NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1)
+    ) u_chk_pix (
+        .clk (clk), .rst (rst), .valid (pix_valid), .ready (pix_ready),
+        .data ({pix_mask, pix_m, pix_by, pix_bx, pix_rgba, pix_eop}));
 
     // ---------------------------------------------------------------- frame control
     cube4_frame_ctl u_frame (

@@ -19,5 +19,6 @@ cube4_gra.v
 cube4_sha.v
 cube4_com.v
 cube4_stream_hold.v
+cube4_stream_check.v
 cube4_frame_ctl.v
 cube4_top.v

@@ -1,0 +1,141 @@
+"""cocotb side shared by the unit testbenches (tb/cube4_tri, _gra, _sha, _com).
+
+A unit harness (sim/hdl/cube4_<unit>_harness.v) has a Verilog clock, the unit's
+view registers as individual ``cfg_*`` ports, and the unit's input and output
+streams as top-level ports with a cube4_stream_check on each. ``UnitBench``
+drives them from Python, one clock at a time (the volumes are small):
+
+* the input stream: the golden beats in order, with random gaps in valid (a
+  beat once offered is held, unchanged, until taken);
+* the output stream: random ready; every transfer is recorded;
+* after the last expected output beat the bench keeps ready high for ``tail``
+  cycles and then requires that exactly the expected number of beats came out
+  (nothing extra, nothing missing).
+
+Randomness comes from ``cocotb.RANDOM_SEED`` (COCOTB_RANDOM_SEED reproduces a run).
+Handshake timing: inputs change just after the falling edge; in the read-only
+phase of that time step the bench samples in_ready / out_valid / data, so a
+transfer it records is exactly one that the next rising edge performs.
+"""
+
+from __future__ import annotations
+
+import cocotb
+import numpy as np
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+
+from cube4.memory import top_regs
+from cube4.view import Traversal
+
+from .runner import SIM_HDL_DIR
+from .sources import rtl_sources
+
+
+def harness_sources(*sim_files: str) -> list:
+    """rtl/sources.f (the one list of RTL sources, dependency order), then the
+    simulation-only files of sim/hdl/ named (the clock and the harness)."""
+    return [*rtl_sources(), *(SIM_HDL_DIR / f for f in ("cube4_sim_clock.v", *sim_files))]
+
+
+# the view registers (CUBE4_VIEW_PACK) and the address registers (CUBE4_ADDR_PACK)
+VIEW_REGS = ("NI", "NJ", "NK", "NB", "FLIP_I", "FLIP_J", "FLIP_K", "SS_LOG2", "VIEW_X", "VIEW_Y",
+             "J_R0", "K_R0", "I_R1", "I_RT", "SX", "SY")
+ADDR_REGS = ("J_A0", "J_LIN", "J_BLK", "K_A0", "K_LIN", "K_BLK", "I_A0", "I_PB", "I_LIN")
+
+
+class UnitBench:
+    """Python source and sink around one unit harness."""
+
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        self.log = dut._log
+        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
+
+    def sig(self, name: str):
+        return getattr(self.dut, name)
+
+    async def cycles(self, n: int) -> None:
+        for _ in range(n):
+            await RisingEdge(self.dut.clk)
+
+    async def reset(self, idle: dict[str, int]) -> None:
+        """Reset with the given inputs idle (e.g. in_valid = 0, out_ready = 0)."""
+        for name, val in idle.items():
+            self.sig(name).value = val
+        self.dut.rst.value = 1
+        await self.cycles(4)
+        self.dut.rst.value = 0
+        await self.cycles(2)
+
+    def set_view(self, trav: Traversal, p: int, address: bool = False) -> None:
+        """Write the view registers (top_regs; CUBE4_VIEW_PACK) to the harness's
+        cfg_* ports, and with ``address`` the address registers (CUBE4_ADDR_PACK)."""
+        regs = top_regs(trav, p)
+        for key in VIEW_REGS + (ADDR_REGS if address else ()):
+            self.sig("cfg_" + key.lower()).value = int(regs[key])
+
+    async def run_stream(self, inputs: list[dict[str, int]] | None, expected: int, outputs: list[str],
+                         gap: float, stall: float, tail: int = 300, limit: int = 200000) -> list[dict[str, int]]:
+        """Offer ``inputs`` (signal -> value per beat; None: the harness makes its own
+        input) on in_valid / in_ready with gap probability ``gap`` per cycle, take
+        output beats with ready probability 1 - ``stall``, until ``expected`` beats
+        came out and every input was taken; then ``tail`` cycles with ready high.
+        Returns the output beats (signal -> value), in order."""
+        d = self.dut
+        got: list[dict[str, int]] = []
+        k, offering, cycle, quiet = 0, False, 0, 0
+        n_in = 0 if inputs is None else len(inputs)
+        while quiet < tail:
+            await FallingEdge(d.clk)
+            if inputs is not None:
+                if not offering and k < n_in and self.rng.random() >= gap:
+                    for name, val in inputs[k].items():
+                        self.sig(name).value = val
+                    offering = True
+                d.in_valid.value = int(offering)
+            done = len(got) >= expected and k == n_in
+            ready = 1 if done else int(self.rng.random() >= stall)
+            d.out_ready.value = ready
+            await ReadOnly()
+            if offering and int(d.in_ready.value):
+                offering, k = False, k + 1
+            if ready and int(d.out_valid.value):
+                got.append({name: int(self.sig(name).value) for name in outputs})
+            if done:
+                quiet += 1
+            cycle += 1
+            assert cycle < limit, (f"{len(got)} of {expected} output beats and {k} of {n_in} input beats "
+                                   f"after {cycle} cycles")
+        await FallingEdge(d.clk)
+        if inputs is not None:
+            d.in_valid.value = 0
+        d.out_ready.value = 0
+        assert len(got) == expected, (f"{len(got)} output beats, expected {expected}: "
+                                      f"{len(got) - expected} extra beat(s) within {tail} cycles of the last one")
+        return got
+
+
+MAX_MISMATCH_LOGS = 8
+
+
+def check_headers(got: list[int], want: list[int], geo, sched, log, stream: str) -> None:
+    """Every output beat's header equals the golden one, field by field."""
+    bad = [n for n, (g, w) in enumerate(zip(got, want)) if g != w]
+    for n in bad[:MAX_MISMATCH_LOGS]:
+        g, w = geo.unpack_header(got[n]), geo.unpack_header(want[n])
+        diff = {k: (g[k], w[k]) for k in g if g[k] != w[k]}
+        log.error("%s %s: header fields (RTL, golden) %s", stream, sched.describe(n), diff)
+    assert not bad, f"{stream}: {len(bad)} beat headers differ from the golden model, first at {sched.describe(bad[0])}"
+
+
+def check_lanes(got: np.ndarray, want: np.ndarray, valid: np.ndarray, sched, log, what: str,
+                beat: np.ndarray | None = None) -> None:
+    """Per-lane values (beats, P) equal the golden ones in every lane where ``valid``
+    (by default the lanes that hold a position: lanes beyond NI carry no sample).
+    ``beat``: the schedule's beat of each compared beat (default: the same index)."""
+    where = np.arange(len(got)) if beat is None else beat
+    bad = np.argwhere(valid & (got != want))
+    for n, q in bad[:MAX_MISMATCH_LOGS]:
+        log.error("%s %s: RTL %d, golden %d", what, sched.describe(where[n], q), got[n, q], want[n, q])
+    assert bad.size == 0, (f"{len(bad)} {what} lanes differ from the golden model, first at "
+                           f"{sched.describe(where[bad[0][0]], bad[0][1])}")

@@ -1,0 +1,116 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_gra_harness  (simulation only: needs Verilator --timing)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Unit test harness of cube4_gra (tb/cube4_gra): a Verilog clock, the view
+//   registers as individual ports packed into GRA's cfg bus (CUBE4_VIEW_PACK),
+//   GRA's sample input and gradient output as top-level ports, which the
+//   testbench drives and reads every cycle (golden sample beats in, random
+//   gaps in valid; random ready out), and a cube4_stream_check on each of
+//   the two streams.
+//
+// Parameters: as cube4_gra (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//
+// Latency: that of cube4_gra (the ports connect straight to it).
+//
+// Ports
+//   clk       out  the harness's clock (cube4_sim_clock, 10 ns)
+//   rst       in   synchronous reset
+//   cfg_*     in   view registers (golden/cube4/memory.py top_regs)
+//   in_*      in   sample stream (cube4_tri's format, cube4_defs.vh)
+//   out_*     out  gradient stream (cube4_gra's format)
+// =============================================================================
+module cube4_gra_harness #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_DIM     = 32,
+    parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    localparam integer GRAD_W = VOXEL_W + 5
+) (
+    output wire                  clk,
+    input  wire                  rst,
+    input  wire [DIM_W-1:0]      cfg_ni,
+    input  wire [DIM_W-1:0]      cfg_nj,
+    input  wire [DIM_W-1:0]      cfg_nk,
+    input  wire [NB_W-1:0]       cfg_nb,
+    input  wire                  cfg_flip_i,
+    input  wire                  cfg_flip_j,
+    input  wire                  cfg_flip_k,
+    input  wire [1:0]            cfg_ss_log2,
+    input  wire [WEIGHT_W:0]     cfg_view_x,
+    input  wire [WEIGHT_W:0]     cfg_view_y,
+    input  wire [LANE_W-1:0]     cfg_j_r0,
+    input  wire [LANE_W-1:0]     cfg_k_r0,
+    input  wire [LANE_W-1:0]     cfg_i_r1,
+    input  wire [LANE_W-1:0]     cfg_i_rt,
+    input  wire [DIM_W-1:0]      cfg_sx,
+    input  wire [DIM_W-1:0]      cfg_sy,
+    input  wire                  in_valid,
+    output wire                  in_ready,
+    input  wire [HDR_W-1:0]      in_hdr,
+    input  wire [P*VOXEL_W-1:0]  in_sample,
+    output wire                  out_valid,
+    input  wire                  out_ready,
+    output wire [HDR_W-1:0]      out_hdr,
+    output wire [P*VOXEL_W-1:0]  out_sample,
+    output wire [P*GRAD_W-1:0]   out_gi,
+    output wire [P*GRAD_W-1:0]   out_gj,
+    output wire [P*GRAD_W-1:0]   out_gk
+);
+    cube4_sim_clock u_clock (.clk (clk));
+
+    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+
+    cube4_gra #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .WEIGHT_W    (WEIGHT_W),
+        .MAX_DIM     (MAX_DIM),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_gra (
+        .clk        (clk),
+        .rst        (rst),
+        .cfg        (cfg),
+        .in_valid   (in_valid),
+        .in_ready   (in_ready),
+        .in_hdr     (in_hdr),
+        .in_sample  (in_sample),
+        .out_valid  (out_valid),
+        .out_ready  (out_ready),
+        .out_hdr    (out_hdr),
+        .out_sample (out_sample),
+        .out_gi     (out_gi),
+        .out_gj     (out_gj),
+        .out_gk     (out_gk)
+    );
+
+    cube4_stream_check #(
+        .NAME   ("gra.in (samples)"),
+        .DATA_W (HDR_W + P * VOXEL_W)
+    ) u_chk_in (
+        .clk   (clk),
+        .rst   (rst),
+        .valid (in_valid),
+        .ready (in_ready),
+        .data  ({in_hdr, in_sample})
+    );
+
+    cube4_stream_check #(
+        .NAME   ("gra.out (gradients)"),
+        .DATA_W (HDR_W + P * VOXEL_W + 3 * P * GRAD_W)
+    ) u_chk_out (
+        .clk   (clk),
+        .rst   (rst),
+        .valid (out_valid),
+        .ready (out_ready),
+        .data  ({out_hdr, out_sample, out_gi, out_gj, out_gk})
+    );
+
+endmodule
+`default_nettype wire

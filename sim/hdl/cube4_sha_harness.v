@@ -1,0 +1,113 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_sha_harness  (simulation only: needs Verilator --timing)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Unit test harness of cube4_sha (tb/cube4_sha): a Verilog clock, SHA's
+//   table load ports, its gradient input and shaded output as top-level ports,
+//   which the testbench drives and reads every cycle (golden gradient beats
+//   in with random gaps in valid; random ready out), and a cube4_stream_check
+//   on each of the two streams. SHA has no view registers.
+//
+// Parameters: as cube4_sha (P 1..64, VOXEL_W 1..16, ALPHA_W 8..16,
+//   RMAP_BITS 2..6, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//
+// Latency: that of cube4_sha (the ports connect straight to it).
+//
+// Ports
+//   clk             out  the harness's clock (cube4_sim_clock, 10 ns)
+//   rst             in   synchronous reset
+//   lut_*, rmap_*   in   table writes (cube4_sha)
+//   in_*            in   gradient stream (cube4_gra's format)
+//   out_*           out  shaded stream (cube4_sha's format, with out_idx)
+// =============================================================================
+module cube4_sha_harness #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer ALPHA_W     = 12,
+    parameter integer RMAP_BITS   = 5,
+    parameter integer MAX_DIM     = 32,
+    parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_GEOMETRY,
+    localparam integer GRAD_W = VOXEL_W + 5,
+    localparam integer RI_W   = 2 * RMAP_BITS + 3,
+    localparam integer RGBA_W = P * (24 + ALPHA_W)   // out_rgba (a name, for the runner's port scan)
+) (
+    output wire                      clk,
+    input  wire                      rst,
+    input  wire                      lut_we,
+    input  wire [VOXEL_W-1:0]        lut_addr,
+    input  wire [24+ALPHA_W-1:0]     lut_data,
+    input  wire                      rmap_we,
+    input  wire [RI_W-1:0]           rmap_addr,
+    input  wire [19:0]               rmap_data,
+    input  wire                      in_valid,
+    output wire                      in_ready,
+    input  wire [HDR_W-1:0]          in_hdr,
+    input  wire [P*VOXEL_W-1:0]      in_sample,
+    input  wire [P*GRAD_W-1:0]       in_gi,
+    input  wire [P*GRAD_W-1:0]       in_gj,
+    input  wire [P*GRAD_W-1:0]       in_gk,
+    output wire                      out_valid,
+    input  wire                      out_ready,
+    output wire [HDR_W-1:0]          out_hdr,
+    output wire [RGBA_W-1:0]         out_rgba,
+    output wire [P*RI_W-1:0]         out_idx
+);
+    cube4_sim_clock u_clock (.clk (clk));
+
+    cube4_sha #(
+        .P           (P),
+        .VOXEL_W     (VOXEL_W),
+        .ALPHA_W     (ALPHA_W),
+        .RMAP_BITS   (RMAP_BITS),
+        .MAX_DIM     (MAX_DIM),
+        .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_sha (
+        .clk       (clk),
+        .rst       (rst),
+        .lut_we    (lut_we),
+        .lut_addr  (lut_addr),
+        .lut_data  (lut_data),
+        .rmap_we   (rmap_we),
+        .rmap_addr (rmap_addr),
+        .rmap_data (rmap_data),
+        .in_valid  (in_valid),
+        .in_ready  (in_ready),
+        .in_hdr    (in_hdr),
+        .in_sample (in_sample),
+        .in_gi     (in_gi),
+        .in_gj     (in_gj),
+        .in_gk     (in_gk),
+        .out_valid (out_valid),
+        .out_ready (out_ready),
+        .out_hdr   (out_hdr),
+        .out_rgba  (out_rgba),
+        .out_idx   (out_idx)
+    );
+
+    cube4_stream_check #(
+        .NAME   ("sha.in (gradients)"),
+        .DATA_W (HDR_W + P * VOXEL_W + 3 * P * GRAD_W)
+    ) u_chk_in (
+        .clk   (clk),
+        .rst   (rst),
+        .valid (in_valid),
+        .ready (in_ready),
+        .data  ({in_hdr, in_sample, in_gi, in_gj, in_gk})
+    );
+
+    cube4_stream_check #(
+        .NAME   ("sha.out (shaded)"),
+        .DATA_W (HDR_W + RGBA_W + P * RI_W)
+    ) u_chk_out (
+        .clk   (clk),
+        .rst   (rst),
+        .valid (out_valid),
+        .ready (out_ready),
+        .data  ({out_hdr, out_rgba, out_idx})
+    );
+
+endmodule
+`default_nettype wire

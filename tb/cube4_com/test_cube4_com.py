@@ -1,0 +1,156 @@
+"""Unit testbench of rtl/cube4_com.v: the finished-ray (pixel) stream, bit for bit.
+
+The DUT is ``sim/hdl/cube4_com_harness.v``: cube4_com with its view registers as
+ports, a Verilog clock and a cube4_stream_check on the input and the output
+stream. The input is the golden shaded stream: ``cube4.model.render_frame`` with
+random tables and ``keep_streams=True`` gives the shaded samples (R, G, B, A) and
+the inside flags, turned into beats in the hardware's order with their headers
+(``cube4_sim.beats.BeatSchedule``), offered with random gaps in valid; the output
+is taken with random ready (``cube4_sim.unit_bench``, seeded from
+COCOTB_RANDOM_SEED).
+
+The expected output is derived from the same frame's finished rays
+(``render_frame(...).pixels``, PIXEL_DTYPE): ray (m, by, bx) finishes at sample
+(m, j, i) with j = by - SY + stepy(m), i = bx - SX + stepx(m). COM emits one
+pixel beat per input beat that finishes at least one ray, in input order, plus
+the frame's last beat (eop) whether or not it finishes one. Checked per pixel
+beat, in order: m, by, the lane mask and eop exactly; bx and R, G, B, A in every
+masked lane; and exactly that many beats, none extra in the 300 cycles after the
+last one. So a COM bug shows as the beat, lane and (m, j, i) where it appears,
+not as "ray X differs" at the end of a frame.
+
+Views: z-major with j flipped, z-major with i and k flipped, x-major with k
+flipped, each with other stalls and tables, one simulation per build (no reset
+between views), at P = 1, 5 and 8 (ACC_W 16 and 24).
+
+The test can fail (tried with a deliberately corrupted expectation, not kept):
+with the golden G of the first finished ray raised by one, P = 1 fails with
+"G beat 10 (m=0, j=0, pb=10, lane 0: i=10): RTL 10168, golden 10169" and
+"1 G lanes differ from the golden model".
+"""
+
+from __future__ import annotations
+
+import cocotb
+import numpy as np
+import pytest
+
+from cube4.config import Cube4Config
+from cube4.model import render_frame
+from cube4.view import make_traversal
+from cube4_sim import run_test
+from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
+from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources
+
+SOURCES = harness_sources("cube4_com_harness.v")
+
+# (direction, input gap probability, output stall probability)
+VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]
+OUTPUTS = ["out_mask", "out_m", "out_by", "out_bx", "out_rgba", "out_eop"]
+CHANNELS = ("R", "G", "B", "A")
+
+
+def volume_dims(p: int) -> tuple[int, int, int]:
+    """Small and non-cubic, with several partial beams along every axis."""
+    return (max(11, 2 * p + 3), max(9, p + 4), max(8, p + 2))
+
+
+def random_tables(rng, cfg: Cube4Config) -> tuple[np.ndarray, np.ndarray]:
+    """LUT with low opacities (rays run through many samples) and a random RMAP."""
+    n = 1 << cfg.voxel_bits
+    lut = np.empty((n, 4), dtype=np.int64)
+    lut[:, :3] = rng.integers(0, 256, size=(n, 3))
+    lut[:, 3] = rng.integers(0, 1 << (cfg.alpha_bits - 2), size=n)
+    rmap = rng.integers(0, 1024, size=(cfg.rmap_entries, 2), dtype=np.int64)
+    return lut, rmap
+
+
+def finished_rays(frame) -> tuple[np.ndarray, np.ndarray]:
+    """The golden finished rays as [m, j, i] arrays: finished flag and (4, M, nj, ni) R, G, B, A."""
+    trav = frame.trav
+    M, nj, ni = trav.num_sample_slices, trav.nj, trav.ni
+    sxm, sym = trav.max_steps
+    pix = frame.pixels
+    stx, sty = trav.steps(pix["m"].astype(np.int64))
+    j = pix["by"] - (sym - sty)
+    i = pix["bx"] - (sxm - stx)
+    fin = np.zeros((M, nj, ni), dtype=bool)
+    rgba = np.zeros((4, M, nj, ni), dtype=np.int64)
+    fin[pix["m"], j, i] = True
+    for c, key in enumerate("rgba"):
+        rgba[c, pix["m"], j, i] = pix[key]
+    assert fin.sum() == len(pix), "two golden rays finish at the same sample"
+    return fin, rgba
+
+
+def expected_pixel_beats(frame, sched: BeatSchedule) -> dict[str, np.ndarray]:
+    """Per expected pixel beat: the schedule's beat, mask (beats, P), m, by, eop, and per
+    lane bx and R, G, B, A."""
+    trav = frame.trav
+    fin, rgba = finished_rays(frame)
+    lanes_fin = sched.lanes(fin).astype(bool) & sched.lval
+    last = len(sched) - 1
+    beat = np.array([n for n in range(len(sched)) if lanes_fin[n].any() or n == last])
+    sxm, sym = trav.max_steps
+    stx, sty = trav.steps(sched.m[beat])
+    return {"beat": beat, "mask": lanes_fin[beat], "m": sched.m[beat], "by": sched.j[beat] - sty + sym,
+            "bx": sched.pos[beat] - stx[:, None] + sxm, "eop": beat == last,
+            "rgba": sched.lanes(np.moveaxis(rgba, 0, 1))[beat]}  # (beats, 4, P)
+
+
+def check_pixel_beats(got: list[dict[str, int]], exp: dict[str, np.ndarray], sched, p: int, bx_w: int,
+                      acc_w: int, log) -> None:
+    """Every pixel beat against the golden one: m, by, mask, eop; bx and RGBA per masked lane."""
+    beat = exp["beat"]
+    for key in ("m", "by", "eop"):
+        rtl = np.array([[b["out_" + key]] for b in got], dtype=np.int64)
+        check_lanes(rtl, exp[key].astype(np.int64)[:, None], np.ones_like(rtl, dtype=bool), sched, log,
+                    f"pixel {key}", beat)
+    rtl_mask = np.array([[b["out_mask"]] for b in got], dtype=np.int64)
+    want_mask = np.array([[mask_bits(f)] for f in exp["mask"]], dtype=np.int64)
+    check_lanes(rtl_mask, want_mask, np.ones_like(rtl_mask, dtype=bool), sched, log, "pixel lane mask", beat)
+    rtl_bx = np.stack([unpack_lanes(b["out_bx"], p, bx_w) for b in got])
+    check_lanes(rtl_bx, exp["bx"], exp["mask"], sched, log, "pixel bx", beat)
+    cw = acc_w + 1
+    for c, name in enumerate(CHANNELS):   # lane q = {R, G, B, A}, ACC_W + 1 bits each
+        rtl = np.stack([unpack_lanes(b["out_rgba"] >> ((3 - c) * cw), p, cw, stride=4 * cw) for b in got])
+        check_lanes(rtl, exp["rgba"][:, c], exp["mask"], sched, log, name, beat)
+
+
+@cocotb.test()
+async def test_pixel_stream(dut):
+    """Golden shaded beats in, finished-ray beats out, bit for bit, with stalls."""
+    p, aw, acc_w = int(dut.P.value), int(dut.ALPHA_W.value), int(dut.ACC_W.value)
+    geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
+    cfg = Cube4Config(pipelines=p, weight_bits=int(dut.WEIGHT_W.value), alpha_bits=aw, acc_bits=acc_w)
+    bench = UnitBench(dut)
+    await bench.reset({"in_valid": 0, "out_ready": 0})
+    dims = volume_dims(p)
+    vol = bench.rng.integers(0, 1 << cfg.voxel_bits, size=dims[::-1], dtype=np.int64)
+    for direction, gap, stall in VIEWS:
+        trav = make_traversal(dims, direction, cfg.weight_bits, 1)
+        lut, rmap = random_tables(bench.rng, cfg)
+        frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True)
+        sched = BeatSchedule(trav, p, frame.streams["inside"])
+        hdrs = sched.headers(geo)
+        shaded = sched.lanes(frame.streams["shaded"])  # [m, c, j, i] -> (beats, 4, P)
+        words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
+        inputs = [{"in_hdr": hdrs[n], "in_rgba": pack_lanes(words[n], 24 + aw)} for n in range(len(sched))]
+        exp = expected_pixel_beats(frame, sched)
+        bench.set_view(trav, p)
+        await bench.cycles(2)
+        got = await bench.run_stream(inputs, len(exp["beat"]), OUTPUTS, gap, stall)
+        check_pixel_beats(got, exp, sched, p, geo.dim_w + 1, acc_w, bench.log)
+        bench.log.info("dims %s view %s gap %.1f stall %.1f: %d pixel beats, %d finished rays bit-exact",
+                       dims, direction, gap, stall, len(got), len(frame.pixels))
+
+
+BUILDS = [(1, 12, 16), (5, 12, 16), (8, 16, 24)]   # (P, ALPHA_W, ACC_W)
+
+
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}" for b in BUILDS])
+def test_cube4_com(build):
+    p, aw, acc_w = build
+    run_test(top="cube4_com_harness", sources=SOURCES,
+             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": 0},
+             test_module=__file__, testcase="test_pixel_stream", timing=True)
