@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_beam_ext
 // -----------------------------------------------------------------------------
@@ -41,12 +42,8 @@ module cube4_beam_ext #(
     output wire [P*DATA_W-1:0] nbr
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_beam_ext: P = %0d is out of range 1..64", P);
-        end
-        if (DATA_W < 1 || DATA_W > 256) begin : g_bad_data_w
-            $error("cube4_beam_ext: DATA_W = %0d is out of range 1..256", DATA_W);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_beam_ext", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_data_w, "cube4_beam_ext", "DATA_W", DATA_W, 1, 256)
     endgenerate
 
     // lane q's neighbour value in beat b and in beat b + 1

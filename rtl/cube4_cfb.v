@@ -70,46 +70,27 @@
 //   accumulators are W + log2 S bits and wrap by design (the carry is the step).
 // =============================================================================
 module cube4_cfb #(
-    parameter integer P           = 8,
-    parameter integer MAX_DIM     = 256,
-    parameter integer ADDR_W      = 16,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
-    `CUBE4_ADDR_LAYOUT,
-    `CUBE4_TAG_LAYOUT
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
+    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    parameter integer ADDR_W   = 16,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT
 ) (
-    input  wire                  clk,
-    input  wire                  rst,
-    input  wire                  start,
-    output wire                  busy,
-    input  wire [VIEW_W-1:0]     cfg,        // view registers (cube4_defs.vh)
-    input  wire [ADR_W_ALL-1:0]  cfg_addr,   // address registers (cube4_defs.vh)
-    // memory request stream
-    output wire                  req_valid,
-    input  wire                  req_ready,
-    output wire [P*ADDR_W-1:0]   req_addr,
-    output wire [P-1:0]          req_rden,
-    output wire [TAG_W-1:0]      req_tag     // travels with the beat to cube4_tri
+    input  wire clk, input wire rst,
+    input  wire start, output wire busy,
+    input  wire [VIEW_W-1:0]    cfg,        // view registers (cube4_defs.vh)
+    input  wire [ADR_W_ALL-1:0] cfg_addr,   // address registers (cube4_defs.vh)
+    // memory request stream; the tag travels with the beat to cube4_tri
+    output wire req_valid, input wire req_ready, output wire [TAG_W-1:0] req_tag,
+    output wire [P*ADDR_W-1:0] req_addr,
+    output wire [P-1:0] req_rden
 );
     // ---- parameter checks ----
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_cfb: P = %0d is out of range 1..64", P);
-        end
-        if (MAX_DIM < 2 || MAX_DIM > 2048) begin : g_bad_max_dim
-            $error("cube4_cfb: MAX_DIM = %0d is out of range 2..2048", MAX_DIM);
-        end
-        if (ADDR_W < 1 || ADDR_W > 30) begin : g_bad_addr_w
-            $error("cube4_cfb: ADDR_W = %0d is out of range 1..30", ADDR_W);
-        end
-        if (WEIGHT_W < 4 || WEIGHT_W > 12) begin : g_bad_weight_w
-            $error("cube4_cfb: WEIGHT_W = %0d is out of range 4..12", WEIGHT_W);
-        end
-        if (MAX_SS_LOG2 < 0 || MAX_SS_LOG2 > 3) begin : g_bad_ss
-            $error("cube4_cfb: MAX_SS_LOG2 = %0d is out of range 0..3", MAX_SS_LOG2);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_cfb", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_max_dim, "cube4_cfb", "MAX_DIM", MAX_DIM, 2, 2048)
+        `CUBE4_RANGE(g_bad_addr_w, "cube4_cfb", "ADDR_W", ADDR_W, 1, 30)
+        `CUBE4_RANGE(g_bad_weight_w, "cube4_cfb", "WEIGHT_W", WEIGHT_W, 4, 12)
+        `CUBE4_RANGE(g_bad_ss, "cube4_cfb", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
     endgenerate
 
     localparam integer PH_W = WEIGHT_W + MAX_SS_LOG2;  // phase accumulator

@@ -64,44 +64,27 @@
 //   Nothing wraps and nothing saturates (numerics.md section 7).
 // =============================================================================
 module cube4_com #(
-    parameter integer P           = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer ALPHA_W     = 12,
-    parameter integer ACC_W       = 16,
-    parameter integer MAX_DIM     = 256,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
+    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    parameter integer ALPHA_W  = 12, parameter integer ACC_W      = 16,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer BX_W = DIM_W + 1
 ) (
-    input  wire                      clk,
-    input  wire                      rst,
-    input  wire [VIEW_W-1:0]         cfg,
+    input  wire clk, input wire rst,
+    input  wire [VIEW_W-1:0] cfg,
     // shaded stream in
-    input  wire                      in_valid,
-    output wire                      in_ready,
-    input  wire [HDR_W-1:0]          in_hdr,
+    input  wire in_valid, output wire in_ready, input wire [HDR_W-1:0] in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
-    // finished rays out
-    output wire                      pix_valid,
-    input  wire                      pix_ready,
-    output wire [P-1:0]              pix_mask,
-    output wire [M_W-1:0]            pix_m,
-    output wire [BX_W-1:0]           pix_by,
-    output wire [P*BX_W-1:0]         pix_bx,
-    output wire [P*4*(ACC_W+1)-1:0]  pix_rgba,
-    output wire                      pix_eop
+    // finished rays out: lane mask, slice, base-plane row and columns, RGBA, last beat
+    output wire pix_valid, input wire pix_ready,
+    output wire [P-1:0] pix_mask, output wire [M_W-1:0] pix_m, output wire pix_eop,
+    output wire [BX_W-1:0] pix_by, output wire [P*BX_W-1:0] pix_bx,
+    output wire [P*4*(ACC_W+1)-1:0] pix_rgba
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_com: P = %0d is out of range 1..64", P);
-        end
-        if (ALPHA_W < 8 || ALPHA_W > 16) begin : g_bad_alpha_w
-            $error("cube4_com: ALPHA_W = %0d is out of range 8..16", ALPHA_W);
-        end
-        if (ACC_W < 8 || ACC_W > 24) begin : g_bad_acc_w
-            $error("cube4_com: ACC_W = %0d is out of range 8..24", ACC_W);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_com", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_alpha_w, "cube4_com", "ALPHA_W", ALPHA_W, 8, 16)
+        `CUBE4_RANGE(g_bad_acc_w, "cube4_com", "ACC_W", ACC_W, 8, 24)
     endgenerate
 
     localparam integer CW     = ACC_W + 1;          // one accumulator channel
@@ -508,22 +491,11 @@ module cube4_com #(
     localparam integer OUT_W = PA + SH_W;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    cube4_credit_fifo #(
-        .DATA_W (OUT_W),
-        .DEPTH  (FIFO_DEPTH)
-    ) u_fifo (
-        .clk       (clk),
-        .rst       (rst),
-        .take      (take),
-        .give      (give_q),
-        .credit    (credit),
-        .credit_d  (unused_credit_d),
-        .push_d    (out_d),
-        .in_data   ({fin_s[NS], m_s[NS], by_s[NS], bx_s[NS], eop_s[NS], pix_d}),
-        .out_valid (pix_valid),
-        .out_ready (pix_ready),
-        .out_data  (fifo_out)
-    );
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+        .clk(clk), .rst(rst), .take(take), .give(give_q),
+        .credit(credit), .credit_d(unused_credit_d),
+        .push_d(out_d), .in_data({fin_s[NS], m_s[NS], by_s[NS], bx_s[NS], eop_s[NS], pix_d}),
+        .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
     assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
 
 endmodule

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_credit_fifo
 // -----------------------------------------------------------------------------
@@ -75,9 +76,7 @@ module cube4_credit_fifo #(
 );
     localparam integer AW = (DEPTH > 1) ? $clog2(DEPTH) : 1;
     generate
-        if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
-            $error("cube4_credit_fifo: DATA_W = %0d is out of range 1..4096", DATA_W);
-        end
+        `CUBE4_RANGE(g_bad_data_w, "cube4_credit_fifo", "DATA_W", DATA_W, 1, 4096)
         if (DEPTH < 4 || DEPTH > 64 || (1 << AW) != DEPTH) begin : g_bad_depth
             $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
         end

@@ -23,6 +23,7 @@
 //       CUBE4_VIEW_LAYOUT the above and WEIGHT_W
 //       CUBE4_TAG_LAYOUT  the above
 //       CUBE4_ADDR_LAYOUT ADDR_W
+//   `CUBE4_RANGE(...) in a generate region checks a parameter's range.
 //   `CUBE4_LANE_FUNCTIONS in a module body (after CUBE4_GEOMETRY) defines the
 //   lane functions. `CUBE4_VIEW_FIELDS(bus) in a module body declares one wire
 //   cfg_<name> per view register, read from the bus.
@@ -210,5 +211,13 @@
                 : mod_p($signed((LANE_W+3)'(q)) - $signed({3'b000, skew})); \
         end \
     endfunction
+
+// ---------------------------------------------------------------- parameter checks
+// A parameter outside its range stops elaboration (in a generate region):
+//   "<module>: NAME = value is out of range LO..HI"
+`define CUBE4_RANGE(LABEL, MODULE, NAME, VALUE, LO, HI) \
+    if ((VALUE) < (LO) || (VALUE) > (HI)) begin : LABEL \
+        $error("%s: %s = %0d is out of range %0d..%0d", MODULE, NAME, VALUE, LO, HI); \
+    end
 
 `endif

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_delay_line
 // -----------------------------------------------------------------------------
@@ -54,9 +55,7 @@ module cube4_delay_line #(
     output wire [DATA_W-1:0] dout
 );
     generate
-        if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
-            $error("cube4_delay_line: DATA_W = %0d is out of range 1..4096", DATA_W);
-        end
+        `CUBE4_RANGE(g_bad_data_w, "cube4_delay_line", "DATA_W", DATA_W, 1, 4096)
         if (DEPTH < 1 || DEPTH > (1 << 24)) begin : g_bad_depth
             $error("cube4_delay_line: DEPTH = %0d is out of range 1..2^24", DEPTH);
         end

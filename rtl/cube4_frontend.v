@@ -37,40 +37,24 @@
 // Bit growth and rounding: see cube4_tri (one rounding per lerp).
 // =============================================================================
 module cube4_frontend #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 256,
-    parameter integer ADDR_W      = 16,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
-    `CUBE4_ADDR_LAYOUT,
-    `CUBE4_TAG_LAYOUT
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
+    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    parameter integer VOXEL_W  = 8, parameter integer ADDR_W      = 16,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT
 ) (
-    input  wire                  clk,
-    input  wire                  rst,
-    input  wire                  start,
-    output wire                  busy,
-    output wire                  done,
-    output wire [31:0]           cycles,
-    input  wire [VIEW_W-1:0]     cfg,
-    input  wire [ADR_W_ALL-1:0]  cfg_addr,
-    // memory read port
-    output wire                  mem_req_valid,
-    input  wire                  mem_req_ready,
-    output wire [P*ADDR_W-1:0]   mem_req_addr,
-    output wire [P-1:0]          mem_req_rden,
-    output wire [TAG_W-1:0]      mem_req_tag,
-    input  wire                  mem_rsp_valid,
-    output wire                  mem_rsp_ready,
-    input  wire [P*VOXEL_W-1:0]  mem_rsp_data,
-    input  wire [TAG_W-1:0]      mem_rsp_tag,
+    input  wire clk, input wire rst,
+    input  wire start, output wire busy, output wire done, output wire [31:0] cycles,
+    input  wire [VIEW_W-1:0]    cfg,
+    input  wire [ADR_W_ALL-1:0] cfg_addr,
+    // memory read port: request, response
+    output wire mem_req_valid, input wire mem_req_ready, output wire [TAG_W-1:0] mem_req_tag,
+    output wire [P*ADDR_W-1:0] mem_req_addr,
+    output wire [P-1:0] mem_req_rden,
+    input  wire mem_rsp_valid, output wire mem_rsp_ready, input wire [TAG_W-1:0] mem_rsp_tag,
+    input  wire [P*VOXEL_W-1:0] mem_rsp_data,
     // sample stream
-    output wire                  smp_valid,
-    input  wire                  smp_ready,
-    output wire [HDR_W-1:0]      smp_hdr,
-    output wire [P*VOXEL_W-1:0]  smp_sample
+    output wire smp_valid, input wire smp_ready, output wire [HDR_W-1:0] smp_hdr,
+    output wire [P*VOXEL_W-1:0] smp_sample
 );
     // ---- CFB ----
     wire                unused_cfb_busy;   // the frame ends at the last sample, not the last request

@@ -58,39 +58,25 @@
 //   so GRAD_W = VOXEL_W + 5 holds every result exactly. No saturation.
 // =============================================================================
 module cube4_gra #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 256,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
+    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    parameter integer WEIGHT_W = 8,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
-    input  wire                  clk,
-    input  wire                  rst,
-    input  wire [VIEW_W-1:0]     cfg,
+    input  wire clk, input wire rst,
+    input  wire [VIEW_W-1:0] cfg,
     // sample stream in
-    input  wire                  in_valid,
-    output wire                  in_ready,
-    input  wire [HDR_W-1:0]      in_hdr,
-    input  wire [P*VOXEL_W-1:0]  in_sample,
-    // gradient stream out
-    output wire                  out_valid,
-    input  wire                  out_ready,
-    output wire [HDR_W-1:0]      out_hdr,
-    output wire [P*VOXEL_W-1:0]  out_sample,
-    output wire [P*GRAD_W-1:0]   out_gi,
-    output wire [P*GRAD_W-1:0]   out_gj,
-    output wire [P*GRAD_W-1:0]   out_gk
+    input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
+    input  wire [P*VOXEL_W-1:0] in_sample,
+    // gradient stream out: the sample and its gradient (gi, gj, gk)
+    output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
+    output wire [P*VOXEL_W-1:0] out_sample,
+    output wire [P*GRAD_W-1:0]  out_gi, output wire [P*GRAD_W-1:0] out_gj, output wire [P*GRAD_W-1:0] out_gk
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_gra: P = %0d is out of range 1..64", P);
-        end
-        if (VOXEL_W < 1 || VOXEL_W > 16) begin : g_bad_voxel_w
-            $error("cube4_gra: VOXEL_W = %0d is out of range 1..16", VOXEL_W);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_gra", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_voxel_w, "cube4_gra", "VOXEL_W", VOXEL_W, 1, 16)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -483,22 +469,11 @@ module cube4_gra #(
     wire credit_d;
     cube4_prim_copies #(.N(NSTEP), .RST_VAL(64'd1)) u_credit (
         .clk(clk), .rst(rst), .d(credit_d), .q(en_rep));
-    cube4_credit_fifo #(
-        .DATA_W (OUT_W),
-        .DEPTH  (FIFO_DEPTH)
-    ) u_fifo (
-        .clk       (clk),
-        .rst       (rst),
-        .take      (take),
-        .give      (1'b0),
-        .credit    (unused_credit),
-        .credit_d  (credit_d),
-        .push_d    (g1_v),
-        .in_data   ({g2_meta, g2_s, gi_x, gj_x, gk_d}),
-        .out_valid (out_valid),
-        .out_ready (out_ready),
-        .out_data  (fifo_out)
-    );
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+        .clk(clk), .rst(rst), .take(take), .give(1'b0),
+        .credit(unused_credit), .credit_d(credit_d),
+        .push_d(g1_v), .in_data({g2_meta, g2_s, gi_x, gj_x, gk_d}),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
     assign {out_hdr, out_sample, out_gi, out_gj, out_gk} = fifo_out;
     wire unused_g2_v = g2_v;            // the FIFO's push copies are its copies
 

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_lerp
 // -----------------------------------------------------------------------------
@@ -66,15 +67,9 @@ module cube4_lerp #(
 
     // ---- parameter checks (stop elaboration on illegal values) ----
     generate
-        if (DATA_W < 1 || DATA_W > 16) begin : g_bad_data_w
-            $error("cube4_lerp: DATA_W = %0d is out of range 1..16", DATA_W);
-        end
-        if (WEIGHT_W < 1 || WEIGHT_W > 12) begin : g_bad_weight_w
-            $error("cube4_lerp: WEIGHT_W = %0d is out of range 1..12", WEIGHT_W);
-        end
-        if (LATENCY < 0 || LATENCY > 3) begin : g_bad_latency
-            $error("cube4_lerp: LATENCY = %0d is out of range 0..3", LATENCY);
-        end
+        `CUBE4_RANGE(g_bad_data_w, "cube4_lerp", "DATA_W", DATA_W, 1, 16)
+        `CUBE4_RANGE(g_bad_weight_w, "cube4_lerp", "WEIGHT_W", WEIGHT_W, 1, 12)
+        `CUBE4_RANGE(g_bad_latency, "cube4_lerp", "LATENCY", LATENCY, 0, 3)
     endgenerate
 
     localparam integer DIFF_W = DATA_W + 1;             // b - a, signed

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_prim_copies
 // -----------------------------------------------------------------------------
@@ -39,12 +40,8 @@ module cube4_prim_copies #(
     output wire [N*W-1:0] q
 );
     generate
-        if (N < 1 || N > 512) begin : g_bad_n
-            $error("cube4_prim_copies: N = %0d is out of range 1..512", N);
-        end
-        if (W < 1 || W > 64) begin : g_bad_w
-            $error("cube4_prim_copies: W = %0d is out of range 1..64", W);
-        end
+        `CUBE4_RANGE(g_bad_n, "cube4_prim_copies", "N", N, 1, 512)
+        `CUBE4_RANGE(g_bad_w, "cube4_prim_copies", "W", W, 1, 64)
     endgenerate
 
     genvar c;

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_ring_shift
 // -----------------------------------------------------------------------------
@@ -32,12 +33,8 @@ module cube4_ring_shift #(
     output wire [P*DATA_W-1:0] y
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_ring_shift: P = %0d is out of range 1..64", P);
-        end
-        if (DATA_W < 1 || DATA_W > 256) begin : g_bad_data_w
-            $error("cube4_ring_shift: DATA_W = %0d is out of range 1..256", DATA_W);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_ring_shift", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_data_w, "cube4_ring_shift", "DATA_W", DATA_W, 1, 256)
     endgenerate
 
     genvar q;

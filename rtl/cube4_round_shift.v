@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_round_shift
 // -----------------------------------------------------------------------------
@@ -45,9 +46,7 @@ module cube4_round_shift #(
 
     // ---- parameter checks (stop elaboration on illegal values) ----
     generate
-        if (IN_W < 2 || IN_W > 64) begin : g_bad_in_w
-            $error("cube4_round_shift: IN_W = %0d is out of range 2..64", IN_W);
-        end
+        `CUBE4_RANGE(g_bad_in_w, "cube4_round_shift", "IN_W", IN_W, 2, 64)
         if (SHIFT < 0 || SHIFT > IN_W - 1) begin : g_bad_shift
             $error("cube4_round_shift: SHIFT = %0d is out of range 0..IN_W-1 (IN_W = %0d)",
                    SHIFT, IN_W);

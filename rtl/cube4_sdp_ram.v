@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_sdp_ram
 // -----------------------------------------------------------------------------
@@ -51,15 +52,11 @@ module cube4_sdp_ram #(
     input  wire [DATA_W-1:0] wr_data
 );
     generate
-        if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
-            $error("cube4_sdp_ram: DATA_W = %0d is out of range 1..4096", DATA_W);
-        end
+        `CUBE4_RANGE(g_bad_data_w, "cube4_sdp_ram", "DATA_W", DATA_W, 1, 4096)
         if (DEPTH < 1 || DEPTH > (1 << 24)) begin : g_bad_depth
             $error("cube4_sdp_ram: DEPTH = %0d is out of range 1..2^24", DEPTH);
         end
-        if (IN_REG < 0 || IN_REG > 1) begin : g_bad_in_reg
-            $error("cube4_sdp_ram: IN_REG = %0d is out of range 0..1", IN_REG);
-        end
+        `CUBE4_RANGE(g_bad_in_reg, "cube4_sdp_ram", "IN_REG", IN_REG, 0, 1)
     endgenerate
 
     wire          re, we;               // the access's enables and addresses

@@ -51,50 +51,30 @@
 //   bits; + P (10 bits) < 2^12; the min with 255 is the one saturation.
 // =============================================================================
 module cube4_sha #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer ALPHA_W     = 12,
-    parameter integer RMAP_BITS   = 5,
-    parameter integer MAX_DIM     = 256,
-    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
+    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    parameter integer ALPHA_W = 12, parameter integer RMAP_BITS  = 5,
     `CUBE4_GEOMETRY,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
-    input  wire                    clk,
-    input  wire                    rst,
+    input  wire clk, input wire rst,
     // table load ports (broadcast to every lane's copy)
-    input  wire                    lut_we,
-    input  wire [VOXEL_W-1:0]      lut_addr,
-    input  wire [24+ALPHA_W-1:0]   lut_data,
-    input  wire                    rmap_we,
-    input  wire [RI_W-1:0]         rmap_addr,
-    input  wire [19:0]             rmap_data,
+    input  wire lut_we,  input wire [VOXEL_W-1:0] lut_addr, input wire [24+ALPHA_W-1:0] lut_data,
+    input  wire rmap_we, input wire [RI_W-1:0] rmap_addr,   input wire [19:0] rmap_data,
     // gradient stream in
-    input  wire                    in_valid,
-    output wire                    in_ready,
-    input  wire [HDR_W-1:0]        in_hdr,
-    input  wire [P*VOXEL_W-1:0]    in_sample,
-    input  wire [P*GRAD_W-1:0]     in_gi,
-    input  wire [P*GRAD_W-1:0]     in_gj,
-    input  wire [P*GRAD_W-1:0]     in_gk,
-    // shaded stream out
-    output wire                    out_valid,
-    input  wire                    out_ready,
-    output wire [HDR_W-1:0]        out_hdr,
+    input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
+    input  wire [P*VOXEL_W-1:0] in_sample,
+    input  wire [P*GRAD_W-1:0]  in_gi, input wire [P*GRAD_W-1:0] in_gj, input wire [P*GRAD_W-1:0] in_gk,
+    // shaded stream out: RGBA and the reflectance-map entry used
+    output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
     output wire [P*(24+ALPHA_W)-1:0] out_rgba,
-    output wire [P*RI_W-1:0]       out_idx
+    output wire [P*RI_W-1:0] out_idx
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_sha: P = %0d is out of range 1..64", P);
-        end
-        if (ALPHA_W < 8 || ALPHA_W > 16) begin : g_bad_alpha_w
-            $error("cube4_sha: ALPHA_W = %0d is out of range 8..16", ALPHA_W);
-        end
-        if (RMAP_BITS < 2 || RMAP_BITS > 6) begin : g_bad_rmap_bits
-            $error("cube4_sha: RMAP_BITS = %0d is out of range 2..6", RMAP_BITS);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_sha", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_alpha_w, "cube4_sha", "ALPHA_W", ALPHA_W, 8, 16)
+        `CUBE4_RANGE(g_bad_rmap_bits, "cube4_sha", "RMAP_BITS", RMAP_BITS, 2, 6)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -321,22 +301,11 @@ module cube4_sha #(
     localparam integer OUT_W = META_W + P * LUT_W + P * RI_W;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    cube4_credit_fifo #(
-        .DATA_W (OUT_W),
-        .DEPTH  (FIFO_DEPTH)
-    ) u_fifo (
-        .clk       (clk),
-        .rst       (rst),
-        .take      (take),
-        .give      (1'b0),
-        .credit    (credit),
-        .credit_d  (unused_credit_d),
-        .push_d    (st_v[NST-2]),
-        .in_data   ({e_meta, e_rgba, e_idx}),
-        .out_valid (out_valid),
-        .out_ready (out_ready),
-        .out_data  (fifo_out)
-    );
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+        .clk(clk), .rst(rst), .take(take), .give(1'b0),
+        .credit(credit), .credit_d(unused_credit_d),
+        .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx}),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
     assign {out_hdr, out_rgba, out_idx} = fifo_out;
     wire unused_st_v = st_v[NST-1];     // e1's valid bit: the FIFO's push copies are its copies
 

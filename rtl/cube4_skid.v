@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_skid
 // -----------------------------------------------------------------------------
@@ -48,9 +49,7 @@ module cube4_skid #(
     output wire [DATA_W-1:0] out_data
 );
     generate
-        if (DATA_W < 1 || DATA_W > 4096) begin : g_bad_data_w
-            $error("cube4_skid: DATA_W = %0d is out of range 1..4096", DATA_W);
-        end
+        `CUBE4_RANGE(g_bad_data_w, "cube4_skid", "DATA_W", DATA_W, 1, 4096)
     endgenerate
 
     reg              nonempty_q;     // at least one entry holds an item

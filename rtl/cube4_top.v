@@ -46,22 +46,14 @@
 // Bit growth and rounding: see the units; every format is in docs/numerics.md.
 // =============================================================================
 module cube4_top #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer ALPHA_W     = 12,
-    parameter integer ACC_W       = 16,
-    parameter integer RMAP_BITS   = 5,
-    parameter integer MAX_DIM     = 256,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer DEPTH       = 65536,
-    parameter integer ADDR_W      = 16,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
-    `CUBE4_ADDR_LAYOUT,
-    `CUBE4_TAG_LAYOUT,
-    localparam integer BX_W   = DIM_W + 1,
-    localparam integer RI_W   = 2 * RMAP_BITS + 3
+    parameter integer P        = 8,  parameter integer MAX_DIM     = 256,
+    parameter integer VOXEL_W  = 8,  parameter integer MAX_SS_LOG2 = 0,
+    parameter integer WEIGHT_W = 8,  parameter integer RMAP_BITS   = 5,
+    parameter integer ALPHA_W  = 12, parameter integer ACC_W       = 16,
+    parameter integer DEPTH    = 65536, parameter integer ADDR_W   = 16,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    localparam integer BX_W = DIM_W + 1,
+    localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     input  wire                      clk,
     input  wire                      rst,

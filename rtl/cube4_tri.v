@@ -60,39 +60,24 @@
 //   both slices, then y, then z.
 // =============================================================================
 module cube4_tri #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 256,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
-    `CUBE4_TAG_LAYOUT
+    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
+    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    parameter integer WEIGHT_W = 8,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_TAG_LAYOUT
 ) (
-    input  wire                  clk,
-    input  wire                  rst,
-    input  wire [VIEW_W-1:0]     cfg,
-    // input beats
-    input  wire                  in_valid,
-    output wire                  in_ready,
-    input  wire [TAG_W-1:0]      in_tag,
-    input  wire [P*VOXEL_W-1:0]  in_data,
-    // output samples
-    output wire                  out_valid,
-    input  wire                  out_ready,
-    output wire [HDR_W-1:0]      out_hdr,
-    output wire [P*VOXEL_W-1:0]  out_sample
+    input  wire clk, input wire rst,
+    input  wire [VIEW_W-1:0] cfg,
+    // input beats: the memory's response (lane q = bank q) with the CFB tag
+    input  wire in_valid,  output wire in_ready,  input  wire [TAG_W-1:0] in_tag,
+    input  wire [P*VOXEL_W-1:0] in_data,
+    // output: sample beats
+    output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
+    output wire [P*VOXEL_W-1:0] out_sample
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_tri: P = %0d is out of range 1..64", P);
-        end
-        if (VOXEL_W < 1 || VOXEL_W > 16) begin : g_bad_voxel_w
-            $error("cube4_tri: VOXEL_W = %0d is out of range 1..16", VOXEL_W);
-        end
-        if (MAX_SS_LOG2 < 0 || MAX_SS_LOG2 > 3) begin : g_bad_ss
-            $error("cube4_tri: MAX_SS_LOG2 = %0d is out of range 0..3", MAX_SS_LOG2);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_tri", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_voxel_w, "cube4_tri", "VOXEL_W", VOXEL_W, 1, 16)
+        `CUBE4_RANGE(g_bad_ss, "cube4_tri", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
     endgenerate
 
     `CUBE4_VIEW_FIELDS(cfg);
@@ -449,22 +434,11 @@ module cube4_tri #(
     end
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    cube4_credit_fifo #(
-        .DATA_W (OUT_W),
-        .DEPTH  (FIFO_DEPTH)
-    ) u_fifo (
-        .clk       (clk),
-        .rst       (rst),
-        .take      (take),
-        .give      (give_q),
-        .credit    (credit),
-        .credit_d  (unused_credit_d),
-        .push_d    (lv_q[NL-1]),
-        .in_data   ({lmeta_q[NL], l_sample}),
-        .out_valid (out_valid),
-        .out_ready (out_ready),
-        .out_data  (fifo_out)
-    );
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+        .clk(clk), .rst(rst), .take(take), .give(give_q),
+        .credit(credit), .credit_d(unused_credit_d),
+        .push_d(lv_q[NL-1]), .in_data({lmeta_q[NL], l_sample}),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
 
     assign out_sample = fifo_out[PV-1:0];
     assign out_hdr    = fifo_out[OUT_W-1:PV];

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_voxel_mem
 // -----------------------------------------------------------------------------
@@ -44,35 +45,25 @@
 // an undefined word.
 // =============================================================================
 module cube4_voxel_mem #(
-    parameter integer P       = 8,
-    parameter integer VOXEL_W = 8,
-    parameter integer DEPTH   = 65536,
-    parameter integer ADDR_W  = 16,
-    parameter integer TAG_W   = 8
+    parameter integer P      = 8,     parameter integer VOXEL_W = 8,
+    parameter integer DEPTH  = 65536, parameter integer ADDR_W  = 16,
+    parameter integer TAG_W  = 8
 ) (
-    input  wire                 clk,
-    input  wire                 rst,
-    input  wire                 ld_valid,
-    output wire                 ld_ready,
-    input  wire [ADDR_W-1:0]    ld_addr,
-    input  wire [P*VOXEL_W-1:0] ld_data,
-    input  wire                 req_valid,
-    output wire                 req_ready,
-    input  wire [P*ADDR_W-1:0]  req_addr,
-    input  wire [P-1:0]         req_rden,
-    input  wire [TAG_W-1:0]     req_tag,
-    output wire                 rsp_valid,
-    input  wire                 rsp_ready,
-    output wire [P*VOXEL_W-1:0] rsp_data,
-    output wire [TAG_W-1:0]     rsp_tag
+    input  wire clk, input wire rst,
+    // load port: one word per bank at the same address
+    input  wire ld_valid, output wire ld_ready,
+    input  wire [ADDR_W-1:0] ld_addr, input wire [P*VOXEL_W-1:0] ld_data,
+    // read requests: an address and a read enable per bank, a tag
+    input  wire req_valid, output wire req_ready, input wire [TAG_W-1:0] req_tag,
+    input  wire [P*ADDR_W-1:0] req_addr,
+    input  wire [P-1:0] req_rden,
+    // read responses: the words, the request's tag
+    output wire rsp_valid, input wire rsp_ready, output wire [TAG_W-1:0] rsp_tag,
+    output wire [P*VOXEL_W-1:0] rsp_data
 );
     generate
-        if (P < 1 || P > 64) begin : g_bad_p
-            $error("cube4_voxel_mem: P = %0d is out of range 1..64", P);
-        end
-        if (VOXEL_W < 1 || VOXEL_W > 16) begin : g_bad_voxel_w
-            $error("cube4_voxel_mem: VOXEL_W = %0d is out of range 1..16", VOXEL_W);
-        end
+        `CUBE4_RANGE(g_bad_p, "cube4_voxel_mem", "P", P, 1, 64)
+        `CUBE4_RANGE(g_bad_voxel_w, "cube4_voxel_mem", "VOXEL_W", VOXEL_W, 1, 16)
         if (DEPTH < 2 || ADDR_W < 1 || ADDR_W > 30 || DEPTH > (1 << ADDR_W)) begin : g_bad_depth
             $error("cube4_voxel_mem: DEPTH = %0d does not fit ADDR_W = %0d", DEPTH, ADDR_W);
         end
