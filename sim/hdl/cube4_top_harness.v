@@ -1,4 +1,5 @@
 `default_nettype none
+`include "cube4_defs.vh"
 // =============================================================================
 // cube4_top_harness  (simulation only)
 // -----------------------------------------------------------------------------
@@ -8,7 +9,8 @@
 //   word a; LUT: one {R,G,B,A} word per line; reflectance map: one {D,P} word
 //   per line) and stream them through the top's load ports; random holds on
 //   every internal stream (dbg_hold) and random ready on the pixel port, from
-//   LFSRs; and a binary dump of every pixel beat (cube4_sim.dump reads it).
+//   LFSRs seeded at reset from the `seed` port (the test's COCOTB_RANDOM_SEED);
+//   and a binary dump of every pixel beat (cube4_sim.dump reads it).
 //   Python only sets registers and pulses load_* / start.
 //
 //   Pixel dump: records of REC_WORDS 32-bit little-endian words ($fwrite "%u"):
@@ -38,10 +40,8 @@ module cube4_top_harness #(
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer DEPTH       = 4096,
     parameter integer ADDR_W      = 12,
-    parameter integer DIM_W  = $clog2(MAX_DIM + 1),
-    parameter integer NB_W   = $clog2((MAX_DIM + P - 1) / P + 1),
-    parameter integer LANE_W = (P > 1) ? $clog2(P) : 1,
-    parameter integer RI_W   = 2 * RMAP_BITS + 3
+    `CUBE4_GEOMETRY,
+    localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     output wire                  clk,
     input  wire                  rst,
@@ -49,6 +49,7 @@ module cube4_top_harness #(
     input  wire                  load_tables,  // pulse: stream LUT and reflectance map in
     input  wire [31:0]           load_words,   // volume words per bank
     output wire                  load_done,    // level: the last load finished
+    input  wire [31:0]           seed,         // the stall patterns' seed, taken at reset
     input  wire [7:0]            stall,        // hold probability /256, every internal stream
     input  wire [7:0]            stall_out,    // pixel-port not-ready probability /256
     input  wire                  dump_en,
@@ -93,6 +94,7 @@ module cube4_top_harness #(
     reg                  rst_q, load_mem_q, load_tables_q, dump_en_q, start_q;
     reg [31:0]           load_words_q;
     reg [7:0]            stall_q, stall_out_q;
+    reg [31:0]           seed_q;
     reg [DIM_W-1:0]      cfg_ni_q, cfg_nj_q, cfg_nk_q, cfg_sx_q, cfg_sy_q;
     reg [NB_W-1:0]       cfg_nb_q;
     reg                  cfg_flip_i_q, cfg_flip_j_q, cfg_flip_k_q;
@@ -108,6 +110,7 @@ module cube4_top_harness #(
         load_words_q  <= load_words;
         dump_en_q     <= dump_en;
         start_q       <= start;
+        seed_q        <= seed;
         stall_q       <= stall;
         stall_out_q   <= stall_out;
         cfg_ni_q      <= cfg_ni;
@@ -141,7 +144,6 @@ module cube4_top_harness #(
     localparam integer LUT_W  = 24 + ALPHA_W;
     localparam integer RMAP_N = 6 * (1 << (2 * RMAP_BITS)) + 1;
     localparam integer BX_W   = DIM_W + 1;
-    localparam integer M_W    = $clog2((MAX_DIM - 1) * (1 << MAX_SS_LOG2) + 2);
 
     // ------------------------------------------------------------ loaders
     reg [VOXEL_W-1:0] img  [0:P*DEPTH-1];
@@ -198,11 +200,19 @@ module cube4_top_harness #(
     wire rmap_we = tab_busy_q && (la_q < RMAP_N);
 
     // ------------------------------------------------------------ random holds
+    // LFSR s starts from the seed and its index (never from zero)
+    function automatic [15:0] lfsr_init(input [31:0] sd, input integer idx);
+        reg [15:0] x;
+        begin
+            x = sd[15:0] ^ sd[31:16] ^ 16'hACE1 ^ (16'h9E37 * 16'(idx + 1));
+            lfsr_init = (x == 16'd0) ? 16'hACE1 : x;
+        end
+    endfunction
     reg [15:0] lfsr_q [0:5];
     integer    s;
     always @(posedge clk) begin
         for (s = 0; s < 6; s = s + 1) begin
-            if (rst_q) lfsr_q[s] <= 16'hACE1 ^ (16'h1357 * s[15:0] + 16'h0F0F * s[15:0]);
+            if (rst_q) lfsr_q[s] <= lfsr_init(seed_q, s);
             else     lfsr_q[s] <= {lfsr_q[s][14:0], lfsr_q[s][15] ^ lfsr_q[s][13] ^ lfsr_q[s][12] ^ lfsr_q[s][10]};
         end
     end
