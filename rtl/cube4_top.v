@@ -27,7 +27,7 @@
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
-//   last slice (NJ*NB + NB + 2 steps), plus a fixed pipeline fill of 53 cycles
+//   last slice (NJ*NB + NB + 2 steps), plus a fixed pipeline fill of 50 cycles
 //   (sim/cube4_sim/cycles.py; tb/cube4_top checks it at P = 1, 4, 5, 8).
 //   cycles counts the clock cycles from start to the last pixel beat.
 //
