@@ -32,7 +32,7 @@ SETUP_STAMP := $(VENV)/.make-setup-stamp
 # ---- lint ------------------------------------------------------------------
 RTL_SRCS     := $(addprefix rtl/,$(shell sed -e 's/\#.*//' rtl/sources.f))   # the one list, dependencies first
 RTL_MODULES  := $(basename $(notdir $(RTL_SRCS)))   # one module per file, named as the file
-SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v))
+SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v) $(wildcard tb/*/*.v))   # shared simulation blocks, harnesses beside their testbenches
 SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
 # the vendor layer: each file replaces the generic module of the same name
 ECP5_SRCS    := $(sort $(wildcard rtl/ecp5/*.v))

@@ -1,6 +1,6 @@
 """cocotb side shared by the unit testbenches (tb/cube4_tri, _gra, _sha, _com).
 
-A unit harness (sim/hdl/cube4_<unit>_harness.v) has a Verilog clock, the unit's
+A unit harness (tb/cube4_<unit>/cube4_<unit>_harness.v) has a Verilog clock, the unit's
 view registers as individual ``cfg_*`` ports, and the unit's input and output
 streams as top-level ports with a cube4_stream_check on each. ``UnitBench``
 drives them from Python, one clock at a time (the volumes are small):
@@ -20,6 +20,8 @@ transfer it records is exactly one that the next rising edge performs.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import cocotb
 import numpy as np
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
@@ -31,10 +33,12 @@ from .runner import SIM_HDL_DIR
 from .sources import rtl_sources
 
 
-def harness_sources(*sim_files: str) -> list:
-    """rtl/sources.f (the one list of RTL sources, dependency order), then the
-    simulation-only files of sim/hdl/ named (the clock and the harness)."""
-    return [*rtl_sources(), *(SIM_HDL_DIR / f for f in ("cube4_sim_clock.v", *sim_files))]
+def harness_sources(*files) -> list:
+    """rtl/sources.f (the one list of RTL sources, dependency order), the Verilog clock,
+    then the simulation files named: a Path as it is (a harness beside its testbench),
+    a bare name from sim/hdl/ (the shared simulation blocks, e.g. cube4_sim_stall.v)."""
+    extra = [f if isinstance(f, Path) else SIM_HDL_DIR / f for f in files]
+    return [*rtl_sources(), SIM_HDL_DIR / "cube4_sim_clock.v", *extra]
 
 
 # the view registers (CUBE4_VIEW_PACK) and the address registers (CUBE4_ADDR_PACK)

@@ -12,6 +12,8 @@ slopes (24 views, plus 45-degree and on-axis views), non-cubic volumes, P = 1, 5
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import cocotb
 import numpy as np
 import pytest
@@ -20,7 +22,9 @@ from cocotb.triggers import FallingEdge, RisingEdge
 
 from cube4.memory import address_of, bank_of, frontend_regs
 from cube4.view import make_traversal
-from cube4_sim import SIM_HDL_DIR, rtl_sources, run_test
+from cube4_sim import rtl_sources, run_test
+
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
 
 def expected_lanes(trav, p: int, k: int, j: int, pb: int) -> tuple[list[int | None], list[tuple]]:
@@ -119,7 +123,7 @@ async def test_addresses(dut):
 def test_cube4_cfb(p):
     run_test(
         top="cube4_cfb_harness",
-        sources=[*rtl_sources(), SIM_HDL_DIR / "cube4_cfb_harness.v"],
+        sources=[*rtl_sources(), HERE / "cube4_cfb_harness.v"],
         params={"P": p, "MAX_DIM": 64, "ADDR_W": 16, "MAX_SS_LOG2": 1},
         test_module=__file__,
     )

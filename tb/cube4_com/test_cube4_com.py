@@ -1,6 +1,6 @@
 """Unit testbench of rtl/cube4_com.v: the finished-ray (pixel) stream, bit for bit.
 
-The DUT is ``sim/hdl/cube4_com_harness.v``: cube4_com with its view registers as
+The DUT is ``cube4_com_harness.v``: cube4_com with its view registers as
 ports, a Verilog clock and a cube4_stream_check on the input and the output
 stream. The input is the golden shaded stream: ``cube4.model.render_frame`` with
 random tables and ``keep_streams=True`` gives the shaded samples (R, G, B, A) and
@@ -31,6 +31,8 @@ with the golden G of the first finished ray raised by one, P = 1 fails with
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import cocotb
 import numpy as np
 import pytest
@@ -42,7 +44,9 @@ from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources
 
-SOURCES = harness_sources("cube4_com_harness.v")
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
+SOURCES = harness_sources(HERE / "cube4_com_harness.v")
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]

@@ -1,6 +1,6 @@
 """Testbench for the Cube-4 front end: cube4_cfb + cube4_voxel_mem + cube4_tri.
 
-The DUT is ``sim/hdl/cube4_frontend_harness.v``: the front end, the skewed voxel
+The DUT is ``cube4_frontend_harness.v`` (beside this file): the front end, the skewed voxel
 memory loaded through its load port from a ``$readmemh`` image
 (``cube4.memory``: ``pack_volume``, the one host packer, and ``write_hex``), random stall injection
 on the memory request, the memory response and the sample output (LFSRs in
@@ -40,6 +40,8 @@ from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
 from cube4_sim.dump import BEAT, LAST, START, frame_bounds
 
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
 CLK_NS = 10
 MAX_MISMATCH_LOGS = 8
 #: How far each sample dump has been read, across the cocotb tests of one simulation
@@ -50,7 +52,7 @@ SOURCES = [
     *rtl_sources(),
     SIM_HDL_DIR / "cube4_sim_clock.v",
     SIM_HDL_DIR / "cube4_sim_stall.v",
-    SIM_HDL_DIR / "cube4_frontend_harness.v",
+    HERE / "cube4_frontend_harness.v",
 ]
 
 

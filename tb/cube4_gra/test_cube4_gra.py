@@ -1,6 +1,6 @@
 """Unit testbench of rtl/cube4_gra.v: the gradient stream, bit for bit.
 
-The DUT is ``sim/hdl/cube4_gra_harness.v``: cube4_gra with its view registers as
+The DUT is ``cube4_gra_harness.v``: cube4_gra with its view registers as
 ports, a Verilog clock and a cube4_stream_check on the input and the output
 stream. The input is the golden sample stream (``cube4.model.sample_stream``)
 turned into beats in the hardware's order (``cube4_sim.beats.BeatSchedule``: m,
@@ -29,6 +29,8 @@ beats, expected N-1: 1 extra beat(s) within 300 cycles of the last one".
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import cocotb
 import numpy as np
 import pytest
@@ -39,7 +41,9 @@ from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources
 
-SOURCES = harness_sources("cube4_gra_harness.v")
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
+SOURCES = harness_sources(HERE / "cube4_gra_harness.v")
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]

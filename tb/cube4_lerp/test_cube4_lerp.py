@@ -218,6 +218,8 @@ async def lerp_random_streaming(dut):
 
 from cube4_sim import RTL_INCLUDE_DIR, SIM_HDL_DIR, rtl_sources, run_test  # noqa: E402  (pytest half)
 
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
 PARAM_SETS = [
     *(
         {"DATA_W": d, "WEIGHT_W": ww, "LATENCY": lat}
@@ -255,7 +257,7 @@ def test_cube4_lerp_verilog_clock():
         sources=[
             *rtl_sources(),
             SIM_HDL_DIR / "cube4_sim_clock.v",
-            SIM_HDL_DIR / "cube4_lerp_vclk.v",
+            HERE / "cube4_lerp_vclk.v",
         ],
         params={"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 2},
         test_module=__file__,

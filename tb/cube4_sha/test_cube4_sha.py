@@ -1,6 +1,6 @@
 """Unit testbench of rtl/cube4_sha.v: the shaded stream, bit for bit.
 
-The DUT is ``sim/hdl/cube4_sha_harness.v``: cube4_sha with its table load ports,
+The DUT is ``cube4_sha_harness.v``: cube4_sha with its table load ports,
 a Verilog clock and a cube4_stream_check on the input and the output stream.
 Before every view the testbench writes new random tables through the load ports
 (a LUT of 2^VOXEL_W entries {R, G, B, A} and a reflectance map of 6 R^2 + 1
@@ -29,6 +29,8 @@ differ from the golden model".
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import cocotb
 import numpy as np
 import pytest
@@ -40,7 +42,9 @@ from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources
 
-SOURCES = harness_sources("cube4_sha_harness.v")
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
+SOURCES = harness_sources(HERE / "cube4_sha_harness.v")
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]

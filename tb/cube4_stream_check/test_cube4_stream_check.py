@@ -1,6 +1,6 @@
 """Testbench of rtl/cube4_stream_check.v: the stream checker fires, naming the stream.
 
-The DUT is ``sim/hdl/cube4_stream_check_demo.v``: one checker (NAME "demo.beats")
+The DUT is ``cube4_stream_check_demo.v``: one checker (NAME "demo.beats")
 on a stream that Python drives directly.
 
 * ``test_legal_traffic``: random legal traffic (valid drops only after a transfer
@@ -20,6 +20,8 @@ four-state simulator.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import os
 
 import cocotb
@@ -32,7 +34,9 @@ from cocotb_tools.check_results import get_results
 from cube4_sim import BUILD_ROOT, run_test
 from cube4_sim.unit_bench import harness_sources
 
-SOURCES = harness_sources("cube4_stream_check_demo.v")
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
+SOURCES = harness_sources(HERE / "cube4_stream_check_demo.v")
 
 
 async def start(dut) -> None:

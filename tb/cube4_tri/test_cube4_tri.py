@@ -3,7 +3,7 @@
 TRI's input is the memory's response beats: the voxels of P banks and
 cube4_cfb's tag (weights, slots, buffer controls). The one exact source of those
 beats is cube4_cfb reading cube4_voxel_mem, so the DUT
-(``sim/hdl/cube4_tri_harness.v``) contains both in front of TRI, with a seeded
+(``cube4_tri_harness.v``) contains both in front of TRI, with a seeded
 Verilog stall generator (cube4_sim_stall, seed = COCOTB_RANDOM_SEED) on the
 memory request and one on the memory response, which is TRI's input; TRI's
 output is taken by Python with random ready (``cube4_sim.unit_bench``). This is
@@ -33,6 +33,8 @@ with the golden sample of lane 0 of beat 40 raised by one, P = 1 fails with
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import cocotb
 import numpy as np
 import pytest
@@ -45,7 +47,9 @@ from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources
 
-SOURCES = harness_sources("cube4_sim_stall.v", "cube4_tri_harness.v")
+HERE = Path(__file__).resolve().parent   # the harness sits beside this file
+
+SOURCES = harness_sources("cube4_sim_stall.v", HERE / "cube4_tri_harness.v")
 
 # (direction, memory-request stall /256, TRI-input stall /256, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0, 0, 0.0), ((-0.6, 0.25, -1.0), 60, 120, 0.4), ((1.0, 0.4, -0.7), 0, 200, 0.2)]
