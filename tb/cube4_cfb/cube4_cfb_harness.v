@@ -7,7 +7,8 @@
 //   cube4_cfb for tb/cube4_cfb: the host's register ports one by one (packed
 //   into the view and address buses as cube4_top packs them) and the tag
 //   fields the testbench checks, read from the tag by its layout
-//   (cube4_defs.vh), so that the testbench needs no copy of either layout.
+//   (cube4_defs.vh), so that the testbench needs no copy of either layout;
+//   cube4_stream_check watches the request stream.
 //
 // Parameters: as cube4_cfb.   Latency: that of cube4_cfb (no registers here).
 // =============================================================================
@@ -80,6 +81,9 @@ module cube4_cfb_harness #(
         .req_rden  (req_rden),
         .req_tag   (tag)
     );
+    cube4_stream_check #(.NAME ("cfb.req"), .DATA_W (P * ADDR_W + P + TAG_W)) u_chk_req (
+        .clk (clk), .rst (rst), .valid (req_valid), .ready (req_ready),
+        .data ({req_addr, req_rden, tag}));
     assign tag_m         = tag[TAG_M +: M_W];
     assign tag_pb        = tag[TAG_PB +: PB_W];
     assign tag_emit      = tag[TAG_EMIT];

@@ -309,6 +309,19 @@ module cube4_frontend_harness #(
     wire [DIM_W-1:0]  snk_j    = snk_hdr[HDR_J +: DIM_W];
     wire [M_W-1:0]    snk_m    = snk_hdr[HDR_M +: M_W];
 
+    // ------------------------------------------------------------ stream checks
+    // (cube4_stream_check) on the front end's request, on its response input and
+    // on the stream the sink takes (samples, or GRA's gradients)
+    cube4_stream_check #(.NAME ("frontend.mem_req"), .DATA_W (P * ADDR_W + P + TAG_W)) u_chk_req (
+        .clk (clk), .rst (rst_q), .valid (req_valid), .ready (req_ready),
+        .data ({req_addr, req_rden, req_tag}));
+    cube4_stream_check #(.NAME ("frontend.mem_rsp"), .DATA_W (PV + TAG_W)) u_chk_rsp (
+        .clk (clk), .rst (rst_q), .valid (rsp_valid), .ready (rsp_ready),
+        .data ({rsp_data, rsp_tag}));
+    cube4_stream_check #(.NAME ("frontend.out"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_out (
+        .clk (clk), .rst (rst_q), .valid (snk_valid), .ready (snk_ready),
+        .data ({snk_hdr, snk_sample, snk_grad}));
+
     // ------------------------------------------------------------ sink
     // random ready, dump every accepted beat; the frame ends with the eop beat
     reg  [15:0] lfsr_q;
