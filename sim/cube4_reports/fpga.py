@@ -38,7 +38,7 @@ from .markdown import fmt_int, git_describe, md_table
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError, addr_bits,
                     check_max_dim, chparam_args, cli_main, design_digest, last_error, parse_int_list,
                     progress, read_verilog_cmd, rel, run_tool, short_version, tool, tool_version,
-                    words_per_bank, write_text)
+                    words_per_bank, write_report, write_text)
 
 TAG = "fpga"
 
@@ -532,11 +532,7 @@ def run(args: argparse.Namespace) -> None:
     keys = ("p", "fmax_mhz", "luts", "ffs", "dsps", "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
     report = {"part": PART, "max_dim": max_dim, "depth": depth,
               "results": [{k: r[k] for k in keys} for r in results]}
-    write_text(json_path, json.dumps(report, indent=1) + "\n")
-    md = render_markdown(results, budget, meta)
-    write_text(md_path, md)
-    print(md)
-    progress(TAG, f"done in {time.monotonic() - t0:.0f} s: {rel(json_path)}, {rel(md_path)}")
+    write_report(TAG, report, json_path, render_markdown(results, budget, meta), md_path, t0)
 
 
 def main(argv: list[str] | None = None) -> int:

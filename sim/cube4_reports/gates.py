@@ -31,7 +31,7 @@ from .markdown import fmt_int, git_describe, md_table
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, ToolError, addr_bits,
                     check_max_dim, chparam_args, cli_main, design_digest, parse_int_list, progress,
                     read_verilog_cmd, rel, run_tool, short_version, tool, tool_version, words_per_bank,
-                    write_text)
+                    write_report)
 
 TAG = "gates"
 
@@ -400,11 +400,7 @@ def run(args: argparse.Namespace) -> None:
               "teramac": {"pipelines": TERAMAC_PIPELINES, "per_unit": TERAMAC_PER_UNIT,
                           "ring": TERAMAC_RING, "total": TERAMAC_TOTAL},
               "results": results}
-    write_text(json_path, json.dumps(report, indent=1) + "\n")
-    md = render_markdown(results, meta)
-    write_text(md_path, md)
-    print(md)
-    progress(TAG, f"done in {time.monotonic() - t0:.0f} s: {rel(json_path)}, {rel(md_path)}")
+    write_report(TAG, report, json_path, render_markdown(results, meta), md_path, t0)
 
 
 def main(argv: list[str] | None = None) -> int:

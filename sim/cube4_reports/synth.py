@@ -9,6 +9,7 @@ Nothing here imports cocotb or the golden model.
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -192,6 +193,14 @@ def write_text(path: Path, text: str) -> None:
     """Write a file, creating its folder."""
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(text)
+
+
+def write_report(tag: str, report: dict, json_path: Path, md: str, md_path: Path, t0: float) -> None:
+    """Write a report's JSON and Markdown, print the Markdown, say where they went."""
+    write_text(json_path, json.dumps(report, indent=1) + "\n")
+    write_text(md_path, md)
+    print(md)
+    progress(tag, f"done in {time.monotonic() - t0:.0f} s: {rel(json_path)}, {rel(md_path)}")
 
 
 def cli_main(tag: str, body) -> int:
