@@ -367,7 +367,7 @@ module cube4_com #(
         nb1_q <= (cfg_nb == NB_W'(1));
     end
     // the wide buffer words, per lane (registers of the lane's own, so that a
-    // simulator writes each in place); v4_q is the lane's copy of v_s[4]
+    // simulator writes each in place); v4[q] is the lane's copy of v_s[4]
     wire [PA-1:0] s5_back, s5_prevb;   // this beat's and the previous beat's "back" (g_buf)
     wire [PA-1:0] back;
     wire [P-1:0]  v4;

@@ -145,13 +145,27 @@ class FastVerilator(Verilator):
         return [verilate, make]
 
 
-_PORT = re.compile(r"^\s*(?:input|output|inout)\b[^/]*?(\w+)\s*(?:,|\)|$)")
-_PARAM = re.compile(r"^\s*(?:parameter|localparam)\b[^=]*?(\w+)\s*=")
+_PORT = re.compile(r"^\s*(?:input|output|inout)\b(?:\s+(?:wire|reg|logic|signed|integer))*\s+(\w+)\s*\)?\s*$")
+_PARAM = re.compile(r"\b(?:parameter|localparam)\b[^=]*?(\w+)\s*=")
+_RANGE = re.compile(r"\[[^\]]*\]")
+
+
+def _declared_names(code: str) -> list[str]:
+    """Port names declared on one line of an ANSI port list (several per line allowed;
+    bit ranges such as [P*(24+ALPHA_W)-1:0] are dropped first), or the parameter names."""
+    if re.match(r"\s*(?:parameter|localparam)\b", code):
+        return _PARAM.findall(code)
+    names = []
+    for part in _RANGE.sub(" ", code).split(","):
+        m = _PORT.match(part)
+        if m:
+            names.append(m.group(1))
+    return names
 
 
 def top_interface(sources: Sequence[Path], top: str) -> list[str]:
-    """Names of the ports and header parameters of module ``top`` (one declaration
-    per line, ANSI style, as every module here is written); empty if not found."""
+    """Names of the ports and header parameters of module ``top`` (ANSI style, as every
+    module here is written; a line may declare several ports); empty if not found."""
     start = re.compile(rf"^\s*module\s+{re.escape(top)}\b")
     for src in sources:
         if src.suffix not in (".v", ".sv"):
@@ -163,9 +177,7 @@ def top_interface(sources: Sequence[Path], top: str) -> list[str]:
             names: list[str] = []
             for decl in lines[i + 1:]:
                 code = decl.split("//", 1)[0]
-                m = _PORT.match(code) or _PARAM.match(code)
-                if m:
-                    names.append(m.group(1))
+                names.extend(_declared_names(code))
                 if code.strip().startswith(");"):  # end of the port list
                     break
             return names

@@ -1,0 +1,32 @@
+"""The runner's reading of a top module's interface (names made public to cocotb)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from cube4_sim.runner import top_interface
+
+
+def test_several_ports_and_parameters_per_line(tmp_path: Path):
+    src = tmp_path / "m.v"
+    src.write_text(
+        "module m #(\n"
+        "    parameter integer P = 8, parameter integer ALPHA_W = 12,\n"
+        "    localparam integer W = P * 2\n"
+        ") (\n"
+        "    input  wire clk, input wire rst,   // clock, reset\n"
+        "    input  wire in_valid, output wire in_ready, input wire [W-1:0] in_hdr,\n"
+        "    output wire [P*(24+ALPHA_W)-1:0] out_rgba,\n"
+        "    output reg  [3:0] q\n"
+        ");\n"
+        "endmodule\n")
+    assert top_interface([src], "m") == ["P", "ALPHA_W", "W", "clk", "rst", "in_valid", "in_ready",
+                                          "in_hdr", "out_rgba", "q"]
+
+
+def test_every_port_of_cube4_top():
+    rtl = Path(__file__).resolve().parents[1] / "rtl"
+    names = top_interface([rtl / "cube4_top.v"], "cube4_top")
+    for port in ("clk", "ld_data", "cfg_ni", "cfg_i_lin", "cfg_sy", "pix_rgba", "pix_eop", "dbg_hold"):
+        assert port in names
+    assert "ALPHA_W" in names and "ADDR_W" in names
