@@ -19,15 +19,14 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from .config import MAX_PIPELINES
 from .errors import UserError
+from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import config_for, engine_names, image_metrics, render, render_views
 from .scene import Scene, builtin_scene_names, load_scene, with_view
 from .view import angles_from_direction, direction_from_angles
@@ -77,33 +76,8 @@ def _check_output(path: str, suffixes: tuple[str, ...], what: str) -> Path:
     p = Path(path)
     if p.suffix.lower() not in suffixes:
         raise UserError(f"{what} {path!r} must end in {', '.join(suffixes)}")
-    if p.exists() and p.is_dir():
-        raise UserError(f"{what} {path!r} is a directory")
+    check_destination(p, what)
     return p
-
-
-def _write_all(outputs: list[tuple[Path, object]]) -> None:
-    """Write every output to a temporary file beside it, then rename them all into
-    place; if any write fails, remove the temporaries and report one line."""
-    umask = os.umask(0)
-    os.umask(umask)
-    temps: list[tuple[str, Path]] = []
-    try:
-        for path, write in outputs:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(prefix=".cube4-", suffix=path.suffix, dir=path.parent)
-            os.close(fd)
-            temps.append((tmp, path))
-            os.chmod(tmp, 0o666 & ~umask)
-            write(tmp)
-        for tmp, path in temps:
-            os.replace(tmp, path)
-    except OSError as e:
-        raise UserError(f"cannot write {e.filename or 'output'}: {e.strerror}") from None
-    finally:
-        for tmp, _ in temps:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
 
 
 def _json_safe(d: dict) -> dict:
@@ -186,6 +160,14 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
     scene = load_scene(args.scene)
     scenes = _views(args, scene)
+    count = len(scenes)
+    # every destination, numbered per view, checked before any work
+    named = [(_numbered(out, n, count), "--out") for n in range(count)]
+    if bp is not None:
+        named += [(_numbered(bp, n, count), "--baseplane") for n in range(count)]
+    if st is not None:
+        named.append((st, "--stats"))
+    check_destinations(named)
     cfg = config_for(scene, pipelines=args.pipelines, voxel_bits=args.voxel_bits)
     raw_dims = _dims(args.dims) if args.dims else None
     vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
@@ -203,8 +185,7 @@ def cmd_render(args: argparse.Namespace) -> int:
             stats["reference_wall_s"] = ref.wall_s
         frames.append(stats)
 
-    count = len(results)
-    outputs: list[tuple[Path, object]] = []
+    outputs: list[tuple[Path, Writer]] = []
     for n, res in enumerate(results):
         outputs.append((_numbered(out, n, count), lambda tmp, img=res.image: write_image(tmp, img, bg)))
         if bp is not None and res.frame is not None:
@@ -221,7 +202,7 @@ def cmd_render(args: argparse.Namespace) -> int:
                 doc["sim_cycles_per_s"] = doc["cycles"] / doc["sim_wall_s"] if doc["sim_wall_s"] > 0 else None
         text = json.dumps(doc, indent=2, allow_nan=False) + "\n"
         outputs.append((st, lambda tmp: Path(tmp).write_text(text)))
-    _write_all(outputs)
+    write_all(outputs)
     if not args.quiet:
         for n, (stats, res) in enumerate(zip(frames, results)):
             line = (f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} "
