@@ -131,3 +131,4 @@ def test_cli_failure_after_work_keeps_earlier_outputs(tmp_path, capsys, monkeypa
     assert rc == 2 and err.count("\n") == 1 and "out.png" in err and ".cube4-" not in err
     assert out.read_bytes() == b"earlier image" and stats.read_text() == "earlier stats"
     assert not _leftovers(tmp_path)
+

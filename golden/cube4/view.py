@@ -38,10 +38,11 @@ def normalize_direction(d) -> np.ndarray:
         raise UserError(f"a direction must have three components, got {len(v)}")
     if not np.all(np.isfinite(v)):
         raise UserError(f"direction {list(d)} is not finite (NaN or infinity)")
-    n = float(np.linalg.norm(v))
-    if n < 1e-12:
+    big = float(np.max(np.abs(v)))
+    if big == 0.0:
         raise UserError(f"direction {list(d)} is zero: a view needs a non-zero vector")
-    return v / n
+    v = v / big                  # first to at most 1: huge or tiny components neither overflow nor vanish
+    return v / float(np.linalg.norm(v))
 
 
 def direction_from_angles(azimuth_deg: float, elevation_deg: float) -> np.ndarray:

@@ -69,7 +69,15 @@ def to_voxels(data: np.ndarray, voxel_bits: int = 8) -> np.ndarray:
     lo, hi = float(lo), float(hi)
     if hi == lo:
         return np.zeros(a.shape, dtype=np.uint16)
-    scaled = np.floor((a.astype(np.float64) - lo) * (vmax / (hi - lo)) + 0.5)
+    with np.errstate(over="raise", invalid="raise"):
+        try:
+            if np.isfinite(hi - lo):
+                scaled = np.floor((a.astype(np.float64) - lo) * (vmax / (hi - lo)) + 0.5)
+            else:   # values near the float64 limit: halves, so that no difference overflows
+                t = (a.astype(np.float64) / 2.0 - lo / 2.0) / (hi / 2.0 - lo / 2.0)
+                scaled = np.floor(t * vmax + 0.5)
+        except FloatingPointError:
+            raise UserError(f"volume values {lo:g}..{hi:g} cannot be rescaled to {voxel_bits}-bit voxels") from None
     return np.ascontiguousarray(np.clip(scaled, 0, vmax).astype(np.uint16))
 
 
