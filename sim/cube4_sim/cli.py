@@ -5,13 +5,17 @@ from __future__ import annotations
 
 import sys
 
-from cube4.cli import main as cube4_main
-
-from .engine import register
-
 
 def main(argv: list[str] | None = None) -> int:
-    register()
+    try:                     # an interrupt during start-up (the imports) is one line too
+        from cube4.cli import main as cube4_main
+
+        from .engine import register
+
+        register()
+    except KeyboardInterrupt:
+        print("cube4: interrupted", file=sys.stderr)
+        return 130
     return cube4_main(argv)
 
 

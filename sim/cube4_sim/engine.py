@@ -14,12 +14,14 @@ import time
 import numpy as np
 
 from cube4.config import Cube4Config
+from cube4.errors import UserError
 from cube4.model import Frame
 from cube4.render import (RenderResult, host_tables, register_engine, setup_view, trav_stats, view_stats,
                           warp_to_image)
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, render_frames
+from .runner import SimulationError
 
 NAME = "rtl"
 
@@ -31,7 +33,10 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     t0 = time.perf_counter()
     views = [setup_view(dims, sc, cfg) for sc in scenes]
     jobs = [FrameJob(trav, *host_tables(sc, cfg, trav)) for sc, (trav, _) in zip(scenes, views)]
-    outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True)
+    try:
+        outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True)
+    except SimulationError as exc:     # one line, naming the build or simulation log
+        raise UserError(f"RTL engine: {exc}") from None
     run_s = time.perf_counter() - t0
     sim_total = sum(o["sim_wall_s"] for o in outs)
     results = []

@@ -145,6 +145,16 @@ class FastVerilator(Verilator):
         return [verilate, make]
 
 
+class SimulationError(AssertionError):
+    """A Verilator build or a simulation failed; the message is one line naming its log.
+    (An AssertionError, so that pytest reports it as a test failure.)"""
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
+
+
 _PORT = re.compile(r"^\s*(?:input|output|inout)\b(?:\s+(?:wire|reg|logic|signed|integer))*\s+(\w+)\s*\)?\s*$")
 _PARAM = re.compile(r"\b(?:parameter|localparam)\b[^=]*?(\w+)\s*=")
 _RANGE = re.compile(r"\[[^\]]*\]")
@@ -351,7 +361,7 @@ def run_test(
         except Exception as exc:
             if build_log is None:
                 raise
-            raise AssertionError(f"{top}: the Verilator build failed ({exc}); see {build_log}") from exc
+            raise SimulationError(f"{top}: the Verilator build failed ({_first_line(exc)}); see {build_log}") from exc
 
     test_args: list[str] = []
     wave_file: Path | None = None
@@ -385,19 +395,19 @@ def run_test(
             print(f"cube4_sim: FST waveform written to {wave_file}")
 
     if not results.is_file():
-        raise AssertionError(
+        raise SimulationError(
             f"{top}: simulation crashed (exit status {exit_status}), no results file; "
             f"{log_hint}. Build directory: {build_dir}"
         )
     num_tests, num_failed = get_results(results)
     if num_tests == 0:
-        raise AssertionError(f"{top}: no cocotb test ran (test_module={module_name}, testcase={testcase})")
+        raise SimulationError(f"{top}: no cocotb test ran (test_module={module_name}, testcase={testcase})")
     if num_failed:
-        raise AssertionError(
+        raise SimulationError(
             f"{top}: {num_failed} of {num_tests} cocotb tests failed ({log_hint}; results {results})"
         )
     if exit_status not in (0, None):
-        raise AssertionError(f"{top}: all tests passed but the simulator exited with status {exit_status}")
+        raise SimulationError(f"{top}: all tests passed but the simulator exited with status {exit_status}")
     return results
 
 

@@ -114,6 +114,24 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     assert st["cycles"] >= st["ideal_cycles"]
 
 
+def test_cli_rtl_failed_build_is_one_line(tmp_path):
+    """A Verilator build that fails (here: an option Verilator does not know) ends the
+    command with one line naming the build log, exit status 2, no traceback, no output."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "CUBE4_VERILATOR_ARGS": "--no-such-verilator-option"}
+    out = tmp_path / "x.png"
+    run = subprocess.run([sys.executable, "-m", "cube4_sim.cli", "render", "sphere:16", "--engine", "rtl",
+                          "--quiet", "--out", str(out)], capture_output=True, text=True, env=env)
+    assert run.returncode == 2, run.stderr[-2000:]
+    err = run.stderr.strip()
+    assert "\n" not in err and "Traceback" not in err, err[-2000:]
+    assert "Verilator build failed" in err and "build.log" in err, err
+    assert not out.exists()
+
+
 def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     """`cube4 render --engine rtl --view ... --view ...` renders every view in one
     simulation (volume loaded once) and each base plane equals the golden engine's."""
