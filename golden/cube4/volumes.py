@@ -507,6 +507,17 @@ def _load_file(path: str, voxel_bits: int, raw_dims, raw_dtype, max_dim: int) ->
     return to_voxels(data, voxel_bits)
 
 
+def _load_dicom(folder: str, voxel_bits: int, max_dim: int) -> np.ndarray:
+    """A folder of DICOM slices of one series (cube4.dicom)."""
+    from .dicom import load_series
+
+    _check_bits(voxel_bits)
+    data = load_series(folder)
+    nz, ny, nx = data.shape
+    _check_dims((nx, ny, nz), max_dim, folder)
+    return to_voxels(data, voxel_bits)
+
+
 # --------------------------------------------------------------------------------------
 # Entry point
 # --------------------------------------------------------------------------------------
@@ -520,8 +531,11 @@ def load_volume(
     raw_dtype: str | None = None,
     max_dim: int = MAX_DIM,
 ) -> np.ndarray:
-    """Load a built-in (NAME:N, NAME:NX,NY,NZ) or a volume file as uint16 vol[z, y, x]."""
+    """Load a built-in (NAME:N, NAME:NX,NY,NZ), a volume file or a folder of DICOM
+    slices (one series) as uint16 vol[z, y, x]."""
     spec = str(spec)
+    if os.path.isdir(spec):
+        return _load_dicom(spec, voxel_bits, max_dim)
     if os.path.exists(spec) or _suffix_kind(spec) is not None:
         return _load_file(spec, voxel_bits, raw_dims, raw_dtype, max_dim)
     m = re.fullmatch(r"([A-Za-z_][A-Za-z0-9_]*):(.*)", spec)

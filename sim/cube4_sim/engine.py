@@ -21,7 +21,7 @@ from cube4.render import (RenderResult, host_tables, register_engine, setup_view
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, render_frames
-from .runner import SimulationError
+from .errors import SimulationError
 
 NAME = "rtl"
 

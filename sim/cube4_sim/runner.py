@@ -56,6 +56,7 @@ from pathlib import Path
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator
 
+from .errors import SimulationError
 from .sources import REPO_ROOT, RTL_INCLUDE_DIR
 
 SIM_HDL_DIR = REPO_ROOT / "sim" / "hdl"
@@ -143,11 +144,6 @@ class FastVerilator(Verilator):
             verilate[i : i + 1] = ["--trace-fst", "--trace-structs"]
         make.extend([*MAKE_VARS, *_objcache_vars()])
         return [verilate, make]
-
-
-class SimulationError(AssertionError):
-    """A Verilator build or a simulation failed; the message is one line naming its log.
-    (An AssertionError, so that pytest reports it as a test failure.)"""
 
 
 def _first_line(exc: BaseException) -> str:

@@ -1,0 +1,144 @@
+"""A folder of DICOM slices (one series) as a volume vol[z, y, x].
+
+* Every regular, non-hidden file in the folder must be a DICOM image of one series
+  (SeriesInstanceUID); another series, a non-DICOM file or an image of another size or
+  orientation is an error naming the file.
+* Slices are sorted by their position along the slice normal (ImagePositionPatient
+  projected on the cross product of ImageOrientationPatient's row and column
+  directions), or by InstanceNumber where a slice has no position. Two slices at the
+  same position, or a gap of more than 1.5 times the usual spacing (a missing slice),
+  is an error.
+* RescaleSlope and RescaleIntercept are applied (e.g. CT values in Hounsfield units).
+  Integer results whose range fits 16 bits are shifted so that the series' minimum is 0
+  and kept exactly: a 12-bit CT series stays 12 bits, voxel = value - minimum; anything
+  else is returned as floats, which the caller rescales min..max.
+* Compressed transfer syntaxes that this installation cannot decode are an error that
+  names the syntax.
+
+Axes: x along a row (columns), y down the columns (rows), z along the slice normal.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .errors import UserError
+
+GAP_FACTOR = 1.5      # a spacing this many times the median one means a missing slice
+
+
+def _read(path: Path):
+    import pydicom
+    from pydicom.errors import InvalidDicomError
+
+    try:
+        return pydicom.dcmread(path)
+    except InvalidDicomError:
+        raise UserError(f"{path}: not a DICOM file (a DICOM series folder holds only its slices)") from None
+    except Exception as e:  # truncated or corrupt files raise many kinds
+        raise UserError(f"{path}: cannot read DICOM file: {e}") from None
+
+
+def _files(folder: Path) -> list[Path]:
+    files = sorted(p for p in folder.iterdir() if p.is_file() and not p.name.startswith("."))
+    if not files:
+        raise UserError(f"{folder}: the folder holds no files (a DICOM series folder holds its slices)")
+    return files
+
+
+def _normal(ds) -> np.ndarray | None:
+    iop = getattr(ds, "ImageOrientationPatient", None)
+    if iop is None or len(iop) != 6:
+        return None
+    row, col = np.array(iop[:3], dtype=float), np.array(iop[3:], dtype=float)
+    n = np.cross(row, col)
+    norm = float(np.linalg.norm(n))
+    return n / norm if norm > 0 else None
+
+
+def _order(slices: list, files: list[Path]) -> list[int]:
+    """Slice order along the normal (or by InstanceNumber), with the spacing checked."""
+    normal = _normal(slices[0])
+    pos = []
+    for ds in slices:
+        ipp = getattr(ds, "ImagePositionPatient", None)
+        if normal is None or ipp is None:
+            pos = None
+            break
+        pos.append(float(np.dot(np.array(ipp, dtype=float), normal)))
+    if pos is None:
+        nums = [getattr(ds, "InstanceNumber", None) for ds in slices]
+        if any(n is None for n in nums):
+            raise UserError(f"{files[0].parent}: slices have neither positions nor instance numbers: "
+                            "their order is unknown")
+        return sorted(range(len(slices)), key=lambda i: int(nums[i]))
+    order = sorted(range(len(slices)), key=lambda i: pos[i])
+    p = np.array([pos[i] for i in order])
+    if len(p) > 1:
+        gaps = np.diff(p)
+        if np.any(gaps <= 1e-6 * max(1.0, float(np.max(np.abs(p))))):
+            i = int(np.argmin(gaps))
+            raise UserError(f"{files[order[i]].name} and {files[order[i + 1]].name} lie at the same position: "
+                            "two series, or a duplicated slice")
+        usual = float(np.median(gaps))
+        if np.any(gaps > GAP_FACTOR * usual):
+            i = int(np.argmax(gaps))
+            raise UserError(f"{files[0].parent}: a slice is missing between {files[order[i]].name} and "
+                            f"{files[order[i + 1]].name} (gap {gaps[i]:g} mm, spacing {usual:g} mm)")
+    return order
+
+
+def _pixels(ds, path: Path) -> np.ndarray:
+    try:
+        a = ds.pixel_array
+    except Exception as e:
+        ts = getattr(getattr(ds, "file_meta", None), "TransferSyntaxUID", None)
+        if ts is not None and ts.is_compressed:
+            raise UserError(f"{path}: transfer syntax {ts.name} ({ts}) cannot be decoded here; "
+                            "convert the series to an uncompressed syntax") from None
+        raise UserError(f"{path}: cannot decode the pixel data: {e}") from None
+    if a.ndim != 2:
+        raise UserError(f"{path}: a slice must be one 2-D image, got pixel data of shape {a.shape}")
+    return a
+
+
+def _rescale(stack: np.ndarray, slopes: list[float], intercepts: list[float]) -> np.ndarray:
+    s = np.array(slopes, dtype=np.float64)[:, None, None]
+    b = np.array(intercepts, dtype=np.float64)[:, None, None]
+    values = stack.astype(np.float64) * s + b
+    if np.all(values == np.round(values)):
+        lo, hi = float(values.min()), float(values.max())
+        if hi - lo <= 0xFFFF:
+            return (values - lo).astype(np.uint16)      # exact: voxel = value - minimum
+    return values
+
+
+def load_series(folder: str | os.PathLike) -> np.ndarray:
+    """Load one DICOM series from a folder: vol[z, y, x] (see the module docstring)."""
+    folder = Path(folder)
+    files = _files(folder)
+    slices = [_read(f) for f in files]
+    uids = {str(getattr(ds, "SeriesInstanceUID", "")) for ds in slices}
+    if len(uids) > 1:
+        raise UserError(f"{folder}: {len(uids)} DICOM series mixed in one folder: put each series in a "
+                        "folder of its own")
+    for ds, f in zip(slices, files):
+        if "PixelData" not in ds:
+            raise UserError(f"{f}: a DICOM file without an image")
+    shape0 = (int(slices[0].Rows), int(slices[0].Columns))
+    for ds, f in zip(slices, files):
+        if (int(ds.Rows), int(ds.Columns)) != shape0:
+            raise UserError(f"{f}: a {ds.Rows}x{ds.Columns} slice in a series of {shape0[0]}x{shape0[1]}")
+    n0 = _normal(slices[0])
+    for ds, f in zip(slices, files):
+        n = _normal(ds)
+        if n0 is not None and n is not None and not np.allclose(n, n0, atol=1e-4):
+            raise UserError(f"{f}: its orientation differs from the rest of the series")
+    order = _order(slices, files)
+    stack = np.stack([_pixels(slices[i], files[i]) for i in order])   # [z, rows (y), columns (x)]
+    slopes = [float(getattr(slices[i], "RescaleSlope", 1.0) or 1.0) for i in order]
+    intercepts = [float(getattr(slices[i], "RescaleIntercept", 0.0) or 0.0) for i in order]
+    return _rescale(stack, slopes, intercepts)

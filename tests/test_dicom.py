@@ -1,0 +1,119 @@
+"""DICOM series (cube4.dicom): a folder of slices written here with pydicom loads as the
+volume it was made from, renders the same image as that volume given as NIfTI, and
+every broken series is one clear error."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import nibabel as nib
+import numpy as np
+import pytest
+from pydicom.dataset import FileDataset, FileMetaDataset
+from pydicom.encaps import encapsulate
+from pydicom.uid import CTImageStorage, ExplicitVRLittleEndian, JPEG2000Lossless, generate_uid
+
+from cube4.config import Cube4Config
+from cube4.dicom import load_series
+from cube4.errors import UserError
+from cube4.render import render
+from cube4.scene import parse_scene
+from cube4.volumes import load_volume
+
+
+def write_series(folder: Path, vol: np.ndarray, *, spacing: float = 1.5, intercept: float = -1024.0,
+                 skip: int | None = None, series_uid: str | None = None, compressed: bool = False,
+                 start: int = 0) -> None:
+    """vol[z, y, x] of stored values as CT slices, file names in shuffled order."""
+    folder.mkdir(parents=True, exist_ok=True)
+    uid = series_uid or generate_uid()
+    nz = vol.shape[0]
+    rng = np.random.default_rng(5)
+    names = rng.permutation(nz) + start
+    for z in range(nz):
+        if z == skip:
+            continue
+        meta = FileMetaDataset()
+        meta.MediaStorageSOPClassUID = CTImageStorage
+        meta.MediaStorageSOPInstanceUID = generate_uid()
+        meta.TransferSyntaxUID = JPEG2000Lossless if compressed else ExplicitVRLittleEndian
+        path = folder / f"IM{names[z]:04d}.dcm"
+        ds = FileDataset(str(path), {}, file_meta=meta, preamble=b"\0" * 128)
+        ds.SOPClassUID = CTImageStorage
+        ds.SOPInstanceUID = meta.MediaStorageSOPInstanceUID
+        ds.SeriesInstanceUID = uid
+        ds.Modality = "CT"
+        ds.InstanceNumber = z + 1
+        ds.ImagePositionPatient = [0.0, 0.0, z * spacing]
+        ds.ImageOrientationPatient = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        ds.Rows, ds.Columns = vol.shape[1], vol.shape[2]
+        ds.SamplesPerPixel = 1
+        ds.PhotometricInterpretation = "MONOCHROME2"
+        ds.BitsAllocated, ds.BitsStored, ds.HighBit, ds.PixelRepresentation = 16, 12, 11, 0
+        ds.RescaleSlope, ds.RescaleIntercept = 1.0, intercept
+        if compressed:
+            ds.PixelData = encapsulate([b"\xff\x4f\xff\x51" + bytes(16)])   # not a decodable codestream
+            ds["PixelData"].VR = "OB"
+        else:
+            ds.PixelData = vol[z].astype("<u2").tobytes()
+        ds.save_as(path, enforce_file_format=True)
+
+
+@pytest.fixture
+def ct() -> np.ndarray:
+    rng = np.random.default_rng(1)
+    vol = rng.integers(0, 4096, size=(9, 12, 10)).astype(np.uint16)
+    vol[0, 0, 0] = 0                        # the series' minimum: voxel = stored value
+    return vol
+
+
+def test_series_loads_sorted_with_12_bits_kept(tmp_path, ct):
+    write_series(tmp_path / "s", ct)
+    got = load_series(tmp_path / "s")
+    assert got.shape == ct.shape and np.array_equal(got, ct)
+    vol12 = load_volume(str(tmp_path / "s"), voxel_bits=12)
+    assert np.array_equal(vol12, ct), "12-bit CT values must be kept for 12-bit voxels"
+
+
+def test_series_renders_as_the_same_volume_in_nifti(tmp_path, ct):
+    write_series(tmp_path / "s", ct)
+    nii = tmp_path / "v.nii.gz"
+    nib.save(nib.Nifti1Image(ct.transpose(2, 1, 0), np.eye(4)), nii)     # NIfTI is [x, y, z]
+    a = load_volume(str(tmp_path / "s"), voxel_bits=12)
+    b = load_volume(str(nii), voxel_bits=12)
+    assert np.array_equal(a, b)
+    scene = parse_scene({"view": {"direction": [0.3, 0.5, 0.8]}, "output": {"width": 32, "height": 32}})
+    cfg = Cube4Config(voxel_bits=12)
+    ia, ib = render(a, scene, cfg, "golden").image, render(b, scene, cfg, "golden").image
+    assert ia.max() > 0 and np.array_equal(ia, ib)
+
+
+@pytest.mark.parametrize("case, needle", [
+    ("mixed", "2 DICOM series mixed"),
+    ("missing", "a slice is missing"),
+    ("compressed", "cannot be decoded here"),
+    ("not_dicom", "not a DICOM file"),
+    ("empty", "holds no files"),
+    ("duplicate", "same position"),
+])
+def test_broken_series_is_one_clear_error(tmp_path, ct, case, needle):
+    folder = tmp_path / "s"
+    if case == "mixed":
+        write_series(folder, ct)
+        write_series(folder, ct[:3], start=100)
+    elif case == "missing":
+        write_series(folder, ct, skip=4)
+    elif case == "compressed":
+        write_series(folder, ct[:3], compressed=True)
+    elif case == "not_dicom":
+        write_series(folder, ct)
+        (folder / "notes.txt").write_text("scanner notes")
+    elif case == "empty":
+        folder.mkdir()
+    else:
+        uid = generate_uid()
+        write_series(folder, ct[:3], series_uid=uid)
+        write_series(folder, ct[:1], series_uid=uid, start=100)
+    with pytest.raises(UserError, match=needle) as err:
+        load_volume(str(folder), voxel_bits=12)
+    assert "\n" not in str(err.value)
