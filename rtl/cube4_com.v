@@ -112,9 +112,9 @@ module cube4_com #(
     //   S9  C += round_shift(w * C', 8); write the slice buffer; push into the FIFO
     // Every stage moves on every cycle and carries a valid bit; the datapath
     // registers have no clock enable. The registers that must hold across
-    // bubbles (the position counters, the last beat's words for the X-step and
-    // NB = 1) load under a valid bit, of which each lane and each group of
-    // block RAMs has a flip-flop copy of its own.
+    // bubbles load under a valid bit: the position counters under step (R0's
+    // valid bit), the last beat's words for the X-step and NB = 1 under each
+    // lane's own copy of v_s[4] (u_v4).
     // A beat's slice position is read two edges after its acceptance into
     // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
@@ -358,7 +358,8 @@ module cube4_com #(
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
     // previous beat's a1 (prev_a1_q).
-    // (read at S2: pb_s[2]; written at the end of S3: pb_s[3], v_s[3])
+    // (read at S2: address pb_s[1] given one stage early; written at the end of
+    // S3: address pb_s[2] and enable v_s[2], one stage early)
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1)) u_bp_beam (
         .clk(clk), .rd_en(1'b1), .rd_addr(pb_s[1]), .rd_data(a2_ram),
         .wr_en(v_s[2]), .wr_addr(pb_s[2]), .wr_data(s3_a1));

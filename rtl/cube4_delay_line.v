@@ -24,6 +24,7 @@
 // Parameters
 //   DATA_W  word width.                  1..4096.
 //   DEPTH   largest L (words stored).    1..2^24.
+//   AW      address width (derived; not to be set).
 //
 // Latency
 //   Exactly L steps (step b sees din(b - L)); 0 clock cycles of extra delay.
@@ -43,7 +44,7 @@
 module cube4_delay_line #(
     parameter integer DATA_W = 8,
     parameter integer DEPTH  = 16,
-    parameter integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
+    localparam integer AW    = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
     input  wire              clk,
     input  wire              rst,

@@ -23,8 +23,9 @@
 // Latency
 //   A frame: (M * NJ + 1) * NB + 1 request beats (M = (NK-1) * S + 1 passes,
 //   NB = ceil(NI / P)), i.e. NI*NJ*NK/P cycles plus padding of the last
-//   partial beam, one flush beam and the pipeline fill (22 cycles), when no
-//   port stalls. done pulses the cycle the last sample beat is accepted;
+//   partial beam, one flush beam and the pipeline fill (22 cycles in
+//   tb/cube4_frontend, whose harness adds a cycle on the request and on the
+//   response path), when no port stalls. done pulses the cycle the last sample beat is accepted;
 //   cycles counts the clock cycles from start to that beat inclusive.
 //
 // Ports

@@ -101,7 +101,7 @@ module cube4_sha #(
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
     localparam integer NST  = 4 + NDIV + 4;      // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2
     // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
-    // FIFO's read into its skid)
+    // FIFO's read)
     localparam integer FIFO_DEPTH = (NST + 2 <= 16) ? 16 : 32;
 
     wire credit;                        // the output FIFO has an entry for one more beat

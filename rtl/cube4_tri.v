@@ -32,7 +32,7 @@
 //   Derived widths and the layouts of cfg, in_tag and out_hdr: cube4_defs.vh.
 //
 // Latency
-//   Fixed 13-stage pipeline that moves on every cycle and carries a valid bit
+//   Fixed 14-stage pipeline (s0 .. s13) that moves on every cycle and carries a valid bit
 //   per stage (no stall enable): s0 input, s1 slice-buffer select, s2 beam
 //   buffer, s3 beam-extension hold (a beat waits there for the next beat, so
 //   the drain beat pushes out the last one), s4, then x-lerps, y-lerps and
