@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from cube4.config import Cube4Config
+from cube4.errors import UserError
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
@@ -54,6 +55,27 @@ def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None) -> di
     }
 
 
+# The simulated voxel memory (the top harness's image, P * DEPTH words of up to 16 bits)
+# must fit this machine's memory comfortably: 2^28 words (512 MiB).
+SIM_MEMORY_WORDS = 1 << 28
+SIM_MAX_DIM = 512          # the largest size class whose memory fits SIM_MEMORY_WORDS
+MAX_ADDR_W = 30            # cube4_top's ADDR_W range
+
+
+def check_limits(params: dict[str, int], dims) -> None:
+    """The build's limits, checked before any file or build: one line saying what to change."""
+    nx, ny, nz = dims
+    words = params["P"] * params["DEPTH"]
+    if params["ADDR_W"] > MAX_ADDR_W:
+        raise UserError(f"a {nx}x{ny}x{nz} volume needs {params['DEPTH']:,} words per bank, more than the "
+                        f"RTL's 2^{MAX_ADDR_W}: use more pipelines (--pipelines) or a smaller volume")
+    if words > SIM_MEMORY_WORDS:
+        gib = words * 2 / 2**30
+        raise UserError(f"the RTL engine's simulated voxel memory for a {nx}x{ny}x{nz} volume (size class "
+                        f"{params['MAX_DIM']}^3) would take {gib:.1f} GiB: render a volume of at most "
+                        f"{SIM_MAX_DIM}^3 through the RTL, or use --engine golden")
+
+
 def build_max_dim(dims) -> int:
     """Builds are cached per size class: the next power of two, at least 16."""
     n = max(16, max(int(d) for d in dims))
@@ -79,14 +101,15 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     class). ``fit_memory`` sizes the voxel memory to this volume (the next power of two
     of its words per bank) instead of a max_dim^3 cube: a long, thin volume then needs
     no memory for a cube it never fills (a separate build)."""
-    from . import runner  # cocotb is imported only when the RTL engine is used
-
     nz, ny, nx = vol.shape
     max_dim = max_dim or build_max_dim((nx, ny, nz))
     depth = None
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
     params = build_params(cfg, max_dim, depth)
+    check_limits(params, (nx, ny, nz))
+
+    from . import runner  # cocotb is imported only when the RTL engine is used
     own_tmp = None
     if workdir is None:
         runner.BUILD_ROOT.mkdir(parents=True, exist_ok=True)
