@@ -172,9 +172,11 @@ def load_scene(spec: str) -> Scene:
     path = Path(spec)
     if path.suffix == ".toml" or path.exists():
         try:
-            text = path.read_text()
+            text = path.read_text(encoding="utf-8")
         except OSError as e:
             raise UserError(f"cannot read scene {spec}: {e.strerror}") from None
+        except UnicodeDecodeError:
+            raise UserError(f"scene {spec} is not UTF-8 text (a scene is a TOML file)") from None
         name = path.stem
     else:
         names = builtin_scene_names()
@@ -186,4 +188,6 @@ def load_scene(spec: str) -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise UserError(f"scene {spec}: malformed TOML: {e}") from None
+    except RecursionError:
+        raise UserError(f"scene {spec}: nested too deeply to be a scene") from None
     return parse_scene(data, name=name)

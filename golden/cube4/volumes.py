@@ -367,8 +367,29 @@ def _load_builtin(name: str, dims_text: str | None, spec: str, voxel_bits: int, 
         dims = _parse_dims(dims_text, spec)
     _check_dims(dims, max_dim, spec)
     _check_bits(voxel_bits)
+    _check_memory(dims, spec)
     field = BUILTINS[key][0](*dims)
     return quantise(field, voxel_bits)
+
+
+BUILTIN_BYTES_PER_VOXEL = 32     # peak while generating (float fields and temporaries), measured ~27
+
+
+def _physical_memory() -> int | None:
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
+def _check_memory(dims: Dims, spec: str) -> None:
+    """A built-in is generated in memory: refuse a size this machine cannot hold."""
+    need = int(np.prod(dims, dtype=np.int64)) * BUILTIN_BYTES_PER_VOXEL
+    have = _physical_memory()
+    if have is not None and need > 0.75 * have:
+        side = int((0.75 * have / BUILTIN_BYTES_PER_VOXEL) ** (1 / 3))
+        raise UserError(f"built-in {spec} needs about {need / 2**30:.0f} GiB of memory to generate, this "
+                        f"machine has {have / 2**30:.0f} GiB: choose at most about {side}^3 voxels")
 
 
 # --------------------------------------------------------------------------------------
@@ -461,8 +482,10 @@ def _load_nrrd(path: str) -> np.ndarray:
         # index_order='C' gives the slowest axis first: [z, y, x] for a 3-D file whose
         # first NRRD axis (fastest) is x. (The default 'F' order would give [x, y, z].)
         data, _header = nrrd.read(path, index_order="C")
-    except (nrrd.NRRDError, OSError, ValueError) as e:
-        raise UserError(f"cannot read NRRD file {path}: {e}") from None
+    except KeyError as e:        # pynrrd's table of types
+        raise UserError(f"cannot read NRRD file {path}: unknown NRRD type {e}") from None
+    except Exception as e:       # corrupt payloads raise many kinds (zlib, EOF, value errors)
+        raise UserError(f"cannot read NRRD file {path}: {type(e).__name__}: {e}") from None
     return _spatial_3d(np.asarray(data), path, t_axis=0)
 
 
