@@ -45,8 +45,16 @@ def _dims(text: str) -> tuple[int, int, int]:
     return parts  # type: ignore[return-value]
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors (a missing --out, a bad choice, a non-integer) as one
+    line like every other error, instead of the usage text."""
+
+    def error(self, message: str):
+        raise UserError(f"{self.prog}: {message} (see {self.prog} --help)")
+
+
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="cube4", description="Cube-4 volume renderer (golden model, reference, RTL).")
+    ap = _Parser(prog="cube4", description="Cube-4 volume renderer (golden model, reference, RTL).")
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("render", help="render a volume with a scene into an image")
     r.add_argument("volume", help="a volume file (.raw, .nrrd, .nii[.gz]) or a built-in like sphere:64, ml:41")
@@ -217,8 +225,8 @@ def cmd_render(args: argparse.Namespace) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
     try:
+        args = _parser().parse_args(argv)
         if args.cmd == "render":
             return cmd_render(args)
         if args.cmd == "volumes":
