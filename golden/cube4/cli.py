@@ -29,7 +29,7 @@ from .errors import UserError
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import config_for, engine_names, image_metrics, render, render_views
 from .scene import Scene, builtin_scene_names, load_scene, with_view
-from .view import angles_from_direction, direction_from_angles
+from .view import POLE_Z, angles_from_direction, direction_from_angles, up_from_angles
 from .volumes import BUILTINS, load_volume
 
 IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
@@ -130,8 +130,7 @@ def _views(args: argparse.Namespace, scene: Scene) -> list[Scene]:
         if not 1 <= args.orbit <= MAX_VIEWS:
             raise UserError(f"--orbit must be in 1..{MAX_VIEWS}, got {args.orbit}")
         az0, el = angles_from_direction(scene.direction)
-        return [with_view(scene, direction_from_angles(az0 + 360.0 * n / args.orbit, el))
-                for n in range(args.orbit)]
+        return [_view(scene, az0 + 360.0 * n / args.orbit, el) for n in range(args.orbit)]
     if not args.view:
         return [scene]
     if len(args.view) > MAX_VIEWS:
@@ -144,8 +143,17 @@ def _views(args: argparse.Namespace, scene: Scene) -> list[Scene]:
             raise UserError(f"--view must be AZ,EL in degrees, got {text!r}") from None
         if not (-360.0 <= az <= 360.0 and -90.0 <= el <= 90.0):
             raise UserError(f"--view {text!r}: azimuth must be in -360..360 and elevation in -90..90")
-        scenes.append(with_view(scene, direction_from_angles(az, el)))
+        scenes.append(_view(scene, az, el))
     return scenes
+
+
+def _view(scene: Scene, az: float, el: float) -> Scene:
+    """The scene from (az, el). Near the poles the picture's up comes from the angles
+    themselves (up_from_angles), so that an elevation sweep turns the picture smoothly
+    through 90 degrees at every azimuth; a scene's own `up` is kept."""
+    d = direction_from_angles(az, el)
+    near_pole = abs(d[2]) >= POLE_Z
+    return with_view(scene, d, up_from_angles(az, el) if near_pole and scene.up is None else None)
 
 
 def _numbered(path: Path, n: int, count: int) -> Path:

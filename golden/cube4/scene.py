@@ -156,11 +156,13 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     )
 
 
-def with_view(scene: Scene, direction) -> Scene:
-    """The scene seen along another view direction; headlights follow the view."""
+def with_view(scene: Scene, direction, up=None) -> Scene:
+    """The scene seen along another view direction (and, if given, with that picture up);
+    headlights follow the view."""
     d = normalize_direction(direction)
     lights = [replace(lt, direction=d) if lt.headlight else lt for lt in scene.lights]
-    return replace(scene, direction=d, lights=lights)
+    new = replace(scene, direction=d, lights=lights)
+    return new if up is None else replace(new, up=np.asarray(up, dtype=np.float64))
 
 
 def builtin_scene_names() -> list[str]:

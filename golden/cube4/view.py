@@ -53,6 +53,29 @@ def direction_from_angles(azimuth_deg: float, elevation_deg: float) -> np.ndarra
     return -eye
 
 
+def up_from_angles(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
+    """The picture's up for a camera at (azimuth, elevation): the direction in which the
+    eye moves when the elevation grows (north on the sphere of views). It is +z projected
+    on the image plane wherever that is defined, and it turns continuously through the
+    poles (looking straight down at azimuth A, the top of the picture points away from
+    azimuth A)."""
+    az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
+    return np.array([-math.sin(el) * math.cos(az), -math.sin(el) * math.sin(az), math.cos(el)])
+
+
+POLE_Z = 0.99     # |d_z| from which +z is too close to the view direction to be the up
+
+
+def default_up(direction) -> np.ndarray:
+    """+z, except near the poles (|d_z| >= POLE_Z), where it is up_from_angles of the
+    direction's own angles: the same picture direction as +z's projection, so the rule is
+    continuous (at the exact pole, azimuth 0 is assumed: the top points to -x)."""
+    d = normalize_direction(direction)
+    if abs(d[2]) < POLE_Z:
+        return np.array([0.0, 0.0, 1.0])
+    return up_from_angles(*angles_from_direction(d))
+
+
 def angles_from_direction(direction) -> tuple[float, float]:
     """Inverse of direction_from_angles: (azimuth, elevation) in degrees."""
     eye = -np.asarray(direction, dtype=np.float64)
@@ -242,7 +265,7 @@ class Camera:
 def make_camera(dims, direction, width: int, height: int, up=None) -> Camera:
     d = normalize_direction(direction)
     if up is None:
-        up = (0.0, 0.0, 1.0) if abs(d[2]) < 0.99 else (0.0, -1.0, 0.0)
+        up = default_up(d)
     u = normalize_direction(up)
     right = np.cross(d, u)
     if np.linalg.norm(right) < 1e-6:
