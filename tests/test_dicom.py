@@ -70,15 +70,18 @@ def ct() -> np.ndarray:
 def test_series_loads_sorted_with_12_bits_kept(tmp_path, ct):
     write_series(tmp_path / "s", ct)
     got = load_series(tmp_path / "s")
-    assert got.shape == ct.shape and np.array_equal(got, ct)
+    ras = ct[:, ::-1, ::-1]          # LPS rows and columns: x and y flip into RAS
+    assert got.shape == ct.shape and np.array_equal(got, ras)
     vol12 = load_volume(str(tmp_path / "s"), voxel_bits=12)
-    assert np.array_equal(vol12, ct), "12-bit CT values must be kept for 12-bit voxels"
+    assert np.array_equal(vol12, ras), "12-bit CT values must be kept for 12-bit voxels"
 
 
 def test_series_renders_as_the_same_volume_in_nifti(tmp_path, ct):
     write_series(tmp_path / "s", ct)
     nii = tmp_path / "v.nii.gz"
-    nib.save(nib.Nifti1Image(ct.transpose(2, 1, 0), np.eye(4)), nii)     # NIfTI is [x, y, z]
+    # the series' own orientation: rows along +x, columns along +y, slices along +z in
+    # DICOM's LPS patient axes, i.e. x and y flipped in NIfTI's RAS
+    nib.save(nib.Nifti1Image(ct.transpose(2, 1, 0), np.diag([-1.0, -1.0, 1.5, 1.0])), nii)
     a = load_volume(str(tmp_path / "s"), voxel_bits=12)
     b = load_volume(str(nii), voxel_bits=12)
     assert np.array_equal(a, b)

@@ -15,7 +15,9 @@
 * Compressed transfer syntaxes that this installation cannot decode are an error that
   names the syntax.
 
-Axes: x along a row (columns), y down the columns (rows), z along the slice normal.
+Axes: like every loaded file, RAS (x to the patient's right, y anterior, z superior),
+by the nearest axis permutation and flips of the series' orientation (DICOM's patient
+axes are LPS); no resampling.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import UserError
+from .volumes import to_ras
 
 GAP_FACTOR = 1.5      # a spacing this many times the median one means a missing slice
 
@@ -141,4 +144,17 @@ def load_series(folder: str | os.PathLike) -> np.ndarray:
     stack = np.stack([_pixels(slices[i], files[i]) for i in order])   # [z, rows (y), columns (x)]
     slopes = [float(getattr(slices[i], "RescaleSlope", 1.0) or 1.0) for i in order]
     intercepts = [float(getattr(slices[i], "RescaleIntercept", 0.0) or 0.0) for i in order]
-    return _rescale(stack, slopes, intercepts)
+    vol = _rescale(stack, slopes, intercepts)
+    directions = _ras_directions(slices[order[0]])
+    return vol if directions is None else to_ras(vol, directions)
+
+
+def _ras_directions(ds) -> np.ndarray | None:
+    """Columns: the directions of the volume's x (along a row), y (down the columns) and
+    z (along the sorted slices) in RAS. DICOM's patient axes are LPS: x and y flip."""
+    normal = _normal(ds)
+    if normal is None:
+        return None
+    iop = np.array(ds.ImageOrientationPatient, dtype=float)
+    lps = np.stack([iop[:3], iop[3:], normal], axis=1)
+    return np.diag([-1.0, -1.0, 1.0]) @ lps

@@ -11,12 +11,16 @@ dimensions are reported as ``(nx, ny, nz)``.
   The two built-ins made from real MRI data shipped inside nibabel (``mri`` and
   ``mri_t1``) may also be given without dimensions for their native size;
 * a file path: ``.raw``/``.bin``/``.dat`` (headerless little-endian voxels),
-  ``.nrrd``/``.nhdr`` (pynrrd) or ``.nii``/``.nii.gz`` (nibabel).
+  ``.nrrd``/``.nhdr`` (pynrrd) or ``.nii``/``.nii.gz`` (nibabel);
+* a folder of DICOM slices of one series (:mod:`cube4.dicom`).
 
 File data becomes voxels by :func:`to_voxels`: integer data already inside the voxel
 range is kept bit for bit; anything else is rescaled linearly min..max onto the range.
-Files are taken in their stored index order (first file axis = x); no reorientation
-from the NRRD space directions or the NIfTI affine is applied.
+Files that say how their axes lie in the patient (the NIfTI affine, the NRRD ``space``
+and ``space directions``, DICOM's orientation and positions) are reoriented to RAS: x
+to the right, y anterior (to the front), z superior (up), by the nearest axis
+permutation and flips (:func:`to_ras`; no resampling). Files that do not say (raw
+files, NRRD without a known space) keep their stored index order (first axis = x).
 """
 
 from __future__ import annotations
@@ -481,12 +485,48 @@ def _load_nrrd(path: str) -> np.ndarray:
     try:
         # index_order='C' gives the slowest axis first: [z, y, x] for a 3-D file whose
         # first NRRD axis (fastest) is x. (The default 'F' order would give [x, y, z].)
-        data, _header = nrrd.read(path, index_order="C")
+        data, header = nrrd.read(path, index_order="C")
     except KeyError as e:        # pynrrd's table of types
         raise UserError(f"cannot read NRRD file {path}: unknown NRRD type {e}") from None
     except Exception as e:       # corrupt payloads raise many kinds (zlib, EOF, value errors)
         raise UserError(f"cannot read NRRD file {path}: {type(e).__name__}: {e}") from None
-    return _spatial_3d(np.asarray(data), path, t_axis=0)
+    data = _spatial_3d(np.asarray(data), path, t_axis=0)
+    affine = _nrrd_ras_affine(header)
+    return data if affine is None else to_ras(data, affine)
+
+
+# NRRD "space" names -> the sign that turns each of its axes into RAS
+_NRRD_SPACES = {
+    "right-anterior-superior": (1, 1, 1), "ras": (1, 1, 1),
+    "left-anterior-superior": (-1, 1, 1), "las": (-1, 1, 1),
+    "left-posterior-superior": (-1, -1, 1), "lps": (-1, -1, 1),
+}
+
+
+def _nrrd_ras_affine(header: dict) -> np.ndarray | None:
+    """The 3 x 3 direction matrix (columns = file axes x, y, z) in RAS, from the NRRD
+    'space' and 'space directions'; None when the file does not say (stored order kept)."""
+    space = str(header.get("space", "")).lower()
+    dirs = header.get("space directions")
+    if space not in _NRRD_SPACES or dirs is None:
+        return None
+    rows = [np.asarray(r, dtype=np.float64) for r in dirs
+            if r is not None and np.all(np.isfinite(np.asarray(r, dtype=np.float64)))]
+    if len(rows) != 3 or any(r.shape != (3,) for r in rows):
+        return None
+    return np.array(rows).T * np.array(_NRRD_SPACES[space], dtype=np.float64)[:, None]
+
+
+def to_ras(vol_zyx: np.ndarray, directions: np.ndarray) -> np.ndarray:
+    """Reorient vol[z, y, x] whose file axes x, y, z point along the columns of the 3 x 3
+    RAS direction matrix so that x runs to the right, y to the front (anterior) and z up
+    (superior): the nearest axis permutation and flips, no resampling."""
+    from nibabel.orientations import apply_orientation, io_orientation
+
+    affine = np.eye(4)
+    affine[:3, :3] = directions
+    xyz = apply_orientation(vol_zyx.transpose(2, 1, 0), io_orientation(affine))
+    return np.ascontiguousarray(xyz.transpose(2, 1, 0))
 
 
 def _load_nifti(path: str) -> np.ndarray:
@@ -494,6 +534,8 @@ def _load_nifti(path: str) -> np.ndarray:
 
     try:
         img = nib.load(path)
+        if len(img.shape) >= 3:
+            img = nib.as_closest_canonical(img)   # RAS: x right, y anterior, z superior
         data = np.asarray(img.dataobj)  # [x, y, z(, t)]; scl_slope applied if set
     except Exception as e:  # nibabel raises many kinds for corrupt files
         raise UserError(f"cannot read NIfTI file {path}: {e}") from None
