@@ -26,3 +26,49 @@ def make_scene(**kw):
     data = {"output": {"width": 96, "height": 96}}
     data.update(kw)
     return parse_scene(data)
+
+
+def write_series(folder, vol: np.ndarray, *, spacing: float = 1.5, intercept: float = -1024.0,
+                 skip: int | None = None, series_uid: str | None = None, compressed: bool = False,
+                 start: int = 0) -> None:
+    """vol[z, y, x] of stored values as a DICOM CT series (pydicom), file names in
+    shuffled order: rows along +x, columns along +y, slices along +z (LPS)."""
+    from pathlib import Path
+
+    from pydicom.dataset import FileDataset, FileMetaDataset
+    from pydicom.encaps import encapsulate
+    from pydicom.uid import CTImageStorage, ExplicitVRLittleEndian, JPEG2000Lossless, generate_uid
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    uid = series_uid or generate_uid()
+    nz = vol.shape[0]
+    rng = np.random.default_rng(5)
+    names = rng.permutation(nz) + start
+    for z in range(nz):
+        if z == skip:
+            continue
+        meta = FileMetaDataset()
+        meta.MediaStorageSOPClassUID = CTImageStorage
+        meta.MediaStorageSOPInstanceUID = generate_uid()
+        meta.TransferSyntaxUID = JPEG2000Lossless if compressed else ExplicitVRLittleEndian
+        path = folder / f"IM{names[z]:04d}.dcm"
+        ds = FileDataset(str(path), {}, file_meta=meta, preamble=b"\0" * 128)
+        ds.SOPClassUID = CTImageStorage
+        ds.SOPInstanceUID = meta.MediaStorageSOPInstanceUID
+        ds.SeriesInstanceUID = uid
+        ds.Modality = "CT"
+        ds.InstanceNumber = z + 1
+        ds.ImagePositionPatient = [0.0, 0.0, z * spacing]
+        ds.ImageOrientationPatient = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        ds.Rows, ds.Columns = vol.shape[1], vol.shape[2]
+        ds.SamplesPerPixel = 1
+        ds.PhotometricInterpretation = "MONOCHROME2"
+        ds.BitsAllocated, ds.BitsStored, ds.HighBit, ds.PixelRepresentation = 16, 12, 11, 0
+        ds.RescaleSlope, ds.RescaleIntercept = 1.0, intercept
+        if compressed:
+            ds.PixelData = encapsulate([b"\xff\x4f\xff\x51" + bytes(16)])   # not a decodable codestream
+            ds["PixelData"].VR = "OB"
+        else:
+            ds.PixelData = vol[z].astype("<u2").tobytes()
+        ds.save_as(path, enforce_file_format=True)

@@ -7,7 +7,9 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import numpy as np
 import pytest
+from cube4_testutil import write_series
 
 from cube4.cli import main
 
@@ -45,11 +47,30 @@ def _case(tmp_path: Path, kind: str) -> list[str]:
         d.mkdir()
         (d / "a.dcm").write_text("not dicom")
         return [str(d)]
+    if kind.startswith("dicom_"):
+        return [str(_dicom_case(tmp_path / "series", kind))]
     raise AssertionError(kind)
 
 
+def _dicom_case(folder: Path, kind: str) -> Path:
+    ct = np.random.default_rng(3).integers(0, 4096, size=(6, 8, 8)).astype(np.uint16)
+    if kind == "dicom_mixed_series":
+        write_series(folder, ct)
+        write_series(folder, ct[:3], start=100)
+    elif kind == "dicom_missing_slice":
+        write_series(folder, ct, skip=3)
+    elif kind == "dicom_compressed":
+        write_series(folder, ct[:3], compressed=True)
+    elif kind == "dicom_empty_folder":
+        folder.mkdir()
+    else:
+        raise AssertionError(kind)
+    return folder
+
+
 KINDS = ["nrrd_corrupt_gzip", "nrrd_unknown_type", "nrrd_truncated", "scene_not_utf8",
-         "scene_nested_deeply", "builtin_too_large_for_memory", "dicom_folder_of_text"]
+         "scene_nested_deeply", "builtin_too_large_for_memory", "dicom_folder_of_text",
+         "dicom_mixed_series", "dicom_missing_slice", "dicom_compressed", "dicom_empty_folder"]
 
 
 @pytest.mark.parametrize("kind", KINDS)

@@ -100,6 +100,16 @@ BAD_SCENES = {
 }
 
 
+EARLIER = b"an earlier image"
+
+
+def _earlier_output(tmp_path: Path) -> Path:
+    """An earlier run's output at the path this run writes: it must survive untouched."""
+    p = tmp_path / "out.png"
+    p.write_bytes(EARLIER)
+    return p
+
+
 def _assert_clean_failure(rc: int, err: str, tmp_path: Path, needle: str = "") -> None:
     assert rc == 2
     lines = [ln for ln in err.splitlines() if ln.strip()]
@@ -107,12 +117,16 @@ def _assert_clean_failure(rc: int, err: str, tmp_path: Path, needle: str = "") -
     assert lines[0].startswith("cube4: error: ")
     assert "Traceback" not in err
     assert needle.lower() in lines[0].lower()
-    assert not list(tmp_path.glob("out*")), "an output file was left behind"
+    earlier = tmp_path / "out.png"
+    assert not earlier.exists() or earlier.read_bytes() == EARLIER, "an earlier output was replaced"
+    left = [p for p in tmp_path.glob("out*") if p != earlier] + list(tmp_path.glob(".cube4-*"))
+    assert not left, f"an output file was left behind: {left}"
 
 
 @pytest.mark.parametrize("case", sorted(BAD))
 def test_bad_input(case, tmp_path, scene_file, capsys):
     make_args, needle = BAD[case]
+    _earlier_output(tmp_path)
     args = make_args(tmp_path)
     out = ["--out", str(tmp_path / "out.png")] if "--out" not in args else []
     rc, _, err = run_cli(["render", *args, "--scene", str(scene_file), *out,
@@ -124,6 +138,7 @@ def test_bad_input(case, tmp_path, scene_file, capsys):
 def test_bad_scene(case, tmp_path, capsys):
     sc = tmp_path / "bad.toml"
     sc.write_text(BAD_SCENES[case])
+    _earlier_output(tmp_path)
     rc, _, err = run_cli(["render", "sphere:16", "--scene", str(sc), "--out", str(tmp_path / "out.png")], capsys)
     _assert_clean_failure(rc, err, tmp_path)
 

@@ -4,14 +4,12 @@ every broken series is one clear error."""
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import nibabel as nib
 import numpy as np
 import pytest
-from pydicom.dataset import FileDataset, FileMetaDataset
-from pydicom.encaps import encapsulate
-from pydicom.uid import CTImageStorage, ExplicitVRLittleEndian, JPEG2000Lossless, generate_uid
+from cube4_testutil import write_series
+from pydicom.uid import generate_uid
 
 from cube4.config import Cube4Config
 from cube4.dicom import load_series
@@ -19,44 +17,6 @@ from cube4.errors import UserError
 from cube4.render import render
 from cube4.scene import parse_scene
 from cube4.volumes import load_volume
-
-
-def write_series(folder: Path, vol: np.ndarray, *, spacing: float = 1.5, intercept: float = -1024.0,
-                 skip: int | None = None, series_uid: str | None = None, compressed: bool = False,
-                 start: int = 0) -> None:
-    """vol[z, y, x] of stored values as CT slices, file names in shuffled order."""
-    folder.mkdir(parents=True, exist_ok=True)
-    uid = series_uid or generate_uid()
-    nz = vol.shape[0]
-    rng = np.random.default_rng(5)
-    names = rng.permutation(nz) + start
-    for z in range(nz):
-        if z == skip:
-            continue
-        meta = FileMetaDataset()
-        meta.MediaStorageSOPClassUID = CTImageStorage
-        meta.MediaStorageSOPInstanceUID = generate_uid()
-        meta.TransferSyntaxUID = JPEG2000Lossless if compressed else ExplicitVRLittleEndian
-        path = folder / f"IM{names[z]:04d}.dcm"
-        ds = FileDataset(str(path), {}, file_meta=meta, preamble=b"\0" * 128)
-        ds.SOPClassUID = CTImageStorage
-        ds.SOPInstanceUID = meta.MediaStorageSOPInstanceUID
-        ds.SeriesInstanceUID = uid
-        ds.Modality = "CT"
-        ds.InstanceNumber = z + 1
-        ds.ImagePositionPatient = [0.0, 0.0, z * spacing]
-        ds.ImageOrientationPatient = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
-        ds.Rows, ds.Columns = vol.shape[1], vol.shape[2]
-        ds.SamplesPerPixel = 1
-        ds.PhotometricInterpretation = "MONOCHROME2"
-        ds.BitsAllocated, ds.BitsStored, ds.HighBit, ds.PixelRepresentation = 16, 12, 11, 0
-        ds.RescaleSlope, ds.RescaleIntercept = 1.0, intercept
-        if compressed:
-            ds.PixelData = encapsulate([b"\xff\x4f\xff\x51" + bytes(16)])   # not a decodable codestream
-            ds["PixelData"].VR = "OB"
-        else:
-            ds.PixelData = vol[z].astype("<u2").tobytes()
-        ds.save_as(path, enforce_file_format=True)
 
 
 @pytest.fixture
