@@ -41,12 +41,6 @@ def harness_sources(*files) -> list:
     return [*rtl_sources(), SIM_HDL_DIR / "cube4_sim_clock.v", *extra]
 
 
-# the view registers (CUBE4_VIEW_PACK) and the address registers (CUBE4_ADDR_PACK)
-VIEW_REGS = ("NI", "NJ", "NK", "NB", "FLIP_I", "FLIP_J", "FLIP_K", "SS_LOG2", "VIEW_X", "VIEW_Y",
-             "J_R0", "K_R0", "I_R1", "I_RT", "SX", "SY")
-ADDR_REGS = ("J_A0", "J_LIN", "J_BLK", "K_A0", "K_LIN", "K_BLK", "I_A0", "I_PB", "I_LIN")
-
-
 class UnitBench:
     """Python source and sink around one unit harness."""
 
@@ -71,12 +65,13 @@ class UnitBench:
         self.dut.rst.value = 0
         await self.cycles(2)
 
-    def set_view(self, trav: Traversal, p: int, address: bool = False) -> None:
-        """Write the view registers (top_regs; CUBE4_VIEW_PACK) to the harness's
-        cfg_* ports, and with ``address`` the address registers (CUBE4_ADDR_PACK)."""
-        regs = top_regs(trav, p)
-        for key in VIEW_REGS + (ADDR_REGS if address else ()):
-            self.sig("cfg_" + key.lower()).value = int(regs[key])
+    def set_view(self, trav: Traversal, p: int) -> None:
+        """Write the host's registers (cube4.memory.top_regs) to the harness's cfg_*
+        ports; a harness without the address unit has no ports for its registers."""
+        for key, val in top_regs(trav, p).items():
+            name = "cfg_" + key.lower()
+            if hasattr(self.dut, name):
+                self.sig(name).value = int(val)
 
     async def run_stream(self, inputs: list[dict[str, int]] | None, expected: int, outputs: list[str],
                          gap: float, stall: float, tail: int = 300, limit: int = 200000) -> list[dict[str, int]]:

@@ -94,7 +94,7 @@ async def test_sample_stream(dut):
         samples, inside = sample_stream(vol, trav)
         sched = BeatSchedule(trav, p, inside)
         hdrs = sched.headers(geo)
-        bench.set_view(trav, p, address=True)
+        bench.set_view(trav, p)
         dut.stall_req.value, dut.stall_in.value = stall_req, stall_in
         await FallingEdge(dut.clk)
         dut.start.value = 1
