@@ -26,6 +26,7 @@ from tqdm import tqdm
 
 from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
+from .clip import Clip
 from .view import Traversal
 
 PIXEL_DTYPE = np.dtype(
@@ -163,13 +164,16 @@ def rmap_index(g: np.ndarray, rmap_bits: int) -> np.ndarray:
     return np.where(big == 0, 6 * r * r, idx)
 
 
-def shade(samples: np.ndarray, grad: np.ndarray, lut: np.ndarray, rmap: np.ndarray, rmap_bits: int):
-    """Classify and shade: returns (rgba (4, ...) int64, rmap index).
+def shade(samples: np.ndarray, grad: np.ndarray | None, lut: np.ndarray, rmap: np.ndarray | None, rmap_bits: int):
+    """Classify and shade: returns (rgba (4, ...) int64, rmap index or None).
 
     (R, G, B, A) = LUT[sample]; (D, P) = RMAP[index(gradient)];
     C' = min(2^8 - 1, round_shift(C * D, 8) + P) for C in R, G, B; A unchanged.
+    Unshaded (grad None, a build without GRA and reflectance map): C' = C.
     """
     entry = lut[samples]  # (..., 4)
+    if grad is None:
+        return np.moveaxis(entry.astype(np.int64), -1, 0), None
     idx = rmap_index(grad, rmap_bits)
     dp = rmap[idx]
     top = (1 << COLOR_W) - 1
@@ -179,29 +183,79 @@ def shade(samples: np.ndarray, grad: np.ndarray, lut: np.ndarray, rmap: np.ndarr
 
 
 # ---------------------------------------------------------------- numerics.md §7
-def composite(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, inside: np.ndarray, cfg: Cube4Config) -> None:
+def composite(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray, cfg: Cube4Config) -> None:
     """Front-to-back compositing, in place, of one slice of shaded samples.
 
     acc (3, ...) colour and trans (...) transmittance, Q0.ACC_W, trans starts at 2^ACC_W.
     w = round_shift(T * A, ALPHA_W);  C += round_shift(w * C', 8);  T -= w.
     0 <= w <= T, so T never wraps and C <= 2^ACC_W - T (numerics.md §7).
+    A sample that does not count (outside the box, the window or the cut) has w = 0.
     """
-    w = np.where(inside, round_shift(trans * rgba[3], cfg.alpha_bits), 0)
+    w = np.where(count, round_shift(trans * rgba[3], cfg.alpha_bits), 0)
     acc += round_shift(w * rgba[:3], COLOR_W)
     trans -= w
 
 
+def xray(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray, cfg: Cube4Config) -> None:
+    """X-ray (numerics.md §13), in place: the attenuation sum without occlusion.
+
+    w = round_shift(2^ACC_W * A, ALPHA_W) (compositing's w with T held at 1);
+    C = min(2^ACC_W, C + round_shift(w * C', 8));  T = max(0, T - w), so the ray's
+    A = 2^ACC_W - T = min(1, sum of the counted samples' opacities).
+    """
+    one = 1 << cfg.acc_bits
+    w = np.where(count, round_shift(one * rgba[3], cfg.alpha_bits), 0)
+    np.minimum(one, acc + round_shift(w * rgba[:3], COLOR_W), out=acc)
+    np.maximum(0, trans - w, out=trans)
+
+
+def extremum(value: np.ndarray, held: np.ndarray, s: np.ndarray, rgba: np.ndarray, count: np.ndarray,
+             minimum: bool) -> None:
+    """MIP / MinIP (numerics.md §13), in place: the ray keeps the largest (smallest)
+    interpolated value of the samples that count, with that sample's classification:
+    taken when s >= value (s <= value); value starts at 0 (2^VOXEL_W - 1) and held at 0,
+    so a ray with no counted sample stays transparent."""
+    take = count & ((s <= value) if minimum else (s >= value))
+    value[take] = s[take]
+    held[:, take] = rgba[:, take]
+
+
+def extremum_pixel(held: np.ndarray, cfg: Cube4Config) -> np.ndarray:
+    """A MIP / MinIP ray's (R, G, B, A) in Q0.ACC_W from the held classification
+    (colour Q0.8, premultiplied by the host; A Q0.ALPHA_W): colour << (ACC_W - 8);
+    A << (ACC_W - ALPHA_W), or round_shift(A, ALPHA_W - ACC_W) when ALPHA_W > ACC_W."""
+    out = np.empty_like(held)
+    out[:3] = held[:3] << (cfg.acc_bits - COLOR_W)
+    d = cfg.acc_bits - cfg.alpha_bits
+    out[3] = held[3] << d if d >= 0 else round_shift(held[3], -d)
+    return out
+
+
 # ---------------------------------------------------------------- the frame
+MODES = ("composite", "xray", "mip", "minip")  # the MODE register: 0 .. 3
+
+
 def render_frame(
     vol: np.ndarray,
     trav: Traversal,
     cfg: Cube4Config,
     lut: np.ndarray,
-    rmap: np.ndarray,
+    rmap: np.ndarray | None,
     keep_streams: bool = False,
     progress: bool = False,
+    mode: str = "composite",
+    shading: bool = True,
+    clip: Clip | None = None,
 ) -> Frame:
-    """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly."""
+    """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
+
+    mode: composite, xray, mip or minip (numerics.md §7, §13); shading False classifies
+    only (no gradient, no reflectance map; X-ray and MIP/MinIP are never shaded);
+    clip: the window and cut plane (clip.py; None: every sample of the box counts).
+    """
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
+    shading = shading and mode == "composite"
     W = cfg.weight_bits
     one = 1 << cfg.acc_bits
     t = trav.to_traversal(vol)
@@ -211,8 +265,14 @@ def render_frame(
     M = trav.num_sample_slices
     rows, cols = trav.baseplane_shape
     sxm, sym = trav.max_steps
-    acc = np.zeros((3, rows, cols), dtype=np.int64)
-    trans = np.full((rows, cols), one, dtype=np.int64)
+    blend = mode in ("composite", "xray")
+    if blend:
+        acc = np.zeros((3, rows, cols), dtype=np.int64)
+        trans = np.full((rows, cols), one, dtype=np.int64)
+    else:
+        start = (1 << cfg.voxel_bits) - 1 if mode == "minip" else 0
+        value = np.full((rows, cols), start, dtype=np.int64)
+        held = np.zeros((4, rows, cols), dtype=np.int64)
 
     def padded(m: int) -> np.ndarray:
         sp = np.zeros((nj + 2, ni + 2), dtype=np.int32)
@@ -225,6 +285,7 @@ def render_frame(
         streams = {
             "samples": np.zeros((M, nj, ni), dtype=np.int32),
             "inside": np.zeros((M, nj, ni), dtype=bool),
+            "keep": np.zeros((M, nj, ni), dtype=bool),
             "gradients": np.zeros((M, 3, nj, ni), dtype=np.int64),
             "rmap_index": np.zeros((M, nj, ni), dtype=np.int64),
             "shaded": np.zeros((M, 4, nj, ni), dtype=np.int64),
@@ -235,13 +296,19 @@ def render_frame(
     for m in tqdm(range(M), desc="golden", unit="slice", disable=not progress, leave=False):
         s = cur[1:-1, 1:-1]
         inside = inside_mask(trav, m)
-        g = gradient(prev, cur, nxt, trav, m)
+        keep = clip.keep(trav, m) if clip is not None else np.ones((nj, ni), dtype=bool)
+        count = inside & keep
+        g = gradient(prev, cur, nxt, trav, m) if shading else None
         rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits)
         stx, sty = (int(v) for v in trav.steps(m))
         r0, c0 = sym - sty, sxm - stx
         win = (slice(r0, r0 + nj), slice(c0, c0 + ni))
-        a_win, t_win = acc[:, win[0], win[1]], trans[win]
-        composite(a_win, t_win, rgba, inside, cfg)
+        if mode == "composite":
+            composite(acc[:, win[0], win[1]], trans[win], rgba, count, cfg)
+        elif mode == "xray":
+            xray(acc[:, win[0], win[1]], trans[win], rgba, count, cfg)
+        else:
+            extremum(value[win], held[:, win[0], win[1]], s, rgba, count, mode == "minip")
         # rays whose next sample (slice m + 1, along the ray) is outside finish here
         if m + 1 < M:
             sxf, syf = (int(v) for v in trav.steps(m + 1))
@@ -255,19 +322,29 @@ def render_frame(
             chunk = np.empty(fj.size, dtype=PIXEL_DTYPE)
             chunk["m"] = m
             chunk["by"], chunk["bx"] = fj + r0, fi + c0
-            chunk["r"], chunk["g"], chunk["b"] = a_win[0][fin], a_win[1][fin], a_win[2][fin]
-            chunk["a"] = one - t_win[fin]
+            if blend:
+                a_win, t_win = acc[:, win[0], win[1]], trans[win]
+                chunk["r"], chunk["g"], chunk["b"] = a_win[0][fin], a_win[1][fin], a_win[2][fin]
+                chunk["a"] = one - t_win[fin]
+            else:
+                px = extremum_pixel(held[:, win[0], win[1]][:, fin], cfg)
+                chunk["r"], chunk["g"], chunk["b"], chunk["a"] = px
             pix_chunks.append(chunk)
         if keep_streams:
             streams["samples"][m] = s
             streams["inside"][m] = inside
-            streams["gradients"][m] = g
-            streams["rmap_index"][m] = idx
+            streams["keep"][m] = keep
+            if g is not None:
+                streams["gradients"][m] = g
+                streams["rmap_index"][m] = idx
             streams["shaded"][m] = rgba
         prev, cur, nxt = cur, nxt, padded(m + 2)
 
     base = np.empty((rows, cols, 4), dtype=np.int64)
-    base[..., :3] = np.moveaxis(acc, 0, -1)
-    base[..., 3] = one - trans
+    if blend:
+        base[..., :3] = np.moveaxis(acc, 0, -1)
+        base[..., 3] = one - trans
+    else:
+        base[:] = np.moveaxis(extremum_pixel(held, cfg), 0, -1)
     pixels = np.concatenate(pix_chunks) if pix_chunks else np.empty(0, dtype=PIXEL_DTYPE)
     return Frame(trav=trav, cfg=cfg, baseplane=base, pixels=pixels, streams=streams)

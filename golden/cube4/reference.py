@@ -12,7 +12,14 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
 * the transfer function's alpha is per voxel of distance: alpha_h = 1 - (1 - alpha)^h;
 * Phong: colour = min(1, C * D + P) with D, P from ``tables.phong_terms``;
 * front-to-back compositing of premultiplied colour, no early termination beyond a
-  transmittance of 1e-7.
+  transmittance of 1e-7;
+* the modes of numerics.md §13: X-ray sums the step opacities (and colours) without
+  occlusion, each clamped to 1; MIP / MinIP take the extreme field value along the ray
+  and classify it (colour premultiplied by opacity); unshaded compositing uses the
+  transfer function's colour as it is;
+* a crop box is rendered as a volume of its own placed at its origin (zero outside
+  it, like the volume's own faces); a cut plane removes the samples p with
+  normal . (p - point) > 0.
 """
 
 from __future__ import annotations
@@ -83,10 +90,16 @@ def render_reference(
     cam: Camera,
     step: float = 0.125,
     progress: bool = False,
+    box=None,
 ) -> np.ndarray:
-    """Render vol[z, y, x] into the image plane: (H, W, 4) premultiplied RGBA float64."""
+    """Render vol[z, y, x] into the image plane: (H, W, 4) premultiplied RGBA float64.
+    box = (origin, dims) of a crop box (scene.crop_box), None for the whole volume."""
     origins, d = cam.ray_origins()
-    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress)
+    if box is not None:
+        (x0, y0, z0), (nx, ny, nz) = box
+        vol = vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
+        origins = origins - np.asarray([x0, y0, z0], dtype=np.float64)
+    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress, offset=None if box is None else box[0])
     return img.reshape(cam.height, cam.width, 4)
 
 
@@ -108,7 +121,10 @@ def reference_baseplane(
     origins = trav.baseplane_to_volume(bx.ravel(), by.ravel())
     d = np.asarray(scene.direction, dtype=np.float64)
     d = d / np.linalg.norm(d)
-    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress)
+    (x0, y0, z0), (nx, ny, nz) = trav.origin, trav.dims
+    vol = vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
+    origins = origins - np.asarray(trav.origin, dtype=np.float64)
+    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress, offset=trav.origin)
     return img.reshape(rows, cols, 4)
 
 
@@ -120,9 +136,12 @@ def cast_rays(
     d: np.ndarray,
     step: float = 0.125,
     progress: bool = False,
+    offset=None,
 ) -> np.ndarray:
     """Composite the rays o + t d (origins (N, 3) in volume coordinates, one unit
-    direction d) front to back through vol[z, y, x]: (N, 4) premultiplied RGBA."""
+    direction d) front to back through vol[z, y, x]: (N, 4) premultiplied RGBA, in the
+    scene's mode. offset: where vol's voxel (0, 0, 0) lies in the whole volume (a crop
+    box), for the cut plane."""
     if not 0 < step <= 0.125:
         raise ValueError("reference step must be in (0, 1/8] voxel")
     nz, ny, nx = vol.shape
@@ -141,26 +160,60 @@ def cast_rays(
     total = int(n_steps.max()) if hit.size else 0
     steps_of = np.zeros(n_rays, dtype=np.int64)
     steps_of[hit] = n_steps
+    mode = scene.mode
+    shaded = scene.shaded
+    extreme = mode in ("mip", "minip")
+    value = np.full(n_rays, np.inf if mode == "minip" else -np.inf)
+    asum = np.zeros(n_rays)
+    if scene.cut is not None:
+        cut_n, cut_p = scene.cut
+        cut_p = cut_p - (np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64))
     bar = tqdm(total=total, desc="reference", unit="step", disable=not progress, leave=False)
     while active.size:
         pts = origins[active] + (t_in[active] + q * step)[:, None] * d
         vals = _trilinear(grid, pts)
-        rgba = scene.tf(vals[:, 0])
-        alpha = 1.0 - np.power(1.0 - np.clip(rgba[:, 3], 0.0, 1.0), step)
-        g = vals[:, 1:4]
-        gn = np.linalg.norm(g, axis=1)
-        flat = gn < 1e-12
-        normals = -g / np.where(flat, 1.0, gn)[:, None]
-        dd, pp = phong_terms(scene, normals, lights, eye)
-        dd = np.where(flat, d0, dd)
-        pp = np.where(flat, p0, pp)
-        c = np.minimum(1.0, rgba[:, :3] * dd[:, None] + pp[:, None])
-        w = trans[active] * alpha
-        color[active] += w[:, None] * c
-        trans[active] -= w
+        counts = np.ones(active.size, dtype=bool)
+        if scene.cut is not None:
+            counts = (pts - cut_p) @ cut_n <= 0.0
+        if extreme:
+            v = np.where(counts, vals[:, 0], value[active])
+            value[active] = np.minimum(value[active], v) if mode == "minip" else np.maximum(value[active], v)
+        else:
+            rgba = scene.tf(vals[:, 0])
+            alpha = np.where(counts, 1.0 - np.power(1.0 - np.clip(rgba[:, 3], 0.0, 1.0), step), 0.0)
+            if shaded:
+                g = vals[:, 1:4]
+                gn = np.linalg.norm(g, axis=1)
+                flat = gn < 1e-12
+                normals = -g / np.where(flat, 1.0, gn)[:, None]
+                dd, pp = phong_terms(scene, normals, lights, eye)
+                dd = np.where(flat, d0, dd)
+                pp = np.where(flat, p0, pp)
+                c = np.minimum(1.0, rgba[:, :3] * dd[:, None] + pp[:, None])
+            else:
+                c = rgba[:, :3]
+            if mode == "xray":
+                color[active] += alpha[:, None] * c
+                asum[active] += alpha
+            else:
+                w = trans[active] * alpha
+                color[active] += w[:, None] * c
+                trans[active] -= w
         q += 1
         bar.update(1)
-        keep = (q < steps_of[active]) & (trans[active] > 1e-7)
+        keep = q < steps_of[active]
+        if mode == "composite":
+            keep &= trans[active] > 1e-7
         active = active[keep]
     bar.close()
+    if extreme:
+        out = np.zeros((n_rays, 4))
+        seen = np.isfinite(value)
+        rgba = scene.tf(value[seen])
+        a = np.clip(rgba[:, 3], 0.0, 1.0)
+        out[seen, :3] = rgba[:, :3] * a[:, None]
+        out[seen, 3] = a
+        return out
+    if mode == "xray":
+        return np.concatenate([np.minimum(1.0, color), np.minimum(1.0, asum)[:, None]], axis=1)
     return np.concatenate([color, (1.0 - trans)[:, None]], axis=1)

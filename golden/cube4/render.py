@@ -18,8 +18,9 @@ from .config import Cube4Config
 from .errors import UserError
 from .model import Frame, render_frame
 from .reference import render_reference
-from .scene import Scene
-from .tables import classification_lut, reflectance_map
+from .clip import Clip, cut_coefficients
+from .scene import Scene, crop_box
+from .tables import classification_lut, extremum_lut, reflectance_map
 from .view import Camera, Traversal, make_camera, make_traversal, warp_matrix
 
 @dataclass
@@ -43,15 +44,36 @@ def config_for(scene: Scene, pipelines: int | None = None, **overrides) -> Cube4
 
 
 def setup_view(dims, scene: Scene, cfg: Cube4Config) -> tuple[Traversal, Camera]:
-    trav = make_traversal(dims, scene.direction, cfg.weight_bits, cfg.supersample)
+    """The traversal (of the crop box, if the scene has one) and the camera (framing
+    the whole volume, so that a crop stays where it is in the picture)."""
+    origin, box = crop_box(scene, dims)
+    trav = make_traversal(box, scene.direction, cfg.weight_bits, cfg.supersample, origin=origin)
     cam = make_camera(dims, scene.direction, scene.width, scene.height, scene.up)
     return trav, cam
 
 
-def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.ndarray, np.ndarray]:
+def crop_volume(vol: np.ndarray, trav: Traversal) -> np.ndarray:
+    """The traversed part of vol[z, y, x] (a view, no copy): the crop box or the whole."""
+    (x0, y0, z0), (nx, ny, nz) = trav.origin, trav.dims
+    return vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
+
+
+def frame_clip(scene: Scene, trav: Traversal) -> Clip | None:
+    """The scene's cut plane as the clip registers of this view (None: no cut)."""
+    if scene.cut is None:
+        return None
+    return Clip(plane=cut_coefficients(trav, *scene.cut))
+
+
+def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.ndarray, np.ndarray | None]:
     """What the host writes into the LUT load ports for this view: the classification
-    LUT with opacity corrected for the sample distance, and the reflectance map."""
-    return classification_lut(scene, cfg, trav.sample_distance), reflectance_map(scene, cfg, trav)
+    LUT (opacity corrected for the sample distance; for MIP/MinIP colour premultiplied
+    and opacity as given) and the reflectance map (None when the scene is unshaded)."""
+    if scene.mode in ("mip", "minip"):
+        lut = extremum_lut(scene, cfg)
+    else:
+        lut = classification_lut(scene, cfg, trav.sample_distance)
+    return lut, (reflectance_map(scene, cfg, trav) if scene.shaded else None)
 
 
 def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera) -> np.ndarray:
@@ -94,6 +116,7 @@ def view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
 
 def trav_stats(trav: Traversal) -> dict:
     return {
+        "traversed_box": {"origin": list(trav.origin), "dims": list(trav.dims)},
         "major_axis": "xyz"[trav.major],
         "view_x": trav.view_x,
         "view_y": trav.view_y,
@@ -132,7 +155,7 @@ def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progr
     _, cam = setup_view(dims, scene, cfg)
     stats = view_stats("reference", dims, scene, cfg)
     t0 = time.perf_counter()
-    img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=progress)
+    img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=progress, box=crop_box(scene, dims))
     return _timed(RenderResult("reference", img, 0.0, stats=stats), t0)
 
 
@@ -145,7 +168,8 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     stats = view_stats("golden", dims, scene, cfg)
     t0 = time.perf_counter()
     lut, rmap = host_tables(scene, cfg, trav)
-    frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=keep_streams, progress=progress)
+    frame = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, keep_streams=keep_streams,
+                         progress=progress, mode=scene.mode, shading=scene.shaded, clip=frame_clip(scene, trav))
     img = warp_to_image(frame.baseplane_float, trav, cam)
     stats.update(trav_stats(trav))
     stats["pixels"] = int(frame.pixels.size)

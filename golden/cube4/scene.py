@@ -16,7 +16,7 @@ import numpy as np
 from .errors import UserError
 from .view import direction_from_angles, normalize_direction
 
-MODES = ("composite",)  # MIP and X-ray arrive with the hardware back end
+MODES = ("composite", "xray", "mip", "minip")  # docs/scenes.md, docs/numerics.md §13
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
@@ -43,6 +43,14 @@ class Scene:
     tf_points: np.ndarray = field(default_factory=lambda: np.array([[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]], float))
     precision: dict = field(default_factory=dict)
     name: str = "scene"
+    shading: bool = True  # [material] shading: false classifies only (composite mode)
+    crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
+    cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
+
+    @property
+    def shaded(self) -> bool:
+        """Does this scene need gradients and the reflectance map?"""
+        return self.shading and self.mode == "composite"
 
     def tf(self, x) -> np.ndarray:
         """Transfer function at normalised values x in [0, 1]: (..., 4) RGBA, alpha per
@@ -77,7 +85,8 @@ def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
 
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
-    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision"), "top level")
+    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut"),
+                "top level")
     view = data.get("view", {})
     _check_keys(view, ("direction", "azimuth", "elevation", "up"), "view")
     if "direction" in view:
@@ -105,7 +114,10 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {supersample!r}")
 
     mat = data.get("material", {})
-    _check_keys(mat, ("ambient", "diffuse", "specular", "shininess"), "material")
+    _check_keys(mat, ("ambient", "diffuse", "specular", "shininess", "shading"), "material")
+    shading = mat.get("shading", True)
+    if not isinstance(shading, bool):
+        raise UserError(f"scene: material.shading must be true or false, got {shading!r}")
     ka = _num(mat, "ambient", 0.25, 0, 4, "material.")
     kd = _num(mat, "diffuse", 0.65, 0, 4, "material.")
     ks = _num(mat, "specular", 0.35, 0, 4, "material.")
@@ -149,11 +161,67 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     _check_keys(prec, PRECISION_KEYS, "precision")
     precision = {k: prec[k] for k in PRECISION_KEYS if k in prec}
 
+    crop = _crop(data.get("crop", {}))
+    cut = _cut(data.get("cut", {}))
+
     return Scene(
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
+        shading=shading, crop=crop, cut=cut,
     )
+
+
+def _crop(tbl: dict):
+    """[crop] box = [[x0, y0, z0], [x1, y1, z1]]: voxel indices, inclusive (checked
+    against the volume's dims when the scene meets a volume: ``crop_box``)."""
+    _check_keys(tbl, ("box",), "crop")
+    if "box" not in tbl:
+        return None
+    box = tbl["box"]
+    ok = (isinstance(box, list) and len(box) == 2
+          and all(isinstance(c, list) and len(c) == 3 for c in box)
+          and all(isinstance(v, int) and not isinstance(v, bool) for c in box for v in c))
+    if not ok:
+        raise UserError("scene: crop.box must be [[x0, y0, z0], [x1, y1, z1]] (voxel indices)")
+    lo, hi = tuple(box[0]), tuple(box[1])
+    if any(a < 0 or b < a for a, b in zip(lo, hi)):
+        raise UserError(f"scene: crop.box {box} needs 0 <= x0 <= x1 (and likewise y, z)")
+    return lo, hi
+
+
+def _cut(tbl: dict):
+    """[cut] normal = [nx, ny, nz], point = [x, y, z]: the samples on the side the
+    normal points to are cut away (transparent)."""
+    _check_keys(tbl, ("normal", "point"), "cut")
+    if not tbl:
+        return None
+    if "normal" not in tbl or "point" not in tbl:
+        raise UserError("scene: [cut] needs both normal and point")
+    normal = normalize_direction(tbl["normal"])
+    try:
+        point = np.asarray([float(c) for c in tbl["point"]], dtype=np.float64)
+    except (TypeError, ValueError):
+        raise UserError(f"scene: cut.point must be three numbers, got {tbl['point']!r}") from None
+    if point.shape != (3,) or not np.all(np.isfinite(point)):
+        raise UserError(f"scene: cut.point must be three finite numbers, got {tbl['point']!r}")
+    return normal, point
+
+
+def crop_box(scene: Scene, dims) -> tuple[tuple[int, int, int], tuple[int, int, int]]:
+    """The scene's crop box in a volume of dims (nx, ny, nz): (origin, box dims); the
+    whole volume when the scene has none."""
+    dims = tuple(int(n) for n in dims)
+    if scene.crop is None:
+        return (0, 0, 0), dims
+    lo, hi = scene.crop
+    if any(b >= n for b, n in zip(hi, dims)):
+        raise UserError(f"scene: crop.box {[list(lo), list(hi)]} reaches outside the volume "
+                        f"(voxels 0..{dims[0] - 1}, 0..{dims[1] - 1}, 0..{dims[2] - 1})")
+    size = tuple(b - a + 1 for a, b in zip(lo, hi))
+    if min(size) < 2:
+        raise UserError(f"scene: crop.box {[list(lo), list(hi)]} is thinner than 2 voxels")
+    return tuple(lo), size
 
 
 def with_view(scene: Scene, direction, up=None) -> Scene:

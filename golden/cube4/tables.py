@@ -36,6 +36,19 @@ def classification_lut(scene: Scene, cfg: Cube4Config, distance: float) -> np.nd
     return lut
 
 
+def extremum_lut(scene: Scene, cfg: Cube4Config) -> np.ndarray:
+    """The LUT for MIP and MinIP (numerics.md §13): the classification of a ray's
+    extreme value is its pixel, so colour is premultiplied by opacity here,
+    R = Q0.8(r * a), and opacity is not corrected for a sample distance."""
+    n = 1 << cfg.voxel_bits
+    rgba = scene.tf(np.arange(n) / (n - 1))
+    a = np.clip(rgba[:, 3], 0.0, 1.0)
+    lut = np.empty((n, 4), dtype=np.int64)
+    lut[:, :3] = quantize_unit(rgba[:, :3] * a[:, None], COLOR_W)
+    lut[:, 3] = quantize_unit(a, cfg.alpha_bits)
+    return lut
+
+
 def phong_terms(scene: Scene, normals, lights_dir, eye) -> tuple[np.ndarray, np.ndarray]:
     """Float Phong terms for unit surface normals (..., 3).
 

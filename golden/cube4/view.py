@@ -99,6 +99,13 @@ class Traversal:
     flip: tuple[bool, bool, bool]  # per volume axis (x, y, z): traversed backwards
     view_x: int  # VIEW_X in [0, 2^W]
     view_y: int  # VIEW_Y in [0, 2^W]
+    # the template's starting phase at sample slice m = 0, in [0, 2^(W+g)) (PH0_X, PH0_Y):
+    # 0 for a whole volume; a brick or a sub-pixel pass starts elsewhere
+    phase_x: int = 0
+    phase_y: int = 0
+    # volume coordinates of the traversed box's voxel (0, 0, 0): a crop box or a brick
+    # is traversed as a volume of its own, placed here in the whole volume
+    origin: tuple[int, int, int] = (0, 0, 0)
 
     # --- sizes in the traversal frame ---
     @property
@@ -128,17 +135,18 @@ class Traversal:
 
     # --- per-sample-slice template (vectorised over m) ---
     def steps(self, m):
-        """Accumulated discrete steps (stepx(m), stepy(m)) = floor(m * VIEW / 2^(W+g))."""
+        """Accumulated discrete steps (stepx(m), stepy(m)) = floor((PH0 + m * VIEW) / 2^(W+g))."""
         m = np.asarray(m, dtype=np.int64)
-        return (m * self.view_x) >> self.phase_bits, (m * self.view_y) >> self.phase_bits
+        return ((self.phase_x + m * self.view_x) >> self.phase_bits,
+                (self.phase_y + m * self.view_y) >> self.phase_bits)
 
     def weights(self, m):
         """Resampling weights (wx, wy, wz) of sample slice m, each Q0.W in [0, 2^W-1]."""
         m = np.asarray(m, dtype=np.int64)
         mask = (1 << self.phase_bits) - 1
         g = self.guard_bits
-        wx = ((m * self.view_x) & mask) >> g
-        wy = ((m * self.view_y) & mask) >> g
+        wx = ((self.phase_x + m * self.view_x) & mask) >> g
+        wy = ((self.phase_y + m * self.view_y) & mask) >> g
         wz = (m & (self.supersample - 1)) << (self.weight_bits - g)
         return wx, wy, wz
 
@@ -185,11 +193,12 @@ class Traversal:
         return np.stack(out, axis=-1)
 
     def traversal_to_volume_points(self, ti, tj, tk) -> np.ndarray:
-        """Traversal-frame coordinates -> volume coordinates (x, y, z) (float arrays)."""
+        """Traversal-frame coordinates -> volume coordinates (x, y, z) (float arrays),
+        in the whole volume (the traversed box placed at ``origin``)."""
         pts = [None, None, None]
         for coord, ax in ((ti, self.axis_i), (tj, self.axis_j), (tk, self.major)):
             coord = np.asarray(coord, dtype=np.float64)
-            pts[ax] = (self.dims[ax] - 1) - coord if self.flip[ax] else coord
+            pts[ax] = ((self.dims[ax] - 1) - coord if self.flip[ax] else coord) + self.origin[ax]
         return np.stack(np.broadcast_arrays(*pts), axis=-1)
 
     def baseplane_to_volume(self, bx, by) -> np.ndarray:
@@ -197,13 +206,17 @@ class Traversal:
         sxm, sym = self.max_steps
         sx, sy = self.slope
         km = (self.nk - 1) / 2.0
-        u = np.asarray(bx, dtype=np.float64) - sxm
-        v = np.asarray(by, dtype=np.float64) - sym
+        ph = float(1 << self.phase_bits)
+        u = np.asarray(bx, dtype=np.float64) - sxm + self.phase_x / ph
+        v = np.asarray(by, dtype=np.float64) - sym + self.phase_y / ph
         return self.traversal_to_volume_points(u + sx * km, v + sy * km, np.full(np.shape(u), km))
 
 
-def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1) -> Traversal:
-    """Choose major axis, signs and quantised slopes for a view direction."""
+def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1,
+                   phase=(0, 0), origin=(0, 0, 0)) -> Traversal:
+    """Choose major axis, signs and quantised slopes for a view direction. ``phase`` is
+    the template's starting phase (PH0_X, PH0_Y) in [0, 2^(W+g)); ``origin`` places the
+    traversed box (dims) in the whole volume (a crop box or a brick)."""
     d = normalize_direction(direction)
     a = np.abs(d)
     major = 2 if a[2] >= a[0] and a[2] >= a[1] else (1 if a[1] >= a[0] else 0)
@@ -225,7 +238,17 @@ def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1) 
         flip=flip,
         view_x=vx,
         view_y=vy,
+        phase_x=_phase(phase[0], weight_bits, supersample),
+        phase_y=_phase(phase[1], weight_bits, supersample),
+        origin=tuple(int(c) for c in origin),
     )
+
+
+def _phase(value, weight_bits: int, supersample: int) -> int:
+    top = 1 << (weight_bits + supersample.bit_length() - 1)
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= int(value) < top:
+        raise UserError(f"a template phase must be an integer in 0..{top - 1}, got {value!r}")
+    return int(value)
 
 
 @dataclass(frozen=True)
