@@ -57,7 +57,8 @@
 //   start            in   pulse: start a frame (ignored while busy)
 //   busy             out  a frame is being issued (state or s1, s2 hold a beat)
 //   cfg              in   [VIEW_W]  NI, NJ, NK, NB, flips, log2 S, VIEW_X/Y
-//                                   (Q1.W), lane residues J_R0, K_R0, I_R1, I_RT
+//                                   (Q1.W), lane residues J_R0, K_R0, I_R1, I_RT,
+//                                   the starting phases PH0_X/Y (W + log2 S bits)
 //   cfg_addr         in   [9*ADDR_W] address start values and strides
 //   req_valid/ready                 memory request handshake
 //   req_addr         out  [P*ADDR_W] word address per bank (lane q at q*ADDR_W)
@@ -93,7 +94,7 @@ module cube4_cfb #(
         `CUBE4_RANGE(g_bad_ss, "cube4_cfb", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
     endgenerate
 
-    localparam integer PH_W = WEIGHT_W + MAX_SS_LOG2;  // phase accumulator
+    localparam integer PH_W = PHASE_W;                  // phase accumulator (cube4_defs.vh)
     localparam integer R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1;
     localparam integer REM_W = $clog2(P + 2);               // 0 .. P + 1
     localparam [LANE_W:0] PL = P[LANE_W:0];
@@ -350,10 +351,12 @@ module cube4_cfb #(
             rk_q     <= cfg_k_r0;
             ak_q     <= cfg_k_a0;
             rk0_q    <= cfg_k_r0;
-            phx_q    <= '0;
-            phy_q    <= '0;
-            old_sx_q <= (cfg_view_x != '0);
-            old_sy_q <= (cfg_view_y != '0);
+            // pass 0 starts at the phase PH0; its old step (slice -1 to 0) is
+            // floor(PH0 / 2^(W+g)) - floor((PH0 - VIEW) / 2^(W+g)) = [PH0 < VIEW]
+            phx_q    <= cfg_ph0_x;
+            phy_q    <= cfg_ph0_y;
+            old_sx_q <= ({1'b0, cfg_ph0_x} < (PH_W + 1)'(cfg_view_x));
+            old_sy_q <= ({1'b0, cfg_ph0_y} < (PH_W + 1)'(cfg_view_y));
         end else if (advance) begin
             // partial beam
             if (!last_pb) begin

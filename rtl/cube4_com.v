@@ -5,10 +5,17 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   The COM units of all P pipelines (Teramac paper, section 5, Fig. 13, 14):
-//   front-to-back compositing in fixed point (docs/numerics.md section 7)
-//     w = round_shift(T * A', ALPHA_W);  C += round_shift(w * C', 8);  T -= w
+//   the ray's accumulation over the samples that count (header INSIDE and
+//   KEEP), in the mode of the MODE register (docs/numerics.md sections 7, 13):
+//     0 composite  w = round_shift(T * A', ALPHA_W);  C += round_shift(w * C', 8);  T -= w
+//     1 X-ray      w = round_shift(2^ACC_W * A', ALPHA_W);
+//                  C = min(2^ACC_W, C + round_shift(w * C', 8));  T = max(0, T - w)
+//     2 MIP        keep (v, R, G, B, A) of a sample with v >= the kept v
+//     3 MinIP      likewise with v <= the kept v (v starts at 2^VOXEL_W - 1)
 //   with C, T in Q0.ACC_W (T starts at 2^ACC_W), and the finished-ray stream
-//   (numerics.md section 8).
+//   (numerics.md section 8). A build has the compositing datapath (modes 0, 1:
+//   the T * A and w * C' multipliers), the extremum datapath (modes 2, 3: one
+//   comparator per lane, no multiplier), or both (COMPOSITING, EXTREMUM).
 //
 //   Base-plane buffers: the partial result of every ray lives in the lane and
 //   slot of its latest sample. A one-slice buffer (NJ*NB beats per lane,
@@ -32,8 +39,12 @@
 // Parameters
 //   P, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 and
 //   the derived widths as cube4_gra.
-//   ALPHA_W   opacity width AW.                 8..16.  Default 12.
-//   ACC_W     accumulator fraction bits F.      8..24.  Default 16.
+//   VOXEL_W     sample width (the extremum's v).   1..16.  Default 8.
+//   ALPHA_W     opacity width AW.                  8..16.  Default 12.
+//   ACC_W       accumulator fraction bits F.       8..24.  Default 16.
+//   COMPOSITING 1: modes 0, 1 (multipliers).       0..1.   Default 1.
+//   EXTREMUM    1: modes 2, 3 (comparators).       0..1.   Default 1.
+//               At least one of the two (elaboration stops otherwise).
 //
 // Latency
 //   10 register stages (R0, S1 .. S9, below) that move on every cycle and
@@ -52,21 +63,30 @@
 //
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
-//             A (Q0.ALPHA_W)}
+//             A (Q0.ALPHA_W)}; in_sample lane q = the sample v (unsigned
+//             VOXEL_W; read by the extremum datapath only)
 //   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
 //             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
-//             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame)
+//             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame).
+//             MIP / MinIP: colour << (ACC_W - 8); A << (ACC_W - ALPHA_W), or
+//             round_shift(A, ALPHA_W - ACC_W) when ALPHA_W > ACC_W
 //   cfg       view registers (cube4_defs.vh); SX, SY = stepx(M-1), stepy(M-1)
 //
 // Bit growth and rounding
 //   T * A: (F+1) x AW bits; round_shift by AW (half up) gives w <= T (F+1 bits).
 //   w * C': (F+1) x 8 bits; round_shift by 8 gives at most w; C + that <= 2^F - T.
-//   Nothing wraps and nothing saturates (numerics.md section 7).
+//   Composite: nothing wraps and nothing saturates (numerics.md section 7).
+//   X-ray: C + round_shift(w * C', 8) is formed in F+2 bits and saturates at
+//   2^F; T - w saturates at 0 (section 13). MIP / MinIP: no arithmetic but
+//   the comparison; the pixel's shifts lose nothing, A's round_shift rounds
+//   half up and stays <= 2^F.
 // =============================================================================
 module cube4_com #(
     parameter integer P        = 8, parameter integer MAX_DIM     = 256,
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer ALPHA_W  = 12, parameter integer ACC_W      = 16,
+    parameter integer VOXEL_W  = 8,
+    parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer BX_W = DIM_W + 1
 ) (
@@ -75,6 +95,7 @@ module cube4_com #(
     // shaded stream in
     input  wire in_valid, output wire in_ready, input wire [HDR_W-1:0] in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
+    input  wire [P*VOXEL_W-1:0] in_sample,
     // finished rays out: lane mask, slice, base-plane row and columns, RGBA, last beat
     output wire pix_valid, input wire pix_ready,
     output wire [P-1:0] pix_mask, output wire [M_W-1:0] pix_m, output wire pix_eop,
@@ -85,13 +106,23 @@ module cube4_com #(
         `CUBE4_RANGE(g_bad_p, "cube4_com", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_com", "ALPHA_W", ALPHA_W, 8, 16)
         `CUBE4_RANGE(g_bad_acc_w, "cube4_com", "ACC_W", ACC_W, 8, 24)
+        `CUBE4_RANGE(g_bad_voxel_w, "cube4_com", "VOXEL_W", VOXEL_W, 1, 16)
+        `CUBE4_RANGE(g_bad_compositing, "cube4_com", "COMPOSITING", COMPOSITING, 0, 1)
+        `CUBE4_RANGE(g_bad_extremum, "cube4_com", "EXTREMUM", EXTREMUM, 0, 1)
+        if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
+            $error("cube4_com: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
+        end
     endgenerate
 
     localparam integer CW     = ACC_W + 1;          // one accumulator channel
-    localparam integer AC_W   = 4 * CW;             // {R, G, B, T}
-    localparam integer PA     = P * AC_W;
+    localparam integer CMP_W  = 4 * CW;             // compositing word {R, G, B, T}; a pixel {R, G, B, A}
     localparam integer LUT_W  = 24 + ALPHA_W;
-    localparam integer PH_W   = WEIGHT_W + MAX_SS_LOG2;
+    localparam integer EXT_W  = VOXEL_W + LUT_W;    // extremum word {v, R, G, B, A}
+    // a ray's partial result in the buffers: wide enough for the build's modes
+    localparam integer AC_W   = (COMPOSITING != 0 && (EXTREMUM == 0 || CMP_W >= EXT_W)) ? CMP_W : EXT_W;
+    localparam integer PA     = P * AC_W;
+    localparam integer PX_W   = P * CMP_W;          // the pixels of a beat
+    localparam integer PH_W   = PHASE_W;
     localparam [CW-1:0]   ONE = {1'b1, {ACC_W{1'b0}}};  // T = 1.0
 
     `CUBE4_VIEW_FIELDS(cfg);
@@ -138,6 +169,7 @@ module cube4_com #(
     // ==== R0: input register (loads on every cycle; r0_v marks a beat) ====
     reg                 r0_v;
     wire [P*LUT_W-1:0]  r0_rgba;        // per lane registers (g_r0)
+    wire [P*VOXEL_W-1:0] r0_smp;        // per lane registers (g_r0; extremum builds)
     reg [HDR_W-1:0]     r0_hdr;
     wire [P-1:0]        r0_lane_valid  = r0_hdr[HDR_LVALID +: P];
     wire [P-1:0]        r0_lane_inside = r0_hdr[HDR_INSIDE +: P];
@@ -162,6 +194,14 @@ module cube4_com #(
             assign r0_rgba[q*LUT_W +: LUT_W] = r0_rgba_q;
             always @(posedge clk) begin
                 r0_rgba_q <= in_rgba[q*LUT_W +: LUT_W];
+            end
+            if (EXTREMUM != 0) begin : g_smp
+                reg [VOXEL_W-1:0] r0_smp_q;
+                always @(posedge clk) r0_smp_q <= in_sample[q*VOXEL_W +: VOXEL_W];
+                assign r0_smp[q*VOXEL_W +: VOXEL_W] = r0_smp_q;
+            end else begin : g_no_smp
+                wire unused_in_smp = ^in_sample[q*VOXEL_W +: VOXEL_W];
+                assign r0_smp[q*VOXEL_W +: VOXEL_W] = '0;
             end
         end
     endgenerate
@@ -190,8 +230,8 @@ module cube4_com #(
     reg  [PH_W-1:0]  phx_q, phy_q;      // phase of slice m + 1
     reg  [DIM_W-1:0] stx_q, sty_q;      // stepx(m), stepy(m)
     wire [PH_W:0]    ph_one  = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {2'b00, cfg_ss_log2});
-    wire [PH_W:0]    phx_sum = {1'b0, sop ? {PH_W{1'b0}} : phx_q} + (PH_W + 1)'(cfg_view_x);
-    wire [PH_W:0]    phy_sum = {1'b0, sop ? {PH_W{1'b0}} : phy_q} + (PH_W + 1)'(cfg_view_y);
+    wire [PH_W:0]    phx_sum = {1'b0, sop ? cfg_ph0_x : phx_q} + (PH_W + 1)'(cfg_view_x);
+    wire [PH_W:0]    phy_sum = {1'b0, sop ? cfg_ph0_y : phy_q} + (PH_W + 1)'(cfg_view_y);
     wire [PH_W-1:0]  phx_add = (phx_sum >= ph_one) ? PH_W'(phx_sum - ph_one) : phx_sum[PH_W-1:0];
     wire [PH_W-1:0]  phy_add = (phy_sum >= ph_one) ? PH_W'(phy_sum - ph_one) : phy_sum[PH_W-1:0];
     wire [PH_W-1:0]  phx_n   = first_of_slice ? phx_add : phx_q;
@@ -227,7 +267,8 @@ module cube4_com #(
     end
 
     // ---- per lane: position in the beam, fresh ray, finished ray ----
-    wire [P-1:0]      fresh_d, t0_d, ins_d;
+    wire [P-1:0]      fresh_d, t0_d, ins_d, cnt_d;
+    wire [P-1:0]      r0_lane_keep = r0_hdr[HDR_KEEP +: P];
     wire [P*IW-1:0]   ipos_d;            // i of each lane
     wire [IW-1:0]     pbp    = IW'(r0_pb) * IW'(P);
     wire [IW-1:0]     ni_ext = IW'(cfg_ni);
@@ -241,6 +282,7 @@ module cube4_com #(
             // the ray starts here: its previous sample is outside the slice
             assign fresh_d[q] = (r0_m == '0) || (dyb && r0_j == '0) || (dxb && i_pos == '0);
             assign ins_d[q]   = r0_lane_valid[q] && r0_lane_inside[q];
+            assign cnt_d[q]   = ins_d[q] && r0_lane_keep[q];   // the sample counts
             assign ipos_d[q*IW +: IW] = i_pos;
         end
     endgenerate
@@ -273,7 +315,7 @@ module cube4_com #(
             wire [IW-1:0] j_nx  = f1_j + IW'(f1_dyf);
             wire nx_in = !f1_last && (i_nx < ni_ext) && (j_nx < nj_ext)
                        && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
-            assign fin_1[q] = ins_s[1][q] && !nx_in;
+            assign fin_1[q] = ins_s1[q] && !nx_in;
             assign bx_1[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(f1_stx) + BX_W'(cfg_sx);
         end
     endgenerate
@@ -283,7 +325,8 @@ module cube4_com #(
     // aligned made Verilator's model about 20% slower at P = 8)
     reg [SP_W-1:0]    sp_s    [1:NS];    // slice position: read at S1, written at the end of S9
     reg [PB_W-1:0]    pb_s    [1:2];     // beam position: read at S2, written at the end of S3 (RAM's registers)
-    reg [P-1:0]       ins_s   [1:7];
+    reg [P-1:0]       ins_s1;            // inside (finished rays, S1)
+    reg [P-1:0]       cnt_s   [1:7];     // the sample counts (S6, S7)
     reg [P-1:0]       fin_s   [2:NS];    // from S2 on (computed from S1's parts)
     reg [M_W-1:0]     m_s     [1:NS];
     reg [BX_W-1:0]    by_s    [2:NS];    // from S2 on (computed from S1's parts)
@@ -299,7 +342,8 @@ module cube4_com #(
         else     v_s <= {v_s[NS-1:1], step};
     end
     always @(posedge clk) begin
-        sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s[1] <= ins_d;  fin_s[2] <= fin_1;
+        sp_s[1] <= pos_sp;   pb_s[1] <= pos_pb;  ins_s1 <= ins_d;  cnt_s[1] <= cnt_d;
+        fin_s[2] <= fin_1;
         m_s[1]  <= r0_m;     by_s[2] <= by_1;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
         t0_s[1] <= t0_d;
         eop_s <= {eop_s[NS-1:1], eop};
@@ -313,7 +357,7 @@ module cube4_com #(
             fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];  by_s[k] <= by_s[k-1];
         end
         pb_s[2] <= pb_s[1];
-        for (k = 2; k <= 7; k = k + 1) ins_s[k] <= ins_s[k-1];
+        for (k = 2; k <= 7; k = k + 1) cnt_s[k] <= cnt_s[k-1];
         for (k = 2; k <= 5; k = k + 1) begin
             fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
         end
@@ -412,15 +456,26 @@ module cube4_com #(
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(s5_back),  .y(back_sh));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(s5_prevb), .y(prevb_sh));
 
-    // ==== S6 .. S9: compositing, per lane ====
-    wire [P*AC_W-1:0] pix_d;            // S9: the lane's {R, G, B, A}
+    // ==== S6 .. S9: the ray's step, per lane ====
+    // the mode (cfg is stable during a frame), registered once
+    reg mode_xray_q, mode_ext_q, mode_min_q;
+    always @(posedge clk) begin
+        mode_xray_q <= (COMPOSITING != 0) && (cfg_mode == 2'd1);
+        mode_ext_q  <= (EXTREMUM != 0) && ((COMPOSITING == 0) || cfg_mode[1]);
+        mode_min_q  <= (cfg_mode == 2'd3);
+    end
+    // a fresh ray: C = 0, T = 1 (compositing); v = 0 or 2^VOXEL_W - 1, RGBA = 0 (extremum)
+    wire [AC_W-1:0] fresh_cmp  = AC_W'({{(3*CW){1'b0}}, ONE});
+    wire [AC_W-1:0] fresh_ext  = AC_W'({{VOXEL_W{mode_min_q}}, {LUT_W{1'b0}}});
+    wire [AC_W-1:0] fresh_word = mode_ext_q ? fresh_ext : fresh_cmp;
+    wire [PX_W-1:0] pix_d;              // S9: the lane's {R, G, B, A}
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // S5: previous partial result {R, G, B, T}, or a fresh ray
+            // S5: previous partial result, or a fresh ray
             wire [AC_W-1:0] prev = dxb_s[5]
                 ? (t0_s[5][q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
                 : s5_back[q*AC_W +: AC_W];
-            wire [AC_W-1:0] acc_in = fresh_s[5][q] ? {{(3*CW){1'b0}}, ONE} : prev;
+            wire [AC_W-1:0] acc_in = fresh_s[5][q] ? fresh_word : prev;
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
             reg  [5*LUT_W-1:0] rgba_l;
@@ -428,53 +483,108 @@ module cube4_com #(
                 rgba_l <= {rgba_l[4*LUT_W-1:0], r0_rgba[q*LUT_W +: LUT_W]};
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
-            reg  [AC_W-1:0] s6_acc, s7_acc, s8_acc;          // {C_R, C_G, C_B, T}
-            reg  [23:0]     s6_c, s7_c, s8_c;                 // the sample's {R', G', B'}
-            reg  [ALPHA_W-1:0] s6_a;                          // the sample's A
+            reg  [AC_W-1:0]  s6_acc;
+            reg  [LUT_W-1:0] s6_rgba;
             always @(posedge clk) begin
-                s6_acc <= acc_in;
-                s6_c   <= rgba5[ALPHA_W +: 24];
-                s6_a   <= rgba5[0 +: ALPHA_W];
-                {s7_acc, s8_acc} <= {s6_acc, s7_acc};
-                {s7_c, s8_c}     <= {s6_c, s7_c};
+                s6_acc  <= acc_in;
+                s6_rgba <= rgba5;
             end
-            // S6: T * A
-            reg [TA_W-1:0] s7_ta;
-            always @(posedge clk) begin
-                s7_ta <= {{ALPHA_W{1'b0}}, s6_acc[0 +: CW]} * {{CW{1'b0}}, s6_a};
-            end
-            // S7: w = round_shift(T * A, AW), 0 <= w <= T; 0 for a sample outside
-            wire signed [CW+1:0] w_rs;
-            cube4_round_shift #(.IN_W(TA_W + 1), .SHIFT(ALPHA_W)) u_w (
-                .x($signed({1'b0, s7_ta})), .y(w_rs));
-            reg [CW-1:0] s8_w;
-            always @(posedge clk) begin
-                s8_w <= ins_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
-            end
-            // S8: w * C' per channel, T - w
-            reg [3*WC_W-1:0] s9_wc;
-            reg [3*CW-1:0]   s9_cin;
-            reg [CW-1:0]     s9_t;
-            genvar ch;
-            for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
-                always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
-                    s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
+            wire [AC_W-1:0]  word_cmp, word_ext;    // S9: the new partial result
+            wire [CMP_W-1:0] pix_cmp, pix_ext;      // S9: {R, G, B, A} of a finished ray
+
+            if (COMPOSITING != 0) begin : g_cmp
+                reg  [CMP_W-1:0] s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
+                reg  [23:0]      s7_c, s8_c;        // the sample's {R', G', B'}
+                always @(posedge clk) begin
+                    {s7_acc, s8_acc} <= {s6_acc[CMP_W-1:0], s7_acc};
+                    {s7_c, s8_c}     <= {s6_rgba[ALPHA_W +: 24], s7_c};
                 end
+                // S6: T * A (X-ray: 2^F * A)
+                wire [CW-1:0]  t_mul = mode_xray_q ? ONE : s6_acc[0 +: CW];
+                reg [TA_W-1:0] s7_ta;
+                always @(posedge clk) begin
+                    s7_ta <= {{ALPHA_W{1'b0}}, t_mul} * {{CW{1'b0}}, s6_rgba[0 +: ALPHA_W]};
+                end
+                // S7: w = round_shift(T * A, AW), 0 <= w <= T (X-ray: <= 2^F);
+                // 0 for a sample that does not count
+                wire signed [CW+1:0] w_rs;
+                cube4_round_shift #(.IN_W(TA_W + 1), .SHIFT(ALPHA_W)) u_w (
+                    .x($signed({1'b0, s7_ta})), .y(w_rs));
+                reg [CW-1:0] s8_w;
+                always @(posedge clk) begin
+                    s8_w <= cnt_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                end
+                // S8: w * C' per channel, T - w (X-ray: at least 0)
+                reg [3*WC_W-1:0] s9_wc;
+                reg [3*CW-1:0]   s9_cin;
+                reg [CW-1:0]     s9_t;
+                genvar ch;
+                for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
+                    always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
+                        s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
+                    end
+                end
+                wire [CW-1:0] t8 = s8_acc[0 +: CW];
+                always @(posedge clk) begin
+                    s9_cin <= s8_acc[CW +: 3*CW];
+                    s9_t   <= (mode_xray_q && s8_w > t8) ? {CW{1'b0}} : t8 - s8_w;
+                end
+                // S9: C += round_shift(w * C', 8) (X-ray: at most 2^F)
+                wire [3*CW-1:0] c_out;
+                for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
+                    wire signed [CW+1:0] add;
+                    cube4_round_shift #(.IN_W(WC_W + 1), .SHIFT(8)) u_c (
+                        .x($signed({1'b0, s9_wc[ch*WC_W +: WC_W]})), .y(add));
+                    wire [CW:0] sum = {1'b0, s9_cin[ch*CW +: CW]} + {1'b0, add[CW-1:0]};
+                    assign c_out[ch*CW +: CW] = (mode_xray_q && sum > {1'b0, ONE}) ? ONE : sum[CW-1:0];
+                end
+                assign word_cmp = AC_W'({c_out, s9_t});
+                assign pix_cmp  = {c_out, ONE - s9_t};   // {R, G, B, A}
+            end else begin : g_no_cmp
+                wire unused_xray = mode_xray_q;
+                assign word_cmp = '0;
+                assign pix_cmp  = '0;
             end
-            always @(posedge clk) begin
-                s9_cin <= s8_acc[CW +: 3*CW];
-                s9_t   <= s8_acc[0 +: CW] - s8_w;
+
+            if (EXTREMUM != 0) begin : g_ext
+                // the sample v, R0's word carried along S1 .. S6
+                reg [6*VOXEL_W-1:0] v_l;
+                always @(posedge clk) begin
+                    v_l <= {v_l[5*VOXEL_W-1:0], r0_smp[q*VOXEL_W +: VOXEL_W]};
+                end
+                wire [VOXEL_W-1:0] v6 = v_l[5*VOXEL_W +: VOXEL_W];
+                // S6: take the sample if it counts and is at least (MinIP: at most) the kept v
+                wire [VOXEL_W-1:0] kept = s6_acc[LUT_W +: VOXEL_W];
+                wire take_s = cnt_s[6][q] && (mode_min_q ? (v6 <= kept) : (v6 >= kept));
+                reg [EXT_W-1:0] s7_e, s8_e, s9_e;
+                always @(posedge clk) begin
+                    s7_e <= take_s ? {v6, s6_rgba} : s6_acc[EXT_W-1:0];
+                    s8_e <= s7_e;
+                    s9_e <= s8_e;
+                end
+                // the pixel: colour << (F - 8), A to F bits
+                wire [CW-1:0] a_px;
+                if (ACC_W >= ALPHA_W) begin : g_a_up
+                    assign a_px = CW'(s9_e[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
+                end else begin : g_a_down
+                    wire signed [ACC_W+1:0] a_rs;
+                    cube4_round_shift #(.IN_W(ALPHA_W + 1), .SHIFT(ALPHA_W - ACC_W)) u_a (
+                        .x($signed({1'b0, s9_e[0 +: ALPHA_W]})), .y(a_rs));
+                    assign a_px = a_rs[CW-1:0];
+                end
+                wire [CW-1:0] r_px = CW'(s9_e[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] g_px = CW'(s9_e[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] b_px = CW'(s9_e[ALPHA_W +: 8]) << (ACC_W - 8);
+                assign word_ext = AC_W'(s9_e);
+                assign pix_ext  = {r_px, g_px, b_px, a_px};
+            end else begin : g_no_ext
+                wire unused_smp = ^r0_smp[q*VOXEL_W +: VOXEL_W];
+                assign word_ext = '0;
+                assign pix_ext  = '0;
             end
-            // S9: C += round_shift(w * C', 8)
-            wire [3*CW-1:0] c_out;
-            for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                wire signed [CW+1:0] add;
-                cube4_round_shift #(.IN_W(WC_W + 1), .SHIFT(8)) u_c (
-                    .x($signed({1'b0, s9_wc[ch*WC_W +: WC_W]})), .y(add));
-                assign c_out[ch*CW +: CW] = s9_cin[ch*CW +: CW] + add[CW-1:0];
-            end
-            assign acc_new[q*AC_W +: AC_W] = {c_out, s9_t};
-            assign pix_d[q*AC_W +: AC_W]   = {c_out, ONE - s9_t};   // {R, G, B, A}
+
+            assign acc_new[q*AC_W +: AC_W] = mode_ext_q ? word_ext : word_cmp;
+            assign pix_d[q*CMP_W +: CMP_W] = mode_ext_q ? pix_ext : pix_cmp;
         end
     endgenerate
 
@@ -489,7 +599,7 @@ module cube4_com #(
 
     // the word: P lane groups of AC_W bits (pixels), then the shared fields
     localparam integer SH_W  = P + M_W + BX_W + P * BX_W + 1;
-    localparam integer OUT_W = PA + SH_W;
+    localparam integer OUT_W = PX_W + SH_W;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
     cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (

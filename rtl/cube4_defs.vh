@@ -46,6 +46,8 @@
 //   HDR_*    the stream header (LSB first):
 //              INSIDE [P]   the lane's sample is inside the volume box
 //              LVALID [P]   the lane holds a position i < NI
+//              KEEP   [P]   the lane's sample counts: inside the window and on
+//                           the kept side of the cut plane (cube4_clip)
 //              CTRL   [7]   bit 0 X-step, 1 Y-step of slice m; 2 old X-step,
 //                           3 old Y-step (slice m - 1); 4 sop; 5 eop;
 //                           6 the row is j = NJ - 1
@@ -62,8 +64,9 @@
     localparam integer IW     = $clog2(MAX_DIM + 2 * P + 1), \
     localparam integer HDR_INSIDE = 0, \
     localparam integer HDR_LVALID = P, \
-    localparam integer HDR_CTRL   = 2 * P, \
-    localparam integer HDR_SKEW   = 2 * P + 7, \
+    localparam integer HDR_KEEP   = 2 * P, \
+    localparam integer HDR_CTRL   = 3 * P, \
+    localparam integer HDR_SKEW   = 3 * P + 7, \
     localparam integer HDR_PB     = HDR_SKEW + LANE_W, \
     localparam integer HDR_J      = HDR_PB + PB_W, \
     localparam integer HDR_M      = HDR_J + DIM_W, \
@@ -85,6 +88,13 @@
 //   J_R0, K_R0 [LANE_W]  start coordinate mod P of axes j, k
 //   I_R1, I_RT [LANE_W]  (NI - 1) mod P; block threshold of axis i
 //   SX, SY [DIM_W]       stepx(M-1), stepy(M-1) (COM's pixel addresses)
+//   MODE [2]             0 composite, 1 X-ray, 2 MIP, 3 MinIP (numerics.md section 13)
+//   PH0_X, PH0_Y [PHASE_W]  the template's phase at m = 0, PHASE_W = W + MAX_SS_LOG2
+//   WIN_I0, WIN_I1, WIN_J0, WIN_J1 [DIM_W], WIN_M0, WIN_M1 [M_W]
+//                        the window: samples with I0 <= i < I1, J0 <= j < J1,
+//                        M0 <= m < M1 count (numerics.md section 12)
+//   CUT_A, CUT_B, CUT_C [CUT_W], CUT_D [CUT_E_W]  the cut plane, signed: a sample
+//                        counts when A (i 2^W + wx) + B (j 2^W + wy) + C m + D >= 0
 `define CUBE4_VIEW_LAYOUT \
     localparam integer VIEW_NI      = 0, \
     localparam integer VIEW_NJ      = VIEW_NI + DIM_W, \
@@ -102,10 +112,28 @@
     localparam integer VIEW_I_RT    = VIEW_I_R1 + LANE_W, \
     localparam integer VIEW_SX      = VIEW_I_RT + LANE_W, \
     localparam integer VIEW_SY      = VIEW_SX + DIM_W, \
-    localparam integer VIEW_W       = VIEW_SY + DIM_W
+    localparam integer VIEW_MODE    = VIEW_SY + DIM_W, \
+    localparam integer PHASE_W      = WEIGHT_W + MAX_SS_LOG2, \
+    localparam integer VIEW_PH0_X   = VIEW_MODE + 2, \
+    localparam integer VIEW_PH0_Y   = VIEW_PH0_X + PHASE_W, \
+    localparam integer VIEW_WIN_I0  = VIEW_PH0_Y + PHASE_W, \
+    localparam integer VIEW_WIN_I1  = VIEW_WIN_I0 + DIM_W, \
+    localparam integer VIEW_WIN_J0  = VIEW_WIN_I1 + DIM_W, \
+    localparam integer VIEW_WIN_J1  = VIEW_WIN_J0 + DIM_W, \
+    localparam integer VIEW_WIN_M0  = VIEW_WIN_J1 + DIM_W, \
+    localparam integer VIEW_WIN_M1  = VIEW_WIN_M0 + M_W, \
+    localparam integer CUT_W        = 18, \
+    localparam integer CUT_E_W      = 48, \
+    localparam integer VIEW_CUT_A   = VIEW_WIN_M1 + M_W, \
+    localparam integer VIEW_CUT_B   = VIEW_CUT_A + CUT_W, \
+    localparam integer VIEW_CUT_C   = VIEW_CUT_B + CUT_W, \
+    localparam integer VIEW_CUT_D   = VIEW_CUT_C + CUT_W, \
+    localparam integer VIEW_W       = VIEW_CUT_D + CUT_E_W
 
 // The view bus from the individual register ports (cube4_top and the harnesses).
-`define CUBE4_VIEW_PACK {cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
+`define CUBE4_VIEW_PACK {cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
+    cfg_win_m1, cfg_win_m0, cfg_win_j1, cfg_win_j0, cfg_win_i1, cfg_win_i0, \
+    cfg_ph0_y, cfg_ph0_x, cfg_mode, cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
     cfg_view_y, cfg_view_x, cfg_ss_log2, cfg_flip_k, cfg_flip_j, cfg_flip_i, \
     cfg_nb, cfg_nk, cfg_nj, cfg_ni}
 
@@ -126,7 +154,20 @@
     wire [LANE_W-1:0]   cfg_i_r1    = bus[VIEW_I_R1 +: LANE_W]; \
     wire [LANE_W-1:0]   cfg_i_rt    = bus[VIEW_I_RT +: LANE_W]; \
     wire [DIM_W-1:0]    cfg_sx      = bus[VIEW_SX +: DIM_W]; \
-    wire [DIM_W-1:0]    cfg_sy      = bus[VIEW_SY +: DIM_W]
+    wire [DIM_W-1:0]    cfg_sy      = bus[VIEW_SY +: DIM_W]; \
+    wire [1:0]          cfg_mode    = bus[VIEW_MODE +: 2]; \
+    wire [PHASE_W-1:0]  cfg_ph0_x   = bus[VIEW_PH0_X +: PHASE_W]; \
+    wire [PHASE_W-1:0]  cfg_ph0_y   = bus[VIEW_PH0_Y +: PHASE_W]; \
+    wire [DIM_W-1:0]    cfg_win_i0  = bus[VIEW_WIN_I0 +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_win_i1  = bus[VIEW_WIN_I1 +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_win_j0  = bus[VIEW_WIN_J0 +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_win_j1  = bus[VIEW_WIN_J1 +: DIM_W]; \
+    wire [M_W-1:0]      cfg_win_m0  = bus[VIEW_WIN_M0 +: M_W]; \
+    wire [M_W-1:0]      cfg_win_m1  = bus[VIEW_WIN_M1 +: M_W]; \
+    wire signed [CUT_W-1:0]   cfg_cut_a = bus[VIEW_CUT_A +: CUT_W]; \
+    wire signed [CUT_W-1:0]   cfg_cut_b = bus[VIEW_CUT_B +: CUT_W]; \
+    wire signed [CUT_W-1:0]   cfg_cut_c = bus[VIEW_CUT_C +: CUT_W]; \
+    wire signed [CUT_E_W-1:0] cfg_cut_d = bus[VIEW_CUT_D +: CUT_E_W]
 
 // ---------------------------------------------------------------- address registers
 // The address unit's start values and strides (golden/cube4/memory.py), ADDR_W

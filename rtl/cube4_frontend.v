@@ -41,6 +41,7 @@ module cube4_frontend #(
     parameter integer P        = 8, parameter integer MAX_DIM     = 256,
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer VOXEL_W  = 8, parameter integer ADDR_W      = 16,
+    parameter integer CLIP     = 1,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT
 ) (
     input  wire clk, input wire rst,
@@ -105,7 +106,8 @@ module cube4_frontend #(
         .VOXEL_W     (VOXEL_W),
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .CLIP        (CLIP)
     ) u_tri (
         .clk        (clk),
         .rst        (rst),

@@ -15,12 +15,17 @@
 //   to all lanes, at run time: a new transfer function or light needs no
 //   rebuild. The host applies the opacity correction for the view's sample
 //   distance when it writes the LUT (golden/cube4/tables.py).
+//   A build with SHADING = 0 classifies only (C' = C): it has no reflectance
+//   map, no face select, no division and no shading multipliers, and its
+//   gradient inputs are not read (cube4_top then builds no GRA).
+//   The sample itself leaves with the beat (out_sample) for COM's MIP / MinIP.
 //
 // Parameters
 //   P           pipelines.                          1..64.  Default 8.
 //   VOXEL_W     sample width (LUT has 2^VOXEL_W entries). 1..16. Default 8.
 //   ALPHA_W     LUT opacity width AW.               8..16.  Default 12.
 //   RMAP_BITS   cube-map resolution R = 2^RMAP_BITS. 2..6.  Default 5.
+//   SHADING     1: shading by the reflectance map; 0: classification only. 0..1. Default 1.
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
@@ -28,7 +33,8 @@
 //   comparisons; face; numerators; one stage per quotient bit of the
 //   division; reflectance-map read; its output register; C * D; shading),
 //   15 at RMAP_BITS = 5: a beat is on out_* 14 cycles after it entered the
-//   input register when the output FIFO was empty. The stages move on every
+//   input register when the output FIFO was empty. SHADING = 0: 3 stages
+//   (input; LUT read; the output FIFO). The stages move on every
 //   cycle and carry a valid bit (no stall enable); the last one is the
 //   memory of the output FIFO (cube4_credit_fifo), and a beat
 //   enters the input register only when that FIFO has an entry reserved for
@@ -41,7 +47,9 @@
 //   rmap_we/rmap_addr/rmap_data  reflectance-map write: rmap_data = {D, P} (Q2.8 each)
 //   in_*    the gradient stream of cube4_gra (gi, gj, gk signed GRAD_W bits)
 //   out_rgba  [P*(24+ALPHA_W)]  per lane {R', G', B' (Q0.8), A (Q0.ALPHA_W)}
-//   out_idx   [P*RI_W]          reflectance-map entry used (for checking and waves)
+//   out_idx   [P*RI_W]          reflectance-map entry used (for checking and waves;
+//                               0 when SHADING = 0)
+//   out_sample [P*VOXEL_W]      the beat's samples, unchanged
 //   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
 //
 // Bit growth and rounding
@@ -54,6 +62,7 @@ module cube4_sha #(
     parameter integer P       = 8, parameter integer MAX_DIM     = 256,
     parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer ALPHA_W = 12, parameter integer RMAP_BITS  = 5,
+    parameter integer SHADING = 1,
     `CUBE4_GEOMETRY,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3
@@ -69,12 +78,14 @@ module cube4_sha #(
     // shaded stream out: RGBA and the reflectance-map entry used
     output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
     output wire [P*(24+ALPHA_W)-1:0] out_rgba,
-    output wire [P*RI_W-1:0] out_idx
+    output wire [P*RI_W-1:0] out_idx,
+    output wire [P*VOXEL_W-1:0] out_sample
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_sha", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_sha", "ALPHA_W", ALPHA_W, 8, 16)
         `CUBE4_RANGE(g_bad_rmap_bits, "cube4_sha", "RMAP_BITS", RMAP_BITS, 2, 6)
+        `CUBE4_RANGE(g_bad_shading, "cube4_sha", "SHADING", SHADING, 0, 1)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -99,7 +110,8 @@ module cube4_sha #(
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    localparam integer NST  = 4 + NDIV + 4;      // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2
+    // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2 (SHADING = 0: b1, then the FIFO)
+    localparam integer NST  = (SHADING != 0) ? 4 + NDIV + 4 : 3;
     // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
     // FIFO's read)
     localparam integer FIFO_DEPTH = (NST + 2 <= 16) ? 16 : 32;
@@ -137,6 +149,12 @@ module cube4_sha #(
     always @(posedge clk) begin
         st_meta_q <= {st_meta_q[(NST-2)*META_W-1:0], a_meta};
     end
+    // the samples ride along with the fields (stage k in bits [(k-1)*P*VW +: P*VW])
+    reg [(NST-1)*P*VW-1:0] st_s_q;
+    always @(posedge clk) begin
+        st_s_q <= {st_s_q[(NST-2)*P*VW-1:0], a_s};
+    end
+    wire [P*VW-1:0]    e_s    = st_s_q[(NST-2)*P*VW +: P*VW];         // with e_meta
     wire [META_W-1:0]  e_meta = st_meta_q[(NST-2)*META_W +: META_W];   // stage e1
     wire [P*LUT_W-1:0] e_rgba;          // e2's results, written into the FIFO
     wire [P*RI_W-1:0]  e_idx;
@@ -146,167 +164,188 @@ module cube4_sha #(
         for (q = 0; q < P; q = q + 1) begin : g_lane
             // tables (this lane's copies)
             reg [LUT_W-1:0] lut  [0:(1 << VW)-1];
-            reg [19:0]      rmap [0:RMAP_N-1];
             always @(posedge clk) begin
                 if (lut_we)  lut[lut_addr]   <= lut_data;
-                if (rmap_we) rmap[rmap_addr] <= rmap_data;
             end
             // the sample's LUT entry rides along from b1 to d2
             // (stage k's entry in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
             reg [(NST-2)*LUT_W-1:0] lut_q;
-            always @(posedge clk) begin
-                lut_q <= {lut_q[(NST-3)*LUT_W-1:0], lut[a_s[q*VW +: VW]]};
+            if (NST > 3) begin : g_lut_sr
+                always @(posedge clk) begin
+                    lut_q <= {lut_q[(NST-3)*LUT_W-1:0], lut[a_s[q*VW +: VW]]};
+                end
+            end else begin : g_lut_reg
+                always @(posedge clk) begin
+                    lut_q <= lut[a_s[q*VW +: VW]];
+                end
             end
 
-            // b1: |g|; |g| < 2^(GW-1): no overflow
-            wire signed [GW-1:0] gi = a_gi[q*GW +: GW];
-            wire signed [GW-1:0] gj = a_gj[q*GW +: GW];
-            wire signed [GW-1:0] gk = a_gk[q*GW +: GW];
-            reg  signed [GW-1:0] b1_gi, b1_gj, b1_gk;
-            reg         [GW-1:0] b1_ai, b1_aj, b1_ak;
-            always @(posedge clk) begin
-                {b1_gi, b1_gj, b1_gk} <= {gi, gj, gk};
-                b1_ai <= gi[GW-1] ? -gi : gi;
-                b1_aj <= gj[GW-1] ? -gj : gj;
-                b1_ak <= gk[GW-1] ? -gk : gk;
-            end
+            if (SHADING == 0) begin : g_plain
+                // classification only: the LUT entry read at b1, registered at e1
+                reg [LUT_W-1:0] e1_rgba;
+                always @(posedge clk) e1_rgba <= lut_q[0 +: LUT_W];
+                assign e_rgba[q*LUT_W +: LUT_W] = e1_rgba;
+                assign e_idx[q*RI_W +: RI_W]    = '0;
+                wire unused_grad = ^{a_gi[q*GW +: GW], a_gj[q*GW +: GW], a_gk[q*GW +: GW]};
+            end else begin : g_shade
+                reg [19:0]      rmap [0:RMAP_N-1];
+                always @(posedge clk) begin
+                    if (rmap_we) rmap[rmap_addr] <= rmap_data;
+                end
 
-            // bc: the three comparisons (each a carry chain) in their own stage
-            reg  signed [GW-1:0] bc_gi, bc_gj, bc_gk;
-            reg         [GW-1:0] bc_ai, bc_aj, bc_ak;
-            reg                  bc_ij, bc_ik, bc_jk;   // |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|
-            always @(posedge clk) begin
-                {bc_gi, bc_gj, bc_gk} <= {b1_gi, b1_gj, b1_gk};
-                {bc_ai, bc_aj, bc_ak} <= {b1_ai, b1_aj, b1_ak};
-                bc_ij <= (b1_ai >= b1_aj);
-                bc_ik <= (b1_ai >= b1_ak);
-                bc_jk <= (b1_aj >= b1_ak);
-            end
+                // b1: |g|; |g| < 2^(GW-1): no overflow
+                wire signed [GW-1:0] gi = a_gi[q*GW +: GW];
+                wire signed [GW-1:0] gj = a_gj[q*GW +: GW];
+                wire signed [GW-1:0] gk = a_gk[q*GW +: GW];
+                reg  signed [GW-1:0] b1_gi, b1_gj, b1_gk;
+                reg         [GW-1:0] b1_ai, b1_aj, b1_ak;
+                always @(posedge clk) begin
+                    {b1_gi, b1_gj, b1_gk} <= {gi, gj, gk};
+                    b1_ai <= gi[GW-1] ? -gi : gi;
+                    b1_aj <= gj[GW-1] ? -gj : gj;
+                    b1_ak <= gk[GW-1] ? -gk : gk;
+                end
 
-            // b2: face
-            wire [1:0] f = (bc_ij && bc_ik) ? 2'd0 : (bc_jk ? 2'd1 : 2'd2);
-            reg  [2:0]           b2_face;   // {f, sign}
-            reg  [GW-1:0]        b2_amax;
-            reg  signed [GW-1:0] b2_gb, b2_gc;
-            always @(posedge clk) begin
-                b2_face <= {f, (f == 2'd0) ? bc_gi[GW-1] : (f == 2'd1) ? bc_gj[GW-1] : bc_gk[GW-1]};
-                b2_amax <= (f == 2'd0) ? bc_ai : (f == 2'd1) ? bc_aj : bc_ak;
-                b2_gb   <= (f == 2'd0) ? bc_gj : bc_gi;
-                b2_gc   <= (f == 2'd2) ? bc_gj : bc_gk;
-            end
+                // bc: the three comparisons (each a carry chain) in their own stage
+                reg  signed [GW-1:0] bc_gi, bc_gj, bc_gk;
+                reg         [GW-1:0] bc_ai, bc_aj, bc_ak;
+                reg                  bc_ij, bc_ik, bc_jk;   // |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|
+                always @(posedge clk) begin
+                    {bc_gi, bc_gj, bc_gk} <= {b1_gi, b1_gj, b1_gk};
+                    {bc_ai, bc_aj, bc_ak} <= {b1_ai, b1_aj, b1_ak};
+                    bc_ij <= (b1_ai >= b1_aj);
+                    bc_ik <= (b1_ai >= b1_ak);
+                    bc_jk <= (b1_aj >= b1_ak);
+                end
 
-            // b3: g_b + A and g_c + A in 0 .. 2A (GW + 1 bits unsigned), times R
-            wire [GW:0] nb = $unsigned($signed({b2_gb[GW-1], b2_gb}) + $signed({1'b0, b2_amax}));
-            wire [GW:0] nc = $unsigned($signed({b2_gc[GW-1], b2_gc}) + $signed({1'b0, b2_amax}));
-            // The division's state after b3 (0) and after each quotient bit
-            // (1 .. NDIV), one packed word per stage on one bus (per-stage
-            // registers, not arrays: Verilator copies plain registers in place):
-            //   {rb, rc: remainders, NUM_W each; qb, qc: quotient bits found so
-            //    far, RB+1 each; den: 2A, GW+1; face: 3; zero: g = 0}
-            localparam integer DV_W = 2 * NUM_W + 2 * (RB + 1) + (GW + 1) + 3 + 1;
-            wire [(NDIV + 1)*DV_W-1:0] dv;
-            reg  [DV_W-1:0]            dv0_q;   // b3: numerators (g + A) * R, 2A
-            always @(posedge clk) begin
-                dv0_q <= {{{RB{1'b0}}, nb} << RB, {{RB{1'b0}}, nc} << RB,
-                                    {(RB + 1){1'b0}}, {(RB + 1){1'b0}},
-                                    {b2_amax, 1'b0}, b2_face, (b2_amax == {GW{1'b0}})};
-            end
-            assign dv[0 +: DV_W] = dv0_q;
+                // b2: face
+                wire [1:0] f = (bc_ij && bc_ik) ? 2'd0 : (bc_jk ? 2'd1 : 2'd2);
+                reg  [2:0]           b2_face;   // {f, sign}
+                reg  [GW-1:0]        b2_amax;
+                reg  signed [GW-1:0] b2_gb, b2_gc;
+                always @(posedge clk) begin
+                    b2_face <= {f, (f == 2'd0) ? bc_gi[GW-1] : (f == 2'd1) ? bc_gj[GW-1] : bc_gk[GW-1]};
+                    b2_amax <= (f == 2'd0) ? bc_ai : (f == 2'd1) ? bc_aj : bc_ak;
+                    b2_gb   <= (f == 2'd0) ? bc_gj : bc_gi;
+                    b2_gc   <= (f == 2'd2) ? bc_gj : bc_gk;
+                end
 
-            // c0 .. cR: quotient bit RB - it (exact restoring division, no rounding)
-            for (it = 0; it < NDIV; it = it + 1) begin : g_div
-                localparam integer KB = RB - it;
-                wire [NUM_W-1:0] rb, rc;
+                // b3: g_b + A and g_c + A in 0 .. 2A (GW + 1 bits unsigned), times R
+                wire [GW:0] nb = $unsigned($signed({b2_gb[GW-1], b2_gb}) + $signed({1'b0, b2_amax}));
+                wire [GW:0] nc = $unsigned($signed({b2_gc[GW-1], b2_gc}) + $signed({1'b0, b2_amax}));
+                // The division's state after b3 (0) and after each quotient bit
+                // (1 .. NDIV), one packed word per stage on one bus (per-stage
+                // registers, not arrays: Verilator copies plain registers in place):
+                //   {rb, rc: remainders, NUM_W each; qb, qc: quotient bits found so
+                //    far, RB+1 each; den: 2A, GW+1; face: 3; zero: g = 0}
+                localparam integer DV_W = 2 * NUM_W + 2 * (RB + 1) + (GW + 1) + 3 + 1;
+                wire [(NDIV + 1)*DV_W-1:0] dv;
+                reg  [DV_W-1:0]            dv0_q;   // b3: numerators (g + A) * R, 2A
+                always @(posedge clk) begin
+                    dv0_q <= {{{RB{1'b0}}, nb} << RB, {{RB{1'b0}}, nc} << RB,
+                                        {(RB + 1){1'b0}}, {(RB + 1){1'b0}},
+                                        {b2_amax, 1'b0}, b2_face, (b2_amax == {GW{1'b0}})};
+                end
+                assign dv[0 +: DV_W] = dv0_q;
+
+                // c0 .. cR: quotient bit RB - it (exact restoring division, no rounding)
+                for (it = 0; it < NDIV; it = it + 1) begin : g_div
+                    localparam integer KB = RB - it;
+                    wire [NUM_W-1:0] rb, rc;
+                    wire [RB:0]      qb, qc;
+                    wire [GW:0]      den;
+                    wire [2:0]       face;
+                    wire             zero;
+                    assign {rb, rc, qb, qc, den, face, zero} = dv[it*DV_W +: DV_W];
+                    wire [NUM_W-1:0] d  = {{(NUM_W - GW - 1){1'b0}}, den} << KB;
+                    wire             ge_b = (rb >= d);
+                    wire             ge_c = (rc >= d);
+                    reg  [DV_W-1:0]  dv_q;
+                    always @(posedge clk) begin
+                        dv_q <= {ge_b ? rb - d : rb, ge_c ? rc - d : rc,
+                                           qb | ((RB + 1)'(ge_b) << KB), qc | ((RB + 1)'(ge_c) << KB),
+                                           den, face, zero};
+                    end
+                    assign dv[(it + 1)*DV_W +: DV_W] = dv_q;
+                end
+                wire [NUM_W-1:0] rb_n, rc_n;     // the last remainders (unused)
                 wire [RB:0]      qb, qc;
-                wire [GW:0]      den;
-                wire [2:0]       face;
-                wire             zero;
-                assign {rb, rc, qb, qc, den, face, zero} = dv[it*DV_W +: DV_W];
-                wire [NUM_W-1:0] d  = {{(NUM_W - GW - 1){1'b0}}, den} << KB;
-                wire             ge_b = (rb >= d);
-                wire             ge_c = (rc >= d);
-                reg  [DV_W-1:0]  dv_q;
+                wire [GW:0]      den_n;          // (unused)
+                wire [2:0]       face_n;
+                wire             zero_n;
+                assign {rb_n, rc_n, qb, qc, den_n, face_n, zero_n} = dv[NDIV*DV_W +: DV_W];
+                wire unused_div = ^{rb_n, rc_n, den_n};
+                wire [RB-1:0] ub = qb[RB] ? {RB{1'b1}} : qb[RB-1:0];   // min(R - 1, q)
+                wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
+                wire [RI_W-1:0] idx = zero_n ? RI_W'(6 << (2 * RB)) : {face_n, uc, ub};
+
+                // d: reflectance-map read
+                reg [RI_W-1:0]  d_idx;
+                reg [19:0]      d_dp;
                 always @(posedge clk) begin
-                    dv_q <= {ge_b ? rb - d : rb, ge_c ? rc - d : rc,
-                                       qb | ((RB + 1)'(ge_b) << KB), qc | ((RB + 1)'(ge_c) << KB),
-                                       den, face, zero};
+                    d_idx <= idx;
+                    d_dp  <= rmap[idx];
                 end
-                assign dv[(it + 1)*DV_W +: DV_W] = dv_q;
-            end
-            wire [NUM_W-1:0] rb_n, rc_n;     // the last remainders (unused)
-            wire [RB:0]      qb, qc;
-            wire [GW:0]      den_n;          // (unused)
-            wire [2:0]       face_n;
-            wire             zero_n;
-            assign {rb_n, rc_n, qb, qc, den_n, face_n, zero_n} = dv[NDIV*DV_W +: DV_W];
-            wire unused_div = ^{rb_n, rc_n, den_n};
-            wire [RB-1:0] ub = qb[RB] ? {RB{1'b1}} : qb[RB-1:0];   // min(R - 1, q)
-            wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
-            wire [RI_W-1:0] idx = zero_n ? RI_W'(6 << (2 * RB)) : {face_n, uc, ub};
-
-            // d: reflectance-map read
-            reg [RI_W-1:0]  d_idx;
-            reg [19:0]      d_dp;
-            always @(posedge clk) begin
-                d_idx <= idx;
-                d_dp  <= rmap[idx];
-            end
-            // d2: the RAM word registered
-            reg [RI_W-1:0]  d2_idx;
-            reg [19:0]      d2_dp;
-            always @(posedge clk) begin
-                d2_idx <= d_idx;
-                d2_dp  <= d_dp;
-            end
-            wire [LUT_W-1:0] d_lut = lut_q[(NST-3)*LUT_W +: LUT_W];
-
-            // e1: C * D, 8 x 10 bits, exact
-            reg [3*18-1:0]    e1_cd;
-            reg [9:0]         e1_pp;
-            reg [ALPHA_W-1:0] e1_a;
-            reg [RI_W-1:0]    e1_idx;
-            genvar ch;
-            for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
+                // d2: the RAM word registered
+                reg [RI_W-1:0]  d2_idx;
+                reg [19:0]      d2_dp;
                 always @(posedge clk) begin
-                    e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
+                    d2_idx <= d_idx;
+                    d2_dp  <= d_dp;
                 end
-            end
-            always @(posedge clk) begin
-                e1_pp  <= d2_dp[9:0];
-                e1_a   <= d_lut[ALPHA_W-1:0];
-                e1_idx <= d2_idx;
-            end
+                wire [LUT_W-1:0] d_lut = lut_q[(NST-3)*LUT_W +: LUT_W];
 
-            // e2: shade
-            wire [23:0] col_d;
-            for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                wire signed [11:0] rs;
-                cube4_round_shift #(
-                    .IN_W  (19),
-                    .SHIFT (8)
-                ) u_rs (
-                    .x ($signed({1'b0, e1_cd[18*ch +: 18]})),
-                    .y (rs)
-                );
-                // rs >= 0 and < 2^11; rs + P < 2^12
-                wire [11:0] sum = rs + {2'b00, e1_pp};
-                assign col_d[8 * (2 - ch) +: 8] = (sum > 12'd255) ? 8'd255 : sum[7:0];
+                // e1: C * D, 8 x 10 bits, exact
+                reg [3*18-1:0]    e1_cd;
+                reg [9:0]         e1_pp;
+                reg [ALPHA_W-1:0] e1_a;
+                reg [RI_W-1:0]    e1_idx;
+                genvar ch;
+                for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
+                    always @(posedge clk) begin
+                        e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
+                    end
+                end
+                always @(posedge clk) begin
+                    e1_pp  <= d2_dp[9:0];
+                    e1_a   <= d_lut[ALPHA_W-1:0];
+                    e1_idx <= d2_idx;
+                end
+
+                // e2: shade
+                wire [23:0] col_d;
+                for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
+                    wire signed [11:0] rs;
+                    cube4_round_shift #(
+                        .IN_W  (19),
+                        .SHIFT (8)
+                    ) u_rs (
+                        .x ($signed({1'b0, e1_cd[18*ch +: 18]})),
+                        .y (rs)
+                    );
+                    // rs >= 0 and < 2^11; rs + P < 2^12
+                    wire [11:0] sum = rs + {2'b00, e1_pp};
+                    assign col_d[8 * (2 - ch) +: 8] = (sum > 12'd255) ? 8'd255 : sum[7:0];
+                end
+                assign e_rgba[q*LUT_W +: LUT_W] = {col_d, e1_a};
+                assign e_idx[q*RI_W +: RI_W]    = e1_idx;
             end
-            assign e_rgba[q*LUT_W +: LUT_W] = {col_d, e1_a};
-            assign e_idx[q*RI_W +: RI_W]    = e1_idx;
+        end
+        if (SHADING == 0) begin : g_no_rmap
+            wire unused_rmap = ^{rmap_we, rmap_addr, rmap_data};
         end
     endgenerate
 
     // ---- e2: the output FIFO's memory; stage e1 holds a beat: push at e2 ----
-    localparam integer OUT_W = META_W + P * LUT_W + P * RI_W;
+    localparam integer OUT_W = META_W + P * LUT_W + P * RI_W + P * VW;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
     cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(1'b0),
         .credit(credit), .credit_d(unused_credit_d),
-        .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx}),
+        .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),
         .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
-    assign {out_hdr, out_rgba, out_idx} = fifo_out;
+    assign {out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
     wire unused_st_v = st_v[NST-1];     // e1's valid bit: the FIFO's push copies are its copies
 
 endmodule

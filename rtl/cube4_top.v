@@ -5,7 +5,8 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   The whole Cube-4: P pipelines, each with its voxel memory bank, CFB, TRI,
-//   GRA, SHA and COM (docs/architecture.md). The host loads the volume once
+//   GRA, SHA and COM (docs/architecture.md). A build leaves out what its
+//   scenes do not need (SHADING, COMPOSITING, EXTREMUM, CLIP below). The host loads the volume once
 //   (load port; golden/cube4/memory.py packs it), writes the classification
 //   LUT and the reflectance map (load ports, any time between frames), sets
 //   the view registers (frontend_regs + SX, SY) and pulses start; the frame's
@@ -24,11 +25,19 @@
 //   MAX_SS_LOG2  log2 of the largest supersampling.     0..3.     Default 0.
 //   DEPTH        voxel words per bank.                  2..2^30.  Default 65536.
 //   ADDR_W       bank address width.                    1..30.    Default 16.
+//   SHADING      1: GRA, the reflectance map and the shading multipliers;
+//                0: none of them (classification only).  0..1.   Default 1.
+//   COMPOSITING  1: COM's compositing datapath (composite, X-ray). 0..1. Default 1.
+//   EXTREMUM     1: COM's comparators (MIP, MinIP).       0..1.     Default 1.
+//   CLIP         1: the window and the cut plane (cube4_clip). 0..1. Default 1.
+//   Illegal (elaboration stops): COMPOSITING = EXTREMUM = 0; SHADING = 1 with
+//   COMPOSITING = 0 (only compositing is shaded).
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
-//   last slice (NJ*NB + NB + 2 steps), plus a fixed pipeline fill of 50 cycles
-//   (sim/cube4_sim/cycles.py; tb/cube4_top checks it at P = 1, 4, 5, 8).
+//   last slice (NJ*NB + NB + 2 steps; not in a build without GRA), plus a
+//   fixed pipeline fill per build (sim/cube4_sim/cycles.py; tb/cube4_top
+//   checks it at P = 1, 4, 5, 8 and for every build).
 //   cycles counts the clock cycles from start to the last pixel beat.
 //
 // Ports
@@ -51,6 +60,8 @@ module cube4_top #(
     parameter integer WEIGHT_W = 8,  parameter integer RMAP_BITS   = 5,
     parameter integer ALPHA_W  = 12, parameter integer ACC_W       = 16,
     parameter integer DEPTH    = 65536, parameter integer ADDR_W   = 16,
+    parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1,
+    parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3
@@ -95,6 +106,19 @@ module cube4_top #(
     input  wire [ADDR_W-1:0]           cfg_i_lin,
     input  wire [DIM_W-1:0]            cfg_sx,
     input  wire [DIM_W-1:0]            cfg_sy,
+    input  wire [1:0]                  cfg_mode,
+    input  wire [PHASE_W-1:0]          cfg_ph0_x,
+    input  wire [PHASE_W-1:0]          cfg_ph0_y,
+    input  wire [DIM_W-1:0]            cfg_win_i0,
+    input  wire [DIM_W-1:0]            cfg_win_i1,
+    input  wire [DIM_W-1:0]            cfg_win_j0,
+    input  wire [DIM_W-1:0]            cfg_win_j1,
+    input  wire [M_W-1:0]              cfg_win_m0,
+    input  wire [M_W-1:0]              cfg_win_m1,
+    input  wire [CUT_W-1:0]            cfg_cut_a,
+    input  wire [CUT_W-1:0]            cfg_cut_b,
+    input  wire [CUT_W-1:0]            cfg_cut_c,
+    input  wire [CUT_E_W-1:0]          cfg_cut_d,
     // frame control
     input  wire                      start,
     output wire                      busy,
@@ -114,6 +138,18 @@ module cube4_top #(
 );
     localparam integer PV     = P * VOXEL_W;
     localparam integer GRAD_W = VOXEL_W + 5;
+    generate
+        `CUBE4_RANGE(g_bad_shading, "cube4_top", "SHADING", SHADING, 0, 1)
+        `CUBE4_RANGE(g_bad_compositing, "cube4_top", "COMPOSITING", COMPOSITING, 0, 1)
+        `CUBE4_RANGE(g_bad_extremum, "cube4_top", "EXTREMUM", EXTREMUM, 0, 1)
+        `CUBE4_RANGE(g_bad_clip, "cube4_top", "CLIP", CLIP, 0, 1)
+        if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
+            $error("cube4_top: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
+        end
+        if (SHADING != 0 && COMPOSITING == 0) begin : g_shading_alone
+            $error("cube4_top: SHADING = 1 needs COMPOSITING = 1 (MIP, MinIP and X-ray are not shaded)");
+        end
+    endgenerate
     wire [VIEW_W-1:0]    cfg      = `CUBE4_VIEW_PACK;
     wire [ADR_W_ALL-1:0] cfg_addr = `CUBE4_ADDR_PACK;
     wire                 busy_q;   // a frame runs: start accepted, last pixel beat not yet out
@@ -138,7 +174,8 @@ module cube4_top #(
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
         .ADDR_W      (ADDR_W),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .CLIP        (CLIP)
     ) u_frontend (
         .clk           (clk),
         .rst           (rst),
@@ -200,33 +237,46 @@ module cube4_top #(
         .out_valid (gra_in_valid), .out_ready (gra_in_ready));
 
     // ---------------------------------------------------------------- GRA
+    // (a build without shading has none: SHA takes the sample stream)
     wire                 gra_valid, gra_ready, sha_in_valid, sha_in_ready;
     wire [HDR_W-1:0]     gra_hdr;
     wire [PV-1:0]        gra_sample;
     wire [P*GRAD_W-1:0]  gra_gi, gra_gj, gra_gk;
 
-    cube4_gra #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .WEIGHT_W    (WEIGHT_W),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
-    ) u_gra (
-        .clk        (clk),
-        .rst        (rst),
-        .cfg        (cfg),
-        .in_valid   (gra_in_valid),
-        .in_ready   (gra_in_ready),
-        .in_hdr     (smp_hdr),
-        .in_sample  (smp_sample),
-        .out_valid  (gra_valid),
-        .out_ready  (gra_ready),
-        .out_hdr    (gra_hdr),
-        .out_sample (gra_sample),
-        .out_gi     (gra_gi),
-        .out_gj     (gra_gj),
-        .out_gk     (gra_gk)
-    );
+    generate
+        if (SHADING != 0) begin : g_gra
+            cube4_gra #(
+                .P           (P),
+                .VOXEL_W     (VOXEL_W),
+                .WEIGHT_W    (WEIGHT_W),
+                .MAX_DIM     (MAX_DIM),
+                .MAX_SS_LOG2 (MAX_SS_LOG2)
+            ) u_gra (
+                .clk        (clk),
+                .rst        (rst),
+                .cfg        (cfg),
+                .in_valid   (gra_in_valid),
+                .in_ready   (gra_in_ready),
+                .in_hdr     (smp_hdr),
+                .in_sample  (smp_sample),
+                .out_valid  (gra_valid),
+                .out_ready  (gra_ready),
+                .out_hdr    (gra_hdr),
+                .out_sample (gra_sample),
+                .out_gi     (gra_gi),
+                .out_gj     (gra_gj),
+                .out_gk     (gra_gk)
+            );
+        end else begin : g_no_gra
+            assign gra_valid    = gra_in_valid;
+            assign gra_in_ready = gra_ready;
+            assign gra_hdr      = smp_hdr;
+            assign gra_sample   = smp_sample;
+            assign gra_gi       = '0;
+            assign gra_gj       = '0;
+            assign gra_gk       = '0;
+        end
+    endgenerate
 
     cube4_stream_hold u_hold_gra (
         .hold (dbg_hold[1]), .in_valid (gra_valid), .in_ready (gra_ready),
@@ -237,12 +287,14 @@ module cube4_top #(
     wire [HDR_W-1:0]           sha_hdr;
     wire [P*(24+ALPHA_W)-1:0]  sha_rgba;
     wire [P*RI_W-1:0]          unused_sha_idx;
+    wire [PV-1:0]              sha_sample;
 
     cube4_sha #(
         .P           (P),
         .VOXEL_W     (VOXEL_W),
         .ALPHA_W     (ALPHA_W),
         .RMAP_BITS   (RMAP_BITS),
+        .SHADING     (SHADING),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_sha (
@@ -265,7 +317,8 @@ module cube4_top #(
         .out_ready (sha_ready),
         .out_hdr   (sha_hdr),
         .out_rgba  (sha_rgba),
-        .out_idx   (unused_sha_idx)
+        .out_idx   (unused_sha_idx),
+        .out_sample(sha_sample)
     );
 
     cube4_stream_hold u_hold_sha (
@@ -278,6 +331,9 @@ module cube4_top #(
         .WEIGHT_W    (WEIGHT_W),
         .ALPHA_W     (ALPHA_W),
         .ACC_W       (ACC_W),
+        .VOXEL_W     (VOXEL_W),
+        .COMPOSITING (COMPOSITING),
+        .EXTREMUM    (EXTREMUM),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
@@ -288,6 +344,7 @@ module cube4_top #(
         .in_ready  (com_in_ready),
         .in_hdr    (sha_hdr),
         .in_rgba   (sha_rgba),
+        .in_sample (sha_sample),
         .pix_valid (pix_valid),
         .pix_ready (pix_ready),
         .pix_mask  (pix_mask),
@@ -313,9 +370,9 @@ module cube4_top #(
     cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_gra (
         .clk (clk), .rst (rst), .valid (gra_valid), .ready (gra_ready),
         .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
-    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W))) u_chk_sha (
+    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W) + PV)) u_chk_sha (
         .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
-        .data ({sha_hdr, sha_rgba}));
+        .data ({sha_hdr, sha_rgba, sha_sample}));
     cube4_stream_check #(
         .NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1)
     ) u_chk_pix (

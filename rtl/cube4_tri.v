@@ -29,6 +29,8 @@
 //   WEIGHT_W     weight width W.                      4..12.   Default 8.
 //   MAX_DIM      largest volume dimension.            2..2048. Default 256.
 //   MAX_SS_LOG2  log2 of the largest supersampling.   0..3.    Default 0.
+//   CLIP         1: the window and the cut plane (cube4_clip) set the
+//                header's KEEP; 0: KEEP = LVALID.     0..1.    Default 1.
 //   Derived widths and the layouts of cfg, in_tag and out_hdr: cube4_defs.vh.
 //
 // Latency
@@ -51,7 +53,8 @@
 //   out_*   sample beats: out_sample lane q (unsigned VOXEL_W, Q0.VOXEL_W);
 //           out_hdr the stream header (CUBE4_GEOMETRY): lane valid (position
 //           < NI), lane inside (the sample is inside the volume box, numerics.md
-//           section 4), m, j, pb, skew (lane q holds i = pb*P + t, lane_pos)
+//           section 4), lane keep (valid and counts: window and cut plane,
+//           section 12), m, j, pb, skew (lane q holds i = pb*P + t, lane_pos)
 //           and the control bits.
 //
 // Bit growth and rounding
@@ -62,7 +65,7 @@
 module cube4_tri #(
     parameter integer P       = 8, parameter integer MAX_DIM     = 256,
     parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8,
+    parameter integer WEIGHT_W = 8, parameter integer CLIP = 1,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_TAG_LAYOUT
 ) (
     input  wire clk, input wire rst,
@@ -78,6 +81,7 @@ module cube4_tri #(
         `CUBE4_RANGE(g_bad_p, "cube4_tri", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_tri", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_ss, "cube4_tri", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
+        `CUBE4_RANGE(g_bad_clip, "cube4_tri", "CLIP", CLIP, 0, 1)
     endgenerate
 
     `CUBE4_VIEW_FIELDS(cfg);
@@ -152,10 +156,11 @@ module cube4_tri #(
         s0_wz    <= in_t_wz;
         s0_nbr   <= in_t_lane_nbr;
         s0_wrap  <= in_t_lane_wrap;
-        // CUBE4_GEOMETRY's header, MSB first
+        // CUBE4_GEOMETRY's header, MSB first (KEEP = LVALID until cube4_clip's
+        // result replaces it after s4)
         s0_meta  <= {in_t_m, in_t_j, in_t_pb, in_t_skew,
                      in_t_y_last, in_t_eop, in_t_sop, in_t_steps,
-                     in_t_lane_valid, in_inside};
+                     in_t_lane_valid, in_t_lane_valid, in_inside};
     end
 
     // ------------------------------------- s1: slice buffers and source select
@@ -339,6 +344,7 @@ module cube4_tri #(
     reg               s4_v;
     reg [4*PV-1:0]    s4_vals, s4_nvals;
     reg [WEIGHT_W-1:0] s4_wy, s4_wz;   // (wx: each lane's copy, g_lerp)
+    reg [WEIGHT_W-1:0] s4_wx_clip;     // wx for cube4_clip
     reg [META_W-1:0]  s4_meta;
 
     always @(posedge clk) begin
@@ -349,6 +355,7 @@ module cube4_tri #(
         s4_vals  <= s3_vals;
         s4_nvals <= s3_nvals;
         s4_wy    <= s3_wy;
+        s4_wx_clip <= s3_wx;
         s4_wz    <= s3_wz;
         s4_meta  <= s3_meta;
     end
@@ -360,6 +367,32 @@ module cube4_tri #(
     localparam integer NL       = 3 * LERP_LAT;
     reg [NL-1:1]                     lv_q;     // (stage NL: the FIFO's push copies)
     reg [META_W-1:0]   lmeta_q [1:NL];
+    // which samples count (window, cut plane): 3 cycles from s4's fields
+    localparam integer CLIP_LAT = 3;
+    wire [P-1:0] clip_keep;
+    generate
+        if (CLIP != 0) begin : g_clip
+            cube4_clip #(
+                .P           (P),
+                .MAX_DIM     (MAX_DIM),
+                .WEIGHT_W    (WEIGHT_W),
+                .MAX_SS_LOG2 (MAX_SS_LOG2)
+            ) u_clip (
+                .clk     (clk),
+                .cfg     (cfg),
+                .in_m    (s4_meta[HDR_M +: M_W]),
+                .in_j    (s4_meta[HDR_J +: DIM_W]),
+                .in_pb   (s4_meta[HDR_PB +: PB_W]),
+                .in_skew (s4_meta[HDR_SKEW +: LANE_W]),
+                .in_wx   (s4_wx_clip),
+                .in_wy   (s4_wy),
+                .keep    (clip_keep)
+            );
+        end else begin : g_no_clip
+            assign clip_keep = {P{1'b1}};
+            wire unused_wx_clip = ^s4_wx_clip;
+        end
+    endgenerate
     reg [WEIGHT_W-1:0] lwy_q [1:LERP_LAT-1];     // (the last stage: each lane's wy_l)
     reg [WEIGHT_W-1:0] lwz_q [1:2*LERP_LAT-1];   // (the last stage: each lane's wz_l)
     wire [PV-1:0]      l_sample;
@@ -372,6 +405,8 @@ module cube4_tri #(
     always @(posedge clk) begin
         lmeta_q[1] <= s4_meta;
         for (kl = 2; kl <= NL; kl = kl + 1) lmeta_q[kl] <= lmeta_q[kl - 1];
+        // cube4_clip's KEEP (3 cycles after s4) replaces the placeholder
+        lmeta_q[CLIP_LAT + 1][HDR_KEEP +: P] <= lmeta_q[CLIP_LAT][HDR_LVALID +: P] & clip_keep;
         lwy_q[1] <= s4_wy;
         for (kl = 2; kl <= LERP_LAT - 1; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
         lwz_q[1] <= s4_wz;

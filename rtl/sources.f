@@ -11,6 +11,7 @@ cube4_ring_shift.v
 cube4_beam_ext.v
 cube4_voxel_mem.v
 cube4_cfb.v
+cube4_clip.v
 cube4_tri.v
 cube4_frontend.v
 cube4_delay_line.v

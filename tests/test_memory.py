@@ -113,3 +113,47 @@ def test_write_hex(tmp_path):
     with pytest.raises(ValueError, match="does not fit"):
         write_hex(tmp_path / "neg.hex", [-1], 12)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["e.hex", "m.hex", "t.hex"]
+
+
+@pytest.mark.parametrize("p", [1, 3, 4, 5, 8])
+def test_frontend_regs_reach_a_crop_box(p):
+    """A box (crop or brick) at an origin inside a larger volume is traversed by start
+    addresses and lane residues alone: every voxel's address is address_of in the whole
+    volume, and the lane that reads it (bank (t + skew) mod p, skew = the CFB's
+    J residue + K residue, t its position in the partial beam; flipped i: t from the
+    box's far end) is the bank that holds it."""
+    vol_dims = (13, 9, 10)
+    rng = np.random.default_rng(p)
+    for major, signs in itertools.product(range(3), range(8)):
+        box = tuple(int(rng.integers(2, n + 1)) for n in vol_dims)
+        org = tuple(int(rng.integers(0, n - b + 1)) for n, b in zip(vol_dims, box))
+        d = [(-1.0 if (signs >> a) & 1 else 1.0) * (1.0 if a == major else 0.5) for a in range(3)]
+        trav = make_traversal(box, d, origin=org)
+        r = frontend_regs(trav, p, vol_dims)
+
+        def walk(a0, lin, blk, r0, steps, down):
+            a, rr = a0, r0
+            out = [(a, rr)]
+            for _ in range(steps):
+                if down:
+                    a -= blk if rr == 0 else lin
+                    rr = p - 1 if rr == 0 else rr - 1
+                else:
+                    a += blk if rr == p - 1 else lin
+                    rr = 0 if rr == p - 1 else rr + 1
+                out.append((a, rr))
+            return out
+
+        aj = walk(r["J_A0"], r["J_LIN"], r["J_BLK"], r["J_R0"], trav.nj - 1, r["FLIP_J"])
+        ak = walk(r["K_A0"], r["K_LIN"], r["K_BLK"], r["K_R0"], trav.nk - 1, r["FLIP_K"])
+        for k, j, i in itertools.product(range(trav.nk), range(trav.nj), range(trav.ni)):
+            pb, t = divmod(i, p)
+            off = pb * r["I_PB"] + t * r["I_LIN"] + (t > r["I_RT"])
+            a = aj[j][0] + ak[k][0] + (r["I_A0"] - off if r["FLIP_I"] else off)
+            x, y, z = trav.traversal_to_volume_points(i, j, k).round().astype(int)
+            assert a == address_of(x, y, z, vol_dims, p), (d, p, org, box, (i, j, k))
+            skew = (aj[j][1] + ak[k][1]) % p
+            # lane_pos inverted: t = (q - skew) mod p, or (I_R1 + skew - q) mod p flipped
+            lane = ((r["I_R1"] + skew - t) if r["FLIP_I"] else (t + skew)) % p
+            assert lane_positions(skew, pb, p, trav.ni, bool(r["FLIP_I"]))[lane] == i
+            assert bank_of(x, y, z, p) == lane, (d, p, org, box, (i, j, k))

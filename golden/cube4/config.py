@@ -29,6 +29,8 @@ class Cube4Config:
     acc_bits    ACC_W, compositing accumulators Q0.F (8..24)
     rmap_bits   RMAP_BITS, reflectance map has 6 * 4^RMAP_BITS + 1 entries (2..6)
     supersample S, samples per voxel slice along the major axis: 1, 2, 4 or 8
+    build       the hardware the build has, as BUILD_PARAMS -> 0 / 1 (SHADING,
+                COMPOSITING, EXTREMUM, CLIP); None: the smallest build the scene needs
     """
 
     pipelines: int = 8
@@ -38,6 +40,7 @@ class Cube4Config:
     acc_bits: int = 16
     rmap_bits: int = 5
     supersample: int = 1
+    build: tuple[tuple[str, int], ...] | None = None
 
     def __post_init__(self) -> None:
         checks = [
@@ -53,6 +56,8 @@ class Cube4Config:
                 raise UserError(f"{name} must be an integer in {lo}..{hi}, got {val!r}")
         if self.supersample not in (1, 2, 4, 8):
             raise UserError(f"supersample must be 1, 2, 4 or 8, got {self.supersample!r}")
+        if self.build is not None:
+            check_build_params(dict(self.build))
 
     @property
     def guard_bits(self) -> int:
@@ -68,4 +73,72 @@ class Cube4Config:
         return 6 * self.rmap_res * self.rmap_res + 1
 
     def as_dict(self) -> dict:
-        return asdict(self)
+        d = asdict(self)
+        d["build"] = None if self.build is None else dict(self.build)
+        return d
+
+
+# ---------------------------------------------------------------- builds
+#: cube4_top's parameters that remove hardware a scene does not need (docs/architecture.md)
+BUILD_PARAMS = ("SHADING", "COMPOSITING", "EXTREMUM", "CLIP")
+FULL_BUILD = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1}
+_NEEDS = {"SHADING": "shading (gradients and the reflectance map)",
+          "COMPOSITING": "the compositing datapath (composite, xray)",
+          "EXTREMUM": "the comparators (mip, minip)",
+          "CLIP": "the cut plane or window (cube4_clip)"}
+
+
+def check_build_params(build: dict) -> None:
+    """A build's parameters: every one of BUILD_PARAMS, each 0 or 1, and a legal
+    combination (the same checks stop cube4_top's elaboration)."""
+    if set(build) != set(BUILD_PARAMS) or any(v not in (0, 1) for v in build.values()):
+        raise UserError(f"a build sets each of {', '.join(BUILD_PARAMS)} to 0 or 1, got {build}")
+    if not build["COMPOSITING"] and not build["EXTREMUM"]:
+        raise UserError("a build needs COMPOSITING = 1 or EXTREMUM = 1 (no rendering mode otherwise)")
+    if build["SHADING"] and not build["COMPOSITING"]:
+        raise UserError("a build with SHADING = 1 needs COMPOSITING = 1 (only compositing is shaded)")
+
+
+def scene_build(scenes) -> dict:
+    """The smallest build that renders every one of the scenes."""
+    b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0}
+    for sc in scenes:
+        b["SHADING"] |= int(sc.shaded)
+        b["COMPOSITING"] |= int(sc.mode in ("composite", "xray"))
+        b["EXTREMUM"] |= int(sc.mode in ("mip", "minip"))
+        b["CLIP"] |= int(sc.cut is not None)
+    return b
+
+
+def parse_build(text: str) -> dict | None:
+    """--build: "scene" (None: the scene's smallest), "full", or NAME=0/1 pairs
+    (e.g. SHADING=0,COMPOSITING=0,EXTREMUM=1,CLIP=0; names not given are 1)."""
+    t = text.strip()
+    if t.lower() == "scene":
+        return None
+    if t.lower() == "full":
+        return dict(FULL_BUILD)
+    build = dict(FULL_BUILD)
+    for part in t.split(","):
+        name, _, val = part.partition("=")
+        name = name.strip().upper()
+        if name not in BUILD_PARAMS or val.strip() not in ("0", "1"):
+            raise UserError(f"--build must be scene, full or NAME=0/1 pairs with NAME in "
+                            f"{', '.join(BUILD_PARAMS)}, got {text!r}")
+        build[name] = int(val)
+    check_build_params(build)
+    return build
+
+
+def resolve_build(cfg: "Cube4Config", scenes) -> dict:
+    """The build a render uses: cfg.build if given (checked against every scene: one line
+    naming what is missing), else the scenes' smallest."""
+    if cfg.build is None:
+        return scene_build(scenes)
+    build = dict(cfg.build)
+    need = scene_build(scenes)
+    for k in BUILD_PARAMS:
+        if need[k] and not build[k]:
+            name = next(sc.name for sc in scenes if scene_build([sc])[k])
+            raise UserError(f"scene {name} needs {_NEEDS[k]}, which the build leaves out ({k} = 0)")
+    return build

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .clip import CUT_E_W, CUT_W  # the cut plane's register widths (cube4_defs.vh)
 from .errors import UserError
 from .view import Traversal
 
@@ -108,21 +109,44 @@ def _axis_strides(axis: int, dims, p: int) -> tuple[int, int]:
     return ((0, 1), (nbx, nbx), (nbx * ny, nbx * ny))[axis]
 
 
-def frontend_regs(trav: Traversal, p: int) -> dict[str, int]:
+def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
     """Register values of cube4_frontend for one view (docs/architecture.md, "CFB").
 
     The host computes them the way it computes VIEW_X / VIEW_Y: a handful of
-    additions and multiplications per frame, none per voxel.
+    additions and multiplications per frame, none per voxel. ``vol_dims`` are the dims
+    of the volume in memory (default trav.dims): a crop box or a brick (trav.origin,
+    trav.dims) is traversed inside it by start addresses and lane residues alone.
     """
-    dims = tuple(int(n) for n in trav.dims)
+    box = tuple(int(n) for n in trav.dims)
+    dims = box if vol_dims is None else tuple(int(n) for n in vol_dims)
+    org = tuple(int(c) for c in trav.origin)
+    if any(o + b > d for o, b, d in zip(org, box, dims)):
+        raise UserError(f"the traversed box {box} at {org} does not fit the volume {dims}")
     ni, nj, nk = trav.ni, trav.nj, trav.nk
-    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
-    cj0 = nj - 1 if fj else 0
-    ck0 = nk - 1 if fk else 0
-    j_lin, j_blk = _axis_strides(trav.axis_j, dims, p)
-    k_lin, k_blk = _axis_strides(trav.major, dims, p)
-    i_lin, i_blk = _axis_strides(trav.axis_i, dims, p)
-    i_block = trav.axis_i == 0  # x: address is floor(c / p)
+    ai, aj, ak = trav.axis_i, trav.axis_j, trav.major
+    fi, fj, fk = (bool(trav.flip[a]) for a in (ai, aj, ak))
+    cj0 = org[aj] + (nj - 1 if fj else 0)       # start coordinates in the volume
+    ck0 = org[ak] + (nk - 1 if fk else 0)
+    ci0 = org[ai] + (ni - 1 if fi else 0)
+    j_lin, j_blk = _axis_strides(aj, dims, p)
+    k_lin, k_blk = _axis_strides(ak, dims, p)
+    i_lin, i_blk = _axis_strides(ai, dims, p)
+    i_block = ai == 0  # x: address is floor(c / p)
+    # The skew is (c_i + c_j + c_k) mod p with lane t at c_i = org_i + t (flipped:
+    # org_i + ni - 1 - t): the box's i offset joins the residue of an axis that is not x
+    # (y and z have LIN == BLK, so their residue only feeds the skew).
+    r_j, r_k = cj0 % p, ck0 % p
+    if aj != 0:
+        r_j = (r_j + org[ai]) % p
+    else:
+        r_k = (r_k + org[ai]) % p
+    # The i axis's start address: flipped, I_A0 (the CFB counts down from it); not
+    # flipped the CFB starts at 0, so it joins J_A0.
+    a_i0 = _axis_addr(ai, org[ai], dims, p)
+    if fi:
+        i_rt = (ci0 % p) if i_block else p - 1
+    else:
+        i_rt = (p - 1 - org[ai] % p) if i_block else p - 1
     return {
         "NI": ni,
         "NJ": nj,
@@ -135,29 +159,43 @@ def frontend_regs(trav: Traversal, p: int) -> dict[str, int]:
         "VIEW_X": trav.view_x,
         "VIEW_Y": trav.view_y,
         # axis j (beam index): start coordinate mod p, start address, strides
-        "J_R0": cj0 % p,
-        "J_A0": _axis_addr(trav.axis_j, cj0, dims, p),
+        "J_R0": r_j,
+        "J_A0": _axis_addr(aj, cj0, dims, p) + (0 if fi else a_i0),
         "J_LIN": j_lin,
         "J_BLK": j_blk,
         # axis k (slices)
-        "K_R0": ck0 % p,
-        "K_A0": _axis_addr(trav.major, ck0, dims, p),
+        "K_R0": r_k,
+        "K_A0": _axis_addr(ak, ck0, dims, p),
         "K_LIN": k_lin,
         "K_BLK": k_blk,
         # axis i (along the beam): address = I_A0 +/- (pb * I_PB + t * I_LIN + [t > I_RT])
-        "I_A0": _axis_addr(trav.axis_i, ni - 1, dims, p) if fi else 0,
+        "I_A0": _axis_addr(ai, ci0, dims, p) if fi else 0,
         "I_PB": i_blk if i_block else i_lin * p,
         "I_LIN": 0 if i_block else i_lin,
-        "I_RT": ((ni - 1) % p) if (fi and i_block) else p - 1,
+        "I_RT": i_rt,
         "I_R1": (ni - 1) % p,
     }
 
 
-def top_regs(trav: Traversal, p: int) -> dict[str, int]:
+MODE_CODES = {"composite": 0, "xray": 1, "mip": 2, "minip": 3}
+
+
+def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None) -> dict[str, int]:
     """Registers of cube4_top: the front end's plus the base-plane offsets
-    SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8)."""
-    regs = frontend_regs(trav, p)
+    SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8), the mode, the template's
+    starting phase, and the window and cut plane (clip.Clip; None: every sample counts).
+    Signed registers (CUT_*) are given as their two's-complement bit patterns."""
+    regs = frontend_regs(trav, p, vol_dims)
     regs["SX"], regs["SY"] = trav.max_steps
+    regs["MODE"] = MODE_CODES[mode]
+    regs["PH0_X"], regs["PH0_Y"] = trav.phase_x, trav.phase_y
+    M = trav.num_sample_slices
+    window = (0, trav.ni, 0, trav.nj, 0, M) if clip is None or clip.window is None else clip.window
+    for name, v in zip(("WIN_I0", "WIN_I1", "WIN_J0", "WIN_J1", "WIN_M0", "WIN_M1"), window):
+        regs[name] = int(v)
+    plane = (0, 0, 0, 0) if clip is None or clip.plane is None else clip.plane
+    for name, v, w in zip(("CUT_A", "CUT_B", "CUT_C", "CUT_D"), plane, (CUT_W, CUT_W, CUT_W, CUT_E_W)):
+        regs[name] = int(v) & ((1 << w) - 1)
     return regs
 
 

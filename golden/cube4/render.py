@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .config import Cube4Config
+from .config import Cube4Config, resolve_build
 from .errors import UserError
 from .model import Frame, render_frame
 from .reference import render_reference
@@ -166,6 +166,7 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     dims = (nx, ny, nz)
     trav, cam = setup_view(dims, scene, cfg)
     stats = view_stats("golden", dims, scene, cfg)
+    stats["build"] = resolve_build(cfg, [scene])     # the build this frame models
     t0 = time.perf_counter()
     lut, rmap = host_tables(scene, cfg, trav)
     frame = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, keep_streams=keep_streams,

@@ -65,7 +65,7 @@ class Geometry:
     def hdr_fields(self) -> dict[str, tuple[int, int]]:
         """Header field -> (LSB position, width), LSB first."""
         p = self.p
-        widths = [("inside", p), ("lval", p), ("ctrl", 7), ("skew", self.lane_w), ("pb", self.pb_w),
+        widths = [("inside", p), ("lval", p), ("keep", p), ("ctrl", 7), ("skew", self.lane_w), ("pb", self.pb_w),
                   ("j", self.dim_w), ("m", self.m_w)]
         out, pos = {}, 0
         for name, w in widths:
@@ -119,8 +119,9 @@ def mask_bits(flags) -> int:
 class BeatSchedule:
     """The sample stream's beats of one view, in the order the hardware emits them."""
 
-    def __init__(self, trav: Traversal, p: int, inside: np.ndarray) -> None:
-        """inside: golden ``sample_stream`` inside flags, [m, j, i]."""
+    def __init__(self, trav: Traversal, p: int, inside: np.ndarray, keep: np.ndarray | None = None) -> None:
+        """inside: golden ``sample_stream`` inside flags, [m, j, i]; keep: the samples
+        that count (golden ``Clip.keep`` per slice, [m, j, i]; None: all)."""
         self.trav, self.p = trav, p
         M, nj, ni, nk = trav.num_sample_slices, trav.nj, trav.ni, trav.nk
         self.nb = nb = -(-ni // p)
@@ -128,14 +129,16 @@ class BeatSchedule:
         idx = np.arange(n)
         self.m, self.j, self.pb = idx // (nj * nb), (idx // nb) % nj, idx % nb
         fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
-        # skew: banks (c_i + c_j + c_k) mod p of the row above (j + 1) in the lower voxel slice
+        # skew: banks (c_i + c_j + c_k) mod p of the row above (j + 1) in the lower voxel
+        # slice, in the whole volume (a box at trav.origin: its i offset included)
         k0 = self.m // trav.supersample
         cj = np.where(fj, nj - 1 - (self.j + 1), self.j + 1)
         ck = np.where(fk, nk - 1 - k0, k0)
-        self.skew = (cj + ck) % p
+        self.skew = (cj + ck + sum(trav.origin)) % p
         self.pos = np.stack([lane_positions(int(s), int(b), p, ni, fi) for s, b in zip(self.skew, self.pb)])
         self.lval = self.pos < ni
         self.lins = self.lanes(inside).astype(bool)
+        self.lkeep = self.lval if keep is None else self.lanes(keep).astype(bool) & self.lval
         sx, sy = trav.steps(self.m)
         sx1, sy1 = trav.steps(self.m + 1)
         sxb, syb = trav.steps(self.m - 1)
@@ -159,6 +162,7 @@ class BeatSchedule:
     def headers(self, geo: Geometry) -> list[int]:
         """The HDR_W-bit header of every beat."""
         return [geo.pack_header({"inside": mask_bits(self.lins[n]), "lval": mask_bits(self.lval[n]),
+                                 "keep": mask_bits(self.lkeep[n]),
                                  "ctrl": int(self.ctrl[n]), "skew": int(self.skew[n]),
                                  "pb": int(self.pb[n]), "j": int(self.j[n]), "m": int(self.m[n])})
                 for n in range(len(self))]

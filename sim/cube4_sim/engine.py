@@ -13,11 +13,11 @@ import time
 
 import numpy as np
 
-from cube4.config import Cube4Config
+from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
 from cube4.model import Frame
-from cube4.render import (RenderResult, host_tables, register_engine, setup_view, trav_stats, view_stats,
-                          warp_to_image)
+from cube4.render import (RenderResult, frame_clip, host_tables, register_engine, setup_view, trav_stats,
+                          view_stats, warp_to_image)
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, render_frames
@@ -31,10 +31,12 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
+    build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     views = [setup_view(dims, sc, cfg) for sc in scenes]
-    jobs = [FrameJob(trav, *host_tables(sc, cfg, trav)) for sc, (trav, _) in zip(scenes, views)]
+    jobs = [FrameJob(trav, *host_tables(sc, cfg, trav), mode=sc.mode, clip=frame_clip(sc, trav))
+            for sc, (trav, _) in zip(scenes, views)]
     try:
-        outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True)
+        outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True, build=build)
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None
     run_s = time.perf_counter() - t0
@@ -48,6 +50,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         stats = view_stats(NAME, dims, sc, cfg)
         stats.update(trav_stats(trav))
         stats.update(_cycle_stats(out, nx * ny * nz / cfg.pipelines))
+        stats["build"] = dict(build)
         wall = out["sim_wall_s"] + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
         stats["wall_s"] = wall
         results.append(RenderResult(NAME, img, wall, frame=frame, stats=stats))

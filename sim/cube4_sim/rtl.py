@@ -18,7 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from cube4.config import Cube4Config
+from cube4.clip import Clip
+from cube4.config import FULL_BUILD, Cube4Config
 from cube4.errors import UserError
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
@@ -36,22 +37,27 @@ class FrameJob:
 
     trav: Traversal
     lut: np.ndarray  # (2^V, 4): R, G, B Q0.8, A Q0.ALPHA_W
-    rmap: np.ndarray  # (6 R^2 + 1, 2): D, P Q2.8
+    rmap: np.ndarray | None  # (6 R^2 + 1, 2): D, P Q2.8; None: unshaded (identity map)
+    mode: str = "composite"
+    clip: Clip | None = None
     stall: int = 0  # hold probability /256 on every internal stream
     stall_out: int = 0  # pixel-port not-ready probability /256
     reset_after_cycles: int = 0  # start, reset after this many cycles, then render
     extra: dict = field(default_factory=dict)
 
 
-def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None) -> dict[str, int]:
+def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
+                 build: dict | None = None) -> dict[str, int]:
     """cube4_top_harness parameters for a configuration and a largest dimension; the
-    voxel memory holds a max_dim^3 volume unless ``depth`` (words per bank) is given."""
+    voxel memory holds a max_dim^3 volume unless ``depth`` (words per bank) is given;
+    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP (default: the full build)."""
     p = cfg.pipelines
     depth = depth or words_per_bank((max_dim, max_dim, max_dim), p)
     return {
         "P": p, "VOXEL_W": cfg.voxel_bits, "WEIGHT_W": cfg.weight_bits, "ALPHA_W": cfg.alpha_bits,
         "ACC_W": cfg.acc_bits, "RMAP_BITS": cfg.rmap_bits, "MAX_DIM": max_dim,
         "MAX_SS_LOG2": cfg.guard_bits, "DEPTH": depth, "ADDR_W": max(1, (depth - 1).bit_length()),
+        **(FULL_BUILD if build is None else build),
     }
 
 
@@ -82,10 +88,20 @@ def build_max_dim(dims) -> int:
     return 1 << (n - 1).bit_length()
 
 
-def write_tables(lut: np.ndarray, rmap: np.ndarray, cfg: Cube4Config, lut_path: Path, rmap_path: Path) -> None:
+def identity_rmap(cfg: Cube4Config) -> np.ndarray:
+    """The reflectance map of an unshaded frame on a build with shading: D = 1.0 (Q2.8),
+    P = 0 everywhere, so C' = min(255, round_shift(C * 256, 8)) = C exactly."""
+    table = np.zeros((cfg.rmap_entries, 2), dtype=np.int64)
+    table[:, 0] = 1 << 8
+    return table
+
+
+def write_tables(lut: np.ndarray, rmap: np.ndarray | None, cfg: Cube4Config, lut_path: Path,
+                 rmap_path: Path) -> None:
     """The harness's table images: one {R, G, B, A} word per LUT entry, one {D, P} word
-    per reflectance-map entry."""
+    per reflectance-map entry (the identity map for an unshaded frame)."""
     aw = cfg.alpha_bits
+    rmap = identity_rmap(cfg) if rmap is None else rmap
     words = (lut[:, 0] << (aw + 16)) | (lut[:, 1] << (aw + 8)) | (lut[:, 2] << aw) | lut[:, 3]
     write_hex(lut_path, words, 24 + aw)
     write_hex(rmap_path, (rmap[:, 0] << 10) | rmap[:, 1], 20)
@@ -93,7 +109,8 @@ def write_tables(lut: np.ndarray, rmap: np.ndarray, cfg: Cube4Config, lut_path: 
 
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
                   fit_memory: bool = False, waves: bool | None = None, workdir: Path | None = None,
-                  progress: bool = False, quiet: bool = False, rtl_form: str = "generic") -> list[dict]:
+                  progress: bool = False, quiet: bool = False, rtl_form: str = "generic",
+                  build: dict | None = None) -> list[dict]:
     """Render every frame through the RTL; returns per frame
     {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}.
 
@@ -106,7 +123,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     depth = None
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
-    params = build_params(cfg, max_dim, depth)
+    params = build_params(cfg, max_dim, depth, build)
+    shading = bool(params["SHADING"])
     check_limits(params, (nx, ny, nz))
 
     from . import runner  # cocotb is imported only when the RTL engine is used
@@ -124,10 +142,12 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
             write_tables(fr.lut, fr.rmap, cfg, lut_p, rmap_p)
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
-            ideal = (frame_cycles(M, nj, ni, cfg.pipelines) + 100) * slow_slice_factor(nj, ni, cfg.pipelines)
+            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading) + 100)
+                     * slow_slice_factor(nj, ni, cfg.pipelines))
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
-                "regs": top_regs(fr.trav, cfg.pipelines), "lut": str(lut_p), "rmap": str(rmap_p),
+                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip),
+                "lut": str(lut_p), "rmap": str(rmap_p),
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
                 "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,

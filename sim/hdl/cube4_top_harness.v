@@ -40,7 +40,12 @@ module cube4_top_harness #(
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer DEPTH       = 4096,
     parameter integer ADDR_W      = 12,
+    parameter integer SHADING     = 1,
+    parameter integer COMPOSITING = 1,
+    parameter integer EXTREMUM    = 1,
+    parameter integer CLIP        = 1,
     `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     output wire                  clk,
@@ -81,7 +86,20 @@ module cube4_top_harness #(
     input  wire [ADDR_W-1:0]     cfg_i_pb,
     input  wire [ADDR_W-1:0]     cfg_i_lin,
     input  wire [DIM_W-1:0]      cfg_sx,
-    input  wire [DIM_W-1:0]      cfg_sy
+    input  wire [DIM_W-1:0]      cfg_sy,
+    input  wire [1:0]            cfg_mode,
+    input  wire [PHASE_W-1:0]    cfg_ph0_x,
+    input  wire [PHASE_W-1:0]    cfg_ph0_y,
+    input  wire [DIM_W-1:0]      cfg_win_i0,
+    input  wire [DIM_W-1:0]      cfg_win_i1,
+    input  wire [DIM_W-1:0]      cfg_win_j0,
+    input  wire [DIM_W-1:0]      cfg_win_j1,
+    input  wire [M_W-1:0]        cfg_win_m0,
+    input  wire [M_W-1:0]        cfg_win_m1,
+    input  wire [CUT_W-1:0]      cfg_cut_a,
+    input  wire [CUT_W-1:0]      cfg_cut_b,
+    input  wire [CUT_W-1:0]      cfg_cut_c,
+    input  wire [CUT_E_W-1:0]    cfg_cut_d
 );
     cube4_sim_clock u_clock (.clk(clk));
 
@@ -103,6 +121,12 @@ module cube4_top_harness #(
     reg [LANE_W-1:0]     cfg_j_r0_q, cfg_k_r0_q, cfg_i_r1_q, cfg_i_rt_q;
     reg [ADDR_W-1:0]     cfg_j_a0_q, cfg_j_lin_q, cfg_j_blk_q, cfg_k_a0_q, cfg_k_lin_q, cfg_k_blk_q;
     reg [ADDR_W-1:0]     cfg_i_a0_q, cfg_i_pb_q, cfg_i_lin_q;
+    reg [1:0]            cfg_mode_q;
+    reg [PHASE_W-1:0]    cfg_ph0_x_q, cfg_ph0_y_q;
+    reg [DIM_W-1:0]      cfg_win_i0_q, cfg_win_i1_q, cfg_win_j0_q, cfg_win_j1_q;
+    reg [M_W-1:0]        cfg_win_m0_q, cfg_win_m1_q;
+    reg [CUT_W-1:0]      cfg_cut_a_q, cfg_cut_b_q, cfg_cut_c_q;
+    reg [CUT_E_W-1:0]    cfg_cut_d_q;
     always @(posedge clk) begin
         rst_q         <= rst;
         load_mem_q    <= load_mem;
@@ -138,6 +162,19 @@ module cube4_top_harness #(
         cfg_i_lin_q   <= cfg_i_lin;
         cfg_sx_q      <= cfg_sx;
         cfg_sy_q      <= cfg_sy;
+        cfg_mode_q      <= cfg_mode;
+        cfg_ph0_x_q     <= cfg_ph0_x;
+        cfg_ph0_y_q     <= cfg_ph0_y;
+        cfg_win_i0_q    <= cfg_win_i0;
+        cfg_win_i1_q    <= cfg_win_i1;
+        cfg_win_j0_q    <= cfg_win_j0;
+        cfg_win_j1_q    <= cfg_win_j1;
+        cfg_win_m0_q    <= cfg_win_m0;
+        cfg_win_m1_q    <= cfg_win_m1;
+        cfg_cut_a_q     <= cfg_cut_a;
+        cfg_cut_b_q     <= cfg_cut_b;
+        cfg_cut_c_q     <= cfg_cut_c;
+        cfg_cut_d_q     <= cfg_cut_d;
     end
 
     localparam integer PV     = P * VOXEL_W;
@@ -244,7 +281,11 @@ module cube4_top_harness #(
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
         .DEPTH       (DEPTH),
-        .ADDR_W      (ADDR_W)
+        .ADDR_W      (ADDR_W),
+        .SHADING     (SHADING),
+        .COMPOSITING (COMPOSITING),
+        .EXTREMUM    (EXTREMUM),
+        .CLIP        (CLIP)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -283,6 +324,19 @@ module cube4_top_harness #(
         .cfg_i_lin   (cfg_i_lin_q),
         .cfg_sx      (cfg_sx_q),
         .cfg_sy      (cfg_sy_q),
+        .cfg_mode     (cfg_mode_q),
+        .cfg_ph0_x    (cfg_ph0_x_q),
+        .cfg_ph0_y    (cfg_ph0_y_q),
+        .cfg_win_i0   (cfg_win_i0_q),
+        .cfg_win_i1   (cfg_win_i1_q),
+        .cfg_win_j0   (cfg_win_j0_q),
+        .cfg_win_j1   (cfg_win_j1_q),
+        .cfg_win_m0   (cfg_win_m0_q),
+        .cfg_win_m1   (cfg_win_m1_q),
+        .cfg_cut_a    (cfg_cut_a_q),
+        .cfg_cut_b    (cfg_cut_b_q),
+        .cfg_cut_c    (cfg_cut_c_q),
+        .cfg_cut_d    (cfg_cut_d_q),
         .start       (start_q),
         .busy        (busy),
         .done        (done),

@@ -12,7 +12,8 @@
 //   cube4_stream_check on each of the two streams.
 //
 // Parameters: as cube4_com (P 1..64, WEIGHT_W 4..12, ALPHA_W 8..16,
-//   ACC_W 8..24, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   ACC_W 8..24, VOXEL_W 1..16, COMPOSITING, EXTREMUM 0..1, MAX_DIM 2..2048,
+//   MAX_SS_LOG2 0..3).
 //
 // Latency: that of cube4_com (the ports connect straight to it).
 //
@@ -20,7 +21,7 @@
 //   clk       out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst       in   synchronous reset
 //   cfg_*     in   view registers (golden/cube4/memory.py top_regs)
-//   in_*      in   shaded stream (cube4_sha's format)
+//   in_*      in   shaded stream (cube4_sha's format, with in_sample)
 //   out_*     out  finished rays: cube4_com's pix_* (valid, ready, mask, m,
 //                  by, bx, rgba, eop)
 // =============================================================================
@@ -31,6 +32,9 @@ module cube4_com_harness #(
     parameter integer ACC_W       = 16,
     parameter integer MAX_DIM     = 32,
     parameter integer MAX_SS_LOG2 = 0,
+    parameter integer VOXEL_W     = 8,
+    parameter integer COMPOSITING = 1,
+    parameter integer EXTREMUM    = 1,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
@@ -56,10 +60,24 @@ module cube4_com_harness #(
     input  wire [LANE_W-1:0]     cfg_i_rt,
     input  wire [DIM_W-1:0]      cfg_sx,
     input  wire [DIM_W-1:0]      cfg_sy,
+    input  wire [1:0]            cfg_mode,
+    input  wire [PHASE_W-1:0]    cfg_ph0_x,
+    input  wire [PHASE_W-1:0]    cfg_ph0_y,
+    input  wire [DIM_W-1:0]      cfg_win_i0,
+    input  wire [DIM_W-1:0]      cfg_win_i1,
+    input  wire [DIM_W-1:0]      cfg_win_j0,
+    input  wire [DIM_W-1:0]      cfg_win_j1,
+    input  wire [M_W-1:0]        cfg_win_m0,
+    input  wire [M_W-1:0]        cfg_win_m1,
+    input  wire [CUT_W-1:0]      cfg_cut_a,
+    input  wire [CUT_W-1:0]      cfg_cut_b,
+    input  wire [CUT_W-1:0]      cfg_cut_c,
+    input  wire [CUT_E_W-1:0]    cfg_cut_d,
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
     input  wire [IN_W-1:0]       in_rgba,
+    input  wire [P*VOXEL_W-1:0]  in_sample,
     output wire                  out_valid,
     input  wire                  out_ready,
     output wire [P-1:0]          out_mask,
@@ -78,6 +96,9 @@ module cube4_com_harness #(
         .WEIGHT_W    (WEIGHT_W),
         .ALPHA_W     (ALPHA_W),
         .ACC_W       (ACC_W),
+        .VOXEL_W     (VOXEL_W),
+        .COMPOSITING (COMPOSITING),
+        .EXTREMUM    (EXTREMUM),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
@@ -88,6 +109,7 @@ module cube4_com_harness #(
         .in_ready  (in_ready),
         .in_hdr    (in_hdr),
         .in_rgba   (in_rgba),
+        .in_sample (in_sample),
         .pix_valid (out_valid),
         .pix_ready (out_ready),
         .pix_mask  (out_mask),
@@ -100,13 +122,13 @@ module cube4_com_harness #(
 
     cube4_stream_check #(
         .NAME   ("com.in (shaded)"),
-        .DATA_W (HDR_W + IN_W)
+        .DATA_W (HDR_W + IN_W + P * VOXEL_W)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),
         .valid (in_valid),
         .ready (in_ready),
-        .data  ({in_hdr, in_rgba})
+        .data  ({in_hdr, in_rgba, in_sample})
     );
 
     cube4_stream_check #(

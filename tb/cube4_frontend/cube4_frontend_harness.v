@@ -78,7 +78,20 @@ module cube4_frontend_harness #(
     input  wire [ADDR_W-1:0]     cfg_k_blk,
     input  wire [ADDR_W-1:0]     cfg_i_a0,
     input  wire [ADDR_W-1:0]     cfg_i_pb,
-    input  wire [ADDR_W-1:0]     cfg_i_lin
+    input  wire [ADDR_W-1:0]     cfg_i_lin,
+    input  wire [1:0]            cfg_mode,
+    input  wire [PHASE_W-1:0]    cfg_ph0_x,
+    input  wire [PHASE_W-1:0]    cfg_ph0_y,
+    input  wire [DIM_W-1:0]      cfg_win_i0,
+    input  wire [DIM_W-1:0]      cfg_win_i1,
+    input  wire [DIM_W-1:0]      cfg_win_j0,
+    input  wire [DIM_W-1:0]      cfg_win_j1,
+    input  wire [M_W-1:0]        cfg_win_m0,
+    input  wire [M_W-1:0]        cfg_win_m1,
+    input  wire [CUT_W-1:0]      cfg_cut_a,
+    input  wire [CUT_W-1:0]      cfg_cut_b,
+    input  wire [CUT_W-1:0]      cfg_cut_c,
+    input  wire [CUT_E_W-1:0]    cfg_cut_d
 );
     cube4_sim_clock u_clock (.clk(clk));
 

@@ -11,7 +11,7 @@
 //   on each of the two streams. SHA has no view registers.
 //
 // Parameters: as cube4_sha (P 1..64, VOXEL_W 1..16, ALPHA_W 8..16,
-//   RMAP_BITS 2..6, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   RMAP_BITS 2..6, SHADING 0..1, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
 //
 // Latency: that of cube4_sha (the ports connect straight to it).
 //
@@ -20,7 +20,8 @@
 //   rst             in   synchronous reset
 //   lut_*, rmap_*   in   table writes (cube4_sha)
 //   in_*            in   gradient stream (cube4_gra's format)
-//   out_*           out  shaded stream (cube4_sha's format, with out_idx)
+//   out_*           out  shaded stream (cube4_sha's format, with out_idx and
+//                        out_sample)
 // =============================================================================
 module cube4_sha_harness #(
     parameter integer P           = 8,
@@ -29,6 +30,7 @@ module cube4_sha_harness #(
     parameter integer RMAP_BITS   = 5,
     parameter integer MAX_DIM     = 32,
     parameter integer MAX_SS_LOG2 = 0,
+    parameter integer SHADING     = 1,
     `CUBE4_GEOMETRY,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3,
@@ -53,7 +55,8 @@ module cube4_sha_harness #(
     input  wire                      out_ready,
     output wire [HDR_W-1:0]          out_hdr,
     output wire [RGBA_W-1:0]         out_rgba,
-    output wire [P*RI_W-1:0]         out_idx
+    output wire [P*RI_W-1:0]         out_idx,
+    output wire [P*VOXEL_W-1:0]      out_sample
 );
     cube4_sim_clock u_clock (.clk (clk));
 
@@ -62,6 +65,7 @@ module cube4_sha_harness #(
         .VOXEL_W     (VOXEL_W),
         .ALPHA_W     (ALPHA_W),
         .RMAP_BITS   (RMAP_BITS),
+        .SHADING     (SHADING),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_sha (
@@ -84,7 +88,8 @@ module cube4_sha_harness #(
         .out_ready (out_ready),
         .out_hdr   (out_hdr),
         .out_rgba  (out_rgba),
-        .out_idx   (out_idx)
+        .out_idx   (out_idx),
+        .out_sample(out_sample)
     );
 
     cube4_stream_check #(
@@ -100,13 +105,13 @@ module cube4_sha_harness #(
 
     cube4_stream_check #(
         .NAME   ("sha.out (shaded)"),
-        .DATA_W (HDR_W + RGBA_W + P * RI_W)
+        .DATA_W (HDR_W + RGBA_W + P * RI_W + P * VOXEL_W)
     ) u_chk_out (
         .clk   (clk),
         .rst   (rst),
         .valid (out_valid),
         .ready (out_ready),
-        .data  ({out_hdr, out_rgba, out_idx})
+        .data  ({out_hdr, out_rgba, out_idx, out_sample})
     );
 
 endmodule

@@ -1,0 +1,113 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_clip
+// -----------------------------------------------------------------------------
+// Purpose
+//   Which samples of a beat count (docs/numerics.md section 12): the window
+//     WIN_I0 <= i < WIN_I1,  WIN_J0 <= j < WIN_J1,  WIN_M0 <= m < WIN_M1
+//   and the kept side of the cut plane
+//     E = CUT_A * (i * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * m + CUT_D >= 0
+//   evaluated exactly at every sample (m, j, i) of the beat, lane q holding
+//   i = pb * P + t, t = lane_pos(q, skew). The result is the header's KEEP
+//   mask (cube4_tri writes it); a sample outside the box is dealt with by
+//   INSIDE, not here. Golden twin: golden/cube4/clip.py.
+//
+//   The plane's beat terms are three products shared by the lanes:
+//     E = CUT_A * (pb * P * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * m + CUT_D
+//         + (CUT_A * t) * 2^W
+//   and each lane adds its own CUT_A * t (a small product, t < P).
+//
+// Parameters
+//   P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W as cube4_tri (derived widths and the
+//   view layout: cube4_defs.vh).
+//
+// Latency
+//   3 register stages, no enable (the caller's pipeline moves on every cycle):
+//   keep belongs to the inputs of 3 cycles earlier.
+//     c1  window compares; the three beat products; each lane's CUT_A * t
+//     c2  the beat's sum
+//     c3  each lane's E and its sign, with the window: keep
+//
+// Ports
+//   cfg            view registers (WIN_*, CUT_*, FLIP_I, I_R1)
+//   in_m, in_j, in_pb, in_skew   the beat (as the header's fields)
+//   in_wx, in_wy   the beat's resampling weights, Q0.W
+//   keep [P]       lane q's sample counts (3 cycles later)
+//
+// Bit growth and rounding
+//   None: exact integers. i * 2^W + wx < MAX_DIM * 2^W (IW + W bits), the
+//   coefficients are CUT_W = 18 bits signed, and the host chooses them so that
+//   |E| < 2^(CUT_E_W - 1) = 2^47 over the box (golden/cube4/clip.py
+//   cut_coefficients), so the CUT_E_W-bit sums never wrap.
+// =============================================================================
+module cube4_clip #(
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
+    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
+) (
+    input  wire clk,
+    input  wire [VIEW_W-1:0] cfg,
+    input  wire [M_W-1:0] in_m, input wire [DIM_W-1:0] in_j, input wire [PB_W-1:0] in_pb,
+    input  wire [LANE_W-1:0] in_skew,
+    input  wire [WEIGHT_W-1:0] in_wx, input wire [WEIGHT_W-1:0] in_wy,
+    output wire [P-1:0] keep
+);
+    `CUBE4_VIEW_FIELDS(cfg);
+    `CUBE4_LANE_FUNCTIONS
+
+    localparam integer EW  = CUT_E_W;
+    localparam integer X_W = IW + WEIGHT_W + 1;     // i * 2^W + wx, signed (>= 0)
+
+    // ---- c1: window compares, beat products, lane products ----
+    wire [IW-1:0] pbp = IW'(in_pb) * IW'(P);
+    wire signed [X_W-1:0] xi = $signed({1'b0, pbp, in_wx});                         // pb*P*2^W + wx
+    wire signed [X_W-1:0] xj = $signed({1'b0, IW'(in_j), in_wy});                   // j*2^W + wy
+    wire signed [X_W-1:0] xm = $signed({1'b0, {(X_W - 1 - M_W){1'b0}}, in_m});      // m
+    reg signed [EW-1:0] c1_a, c1_b, c1_c;
+    reg                 c1_wjm;                       // j and m inside the window
+    reg [P-1:0]         c1_wi;                        // lane's i inside the window
+    reg signed [CUT_W+LANE_W+1:0] c1_at [0:P-1];      // CUT_A * t
+    always @(posedge clk) begin
+        c1_a   <= cfg_cut_a * xi;       // context width EW: both operands sign-extended
+        c1_b   <= cfg_cut_b * xj;
+        c1_c   <= cfg_cut_c * xm;
+        c1_wjm <= (in_j >= cfg_win_j0) && (in_j < cfg_win_j1) && (in_m >= cfg_win_m0) && (in_m < cfg_win_m1);
+    end
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_c1
+            wire [LANE_W-1:0] t = lane_pos(q, in_skew, cfg_flip_i, cfg_i_r1);
+            wire [IW-1:0]     i = pbp + IW'(t);
+            always @(posedge clk) begin
+                c1_wi[q] <= (i >= IW'(cfg_win_i0)) && (i < IW'(cfg_win_i1));
+                c1_at[q] <= cfg_cut_a * $signed({2'b00, t});
+            end
+        end
+    endgenerate
+
+    // ---- c2: the beat's sum ----
+    reg signed [EW-1:0] c2_base;
+    reg                 c2_wjm;
+    reg [P-1:0]         c2_wi;
+    reg signed [CUT_W+LANE_W+1:0] c2_at [0:P-1];
+    integer k;
+    always @(posedge clk) begin
+        c2_base <= c1_a + c1_b + c1_c + cfg_cut_d;
+        c2_wjm  <= c1_wjm;
+        c2_wi   <= c1_wi;
+        for (k = 0; k < P; k = k + 1) c2_at[k] <= c1_at[k];
+    end
+
+    // ---- c3: each lane's E, its sign, the window ----
+    reg [P-1:0] c3_keep;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_c3
+            wire signed [EW-1:0] e = c2_base + (EW'(c2_at[q]) <<< WEIGHT_W);
+            always @(posedge clk) c3_keep[q] <= c2_wjm && c2_wi[q] && !e[EW-1];
+        end
+    endgenerate
+    assign keep = c3_keep;
+
+endmodule
+`default_nettype wire
