@@ -367,9 +367,13 @@ module cube4_top #(
     cube4_stream_check #(.NAME ("top.samples"), .DATA_W (HDR_W + PV)) u_chk_smp (
         .clk (clk), .rst (rst), .valid (smp_valid), .ready (smp_ready),
         .data ({smp_hdr, smp_sample}));
-    cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_gra (
-        .clk (clk), .rst (rst), .valid (gra_valid), .ready (gra_ready),
-        .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
+    generate
+        if (SHADING != 0) begin : g_chk_gra   // (without GRA this is the held sample stream)
+            cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_gra (
+                .clk (clk), .rst (rst), .valid (gra_valid), .ready (gra_ready),
+                .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
+        end
+    endgenerate
     cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W) + PV)) u_chk_sha (
         .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
         .data ({sha_hdr, sha_rgba, sha_sample}));

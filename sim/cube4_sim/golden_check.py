@@ -13,10 +13,14 @@ from .rtl import baseplane_from_pixels
 
 
 def assert_frame_matches_golden(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut: np.ndarray,
-                                rmap: np.ndarray, res: dict, label: str) -> Frame:
+                                rmap: np.ndarray | None, res: dict, label: str, mode: str = "composite",
+                                clip=None) -> Frame:
     """The finished rays (m, by, bx, R, G, B, A) as a set and the assembled base plane
-    must equal the golden model's; returns the golden frame."""
-    gold = render_frame(vol, trav, cfg, lut, rmap)
+    must equal the golden model's (vol: the whole volume; trav may traverse a box in it;
+    rmap None: an unshaded frame); returns the golden frame."""
+    (x0, y0, z0), (nx, ny, nz) = trav.origin, trav.dims
+    box = vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
+    gold = render_frame(box, trav, cfg, lut, rmap, mode=mode, shading=rmap is not None, clip=clip)
     want = np.sort(gold.pixels, order=["m", "by", "bx"])
     got = np.sort(res["pixels"], order=["m", "by", "bx"])
     assert got.size == want.size, f"{label}: {got.size} finished rays, golden {want.size}"

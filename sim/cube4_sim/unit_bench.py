@@ -65,10 +65,11 @@ class UnitBench:
         self.dut.rst.value = 0
         await self.cycles(2)
 
-    def set_view(self, trav: Traversal, p: int) -> None:
+    def set_view(self, trav: Traversal, p: int, mode: str = "composite", clip=None, vol_dims=None) -> None:
         """Write the host's registers (cube4.memory.top_regs) to the harness's cfg_*
-        ports; a harness without the address unit has no ports for its registers."""
-        for key, val in top_regs(trav, p).items():
+        ports; a harness without the address unit has no ports for its registers.
+        vol_dims: the volume in memory when trav is a box inside it (a crop)."""
+        for key, val in top_regs(trav, p, vol_dims, mode=mode, clip=clip).items():
             name = "cfg_" + key.lower()
             if hasattr(self.dut, name):
                 self.sig(name).value = int(val)
@@ -138,3 +139,26 @@ def check_lanes(got: np.ndarray, want: np.ndarray, valid: np.ndarray, sched, log
         log.error("%s %s: RTL %d, golden %d", what, sched.describe(where[n], q), got[n, q], want[n, q])
     assert bad.size == 0, (f"{len(bad)} {what} lanes differ from the golden model, first at "
                            f"{sched.describe(where[bad[0][0]], bad[0][1])}")
+
+
+def random_clip(trav, kind: str | None, rng):
+    """A window and/or a cut plane for testbenches (``kind``: None, "window", "cut" or
+    "window+cut"): the window keeps a random sub-box of the samples, the plane passes
+    near the volume's centre in a random direction, so both sides hold samples."""
+    from cube4.clip import Clip, cut_coefficients
+
+    if kind is None:
+        return None
+    window = plane = None
+    if "window" in kind:
+        M = trav.num_sample_slices
+        i0, j0, m0 = (int(rng.integers(0, max(1, n // 3))) for n in (trav.ni, trav.nj, M))
+        i1, j1, m1 = (int(rng.integers(max(lo + 1, 2 * n // 3), n + 1)) for lo, n in
+                      ((i0, trav.ni), (j0, trav.nj), (m0, M)))
+        window = (i0, i1, j0, j1, m0, m1)
+    if "cut" in kind:
+        normal = rng.normal(size=3)
+        centre = np.asarray(trav.origin, dtype=np.float64) + (np.asarray(trav.dims) - 1) / 2.0
+        point = centre + rng.uniform(-0.2, 0.2, size=3) * np.asarray(trav.dims)
+        plane = cut_coefficients(trav, normal, point)
+    return Clip(window=window, plane=plane)

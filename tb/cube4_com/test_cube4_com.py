@@ -20,8 +20,12 @@ last one. So a COM bug shows as the beat, lane and (m, j, i) where it appears,
 not as "ray X differs" at the end of a frame.
 
 Views: z-major with j flipped, z-major with i and k flipped, x-major with k
-flipped, each with other stalls and tables, one simulation per build (no reset
-between views), at P = 1, 5 and 8 (ACC_W 16 and 24).
+flipped, y-major, z-major with every axis flipped, each with other stalls,
+tables, a mode (composite, X-ray, MIP, MinIP: those of the build) and a window
+and / or cut plane (the header's KEEP) and a starting phase, one simulation per
+build (no reset between views), at P = 1, 5 and 8 (ACC_W 16 and 24), and the
+builds with one datapath only (COMPOSITING or EXTREMUM 0; ACC_W 8 < ALPHA_W 16
+for MIP's A rounding).
 
 The test can fail (tried with a deliberately corrupted expectation, not kept):
 with the golden G of the first finished ray raised by one, P = 1 fails with
@@ -42,14 +46,19 @@ from cube4.model import render_frame
 from cube4.view import make_traversal
 from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources
+from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources, random_clip
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
 SOURCES = harness_sources(HERE / "cube4_com_harness.v")
 
-# (direction, input gap probability, output stall probability)
-VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]
+# (direction, input gap probability, output stall probability, mode, clip, phase)
+VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0, "composite", None, (0, 0)),
+         ((-0.6, 0.25, -1.0), 0.3, 0.4, "mip", "cut", (0, 0)),
+         ((1.0, 0.4, -0.7), 0.6, 0.2, "xray", "window", (77, 200)),
+         ((0.5, 1.0, 0.5), 0.2, 0.3, "minip", "window+cut", (255, 3)),
+         ((-0.2, -1.0, -0.9), 0.1, 0.1, "composite", "window+cut", (128, 128))]
+BLEND = ("composite", "xray")
 OUTPUTS = ["out_mask", "out_m", "out_by", "out_bx", "out_rgba", "out_eop"]
 CHANNELS = ("R", "G", "B", "A")
 
@@ -127,34 +136,47 @@ async def test_pixel_stream(dut):
     p, aw, acc_w = int(dut.P.value), int(dut.ALPHA_W.value), int(dut.ACC_W.value)
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
     cfg = Cube4Config(pipelines=p, weight_bits=int(dut.WEIGHT_W.value), alpha_bits=aw, acc_bits=acc_w)
+    vw = int(dut.VOXEL_W.value)
+    modes = [m for m in ("composite", "xray") if int(dut.COMPOSITING.value)]
+    modes += [m for m in ("mip", "minip") if int(dut.EXTREMUM.value)]
     bench = UnitBench(dut)
     await bench.reset({"in_valid": 0, "out_ready": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << cfg.voxel_bits, size=dims[::-1], dtype=np.int64)
-    for direction, gap, stall in VIEWS:
-        trav = make_traversal(dims, direction, cfg.weight_bits, 1)
+    for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS):
+        if mode not in modes:   # the build's other datapath: the same view in one of its modes
+            mode = modes[n % len(modes)]
+        trav = make_traversal(dims, direction, cfg.weight_bits, 1, phase=phase)
         lut, rmap = random_tables(bench.rng, cfg)
-        frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True)
-        sched = BeatSchedule(trav, p, frame.streams["inside"])
+        if mode == "xray":   # opaque, bright samples: the sums saturate at 1 on many rays
+            lut[:, :3] = bench.rng.integers(128, 256, size=(lut.shape[0], 3))
+            lut[:, 3] = bench.rng.integers(0, 1 << aw, size=lut.shape[0])
+        clip = random_clip(trav, clip_kind, bench.rng)
+        frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True, mode=mode, clip=clip)
+        sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"])
         hdrs = sched.headers(geo)
         shaded = sched.lanes(frame.streams["shaded"])  # [m, c, j, i] -> (beats, 4, P)
         words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
-        inputs = [{"in_hdr": hdrs[n], "in_rgba": pack_lanes(words[n], 24 + aw)} for n in range(len(sched))]
+        smp = sched.lanes(frame.streams["samples"])
+        inputs = [{"in_hdr": hdrs[n], "in_rgba": pack_lanes(words[n], 24 + aw), "in_sample": pack_lanes(smp[n], vw)}
+                  for n in range(len(sched))]
         exp = expected_pixel_beats(frame, sched)
-        bench.set_view(trav, p)
+        bench.set_view(trav, p, mode, clip)
         await bench.cycles(2)
         got = await bench.run_stream(inputs, len(exp["beat"]), OUTPUTS, gap, stall)
         check_pixel_beats(got, exp, sched, p, geo.dim_w + 1, acc_w, bench.log)
-        bench.log.info("dims %s view %s gap %.1f stall %.1f: %d pixel beats, %d finished rays bit-exact",
-                       dims, direction, gap, stall, len(got), len(frame.pixels))
+        bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f: %d pixel beats, %d finished rays "
+                       "bit-exact", dims, direction, mode, clip_kind, gap, stall, len(got), len(frame.pixels))
 
 
-BUILDS = [(1, 12, 16), (5, 12, 16), (8, 16, 24)]   # (P, ALPHA_W, ACC_W)
+# (P, ALPHA_W, ACC_W, COMPOSITING, EXTREMUM)
+BUILDS = [(1, 12, 16, 1, 1), (5, 12, 16, 1, 1), (8, 16, 24, 1, 1), (5, 12, 16, 1, 0), (3, 16, 8, 0, 1)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}" for b in BUILDS])
 def test_cube4_com(build):
-    p, aw, acc_w = build
+    p, aw, acc_w, comp, ext = build
     run_test(top="cube4_com_harness", sources=SOURCES,
-             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": 0},
+             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": 0,
+                     "COMPOSITING": comp, "EXTREMUM": ext},
              test_module=__file__, testcase="test_pixel_stream", timing=True)

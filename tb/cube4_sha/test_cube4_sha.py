@@ -48,7 +48,7 @@ SOURCES = harness_sources(HERE / "cube4_sha_harness.v")
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]
-OUTPUTS = ["out_hdr", "out_rgba", "out_idx"]
+OUTPUTS = ["out_hdr", "out_rgba", "out_idx", "out_sample"]
 CHANNELS = ("R", "G", "B", "A")
 
 
@@ -99,6 +99,7 @@ async def test_shaded_stream(dut):
     aw, rb = int(dut.ALPHA_W.value), int(dut.RMAP_BITS.value)
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
     gw, ri_w = vw + 5, 2 * rb + 3
+    shading = bool(int(dut.SHADING.value))   # 0: classification only, C' = C
     bench = UnitBench(dut)
     await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rmap_we": 0})
     dims = volume_dims(p)
@@ -109,7 +110,9 @@ async def test_shaded_stream(dut):
         await load_tables(dut, lut, rmap, aw)
         samples, inside = sample_stream(vol, trav)
         grads = gradient_stream(samples, trav)  # (M, 3, nj, ni)
-        rgba, idx = shade(samples, np.moveaxis(grads, 1, 0), lut, rmap, rb)  # (4, M, nj, ni), (M, nj, ni)
+        rgba, idx = shade(samples, np.moveaxis(grads, 1, 0) if shading else None, lut, rmap, rb)
+        if idx is None:
+            idx = np.zeros_like(samples)     # (M, nj, ni); out_idx is 0 without shading
         sched = BeatSchedule(trav, p, inside)
         hdrs = sched.headers(geo)
         smp, g = sched.lanes(samples), sched.lanes(grads)
@@ -123,16 +126,20 @@ async def test_shaded_stream(dut):
             check_lanes(rtl[:, c], want[:, c], sched.lval, sched, bench.log, name)
         rtl_idx = np.stack([unpack_lanes(b["out_idx"], p, ri_w) for b in got])
         check_lanes(rtl_idx, sched.lanes(idx), sched.lval, sched, bench.log, "reflectance-map index")
+        rtl_smp = np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got])
+        check_lanes(rtl_smp, smp, sched.lval, sched, bench.log, "sample (passed through)")
         bench.log.info("dims %s view %s gap %.1f stall %.1f: %d shaded beats bit-exact",
                        dims, direction, gap, stall, len(got))
 
 
-BUILDS = [(1, 8, 12, 5), (5, 8, 12, 3), (8, 12, 16, 4)]   # (P, VOXEL_W, ALPHA_W, RMAP_BITS)
+# (P, VOXEL_W, ALPHA_W, RMAP_BITS, SHADING)
+BUILDS = [(1, 8, 12, 5, 1), (5, 8, 12, 3, 1), (8, 12, 16, 4, 1), (1, 8, 12, 5, 0), (5, 12, 16, 5, 0)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_a{b[2]}_r{b[3]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_a{b[2]}_r{b[3]}_s{b[4]}" for b in BUILDS])
 def test_cube4_sha(build):
-    p, vw, aw, rb = build
+    p, vw, aw, rb, sh = build
     run_test(top="cube4_sha_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "ALPHA_W": aw, "RMAP_BITS": rb, "MAX_DIM": 32, "MAX_SS_LOG2": 0},
+             params={"P": p, "VOXEL_W": vw, "ALPHA_W": aw, "RMAP_BITS": rb, "MAX_DIM": 32, "MAX_SS_LOG2": 0,
+                     "SHADING": sh},
              test_module=__file__, testcase="test_shaded_stream", timing=True)

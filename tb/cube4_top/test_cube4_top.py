@@ -182,3 +182,59 @@ def test_synthesis_ram_form_p1():
     results = render_frames(vol, jobs, cfg, rtl_form="ecp5")
     for n, (job, res) in enumerate(zip(jobs, results)):
         check(vol, job.trav, cfg, job.lut, job.rmap, res, f"SYNTHESIS RAMs, frame {n}")
+
+
+# ---------------------------------------------------------------- modes, builds, crop, cut
+# (SHADING, COMPOSITING, EXTREMUM, CLIP): the full build and two a scene would choose
+MODE_BUILDS = {"full": (1, 1, 1, 1), "unshaded": (0, 1, 0, 0), "mip": (0, 0, 1, 0)}
+
+
+def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
+    """Frames for a build: every mode it has, shaded and unshaded compositing, a crop box,
+    a cut plane and a window (where the build has CLIP), starting phases, stalls, and
+    one frame reset in mid-frame; the last frame unstalled (its cycles are checked)."""
+    from cube4_sim.unit_bench import random_clip
+
+    nx, ny, nz = dims
+    modes = [m for m in ("composite", "xray") if build["COMPOSITING"]]
+    modes += [m for m in ("mip", "minip") if build["EXTREMUM"]]
+    jobs = []
+    for n, d in enumerate(VIEWS[:7]):
+        mode = modes[n % len(modes)]
+        shaded = bool(build["SHADING"]) and mode == "composite" and n % 2 == 0
+        crop = n in (2, 5)
+        origin = (2, 1, 1) if crop else (0, 0, 0)
+        box = (nx - 4, ny - 3, nz - 2) if crop else dims
+        phase = ((37 * n) % 256, (101 * n) % 256)
+        trav = make_traversal(box, d, cfg.weight_bits, 1, phase=phase, origin=origin)
+        lut, rmap = random_tables(rng, cfg)
+        if mode in ("mip", "minip"):
+            lut[:, 3] = rng.integers(0, 1 << cfg.alpha_bits, size=lut.shape[0])
+        clip = random_clip(trav, ("cut", "window", "window+cut")[n % 3], rng) if build["CLIP"] else None
+        jobs.append(FrameJob(trav, lut, rmap if shaded else None, mode=mode, clip=clip,
+                             stall=(0, 60, 0, 120, 30, 0, 0)[n], stall_out=(0, 0, 90, 60, 0, 40, 0)[n],
+                             reset_after_cycles=150 if n == 3 else 0))
+    return jobs
+
+
+@pytest.mark.parametrize("p", [1, 5])
+@pytest.mark.parametrize("name", list(MODE_BUILDS))
+def test_modes_builds_crop_cut(name, p):
+    """Every mode of a build, crop boxes, cut planes and windows, bit-exact, with random
+    stalls and a reset in mid-frame; the cycles of unstalled frames against the formula
+    (a crop box: the box's dims)."""
+    rng = np.random.default_rng(100 + p)
+    cfg = Cube4Config(pipelines=p)
+    build = dict(zip(("SHADING", "COMPOSITING", "EXTREMUM", "CLIP"), MODE_BUILDS[name]))
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(1, 256, size=(nz, ny, nx))    # no zero: MinIP sees the volume, not the air
+    jobs = mode_frames(rng, cfg, dims, build)
+    results = render_frames(vol, jobs, cfg, max_dim=64, build=build)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"{name} P={p} view {n} {job.mode} box {job.trav.origin}+{job.trav.dims}"
+        check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip)
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, bool(build["SHADING"]))
+            assert res["cycles"] == want, (label, res["cycles"], want)

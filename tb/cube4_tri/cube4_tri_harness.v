@@ -40,6 +40,7 @@ module cube4_tri_harness #(
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer DEPTH       = 4096,
     parameter integer ADDR_W      = 12,
+    parameter integer CLIP        = 1,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
@@ -195,7 +196,8 @@ module cube4_tri_harness #(
         .VOXEL_W     (VOXEL_W),
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .CLIP        (CLIP)
     ) u_tri (
         .clk        (clk),
         .rst        (rst),

@@ -45,14 +45,20 @@ from cube4.model import sample_stream
 from cube4.view import make_traversal
 from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, random_clip
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
 SOURCES = harness_sources("cube4_sim_stall.v", HERE / "cube4_tri_harness.v")
 
 # (direction, memory-request stall /256, TRI-input stall /256, output stall probability)
-VIEWS = [((0.3, -0.45, 1.0), 0, 0, 0.0), ((-0.6, 0.25, -1.0), 60, 120, 0.4), ((1.0, 0.4, -0.7), 0, 200, 0.2)]
+# (direction, memory-request stall, memory-response stall, output stall probability,
+#  window / cut plane (the header's KEEP), starting phase, crop box (origin, dims) or None)
+VIEWS = [((0.3, -0.45, 1.0), 0, 0, 0.0, None, (0, 0), None),
+         ((-0.6, 0.25, -1.0), 60, 120, 0.4, "window+cut", (0, 0), None),
+         ((1.0, 0.4, -0.7), 0, 200, 0.2, "cut", (101, 250), None),
+         ((0.5, 1.0, 0.5), 30, 30, 0.3, "window", (5, 77), ((3, 2, 1), (7, 6, 6))),
+         ((-0.2, -1.0, -0.9), 0, 60, 0.1, None, (200, 9), ((1, 3, 2), (9, 5, 5)))]
 OUTPUTS = ["out_hdr", "out_sample"]
 DEPTH, ADDR_W = 4096, 12
 
@@ -89,12 +95,18 @@ async def test_sample_stream(dut):
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     await load_volume(dut, vol, p, vw)
-    for direction, stall_req, stall_in, stall in VIEWS:
-        trav = make_traversal(dims, direction, w, ss)
-        samples, inside = sample_stream(vol, trav)
-        sched = BeatSchedule(trav, p, inside)
+    clip_on = bool(int(dut.CLIP.value))
+    for direction, stall_req, stall_in, stall, clip_kind, phase, crop in VIEWS:
+        origin, box = crop if crop else ((0, 0, 0), dims)
+        phase = tuple(ph % (1 << (w + geo.max_ss_log2)) for ph in phase)
+        trav = make_traversal(box, direction, w, ss, phase=phase, origin=origin)
+        x0, y0, z0 = origin
+        samples, inside = sample_stream(vol[z0:z0 + box[2], y0:y0 + box[1], x0:x0 + box[0]], trav)
+        clip = random_clip(trav, clip_kind, bench.rng) if clip_on else None
+        keep = None if clip is None else np.stack([clip.keep(trav, m) for m in range(trav.num_sample_slices)])
+        sched = BeatSchedule(trav, p, inside, keep)
         hdrs = sched.headers(geo)
-        bench.set_view(trav, p)
+        bench.set_view(trav, p, clip=clip, vol_dims=dims)
         dut.stall_req.value, dut.stall_in.value = stall_req, stall_in
         await FallingEdge(dut.clk)
         dut.start.value = 1
@@ -104,16 +116,18 @@ async def test_sample_stream(dut):
         check_headers([b["out_hdr"] for b in got], hdrs, geo, sched, bench.log, "sample stream")
         check_lanes(np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got]), sched.lanes(samples),
                     sched.lval, sched, bench.log, "sample")
-        bench.log.info("dims %s view %s S=%d stalls req %d in %d out %.1f: %d sample beats bit-exact",
-                       dims, direction, ss, stall_req, stall_in, stall, len(got))
+        bench.log.info("dims %s box %s view %s S=%d phase %s clip %s stalls req %d in %d out %.1f: "
+                       "%d sample beats bit-exact", dims, crop, direction, ss, phase, clip_kind if clip_on else None,
+                       stall_req, stall_in, stall, len(got))
 
 
-BUILDS = [(1, 8, 0), (5, 8, 0), (8, 12, 1)]   # (P, VOXEL_W, MAX_SS_LOG2)
+BUILDS = [(1, 8, 0, 1), (5, 8, 0, 1), (8, 12, 1, 1), (5, 8, 0, 0)]   # (P, VOXEL_W, MAX_SS_LOG2, CLIP)
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}_c{b[3]}" for b in BUILDS])
 def test_cube4_tri(build):
-    p, vw, ss = build
+    p, vw, ss, clip = build
     run_test(top="cube4_tri_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 32, "MAX_SS_LOG2": ss, "DEPTH": DEPTH, "ADDR_W": ADDR_W},
+             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 32, "MAX_SS_LOG2": ss, "DEPTH": DEPTH, "ADDR_W": ADDR_W,
+                     "CLIP": clip},
              test_module=__file__, testcase="test_sample_stream", timing=True)
