@@ -9,6 +9,7 @@
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16: LUTs, Fmax, frames/s (reports/fpga.md; ~30 min)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
+#   make scenes  every built-in scene on the smallest build it needs: gates, ECP5, cycles, error (reports/scenes.md; ~1 h)
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.
@@ -52,7 +53,8 @@ LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
 FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
 LINT_SETS_cube4_cfb         := $(FE_SETS)
-LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
+LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0
+LINT_SETS_cube4_clip        := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3
 LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4
 LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,VOXEL_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1
 LINT_SETS_cube4_ring_shift  := P=1 P=2,DATA_W=1 P=64,DATA_W=256
@@ -63,14 +65,18 @@ LINT_SETS_cube4_prim_copies := N=8 W=64,N=512 N=3,W=2,RESET=0
 LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
 LINT_SETS_cube4_delay_line  := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=300
 LINT_SETS_cube4_sdp_ram     := DEPTH=1 DEPTH=2,DATA_W=1 DEPTH=5000,DATA_W=544 DEPTH=5000,DATA_W=544,IN_REG=1 DEPTH=32,DATA_W=68,IN_REG=1
-LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8
-LINT_SETS_cube4_com         := P=1 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3 P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8
+LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8 \
+                               SHADING=0 P=1,SHADING=0,VOXEL_W=12
+LINT_SETS_cube4_com         := P=1 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3 P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8 \
+                               COMPOSITING=0 EXTREMUM=0 COMPOSITING=0,ACC_W=8,ALPHA_W=16,VOXEL_W=16 P=1,EXTREMUM=0,ACC_W=24
 LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
-LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1
+LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 \
+                               SHADING=0,EXTREMUM=0,CLIP=0 SHADING=0,COMPOSITING=0,CLIP=0 P=1,SHADING=0,COMPOSITING=0 \
+                               P=5,SHADING=1,EXTREMUM=0,CLIP=1
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test demo report gates fpga clean
+.PHONY: help setup lint sim bench test demo report gates fpga scenes clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -120,6 +126,10 @@ gates: setup
 
 fpga: setup
 	$(PY) -m cube4_reports.fpga $(FPGA_ARGS)
+
+# Per-scene builds (SCENES_ARGS, e.g. --no-fpga for gates, cycles and error only).
+scenes: setup
+	$(PY) -m cube4_reports.scenes $(SCENES_ARGS)
 
 clean:
 	rm -rf build out .pytest_cache

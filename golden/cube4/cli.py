@@ -1,7 +1,7 @@
 """The ``cube4`` command line.
 
     cube4 render VOLUME --scene S.toml --engine ENGINE --out IMG.png
-                 [--baseplane BP.npy] [--stats STATS.json] [--pipelines P]
+                 [--baseplane BP.npy] [--stats STATS.json] [--pipelines P] [--build B]
                  [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
     cube4 volumes | cube4 scenes      list the built-ins
@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import MAX_PIPELINES
+from .config import MAX_PIPELINES, parse_build, resolve_build
 from .errors import UserError
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import config_for, engine_names, image_metrics, render, render_views
@@ -64,6 +64,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--baseplane", help="write the exact integer base-plane RGBA (rows, cols, 4) as .npy")
     r.add_argument("--stats", help="write run statistics as JSON")
     r.add_argument("--pipelines", type=int, help=f"number of pipelines p (1..{MAX_PIPELINES})")
+    r.add_argument("--build", default="scene",
+                   help="the hardware build: scene (default: the smallest the scene needs), full, or "
+                        "NAME=0/1 pairs of SHADING, COMPOSITING, EXTREMUM, CLIP (others 1); --stats names it")
     r.add_argument("--compare-to", choices=["reference"], help="also render the reference and report the error")
     r.add_argument("--dims", help="raw volumes: NX,NY,NZ")
     r.add_argument("--dtype", help="raw volumes: uint8, uint16, int16, uint32, int32, float32, float64")
@@ -184,7 +187,10 @@ def cmd_render(args: argparse.Namespace) -> int:
     if st is not None:
         named.append((st, "--stats"))
     check_destinations(named)
-    cfg = config_for(scene, pipelines=args.pipelines, voxel_bits=args.voxel_bits)
+    build = parse_build(args.build)
+    cfg = config_for(scene, pipelines=args.pipelines, voxel_bits=args.voxel_bits,
+                     build=None if build is None else tuple(build.items()))
+    resolve_build(cfg, scenes)    # a scene that needs what the build leaves out: one line, before any work
     raw_dims = _dims(args.dims) if args.dims else None
     vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
     progress = not args.quiet and sys.stderr.isatty()

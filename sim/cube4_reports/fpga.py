@@ -83,13 +83,15 @@ class BuildConfig:
     freq: float
     seed: int
     router: str = DEFAULT_ROUTER
+    build: tuple[tuple[str, int], ...] = ()    # SHADING, COMPOSITING, ... (empty: the full build)
 
     def params(self) -> dict[str, int]:
         return {"P": self.p, **TOP_DEFAULTS, "MAX_DIM": self.max_dim, "DEPTH": self.depth,
-                "ADDR_W": addr_bits(self.depth)}
+                "ADDR_W": addr_bits(self.depth), **dict(self.build)}
 
     def workdir(self) -> Path:
-        return SYNTH_DIR / "fpga" / f"p{self.p}_d{self.max_dim}_w{self.depth}"
+        seed = f"_s{self.seed}" if self.seed != DEFAULT_SEED else ""
+        return SYNTH_DIR / "fpga" / f"p{self.p}_d{self.max_dim}_w{self.depth}{gates.build_tag(dict(self.build))}{seed}"
 
     def key(self, digest: str) -> str:
         """Identity of a result: RTL, parameters and flow options (for --reuse)."""

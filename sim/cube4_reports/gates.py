@@ -135,10 +135,19 @@ def base_name(module: str) -> str:
     return name
 
 
-def build_params(p: int, max_dim: int) -> dict[str, int]:
-    """cube4_top parameters of a gate count: a voxel memory that holds a whole MAX_DIM^3 volume."""
+def build_params(p: int, max_dim: int, build: dict | None = None) -> dict[str, int]:
+    """cube4_top parameters of a gate count: a voxel memory that holds a whole MAX_DIM^3 volume;
+    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP (default: cube4_top's, the full build)."""
     depth = words_per_bank(max_dim, p)
-    return {"P": p, **TOP_DEFAULTS, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth)}
+    return {"P": p, **TOP_DEFAULTS, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth),
+            **(build or {})}
+
+
+def build_tag(build: dict | None) -> str:
+    """A build's folder suffix: '' for the full build, else e.g. '_s0c1e0k0'."""
+    if not build or all(build.values()):
+        return ""
+    return "_" + "".join(f"{k[0].lower()}{v}" for k, v in sorted(build.items()))
 
 
 def yosys_script(params: dict[str, int], workdir: Path) -> str:
@@ -238,10 +247,10 @@ def attribute(stat: dict[str, Counter], mems: dict[str, list[Memory]]) -> dict[s
     return totals
 
 
-def gates_for_p(p: int, max_dim: int) -> dict:
+def gates_for_p(p: int, max_dim: int, build: dict | None = None) -> dict:
     """Synthesize one parameter set and return its result record (the gates.json entry)."""
-    params = build_params(p, max_dim)
-    workdir = SYNTH_DIR / "gates" / f"p{p}_d{max_dim}"
+    params = build_params(p, max_dim, build)
+    workdir = SYNTH_DIR / "gates" / f"p{p}_d{max_dim}{build_tag(build)}"
     progress(TAG, f"P={p} MAX_DIM={max_dim}: yosys generic-gate synthesis in {rel(workdir)} ...")
     wall = run_yosys(params, workdir)
     stat = load_stat(workdir / "stat.json")

@@ -1,0 +1,228 @@
+"""`make scenes`: every built-in scene on the smallest build it needs, beside the full build.
+
+For each built-in scene (its mode, shading, crop box and cut plane) the build that
+``cube4 render --engine rtl`` chooses by default (``cube4.config.scene_build``): which of
+SHADING (GRA, reflectance map, shading multipliers), COMPOSITING (COM's multipliers),
+EXTREMUM (COM's comparators) and CLIP (window and cut plane) it keeps. For every distinct
+build and the full one:
+
+* NAND2 equivalents per unit, flip-flops and memory bits (the generic-gate synthesis of
+  ``make gates``, cube4_top at P = 4, MAX_DIM = 128);
+* on the ECP5-85F (the flow of ``make fpga``, P = 4, MAX_DIM = 128, DEPTH = 1024, one
+  nextpnr seed): LUTs, FFs, DSPs, EBRs and Fmax;
+
+and for every scene: cycles per frame on its build and on the full build (the cycle
+formula of ``cube4_sim.cycles``, which tb/cube4_top holds every build to), the frame
+time at the build's Fmax, and the golden engine's image error against the float64
+reference (PSNR over premultiplied RGBA), with what the smaller build saves in percent.
+
+    python -m cube4_reports.scenes               # everything (about an hour: 5 place-and-routes)
+    python -m cube4_reports.scenes --no-fpga     # gates, cycles and error only (minutes)
+
+Results: build/reports/scenes.json and reports/scenes.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from cube4.config import BUILD_PARAMS, FULL_BUILD, scene_build
+from cube4.render import config_for, image_metrics, render, setup_view
+from cube4.scene import builtin_scene_names, load_scene
+from cube4.volumes import load_volume
+from cube4_sim.cycles import frame_cycles
+
+from . import fpga, gates
+from .markdown import fmt_int, git_describe, md_table
+from .synth import BUILD_REPORTS, DOC_REPORTS, cli_main, design_digest, progress, write_report
+
+TAG = "scenes"
+P = 4
+MAX_DIM = 128
+DEPTH = 1024
+# the volume each built-in scene is made for
+SCENE_VOLUME = {"default": "sphere:64", "ml": "ml:41", "mri_mip": "mri"}
+UNIT_COLS = ["CFB", "TRI", "GRA", "SHA", "COM", "RING"]
+
+
+def volume_of(scene: str) -> str:
+    return SCENE_VOLUME.get(scene, "head:64")
+
+
+def build_key(build: dict) -> tuple:
+    return tuple(build[k] for k in BUILD_PARAMS)
+
+
+def build_name(build: dict) -> str:
+    if build == FULL_BUILD:
+        return "full"
+    return ", ".join(f"{k}={v}" for k, v in build.items())
+
+
+def scene_rows(names: list[str]) -> list[dict]:
+    """Per scene: its build, cycles on it and on the full build, and the image error."""
+    rows = []
+    for name in names:
+        scene = load_scene(name)
+        spec = volume_of(name)
+        vol = load_volume(spec)
+        cfg = config_for(scene, pipelines=P)
+        build = scene_build([scene])
+        nz, ny, nx = vol.shape
+        trav, _ = setup_view((nx, ny, nz), scene, cfg)
+        progress(TAG, f"{name} on {spec}: golden and reference renders ...")
+        gold = render(vol, scene, cfg, "golden")
+        ref = render(vol, scene, cfg, "reference")
+        m = image_metrics(gold.image, ref.image)
+        args = (trav.num_sample_slices, trav.nj, trav.ni, P)
+        rows.append({"scene": name, "volume": spec, "mode": scene.mode, "shaded": scene.shaded,
+                     "crop": None if scene.crop is None else [list(c) for c in scene.crop],
+                     "cut": scene.cut is not None, "build": build,
+                     "cycles": frame_cycles(*args, shading=bool(build["SHADING"])),
+                     "cycles_full": frame_cycles(*args, shading=True),
+                     "psnr_db": m["psnr"], "rmse": m["rmse"]})
+    return rows
+
+
+def logic_nand2(g: dict) -> float:
+    """NAND2 equivalents of the logic (memories are counted in bits, not here)."""
+    return g["total"]["nand2_total"]
+
+
+def run_builds(builds: list[dict], with_fpga: bool, seed: int, reuse: bool) -> list[dict]:
+    digest = design_digest()
+    out = []
+    for b in builds:
+        progress(TAG, f"build {build_name(b)}: generic gates at P = {P} ...")
+        g = gates.gates_for_p(P, MAX_DIM, b)
+        rec = {"build": b, "name": build_name(b), "gates": g, "fpga": None}
+        if with_fpga:
+            cfg = fpga.BuildConfig(p=P, max_dim=MAX_DIM, depth=DEPTH, freq=fpga.DEFAULT_FREQ, seed=seed,
+                                   build=tuple(b.items()))
+            rec["fpga"] = fpga.build_one(cfg, fpga.DEFAULT_TIMEOUT, digest, reuse)
+        out.append(rec)
+    return out
+
+
+def pct_saved(small: float, full: float) -> str:
+    return f"{100.0 * (1.0 - small / full):.0f} %" if full else "—"
+
+
+def builds_table(recs: list[dict]) -> str:
+    full = next(r for r in recs if r["build"] == FULL_BUILD)
+    fg = full["gates"]
+    rows = []
+    for r in recs:
+        g = r["gates"]
+        units = [fmt_int(g["units"][u]["nand2_total"]) for u in UNIT_COLS]
+        f = r["fpga"] or {}
+        fmax = f.get("fmax_mhz")
+        rows.append([r["name"], *units, fmt_int(logic_nand2(g)), pct_saved(logic_nand2(g), logic_nand2(fg)),
+                     fmt_int(g["total"]["ffs"]), fmt_int(g["total"]["memory_bits"]),
+                     pct_saved(g["total"]["memory_bits"], fg["total"]["memory_bits"]),
+                     fmt_int(f["luts"]) if f else "—", str(f["dsps"]) if f else "—", str(f["ebrs"]) if f else "—",
+                     f"{fmax:.1f}" if fmax else "—"])
+    head = ["build", *[gates.UNIT_LABEL[u] for u in UNIT_COLS], "NAND2 eq. (logic)", "saved",
+            "FFs", "memory bits", "saved", "LUTs", "DSPs", "EBRs", "Fmax MHz"]
+    return md_table(head, rows)
+
+
+def scenes_table(rows: list[dict], recs: list[dict]) -> str:
+    by_key = {build_key(r["build"]): r for r in recs}
+    full = by_key[build_key(FULL_BUILD)]
+    out = []
+    for s in rows:
+        rec = by_key[build_key(s["build"])]
+        fm = (rec["fpga"] or {}).get("fmax_mhz")
+        fm_full = (full["fpga"] or {}).get("fmax_mhz")
+        t = f"{s['cycles'] / (fm * 1e3):.3f}" if fm else "—"
+        t_full = f"{s['cycles_full'] / (fm_full * 1e3):.3f}" if fm_full else "—"
+        what = s["mode"] + ("" if s["shaded"] or s["mode"] != "composite" else ", unshaded")
+        what += ", crop" if s["crop"] else ""
+        what += ", cut plane" if s["cut"] else ""
+        out.append([s["scene"], s["volume"], what, rec["name"], fmt_int(s["cycles"]), fmt_int(s["cycles_full"]),
+                    t, t_full, pct_saved(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
+                    f"{s['psnr_db']:.2f}"])
+    head = ["scene", "volume", "mode", "smallest build", "cycles / frame", "on the full build",
+            "ms / frame at Fmax", "full build", "NAND2 saved", "PSNR dB vs reference"]
+    return md_table(head, out, "llll" + "r" * 6)
+
+
+def render_markdown(rows: list[dict], recs: list[dict], meta: dict) -> str:
+    mip = next((r for r in recs if r["build"] == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0}), None)
+    full = next(r for r in recs if r["build"] == FULL_BUILD)
+    lines = [
+        "# Per-scene builds: what a scene does not need, left out",
+        "",
+        f"Generated by `make scenes` (`python -m cube4_reports.scenes`) on RTL {meta['git']} "
+        f"(digest {meta['rtl_digest']}); do not edit. Builds: cube4_top at P = {P}, MAX_DIM = {MAX_DIM}. "
+        "Gates: the generic-gate synthesis of `make gates` (NAND2 equivalents of the logic; memories "
+        f"in bits). ECP5-85F: the flow of `make fpga` (DEPTH = {DEPTH}, `--freq {fpga.DEFAULT_FREQ:g}`, "
+        f"seed {meta['seed']}; one seed varies Fmax by about ±10 %). Cycles: the formula of "
+        "docs/architecture.md for the build (tb/cube4_top checks it for every build). Error: the golden "
+        "engine (bit-identical to the RTL) against the float64 reference, 256² image.",
+        "",
+        "## Builds",
+        "",
+        "Build parameters of cube4_top (docs/architecture.md, \"Builds\"): SHADING (GRA, the reflectance "
+        "map, the shading multipliers), COMPOSITING (COM's T·A and w·C' multipliers: composite, X-ray), "
+        "EXTREMUM (COM's comparators: MIP, MinIP), CLIP (cube4_clip: window and cut plane). "
+        "\"saved\" is against the full build.",
+        "",
+        builds_table(recs),
+        "",
+    ]
+    if mip is not None:
+        ratio = logic_nand2(mip["gates"]) / logic_nand2(full["gates"])
+        lines += [f"The MIP build (no GRA, no reflectance map, no multipliers in COM) has "
+                  f"**{fmt_int(logic_nand2(mip['gates']))}** NAND2 equivalents of logic, "
+                  f"**{ratio:.2f}×** the full build's {fmt_int(logic_nand2(full['gates']))} "
+                  f"(the goal: at most 0.5×), and {fmt_int(mip['gates']['total']['memory_bits'])} memory bits "
+                  f"against {fmt_int(full['gates']['total']['memory_bits'])}.", ""]
+    lines += ["## Scenes", "", scenes_table(rows, recs), "",
+              "A crop box traverses only the box: its cycles follow the box's dims. A build without GRA "
+              "has no slice of GRA delay at the end of a frame (NJ·NB + NB + 2 cycles fewer).", ""]
+    return "\n".join(lines)
+
+
+def parse_args(argv: list[str] | None) -> argparse.Namespace:
+    ap = argparse.ArgumentParser(prog="python -m cube4_reports.scenes", description=__doc__.splitlines()[0])
+    ap.add_argument("--no-fpga", action="store_true", help="skip the ECP5 place-and-route runs")
+    ap.add_argument("--seed", type=int, default=fpga.DEFAULT_SEED, help="nextpnr seed")
+    ap.add_argument("--reuse", action="store_true", help="reuse earlier place-and-route results of the same RTL")
+    return ap.parse_args(argv)
+
+
+def run(args: argparse.Namespace) -> None:
+    t0 = time.monotonic()
+    names = builtin_scene_names()
+    rows = scene_rows(names)
+    builds = [dict(FULL_BUILD)]
+    for r in rows:
+        if r["build"] not in builds:
+            builds.append(r["build"])
+    recs = run_builds(builds, not args.no_fpga, args.seed, args.reuse)
+    meta = {"git": git_describe(), "rtl_digest": design_digest(), "seed": args.seed}
+    report = {"p": P, "max_dim": MAX_DIM, "scenes": rows,
+              "builds": [{"build": r["build"], "nand2": logic_nand2(r["gates"]),
+                          "ffs": r["gates"]["total"]["ffs"], "memory_bits": r["gates"]["total"]["memory_bits"],
+                          "units": {u: r["gates"]["units"][u]["nand2_total"] for u in gates.UNITS},
+                          "fpga": None if r["fpga"] is None else
+                          {k: r["fpga"][k] for k in ("fmax_mhz", "luts", "ffs", "dsps", "ebrs", "fits")}}
+                         for r in recs], **meta}
+    for r in rows:
+        if not np.isfinite(r["psnr_db"]):
+            r["psnr_db"] = None
+    write_report(TAG, report, BUILD_REPORTS / "scenes.json", render_markdown(rows, recs, meta),
+                 DOC_REPORTS / "scenes.md", t0)
+
+
+def main(argv: list[str] | None = None) -> int:
+    return cli_main(TAG, lambda: run(parse_args(argv)))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
