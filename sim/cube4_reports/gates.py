@@ -143,11 +143,14 @@ def build_params(p: int, max_dim: int, build: dict | None = None) -> dict[str, i
             **(build or {})}
 
 
+BUILD_LETTERS = {"SHADING": "s", "COMPOSITING": "c", "EXTREMUM": "e", "CLIP": "k"}
+
+
 def build_tag(build: dict | None) -> str:
     """A build's folder suffix: '' for the full build, else e.g. '_s0c1e0k0'."""
     if not build or all(build.values()):
         return ""
-    return "_" + "".join(f"{k[0].lower()}{v}" for k, v in sorted(build.items()))
+    return "_" + "".join(f"{BUILD_LETTERS[k]}{build[k]}" for k in BUILD_LETTERS if k in build)
 
 
 def yosys_script(params: dict[str, int], workdir: Path) -> str:
