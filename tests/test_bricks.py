@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from cube4_testutil import make_scene, sphere_volume
+from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
 from cube4.brick_rays import brick_partials, composite_bound, composite_framebuffers, seed004_correction
 from cube4.bricks import (OVERLAP_HIGH, OVERLAP_LOW, Tile, composite_tiles, counts_for_board, make_grid, over_planes,
@@ -22,17 +22,7 @@ from cube4.view import make_traversal
 
 VIEWS = [(0.3, -0.5, 1.0), (-1.0, 0.2, -0.7), (0.6, 1.0, -0.45), (1.0, 1.0, 1.0), (-0.2, -0.1, -1.0), (0.0, 0.0, 1.0)]
 GRIDS = [(2, 2, 2), (3, 1, 2), (1, 3, 3)]
-TF = {"points": [[0, 0, 0, 0, 0], [0.3, 0.9, 0.4, 0.3, 0.05], [1, 1, 1, 1, 0.4]]}
-
-
-def test_volume() -> np.ndarray:
-    """A non-cubic volume (18 x 21 x 24) with structure everywhere: a sphere plus noise."""
-    rng = np.random.default_rng(0)
-    vol = sphere_volume(24).astype(np.int64) // 2 + rng.integers(0, 100, (24, 24, 24))
-    return vol[:, :21, :18].astype(np.uint16).copy()
-
-
-test_volume.__test__ = False  # a helper, not a test
+TF = BRICK_TF
 
 
 def _setup(vol, direction, supersample=1, scene=None):
@@ -110,7 +100,7 @@ def test_brick_samples_are_the_monolithic_samples(supersample):
     """Every sample a brick counts has the monolithic sample's value, gradient and shaded
     RGBA, bit for bit (the template's phase per brick), and the bricks count exactly
     the samples the whole render counts."""
-    vol = test_volume()
+    vol = brick_volume()
     for direction, counts in ((VIEWS[1], (2, 2, 2)), (VIEWS[2], (3, 1, 2)), (VIEWS[4], (1, 3, 3))):
         cfg, trav, lut, rmap = _setup(vol, direction, supersample)
         mono = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True)
@@ -154,7 +144,7 @@ def _check_within_bound(vol, direction, counts, supersample=1, scene=None, clip=
 @pytest.mark.parametrize("supersample", [1, 2])
 @pytest.mark.parametrize("direction", VIEWS)
 def test_bricked_composite_within_bound(direction, supersample):
-    vol = test_volume()
+    vol = brick_volume()
     worst = 0.0
     for counts in GRIDS:
         diff, bound = _check_within_bound(vol, direction, counts, supersample)
@@ -165,7 +155,7 @@ def test_bricked_composite_within_bound(direction, supersample):
 
 
 def test_one_brick_is_the_monolithic_render():
-    vol = test_volume()
+    vol = brick_volume()
     cfg, trav, lut, rmap = _setup(vol, VIEWS[2], 2)
     mono = render_frame(vol, trav, cfg, lut, rmap)
     bf = render_bricked(vol, trav, cfg, lut, rmap, make_grid(trav.dims, (1, 1, 1)))
@@ -174,7 +164,7 @@ def test_one_brick_is_the_monolithic_render():
 
 def test_xray_bricks_are_exact():
     """X-ray's saturating sum composes exactly: bricked == monolithic, bit for bit."""
-    vol = test_volume()
+    vol = brick_volume()
     sc = make_scene(transfer=TF, render={"mode": "xray"})
     cfg, trav, lut, rmap = _setup(vol, VIEWS[0], 1, sc)
     mono = render_frame(vol, trav, cfg, lut, None, mode="xray", shading=False)
@@ -185,7 +175,7 @@ def test_xray_bricks_are_exact():
 
 def test_cut_plane_moves_into_the_bricks():
     """A cut plane (evaluated in each brick's frame) keeps the same samples as in the whole."""
-    vol = test_volume()
+    vol = brick_volume()
     cfg, trav, lut, rmap = _setup(vol, VIEWS[1])
     clip = Clip(plane=cut_coefficients(trav, (1.0, 0.4, -0.3), (9.0, 10.0, 12.0)))
     for counts in ((2, 2, 2), (1, 3, 3)):
