@@ -23,8 +23,6 @@ from cube4.render import host_tables
 from cube4.view import make_traversal
 from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
-pytest.importorskip("distributed")
-
 WAIT_S = 90.0   # every wait below ends by itself: a broken cluster fails the test, it does not hang it
 
 
