@@ -1,43 +1,25 @@
-"""Bricks through the simulated RTL: every brick's base plane from cube4_top equals the
-golden model's brick, bit for bit, so the RTL composite is the golden composite, within
-the §14 bound of the monolithic render.
-
-Needs the RTL's template starting phase (PH0_X, PH0_Y) and window registers; until the
-RTL host side programs them (``cube4_sim.bricks.rtl_supports_bricks``) this test is
-skipped with that reason, and the ``rtl`` engine refuses bricks with one clear line."""
+"""Bricks through the simulated RTL: every brick's base plane from cube4_top (its own
+voxels as a board's whole memory, the template's starting phase PH0_X/Y, the window
+registers) equals the golden model's brick, bit for bit, so the RTL composite is the
+golden composite, within the §14 bound of the monolithic render."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
-import pytest
 from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
 from cube4.brick_rays import composite_bound
-from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_bricked, run_task
+from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_bricked, render_brick_golden
 from cube4.config import Cube4Config
 from cube4.model import render_frame
 from cube4.render import host_tables
 from cube4.view import make_traversal
-from cube4_sim.bricks import render_brick_rtl, rtl_supports_bricks
+from cube4_sim.bricks import render_brick_rtl
 from cube4_sim.engine import register
 
-NOT_YET = ("the RTL has no template starting phase (PH0_X, PH0_Y) and window registers yet: "
-           "bricks through the RTL are not supported by this tree")
 
-
-def test_rtl_refuses_bricks_without_the_registers(tmp_path, capsys):
-    """Until the registers exist, bricks on the rtl engine are one line, not a wrong picture."""
-    if rtl_supports_bricks():
-        pytest.skip("the RTL has the brick registers")
-    from cube4_sim.cli import main
-
-    rc = main(["render", "sphere:16", "--engine", "rtl", "--bricks", "2,1,1", "--quiet",
-               "--out", str(tmp_path / "x.png")])
-    err = capsys.readouterr().err
-    assert rc == 2 and "PH0_X" in err and err.count("\n") == 1
-
-
-@pytest.mark.skipif(not rtl_supports_bricks(), reason=NOT_YET)
 def test_rtl_bricks_equal_golden_bricks():
     register()
     vol = brick_volume()
@@ -47,10 +29,11 @@ def test_rtl_bricks_equal_golden_bricks():
     lut, rmap = host_tables(make_scene(transfer=BRICK_TF), cfg, trav)
     grid = make_grid(trav.dims, (2, 1, 2))
     bricks, tasks = brick_tasks(vol, trav, cfg, lut, rmap, grid, engine="rtl")
+    assert any(br.trav.phase_x or br.trav.phase_y for br in bricks)    # the starting phase is exercised
     tiles = []
     for br, task in zip(bricks, tasks):
         rtl = render_brick_rtl(task)
-        golden = run_task(task.__class__(**{**task.__dict__, "target": "cube4.bricks:render_brick_golden"}))
+        golden = render_brick_golden(dataclasses.replace(task, target="cube4.bricks:render_brick_golden"))
         assert np.array_equal(rtl.baseplane, golden.baseplane), br.index
         assert rtl.cycles and rtl.cycles > 0
         tiles.append(Tile(br.offset[0], br.offset[1], rtl.baseplane))
@@ -59,4 +42,31 @@ def test_rtl_bricks_equal_golden_bricks():
     mono = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True)
     bound = composite_bound(mono, grid, bricks)
     diff = np.abs(composite - mono.baseplane)
+    assert diff.max() > 0
     assert np.all(diff[..., 3] <= bound["a"] + 1e-6) and np.all(diff[..., :3] <= bound["rgb"] + 1e-6)
+
+
+def test_rtl_bricks_on_two_workers_share_one_build():
+    """Two worker processes simulate the same cached build at once: each reads its own
+    results file (with one shared file about every other frame lost a brick's results,
+    which then ran again), and the composite is the golden one."""
+    from cube4.bricks import assemble
+    from cube4.cluster import DaskExecutor
+    from cube4.scene import load_scene
+    from cube4.volumes import load_volume
+
+    register()
+    vol = load_volume("head:32")
+    scene = load_scene("head")
+    cfg = Cube4Config(pipelines=4)
+    trav = make_traversal((32, 32, 32), scene.direction, cfg.weight_bits, 1)
+    lut, rmap = host_tables(scene, cfg, trav)
+    grid = make_grid(trav.dims, (2, 2, 3))
+    bricks, tasks = brick_tasks(vol, trav, cfg, lut, rmap, grid, engine="rtl")
+    with DaskExecutor(workers=2, timeout=240) as ex:
+        results = ex.run(tasks)
+        stats = ex.stats()
+    assert stats["retries"] == 0
+    assert len({r.worker for r in results}) == 2          # both workers simulated
+    frame, _ = assemble(trav, cfg, bricks, results)
+    assert np.array_equal(frame.baseplane, render_bricked(vol, trav, cfg, lut, rmap, grid).frame.baseplane)

@@ -93,7 +93,8 @@ class DaskExecutor:
             from distributed import Client, LocalCluster
         except ImportError:
             raise UserError("--workers and --scheduler need dask.distributed (pip install distributed)") from None
-        level = logging.ERROR if self.quiet else logging.WARNING
+        # a brick that fails and is run again is no news; a frame that fails is one line from run()
+        level = logging.CRITICAL if self.quiet else logging.WARNING
         for name in ("distributed", "tornado"):
             logging.getLogger(name).setLevel(level)
         # Dask's nannies start workers with MALLOC_TRIM_THRESHOLD_=65536, which fixes glibc's mmap
