@@ -182,6 +182,32 @@ def test_cut_plane_moves_into_the_bricks():
         _check_within_bound(vol, VIEWS[1], counts, clip=clip)
 
 
+def test_views_with_a_crop_box_and_a_cut_plane():
+    """render_bricked_views: the scene's crop box is split into bricks (their origins in
+    the whole volume), its cut plane moves into them; the composite is within the bound
+    of the monolithic render of the same box, and the picture is warped like it."""
+    from cube4.render import frame_clip, render_golden_view, setup_view
+    from cube4.bricks import render_bricked_views
+    vol = brick_volume()
+    sc = make_scene(transfer=TF, crop={"box": [[2, 3, 1], [16, 19, 22]]},
+                    cut={"normal": [1.0, 0.2, 0.5], "point": [9.0, 11.0, 12.0]}, view={"direction": [0.4, -1, 0.3]})
+    cfg = Cube4Config()
+    (res,) = render_bricked_views(vol, [sc], cfg, "golden", (2, 2, 2))
+    whole = render_golden_view(vol, sc, cfg, keep_streams=True)
+    nz, ny, nx = vol.shape
+    trav, _ = setup_view((nx, ny, nz), sc, cfg)
+    assert trav.origin == (2, 3, 1) and trav.dims == (15, 17, 22)
+    grid = make_grid(trav.dims, (2, 2, 2))
+    bricks = plan_bricks(trav, grid, frame_clip(sc, trav))
+    assert min(br.trav.origin for br in bricks) == (2, 3, 1)
+    bound = composite_bound(whole.frame, grid, bricks)
+    diff = np.abs(res.frame.baseplane - whole.frame.baseplane)
+    assert (bound["segments"] >= 2).any() and whole.frame.streams["keep"].sum() < whole.frame.streams["inside"].sum()
+    assert np.all(diff[..., 3] <= bound["a"] + 1e-6) and np.all(diff[..., :3] <= bound["rgb"] + 1e-6)
+    assert np.abs(res.image - whole.image).max() < 1e-3
+    assert res.stats["bricks"]["grid"] == [2, 2, 2] and res.stats["traversed_box"]["origin"] == [2, 3, 1]
+
+
 def test_no_constant_bound_per_boundary():
     """Why §14.3's bound grows with the samples after a boundary: one opaque-ish sample
     (T = 6144/65536 after it), then 550 samples of opacity 1/4096, split into two bricks

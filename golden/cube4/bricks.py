@@ -34,7 +34,7 @@ from .clip import Clip
 from .config import Cube4Config
 from .errors import UserError
 from .fixed import round_shift
-from .model import Frame, render_frame
+from .model import PIXEL_DTYPE, Frame, render_frame
 from .view import Traversal
 
 #: voxels a brick stores beyond its own range on the low and the high side of every axis
@@ -440,7 +440,7 @@ def assemble(trav: Traversal, cfg: Cube4Config, bricks: Sequence[Brick], results
     t0 = time.perf_counter()
     tiles = [Tile(br.offset[0], br.offset[1], res.baseplane) for br, res in zip(bricks, results)]
     base = composite_tiles(tiles, trav.baseplane_shape, cfg.acc_bits, mode)
-    pixels = np.empty(0, dtype=np.dtype([("m", np.int32)]))  # a bricked render has no pixel stream
+    pixels = np.empty(0, dtype=PIXEL_DTYPE)  # a bricked render has no pixel stream of its own
     return Frame(trav=trav, cfg=cfg, baseplane=base, pixels=pixels), time.perf_counter() - t0
 
 
