@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
-from cube4.brick_rays import brick_partials, composite_bound, composite_framebuffers, seed004_correction
+from cube4.brick_rays import (brick_partials, composite_bound, composite_framebuffers, seam_lines,
+                              seed004_correction)
 from cube4.bricks import (OVERLAP_HIGH, OVERLAP_LOW, Tile, composite_tiles, counts_for_board, make_grid, over_planes,
                           owner_maps, parse_bricks, plan_bricks, render_bricked)
 from cube4.clip import Clip, cut_coefficients
@@ -279,9 +280,13 @@ def _faint_setup(supersample):
 def test_seed004_seams_in_an_8bit_framebuffer():
     vol, cfg, trav, lut, mono, grid = _faint_setup(4)
     bricks = plan_bricks(trav, grid)
-    crossed = composite_bound(mono, grid, bricks)["segments"] >= 2
+    segments = composite_bound(mono, grid, bricks)["segments"]
+    crossed = segments >= 2
     hit = mono.baseplane[..., 3] > 0
     assert crossed.any() and (hit & ~crossed).any()
+    lines = seam_lines(mono, grid, bricks)          # where rays in one brick meet rays in two
+    assert lines.any() and not (lines & (segments == 0)).any()
+    assert (lines & crossed).any() and (lines & (segments == 1)).any()
     # their per-sample premultiplied colour is below 1/255: an 8-bit framebuffer draws none of it
     a = mono.streams["shaded"][:, 3][mono.streams["inside"]] / 4096.0
     assert (a * 0.4 * 255).max() < 1

@@ -129,6 +129,31 @@ def composite_bound(frame: Frame, grid: BrickGrid, bricks: Sequence[Brick]) -> d
             "segments": r.reshape(rows, cols)}
 
 
+def seam_lines(frame: Frame, grid: BrickGrid, bricks: Sequence[Brick]) -> np.ndarray:
+    """(rows, cols) bool: the base-plane pixels whose ray meets a different set of bricks
+    (with counted samples) than one of its four neighbours' rays: where one brick's
+    partial image ends and another's begins, the lines along which seams show."""
+    _need_streams(frame)
+    trav = frame.trav
+    rows, cols = trav.baseplane_shape
+    owner = owner_maps(trav, grid, bricks)
+    keys = np.random.default_rng(0).integers(1, 1 << 62, len(bricks), dtype=np.int64)
+    cur = np.full(rows * cols, -1, dtype=np.int64)
+    sig = np.zeros(rows * cols, dtype=np.int64)
+    for m in range(trav.num_sample_slices):
+        pix, own, _, _ = _slice_samples(frame, owner, m)
+        new = cur[pix] != own
+        sig[pix[new]] ^= keys[own[new]]     # a ray meets each brick in one run of samples
+        cur[pix] = own
+    sig = sig.reshape(rows, cols)
+    out = np.zeros((rows, cols), dtype=bool)
+    out[:, 1:] |= sig[:, 1:] != sig[:, :-1]
+    out[:, :-1] |= sig[:, 1:] != sig[:, :-1]
+    out[1:] |= sig[1:] != sig[:-1]
+    out[:-1] |= sig[1:] != sig[:-1]
+    return out & (sig != 0)
+
+
 def brick_partials(frame: Frame, grid: BrickGrid, bricks: Sequence[Brick], rule: str = "design",
                    acc_bits: int | None = None) -> np.ndarray:
     """Every brick's partial base plane, in the whole base plane's coordinates,
