@@ -84,22 +84,30 @@ def test_worker_killed_in_mid_frame_costs_a_retry_not_the_frame(tmp_path):
     assert stats["retries"] >= 1 and stats["executor"] == "dask"
 
 
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")   # a socket distributed leaves open
 def test_cli_bricks_on_a_local_cluster(tmp_path, capsys):
-    """`cube4 render ... --bricks 2,2,2 --workers 2`: the same base plane as the bricks
-    rendered in this process, the brick statistics, one summary line."""
+    """`cube4 render ... --bricks 2,2,2 --workers 2`, and `--scheduler` to a cluster
+    started apart: the same base plane as the bricks rendered in this process, the brick
+    statistics, one summary line each."""
+    from distributed import LocalCluster
+
     base = {}
-    for name, extra in (("local", []), ("cluster", ["--workers", "2"])):
-        rc = main(["render", "sphere:20", "--bricks", "2,2,2", *extra, "--out", str(tmp_path / f"{name}.png"),
-                   "--baseplane", str(tmp_path / f"{name}.npy"), "--stats", str(tmp_path / f"{name}.json")])
-        assert rc == 0
-        base[name] = np.load(tmp_path / f"{name}.npy")
-    assert np.array_equal(base["local"], base["cluster"])
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        runs = (("local", []), ("cluster", ["--workers", "2"]), ("remote", ["--scheduler", cluster.scheduler_address]))
+        for name, extra in runs:
+            rc = main(["render", "sphere:20", "--bricks", "2,2,2", *extra, "--out", str(tmp_path / f"{name}.png"),
+                       "--baseplane", str(tmp_path / f"{name}.npy"), "--stats", str(tmp_path / f"{name}.json")])
+            assert rc == 0
+            base[name] = np.load(tmp_path / f"{name}.npy")
+    assert np.array_equal(base["local"], base["cluster"]) and np.array_equal(base["local"], base["remote"])
     st = json.loads((tmp_path / "cluster.json").read_text())
     b = st["bricks"]
     assert b["grid"] == [2, 2, 2] and b["count"] == 8 and b["workers"] == 2 and b["executor"] == "dask"
     assert b["memory_overhead"] > 0 and b["largest"] == [12, 12, 12]
+    remote = json.loads((tmp_path / "remote.json").read_text())["bricks"]
+    assert remote["scheduler"].startswith("tcp://") and remote["workers"] == 1
     lines = capsys.readouterr().out.splitlines()
-    assert len(lines) == 2 and "8 bricks 2x2x2" in lines[1] and "on 2 workers" in lines[1]
+    assert len(lines) == 3 and "8 bricks 2x2x2" in lines[1] and "on 2 workers" in lines[1] and "on 1 worker)" in lines[2]
     # a monolithic render of the same volume is within a few LSBs (the §14 bound is tested in test_bricks)
     assert main(["render", "sphere:20", "--quiet", "--out", str(tmp_path / "m.png"),
                  "--baseplane", str(tmp_path / "m.npy")]) == 0

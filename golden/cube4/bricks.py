@@ -464,6 +464,8 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
     from .render import (RenderResult, crop_volume, frame_clip, host_tables, setup_view, trav_stats, view_stats,
                          warp_to_image)
 
+    if grid_counts is None and board_dim is None:
+        raise ValueError("give the bricks per axis or the board's largest brick")
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     executor = executor or LocalExecutor()

@@ -35,7 +35,7 @@ RETRIES = 2              # more runs of a task that raised (a worker's death is 
 CONNECT_TIMEOUT_S = 20   # reaching the scheduler
 MAX_WORKERS = 256
 NO_TRIM = "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"
-_SCHEDULER = re.compile(r"^(tcp|tls|ws|wss|inproc)://[^\s/:]+(:\d{1,5})?$")
+_SCHEDULER = re.compile(r"^(tcp|tls|ws|wss|inproc)://(\[[0-9A-Fa-f:.]+\]|[^\s/:\[\]]+)(:\d{1,5})?$")
 
 
 def check_scheduler(address: str) -> str:
