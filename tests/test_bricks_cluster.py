@@ -92,7 +92,7 @@ def test_cli_bricks_on_a_local_cluster(tmp_path, capsys):
     from distributed import LocalCluster
 
     base = {}
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
         runs = (("local", []), ("cluster", ["--workers", "2"]), ("remote", ["--scheduler", cluster.scheduler_address]))
         for name, extra in runs:
             rc = main(["render", "sphere:20", "--bricks", "2,2,2", *extra, "--out", str(tmp_path / f"{name}.png"),

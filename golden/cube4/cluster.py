@@ -104,7 +104,7 @@ class DaskExecutor:
         try:
             if self.scheduler is None:
                 self.cluster = self._stack.enter_context(LocalCluster(
-                    n_workers=self.n_workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                    n_workers=self.n_workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                     silence_logs=level))
                 self.client = self._stack.enter_context(Client(self.cluster, timeout=CONNECT_TIMEOUT_S))
             else:
