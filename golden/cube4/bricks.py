@@ -341,6 +341,7 @@ class BrickTask:
     mode: str = "composite"
     shading: bool = True
     label: str = ""
+    board_dim: int | None = None  # the board's MAX_DIM (None: the engine's choice)
 
 
 @dataclass
@@ -416,9 +417,9 @@ class BrickedFrame:
 
 def brick_tasks(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut, rmap, grid: BrickGrid, *,
                 engine: str = "golden", mode: str = "composite", shading: bool = True,
-                clip: Clip | None = None) -> tuple[list[Brick], list[BrickTask]]:
+                clip: Clip | None = None, board_dim: int | None = None) -> tuple[list[Brick], list[BrickTask]]:
     """The plan of one view and one task per brick. ``vol`` is the traversed box's
-    voxels (vol[z, y, x] of trav.dims)."""
+    voxels (vol[z, y, x] of trav.dims); ``board_dim`` the boards' MAX_DIM, if given."""
     if mode not in BRICK_MODES:
         raise UserError(f"--bricks composes the modes {', '.join(BRICK_MODES)}, not {mode!r} (a ray's extremum "
                         f"cannot be told from the partial pixels)")
@@ -430,7 +431,7 @@ def brick_tasks(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut, rmap, g
         nx, ny, nz = br.trav.dims
         sub = np.ascontiguousarray(vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx])
         tasks.append(BrickTask(target=target, vol=sub, trav=br.trav, cfg=cfg, lut=lut, rmap=rmap, clip=br.clip,
-                               mode=mode, shading=shading, label="brick %d,%d,%d" % br.index))
+                               mode=mode, shading=shading, label="brick %d,%d,%d" % br.index, board_dim=board_dim))
     return bricks, tasks
 
 
@@ -478,7 +479,7 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
         check_board(grid, board_dim)
         lut, rmap = host_tables(sc, cfg, trav)
         bricks, tasks = brick_tasks(crop_volume(vol, trav), trav, cfg, lut, rmap, grid, engine=engine,
-                                    mode=sc.mode, shading=sc.shaded, clip=frame_clip(sc, trav))
+                                    mode=sc.mode, shading=sc.shaded, clip=frame_clip(sc, trav), board_dim=board_dim)
         if len(scenes) > 1:
             for t in tasks:
                 t.label = f"view {nv} {t.label}"

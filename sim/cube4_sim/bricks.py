@@ -5,8 +5,9 @@ by name).
 Each brick is one board: its stored voxels are the whole of that board's voxel memory
 (the brick's traversal is moved to origin (0, 0, 0)), its view registers are the whole
 render's with the template's starting phase of its first slice, and its window registers
-say which samples it counts. The Verilator build is cached under build/sim per parameter
-set and size class, so a worker builds once and reuses the build for every later brick.
+say which samples it counts. The board is a build for MAX_DIM = the task's ``board_dim``
+(``--board-dim``), else for the brick's size class; the Verilator build is cached under
+build/sim per parameter set, so a worker builds once and reuses it for every later brick.
 
 The build has the window (CLIP = 1) and the datapath the brick's mode needs; a build
 given in the configuration (``Cube4Config.build``) must have them, else one line.
@@ -43,7 +44,7 @@ def render_brick_rtl(task: BrickTask) -> BrickResult:
     trav = dataclasses.replace(task.trav, origin=(0, 0, 0))   # the board holds the brick alone
     job = FrameJob(trav, task.lut, task.rmap if build["SHADING"] else None, mode=task.mode, clip=task.clip)
     try:
-        (out,) = render_frames(task.vol, [job], task.cfg, quiet=True, build=build)
+        (out,) = render_frames(task.vol, [job], task.cfg, quiet=True, build=build, max_dim=task.board_dim)
     except SimulationError as exc:
         raise UserError(f"RTL engine: {exc}") from None
     base = baseplane_from_pixels(out["pixels"], trav.baseplane_shape)
