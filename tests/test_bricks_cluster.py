@@ -126,6 +126,7 @@ def test_cli_bricks_on_a_local_cluster(tmp_path, capsys):
     (["--board-dim", "3"], "--board-dim must be in 4..2048"),
     (["--bricks", "2,2,2", "--board-dim", "8"], "more than --board-dim 8"),
     (["--bricks", "2,2,2", "--engine", "reference"], "needs an engine that renders bricks"),
+    (["--bricks", "2,2,2", "--build", "CLIP=0"], "the build needs CLIP = 1"),
 ])
 def test_bad_brick_options_are_one_line(tmp_path, capsys, args, message):
     out = tmp_path / "out.png"

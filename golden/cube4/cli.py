@@ -276,6 +276,9 @@ def _brick_options(args: argparse.Namespace, scene: Scene):
     if scene.mode not in BRICK_MODES:
         raise UserError(f"--bricks composes the modes {', '.join(BRICK_MODES)}, not the scene's {scene.mode!r} "
                         f"(a ray's extremum cannot be told from the partial pixels)")
+    build = parse_build(args.build)
+    if build is not None and not build["CLIP"]:
+        raise UserError("--bricks count each brick's own samples with the window: the build needs CLIP = 1")
     if args.workers is not None and not 1 <= args.workers <= 256:
         raise UserError(f"--workers must be in 1..256, got {args.workers}")
     if args.scheduler is not None:
