@@ -10,6 +10,7 @@
 #   make fpga    ECP5-85F synth + place & route, P = 1..16: LUTs, Fmax, frames/s (reports/fpga.md; ~30 min)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, ECP5, cycles, error (reports/scenes.md; ~1 h)
+#   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.
@@ -76,7 +77,7 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test demo report gates fpga scenes clean
+.PHONY: help setup lint sim bench test demo report bricks gates fpga scenes clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -118,6 +119,10 @@ demo: setup
 
 report: setup
 	$(PY) -m cube4_reports.report
+
+# Sub-volume bricks (docs/numerics.md section 14, docs/reports.md); BRICKS_ARGS="--quick" for a small run.
+bricks: setup
+	$(PY) -m cube4_reports.bricks $(BRICKS_ARGS)
 
 # Synthesis reports (not part of `make test`; docs/reports.md). Arguments: GATES_ARGS / FPGA_ARGS,
 # e.g. make fpga FPGA_ARGS="--p 1,8".

@@ -16,6 +16,18 @@ def sphere_volume(n: int, bits: int = 8) -> np.ndarray:
     return np.floor(f * ((1 << bits) - 1) + 0.5).astype(np.uint16)
 
 
+def brick_volume() -> np.ndarray:
+    """A non-cubic volume (18 x 21 x 24) with structure everywhere, for the brick tests:
+    a sphere plus noise."""
+    rng = np.random.default_rng(0)
+    vol = sphere_volume(24).astype(np.int64) // 2 + rng.integers(0, 100, (24, 24, 24))
+    return vol[:, :21, :18].astype(np.uint16).copy()
+
+
+#: a transfer function with faint and dense parts, for the brick tests
+BRICK_TF = {"points": [[0, 0, 0, 0, 0], [0.3, 0.9, 0.4, 0.3, 0.05], [1, 1, 1, 1, 0.4]]}
+
+
 def random_volume(shape, bits: int = 8, seed: int = 1) -> np.ndarray:
     rng = np.random.default_rng(seed)
     return rng.integers(0, 1 << bits, size=shape).astype(np.uint16)

@@ -4,6 +4,7 @@
                  [--baseplane BP.npy] [--stats STATS.json] [--pipelines P] [--build B]
                  [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
+                 [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
     cube4 volumes | cube4 scenes      list the built-ins
 
 Engines: those registered with ``cube4.render.register_engine`` when ``main`` runs:
@@ -24,7 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import MAX_PIPELINES, parse_build, resolve_build
+from .bricks import (BRICK_MODES, MIN_BOARD_DIM, LocalExecutor, brick_renderer, parse_bricks,
+                     render_bricked_views)
+from .config import MAX_DIM, MAX_PIPELINES, parse_build, resolve_build
 from .errors import UserError
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import config_for, engine_names, image_metrics, render, render_views
@@ -77,6 +80,15 @@ def _parser() -> argparse.ArgumentParser:
                         "several views (outputs get _000, _001, ... before the suffix, or put {n} in the name)")
     r.add_argument("--orbit", type=int, metavar="N",
                    help="render N views evenly spaced in azimuth around the scene's view (elevation kept)")
+    r.add_argument("--bricks", metavar="BX,BY,BZ",
+                   help="render in BX*BY*BZ bricks (sub-volumes with overlap) and composite them in order")
+    r.add_argument("--board-dim", type=int, metavar="N",
+                   help="largest brick (with its overlap) one board takes, voxels per axis; without --bricks "
+                        "the fewest bricks that fit are used")
+    r.add_argument("--workers", type=int, metavar="N",
+                   help="render the bricks on a local Dask cluster of N worker processes")
+    r.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                   help="render the bricks on the Dask cluster of this scheduler")
     r.add_argument("--quiet", action="store_true", help="no progress bars or summary")
     sub.add_parser("volumes", help="list the built-in volumes")
     sub.add_parser("scenes", help="list the built-in scenes")
@@ -179,6 +191,7 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
     scene = load_scene(args.scene)
     scenes = _views(args, scene)
+    bricks = _brick_options(args, scene)
     count = len(scenes)
     # every destination, numbered per view, checked before any work
     named = [(_numbered(out, n, count), "--out") for n in range(count)]
@@ -194,7 +207,10 @@ def cmd_render(args: argparse.Namespace) -> int:
     raw_dims = _dims(args.dims) if args.dims else None
     vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
     progress = not args.quiet and sys.stderr.isatty()
-    results = render_views(vol, scenes, cfg, args.engine, progress=progress)
+    if bricks is None:
+        results = render_views(vol, scenes, cfg, args.engine, progress=progress)
+    else:
+        results = _render_bricked(args, vol, scenes, cfg, bricks, progress)
     frames = []
     for res, sc in zip(results, scenes):
         stats = dict(res.stats)
@@ -231,11 +247,63 @@ def cmd_render(args: argparse.Namespace) -> int:
                     f"in {res.wall_s:.2f} s -> {_numbered(out, n, count)}")
             if count > 1:
                 line += f" (azimuth {stats['azimuth']:.1f}, elevation {stats['elevation']:.1f})"
+            if "bricks" in stats:
+                b = stats["bricks"]
+                line += (f" ({b['count']} bricks {'x'.join(str(c) for c in b['grid'])}, memory "
+                         f"+{100 * b['memory_overhead']:.1f}%, on {b['workers']} worker"
+                         f"{'s' if b['workers'] != 1 else ''}{_retries_note(b)})")
             if args.compare_to:
                 line += (f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
                          f"max {stats['max_abs']:.3f}")
             print(line)
     return 0
+
+
+def _brick_options(args: argparse.Namespace, scene: Scene):
+    """(grid counts or None, board dim or None) when the render goes in bricks, else None;
+    every option checked before any work."""
+    if args.workers is not None and args.scheduler is not None:
+        raise UserError("--workers and --scheduler exclude each other")
+    if args.bricks is None and args.board_dim is None:
+        if args.workers is not None or args.scheduler is not None:
+            raise UserError("--workers and --scheduler render bricks: give --bricks BX,BY,BZ or --board-dim N")
+        return None
+    counts = parse_bricks(args.bricks) if args.bricks is not None else None
+    if args.board_dim is not None and not MIN_BOARD_DIM <= args.board_dim <= MAX_DIM:
+        raise UserError(f"--board-dim must be in {MIN_BOARD_DIM}..{MAX_DIM} (a brick's own voxel and its "
+                        f"overlap), got {args.board_dim}")
+    brick_renderer(args.engine)
+    if scene.mode not in BRICK_MODES:
+        raise UserError(f"--bricks composes the modes {', '.join(BRICK_MODES)}, not the scene's {scene.mode!r} "
+                        f"(a ray's extremum cannot be told from the partial pixels)")
+    build = parse_build(args.build)
+    if build is not None and not build["CLIP"]:
+        raise UserError("--bricks count each brick's own samples with the window: the build needs CLIP = 1")
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        raise UserError(f"--workers must be in 1..256, got {args.workers}")
+    if args.scheduler is not None:
+        from .cluster import check_scheduler
+
+        check_scheduler(args.scheduler)
+    return counts, args.board_dim
+
+
+def _render_bricked(args: argparse.Namespace, vol, scenes, cfg, bricks, progress: bool):
+    counts, board_dim = bricks
+    if args.workers is None and args.scheduler is None:
+        executor = LocalExecutor()
+    else:
+        from .cluster import DaskExecutor   # dask only when a cluster is asked for
+
+        executor = DaskExecutor(workers=args.workers, scheduler=args.scheduler, quiet=True)
+    with executor:
+        return render_bricked_views(vol, scenes, cfg, args.engine, counts, board_dim=board_dim,
+                                    executor=executor, progress=progress)
+
+
+def _retries_note(b: dict) -> str:
+    n = b.get("retries", 0)
+    return f", {n} brick{'s' if n != 1 else ''} sent again" if n else ""
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -13,6 +13,7 @@ import time
 
 import numpy as np
 
+from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
 from cube4.model import Frame
@@ -70,5 +71,7 @@ def _cycle_stats(out: dict, ideal: float) -> dict:
 
 
 def register() -> None:
-    """Add the ``rtl`` engine to ``cube4.render``."""
+    """Add the ``rtl`` engine to ``cube4.render``, and its brick renderer to
+    ``cube4.bricks`` (by import path: a Dask worker imports it there)."""
     register_engine(NAME, render_rtl)
+    register_brick_renderer(NAME, "cube4_sim.bricks:render_brick_rtl")

@@ -173,6 +173,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
                       f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_DUMP={job['dump']}"],
             quiet_logs=quiet,
+            private_results=True,   # bricks on several workers may run this build at once
         )
         results = json.loads(Path(job["result"]).read_text())
         # a frame reset in mid-frame leaves a start and no last beat before the frame run after it

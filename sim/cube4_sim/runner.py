@@ -256,6 +256,7 @@ def run_test(
     seed: int | None = None,
     plusargs: Sequence[str] = (),
     quiet_logs: bool = False,
+    private_results: bool = False,
 ) -> Path:
     """Build ``top`` from ``sources`` with ``params`` and run cocotb tests on it.
 
@@ -282,9 +283,12 @@ def run_test(
         quiet_logs: write the Verilator/C++ build output and the simulator's
             output to ``build.log`` and ``sim.log`` in the build directory
             instead of the terminal (errors name the file).
+        private_results: name the results file after this process too, and remove it once
+            read and passed: several processes may then simulate one build at once (the
+            RTL engine's bricks on the workers of a Dask cluster).
 
     Returns:
-        The cocotb results XML file.
+        The cocotb results XML file (with ``private_results``, removed once read).
 
     Raises:
         AssertionError: a cocotb test failed, no test ran, or the simulator crashed.
@@ -365,7 +369,10 @@ def run_test(
         wave_file = build_dir / f"{_current_test_name(module_name)}.fst"
         test_args += ["--trace-file", str(wave_file)]
 
-    results = build_dir / f"{_current_test_name(module_name)}.results.xml"
+    name = _current_test_name(module_name)
+    if private_results:
+        name += f".{os.getpid()}"
+    results = build_dir / f"{name}.results.xml"
     exit_status: object = 0
     try:
         runner.test(
@@ -404,6 +411,8 @@ def run_test(
         )
     if exit_status not in (0, None):
         raise SimulationError(f"{top}: all tests passed but the simulator exited with status {exit_status}")
+    if private_results:
+        results.unlink(missing_ok=True)     # read and passed: a file per process would only pile up
     return results
 
 
