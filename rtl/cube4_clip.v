@@ -7,14 +7,15 @@
 //   Which samples of a beat count (docs/numerics.md section 12): the window
 //     WIN_I0 <= i < WIN_I1,  WIN_J0 <= j < WIN_J1,  WIN_M0 <= m < WIN_M1
 //   and the kept side of the cut plane
-//     E = CUT_A * (i * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * m + CUT_D >= 0
+//     E = CUT_A * (i * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * (m * 2^(W - g)) + CUT_D >= 0
+//   (g = log2 S: every coordinate in units of 2^-W voxel)
 //   evaluated exactly at every sample (m, j, i) of the beat, lane q holding
 //   i = pb * P + t, t = lane_pos(q, skew). The result is the header's KEEP
 //   mask (cube4_tri writes it); a sample outside the box is dealt with by
 //   INSIDE, not here. Golden twin: golden/cube4/clip.py.
 //
 //   The plane's beat terms are three products shared by the lanes:
-//     E = CUT_A * (pb * P * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * m + CUT_D
+//     E = CUT_A * (pb * P * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * (m * 2^(W - g)) + CUT_D
 //         + (CUT_A * t) * 2^W
 //   and each lane adds its own CUT_A * t (a small product, t < P).
 //
@@ -30,13 +31,14 @@
 //     c3  each lane's E and its sign, with the window: keep
 //
 // Ports
-//   cfg            view registers (WIN_*, CUT_*, FLIP_I, I_R1)
+//   cfg            view registers (WIN_*, CUT_*, FLIP_I, I_R1, SS_LOG2)
 //   in_m, in_j, in_pb, in_skew   the beat (as the header's fields)
 //   in_wx, in_wy   the beat's resampling weights, Q0.W
 //   keep [P]       lane q's sample counts (3 cycles later)
 //
 // Bit growth and rounding
-//   None: exact integers. i * 2^W + wx < MAX_DIM * 2^W (IW + W bits), the
+//   None: exact integers. i * 2^W + wx and m * 2^(W - g) are below
+//   (MAX_DIM + 2P) * 2^W (IW + W bits), the
 //   coefficients are CUT_W = 18 bits signed, and the host chooses them so that
 //   |E| < 2^(CUT_E_W - 1) = 2^47 over the box (golden/cube4/clip.py
 //   cut_coefficients), so the CUT_E_W-bit sums never wrap.
@@ -63,7 +65,8 @@ module cube4_clip #(
     wire [IW-1:0] pbp = IW'(in_pb) * IW'(P);
     wire signed [X_W-1:0] xi = $signed({1'b0, pbp, in_wx});                         // pb*P*2^W + wx
     wire signed [X_W-1:0] xj = $signed({1'b0, IW'(in_j), in_wy});                   // j*2^W + wy
-    wire signed [X_W-1:0] xm = $signed({1'b0, {(X_W - 1 - M_W){1'b0}}, in_m});      // m
+    wire [X_W-2:0]        m_sh = (X_W - 1)'(in_m) << (WEIGHT_W[3:0] - {2'b00, cfg_ss_log2});
+    wire signed [X_W-1:0] xm = $signed({1'b0, m_sh});                              // m * 2^(W - g)
     reg signed [EW-1:0] c1_a, c1_b, c1_c;
     reg                 c1_wjm;                       // j and m inside the window
     reg [P-1:0]         c1_wi;                        // lane's i inside the window

@@ -46,8 +46,9 @@
 //   HDR_*    the stream header (LSB first):
 //              INSIDE [P]   the lane's sample is inside the volume box
 //              LVALID [P]   the lane holds a position i < NI
-//              KEEP   [P]   the lane's sample counts: inside the window and on
-//                           the kept side of the cut plane (cube4_clip)
+//              KEEP   [P]   lane valid, inside the window and on the kept side
+//                           of the cut plane (cube4_clip); a sample counts when
+//                           INSIDE and KEEP (numerics.md section 12)
 //              CTRL   [7]   bit 0 X-step, 1 Y-step of slice m; 2 old X-step,
 //                           3 old Y-step (slice m - 1); 4 sop; 5 eop;
 //                           6 the row is j = NJ - 1

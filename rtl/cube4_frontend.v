@@ -17,6 +17,7 @@
 //   MAX_DIM      largest volume dimension.           2..2048. Default 256.
 //   ADDR_W       memory address width.               1..30.   Default 16.
 //   MAX_SS_LOG2  log2 of the largest supersampling.  0..3.    Default 0.
+//   CLIP         1: TRI's cube4_clip (window, cut plane). 0..1. Default 1.
 //   Derived widths and the layouts of cfg, cfg_addr, the memory tag and the
 //   sample header: cube4_defs.vh.
 //

@@ -18,7 +18,8 @@
 //   A build with SHADING = 0 classifies only (C' = C): it has no reflectance
 //   map, no face select, no division and no shading multipliers, and its
 //   gradient inputs are not read (cube4_top then builds no GRA).
-//   The sample itself leaves with the beat (out_sample) for COM's MIP / MinIP.
+//   With CARRY_SAMPLE = 1 the sample itself leaves with the beat (out_sample)
+//   for COM's MIP / MinIP; with 0, out_sample is 0 and nothing carries it.
 //
 // Parameters
 //   P           pipelines.                          1..64.  Default 8.
@@ -26,6 +27,7 @@
 //   ALPHA_W     LUT opacity width AW.               8..16.  Default 12.
 //   RMAP_BITS   cube-map resolution R = 2^RMAP_BITS. 2..6.  Default 5.
 //   SHADING     1: shading by the reflectance map; 0: classification only. 0..1. Default 1.
+//   CARRY_SAMPLE 1: the sample rides along to out_sample; 0: out_sample = 0. 0..1. Default 1.
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
@@ -33,8 +35,8 @@
 //   comparisons; face; numerators; one stage per quotient bit of the
 //   division; reflectance-map read; its output register; C * D; shading),
 //   15 at RMAP_BITS = 5: a beat is on out_* 14 cycles after it entered the
-//   input register when the output FIFO was empty. SHADING = 0: 3 stages
-//   (input; LUT read; the output FIFO). The stages move on every
+//   input register when the output FIFO was empty. SHADING = 0: 4 stages
+//   (input; LUT read; its register; the output FIFO). The stages move on every
 //   cycle and carry a valid bit (no stall enable); the last one is the
 //   memory of the output FIFO (cube4_credit_fifo), and a beat
 //   enters the input register only when that FIFO has an entry reserved for
@@ -49,7 +51,7 @@
 //   out_rgba  [P*(24+ALPHA_W)]  per lane {R', G', B' (Q0.8), A (Q0.ALPHA_W)}
 //   out_idx   [P*RI_W]          reflectance-map entry used (for checking and waves;
 //                               0 when SHADING = 0)
-//   out_sample [P*VOXEL_W]      the beat's samples, unchanged
+//   out_sample [P*VOXEL_W]      the beat's samples, unchanged (CARRY_SAMPLE = 1; else 0)
 //   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
 //
 // Bit growth and rounding
@@ -62,7 +64,7 @@ module cube4_sha #(
     parameter integer P       = 8, parameter integer MAX_DIM     = 256,
     parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer ALPHA_W = 12, parameter integer RMAP_BITS  = 5,
-    parameter integer SHADING = 1,
+    parameter integer SHADING = 1, parameter integer CARRY_SAMPLE = 1,
     `CUBE4_GEOMETRY,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3
@@ -86,6 +88,7 @@ module cube4_sha #(
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_sha", "ALPHA_W", ALPHA_W, 8, 16)
         `CUBE4_RANGE(g_bad_rmap_bits, "cube4_sha", "RMAP_BITS", RMAP_BITS, 2, 6)
         `CUBE4_RANGE(g_bad_shading, "cube4_sha", "SHADING", SHADING, 0, 1)
+        `CUBE4_RANGE(g_bad_carry, "cube4_sha", "CARRY_SAMPLE", CARRY_SAMPLE, 0, 1)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -110,7 +113,7 @@ module cube4_sha #(
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2 (SHADING = 0: b1, then the FIFO)
+    // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2 (SHADING = 0: b1, e1, then the FIFO)
     localparam integer NST  = (SHADING != 0) ? 4 + NDIV + 4 : 3;
     // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
     // FIFO's read)
@@ -150,11 +153,18 @@ module cube4_sha #(
         st_meta_q <= {st_meta_q[(NST-2)*META_W-1:0], a_meta};
     end
     // the samples ride along with the fields (stage k in bits [(k-1)*P*VW +: P*VW])
-    reg [(NST-1)*P*VW-1:0] st_s_q;
-    always @(posedge clk) begin
-        st_s_q <= {st_s_q[(NST-2)*P*VW-1:0], a_s};
-    end
-    wire [P*VW-1:0]    e_s    = st_s_q[(NST-2)*P*VW +: P*VW];         // with e_meta
+    wire [P*VW-1:0]    e_s;                                              // with e_meta
+    generate
+        if (CARRY_SAMPLE != 0) begin : g_carry
+            reg [(NST-1)*P*VW-1:0] st_s_q;
+            always @(posedge clk) begin
+                st_s_q <= {st_s_q[(NST-2)*P*VW-1:0], a_s};
+            end
+            assign e_s = st_s_q[(NST-2)*P*VW +: P*VW];
+        end else begin : g_no_carry
+            assign e_s = '0;
+        end
+    endgenerate
     wire [META_W-1:0]  e_meta = st_meta_q[(NST-2)*META_W +: META_W];   // stage e1
     wire [P*LUT_W-1:0] e_rgba;          // e2's results, written into the FIFO
     wire [P*RI_W-1:0]  e_idx;

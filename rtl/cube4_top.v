@@ -295,6 +295,7 @@ module cube4_top #(
         .ALPHA_W     (ALPHA_W),
         .RMAP_BITS   (RMAP_BITS),
         .SHADING     (SHADING),
+        .CARRY_SAMPLE(EXTREMUM),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_sha (

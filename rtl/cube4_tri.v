@@ -47,7 +47,8 @@
 //   returns its entry.
 //
 // Ports
-//   cfg     view registers (cube4_defs.vh); TRI reads the three flips.
+//   cfg     view registers (cube4_defs.vh); TRI reads the three flips, and
+//           its cube4_clip WIN_*, CUT_*, SS_LOG2 and I_R1.
 //   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
 //           unsigned integer, 0 for lanes not read); in_tag = cube4_cfb's tag.
 //   out_*   sample beats: out_sample lane q (unsigned VOXEL_W, Q0.VOXEL_W);

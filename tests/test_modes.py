@@ -122,10 +122,12 @@ def test_crop_box_is_the_subvolume_at_its_place(d):
     assert image_metrics(res.image, ref.image)["psnr"] > 22.0
 
 
-def test_cut_plane_keeps_one_side():
+@pytest.mark.parametrize(("W", "S"), [(8, 2), (12, 1), (8, 8), (4, 1)])
+def test_cut_plane_keeps_one_side(W, S):
     """The cut plane's integer test agrees with the float plane at every sample farther
-    than the quantisation from it, and both sides hold samples."""
-    trav = make_traversal((20, 18, 16), (0.4, -0.7, 1.0), 8, 2)
+    than 1/1000 voxel from it (the quantisation tilts the plane by less than 2^-16 voxel
+    per voxel, 6e-4 voxel across this box), and both sides hold samples."""
+    trav = make_traversal((20, 18, 16), (0.4, -0.7, 1.0), W, S)
     normal = np.array([0.3, -0.5, 0.8])
     point = np.array([9.0, 8.5, 7.5])
     plane = cut_coefficients(trav, normal, point)
@@ -135,7 +137,7 @@ def test_cut_plane_keeps_one_side():
         jj, ii = np.mgrid[0:trav.nj, 0:trav.ni]
         wx, wy, _ = (int(w) for w in trav.weights(m))
         e = plane_value(plane, trav, m, jj, ii)
-        pts = trav.traversal_to_volume_points(ii + wx / 256.0, jj + wy / 256.0, np.full(ii.shape, m / 2.0))
+        pts = trav.traversal_to_volume_points(ii + wx / 2.0**W, jj + wy / 2.0**W, np.full(ii.shape, m / S))
         f = (pts - point) @ n
         sure = np.abs(f) > 1e-3
         assert np.array_equal((e >= 0)[sure], (f <= 0)[sure])

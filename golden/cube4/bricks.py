@@ -35,6 +35,7 @@ from .config import Cube4Config
 from .errors import UserError
 from .fixed import round_shift
 from .model import PIXEL_DTYPE, Frame, render_frame
+from .modes import MODES, is_blend
 from .view import Traversal
 
 #: voxels a brick stores beyond its own range on the low and the high side of every axis
@@ -42,7 +43,7 @@ OVERLAP_LOW = 1
 OVERLAP_HIGH = 2
 MIN_BOARD_DIM = 1 + OVERLAP_LOW + OVERLAP_HIGH  # a brick's own voxel and its overlap
 #: the modes whose partial base planes compose (composite: ``over``; xray: saturating sum)
-BRICK_MODES = ("composite", "xray")
+BRICK_MODES = tuple(m for m in MODES if is_blend(m))   # the modes whose partial results compose by `over`
 MAX_BRICKS = 4096
 
 

@@ -10,10 +10,11 @@ kept half-space are convex, so the samples of a ray that count are consecutive.
   brick counts only its own samples, not those of its overlap.
 * **Cut plane** ``(CA, CB, CC, CD)``, signed integers: a sample counts when
 
-      E = CA * (i * 2^W + wx(m)) + CB * (j * 2^W + wy(m)) + CC * m + CD  >=  0,
+      E = CA * (i * 2^W + wx(m)) + CB * (j * 2^W + wy(m)) + CC * (m * 2^(W - g)) + CD  >=  0,
 
   i.e. the plane is evaluated exactly, in integers, at the sample's quantised position
-  (i + wx / 2^W, j + wy / 2^W, m / S). ``cut_coefficients`` turns a plane given in volume
+  (i + wx / 2^W, j + wy / 2^W, m / S), all three coordinates in units of 2^-W voxel
+  (g = log2 S). ``cut_coefficients`` turns a plane given in volume
   coordinates into these coefficients: CA, CB, CC fit CUT_W = 18 signed bits, CD and E fit
   CUT_E_W = 48.
 
@@ -62,7 +63,7 @@ def plane_value(plane, trav: Traversal, m: int, jj, ii) -> np.ndarray:
     wx, wy, _ = (int(w) for w in trav.weights(m))
     W = trav.weight_bits
     return (ca * ((np.asarray(ii, dtype=np.int64) << W) + wx)
-            + cb * ((np.asarray(jj, dtype=np.int64) << W) + wy) + cc * m + cd)
+            + cb * ((np.asarray(jj, dtype=np.int64) << W) + wy) + cc * (m << (W - trav.guard_bits)) + cd)
 
 
 def cut_coefficients(trav: Traversal, normal, point) -> tuple[int, int, int, int]:
@@ -73,7 +74,7 @@ def cut_coefficients(trav: Traversal, normal, point) -> tuple[int, int, int, int
     n = np.asarray(normal, dtype=np.float64)
     n = n / np.linalg.norm(n)
     c = np.asarray(point, dtype=np.float64) - np.asarray(trav.origin, dtype=np.float64)
-    W, S = trav.weight_bits, trav.supersample
+    W = trav.weight_bits
     # volume coordinate p_ax = flip ? (n_ax - 1 - u) : u, u the traversal coordinate;
     # counts when f(u) = -normal . (p - point) >= 0, f = sum a_t u_t + e
     a = np.zeros(3)
@@ -85,16 +86,24 @@ def cut_coefficients(trav: Traversal, normal, point) -> tuple[int, int, int, int
         else:
             a[t] = -n[ax]
             e += n[ax] * c[ax]
-    # E = CA (i 2^W + wx) + CB (j 2^W + wy) + CC m + CD  =  K 2^W f(u) with u_k = m / S
-    per = np.array([a[0], a[1], a[2] * (1 << W) / S])
-    big = float(np.max(np.abs(per)))
+    # E = CA (i 2^W + wx) + CB (j 2^W + wy) + CC (m 2^(W-g)) + CD  =  K 2^W f(u), u_k = m / S:
+    # every coordinate in units of 2^-W voxel, so the three coefficients share one scale
+    big = float(np.max(np.abs(a)))
     k = CUT_MAX / big
-    ca, cb, cc = (int(np.floor(v * k + 0.5)) for v in per)
+    ca, cb, cc = (int(np.floor(v * k + 0.5)) for v in a)
     cd = int(np.floor(e * k * (1 << W) + 0.5))
     bound = 1 << (CUT_E_W - 1)
-    # the largest |E| over the box: every coordinate at most 2^W * MAX_DIM
-    reach = (abs(ca) + abs(cb)) * (max(trav.ni, trav.nj) << W) + abs(cc) * trav.num_sample_slices + abs(cd)
+    # the largest |E| over the box: every coordinate at most 2^W * (n + 1)
+    reach = (abs(ca) * (trav.ni + 1) + abs(cb) * (trav.nj + 1) + abs(cc) * (trav.nk + 1)) * (1 << W) + abs(cd)
     if reach >= bound:
         raise UserError("cut plane: the plane lies too far from the volume (its offset does not fit the register)")
     return ca, cb, cc, cd
 
+
+def check_window(window, trav: Traversal) -> None:
+    """A window's bounds are sample indices of the traversal: 0 <= lo <= hi <= n per axis
+    (the registers hold no more)."""
+    i0, i1, j0, j1, m0, m1 = (int(v) for v in window)
+    for lo, hi, n, name in ((i0, i1, trav.ni, "i"), (j0, j1, trav.nj, "j"), (m0, m1, trav.num_sample_slices, "m")):
+        if not 0 <= lo <= hi <= n:
+            raise UserError(f"window: {name} bounds {lo}..{hi} must satisfy 0 <= lo <= hi <= {n}")

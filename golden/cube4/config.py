@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from .errors import UserError
+from .modes import is_blend, is_extremum
 
 MAX_PIPELINES = 64
 MAX_DIM = 2048
@@ -104,8 +105,8 @@ def scene_build(scenes) -> dict:
     b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0}
     for sc in scenes:
         b["SHADING"] |= int(sc.shaded)
-        b["COMPOSITING"] |= int(sc.mode in ("composite", "xray"))
-        b["EXTREMUM"] |= int(sc.mode in ("mip", "minip"))
+        b["COMPOSITING"] |= int(is_blend(sc.mode))
+        b["EXTREMUM"] |= int(is_extremum(sc.mode))
         b["CLIP"] |= int(sc.cut is not None)
     return b
 

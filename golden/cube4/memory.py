@@ -25,8 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .clip import CUT_E_W, CUT_W  # the cut plane's register widths (cube4_defs.vh)
+from .clip import CUT_E_W, CUT_W, check_window  # the cut plane's register widths (cube4_defs.vh)
 from .errors import UserError
+from .modes import MODE_CODES
 from .view import Traversal
 
 
@@ -177,9 +178,6 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
     }
 
 
-MODE_CODES = {"composite": 0, "xray": 1, "mip": 2, "minip": 3}
-
-
 def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None) -> dict[str, int]:
     """Registers of cube4_top: the front end's plus the base-plane offsets
     SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8), the mode, the template's
@@ -191,6 +189,7 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
     regs["PH0_X"], regs["PH0_Y"] = trav.phase_x, trav.phase_y
     M = trav.num_sample_slices
     window = (0, trav.ni, 0, trav.nj, 0, M) if clip is None or clip.window is None else clip.window
+    check_window(window, trav)
     for name, v in zip(("WIN_I0", "WIN_I1", "WIN_J0", "WIN_J1", "WIN_M0", "WIN_M1"), window):
         regs[name] = int(v)
     plane = (0, 0, 0, 0) if clip is None or clip.plane is None else clip.plane

@@ -27,6 +27,7 @@ from tqdm import tqdm
 from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
 from .clip import Clip
+from .modes import MODES, is_blend
 from .view import Traversal
 
 PIXEL_DTYPE = np.dtype(
@@ -232,9 +233,6 @@ def extremum_pixel(held: np.ndarray, cfg: Cube4Config) -> np.ndarray:
 
 
 # ---------------------------------------------------------------- the frame
-MODES = ("composite", "xray", "mip", "minip")  # the MODE register: 0 .. 3
-
-
 def render_frame(
     vol: np.ndarray,
     trav: Traversal,
@@ -265,7 +263,7 @@ def render_frame(
     M = trav.num_sample_slices
     rows, cols = trav.baseplane_shape
     sxm, sym = trav.max_steps
-    blend = mode in ("composite", "xray")
+    blend = is_blend(mode)
     if blend:
         acc = np.zeros((3, rows, cols), dtype=np.int64)
         trans = np.full((rows, cols), one, dtype=np.int64)

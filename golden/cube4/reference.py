@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from tqdm import tqdm
 
+from .modes import is_extremum
 from .scene import Scene
 from .tables import phong_terms, unshaded_terms
 from .view import Camera, Traversal
@@ -162,7 +163,7 @@ def cast_rays(
     steps_of[hit] = n_steps
     mode = scene.mode
     shaded = scene.shaded
-    extreme = mode in ("mip", "minip")
+    extreme = is_extremum(mode)
     value = np.full(n_rays, np.inf if mode == "minip" else -np.inf)
     asum = np.zeros(n_rays)
     if scene.cut is not None:

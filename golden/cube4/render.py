@@ -19,6 +19,7 @@ from .errors import UserError
 from .model import Frame, render_frame
 from .reference import render_reference
 from .clip import Clip, cut_coefficients
+from .modes import is_extremum
 from .scene import Scene, crop_box
 from .tables import classification_lut, extremum_lut, reflectance_map
 from .view import Camera, Traversal, make_camera, make_traversal, warp_matrix
@@ -69,7 +70,7 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
     """What the host writes into the LUT load ports for this view: the classification
     LUT (opacity corrected for the sample distance; for MIP/MinIP colour premultiplied
     and opacity as given) and the reflectance map (None when the scene is unshaded)."""
-    if scene.mode in ("mip", "minip"):
+    if is_extremum(scene.mode):
         lut = extremum_lut(scene, cfg)
     else:
         lut = classification_lut(scene, cfg, trav.sample_distance)

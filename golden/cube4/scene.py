@@ -14,9 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from .errors import UserError
+from .modes import MODES  # docs/scenes.md, docs/numerics.md §13
 from .view import direction_from_angles, normalize_direction
-
-MODES = ("composite", "xray", "mip", "minip")  # docs/scenes.md, docs/numerics.md §13
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
@@ -198,7 +197,10 @@ def _cut(tbl: dict):
         return None
     if "normal" not in tbl or "point" not in tbl:
         raise UserError("scene: [cut] needs both normal and point")
-    normal = normalize_direction(tbl["normal"])
+    try:
+        normal = normalize_direction(tbl["normal"])
+    except UserError as e:
+        raise UserError(f"scene: cut.normal: {e}") from None
     try:
         point = np.asarray([float(c) for c in tbl["point"]], dtype=np.float64)
     except (TypeError, ValueError):

@@ -7,6 +7,7 @@ import numpy as np
 
 from cube4.config import Cube4Config
 from cube4.model import Frame, render_frame
+from cube4.render import crop_volume
 from cube4.view import Traversal
 
 from .rtl import baseplane_from_pixels
@@ -18,9 +19,8 @@ def assert_frame_matches_golden(vol: np.ndarray, trav: Traversal, cfg: Cube4Conf
     """The finished rays (m, by, bx, R, G, B, A) as a set and the assembled base plane
     must equal the golden model's (vol: the whole volume; trav may traverse a box in it;
     rmap None: an unshaded frame); returns the golden frame."""
-    (x0, y0, z0), (nx, ny, nz) = trav.origin, trav.dims
-    box = vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
-    gold = render_frame(box, trav, cfg, lut, rmap, mode=mode, shading=rmap is not None, clip=clip)
+    gold = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, mode=mode, shading=rmap is not None,
+                        clip=clip)
     want = np.sort(gold.pixels, order=["m", "by", "bx"])
     got = np.sort(res["pixels"], order=["m", "by", "bx"])
     assert got.size == want.size, f"{label}: {got.size} finished rays, golden {want.size}"

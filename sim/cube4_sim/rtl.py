@@ -140,7 +140,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         job_frames = []
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
-            write_tables(fr.lut, fr.rmap, cfg, lut_p, rmap_p)
+            # only composite frames are shaded: any other frame gets the identity map
+            write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p)
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
             ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))

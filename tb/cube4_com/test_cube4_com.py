@@ -146,7 +146,9 @@ async def test_pixel_stream(dut):
     for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS):
         if mode not in modes:   # the build's other datapath: the same view in one of its modes
             mode = modes[n % len(modes)]
-        trav = make_traversal(dims, direction, cfg.weight_bits, 1, phase=phase)
+        ss = 1 << int(dut.MAX_SS_LOG2.value)
+        phase = tuple((ph * ss + n) % (1 << (cfg.weight_bits + ss.bit_length() - 1)) for ph in phase)
+        trav = make_traversal(dims, direction, cfg.weight_bits, ss, phase=phase)
         lut, rmap = random_tables(bench.rng, cfg)
         if mode == "xray":   # opaque, bright samples: the sums saturate at 1 on many rays
             lut[:, :3] = bench.rng.integers(128, 256, size=(lut.shape[0], 3))
@@ -169,14 +171,17 @@ async def test_pixel_stream(dut):
                        "bit-exact", dims, direction, mode, clip_kind, gap, stall, len(got), len(frame.pixels))
 
 
-# (P, ALPHA_W, ACC_W, COMPOSITING, EXTREMUM)
-BUILDS = [(1, 12, 16, 1, 1), (5, 12, 16, 1, 1), (8, 16, 24, 1, 1), (5, 12, 16, 1, 0), (3, 16, 8, 0, 1)]
+# (P, ALPHA_W, ACC_W, COMPOSITING, EXTREMUM, MAX_SS_LOG2): ACC_W 8 < ALPHA_W 16 with both
+# datapaths makes the buffer word the extremum's ({v, R, G, B, A} wider than {R, G, B, T});
+# MAX_SS_LOG2 = 1 runs the views at S = 2 with phases up to 2^(W+1)
+BUILDS = [(1, 12, 16, 1, 1, 0), (5, 12, 16, 1, 1, 1), (8, 16, 24, 1, 1, 0), (5, 12, 16, 1, 0, 0),
+          (3, 16, 8, 0, 1, 0), (3, 16, 8, 1, 1, 0)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}_ss{b[5]}" for b in BUILDS])
 def test_cube4_com(build):
-    p, aw, acc_w, comp, ext = build
+    p, aw, acc_w, comp, ext, ss = build
     run_test(top="cube4_com_harness", sources=SOURCES,
-             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": 0,
+             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": ss,
                      "COMPOSITING": comp, "EXTREMUM": ext},
              test_module=__file__, testcase="test_pixel_stream", timing=True)

@@ -11,7 +11,7 @@
 //   on each of the two streams. SHA has no view registers.
 //
 // Parameters: as cube4_sha (P 1..64, VOXEL_W 1..16, ALPHA_W 8..16,
-//   RMAP_BITS 2..6, SHADING 0..1, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   RMAP_BITS 2..6, SHADING 0..1, CARRY_SAMPLE 0..1, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
 //
 // Latency: that of cube4_sha (the ports connect straight to it).
 //
@@ -31,6 +31,7 @@ module cube4_sha_harness #(
     parameter integer MAX_DIM     = 32,
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer SHADING     = 1,
+    parameter integer CARRY_SAMPLE = 1,
     `CUBE4_GEOMETRY,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3,
@@ -66,6 +67,7 @@ module cube4_sha_harness #(
         .ALPHA_W     (ALPHA_W),
         .RMAP_BITS   (RMAP_BITS),
         .SHADING     (SHADING),
+        .CARRY_SAMPLE(CARRY_SAMPLE),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_sha (

@@ -127,19 +127,20 @@ async def test_shaded_stream(dut):
         rtl_idx = np.stack([unpack_lanes(b["out_idx"], p, ri_w) for b in got])
         check_lanes(rtl_idx, sched.lanes(idx), sched.lval, sched, bench.log, "reflectance-map index")
         rtl_smp = np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got])
-        check_lanes(rtl_smp, smp, sched.lval, sched, bench.log, "sample (passed through)")
+        carried = smp if int(dut.CARRY_SAMPLE.value) else np.zeros_like(smp)
+        check_lanes(rtl_smp, carried, sched.lval, sched, bench.log, "sample (passed through, or 0)")
         bench.log.info("dims %s view %s gap %.1f stall %.1f: %d shaded beats bit-exact",
                        dims, direction, gap, stall, len(got))
 
 
-# (P, VOXEL_W, ALPHA_W, RMAP_BITS, SHADING)
-BUILDS = [(1, 8, 12, 5, 1), (5, 8, 12, 3, 1), (8, 12, 16, 4, 1), (1, 8, 12, 5, 0), (5, 12, 16, 5, 0)]
+# (P, VOXEL_W, ALPHA_W, RMAP_BITS, SHADING, CARRY_SAMPLE)
+BUILDS = [(1, 8, 12, 5, 1, 1), (5, 8, 12, 3, 1, 0), (8, 12, 16, 4, 1, 1), (1, 8, 12, 5, 0, 1), (5, 12, 16, 5, 0, 0)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_a{b[2]}_r{b[3]}_s{b[4]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_a{b[2]}_r{b[3]}_s{b[4]}_c{b[5]}" for b in BUILDS])
 def test_cube4_sha(build):
-    p, vw, aw, rb, sh = build
+    p, vw, aw, rb, sh, carry = build
     run_test(top="cube4_sha_harness", sources=SOURCES,
              params={"P": p, "VOXEL_W": vw, "ALPHA_W": aw, "RMAP_BITS": rb, "MAX_DIM": 32, "MAX_SS_LOG2": 0,
-                     "SHADING": sh},
+                     "SHADING": sh, "CARRY_SAMPLE": carry},
              test_module=__file__, testcase="test_shaded_stream", timing=True)

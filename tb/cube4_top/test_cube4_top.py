@@ -185,8 +185,9 @@ def test_synthesis_ram_form_p1():
 
 
 # ---------------------------------------------------------------- modes, builds, crop, cut
-# (SHADING, COMPOSITING, EXTREMUM, CLIP): the full build and two a scene would choose
-MODE_BUILDS = {"full": (1, 1, 1, 1), "unshaded": (0, 1, 0, 0), "mip": (0, 0, 1, 0)}
+# (SHADING, COMPOSITING, EXTREMUM, CLIP): the full build and three a scene would choose
+MODE_BUILDS = {"full": (1, 1, 1, 1), "unshaded": (0, 1, 0, 0), "mip": (0, 0, 1, 0), "shaded": (1, 1, 0, 0)}
+MODE_RUNS = [("full", 1), ("full", 5), ("unshaded", 1), ("unshaded", 5), ("mip", 1), ("mip", 5), ("shaded", 5)]
 
 
 def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
@@ -217,8 +218,7 @@ def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
     return jobs
 
 
-@pytest.mark.parametrize("p", [1, 5])
-@pytest.mark.parametrize("name", list(MODE_BUILDS))
+@pytest.mark.parametrize(("name", "p"), MODE_RUNS, ids=[f"{n}-{p}" for n, p in MODE_RUNS])
 def test_modes_builds_crop_cut(name, p):
     """Every mode of a build, crop boxes, cut planes and windows, bit-exact, with random
     stalls and a reset in mid-frame; the cycles of unstalled frames against the formula
