@@ -212,7 +212,8 @@ def plan_bricks(trav: Traversal, grid: BrickGrid, clip: Clip | None = None) -> l
         if clip is not None and clip.plane is not None:
             ca, cb, cc, cd = clip.plane
             W = trav.weight_bits
-            plane = (ca, cb, cc, cd + ca * (i0 << W) + cb * (j0 << W) + cc * k0 * S)
+            # E's coordinates are in 2^-W voxel: the brick starts i0, j0, k0 voxels in
+            plane = (ca, cb, cc, cd + ca * (i0 << W) + cb * (j0 << W) + cc * (k0 << W))
         window = (win[0][0], win[0][1], win[1][0], win[1][1], win[2][0], win[2][1])
         bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane), offset=offset,
                             start=(i0, j0, k0)))
