@@ -88,8 +88,9 @@ def scene_rows(names: list[str]) -> list[dict]:
 
 
 # every mode (and unshaded compositing) applied to every built-in scene's volume and transfer function
-MODE_VARIANTS = [("composite", {}), ("composite, unshaded", {"shading": False}), ("xray", {"mode": "xray"}),
-                 ("mip", {"mode": "mip"}), ("minip", {"mode": "minip"})]
+MODE_VARIANTS = [("composite", {"mode": "composite", "shading": True}),
+                 ("composite, unshaded", {"mode": "composite", "shading": False}),
+                 ("xray", {"mode": "xray"}), ("mip", {"mode": "mip"}), ("minip", {"mode": "minip"})]
 
 
 def mode_matrix(names: list[str]) -> list[dict]:
