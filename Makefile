@@ -88,17 +88,28 @@ $(SETUP_STAMP): scripts/setup.sh requirements.txt pyproject.toml
 	bash scripts/setup.sh
 	touch $@
 
-lint: setup
-	@$(foreach m,$(RTL_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
+# One Verilator run per module and parameter set, TEST_JOBS at a time (build/lint.cmds
+# lists them); any failure fails the target after the others finish.
+define NL
+
+
+endef
+LINT_CMDS := \
+	$(foreach m,$(RTL_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
 	    echo "lint rtl    $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS) && )) \
+	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS)$(NL))) \
 	$(foreach m,$(ECP5_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
 	    echo "lint ecp5   $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS) && )) \
+	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS)$(NL))) \
 	$(foreach m,$(SIM_MODULES),\
 	    echo "lint sim    $(m) [default, --timing]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --timing --top-module $(m) $(LINT_WAIVERS) $(RTL_SRCS) $(SIM_HDL_SRCS) && ) \
-	echo "lint: clean"
+	    $(VERILATOR) $(LINT_FLAGS) --timing --top-module $(m) $(LINT_WAIVERS) $(RTL_SRCS) $(SIM_HDL_SRCS)$(NL))
+
+lint: setup
+	@mkdir -p build
+	$(file >build/lint.cmds,$(LINT_CMDS))
+	@xargs -d '\n' -P $(TEST_JOBS) -I{} sh -c '{}' < build/lint.cmds
+	@echo "lint: clean"
 
 sim: setup
 	$(PY) -m pytest tb -q -n $(TEST_JOBS)
