@@ -25,18 +25,18 @@ from __future__ import annotations
 import importlib
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from tqdm import tqdm
 
-from .clip import Clip
+from .clip import Clip, move_plane
 from .config import Cube4Config
 from .errors import UserError
 from .fixed import round_shift
 from .model import PIXEL_DTYPE, Frame, render_frame
 from .modes import MODES, is_blend
-from .view import Traversal
+from .view import Traversal, sub_traversal
 
 #: voxels a brick stores beyond its own range on the low and the high side of every axis
 OVERLAP_LOW = 1
@@ -184,39 +184,23 @@ def plan_bricks(trav: Traversal, grid: BrickGrid, clip: Clip | None = None) -> l
         raise ValueError(f"grid of {grid.dims} does not split the traversed box {trav.dims}")
     if clip is not None and clip.window is not None:
         raise ValueError("a render with a window of its own cannot be split into bricks")
-    S, pb = trav.supersample, trav.phase_bits
+    S = trav.supersample
     if trav.phase_x or trav.phase_y:
         raise ValueError("the whole render must start at phase 0")
     roles = (trav.axis_i, trav.axis_j, trav.major)
-    sxm, sym = trav.max_steps
     bricks = []
     for ix in grid.indices():
         (o0, o1), (s0, s1) = grid.owned(ix), grid.stored(ix)
-        start, win = [], []
+        bt, offset, start = sub_traversal(trav, s0, s1)
+        win = []
         for role, ax in enumerate(roles):
-            n, flip = grid.dims[ax], bool(trav.flip[ax])
-            st = n - s1[ax] if flip else s0[ax]
+            n, flip, st = grid.dims[ax], bool(trav.flip[ax]), start[role]
             a, b = _owned_traversal(n, o0[ax], o1[ax], flip, major=role == 2)
-            start.append(st)
             win.append((a - st, b - st) if role < 2 else ((a - st) * S, (b - st) * S))
-        i0, j0, k0 = start
-        px, py = k0 * S * trav.view_x, k0 * S * trav.view_y
-        mask = (1 << pb) - 1
-        dims = tuple(b - a for a, b in zip(s0, s1))
-        origin = tuple(o + s for o, s in zip(trav.origin, s0))
-        # the same view registers, exactly (replace, not a re-derivation from the direction)
-        bt = replace(trav, dims=dims, origin=origin, phase_x=px & mask, phase_y=py & mask)
-        bsx, bsy = bt.max_steps
-        offset = (j0 - (py >> pb) + sym - bsy, i0 - (px >> pb) + sxm - bsx)
-        plane = None
-        if clip is not None and clip.plane is not None:
-            ca, cb, cc, cd = clip.plane
-            W = trav.weight_bits
-            # E's coordinates are in 2^-W voxel: the brick starts i0, j0, k0 voxels in
-            plane = (ca, cb, cc, cd + ca * (i0 << W) + cb * (j0 << W) + cc * (k0 << W))
+        plane = move_plane(clip.plane if clip is not None else None, start, trav.weight_bits)
         window = (win[0][0], win[0][1], win[1][0], win[1][1], win[2][0], win[2][1])
         bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane), offset=offset,
-                            start=(i0, j0, k0)))
+                            start=start))
     return sorted(bricks, key=lambda br: br.start[::-1])
 
 

@@ -66,6 +66,18 @@ def plane_value(plane, trav: Traversal, m: int, jj, ii) -> np.ndarray:
             + cb * ((np.asarray(jj, dtype=np.int64) << W) + wy) + cc * (m << (W - trav.guard_bits)) + cd)
 
 
+def move_plane(plane, start, weight_bits: int) -> tuple[int, int, int, int] | None:
+    """The cut plane of a traversal whose voxel (0, 0, 0) lies at ``start`` = (i, j, k)
+    of the plane's frame (a brick, the empty-space box): E's coordinates are in 2^-W
+    voxel, so CD takes CA·i·2^W + CB·j·2^W + CC·k·2^W. None stays None."""
+    if plane is None:
+        return None
+    ca, cb, cc, cd = (int(c) for c in plane)
+    i0, j0, k0 = (int(c) for c in start)
+    W = weight_bits
+    return (ca, cb, cc, cd + ca * (i0 << W) + cb * (j0 << W) + cc * (k0 << W))
+
+
 def cut_coefficients(trav: Traversal, normal, point) -> tuple[int, int, int, int]:
     """The cut plane through ``point`` (volume coordinates of the whole volume) with unit
     ``normal`` pointing into the half-space that is cut away, as (CA, CB, CC, CD) for

@@ -16,7 +16,9 @@ import numpy as np
 
 from .config import Cube4Config, resolve_build
 from .errors import UserError
-from .model import Frame, render_frame
+from .cycles import frame_cycles
+from .model import PIXEL_DTYPE, Frame, render_frame
+from .skip import SkipPlan, plan_skip
 from .reference import render_reference
 from .clip import Clip, cut_coefficients
 from .modes import is_extremum
@@ -75,6 +77,27 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
     else:
         lut = classification_lut(scene, cfg, trav.sample_distance)
     return lut, (reflectance_map(scene, cfg, trav) if scene.shaded else None)
+
+
+def schedule(vol_box: np.ndarray, scene: Scene, trav: Traversal, lut: np.ndarray, clip: Clip | None) -> SkipPlan:
+    """The frame's schedule: the box that can change a ray (``cube4.skip``), or the whole
+    traversed box when the scene asks for the fixed schedule ([render] skip = false)."""
+    if scene.skip:
+        return plan_skip(vol_box, trav, lut, scene.mode, clip)
+    return SkipPlan(trav, ((0, 0, 0), tuple(trav.dims)), trav, (0, 0), (0, 0, 0), clip, 0.0)
+
+
+def schedule_stats(plan: SkipPlan, cfg: Cube4Config, build: dict) -> dict:
+    """What the schedule traverses and the cycles it predicts, against the fixed schedule."""
+    shading = bool(build["SHADING"])
+    t = plan.whole
+    full = frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading)
+    cycles = plan.cycles(cfg.pipelines, shading)
+    box = None if plan.box is None else {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
+                                         "dims": [int(b) - int(a) for a, b in zip(*plan.box)]}
+    return {"skip": plan.trav is not t, "skip_box": box, "skip_fraction": plan.fraction,
+            "predicted_cycles": cycles, "fixed_schedule_cycles": full, "cycles_saved": full - cycles,
+            "skip_table_s": plan.table_s}
 
 
 def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera) -> np.ndarray:
@@ -170,10 +193,19 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     stats["build"] = resolve_build(cfg, [scene])     # the build this frame models
     t0 = time.perf_counter()
     lut, rmap = host_tables(scene, cfg, trav)
-    frame = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, keep_streams=keep_streams,
-                         progress=progress, mode=scene.mode, shading=scene.shaded, clip=frame_clip(scene, trav))
+    box_vol = crop_volume(vol, trav)
+    plan = schedule(box_vol, scene, trav, lut, frame_clip(scene, trav))
+    if plan.trav is None:       # nothing can change a ray: no frame
+        frame = Frame(trav=trav, cfg=cfg, baseplane=plan.place(None), pixels=plan.place_pixels(np.empty(0, PIXEL_DTYPE)))
+    else:
+        sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, lut, rmap, keep_streams=keep_streams,
+                           progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip)
+        # the streams (keep_streams) are the traversed box's, in the frame of sub.trav
+        frame = Frame(trav=trav, cfg=cfg, baseplane=plan.place(sub.baseplane), pixels=plan.place_pixels(sub.pixels),
+                      streams=dict(sub.streams, trav=plan.trav) if keep_streams else {})
     img = warp_to_image(frame.baseplane_float, trav, cam)
     stats.update(trav_stats(trav))
+    stats.update(schedule_stats(plan, cfg, stats["build"]))
     stats["pixels"] = int(frame.pixels.size)
     return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)
 

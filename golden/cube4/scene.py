@@ -45,6 +45,7 @@ class Scene:
     shading: bool = True  # [material] shading: false classifies only (composite mode)
     crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
+    skip: bool = True  # [render] skip: traverse only the box that can change a ray (cube4.skip)
 
     @property
     def shaded(self) -> bool:
@@ -104,13 +105,16 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     height = _int(out, "height", width, 8, 8192, "output.")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample"), "render")
+    _check_keys(rnd, ("mode", "supersample", "skip"), "render")
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
         raise UserError(f"scene: render.mode {mode!r} is not supported (supported: {', '.join(MODES)})")
     supersample = rnd.get("supersample", 1)
     if not isinstance(supersample, int) or isinstance(supersample, bool) or supersample not in (1, 2, 4, 8):
         raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {supersample!r}")
+    skip = rnd.get("skip", True)
+    if not isinstance(skip, bool):
+        raise UserError(f"scene: render.skip must be true or false, got {skip!r}")
 
     mat = data.get("material", {})
     _check_keys(mat, ("ambient", "diffuse", "specular", "shininess", "shading"), "material")
@@ -167,7 +171,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, cut=cut,
+        shading=shading, crop=crop, cut=cut, skip=skip,
     )
 
 

@@ -16,7 +16,7 @@ Conventions (docs/numerics.md, "Traversal frame"):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -242,6 +242,33 @@ def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1,
         phase_y=_phase(phase[1], weight_bits, supersample),
         origin=tuple(int(c) for c in origin),
     )
+
+
+def sub_traversal(trav: Traversal, s0, s1) -> tuple[Traversal, tuple[int, int], tuple[int, int, int]]:
+    """The traversal of the box [s0, s1) (volume axes x, y, z, half-open, within the
+    traversed box of ``trav``) whose samples are exactly ``trav``'s samples there: the
+    same view registers, and the template's starting phase that ``trav`` has at the
+    box's first sample slice. Returns (traversal, (row, col) of its base-plane pixel
+    (0, 0) in ``trav``'s base plane, (i, j, k) of its traversal-frame voxel (0, 0, 0) in
+    ``trav``'s frame). A brick (numerics.md §14) and the empty-space box (§15) are such
+    boxes; ``trav`` must start at phase 0."""
+    if trav.phase_x or trav.phase_y:
+        raise ValueError("the whole traversal must start at phase 0")
+    start = []
+    for ax in (trav.axis_i, trav.axis_j, trav.major):
+        start.append(trav.dims[ax] - s1[ax] if trav.flip[ax] else s0[ax])
+    i0, j0, k0 = start
+    S, pb = trav.supersample, trav.phase_bits
+    px, py = k0 * S * trav.view_x, k0 * S * trav.view_y
+    mask = (1 << pb) - 1
+    dims = tuple(int(b) - int(a) for a, b in zip(s0, s1))
+    origin = tuple(o + int(s) for o, s in zip(trav.origin, s0))
+    # the same view registers, exactly (replace, not a re-derivation from the direction)
+    sub = replace(trav, dims=dims, origin=origin, phase_x=px & mask, phase_y=py & mask)
+    sxm, sym = trav.max_steps
+    bsx, bsy = sub.max_steps
+    offset = (j0 - (py >> pb) + sym - bsy, i0 - (px >> pb) + sxm - bsx)
+    return sub, offset, (i0, j0, k0)
 
 
 def _phase(value, weight_bits: int, supersample: int) -> int:

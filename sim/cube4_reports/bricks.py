@@ -44,7 +44,7 @@ from cube4.scene import load_scene, with_view
 from cube4.view import direction_from_angles, make_traversal
 from cube4.volumes import load_volume
 
-from cube4_sim.cycles import frame_cycles, slow_slice_factor
+from cube4.cycles import frame_cycles, slow_slice_factor
 
 from .markdown import REPO_ROOT, git_describe, md_table
 

@@ -47,7 +47,7 @@ from cube4.scene import Scene, load_scene
 from cube4.view import Traversal
 from cube4.volumes import load_volume
 
-from cube4_sim.cycles import frame_cycles
+from cube4.cycles import frame_cycles
 from cube4_sim.engine import register as register_rtl_engine
 
 from .markdown import REPO_ROOT, git_state, md_table
@@ -154,7 +154,7 @@ def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Varia
 
 
 def formula_cycles(trav: Traversal, pipelines: int) -> int:
-    """Cycles per frame without stalls (docs/architecture.md; cube4_sim.cycles):
+    """Cycles per frame without stalls (docs/architecture.md; cube4.cycles):
     (M·NJ + 1)·NB + 1 + NJ·NB + NB + 2 + fill."""
     return frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, pipelines)
 

@@ -12,7 +12,7 @@ build and the full one:
   nextpnr seed): LUTs, FFs, DSPs, EBRs and Fmax;
 
 and for every scene: cycles per frame on its build and on the full build (the cycle
-formula of ``cube4_sim.cycles``, which tb/cube4_top holds every build to), the frame
+formula of ``cube4.cycles``, which tb/cube4_top holds every build to), the frame
 time at the build's Fmax, and the golden engine's image error against the float64
 reference (PSNR over premultiplied RGBA), with what the smaller build saves in percent.
 
@@ -33,7 +33,7 @@ from cube4.config import BUILD_PARAMS, FULL_BUILD, scene_build
 from cube4.render import config_for, image_metrics, render, setup_view
 from cube4.scene import builtin_scene_names, load_scene
 from cube4.volumes import load_volume
-from cube4_sim.cycles import frame_cycles
+from cube4.cycles import frame_cycles
 
 from . import fpga, gates
 from .markdown import fmt_int, git_describe, md_table

@@ -16,9 +16,9 @@ import numpy as np
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
-from cube4.model import Frame
-from cube4.render import (RenderResult, frame_clip, host_tables, register_engine, setup_view, trav_stats,
-                          view_stats, warp_to_image)
+from cube4.model import PIXEL_DTYPE, Frame
+from cube4.render import (RenderResult, crop_volume, frame_clip, host_tables, register_engine, schedule,
+                          schedule_stats, setup_view, trav_stats, view_stats, warp_to_image)
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, render_frames
@@ -34,22 +34,30 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     t0 = time.perf_counter()
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     views = [setup_view(dims, sc, cfg) for sc in scenes]
-    jobs = [FrameJob(trav, *host_tables(sc, cfg, trav), mode=sc.mode, clip=frame_clip(sc, trav))
-            for sc, (trav, _) in zip(scenes, views)]
+    plans, jobs = [], []
+    for sc, (trav, _) in zip(scenes, views):
+        lut, rmap = host_tables(sc, cfg, trav)
+        plan = schedule(crop_volume(vol, trav), sc, trav, lut, frame_clip(sc, trav))
+        plans.append(plan)
+        if plan.trav is not None:       # a frame in which nothing can change a ray is not run
+            jobs.append(FrameJob(plan.trav, lut, rmap, mode=sc.mode, clip=plan.clip))
     try:
-        outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True, build=build)
+        outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True, build=build) if jobs else []
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None
     run_s = time.perf_counter() - t0
     sim_total = sum(o["sim_wall_s"] for o in outs)
     results = []
-    for sc, (trav, cam), out in zip(scenes, views, outs):
+    ran = iter(outs)
+    for sc, (trav, cam), plan in zip(scenes, views, plans):
         t1 = time.perf_counter()
-        base = baseplane_from_pixels(out["pixels"], trav.baseplane_shape)
-        frame = Frame(trav=trav, cfg=cfg, baseplane=base, pixels=out["pixels"])
+        out = next(ran) if plan.trav is not None else _no_frame()
+        sub = baseplane_from_pixels(out["pixels"], plan.trav.baseplane_shape) if plan.trav is not None else None
+        frame = Frame(trav=trav, cfg=cfg, baseplane=plan.place(sub), pixels=plan.place_pixels(out["pixels"]))
         img = warp_to_image(frame.baseplane_float, trav, cam)
         stats = view_stats(NAME, dims, sc, cfg)
         stats.update(trav_stats(trav))
+        stats.update(schedule_stats(plan, cfg, build))
         stats.update(_cycle_stats(out, nx * ny * nz / cfg.pipelines))
         stats["build"] = dict(build)
         wall = out["sim_wall_s"] + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
@@ -58,13 +66,17 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     return results
 
 
+def _no_frame() -> dict:
+    return {"pixels": np.empty(0, dtype=PIXEL_DTYPE), "cycles": 0, "sim_wall_s": 0.0}
+
+
 def _cycle_stats(out: dict, ideal: float) -> dict:
     cycles = int(out["cycles"])
     return {
         "pixels": int(out["pixels"].size),
         "cycles": cycles,
         "ideal_cycles": ideal,
-        "efficiency": ideal / cycles,
+        "efficiency": ideal / cycles if cycles else None,
         "sim_wall_s": out["sim_wall_s"],
         "sim_cycles_per_s": cycles / out["sim_wall_s"] if out["sim_wall_s"] > 0 else None,
     }

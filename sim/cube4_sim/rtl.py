@@ -24,7 +24,7 @@ from cube4.errors import UserError
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
-from .cycles import frame_cycles, slow_slice_factor
+from cube4.cycles import frame_cycles, slow_slice_factor
 from .dump import read_pixel_frames
 from .sources import rtl_sources, synth_sources
 

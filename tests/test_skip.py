@@ -1,0 +1,194 @@
+"""Empty-space skipping (cube4.skip, docs/numerics.md §15): the box schedule gives the
+fixed schedule's base plane bit for bit in every mode, view, S, with cut planes and crop
+boxes; its margins are needed (with one voxel less the images differ); the cycles follow
+the box; the switch and the statistics of the command line."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from cube4_testutil import make_scene
+
+import cube4.skip as skip
+from cube4.clip import Clip, cut_coefficients
+from cube4.config import Cube4Config
+from cube4.cycles import frame_cycles
+from cube4.errors import UserError
+from cube4.model import render_frame
+from cube4.render import render
+from cube4.scene import parse_scene
+from cube4.view import make_traversal
+
+VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 1.0, 1.0), (1.0, -1.0, 0.0), (-1.0, -0.8, 0.2),
+         (0.5, 1.0, 0.5), (0.0, 0.0, 1.0)]
+MODES = ["composite", "xray", "mip", "minip"]
+THRESHOLD = 60     # values below it are empty (above it for MinIP)
+
+
+def sparse_case(seed: int):
+    """A volume of faint noise (all below the threshold) with one dense blob, the LUT that
+    makes the noise empty, and a view, mode, S, shading and (every fourth) cut plane."""
+    rng = np.random.default_rng(seed)
+    S = (1, 2, 4)[seed % 3]
+    cfg = Cube4Config(pipelines=4, supersample=S)
+    nx, ny, nz = (int(n) for n in rng.integers(6, 16, size=3))
+    vol = rng.integers(0, THRESHOLD - 20, size=(nz, ny, nx))
+    c = [int(rng.integers(1, n - 1)) for n in (nz, ny, nx)]
+    blob = tuple(slice(max(0, a - 2), a + 2) for a in c)
+    vol[blob] = rng.integers(0, 256, size=vol[blob].shape)
+    mode = MODES[seed % 4]
+    lut = np.zeros((256, 4), dtype=np.int64)
+    lut[:, :3] = rng.integers(0, 256, size=(256, 3))
+    if mode == "minip":
+        vol = 255 - vol
+        lut[THRESHOLD:] = 0
+        lut[:THRESHOLD, 3] = rng.integers(1, 1 << cfg.alpha_bits, size=THRESHOLD)
+    else:
+        lut[:THRESHOLD] = 0
+        lut[THRESHOLD:, 3] = rng.integers(1, 1 << cfg.alpha_bits, size=256 - THRESHOLD)
+    rmap = rng.integers(0, 1024, size=(cfg.rmap_entries, 2))
+    trav = make_traversal((nx, ny, nz), VIEWS[seed % len(VIEWS)], cfg.weight_bits, S)
+    clip = Clip(plane=cut_coefficients(trav, (1.0, 0.3, -0.2), (nx / 2, ny / 2, nz / 2))) if seed % 4 == 1 else None
+    return vol, trav, cfg, lut, rmap, mode, seed % 2 == 0, clip
+
+
+def skipped_baseplane(vol, trav, cfg, lut, rmap, mode, shading, clip):
+    plan = skip.plan_skip(vol, trav, lut, mode, clip)
+    sub = None
+    if plan.trav is not None:
+        sub = render_frame(plan.box_volume(vol), plan.trav, cfg, lut, rmap, mode=mode, shading=shading,
+                           clip=plan.clip).baseplane
+    return plan, plan.place(sub)
+
+
+def mismatches(seeds) -> list[int]:
+    bad = []
+    for seed in seeds:
+        vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(seed)
+        full = render_frame(vol, trav, cfg, lut, rmap, mode=mode, shading=shading, clip=clip).baseplane
+        _, base = skipped_baseplane(vol, trav, cfg, lut, rmap, mode, shading, clip)
+        if not np.array_equal(base, full):
+            bad.append(seed)
+    return bad
+
+
+SEEDS = range(40)
+
+
+def test_box_schedule_is_bit_exact():
+    """Every mode, shaded and unshaded, S = 1, 2, 4, seven views (45° and (1, 1, 1)
+    among them), cut planes: the box's base plane placed in the whole equals the fixed
+    schedule's, and the box is smaller than the volume in every case."""
+    assert mismatches(SEEDS) == []
+    for seed in SEEDS:
+        vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(seed)
+        assert skip.plan_skip(vol, trav, lut, mode, clip).fraction < 1.0, seed
+
+
+@pytest.mark.parametrize(("name", "value"), [("MARGIN_LOW", 0), ("MARGIN_HIGH", 1)])
+def test_each_margin_is_needed(monkeypatch, name, value):
+    """One voxel less of margin on either side changes some of the same cases' images:
+    the exactness test above can fail."""
+    monkeypatch.setattr(skip, name, value)
+    assert mismatches(SEEDS), f"{name} = {value} changed no image"
+
+
+def test_cells_at_the_high_faces_ignore_the_padding():
+    """A cell at a high face takes its range from its voxels in the box, not the zero
+    padding: a MinIP of bright voxels (zero would count) skips everything."""
+    vol = np.full((6, 7, 8), 200)
+    lut = np.zeros((256, 4), dtype=np.int64)
+    lut[:100] = 1
+    assert not skip.busy_cells(vol, lut, "minip").any()
+    vol[5, 6, 7] = 50                       # the last voxel counts: its own cell and 7 neighbours
+    busy = skip.busy_cells(vol, lut, "minip")
+    assert busy.sum() == 8 and busy[5, 6, 7] and busy[4, 5, 6]
+
+
+def test_counting_values_per_mode():
+    lut = np.zeros((16, 4), dtype=np.int64)
+    lut[5, 0] = 9          # colour, no opacity
+    lut[9, 3] = 1
+    assert list(np.nonzero(skip.counting_values(lut, "composite"))[0]) == [9]
+    assert list(np.nonzero(skip.counting_values(lut, "xray"))[0]) == [9]
+    assert list(np.nonzero(skip.counting_values(lut, "mip"))[0]) == list(range(5, 16))
+    assert list(np.nonzero(skip.counting_values(lut, "minip"))[0]) == list(range(0, 10))
+    assert not skip.counting_values(np.zeros((16, 4), dtype=np.int64), "mip").any()
+
+
+def test_nothing_counts_no_frame():
+    """A frame in which no sample counts renders nothing, and its base plane (zero) is the
+    fixed schedule's."""
+    vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(0)
+    lut[:, 3] = 0
+    plan, base = skipped_baseplane(vol, trav, cfg, lut, rmap, "composite", True, None)
+    assert plan.trav is None and plan.cycles(4, True) == 0
+    full = render_frame(vol, trav, cfg, lut, rmap, mode="composite").baseplane
+    assert np.array_equal(base, full) and not base.any()
+
+
+def test_cycles_follow_the_box():
+    vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(3)
+    plan = skip.plan_skip(vol, trav, lut, mode, clip)
+    t = plan.trav
+    assert tuple(b - a for a, b in zip(*plan.box)) == t.dims
+    assert plan.cycles(5, True) == frame_cycles(t.num_sample_slices, t.nj, t.ni, 5, True)
+    assert plan.cycles(5, False) < plan.cycles(5, True)
+
+
+TF = {"points": [[0, 0, 0, 0, 0], [0.3, 0.2, 0.4, 0.9, 0.0], [0.5, 0.9, 0.6, 0.3, 0.3], [1, 1, 1, 1, 0.6]]}
+
+
+@pytest.mark.parametrize("extra", [{}, {"crop": {"box": [[3, 2, 4], [26, 28, 25]]}},
+                                   {"cut": {"normal": [1, 1, 0], "point": [14, 16, 15]}},
+                                   {"render": {"supersample": 2}}, {"render": {"mode": "mip"}},
+                                   {"material": {"shading": False}}])
+def test_scene_renders_equal_with_and_without_skip(extra):
+    """Through cube4.render: the head-like sphere's image and base plane with the box
+    schedule equal the fixed schedule's; the statistics count the cycles saved."""
+    from cube4_testutil import sphere_volume
+
+    vol = np.zeros((30, 32, 28), dtype=np.uint16)
+    vol[:24, 4:28, 2:26] = sphere_volume(24)[:, :, :]
+    doc = {"transfer": TF, "view": {"azimuth": 35.0, "elevation": 40.0}, "output": {"width": 48}}
+    for key, val in extra.items():
+        doc.setdefault(key, {}).update(val)
+    scene = parse_scene(doc)
+    cfg = Cube4Config(pipelines=4, supersample=scene.supersample)
+    on = render(vol, scene, cfg, "golden")
+    off = render(vol, dataclasses.replace(scene, skip=False), cfg, "golden")
+    assert np.array_equal(on.frame.baseplane, off.frame.baseplane)
+    assert np.array_equal(on.image, off.image)
+    assert on.stats["skip"] and not off.stats["skip"]
+    assert on.stats["cycles_saved"] > 0 and off.stats["cycles_saved"] == 0
+    assert on.stats["predicted_cycles"] + on.stats["cycles_saved"] == off.stats["predicted_cycles"]
+
+
+def test_scene_key_must_be_a_bool():
+    with pytest.raises(UserError, match="render.skip must be true or false"):
+        parse_scene({"render": {"skip": "no"}})
+    assert parse_scene({"render": {"skip": False}}).skip is False
+    assert make_scene().skip is True
+
+
+def test_cli_no_skip_and_stats(tmp_path):
+    """--no-skip gives the fixed schedule and the same base plane; --stats reports the
+    box, the predicted cycles of both schedules and the cycles saved."""
+    def run(*extra):
+        st = tmp_path / f"s{len(extra)}.json"
+        bp = tmp_path / f"b{len(extra)}.npy"
+        subprocess.run([sys.executable, "-m", "cube4.cli", "render", "head:32", "--scene", "head", "--out",
+                        str(tmp_path / "x.png"), "--baseplane", str(bp), "--stats", str(st), "--quiet", *extra],
+                       check=True)
+        return json.loads(st.read_text()), np.load(bp)
+
+    (on, b_on), (off, b_off) = run(), run("--no-skip")
+    assert np.array_equal(b_on, b_off)
+    assert on["skip"] and on["cycles_saved"] > 0 and on["skip_fraction"] < 1
+    assert not off["skip"] and off["cycles_saved"] == 0
+    assert on["fixed_schedule_cycles"] == off["predicted_cycles"]
