@@ -11,6 +11,7 @@
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, ECP5, cycles, error (reports/scenes.md; ~1 h)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
+#   make skipping empty-space skipping on real content: box, cycles vs fixed schedule and n^3/P, host time (reports/skipping.md; ~1 min)
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.
@@ -77,7 +78,7 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test demo report bricks gates fpga scenes clean
+.PHONY: help setup lint sim bench test demo report bricks gates fpga scenes skipping clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -142,6 +143,10 @@ gates: setup
 
 fpga: setup
 	$(PY) -m cube4_reports.fpga $(FPGA_ARGS)
+
+# Empty-space skipping on real content (docs/reports.md); SKIPPING_ARGS="--no-rtl" leaves out the RTL frame.
+skipping: setup
+	$(PY) -m cube4_reports.skipping $(SKIPPING_ARGS)
 
 # Per-scene builds (SCENES_ARGS, e.g. --no-fpga for gates, cycles and error only).
 scenes: setup

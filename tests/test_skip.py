@@ -182,7 +182,7 @@ def test_cli_no_skip_and_stats(tmp_path):
     def run(*extra):
         st = tmp_path / f"s{len(extra)}.json"
         bp = tmp_path / f"b{len(extra)}.npy"
-        subprocess.run([sys.executable, "-m", "cube4.cli", "render", "head:32", "--scene", "head", "--out",
+        subprocess.run([sys.executable, "-m", "cube4.cli", "render", "head:48", "--scene", "head", "--out",
                         str(tmp_path / "x.png"), "--baseplane", str(bp), "--stats", str(st), "--quiet", *extra],
                        check=True)
         return json.loads(st.read_text()), np.load(bp)
