@@ -10,6 +10,7 @@ import pytest
 
 from cube4.config import Cube4Config
 from cube4.errors import UserError
+from cube4.cycles import frame_cycles
 from cube4.render import config_for, setup_view
 from cube4.scene import load_scene
 from cube4_reports import report
@@ -18,18 +19,22 @@ from cube4_reports import report
 def test_variants_one_parameter_at_a_time() -> None:
     scene = load_scene("default")
     plan = report.case_variants(scene, report.variants(quick=False))
-    cfgs = [cfg for _, cfg in plan]
+    hw = [(v, cfg) for v, cfg in plan if v.varied not in report.SCENE_SWEEPS]
+    cfgs = [cfg for _, cfg in hw]
     assert plan[0][0].varied == "default" and cfgs[0] == Cube4Config()
     assert len(cfgs) == len(set(cfgs)) == 13  # 1 + S 2 + W 4 + F 3 + p 3
     default = Cube4Config().as_dict()
-    for v, cfg in plan[1:]:
+    for v, cfg in hw[1:]:
         changed = {k for k, x in cfg.as_dict().items() if x != default[k]}
         assert changed == {v.varied}, v.label
+    subpixel = [(v, cfg) for v, cfg in plan if v.varied == "subpixel"]     # the scene's key, the default hardware
+    assert [v.value for v, _ in subpixel] == [2, 3, 4] and all(cfg == Cube4Config() for _, cfg in subpixel)
+    assert all(v.scene(scene).subpixel == v.value for v, _ in subpixel)
     quick = [v.label for v, _ in report.case_variants(scene, report.variants(quick=True))]
-    assert quick == ["default", "S=2", "W=4", "F=8", "p=1"]
+    assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2"]
 
 
-def test_formula_cycles_matches_docs() -> None:
+def test_cycle_formula_matches_docs() -> None:
     """(M·NJ + 1)·NB + 1 + NJ·NB + NB + 2 + fill for the default view of a 64³ volume, with the
     fill that docs/architecture.md states (tb/cube4_top checks the same formula against the RTL)."""
     import re
@@ -42,7 +47,7 @@ def test_formula_cycles_matches_docs() -> None:
         cfg = config_for(scene, pipelines=p, supersample=s)
         trav, _ = setup_view((64, 64, 64), scene, cfg)
         m, nj, nb = 63 * s + 1, 64, -(-64 // p)
-        assert report.formula_cycles(trav, p) == (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + fill
+        assert frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, p) == (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + fill
 
 
 def test_fmax_lookup(tmp_path: Path) -> None:

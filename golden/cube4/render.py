@@ -19,6 +19,7 @@ from .errors import UserError
 from .cycles import frame_cycles
 from .model import PIXEL_DTYPE, Frame, render_frame
 from .skip import SkipPlan, plan_skip
+from .subpixel import Pass, fine_origin, fine_to_base, interleave, passes
 from .reference import render_reference
 from .clip import Clip, cut_coefficients
 from .modes import is_extremum
@@ -87,25 +88,89 @@ def schedule(vol_box: np.ndarray, scene: Scene, trav: Traversal, lut: np.ndarray
     return SkipPlan(trav, ((0, 0, 0), tuple(trav.dims)), trav, (0, 0), (0, 0, 0), clip, 0.0)
 
 
-def schedule_stats(plan: SkipPlan, cfg: Cube4Config, build: dict) -> dict:
-    """What the schedule traverses and the cycles it predicts, against the fixed schedule."""
+def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict:
+    """What the frames of one view (one per sub-pixel pass) traverse and the cycles they
+    predict, against the fixed schedule."""
     shading = bool(build["SHADING"])
-    t = plan.whole
-    full = frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading)
-    cycles = plan.cycles(cfg.pipelines, shading)
-    box = None if plan.box is None else {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
-                                         "dims": [int(b) - int(a) for a, b in zip(*plan.box)]}
-    return {"skip": plan.trav is not t, "skip_box": box, "skip_fraction": plan.fraction,
+    full = cycles = 0
+    boxes = []
+    for plan in plans:
+        t = plan.whole
+        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading)
+        cycles += plan.cycles(cfg.pipelines, shading)
+        boxes.append(None if plan.box is None else
+                     {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
+                      "dims": [int(b) - int(a) for a, b in zip(*plan.box)]})
+    return {"skip": any(p.trav is not p.whole for p in plans), "skip_box": boxes[0],
+            "skip_fraction": float(np.mean([p.fraction for p in plans])),
             "predicted_cycles": cycles, "fixed_schedule_cycles": full, "cycles_saved": full - cycles,
-            "skip_table_s": plan.table_s}
+            "skip_table_s": sum(p.table_s for p in plans), "frames": len(plans)}
 
 
-def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera) -> np.ndarray:
+@dataclass
+class ViewPlan:
+    """Everything the host sends for one view: its tables and one frame per sub-pixel
+    pass (each with its empty-space box)."""
+
+    scene: Scene
+    trav: Traversal               # the view's traversal (phase 0)
+    cam: Camera
+    lut: np.ndarray
+    rmap: np.ndarray | None
+    passes: list[Pass]
+    plans: list[SkipPlan]         # one per pass
+
+    def jobs(self) -> list[tuple[Pass, SkipPlan]]:
+        """The passes that run a frame (a pass in which nothing counts runs none)."""
+        return [(ps, pl) for ps, pl in zip(self.passes, self.plans) if pl.trav is not None]
+
+
+def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
+    """The host's work for one view of vol[z, y, x]: traversal, camera, tables, the q×q
+    sub-pixel passes ([render] subpixel) and each pass's schedule."""
+    nz, ny, nx = vol.shape
+    trav, cam = setup_view((nx, ny, nz), scene, cfg)
+    lut, rmap = host_tables(scene, cfg, trav)
+    box_vol = crop_volume(vol, trav)
+    pss = passes(trav, scene.subpixel)
+    plans = [schedule(box_vol, scene, ps.trav, lut, frame_clip(scene, ps.trav)) for ps in pss]
+    return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
+
+
+def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.ndarray, np.ndarray]]) -> Frame:
+    """The view's frame from its passes' results ({pass index: (box base plane, box
+    finished rays)}; a pass that ran no frame is absent): each box placed in its pass's
+    base plane, the passes interleaved when q > 1 (the frame's base plane and its rays'
+    addresses are then the fine plane's)."""
+    q = vp.scene.subpixel
+    planes, pix = [], []
+    for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
+        sub, rays = results.get(n, (None, np.empty(0, PIXEL_DTYPE)))
+        planes.append((ps, plan.place(sub)))
+        rays = plan.place_pixels(rays)
+        if q > 1 and rays.size:
+            (r0, c0), rays = fine_origin(vp.trav, q, ps), rays.copy()
+            rays["by"], rays["bx"] = r0 + q * rays["by"], c0 + q * rays["bx"]
+        pix.append(rays)
+    base = planes[0][1] if q == 1 else interleave(vp.trav, q, planes)
+    return Frame(trav=vp.trav, cfg=cfg, baseplane=base, pixels=np.concatenate(pix))
+
+
+def view_image(vp: ViewPlan, frame: Frame) -> np.ndarray:
+    """The frame's base plane warped to the view's image plane."""
+    q = vp.scene.subpixel
+    return warp_to_image(frame.baseplane_float, vp.trav, vp.cam, pre=None if q == 1 else fine_to_base(q))
+
+
+def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera, pre: np.ndarray | None = None) -> np.ndarray:
     """Warp a float base plane (rows, cols, 4) to the image plane (H, W, 4) with
-    OpenImageIO (bilinear, black outside)."""
+    OpenImageIO (bilinear, black outside). ``pre`` (3×3): a plane whose pixels map to
+    ``trav``'s base-plane points by it (a sub-pixel pass's fine plane)."""
     import OpenImageIO as oiio
 
     a = warp_matrix(trav, cam)  # integer pixel centres, column vectors
+    if pre is not None:
+        a = a @ pre
     # OIIO: pixel centres at +0.5, row-vector matrices (p' = p M).
     shift = np.array([[1.0, 0.0, 0.5], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]])
     unshift = np.array([[1.0, 0.0, -0.5], [0.0, 1.0, -0.5], [0.0, 0.0, 1.0]])
@@ -192,20 +257,22 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     stats = view_stats("golden", dims, scene, cfg)
     stats["build"] = resolve_build(cfg, [scene])     # the build this frame models
     t0 = time.perf_counter()
-    lut, rmap = host_tables(scene, cfg, trav)
+    vp = plan_view(vol, scene, cfg)
     box_vol = crop_volume(vol, trav)
-    plan = schedule(box_vol, scene, trav, lut, frame_clip(scene, trav))
-    if plan.trav is None:       # nothing can change a ray: no frame
-        frame = Frame(trav=trav, cfg=cfg, baseplane=plan.place(None), pixels=plan.place_pixels(np.empty(0, PIXEL_DTYPE)))
-    else:
-        sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, lut, rmap, keep_streams=keep_streams,
+    results, streams = {}, {}
+    for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
+        if plan.trav is None:       # nothing can change a ray: no frame
+            continue
+        sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip)
-        # the streams (keep_streams) are the traversed box's, in the frame of sub.trav
-        frame = Frame(trav=trav, cfg=cfg, baseplane=plan.place(sub.baseplane), pixels=plan.place_pixels(sub.pixels),
-                      streams=dict(sub.streams, trav=plan.trav) if keep_streams else {})
-    img = warp_to_image(frame.baseplane_float, trav, cam)
+        results[n] = (sub.baseplane, sub.pixels)
+        if keep_streams and not streams:    # the first pass's: the traversed box's, in the frame of its trav
+            streams = dict(sub.streams, trav=plan.trav)
+    frame = assemble_view(vp, cfg, results)
+    frame.streams = streams
+    img = view_image(vp, frame)
     stats.update(trav_stats(trav))
-    stats.update(schedule_stats(plan, cfg, stats["build"]))
+    stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
     stats["pixels"] = int(frame.pixels.size)
     return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)
 

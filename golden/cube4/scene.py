@@ -15,6 +15,7 @@ import numpy as np
 
 from .errors import UserError
 from .modes import MODES  # docs/scenes.md, docs/numerics.md §13
+from .subpixel import MAX_Q
 from .view import direction_from_angles, normalize_direction
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
@@ -46,6 +47,7 @@ class Scene:
     crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     skip: bool = True  # [render] skip: traverse only the box that can change a ray (cube4.skip)
+    subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
 
     @property
     def shaded(self) -> bool:
@@ -105,13 +107,16 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     height = _int(out, "height", width, 8, 8192, "output.")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample", "skip"), "render")
+    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel"), "render")
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
         raise UserError(f"scene: render.mode {mode!r} is not supported (supported: {', '.join(MODES)})")
     supersample = rnd.get("supersample", 1)
     if not isinstance(supersample, int) or isinstance(supersample, bool) or supersample not in (1, 2, 4, 8):
         raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {supersample!r}")
+    subpixel = rnd.get("subpixel", 1)
+    if not isinstance(subpixel, int) or isinstance(subpixel, bool) or not 1 <= subpixel <= MAX_Q:
+        raise UserError(f"scene: render.subpixel must be an integer in 1..{MAX_Q}, got {subpixel!r}")
     skip = rnd.get("skip", True)
     if not isinstance(skip, bool):
         raise UserError(f"scene: render.skip must be true or false, got {skip!r}")
@@ -171,7 +176,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, cut=cut, skip=skip,
+        shading=shading, crop=crop, cut=cut, skip=skip, subpixel=subpixel,
     )
 
 

@@ -251,15 +251,13 @@ def sub_traversal(trav: Traversal, s0, s1) -> tuple[Traversal, tuple[int, int], 
     box's first sample slice. Returns (traversal, (row, col) of its base-plane pixel
     (0, 0) in ``trav``'s base plane, (i, j, k) of its traversal-frame voxel (0, 0, 0) in
     ``trav``'s frame). A brick (numerics.md §14) and the empty-space box (§15) are such
-    boxes; ``trav`` must start at phase 0."""
-    if trav.phase_x or trav.phase_y:
-        raise ValueError("the whole traversal must start at phase 0")
+    boxes."""
     start = []
     for ax in (trav.axis_i, trav.axis_j, trav.major):
         start.append(trav.dims[ax] - s1[ax] if trav.flip[ax] else s0[ax])
     i0, j0, k0 = start
     S, pb = trav.supersample, trav.phase_bits
-    px, py = k0 * S * trav.view_x, k0 * S * trav.view_y
+    px, py = trav.phase_x + k0 * S * trav.view_x, trav.phase_y + k0 * S * trav.view_y
     mask = (1 << pb) - 1
     dims = tuple(int(b) - int(a) for a, b in zip(s0, s1))
     origin = tuple(o + int(s) for o, s in zip(trav.origin, s0))

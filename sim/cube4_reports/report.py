@@ -16,7 +16,7 @@ S, weight bits W, accumulator bits F, pipelines p) and every volume/scene pair i
 Outputs: ``<out>/error_vs_runtime.{md,csv,png}`` and build/reports/error_vs_runtime.json;
 the Verilator/cocotb output goes to build/reports/error_vs_runtime.log.
 
-``--no-rtl`` takes the cycles from the formula of docs/architecture.md instead (marked
+``--no-rtl`` takes the cycles from the formula of docs/architecture.md with the empty-space box's dims instead (marked
 "formula"); ``--quick`` renders one volume and five configurations.
 """
 
@@ -33,7 +33,7 @@ import os
 import sys
 import time
 from collections.abc import Iterator
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any, TextIO
@@ -42,12 +42,10 @@ import numpy as np
 
 from cube4.config import Cube4Config
 from cube4.errors import UserError
-from cube4.render import config_for, image_metrics, render, setup_view
+from cube4.render import config_for, image_metrics, render
 from cube4.scene import Scene, load_scene
-from cube4.view import Traversal
 from cube4.volumes import load_volume
 
-from cube4.cycles import frame_cycles
 from cube4_sim.engine import register as register_rtl_engine
 
 from .markdown import REPO_ROOT, git_state, md_table
@@ -67,14 +65,18 @@ SWEEPS: dict[str, tuple[int, ...]] = {
     "weight_bits": (4, 6, 8, 10, 12),
     "acc_bits": (8, 12, 16, 24),
     "pipelines": (1, 2, 4, 8),
+    "subpixel": (2, 3, 4),
 }
 QUICK_SWEEPS: dict[str, tuple[int, ...]] = {
     "supersample": (2,),
     "weight_bits": (4,),
     "acc_bits": (8,),
     "pipelines": (1,),
+    "subpixel": (2,),
 }
-SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p"}
+SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p", "subpixel": "q"}
+#: sweeps of a scene key (the render's, not the hardware's configuration)
+SCENE_SWEEPS = ("subpixel",)
 CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
 NA_FMAX = "n/a (run make fpga)"
 
@@ -91,9 +93,14 @@ class Variant:
         return "default" if self.varied == "default" else f"{SHORT[self.varied]}={self.value}"
 
     def config(self, scene: Scene) -> Cube4Config:
-        if self.varied == "default":
+        if self.varied == "default" or self.varied in SCENE_SWEEPS:
             return config_for(scene)
         return config_for(scene, **{self.varied: self.value})
+
+
+    def scene(self, scene: Scene) -> Scene:
+        """The scene this variant renders (a scene sweep changes its key)."""
+        return replace(scene, **{self.varied: self.value}) if self.varied in SCENE_SWEEPS else scene
 
 
 @dataclass
@@ -131,6 +138,7 @@ class Row:
     d_psnr_db: float | None = None  # PSNR - PSNR of the default configuration
     cycles_ratio: float | None = None  # cycles / cycles of the default configuration
     baseplane_sha: str = ""  # identifies identical golden base planes (e.g. across p)
+    subpixel: int = 1  # q: q×q sub-pixel passes per view
 
 
 # ---------------------------------------------------------------------------- configs
@@ -147,16 +155,10 @@ def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Varia
     out: list[tuple[Variant, Cube4Config]] = []
     for v in all_variants:
         cfg = v.config(scene)
-        if v.varied != "default" and cfg == default:
+        if v.varied != "default" and v.varied not in SCENE_SWEEPS and cfg == default:
             continue
         out.append((v, cfg))
     return out
-
-
-def formula_cycles(trav: Traversal, pipelines: int) -> int:
-    """Cycles per frame without stalls (docs/architecture.md; cube4.cycles):
-    (M·NJ + 1)·NB + 1 + NJ·NB + NB + 2 + fill."""
-    return frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, pipelines)
 
 
 # ------------------------------------------------------------------------------- Fmax
@@ -250,16 +252,14 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
     res = render(vol, scene, cfg, "golden")
     m = image_metrics(res.image, ref_img)
     err = res.image - ref_img
-    nz, ny, nx = vol.shape
-    trav, _ = setup_view((nx, ny, nz), scene, cfg)
     d = cfg.as_dict()
     row = Row(volume=volume, scene=scene.name, varied=variant.varied, label=variant.label,
               pipelines=d["pipelines"], weight_bits=d["weight_bits"], acc_bits=d["acc_bits"],
               supersample=d["supersample"], voxel_bits=d["voxel_bits"], alpha_bits=d["alpha_bits"],
               rmap_bits=d["rmap_bits"], rmse=m["rmse"], max_abs=m["max_abs"], psnr=m["psnr"],
               rmse_rgb=float(np.sqrt(np.mean(err[..., :3] ** 2))), rmse_alpha=float(np.sqrt(np.mean(err[..., 3] ** 2))),
-              golden_wall_s=res.wall_s, formula_cycles=formula_cycles(trav, cfg.pipelines),
-              baseplane_sha=_sha(res.frame.baseplane))
+              golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
+              baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel)
     return row, res.frame.baseplane
 
 
@@ -391,7 +391,7 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
         ok = [r for r in rows if r.cycles_source == "rtl"]
         if ok:
             dev = [r.cycles - r.formula_cycles for r in ok]
-            out.write(f"- Measured cycles minus the formula of docs/architecture.md: {min(dev):+d} .. {max(dev):+d}.\n")
+            out.write(f"- Measured cycles minus the formula of docs/architecture.md with the empty-space box's dims: {min(dev):+d} .. {max(dev):+d}.\n")
     path.write_text(out.getvalue())
 
 
@@ -558,7 +558,7 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
                 match = [cfg for v, cfg in plan[case] if v == variant]
                 if not match:
                     continue
-                scene, vol = scenes[case[1]], vols[case]
+                scene, vol = variant.scene(scenes[case[1]]), vols[case]
                 bar.set_postfix_str(f"{case[0]} {variant.label}" + (" (RTL build/sim)" if use_rtl else ""))
                 row, golden_base = golden_row(vol, case[0], scene, variant, match[0], refs[case])
                 if use_rtl:
@@ -575,7 +575,7 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
         "finished": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "command": "make report" + (" (--quick)" if quick else "") + (" (--no-rtl)" if not use_rtl else ""),
         "cycles_note": ("measured by simulating cube4_top in Verilator (source `rtl`)" if use_rtl else
-                        "from the formula of docs/architecture.md, not simulated (source `formula`)"),
+                        "from the formula of docs/architecture.md with the empty-space box's dims, not simulated (source `formula`)"),
         "fmax_note": fmax_note(),
     })
     return rows, meta
@@ -628,7 +628,7 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--quick", action="store_true",
                     help="one volume (sphere:64) and five configurations: default, S=2, W=4, F=8, p=1")
     ap.add_argument("--no-rtl", action="store_true",
-                    help="no Verilator: cycles from the formula of docs/architecture.md (marked 'formula')")
+                    help="no Verilator: cycles from the formula of docs/architecture.md with the empty-space box's dims (marked 'formula')")
     ap.add_argument("--tables-only", action="store_true",
                     help="render nothing: rewrite the tables and plot from the last run into --out "
                          "(build/reports/error_vs_runtime.json) with the current Fmax of make fpga")

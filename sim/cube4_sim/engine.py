@@ -16,9 +16,8 @@ import numpy as np
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
-from cube4.model import PIXEL_DTYPE, Frame
-from cube4.render import (RenderResult, crop_volume, frame_clip, host_tables, register_engine, schedule,
-                          schedule_stats, setup_view, trav_stats, view_stats, warp_to_image)
+from cube4.render import (RenderResult, assemble_view, plan_view, register_engine, schedule_stats, trav_stats,
+                          view_image, view_stats)
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, render_frames
@@ -33,52 +32,52 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
-    views = [setup_view(dims, sc, cfg) for sc in scenes]
-    plans, jobs = [], []
-    for sc, (trav, _) in zip(scenes, views):
-        lut, rmap = host_tables(sc, cfg, trav)
-        plan = schedule(crop_volume(vol, trav), sc, trav, lut, frame_clip(sc, trav))
-        plans.append(plan)
-        if plan.trav is not None:       # a frame in which nothing can change a ray is not run
-            jobs.append(FrameJob(plan.trav, lut, rmap, mode=sc.mode, clip=plan.clip))
+    vps = [plan_view(vol, sc, cfg) for sc in scenes]
+    jobs, owners = [], []
+    for nv, vp in enumerate(vps):
+        for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
+            if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
+                jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip))
+                owners.append((nv, n))
     try:
         outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True, build=build) if jobs else []
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None
     run_s = time.perf_counter() - t0
     sim_total = sum(o["sim_wall_s"] for o in outs)
+    per_view: list[dict] = [{} for _ in vps]
+    for (nv, n), job, out in zip(owners, jobs, outs):
+        per_view[nv][n] = (job, out)
     results = []
-    ran = iter(outs)
-    for sc, (trav, cam), plan in zip(scenes, views, plans):
+    for vp, ran in zip(vps, per_view):
         t1 = time.perf_counter()
-        out = next(ran) if plan.trav is not None else _no_frame()
-        sub = baseplane_from_pixels(out["pixels"], plan.trav.baseplane_shape) if plan.trav is not None else None
-        frame = Frame(trav=trav, cfg=cfg, baseplane=plan.place(sub), pixels=plan.place_pixels(out["pixels"]))
-        img = warp_to_image(frame.baseplane_float, trav, cam)
-        stats = view_stats(NAME, dims, sc, cfg)
-        stats.update(trav_stats(trav))
-        stats.update(schedule_stats(plan, cfg, build))
-        stats.update(_cycle_stats(out, nx * ny * nz / cfg.pipelines))
+        frame = assemble_view(vp, cfg, {n: (baseplane_from_pixels(out["pixels"], job.trav.baseplane_shape),
+                                            out["pixels"]) for n, (job, out) in ran.items()})
+        img = view_image(vp, frame)
+        stats = view_stats(NAME, dims, vp.scene, cfg)
+        stats.update(trav_stats(vp.trav))
+        stats.update(schedule_stats(vp.plans, cfg, build))
+        outs_v = [out for _, out in ran.values()]
+        stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
         stats["build"] = dict(build)
-        wall = out["sim_wall_s"] + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
+        sim_s = sum(o["sim_wall_s"] for o in outs_v)
+        wall = sim_s + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
         stats["wall_s"] = wall
         results.append(RenderResult(NAME, img, wall, frame=frame, stats=stats))
     return results
 
 
-def _no_frame() -> dict:
-    return {"pixels": np.empty(0, dtype=PIXEL_DTYPE), "cycles": 0, "sim_wall_s": 0.0}
-
-
-def _cycle_stats(out: dict, ideal: float) -> dict:
-    cycles = int(out["cycles"])
+def _cycle_stats(outs: list[dict], ideal: float) -> dict:
+    """A view's measured figures, summed over its frames (one per sub-pixel pass)."""
+    cycles = sum(int(o["cycles"]) for o in outs)
+    sim_s = sum(o["sim_wall_s"] for o in outs)
     return {
-        "pixels": int(out["pixels"].size),
+        "pixels": sum(int(o["pixels"].size) for o in outs),
         "cycles": cycles,
         "ideal_cycles": ideal,
         "efficiency": ideal / cycles if cycles else None,
-        "sim_wall_s": out["sim_wall_s"],
-        "sim_cycles_per_s": cycles / out["sim_wall_s"] if out["sim_wall_s"] > 0 else None,
+        "sim_wall_s": sim_s,
+        "sim_cycles_per_s": cycles / sim_s if sim_s > 0 else None,
     }
 
 
