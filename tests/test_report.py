@@ -110,3 +110,14 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     paths = report.write_outputs(new_rows, new_meta, tmp_path / "out")
     assert all(p.exists() for p in paths)
     assert "0.1600 @ 50.0 MHz" in (tmp_path / "out" / f"{report.STEM}.md").read_text()
+
+
+def test_pareto_front() -> None:
+    """The non-dominated rows: fewest cycles for their PSNR, PSNR rising along the front."""
+    def row(label, cycles, psnr):
+        return report.Row(volume="v", scene="s", varied="default", label=label, pipelines=8, weight_bits=8,
+                          acc_bits=16, supersample=1, voxel_bits=8, alpha_bits=12, rmap_bits=5, rmse=0.0,
+                          max_abs=0.0, psnr=psnr, rmse_rgb=0.0, rmse_alpha=0.0, golden_wall_s=0.1,
+                          formula_cycles=cycles, cycles=cycles)
+    rs = [row("a", 100, 30.0), row("b", 100, 31.0), row("c", 200, 30.5), row("d", 400, 33.0), row("e", 300, 33.0)]
+    assert [r.label for r in report.pareto(rs)] == ["b", "e"]

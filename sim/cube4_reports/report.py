@@ -376,8 +376,12 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               f"(machine load average {meta['loadavg_start']} at the start, {meta['loadavg_end']} at the end). "
               "bit_exact: the RTL base plane equals the golden one.\n\n")
     for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
+        rs = [r for r in rows if (r.volume, r.scene) == (vol, scn)]
         out.write(f"## {vol}, scene `{scn}`\n\n")
-        out.write(markdown_table([r for r in rows if (r.volume, r.scene) == (vol, scn)]) + "\n\n")
+        out.write(markdown_table(rs) + "\n\n")
+        front = pareto([r for r in rs if r.cycles is not None])
+        out.write("Non-dominated (no configuration is faster and at least as good): "
+                  + ", ".join(f"{r.label} ({r.psnr:.2f} dB, {r.cycles:,} cycles)" for r in front) + ".\n\n")
     notes = p_invariance_note(rows)
     failed = [r for r in rows if r.rtl_error]
     mismatched = [r for r in rows if r.bit_exact is False]
@@ -426,7 +430,18 @@ SERIES_STYLE = {  # marker, colour
     "pipelines": ("D", "tab:purple"),
     "weight_bits": ("s", "tab:green"),
     "acc_bits": ("^", "tab:red"),
+    "subpixel": ("v", "tab:orange"),
 }
+
+
+def pareto(rs: list[Row]) -> list[Row]:
+    """The non-dominated rows in (cycles, PSNR): no other row has fewer or equal cycles and a
+    higher PSNR (or equal PSNR and fewer cycles); ordered by cycles."""
+    front: list[Row] = []
+    for r in sorted(rs, key=lambda r: (r.cycles, -r.psnr)):
+        if not front or r.psnr > front[-1].psnr:
+            front.append(r)
+    return front
 
 
 def _series(rs: list[Row], key: str) -> list[Row]:
@@ -435,9 +450,9 @@ def _series(rs: list[Row], key: str) -> list[Row]:
 
 
 def _plot_runtime(ax: Any, rs: list[Row]) -> None:
-    """PSNR against cycles: S and p as annotated lines; W and F (no extra cycles) as
-    bare markers at the default's cycle count."""
-    for key in ("supersample", "pipelines"):
+    """PSNR against cycles: S, p and q as annotated lines; W and F (no extra cycles) as
+    bare markers at the default's cycle count; the non-dominated configurations joined."""
+    for key in ("supersample", "pipelines", "subpixel"):
         marker, colour = SERIES_STYLE[key]
         series = _series(rs, key)
         ax.plot([r.cycles for r in series], [r.psnr for r in series], marker=marker, color=colour,
@@ -445,7 +460,10 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
         for r in series:
             if r.varied == key:
                 ax.annotate(f"{SHORT[key]}={getattr(r, key)}", (r.cycles, r.psnr), textcoords="offset points",
-                            xytext=(4, 6 if key == "supersample" else -12), fontsize=8, color=colour)
+                            xytext=(4, {"supersample": 6, "pipelines": -12}.get(key, 10)), fontsize=8, color=colour)
+    front = pareto(rs)
+    ax.plot([r.cycles for r in front], [r.psnr for r in front], linestyle="--", color="black", linewidth=1.2,
+            alpha=0.7, label="non-dominated (fewest cycles for the PSNR)")
     for key in ("weight_bits", "acc_bits"):
         marker, colour = SERIES_STYLE[key]
         pts = [r for r in rs if r.varied == key]
