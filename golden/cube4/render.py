@@ -22,7 +22,8 @@ from .clip import Clip, cut_coefficients
 from .modes import is_extremum
 from .scene import Scene, crop_box
 from .tables import classification_lut, extremum_lut, reflectance_map
-from .view import Camera, Traversal, make_camera, make_traversal, warp_matrix
+from .view import Camera, Traversal, make_camera, make_traversal
+from .warp import warp_to_image
 
 @dataclass
 class RenderResult:
@@ -77,24 +78,9 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
     return lut, (reflectance_map(scene, cfg, trav) if scene.shaded else None)
 
 
-def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera) -> np.ndarray:
-    """Warp a float base plane (rows, cols, 4) to the image plane (H, W, 4) with
-    OpenImageIO (bilinear, black outside)."""
-    import OpenImageIO as oiio
-
-    a = warp_matrix(trav, cam)  # integer pixel centres, column vectors
-    # OIIO: pixel centres at +0.5, row-vector matrices (p' = p M).
-    shift = np.array([[1.0, 0.0, 0.5], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]])
-    unshift = np.array([[1.0, 0.0, -0.5], [0.0, 1.0, -0.5], [0.0, 0.0, 1.0]])
-    m = shift @ a @ unshift
-    m_row = tuple(float(x) for x in m.T.reshape(-1))  # Python floats (numpy scalars read as identity)
-    src = oiio.ImageBuf(np.ascontiguousarray(base, dtype=np.float32))
-    roi = oiio.ROI(0, cam.width, 0, cam.height, 0, 1, 0, 4)
-    dst = oiio.ImageBufAlgo.warp(src, m_row, filtername="triangle", wrap="black", roi=roi)
-    if dst.has_error:
-        raise RuntimeError(f"OpenImageIO warp failed: {dst.geterror()}")
-    out = dst.get_pixels(oiio.FLOAT, roi)
-    return np.asarray(out, dtype=np.float64).reshape(cam.height, cam.width, 4)
+def scene_warp(base: np.ndarray, trav: Traversal, cam: Camera, scene: Scene) -> np.ndarray:
+    """The base plane warped to the image as the scene's [output] asks (its filter)."""
+    return warp_to_image(base, trav, cam, filtername=scene.filter)
 
 
 def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:
@@ -172,7 +158,7 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     lut, rmap = host_tables(scene, cfg, trav)
     frame = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, keep_streams=keep_streams,
                          progress=progress, mode=scene.mode, shading=scene.shaded, clip=frame_clip(scene, trav))
-    img = warp_to_image(frame.baseplane_float, trav, cam)
+    img = scene_warp(frame.baseplane_float, trav, cam, scene)
     stats.update(trav_stats(trav))
     stats["pixels"] = int(frame.pixels.size)
     return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)

@@ -17,8 +17,8 @@ from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
 from cube4.model import Frame
-from cube4.render import (RenderResult, frame_clip, host_tables, register_engine, setup_view, trav_stats,
-                          view_stats, warp_to_image)
+from cube4.render import (RenderResult, frame_clip, host_tables, register_engine, scene_warp, setup_view,
+                          trav_stats, view_stats)
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, render_frames
@@ -47,7 +47,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         t1 = time.perf_counter()
         base = baseplane_from_pixels(out["pixels"], trav.baseplane_shape)
         frame = Frame(trav=trav, cfg=cfg, baseplane=base, pixels=out["pixels"])
-        img = warp_to_image(frame.baseplane_float, trav, cam)
+        img = scene_warp(frame.baseplane_float, trav, cam, sc)
         stats = view_stats(NAME, dims, sc, cfg)
         stats.update(trav_stats(trav))
         stats.update(_cycle_stats(out, nx * ny * nz / cfg.pipelines))
