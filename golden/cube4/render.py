@@ -79,8 +79,8 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
 
 
 def scene_warp(base: np.ndarray, trav: Traversal, cam: Camera, scene: Scene) -> np.ndarray:
-    """The base plane warped to the image as the scene's [output] asks (its filter)."""
-    return warp_to_image(base, trav, cam, filtername=scene.filter)
+    """The base plane warped to the image as the scene's [output] asks (filter, footprint)."""
+    return warp_to_image(base, trav, cam, filtername=scene.filter, footprint=scene.footprint)
 
 
 def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:

@@ -18,6 +18,8 @@ from .modes import MODES  # docs/scenes.md, docs/numerics.md §13
 from .view import direction_from_angles, normalize_direction
 from .warp import DEFAULT_FILTER, check_filter
 
+#: [output] footprint when a scene does not say (docs/scenes.md)
+FOOTPRINT_DEFAULT = True
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
@@ -48,6 +50,7 @@ class Scene:
     crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     filter: str = DEFAULT_FILTER  # [output] filter: the warp's OpenImageIO filter
+    footprint: bool = FOOTPRINT_DEFAULT  # [output] footprint: cut the image to the box's projection
 
     @property
     def shaded(self) -> bool:
@@ -102,10 +105,13 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     up = normalize_direction(view["up"]) if "up" in view else None
 
     out = data.get("output", {})
-    _check_keys(out, ("width", "height", "filter"), "output")
+    _check_keys(out, ("width", "height", "filter", "footprint"), "output")
     width = _int(out, "width", 256, 8, 8192, "output.")
     height = _int(out, "height", width, 8, 8192, "output.")
     warp_filter = check_filter(out.get("filter", DEFAULT_FILTER), "scene: output.")
+    footprint = out.get("footprint", FOOTPRINT_DEFAULT)
+    if not isinstance(footprint, bool):
+        raise UserError(f"scene: output.footprint must be true or false, got {footprint!r}")
 
     rnd = data.get("render", {})
     _check_keys(rnd, ("mode", "supersample"), "render")
@@ -171,7 +177,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, cut=cut, filter=warp_filter,
+        shading=shading, crop=crop, cut=cut, filter=warp_filter, footprint=footprint,
     )
 
 
