@@ -448,11 +448,13 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
     axis of the traversed box; None: the fewest that fit ``board_dim``), composited and
     warped: one ``render.RenderResult`` per scene. All bricks of all views go to the
     executor at once."""
-    from .render import (RenderResult, crop_volume, frame_clip, host_tables, setup_view, trav_stats, view_stats,
-                         warp_to_image)
+    from .render import (RenderResult, crop_volume, frame_clip, host_tables, scene_warp, setup_view, trav_stats,
+                         view_stats)
 
     if grid_counts is None and board_dim is None:
         raise ValueError("give the bricks per axis or the board's largest brick")
+    if any(sc.subpixel != 1 for sc in scenes):
+        raise UserError("--bricks renders one pass per view: set [render] subpixel = 1 in the scene")
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     executor = executor or LocalExecutor()
@@ -479,7 +481,7 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
     for (sc, trav, cam, grid, bricks), (a, b) in zip(views, spans):
         t1 = time.perf_counter()
         frame, comp_s = assemble(trav, cfg, bricks, results[a:b], sc.mode)
-        img = warp_to_image(frame.baseplane_float, trav, cam)
+        img = scene_warp(frame.baseplane_float, trav, cam, sc)
         stats = view_stats(engine, dims, sc, cfg)
         stats.update(trav_stats(trav))
         res = results[a:b]

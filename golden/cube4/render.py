@@ -25,7 +25,8 @@ from .clip import Clip, cut_coefficients
 from .modes import is_extremum
 from .scene import Scene, crop_box
 from .tables import classification_lut, extremum_lut, reflectance_map
-from .view import Camera, Traversal, make_camera, make_traversal, warp_matrix
+from .view import Camera, Traversal, make_camera, make_traversal
+from .warp import warp_to_image
 
 @dataclass
 class RenderResult:
@@ -159,30 +160,14 @@ def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.nd
 def view_image(vp: ViewPlan, frame: Frame) -> np.ndarray:
     """The frame's base plane warped to the view's image plane."""
     q = vp.scene.subpixel
-    return warp_to_image(frame.baseplane_float, vp.trav, vp.cam, pre=None if q == 1 else fine_to_base(q))
+    return scene_warp(frame.baseplane_float, vp.trav, vp.cam, vp.scene, pre=None if q == 1 else fine_to_base(q))
 
 
-def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera, pre: np.ndarray | None = None) -> np.ndarray:
-    """Warp a float base plane (rows, cols, 4) to the image plane (H, W, 4) with
-    OpenImageIO (bilinear, black outside). ``pre`` (3×3): a plane whose pixels map to
-    ``trav``'s base-plane points by it (a sub-pixel pass's fine plane)."""
-    import OpenImageIO as oiio
-
-    a = warp_matrix(trav, cam)  # integer pixel centres, column vectors
-    if pre is not None:
-        a = a @ pre
-    # OIIO: pixel centres at +0.5, row-vector matrices (p' = p M).
-    shift = np.array([[1.0, 0.0, 0.5], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]])
-    unshift = np.array([[1.0, 0.0, -0.5], [0.0, 1.0, -0.5], [0.0, 0.0, 1.0]])
-    m = shift @ a @ unshift
-    m_row = tuple(float(x) for x in m.T.reshape(-1))  # Python floats (numpy scalars read as identity)
-    src = oiio.ImageBuf(np.ascontiguousarray(base, dtype=np.float32))
-    roi = oiio.ROI(0, cam.width, 0, cam.height, 0, 1, 0, 4)
-    dst = oiio.ImageBufAlgo.warp(src, m_row, filtername="triangle", wrap="black", roi=roi)
-    if dst.has_error:
-        raise RuntimeError(f"OpenImageIO warp failed: {dst.geterror()}")
-    out = dst.get_pixels(oiio.FLOAT, roi)
-    return np.asarray(out, dtype=np.float64).reshape(cam.height, cam.width, 4)
+def scene_warp(base: np.ndarray, trav: Traversal, cam: Camera, scene: Scene,
+               pre: np.ndarray | None = None) -> np.ndarray:
+    """The base plane warped to the image as the scene's [output] asks (filter, footprint);
+    ``pre``: a plane whose pixels map to ``trav``'s base-plane points by it (q×q passes)."""
+    return warp_to_image(base, trav, cam, filtername=scene.filter, footprint=scene.footprint, pre=pre)
 
 
 def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:

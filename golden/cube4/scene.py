@@ -17,6 +17,10 @@ from .errors import UserError
 from .modes import MODES  # docs/scenes.md, docs/numerics.md §13
 from .subpixel import MAX_Q
 from .view import direction_from_angles, normalize_direction
+from .warp import DEFAULT_FILTER, check_filter
+
+#: [output] footprint when a scene does not say (docs/scenes.md)
+FOOTPRINT_DEFAULT = True
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
@@ -48,6 +52,8 @@ class Scene:
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     skip: bool = True  # [render] skip: traverse only the box that can change a ray (cube4.skip)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
+    filter: str = DEFAULT_FILTER  # [output] filter: the warp's OpenImageIO filter
+    footprint: bool = FOOTPRINT_DEFAULT  # [output] footprint: cut the image to the box's projection
 
     @property
     def shaded(self) -> bool:
@@ -102,9 +108,13 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     up = normalize_direction(view["up"]) if "up" in view else None
 
     out = data.get("output", {})
-    _check_keys(out, ("width", "height"), "output")
+    _check_keys(out, ("width", "height", "filter", "footprint"), "output")
     width = _int(out, "width", 256, 8, 8192, "output.")
     height = _int(out, "height", width, 8, 8192, "output.")
+    warp_filter = check_filter(out.get("filter", DEFAULT_FILTER), "scene: output.")
+    footprint = out.get("footprint", FOOTPRINT_DEFAULT)
+    if not isinstance(footprint, bool):
+        raise UserError(f"scene: output.footprint must be true or false, got {footprint!r}")
 
     rnd = data.get("render", {})
     _check_keys(rnd, ("mode", "supersample", "skip", "subpixel"), "render")
@@ -176,7 +186,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, cut=cut, skip=skip, subpixel=subpixel,
+        shading=shading, crop=crop, cut=cut, skip=skip, subpixel=subpixel, filter=warp_filter,
+        footprint=footprint,
     )
 
 

@@ -113,7 +113,9 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     st = json.loads((tmp_path / "rtl.json").read_text())
     for key in ("cycles", "ideal_cycles", "sim_cycles_per_s", "wall_s"):
         assert st[key] and st[key] > 0, key
-    assert st["cycles"] >= st["ideal_cycles"]
+    # empty-space skipping: the measured cycles are the golden model's prediction for the box,
+    # below n^3/P here; the fixed schedule's are above it
+    assert st["cycles"] == st["predicted_cycles"] < st["ideal_cycles"] <= st["fixed_schedule_cycles"]
 
 
 def test_cli_rtl_failed_build_is_one_line(tmp_path):
