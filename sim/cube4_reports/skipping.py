@@ -147,9 +147,9 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict) -> str:
                   f"the fixed schedule; base plane "
                   f"{'identical to' if rtl['bit_identical_to_fixed_golden'] else 'DIFFERENT from'} the golden "
                   f"fixed schedule's.", ""]
-    lines += ["No CT volume ships in the PyPI packages this project installs (pydicom's test files hold "
-              "single CT slices, not a volume), so the real content here is the two MRI volumes of nibabel.",
-              ""]
+    lines += ["No CT volume ships in a PyPI package that I found: pydicom's test files hold one CT slice "
+              "(CT_small.dcm) and pydicom-data's enhanced CT two frames (eCT_Supplemental.dcm, 2×512×512), "
+              "so the real content here is the two MRI volumes of nibabel.", ""]
     return "\n".join(lines)
 
 
