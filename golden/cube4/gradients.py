@@ -18,6 +18,10 @@ Estimators on the *sample* stream (fit the GRA position after the TRI unit):
              gi/gj central differences; ``tri_s`` the same smoothed 3×3 in the slice.
 
 H defaults to S; ``ray_s@2`` etc. cap H at 2 (fewer slice buffers, stencil 2H/S).
+Suffix ``_n`` (``ray_n``, ``sobel_n``, ...): the ±H neighbours on the lattice vector
+nearest to the k axis (shear correction with the signed residual slope); ``_v``: the ±S
+slices re-interpolated straight above/below the sample (no shear correction).
+The recommended estimator is ``sobel_n`` (docs/gradient_research.md).
 
 Voxel estimators (need a second set of three interpolators), for comparison:
 
