@@ -60,23 +60,26 @@ CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"), ("head:64", "hea
 QUICK_CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"),)
 
 #: Parameter sweeps, one parameter at a time from the scene's default configuration.
-SWEEPS: dict[str, tuple[int, ...]] = {
+SWEEPS: dict[str, tuple] = {
     "supersample": (1, 2, 4),
     "weight_bits": (4, 6, 8, 10, 12),
     "acc_bits": (8, 12, 16, 24),
     "pipelines": (1, 2, 4, 8),
     "subpixel": (2, 3, 4),
+    "filter": ("mitchell", "catmull-rom", "bspline", "lanczos3"),
 }
-QUICK_SWEEPS: dict[str, tuple[int, ...]] = {
+QUICK_SWEEPS: dict[str, tuple] = {
     "supersample": (2,),
     "weight_bits": (4,),
     "acc_bits": (8,),
     "pipelines": (1,),
     "subpixel": (2,),
+    "filter": ("mitchell",),
 }
-SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p", "subpixel": "q"}
+SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p", "subpixel": "q",
+         "filter": "warp"}
 #: sweeps of a scene key (the render's, not the hardware's configuration)
-SCENE_SWEEPS = ("subpixel",)
+SCENE_SWEEPS = ("subpixel", "filter")
 CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
 NA_FMAX = "n/a (run make fpga)"
 
@@ -86,7 +89,7 @@ class Variant:
     """One configuration: the default, or one parameter changed from it."""
 
     varied: str  # "default" or a SWEEPS key
-    value: int | None
+    value: int | str | None
 
     @property
     def label(self) -> str:
@@ -139,6 +142,7 @@ class Row:
     cycles_ratio: float | None = None  # cycles / cycles of the default configuration
     baseplane_sha: str = ""  # identifies identical golden base planes (e.g. across p)
     subpixel: int = 1  # q: q×q sub-pixel passes per view
+    filter: str = "triangle"  # the warp's filter
 
 
 # ---------------------------------------------------------------------------- configs
@@ -259,7 +263,7 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               rmap_bits=d["rmap_bits"], rmse=m["rmse"], max_abs=m["max_abs"], psnr=m["psnr"],
               rmse_rgb=float(np.sqrt(np.mean(err[..., :3] ** 2))), rmse_alpha=float(np.sqrt(np.mean(err[..., 3] ** 2))),
               golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
-              baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel)
+              baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter)
     return row, res.frame.baseplane
 
 
@@ -319,13 +323,13 @@ def _bit_exact_text(r: Row) -> str:
 
 def _param_cells(r: Row) -> list[str]:
     cells = []
-    for key in ("supersample", "weight_bits", "acc_bits", "pipelines"):
+    for key in ("supersample", "weight_bits", "acc_bits", "pipelines", "subpixel", "filter"):
         v = str(getattr(r, key))
         cells.append(f"**{v}**" if r.varied == key else v)
     return cells
 
 
-TABLE_HEADERS = ["config", "S", "W", "F", "p", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
+TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
                  "× cycles", "source", "frame time at Fmax (ms)", "sim (s)", "sim cycles/s", "bit_exact"]
 
 
@@ -431,6 +435,7 @@ SERIES_STYLE = {  # marker, colour
     "weight_bits": ("s", "tab:green"),
     "acc_bits": ("^", "tab:red"),
     "subpixel": ("v", "tab:orange"),
+    "filter": ("P", "tab:brown"),
 }
 
 
@@ -464,11 +469,11 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
     front = pareto(rs)
     ax.plot([r.cycles for r in front], [r.psnr for r in front], linestyle="--", color="black", linewidth=1.2,
             alpha=0.7, label="non-dominated (fewest cycles for the PSNR)")
-    for key in ("weight_bits", "acc_bits"):
+    for key in ("weight_bits", "acc_bits", "filter"):
         marker, colour = SERIES_STYLE[key]
         pts = [r for r in rs if r.varied == key]
         ax.plot([r.cycles for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker, color=colour,
-                alpha=0.6, label=f"{SHORT[key]} variants (same cycles; lower row)")
+                alpha=0.6, label=f"{SHORT[key]} variants (same cycles" + ("; lower row)" if key != "filter" else ")"))
     for r in rs:
         if r.varied == "default":
             ax.plot([r.cycles], [r.psnr], marker="*", color="black", markersize=14, zorder=5, label="default")
