@@ -192,3 +192,63 @@ def test_cli_no_skip_and_stats(tmp_path):
     assert on["skip"] and on["cycles_saved"] > 0 and on["skip_fraction"] < 1
     assert not off["skip"] and off["cycles_saved"] == 0
     assert on["fixed_schedule_cycles"] == off["predicted_cycles"]
+
+
+@pytest.mark.parametrize("p", [1, 5, 8])
+def test_small_boxes_grow_to_a_full_rate_slice(p):
+    """One busy voxel: the box grows (rows, then partial beams) until a sample slice has
+    COM_MIN_SLICE beats, so that the cycle formula holds; the image stays exact."""
+    from cube4.cycles import COM_MIN_SLICE
+
+    rng = np.random.default_rng(p)
+    cfg = Cube4Config(pipelines=p)
+    vol = rng.integers(0, 100, size=(20, 18, 21))
+    vol[10, 9, 11] = 200
+    lut = np.zeros((256, 4), dtype=np.int64)
+    lut[150:] = rng.integers(1, 256, size=(106, 4))
+    for d in VIEWS:
+        trav = make_traversal((21, 18, 20), d, cfg.weight_bits, 1)
+        plan = skip.plan_skip(vol, trav, lut, "composite", p=p)
+        t = plan.trav
+        assert t.nj * -(-t.ni // p) >= COM_MIN_SLICE, (d, t.dims)
+        assert plan.fraction < 0.5
+        full = render_frame(vol, trav, cfg, lut, None, shading=False).baseplane
+        sub = render_frame(plan.box_volume(vol), t, cfg, lut, None, shading=False).baseplane
+        assert np.array_equal(plan.place(sub), full), d
+
+
+def test_skip_flag_and_streams():
+    """A box as large as the volume skips nothing (stats say so); keep_streams renders the
+    fixed schedule, so the streams are indexed by the frame's own traversal; with q > 1
+    it refuses."""
+    from cube4_testutil import sphere_volume
+
+    from cube4.render import render_golden_view
+
+    dense = parse_scene({"transfer": {"points": [[0, 0, 0, 0, 0.2], [1, 1, 1, 1, 0.5]]}, "output": {"width": 32}})
+    vol = sphere_volume(16)
+    cfg = Cube4Config(pipelines=4)
+    st = render(vol, dense, cfg, "golden").stats
+    assert st["skip"] is False and st["skip_fraction"] == 1.0 and st["cycles_saved"] == 0
+    sparse = parse_scene({"transfer": TF, "output": {"width": 32}})
+    big = np.zeros((24, 24, 24), dtype=np.uint16)
+    big[4:20, 4:20, 4:20] = vol
+    assert render(big, sparse, cfg, "golden").stats["skip"] is True
+    res = render_golden_view(big, sparse, cfg, keep_streams=True)
+    t = res.frame.trav
+    assert res.frame.streams["samples"].shape == (t.num_sample_slices, t.nj, t.ni) == (24, 24, 24)
+    with pytest.raises(ValueError, match="subpixel must be 1"):
+        render_golden_view(big, dataclasses.replace(sparse, subpixel=2), cfg, keep_streams=True)
+
+
+def test_skipping_report_rows():
+    """make skipping's measurement on a small volume: four views, images identical, the
+    cycles of both schedules, and its Markdown."""
+    from cube4_reports import skipping
+
+    rows = skipping.measure("sphere:24", "default", True)
+    assert len(rows) == 4
+    for r in rows:
+        assert r["bit_identical"] and r["predicted_cycles"] < r["fixed_schedule_cycles"]
+    text = skipping.write_md(rows, None, {"git": "test"})
+    assert "sphere:24" in text and "identical" in text

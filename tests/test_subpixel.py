@@ -82,13 +82,17 @@ def test_pixels_carry_fine_addresses():
     assert np.array_equal(base[pix["by"], pix["bx"], 3], pix["a"])
 
 
-def test_each_pass_has_its_own_box():
+def test_passes_share_the_views_box():
+    """The box does not depend on the phase: every pass traverses the same box, each
+    with its own phase (its frame's traversal is the box's of its pass)."""
     vol = np.zeros((30, 30, 30), dtype=np.uint16)
     vol[10:20, 8:22, 5:25] = sphere_volume(30)[10:20, 8:22, 5:25]
     scene = parse_scene({"render": {"subpixel": 2}, "transfer": {"points": [[0, 0, 0, 0, 0], [1, 1, 1, 1, 0.5]]}})
     vp = plan_view(vol, scene, config_for(scene, 4))
     assert len(vp.plans) == 4 and all(p.trav is not None and p.fraction < 0.5 for p in vp.plans)
     assert [p.whole for p in vp.plans] == [ps.trav for ps in vp.passes]
+    assert len({p.box for p in vp.plans}) == 1
+    assert len({(p.trav.phase_x, p.trav.phase_y) for p in vp.plans}) == 4
     assert crop_volume(vol, vp.trav).shape == vol.shape
 
 

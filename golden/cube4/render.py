@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -18,7 +18,7 @@ from .config import Cube4Config, resolve_build
 from .errors import UserError
 from .cycles import frame_cycles
 from .model import PIXEL_DTYPE, Frame, render_frame
-from .skip import SkipPlan, plan_skip
+from .skip import SkipPlan, find_box, plan_box
 from .subpixel import Pass, fine_origin, fine_to_base, interleave, passes
 from .reference import render_reference
 from .clip import Clip, cut_coefficients
@@ -81,12 +81,20 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
     return lut, (reflectance_map(scene, cfg, trav) if scene.shaded else None)
 
 
-def schedule(vol_box: np.ndarray, scene: Scene, trav: Traversal, lut: np.ndarray, clip: Clip | None) -> SkipPlan:
-    """The frame's schedule: the box that can change a ray (``cube4.skip``), or the whole
-    traversed box when the scene asks for the fixed schedule ([render] skip = false)."""
+def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pass], lut: np.ndarray) -> list[SkipPlan]:
+    """Each pass's frame: the box that can change a ray (``cube4.skip``; found once per
+    view, it does not depend on the phase), or the whole traversed box when the scene asks
+    for the fixed schedule ([render] skip = false)."""
+    plans = []
     if scene.skip:
-        return plan_skip(vol_box, trav, lut, scene.mode, clip)
-    return SkipPlan(trav, ((0, 0, 0), tuple(trav.dims)), trav, (0, 0), (0, 0, 0), clip, 0.0)
+        box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines)
+    for n, ps in enumerate(pss):
+        clip = frame_clip(scene, ps.trav)
+        if scene.skip:
+            plans.append(plan_box(ps.trav, box, clip, table_s if n == 0 else 0.0))
+        else:
+            plans.append(SkipPlan(ps.trav, ((0, 0, 0), tuple(ps.trav.dims)), ps.trav, (0, 0), (0, 0, 0), clip, 0.0))
+    return plans
 
 
 def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict:
@@ -102,7 +110,7 @@ def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict
         boxes.append(None if plan.box is None else
                      {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
                       "dims": [int(b) - int(a) for a, b in zip(*plan.box)]})
-    return {"skip": any(p.trav is not p.whole for p in plans), "skip_box": boxes[0],
+    return {"skip": any(p.skips for p in plans), "skip_box": boxes[0],
             "skip_fraction": float(np.mean([p.fraction for p in plans])),
             "predicted_cycles": cycles, "fixed_schedule_cycles": full, "cycles_saved": full - cycles,
             "skip_table_s": sum(p.table_s for p in plans), "frames": len(plans)}
@@ -134,7 +142,7 @@ def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
     lut, rmap = host_tables(scene, cfg, trav)
     box_vol = crop_volume(vol, trav)
     pss = passes(trav, scene.subpixel)
-    plans = [schedule(box_vol, scene, ps.trav, lut, frame_clip(scene, ps.trav)) for ps in pss]
+    plans = schedules(box_vol, scene, cfg, pss, lut)
     return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
 
 
@@ -242,6 +250,11 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     stats = view_stats("golden", dims, scene, cfg)
     stats["build"] = resolve_build(cfg, [scene])     # the build this frame models
     t0 = time.perf_counter()
+    if keep_streams:
+        # the streams are a verification aid, indexed by the whole traversal: one pass, the fixed schedule
+        if scene.subpixel != 1:
+            raise ValueError("keep_streams renders one pass: [render] subpixel must be 1")
+        scene = replace(scene, skip=False)
     vp = plan_view(vol, scene, cfg)
     box_vol = crop_volume(vol, trav)
     results, streams = {}, {}
@@ -251,12 +264,13 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
         sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip)
         results[n] = (sub.baseplane, sub.pixels)
-        if keep_streams and not streams:    # the first pass's: the traversed box's, in the frame of its trav
-            streams = dict(sub.streams, trav=plan.trav)
+        if keep_streams:
+            streams = sub.streams
     frame = assemble_view(vp, cfg, results)
     frame.streams = streams
     img = view_image(vp, frame)
     stats.update(trav_stats(trav))
+    stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
     stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
     stats["pixels"] = int(frame.pixels.size)
     return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)

@@ -30,8 +30,10 @@ for bit:
   before it left them as they started) and leave it finished (the empty samples after
   it change nothing). Rays that never meet the box end as they started: zero.
 
-The frame's cycles are the cycle formula's (``cube4.cycles``) with the box's dims. A
-volume with no busy cell renders no frame at all (0 cycles, a zero base plane).
+The frame's cycles are the cycle formula's (``cube4.cycles``) with the box's dims: the
+box is grown until a sample slice holds at least COM_MIN_SLICE beats, the least for
+which the formula holds (``fit_slice``). A volume with no busy cell renders no frame at
+all (0 cycles, a zero base plane).
 """
 
 from __future__ import annotations
@@ -42,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .clip import Clip, move_plane
-from .cycles import frame_cycles
+from .cycles import COM_MIN_SLICE, frame_cycles
 from .modes import MODES
 from .view import Traversal, sub_traversal
 
@@ -125,6 +127,11 @@ class SkipPlan:
     table_s: float                   # host time to build the tables and the box
 
     @property
+    def skips(self) -> bool:
+        """Does the frame traverse less than the whole box?"""
+        return self.trav is None or tuple(self.trav.dims) != tuple(self.whole.dims)
+
+    @property
     def fraction(self) -> float:
         """Voxels traversed / voxels of the whole box."""
         if self.trav is None:
@@ -164,17 +171,57 @@ class SkipPlan:
         return out
 
 
-def plan_skip(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, clip: Clip | None = None) -> SkipPlan:
-    """The empty-space schedule of one view: ``vol`` is the traversed box's voxels
-    (vol[z, y, x] of trav.dims), ``lut`` the classification LUT the host loads for it."""
-    if clip is not None and clip.window is not None:
-        raise ValueError("a frame with a window of its own (a brick) is not skipped")
+def fit_slice(box, trav: Traversal, p: int):
+    """``box`` grown, within the traversed box, until a sample slice of it holds at least
+    COM_MIN_SLICE beats (NJ·NB; a smaller slice makes COM wait for its own results and
+    the cycle formula would not hold): rows first (along the j axis), then partial beams
+    (i), one voxel at a time on alternate sides. A bigger box is as exact."""
+    s0, s1 = list(box[0]), list(box[1])
+
+    def beats() -> int:
+        nj = s1[trav.axis_j] - s0[trav.axis_j]
+        ni = s1[trav.axis_i] - s0[trav.axis_i]
+        return nj * -(-ni // p)
+
+    for ax in (trav.axis_j, trav.axis_i):
+        n = trav.dims[ax]
+        while beats() < COM_MIN_SLICE and (s0[ax] > 0 or s1[ax] < n):
+            if s1[ax] < n and (s1[ax] - s0[ax]) % 2 == 0 or s0[ax] == 0:
+                s1[ax] += 1
+            else:
+                s0[ax] -= 1
+    return tuple(s0), tuple(s1)
+
+
+def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: int):
+    """The box [s0, s1) of one view that can change a ray (None: nothing can), sized for
+    P pipelines (``fit_slice``), and the host seconds it took. ``vol`` is the traversed
+    box's voxels (vol[z, y, x] of trav.dims), ``lut`` the classification LUT the host
+    loads for the view. It does not depend on the template's phase: the q×q passes of a
+    view share it."""
     t0 = time.perf_counter()
     box = busy_box(busy_cells(vol, lut, mode))
+    if box is not None:
+        box = fit_slice(box, trav, p)
+    return box, time.perf_counter() - t0
+
+
+def plan_box(trav: Traversal, box, clip: Clip | None = None, table_s: float = 0.0) -> SkipPlan:
+    """The frame of ``trav`` (the view, or one of its passes) that traverses ``box``:
+    its traversal, placement and clip (``box`` None: no frame)."""
+    if clip is not None and clip.window is not None:
+        raise ValueError("a frame with a window of its own (a brick) is not skipped")
     if box is None:
-        return SkipPlan(trav, None, None, (0, 0), (0, 0, 0), None, time.perf_counter() - t0)
+        return SkipPlan(trav, None, None, (0, 0), (0, 0, 0), None, table_s)
     sub, offset, start = sub_traversal(trav, *box)
     moved = None
     if clip is not None and clip.plane is not None:
         moved = Clip(plane=move_plane(clip.plane, start, trav.weight_bits))
-    return SkipPlan(trav, box, sub, offset, start, moved, time.perf_counter() - t0)
+    return SkipPlan(trav, box, sub, offset, start, moved, table_s)
+
+
+def plan_skip(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, clip: Clip | None = None,
+              p: int = 1) -> SkipPlan:
+    """The empty-space schedule of one view on P pipelines (``find_box``, ``plan_box``)."""
+    box, table_s = find_box(vol, trav, lut, mode, p)
+    return plan_box(trav, box, clip, table_s)

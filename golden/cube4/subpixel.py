@@ -5,7 +5,8 @@ the template's starting phase moved by (a/q, b/q) voxel (a, b = 0 … q − 1: t
 PH0_X, PH0_Y registers), sample the rays between them; interleaved, their base planes
 make one base plane of q times the resolution along both axes, which the warp maps to
 the image with a scale of 1/q. Each pass is an ordinary frame (bit-exact through the
-RTL, its own empty-space box), all run back to back on the volume loaded once.
+RTL; all traverse the view's empty-space box), run back to back on the volume loaded
+once.
 
 Ray position. Pass (a, b)'s pixel (bx, by) holds the ray that starts at traversal-frame
 position (bx − sxm + δx, by − sym + δy), δ = phase / 2^(W+g), sxm/sym its traversal's

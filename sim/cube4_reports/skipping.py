@@ -16,14 +16,13 @@ import argparse
 import dataclasses
 import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 from tqdm import tqdm
 
 from cube4.config import resolve_build
-from cube4.render import config_for, crop_volume, host_tables, render, schedule, schedule_stats, setup_view
+from cube4.render import config_for, plan_view, render, schedule_stats
 from cube4.scene import load_scene, with_view
 from cube4.view import angles_from_direction, direction_from_angles
 from cube4.volumes import load_volume
@@ -64,12 +63,10 @@ def measure(vol_spec: str, scene_name: str, check_images: bool) -> list[dict]:
     for sc in views(base_scene):
         cfg = config_for(sc, P)
         build = resolve_build(cfg, [sc])
-        trav, _ = setup_view((nx, ny, nz), sc, cfg)
-        lut, _ = host_tables(sc, cfg, trav)
-        t0 = time.perf_counter()
-        plan = schedule(crop_volume(vol, trav), sc, trav, lut, None)
-        table_s = time.perf_counter() - t0
-        st = schedule_stats(plan, cfg, build)
+        vp = plan_view(vol, sc, cfg)
+        trav = vp.trav
+        st = schedule_stats(vp.plans, cfg, build)
+        table_s = st["skip_table_s"]
         az, el = angles_from_direction(sc.direction)
         row = {"volume": vol_spec, "dims": [nx, ny, nz], "scene": scene_name, "mode": sc.mode,
                "azimuth": round(az, 1), "elevation": round(el, 1), "major": "xyz"[trav.major],

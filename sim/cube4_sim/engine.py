@@ -56,6 +56,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         img = view_image(vp, frame)
         stats = view_stats(NAME, dims, vp.scene, cfg)
         stats.update(trav_stats(vp.trav))
+        stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
         stats.update(schedule_stats(vp.plans, cfg, build))
         outs_v = [out for _, out in ran.values()]
         stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
