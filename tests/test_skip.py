@@ -252,3 +252,47 @@ def test_skipping_report_rows():
         assert r["bit_identical"] and r["predicted_cycles"] < r["fixed_schedule_cycles"]
     text = skipping.write_md(rows, None, {"git": "test"})
     assert "sphere:24" in text and "identical" in text
+
+
+@pytest.mark.parametrize("d", VIEWS)
+def test_cut_cells_against_the_corners(d):
+    """A cell is cut whole exactly when E < 0 at all eight of its corners (E is affine in
+    the sample position; its largest value over the cell is at a corner), evaluated here
+    one corner at a time in the traversal frame."""
+    rng = np.random.default_rng(7)
+    dims = (7, 6, 5)
+    trav = make_traversal(dims, d, 8, 1)
+    plane = cut_coefficients(trav, rng.normal(size=3), rng.uniform(0, 6, size=3))
+    got = skip.cut_cells(trav, plane)
+    ca, cb, cc, cd = plane
+    W = trav.weight_bits
+    for z in range(dims[2]):
+        for y in range(dims[1]):
+            for x in range(dims[0]):
+                vals = []
+                for dz in (0, 1):
+                    for dy in (0, 1):
+                        for dx in (0, 1):
+                            u = {}
+                            for ax, c, dc in ((0, x, dx), (1, y, dy), (2, z, dz)):
+                                v = c + dc
+                                u[ax] = (dims[ax] - 1 - v) if trav.flip[ax] else v
+                            vals.append(ca * (u[trav.axis_i] << W) + cb * (u[trav.axis_j] << W)
+                                        + cc * (u[trav.major] << W) + cd)
+                assert got[z, y, x] == (max(vals) < 0), (x, y, z)
+
+
+def test_cut_plane_shrinks_the_box():
+    """head_cut: the cut removes half the head, the box follows, the image is the same."""
+    from cube4.render import config_for, plan_view
+    from cube4.scene import load_scene
+    from cube4.volumes import load_volume
+
+    vol = load_volume("head:48")
+    scene = load_scene("head_cut")
+    cfg = config_for(scene, 8)
+    cut = plan_view(vol, scene, cfg).plans[0].fraction
+    uncut = plan_view(vol, dataclasses.replace(scene, cut=None), cfg).plans[0].fraction
+    assert cut < 0.8 * uncut, (cut, uncut)
+    on, off = render(vol, scene, cfg, "golden"), render(vol, dataclasses.replace(scene, skip=False), cfg, "golden")
+    assert np.array_equal(on.frame.baseplane, off.frame.baseplane)

@@ -87,7 +87,7 @@ def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pas
     for the fixed schedule ([render] skip = false)."""
     plans = []
     if scene.skip:
-        box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines)
+        box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines, frame_clip(scene, pss[0].trav))
     for n, ps in enumerate(pss):
         clip = frame_clip(scene, ps.trav)
         if scene.skip:

@@ -95,6 +95,26 @@ def busy_cells(vol: np.ndarray, lut: np.ndarray, mode: str) -> np.ndarray:
     return prefix[hi + 1] - prefix[lo] > 0
 
 
+def cut_cells(trav: Traversal, plane) -> np.ndarray:
+    """(nz, ny, nx) bool: the cells of ``trav``'s box that the cut plane (CA, CB, CC, CD,
+    clip.py) removes whole. E is affine in the sample's position (i + wx/2^W, j + wy/2^W,
+    m/S) of the traversal frame, so its largest value over a cell, a unit cube of that
+    frame, is at the corner that each positive coefficient pushes up; a cell is cut when
+    even that value is negative (every sample in it then has E < 0)."""
+    ca, cb, cc, cd = (int(c) for c in plane)
+    W = trav.weight_bits
+    nx, ny, nz = trav.dims
+    corner = []            # per volume axis: the traversal coordinate of each cell's low corner
+    for ax, n in enumerate((nx, ny, nz)):
+        c = np.arange(n, dtype=np.int64)
+        corner.append(n - 2 - c if trav.flip[ax] else c)
+    coef = {trav.axis_i: ca, trav.axis_j: cb, trav.major: cc}
+    top = sum(max(coef[ax], 0) for ax in range(3)) << W
+    e = [coef[ax] * (corner[ax] << W) for ax in range(3)]
+    emax = e[2][:, None, None] + e[1][None, :, None] + e[0][None, None, :] + cd + top
+    return emax < 0
+
+
 def busy_box(busy: np.ndarray) -> tuple[tuple[int, int, int], tuple[int, int, int]] | None:
     """The box [s0, s1) (volume axes x, y, z, half-open) of the voxels the busy cells and
     their margins need, within the volume and at least 2 voxels along an axis that has 2
@@ -193,14 +213,17 @@ def fit_slice(box, trav: Traversal, p: int):
     return tuple(s0), tuple(s1)
 
 
-def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: int):
+def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: int, clip: Clip | None = None):
     """The box [s0, s1) of one view that can change a ray (None: nothing can), sized for
     P pipelines (``fit_slice``), and the host seconds it took. ``vol`` is the traversed
     box's voxels (vol[z, y, x] of trav.dims), ``lut`` the classification LUT the host
-    loads for the view. It does not depend on the template's phase: the q×q passes of a
-    view share it."""
+    loads for the view, ``clip`` its cut plane (cells it removes whole are not busy).
+    It does not depend on the template's phase: the q×q passes of a view share it."""
     t0 = time.perf_counter()
-    box = busy_box(busy_cells(vol, lut, mode))
+    busy = busy_cells(vol, lut, mode)
+    if clip is not None and clip.plane is not None:
+        busy &= ~cut_cells(trav, clip.plane)
+    box = busy_box(busy)
     if box is not None:
         box = fit_slice(box, trav, p)
     return box, time.perf_counter() - t0
@@ -223,5 +246,5 @@ def plan_box(trav: Traversal, box, clip: Clip | None = None, table_s: float = 0.
 def plan_skip(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, clip: Clip | None = None,
               p: int = 1) -> SkipPlan:
     """The empty-space schedule of one view on P pipelines (``find_box``, ``plan_box``)."""
-    box, table_s = find_box(vol, trav, lut, mode, p)
+    box, table_s = find_box(vol, trav, lut, mode, p, clip)
     return plan_box(trav, box, clip, table_s)
