@@ -30,10 +30,9 @@ import time
 import numpy as np
 
 from cube4.config import BUILD_PARAMS, FULL_BUILD, scene_build
-from cube4.render import config_for, image_metrics, render, setup_view
+from cube4.render import config_for, image_metrics, plan_view, render, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
 from cube4.volumes import load_volume
-from cube4.cycles import frame_cycles
 
 from . import fpga, gates
 from .markdown import fmt_int, git_describe, md_table
@@ -71,18 +70,17 @@ def scene_rows(names: list[str]) -> list[dict]:
         vol = load_volume(spec)
         cfg = config_for(scene, pipelines=P)
         build = scene_build([scene])
-        nz, ny, nx = vol.shape
-        trav, _ = setup_view((nx, ny, nz), scene, cfg)
         progress(TAG, f"{name} on {spec}: golden and reference renders ...")
         gold = render(vol, scene, cfg, "golden")
         ref = render(vol, scene, cfg, "reference")
         m = image_metrics(gold.image, ref.image)
-        args = (trav.num_sample_slices, trav.nj, trav.ni, P)
+        plans = plan_view(vol, scene, cfg).plans
+        own, full = schedule_stats(plans, cfg, build), schedule_stats(plans, cfg, FULL_BUILD)
         rows.append({"scene": name, "volume": spec, "mode": scene.mode, "shaded": scene.shaded,
                      "crop": None if scene.crop is None else [list(c) for c in scene.crop],
                      "cut": scene.cut is not None, "build": build,
-                     "cycles": frame_cycles(*args, shading=bool(build["SHADING"])),
-                     "cycles_full": frame_cycles(*args, shading=True),
+                     "cycles": own["predicted_cycles"], "cycles_full": full["predicted_cycles"],
+                     "cycles_fixed": own["fixed_schedule_cycles"],
                      "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None, "rmse": m["rmse"]})
     return rows
 
@@ -102,17 +100,14 @@ def mode_matrix(names: list[str]) -> list[dict]:
         base = load_scene(name)
         spec = volume_of(name)
         vol = load_volume(spec)
-        nz, ny, nx = vol.shape
         for label, kw in MODE_VARIANTS:
             scene = dataclasses.replace(base, **kw)
             cfg = config_for(scene, pipelines=P)
             build = scene_build([scene])
-            trav, _ = setup_view((nx, ny, nz), scene, cfg)
             progress(TAG, f"{name} as {label} ...")
             m = image_metrics(render(vol, scene, cfg, "golden").image, render(vol, scene, cfg, "reference").image)
             out.append({"scene": name, "volume": spec, "mode": label, "build": build,
-                        "cycles": frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, P,
-                                               shading=bool(build["SHADING"])),
+                        "cycles": schedule_stats(plan_view(vol, scene, cfg).plans, cfg, build)["predicted_cycles"],
                         "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None})
     return out
 
@@ -196,11 +191,11 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
         what += ", crop" if s["crop"] else ""
         what += ", cut plane" if s["cut"] else ""
         out.append([s["scene"], s["volume"], what, rec["name"], fmt_int(s["cycles"]), fmt_int(s["cycles_full"]),
-                    t, t_full, pct_saved(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
+                    fmt_int(s["cycles_fixed"]), t, t_full, pct_saved(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
                     "∞" if s["psnr_db"] is None else f"{s['psnr_db']:.2f}"])
     head = ["scene", "volume", "mode", "smallest build", "cycles / frame", "on the full build",
-            "ms / frame at Fmax", "full build", "NAND2 saved", "PSNR dB vs reference"]
-    return md_table(head, out, "llll" + "r" * 6)
+            "fixed schedule", "ms / frame at Fmax", "full build", "NAND2 saved", "PSNR dB vs reference"]
+    return md_table(head, out, "llll" + "r" * 7)
 
 
 def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list[dict] | None = None) -> str:
@@ -214,7 +209,8 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
         "Gates: the generic-gate synthesis of `make gates` (NAND2 equivalents of the logic; memories "
         f"in bits). ECP5-85F: the flow of `make fpga` (DEPTH = {DEPTH}, `--freq {fpga.DEFAULT_FREQ:g}`, "
         f"seed {meta['seed']}; one seed varies Fmax by about ±10 %). Cycles: the formula of "
-        "docs/architecture.md for the build (tb/cube4_top checks it for every build). Error: the golden "
+        "docs/architecture.md for the build with the empty-space box's dims (docs/numerics.md §15; "
+        "tb/cube4_top checks it for every build), and the fixed schedule's on the smallest build. Error: the golden "
         "engine (bit-identical to the RTL) against the float64 reference, 256² image.",
         "",
         "## Builds",
@@ -236,7 +232,8 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
                   f"(the goal: at most 0.5×), and {fmt_int(buffer_bits(mip['gates']))} bits of buffers "
                   f"against {fmt_int(buffer_bits(full['gates']))}.", ""]
     lines += ["## Scenes", "", scenes_table(rows, recs), "",
-              "A crop box traverses only the box: its cycles follow the box's dims. A build without GRA "
+              "A frame traverses only the box that can change a ray (within a crop box, if the scene has one): "
+              "its cycles follow that box's dims. A build without GRA "
               "has no slice of GRA delay at the end of a frame (NJ·NB + NB + 2 cycles fewer).", ""]
     if matrix:
         lines += ["## Every scene in every mode", "",
