@@ -49,3 +49,13 @@ def test_design_sources_error_is_one_line(monkeypatch):
     monkeypatch.setattr(synth, "synth_sources", lambda: [RTL_DIR / "cube4_lerp.v"])
     with pytest.raises(synth.UserError, match="does not list cube4_top.v"):
         synth.design_sources()
+
+
+@pytest.mark.parametrize("name", ["fpga", "gates", "scenes", "bricks", "report", "skipping", "gradients",
+                                  "gradient_tables", "synth", "markdown"])
+def test_report_modules_import(name):
+    """Every report module imports (a report is not part of make test; a broken import
+    would show only when someone runs it)."""
+    import importlib
+
+    importlib.import_module(f"cube4_reports.{name}")

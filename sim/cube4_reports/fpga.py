@@ -31,7 +31,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from cube4_sim import cycles
+from cube4 import cycles
 
 from . import gates
 from .markdown import fmt_int, git_describe, md_table
