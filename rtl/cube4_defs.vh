@@ -26,7 +26,10 @@
 //   `CUBE4_RANGE(...) in a generate region checks a parameter's range.
 //   `CUBE4_LANE_FUNCTIONS in a module body (after CUBE4_GEOMETRY) defines the
 //   lane functions. `CUBE4_VIEW_FIELDS(bus) in a module body declares one wire
-//   cfg_<name> per view register, read from the bus.
+//   cfg_<name> per view register, read from the bus. `CUBE4_VIEW_PORTS and
+//   `CUBE4_ADDR_PORTS, on their own lines in a port list before further ports,
+//   declare the same registers as input ports (cube4_top and the harnesses);
+//   `CUBE4_VIEW_PACK and `CUBE4_ADDR_PACK pack those ports into the buses.
 //   Localparams are not overridable: a unit's instantiation sets only the top
 //   parameters it names.
 //
@@ -138,6 +141,40 @@
     cfg_view_y, cfg_view_x, cfg_ss_log2, cfg_flip_k, cfg_flip_j, cfg_flip_i, \
     cfg_nb, cfg_nk, cfg_nj, cfg_ni}
 
+// The view registers as input ports, one per field of CUBE4_VIEW_LAYOUT (cube4_top
+// and the harnesses; CUBE4_VIEW_PACK packs them into the bus). Each declaration ends
+// with a comma: the macro stands on its own line before further ports.
+`define CUBE4_VIEW_PORTS \
+    input  wire [DIM_W-1:0]   cfg_ni, \
+    input  wire [DIM_W-1:0]   cfg_nj, \
+    input  wire [DIM_W-1:0]   cfg_nk, \
+    input  wire [NB_W-1:0]    cfg_nb, \
+    input  wire               cfg_flip_i, \
+    input  wire               cfg_flip_j, \
+    input  wire               cfg_flip_k, \
+    input  wire [1:0]         cfg_ss_log2, \
+    input  wire [WEIGHT_W:0]  cfg_view_x, \
+    input  wire [WEIGHT_W:0]  cfg_view_y, \
+    input  wire [LANE_W-1:0]  cfg_j_r0, \
+    input  wire [LANE_W-1:0]  cfg_k_r0, \
+    input  wire [LANE_W-1:0]  cfg_i_r1, \
+    input  wire [LANE_W-1:0]  cfg_i_rt, \
+    input  wire [DIM_W-1:0]   cfg_sx, \
+    input  wire [DIM_W-1:0]   cfg_sy, \
+    input  wire [1:0]         cfg_mode, \
+    input  wire [PHASE_W-1:0] cfg_ph0_x, \
+    input  wire [PHASE_W-1:0] cfg_ph0_y, \
+    input  wire [DIM_W-1:0]   cfg_win_i0, \
+    input  wire [DIM_W-1:0]   cfg_win_i1, \
+    input  wire [DIM_W-1:0]   cfg_win_j0, \
+    input  wire [DIM_W-1:0]   cfg_win_j1, \
+    input  wire [M_W-1:0]     cfg_win_m0, \
+    input  wire [M_W-1:0]     cfg_win_m1, \
+    input  wire [CUT_W-1:0]   cfg_cut_a, \
+    input  wire [CUT_W-1:0]   cfg_cut_b, \
+    input  wire [CUT_W-1:0]   cfg_cut_c, \
+    input  wire [CUT_E_W-1:0] cfg_cut_d,
+
 // One wire per view register, read from a view bus (module body).
 `define CUBE4_VIEW_FIELDS(bus) \
     wire [DIM_W-1:0]    cfg_ni      = bus[VIEW_NI +: DIM_W]; \
@@ -188,6 +225,18 @@
 
 `define CUBE4_ADDR_PACK {cfg_i_lin, cfg_i_pb, cfg_i_a0, cfg_k_blk, cfg_k_lin, cfg_k_a0, \
     cfg_j_blk, cfg_j_lin, cfg_j_a0}
+
+// The address registers as input ports, as CUBE4_VIEW_PORTS (CUBE4_ADDR_PACK).
+`define CUBE4_ADDR_PORTS \
+    input  wire [ADDR_W-1:0] cfg_j_a0, \
+    input  wire [ADDR_W-1:0] cfg_j_lin, \
+    input  wire [ADDR_W-1:0] cfg_j_blk, \
+    input  wire [ADDR_W-1:0] cfg_k_a0, \
+    input  wire [ADDR_W-1:0] cfg_k_lin, \
+    input  wire [ADDR_W-1:0] cfg_k_blk, \
+    input  wire [ADDR_W-1:0] cfg_i_a0, \
+    input  wire [ADDR_W-1:0] cfg_i_pb, \
+    input  wire [ADDR_W-1:0] cfg_i_lin,
 
 // ---------------------------------------------------------------- CFB beat tag
 // Travels with a memory read beat, unchanged, from cube4_cfb through the

@@ -27,6 +27,28 @@ def test_several_ports_and_parameters_per_line(tmp_path: Path):
 def test_every_port_of_cube4_top():
     rtl = Path(__file__).resolve().parents[1] / "rtl"
     names = top_interface([rtl / "cube4_top.v"], "cube4_top")
-    for port in ("clk", "ld_data", "cfg_ni", "cfg_i_lin", "cfg_sy", "pix_rgba", "pix_eop", "dbg_hold"):
+    for port in ("clk", "ld_data", "cfg_ni", "cfg_i_lin", "cfg_sy", "cfg_cut_d", "pix_rgba", "pix_eop", "dbg_hold"):
         assert port in names
     assert "ALPHA_W" in names and "ADDR_W" in names
+
+
+def test_ports_declared_by_a_header_macro(tmp_path: Path):
+    """A port list line that is a header macro (CUBE4_VIEW_PORTS) counts the ports its
+    body declares; a macro of parameters adds nothing."""
+    (tmp_path / "defs.vh").write_text(
+        "`define PORTS \\\n"
+        "    input  wire [3:0] cfg_a, \\\n"
+        "    input  wire       cfg_b,\n"
+        "`define PARAMS \\\n"
+        "    localparam integer X = 2\n")
+    src = tmp_path / "m.v"
+    src.write_text(
+        "`include \"defs.vh\"\n"
+        "module m #(\n"
+        "    parameter integer P = 8, `PARAMS\n"
+        ") (\n"
+        "    `PORTS\n"
+        "    input  wire clk\n"
+        ");\n"
+        "endmodule\n")
+    assert top_interface([src], "m") == ["P", "cfg_a", "cfg_b", "clk"]

@@ -85,16 +85,11 @@ def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pas
     """Each pass's frame: the box that can change a ray (``cube4.skip``; found once per
     view, it does not depend on the phase), or the whole traversed box when the scene asks
     for the fixed schedule ([render] skip = false)."""
-    plans = []
+    box, table_s = ((0, 0, 0), tuple(pss[0].trav.dims)), 0.0        # the fixed schedule: the whole box
     if scene.skip:
         box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines, frame_clip(scene, pss[0].trav))
-    for n, ps in enumerate(pss):
-        clip = frame_clip(scene, ps.trav)
-        if scene.skip:
-            plans.append(plan_box(ps.trav, box, clip, table_s if n == 0 else 0.0))
-        else:
-            plans.append(SkipPlan(ps.trav, ((0, 0, 0), tuple(ps.trav.dims)), ps.trav, (0, 0), (0, 0, 0), clip, 0.0))
-    return plans
+    return [plan_box(ps.trav, box, frame_clip(scene, ps.trav), table_s if n == 0 else 0.0)
+            for n, ps in enumerate(pss)]
 
 
 def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict:
@@ -157,8 +152,8 @@ def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.nd
         sub, rays = results.get(n, (None, np.empty(0, PIXEL_DTYPE)))
         planes.append((ps, plan.place(sub)))
         rays = plan.place_pixels(rays)
-        if q > 1 and rays.size:
-            (r0, c0), rays = fine_origin(vp.trav, q, ps), rays.copy()
+        if q > 1 and rays.size:     # place_pixels returned a copy
+            r0, c0 = fine_origin(vp.trav, q, ps)
             rays["by"], rays["bx"] = r0 + q * rays["by"], c0 + q * rays["bx"]
         pix.append(rays)
     base = planes[0][1] if q == 1 else interleave(vp.trav, q, planes)

@@ -169,10 +169,38 @@ def _declared_names(code: str) -> list[str]:
     return names
 
 
+_DEFINE = re.compile(r"^\s*`define\s+(\w+)(?!\()\s?(.*)$")
+_USE = re.compile(r"`(\w+)\b")
+
+
+def header_macros(dirs: Sequence[Path]) -> dict[str, list[str]]:
+    """The argument-free macros of the Verilog headers (``*.vh``) in ``dirs``: name ->
+    the lines of its body (continuation backslashes removed)."""
+    macros: dict[str, list[str]] = {}
+    for d in dict.fromkeys(dirs):
+        for vh in sorted(Path(d).glob("*.vh")):
+            lines = vh.read_text().splitlines()
+            i = 0
+            while i < len(lines):
+                m = _DEFINE.match(lines[i])
+                i += 1
+                if not m:
+                    continue
+                body = [m.group(2)]
+                while body[-1].rstrip().endswith("\\") and i < len(lines):
+                    body[-1] = body[-1].rstrip()[:-1]
+                    body.append(lines[i])
+                    i += 1
+                macros[m.group(1)] = body
+    return macros
+
+
 def top_interface(sources: Sequence[Path], top: str) -> list[str]:
     """Names of the ports and header parameters of module ``top`` (ANSI style, as every
-    module here is written; a line may declare several ports); empty if not found."""
+    module here is written; a line may declare several ports, or be a header macro that
+    declares them, such as CUBE4_VIEW_PORTS); empty if not found."""
     start = re.compile(rf"^\s*module\s+{re.escape(top)}\b")
+    macros = header_macros([RTL_INCLUDE_DIR, *(Path(s).parent for s in sources)])
     for src in sources:
         if src.suffix not in (".v", ".sv"):
             continue
@@ -183,6 +211,10 @@ def top_interface(sources: Sequence[Path], top: str) -> list[str]:
             names: list[str] = []
             for decl in lines[i + 1:]:
                 code = decl.split("//", 1)[0]
+                for use in _USE.findall(code):      # a macro of ports (not of parameters)
+                    for body in macros.get(use, []):
+                        if not re.match(r"\s*(?:parameter|localparam)\b", body):
+                            names.extend(_declared_names(body.split("//", 1)[0]))
                 names.extend(_declared_names(code))
                 if code.strip().startswith(");"):  # end of the port list
                     break

@@ -37,6 +37,8 @@ module cube4_frontend_harness #(
     `CUBE4_TAG_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
+    `CUBE4_VIEW_PORTS
+    `CUBE4_ADDR_PORTS
     output wire                  clk,
     input  wire                  rst,
     // loader
@@ -55,43 +57,7 @@ module cube4_frontend_harness #(
     output wire                  busy,
     output wire                  done,
     output wire [31:0]           cycles,
-    output wire [31:0]           beats,       // sample beats of the last frame
-    input  wire [DIM_W-1:0]      cfg_ni,
-    input  wire [DIM_W-1:0]      cfg_nj,
-    input  wire [DIM_W-1:0]      cfg_nk,
-    input  wire [NB_W-1:0]       cfg_nb,
-    input  wire                  cfg_flip_i,
-    input  wire                  cfg_flip_j,
-    input  wire                  cfg_flip_k,
-    input  wire [1:0]            cfg_ss_log2,
-    input  wire [WEIGHT_W:0]     cfg_view_x,
-    input  wire [WEIGHT_W:0]     cfg_view_y,
-    input  wire [LANE_W-1:0]     cfg_j_r0,
-    input  wire [LANE_W-1:0]     cfg_k_r0,
-    input  wire [LANE_W-1:0]     cfg_i_r1,
-    input  wire [LANE_W-1:0]     cfg_i_rt,
-    input  wire [ADDR_W-1:0]     cfg_j_a0,
-    input  wire [ADDR_W-1:0]     cfg_j_lin,
-    input  wire [ADDR_W-1:0]     cfg_j_blk,
-    input  wire [ADDR_W-1:0]     cfg_k_a0,
-    input  wire [ADDR_W-1:0]     cfg_k_lin,
-    input  wire [ADDR_W-1:0]     cfg_k_blk,
-    input  wire [ADDR_W-1:0]     cfg_i_a0,
-    input  wire [ADDR_W-1:0]     cfg_i_pb,
-    input  wire [ADDR_W-1:0]     cfg_i_lin,
-    input  wire [1:0]            cfg_mode,
-    input  wire [PHASE_W-1:0]    cfg_ph0_x,
-    input  wire [PHASE_W-1:0]    cfg_ph0_y,
-    input  wire [DIM_W-1:0]      cfg_win_i0,
-    input  wire [DIM_W-1:0]      cfg_win_i1,
-    input  wire [DIM_W-1:0]      cfg_win_j0,
-    input  wire [DIM_W-1:0]      cfg_win_j1,
-    input  wire [M_W-1:0]        cfg_win_m0,
-    input  wire [M_W-1:0]        cfg_win_m1,
-    input  wire [CUT_W-1:0]      cfg_cut_a,
-    input  wire [CUT_W-1:0]      cfg_cut_b,
-    input  wire [CUT_W-1:0]      cfg_cut_c,
-    input  wire [CUT_E_W-1:0]    cfg_cut_d
+    output wire [31:0]           beats  // sample beats of the last frame
 );
     cube4_sim_clock u_clock (.clk(clk));
 
@@ -111,7 +77,6 @@ module cube4_frontend_harness #(
     reg [31:0]       seed_q;
     // the register ports as the design's buses (cube4_defs.vh); the front end
     // has no use for SX and SY
-    wire [DIM_W-1:0]     cfg_sx = '0, cfg_sy = '0;
     reg [VIEW_W-1:0]     cfg_q;
     reg [ADR_W_ALL-1:0]  cfg_addr_q;
     always @(posedge clk) begin
