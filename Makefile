@@ -55,10 +55,11 @@ LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
 FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
 LINT_SETS_cube4_cfb         := $(FE_SETS)
-LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0
+LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0 \
+                               VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1
 LINT_SETS_cube4_clip        := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3
-LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4
-LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,VOXEL_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1
+LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4 P=5,VGRAD=1
+LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,WORD_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1 P=2,WORD_W=73
 LINT_SETS_cube4_ring_shift  := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_beam_ext    := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096 DATA_W=65
@@ -74,7 +75,7 @@ LINT_SETS_cube4_com         := P=1 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,ACC_W=24,MA
 LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
 LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 \
                                SHADING=0,EXTREMUM=0,CLIP=0 SHADING=0,COMPOSITING=0,CLIP=0 P=1,SHADING=0,COMPOSITING=0 \
-                               P=5,SHADING=1,EXTREMUM=0,CLIP=1
+                               P=5,SHADING=1,EXTREMUM=0,CLIP=1 P=8,VGRAD=1,MAX_SS_LOG2=2 P=1,VGRAD=1,EXTREMUM=0,CLIP=0
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

@@ -15,7 +15,7 @@
 //
 // Parameters
 //   P       lanes (pipelines).     Range 1..64.    Default 8.
-//   DATA_W  bits per lane.         Range 1..256.   Default 8.
+//   DATA_W  bits per lane.         Range 1..512.   Default 8.
 //
 // Latency
 //   0 cycles (combinational; the one-beat delay register is the caller's).
@@ -43,7 +43,7 @@ module cube4_beam_ext #(
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_beam_ext", "P", P, 1, 64)
-        `CUBE4_RANGE(g_bad_data_w, "cube4_beam_ext", "DATA_W", DATA_W, 1, 256)
+        `CUBE4_RANGE(g_bad_data_w, "cube4_beam_ext", "DATA_W", DATA_W, 1, 512)
     endgenerate
 
     // lane q's neighbour value in beat b and in beat b + 1

@@ -4,6 +4,7 @@
 // Everything that more than one unit must agree on is defined here once:
 //   * the derived widths, as functions of the top parameters
 //     (P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W, ADDR_W);
+//   * the layout of a voxel memory word (value and voxel gradients);
 //   * the layout of the view-register bus (cfg), of the address-register bus
 //     (cfg_addr), of the CFB's beat tag (CFB -> memory -> TRI) and of the
 //     stream header that travels TRI -> GRA -> SHA -> COM, with named fields;
@@ -23,6 +24,7 @@
 //       CUBE4_VIEW_LAYOUT the above and WEIGHT_W
 //       CUBE4_TAG_LAYOUT  the above
 //       CUBE4_ADDR_LAYOUT ADDR_W
+//       CUBE4_WORD_LAYOUT VOXEL_W, VGRAD
 //   `CUBE4_RANGE(...) in a generate region checks a parameter's range.
 //   `CUBE4_LANE_FUNCTIONS in a module body (after CUBE4_GEOMETRY) defines the
 //   lane functions. `CUBE4_VIEW_FIELDS(bus) in a module body declares one wire
@@ -82,6 +84,19 @@
     localparam integer CTRL_SOP = 4, \
     localparam integer CTRL_EOP = 5, \
     localparam integer CTRL_YLAST = 6
+
+// ---------------------------------------------------------------- memory word
+// A voxel memory word (golden/cube4/vgrad.py pack_words), LSB first: the voxel
+// (VOXEL_W bits); with VGRAD = 1 then the voxel gradient's x, y, z components,
+// VG_W = VOXEL_W + 3 bits each in offset binary (g + 2^(VG_W-1)), which TRI
+// interpolates like the voxel (numerics.md section 5b). Needs VOXEL_W, VGRAD.
+//   VG_W     a stored gradient component
+//   WORD_W   a memory word: VOXEL_W, or VOXEL_W + 3 * VG_W
+//   NCH      channels TRI interpolates: 1, or 4
+`define CUBE4_WORD_LAYOUT \
+    localparam integer VG_W   = VOXEL_W + 3, \
+    localparam integer WORD_W = (VGRAD != 0) ? VOXEL_W + 3 * VG_W : VOXEL_W, \
+    localparam integer NCH    = (VGRAD != 0) ? 4 : 1
 
 // ---------------------------------------------------------------- view registers
 // The host's view registers (golden/cube4/memory.py frontend_regs, top_regs),

@@ -18,6 +18,8 @@
 //   ADDR_W       memory address width.               1..30.   Default 16.
 //   MAX_SS_LOG2  log2 of the largest supersampling.  0..3.    Default 0.
 //   CLIP         1: TRI's cube4_clip (window, cut plane). 0..1. Default 1.
+//   VGRAD        1: memory words carry voxel gradients, which TRI
+//                interpolates (CUBE4_WORD_LAYOUT).   0..1.    Default 0.
 //   Derived widths and the layouts of cfg, cfg_addr, the memory tag and the
 //   sample header: cube4_defs.vh.
 //
@@ -33,7 +35,7 @@
 //   start / busy / done / cycles   frame control (cycles: 32-bit count)
 //   cfg, cfg_addr                  view and address registers, see cube4_cfb
 //   mem_req_* / mem_rsp_*          memory read port (see cube4_voxel_mem);
-//                                  the tag is CUBE4_TAG_LAYOUT
+//                                  the tag is CUBE4_TAG_LAYOUT, a word WORD_W bits
 //   smp_*                          sample stream, see cube4_tri out_*
 //
 // Bit growth and rounding: see cube4_tri (one rounding per lerp).
@@ -42,8 +44,9 @@ module cube4_frontend #(
     parameter integer P        = 8, parameter integer MAX_DIM     = 256,
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer VOXEL_W  = 8, parameter integer ADDR_W      = 16,
-    parameter integer CLIP     = 1,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT
+    parameter integer CLIP     = 1, parameter integer VGRAD       = 0,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    `CUBE4_WORD_LAYOUT
 ) (
     input  wire clk, input wire rst,
     input  wire start, output wire busy, output wire done, output wire [31:0] cycles,
@@ -54,10 +57,10 @@ module cube4_frontend #(
     output wire [P*ADDR_W-1:0] mem_req_addr,
     output wire [P-1:0] mem_req_rden,
     input  wire mem_rsp_valid, output wire mem_rsp_ready, input wire [TAG_W-1:0] mem_rsp_tag,
-    input  wire [P*VOXEL_W-1:0] mem_rsp_data,
+    input  wire [P*WORD_W-1:0]  mem_rsp_data,
     // sample stream
     output wire smp_valid, input wire smp_ready, output wire [HDR_W-1:0] smp_hdr,
-    output wire [P*VOXEL_W-1:0] smp_sample
+    output wire [P*WORD_W-1:0]  smp_sample
 );
     // ---- CFB ----
     wire                unused_cfb_busy;   // the frame ends at the last sample, not the last request
@@ -108,7 +111,8 @@ module cube4_frontend #(
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .CLIP        (CLIP)
+        .CLIP        (CLIP),
+        .VGRAD       (VGRAD)
     ) u_tri (
         .clk        (clk),
         .rst        (rst),

@@ -11,7 +11,7 @@
 //   cube4_round_shift). Bit-exact with lerp() of golden/cube4/fixed.py.
 //
 // Parameters
-//   DATA_W    width of the samples a, b, y.          Range 1..16.  Default 8.
+//   DATA_W    width of the samples a, b, y.          Range 1..19.  Default 8.
 //   WEIGHT_W  width of the weight w.                  Range 1..12.  Default 8.
 //   LATENCY   clock cycles from inputs to y.          Range 0..3.   Default 0.
 //               0: combinational (clk and en unused).
@@ -67,7 +67,7 @@ module cube4_lerp #(
 
     // ---- parameter checks (stop elaboration on illegal values) ----
     generate
-        `CUBE4_RANGE(g_bad_data_w, "cube4_lerp", "DATA_W", DATA_W, 1, 16)
+        `CUBE4_RANGE(g_bad_data_w, "cube4_lerp", "DATA_W", DATA_W, 1, 19)
         `CUBE4_RANGE(g_bad_weight_w, "cube4_lerp", "WEIGHT_W", WEIGHT_W, 1, 12)
         `CUBE4_RANGE(g_bad_latency, "cube4_lerp", "LATENCY", LATENCY, 0, 3)
     endgenerate

@@ -12,7 +12,7 @@
 //
 // Parameters
 //   P       lanes (pipelines).     Range 1..64.    Default 8.
-//   DATA_W  bits per lane.         Range 1..256.   Default 8.
+//   DATA_W  bits per lane.         Range 1..512.   Default 8.
 //
 // Latency
 //   0 cycles (wiring and one 2:1 multiplexer per lane).
@@ -34,7 +34,7 @@ module cube4_ring_shift #(
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_ring_shift", "P", P, 1, 64)
-        `CUBE4_RANGE(g_bad_data_w, "cube4_ring_shift", "DATA_W", DATA_W, 1, 256)
+        `CUBE4_RANGE(g_bad_data_w, "cube4_ring_shift", "DATA_W", DATA_W, 1, 512)
     endgenerate
 
     genvar q;

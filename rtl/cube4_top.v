@@ -30,18 +30,23 @@
 //   COMPOSITING  1: COM's compositing datapath (composite, X-ray). 0..1. Default 1.
 //   EXTREMUM     1: COM's comparators (MIP, MinIP).       0..1.     Default 1.
 //   CLIP         1: the window and the cut plane (cube4_clip). 0..1. Default 1.
+//   VGRAD        1: the gradient comes from the voxel memory (each word
+//                holds a voxel and its gradient, golden/cube4/vgrad.py) and
+//                TRI interpolates it: no GRA (numerics.md section 5b);
+//                0: the paper's GRA on the sample stream.  0..1. Default 0.
 //   Illegal (elaboration stops): COMPOSITING = EXTREMUM = 0; SHADING = 1 with
-//   COMPOSITING = 0 (only compositing is shaded).
+//   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0.
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
-//   last slice (NJ*NB + NB + 2 steps; not in a build without GRA), plus a
+//   last slice (NJ*NB + NB + 2 steps; not in a build without GRA: SHADING = 0
+//   or VGRAD = 1), plus a
 //   fixed pipeline fill per build (sim/cube4_sim/cycles.py; tb/cube4_top
 //   checks it at P = 1, 4, 5, 8 and for every build).
 //   cycles counts the clock cycles from start to the last pixel beat.
 //
 // Ports
-//   ld_*           voxel load port (cube4_voxel_mem)
+//   ld_*           voxel load port (cube4_voxel_mem; WORD_W-bit words)
 //   lut_*, rmap_*  table load ports (cube4_sha)
 //   cfg_*          view registers, stable from start to done
 //   start, busy, done, cycles   frame control
@@ -62,7 +67,9 @@ module cube4_top #(
     parameter integer DEPTH    = 65536, parameter integer ADDR_W   = 16,
     parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1,
+    parameter integer VGRAD    = 0,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    `CUBE4_WORD_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
@@ -72,7 +79,7 @@ module cube4_top #(
     input  wire                      ld_valid,
     output wire                      ld_ready,
     input  wire [ADDR_W-1:0]         ld_addr,
-    input  wire [P*VOXEL_W-1:0]      ld_data,
+    input  wire [P*WORD_W-1:0]       ld_data,
     // table load ports
     input  wire                      lut_we,
     input  wire [VOXEL_W-1:0]        lut_addr,
@@ -101,12 +108,17 @@ module cube4_top #(
     input  wire [4:0]                dbg_hold
 );
     localparam integer PV     = P * VOXEL_W;
+    localparam integer PW     = P * WORD_W;    // a beat of memory words (= PV without VGRAD)
     localparam integer GRAD_W = VOXEL_W + 5;
     generate
         `CUBE4_RANGE(g_bad_shading, "cube4_top", "SHADING", SHADING, 0, 1)
         `CUBE4_RANGE(g_bad_compositing, "cube4_top", "COMPOSITING", COMPOSITING, 0, 1)
         `CUBE4_RANGE(g_bad_extremum, "cube4_top", "EXTREMUM", EXTREMUM, 0, 1)
         `CUBE4_RANGE(g_bad_clip, "cube4_top", "CLIP", CLIP, 0, 1)
+        `CUBE4_RANGE(g_bad_vgrad, "cube4_top", "VGRAD", VGRAD, 0, 1)
+        if (VGRAD != 0 && SHADING == 0) begin : g_vgrad_alone
+            $error("cube4_top: VGRAD = 1 needs SHADING = 1 (voxel gradients only feed shading)");
+        end
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_top: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
         end
@@ -124,11 +136,11 @@ module cube4_top #(
     wire [P-1:0]         req_rden;
     wire [TAG_W-1:0]     req_tag;
     wire                 mem_rsp_valid, mem_rsp_ready, fe_rsp_valid, fe_rsp_ready;
-    wire [PV-1:0]        rsp_data;
+    wire [PW-1:0]        rsp_data;
     wire [TAG_W-1:0]     rsp_tag;
     wire                 smp_valid, smp_ready, gra_in_valid, gra_in_ready;
     wire [HDR_W-1:0]     smp_hdr;
-    wire [PV-1:0]        smp_sample;
+    wire [PW-1:0]        smp_sample;
     wire                 unused_fe_busy, unused_fe_done;
     wire [31:0]          unused_fe_cycles;
 
@@ -139,7 +151,8 @@ module cube4_top #(
         .MAX_DIM     (MAX_DIM),
         .ADDR_W      (ADDR_W),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .CLIP        (CLIP)
+        .CLIP        (CLIP),
+        .VGRAD       (VGRAD)
     ) u_frontend (
         .clk           (clk),
         .rst           (rst),
@@ -170,7 +183,7 @@ module cube4_top #(
 
     cube4_voxel_mem #(
         .P       (P),
-        .VOXEL_W (VOXEL_W),
+        .WORD_W  (WORD_W),
         .DEPTH   (DEPTH),
         .ADDR_W  (ADDR_W),
         .TAG_W   (TAG_W)
@@ -201,14 +214,29 @@ module cube4_top #(
         .out_valid (gra_in_valid), .out_ready (gra_in_ready));
 
     // ---------------------------------------------------------------- GRA
-    // (a build without shading has none: SHA takes the sample stream)
+    // (a build without shading has none: SHA takes the sample stream; with
+    // VGRAD, TRI's interpolated voxel gradients take GRA's place)
     wire                 gra_valid, gra_ready, sha_in_valid, sha_in_ready;
     wire [HDR_W-1:0]     gra_hdr;
     wire [PV-1:0]        gra_sample;
     wire [P*GRAD_W-1:0]  gra_gi, gra_gj, gra_gk;
 
     generate
-        if (SHADING != 0) begin : g_gra
+        if (VGRAD != 0) begin : g_vgrad
+            // each lane's word: the sample, then g_x, g_y, g_z (signed VG_W bits,
+            // sign-extended to GRAD_W; |g| <= 4 (2^VOXEL_W - 1) < 2^(GRAD_W-1))
+            genvar q;
+            for (q = 0; q < P; q = q + 1) begin : g_lane
+                wire [WORD_W-1:0] w = smp_sample[q*WORD_W +: WORD_W];
+                assign gra_sample[q*VOXEL_W +: VOXEL_W] = w[0 +: VOXEL_W];
+                assign gra_gi[q*GRAD_W +: GRAD_W] = GRAD_W'($signed(w[VOXEL_W +: VG_W]));
+                assign gra_gj[q*GRAD_W +: GRAD_W] = GRAD_W'($signed(w[VOXEL_W + VG_W +: VG_W]));
+                assign gra_gk[q*GRAD_W +: GRAD_W] = GRAD_W'($signed(w[VOXEL_W + 2*VG_W +: VG_W]));
+            end
+            assign gra_valid    = gra_in_valid;
+            assign gra_in_ready = gra_ready;
+            assign gra_hdr      = smp_hdr;
+        end else if (SHADING != 0) begin : g_gra
             cube4_gra #(
                 .P           (P),
                 .VOXEL_W     (VOXEL_W),
@@ -326,14 +354,14 @@ module cube4_top #(
     cube4_stream_check #(.NAME ("top.mem_req"), .DATA_W (P * ADDR_W + P + TAG_W)) u_chk_req (
         .clk (clk), .rst (rst), .valid (fe_req_valid), .ready (fe_req_ready),
         .data ({req_addr, req_rden, req_tag}));
-    cube4_stream_check #(.NAME ("top.mem_rsp"), .DATA_W (PV + TAG_W)) u_chk_rsp (
+    cube4_stream_check #(.NAME ("top.mem_rsp"), .DATA_W (PW + TAG_W)) u_chk_rsp (
         .clk (clk), .rst (rst), .valid (mem_rsp_valid), .ready (mem_rsp_ready),
         .data ({rsp_data, rsp_tag}));
-    cube4_stream_check #(.NAME ("top.samples"), .DATA_W (HDR_W + PV)) u_chk_smp (
+    cube4_stream_check #(.NAME ("top.samples"), .DATA_W (HDR_W + PW)) u_chk_smp (
         .clk (clk), .rst (rst), .valid (smp_valid), .ready (smp_ready),
         .data ({smp_hdr, smp_sample}));
     generate
-        if (SHADING != 0) begin : g_chk_gra   // (without GRA this is the held sample stream)
+        if (SHADING != 0 && VGRAD == 0) begin : g_chk_gra   // (otherwise: the held sample stream)
             cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_gra (
                 .clk (clk), .rst (rst), .valid (gra_valid), .ready (gra_ready),
                 .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));

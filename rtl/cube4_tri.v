@@ -31,6 +31,10 @@
 //   MAX_SS_LOG2  log2 of the largest supersampling.   0..3.    Default 0.
 //   CLIP         1: the window and the cut plane (cube4_clip) set the
 //                header's KEEP; 0: KEEP = LVALID.     0..1.    Default 1.
+//   VGRAD        1: a memory word is the voxel and its gradient's three
+//                components (CUBE4_WORD_LAYOUT); every buffer holds whole
+//                words and each of the four channels has its seven lerps
+//                (numerics.md section 5b). 0: the voxel alone. 0..1. Default 0.
 //   Derived widths and the layouts of cfg, in_tag and out_hdr: cube4_defs.vh.
 //
 // Latency
@@ -49,9 +53,12 @@
 // Ports
 //   cfg     view registers (cube4_defs.vh); TRI reads the three flips, and
 //           its cube4_clip WIN_*, CUT_*, SS_LOG2 and I_R1.
-//   in_*    beats from memory: in_data lane q = bank q's voxel (Q0.VOXEL_W as an
-//           unsigned integer, 0 for lanes not read); in_tag = cube4_cfb's tag.
-//   out_*   sample beats: out_sample lane q (unsigned VOXEL_W, Q0.VOXEL_W);
+//   in_*    beats from memory: in_data lane q = bank q's word (WORD_W bits: the
+//           voxel Q0.VOXEL_W as an unsigned integer, with VGRAD the gradient's
+//           components, signed VG_W bits each; 0 for lanes not read);
+//           in_tag = cube4_cfb's tag.
+//   out_*   sample beats: out_sample lane q (WORD_W bits: the sample, unsigned
+//           VOXEL_W, Q0.VOXEL_W; with VGRAD the interpolated components, signed);
 //           out_hdr the stream header (CUBE4_GEOMETRY): lane valid (position
 //           < NI), lane inside (the sample is inside the volume box, numerics.md
 //           section 4), lane keep (valid and counts: window and cut plane,
@@ -59,7 +66,11 @@
 //           and the control bits.
 //
 // Bit growth and rounding
-//   Each lerp rounds half up once (cube4_lerp); samples stay VOXEL_W bits.
+//   Each lerp rounds half up once (cube4_lerp); samples stay VOXEL_W bits, the
+//   gradient components VG_W bits (a lerp's result lies between its inputs).
+//   A component enters its lerps with the sign bit flipped (offset binary) and
+//   leaves with it flipped back: the unsigned lerp of a + B and b + B is the
+//   signed lerp of a and b plus B, bit for bit.
 //   Order of the seven lerps as in the golden model: x in rows j and j + 1 of
 //   both slices, then y, then z.
 // =============================================================================
@@ -67,22 +78,24 @@ module cube4_tri #(
     parameter integer P       = 8, parameter integer MAX_DIM     = 256,
     parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer WEIGHT_W = 8, parameter integer CLIP = 1,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_TAG_LAYOUT
+    parameter integer VGRAD   = 0,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_WORD_LAYOUT
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
     // input beats: the memory's response (lane q = bank q) with the CFB tag
     input  wire in_valid,  output wire in_ready,  input  wire [TAG_W-1:0] in_tag,
-    input  wire [P*VOXEL_W-1:0] in_data,
+    input  wire [P*WORD_W-1:0] in_data,
     // output: sample beats
     output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
-    output wire [P*VOXEL_W-1:0] out_sample
+    output wire [P*WORD_W-1:0] out_sample
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_tri", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_tri", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_ss, "cube4_tri", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
         `CUBE4_RANGE(g_bad_clip, "cube4_tri", "CLIP", CLIP, 0, 1)
+        `CUBE4_RANGE(g_bad_vgrad, "cube4_tri", "VGRAD", VGRAD, 0, 1)
     endgenerate
 
     `CUBE4_VIEW_FIELDS(cfg);
@@ -110,7 +123,7 @@ module cube4_tri #(
     wire [P-1:0]        in_t_lane_nbr  = in_tag[TAG_LNBR +: P];
     wire [P-1:0]        in_t_lane_wrap = in_tag[TAG_LWRAP +: P];
 
-    localparam integer VW    = VOXEL_W;
+    localparam integer VW    = WORD_W;      // a memory word: every buffer holds whole words
     localparam integer PV    = P * VW;
     localparam integer BBMAX = 1 << PB_W;   // beam-buffer entries (>= NBMAX)
     // the stream header, formed at s0, rides along unchanged to the output
@@ -196,7 +209,7 @@ module cube4_tri #(
         s1_meta  <= s0_meta;
     end
 
-    genvar q;
+    genvar q, c;
     generate
         if (MAX_SS_LOG2 > 0) begin : g_slice_buf
             // Two slices per lane, by parity. Written at s0 by the beat that
@@ -416,20 +429,9 @@ module cube4_tri #(
 
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lerp
-            // values of this lane: index 0 cur lower (row j+1), 1 cur upper,
-            // 2 prev lower (row j), 3 prev upper; n* = the same at i + 1
-            wire [VW-1:0] cl  = s4_vals[q*4*VW + 0*VW +: VW];
-            wire [VW-1:0] cu  = s4_vals[q*4*VW + 1*VW +: VW];
-            wire [VW-1:0] pl  = s4_vals[q*4*VW + 2*VW +: VW];
-            wire [VW-1:0] pu  = s4_vals[q*4*VW + 3*VW +: VW];
-            wire [VW-1:0] ncl = s4_nvals[q*4*VW + 0*VW +: VW];
-            wire [VW-1:0] ncu = s4_nvals[q*4*VW + 1*VW +: VW];
-            wire [VW-1:0] npl = s4_nvals[q*4*VW + 2*VW +: VW];
-            wire [VW-1:0] npu = s4_nvals[q*4*VW + 3*VW +: VW];
-            wire [VW-1:0] x_l0, x_l1, x_u0, x_u1, y_l, y_u, z;
             // the lane's own copies of the weights, wx at s4, wy / wz when the
             // y / z lerps start: one shared register would drive the
-            // multipliers of every lane
+            // multipliers of every lane (and every channel of the lane)
             reg [WEIGHT_W-1:0] wx_l, wy_l, wz_l;
             (* keep *)
             always @(posedge clk) begin
@@ -437,25 +439,45 @@ module cube4_tri #(
                 wy_l <= lwy_q[LERP_LAT - 1];
                 wz_l <= lwz_q[2 * LERP_LAT - 1];
             end
+            for (c = 0; c < NCH; c = c + 1) begin : g_ch
+                // channel c of the word: the voxel, then the gradient components
+                localparam integer CW  = (c == 0) ? VOXEL_W : VG_W;
+                localparam integer OFF = (c == 0) ? 0 : VOXEL_W + (c - 1) * VG_W;
+                // values of this lane: index 0 cur lower (row j+1), 1 cur upper,
+                // 2 prev lower (row j), 3 prev upper; n* = the same at i + 1
+                // (a gradient component is two's complement in the word: its sign
+                // bit flipped makes it offset binary for the unsigned lerps, and
+                // flipped back after the z-lerp; the voxel is unsigned as it is)
+                localparam [CW-1:0] FLIP = (c == 0) ? '0 : (CW'(1) << (CW - 1));
+                wire [CW-1:0] cl  = FLIP ^ s4_vals[q*4*VW + 0*VW + OFF +: CW];
+                wire [CW-1:0] cu  = FLIP ^ s4_vals[q*4*VW + 1*VW + OFF +: CW];
+                wire [CW-1:0] pl  = FLIP ^ s4_vals[q*4*VW + 2*VW + OFF +: CW];
+                wire [CW-1:0] pu  = FLIP ^ s4_vals[q*4*VW + 3*VW + OFF +: CW];
+                wire [CW-1:0] ncl = FLIP ^ s4_nvals[q*4*VW + 0*VW + OFF +: CW];
+                wire [CW-1:0] ncu = FLIP ^ s4_nvals[q*4*VW + 1*VW + OFF +: CW];
+                wire [CW-1:0] npl = FLIP ^ s4_nvals[q*4*VW + 2*VW + OFF +: CW];
+                wire [CW-1:0] npu = FLIP ^ s4_nvals[q*4*VW + 3*VW + OFF +: CW];
+                wire [CW-1:0] x_l0, x_l1, x_u0, x_u1, y_l, y_u, z;
 
-            // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l0 (
-                .clk(clk), .en(1'b1), .a(pl), .b(npl), .w(wx_l), .y(x_l0));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l1 (
-                .clk(clk), .en(1'b1), .a(cl), .b(ncl), .w(wx_l), .y(x_l1));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u0 (
-                .clk(clk), .en(1'b1), .a(pu), .b(npu), .w(wx_l), .y(x_u0));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u1 (
-                .clk(clk), .en(1'b1), .a(cu), .b(ncu), .w(wx_l), .y(x_u1));
-            // y
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_l (
-                .clk(clk), .en(1'b1), .a(x_l0), .b(x_l1), .w(wy_l), .y(y_l));
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_u (
-                .clk(clk), .en(1'b1), .a(x_u0), .b(x_u1), .w(wy_l), .y(y_u));
-            // z
-            cube4_lerp #(.DATA_W(VW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_z (
-                .clk(clk), .en(1'b1), .a(y_l), .b(y_u), .w(wz_l), .y(z));
-            assign l_sample[q*VW +: VW] = z;
+                // x: rows j (prev) and j + 1 (cur) of the lower and upper slice
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l0 (
+                    .clk(clk), .en(1'b1), .a(pl), .b(npl), .w(wx_l), .y(x_l0));
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_l1 (
+                    .clk(clk), .en(1'b1), .a(cl), .b(ncl), .w(wx_l), .y(x_l1));
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u0 (
+                    .clk(clk), .en(1'b1), .a(pu), .b(npu), .w(wx_l), .y(x_u0));
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_x_u1 (
+                    .clk(clk), .en(1'b1), .a(cu), .b(ncu), .w(wx_l), .y(x_u1));
+                // y
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_l (
+                    .clk(clk), .en(1'b1), .a(x_l0), .b(x_l1), .w(wy_l), .y(y_l));
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_y_u (
+                    .clk(clk), .en(1'b1), .a(x_u0), .b(x_u1), .w(wy_l), .y(y_u));
+                // z
+                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_z (
+                    .clk(clk), .en(1'b1), .a(y_l), .b(y_u), .w(wz_l), .y(z));
+                assign l_sample[q*VW + OFF +: CW] = FLIP ^ z;
+            end
         end
     endgenerate
 

@@ -8,6 +8,8 @@ import dataclasses
 import subprocess
 import sys
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from cube4_testutil import make_scene, random_volume, sphere_volume
@@ -167,18 +169,32 @@ def test_window_counts_only_its_samples():
 
 def test_scene_builds_and_build_errors():
     head = load_scene("head")
-    assert scene_build([head]) == {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 0}
-    assert scene_build([load_scene("mri_mip")]) == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0}
+    assert scene_build([head]) == {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0}
+    assert scene_build([load_scene("mri_mip")]) == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0,
+                                                    "VGRAD": 0}
     assert scene_build([load_scene("head_cut")])["CLIP"] == 1
     assert parse_build("full") == FULL_BUILD and parse_build("scene") is None
-    assert parse_build("shading=0,compositing=0") == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 1}
+    assert parse_build("shading=0,compositing=0") == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 1,
+                                                      "VGRAD": 0}
     for bad, msg in [("SHADING=2", "NAME=0/1"), ("FOO=1", "NAME=0/1"),
-                     ("COMPOSITING=0,EXTREMUM=0", "no rendering mode"), ("COMPOSITING=0", "only compositing")]:
+                     ("COMPOSITING=0,EXTREMUM=0", "no rendering mode"), ("COMPOSITING=0", "only compositing"),
+                     ("SHADING=0,VGRAD=1", "VGRAD = 1 needs SHADING")]:
         with pytest.raises(UserError, match=msg):
             parse_build(bad)
     cfg = config_for(head, 4, build=tuple(parse_build("SHADING=0").items()))
     with pytest.raises(UserError, match="scene head needs shading"):
         resolve_build(cfg, [head])
+    # the gradient's source: one per build
+    sobel, central = replace(head, gradient="sobel"), replace(head, gradient="central")
+    assert scene_build([sobel])["VGRAD"] == 1
+    assert scene_build([replace(sobel, shading=False)])["VGRAD"] == 0      # unshaded: no gradient
+    for scenes, msg in [([head, sobel], "cannot mix"), ([sobel, central], "one voxel gradient")]:
+        with pytest.raises(UserError, match=msg):
+            scene_build(scenes)
+    with pytest.raises(UserError, match="takes its gradient from voxel gradients"):
+        resolve_build(config_for(sobel, 4, build=tuple(FULL_BUILD.items())), [sobel])
+    with pytest.raises(UserError, match="takes its gradient from GRA"):
+        resolve_build(config_for(head, 4, build=tuple(parse_build("VGRAD=1").items())), [head])
 
 
 def test_scene_keys_and_errors():

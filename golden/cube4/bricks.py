@@ -318,7 +318,7 @@ class BrickTask:
     """Everything a worker needs to render one brick (picklable)."""
 
     target: str  # "module:function" of the brick renderer
-    vol: np.ndarray  # the brick's stored voxels, vol[z, y, x]
+    vol: np.ndarray  # the brick's stored voxels, vol[z, y, x] (memory words with voxel gradients)
     trav: Traversal
     cfg: Cube4Config
     lut: np.ndarray
@@ -328,6 +328,7 @@ class BrickTask:
     shading: bool = True
     label: str = ""
     board_dim: int | None = None  # the board's MAX_DIM (None: the engine's choice)
+    vgrad: bool = False  # vol holds words with voxel gradients (cube4.vgrad), shaded with them
 
 
 @dataclass
@@ -343,7 +344,7 @@ def render_brick_golden(task: BrickTask) -> BrickResult:
     """A brick through the bit-exact model."""
     t0 = time.perf_counter()
     fr = render_frame(task.vol, task.trav, task.cfg, task.lut, task.rmap, mode=task.mode,
-                      shading=task.shading, clip=task.clip)
+                      shading=task.shading, clip=task.clip, vgrad=task.vgrad)
     return BrickResult(baseplane=fr.baseplane, wall_s=time.perf_counter() - t0)
 
 
@@ -403,9 +404,12 @@ class BrickedFrame:
 
 def brick_tasks(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut, rmap, grid: BrickGrid, *,
                 engine: str = "golden", mode: str = "composite", shading: bool = True,
-                clip: Clip | None = None, board_dim: int | None = None) -> tuple[list[Brick], list[BrickTask]]:
+                clip: Clip | None = None, board_dim: int | None = None,
+                vgrad: bool = False) -> tuple[list[Brick], list[BrickTask]]:
     """The plan of one view and one task per brick. ``vol`` is the traversed box's
-    voxels (vol[z, y, x] of trav.dims); ``board_dim`` the boards' MAX_DIM, if given."""
+    voxels (vol[z, y, x] of trav.dims; with ``vgrad`` the memory words of cube4.vgrad,
+    estimated over the whole volume, so a brick's gradients need no overlap of their own);
+    ``board_dim`` the boards' MAX_DIM, if given."""
     if mode not in BRICK_MODES:
         raise UserError(f"--bricks composes the modes {', '.join(BRICK_MODES)}, not {mode!r} (a ray's extremum "
                         f"cannot be told from the partial pixels)")
@@ -417,7 +421,8 @@ def brick_tasks(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut, rmap, g
         nx, ny, nz = br.trav.dims
         sub = np.ascontiguousarray(vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx])
         tasks.append(BrickTask(target=target, vol=sub, trav=br.trav, cfg=cfg, lut=lut, rmap=rmap, clip=br.clip,
-                               mode=mode, shading=shading, label="brick %d,%d,%d" % br.index, board_dim=board_dim))
+                               mode=mode, shading=shading, label="brick %d,%d,%d" % br.index, board_dim=board_dim,
+                               vgrad=vgrad))
     return bricks, tasks
 
 
@@ -448,8 +453,8 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
     axis of the traversed box; None: the fewest that fit ``board_dim``), composited and
     warped: one ``render.RenderResult`` per scene. All bricks of all views go to the
     executor at once."""
-    from .render import (RenderResult, crop_volume, frame_clip, host_tables, scene_warp, setup_view, trav_stats,
-                         view_stats)
+    from .render import (RenderResult, crop_volume, frame_clip, host_tables, memory_volume, scene_warp, setup_view,
+                         trav_stats, view_stats)
 
     if grid_counts is None and board_dim is None:
         raise ValueError("give the bricks per axis or the board's largest brick")
@@ -466,8 +471,9 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
         grid = make_grid(trav.dims, counts)
         check_board(grid, board_dim)
         lut, rmap = host_tables(sc, cfg, trav)
-        bricks, tasks = brick_tasks(crop_volume(vol, trav), trav, cfg, lut, rmap, grid, engine=engine,
-                                    mode=sc.mode, shading=sc.shaded, clip=frame_clip(sc, trav), board_dim=board_dim)
+        bricks, tasks = brick_tasks(crop_volume(memory_volume(vol, sc, cfg), trav), trav, cfg, lut, rmap, grid,
+                                    engine=engine, mode=sc.mode, shading=sc.shaded, clip=frame_clip(sc, trav),
+                                    board_dim=board_dim, vgrad=sc.voxel_gradients)
         if len(scenes) > 1:
             for t in tasks:
                 t.label = f"view {nv} {t.label}"

@@ -33,6 +33,7 @@ from .errors import UserError
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import config_for, engine_names, image_metrics, render, render_views
 from .scene import Scene, builtin_scene_names, load_scene, with_view
+from .vgrad import GRADIENTS
 from .view import POLE_Z, angles_from_direction, direction_from_angles, up_from_angles
 from .volumes import BUILTINS, load_volume
 
@@ -70,7 +71,8 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--pipelines", type=int, help=f"number of pipelines p (1..{MAX_PIPELINES})")
     r.add_argument("--build", default="scene",
                    help="the hardware build: scene (default: the smallest the scene needs), full, or "
-                        "NAME=0/1 pairs of SHADING, COMPOSITING, EXTREMUM, CLIP (others 1); --stats names it")
+                        "NAME=0/1 pairs of SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD (others as in full: "
+                        "1, VGRAD 0); --stats names it")
     r.add_argument("--compare-to", choices=["reference"], help="also render the reference and report the error")
     r.add_argument("--dims", help="raw volumes: NX,NY,NZ")
     r.add_argument("--dtype", help="raw volumes: uint8, uint16, int16, uint32, int32, float32, float64")
@@ -93,6 +95,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--no-skip", action="store_true",
                    help="traverse the whole volume (the fixed schedule) instead of only the box that can change "
                         "a ray; the image is the same, --stats compares the cycles")
+    r.add_argument("--gradient", choices=GRADIENTS,
+                   help="the gradient estimator instead of the scene's [render] gradient: gra (the paper's, on "
+                        "the sample stream), central or sobel (at the voxels, interpolated by TRI)")
     r.add_argument("--quiet", action="store_true", help="no progress bars or summary")
     sub.add_parser("volumes", help="list the built-in volumes")
     sub.add_parser("scenes", help="list the built-in scenes")
@@ -197,6 +202,8 @@ def cmd_render(args: argparse.Namespace) -> int:
     scenes = _views(args, scene)
     if args.no_skip:
         scenes = [replace(sc, skip=False) for sc in scenes]
+    if args.gradient:
+        scenes = [replace(sc, gradient=args.gradient) for sc in scenes]
     bricks = _brick_options(args, scene)
     count = len(scenes)
     # every destination, numbered per view, checked before any work

@@ -31,7 +31,7 @@ class Cube4Config:
     rmap_bits   RMAP_BITS, reflectance map has 6 * 4^RMAP_BITS + 1 entries (2..6)
     supersample S, samples per voxel slice along the major axis: 1, 2, 4 or 8
     build       the hardware the build has, as BUILD_PARAMS -> 0 / 1 (SHADING,
-                COMPOSITING, EXTREMUM, CLIP); None: the smallest build the scene needs
+                COMPOSITING, EXTREMUM, CLIP, VGRAD); None: the smallest build the scene needs
     """
 
     pipelines: int = 8
@@ -81,12 +81,14 @@ class Cube4Config:
 
 # ---------------------------------------------------------------- builds
 #: cube4_top's parameters that remove hardware a scene does not need (docs/architecture.md)
-BUILD_PARAMS = ("SHADING", "COMPOSITING", "EXTREMUM", "CLIP")
-FULL_BUILD = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1}
+BUILD_PARAMS = ("SHADING", "COMPOSITING", "EXTREMUM", "CLIP", "VGRAD")
+#: the full build: every unit of the paper (VGRAD = 1 swaps GRA for the voxel-gradient channels)
+FULL_BUILD = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1, "VGRAD": 0}
 _NEEDS = {"SHADING": "shading (gradients and the reflectance map)",
           "COMPOSITING": "the compositing datapath (composite, xray)",
           "EXTREMUM": "the comparators (mip, minip)",
-          "CLIP": "the cut plane or window (cube4_clip)"}
+          "CLIP": "the cut plane or window (cube4_clip)",
+          "VGRAD": "voxel gradients (the memory's gradient channels)"}
 
 
 def check_build_params(build: dict) -> None:
@@ -98,22 +100,38 @@ def check_build_params(build: dict) -> None:
         raise UserError("a build needs COMPOSITING = 1 or EXTREMUM = 1 (no rendering mode otherwise)")
     if build["SHADING"] and not build["COMPOSITING"]:
         raise UserError("a build with SHADING = 1 needs COMPOSITING = 1 (only compositing is shaded)")
+    if build["VGRAD"] and not build["SHADING"]:
+        raise UserError("a build with VGRAD = 1 needs SHADING = 1 (voxel gradients only feed shading)")
 
 
 def scene_build(scenes) -> dict:
-    """The smallest build that renders every one of the scenes."""
-    b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0}
+    """The smallest build that renders every one of the scenes. Shaded scenes take their
+    gradient from GRA (VGRAD = 0) or from the voxels (VGRAD = 1): one build has one."""
+    b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0}
     for sc in scenes:
         b["SHADING"] |= int(sc.shaded)
         b["COMPOSITING"] |= int(is_blend(sc.mode))
         b["EXTREMUM"] |= int(is_extremum(sc.mode))
         b["CLIP"] |= int(sc.cut is not None)
+        b["VGRAD"] |= int(sc.voxel_gradients)
+    _one_gradient_source(scenes)
     return b
+
+
+def _one_gradient_source(scenes) -> None:
+    kinds = {sc.gradient if sc.voxel_gradients else "gra" for sc in scenes if sc.shaded}
+    if "gra" in kinds and len(kinds) > 1:
+        raise UserError("one render cannot mix [render] gradient = gra with voxel gradients "
+                        "(they need different builds): render them separately")
+    if len(kinds) > 1:
+        raise UserError(f"one render holds one voxel gradient in memory, got {', '.join(sorted(kinds))}: "
+                        "render them separately")
 
 
 def parse_build(text: str) -> dict | None:
     """--build: "scene" (None: the scene's smallest), "full", or NAME=0/1 pairs
-    (e.g. SHADING=0,COMPOSITING=0,EXTREMUM=1,CLIP=0; names not given are 1)."""
+    (e.g. SHADING=0,COMPOSITING=0,EXTREMUM=1,CLIP=0; names not given as in the full build:
+    1, and VGRAD 0)."""
     t = text.strip()
     if t.lower() == "scene":
         return None
@@ -138,6 +156,10 @@ def resolve_build(cfg: "Cube4Config", scenes) -> dict:
         return scene_build(scenes)
     build = dict(cfg.build)
     need = scene_build(scenes)
+    if need["SHADING"] and build["VGRAD"] != need["VGRAD"]:
+        name = next(sc.name for sc in scenes if sc.shaded)
+        src = "voxel gradients (VGRAD = 1)" if need["VGRAD"] else "GRA (VGRAD = 0)"
+        raise UserError(f"scene {name} takes its gradient from {src}, the build has VGRAD = {build['VGRAD']}")
     for k in BUILD_PARAMS:
         if need[k] and not build[k]:
             name = next(sc.name for sc in scenes if scene_build([sc])[k])

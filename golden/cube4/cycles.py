@@ -1,7 +1,8 @@
 """Cycles per frame of cube4_top, the one formula the reports, the RTL engine and the docs share.
 
     (M·NJ + 1)·NB + 1 + NJ·NB + NB + 2 + FILL_CYCLES        (docs/architecture.md, "Cycles per frame")
-    (M·NJ + 1)·NB + 1 + FILL_CYCLES_UNSHADED                 a build without GRA (SHADING = 0)
+    (M·NJ + 1)·NB + 1 + FILL_CYCLES_UNSHADED                 a build without shading (SHADING = 0)
+    (M·NJ + 1)·NB + 1 + FILL_CYCLES_VGRAD                    voxel gradients (VGRAD = 1): no GRA
 
 M sample slices, NJ rows, NB = ⌈NI/P⌉ partial beams per row. It holds while a slice has at least
 ``COM_MIN_SLICE`` beats (NJ·NB); a smaller slice makes COM wait for its own results
@@ -16,19 +17,30 @@ FILL_CYCLES = 50
 #: The same for a build without shading: no GRA (whose last slice waits for the slice after it)
 #: and a 3-stage SHA; measured the same way and checked by tb/cube4_top's build tests.
 FILL_CYCLES_UNSHADED = 35
+#: The same for a build with voxel gradients (VGRAD = 1): no GRA, the shaded SHA; measured the
+#: same way and checked by tb/cube4_top's voxel-gradient test.
+FILL_CYCLES_VGRAD = 46
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.
 COM_MIN_SLICE = 9
 
 
-def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True) -> int:
+def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: bool = False) -> int:
     """Cycles of one frame without stalls, for M sample slices of NJ rows of NI samples on P
-    pipelines; ``shading`` False: a build without GRA."""
+    pipelines; ``shading`` False: a build without shading; ``vgrad``: a shaded build whose
+    gradient comes from the voxels (no GRA)."""
     nb = -(-ni // p)
     if not shading:
         return (m * nj + 1) * nb + 1 + FILL_CYCLES_UNSHADED
+    if vgrad:
+        return (m * nj + 1) * nb + 1 + FILL_CYCLES_VGRAD
     return (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + FILL_CYCLES
+
+
+def build_cycles(m: int, nj: int, ni: int, p: int, build: dict) -> int:
+    """frame_cycles on a build (config.BUILD_PARAMS)."""
+    return frame_cycles(m, nj, ni, p, bool(build["SHADING"]), bool(build.get("VGRAD", 0)))
 
 
 def slow_slice_factor(nj: int, ni: int, p: int) -> float:

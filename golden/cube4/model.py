@@ -11,6 +11,7 @@ Streams (kept when ``keep_streams=True``), all indexed [m, j, i] in the traversa
 * ``samples``   tri-linear samples, unsigned VOXEL_W bits
 * ``inside``    the sample lies inside the volume and is composited (bool)
 * ``gradients`` (gi, gj, gk), twice the central differences, signed, traversal frame
+  (GRA, §5); with voxel gradients (§5b) the interpolated (g_x, g_y, g_z), volume frame
 * ``rmap_index`` reflectance-map entry of the gradient direction
 * ``shaded``    (R, G, B) Q0.8 and A Q0.ALPHA_W of the classified, shaded sample
 * ``pixels``    finished rays in emission order: (m, by, bx, R, G, B, A) with colour and
@@ -28,6 +29,7 @@ from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
 from .clip import Clip
 from .modes import MODES, is_blend
+from .vgrad import unpack_words
 from .view import Traversal
 
 PIXEL_DTYPE = np.dtype(
@@ -87,18 +89,43 @@ def inside_mask(trav: Traversal, m: int) -> np.ndarray:
     return mask
 
 
-def sample_stream(vol: np.ndarray, trav: Traversal) -> tuple[np.ndarray, np.ndarray]:
-    """The tri-linear sample stream alone (what the RTL front end emits):
-    samples (M, nj, ni) int32 and inside (M, nj, ni) bool, indexed [m, j, i]."""
+def padded_traversal(vol: np.ndarray, trav: Traversal) -> np.ndarray:
+    """vol[z, y, x] in the traversal frame, zero-padded by one voxel at the high end of
+    each axis (what interpolate_slice reads), int64."""
     t = trav.to_traversal(vol)
     nk, nj, ni = t.shape
-    tp = np.zeros((nk + 1, nj + 1, ni + 1), dtype=np.int32)
+    tp = np.zeros((nk + 1, nj + 1, ni + 1), dtype=np.int64)
     tp[:nk, :nj, :ni] = t
+    return tp
+
+
+def voxel_channels(words: np.ndarray, trav: Traversal, voxel_bits: int) -> tuple[np.ndarray, np.ndarray]:
+    """Memory words (cube4.vgrad) as the padded traversal-frame value and (3, ...) signed
+    gradient components (volume axes x, y, z) that TRI interpolates (numerics.md §5b)."""
+    value, comps = unpack_words(padded_traversal(words, trav), voxel_bits)
+    return value, comps
+
+
+def sample_stream(vol: np.ndarray, trav: Traversal, vgrad_bits: int | None = None):
+    """The tri-linear sample stream alone (what the RTL front end emits):
+    samples (M, nj, ni) int64 and inside (M, nj, ni) bool, indexed [m, j, i].
+    ``vgrad_bits`` = VOXEL_W when vol holds memory words with voxel gradients: the
+    samples are then (M, 4, nj, ni), the value and the three interpolated components."""
+    if vgrad_bits is None:
+        tp, comps = padded_traversal(vol, trav), None
+    else:
+        tp, comps = voxel_channels(vol, trav, vgrad_bits)
+    nj, ni = tp.shape[1] - 1, tp.shape[2] - 1
     M = trav.num_sample_slices
-    samples = np.empty((M, nj, ni), dtype=np.int32)
+    samples = np.empty((M, nj, ni) if comps is None else (M, 4, nj, ni), dtype=np.int64)
     inside = np.empty((M, nj, ni), dtype=bool)
     for m in range(M):
-        samples[m] = interpolate_slice(tp, trav, m, trav.weight_bits)
+        s = interpolate_slice(tp, trav, m, trav.weight_bits)
+        if comps is None:
+            samples[m] = s
+        else:
+            samples[m, 0] = s
+            samples[m, 1:] = voxel_gradient_slice(comps, trav, m)
         inside[m] = inside_mask(trav, m)
     return samples, inside
 
@@ -129,6 +156,13 @@ def gradient(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal
     gr = fwd - back
     gk = trav.supersample * gr - round_shift(trav.view_x * gi + trav.view_y * gj, trav.weight_bits)
     return np.stack([gi, gj, gk])
+
+
+def voxel_gradient_slice(comps: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
+    """Voxel gradients (numerics.md §5b) of sample slice m: each padded component of
+    ``voxel_channels`` interpolated like the value (the same seven lerps and weights).
+    Returns (3, nj, ni) int64, (g_x, g_y, g_z) in the volume's axes."""
+    return np.stack([interpolate_slice(c, trav, m, trav.weight_bits) for c in comps])
 
 
 def gradient_stream(samples: np.ndarray, trav: Traversal) -> np.ndarray:
@@ -244,22 +278,26 @@ def render_frame(
     mode: str = "composite",
     shading: bool = True,
     clip: Clip | None = None,
+    vgrad: bool = False,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
     mode: composite, xray, mip or minip (numerics.md §7, §13); shading False classifies
     only (no gradient, no reflectance map; X-ray and MIP/MinIP are never shaded);
-    clip: the window and cut plane (clip.py; None: every sample of the box counts).
+    clip: the window and cut plane (clip.py; None: every sample of the box counts);
+    vgrad: vol holds memory words with voxel gradients (cube4.vgrad.pack_words), which
+    replace GRA (numerics.md §5b; the reflectance map is then in the volume's axes).
     """
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
     shading = shading and mode == "composite"
     W = cfg.weight_bits
     one = 1 << cfg.acc_bits
-    t = trav.to_traversal(vol)
-    nk, nj, ni = t.shape
-    tp = np.zeros((nk + 1, nj + 1, ni + 1), dtype=np.int32)
-    tp[:nk, :nj, :ni] = t
+    if vgrad:
+        tp, comps = voxel_channels(vol, trav, cfg.voxel_bits)
+    else:
+        tp, comps = padded_traversal(vol, trav), None
+    nj, ni = tp.shape[1] - 1, tp.shape[2] - 1
     M = trav.num_sample_slices
     rows, cols = trav.baseplane_shape
     sxm, sym = trav.max_steps
@@ -273,7 +311,7 @@ def render_frame(
         held = np.zeros((4, rows, cols), dtype=np.int64)
 
     def padded(m: int) -> np.ndarray:
-        sp = np.zeros((nj + 2, ni + 2), dtype=np.int32)
+        sp = np.zeros((nj + 2, ni + 2), dtype=np.int64)
         if 0 <= m < M:
             sp[1:-1, 1:-1] = interpolate_slice(tp, trav, m, W)
         return sp
@@ -296,7 +334,12 @@ def render_frame(
         inside = inside_mask(trav, m)
         keep = clip.keep(trav, m) if clip is not None else np.ones((nj, ni), dtype=bool)
         count = inside & keep
-        g = gradient(prev, cur, nxt, trav, m) if shading else None
+        if not shading:
+            g = None
+        elif vgrad:
+            g = voxel_gradient_slice(comps, trav, m)
+        else:
+            g = gradient(prev, cur, nxt, trav, m)
         rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits)
         stx, sty = (int(v) for v in trav.steps(m))
         r0, c0 = sym - sty, sxm - stx

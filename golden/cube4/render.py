@@ -25,6 +25,7 @@ from .clip import Clip, cut_coefficients
 from .modes import is_extremum
 from .scene import Scene, crop_box
 from .tables import classification_lut, extremum_lut, reflectance_map
+from .vgrad import pack_words
 from .view import Camera, Traversal, make_camera, make_traversal
 from .warp import warp_to_image
 
@@ -78,7 +79,24 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
         lut = extremum_lut(scene, cfg)
     else:
         lut = classification_lut(scene, cfg, trav.sample_distance)
-    return lut, (reflectance_map(scene, cfg, trav) if scene.shaded else None)
+    return lut, (reflectance_map(scene, cfg, trav, volume_axes=scene.voxel_gradients) if scene.shaded else None)
+
+
+def build_memory(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, build: dict) -> np.ndarray:
+    """What a build's voxel memory holds for these scenes (checked by resolve_build to share
+    one gradient): the volume, or on a VGRAD build the words with the scenes' voxel gradient
+    (central when no scene is shaded)."""
+    if not build.get("VGRAD"):
+        return vol
+    kind = next((sc.gradient for sc in scenes if sc.voxel_gradients), "central")
+    return pack_words(vol, kind, cfg.voxel_bits)
+
+
+def memory_volume(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> np.ndarray:
+    """What the voxel memory holds for this scene: vol[z, y, x] itself, or with voxel
+    gradients ([render] gradient = central / sobel) the words of cube4.vgrad, estimated
+    over the whole volume (a crop box or a brick reads the same words)."""
+    return pack_words(vol, scene.gradient, cfg.voxel_bits) if scene.voxel_gradients else vol
 
 
 def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pass], lut: np.ndarray) -> list[SkipPlan]:
@@ -95,13 +113,13 @@ def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pas
 def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict:
     """What the frames of one view (one per sub-pixel pass) traverse and the cycles they
     predict, against the fixed schedule."""
-    shading = bool(build["SHADING"])
+    shading, vgrad = bool(build["SHADING"]), bool(build.get("VGRAD", 0))
     full = cycles = 0
     boxes = []
     for plan in plans:
         t = plan.whole
-        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading)
-        cycles += plan.cycles(cfg.pipelines, shading)
+        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading, vgrad)
+        cycles += plan.cycles(cfg.pipelines, shading, vgrad)
         boxes.append(None if plan.box is None else
                      {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
                       "dims": [int(b) - int(a) for a, b in zip(*plan.box)]})
@@ -251,13 +269,14 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
             raise ValueError("keep_streams renders one pass: [render] subpixel must be 1")
         scene = replace(scene, skip=False)
     vp = plan_view(vol, scene, cfg)
-    box_vol = crop_volume(vol, trav)
+    box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
     results, streams = {}, {}
     for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
         if plan.trav is None:       # nothing can change a ray: no frame
             continue
         sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
-                           progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip)
+                           progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
+                           vgrad=scene.voxel_gradients)
         results[n] = (sub.baseplane, sub.pixels)
         if keep_streams:
             streams = sub.streams

@@ -17,6 +17,7 @@ from .errors import UserError
 from .modes import MODES  # docs/scenes.md, docs/numerics.md §13
 from .subpixel import MAX_Q
 from .view import direction_from_angles, normalize_direction
+from .vgrad import check_gradient
 from .warp import DEFAULT_FILTER, check_filter
 
 #: [output] footprint when a scene does not say (docs/scenes.md)
@@ -52,6 +53,7 @@ class Scene:
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     skip: bool = True  # [render] skip: traverse only the box that can change a ray (cube4.skip)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
+    gradient: str = "gra"  # [render] gradient: gra (the paper's), central or sobel (cube4.vgrad)
     filter: str = DEFAULT_FILTER  # [output] filter: the warp's OpenImageIO filter
     footprint: bool = FOOTPRINT_DEFAULT  # [output] footprint: cut the image to the box's projection
 
@@ -59,6 +61,11 @@ class Scene:
     def shaded(self) -> bool:
         """Does this scene need gradients and the reflectance map?"""
         return self.shading and self.mode == "composite"
+
+    @property
+    def voxel_gradients(self) -> bool:
+        """Is this scene shaded with gradients estimated at the voxels (cube4.vgrad)?"""
+        return self.shaded and self.gradient != "gra"
 
     def tf(self, x) -> np.ndarray:
         """Transfer function at normalised values x in [0, 1]: (..., 4) RGBA, alpha per
@@ -117,7 +124,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError(f"scene: output.footprint must be true or false, got {footprint!r}")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel"), "render")
+    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient"), "render")
+    gradient = check_gradient(rnd.get("gradient", "gra"))
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
         raise UserError(f"scene: render.mode {mode!r} is not supported (supported: {', '.join(MODES)})")
@@ -187,7 +195,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
         shading=shading, crop=crop, cut=cut, skip=skip, subpixel=subpixel, filter=warp_filter,
-        footprint=footprint,
+        footprint=footprint, gradient=gradient,
     )
 
 

@@ -91,13 +91,16 @@ def rmap_cell_normals(res: int) -> np.ndarray:
     return dirs.reshape(-1, 3)
 
 
-def reflectance_map(scene: Scene, cfg: Cube4Config, trav: Traversal) -> np.ndarray:
+def reflectance_map(scene: Scene, cfg: Cube4Config, trav: Traversal, volume_axes: bool = False) -> np.ndarray:
     """(6 * R^2 + 1, 2) int64 table of (D, P) in Q2.8, indexed by the quantised
-    gradient direction in the traversal frame; the last entry is for G == 0."""
+    gradient direction in the traversal frame (GRA's gradient), or in the volume's axes
+    x, y, z when ``volume_axes`` (voxel gradients, numerics.md §5b); the last entry is
+    for G == 0."""
     grads = rmap_cell_normals(cfg.rmap_res)
     normals = -grads  # surface normal points away from denser material
-    lights = [trav.vector_to_traversal(lt.direction) for lt in scene.lights]
-    eye = -trav.vector_to_traversal(np.asarray(trav.direction))
+    frame = (lambda v: np.asarray(v, dtype=np.float64)) if volume_axes else trav.vector_to_traversal
+    lights = [frame(lt.direction) for lt in scene.lights]
+    eye = -frame(np.asarray(trav.direction))
     d, p = phong_terms(scene, normals, lights, eye)
     d0, p0 = unshaded_terms(scene)
     table = np.empty((cfg.rmap_entries, 2), dtype=np.int64)

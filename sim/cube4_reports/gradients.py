@@ -232,7 +232,9 @@ SAMPLE_ESTIMATORS = ("gra", "ray", "ray_s", "sobel", "sobel_k1", "ray_s@2", "sob
                      "ray_n", "ray_s_n", "sobel_n", "sobel_n@2", "sobel_k1_n",
                      "ray_v", "ray_s_v", "sobel_v")
 VOXEL_ESTIMATORS = ("vcd", "vsobel")
-ESTIMATORS = SAMPLE_ESTIMATORS + VOXEL_ESTIMATORS
+#: the bit-exact model's voxel gradients ([render] gradient = central / sobel, numerics.md §5b)
+MODEL_ESTIMATORS = ("vgrad_central", "vgrad_sobel")
+ESTIMATORS = SAMPLE_ESTIMATORS + VOXEL_ESTIMATORS + MODEL_ESTIMATORS
 
 
 def _parse(name: str, S: int) -> tuple[str, int]:
@@ -319,7 +321,21 @@ def voxel_gradient_stream(name: str, vol: np.ndarray, trav: Traversal) -> np.nda
     return out
 
 
+def model_gradient_stream(name: str, vol: np.ndarray, trav: Traversal, voxel_bits: int = 8) -> np.ndarray:
+    """The bit-exact model's voxel gradients (what TRI emits with VGRAD = 1), turned from
+    the volume's axes into the traversal frame like every other estimator here,
+    (M, 3, nj, ni) float64."""
+    from cube4.vgrad import pack_words
+
+    words = pack_words(vol, name.removeprefix("vgrad_"), voxel_bits)
+    chans, _ = sample_stream(words, trav, voxel_bits)
+    g = np.moveaxis(chans[:, 1:], 1, -1).astype(np.float64)      # (M, nj, ni, 3): x, y, z
+    return np.moveaxis(trav.vector_to_traversal(g), -1, 1)
+
+
 def gradient_stream(name: str, vol: np.ndarray, trav: Traversal, samples: np.ndarray | None = None) -> np.ndarray:
+    if name in MODEL_ESTIMATORS:
+        return model_gradient_stream(name, vol, trav)
     if name in VOXEL_ESTIMATORS:
         return voxel_gradient_stream(name, vol, trav)
     if samples is None:

@@ -27,13 +27,16 @@ from .rtl import FrameJob, baseplane_from_pixels, render_frames
 def brick_build(task: BrickTask) -> dict:
     """The build a brick needs: the window (CLIP), compositing, shading if the scene is
     shaded; the configuration's own build if it has one and has all of these."""
-    need = {"SHADING": int(task.shading and task.mode == "composite"), "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 1}
+    shaded = int(task.shading and task.mode == "composite")
+    need = {"SHADING": shaded, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 1, "VGRAD": int(shaded and task.vgrad)}
     if task.cfg.build is None:
         return need
     build = dict(task.cfg.build)
     missing = [k for k, v in need.items() if v and not build.get(k)]
     if missing:
         raise UserError(f"RTL engine: bricks need {', '.join(f'{k} = 1' for k in missing)} in the build")
+    if shaded and build["VGRAD"] != need["VGRAD"]:
+        raise UserError(f"RTL engine: these bricks need VGRAD = {need['VGRAD']} in the build")
     return build
 
 

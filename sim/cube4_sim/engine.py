@@ -16,7 +16,7 @@ import numpy as np
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
-from cube4.render import (RenderResult, assemble_view, plan_view, register_engine, schedule_stats, trav_stats,
+from cube4.render import (RenderResult, assemble_view, build_memory, plan_view, register_engine, schedule_stats, trav_stats,
                           view_image, view_stats)
 from cube4.scene import Scene
 
@@ -40,7 +40,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
                 jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip))
                 owners.append((nv, n))
     try:
-        outs = render_frames(vol, jobs, cfg, progress=progress, quiet=True, build=build) if jobs else []
+        mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
+        outs = render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build) if jobs else []
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None
     run_s = time.perf_counter() - t0

@@ -21,6 +21,7 @@ import numpy as np
 from cube4.clip import Clip
 from cube4.config import FULL_BUILD, Cube4Config
 from cube4.errors import UserError
+from cube4.vgrad import word_bits
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
@@ -50,7 +51,7 @@ def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
                  build: dict | None = None) -> dict[str, int]:
     """cube4_top_harness parameters for a configuration and a largest dimension; the
     voxel memory holds a max_dim^3 volume unless ``depth`` (words per bank) is given;
-    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP (default: the full build)."""
+    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD (default: the full build)."""
     p = cfg.pipelines
     depth = depth or words_per_bank((max_dim, max_dim, max_dim), p)
     return {
@@ -124,7 +125,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
     params = build_params(cfg, max_dim, depth, build)
-    shading = bool(params["SHADING"])
+    shading, vgrad = bool(params["SHADING"]), bool(params["VGRAD"])
     check_limits(params, (nx, ny, nz))
 
     from . import runner  # cocotb is imported only when the RTL engine is used
@@ -136,14 +137,14 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     workdir.mkdir(parents=True, exist_ok=True)
     try:
         banks = pack_volume(vol, cfg.pipelines)
-        write_hex(workdir / "mem.hex", load_image(banks), cfg.voxel_bits)
+        write_hex(workdir / "mem.hex", load_image(banks), word_bits(cfg.voxel_bits, vgrad))
         job_frames = []
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
             # only composite frames are shaded: any other frame gets the identity map
             write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p)
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
-            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading) + 100)
+            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({

@@ -44,8 +44,10 @@ module cube4_top_harness #(
     parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM    = 1,
     parameter integer CLIP        = 1,
+    parameter integer VGRAD       = 0,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
+    `CUBE4_WORD_LAYOUT,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     `CUBE4_VIEW_PORTS
@@ -141,13 +143,13 @@ module cube4_top_harness #(
         cfg_cut_d_q     <= cfg_cut_d;
     end
 
-    localparam integer PV     = P * VOXEL_W;
+    localparam integer PW     = P * WORD_W;
     localparam integer LUT_W  = 24 + ALPHA_W;
     localparam integer RMAP_N = 6 * (1 << (2 * RMAP_BITS)) + 1;
     localparam integer BX_W   = DIM_W + 1;
 
     // ------------------------------------------------------------ loaders
-    reg [VOXEL_W-1:0] img  [0:P*DEPTH-1];
+    reg [WORD_W-1:0]  img  [0:P*DEPTH-1];
     reg [LUT_W-1:0]   luti [0:(1 << VOXEL_W)-1];
     reg [19:0]        rmi  [0:RMAP_N-1];
     string memfile, lutfile, rmapfile, dumpfile;
@@ -162,7 +164,7 @@ module cube4_top_harness #(
 
     reg        mem_busy_q, tab_busy_q, done_q;
     reg [31:0] la_q;
-    reg [PV-1:0] ld_data;
+    reg [PW-1:0] ld_data;
     always @(posedge clk) begin
         if (rst_q) begin
             mem_busy_q <= 1'b0;
@@ -194,7 +196,7 @@ module cube4_top_harness #(
         end
     end
     always @(*) begin
-        for (b = 0; b < P; b = b + 1) ld_data[b*VOXEL_W +: VOXEL_W] = img[la_q * P + b];
+        for (b = 0; b < P; b = b + 1) ld_data[b*WORD_W +: WORD_W] = img[la_q * P + b];
     end
     assign load_done = done_q;
     wire lut_we  = tab_busy_q && (la_q < (1 << VOXEL_W));
@@ -249,7 +251,8 @@ module cube4_top_harness #(
         .SHADING     (SHADING),
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
-        .CLIP        (CLIP)
+        .CLIP        (CLIP),
+        .VGRAD       (VGRAD)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),

@@ -202,7 +202,7 @@ module cube4_frontend_harness #(
     wire unused_ld_ready;   // always 1: the loader writes one word per bank per cycle
     cube4_voxel_mem #(
         .P       (P),
-        .VOXEL_W (VOXEL_W),
+        .WORD_W  (VOXEL_W),
         .DEPTH   (DEPTH),
         .ADDR_W  (ADDR_W),
         .TAG_W   (TAG_W)

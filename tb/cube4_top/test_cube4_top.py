@@ -303,6 +303,50 @@ def test_skip_schedule(p):
             assert res["cycles"] == plan.cycles(p, True), (label, res["cycles"], plan.cycles(p, True))
 
 
+# ---------------------------------------------------------------- voxel gradients
+# (P, S, estimator, build: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD)
+VGRAD_RUNS = [(1, 1, "sobel", (1, 1, 0, 0, 1)), (8, 2, "central", (1, 1, 1, 1, 1))]
+
+
+@pytest.mark.parametrize(("p", "s", "kind", "bits"), VGRAD_RUNS, ids=[f"p{r[0]}-s{r[1]}-{r[2]}" for r in VGRAD_RUNS])
+def test_voxel_gradients(p, s, kind, bits):
+    """Voxel gradients (VGRAD = 1, numerics.md §5b): the memory holds each voxel with its
+    gradient (cube4.vgrad), TRI interpolates all four channels and SHA shades with them.
+    Shaded frames at seven views ((1, 1, 1) and a 45° view among them), one unshaded frame
+    (the identity map on this build), a crop box, a cut plane, random stalls and a reset in
+    mid-frame, bit for bit against the golden model; unstalled frames take the predicted
+    cycles."""
+    from cube4.vgrad import pack_words
+    from cube4_sim.unit_bench import random_clip
+
+    rng = np.random.default_rng(300 + p)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    build = dict(zip(("SHADING", "COMPOSITING", "EXTREMUM", "CLIP", "VGRAD"), bits))
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    words = pack_words(vol, kind, cfg.voxel_bits)
+    jobs = []
+    for n, d in enumerate(VIEWS[:7] + [(1.0, -1.0, 0.0)]):
+        crop = n == 2
+        origin = (2, 1, 1) if crop else (0, 0, 0)
+        box = (nx - 4, ny - 3, nz - 2) if crop else dims
+        trav = make_traversal(box, d, cfg.weight_bits, s, origin=origin)
+        lut, rmap = random_tables(rng, cfg)
+        clip = random_clip(trav, "cut", rng) if build["CLIP"] and n == 5 else None
+        jobs.append(FrameJob(trav, lut, None if n == 4 else rmap, clip=clip,
+                             stall=(0, 60, 0, 120, 30, 0, 0, 0)[n], stall_out=(0, 0, 90, 60, 0, 40, 0, 0)[n],
+                             reset_after_cycles=150 if n == 3 else 0))
+    results = render_frames(words, jobs, cfg, max_dim=64, build=build)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"voxel gradients ({kind}) P={p} S={s} view {n} box {job.trav.origin}+{job.trav.dims}"
+        check(words, job.trav, cfg, job.lut, job.rmap, res, label, clip=job.clip, vgrad=True)
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, True)
+            assert res["cycles"] == want, (label, res["cycles"], want)
+
+
 # ---------------------------------------------------------------- q x q sub-pixel passes
 @pytest.mark.parametrize(("p", "q"), [(1, 2), (5, 3), (8, 2)])
 def test_subpixel_passes(p, q):

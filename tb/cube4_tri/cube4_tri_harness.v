@@ -12,11 +12,12 @@
 //   top-level port that the testbench reads every cycle with random ready.
 //   A cube4_stream_check watches TRI's input and its output stream.
 //   The testbench loads the volume through the memory's load port
-//   (golden/cube4/memory.py pack_volume: word a of bank q), sets the
+//   (golden/cube4/memory.py pack_volume: word a of bank q; with VGRAD = 1 the
+//   words of golden/cube4/vgrad.py), sets the
 //   registers and pulses start.
 //
 // Parameters: as cube4_tri (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3), plus DEPTH (words per bank, >= 2)
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, CLIP 0..1, VGRAD 0..1), plus DEPTH (words per bank, >= 2)
 //   and ADDR_W (bank address width, 1..30) of the memory.
 //
 // Latency: TRI's, plus one cycle in each stall generator.
@@ -41,10 +42,12 @@ module cube4_tri_harness #(
     parameter integer DEPTH       = 4096,
     parameter integer ADDR_W      = 12,
     parameter integer CLIP        = 1,
+    parameter integer VGRAD       = 0,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
-    `CUBE4_TAG_LAYOUT
+    `CUBE4_TAG_LAYOUT,
+    `CUBE4_WORD_LAYOUT
 ) (
     output wire                  clk,
     input  wire                  rst,
@@ -54,16 +57,16 @@ module cube4_tri_harness #(
     input  wire                  ld_valid,
     output wire                  ld_ready,
     input  wire [ADDR_W-1:0]     ld_addr,
-    input  wire [P*VOXEL_W-1:0]  ld_data,
+    input  wire [P*WORD_W-1:0]   ld_data,
     input  wire                  start,
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
     output wire                  out_valid,
     input  wire                  out_ready,
     output wire [HDR_W-1:0]      out_hdr,
-    output wire [P*VOXEL_W-1:0]  out_sample
+    output wire [P*WORD_W-1:0]   out_sample
 );
-    localparam integer PV    = P * VOXEL_W;
+    localparam integer PV    = P * WORD_W;
     localparam integer REQ_W = P * ADDR_W + P + TAG_W;
 
     cube4_sim_clock u_clock (.clk (clk));
@@ -116,7 +119,7 @@ module cube4_tri_harness #(
     wire [TAG_W-1:0]  rsp_tag, in_tag;
     cube4_voxel_mem #(
         .P       (P),
-        .VOXEL_W (VOXEL_W),
+        .WORD_W  (WORD_W),
         .DEPTH   (DEPTH),
         .ADDR_W  (ADDR_W),
         .TAG_W   (TAG_W)
@@ -161,7 +164,8 @@ module cube4_tri_harness #(
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .CLIP        (CLIP)
+        .CLIP        (CLIP),
+        .VGRAD       (VGRAD)
     ) u_tri (
         .clk        (clk),
         .rst        (rst),

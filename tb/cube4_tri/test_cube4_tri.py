@@ -25,10 +25,16 @@ flipped, each with other stalls, in one simulation per build (one volume
 load, no reset between views), at P = 1, P = 5 and P = 8; the P = 8 build
 (MAX_SS_LOG2 = 1) runs the views supersampled (S = 2).
 
+With VGRAD = 1 the memory holds the words of golden ``cube4.vgrad`` (each voxel and its
+gradient; the P = 5 build Sobel, the P = 8 build central differences) and every
+lane's whole word is checked: the sample and the three interpolated components.
+
 The test can fail (tried with a deliberately corrupted expectation, not kept):
 with the golden sample of lane 0 of beat 40 raised by one, P = 1 fails with
 "sample beat 40 (m=0, j=3, pb=7, lane 0: i=7): RTL 102, golden 103" and
-"1 sample lanes differ from the golden model".
+"1 sample lanes differ from the golden model"; with the gradient components' sign-bit
+flip moved one bit down (the RTL's FLIP at CW - 2), P = 5 with VGRAD fails with
+"sample beat 27 (m=1, j=0, pb=0, lane 0: i=2): RTL 109403761495, golden 109403718231".
 """
 
 from __future__ import annotations
@@ -42,6 +48,7 @@ from cocotb.triggers import FallingEdge
 
 from cube4.memory import pack_volume
 from cube4.model import sample_stream
+from cube4.vgrad import pack_channels, pack_words, word_bits
 from cube4.view import make_traversal
 from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
@@ -94,14 +101,21 @@ async def test_sample_stream(dut):
     await bench.reset({"out_ready": 0, "start": 0, "ld_valid": 0, "stall_req": 0, "stall_in": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
-    await load_volume(dut, vol, p, vw)
+    vgrad = bool(int(dut.VGRAD.value))
+    if vgrad:       # the voxel-gradient words: Sobel at P = 5, central differences otherwise
+        vol = pack_words(vol, "sobel" if p == 5 else "central", vw)
+    ww = word_bits(vw, vgrad)
+    await load_volume(dut, vol, p, ww)
     clip_on = bool(int(dut.CLIP.value))
     for direction, stall_req, stall_in, stall, clip_kind, phase, crop in VIEWS:
         origin, box = crop if crop else ((0, 0, 0), dims)
         phase = tuple(ph % (1 << (w + geo.max_ss_log2)) for ph in phase)
         trav = make_traversal(box, direction, w, ss, phase=phase, origin=origin)
         x0, y0, z0 = origin
-        samples, inside = sample_stream(vol[z0:z0 + box[2], y0:y0 + box[1], x0:x0 + box[0]], trav)
+        samples, inside = sample_stream(vol[z0:z0 + box[2], y0:y0 + box[1], x0:x0 + box[0]], trav,
+                                        vw if vgrad else None)
+        if vgrad:   # (M, 4, nj, ni) -> the words TRI emits
+            samples = pack_channels(samples[:, 0], np.moveaxis(samples[:, 1:], 1, 0), vw)
         clip = random_clip(trav, clip_kind, bench.rng) if clip_on else None
         keep = None if clip is None else np.stack([clip.keep(trav, m) for m in range(trav.num_sample_slices)])
         sched = BeatSchedule(trav, p, inside, keep)
@@ -114,20 +128,22 @@ async def test_sample_stream(dut):
         dut.start.value = 0
         got = await bench.run_stream(None, len(sched), OUTPUTS, 0.0, stall)
         check_headers([b["out_hdr"] for b in got], hdrs, geo, sched, bench.log, "sample stream")
-        check_lanes(np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got]), sched.lanes(samples),
+        check_lanes(np.stack([unpack_lanes(b["out_sample"], p, ww) for b in got]), sched.lanes(samples),
                     sched.lval, sched, bench.log, "sample")
         bench.log.info("dims %s box %s view %s S=%d phase %s clip %s stalls req %d in %d out %.1f: "
                        "%d sample beats bit-exact", dims, crop, direction, ss, phase, clip_kind if clip_on else None,
                        stall_req, stall_in, stall, len(got))
 
 
-BUILDS = [(1, 8, 0, 1), (5, 8, 0, 1), (8, 12, 1, 1), (5, 8, 0, 0)]   # (P, VOXEL_W, MAX_SS_LOG2, CLIP)
+# (P, VOXEL_W, MAX_SS_LOG2, CLIP, VGRAD)
+BUILDS = [(1, 8, 0, 1, 0), (5, 8, 0, 1, 0), (8, 12, 1, 1, 0), (5, 8, 0, 0, 0), (1, 8, 1, 1, 1), (5, 8, 0, 1, 1),
+          (8, 12, 1, 0, 1)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}_c{b[3]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}_c{b[3]}_g{b[4]}" for b in BUILDS])
 def test_cube4_tri(build):
-    p, vw, ss, clip = build
+    p, vw, ss, clip, vgrad = build
     run_test(top="cube4_tri_harness", sources=SOURCES,
              params={"P": p, "VOXEL_W": vw, "MAX_DIM": 32, "MAX_SS_LOG2": ss, "DEPTH": DEPTH, "ADDR_W": ADDR_W,
-                     "CLIP": clip},
+                     "CLIP": clip, "VGRAD": vgrad},
              test_module=__file__, testcase="test_sample_stream", timing=True)
