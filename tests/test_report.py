@@ -31,7 +31,8 @@ def test_variants_one_parameter_at_a_time() -> None:
     assert [v.value for v, _ in subpixel] == [2, 3, 4] and all(cfg == Cube4Config() for _, cfg in subpixel)
     assert all(v.scene(scene).subpixel == v.value for v, _ in subpixel)
     quick = [v.label for v, _ in report.case_variants(scene, report.variants(quick=True))]
-    assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2", "warp=mitchell"]
+    assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2", "warp=mitchell", "grad=sobel",
+                     "quality: grad=central S=4 q=2"]
 
 
 def test_cycle_formula_matches_docs() -> None:

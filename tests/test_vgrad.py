@@ -136,3 +136,18 @@ def test_cli_gradient_switch(tmp_path):
                          capture_output=True, text=True)
     assert bad.returncode != 0 and "takes its gradient from voxel gradients" in bad.stderr
     assert len(bad.stderr.strip().splitlines()) == 1
+
+
+def test_quality_preset():
+    """--preset quality sets voxel central differences, S = 4 and 2×2 passes (the scene
+    head_quality is the head with it); an unknown preset is one line."""
+    from cube4.scene import apply_preset
+
+    head = load_scene("head")
+    q = apply_preset(head, "quality")
+    assert (q.gradient, q.supersample, q.subpixel) == ("central", 4, 2)
+    hq = load_scene("head_quality")
+    assert (hq.gradient, hq.supersample, hq.subpixel) == (q.gradient, q.supersample, q.subpixel)
+    assert apply_preset(head, "default") == head
+    with pytest.raises(UserError, match="preset must be one of"):
+        apply_preset(head, "best")

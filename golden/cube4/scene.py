@@ -267,6 +267,22 @@ def builtin_scene_names() -> list[str]:
     return sorted(p.name[:-5] for p in resources.files("cube4.scenes").iterdir() if p.name.endswith(".toml"))
 
 
+#: Named presets (``cube4 render --preset``): the render keys they set on any scene.
+#: quality: voxel central differences (the reference's estimator, numerics.md §5b), S = 4 and
+#: 2×2 sub-pixel passes: 40 dB or more on sphere:64, head:64 and ml:41 (reports/error_vs_runtime.md).
+PRESETS: dict[str, dict] = {
+    "default": {},
+    "quality": {"gradient": "central", "supersample": 4, "subpixel": 2},
+}
+
+
+def apply_preset(scene: Scene, name: str) -> Scene:
+    """The scene with a named preset's render keys (``default`` leaves the scene as it is)."""
+    if name not in PRESETS:
+        raise UserError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}")
+    return replace(scene, **PRESETS[name])
+
+
 def load_scene(spec: str) -> Scene:
     """A scene from a TOML file path or a built-in name (see builtin_scene_names())."""
     path = Path(spec)

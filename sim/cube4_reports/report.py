@@ -67,7 +67,23 @@ SWEEPS: dict[str, tuple] = {
     "pipelines": (1, 2, 4, 8),
     "subpixel": (2, 3, 4),
     "filter": ("mitchell", "catmull-rom", "bspline", "lanczos3"),
+    "gradient": ("central", "sobel"),
 }
+#: Combinations of scene keys (S, q, gradient, warp) beside the one-at-a-time sweeps: the ways
+#: to buy error with run time that need more than one key. "quality" is the named preset.
+COMBOS: tuple[tuple[tuple[str, Any], ...], ...] = (
+    (("gradient", "central"), ("supersample", 2)),
+    (("gradient", "central"), ("supersample", 4)),
+    (("gradient", "central"), ("supersample", 2), ("subpixel", 2)),
+    (("gradient", "central"), ("supersample", 4), ("subpixel", 2)),
+    (("gradient", "central"), ("supersample", 4), ("subpixel", 2), ("filter", "bspline")),
+    (("gradient", "central"), ("supersample", 4), ("subpixel", 3)),
+    (("gradient", "sobel"), ("supersample", 4), ("subpixel", 2)),
+    (("supersample", 2), ("subpixel", 2)),
+)
+QUICK_COMBOS = COMBOS[3:4]
+#: the named presets (cube4.scene.PRESETS) as report configurations
+PRESET_COMBOS = {"quality": COMBOS[3]}
 QUICK_SWEEPS: dict[str, tuple] = {
     "supersample": (2,),
     "weight_bits": (4,),
@@ -75,11 +91,12 @@ QUICK_SWEEPS: dict[str, tuple] = {
     "pipelines": (1,),
     "subpixel": (2,),
     "filter": ("mitchell",),
+    "gradient": ("sobel",),
 }
 SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p", "subpixel": "q",
-         "filter": "warp"}
+         "filter": "warp", "gradient": "grad"}
 #: sweeps of a scene key (the render's, not the hardware's configuration)
-SCENE_SWEEPS = ("subpixel", "filter")
+SCENE_SWEEPS = ("subpixel", "filter", "gradient")
 CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
 NA_FMAX = "n/a (run make fpga)"
 
@@ -88,21 +105,27 @@ NA_FMAX = "n/a (run make fpga)"
 class Variant:
     """One configuration: the default, or one parameter changed from it."""
 
-    varied: str  # "default" or a SWEEPS key
-    value: int | str | None
+    varied: str  # "default", a SWEEPS key, or "combo" (value: COMBOS entry)
+    value: Any
 
     @property
     def label(self) -> str:
+        if self.varied == "combo":
+            name = next((f"{k}: " for k, v in PRESET_COMBOS.items() if v == self.value), "")
+            return name + " ".join(f"{SHORT[k]}={v}" for k, v in self.value)
         return "default" if self.varied == "default" else f"{SHORT[self.varied]}={self.value}"
 
     def config(self, scene: Scene) -> Cube4Config:
+        if self.varied == "combo":
+            return config_for(self.scene(scene))
         if self.varied == "default" or self.varied in SCENE_SWEEPS:
             return config_for(scene)
         return config_for(scene, **{self.varied: self.value})
 
-
     def scene(self, scene: Scene) -> Scene:
-        """The scene this variant renders (a scene sweep changes its key)."""
+        """The scene this variant renders (a scene sweep or a combination changes its keys)."""
+        if self.varied == "combo":
+            return replace(scene, **dict(self.value))
         return replace(scene, **{self.varied: self.value}) if self.varied in SCENE_SWEEPS else scene
 
 
@@ -143,6 +166,7 @@ class Row:
     baseplane_sha: str = ""  # identifies identical golden base planes (e.g. across p)
     subpixel: int = 1  # q: q×q sub-pixel passes per view
     filter: str = "triangle"  # the warp's filter
+    gradient: str = "gra"  # the gradient estimator ([render] gradient)
 
 
 # ---------------------------------------------------------------------------- configs
@@ -150,7 +174,8 @@ def variants(quick: bool) -> list[Variant]:
     """The default first, then each sweep value (the default's own value is skipped per
     scene in `case_variants`)."""
     sweeps = QUICK_SWEEPS if quick else SWEEPS
-    return [Variant("default", None)] + [Variant(k, v) for k, vals in sweeps.items() for v in vals]
+    return ([Variant("default", None)] + [Variant(k, v) for k, vals in sweeps.items() for v in vals]
+            + [Variant("combo", c) for c in (QUICK_COMBOS if quick else COMBOS)])
 
 
 def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Variant, Cube4Config]]:
@@ -159,7 +184,7 @@ def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Varia
     out: list[tuple[Variant, Cube4Config]] = []
     for v in all_variants:
         cfg = v.config(scene)
-        if v.varied != "default" and v.varied not in SCENE_SWEEPS and cfg == default:
+        if v.varied not in ("default", "combo") and v.varied not in SCENE_SWEEPS and cfg == default:
             continue
         out.append((v, cfg))
     return out
@@ -263,7 +288,8 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               rmap_bits=d["rmap_bits"], rmse=m["rmse"], max_abs=m["max_abs"], psnr=m["psnr"],
               rmse_rgb=float(np.sqrt(np.mean(err[..., :3] ** 2))), rmse_alpha=float(np.sqrt(np.mean(err[..., 3] ** 2))),
               golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
-              baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter)
+              baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter,
+              gradient=scene.gradient)
     return row, res.frame.baseplane
 
 
@@ -323,13 +349,15 @@ def _bit_exact_text(r: Row) -> str:
 
 def _param_cells(r: Row) -> list[str]:
     cells = []
-    for key in ("supersample", "weight_bits", "acc_bits", "pipelines", "subpixel", "filter"):
+    combo = dict(COMBOS_BY_LABEL.get(r.label, ()))
+    for key in ("supersample", "weight_bits", "acc_bits", "pipelines", "subpixel", "filter", "gradient"):
         v = str(getattr(r, key))
-        cells.append(f"**{v}**" if r.varied == key else v)
+        cells.append(f"**{v}**" if r.varied == key or key in combo else v)
     return cells
 
 
-TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
+COMBOS_BY_LABEL = {Variant("combo", c).label: c for c in COMBOS}
+TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "gradient", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
                  "× cycles", "source", "frame time at Fmax (ms)", "sim (s)", "sim cycles/s", "bit_exact"]
 
 
@@ -386,6 +414,9 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
         front = pareto([r for r in rs if r.cycles is not None])
         out.write("Non-dominated (no configuration is faster and at least as good): "
                   + ", ".join(f"{r.label} ({r.psnr:.2f} dB, {r.cycles:,} cycles)" for r in front) + ".\n\n")
+    out.write(presets_section(rows))
+    if meta.get("angles"):
+        out.write(angle_section(meta["angles"]))
     notes = p_invariance_note(rows)
     failed = [r for r in rows if r.rtl_error]
     mismatched = [r for r in rows if r.bit_exact is False]
@@ -401,6 +432,63 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
             dev = [r.cycles - r.formula_cycles for r in ok]
             out.write(f"- Measured cycles minus the formula of docs/architecture.md with the empty-space box's dims: {min(dev):+d} .. {max(dev):+d}.\n")
     path.write_text(out.getvalue())
+
+
+GOAL_PSNR = 40.0
+ANGLE_ESTIMATORS = ("gra", "vgrad_central", "vgrad_sobel")
+ANGLE_VIEWS = ((0, 0, 1), (0.3, -0.45, 1), (1, 1, 1), (1, 0.5, 0.2), (-0.6, 0.25, -1), (0.5, 0.5, 1))
+
+
+def presets_section(rows: list[Row]) -> str:
+    """The two named presets per case: PSNR, cycles and frame time, and whether the quality
+    preset reaches the 40 dB goal on every case."""
+    quality = Variant("combo", PRESET_COMBOS["quality"]).label
+    cells, reached = [], []
+    for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
+        for name, label in (("default", "default"), ("quality", quality)):
+            r = next((r for r in rows if (r.volume, r.scene, r.label) == (vol, scn, label)), None)
+            if r is None:
+                continue
+            frame = _f(r.frame_time_ms, ".3f", NA_FMAX)
+            if r.frame_time_ms is not None:
+                frame += f" @ {r.fmax_mhz:.1f} MHz"
+            cells.append([f"{vol}, `{scn}`", name, _f(r.psnr, ".2f"), _f(r.cycles, ","), frame])
+            if name == "quality":
+                reached.append(r.psnr >= GOAL_PSNR)
+    if not cells:
+        return ""
+    text = ("## Presets\n\n`cube4 render --preset default` renders the scene as it is; `--preset quality` sets "
+            "`[render] gradient = \"central\"` (voxel central differences, docs/numerics.md §5b), "
+            "`supersample = 4` and `subpixel = 2` (the built-in scene `head_quality` is the head with it). "
+            "Frame time at the Fmax that `make fpga` measured for the full build at this p (the voxel-gradient "
+            "build's own Fmax at P = 4 is in reports/scenes.md).\n\n")
+    text += md_table(["case", "preset", "PSNR (dB)", "cycles", "frame time (ms)"], cells, "llrrl") + "\n\n"
+    if reached:
+        text += (f"The quality preset reaches {GOAL_PSNR:.0f} dB on {sum(reached)} of {len(reached)} cases"
+                 + (" (all)" if all(reached) else "") + ".\n\n")
+    return text
+
+
+def angle_section(angles: list[dict]) -> str:
+    """The gradient-angle table: mean angle to the analytic sphere's normals per estimator and S
+    over the views, with the worst view."""
+    ests = list(dict.fromkeys(a["estimator"] for a in angles))
+    ss = sorted({a["S"] for a in angles})
+    views = list(dict.fromkeys(tuple(a["view"]) for a in angles))
+    cells = []
+    for e in ests:
+        sel = [a for a in angles if a["estimator"] == e]
+        worst = max(sel, key=lambda a: a["mean"])
+        cells.append([f"`{e}`", *(f"{np.mean([a['mean'] for a in sel if a['S'] == S]):.2f}" for S in ss),
+                      f"{worst['mean']:.2f} at {tuple(worst['view'])}, S = {worst['S']}",
+                      f"{max(a['max'] for a in sel):.1f}"])
+    text = ("## Gradient angle error\n\nMean angle (degrees) between each estimator's gradient and the "
+            "analytic normal of sphere:64, over the inside samples within half a voxel of the surface, "
+            f"averaged over the views {', '.join(str(v) for v in views)} "
+            "(`gra`: the paper's GRA; `vgrad_central`, `vgrad_sobel`: `[render] gradient = central / sobel`, "
+            "the bit-exact model; `python -m cube4_reports.gradients` measures more).\n\n")
+    return text + md_table(["estimator", *(f"S = {S}" for S in ss), "worst view mean", "largest"], cells,
+                           "l" + "r" * (len(ss) + 2)) + "\n\n"
 
 
 def write_csv(path: Path, rows: list[Row]) -> None:
@@ -592,6 +680,9 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
                 bar.write(_progress_line(row), file=term)
                 bar.update()
     finish_rows(rows, load_fmax())
+    from .gradients import angle_table
+    bar.write("gradient angles on sphere:64 ...", file=term)
+    meta["angles"] = angle_table(ANGLE_ESTIMATORS, ANGLE_VIEWS, (1, 2, 4, 8) if not quick else (1,))
     meta.update({
         "loadavg_end": _loadavg(),
         "wall_s": time.perf_counter() - t0,

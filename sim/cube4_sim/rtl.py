@@ -58,7 +58,7 @@ def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
         "P": p, "VOXEL_W": cfg.voxel_bits, "WEIGHT_W": cfg.weight_bits, "ALPHA_W": cfg.alpha_bits,
         "ACC_W": cfg.acc_bits, "RMAP_BITS": cfg.rmap_bits, "MAX_DIM": max_dim,
         "MAX_SS_LOG2": cfg.guard_bits, "DEPTH": depth, "ADDR_W": max(1, (depth - 1).bit_length()),
-        **(FULL_BUILD if build is None else build),
+        **FULL_BUILD, **(build or {}),       # a build that names fewer parameters keeps the full build's
     }
 
 

@@ -229,7 +229,7 @@ PARAM_SETS = [
     ),
     {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 1},
     {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 1},  # smallest legal widths (exhaustive)
-    {"DATA_W": 16, "WEIGHT_W": 12, "LATENCY": 2},  # largest legal widths
+    {"DATA_W": 19, "WEIGHT_W": 12, "LATENCY": 2},  # largest legal widths (a gradient component at V = 16)
     {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3},    # the TRI configuration
     {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 3},
     {"DATA_W": 16, "WEIGHT_W": 12, "LATENCY": 3},
@@ -268,7 +268,7 @@ def test_cube4_lerp_verilog_clock():
 
 @pytest.mark.parametrize(
     "params",
-    [{"DATA_W": 0}, {"DATA_W": 17}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 4}],
+    [{"DATA_W": 0}, {"DATA_W": 20}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 4}],
     ids=_param_id,
 )
 def test_cube4_lerp_illegal_params(params):
