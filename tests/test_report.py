@@ -12,14 +12,14 @@ from cube4.config import Cube4Config
 from cube4.errors import UserError
 from cube4.cycles import frame_cycles
 from cube4.render import config_for, setup_view
-from cube4.scene import load_scene
+from cube4.scene import PRESETS, load_scene
 from cube4_reports import report
 
 
 def test_variants_one_parameter_at_a_time() -> None:
     scene = load_scene("default")
     plan = report.case_variants(scene, report.variants(quick=False))
-    hw = [(v, cfg) for v, cfg in plan if v.varied not in report.SCENE_SWEEPS]
+    hw = [(v, cfg) for v, cfg in plan if v.varied not in (*report.SCENE_SWEEPS, "combo")]
     cfgs = [cfg for _, cfg in hw]
     assert plan[0][0].varied == "default" and cfgs[0] == Cube4Config()
     assert len(cfgs) == len(set(cfgs)) == 13  # 1 + S 2 + W 4 + F 3 + p 3
@@ -30,6 +30,10 @@ def test_variants_one_parameter_at_a_time() -> None:
     subpixel = [(v, cfg) for v, cfg in plan if v.varied == "subpixel"]     # the scene's key, the default hardware
     assert [v.value for v, _ in subpixel] == [2, 3, 4] and all(cfg == Cube4Config() for _, cfg in subpixel)
     assert all(v.scene(scene).subpixel == v.value for v, _ in subpixel)
+    combos = [v for v, _ in plan if v.varied == "combo"]      # several scene keys at once
+    assert len(combos) == len(report.COMBOS) and all(len(v.value) >= 2 for v in combos)
+    quality = next(v for v in combos if v.label.startswith("quality"))
+    assert {k: getattr(quality.scene(scene), k) for k, _ in quality.value} == PRESETS["quality"]
     quick = [v.label for v, _ in report.case_variants(scene, report.variants(quick=True))]
     assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2", "warp=mitchell", "grad=sobel",
                      "quality: grad=central S=4 q=2"]
