@@ -56,7 +56,7 @@ FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
 LINT_SETS_cube4_cfb         := $(FE_SETS)
 LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0 \
-                               VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1
+                               VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128
 LINT_SETS_cube4_clip        := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3
 LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4 P=5,VGRAD=1
 LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,WORD_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1 P=2,WORD_W=73

@@ -29,7 +29,7 @@
 //   item, and the FIFO stores that stage's results.
 //
 // Parameters
-//   DATA_W     width of an item.                        1..4096.  Default 8.
+//   DATA_W     width of an item.                        1..8192.  Default 8.
 //   DEPTH      entries; a power of two.                 4..64.    Default 16.
 //              For full throughput DEPTH must be at least the number of
 //              cycles from a `take` to the first cycle its item could be read
@@ -76,7 +76,7 @@ module cube4_credit_fifo #(
 );
     localparam integer AW = (DEPTH > 1) ? $clog2(DEPTH) : 1;
     generate
-        `CUBE4_RANGE(g_bad_data_w, "cube4_credit_fifo", "DATA_W", DATA_W, 1, 4096)
+        `CUBE4_RANGE(g_bad_data_w, "cube4_credit_fifo", "DATA_W", DATA_W, 1, 8192)
         if (DEPTH < 4 || DEPTH > 64 || (1 << AW) != DEPTH) begin : g_bad_depth
             $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
         end

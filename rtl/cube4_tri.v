@@ -234,8 +234,8 @@ module cube4_tri #(
             end
         end else begin : g_no_slice_buf
             // S = 1 only: every pass reads its own slice, the upper slice is unused.
-            assign s1_sb_lower = {PV{1'b0}};
-            assign s1_sb_upper = {PV{1'b0}};
+            assign s1_sb_lower = '0;
+            assign s1_sb_upper = '0;
             wire unused_sb = ^{s0_sb, s1_k0odd};
         end
     endgenerate
@@ -251,7 +251,7 @@ module cube4_tri #(
         .x    (s1_upper_r),
         .y    (s1_upper_a)
     );
-    wire [PV-1:0] s1_upper = s1_uuse ? s1_upper_a : {PV{1'b0}};
+    wire [PV-1:0] s1_upper = s1_uuse ? s1_upper_a : '0;
 
     // ------------------------------------------------------ s2: beam buffers
     // Lane q's beam buffer holds, per partial beam, the previous row's voxels
@@ -296,8 +296,11 @@ module cube4_tri #(
         if (rst) s2_v <= 1'b0;
         else     s2_v <= s1_v;
     end
+    integer ks;
     always @(posedge clk) begin
-        s2_cur  <= s1_ywrap ? {2*PV{1'b0}} : s1_pair;
+        // (lane by lane: one zero constant of 2*PV bits would be thousands of bits wide)
+        for (ks = 0; ks < P; ks = ks + 1)
+            s2_cur[ks*2*VW +: 2*VW] <= s1_ywrap ? '0 : s1_pair[ks*2*VW +: 2*VW];
         s2_emit <= s1_emit;
         s2_wx   <= s1_wx;
         s2_wy   <= s1_wy;

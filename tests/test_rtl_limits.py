@@ -38,3 +38,14 @@ def test_render_frames_stops_before_any_work(tmp_path, monkeypatch):
     with pytest.raises(UserError, match="simulated voxel memory"):
         render_frames(vol, [], Cube4Config(), workdir=tmp_path / "job")
     assert "cube4_sim.runner" not in sys.modules and not (tmp_path / "job").exists()
+
+
+def test_voxel_gradient_words_count_their_bytes():
+    """A voxel-gradient word (41 bits at V = 8) takes 8 bytes in the simulator: the 512³
+    size class no longer fits, 256³ does."""
+    cfg = Cube4Config(pipelines=8)
+    vg = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1, "VGRAD": 1}
+    check_limits(build_params(cfg, 256, build=vg), (256, 256, 256))
+    check_limits(build_params(cfg, SIM_MAX_DIM), (SIM_MAX_DIM,) * 3)
+    with pytest.raises(UserError, match="with voxel gradients"):
+        check_limits(build_params(cfg, SIM_MAX_DIM, build=vg), (SIM_MAX_DIM,) * 3)

@@ -151,3 +151,12 @@ def test_quality_preset():
     assert apply_preset(head, "default") == head
     with pytest.raises(UserError, match="preset must be one of"):
         apply_preset(head, "best")
+
+
+def test_cli_preset_sets_the_hardware(tmp_path):
+    """--preset quality reaches the configuration too: S = 4 and four passes per view."""
+    stats = tmp_path / "s.json"
+    subprocess.run([sys.executable, "-m", "cube4.cli", "render", "sphere:16", "--preset", "quality", "--out",
+                    str(tmp_path / "a.png"), "--stats", str(stats), "--quiet"], check=True)
+    st = json.loads(stats.read_text())
+    assert st["config"]["supersample"] == 4 and st["frames"] == 4 and st["build"]["VGRAD"] == 1

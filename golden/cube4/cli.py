@@ -211,6 +211,7 @@ def cmd_render(args: argparse.Namespace) -> int:
         scenes = [apply_preset(sc, args.preset) for sc in scenes]
     if args.gradient:
         scenes = [replace(sc, gradient=args.gradient) for sc in scenes]
+    scene = scenes[0]       # with the preset and --gradient: its keys (S among them) choose the hardware
     bricks = _brick_options(args, scene)
     count = len(scenes)
     # every destination, numbered per view, checked before any work

@@ -3,7 +3,8 @@
 For each built-in scene (its mode, shading, crop box and cut plane) the build that
 ``cube4 render --engine rtl`` chooses by default (``cube4.config.scene_build``): which of
 SHADING (GRA, reflectance map, shading multipliers), COMPOSITING (COM's multipliers),
-EXTREMUM (COM's comparators) and CLIP (window and cut plane) it keeps. For every distinct
+EXTREMUM (COM's comparators) and CLIP (window and cut plane) it keeps, and whether its
+gradient comes from GRA or from the voxels (VGRAD). For every distinct
 build and the full one:
 
 * NAND2 equivalents per unit, flip-flops and memory bits (the generic-gate synthesis of
@@ -75,11 +76,13 @@ def scene_rows(names: list[str]) -> list[dict]:
         ref = render(vol, scene, cfg, "reference")
         m = image_metrics(gold.image, ref.image)
         plans = plan_view(vol, scene, cfg).plans
-        own, full = schedule_stats(plans, cfg, build), schedule_stats(plans, cfg, FULL_BUILD)
+        own = schedule_stats(plans, cfg, build)
+        # a scene with voxel gradients does not run on the full build (it has GRA instead)
+        full = None if build["VGRAD"] else schedule_stats(plans, cfg, FULL_BUILD)
         rows.append({"scene": name, "volume": spec, "mode": scene.mode, "shaded": scene.shaded,
                      "crop": None if scene.crop is None else [list(c) for c in scene.crop],
-                     "cut": scene.cut is not None, "build": build,
-                     "cycles": own["predicted_cycles"], "cycles_full": full["predicted_cycles"],
+                     "cut": scene.cut is not None, "build": build, "gradient": scene.gradient,
+                     "cycles": own["predicted_cycles"], "cycles_full": None if full is None else full["predicted_cycles"],
                      "cycles_fixed": own["fixed_schedule_cycles"],
                      "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None, "rmse": m["rmse"]})
     return rows
@@ -122,9 +125,9 @@ def matrix_table(cells: list[dict], recs: list[dict]) -> str:
         for lab in labels:
             c = next(c for c in cells if c["scene"] == name and c["mode"] == lab)
             rec = by_key.get(build_key(c["build"]))
-            saved = pct_saved(logic_nand2(rec["gates"]), full) if rec else "—"
+            change = pct_change(logic_nand2(rec["gates"]), full) if rec else "—"
             psnr = "∞" if c["psnr_db"] is None else f"{c['psnr_db']:.1f}"
-            row.append(f"{psnr} dB, {fmt_int(c['cycles'])} cyc, −{saved}")
+            row.append(f"{psnr} dB, {fmt_int(c['cycles'])} cyc, {change}")
         rows.append(row)
     return md_table(["scene", "volume", *labels], rows, "ll" + "r" * len(labels))
 
@@ -155,8 +158,12 @@ def buffer_bits(g: dict) -> int:
     return g["total"]["memory_bits"] - g["units"]["VMEM"]["memory_bits"]
 
 
-def pct_saved(small: float, full: float) -> str:
-    return f"{100.0 * (1.0 - small / full):.0f} %" if full else "—"
+def pct_change(size: float, full: float) -> str:
+    """A build's size against the full build's, signed: "−35 %" smaller, "+12 %" larger."""
+    if not full:
+        return "—"
+    d = 100.0 * (size / full - 1.0)
+    return f"{'−' if d < 0 else '+'}{abs(d):.0f} %"
 
 
 def builds_table(recs: list[dict]) -> str:
@@ -168,12 +175,12 @@ def builds_table(recs: list[dict]) -> str:
         units = [fmt_int(g["units"][u]["nand2_total"]) for u in UNIT_COLS]
         f = r["fpga"] or {}
         fmax = f.get("fmax_mhz")
-        rows.append([r["name"], *units, fmt_int(logic_nand2(g)), pct_saved(logic_nand2(g), logic_nand2(fg)),
-                     fmt_int(g["total"]["ffs"]), fmt_int(buffer_bits(g)), pct_saved(buffer_bits(g), buffer_bits(fg)),
+        rows.append([r["name"], *units, fmt_int(logic_nand2(g)), pct_change(logic_nand2(g), logic_nand2(fg)),
+                     fmt_int(g["total"]["ffs"]), fmt_int(buffer_bits(g)), pct_change(buffer_bits(g), buffer_bits(fg)),
                      fmt_int(f["luts"]) if f else "—", str(f["dsps"]) if f else "—", str(f["ebrs"]) if f else "—",
                      f"{fmax:.1f}" if fmax else "—"])
-    head = ["build", *[gates.UNIT_LABEL[u] for u in UNIT_COLS], "NAND2 eq. (logic)", "saved",
-            "FFs", "buffer bits", "saved", "LUTs", "DSPs", "EBRs", "Fmax MHz"]
+    head = ["build", *[gates.UNIT_LABEL[u] for u in UNIT_COLS], "NAND2 eq. (logic)", "vs full",
+            "FFs", "buffer bits", "vs full", "LUTs", "DSPs", "EBRs", "Fmax MHz"]
     return md_table(head, rows)
 
 
@@ -186,20 +193,23 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
         fm = (rec["fpga"] or {}).get("fmax_mhz")
         fm_full = (full["fpga"] or {}).get("fmax_mhz")
         t = f"{s['cycles'] / (fm * 1e3):.3f}" if fm else "—"
-        t_full = f"{s['cycles_full'] / (fm_full * 1e3):.3f}" if fm_full else "—"
+        t_full = f"{s['cycles_full'] / (fm_full * 1e3):.3f}" if fm_full and s["cycles_full"] else "—"
         what = s["mode"] + ("" if s["shaded"] or s["mode"] != "composite" else ", unshaded")
         what += ", crop" if s["crop"] else ""
         what += ", cut plane" if s["cut"] else ""
-        out.append([s["scene"], s["volume"], what, rec["name"], fmt_int(s["cycles"]), fmt_int(s["cycles_full"]),
-                    fmt_int(s["cycles_fixed"]), t, t_full, pct_saved(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
+        what += f", gradient {s['gradient']}" if s.get("gradient", "gra") != "gra" else ""
+        out.append([s["scene"], s["volume"], what, rec["name"], fmt_int(s["cycles"]),
+                    "—" if s["cycles_full"] is None else fmt_int(s["cycles_full"]),
+                    fmt_int(s["cycles_fixed"]), t, t_full, pct_change(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
                     "∞" if s["psnr_db"] is None else f"{s['psnr_db']:.2f}"])
     head = ["scene", "volume", "mode", "smallest build", "cycles / frame", "on the full build",
-            "fixed schedule", "ms / frame at Fmax", "full build", "NAND2 saved", "PSNR dB vs reference"]
+            "fixed schedule", "ms / frame at Fmax", "full build", "NAND2 vs full", "PSNR dB vs reference"]
     return md_table(head, out, "llll" + "r" * 7)
 
 
 def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list[dict] | None = None) -> str:
-    mip = next((r for r in recs if r["build"] == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0}), None)
+    mip_build = {**FULL_BUILD, "SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0}
+    mip = next((r for r in recs if r["build"] == mip_build), None)
     full = next(r for r in recs if r["build"] == FULL_BUILD)
     lines = [
         "# Per-scene builds: what a scene does not need, left out",
@@ -217,8 +227,10 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
         "",
         "Build parameters of cube4_top (docs/architecture.md, \"Builds\"): SHADING (GRA, the reflectance "
         "map, the shading multipliers), COMPOSITING (COM's T·A and w·C' multipliers: composite, X-ray), "
-        "EXTREMUM (COM's comparators: MIP, MinIP), CLIP (cube4_clip: window and cut plane). "
-        "\"saved\" is against the full build. Buffer bits: every memory but the voxel memory (a "
+        "EXTREMUM (COM's comparators: MIP, MinIP), CLIP (cube4_clip: window and cut plane), VGRAD "
+        "(voxel gradients: the memory word holds the gradient, TRI interpolates four channels, no GRA; "
+        "the scene `head_quality`). \"vs full\" is the size against the full build (which has GRA; a "
+        "VGRAD build has TRI's four channels instead, so it can be larger). Buffer bits: every memory but the voxel memory (a "
         f"{MAX_DIM}³ volume's worth in every build).",
         "",
         builds_table(recs),

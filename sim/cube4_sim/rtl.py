@@ -62,10 +62,18 @@ def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
     }
 
 
-# The simulated voxel memory (the top harness's image, P * DEPTH words of up to 16 bits)
-# must fit this machine's memory comfortably: 2^28 words (512 MiB).
-SIM_MEMORY_WORDS = 1 << 28
-SIM_MAX_DIM = 512          # the largest size class whose memory fits SIM_MEMORY_WORDS
+# The simulated voxel memory (the top harness's image, P * DEPTH words) must fit this
+# machine's memory comfortably: 2^29 bytes (512 MiB), a 512³ size class of 16-bit voxels.
+SIM_MEMORY_BYTES = 1 << 29
+SIM_MAX_DIM = 512          # the largest size class whose memory fits, without voxel gradients
+
+
+def sim_word_bytes(bits: int) -> int:
+    """Bytes Verilator stores a word of this many bits in (CData, SData, IData, QData, or
+    32-bit chunks above 64 bits)."""
+    return 1 if bits <= 8 else 2 if bits <= 16 else 4 if bits <= 32 else 8 if bits <= 64 else 4 * -(-bits // 32)
+
+
 MAX_ADDR_W = 30            # cube4_top's ADDR_W range
 
 
@@ -76,11 +84,12 @@ def check_limits(params: dict[str, int], dims) -> None:
     if params["ADDR_W"] > MAX_ADDR_W:
         raise UserError(f"a {nx}x{ny}x{nz} volume needs {params['DEPTH']:,} words per bank, more than the "
                         f"RTL's 2^{MAX_ADDR_W}: use more pipelines (--pipelines) or a smaller volume")
-    if words > SIM_MEMORY_WORDS:
-        gib = words * 2 / 2**30
+    nbytes = words * sim_word_bytes(word_bits(params["VOXEL_W"], bool(params.get("VGRAD", 0))))
+    if nbytes > SIM_MEMORY_BYTES:
+        gib = nbytes / 2**30
         raise UserError(f"the RTL engine's simulated voxel memory for a {nx}x{ny}x{nz} volume (size class "
                         f"{params['MAX_DIM']}^3) would take {gib:.1f} GiB: render a volume of at most "
-                        f"{SIM_MAX_DIM}^3 through the RTL, or use --engine golden")
+                        f"{SIM_MAX_DIM}^3 through the RTL ({SIM_MAX_DIM // 2}^3 with voxel gradients), or use --engine golden")
 
 
 def build_max_dim(dims) -> int:
