@@ -43,7 +43,7 @@ import numpy as np
 from cube4.config import Cube4Config
 from cube4.errors import UserError
 from cube4.render import config_for, image_metrics, render
-from cube4.scene import Scene, load_scene
+from cube4.scene import PRESETS, Scene, load_scene
 from cube4.volumes import load_volume
 
 from cube4_sim.engine import register as register_rtl_engine
@@ -75,7 +75,7 @@ COMBOS: tuple[tuple[tuple[str, Any], ...], ...] = (
     (("gradient", "central"), ("supersample", 2)),
     (("gradient", "central"), ("supersample", 4)),
     (("gradient", "central"), ("supersample", 2), ("subpixel", 2)),
-    (("gradient", "central"), ("supersample", 4), ("subpixel", 2)),
+    tuple(PRESETS["quality"].items()),          # the quality preset: central, S = 4, q = 2
     (("gradient", "central"), ("supersample", 4), ("subpixel", 2), ("filter", "bspline")),
     (("gradient", "central"), ("supersample", 4), ("subpixel", 3)),
     (("gradient", "sobel"), ("supersample", 4), ("subpixel", 2)),
@@ -83,7 +83,7 @@ COMBOS: tuple[tuple[tuple[str, Any], ...], ...] = (
 )
 QUICK_COMBOS = COMBOS[3:4]
 #: the named presets (cube4.scene.PRESETS) as report configurations
-PRESET_COMBOS = {"quality": COMBOS[3]}
+PRESET_COMBOS = {"quality": tuple(PRESETS["quality"].items())}
 QUICK_SWEEPS: dict[str, tuple] = {
     "supersample": (2,),
     "weight_bits": (4,),
