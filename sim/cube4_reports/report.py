@@ -524,6 +524,7 @@ SERIES_STYLE = {  # marker, colour
     "acc_bits": ("^", "tab:red"),
     "subpixel": ("v", "tab:orange"),
     "filter": ("P", "tab:brown"),
+    "gradient": ("X", "tab:cyan"),
 }
 
 
@@ -557,6 +558,14 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
     front = pareto(rs)
     ax.plot([r.cycles for r in front], [r.psnr for r in front], linestyle="--", color="black", linewidth=1.2,
             alpha=0.7, label="non-dominated (fewest cycles for the PSNR)")
+    # the voxel gradients and the combinations of scene keys: points, labelled by their keys
+    marker, colour = SERIES_STYLE["gradient"]
+    pts = [r for r in rs if r.varied in ("gradient", "combo")]
+    ax.plot([r.cycles for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker, color=colour,
+            alpha=0.8, label="gradient and combinations (grad, S, q, warp)")
+    for r in pts:
+        ax.annotate(r.label.replace("grad=", "").replace("quality: ", "quality "), (r.cycles, r.psnr),
+                    textcoords="offset points", xytext=(-6, 5), fontsize=6, color=colour, ha="right")
     for key in ("weight_bits", "acc_bits", "filter"):
         marker, colour = SERIES_STYLE[key]
         pts = [r for r in rs if r.varied == key]
@@ -570,7 +579,7 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
                   "cycles per frame (formula)")
     ax.set_ylabel("PSNR vs float64 reference (dB)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="best")
+    ax.legend(fontsize=6, loc="lower right", framealpha=0.6)
 
 
 def _plot_widths(ax: Any, rs: list[Row]) -> None:
