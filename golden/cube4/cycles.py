@@ -38,10 +38,6 @@ def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: 
     return (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + FILL_CYCLES
 
 
-def build_cycles(m: int, nj: int, ni: int, p: int, build: dict) -> int:
-    """frame_cycles on a build (config.BUILD_PARAMS)."""
-    return frame_cycles(m, nj, ni, p, bool(build["SHADING"]), bool(build.get("VGRAD", 0)))
-
 
 def slow_slice_factor(nj: int, ni: int, p: int) -> float:
     """How much slower than frame_cycles a frame with short slices (NJ·NB < COM_MIN_SLICE) runs, at most."""

@@ -102,8 +102,7 @@ def padded_traversal(vol: np.ndarray, trav: Traversal) -> np.ndarray:
 def voxel_channels(words: np.ndarray, trav: Traversal, voxel_bits: int) -> tuple[np.ndarray, np.ndarray]:
     """Memory words (cube4.vgrad) as the padded traversal-frame value and (3, ...) signed
     gradient components (volume axes x, y, z) that TRI interpolates (numerics.md §5b)."""
-    value, comps = unpack_words(padded_traversal(words, trav), voxel_bits)
-    return value, comps
+    return unpack_words(padded_traversal(words, trav), voxel_bits)
 
 
 def sample_stream(vol: np.ndarray, trav: Traversal, vgrad_bits: int | None = None):

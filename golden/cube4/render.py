@@ -95,8 +95,9 @@ def build_memory(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, build: 
 def memory_volume(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> np.ndarray:
     """What the voxel memory holds for this scene: vol[z, y, x] itself, or with voxel
     gradients ([render] gradient = central / sobel) the words of cube4.vgrad, estimated
-    over the whole volume (a crop box or a brick reads the same words)."""
-    return pack_words(vol, scene.gradient, cfg.voxel_bits) if scene.voxel_gradients else vol
+    over the whole volume (a crop box or a brick reads the same words): the memory of the
+    scene's own build."""
+    return build_memory(vol, [scene], cfg, {"VGRAD": int(scene.voxel_gradients)})
 
 
 def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pass], lut: np.ndarray) -> list[SkipPlan]:
