@@ -30,6 +30,13 @@
 //   (S6..S9); the recurrence closes through the buffer one slice later, and a
 //   beat waits while the beat it depends on is still in flight.
 //
+//   Path-length weights (PLW = 1, numerics.md section 17): the first sample of
+//   a ray that enters through a face in FACES, and the last of one that leaves
+//   through one, take a weight w in quarters (1/2 .. 3/2) from the template's
+//   phase and the same causes as a fresh or a finished ray, split by face; a
+//   sample with w != 1 composites the LUT's path-weight column for w (a table of
+//   2^VOXEL_W x 4 opacities per lane, read with the sample) instead of its A.
+//
 //   Finished rays: a sample that is inside and whose next sample along the ray
 //   (m+1, j+dyf, i+dxf) is not (or m = M-1) finishes its ray; the ray leaves as
 //   (R, G, B, A = 2^ACC_W - T) with its base-plane address
@@ -45,6 +52,7 @@
 //   COMPOSITING 1: modes 0, 1 (multipliers).       0..1.   Default 1.
 //   EXTREMUM    1: modes 2, 3 (comparators).       0..1.   Default 1.
 //               At least one of the two (elaboration stops otherwise).
+//   PLW         1: path-length weights (needs COMPOSITING). 0..1. Default 0.
 //
 // Latency
 //   10 register stages (R0, S1 .. S9, below) that move on every cycle and
@@ -64,7 +72,10 @@
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
 //             A (Q0.ALPHA_W)}; in_sample lane q = the sample v (unsigned
-//             VOXEL_W; read by the extremum datapath only)
+//             VOXEL_W; read by the extremum datapath and the path weights only)
+//   lut_*     the LUT's path-weight columns (PLW = 1): lut_data = {A at w = 3/2,
+//             5/4, 3/4, 1/2}, Q0.ALPHA_W each, written at lut_addr when lut_we
+//             (between frames); PLW = 0: one unused bit
 //   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
 //             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
 //             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame).
@@ -78,7 +89,8 @@
 //   Composite: nothing wraps and nothing saturates (numerics.md section 7).
 //   X-ray: C + round_shift(w * C', 8) is formed in F+2 bits and saturates at
 //   2^F; T - w saturates at 0 (section 13). MIP / MinIP: no arithmetic but
-//   the comparison; the pixel's shifts lose nothing, A's round_shift rounds
+//   the comparison; path weights: comparisons only (a column's opacity is the
+//   host's 1 - (1 - A)^w in Q0.ALPHA_W); the pixel's shifts lose nothing, A's round_shift rounds
 //   half up and stays <= 2^F.
 // =============================================================================
 module cube4_com #(
@@ -87,11 +99,15 @@ module cube4_com #(
     parameter integer ALPHA_W  = 12, parameter integer ACC_W      = 16,
     parameter integer VOXEL_W  = 8,
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
+    parameter integer PLW = 0,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
-    localparam integer BX_W = DIM_W + 1
+    localparam integer BX_W = DIM_W + 1,
+    localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
+    // the LUT's path-weight columns (PLW = 1)
+    input  wire lut_we, input wire [VOXEL_W-1:0] lut_addr, input wire [PWC_W-1:0] lut_data,
     // shaded stream in
     input  wire in_valid, output wire in_ready, input wire [HDR_W-1:0] in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
@@ -109,6 +125,10 @@ module cube4_com #(
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_com", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_compositing, "cube4_com", "COMPOSITING", COMPOSITING, 0, 1)
         `CUBE4_RANGE(g_bad_extremum, "cube4_com", "EXTREMUM", EXTREMUM, 0, 1)
+        `CUBE4_RANGE(g_bad_plw, "cube4_com", "PLW", PLW, 0, 1)
+        if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
+            $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
+        end
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_com: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
         end
@@ -195,7 +215,7 @@ module cube4_com #(
             always @(posedge clk) begin
                 r0_rgba_q <= in_rgba[q*LUT_W +: LUT_W];
             end
-            if (EXTREMUM != 0) begin : g_smp
+            if (EXTREMUM != 0 || PLW != 0) begin : g_smp
                 reg [VOXEL_W-1:0] r0_smp_q;
                 always @(posedge clk) r0_smp_q <= in_sample[q*VOXEL_W +: VOXEL_W];
                 assign r0_smp[q*VOXEL_W +: VOXEL_W] = r0_smp_q;
@@ -317,6 +337,80 @@ module cube4_com #(
                        && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
             assign fin_1[q] = ins_s1[q] && !nx_in;
             assign bx_1[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(f1_stx) + BX_W'(cfg_sx);
+        end
+    endgenerate
+
+    // ---- path weights (PLW): per slice, the quarter bins of the entry and exit
+    // fractions; per lane, the causes split by face (numerics.md section 17) ----
+    // rq(num, VIEW) = #{k in 1, 3, 5, 7 : 8 num >= k VIEW}: e = num / VIEW rounded
+    // half up to quarters. Entry: num = ph(m) (an old step has just wrapped it
+    // below VIEW); exit: num = VIEW - ph(m+1) (a step has just wrapped ph(m+1)).
+    wire [P-1:0] pw_use_1;               // S1: the lane's weight is not 1
+    wire [2*P-1:0] pw_col_1;             // S1: its column (w = 1/2, 3/4, 5/4, 3/2)
+    generate
+        if (PLW != 0) begin : g_pw
+            localparam integer NW = PH_W + 4;
+            reg  [PH_W-1:0] phx_m_q, phy_m_q;       // phase of slice m
+            wire [PH_W-1:0] phx_m = first_of_slice ? (sop ? cfg_ph0_x : phx_q) : phx_m_q;
+            wire [PH_W-1:0] phy_m = first_of_slice ? (sop ? cfg_ph0_y : phy_q) : phy_m_q;
+            always @(posedge clk) begin
+                if (step) begin
+                    phx_m_q <= phx_m;
+                    phy_m_q <= phy_m;
+                end
+            end
+            function automatic [2:0] qbins(input [NW-1:0] num, input [NW-1:0] view);
+                reg [NW-1:0] n8;
+                begin
+                    n8   = num << 3;
+                    qbins = 3'(n8 >= view) + 3'(n8 >= 3 * view) + 3'(n8 >= 5 * view) + 3'(n8 >= 7 * view);
+                end
+            endfunction
+            wire [NW-1:0] vx = NW'(cfg_view_x);
+            wire [NW-1:0] vy = NW'(cfg_view_y);
+            wire [5:0]    fc = cfg_faces;
+            // S0 -> S1: per-slice bins, per-beat and per-lane entry causes
+            reg  [2:0]   f1_rxi, f1_rxo, f1_ryi, f1_ryo;
+            reg          f1_kin, f1_yin;
+            reg  [P-1:0] f1_xin;
+            integer      l;
+            always @(posedge clk) begin
+                f1_rxi <= qbins(NW'(phx_m), vx);
+                f1_ryi <= qbins(NW'(phy_m), vy);
+                f1_rxo <= qbins(vx - NW'(phx_n), vx);
+                f1_ryo <= qbins(vy - NW'(phy_n), vy);
+                f1_kin <= fc[4] && (r0_m == '0);
+                f1_yin <= fc[2] && dyb && (r0_j == '0);
+                for (l = 0; l < P; l = l + 1)
+                    f1_xin[l] <= fc[0] && dxb && (ipos_d[l*IW +: IW] == '0);
+            end
+            // S1: exit causes; the weight wq = (entry ? rq_in : 2) + (exit ? rq_out : 2),
+            // clamped to 2..6 quarters; 4 keeps the LUT's A
+            wire kout  = fc[5] && f1_last;
+            wire yout0 = fc[3] && (f1_j + IW'(1) == nj_ext) && (f1_dyf || f1_wyn);
+            wire yout1 = fc[3] && (f1_j + IW'(2) == nj_ext) && f1_dyf && f1_wyn;
+            for (q = 0; q < P; q = q + 1) begin : g_pw_lane
+                wire [IW-1:0] i_pos = f1_ipos[q*IW +: IW];
+                wire xout0 = fc[1] && (i_pos + IW'(1) == ni_ext) && (f1_dxf || f1_wxn);
+                wire xout1 = fc[1] && (i_pos + IW'(2) == ni_ext) && f1_dxf && f1_wxn;
+                // the minimum bin over the active causes of each end (4'd9: none)
+                wire [3:0] in_x  = f1_xin[q] ? {1'b0, f1_rxi} : 4'd9;
+                wire [3:0] in_y  = f1_yin ? {1'b0, f1_ryi} : 4'd9;
+                wire [3:0] in_xy = (in_x < in_y) ? in_x : in_y;
+                wire [3:0] rq_in = f1_kin ? 4'd0 : in_xy;
+                wire [3:0] o_x   = xout0 ? 4'd0 : (xout1 ? {1'b0, f1_rxo} : 4'd9);
+                wire [3:0] o_y   = yout0 ? 4'd0 : (yout1 ? {1'b0, f1_ryo} : 4'd9);
+                wire [3:0] o_xy  = (o_x < o_y) ? o_x : o_y;
+                wire [3:0] rq_out = kout ? 4'd0 : o_xy;
+                wire [3:0] wsum = ((rq_in == 4'd9) ? 4'd2 : rq_in) + ((rq_out == 4'd9) ? 4'd2 : rq_out);
+                wire [2:0] wq   = (wsum < 4'd2) ? 3'd2 : (wsum > 4'd6) ? 3'd6 : wsum[2:0];
+                assign pw_use_1[q] = (wq != 3'd4);
+                assign pw_col_1[2*q +: 2] = (wq == 3'd2) ? 2'd0 : (wq == 3'd3) ? 2'd1 : (wq == 3'd5) ? 2'd2 : 2'd3;
+            end
+        end else begin : g_no_pw
+            wire unused_pw = ^{cfg_faces, lut_we, lut_addr, lut_data};
+            assign pw_use_1 = '0;
+            assign pw_col_1 = '0;
         end
     endgenerate
 
@@ -478,9 +572,25 @@ module cube4_com #(
             wire [AC_W-1:0] acc_in = fresh_s[5][q] ? fresh_word : prev;
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
+            // PLW: at S1 -> S2 the A of a weighted sample becomes its column's
             reg  [5*LUT_W-1:0] rgba_l;
+            wire [ALPHA_W-1:0] a_s1;
             always @(posedge clk) begin
-                rgba_l <= {rgba_l[4*LUT_W-1:0], r0_rgba[q*LUT_W +: LUT_W]};
+                rgba_l <= {rgba_l[4*LUT_W-1:LUT_W], rgba_l[ALPHA_W +: 24], a_s1, r0_rgba[q*LUT_W +: LUT_W]};
+            end
+            if (PLW != 0) begin : g_pwt
+                // the lane's copy of the path-weight columns, read with R0's sample
+                reg [PWC_W-1:0] wtab [0:(1 << VOXEL_W)-1];
+                reg [PWC_W-1:0] w1_cols;
+                always @(posedge clk) begin
+                    if (lut_we) wtab[lut_addr] <= lut_data;
+                    w1_cols <= wtab[r0_smp[q*VOXEL_W +: VOXEL_W]];
+                end
+                wire [ALPHA_W-1:0] a_col = w1_cols[pw_col_1[2*q +: 2] * ALPHA_W +: ALPHA_W];
+                assign a_s1 = (pw_use_1[q] && !mode_ext_q) ? a_col : rgba_l[0 +: ALPHA_W];
+            end else begin : g_no_pwt
+                wire unused_pw_lane = ^{pw_use_1[q], pw_col_1[2*q +: 2]};
+                assign a_s1 = rgba_l[0 +: ALPHA_W];
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
             reg  [AC_W-1:0]  s6_acc;

@@ -114,6 +114,10 @@
 //                        M0 <= m < M1 count (numerics.md section 12)
 //   CUT_A, CUT_B, CUT_C [CUT_W], CUT_D [CUT_E_W]  the cut plane, signed: a sample
 //                        counts when A (i 2^W + wx) + B (j 2^W + wy) + C m + D >= 0
+//   FACES [6]            the faces of the frame's box that are the volume's, whose
+//                        rays' first and last samples are path-weighted (bits I0, I1,
+//                        J0, J1, K0, K1 from bit 0; 0: no weighting; numerics.md
+//                        section 17, golden/cube4/pathlen.py)
 `define CUBE4_VIEW_LAYOUT \
     localparam integer VIEW_NI      = 0, \
     localparam integer VIEW_NJ      = VIEW_NI + DIM_W, \
@@ -147,10 +151,11 @@
     localparam integer VIEW_CUT_B   = VIEW_CUT_A + CUT_W, \
     localparam integer VIEW_CUT_C   = VIEW_CUT_B + CUT_W, \
     localparam integer VIEW_CUT_D   = VIEW_CUT_C + CUT_W, \
-    localparam integer VIEW_W       = VIEW_CUT_D + CUT_E_W
+    localparam integer VIEW_FACES   = VIEW_CUT_D + CUT_E_W, \
+    localparam integer VIEW_W       = VIEW_FACES + 6
 
 // The view bus from the individual register ports (cube4_top and the harnesses).
-`define CUBE4_VIEW_PACK {cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
+`define CUBE4_VIEW_PACK {cfg_faces, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
     cfg_win_m1, cfg_win_m0, cfg_win_j1, cfg_win_j0, cfg_win_i1, cfg_win_i0, \
     cfg_ph0_y, cfg_ph0_x, cfg_mode, cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
     cfg_view_y, cfg_view_x, cfg_ss_log2, cfg_flip_k, cfg_flip_j, cfg_flip_i, \
@@ -188,7 +193,8 @@
     input  wire [CUT_W-1:0]   cfg_cut_a, \
     input  wire [CUT_W-1:0]   cfg_cut_b, \
     input  wire [CUT_W-1:0]   cfg_cut_c, \
-    input  wire [CUT_E_W-1:0] cfg_cut_d,
+    input  wire [CUT_E_W-1:0] cfg_cut_d, \
+    input  wire [5:0]         cfg_faces,
 
 // One wire per view register, read from a view bus (module body).
 `define CUBE4_VIEW_FIELDS(bus) \
@@ -220,7 +226,8 @@
     wire signed [CUT_W-1:0]   cfg_cut_a = bus[VIEW_CUT_A +: CUT_W]; \
     wire signed [CUT_W-1:0]   cfg_cut_b = bus[VIEW_CUT_B +: CUT_W]; \
     wire signed [CUT_W-1:0]   cfg_cut_c = bus[VIEW_CUT_C +: CUT_W]; \
-    wire signed [CUT_E_W-1:0] cfg_cut_d = bus[VIEW_CUT_D +: CUT_E_W]
+    wire signed [CUT_E_W-1:0] cfg_cut_d = bus[VIEW_CUT_D +: CUT_E_W]; \
+    wire [5:0]          cfg_faces   = bus[VIEW_FACES +: 6]
 
 // ---------------------------------------------------------------- address registers
 // The address unit's start values and strides (golden/cube4/memory.py), ADDR_W

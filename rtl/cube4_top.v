@@ -6,7 +6,7 @@
 // Purpose
 //   The whole Cube-4: P pipelines, each with its voxel memory bank, CFB, TRI,
 //   GRA, SHA and COM (docs/architecture.md). A build leaves out what its
-//   scenes do not need (SHADING, COMPOSITING, EXTREMUM, CLIP below). The host loads the volume once
+//   scenes do not need (SHADING, COMPOSITING, EXTREMUM, CLIP, PLW below). The host loads the volume once
 //   (load port; golden/cube4/memory.py packs it), writes the classification
 //   LUT and the reflectance map (load ports, any time between frames), sets
 //   the view registers (frontend_regs + SX, SY) and pulses start; the frame's
@@ -34,20 +34,27 @@
 //                holds a voxel and its gradient, golden/cube4/vgrad.py) and
 //                TRI interpolates it: no GRA (numerics.md section 5b);
 //                0: the paper's GRA on the sample stream.  0..1. Default 0.
+//   PLW          1: path-length weights: the LUT carries four more opacity
+//                columns (lut_data's top 4*ALPHA_W bits) that COM reads for a
+//                ray's first and last samples (numerics.md section 17; FACES
+//                = 0 turns them off for a frame); 0: none.  0..1. Default 1.
 //   Illegal (elaboration stops): COMPOSITING = EXTREMUM = 0; SHADING = 1 with
-//   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0.
+//   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0;
+//   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted).
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
 //   last slice (NJ*NB + NB + 2 steps; not in a build without GRA: SHADING = 0
 //   or VGRAD = 1), plus a
-//   fixed pipeline fill per build (sim/cube4_sim/cycles.py; tb/cube4_top
+//   fixed pipeline fill per build (golden/cube4/cycles.py; tb/cube4_top
 //   checks it at P = 1, 4, 5, 8 and for every build).
 //   cycles counts the clock cycles from start to the last pixel beat.
 //
 // Ports
 //   ld_*           voxel load port (cube4_voxel_mem; WORD_W-bit words)
-//   lut_*, rmap_*  table load ports (cube4_sha)
+//   lut_*, rmap_*  table load ports: lut_data = {the path-weight columns (PLW = 1:
+//                  A at w = 3/2, 5/4, 3/4, 1/2 from the top, Q0.ALPHA_W each; cube4_com),
+//                  R, G, B (Q0.8), A (Q0.ALPHA_W) (cube4_sha)}
 //   cfg_*          view registers, stable from start to done
 //   start, busy, done, cycles   frame control
 //   pix_*          finished rays (cube4_com)
@@ -67,11 +74,12 @@ module cube4_top #(
     parameter integer DEPTH    = 65536, parameter integer ADDR_W   = 16,
     parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1,
-    parameter integer VGRAD    = 0,
+    parameter integer VGRAD    = 0,  parameter integer PLW         = 1,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
-    localparam integer RI_W = 2 * RMAP_BITS + 3
+    localparam integer RI_W = 2 * RMAP_BITS + 3,
+    localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W   // a LUT entry (lut_data)
 ) (
     input  wire                      clk,
     input  wire                      rst,
@@ -83,7 +91,7 @@ module cube4_top #(
     // table load ports
     input  wire                      lut_we,
     input  wire [VOXEL_W-1:0]        lut_addr,
-    input  wire [24+ALPHA_W-1:0]     lut_data,
+    input  wire [LUT_W-1:0]          lut_data,
     input  wire                      rmap_we,
     input  wire [RI_W-1:0]           rmap_addr,
     input  wire [19:0]               rmap_data,
@@ -116,6 +124,10 @@ module cube4_top #(
         `CUBE4_RANGE(g_bad_extremum, "cube4_top", "EXTREMUM", EXTREMUM, 0, 1)
         `CUBE4_RANGE(g_bad_clip, "cube4_top", "CLIP", CLIP, 0, 1)
         `CUBE4_RANGE(g_bad_vgrad, "cube4_top", "VGRAD", VGRAD, 0, 1)
+        `CUBE4_RANGE(g_bad_plw, "cube4_top", "PLW", PLW, 0, 1)
+        if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
+            $error("cube4_top: PLW = 1 needs COMPOSITING = 1 (only the blending modes are path-weighted)");
+        end
         if (VGRAD != 0 && SHADING == 0) begin : g_vgrad_alone
             $error("cube4_top: VGRAD = 1 needs SHADING = 1 (voxel gradients only feed shading)");
         end
@@ -287,7 +299,7 @@ module cube4_top #(
         .ALPHA_W     (ALPHA_W),
         .RMAP_BITS   (RMAP_BITS),
         .SHADING     (SHADING),
-        .CARRY_SAMPLE(EXTREMUM),
+        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_sha (
@@ -295,7 +307,7 @@ module cube4_top #(
         .rst       (rst),
         .lut_we    (lut_we),
         .lut_addr  (lut_addr),
-        .lut_data  (lut_data),
+        .lut_data  (lut_data[0 +: 24 + ALPHA_W]),
         .rmap_we   (rmap_we),
         .rmap_addr (rmap_addr),
         .rmap_data (rmap_data),
@@ -327,12 +339,16 @@ module cube4_top #(
         .VOXEL_W     (VOXEL_W),
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
+        .PLW         (PLW),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
         .clk       (clk),
         .rst       (rst),
         .cfg       (cfg),
+        .lut_we    (lut_we),
+        .lut_addr  (lut_addr),
+        .lut_data  (lut_data[LUT_W-1 -: PLW * 4 * ALPHA_W + (1 - PLW)]),
         .in_valid  (com_in_valid),
         .in_ready  (com_in_ready),
         .in_hdr    (sha_hdr),

@@ -35,8 +35,8 @@ def test_variants_one_parameter_at_a_time() -> None:
     quality = next(v for v in combos if v.label.startswith("quality"))
     assert {k: getattr(quality.scene(scene), k) for k, _ in quality.value} == PRESETS["quality"]
     quick = [v.label for v, _ in report.case_variants(scene, report.variants(quick=True))]
-    assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2", "warp=mitchell", "grad=sobel",
-                     "quality: grad=central S=4 q=2"]
+    assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2", "warp=mitchell", "grad=sobel", "pw=True",
+                     "quality: grad=central S=4 q=2 pw=True"]
 
 
 def test_cycle_formula_matches_docs() -> None:

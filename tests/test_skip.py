@@ -296,3 +296,23 @@ def test_cut_plane_shrinks_the_box():
     assert cut < 0.8 * uncut, (cut, uncut)
     on, off = render(vol, scene, cfg, "golden"), render(vol, dataclasses.replace(scene, skip=False), cfg, "golden")
     assert np.array_equal(on.frame.baseplane, off.frame.baseplane)
+
+
+@pytest.mark.parametrize("direction", [(0.3, -0.45, 1.0), (1.0, 1.0, 1.0), (1.0, -1.0, 0.0)])
+def test_path_weights_with_skipping(direction):
+    """Material on some of the volume's faces and not on others: the empty-space box has
+    volume faces and interior faces (FACES from sub_traversal), and the path-weighted
+    frame with the box schedule equals the fixed schedule's bit for bit."""
+    rng = np.random.default_rng(7)
+    vol = np.zeros((24, 26, 22), dtype=np.uint16)
+    vol[:18, 5:, :15] = rng.integers(60, 256, size=(18, 21, 15))
+    doc = {"transfer": TF, "view": {"direction": list(direction)}, "output": {"width": 40},
+           "render": {"path_weights": True}}
+    scene = parse_scene(doc)
+    cfg = Cube4Config(pipelines=4)
+    on = render(vol, scene, cfg, "golden")
+    off = render(vol, dataclasses.replace(scene, skip=False), cfg, "golden")
+    plain = render(vol, dataclasses.replace(scene, skip=False, path_weights=False), cfg, "golden")
+    assert on.stats["cycles_saved"] > 0
+    assert np.array_equal(on.frame.baseplane, off.frame.baseplane)
+    assert not np.array_equal(off.frame.baseplane, plain.frame.baseplane)

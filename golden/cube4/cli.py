@@ -6,6 +6,7 @@
                  [--view AZ,EL ... | --orbit N]
                  [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
                  [--no-skip] [--preset default|quality] [--gradient gra|central|sobel]
+                 [--path-weights | --no-path-weights]
     cube4 volumes | cube4 scenes      list the built-ins
 
 Engines: those registered with ``cube4.render.register_engine`` when ``main`` runs:
@@ -99,10 +100,13 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--gradient", choices=GRADIENTS,
                    help="the gradient estimator instead of the scene's [render] gradient: gra (the paper's, on "
                         "the sample stream), central or sobel (at the voxels, interpolated by TRI)")
+    r.add_argument("--path-weights", action=argparse.BooleanOptionalAction, default=None,
+                   help="weight each ray's first and last samples by their share of the ray's path (the scene's "
+                        "[render] path_weights; needs a build with PLW = 1)")
     r.add_argument("--preset", choices=tuple(PRESETS),
                    help="a named preset over the scene: default (the scene as it is) or quality (voxel central "
-                        "differences, S = 4, 2x2 sub-pixel passes: 40 dB or more on the built-in phantoms); "
-                        "--gradient still overrides its gradient")
+                        "differences, S = 4, 2x2 sub-pixel passes, path weights: 40 dB or more on the built-in "
+                        "phantoms); --gradient and --path-weights still override it")
     r.add_argument("--quiet", action="store_true", help="no progress bars or summary")
     sub.add_parser("volumes", help="list the built-in volumes")
     sub.add_parser("scenes", help="list the built-in scenes")
@@ -211,7 +215,9 @@ def cmd_render(args: argparse.Namespace) -> int:
         scenes = [apply_preset(sc, args.preset) for sc in scenes]
     if args.gradient:
         scenes = [replace(sc, gradient=args.gradient) for sc in scenes]
-    scene = scenes[0]       # with the preset and --gradient: its keys (S among them) choose the hardware
+    if args.path_weights is not None:
+        scenes = [replace(sc, path_weights=args.path_weights) for sc in scenes]
+    scene = scenes[0]       # with the preset, --gradient, --path-weights: its keys (S among them) choose the hardware
     bricks = _brick_options(args, scene)
     count = len(scenes)
     # every destination, numbered per view, checked before any work

@@ -31,7 +31,7 @@ class Cube4Config:
     rmap_bits   RMAP_BITS, reflectance map has 6 * 4^RMAP_BITS + 1 entries (2..6)
     supersample S, samples per voxel slice along the major axis: 1, 2, 4 or 8
     build       the hardware the build has, as BUILD_PARAMS -> 0 / 1 (SHADING,
-                COMPOSITING, EXTREMUM, CLIP, VGRAD); None: the smallest build the scene needs
+                COMPOSITING, EXTREMUM, CLIP, VGRAD, PLW); None: the smallest build the scene needs
     """
 
     pipelines: int = 8
@@ -81,14 +81,26 @@ class Cube4Config:
 
 # ---------------------------------------------------------------- builds
 #: cube4_top's parameters that remove hardware a scene does not need (docs/architecture.md)
-BUILD_PARAMS = ("SHADING", "COMPOSITING", "EXTREMUM", "CLIP", "VGRAD")
-#: the full build: every unit of the paper (VGRAD = 1 swaps GRA for the voxel-gradient channels)
-FULL_BUILD = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1, "VGRAD": 0}
+BUILD_PARAMS = ("SHADING", "COMPOSITING", "EXTREMUM", "CLIP", "VGRAD", "PLW")
+#: the full build: every unit of the paper and the path weights (VGRAD = 1 swaps GRA for
+#: the voxel-gradient channels)
+FULL_BUILD = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1, "VGRAD": 0, "PLW": 1}
 _NEEDS = {"SHADING": "shading (gradients and the reflectance map)",
           "COMPOSITING": "the compositing datapath (composite, xray)",
           "EXTREMUM": "the comparators (mip, minip)",
           "CLIP": "the cut plane or window (cube4_clip)",
-          "VGRAD": "voxel gradients (the memory's gradient channels)"}
+          "VGRAD": "voxel gradients (the memory's gradient channels)",
+          "PLW": "path-length weights (the LUT's path-weight columns in COM)"}
+
+
+def complete_build(partial: dict | None) -> dict:
+    """A build from the parameters it names: the others as in the full build, but PLW
+    (path weights need the compositing datapath) is 0 where COMPOSITING = 0 and PLW is
+    not named."""
+    build = {**FULL_BUILD, **(partial or {})}
+    if "PLW" not in (partial or {}) and not build["COMPOSITING"]:
+        build["PLW"] = 0
+    return build
 
 
 def check_build_params(build: dict) -> None:
@@ -102,18 +114,21 @@ def check_build_params(build: dict) -> None:
         raise UserError("a build with SHADING = 1 needs COMPOSITING = 1 (only compositing is shaded)")
     if build["VGRAD"] and not build["SHADING"]:
         raise UserError("a build with VGRAD = 1 needs SHADING = 1 (voxel gradients only feed shading)")
+    if build["PLW"] and not build["COMPOSITING"]:
+        raise UserError("a build with PLW = 1 needs COMPOSITING = 1 (only the blending modes are path-weighted)")
 
 
 def scene_build(scenes) -> dict:
     """The smallest build that renders every one of the scenes. Shaded scenes take their
     gradient from GRA (VGRAD = 0) or from the voxels (VGRAD = 1): one build has one."""
-    b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0}
+    b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0, "PLW": 0}
     for sc in scenes:
         b["SHADING"] |= int(sc.shaded)
         b["COMPOSITING"] |= int(is_blend(sc.mode))
         b["EXTREMUM"] |= int(is_extremum(sc.mode))
         b["CLIP"] |= int(sc.cut is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
+        b["PLW"] |= int(sc.path_weighted)
     _one_gradient_source(scenes)
     return b
 
@@ -131,20 +146,21 @@ def _one_gradient_source(scenes) -> None:
 def parse_build(text: str) -> dict | None:
     """--build: "scene" (None: the scene's smallest), "full", or NAME=0/1 pairs
     (e.g. SHADING=0,COMPOSITING=0,EXTREMUM=1,CLIP=0; names not given as in the full build:
-    1, and VGRAD 0)."""
+    1, and VGRAD 0; PLW 0 without COMPOSITING, complete_build)."""
     t = text.strip()
     if t.lower() == "scene":
         return None
     if t.lower() == "full":
         return dict(FULL_BUILD)
-    build = dict(FULL_BUILD)
+    named = {}
     for part in t.split(","):
         name, _, val = part.partition("=")
         name = name.strip().upper()
         if name not in BUILD_PARAMS or val.strip() not in ("0", "1"):
             raise UserError(f"--build must be scene, full or NAME=0/1 pairs with NAME in "
                             f"{', '.join(BUILD_PARAMS)}, got {text!r}")
-        build[name] = int(val)
+        named[name] = int(val)
+    build = complete_build(named)
     check_build_params(build)
     return build
 

@@ -80,12 +80,13 @@ def load_image(banks: np.ndarray) -> np.ndarray:
 
 
 def write_hex(path: str | Path, words, bits: int) -> Path:
-    """Write unsigned words as a ``$readmemh`` image, one word per line, ``ceil(bits / 4)``
+    """Write unsigned words (Python ints above 63 bits) as a ``$readmemh`` image, one word per line, ``ceil(bits / 4)``
     hex digits each. The file is written under a temporary name and renamed into place,
     so a reader never sees half a file."""
     path = Path(path)
-    words = np.asarray(words, dtype=np.int64).reshape(-1)
-    if words.size and (words.min() < 0 or int(words.max()) >> bits):
+    # words wider than 63 bits come as Python ints (dtype object)
+    words = np.asarray(words, dtype=object if bits > 63 else np.int64).reshape(-1)
+    if words.size and (min(words) < 0 or int(max(words)) >> bits):
         raise ValueError(f"{path.name}: a word does not fit in {bits} unsigned bits")
     digits = -(-bits // 4)
     tmp = path.with_name(path.name + ".tmp")
@@ -178,10 +179,13 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
     }
 
 
-def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None) -> dict[str, int]:
+def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None,
+             path_weights: bool = False) -> dict[str, int]:
     """Registers of cube4_top: the front end's plus the base-plane offsets
     SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8), the mode, the template's
-    starting phase, and the window and cut plane (clip.Clip; None: every sample counts).
+    starting phase, the window and cut plane (clip.Clip; None: every sample counts), and
+    FACES: the box's faces that are the volume's when the frame is path-weighted
+    (numerics.md section 17), else 0.
     Signed registers (CUT_*) are given as their two's-complement bit patterns."""
     regs = frontend_regs(trav, p, vol_dims)
     regs["SX"], regs["SY"] = trav.max_steps
@@ -195,6 +199,7 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
     plane = (0, 0, 0, 0) if clip is None or clip.plane is None else clip.plane
     for name, v, w in zip(("CUT_A", "CUT_B", "CUT_C", "CUT_D"), plane, (CUT_W, CUT_W, CUT_W, CUT_E_W)):
         regs[name] = int(v) & ((1 << w) - 1)
+    regs["FACES"] = int(trav.faces) if path_weights else 0
     return regs
 
 

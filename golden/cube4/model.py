@@ -29,6 +29,7 @@ from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
 from .clip import Clip
 from .modes import MODES, is_blend
+from .pathlen import weight_quarters, weighted_alpha
 from .vgrad import unpack_words
 from .view import Traversal
 
@@ -286,12 +287,17 @@ def render_frame(
     clip: the window and cut plane (clip.py; None: every sample of the box counts);
     vgrad: vol holds memory words with voxel gradients (cube4.vgrad.pack_words), which
     replace GRA (numerics.md §5b; the reflectance map is then in the volume's axes).
+    lut: (2^V, 4) R, G, B, A, or (2^V, 8) with the path-weight columns
+    (cube4.pathlen.weighted_columns): then the first and last samples of each ray that
+    enters or leaves through a face in trav.faces are path-weighted (numerics.md §17;
+    composite and X-ray).
     """
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
     shading = shading and mode == "composite"
     W = cfg.weight_bits
     one = 1 << cfg.acc_bits
+    lut, path_cols = lut[:, :4], (lut[:, 4:] if lut.shape[1] > 4 and is_blend(mode) else None)
     if vgrad:
         tp, comps = voxel_channels(vol, trav, cfg.voxel_bits)
     else:
@@ -343,10 +349,14 @@ def render_frame(
         stx, sty = (int(v) for v in trav.steps(m))
         r0, c0 = sym - sty, sxm - stx
         win = (slice(r0, r0 + nj), slice(c0, c0 + ni))
+        wrgba = rgba
+        if path_cols is not None and trav.faces:
+            wrgba = rgba.copy()   # the shaded stream keeps the LUT's A; COM weights it
+            wrgba[3] = weighted_alpha(rgba[3], s, path_cols, weight_quarters(trav, m, trav.faces))
         if mode == "composite":
-            composite(acc[:, win[0], win[1]], trans[win], rgba, count, cfg)
+            composite(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg)
         elif mode == "xray":
-            xray(acc[:, win[0], win[1]], trans[win], rgba, count, cfg)
+            xray(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg)
         else:
             extremum(value[win], held[:, win[0], win[1]], s, rgba, count, mode == "minip")
         # rays whose next sample (slice m + 1, along the ray) is outside finish here

@@ -24,6 +24,7 @@ from .reference import render_reference
 from .clip import Clip, cut_coefficients
 from .modes import is_extremum
 from .scene import Scene, crop_box
+from .pathlen import weighted_columns
 from .tables import classification_lut, extremum_lut, reflectance_map
 from .vgrad import pack_words
 from .view import Camera, Traversal, make_camera, make_traversal
@@ -74,11 +75,14 @@ def frame_clip(scene: Scene, trav: Traversal) -> Clip | None:
 def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.ndarray, np.ndarray | None]:
     """What the host writes into the LUT load ports for this view: the classification
     LUT (opacity corrected for the sample distance; for MIP/MinIP colour premultiplied
-    and opacity as given) and the reflectance map (None when the scene is unshaded)."""
+    and opacity as given; a path-weighted scene's LUT carries the path-weight columns,
+    cube4.pathlen) and the reflectance map (None when the scene is unshaded)."""
     if is_extremum(scene.mode):
         lut = extremum_lut(scene, cfg)
     else:
         lut = classification_lut(scene, cfg, trav.sample_distance)
+    if scene.path_weighted:
+        lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
     return lut, (reflectance_map(scene, cfg, trav, volume_axes=scene.voxel_gradients) if scene.shaded else None)
 
 
@@ -207,6 +211,8 @@ def view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
         "pipelines": cfg.pipelines,
         "view": [float(c) for c in scene.direction],
         "config": cfg.as_dict(),
+        "gradient": scene.gradient if scene.shaded else None,
+        "path_weights": scene.path_weighted,
     }
 
 

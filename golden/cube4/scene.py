@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import UserError
-from .modes import MODES  # docs/scenes.md, docs/numerics.md §13
+from .modes import MODES, is_blend  # docs/scenes.md, docs/numerics.md §13
 from .subpixel import MAX_Q
 from .view import direction_from_angles, normalize_direction
 from .vgrad import check_gradient
@@ -54,6 +54,7 @@ class Scene:
     skip: bool = True  # [render] skip: traverse only the box that can change a ray (cube4.skip)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
     gradient: str = "gra"  # [render] gradient: gra (the paper's), central or sobel (cube4.vgrad)
+    path_weights: bool = False  # [render] path_weights: weight rays' first and last samples (cube4.pathlen)
     filter: str = DEFAULT_FILTER  # [output] filter: the warp's OpenImageIO filter
     footprint: bool = FOOTPRINT_DEFAULT  # [output] footprint: cut the image to the box's projection
 
@@ -66,6 +67,12 @@ class Scene:
     def voxel_gradients(self) -> bool:
         """Is this scene shaded with gradients estimated at the voxels (cube4.vgrad)?"""
         return self.shaded and self.gradient != "gra"
+
+    @property
+    def path_weighted(self) -> bool:
+        """Does this scene weight its rays' first and last samples (cube4.pathlen)? Only
+        the blending modes integrate along the ray."""
+        return self.path_weights and is_blend(self.mode)
 
     def tf(self, x) -> np.ndarray:
         """Transfer function at normalised values x in [0, 1]: (..., 4) RGBA, alpha per
@@ -124,7 +131,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError(f"scene: output.footprint must be true or false, got {footprint!r}")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient"), "render")
+    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights"), "render")
     gradient = check_gradient(rnd.get("gradient", "gra"))
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
@@ -138,6 +145,9 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     skip = rnd.get("skip", True)
     if not isinstance(skip, bool):
         raise UserError(f"scene: render.skip must be true or false, got {skip!r}")
+    path_weights = rnd.get("path_weights", False)
+    if not isinstance(path_weights, bool):
+        raise UserError(f"scene: render.path_weights must be true or false, got {path_weights!r}")
 
     mat = data.get("material", {})
     _check_keys(mat, ("ambient", "diffuse", "specular", "shininess", "shading"), "material")
@@ -195,7 +205,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
         shading=shading, crop=crop, cut=cut, skip=skip, subpixel=subpixel, filter=warp_filter,
-        footprint=footprint, gradient=gradient,
+        footprint=footprint, gradient=gradient, path_weights=path_weights,
     )
 
 
@@ -268,11 +278,12 @@ def builtin_scene_names() -> list[str]:
 
 
 #: Named presets (``cube4 render --preset``): the render keys they set on any scene.
-#: quality: voxel central differences (the reference's estimator, numerics.md §5b), S = 4 and
-#: 2×2 sub-pixel passes: 40 dB or more on sphere:64, head:64 and ml:41 (reports/error_vs_runtime.md).
+#: quality: voxel central differences (the reference's estimator, numerics.md §5b), S = 4,
+#: 2×2 sub-pixel passes and path weights (§17): 40 dB or more on sphere:64, head:64 and ml:41
+#: (reports/error_vs_runtime.md).
 PRESETS: dict[str, dict] = {
     "default": {},
-    "quality": {"gradient": "central", "supersample": 4, "subpixel": 2},
+    "quality": {"gradient": "central", "supersample": 4, "subpixel": 2, "path_weights": True},
 }
 
 

@@ -106,6 +106,10 @@ class Traversal:
     # volume coordinates of the traversed box's voxel (0, 0, 0): a crop box or a brick
     # is traversed as a volume of its own, placed here in the whole volume
     origin: tuple[int, int, int] = (0, 0, 0)
+    # which faces of the traversed box are the volume's (cube4.pathlen FACES bits: I0, I1,
+    # J0, J1, K0, K1 of the traversal frame from bit 0): all six for a whole volume or a
+    # crop box; an empty-space box or a brick has interior faces
+    faces: int = 0b111111
 
     # --- sizes in the traversal frame ---
     @property
@@ -244,6 +248,19 @@ def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1,
     )
 
 
+def sub_faces(faces: int, start, sub_dims, dims) -> int:
+    """FACES of a box inside a traversal (the traversal's own FACES, its box start
+    (i, j, k) and sizes (ni, nj, nk), and the traversal's sizes): a face of the box is the
+    volume's when it lies on a face of the traversal that is."""
+    out = 0
+    for r in range(3):
+        if start[r] == 0:
+            out |= faces & (1 << (2 * r))
+        if start[r] + sub_dims[r] == dims[r]:
+            out |= faces & (1 << (2 * r + 1))
+    return out
+
+
 def sub_traversal(trav: Traversal, s0, s1) -> tuple[Traversal, tuple[int, int], tuple[int, int, int]]:
     """The traversal of the box [s0, s1) (volume axes x, y, z, half-open, within the
     traversed box of ``trav``) whose samples are exactly ``trav``'s samples there: the
@@ -263,6 +280,8 @@ def sub_traversal(trav: Traversal, s0, s1) -> tuple[Traversal, tuple[int, int], 
     origin = tuple(o + int(s) for o, s in zip(trav.origin, s0))
     # the same view registers, exactly (replace, not a re-derivation from the direction)
     sub = replace(trav, dims=dims, origin=origin, phase_x=px & mask, phase_y=py & mask)
+    sub = replace(sub, faces=sub_faces(trav.faces, (i0, j0, k0), (sub.ni, sub.nj, sub.nk),
+                                       (trav.ni, trav.nj, trav.nk)))
     sxm, sym = trav.max_steps
     bsx, bsy = sub.max_steps
     offset = (j0 - (py >> pb) + sym - bsy, i0 - (px >> pb) + sxm - bsx)

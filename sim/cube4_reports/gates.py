@@ -145,7 +145,7 @@ def build_params(p: int, max_dim: int, build: dict | None = None) -> dict[str, i
             **(build or {})}
 
 
-BUILD_LETTERS = {"SHADING": "s", "COMPOSITING": "c", "EXTREMUM": "e", "CLIP": "k", "VGRAD": "g"}
+BUILD_LETTERS = {"SHADING": "s", "COMPOSITING": "c", "EXTREMUM": "e", "CLIP": "k", "VGRAD": "g", "PLW": "w"}
 
 
 def build_tag(build: dict | None) -> str:

@@ -68,6 +68,7 @@ SWEEPS: dict[str, tuple] = {
     "subpixel": (2, 3, 4),
     "filter": ("mitchell", "catmull-rom", "bspline", "lanczos3"),
     "gradient": ("central", "sobel"),
+    "path_weights": (False, True),
 }
 #: Combinations of scene keys (S, q, gradient, warp) beside the one-at-a-time sweeps: the ways
 #: to buy error with run time that need more than one key. "quality" is the named preset.
@@ -92,11 +93,12 @@ QUICK_SWEEPS: dict[str, tuple] = {
     "subpixel": (2,),
     "filter": ("mitchell",),
     "gradient": ("sobel",),
+    "path_weights": (True,),
 }
 SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p", "subpixel": "q",
-         "filter": "warp", "gradient": "grad"}
+         "filter": "warp", "gradient": "grad", "path_weights": "pw"}
 #: sweeps of a scene key (the render's, not the hardware's configuration)
-SCENE_SWEEPS = ("subpixel", "filter", "gradient")
+SCENE_SWEEPS = ("subpixel", "filter", "gradient", "path_weights")
 CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
 NA_FMAX = "n/a (run make fpga)"
 
@@ -167,6 +169,7 @@ class Row:
     subpixel: int = 1  # q: q×q sub-pixel passes per view
     filter: str = "triangle"  # the warp's filter
     gradient: str = "gra"  # the gradient estimator ([render] gradient)
+    path_weights: bool = False  # [render] path_weights (numerics.md §17)
 
 
 # ---------------------------------------------------------------------------- configs
@@ -289,7 +292,7 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               rmse_rgb=float(np.sqrt(np.mean(err[..., :3] ** 2))), rmse_alpha=float(np.sqrt(np.mean(err[..., 3] ** 2))),
               golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
               baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter,
-              gradient=scene.gradient)
+              gradient=scene.gradient, path_weights=scene.path_weighted)
     return row, res.frame.baseplane
 
 
@@ -350,14 +353,16 @@ def _bit_exact_text(r: Row) -> str:
 def _param_cells(r: Row) -> list[str]:
     cells = []
     combo = dict(COMBOS_BY_LABEL.get(r.label, ()))
-    for key in ("supersample", "weight_bits", "acc_bits", "pipelines", "subpixel", "filter", "gradient"):
-        v = str(getattr(r, key))
+    for key in ("supersample", "weight_bits", "acc_bits", "pipelines", "subpixel", "filter", "gradient",
+                "path_weights"):
+        v = {True: "yes", False: "no"}.get(getattr(r, key), str(getattr(r, key))) if key == "path_weights" \
+            else str(getattr(r, key))
         cells.append(f"**{v}**" if r.varied == key or key in combo else v)
     return cells
 
 
 COMBOS_BY_LABEL = {Variant("combo", c).label: c for c in COMBOS}
-TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "gradient", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
+TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "gradient", "path weights", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
                  "× cycles", "source", "frame time at Fmax (ms)", "sim (s)", "sim cycles/s", "bit_exact"]
 
 
@@ -525,6 +530,7 @@ SERIES_STYLE = {  # marker, colour
     "subpixel": ("v", "tab:orange"),
     "filter": ("P", "tab:brown"),
     "gradient": ("X", "tab:cyan"),
+    "path_weights": ("h", "tab:olive"),
 }
 
 
@@ -566,11 +572,11 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
     for r in pts:
         ax.annotate(r.label.replace("grad=", "").replace("quality: ", "quality "), (r.cycles, r.psnr),
                     textcoords="offset points", xytext=(-6, 5), fontsize=6, color=colour, ha="right")
-    for key in ("weight_bits", "acc_bits", "filter"):
+    for key in ("weight_bits", "acc_bits", "filter", "path_weights"):
         marker, colour = SERIES_STYLE[key]
         pts = [r for r in rs if r.varied == key]
         ax.plot([r.cycles for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker, color=colour,
-                alpha=0.6, label=f"{SHORT[key]} variants (same cycles" + ("; lower row)" if key != "filter" else ")"))
+                alpha=0.6, label=f"{SHORT[key]} variants (same cycles" + ("; lower row)" if key in ("weight_bits", "acc_bits") else ")"))
     for r in rs:
         if r.varied == "default":
             ax.plot([r.cycles], [r.psnr], marker="*", color="black", markersize=14, zorder=5, label="default")

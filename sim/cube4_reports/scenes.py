@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 
-from cube4.config import BUILD_PARAMS, FULL_BUILD, scene_build
+from cube4.config import BUILD_PARAMS, FULL_BUILD, complete_build, scene_build
 from cube4.render import config_for, image_metrics, plan_view, render, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
 from cube4.volumes import load_volume
@@ -208,7 +208,7 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
 
 
 def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list[dict] | None = None) -> str:
-    mip_build = {**FULL_BUILD, "SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0}
+    mip_build = complete_build({"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0})
     mip = next((r for r in recs if r["build"] == mip_build), None)
     full = next(r for r in recs if r["build"] == FULL_BUILD)
     lines = [

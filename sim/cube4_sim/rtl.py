@@ -19,8 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from cube4.clip import Clip
-from cube4.config import FULL_BUILD, Cube4Config
+from cube4.config import Cube4Config, complete_build
 from cube4.errors import UserError
+from cube4.modes import is_blend
 from cube4.vgrad import word_bits
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
@@ -37,7 +38,7 @@ class FrameJob:
     """One frame to render: the view, its tables, and test options."""
 
     trav: Traversal
-    lut: np.ndarray  # (2^V, 4): R, G, B Q0.8, A Q0.ALPHA_W
+    lut: np.ndarray  # (2^V, 4): R, G, B Q0.8, A Q0.ALPHA_W; (2^V, 8) with the path-weight columns
     rmap: np.ndarray | None  # (6 R^2 + 1, 2): D, P Q2.8; None: unshaded (identity map)
     mode: str = "composite"
     clip: Clip | None = None
@@ -51,14 +52,14 @@ def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
                  build: dict | None = None) -> dict[str, int]:
     """cube4_top_harness parameters for a configuration and a largest dimension; the
     voxel memory holds a max_dim^3 volume unless ``depth`` (words per bank) is given;
-    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD (default: the full build)."""
+    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD, PLW (default: the full build)."""
     p = cfg.pipelines
     depth = depth or words_per_bank((max_dim, max_dim, max_dim), p)
     return {
         "P": p, "VOXEL_W": cfg.voxel_bits, "WEIGHT_W": cfg.weight_bits, "ALPHA_W": cfg.alpha_bits,
         "ACC_W": cfg.acc_bits, "RMAP_BITS": cfg.rmap_bits, "MAX_DIM": max_dim,
         "MAX_SS_LOG2": cfg.guard_bits, "DEPTH": depth, "ADDR_W": max(1, (depth - 1).bit_length()),
-        **FULL_BUILD, **(build or {}),       # a build that names fewer parameters keeps the full build's
+        **complete_build(build),            # a build that names fewer parameters keeps the full build's
     }
 
 
@@ -107,13 +108,19 @@ def identity_rmap(cfg: Cube4Config) -> np.ndarray:
 
 
 def write_tables(lut: np.ndarray, rmap: np.ndarray | None, cfg: Cube4Config, lut_path: Path,
-                 rmap_path: Path) -> None:
-    """The harness's table images: one {R, G, B, A} word per LUT entry, one {D, P} word
-    per reflectance-map entry (the identity map for an unshaded frame)."""
+                 rmap_path: Path, plw: bool = False) -> None:
+    """The harness's table images: one {R, G, B, A} word per LUT entry (on a PLW build
+    {the path-weight columns 3 .. 0, R, G, B, A}: a LUT without columns writes zeros
+    there, its frames have FACES = 0), one {D, P} word per reflectance-map entry (the
+    identity map for an unshaded frame)."""
     aw = cfg.alpha_bits
     rmap = identity_rmap(cfg) if rmap is None else rmap
     words = (lut[:, 0] << (aw + 16)) | (lut[:, 1] << (aw + 8)) | (lut[:, 2] << aw) | lut[:, 3]
-    write_hex(lut_path, words, 24 + aw)
+    if plw:
+        cols = lut[:, 4:8] if lut.shape[1] >= 8 else np.zeros((lut.shape[0], 4), dtype=np.int64)
+        words = [int(w) | sum(int(cols[n, c]) << (24 + aw + c * aw) for c in range(4))
+                 for n, w in enumerate(words)]
+    write_hex(lut_path, words, 24 + aw + (4 * aw if plw else 0))
     write_hex(rmap_path, (rmap[:, 0] << 10) | rmap[:, 1], 20)
 
 
@@ -151,13 +158,17 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
             # only composite frames are shaded: any other frame gets the identity map
-            write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p)
+            path_weighted = fr.lut.shape[1] > 4 and is_blend(fr.mode)
+            if path_weighted and not params["PLW"]:
+                raise UserError("a path-weighted frame needs a build with PLW = 1")
+            write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p,
+                         plw=bool(params["PLW"]))
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
             ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
-                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip),
+                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, path_weighted),
                 "lut": str(lut_p), "rmap": str(rmap_p),
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,

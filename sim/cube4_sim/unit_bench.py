@@ -65,11 +65,13 @@ class UnitBench:
         self.dut.rst.value = 0
         await self.cycles(2)
 
-    def set_view(self, trav: Traversal, p: int, mode: str = "composite", clip=None, vol_dims=None) -> None:
+    def set_view(self, trav: Traversal, p: int, mode: str = "composite", clip=None, vol_dims=None,
+                 path_weights: bool = False) -> None:
         """Write the host's registers (cube4.memory.top_regs) to the harness's cfg_*
         ports; a harness without the address unit has no ports for its registers.
-        vol_dims: the volume in memory when trav is a box inside it (a crop)."""
-        for key, val in top_regs(trav, p, vol_dims, mode=mode, clip=clip).items():
+        vol_dims: the volume in memory when trav is a box inside it (a crop);
+        path_weights: FACES = trav.faces (else 0)."""
+        for key, val in top_regs(trav, p, vol_dims, mode=mode, clip=clip, path_weights=path_weights).items():
             name = "cfg_" + key.lower()
             if hasattr(self.dut, name):
                 self.sig(name).value = int(val)

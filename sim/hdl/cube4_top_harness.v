@@ -45,6 +45,7 @@ module cube4_top_harness #(
     parameter integer EXTREMUM    = 1,
     parameter integer CLIP        = 1,
     parameter integer VGRAD       = 0,
+    parameter integer PLW         = 1,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
@@ -93,6 +94,7 @@ module cube4_top_harness #(
     reg [M_W-1:0]        cfg_win_m0_q, cfg_win_m1_q;
     reg [CUT_W-1:0]      cfg_cut_a_q, cfg_cut_b_q, cfg_cut_c_q;
     reg [CUT_E_W-1:0]    cfg_cut_d_q;
+    reg [5:0]            cfg_faces_q;
     always @(posedge clk) begin
         rst_q         <= rst;
         load_mem_q    <= load_mem;
@@ -141,10 +143,11 @@ module cube4_top_harness #(
         cfg_cut_b_q     <= cfg_cut_b;
         cfg_cut_c_q     <= cfg_cut_c;
         cfg_cut_d_q     <= cfg_cut_d;
+        cfg_faces_q     <= cfg_faces;
     end
 
     localparam integer PW     = P * WORD_W;
-    localparam integer LUT_W  = 24 + ALPHA_W;
+    localparam integer LUT_W  = 24 + ALPHA_W + PLW * 4 * ALPHA_W;   // with the path-weight columns
     localparam integer RMAP_N = 6 * (1 << (2 * RMAP_BITS)) + 1;
     localparam integer BX_W   = DIM_W + 1;
 
@@ -252,7 +255,8 @@ module cube4_top_harness #(
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
         .CLIP        (CLIP),
-        .VGRAD       (VGRAD)
+        .VGRAD       (VGRAD),
+        .PLW         (PLW)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -304,6 +308,7 @@ module cube4_top_harness #(
         .cfg_cut_b    (cfg_cut_b_q),
         .cfg_cut_c    (cfg_cut_c_q),
         .cfg_cut_d    (cfg_cut_d_q),
+        .cfg_faces    (cfg_faces_q),
         .start       (start_q),
         .busy        (busy),
         .done        (done),

@@ -35,16 +35,21 @@ module cube4_com_harness #(
     parameter integer VOXEL_W     = 8,
     parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM    = 1,
+    parameter integer PLW         = 0,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
     localparam integer BX_W    = DIM_W + 1,
     localparam integer IN_W    = P * (24 + ALPHA_W),
-    localparam integer PIX_W   = P * 4 * (ACC_W + 1)
+    localparam integer PIX_W   = P * 4 * (ACC_W + 1),
+    localparam integer PWC_W   = (PLW != 0) ? 4 * ALPHA_W : 1
 ) (
     output wire                  clk,
     input  wire                  rst,
     `CUBE4_VIEW_PORTS
+    input  wire                  lut_we,
+    input  wire [VOXEL_W-1:0]    lut_addr,
+    input  wire [PWC_W-1:0]      lut_data,
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
@@ -71,12 +76,16 @@ module cube4_com_harness #(
         .VOXEL_W     (VOXEL_W),
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
+        .PLW         (PLW),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
         .clk       (clk),
         .rst       (rst),
         .cfg       (cfg),
+        .lut_we    (lut_we),
+        .lut_addr  (lut_addr),
+        .lut_data  (lut_data),
         .in_valid  (in_valid),
         .in_ready  (in_ready),
         .in_hdr    (in_hdr),

@@ -27,6 +27,14 @@ build (no reset between views), at P = 1, 5 and 8 (ACC_W 16 and 24), and the
 builds with one datapath only (COMPOSITING or EXTREMUM 0; ACC_W 8 < ALPHA_W 16
 for MIP's A rounding).
 
+Path weights (PLW = 1 builds at P = 1, 5 and 8): random path-weight columns are
+written through the lut_* port before every view (random, not 1 - (1 - A)^w, so
+a wrong column or a wrong weight class shows), and the blending views run with
+FACES = all six faces, or a random subset (a box with interior faces); the golden
+frame weights with the same columns and faces. With the x-exit's bin taken from
+the phase of slice m instead of m + 1 (tried, not kept), P = 1 fails with
+"R beat 306 (m=3, j=0, pb=9, lane 0: i=9): RTL 53423, golden 11587".
+
 The test can fail (tried with a deliberately corrupted expectation, not kept):
 with the golden G of the first finished ray raised by one, P = 1 fails with
 "G beat 10 (m=0, j=0, pb=10, lane 0: i=10): RTL 10168, golden 10169" and
@@ -41,8 +49,11 @@ import cocotb
 import numpy as np
 import pytest
 
+from dataclasses import replace
+
 from cube4.config import Cube4Config
 from cube4.model import render_frame
+from cube4.pathlen import ALL_FACES
 from cube4.view import make_traversal
 from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
@@ -139,8 +150,9 @@ async def test_pixel_stream(dut):
     vw = int(dut.VOXEL_W.value)
     modes = [m for m in ("composite", "xray") if int(dut.COMPOSITING.value)]
     modes += [m for m in ("mip", "minip") if int(dut.EXTREMUM.value)]
+    plw = int(dut.PLW.value) != 0
     bench = UnitBench(dut)
-    await bench.reset({"in_valid": 0, "out_ready": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << cfg.voxel_bits, size=dims[::-1], dtype=np.int64)
     for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS):
@@ -154,6 +166,13 @@ async def test_pixel_stream(dut):
             lut[:, :3] = bench.rng.integers(128, 256, size=(lut.shape[0], 3))
             lut[:, 3] = bench.rng.integers(0, 1 << aw, size=lut.shape[0])
         clip = random_clip(trav, clip_kind, bench.rng)
+        weighted = plw and mode in BLEND
+        if weighted:
+            cols = bench.rng.integers(0, 1 << aw, size=(lut.shape[0], 4), dtype=np.int64)
+            await write_columns(bench, dut, cols, aw)
+            lut = np.concatenate([lut, cols], axis=1)
+            faces = ALL_FACES if n % 2 == 0 else int(bench.rng.integers(1, ALL_FACES))
+            trav = replace(trav, faces=faces)
         frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True, mode=mode, clip=clip)
         sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"])
         hdrs = sched.headers(geo)
@@ -163,25 +182,37 @@ async def test_pixel_stream(dut):
         inputs = [{"in_hdr": hdrs[n], "in_rgba": pack_lanes(words[n], 24 + aw), "in_sample": pack_lanes(smp[n], vw)}
                   for n in range(len(sched))]
         exp = expected_pixel_beats(frame, sched)
-        bench.set_view(trav, p, mode, clip)
+        bench.set_view(trav, p, mode, clip, path_weights=weighted)
         await bench.cycles(2)
         got = await bench.run_stream(inputs, len(exp["beat"]), OUTPUTS, gap, stall)
         check_pixel_beats(got, exp, sched, p, geo.dim_w + 1, acc_w, bench.log)
-        bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f: %d pixel beats, %d finished rays "
-                       "bit-exact", dims, direction, mode, clip_kind, gap, stall, len(got), len(frame.pixels))
+        bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f faces %s: %d pixel beats, %d finished "
+                       "rays bit-exact", dims, direction, mode, clip_kind, gap, stall,
+                       f"{trav.faces:06b}" if weighted else "-", len(got), len(frame.pixels))
 
 
-# (P, ALPHA_W, ACC_W, COMPOSITING, EXTREMUM, MAX_SS_LOG2): ACC_W 8 < ALPHA_W 16 with both
+async def write_columns(bench, dut, cols: np.ndarray, aw: int) -> None:
+    """Write the path-weight columns (2^V, 4) through the lut_* port, one entry per cycle."""
+    for a in range(cols.shape[0]):
+        dut.lut_we.value = 1
+        dut.lut_addr.value = a
+        dut.lut_data.value = sum(int(cols[a, c]) << (c * aw) for c in range(4))
+        await bench.cycles(1)
+    dut.lut_we.value = 0
+
+
+# (P, ALPHA_W, ACC_W, COMPOSITING, EXTREMUM, MAX_SS_LOG2, PLW): ACC_W 8 < ALPHA_W 16 with both
 # datapaths makes the buffer word the extremum's ({v, R, G, B, A} wider than {R, G, B, T});
 # MAX_SS_LOG2 = 1 runs the views at S = 2 with phases up to 2^(W+1)
-BUILDS = [(1, 12, 16, 1, 1, 0), (5, 12, 16, 1, 1, 1), (8, 16, 24, 1, 1, 0), (5, 12, 16, 1, 0, 0),
-          (3, 16, 8, 0, 1, 0), (3, 16, 8, 1, 1, 0)]
+BUILDS = [(1, 12, 16, 1, 1, 0, 1), (5, 12, 16, 1, 1, 1, 1), (8, 16, 24, 1, 1, 0, 1), (5, 12, 16, 1, 0, 0, 0),
+          (3, 16, 8, 0, 1, 0, 0), (3, 16, 8, 1, 1, 0, 0)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}_ss{b[5]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS,
+                         ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}_ss{b[5]}_w{b[6]}" for b in BUILDS])
 def test_cube4_com(build):
-    p, aw, acc_w, comp, ext, ss = build
+    p, aw, acc_w, comp, ext, ss, plw = build
     run_test(top="cube4_com_harness", sources=SOURCES,
              params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": ss,
-                     "COMPOSITING": comp, "EXTREMUM": ext},
+                     "COMPOSITING": comp, "EXTREMUM": ext, "PLW": plw},
              test_module=__file__, testcase="test_pixel_stream", timing=True)

@@ -376,3 +376,54 @@ def test_subpixel_passes(p, q):
     frame = assemble_view(vp, cfg, runs)
     gold = render(vol, scene, cfg, "golden").frame
     assert (frame.baseplane == gold.baseplane).all(), "interleaved plane differs from the golden engine's"
+
+
+# ---------------------------------------------------------------- path-length weights
+@pytest.mark.parametrize(("p", "s"), [(1, 1), (5, 2), (8, 1)])
+def test_path_weights(p, s):
+    """Path-length weights (PLW, numerics.md §17): the LUT's path-weight columns are written
+    through the load port with the LUT, and COM weights the first and last samples of the
+    rays that enter or leave through the faces in FACES. Composite frames at six views
+    ((1, 1, 1) and a 45° view among them), an X-ray frame, a MIP frame (never weighted), a
+    crop box, two boxes inside the volume with interior faces (FACES from sub_traversal),
+    random stalls and a reset in mid-frame, bit for bit against the golden model;
+    unstalled frames take the predicted cycles (the weights add none)."""
+    from cube4.pathlen import weighted_columns
+    from cube4.view import sub_traversal
+
+    rng = np.random.default_rng(400 + p)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    views = [VIEWS[0], VIEWS[1], (1.0, 1.0, 1.0), (1.0, -1.0, 0.0), VIEWS[2], VIEWS[4], VIEWS[5], VIEWS[3],
+             (-0.7, 0.6, 1.0)]
+    modes = ["composite"] * 6 + ["xray", "mip", "composite"]
+    jobs = []
+    for n, (d, mode) in enumerate(zip(views, modes)):
+        trav = make_traversal(dims, d, cfg.weight_bits, s)
+        if n == 2:        # a crop box: a volume of its own, all six faces its own
+            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
+        elif n in (4, 8):  # boxes inside the traversal: some faces interior
+            s0, s1 = ((1, 0, 2), (nx, ny - 2, nz)) if n == 4 else ((0, 2, 0), (nx - 3, ny, nz - 3))
+            trav, _, _ = sub_traversal(trav, s0, s1)
+            assert 0 < trav.faces < 63
+        lut, rmap = random_tables(rng, cfg)
+        lut[:, 3] = rng.integers(0, 1 << cfg.alpha_bits, size=lut.shape[0])  # opaque too: columns differ most
+        lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
+        jobs.append(FrameJob(trav, lut, rmap if mode == "composite" else None, mode=mode,
+                             stall=(0, 60, 0, 120, 30, 0, 0, 0, 0)[n], stall_out=(0, 0, 90, 60, 0, 40, 0, 0, 0)[n],
+                             reset_after_cycles=150 if n == 3 else 0))
+    results = render_frames(vol, jobs, cfg, max_dim=64)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"path weights P={p} S={s} view {views[n]} {job.mode} faces {job.trav.faces:06b}"
+        gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode)
+        if n == 0:   # the weights change this frame: the test sees them
+            from cube4.model import render_frame
+            from cube4.render import crop_volume
+            unweighted = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut[:, :4], job.rmap)
+            assert (unweighted.baseplane != gold.baseplane).any(), f"{label}: the weights changed nothing"
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, False)
+            assert res["cycles"] == want, (label, res["cycles"], want)
