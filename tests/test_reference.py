@@ -47,7 +47,7 @@ def test_reference_sphere_matches_analytic_chord_opacity():
 
 
 # (volume, scene, supersample, PSNR floor in dB). Measured on this machine: sphere 34.9,
-# head 34.1, ml 25.9 (S=1) and 30.2 (S=2). The floors sit ~2 dB below: the model's error
+# head 34.1, ml 26.6 (S=1) and 30.5 (S=2). The floors sit ~2 dB below: the model's error
 # is dominated by the architecture (base plane at one-voxel spacing warped bilinearly to
 # the image; samples one slice apart against the reference's 1/8 voxel), not by the
 # precision (12-bit voxels or weights, or a finer reflectance map, change < 0.1 dB).

@@ -464,7 +464,9 @@ def presets_section(rows: list[Row]) -> str:
         return ""
     text = ("## Presets\n\n`cube4 render --preset default` renders the scene as it is; `--preset quality` sets "
             "`[render] gradient = \"central\"` (voxel central differences, docs/numerics.md §5b), "
-            "`supersample = 4` and `subpixel = 2` (the built-in scene `head_quality` is the head with it). "
+            "`supersample = 4`, `subpixel = 2` and `path_weights = true` (docs/numerics.md §17; the built-in "
+            "scene `head_quality` is the head with it). The scene `ml` has path weights on by default: "
+            "Marschner–Lobb reaches the volume's faces. "
             "Frame time at the Fmax that `make fpga` measured for the full build at this p (the voxel-gradient "
             "build's own Fmax at P = 4 is in reports/scenes.md).\n\n")
     text += md_table(["case", "preset", "PSNR (dB)", "cycles", "frame time (ms)"], cells, "llrrl") + "\n\n"
