@@ -345,8 +345,11 @@ module cube4_com #(
     // rq(num, VIEW) = #{k in 1, 3, 5, 7 : 8 num >= k VIEW}: e = num / VIEW rounded
     // half up to quarters. Entry: num = ph(m) (an old step has just wrapped it
     // below VIEW); exit: num = VIEW - ph(m+1) (a step has just wrapped ph(m+1)).
-    wire [P-1:0] pw_use_1;               // S1: the lane's weight is not 1
-    wire [2*P-1:0] pw_col_1;             // S1: its column (w = 1/2, 3/4, 5/4, 3/2)
+    // Three register stages, each with little logic: S0 -> S1 the phases of
+    // slices m and m+1 and the entry causes; S1 -> S2 the bins and the exit
+    // causes; S2 -> S3 the lane's weight and its column's opacity (below, g_pwt).
+    wire [P-1:0] pw_use_2;               // S2: the lane's weight is not 1
+    wire [2*P-1:0] pw_col_2;             // S2: its column (w = 1/2, 3/4, 5/4, 3/2)
     generate
         if (PLW != 0) begin : g_pw
             localparam integer NW = PH_W + 4;
@@ -369,48 +372,64 @@ module cube4_com #(
             wire [NW-1:0] vx = NW'(cfg_view_x);
             wire [NW-1:0] vy = NW'(cfg_view_y);
             wire [5:0]    fc = cfg_faces;
-            // S0 -> S1: per-slice bins, per-beat and per-lane entry causes
-            reg  [2:0]   f1_rxi, f1_rxo, f1_ryi, f1_ryo;
-            reg          f1_kin, f1_yin;
-            reg  [P-1:0] f1_xin;
-            integer      l;
+            // S0 -> S1: the phases of slices m and m+1, the entry causes
+            reg  [PH_W-1:0] f1_phxm, f1_phym, f1_phxn, f1_phyn;
+            reg             f1_kin, f1_yin;
+            reg  [P-1:0]    f1_xin;
+            integer         l;
             always @(posedge clk) begin
-                f1_rxi <= qbins(NW'(phx_m), vx);
-                f1_ryi <= qbins(NW'(phy_m), vy);
-                f1_rxo <= qbins(vx - NW'(phx_n), vx);
-                f1_ryo <= qbins(vy - NW'(phy_n), vy);
-                f1_kin <= fc[4] && (r0_m == '0);
-                f1_yin <= fc[2] && dyb && (r0_j == '0);
+                f1_phxm <= phx_m;
+                f1_phym <= phy_m;
+                f1_phxn <= phx_n;
+                f1_phyn <= phy_n;
+                f1_kin  <= fc[4] && (r0_m == '0);
+                f1_yin  <= fc[2] && dyb && (r0_j == '0);
                 for (l = 0; l < P; l = l + 1)
                     f1_xin[l] <= fc[0] && dxb && (ipos_d[l*IW +: IW] == '0);
             end
-            // S1: exit causes; the weight wq = (entry ? rq_in : 2) + (exit ? rq_out : 2),
-            // clamped to 2..6 quarters; 4 keeps the LUT's A
-            wire kout  = fc[5] && f1_last;
-            wire yout0 = fc[3] && (f1_j + IW'(1) == nj_ext) && (f1_dyf || f1_wyn);
-            wire yout1 = fc[3] && (f1_j + IW'(2) == nj_ext) && f1_dyf && f1_wyn;
+            // S1 -> S2: the bins (entry: num = ph(m), an old step has just wrapped it
+            // below VIEW; exit: num = VIEW - ph(m+1), a step has just wrapped ph(m+1))
+            // and the exit causes
+            reg  [2:0]   s2_rxi, s2_rxo, s2_ryi, s2_ryo;
+            reg          s2_kin, s2_yin, s2_kout, s2_yout0, s2_yout1;
+            reg  [P-1:0] s2_xin, s2_xout0, s2_xout1;
+            always @(posedge clk) begin
+                s2_rxi   <= qbins(NW'(f1_phxm), vx);
+                s2_ryi   <= qbins(NW'(f1_phym), vy);
+                s2_rxo   <= qbins(vx - NW'(f1_phxn), vx);
+                s2_ryo   <= qbins(vy - NW'(f1_phyn), vy);
+                s2_kin   <= f1_kin;
+                s2_yin   <= f1_yin;
+                s2_xin   <= f1_xin;
+                s2_kout  <= fc[5] && f1_last;
+                s2_yout0 <= fc[3] && (f1_j + IW'(1) == nj_ext) && (f1_dyf || f1_wyn);
+                s2_yout1 <= fc[3] && (f1_j + IW'(2) == nj_ext) && f1_dyf && f1_wyn;
+                for (l = 0; l < P; l = l + 1) begin
+                    s2_xout0[l] <= fc[1] && (f1_ipos[l*IW +: IW] + IW'(1) == ni_ext) && (f1_dxf || f1_wxn);
+                    s2_xout1[l] <= fc[1] && (f1_ipos[l*IW +: IW] + IW'(2) == ni_ext) && f1_dxf && f1_wxn;
+                end
+            end
+            // S2: the weight wq = (entry ? rq_in : 2) + (exit ? rq_out : 2), clamped
+            // to 2..6 quarters, rq of an end the minimum over its active causes;
+            // 4 keeps the LUT's A
             for (q = 0; q < P; q = q + 1) begin : g_pw_lane
-                wire [IW-1:0] i_pos = f1_ipos[q*IW +: IW];
-                wire xout0 = fc[1] && (i_pos + IW'(1) == ni_ext) && (f1_dxf || f1_wxn);
-                wire xout1 = fc[1] && (i_pos + IW'(2) == ni_ext) && f1_dxf && f1_wxn;
-                // the minimum bin over the active causes of each end (4'd9: none)
-                wire [3:0] in_x  = f1_xin[q] ? {1'b0, f1_rxi} : 4'd9;
-                wire [3:0] in_y  = f1_yin ? {1'b0, f1_ryi} : 4'd9;
+                wire [3:0] in_x  = s2_xin[q] ? {1'b0, s2_rxi} : 4'd9;   // 9: no cause
+                wire [3:0] in_y  = s2_yin ? {1'b0, s2_ryi} : 4'd9;
                 wire [3:0] in_xy = (in_x < in_y) ? in_x : in_y;
-                wire [3:0] rq_in = f1_kin ? 4'd0 : in_xy;
-                wire [3:0] o_x   = xout0 ? 4'd0 : (xout1 ? {1'b0, f1_rxo} : 4'd9);
-                wire [3:0] o_y   = yout0 ? 4'd0 : (yout1 ? {1'b0, f1_ryo} : 4'd9);
+                wire [3:0] rq_in = s2_kin ? 4'd0 : in_xy;
+                wire [3:0] o_x   = s2_xout0[q] ? 4'd0 : (s2_xout1[q] ? {1'b0, s2_rxo} : 4'd9);
+                wire [3:0] o_y   = s2_yout0 ? 4'd0 : (s2_yout1 ? {1'b0, s2_ryo} : 4'd9);
                 wire [3:0] o_xy  = (o_x < o_y) ? o_x : o_y;
-                wire [3:0] rq_out = kout ? 4'd0 : o_xy;
+                wire [3:0] rq_out = s2_kout ? 4'd0 : o_xy;
                 wire [3:0] wsum = ((rq_in == 4'd9) ? 4'd2 : rq_in) + ((rq_out == 4'd9) ? 4'd2 : rq_out);
                 wire [2:0] wq   = (wsum < 4'd2) ? 3'd2 : (wsum > 4'd6) ? 3'd6 : wsum[2:0];
-                assign pw_use_1[q] = (wq != 3'd4);
-                assign pw_col_1[2*q +: 2] = (wq == 3'd2) ? 2'd0 : (wq == 3'd3) ? 2'd1 : (wq == 3'd5) ? 2'd2 : 2'd3;
+                assign pw_use_2[q] = (wq != 3'd4);
+                assign pw_col_2[2*q +: 2] = (wq == 3'd2) ? 2'd0 : (wq == 3'd3) ? 2'd1 : (wq == 3'd5) ? 2'd2 : 2'd3;
             end
         end else begin : g_no_pw
             wire unused_pw = ^{cfg_faces, lut_we, lut_addr, lut_data};
-            assign pw_use_1 = '0;
-            assign pw_col_1 = '0;
+            assign pw_use_2 = '0;
+            assign pw_col_2 = '0;
         end
     endgenerate
 
@@ -572,25 +591,29 @@ module cube4_com #(
             wire [AC_W-1:0] acc_in = fresh_s[5][q] ? fresh_word : prev;
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
-            // PLW: at S1 -> S2 the A of a weighted sample becomes its column's
+            // PLW: at S2 -> S3 the A of a weighted sample becomes its column's
             reg  [5*LUT_W-1:0] rgba_l;
-            wire [ALPHA_W-1:0] a_s1;
+            wire [ALPHA_W-1:0] a_s2;
             always @(posedge clk) begin
-                rgba_l <= {rgba_l[4*LUT_W-1:LUT_W], rgba_l[ALPHA_W +: 24], a_s1, r0_rgba[q*LUT_W +: LUT_W]};
+                rgba_l <= {rgba_l[4*LUT_W-1:2*LUT_W], rgba_l[LUT_W+ALPHA_W +: 24], a_s2,
+                           rgba_l[0 +: LUT_W], r0_rgba[q*LUT_W +: LUT_W]};
             end
             if (PLW != 0) begin : g_pwt
-                // the lane's copy of the path-weight columns, read with R0's sample
+                // the lane's copy of the path-weight columns, read with R0's sample,
+                // and its word registered once more (in S2: a block RAM's output
+                // register, no logic after the RAM)
                 reg [PWC_W-1:0] wtab [0:(1 << VOXEL_W)-1];
-                reg [PWC_W-1:0] w1_cols;
+                reg [PWC_W-1:0] w1_cols, w2_cols;
                 always @(posedge clk) begin
                     if (lut_we) wtab[lut_addr] <= lut_data;
                     w1_cols <= wtab[r0_smp[q*VOXEL_W +: VOXEL_W]];
+                    w2_cols <= w1_cols;
                 end
-                wire [ALPHA_W-1:0] a_col = w1_cols[pw_col_1[2*q +: 2] * ALPHA_W +: ALPHA_W];
-                assign a_s1 = (pw_use_1[q] && !mode_ext_q) ? a_col : rgba_l[0 +: ALPHA_W];
+                wire [ALPHA_W-1:0] a_col = w2_cols[pw_col_2[2*q +: 2] * ALPHA_W +: ALPHA_W];
+                assign a_s2 = (pw_use_2[q] && !mode_ext_q) ? a_col : rgba_l[LUT_W +: ALPHA_W];
             end else begin : g_no_pwt
-                wire unused_pw_lane = ^{pw_use_1[q], pw_col_1[2*q +: 2]};
-                assign a_s1 = rgba_l[0 +: ALPHA_W];
+                wire unused_pw_lane = ^{pw_use_2[q], pw_col_2[2*q +: 2]};
+                assign a_s2 = rgba_l[LUT_W +: ALPHA_W];
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
             reg  [AC_W-1:0]  s6_acc;

@@ -33,7 +33,7 @@ a wrong column or a wrong weight class shows), and the blending views run with
 FACES = all six faces, or a random subset (a box with interior faces); the golden
 frame weights with the same columns and faces. With the x-exit's bin taken from
 the phase of slice m instead of m + 1 (tried, not kept), P = 1 fails with
-"R beat 306 (m=3, j=0, pb=9, lane 0: i=9): RTL 53423, golden 11587".
+"R beat 306 (m=3, j=0, pb=9, lane 0: i=9): RTL 8813, golden 8925".
 
 The test can fail (tried with a deliberately corrupted expectation, not kept):
 with the golden G of the first finished ray raised by one, P = 1 fails with
