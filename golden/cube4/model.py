@@ -29,7 +29,7 @@ from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
 from .clip import Clip
 from .modes import MODES, is_blend
-from .pathlen import weight_quarters, weighted_alpha
+from .pathlen import path_weighted, weight_quarters, weighted_alpha
 from .vgrad import unpack_words
 from .view import Traversal
 
@@ -297,7 +297,7 @@ def render_frame(
     shading = shading and mode == "composite"
     W = cfg.weight_bits
     one = 1 << cfg.acc_bits
-    lut, path_cols = lut[:, :4], (lut[:, 4:] if lut.shape[1] > 4 and is_blend(mode) else None)
+    lut, path_cols = lut[:, :4], (lut[:, 4:] if path_weighted(lut, mode) else None)
     if vgrad:
         tp, comps = voxel_channels(vol, trav, cfg.voxel_bits)
     else:

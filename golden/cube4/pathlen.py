@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .modes import is_blend
 from .tables import quantize_unit
 from .view import Traversal
 
@@ -47,6 +48,12 @@ PATH_QUARTERS = (2, 3, 5, 6)
 #: FACES bits, bit 0 first: the traversal frame's low and high faces of i, j and k
 FACE_NAMES = ("I0", "I1", "J0", "J1", "K0", "K1")
 ALL_FACES = (1 << len(FACE_NAMES)) - 1
+
+
+def path_weighted(lut: np.ndarray, mode: str) -> bool:
+    """Is a frame with this LUT in this mode path-weighted? Its LUT carries the four
+    path-weight columns, and the mode integrates along the ray (composite, X-ray)."""
+    return lut.shape[1] > 4 and is_blend(mode)
 
 
 def weighted_columns(alpha: np.ndarray, alpha_bits: int) -> np.ndarray:

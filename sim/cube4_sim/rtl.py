@@ -21,7 +21,7 @@ import numpy as np
 from cube4.clip import Clip
 from cube4.config import Cube4Config, complete_build
 from cube4.errors import UserError
-from cube4.modes import is_blend
+from cube4.pathlen import path_weighted
 from cube4.vgrad import word_bits
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
@@ -158,8 +158,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
             # only composite frames are shaded: any other frame gets the identity map
-            path_weighted = fr.lut.shape[1] > 4 and is_blend(fr.mode)
-            if path_weighted and not params["PLW"]:
+            weighted = path_weighted(fr.lut, fr.mode)
+            if weighted and not params["PLW"]:
                 raise UserError("a path-weighted frame needs a build with PLW = 1")
             write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p,
                          plw=bool(params["PLW"]))
@@ -168,7 +168,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                      * slow_slice_factor(nj, ni, cfg.pipelines))
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
-                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, path_weighted),
+                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted),
                 "lut": str(lut_p), "rmap": str(rmap_p),
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
