@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from cube4.clip import Clip, cut_coefficients
+from cube4.config import Cube4Config
 from cube4.scene import parse_scene
+from cube4.view import make_traversal
 
 
 def sphere_volume(n: int, bits: int = 8) -> np.ndarray:
@@ -84,3 +87,37 @@ def write_series(folder, vol: np.ndarray, *, spacing: float = 1.5, intercept: fl
         else:
             ds.PixelData = vol[z].astype("<u2").tobytes()
         ds.save_as(path, enforce_file_format=True)
+
+
+#: views of the skipping tests: 45° and (1, 1, 1) among them
+SKIP_VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 1.0, 1.0), (1.0, -1.0, 0.0), (-1.0, -0.8, 0.2),
+              (0.5, 1.0, 0.5), (0.0, 0.0, 1.0)]
+SKIP_MODES = ["composite", "xray", "mip", "minip"]
+SKIP_THRESHOLD = 60     # values below it are empty (above it for MinIP)
+
+
+def sparse_case(seed: int):
+    """A volume of faint noise (all below the threshold) with one dense blob, the LUT that
+    makes the noise empty, and a view, mode, S, shading and (every fourth) cut plane."""
+    rng = np.random.default_rng(seed)
+    S = (1, 2, 4)[seed % 3]
+    cfg = Cube4Config(pipelines=4, supersample=S)
+    nx, ny, nz = (int(n) for n in rng.integers(6, 16, size=3))
+    vol = rng.integers(0, SKIP_THRESHOLD - 20, size=(nz, ny, nx))
+    c = [int(rng.integers(1, n - 1)) for n in (nz, ny, nx)]
+    blob = tuple(slice(max(0, a - 2), a + 2) for a in c)
+    vol[blob] = rng.integers(0, 256, size=vol[blob].shape)
+    mode = SKIP_MODES[seed % 4]
+    lut = np.zeros((256, 4), dtype=np.int64)
+    lut[:, :3] = rng.integers(0, 256, size=(256, 3))
+    if mode == "minip":
+        vol = 255 - vol
+        lut[SKIP_THRESHOLD:] = 0
+        lut[:SKIP_THRESHOLD, 3] = rng.integers(1, 1 << cfg.alpha_bits, size=SKIP_THRESHOLD)
+    else:
+        lut[:SKIP_THRESHOLD] = 0
+        lut[SKIP_THRESHOLD:, 3] = rng.integers(1, 1 << cfg.alpha_bits, size=256 - SKIP_THRESHOLD)
+    rmap = rng.integers(0, 1024, size=(cfg.rmap_entries, 2))
+    trav = make_traversal((nx, ny, nz), SKIP_VIEWS[seed % len(SKIP_VIEWS)], cfg.weight_bits, S)
+    clip = Clip(plane=cut_coefficients(trav, (1.0, 0.3, -0.2), (nx / 2, ny / 2, nz / 2))) if seed % 4 == 1 else None
+    return vol, trav, cfg, lut, rmap, mode, seed % 2 == 0, clip

@@ -12,7 +12,8 @@ import sys
 
 import numpy as np
 import pytest
-from cube4_testutil import make_scene
+from cube4_testutil import SKIP_VIEWS as VIEWS
+from cube4_testutil import make_scene, sparse_case
 
 import cube4.skip as skip
 from cube4.clip import Clip, cut_coefficients
@@ -23,39 +24,6 @@ from cube4.model import render_frame
 from cube4.render import render
 from cube4.scene import parse_scene
 from cube4.view import make_traversal
-
-VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 1.0, 1.0), (1.0, -1.0, 0.0), (-1.0, -0.8, 0.2),
-         (0.5, 1.0, 0.5), (0.0, 0.0, 1.0)]
-MODES = ["composite", "xray", "mip", "minip"]
-THRESHOLD = 60     # values below it are empty (above it for MinIP)
-
-
-def sparse_case(seed: int):
-    """A volume of faint noise (all below the threshold) with one dense blob, the LUT that
-    makes the noise empty, and a view, mode, S, shading and (every fourth) cut plane."""
-    rng = np.random.default_rng(seed)
-    S = (1, 2, 4)[seed % 3]
-    cfg = Cube4Config(pipelines=4, supersample=S)
-    nx, ny, nz = (int(n) for n in rng.integers(6, 16, size=3))
-    vol = rng.integers(0, THRESHOLD - 20, size=(nz, ny, nx))
-    c = [int(rng.integers(1, n - 1)) for n in (nz, ny, nx)]
-    blob = tuple(slice(max(0, a - 2), a + 2) for a in c)
-    vol[blob] = rng.integers(0, 256, size=vol[blob].shape)
-    mode = MODES[seed % 4]
-    lut = np.zeros((256, 4), dtype=np.int64)
-    lut[:, :3] = rng.integers(0, 256, size=(256, 3))
-    if mode == "minip":
-        vol = 255 - vol
-        lut[THRESHOLD:] = 0
-        lut[:THRESHOLD, 3] = rng.integers(1, 1 << cfg.alpha_bits, size=THRESHOLD)
-    else:
-        lut[:THRESHOLD] = 0
-        lut[THRESHOLD:, 3] = rng.integers(1, 1 << cfg.alpha_bits, size=256 - THRESHOLD)
-    rmap = rng.integers(0, 1024, size=(cfg.rmap_entries, 2))
-    trav = make_traversal((nx, ny, nz), VIEWS[seed % len(VIEWS)], cfg.weight_bits, S)
-    clip = Clip(plane=cut_coefficients(trav, (1.0, 0.3, -0.2), (nx / 2, ny / 2, nz / 2))) if seed % 4 == 1 else None
-    return vol, trav, cfg, lut, rmap, mode, seed % 2 == 0, clip
-
 
 def skipped_baseplane(vol, trav, cfg, lut, rmap, mode, shading, clip):
     plan = skip.plan_skip(vol, trav, lut, mode, clip)
@@ -250,8 +218,9 @@ def test_skipping_report_rows():
     assert len(rows) == 4
     for r in rows:
         assert r["bit_identical"] and r["predicted_cycles"] < r["fixed_schedule_cycles"]
+        assert r["rect_bit_identical"] and r["rect_beats"] < r["predicted_cycles"]
     text = skipping.write_md(rows, None, {"git": "test"})
-    assert "sphere:24" in text and "identical" in text
+    assert "sphere:24" in text and "identical" in text and "DIFFERENT" not in text
 
 
 @pytest.mark.parametrize("d", VIEWS)

@@ -30,6 +30,7 @@ from .fixed import lerp, round_shift
 from .clip import Clip
 from .modes import MODES, is_blend
 from .pathlen import path_weighted, weight_quarters, weighted_alpha
+from .slices import SliceRects
 from .vgrad import unpack_words
 from .view import Traversal
 
@@ -64,18 +65,24 @@ def interpolate_slice(tp: np.ndarray, trav: Traversal, m: int, weight_bits: int)
     z (one); each rounds half up (fixed.lerp). Sample (m, j, i) sits at
     (i + wx, j + wy, m / S).
     """
-    wx, wy, wz = (int(w) for w in trav.weights(m))
     k0 = m // trav.supersample
+    return interpolate_pair(tp[k0], tp[k0 + 1], trav, m, weight_bits)
+
+
+def interpolate_pair(lo: np.ndarray, hi: np.ndarray, trav: Traversal, m: int, weight_bits: int) -> np.ndarray:
+    """``interpolate_slice`` from the two padded voxel slices it reads, k0 = m // S and
+    k0 + 1 (the second only where wz > 0)."""
+    wx, wy, wz = (int(w) for w in trav.weights(m))
 
     def bilinear(vs: np.ndarray) -> np.ndarray:
         ax = lerp(vs[:, :-1], vs[:, 1:], wx, weight_bits)  # x lerps: rows j and j + 1
         return lerp(ax[:-1], ax[1:], wy, weight_bits)  # y lerp
 
-    s0 = bilinear(tp[k0])
+    s0 = bilinear(lo)
     if wz == 0:
         # lerp(s0, s1, 0) == s0 exactly; the hardware still runs the z lerp.
         return s0
-    return lerp(s0, bilinear(tp[k0 + 1]), wz, weight_bits)
+    return lerp(s0, bilinear(hi), wz, weight_bits)
 
 
 def inside_mask(trav: Traversal, m: int) -> np.ndarray:
@@ -279,6 +286,7 @@ def render_frame(
     shading: bool = True,
     clip: Clip | None = None,
     vgrad: bool = False,
+    rects: SliceRects | None = None,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
@@ -291,6 +299,8 @@ def render_frame(
     (cube4.pathlen.weighted_columns): then the first and last samples of each ray that
     enters or leaves through a face in trav.faces are path-weighted (numerics.md §17;
     composite and X-ray).
+    rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
+    rectangle, and only its samples count; None: every slice is the whole box.
     """
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
@@ -315,10 +325,28 @@ def render_frame(
         value = np.full((rows, cols), start, dtype=np.int64)
         held = np.zeros((4, rows, cols), dtype=np.int64)
 
+    def sample_slice(src: np.ndarray, m: int) -> np.ndarray:
+        """Slice m interpolated from ``src`` (padded, traversal frame): with rectangles,
+        from the voxels of R(m) (zero beyond), and zero outside R(m) (numerics.md §18)."""
+        if rects is None:
+            return interpolate_slice(src, trav, m, W)
+        k0 = m // trav.supersample
+        j0, j1, i0, i1 = rects.bounds(m)
+        lo, hi = np.zeros_like(src[k0]), np.zeros_like(src[k0])
+        lo[j0:j1, i0:i1] = src[k0, j0:j1, i0:i1]
+        hi[j0:j1, i0:i1] = src[k0 + 1, j0:j1, i0:i1]
+        out = interpolate_pair(lo, hi, trav, m, W)
+        out[~rects.region(m)] = 0
+        return out
+
+    def inside_of(m: int) -> np.ndarray:
+        mask = inside_mask(trav, m)
+        return mask if rects is None else mask & rects.inside(m)
+
     def padded(m: int) -> np.ndarray:
         sp = np.zeros((nj + 2, ni + 2), dtype=np.int64)
         if 0 <= m < M:
-            sp[1:-1, 1:-1] = interpolate_slice(tp, trav, m, W)
+            sp[1:-1, 1:-1] = sample_slice(tp, m)
         return sp
 
     streams: dict = {}
@@ -336,13 +364,13 @@ def render_frame(
     jj, ii = np.mgrid[0:nj, 0:ni]
     for m in tqdm(range(M), desc="golden", unit="slice", disable=not progress, leave=False):
         s = cur[1:-1, 1:-1]
-        inside = inside_mask(trav, m)
+        inside = inside_of(m)
         keep = clip.keep(trav, m) if clip is not None else np.ones((nj, ni), dtype=bool)
         count = inside & keep
         if not shading:
             g = None
         elif vgrad:
-            g = voxel_gradient_slice(comps, trav, m)
+            g = np.stack([sample_slice(c, m) for c in comps])   # voxel_gradient_slice, per rectangle
         else:
             g = gradient(prev, cur, nxt, trav, m)
         rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits)
@@ -363,7 +391,7 @@ def render_frame(
         if m + 1 < M:
             sxf, syf = (int(v) for v in trav.steps(m + 1))
             nxt_in = np.zeros((nj + 1, ni + 1), dtype=bool)
-            nxt_in[:nj, :ni] = inside_mask(trav, m + 1)
+            nxt_in[:nj, :ni] = inside_of(m + 1)
             fin = inside & ~nxt_in[jj + (syf - sty), ii + (sxf - stx)]
         else:
             fin = inside

@@ -19,6 +19,7 @@ from .errors import UserError
 from .cycles import frame_cycles
 from .model import PIXEL_DTYPE, Frame, render_frame
 from .skip import SkipPlan, find_box, plan_box
+from .slices import SliceRects, plan_rects
 from .subpixel import Pass, fine_origin, fine_to_base, interleave, passes
 from .reference import render_reference
 from .clip import Clip, cut_coefficients
@@ -261,9 +262,21 @@ def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progr
     return _timed(RenderResult("reference", img, 0.0, stats=stats), t0)
 
 
+def pass_rects(vol: np.ndarray, vp: ViewPlan) -> list[SliceRects | None]:
+    """The slice rectangles (cube4.slices, numerics.md §18) of each pass's frame, within
+    its empty-space box (None: the pass has no frame)."""
+    raw, sc = crop_volume(vol, vp.trav), vp.scene
+    return [None if plan.trav is None else
+            plan_rects(plan.box_volume(raw), plan.trav, vp.lut, sc.mode, clip=plan.clip,
+                       gra=sc.shaded and not sc.voxel_gradients)
+            for plan in vp.plans]
+
+
 def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
-                       progress: bool = False) -> RenderResult:
-    """One view through the bit-exact model, warped to the image plane."""
+                       progress: bool = False, rects: bool = False) -> RenderResult:
+    """One view through the bit-exact model, warped to the image plane; ``rects``: each
+    frame computes only its slice rectangles (the specified finer schedule; stats
+    ``rect_beats``)."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     trav, cam = setup_view(dims, scene, cfg)
@@ -278,12 +291,13 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     vp = plan_view(vol, scene, cfg)
     box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
     results, streams = {}, {}
+    frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
     for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
         if plan.trav is None:       # nothing can change a ray: no frame
             continue
         sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
-                           vgrad=scene.voxel_gradients)
+                           vgrad=scene.voxel_gradients, rects=frame_rects[n])
         results[n] = (sub.baseplane, sub.pixels)
         if keep_streams:
             streams = sub.streams
@@ -294,6 +308,9 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
     stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
     stats["pixels"] = int(frame.pixels.size)
+    if rects:
+        stats["rect_beats"] = sum(r.beats(cfg.pipelines) for r in frame_rects if r is not None)
+        stats["rect_table_s"] = sum(r.table_s for r in frame_rects if r is not None)
     return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)
 
 

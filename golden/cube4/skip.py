@@ -95,24 +95,36 @@ def busy_cells(vol: np.ndarray, lut: np.ndarray, mode: str) -> np.ndarray:
     return prefix[hi + 1] - prefix[lo] > 0
 
 
+def _cut_whole(plane, weight_bits: int, terms) -> np.ndarray:
+    """Cells below the cut plane (CA, CB, CC, CD) at every corner; ``terms`` are three
+    (coefficient, low corners along that output axis) in the output's axis order."""
+    cd = int(plane[3])
+    top = sum(max(int(c), 0) for c, _ in terms) << weight_bits
+    e = [int(c) * (np.asarray(corner, dtype=np.int64) << weight_bits) for c, corner in terms]
+    return e[0][:, None, None] + e[1][None, :, None] + e[2][None, None, :] + cd + top < 0
+
+
 def cut_cells(trav: Traversal, plane) -> np.ndarray:
     """(nz, ny, nx) bool: the cells of ``trav``'s box that the cut plane (CA, CB, CC, CD,
     clip.py) removes whole. E is affine in the sample's position (i + wx/2^W, j + wy/2^W,
     m/S) of the traversal frame, so its largest value over a cell, a unit cube of that
     frame, is at the corner that each positive coefficient pushes up; a cell is cut when
     even that value is negative (every sample in it then has E < 0)."""
-    ca, cb, cc, cd = (int(c) for c in plane)
-    W = trav.weight_bits
     nx, ny, nz = trav.dims
-    corner = []            # per volume axis: the traversal coordinate of each cell's low corner
-    for ax, n in enumerate((nx, ny, nz)):
+    coef = {trav.axis_i: int(plane[0]), trav.axis_j: int(plane[1]), trav.major: int(plane[2])}
+    terms = []             # per volume axis z, y, x: the traversal coordinate of each cell's low corner
+    for ax, n in ((2, nz), (1, ny), (0, nx)):
         c = np.arange(n, dtype=np.int64)
-        corner.append(n - 2 - c if trav.flip[ax] else c)
-    coef = {trav.axis_i: ca, trav.axis_j: cb, trav.major: cc}
-    top = sum(max(coef[ax], 0) for ax in range(3)) << W
-    e = [coef[ax] * (corner[ax] << W) for ax in range(3)]
-    emax = e[2][:, None, None] + e[1][None, :, None] + e[0][None, None, :] + cd + top
-    return emax < 0
+        terms.append((coef[ax], n - 2 - c if trav.flip[ax] else c))
+    return _cut_whole(plane, trav.weight_bits, terms)
+
+
+def cut_cells_traversal(trav: Traversal, plane) -> np.ndarray:
+    """(nk, nj, ni) bool: ``cut_cells`` for the cells of the traversal frame (cell (k, j, i)
+    has its low corner at (i, j, k))."""
+    return _cut_whole(plane, trav.weight_bits, [(int(plane[2]), np.arange(trav.nk)),
+                                                (int(plane[1]), np.arange(trav.nj)),
+                                                (int(plane[0]), np.arange(trav.ni))])
 
 
 def busy_box(busy: np.ndarray) -> tuple[tuple[int, int, int], tuple[int, int, int]] | None:

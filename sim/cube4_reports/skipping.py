@@ -22,7 +22,7 @@ import numpy as np
 from tqdm import tqdm
 
 from cube4.config import resolve_build
-from cube4.render import config_for, plan_view, render, schedule_stats
+from cube4.render import config_for, pass_rects, plan_view, render, render_golden_view, schedule_stats
 from cube4.scene import load_scene, with_view
 from cube4.view import angles_from_direction, direction_from_angles
 from cube4.volumes import load_volume
@@ -71,10 +71,17 @@ def measure(vol_spec: str, scene_name: str, check_images: bool) -> list[dict]:
         row = {"volume": vol_spec, "dims": [nx, ny, nz], "scene": scene_name, "mode": sc.mode,
                "azimuth": round(az, 1), "elevation": round(el, 1), "major": "xyz"[trav.major],
                "n3_over_p": nx * ny * nz / P, "table_s": table_s, **st}
+        rects = pass_rects(vol, vp)
+        row["rect_beats"] = sum(r.beats(P) for r in rects if r is not None)
+        row["rect_table_s"] = sum(r.table_s for r in rects if r is not None)
+        row["rect_fraction"] = float(np.mean([0.0 if r is None else r.fraction() * p.fraction
+                                              for r, p in zip(rects, vp.plans)]))
         if check_images:
             on = render(vol, sc, cfg, "golden")
             off = render(vol, dataclasses.replace(sc, skip=False), cfg, "golden")
+            part = render_golden_view(vol, sc, cfg, rects=True)
             row["bit_identical"] = bool(np.array_equal(on.frame.baseplane, off.frame.baseplane))
+            row["rect_bit_identical"] = bool(np.array_equal(part.frame.baseplane, off.frame.baseplane))
         rows.append(row)
     return rows
 
@@ -100,9 +107,14 @@ def _pct(x: float) -> str:
     return f"{100 * x:.0f}%"
 
 
+def _image(same: bool | None) -> str:
+    return "not checked" if same is None else ("identical" if same else "DIFFERENT")
+
+
 def write_md(rows: list[dict], rtl: dict | None, meta: dict) -> str:
     head = ["volume (dims)", "scene (mode)", "view az, el", "box traversed", "voxels", "cycles",
-            "fixed schedule", "cycles / (n³/P)", "saved", "host tables", "image"]
+            "fixed schedule", "cycles / (n³/P)", "saved", "host tables", "image",
+            "rectangles: samples", "beats", "beats / (n³/P)", "tables", "image"]
     body = []
     for r in rows:
         box = "—" if r["skip_box"] is None else "×".join(str(d) for d in r["skip_box"]["dims"])
@@ -111,7 +123,9 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict) -> str:
             f"{r['azimuth']:.0f}, {r['elevation']:.0f}", box, _pct(r["skip_fraction"]),
             fmt_int(r["predicted_cycles"]), fmt_int(r["fixed_schedule_cycles"]),
             f"{r['predicted_cycles'] / r['n3_over_p']:.3f}", _pct(r["cycles_saved"] / r["fixed_schedule_cycles"]),
-            f"{1000 * r['table_s']:.0f} ms", "identical" if r.get("bit_identical") else "not checked"])
+            f"{1000 * r['table_s']:.0f} ms", _image(r.get("bit_identical")),
+            _pct(r["rect_fraction"]), fmt_int(r["rect_beats"]), f"{r['rect_beats'] / r['n3_over_p']:.3f}",
+            f"{1000 * r['rect_table_s']:.0f} ms", _image(r.get("rect_bit_identical"))])
     goal = [r for r in rows if (r["volume"], r["scene"]) == GOAL]
     lines = [
         "# Empty-space skipping on real content",
@@ -122,9 +136,15 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict) -> str:
         "(docs/architecture.md), which `tb/cube4_top` holds the RTL to, cycle for cycle. "
         "\"image\": the golden model's base plane with the box schedule against the fixed "
         "schedule's, bit for bit. \"host tables\": the host's time to find the box (cell "
-        "ranges, the LUT's prefix sum, the box), in Python on this machine.",
+        "ranges, the LUT's prefix sum, the box), in Python on this machine. \"rectangles\": "
+        "the slice rectangles within that box (`cube4.slices`, docs/numerics.md §18), the finer "
+        "schedule the golden model specifies and the RTL does not run yet: the share of the "
+        "volume's samples they hold, the beats they take (each slice's rows and partial beams, a "
+        "flush beam where the next slice's partial beams differ, the drain beat; the pipeline "
+        "fill, about 50 cycles, comes on top), the host's time to find them, and the golden "
+        "model's base plane with them against the fixed schedule's.",
         "",
-        md_table(head, body, "lllrrrrrrrl"),
+        md_table(head, body, "lllrrrrrrrlrrrrl"),
         "",
     ]
     if goal:
@@ -136,7 +156,11 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict) -> str:
                   f"{max(r['predicted_cycles'] for r in goal) / g['n3_over_p']:.3f}. Not reached: a box "
                   "cannot follow the head's rounded shape; the beats that hold a sample that counts "
                   "are about a third of the volume (the issue's measurement), which only a finer "
-                  "schedule can reach (docs/architecture.md, \"Empty-space skipping\", says what stops it).", ""]
+                  "schedule can reach (docs/architecture.md, \"Empty-space skipping\", says what stops it). "
+                  f"The slice rectangles take {fmt_int(g['rect_beats'])} beats there, "
+                  f"{g['rect_beats'] / g['n3_over_p']:.3f} of n³/P (over the four views "
+                  f"{min(r['rect_beats'] for r in goal) / g['n3_over_p']:.3f} to "
+                  f"{max(r['rect_beats'] for r in goal) / g['n3_over_p']:.3f}), in the golden model.", ""]
     if rtl is not None:
         lines += [f"**Through the RTL** (head:128, scene head, P = 8, `cube4 render head:128 --scene head "
                   f"--engine rtl --pipelines 8 --stats s.json`): {fmt_int(rtl['cycles'])} cycles measured, "

@@ -1,0 +1,226 @@
+"""Slice rectangles: empty-space skipping finer than the box (docs/numerics.md §18).
+
+The box of ``cube4.skip`` is one rectangle for every sample slice. Here each sample slice
+m of a frame gets its own rectangle R(m) = rows [j0, j1) × columns [i0, i1) of the
+traversal frame (empty where the slice holds nothing that counts), and the frame is
+specified as the hardware would run it: a slice traverses only the partial beams of its
+rectangle, in the same raster order. This module is the specification of that schedule;
+the RTL runs the box (docs/architecture.md, "Empty-space skipping").
+
+What a slice computes (``model.render_frame`` with ``rects``):
+
+* **Samples.** TRI reads the voxels of R(m) only (of both voxel slices a sample slice
+  interpolates); a voxel outside reads as zero, and a sample outside R(m) is zero (what
+  GRA and the gradient of a neighbour see).
+* **Inside.** A sample of R(m) lies inside when its position stays within the rectangle's
+  voxels: rows j0 <= j < j1 - [wy > 0], columns i0 <= i < i1 - [wx > 0] (the rule the
+  box's high faces follow, numerics.md §4), and inside the frame's box. Only inside
+  samples count, and they read only voxels of R(m): they are computed exactly as in the
+  whole frame.
+* **Rays.** A ray is inside on a run of consecutive slices (guaranteed below); it starts
+  with its first inside sample (as it started, since nothing before changed it) and
+  finishes, leaving on the pixel stream, with its last.
+
+How the host chooses R(m) (``plan_rects``), for one frame (its traversal and the LUT):
+
+1. **Counting samples.** A sample of slice m lies in the 2×2×2 cell (m // S, j, i) of
+   the traversal frame, and its value lies within that cell's [min, max]; the cell is
+   *busy* when a value in that range counts (``skip.busy_cells``, the same test as the
+   box's, here on the traversal-frame volume), or it is removed whole by the cut plane.
+2. **Needed samples.** The samples of busy cells; with GRA also those its stencil reads
+   around them (slices m ± 1, rows j ± 1, columns i ± 1, a superset of the shear's
+   neighbours). With voxel gradients or no gradient, the busy samples alone.
+3. **Footprint.** R(m) holds every needed sample of slice m and the voxels it reads
+   (rows j, j + 1, columns i, i + 1): the bounding rectangle of the needed samples grown by
+   one row and one column at the high side.
+4. **One run per ray.** In base-plane (ray) coordinates a ray of row ``by`` is inside
+   slice m when A(m) <= by <= B(m), with A(m) = j0(m) - sy(m) and
+   B(m) = j1(m) - 1 - sy(m) - [wy(m) > 0]. The host replaces A by its valley envelope
+   (the larger of its running minimum from the front and from the back: non-increasing,
+   then non-decreasing, never above A) and B by its peak envelope (never below B), then
+   returns to j0, j1. A ray's slices are then one run, and the rectangles only grew.
+   Columns alike with sx, wx. The first and last slices with anything needed bound the
+   runs; slices before and after them are empty.
+
+Cost (``SliceRects.beats``): slice m traverses rows j0 … j1-1 of the partial beams
+i0 // P … (i1 - 1) // P, plus one flush beam that emits its last row when the next
+slice traverses other partial beams (otherwise the next slice's first beam emits it, as
+in the fixed schedule); one drain beat ends the frame. With every rectangle the whole
+box that is the fixed schedule's (M·NJ + 1)·NB + 1 beats.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .clip import Clip
+from .skip import busy_cells, cut_cells_traversal
+from .view import Traversal
+
+
+@dataclass(frozen=True)
+class SliceRects:
+    """The rectangles of one frame: per sample slice m, rows [j0, j1) and columns [i0, i1)
+    of the traversal frame (j0 == j1: the slice is not traversed)."""
+
+    trav: Traversal
+    j0: np.ndarray
+    j1: np.ndarray
+    i0: np.ndarray
+    i1: np.ndarray
+    table_s: float = 0.0
+
+    def empty(self, m: int) -> bool:
+        return not (0 <= m < self.j0.size) or self.j1[m] <= self.j0[m] or self.i1[m] <= self.i0[m]
+
+    def bounds(self, m: int) -> tuple[int, int, int, int]:
+        """(j0, j1, i0, i1) of slice m; (0, 0, 0, 0) where it is not traversed."""
+        if self.empty(m):
+            return 0, 0, 0, 0
+        return int(self.j0[m]), int(self.j1[m]), int(self.i0[m]), int(self.i1[m])
+
+    def region(self, m: int) -> np.ndarray:
+        """(nj, ni) bool: the positions of R(m)."""
+        t = self.trav
+        out = np.zeros((t.nj, t.ni), dtype=bool)
+        j0, j1, i0, i1 = self.bounds(m)
+        out[j0:j1, i0:i1] = True
+        return out
+
+    def inside(self, m: int) -> np.ndarray:
+        """(nj, ni) bool: the samples of slice m inside its rectangle (module docstring);
+        the caller intersects with the frame's inside mask."""
+        out = np.zeros((self.trav.nj, self.trav.ni), dtype=bool)
+        if self.empty(m):
+            return out
+        j0, j1, i0, i1 = self.bounds(m)
+        wx, wy, _ = (int(w) for w in self.trav.weights(m))
+        out[j0:j1 - (wy > 0), i0:i1 - (wx > 0)] = True
+        return out
+
+    def beam_range(self, m: int, p: int) -> tuple[int, int] | None:
+        """The partial beams [pb0, pb1] slice m traverses on P pipelines (None: none)."""
+        if self.empty(m):
+            return None
+        _, _, i0, i1 = self.bounds(m)
+        return i0 // p, (i1 - 1) // p
+
+    def slice_beats(self, m: int, p: int) -> int:
+        """Beats slice m takes on P pipelines: each of its rows, and a flush beam that
+        emits its last row unless the next slice traverses the same partial beams (then
+        that slice's first beam emits it, as in the fixed schedule), each of the partial
+        beams that cover its columns."""
+        rng = self.beam_range(m, p)
+        if rng is None:
+            return 0
+        j0, j1, _, _ = self.bounds(m)
+        flush = int(self.beam_range(m + 1, p) != rng)
+        return (j1 - j0 + flush) * (rng[1] - rng[0] + 1)
+
+    def beats(self, p: int) -> int:
+        """Beats of the whole frame (every slice's, and the drain beat)."""
+        total = sum(self.slice_beats(m, p) for m in range(self.j0.size))
+        return total + 1 if total else 0
+
+    def fraction(self) -> float:
+        """Samples of the rectangles / samples of the frame."""
+        t = self.trav
+        area = np.maximum(self.j1 - self.j0, 0) * np.maximum(self.i1 - self.i0, 0)
+        return float(area.sum()) / float(t.num_sample_slices * t.nj * t.ni)
+
+
+def busy_traversal(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str,
+                   clip: Clip | None = None) -> np.ndarray:
+    """(nk, nj, ni) bool: the busy cells of the traversal frame (cell (k, j, i) holds the
+    voxels k … k+1, j … j+1, i … i+1), less those the cut plane removes whole."""
+    busy = busy_cells(np.ascontiguousarray(trav.to_traversal(vol)), lut, mode)
+    if clip is not None and clip.plane is not None:
+        busy &= ~cut_cells_traversal(trav, clip.plane)
+    return busy
+
+
+def _dilate(a: np.ndarray, axes) -> np.ndarray:
+    """a grown by one cell both ways along each of ``axes`` (a box, not a cross)."""
+    out = a.copy()
+    for ax in axes:
+        grown = out.copy()
+        lo = [slice(None)] * a.ndim
+        hi = [slice(None)] * a.ndim
+        lo[ax], hi[ax] = slice(0, -1), slice(1, None)
+        grown[tuple(lo)] |= out[tuple(hi)]
+        grown[tuple(hi)] |= out[tuple(lo)]
+        out = grown
+    return out
+
+
+def needed_samples(busy: np.ndarray, trav: Traversal, stencil: bool) -> np.ndarray:
+    """(M, nj, ni) bool: the samples a frame must compute exactly (module docstring, 2)."""
+    m = np.arange(trav.num_sample_slices)
+    need = busy[m // trav.supersample]
+    return _dilate(need, (0, 1, 2)) if stencil else need
+
+
+def _envelope(v: np.ndarray, valley: bool) -> np.ndarray:
+    """The valley (running minima's larger) or peak (running maxima's smaller) envelope."""
+    acc = np.minimum.accumulate if valley else np.maximum.accumulate
+    front, back = acc(v), acc(v[::-1])[::-1]
+    return np.maximum(front, back) if valley else np.minimum(front, back)
+
+
+def _axis_bounds(lo: np.ndarray, hi: np.ndarray, step: np.ndarray, frac: np.ndarray, n: int):
+    """Rectangle bounds [lo, hi) of one axis made one run per ray (module docstring, 4)."""
+    a = _envelope(lo - step, valley=True)
+    b = _envelope(hi - 1 - step - (frac > 0), valley=False)
+    lo2 = np.clip(a + step, 0, n)
+    hi2 = np.clip(b + 1 + step + (frac > 0), 0, n)
+    return lo2, hi2
+
+
+def rects_from_needed(need: np.ndarray, trav: Traversal, table_s: float = 0.0) -> SliceRects:
+    """The rectangles that hold ``need`` (M, nj, ni) and the voxels it reads, one run per ray."""
+    M, nj, ni = need.shape
+    rows, cols = need.any(axis=2), need.any(axis=1)
+    live = np.nonzero(rows.any(axis=1))[0]
+    z = np.zeros(M, dtype=np.int64)
+    if live.size == 0:
+        return SliceRects(trav, z, z.copy(), z.copy(), z.copy(), table_s)
+    ma, mb = int(live[0]), int(live[-1]) + 1
+    ms = np.arange(ma, mb)
+    sx, sy = (np.asarray(s, dtype=np.int64) for s in trav.steps(ms))
+    wx, wy, _ = (np.asarray(w, dtype=np.int64) for w in trav.weights(ms))
+
+    big = 2 * (nj + ni + M) + 4      # beyond every bound: an empty slice bounds nothing
+
+    def first_end(flags: np.ndarray, n: int):
+        """Per slice: the first needed position, and one past the last plus the voxel
+        read at the high side; (big, -big) where nothing is needed (a slice inside the
+        run with nothing needed: the envelopes then widen it to hold the rays that cross it)."""
+        has = flags.any(axis=1)
+        first = np.argmax(flags, axis=1)
+        last = n - 1 - np.argmax(flags[:, ::-1], axis=1)
+        return np.where(has, first, big), np.where(has, last + 2, -big)
+
+    j_lo, j_hi = first_end(rows[ma:mb], nj)
+    i_lo, i_hi = first_end(cols[ma:mb], ni)
+    j0, j1 = _axis_bounds(j_lo, j_hi, sy, wy, nj)
+    i0, i1 = _axis_bounds(i_lo, i_hi, sx, wx, ni)
+    out = [z.copy() for _ in range(4)]
+    for arr, val in zip(out, (j0, j1, i0, i1)):
+        arr[ma:mb] = val
+    return SliceRects(trav, *out, table_s=table_s)
+
+
+def plan_rects(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, *, gra: bool,
+               clip: Clip | None = None) -> SliceRects:
+    """The slice rectangles of one frame: ``vol`` its voxel values (vol[z, y, x] of
+    trav.dims), ``lut`` the classification LUT loaded for it, ``gra`` whether GRA shades
+    it (a shaded composite frame without voxel gradients: GRA's stencil reads the samples
+    around those that count), ``clip`` its cut plane."""
+    t0 = time.perf_counter()
+    busy = busy_traversal(vol, trav, lut[:, :4], mode, clip)
+    need = needed_samples(busy, trav, gra)
+    rects = rects_from_needed(need, trav)
+    return SliceRects(trav, rects.j0, rects.j1, rects.i0, rects.i1, time.perf_counter() - t0)
