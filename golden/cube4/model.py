@@ -85,6 +85,22 @@ def interpolate_pair(lo: np.ndarray, hi: np.ndarray, trav: Traversal, m: int, we
     return lerp(s0, bilinear(hi), wz, weight_bits)
 
 
+def rect_slice(src: np.ndarray, trav: Traversal, m: int, bounds, weight_bits: int) -> np.ndarray:
+    """Sample slice m of a slice-rectangle frame (numerics.md §18): interpolated from the
+    voxels of the traversed rectangle ``bounds`` = (j0, j1, i0, i1) only (zero beyond), and
+    zero outside it. ``src`` is padded as for interpolate_slice."""
+    k0 = m // trav.supersample
+    j0, j1, i0, i1 = bounds
+    lo, hi = np.zeros_like(src[k0]), np.zeros_like(src[k0])
+    lo[j0:j1, i0:i1] = src[k0, j0:j1, i0:i1]
+    hi[j0:j1, i0:i1] = src[k0 + 1, j0:j1, i0:i1]
+    out = interpolate_pair(lo, hi, trav, m, weight_bits)
+    region = np.zeros(out.shape, dtype=bool)
+    region[j0:j1, i0:i1] = True
+    out[~region] = 0
+    return out
+
+
 def inside_mask(trav: Traversal, m: int) -> np.ndarray:
     """Samples of slice m that lie inside the volume box [0, n-1]^3 (numerics.md §4):
     the last column is outside when wx > 0, the last row when wy > 0."""
@@ -327,17 +343,10 @@ def render_frame(
 
     def sample_slice(src: np.ndarray, m: int) -> np.ndarray:
         """Slice m interpolated from ``src`` (padded, traversal frame): with rectangles,
-        from the voxels of R(m) (zero beyond), and zero outside R(m) (numerics.md §18)."""
+        from the voxels slice m traverses (zero beyond), and zero outside (numerics.md §18)."""
         if rects is None:
             return interpolate_slice(src, trav, m, W)
-        k0 = m // trav.supersample
-        j0, j1, i0, i1 = rects.bounds(m)
-        lo, hi = np.zeros_like(src[k0]), np.zeros_like(src[k0])
-        lo[j0:j1, i0:i1] = src[k0, j0:j1, i0:i1]
-        hi[j0:j1, i0:i1] = src[k0 + 1, j0:j1, i0:i1]
-        out = interpolate_pair(lo, hi, trav, m, W)
-        out[~rects.region(m)] = 0
-        return out
+        return rect_slice(src, trav, m, rects.traversed(m), W)
 
     def inside_of(m: int) -> np.ndarray:
         mask = inside_mask(trav, m)

@@ -9,9 +9,13 @@ the RTL runs the box (docs/architecture.md, "Empty-space skipping").
 
 What a slice computes (``model.render_frame`` with ``rects``):
 
-* **Samples.** TRI reads the voxels of R(m) only (of both voxel slices a sample slice
-  interpolates); a voxel outside reads as zero, and a sample outside R(m) is zero (what
-  GRA and the gradient of a neighbour see).
+* **Traversed.** Slice m traverses R(m) and, where the template steps into it (old
+  Y-step, old X-step), the row j0 - 1 and the column i0 - 1 before it: the rays of R(m)'s
+  first row and column come from there, and COM hands their partial results on through
+  the beats at those positions (its beam buffer and the previous beat), so those beats
+  must run. TRI reads the voxels of the traversed rectangle only (of both voxel slices
+  a sample slice interpolates); a voxel outside reads as zero, and a sample outside is
+  zero (what GRA and the gradient of a neighbour see).
 * **Inside.** A sample of R(m) lies inside when its position stays within the rectangle's
   voxels: rows j0 <= j < j1 - [wy > 0], columns i0 <= i < i1 - [wx > 0] (the rule the
   box's high faces follow, numerics.md §4), and inside the frame's box. Only inside
@@ -42,8 +46,8 @@ How the host chooses R(m) (``plan_rects``), for one frame (its traversal and the
    Columns alike with sx, wx. The first and last slices with anything needed bound the
    runs; slices before and after them are empty.
 
-Cost (``SliceRects.beats``): slice m traverses rows j0 … j1-1 of the partial beams
-i0 // P … (i1 - 1) // P, plus one flush beam that emits its last row when the next
+Cost (``SliceRects.beats``): slice m traverses its rows over the partial beams that
+cover its columns, plus one flush beam that emits its last row when the next
 slice traverses other partial beams (otherwise the next slice's first beam emits it, as
 in the fixed schedule); one drain beat ends the frame. With every rectangle the whole
 box that is the fixed schedule's (M·NJ + 1)·NB + 1 beats.
@@ -82,13 +86,15 @@ class SliceRects:
             return 0, 0, 0, 0
         return int(self.j0[m]), int(self.j1[m]), int(self.i0[m]), int(self.i1[m])
 
-    def region(self, m: int) -> np.ndarray:
-        """(nj, ni) bool: the positions of R(m)."""
-        t = self.trav
-        out = np.zeros((t.nj, t.ni), dtype=bool)
+    def traversed(self, m: int) -> tuple[int, int, int, int]:
+        """(j0, j1, i0, i1) that slice m traverses: R(m) and, where the template steps into
+        slice m (old Y-step, old X-step), the row and the column before it, whose rays'
+        partial results COM hands on (module docstring); (0, 0, 0, 0) where it is empty."""
+        if self.empty(m):
+            return 0, 0, 0, 0
         j0, j1, i0, i1 = self.bounds(m)
-        out[j0:j1, i0:i1] = True
-        return out
+        (sx, sy), (sxb, syb) = self.trav.steps(m), self.trav.steps(m - 1)
+        return max(0, j0 - int(sy - syb)), j1, max(0, i0 - int(sx - sxb)), i1
 
     def inside(self, m: int) -> np.ndarray:
         """(nj, ni) bool: the samples of slice m inside its rectangle (module docstring);
@@ -105,7 +111,7 @@ class SliceRects:
         """The partial beams [pb0, pb1] slice m traverses on P pipelines (None: none)."""
         if self.empty(m):
             return None
-        _, _, i0, i1 = self.bounds(m)
+        _, _, i0, i1 = self.traversed(m)
         return i0 // p, (i1 - 1) // p
 
     def slice_beats(self, m: int, p: int) -> int:
@@ -116,7 +122,7 @@ class SliceRects:
         rng = self.beam_range(m, p)
         if rng is None:
             return 0
-        j0, j1, _, _ = self.bounds(m)
+        j0, j1, _, _ = self.traversed(m)
         flush = int(self.beam_range(m + 1, p) != rng)
         return (j1 - j0 + flush) * (rng[1] - rng[0] + 1)
 
@@ -126,10 +132,13 @@ class SliceRects:
         return total + 1 if total else 0
 
     def fraction(self) -> float:
-        """Samples of the rectangles / samples of the frame."""
+        """Samples traversed / samples of the frame."""
         t = self.trav
-        area = np.maximum(self.j1 - self.j0, 0) * np.maximum(self.i1 - self.i0, 0)
-        return float(area.sum()) / float(t.num_sample_slices * t.nj * t.ni)
+        area = 0
+        for m in range(self.j0.size):
+            j0, j1, i0, i1 = self.traversed(m)
+            area += (j1 - j0) * (i1 - i0)
+        return float(area) / float(t.num_sample_slices * t.nj * t.ni)
 
 
 def busy_traversal(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str,
