@@ -24,6 +24,19 @@
 //   one "drain" beat pushes the beam-extension delay of cube4_tri empty.
 //   Beats per frame: (M * NJ + 1) * NB + 1.
 //
+//   Slice rectangles (RECTS = 1, S = 1 only; numerics.md section 18): pass m
+//   walks only rows J0 .. JL of its entry in the rectangle table (written by
+//   the host through rect_we / rect_addr / rect_data, layout CUBE4_RECT_LAYOUT)
+//   and partial beams PB0 .. PBL, reads the positions I_LO <= i < I_HI, and
+//   marks the lanes below I_IN or rows below J_IN as not inside (tag LINL).
+//   Its last row leaves with the next pass's first beam when that pass walks
+//   the same partial beams; otherwise (entry FLUSH) a flush beam of its own
+//   emits it before the next pass. An EMPTY pass takes one cycle and issues
+//   nothing; the flush beam of the LAST pass ends the frame. Beats per frame:
+//   golden/cube4/slices.py SliceRects.beats.
+//   The table is read one pass ahead (the RAM's address is the next pass's
+//   index + 1, so the next entry is always in its output register).
+//
 //   Lane q reads bank q. With c_i, c_j, c_k the volume coordinates along the
 //   traversal axes, lane q holds the position t of the partial beam with
 //   (c_i + c_j + c_k) mod P = q (eq. 1):
@@ -39,6 +52,7 @@
 //   ADDR_W       memory address width (words per bank).     1..30.  Default 16.
 //   WEIGHT_W     resampling weight width W (Q0.W).          4..12.  Default 8.
 //   MAX_SS_LOG2  log2 of the largest supersampling S.       0..3.   Default 0.
+//   RECTS        1: slice rectangles (a frame needs S = 1). 0..1.   Default 0.
 //
 // Latency
 //   Three register stages: a beat leaves (req_valid) three cycles after the
@@ -64,6 +78,9 @@
 //   req_addr         out  [P*ADDR_W] word address per bank (lane q at q*ADDR_W)
 //   req_rden         out  [P]       read bank q (0: padding or no read this beat)
 //   req_tag          out  [TAG_W]   the beat's control bits (CUBE4_TAG_LAYOUT)
+//   rect_we, rect_addr [M_W], rect_data [RECT_W]
+//                    in   the rectangle table (RECTS = 1): entry rect_addr =
+//                         sample slice; written while idle (unused when RECTS = 0)
 //
 // Bit growth and rounding
 //   None: counters and modular address arithmetic (ADDR_W bits, exact for
@@ -73,13 +90,15 @@
 module cube4_cfb #(
     parameter integer P        = 8, parameter integer MAX_DIM     = 256,
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer ADDR_W   = 16,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT
+    parameter integer ADDR_W   = 16, parameter integer RECTS       = 0,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    `CUBE4_RECT_LAYOUT
 ) (
     input  wire clk, input wire rst,
     input  wire start, output wire busy,
     input  wire [VIEW_W-1:0]    cfg,        // view registers (cube4_defs.vh)
     input  wire [ADR_W_ALL-1:0] cfg_addr,   // address registers (cube4_defs.vh)
+    input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
     // memory request stream; the tag travels with the beat to cube4_tri
     output wire req_valid, input wire req_ready, output wire [TAG_W-1:0] req_tag,
     output wire [P*ADDR_W-1:0] req_addr,
@@ -92,6 +111,7 @@ module cube4_cfb #(
         `CUBE4_RANGE(g_bad_addr_w, "cube4_cfb", "ADDR_W", ADDR_W, 1, 30)
         `CUBE4_RANGE(g_bad_weight_w, "cube4_cfb", "WEIGHT_W", WEIGHT_W, 4, 12)
         `CUBE4_RANGE(g_bad_ss, "cube4_cfb", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
+        `CUBE4_RANGE(g_bad_rects, "cube4_cfb", "RECTS", RECTS, 0, 1)
     endgenerate
 
     localparam integer PH_W = PHASE_W;                  // phase accumulator (cube4_defs.vh)
@@ -180,27 +200,97 @@ module cube4_cfb #(
     wire [WEIGHT_W-1:0] wz = r_ext << (WEIGHT_W[3:0] - {1'b0, g});
     wire [3:0]          steps = {old_sy_q, old_sx_q, sy_step, sx_step};
 
+    // ---- the pass's rectangle: an entry of the table (RECTS = 1) or the box ----
+    // rt_cur: pass m's entry; rt_nxt: the entry the next pass (and, while idle,
+    // pass 0) takes. Without rectangles both are the whole box, from the view
+    // registers, and only the last pass flushes.
+    wire [RECT_W-1:0] rt_cur, rt_nxt;
+    wire              pass_done;               // pass m ends at this advance (below)
+    wire              go = start && !busy;
+    generate
+        if (RECTS != 0) begin : g_rects
+            reg  [RECT_W-1:0] rt_q;
+            // the RAM's output is always the entry of the pass after the one that
+            // holds at the next edge: read (m after this edge) + 1; while idle,
+            // entry 0, and entry 1 in the cycle that starts the frame
+            wire [M_W-1:0] m_after = (state_q == ST_IDLE) ? '0 : (pass_done ? m_q + 1'b1 : m_q);
+            wire [M_W-1:0] rd_addr = (state_q == ST_IDLE && !go) ? '0 : m_after + 1'b1;
+            cube4_sdp_ram #(.DATA_W (RECT_W), .DEPTH (1 << M_W)) u_table (
+                .clk     (clk),
+                .rd_en   (1'b1),
+                .rd_addr (rd_addr),
+                .rd_data (rt_nxt),
+                .wr_en   (rect_we),
+                .wr_addr (rect_addr),
+                .wr_data (rect_data)
+            );
+            always @(posedge clk) begin
+                if (state_q == ST_IDLE || pass_done) rt_q <= rt_nxt;
+            end
+            assign rt_cur = rt_q;
+        end else begin : g_box
+            wire [ADDR_W-1:0] pbx_box = cfg_flip_i ? cfg_i_a0 : '0;
+            assign rt_cur = {SB_W'(1), SB_W'(0), IW'(0), pbx_box, cfg_j_r0, cfg_j_a0,
+                             cfg_ni, DIM_W'(0), DIM_W'(0),
+                             PB_W'(cfg_nb - 1'b1), PB_W'(0),
+                             DIM_W'(0), cfg_nj - 1'b1, DIM_W'(0), 1'b0, 1'b0, 1'b0};
+            assign rt_nxt = rt_cur;
+            // the next entry is the box again: its flags and SBROW are read from rt_cur
+            wire unused_rect = ^{rect_we, rect_addr, rect_data, rt_nxt[RT_SBROW +: SB_W],
+                                 rt_nxt[RT_LAST], rt_nxt[RT_FLUSH], rt_nxt[RT_EMPTY],
+                                 rt_cur[RT_LAST]};
+        end
+    endgenerate
+    wire              e_empty = rt_cur[RT_EMPTY];
+    wire              e_flush = rt_cur[RT_FLUSH];
+    wire [DIM_W-1:0]  e_jl    = rt_cur[RT_JL +: DIM_W];
+    wire [DIM_W-1:0]  e_jin   = rt_cur[RT_JIN +: DIM_W];
+    wire [PB_W-1:0]   e_pb0   = rt_cur[RT_PB0 +: PB_W];
+    wire [PB_W-1:0]   e_pbl   = rt_cur[RT_PBL +: PB_W];
+    wire [DIM_W-1:0]  e_ilo   = rt_cur[RT_ILO +: DIM_W];
+    wire [DIM_W-1:0]  e_iin   = rt_cur[RT_IIN +: DIM_W];
+    wire [DIM_W-1:0]  e_ihi   = rt_cur[RT_IHI +: DIM_W];
+    wire [ADDR_W-1:0] e_pbx0  = rt_cur[RT_PBX0 +: ADDR_W];
+    wire [IW-1:0]     e_pbp0  = rt_cur[RT_PBP0 +: IW];
+    wire [SB_W-1:0]   e_sbrow = rt_cur[RT_SBROW +: SB_W];
+    wire [DIM_W-1:0]  n_j0    = rt_nxt[RT_J0 +: DIM_W];
+    wire [DIM_W-1:0]  n_jl    = rt_nxt[RT_JL +: DIM_W];
+    wire [PB_W-1:0]   n_pb0   = rt_nxt[RT_PB0 +: PB_W];
+    wire [PB_W-1:0]   n_pbl   = rt_nxt[RT_PBL +: PB_W];
+    wire [ADDR_W-1:0] n_aj0   = rt_nxt[RT_AJ0 +: ADDR_W];
+    wire [LANE_W-1:0] n_rj0   = rt_nxt[RT_RJ0 +: LANE_W];
+    wire [ADDR_W-1:0] n_pbx0  = rt_nxt[RT_PBX0 +: ADDR_W];
+    wire [IW-1:0]     n_pbp0  = rt_nxt[RT_PBP0 +: IW];
+    wire [SB_W-1:0]   n_sb0   = rt_nxt[RT_SB0 +: SB_W];
+
     // ---- traversal unit: where the counters go next ----
     wire [R_W-1:0] ss_m1 = R_W'((1 << g) - 1);
-    wire last_pb    = lpb_q;       // (pb_q == NB - 1), kept with the counter
-    wire last_j     = lj_q;        // (j_q == NJ - 1)
-    wire nb_one     = (cfg_nb == NB_W'(1));
-    wire nj_one     = (cfg_nj == DIM_W'(1));
+    wire last_pb    = lpb_q;       // (pb_q == PBL), kept with the counter
+    wire last_j     = lj_q;        // (j_q == JL)
     wire last_r     = (r_q == ss_m1);
     wire last_pass  = (k0_q == cfg_nk - 1'b1) && (r_q == '0);
+    wire flush_pass = (RECTS != 0) ? e_flush : last_pass;   // a flush beam follows the pass
+    wire end_pass   = (RECTS != 0) ? rt_cur[RT_LAST] : last_pass;   // the frame ends after it
     wire lower_mem  = (g == 3'd0) || (m_q == '0);
     wire upper_mem  = (g != 3'd0) && (r_q == R_W'(1));
     wire any_read   = lower_mem || upper_mem;
     wire s_j_down   = cfg_flip_j;
     wire s_k_down   = cfg_flip_k;
+    wire in_run     = (state_q == ST_RUN);
+    wire in_flush   = (state_q == ST_FLUSH);
+    wire run_end    = in_run && (e_empty || (last_pb && last_j));   // pass m's last beat
+    assign pass_done = advance && ((run_end && (e_empty || !flush_pass)) || (in_flush && last_pb));
+
+    reg               fr_q;        // j_q is the pass's first row
+    reg               pend_q;      // the previous pass's last row waits for this pass's first beam
+    reg               sopp_q;      // no row emitted yet in this frame
+    reg [DIM_W-1:0]   p_jl_q, p_jin_q, p_ilo_q, p_iin_q, p_ihi_q;   // the pass of the row emitted at a first beam
 
     wire [LANE_W-1:0] rk_rd    = rk_q;                         // read slice
     wire [LANE_W-1:0] skew_rd  = add_p(rj_q, rk_rd);
     wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk0_q);
-    wire [LANE_W-1:0] skew_vrt = r_step(skew_pas, s_j_down);   // virtual beam NJ
-    wire              at_beam0 = (j_q == '0);
-    wire              in_flush = (state_q == ST_FLUSH);
-    wire              use_prev = at_beam0 || in_flush;          // emitted row is from pass m-1
+    wire [LANE_W-1:0] skew_vrt = r_step(skew_pas, s_j_down);   // virtual row JL + 1
+    wire              use_prev = fr_q || in_flush;              // emitted row is the last of a pass before
     wire [LANE_W-1:0] skew_out = use_prev ? pskew_q : skew_pas;
 
     // ---- address unit and lane masks (one per lane) ----
@@ -222,14 +312,24 @@ module cube4_cfb #(
             always @(posedge clk) lin_tab_q[tl*ADDR_W +: ADDR_W] <= lin_of(tl);
         end
     endgenerate
-    // Lane masks: i = pb*P + t < NI  <=>  t < NI - pb*P. The difference is
-    // registered at s1 (clamped to P + 1: t + 1 <= P), t of both rows too; the
-    // compares run at s2 on registers only.
+    // Lane masks: i = pb*P + t in [lo, hi)  <=>  lo - pb*P <= t < hi - pb*P. The
+    // differences are registered at s1 (clamped to 0 .. P + 1: t + 1 <= P), t of
+    // both rows too; the compares run at s2 on registers only. The read row
+    // takes pass m's positions; the emitted row its own pass's (use_prev).
+    function automatic [REM_W-1:0] rem_of(input [DIM_W-1:0] bound, input [IW-1:0] pbp);
+        reg [IW-1:0] diff;
+        begin
+            diff = {{(IW - DIM_W){1'b0}}, bound} - pbp;
+            rem_of = ({{(IW - DIM_W){1'b0}}, bound} <= pbp) ? {REM_W{1'b0}}
+                   : (diff > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(diff);
+        end
+    endfunction
     wire [P*LANE_W-1:0] t_d, tout_d;
-    wire [IW-1:0]       ni_ext  = {{(IW - DIM_W){1'b0}}, cfg_ni};
-    wire [IW-1:0]       rem_all = ni_ext - pbp_q;
-    wire [REM_W-1:0]    rem_d   = (pbp_q >= ni_ext) ? {REM_W{1'b0}}
-                                : (rem_all > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(rem_all);
+    wire [REM_W-1:0]    hi_rd_d  = rem_of(e_ihi, pbp_q);
+    wire [REM_W-1:0]    lo_rd_d  = rem_of(e_ilo, pbp_q);
+    wire [REM_W-1:0]    hi_out_d = rem_of(use_prev ? p_ihi_q : e_ihi, pbp_q);
+    wire [REM_W-1:0]    lo_out_d = rem_of(use_prev ? p_ilo_q : e_ilo, pbp_q);
+    wire [REM_W-1:0]    in_out_d = rem_of(use_prev ? p_iin_q : e_iin, pbp_q);
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
@@ -242,40 +342,43 @@ module cube4_cfb #(
     endgenerate
 
     // ---- the beat described by the state ----
-    wire              issue   = (state_q != ST_IDLE);
-    wire              emit_d  = (state_q == ST_RUN) ? !(at_beam0 && m_q == '0) : in_flush;
-    wire [M_W-1:0]    mout_d  = (state_q == ST_RUN && at_beam0) ? m_q - 1'b1 : m_q;  // flush: m stays M-1
-    wire [DIM_W-1:0]  jout_d  = use_prev ? cfg_nj - 1'b1 : j_q - 1'b1;
-    wire              sop_d   = emit_d && (mout_d == '0) && (jout_d == '0) && (pb_q == '0);
-    wire              eop_d   = in_flush && last_pb;
+    wire              issue   = (state_q != ST_IDLE) && !(in_run && e_empty);
+    wire              emit_d  = in_run ? (!fr_q || pend_q) : in_flush;
+    wire [M_W-1:0]    mout_d  = (in_run && fr_q) ? m_q - 1'b1 : m_q;  // flush: m stays
+    wire [DIM_W-1:0]  jout_d  = use_prev ? p_jl_q : j_q - 1'b1;
+    wire              sop_d   = emit_d && sopp_q;
+    wire              eop_d   = in_flush && last_pb && end_pass;
+    wire              rowin_d = (jout_d >= (use_prev ? p_jin_q : e_jin));
 
     // ---- the beat's fields, as they travel s1 -> s2 -> output register ----
     // s1 holds the fields but the lane masks (F1_W bits); s2 adds the masks.
     // The order is the tag's (cube4_defs.vh, CUBE4_TAG_LAYOUT), MSB first.
-    localparam integer F1_W = TAG_W - 3 * P;
+    localparam integer F1_W = TAG_W - 4 * P;
     localparam integer F_W  = P + TAG_W;
     wire [F1_W-1:0] f_d = {emit_d, sop_d, eop_d, use_prev,
-                           (state_q == ST_RUN), (state_q == ST_RUN) && lower_mem,
-                           (state_q == ST_RUN) && upper_mem, (state_q == ST_RUN) && (r_q != '0),
+                           in_run, in_run && lower_mem,
+                           in_run && upper_mem, in_run && (r_q != '0),
                            k0_q[0], sb_q, pb_q,
                            use_prev ? pwx_q : wx, use_prev ? pwy_q : wy, use_prev ? pwz_q : wz,
-                           mout_d, jout_d, skew_out, (jout_d == cfg_nj - 1'b1),
+                           mout_d, jout_d, skew_out, use_prev,
                            use_prev ? psteps_q : steps};
 
     reg [F1_W-1:0]      f1_q;
     reg [P*LANE_W-1:0]  tout1_q;           // lane positions t of the emitted row
-    reg [REM_W-1:0]     rem1_q;            // min(NI - pb*P, P + 1)
+    reg [REM_W-1:0]     hi_rd1_q, lo_rd1_q, hi_out1_q, lo_out1_q, in_out1_q;
+    reg                 rowin1_q;          // the emitted row is not below J_IN
     reg                 rd1_q;             // the beat reads memory (RUN and a read pass)
     reg [P*LANE_W-1:0]  t1_q, t2_q;        // lane positions t of the read
-    wire [P-1:0]        rden_2, lval_2, lnbr_2, lwrap_2;
+    wire [P-1:0]        rden_2, lval_2, lnbr_2, lwrap_2, linl_2;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_mask
             wire [REM_W-1:0] tr = REM_W'(t1_q[q*LANE_W +: LANE_W]);
             wire [REM_W-1:0] to = REM_W'(tout1_q[q*LANE_W +: LANE_W]);
-            assign rden_2[q]  = rd1_q && (tr < rem1_q);
-            assign lval_2[q]  = (to < rem1_q);
-            assign lnbr_2[q]  = (to + 1'b1 < rem1_q);
+            assign rden_2[q]  = rd1_q && (tr < hi_rd1_q) && (tr >= lo_rd1_q);
+            assign lval_2[q]  = (to < hi_out1_q) && (to >= lo_out1_q);
+            assign lnbr_2[q]  = (to + 1'b1 < hi_out1_q);
             assign lwrap_2[q] = (to == REM_W'(P - 1));
+            assign linl_2[q]  = rowin1_q && (to >= in_out1_q);
         end
     endgenerate
 
@@ -305,16 +408,21 @@ module cube4_cfb #(
     always @(posedge clk) begin
         if (advance) begin
             // s1
-            f1_q    <= f_d;
-            t1_q    <= t_d;
-            tout1_q <= tout_d;
-            rem1_q  <= rem_d;
-            rd1_q   <= (state_q == ST_RUN) && any_read;
-            ajk1_q  <= aj_q + ak_q;
-            pbx1_q  <= pbx_q;
-            flip1_q <= cfg_flip_i;
+            f1_q      <= f_d;
+            t1_q      <= t_d;
+            tout1_q   <= tout_d;
+            hi_rd1_q  <= hi_rd_d;
+            lo_rd1_q  <= lo_rd_d;
+            hi_out1_q <= hi_out_d;
+            lo_out1_q <= lo_out_d;
+            in_out1_q <= in_out_d;
+            rowin1_q  <= rowin_d;
+            rd1_q     <= in_run && any_read;
+            ajk1_q    <= aj_q + ak_q;
+            pbx1_q    <= pbx_q;
+            flip1_q   <= cfg_flip_i;
             // s2
-            f2_q    <= {rden_2, lval_2, lnbr_2, lwrap_2, f1_q};
+            f2_q    <= {rden_2, linl_2, lval_2, lnbr_2, lwrap_2, f1_q};
             t2_q    <= t1_q;
             base2_q <= ajk1_q + pbx1_q;
             flip2_q <= flip1_q;
@@ -329,25 +437,35 @@ module cube4_cfb #(
     end
 
     // ---- state update ----
+    // A pass starts with the counters at its rectangle's first row and partial
+    // beam (rt_nxt: while idle pass 0's, at pass_done the next pass's).
     always @(posedge clk) begin
         if (rst) begin
             state_q <= ST_IDLE;
         end else if (state_q == ST_IDLE) begin
             // Idle: the counters hold their first values all the time, so
             // start only moves the state (start and busy reach no counter).
-            if (start && !busy) state_q <= ST_RUN;
+            if (go) state_q <= ST_RUN;
             m_q      <= '0;
             k0_q     <= '0;
             r_q      <= '0;
-            j_q      <= '0;
-            pb_q     <= '0;
-            lpb_q    <= nb_one;
-            lj_q     <= nj_one;
-            sb_q     <= '0;
-            pbp_q    <= '0;
-            pbx_q    <= cfg_flip_i ? cfg_i_a0 : '0;
-            rj_q     <= cfg_j_r0;
-            aj_q     <= cfg_j_a0;
+            j_q      <= n_j0;
+            lj_q     <= (n_j0 == n_jl);
+            fr_q     <= 1'b1;
+            pend_q   <= 1'b0;
+            sopp_q   <= 1'b1;
+            p_jl_q   <= n_jl;
+            p_jin_q  <= rt_nxt[RT_JIN +: DIM_W];
+            p_ilo_q  <= rt_nxt[RT_ILO +: DIM_W];
+            p_iin_q  <= rt_nxt[RT_IIN +: DIM_W];
+            p_ihi_q  <= rt_nxt[RT_IHI +: DIM_W];
+            pb_q     <= n_pb0;
+            lpb_q    <= (n_pb0 == n_pbl);
+            sb_q     <= n_sb0;
+            pbp_q    <= n_pbp0;
+            pbx_q    <= n_pbx0;
+            rj_q     <= n_rj0;
+            aj_q     <= n_aj0;
             rk_q     <= cfg_k_r0;
             ak_q     <= cfg_k_a0;
             rk0_q    <= cfg_k_r0;
@@ -358,71 +476,88 @@ module cube4_cfb #(
             old_sx_q <= ({1'b0, cfg_ph0_x} < (PH_W + 1)'(cfg_view_x));
             old_sy_q <= ({1'b0, cfg_ph0_y} < (PH_W + 1)'(cfg_view_y));
         end else if (advance) begin
+            if (issue && emit_d) sopp_q <= 1'b0;
             // partial beam
             if (!last_pb) begin
                 pb_q  <= pb_q + 1'b1;
-                lpb_q <= (NB_W'(pb_q) + 1'b1 == cfg_nb - 1'b1);
+                lpb_q <= (pb_q + 1'b1 == e_pbl);
                 pbp_q <= pbp_q + IW'(P);
                 pbx_q <= cfg_flip_i ? pbx_q - cfg_i_pb : pbx_q + cfg_i_pb;
                 sb_q  <= sb_q + 1'b1;
             end else begin
-                pb_q  <= '0;
-                lpb_q <= nb_one;
-                pbp_q <= '0;
-                pbx_q <= cfg_flip_i ? cfg_i_a0 : '0;
+                pb_q  <= e_pb0;
+                lpb_q <= (e_pb0 == e_pbl);
+                pbp_q <= e_pbp0;
+                pbx_q <= e_pbx0;
             end
-            case (state_q)
-                ST_RUN: if (last_pb) begin
-                    if (!last_j) begin
-                        j_q  <= j_q + 1'b1;
-                        lj_q <= (j_q + 1'b1 == cfg_nj - 1'b1);
-                        sb_q <= sb_q + 1'b1;
-                        rj_q <= r_step(rj_q, s_j_down);
-                        aj_q <= a_step(aj_q, rj_q, s_j_down, cfg_j_lin, cfg_j_blk);
+            if (in_run && last_pb && !last_j && !e_empty) begin
+                j_q  <= j_q + 1'b1;
+                lj_q <= (j_q + 1'b1 == e_jl);
+                fr_q <= 1'b0;
+                sb_q <= sb_q + e_sbrow;
+                rj_q <= r_step(rj_q, s_j_down);
+                aj_q <= a_step(aj_q, rj_q, s_j_down, cfg_j_lin, cfg_j_blk);
+            end
+            if (run_end && !e_empty) begin
+                // pass m's last beat: remember its emitted row's fields
+                pwx_q    <= wx;
+                pwy_q    <= wy;
+                pwz_q    <= wz;
+                psteps_q <= steps;
+                pskew_q  <= skew_vrt;
+                p_jl_q   <= e_jl;
+                p_jin_q  <= e_jin;
+                p_ilo_q  <= e_ilo;
+                p_iin_q  <= e_iin;
+                p_ihi_q  <= e_ihi;
+                fr_q     <= 1'b0;
+                sb_q     <= rt_cur[RT_SB0 +: SB_W];
+                if (flush_pass) state_q <= ST_FLUSH;
+            end
+            if (pass_done) begin
+                pend_q <= in_run && !e_empty;   // no flush: the next pass's first beam emits it
+                fr_q   <= 1'b1;
+                if (end_pass) begin
+                    state_q <= ST_DRAIN;
+                end else begin
+                    // the next pass, at its rectangle's first row
+                    state_q  <= ST_RUN;
+                    j_q      <= n_j0;
+                    lj_q     <= (n_j0 == n_jl);
+                    fr_q     <= 1'b1;
+                    pb_q     <= n_pb0;
+                    lpb_q    <= (n_pb0 == n_pbl);
+                    sb_q     <= n_sb0;
+                    pbp_q    <= n_pbp0;
+                    pbx_q    <= n_pbx0;
+                    rj_q     <= n_rj0;
+                    aj_q     <= n_aj0;
+                    m_q      <= m_q + 1'b1;
+                    phx_q    <= phx_next;
+                    phy_q    <= phy_next;
+                    old_sx_q <= sx_step;
+                    old_sy_q <= sy_step;
+                    if (any_read) begin
+                        rk_q <= r_step(rk_q, s_k_down);
+                        ak_q <= a_step(ak_q, rk_q, s_k_down, cfg_k_lin, cfg_k_blk);
+                    end
+                    if (last_r) begin
+                        r_q   <= '0;
+                        k0_q  <= k0_q + 1'b1;
+                        rk0_q <= r_step(rk0_q, s_k_down);
                     end else begin
-                        // end of pass m: remember it, then the next pass
-                        j_q      <= '0;
-                        lj_q     <= nj_one;
-                        sb_q     <= '0;
-                        rj_q     <= cfg_j_r0;
-                        aj_q     <= cfg_j_a0;
-                        pwx_q    <= wx;
-                        pwy_q    <= wy;
-                        pwz_q    <= wz;
-                        psteps_q <= steps;
-                        pskew_q  <= skew_vrt;
-                        if (any_read) begin
-                            rk_q <= r_step(rk_q, s_k_down);
-                            ak_q <= a_step(ak_q, rk_q, s_k_down, cfg_k_lin, cfg_k_blk);
-                        end
-                        if (last_pass) begin
-                            state_q <= ST_FLUSH;
-                        end else begin
-                            m_q      <= m_q + 1'b1;
-                            phx_q    <= phx_next;
-                            phy_q    <= phy_next;
-                            old_sx_q <= sx_step;
-                            old_sy_q <= sy_step;
-                            if (last_r) begin
-                                r_q   <= '0;
-                                k0_q  <= k0_q + 1'b1;
-                                rk0_q <= r_step(rk0_q, s_k_down);
-                            end else begin
-                                r_q <= r_q + 1'b1;
-                            end
-                        end
+                        r_q <= r_q + 1'b1;
                     end
                 end
-                ST_FLUSH: if (last_pb) state_q <= ST_DRAIN;
-                default:  state_q <= ST_IDLE;  // ST_DRAIN: one beat
-            endcase
+            end
+            if (state_q == ST_DRAIN) state_q <= ST_IDLE;   // one beat
         end
     end
 
     assign busy      = (state_q != ST_IDLE) || v1_q || v2_q;
     assign req_valid = v_q;
     assign req_addr  = addr_q;
-    assign {req_rden, req_tag} = f_q;   // f2: {rden, LVAL, LNBR, LWRAP, f1}
+    assign {req_rden, req_tag} = f_q;   // f2: {rden, LINL, LVAL, LNBR, LWRAP, f1}
 
 endmodule
 `default_nettype wire

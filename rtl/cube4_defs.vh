@@ -275,6 +275,9 @@
 //   EOP, SOP    last / first sample beat of the frame;  EMIT  beat emits a row
 //   LWRAP [P]   lane holds t = P - 1 (beam extension)
 //   LNBR [P]    lane's position + 1 < NI;  LVAL [P]  lane's position < NI
+//   LINL [P]    lane's sample is not below the low sides of its slice's
+//               rectangle (i >= I_IN and j >= J_IN; slice rectangles, RECTS =
+//               1 of cube4_cfb); all ones otherwise
 `define CUBE4_TAG_LAYOUT \
     localparam integer TAG_STEPS = 0, \
     localparam integer TAG_YLAST = 4, \
@@ -298,7 +301,67 @@
     localparam integer TAG_LWRAP = TAG_EMIT + 1, \
     localparam integer TAG_LNBR  = TAG_LWRAP + P, \
     localparam integer TAG_LVAL  = TAG_LNBR + P, \
-    localparam integer TAG_W     = TAG_LVAL + P
+    localparam integer TAG_LINL  = TAG_LVAL + P, \
+    localparam integer TAG_W     = TAG_LINL + P
+
+// ---------------------------------------------------------------- slice rectangles
+// One entry per sample slice of the rectangle table of cube4_cfb (RECTS = 1;
+// golden/cube4/slices.py, memory.py rect_table; numerics.md section 18), LSB
+// first; needs the geometry and ADDR_W:
+//   EMPTY       the slice traverses nothing
+//   FLUSH       a flush beam emits its last row (the next slice walks other
+//               partial beams, or none)
+//   LAST        the frame's last slice that is not empty: its flush beam ends
+//               the frame (the empty slices after it are not walked)
+//   J0, JL [DIM_W]    first and last row traversed;  J_IN [DIM_W] first row inside
+//   PB0, PBL [PB_W]   first and last partial beam
+//   I_LO, I_IN, I_HI [DIM_W]  positions traversed I_LO <= i < I_HI; inside from I_IN
+//   AJ0 [ADDR_W], RJ0 [LANE_W]  A_j and c_j mod P of row J0
+//   PBX0 [ADDR_W]     the partial-beam address term of PB0 (I_A0 - PB0 I_PB, or PB0 I_PB)
+//   PBP0 [IW]         PB0 * P
+//   SB0 [SB_W]        slot J0 * NB + PB0;  SBROW [SB_W]  slot step from a row's
+//                     last partial beam to the next row's first, NB - (PBL - PB0)
+`define CUBE4_RECT_LAYOUT \
+    localparam integer RT_EMPTY = 0, \
+    localparam integer RT_FLUSH = 1, \
+    localparam integer RT_LAST  = 2, \
+    localparam integer RT_J0    = 3, \
+    localparam integer RT_JL    = RT_J0 + DIM_W, \
+    localparam integer RT_JIN   = RT_JL + DIM_W, \
+    localparam integer RT_PB0   = RT_JIN + DIM_W, \
+    localparam integer RT_PBL   = RT_PB0 + PB_W, \
+    localparam integer RT_ILO   = RT_PBL + PB_W, \
+    localparam integer RT_IIN   = RT_ILO + DIM_W, \
+    localparam integer RT_IHI   = RT_IIN + DIM_W, \
+    localparam integer RT_AJ0   = RT_IHI + DIM_W, \
+    localparam integer RT_RJ0   = RT_AJ0 + ADDR_W, \
+    localparam integer RT_PBX0  = RT_RJ0 + LANE_W, \
+    localparam integer RT_PBP0  = RT_PBX0 + ADDR_W, \
+    localparam integer RT_SB0   = RT_PBP0 + IW, \
+    localparam integer RT_SBROW = RT_SB0 + SB_W, \
+    localparam integer RECT_W   = RT_SBROW + SB_W
+
+// The table entry from one port per field (the harnesses), as CUBE4_VIEW_PORTS.
+`define CUBE4_RECT_PACK {rt_sbrow, rt_sb0, rt_pbp0, rt_pbx0, rt_rj0, rt_aj0, rt_i_hi, rt_i_in, \
+    rt_i_lo, rt_pbl, rt_pb0, rt_j_in, rt_jl, rt_j0, rt_last, rt_flush, rt_empty}
+`define CUBE4_RECT_PORTS \
+    input  wire               rt_empty, \
+    input  wire               rt_flush, \
+    input  wire               rt_last, \
+    input  wire [DIM_W-1:0]   rt_j0, \
+    input  wire [DIM_W-1:0]   rt_jl, \
+    input  wire [DIM_W-1:0]   rt_j_in, \
+    input  wire [PB_W-1:0]    rt_pb0, \
+    input  wire [PB_W-1:0]    rt_pbl, \
+    input  wire [DIM_W-1:0]   rt_i_lo, \
+    input  wire [DIM_W-1:0]   rt_i_in, \
+    input  wire [DIM_W-1:0]   rt_i_hi, \
+    input  wire [ADDR_W-1:0]  rt_aj0, \
+    input  wire [LANE_W-1:0]  rt_rj0, \
+    input  wire [ADDR_W-1:0]  rt_pbx0, \
+    input  wire [IW-1:0]      rt_pbp0, \
+    input  wire [SB_W-1:0]    rt_sb0, \
+    input  wire [SB_W-1:0]    rt_sbrow,
 
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with

@@ -20,6 +20,7 @@
 //   CLIP         1: TRI's cube4_clip (window, cut plane). 0..1. Default 1.
 //   VGRAD        1: memory words carry voxel gradients, which TRI
 //                interpolates (CUBE4_WORD_LAYOUT).   0..1.    Default 0.
+//   RECTS        1: slice rectangles (cube4_cfb).      0..1.    Default 0.
 //   Derived widths and the layouts of cfg, cfg_addr, the memory tag and the
 //   sample header: cube4_defs.vh.
 //
@@ -34,6 +35,7 @@
 // Ports
 //   start / busy / done / cycles   frame control (cycles: 32-bit count)
 //   cfg, cfg_addr                  view and address registers, see cube4_cfb
+//   rect_*                         the rectangle table (RECTS = 1), see cube4_cfb
 //   mem_req_* / mem_rsp_*          memory read port (see cube4_voxel_mem);
 //                                  the tag is CUBE4_TAG_LAYOUT, a word WORD_W bits
 //   smp_*                          sample stream, see cube4_tri out_*
@@ -45,13 +47,15 @@ module cube4_frontend #(
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
     parameter integer VOXEL_W  = 8, parameter integer ADDR_W      = 16,
     parameter integer CLIP     = 1, parameter integer VGRAD       = 0,
+    parameter integer RECTS    = 0,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
-    `CUBE4_WORD_LAYOUT
+    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT
 ) (
     input  wire clk, input wire rst,
     input  wire start, output wire busy, output wire done, output wire [31:0] cycles,
     input  wire [VIEW_W-1:0]    cfg,
     input  wire [ADR_W_ALL-1:0] cfg_addr,
+    input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
     // memory read port: request, response
     output wire mem_req_valid, input wire mem_req_ready, output wire [TAG_W-1:0] mem_req_tag,
     output wire [P*ADDR_W-1:0] mem_req_addr,
@@ -73,7 +77,8 @@ module cube4_frontend #(
         .MAX_DIM     (MAX_DIM),
         .ADDR_W      (ADDR_W),
         .WEIGHT_W    (WEIGHT_W),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS       (RECTS)
     ) u_cfb (
         .clk       (clk),
         .rst       (rst),
@@ -81,6 +86,9 @@ module cube4_frontend #(
         .busy      (unused_cfb_busy),
         .cfg       (cfg),
         .cfg_addr  (cfg_addr),
+        .rect_we   (rect_we),
+        .rect_addr (rect_addr),
+        .rect_data (rect_data),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req_addr),

@@ -174,6 +174,9 @@ module cube4_top #(
         .cycles        (unused_fe_cycles),
         .cfg           (cfg),
         .cfg_addr      (cfg_addr),
+        .rect_we       (1'b0),            // slice rectangles: not in the top yet (RECTS = 0)
+        .rect_addr     ('0),
+        .rect_data     ('0),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),

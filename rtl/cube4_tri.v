@@ -122,6 +122,7 @@ module cube4_tri #(
     wire [P-1:0]        in_t_lane_valid = in_tag[TAG_LVAL +: P];
     wire [P-1:0]        in_t_lane_nbr  = in_tag[TAG_LNBR +: P];
     wire [P-1:0]        in_t_lane_wrap = in_tag[TAG_LWRAP +: P];
+    wire [P-1:0]        in_t_lane_inl  = in_tag[TAG_LINL +: P];
 
     localparam integer VW    = WORD_W;      // a memory word: every buffer holds whole words
     localparam integer PV    = P * VW;
@@ -145,8 +146,9 @@ module cube4_tri #(
     reg [P-1:0]       s0_nbr, s0_wrap;
     reg [META_W-1:0]  s0_meta;
 
-    // inside = valid, and not in the last column when wx > 0, nor the last row when wy > 0
-    wire [P-1:0] in_inside = in_t_lane_valid
+    // inside = valid, not below the rectangle's low sides (LINL; all ones without
+    // slice rectangles), and not in the last column when wx > 0, nor the last row when wy > 0
+    wire [P-1:0] in_inside = in_t_lane_valid & in_t_lane_inl
                            & ~(in_t_lane_valid & ~in_t_lane_nbr & {P{in_t_wx != '0}})
                            & ~{P{in_t_y_last && in_t_wy != '0}};
 

@@ -111,6 +111,19 @@ def _axis_strides(axis: int, dims, p: int) -> tuple[int, int]:
     return ((0, 1), (nbx, nbx), (nbx * ny, nbx * ny))[axis]
 
 
+def _row_start(trav: Traversal, p: int, dims, j: int) -> tuple[int, int]:
+    """(A_j, c_j mod P) of traversal row j as the CFB keeps them (J_A0 and J_R0 at row 0):
+    the j axis's address term, with the i axis's start address joined when i is not
+    flipped; the residue, with the box's i offset joined when j is not the x axis."""
+    org = tuple(int(c) for c in trav.origin)
+    ai, aj = trav.axis_i, trav.axis_j
+    fi, fj = bool(trav.flip[ai]), bool(trav.flip[aj])
+    cj = org[aj] + (trav.nj - 1 - j if fj else j)
+    a_i0 = 0 if fi else _axis_addr(ai, org[ai], dims, p)
+    r = cj % p if aj == 0 else (cj % p + org[ai]) % p
+    return _axis_addr(aj, cj, dims, p) + a_i0, r
+
+
 def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
     """Register values of cube4_frontend for one view (docs/architecture.md, "CFB").
 
@@ -127,8 +140,7 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
     ni, nj, nk = trav.ni, trav.nj, trav.nk
     ai, aj, ak = trav.axis_i, trav.axis_j, trav.major
     fi, fj, fk = (bool(trav.flip[a]) for a in (ai, aj, ak))
-    cj0 = org[aj] + (nj - 1 if fj else 0)       # start coordinates in the volume
-    ck0 = org[ak] + (nk - 1 if fk else 0)
+    ck0 = org[ak] + (nk - 1 if fk else 0)       # start coordinates in the volume
     ci0 = org[ai] + (ni - 1 if fi else 0)
     j_lin, j_blk = _axis_strides(aj, dims, p)
     k_lin, k_blk = _axis_strides(ak, dims, p)
@@ -137,14 +149,10 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
     # The skew is (c_i + c_j + c_k) mod p with lane t at c_i = org_i + t (flipped:
     # org_i + ni - 1 - t): the box's i offset joins the residue of an axis that is not x
     # (y and z have LIN == BLK, so their residue only feeds the skew).
-    r_j, r_k = cj0 % p, ck0 % p
-    if aj != 0:
-        r_j = (r_j + org[ai]) % p
-    else:
-        r_k = (r_k + org[ai]) % p
+    a_j0, r_j = _row_start(trav, p, dims, 0)
+    r_k = ck0 % p if aj != 0 else (ck0 % p + org[ai]) % p
     # The i axis's start address: flipped, I_A0 (the CFB counts down from it); not
-    # flipped the CFB starts at 0, so it joins J_A0.
-    a_i0 = _axis_addr(ai, org[ai], dims, p)
+    # flipped the CFB starts at 0, so it joins J_A0 (_row_start).
     if fi:
         i_rt = (ci0 % p) if i_block else p - 1
     else:
@@ -162,7 +170,7 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
         "VIEW_Y": trav.view_y,
         # axis j (beam index): start coordinate mod p, start address, strides
         "J_R0": r_j,
-        "J_A0": _axis_addr(aj, cj0, dims, p) + (0 if fi else a_i0),
+        "J_A0": a_j0,
         "J_LIN": j_lin,
         "J_BLK": j_blk,
         # axis k (slices)
@@ -201,6 +209,42 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
         regs[name] = int(v) & ((1 << w) - 1)
     regs["FACES"] = int(trav.faces) if path_weights else 0
     return regs
+
+
+def rect_table(trav: Traversal, rects, p: int, addr_w: int, vol_dims=None) -> list[dict[str, int]]:
+    """The rectangle table of cube4_cfb (RECTS = 1; cube4_defs.vh CUBE4_RECT_LAYOUT) for
+    the slice rectangles ``rects`` (cube4.slices.SliceRects) of ``trav``: one entry per
+    sample slice, the fields as lower-case names of the harness ports (rt_*)."""
+    if trav.supersample != 1:
+        raise UserError("slice rectangles run with S = 1 only (the slice buffers replay whole slices)")
+    box = tuple(int(n) for n in trav.dims)
+    dims = box if vol_dims is None else tuple(int(n) for n in vol_dims)
+    regs = frontend_regs(trav, p, vol_dims)
+    nb, mask = regs["NB"], (1 << addr_w) - 1
+    fi = bool(trav.flip[trav.axis_i])
+    table = []
+    live = [m for m in range(trav.num_sample_slices) if rects.beam_range(m, p) is not None]
+    for m in range(trav.num_sample_slices):
+        rng = rects.beam_range(m, p)
+        if rng is None:
+            table.append({"empty": 1, **{k: 0 for k in RECT_FIELDS if k != "empty"}})
+            continue
+        j0, j1, i0, i1 = rects.traversed(m)
+        jin, _, iin, _ = rects.bounds(m)
+        pb0, pbl = rng
+        aj0, rj0 = _row_start(trav, p, dims, j0)
+        pbx0 = regs["I_A0"] - pb0 * regs["I_PB"] if fi else pb0 * regs["I_PB"]
+        table.append({"empty": 0, "flush": int(rects.beam_range(m + 1, p) != rng), "last": int(m == live[-1]),
+                      "j0": j0, "jl": j1 - 1, "j_in": jin, "pb0": pb0, "pbl": pbl,
+                      "i_lo": i0, "i_in": iin, "i_hi": i1, "aj0": aj0 & mask, "rj0": rj0,
+                      "pbx0": pbx0 & mask, "pbp0": pb0 * p, "sb0": j0 * nb + pb0,
+                      "sbrow": nb - (pbl - pb0)})
+    return table
+
+
+#: the fields of a rectangle-table entry (rt_<name> ports of the harnesses)
+RECT_FIELDS = ("empty", "flush", "last", "j0", "jl", "j_in", "pb0", "pbl", "i_lo", "i_in", "i_hi", "aj0", "rj0",
+               "pbx0", "pbp0", "sb0", "sbrow")
 
 
 def lane_positions(skew: int, pb: int, p: int, ni: int, flip_i: bool) -> np.ndarray:

@@ -8,7 +8,8 @@
 //   into the view and address buses as cube4_top packs them) and the tag
 //   fields the testbench checks, read from the tag by its layout
 //   (cube4_defs.vh), so that the testbench needs no copy of either layout;
-//   cube4_stream_check watches the request stream.
+//   cube4_stream_check watches the request stream. The rectangle table's
+//   fields (RECTS = 1) come one port each, packed as CUBE4_RECT_PACK.
 //
 // Parameters: as cube4_cfb.   Latency: that of cube4_cfb (no registers here).
 // =============================================================================
@@ -18,10 +19,12 @@ module cube4_cfb_harness #(
     parameter integer ADDR_W      = 16,
     parameter integer WEIGHT_W    = 8,
     parameter integer MAX_SS_LOG2 = 0,
+    parameter integer RECTS       = 0,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
-    `CUBE4_TAG_LAYOUT
+    `CUBE4_TAG_LAYOUT,
+    `CUBE4_RECT_LAYOUT
 ) (
     input  wire                  clk,
     input  wire                  rst,
@@ -29,6 +32,9 @@ module cube4_cfb_harness #(
     output wire                  busy,
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
+    `CUBE4_RECT_PORTS
+    input  wire                  rect_we,
+    input  wire [M_W-1:0]        rect_addr,
     output wire                  req_valid,
     input  wire                  req_ready,
     output wire [P*ADDR_W-1:0]   req_addr,
@@ -39,13 +45,15 @@ module cube4_cfb_harness #(
     output wire                  tag_lower_mem,
     output wire                  tag_upper_mem
 );
-    wire [TAG_W-1:0] tag;
+    wire [TAG_W-1:0]  tag;
+    wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
         .ADDR_W      (ADDR_W),
         .WEIGHT_W    (WEIGHT_W),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS       (RECTS)
     ) u_cfb (
         .clk       (clk),
         .rst       (rst),
@@ -53,6 +61,9 @@ module cube4_cfb_harness #(
         .busy      (busy),
         .cfg       (`CUBE4_VIEW_PACK),
         .cfg_addr  (`CUBE4_ADDR_PACK),
+        .rect_we   (rect_we),
+        .rect_addr (rect_addr),
+        .rect_data (rect_data),
         .req_valid (req_valid),
         .req_ready (req_ready),
         .req_addr  (req_addr),

@@ -8,6 +8,11 @@ the voxel of that partial beam whose bank (x + y + z) mod P is q, at
 ``address_of(x, y, z)``, and padding lanes must not read. Over a frame every voxel
 is read exactly once. All six major directions with both signs of both minor
 slopes (24 views, plus 45-degree and on-axis views), non-cubic volumes, P = 1, 5, 16.
+
+The rectangle build (RECTS = 1, P = 1, 5, 8) runs the same frames from a table that
+holds the whole box, and frames of random slice rectangles (``cube4.slices``): each
+pass reads exactly its traversed rectangle, and the frame issues the beats that
+``SliceRects.beats`` counts (flush beams where the next slice walks other partial beams).
 """
 
 from __future__ import annotations
@@ -20,21 +25,24 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from cube4.memory import address_of, bank_of, frontend_regs
+import cube4.slices as slices
+from cube4.memory import address_of, bank_of, frontend_regs, rect_table
 from cube4.view import make_traversal
 from cube4_sim import rtl_sources, run_test
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
 
-def expected_lanes(trav, p: int, k: int, j: int, pb: int) -> tuple[list[int | None], list[tuple]]:
-    """Per lane: the address it must read (None: must not read), and the voxel."""
+def expected_lanes(trav, p: int, k: int, j: int, pb: int, i_range=None) -> tuple[list[int | None], list[tuple]]:
+    """Per lane: the address it must read (None: must not read), and the voxel;
+    ``i_range``: the positions [lo, hi) the beat reads (default the whole beam)."""
     dims = trav.dims
+    lo, hi = (0, trav.ni) if i_range is None else i_range
     addr: list[int | None] = [None] * p
     vox: list[tuple] = [()] * p
     for t in range(p):
         i = pb * p + t
-        if i >= trav.ni:
+        if not lo <= i < hi:
             continue
         c = [0, 0, 0]
         for coord, ax in ((i, trav.axis_i), (j, trav.axis_j), (k, trav.major)):
@@ -46,19 +54,98 @@ def expected_lanes(trav, p: int, k: int, j: int, pb: int) -> tuple[list[int | No
     return addr, vox
 
 
+async def reset(dut):
+    Clock(dut.clk, 10, unit="ns").start(start_high=False)
+    dut.rst.value = 1
+    dut.start.value = 0
+    dut.req_ready.value = 0
+    dut.rect_we.value = 0
+    for _ in range(3):
+        await RisingEdge(dut.clk)
+    dut.rst.value = 0
+
+
+async def run_frame(dut, trav, rng, p: int, aw: int, expected_reads, rects=None) -> int:
+    """Set the registers (and the rectangle table), run one frame under random
+    back-pressure, check every read beat against ``expected_reads`` (a list of
+    (k, j, pb, (lo, hi))) and that every voxel they name is read once; returns the
+    beats issued."""
+    for key, val in frontend_regs(trav, p).items():
+        getattr(dut, "cfg_" + key.lower()).value = int(val)
+    if rects is not None:
+        for m, entry in enumerate(rect_table(trav, rects, p, aw)):
+            await FallingEdge(dut.clk)
+            for name, val in entry.items():
+                getattr(dut, "rt_" + name).value = int(val)
+            dut.rect_addr.value = m
+            dut.rect_we.value = 1
+        await FallingEdge(dut.clk)
+        dut.rect_we.value = 0
+        await FallingEdge(dut.clk)
+    await FallingEdge(dut.clk)
+    dut.start.value = 1
+    await FallingEdge(dut.clk)
+    dut.start.value = 0
+    reads = beats = 0
+    seen = np.zeros(trav.dims[::-1], dtype=np.int64)
+    held = None
+    while True:
+        ready = int(rng.random() < 0.7)
+        dut.req_ready.value = ready
+        await RisingEdge(dut.clk)
+        valid = int(dut.req_valid.value)
+        if valid:
+            beat = (int(dut.req_addr.value), int(dut.req_rden.value), int(dut.tag_m.value),
+                    int(dut.tag_pb.value), int(dut.tag_emit.value))
+            if held is not None:
+                assert beat == held, "request changed while stalled"
+            held = None if ready else beat
+        if valid and ready:
+            beats += 1
+            addr_v, rden, _, _, _ = beat
+            is_read = int(dut.tag_lower_mem.value) or int(dut.tag_upper_mem.value)
+            if is_read:
+                assert reads < len(expected_reads), f"more than {len(expected_reads)} read beats"
+                k, j, pb, i_range = expected_reads[reads]
+                want, vox = expected_lanes(trav, p, k, j, pb, i_range)
+                for q in range(p):
+                    en = (rden >> q) & 1
+                    a = (addr_v >> (q * aw)) & ((1 << aw) - 1)
+                    assert en == (want[q] is not None), \
+                        f"view {trav.direction} read beat {reads} (k={k}, j={j}, pb={pb}) lane {q}: rden {en}"
+                    if en:
+                        assert a == want[q], (f"view {trav.direction} (k={k}, j={j}, pb={pb}) lane {q}: "
+                                              f"address {a}, voxel {vox[q]} is at {want[q]}")
+                        x, y, z = vox[q]
+                        seen[z, y, x] += 1
+                reads += 1
+            else:
+                assert rden == 0, "a beat without a memory read enables a bank"
+        if not int(dut.busy.value) and not valid:
+            break
+    assert reads == len(expected_reads), f"{reads} read beats, expected {len(expected_reads)}"
+    want_seen = np.zeros_like(seen)
+    for k, j, pb, i_range in expected_reads:
+        for v in expected_lanes(trav, p, k, j, pb, i_range)[1]:
+            if v:
+                want_seen[v[2], v[1], v[0]] += 1
+    assert (seen == want_seen).all() and want_seen.max(initial=0) <= 1, \
+        f"view {trav.direction}: voxels read {seen.min()}..{seen.max()} times"
+    return beats
+
+
+def fixed_reads(trav, p: int):
+    nb = -(-trav.ni // p)
+    return [(k, j, pb, None) for k in range(trav.nk) for j in range(trav.nj) for pb in range(nb)]
+
+
 @cocotb.test()
 async def test_addresses(dut):
     p = int(dut.P.value)
     w = int(dut.WEIGHT_W.value)
     aw = int(dut.ADDR_W.value)
     rng = np.random.default_rng(cocotb.RANDOM_SEED)
-    Clock(dut.clk, 10, unit="ns").start(start_high=False)
-    dut.rst.value = 1
-    dut.start.value = 0
-    dut.req_ready.value = 0
-    for _ in range(3):
-        await RisingEdge(dut.clk)
-    dut.rst.value = 0
+    await reset(dut)
     views = []
     for major in range(3):
         for signs in range(8):
@@ -67,54 +154,56 @@ async def test_addresses(dut):
             views.append((tuple(d), 1))
     views += [((1.0, 1.0, 1.0), 1), ((0.0, 0.0, -1.0), 1), ((-1.0, 0.0, 0.0), 1), ((0.3, 1.0, -0.2), 2)]
     dims_list = [(2 * p + 3, p + 4, 5), (p + 1, 3 * p - 1 if p > 1 else 4, 3)]
+    rects_build = bool(int(dut.RECTS.value))
     for dims in dims_list:
         for direction, ss in views:
+            if rects_build and ss != 1:
+                continue                # slice rectangles run with S = 1
             trav = make_traversal(dims, direction, w, ss)
-            for key, val in frontend_regs(trav, p).items():
-                getattr(dut, "cfg_" + key.lower()).value = int(val)
-            await FallingEdge(dut.clk)
-            dut.start.value = 1
-            await FallingEdge(dut.clk)
-            dut.start.value = 0
+            # a rectangle build takes the whole box from its table
+            whole = slices.rects_from_needed(np.ones((trav.num_sample_slices, trav.nj, trav.ni), dtype=bool), trav)
+            beats = await run_frame(dut, trav, rng, p, aw, fixed_reads(trav, p), whole if rects_build else None)
             nb = -(-trav.ni // p)
-            reads = 0
-            seen = np.zeros(dims[::-1], dtype=np.int64)
-            held = None
-            while True:
-                ready = int(rng.random() < 0.7)
-                dut.req_ready.value = ready
-                await RisingEdge(dut.clk)
-                valid = int(dut.req_valid.value)
-                if valid:
-                    beat = (int(dut.req_addr.value), int(dut.req_rden.value), int(dut.tag_m.value),
-                            int(dut.tag_pb.value), int(dut.tag_emit.value))
-                    if held is not None:
-                        assert beat == held, "request changed while stalled"
-                    held = None if ready else beat
-                if valid and ready:
-                    addr_v, rden, _, _, _ = beat
-                    is_read = int(dut.tag_lower_mem.value) or int(dut.tag_upper_mem.value)
-                    if is_read:
-                        k, j, pb = reads // (trav.nj * nb), (reads // nb) % trav.nj, reads % nb
-                        want, vox = expected_lanes(trav, p, k, j, pb)
-                        for q in range(p):
-                            en = (rden >> q) & 1
-                            a = (addr_v >> (q * aw)) & ((1 << aw) - 1)
-                            assert en == (want[q] is not None), \
-                                f"view {direction} read beat {reads} (k={k}, j={j}, pb={pb}) lane {q}: rden {en}"
-                            if en:
-                                assert a == want[q], (f"view {direction} (k={k}, j={j}, pb={pb}) lane {q}: "
-                                                      f"address {a}, voxel {vox[q]} is at {want[q]}")
-                                x, y, z = vox[q]
-                                seen[z, y, x] += 1
-                        reads += 1
-                    else:
-                        assert rden == 0, "a beat without a memory read enables a bank"
-                if not int(dut.busy.value) and not valid:
-                    break
-            assert reads == trav.nk * trav.nj * nb, f"{reads} read beats, expected {trav.nk * trav.nj * nb}"
-            assert (seen == 1).all(), f"view {direction}: voxels read {seen.min()}..{seen.max()} times"
-    dut._log.info("P=%d: %d views x %d volumes, every voxel read once at its address", p, len(views), len(dims_list))
+            assert beats == (trav.num_sample_slices * trav.nj + 1) * nb + 1, f"{beats} beats"
+    dut._log.info("P=%d: %d views x %d volumes, every voxel read once at its address%s", p, len(views),
+                  len(dims_list), " (the whole box from the rectangle table)" if rects_build else "")
+
+
+@cocotb.test()
+async def test_slice_rectangles(dut):
+    """RECTS = 1: random slice rectangles (cube4.slices from random needed samples, and
+    the whole box), every view class: each pass reads exactly the rows, partial beams
+    and positions of its traversed rectangle, each voxel of them once, in order, and
+    the frame issues slices.schedule_beats beats (flush beams, the drain beat)."""
+    if not int(dut.RECTS.value):
+        return
+    p = int(dut.P.value)
+    w = int(dut.WEIGHT_W.value)
+    aw = int(dut.ADDR_W.value)
+    rng = np.random.default_rng(cocotb.RANDOM_SEED)
+    await reset(dut)
+    views = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 1.0, 1.0), (1.0, -1.0, 0.0), (-1.0, -0.8, 0.2),
+             (0.5, 1.0, 0.5), (0.0, 0.0, 1.0), (0.9, 0.2, 0.0)]
+    frames = 0
+    for dims in [(2 * p + 5, p + 7, 9), (3 * p + 2, 2 * p + 3, 6)]:
+        for direction in views:
+            trav = make_traversal(dims, direction, w, 1)
+            for density in (0.02, 0.2, 1.0):
+                need = rng.random((trav.num_sample_slices, trav.nj, trav.ni)) < density
+                rects = slices.rects_from_needed(need, trav)
+                if rects.beats(p) == 0:
+                    continue            # nothing to traverse: the host runs no frame
+                reads = []
+                for m in range(trav.num_sample_slices):
+                    rng_pb = rects.beam_range(m, p)
+                    if rng_pb is None:
+                        continue
+                    j0, j1, i0, i1 = rects.traversed(m)
+                    reads += [(m, j, pb, (i0, i1)) for j in range(j0, j1) for pb in range(rng_pb[0], rng_pb[1] + 1)]
+                beats = await run_frame(dut, trav, rng, p, aw, reads, rects)
+                assert beats == rects.beats(p), f"view {direction}: {beats} beats, expected {rects.beats(p)}"
+                frames += 1
+    dut._log.info("P=%d: %d frames with slice rectangles, every read and beat as specified", p, frames)
 
 
 # P = 2, 4 and 8 are covered by the front-end builds (tb/cube4_frontend), which
@@ -125,5 +214,17 @@ def test_cube4_cfb(p):
         top="cube4_cfb_harness",
         sources=[*rtl_sources(), HERE / "cube4_cfb_harness.v"],
         params={"P": p, "MAX_DIM": 64, "ADDR_W": 16, "MAX_SS_LOG2": 1},
+        test_module=__file__,
+    )
+
+
+@pytest.mark.parametrize("p", [1, 5, 8])
+def test_cube4_cfb_rects(p):
+    """The rectangle build (RECTS = 1): the whole-box frames as the fixed build's, and
+    slice rectangles."""
+    run_test(
+        top="cube4_cfb_harness",
+        sources=[*rtl_sources(), HERE / "cube4_cfb_harness.v"],
+        params={"P": p, "MAX_DIM": 64, "ADDR_W": 16, "MAX_SS_LOG2": 1, "RECTS": 1},
         test_module=__file__,
     )

@@ -31,14 +31,19 @@ module cube4_frontend_harness #(
     parameter integer ADDR_W      = 12,
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer OPT_GRA     = 0,    // 1: cube4_gra after the front end, gradients dumped too
+    parameter integer RECTS       = 0,    // 1: slice rectangles (the table through rect_we, rt_*)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
     `CUBE4_TAG_LAYOUT,
+    `CUBE4_RECT_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
+    `CUBE4_RECT_PORTS
+    input  wire                  rect_we,     // write the rt_* fields as entry rect_addr
+    input  wire [M_W-1:0]        rect_addr,
     output wire                  clk,
     input  wire                  rst,
     // loader
@@ -79,6 +84,9 @@ module cube4_frontend_harness #(
     // has no use for SX and SY
     reg [VIEW_W-1:0]     cfg_q;
     reg [ADR_W_ALL-1:0]  cfg_addr_q;
+    reg                  rect_we_q;
+    reg [M_W-1:0]        rect_addr_q;
+    reg [RECT_W-1:0]     rect_data_q;
     always @(posedge clk) begin
         rst_q         <= rst;
         load_q        <= load;
@@ -91,6 +99,9 @@ module cube4_frontend_harness #(
         start_q       <= start;
         cfg_q         <= `CUBE4_VIEW_PACK;
         cfg_addr_q    <= `CUBE4_ADDR_PACK;
+        rect_we_q     <= rect_we;
+        rect_addr_q   <= rect_addr;
+        rect_data_q   <= `CUBE4_RECT_PACK;
     end
 
     localparam integer PV = P * VOXEL_W;
@@ -157,7 +168,8 @@ module cube4_frontend_harness #(
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
         .ADDR_W      (ADDR_W),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS       (RECTS)
     ) u_fe (
         .clk             (clk),
         .rst             (rst_q),
@@ -167,6 +179,9 @@ module cube4_frontend_harness #(
         .cycles          (unused_fe_cycles),
         .cfg             (cfg_q),
         .cfg_addr        (cfg_addr_q),
+        .rect_we         (rect_we_q),
+        .rect_addr       (rect_addr_q),
+        .rect_data       (rect_data_q),
         .mem_req_valid   (req_valid),
         .mem_req_ready   (req_ready),
         .mem_req_addr    (req_addr),

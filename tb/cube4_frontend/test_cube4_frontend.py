@@ -35,7 +35,9 @@ import pytest
 from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 
 from cube4.memory import frontend_regs, lane_positions, load_image, pack_volume, write_hex
-from cube4.model import gradient_stream, sample_stream
+import cube4.slices as slices
+from cube4.memory import rect_table
+from cube4.model import gradient_stream, inside_mask, padded_traversal, rect_slice, sample_stream
 from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
 from cube4_sim.dump import BEAT, LAST, START, frame_bounds
@@ -160,6 +162,59 @@ def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log
     assert bad.size == 0, f"beat {bad[0]}: control bits {ctrl[bad[0]]:07b}, expected {want[bad[0]]:07b}"
 
 
+def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects, p: int, log) -> None:
+    """Compare one slice-rectangle frame's sample beats with the golden model
+    (numerics.md §18): each slice's traversed rows and partial beams in order, the
+    lanes of its positions valid, samples from the rectangle's voxels (model.rect_slice),
+    inside per its rectangle, and the control bits (y-last: the slice's last row)."""
+    tp = padded_traversal(vol, trav)
+    order, gold, gin, ylast = [], {}, {}, []
+    for m in range(trav.num_sample_slices):
+        rng = rects.beam_range(m, p)
+        if rng is None:
+            continue
+        b = rects.traversed(m)
+        gold[m] = rect_slice(tp, trav, m, b, trav.weight_bits)
+        gin[m] = inside_mask(trav, m) & rects.inside(m)
+        for j in range(b[0], b[1]):
+            for pb in range(rng[0], rng[1] + 1):
+                order.append((m, j, pb, b))
+                ylast.append(j == b[1] - 1)
+    n = len(beats["m"])
+    assert n == len(order), f"{n} sample beats, expected {len(order)}"
+    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    nj, ni, nk = trav.nj, trav.ni, trav.nk
+    bad = 0
+    for r, (m, j, pb, b) in enumerate(order):
+        got = (int(beats["m"][r]), int(beats["j"][r]), int(beats["pb"][r]))
+        assert got == (m, j, pb), f"beat {r}: (m, j, pb) = {got}, expected {(m, j, pb)}"
+        cj = nj - 1 - (j + 1) if fj else j + 1
+        ck = nk - 1 - m if fk else m
+        assert beats["skew"][r] == (cj + ck) % p, f"beat {r}: skew {beats['skew'][r]}"
+        pos = lane_positions(int(beats["skew"][r]), pb, p, ni, fi)
+        valid = (pos >= b[2]) & (pos < b[3])
+        assert (beats["lval"][r] == valid).all(), f"beat {r} (m={m}, j={j}, pb={pb}): lane_valid wrong"
+        ii = np.minimum(pos, ni - 1)
+        want = np.where(valid, gold[m][j, ii], 0)
+        want_in = np.where(valid, gin[m][j, ii], False)
+        have = np.where(valid, beats["smp"][r], 0)
+        for q in np.nonzero((have != want) | (beats["lins"][r] != want_in))[0]:
+            if bad < MAX_MISMATCH_LOGS:
+                log.error("sample (m=%d, j=%d, i=%d) lane %d: RTL %d inside %d, golden %d inside %d",
+                          m, j, pos[q], q, beats["smp"][r][q], beats["lins"][r][q], want[q], want_in[q])
+            bad += 1
+    assert bad == 0, f"{bad} sample mismatches against the golden model"
+    ms = np.array([o[0] for o in order])
+    sx, sy = trav.steps(ms)
+    sx1, sy1 = trav.steps(ms + 1)
+    sxb, syb = trav.steps(ms - 1)
+    idx = np.arange(n)
+    want = ((sx1 - sx) | ((sy1 - sy) << 1) | ((sx - sxb) << 2) | ((sy - syb) << 3)
+            | ((idx == 0) << 4) | ((idx == n - 1) << 5) | (np.array(ylast, dtype=np.int64) << 6))
+    badc = np.nonzero(beats["ctrl"] != want)[0]
+    assert badc.size == 0, f"beat {badc[0]}: control bits {beats['ctrl'][badc[0]]:07b}, expected {want[badc[0]]:07b}"
+
+
 def view_set(rng: np.random.Generator, max_ss_log2: int) -> list[tuple[tuple[float, float, float], int]]:
     """(direction, supersample) pairs: every major axis and sign combination,
     exact 45 degrees, on-axis, next to 45 degrees, and supersampled views."""
@@ -200,6 +255,7 @@ class TB:
         self.depth = int(dut.DEPTH.value)
         self.max_ss_log2 = int(dut.MAX_SS_LOG2.value)
         self.gra = bool(int(dut.OPT_GRA.value))
+        self.rects = bool(int(dut.RECTS.value))
         self.memfile = Path(os.environ["CUBE4_FE_MEMFILE"])
         self.dumpfile = Path(os.environ["CUBE4_FE_DUMP"])
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
@@ -221,6 +277,7 @@ class TB:
         d.stall_rsp.value = 0
         d.stall_out.value = 0
         d.dump_en.value = 1
+        d.rect_we.value = 0
         d.seed.value = cocotb.RANDOM_SEED & 0xFFFFFFFF   # the Verilog stall generators' seed
         await self.cycles(4)
         d.rst.value = 0
@@ -241,14 +298,29 @@ class TB:
         assert int(self.dut.load_done.value) == 1, "load did not finish"
         del res
 
+    async def write_rects(self, trav, rects) -> None:
+        """The rectangle table of ``rects`` (cube4.memory.rect_table), one entry a cycle."""
+        d = self.dut
+        for m, entry in enumerate(rect_table(trav, rects, self.p, int(d.ADDR_W.value))):
+            for name, val in entry.items():
+                getattr(d, "rt_" + name).value = int(val)
+            d.rect_addr.value = m
+            d.rect_we.value = 1
+            await RisingEdge(d.clk)
+        d.rect_we.value = 0
+        await self.cycles(3)
+
     async def frame(self, vol: np.ndarray, trav, stalls=(0, 0, 0), after_reset: bool = False,
-                    dumped: bool = True) -> tuple[dict, int, float]:
+                    dumped: bool = True, rects=None) -> tuple[dict, int, float]:
         """Render one view; returns (beats, cycles, wall seconds of the simulation).
         ``after_reset``: a frame reset in mid-frame precedes this one in the dump;
-        ``dumped``: False when dump_en is 0 (the dump has the start marker only)."""
+        ``dumped``: False when dump_en is 0 (the dump has the start marker only);
+        ``rects``: the frame's slice rectangles (a RECTS build; default the whole box)."""
         d = self.dut
         for key, val in frontend_regs(trav, self.p).items():
             getattr(d, "cfg_" + key.lower()).value = int(val)
+        if self.rects:
+            await self.write_rects(trav, rects if rects is not None else whole_box(trav))
         d.stall_req.value, d.stall_rsp.value, d.stall_out.value = stalls
         await RisingEdge(d.clk)
         d.start.value = 1
@@ -283,6 +355,11 @@ class TB:
         return cycles
 
 
+def whole_box(trav):
+    """Slice rectangles that are the whole box in every slice (the fixed schedule)."""
+    return slices.rects_from_needed(np.ones((trav.num_sample_slices, trav.nj, trav.ni), dtype=bool), trav)
+
+
 def random_volume(rng, dims, vw) -> np.ndarray:
     nx, ny, nz = dims
     return rng.integers(0, 1 << vw, size=(nz, ny, nx), dtype=np.int64)
@@ -308,6 +385,47 @@ async def test_views(dut):
 
 
 @cocotb.test()
+async def test_rect_views(dut):
+    """A RECTS build: frames of slice rectangles (cube4.slices from random needed
+    samples, sparse to dense) at every view class, with and without stalls: the sample
+    stream as numerics.md §18 specifies it, bit for bit; without stalls the frame takes
+    its beats, one cycle per empty slice before its last one and the whole box's fill,
+    exactly (the frame ends with its last slice that is not empty)."""
+    tb = TB(dut)
+    if not tb.rects:
+        return
+    await tb.reset()
+    dims, _ = volume_dims(tb.p, tb.max_dim)
+    vol = random_volume(tb.rng, dims, tb.vw)
+    await tb.load(vol)
+    views = [v for v, ss in view_set(tb.rng, 0)][::2] + [(1.0, 1.0, 1.0), (1.0, -1.0, 0.0)]
+    stall_sets = [(0, 0, 0), (70, 70, 70), (0, 0, 200), (200, 0, 0)]
+    fill = None
+    for n, direction in enumerate(views):
+        trav = make_traversal(dims, direction, tb.w, 1)
+        if fill is None:                # the whole box's pipeline fill on this build
+            beats, cycles, _ = await tb.frame(vol, trav)
+            nb = -(-trav.ni // tb.p)
+            fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
+        density = (0.01, 0.05, 0.3)[n % 3]
+        need = tb.rng.random((trav.num_sample_slices, trav.nj, trav.ni)) < density
+        rects = slices.rects_from_needed(need, trav)
+        if rects.beats(tb.p) == 0:
+            continue
+        stalls = stall_sets[n % len(stall_sets)]
+        beats, cycles, _ = await tb.frame(vol, trav, stalls, rects=rects)
+        check_rect_frame(beats, vol, trav, rects, tb.p, tb.log)
+        live = [m for m in range(trav.num_sample_slices) if rects.beam_range(m, tb.p) is not None]
+        empty = live[-1] + 1 - len(live)   # the empty slices before the last: one cycle each
+        if stalls == (0, 0, 0):
+            want = rects.beats(tb.p) + empty + fill
+            assert cycles == want, f"view {direction}: {cycles} cycles, expected {want}"
+        tb.log.info("view %s rectangles (%.0f%% of the samples) stalls %s: %d cycles, bit-exact",
+                    direction, 100 * rects.fraction(), stalls, cycles)
+        await RisingEdge(dut.clk)
+
+
+@cocotb.test()
 async def test_reset_mid_frame(dut):
     """A reset in the middle of a frame, then a clean frame from the same memory."""
     tb = TB(dut)
@@ -318,6 +436,8 @@ async def test_reset_mid_frame(dut):
     trav = make_traversal(dims, (0.4, -0.3, 1.0), tb.w, 1)
     for key, val in frontend_regs(trav, tb.p).items():
         getattr(dut, "cfg_" + key.lower()).value = int(val)
+    if tb.rects:
+        await tb.write_rects(trav, whole_box(trav))
     dut.start.value = 1
     await RisingEdge(dut.clk)
     dut.start.value = 0
@@ -383,11 +503,11 @@ BUILDS = [
 ]
 
 
-def _params(p: int, vw: int, max_dim: int, ss: int, gra: int = 0) -> dict[str, int]:
+def _params(p: int, vw: int, max_dim: int, ss: int, gra: int = 0, rects: int = 0) -> dict[str, int]:
     words = -(-max_dim // p) * max_dim * max_dim
     addr_w = max(1, (words - 1).bit_length())
     return {"P": p, "VOXEL_W": vw, "MAX_DIM": max_dim, "MAX_SS_LOG2": ss,
-            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": gra}
+            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": gra, "RECTS": rects}
 
 
 def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
@@ -411,6 +531,17 @@ def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
 @pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_ss{b[3]}_gra{b[4]}" for b in BUILDS])
 def test_cube4_frontend(build):
     _run(_params(*build), ["test_views", "test_reset_mid_frame", "test_frame_cycles"])
+
+
+#: slice-rectangle builds (RECTS = 1, S = 1, no GRA): P = 1, 5 and 8
+RECT_BUILDS = [(1, 8, 32, 0, 0, 1), (5, 12, 32, 0, 0, 1), (8, 8, 64, 0, 0, 1)]
+
+
+@pytest.mark.parametrize("build", RECT_BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_rects" for b in RECT_BUILDS])
+def test_cube4_frontend_rects(build):
+    """The rectangle build: slice rectangles, the whole box as the fixed schedule
+    (every view class, stalls), a reset in mid-frame, and the cycles of both."""
+    _run(_params(*build), ["test_rect_views", "test_views", "test_reset_mid_frame", "test_frame_cycles"])
 
 
 def test_cube4_frontend_cycles_128():

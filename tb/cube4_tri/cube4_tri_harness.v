@@ -91,6 +91,9 @@ module cube4_tri_harness #(
         .busy      (unused_cfb_busy),
         .cfg       (cfg),
         .cfg_addr  (cfg_addr),
+        .rect_we   (1'b0),               // the fixed schedule (RECTS = 0)
+        .rect_addr ('0),
+        .rect_data ('0),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req[TAG_W + P +: P * ADDR_W]),
