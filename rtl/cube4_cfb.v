@@ -213,17 +213,21 @@ module cube4_cfb #(
             // the RAM's output is always the entry of the pass after the one that
             // holds at the next edge: read (m after this edge) + 1; while idle,
             // entry 0, and entry 1 in the cycle that starts the frame
+            // MAX_DIM entries: a frame with rectangles has S = 1, so M <= MAX_DIM (the
+            // reads past the last pass's entry wrap, and are never used)
+            localparam integer TAW = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
             wire [M_W-1:0] m_after = (state_q == ST_IDLE) ? '0 : (pass_done ? m_q + 1'b1 : m_q);
             wire [M_W-1:0] rd_addr = (state_q == ST_IDLE && !go) ? '0 : m_after + 1'b1;
-            cube4_sdp_ram #(.DATA_W (RECT_W), .DEPTH (1 << M_W)) u_table (
+            cube4_sdp_ram #(.DATA_W (RECT_W), .DEPTH (MAX_DIM)) u_table (
                 .clk     (clk),
                 .rd_en   (1'b1),
-                .rd_addr (rd_addr),
+                .rd_addr (TAW'(rd_addr)),
                 .rd_data (rt_nxt),
                 .wr_en   (rect_we),
-                .wr_addr (rect_addr),
+                .wr_addr (TAW'(rect_addr)),
                 .wr_data (rect_data)
             );
+            wire unused_tbl_addr = ^{rd_addr, rect_addr};   // the bits above TAW (M_W >= TAW)
             always @(posedge clk) begin
                 if (state_q == ST_IDLE || pass_done) rt_q <= rt_nxt;
             end

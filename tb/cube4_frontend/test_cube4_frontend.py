@@ -426,6 +426,54 @@ async def test_rect_views(dut):
 
 
 @cocotb.test()
+async def test_rect_scene(dut):
+    """CUBE4_FE_RECT_SCENE = 'volume,scene' (a RECTS build): the scene's frame with its
+    empty-space box and the slice rectangles within it, as the renderer plans it
+    (cube4.render.plan_view, pass_rects), through the front end without stalls: the
+    sample stream bit for bit, and the cycles against beats + empty slices + the fill
+    (measured on the box's fixed schedule, not dumped). Results to CUBE4_FE_BENCH_OUT."""
+    spec = os.environ.get("CUBE4_FE_RECT_SCENE")
+    if not spec:
+        return
+    import dataclasses
+
+    from cube4.render import config_for, crop_volume, pass_rects, plan_view
+    from cube4.scene import load_scene
+    from cube4.volumes import load_volume
+
+    tb = TB(dut)
+    await tb.reset()
+    vol_spec, scene_name = spec.split(",")
+    whole = load_volume(vol_spec)
+    scene = load_scene(scene_name)
+    vp = plan_view(whole, scene, config_for(scene, tb.p))
+    plan, rects = vp.plans[0], pass_rects(whole, vp)[0]
+    box = np.ascontiguousarray(plan.box_volume(crop_volume(whole, vp.trav))).astype(np.int64)
+    trav = dataclasses.replace(plan.trav, origin=(0, 0, 0))   # the box is the volume loaded
+    rects = dataclasses.replace(rects, trav=trav)
+    await tb.load(box)
+    dut.dump_en.value = 0
+    _, full_cycles, _ = await tb.frame(box, trav, rects=whole_box(trav), dumped=False)
+    dut.dump_en.value = 1
+    nb = -(-trav.ni // tb.p)
+    fill = full_cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
+    beats, cycles, wall = await tb.frame(box, trav, rects=rects)
+    check_rect_frame(beats, box, trav, rects, tb.p, tb.log)
+    live = [m for m in range(trav.num_sample_slices) if rects.beam_range(m, tb.p) is not None]
+    predicted = rects.beats(tb.p) + (live[-1] + 1 - len(live)) + fill
+    assert cycles == predicted, f"{cycles} cycles, predicted {predicted}"
+    nz, ny, nx = whole.shape
+    res = {"volume": vol_spec, "scene": scene_name, "p": tb.p, "box_dims": list(trav.dims),
+           "cycles": cycles, "predicted_cycles": predicted, "box_fixed_cycles": full_cycles,
+           "n3_over_p": nx * ny * nz / tb.p, "sim_wall_s": wall}
+    tb.log.info("RECT %s %s P=%d: front end %d cycles (predicted %d), box %d, n^3/P %.0f, bit-exact",
+                vol_spec, scene_name, tb.p, cycles, predicted, full_cycles, res["n3_over_p"])
+    out = os.environ.get("CUBE4_FE_BENCH_OUT")
+    if out:
+        Path(out).write_text(json.dumps(res, indent=2) + "\n")
+
+
+@cocotb.test()
 async def test_reset_mid_frame(dut):
     """A reset in the middle of a frame, then a clean frame from the same memory."""
     tb = TB(dut)
@@ -542,6 +590,25 @@ def test_cube4_frontend_rects(build):
     """The rectangle build: slice rectangles, the whole box as the fixed schedule
     (every view class, stalls), a reset in mid-frame, and the cycles of both."""
     _run(_params(*build), ["test_rect_views", "test_views", "test_reset_mid_frame", "test_frame_cycles"])
+
+
+def frontend_rect_scene(vol_spec: str, scene: str, p: int, max_dim: int, out: Path) -> dict:
+    """A scene's slice-rectangle frame through the RTL front end (test_rect_scene);
+    returns its results (also written to ``out``)."""
+    out.parent.mkdir(parents=True, exist_ok=True)
+    _run(_params(p, 8, max_dim, 0, 0, 1), "test_rect_scene",
+         {"CUBE4_FE_RECT_SCENE": f"{vol_spec},{scene}", "CUBE4_FE_BENCH_OUT": str(out)})
+    return json.loads(out.read_text())
+
+
+def test_cube4_frontend_rect_scene():
+    """A scene through a P = 8 rectangle build: bit-exact, and the cycles as predicted.
+    By default the head phantom at 48³; CUBE4_RECT_SCENE_CASE = 'volume,scene,MAX_DIM'
+    chooses another (make skipping runs the goal case, head:128), with its results in
+    build/reports/frontend_rects.json."""
+    vol_spec, scene, max_dim = os.environ.get("CUBE4_RECT_SCENE_CASE", "head:48,head,48").split(",")
+    res = frontend_rect_scene(vol_spec, scene, 8, int(max_dim), BUILD_ROOT / "reports" / "frontend_rects.json")
+    assert res["cycles"] == res["predicted_cycles"] < res["box_fixed_cycles"]
 
 
 def test_cube4_frontend_cycles_128():
