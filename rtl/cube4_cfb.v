@@ -440,48 +440,23 @@ module cube4_cfb #(
         end
     end
 
-    // ---- state update ----
-    // A pass starts with the counters at its rectangle's first row and partial
-    // beam (rt_nxt: while idle pass 0's, at pass_done the next pass's).
+    // ---- the pass's counters: row and partial beam, slot, address terms ----
+    // A pass starts with them at its rectangle's first row and partial beam
+    // (rt_nxt: while idle pass 0's, at pass_done the next pass's); each beat
+    // steps them; a row's last partial beam goes back to the first.
+    wire load_pass = (state_q == ST_IDLE) || (pass_done && !end_pass);
     always @(posedge clk) begin
-        if (rst) begin
-            state_q <= ST_IDLE;
-        end else if (state_q == ST_IDLE) begin
-            // Idle: the counters hold their first values all the time, so
-            // start only moves the state (start and busy reach no counter).
-            if (go) state_q <= ST_RUN;
-            m_q      <= '0;
-            k0_q     <= '0;
-            r_q      <= '0;
-            j_q      <= n_j0;
-            lj_q     <= (n_j0 == n_jl);
-            fr_q     <= 1'b1;
-            pend_q   <= 1'b0;
-            sopp_q   <= 1'b1;
-            p_jl_q   <= n_jl;
-            p_jin_q  <= rt_nxt[RT_JIN +: DIM_W];
-            p_ilo_q  <= rt_nxt[RT_ILO +: DIM_W];
-            p_iin_q  <= rt_nxt[RT_IIN +: DIM_W];
-            p_ihi_q  <= rt_nxt[RT_IHI +: DIM_W];
-            pb_q     <= n_pb0;
-            lpb_q    <= (n_pb0 == n_pbl);
-            sb_q     <= n_sb0;
-            pbp_q    <= n_pbp0;
-            pbx_q    <= n_pbx0;
-            rj_q     <= n_rj0;
-            aj_q     <= n_aj0;
-            rk_q     <= cfg_k_r0;
-            ak_q     <= cfg_k_a0;
-            rk0_q    <= cfg_k_r0;
-            // pass 0 starts at the phase PH0; its old step (slice -1 to 0) is
-            // floor(PH0 / 2^(W+g)) - floor((PH0 - VIEW) / 2^(W+g)) = [PH0 < VIEW]
-            phx_q    <= cfg_ph0_x;
-            phy_q    <= cfg_ph0_y;
-            old_sx_q <= ({1'b0, cfg_ph0_x} < (PH_W + 1)'(cfg_view_x));
-            old_sy_q <= ({1'b0, cfg_ph0_y} < (PH_W + 1)'(cfg_view_y));
-        end else if (advance) begin
-            if (issue && emit_d) sopp_q <= 1'b0;
-            // partial beam
+        if (load_pass) begin
+            j_q   <= n_j0;
+            lj_q  <= (n_j0 == n_jl);
+            pb_q  <= n_pb0;
+            lpb_q <= (n_pb0 == n_pbl);
+            sb_q  <= n_sb0;
+            pbp_q <= n_pbp0;
+            pbx_q <= n_pbx0;
+            rj_q  <= n_rj0;
+            aj_q  <= n_aj0;
+        end else if (advance && state_q != ST_IDLE) begin
             if (!last_pb) begin
                 pb_q  <= pb_q + 1'b1;
                 lpb_q <= (pb_q + 1'b1 == e_pbl);
@@ -497,11 +472,45 @@ module cube4_cfb #(
             if (in_run && last_pb && !last_j && !e_empty) begin
                 j_q  <= j_q + 1'b1;
                 lj_q <= (j_q + 1'b1 == e_jl);
-                fr_q <= 1'b0;
                 sb_q <= sb_q + e_sbrow;
                 rj_q <= r_step(rj_q, s_j_down);
                 aj_q <= a_step(aj_q, rj_q, s_j_down, cfg_j_lin, cfg_j_blk);
             end
+            if (run_end && !e_empty) sb_q <= rt_cur[RT_SB0 +: SB_W];   // the flush beam's slots
+        end
+    end
+
+    // ---- state update ----
+    always @(posedge clk) begin
+        if (rst) begin
+            state_q <= ST_IDLE;
+        end else if (state_q == ST_IDLE) begin
+            // Idle: the counters hold their first values all the time, so
+            // start only moves the state (start and busy reach no counter).
+            if (go) state_q <= ST_RUN;
+            m_q      <= '0;
+            k0_q     <= '0;
+            r_q      <= '0;
+            fr_q     <= 1'b1;
+            pend_q   <= 1'b0;
+            sopp_q   <= 1'b1;
+            p_jl_q   <= n_jl;
+            p_jin_q  <= rt_nxt[RT_JIN +: DIM_W];
+            p_ilo_q  <= rt_nxt[RT_ILO +: DIM_W];
+            p_iin_q  <= rt_nxt[RT_IIN +: DIM_W];
+            p_ihi_q  <= rt_nxt[RT_IHI +: DIM_W];
+            rk_q     <= cfg_k_r0;
+            ak_q     <= cfg_k_a0;
+            rk0_q    <= cfg_k_r0;
+            // pass 0 starts at the phase PH0; its old step (slice -1 to 0) is
+            // floor(PH0 / 2^(W+g)) - floor((PH0 - VIEW) / 2^(W+g)) = [PH0 < VIEW]
+            phx_q    <= cfg_ph0_x;
+            phy_q    <= cfg_ph0_y;
+            old_sx_q <= ({1'b0, cfg_ph0_x} < (PH_W + 1)'(cfg_view_x));
+            old_sy_q <= ({1'b0, cfg_ph0_y} < (PH_W + 1)'(cfg_view_y));
+        end else if (advance) begin
+            if (issue && emit_d) sopp_q <= 1'b0;
+            if (in_run && last_pb && !last_j && !e_empty) fr_q <= 1'b0;   // the next row
             if (run_end && !e_empty) begin
                 // pass m's last beat: remember its emitted row's fields
                 pwx_q    <= wx;
@@ -515,7 +524,6 @@ module cube4_cfb #(
                 p_iin_q  <= e_iin;
                 p_ihi_q  <= e_ihi;
                 fr_q     <= 1'b0;
-                sb_q     <= rt_cur[RT_SB0 +: SB_W];
                 if (flush_pass) state_q <= ST_FLUSH;
             end
             if (pass_done) begin
@@ -524,18 +532,8 @@ module cube4_cfb #(
                 if (end_pass) begin
                     state_q <= ST_DRAIN;
                 end else begin
-                    // the next pass, at its rectangle's first row
+                    // the next pass (its counters: below)
                     state_q  <= ST_RUN;
-                    j_q      <= n_j0;
-                    lj_q     <= (n_j0 == n_jl);
-                    fr_q     <= 1'b1;
-                    pb_q     <= n_pb0;
-                    lpb_q    <= (n_pb0 == n_pbl);
-                    sb_q     <= n_sb0;
-                    pbp_q    <= n_pbp0;
-                    pbx_q    <= n_pbx0;
-                    rj_q     <= n_rj0;
-                    aj_q     <= n_aj0;
                     m_q      <= m_q + 1'b1;
                     phx_q    <= phx_next;
                     phy_q    <= phy_next;

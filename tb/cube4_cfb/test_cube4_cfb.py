@@ -26,9 +26,10 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 import cube4.slices as slices
-from cube4.memory import address_of, bank_of, frontend_regs, rect_table
+from cube4.memory import address_of, bank_of, frontend_regs
 from cube4.view import make_traversal
 from cube4_sim import rtl_sources, run_test
+from cube4_sim.rect_port import write_rect_table
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -73,14 +74,7 @@ async def run_frame(dut, trav, rng, p: int, aw: int, expected_reads, rects=None)
     for key, val in frontend_regs(trav, p).items():
         getattr(dut, "cfg_" + key.lower()).value = int(val)
     if rects is not None:
-        for m, entry in enumerate(rect_table(trav, rects, p, aw)):
-            await FallingEdge(dut.clk)
-            for name, val in entry.items():
-                getattr(dut, "rt_" + name).value = int(val)
-            dut.rect_addr.value = m
-            dut.rect_we.value = 1
-        await FallingEdge(dut.clk)
-        dut.rect_we.value = 0
+        await write_rect_table(dut, trav, rects, p, aw)
         await FallingEdge(dut.clk)
     await FallingEdge(dut.clk)
     dut.start.value = 1

@@ -36,11 +36,11 @@ from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
 
 from cube4.memory import frontend_regs, lane_positions, load_image, pack_volume, write_hex
 import cube4.slices as slices
-from cube4.memory import rect_table
 from cube4.model import gradient_stream, inside_mask, padded_traversal, rect_slice, sample_stream
 from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
 from cube4_sim.dump import BEAT, LAST, START, frame_bounds
+from cube4_sim.rect_port import write_rect_table
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -300,14 +300,7 @@ class TB:
 
     async def write_rects(self, trav, rects) -> None:
         """The rectangle table of ``rects`` (cube4.memory.rect_table), one entry a cycle."""
-        d = self.dut
-        for m, entry in enumerate(rect_table(trav, rects, self.p, int(d.ADDR_W.value))):
-            for name, val in entry.items():
-                getattr(d, "rt_" + name).value = int(val)
-            d.rect_addr.value = m
-            d.rect_we.value = 1
-            await RisingEdge(d.clk)
-        d.rect_we.value = 0
+        await write_rect_table(self.dut, trav, rects, self.p, int(self.dut.ADDR_W.value))
         await self.cycles(3)
 
     async def frame(self, vol: np.ndarray, trav, stalls=(0, 0, 0), after_reset: bool = False,
@@ -319,6 +312,7 @@ class TB:
         d = self.dut
         for key, val in frontend_regs(trav, self.p).items():
             getattr(d, "cfg_" + key.lower()).value = int(val)
+        d.cfg_ph0_x.value, d.cfg_ph0_y.value = trav.phase_x, trav.phase_y   # a box starts at its own phase
         if self.rects:
             await self.write_rects(trav, rects if rects is not None else whole_box(trav))
         d.stall_req.value, d.stall_rsp.value, d.stall_out.value = stalls
