@@ -321,11 +321,11 @@ module cube4_cfb #(
     // both rows too; the compares run at s2 on registers only. The read row
     // takes pass m's positions; the emitted row its own pass's (use_prev).
     function automatic [REM_W-1:0] rem_of(input [DIM_W-1:0] bound, input [IW-1:0] pbp);
-        reg [IW-1:0] diff;
+        reg [IW-1:0] b, diff;            // IW >= DIM_W: the bound zero-extended
         begin
-            diff = {{(IW - DIM_W){1'b0}}, bound} - pbp;
-            rem_of = ({{(IW - DIM_W){1'b0}}, bound} <= pbp) ? {REM_W{1'b0}}
-                   : (diff > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(diff);
+            b = IW'(bound);
+            diff = b - pbp;
+            rem_of = (b <= pbp) ? {REM_W{1'b0}} : (diff > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(diff);
         end
     endfunction
     wire [P*LANE_W-1:0] t_d, tout_d;

@@ -76,7 +76,7 @@ module cube4_top #(
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1,
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
-    `CUBE4_WORD_LAYOUT,
+    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3,
     localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W   // a LUT entry (lut_data)
@@ -175,8 +175,8 @@ module cube4_top #(
         .cfg           (cfg),
         .cfg_addr      (cfg_addr),
         .rect_we       (1'b0),            // slice rectangles: not in the top yet (RECTS = 0)
-        .rect_addr     ('0),
-        .rect_data     ('0),
+        .rect_addr     ({M_W{1'b0}}),
+        .rect_data     ({RECT_W{1'b0}}),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),

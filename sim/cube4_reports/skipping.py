@@ -117,7 +117,9 @@ def rtl_front_end_rects() -> dict:
                          capture_output=True, text=True)
     if run.returncode != 0:
         raise SystemExit(f"skipping: the front-end rectangle frame failed:\n{run.stdout[-3000:]}")
-    return json.loads((REPO_ROOT / "build" / "reports" / "frontend_rects.json").read_text())
+    from cube4_sim import BUILD_ROOT
+
+    return json.loads((BUILD_ROOT / "reports" / "frontend_rects.json").read_text())
 
 
 def _pct(x: float) -> str:

@@ -47,6 +47,7 @@ module cube4_tri_harness #(
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
     `CUBE4_TAG_LAYOUT,
+    `CUBE4_RECT_LAYOUT,
     `CUBE4_WORD_LAYOUT
 ) (
     output wire                  clk,
@@ -92,8 +93,8 @@ module cube4_tri_harness #(
         .cfg       (cfg),
         .cfg_addr  (cfg_addr),
         .rect_we   (1'b0),               // the fixed schedule (RECTS = 0)
-        .rect_addr ('0),
-        .rect_data ('0),
+        .rect_addr ({M_W{1'b0}}),
+        .rect_data ({RECT_W{1'b0}}),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req[TAG_W + P +: P * ADDR_W]),
