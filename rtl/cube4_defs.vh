@@ -50,7 +50,8 @@
 //   IW       a position pb * P + t + 1 along i
 //   HDR_*    the stream header (LSB first):
 //              INSIDE [P]   the lane's sample is inside the volume box
-//              LVALID [P]   the lane holds a position i < NI
+//              LVALID [P]   the lane holds a position i < NI (with slice
+//                           rectangles: a position its slice traverses)
 //              KEEP   [P]   lane valid, inside the window and on the kept side
 //                           of the cut plane (cube4_clip); a sample counts when
 //                           INSIDE and KEEP (numerics.md section 12)

@@ -29,8 +29,11 @@
 //   NB = ceil(NI / P)), i.e. NI*NJ*NK/P cycles plus padding of the last
 //   partial beam, one flush beam and the pipeline fill (22 cycles in
 //   tb/cube4_frontend, whose harness adds a cycle on the request and on the
-//   response path), when no port stalls. done pulses the cycle the last sample beat is accepted;
-//   cycles counts the clock cycles from start to that beat inclusive.
+//   response path), when no port stalls. With slice rectangles (RECTS = 1):
+//   SliceRects.beats request beats plus one cycle per empty slice before the
+//   last that is not empty, and the same fill. done pulses the cycle the last
+//   sample beat is accepted; cycles counts the clock cycles from start to that
+//   beat inclusive.
 //
 // Ports
 //   start / busy / done / cycles   frame control (cycles: 32-bit count)

@@ -60,8 +60,9 @@
 //   out_*   sample beats: out_sample lane q (WORD_W bits: the sample, unsigned
 //           VOXEL_W, Q0.VOXEL_W; with VGRAD the interpolated components, signed);
 //           out_hdr the stream header (CUBE4_GEOMETRY): lane valid (position
-//           < NI), lane inside (the sample is inside the volume box, numerics.md
-//           section 4), lane keep (valid and counts: window and cut plane,
+//           < NI; with slice rectangles the traversed positions), lane inside
+//           (the sample is inside the volume box, numerics.md section 4, and not
+//           below its slice rectangle's low sides, tag LINL, section 18), lane keep (valid and counts: window and cut plane,
 //           section 12), m, j, pb, skew (lane q holds i = pb*P + t, lane_pos)
 //           and the control bits.
 //

@@ -14,9 +14,10 @@ import pytest
 from cube4_testutil import SKIP_VIEWS, sparse_case
 
 import cube4.slices as slices
+from cube4.config import Cube4Config
 from cube4.cycles import FILL_CYCLES_UNSHADED, frame_cycles
-from cube4.model import render_frame
-from cube4.render import config_for, crop_volume, memory_volume, pass_rects, plan_view, render
+from cube4.model import inside_mask, render_frame
+from cube4.render import config_for, crop_volume, memory_volume, pass_rects, plan_view, render, render_golden_view
 from cube4.scene import load_scene
 from cube4.view import make_traversal
 from cube4.volumes import load_volume
@@ -91,8 +92,6 @@ def test_envelopes_are_needed(monkeypatch):
     rays that cross both leave twice, and the picture loses the second blob behind the
     first. With them every ray leaves once and the image is exact."""
     vol, trav, lut = two_blobs()
-    from cube4.config import Cube4Config
-
     cfg = Cube4Config(pipelines=4)
     full = render_frame(vol, trav, cfg, lut, None, shading=False)
 
@@ -112,7 +111,6 @@ def ray_runs_ok(rects: slices.SliceRects) -> bool:
     rows, cols = t.baseplane_shape
     sxm, sym = t.max_steps
     state = np.zeros((rows, cols), dtype=np.int8)   # 0 before, 1 in the run, 2 after
-    from cube4.model import inside_mask
 
     for m in range(t.num_sample_slices):
         sx, sy = (int(v) for v in t.steps(m))
@@ -185,8 +183,6 @@ def test_golden_engine_with_rects():
     vol = load_volume("head:48")
     scene = dataclasses.replace(load_scene("head"), subpixel=2)
     cfg = config_for(scene, 8)
-    from cube4.render import render_golden_view
-
     on = render_golden_view(vol, scene, cfg, rects=True)
     box = render(vol, scene, cfg, "golden")
     fixed = render(vol, dataclasses.replace(scene, skip=False), cfg, "golden")

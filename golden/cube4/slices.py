@@ -5,7 +5,8 @@ m of a frame gets its own rectangle R(m) = rows [j0, j1) × columns [i0, i1) of 
 traversal frame (empty where the slice holds nothing that counts), and the frame is
 specified as the hardware would run it: a slice traverses only the partial beams of its
 rectangle, in the same raster order. This module is the specification of that schedule;
-the RTL runs the box (docs/architecture.md, "Empty-space skipping").
+in the RTL the front end runs it (cube4_cfb RECTS = 1, S = 1), GRA and COM do not yet, so
+cube4_top runs the box (docs/architecture.md, "Empty-space skipping").
 
 What a slice computes (``model.render_frame`` with ``rects``):
 
@@ -30,7 +31,7 @@ How the host chooses R(m) (``plan_rects``), for one frame (its traversal and the
 1. **Counting samples.** A sample of slice m lies in the 2×2×2 cell (m // S, j, i) of
    the traversal frame, and its value lies within that cell's [min, max]; the cell is
    *busy* when a value in that range counts (``skip.busy_cells``, the same test as the
-   box's, here on the traversal-frame volume), or it is removed whole by the cut plane.
+   box's, here on the traversal-frame volume) and the cut plane does not remove it whole.
 2. **Needed samples.** The samples of busy cells; with GRA also those its stencil reads
    around them (slices m ± 1, rows j ± 1, columns i ± 1, a superset of the shear's
    neighbours). With voxel gradients or no gradient, the busy samples alone.
@@ -44,7 +45,8 @@ How the host chooses R(m) (``plan_rects``), for one frame (its traversal and the
    then non-decreasing, never above A) and B by its peak envelope (never below B), then
    returns to j0, j1. A ray's slices are then one run, and the rectangles only grew.
    Columns alike with sx, wx. The first and last slices with anything needed bound the
-   runs; slices before and after them are empty.
+   runs; slices before and after them are empty, and one between them with nothing
+   needed gets the envelopes' rectangle (empty where no ray crosses it).
 
 Cost (``SliceRects.beats``): slice m traverses its rows over the partial beams that
 cover its columns, plus one flush beam that emits its last row when the next
@@ -55,6 +57,7 @@ box that is the fixed schedule's (M·NJ + 1)·NB + 1 beats.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass
 
@@ -188,14 +191,14 @@ def _axis_bounds(lo: np.ndarray, hi: np.ndarray, step: np.ndarray, frac: np.ndar
     return lo2, hi2
 
 
-def rects_from_needed(need: np.ndarray, trav: Traversal, table_s: float = 0.0) -> SliceRects:
+def rects_from_needed(need: np.ndarray, trav: Traversal) -> SliceRects:
     """The rectangles that hold ``need`` (M, nj, ni) and the voxels it reads, one run per ray."""
     M, nj, ni = need.shape
     rows, cols = need.any(axis=2), need.any(axis=1)
     live = np.nonzero(rows.any(axis=1))[0]
     z = np.zeros(M, dtype=np.int64)
     if live.size == 0:
-        return SliceRects(trav, z, z.copy(), z.copy(), z.copy(), table_s)
+        return SliceRects(trav, z, z.copy(), z.copy(), z.copy())
     ma, mb = int(live[0]), int(live[-1]) + 1
     ms = np.arange(ma, mb)
     sx, sy = (np.asarray(s, dtype=np.int64) for s in trav.steps(ms))
@@ -205,8 +208,7 @@ def rects_from_needed(need: np.ndarray, trav: Traversal, table_s: float = 0.0) -
 
     def first_end(flags: np.ndarray, n: int):
         """Per slice: the first needed position, and one past the last plus the voxel
-        read at the high side; (big, -big) where nothing is needed (a slice inside the
-        run with nothing needed: the envelopes then widen it to hold the rays that cross it)."""
+        read at the high side; (big, -big) where nothing is needed, which bounds nothing."""
         has = flags.any(axis=1)
         first = np.argmax(flags, axis=1)
         last = n - 1 - np.argmax(flags[:, ::-1], axis=1)
@@ -219,7 +221,7 @@ def rects_from_needed(need: np.ndarray, trav: Traversal, table_s: float = 0.0) -
     out = [z.copy() for _ in range(4)]
     for arr, val in zip(out, (j0, j1, i0, i1)):
         arr[ma:mb] = val
-    return SliceRects(trav, *out, table_s=table_s)
+    return SliceRects(trav, *out)
 
 
 def plan_rects(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, *, gra: bool,
@@ -231,5 +233,4 @@ def plan_rects(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, *, 
     t0 = time.perf_counter()
     busy = busy_traversal(vol, trav, lut[:, :4], mode, clip)
     need = needed_samples(busy, trav, gra)
-    rects = rects_from_needed(need, trav)
-    return SliceRects(trav, rects.j0, rects.j1, rects.i0, rects.i1, time.perf_counter() - t0)
+    return dataclasses.replace(rects_from_needed(need, trav), table_s=time.perf_counter() - t0)
