@@ -27,8 +27,10 @@
 //   Slice rectangles (RECTS = 1, S = 1 only; numerics.md section 18): pass m
 //   walks only rows J0 .. JL of its entry in the rectangle table (written by
 //   the host through rect_we / rect_addr / rect_data, layout CUBE4_RECT_LAYOUT)
-//   and partial beams PB0 .. PBL, reads the positions I_LO <= i < I_HI, and
-//   marks the lanes below I_IN or rows below J_IN as not inside (tag LINL).
+//   and partial beams PB0 .. PBL, reads the positions I_LO <= i < I_HI of rows
+//   TJ0 .. TJL (the other rows are walked for GRA, with no read and no lane
+//   valid; JL may be NJ), and marks the lanes below I_IN, the rows below J_IN
+//   and the row TJL when wy > 0 as not inside (tag LINL).
 //   Its last row leaves with the next pass's first beam when that pass walks
 //   the same partial beams; otherwise (entry FLUSH) a flush beam of its own
 //   emits it before the next pass. An EMPTY pass takes one cycle and issues
@@ -234,7 +236,7 @@ module cube4_cfb #(
             assign rt_cur = rt_q;
         end else begin : g_box
             wire [ADDR_W-1:0] pbx_box = cfg_flip_i ? cfg_i_a0 : '0;
-            assign rt_cur = {SB_W'(1), SB_W'(0), IW'(0), pbx_box, cfg_j_r0, cfg_j_a0,
+            assign rt_cur = {cfg_nj - 1'b1, DIM_W'(0), SB_W'(1), SB_W'(0), IW'(0), pbx_box, cfg_j_r0, cfg_j_a0,
                              cfg_ni, DIM_W'(0), DIM_W'(0),
                              PB_W'(cfg_nb - 1'b1), PB_W'(0),
                              DIM_W'(0), cfg_nj - 1'b1, DIM_W'(0), 1'b0, 1'b0, 1'b0};
@@ -257,6 +259,8 @@ module cube4_cfb #(
     wire [ADDR_W-1:0] e_pbx0  = rt_cur[RT_PBX0 +: ADDR_W];
     wire [IW-1:0]     e_pbp0  = rt_cur[RT_PBP0 +: IW];
     wire [SB_W-1:0]   e_sbrow = rt_cur[RT_SBROW +: SB_W];
+    wire [DIM_W-1:0]  e_tj0   = rt_cur[RT_TJ0 +: DIM_W];
+    wire [DIM_W-1:0]  e_tjl   = rt_cur[RT_TJL +: DIM_W];
     wire [DIM_W-1:0]  n_j0    = rt_nxt[RT_J0 +: DIM_W];
     wire [DIM_W-1:0]  n_jl    = rt_nxt[RT_JL +: DIM_W];
     wire [PB_W-1:0]   n_pb0   = rt_nxt[RT_PB0 +: PB_W];
@@ -289,6 +293,7 @@ module cube4_cfb #(
     reg               pend_q;      // the previous pass's last row waits for this pass's first beam
     reg               sopp_q;      // no row emitted yet in this frame
     reg [DIM_W-1:0]   p_jl_q, p_jin_q, p_ilo_q, p_iin_q, p_ihi_q;   // the pass of the row emitted at a first beam
+    reg [DIM_W-1:0]   p_tj0_q, p_tjl_q;
 
     wire [LANE_W-1:0] rk_rd    = rk_q;                         // read slice
     wire [LANE_W-1:0] skew_rd  = add_p(rj_q, rk_rd);
@@ -352,7 +357,15 @@ module cube4_cfb #(
     wire [DIM_W-1:0]  jout_d  = use_prev ? p_jl_q : j_q - 1'b1;
     wire              sop_d   = emit_d && sopp_q;
     wire              eop_d   = in_flush && last_pb && end_pass;
-    wire              rowin_d = (jout_d >= (use_prev ? p_jin_q : e_jin));
+    // the emitted row holds samples (TJ0 .. TJL); inside: not below J_IN, and not
+    // the last sample row when wy > 0 (the box's high-face rule, numerics.md 4)
+    wire [DIM_W-1:0]    tj0_out = use_prev ? p_tj0_q : e_tj0;
+    wire [DIM_W-1:0]    tjl_out = use_prev ? p_tjl_q : e_tjl;
+    wire [WEIGHT_W-1:0] wy_out  = use_prev ? pwy_q : wy;
+    wire              rowv_d  = (jout_d >= tj0_out) && (jout_d <= tjl_out);
+    wire              rowin_d = (jout_d >= (use_prev ? p_jin_q : e_jin))
+                                && !((jout_d == tjl_out) && (wy_out != '0));
+    wire              rdrow_d = (j_q >= e_tj0) && (j_q <= e_tjl);   // the read row holds samples
 
     // ---- the beat's fields, as they travel s1 -> s2 -> output register ----
     // s1 holds the fields but the lane masks (F1_W bits); s2 adds the masks.
@@ -363,14 +376,15 @@ module cube4_cfb #(
                            in_run, in_run && lower_mem,
                            in_run && upper_mem, in_run && (r_q != '0),
                            k0_q[0], sb_q, pb_q,
-                           use_prev ? pwx_q : wx, use_prev ? pwy_q : wy, use_prev ? pwz_q : wz,
+                           use_prev ? pwx_q : wx, wy_out, use_prev ? pwz_q : wz,
                            mout_d, jout_d, skew_out, use_prev,
                            use_prev ? psteps_q : steps};
 
     reg [F1_W-1:0]      f1_q;
     reg [P*LANE_W-1:0]  tout1_q;           // lane positions t of the emitted row
     reg [REM_W-1:0]     hi_rd1_q, lo_rd1_q, hi_out1_q, lo_out1_q, in_out1_q;
-    reg                 rowin1_q;          // the emitted row is not below J_IN
+    reg                 rowin1_q;          // the emitted row is inside (rowin_d)
+    reg                 rowv1_q;           // the emitted row holds samples
     reg                 rd1_q;             // the beat reads memory (RUN and a read pass)
     reg [P*LANE_W-1:0]  t1_q, t2_q;        // lane positions t of the read
     wire [P-1:0]        rden_2, lval_2, lnbr_2, lwrap_2, linl_2;
@@ -379,7 +393,7 @@ module cube4_cfb #(
             wire [REM_W-1:0] tr = REM_W'(t1_q[q*LANE_W +: LANE_W]);
             wire [REM_W-1:0] to = REM_W'(tout1_q[q*LANE_W +: LANE_W]);
             assign rden_2[q]  = rd1_q && (tr < hi_rd1_q) && (tr >= lo_rd1_q);
-            assign lval_2[q]  = (to < hi_out1_q) && (to >= lo_out1_q);
+            assign lval_2[q]  = rowv1_q && (to < hi_out1_q) && (to >= lo_out1_q);
             assign lnbr_2[q]  = (to + 1'b1 < hi_out1_q);
             assign lwrap_2[q] = (to == REM_W'(P - 1));
             assign linl_2[q]  = rowin1_q && (to >= in_out1_q);
@@ -421,7 +435,8 @@ module cube4_cfb #(
             lo_out1_q <= lo_out_d;
             in_out1_q <= in_out_d;
             rowin1_q  <= rowin_d;
-            rd1_q     <= in_run && any_read;
+            rowv1_q   <= rowv_d;
+            rd1_q     <= in_run && any_read && rdrow_d;
             ajk1_q    <= aj_q + ak_q;
             pbx1_q    <= pbx_q;
             flip1_q   <= cfg_flip_i;
@@ -499,6 +514,8 @@ module cube4_cfb #(
             p_ilo_q  <= rt_nxt[RT_ILO +: DIM_W];
             p_iin_q  <= rt_nxt[RT_IIN +: DIM_W];
             p_ihi_q  <= rt_nxt[RT_IHI +: DIM_W];
+            p_tj0_q  <= rt_nxt[RT_TJ0 +: DIM_W];
+            p_tjl_q  <= rt_nxt[RT_TJL +: DIM_W];
             rk_q     <= cfg_k_r0;
             ak_q     <= cfg_k_a0;
             rk0_q    <= cfg_k_r0;
@@ -523,6 +540,8 @@ module cube4_cfb #(
                 p_ilo_q  <= e_ilo;
                 p_iin_q  <= e_iin;
                 p_ihi_q  <= e_ihi;
+                p_tj0_q  <= e_tj0;
+                p_tjl_q  <= e_tjl;
                 fr_q     <= 1'b0;
                 if (flush_pass) state_q <= ST_FLUSH;
             end

@@ -322,6 +322,10 @@
 //   PBP0 [IW]         PB0 * P
 //   SB0 [SB_W]        slot J0 * NB + PB0;  SBROW [SB_W]  slot step from a row's
 //                     last partial beam to the next row's first, NB - (PBL - PB0)
+//   TJ0, TJL [DIM_W]  the rows that hold samples (the traversed rectangle's):
+//                     rows J0 .. JL outside them are walked for GRA (slices.py
+//                     SliceRects.walk) with no read and no lane valid; JL may be
+//                     NJ (a row past the last, for GRA's last centres)
 `define CUBE4_RECT_LAYOUT \
     localparam integer RT_EMPTY = 0, \
     localparam integer RT_FLUSH = 1, \
@@ -340,10 +344,12 @@
     localparam integer RT_PBP0  = RT_PBX0 + ADDR_W, \
     localparam integer RT_SB0   = RT_PBP0 + IW, \
     localparam integer RT_SBROW = RT_SB0 + SB_W, \
-    localparam integer RECT_W   = RT_SBROW + SB_W
+    localparam integer RT_TJ0   = RT_SBROW + SB_W, \
+    localparam integer RT_TJL   = RT_TJ0 + DIM_W, \
+    localparam integer RECT_W   = RT_TJL + DIM_W
 
 // The table entry from one port per field (the harnesses), as CUBE4_VIEW_PORTS.
-`define CUBE4_RECT_PACK {rt_sbrow, rt_sb0, rt_pbp0, rt_pbx0, rt_rj0, rt_aj0, rt_i_hi, rt_i_in, \
+`define CUBE4_RECT_PACK {rt_tjl, rt_tj0, rt_sbrow, rt_sb0, rt_pbp0, rt_pbx0, rt_rj0, rt_aj0, rt_i_hi, rt_i_in, \
     rt_i_lo, rt_pbl, rt_pb0, rt_j_in, rt_jl, rt_j0, rt_last, rt_flush, rt_empty}
 `define CUBE4_RECT_PORTS \
     input  wire               rt_empty, \
@@ -362,7 +368,9 @@
     input  wire [ADDR_W-1:0]  rt_pbx0, \
     input  wire [IW-1:0]      rt_pbp0, \
     input  wire [SB_W-1:0]    rt_sb0, \
-    input  wire [SB_W-1:0]    rt_sbrow,
+    input  wire [SB_W-1:0]    rt_sbrow, \
+    input  wire [DIM_W-1:0]   rt_tj0, \
+    input  wire [DIM_W-1:0]   rt_tjl,
 
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with

@@ -223,28 +223,28 @@ def rect_table(trav: Traversal, rects, p: int, addr_w: int, vol_dims=None) -> li
     nb, mask = regs["NB"], (1 << addr_w) - 1
     fi = bool(trav.flip[trav.axis_i])
     table = []
-    live = [m for m in range(trav.num_sample_slices) if rects.beam_range(m, p) is not None]
+    last = rects.last()
     for m in range(trav.num_sample_slices):
-        rng = rects.beam_range(m, p)
-        if rng is None:
+        walk = rects.walk(m, p) if m <= last else None
+        if walk is None:
             table.append({"empty": 1, **{k: 0 for k in RECT_FIELDS if k != "empty"}})
             continue
-        j0, j1, i0, i1 = rects.traversed(m)
+        j0, j1, pb0, pbl = walk
+        tj0, tj1, i0, i1 = rects.traversed(m)   # (0, 0, 0, 0): a walk with no sample (no lane valid)
         jin, _, iin, _ = rects.bounds(m)
-        pb0, pbl = rng
         aj0, rj0 = _row_start(trav, p, dims, j0)
         pbx0 = regs["I_A0"] - pb0 * regs["I_PB"] if fi else pb0 * regs["I_PB"]
-        table.append({"empty": 0, "flush": int(rects.beam_range(m + 1, p) != rng), "last": int(m == live[-1]),
+        table.append({"empty": 0, "flush": int(rects.flushes(m, p)), "last": int(m == last),
                       "j0": j0, "jl": j1 - 1, "j_in": jin, "pb0": pb0, "pbl": pbl,
                       "i_lo": i0, "i_in": iin, "i_hi": i1, "aj0": aj0 & mask, "rj0": rj0,
                       "pbx0": pbx0 & mask, "pbp0": pb0 * p, "sb0": j0 * nb + pb0,
-                      "sbrow": nb - (pbl - pb0)})
+                      "sbrow": nb - (pbl - pb0), "tj0": tj0, "tjl": max(tj1 - 1, 0)})
     return table
 
 
 #: the fields of a rectangle-table entry (rt_<name> ports of the harnesses)
 RECT_FIELDS = ("empty", "flush", "last", "j0", "jl", "j_in", "pb0", "pbl", "i_lo", "i_in", "i_hi", "aj0", "rj0",
-               "pbx0", "pbp0", "sb0", "sbrow")
+               "pbx0", "pbp0", "sb0", "sbrow", "tj0", "tjl")
 
 
 def lane_positions(skew: int, pb: int, p: int, ni: int, flip_i: bool) -> np.ndarray:

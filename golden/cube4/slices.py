@@ -5,8 +5,9 @@ m of a frame gets its own rectangle R(m) = rows [j0, j1) × columns [i0, i1) of 
 traversal frame (empty where the slice holds nothing that counts), and the frame is
 specified as the hardware would run it: a slice traverses only the partial beams of its
 rectangle, in the same raster order. This module is the specification of that schedule;
-in the RTL the front end runs it (cube4_cfb RECTS = 1, S = 1), GRA and COM do not yet, so
-cube4_top runs the box (docs/architecture.md, "Empty-space skipping").
+in the RTL the front end runs it (cube4_cfb RECTS = 1, S = 1) and so does GRA
+(cube4_gra RECTS = 1); COM does not yet, so cube4_top runs the box (docs/architecture.md,
+"Empty-space skipping").
 
 What a slice computes (``model.render_frame`` with ``rects``):
 
@@ -48,11 +49,21 @@ How the host chooses R(m) (``plan_rects``), for one frame (its traversal and the
    runs; slices before and after them are empty, and one between them with nothing
    needed gets the envelopes' rectangle (empty where no ray crosses it).
 
-Cost (``SliceRects.beats``): slice m traverses its rows over the partial beams that
-cover its columns, plus one flush beam that emits its last row when the next
-slice traverses other partial beams (otherwise the next slice's first beam emits it, as
-in the fixed schedule); one drain beat ends the frame. With every rectangle the whole
-box that is the fixed schedule's (M·NJ + 1)·NB + 1 beats.
+**GRA's walk** (``SliceRects.walk``, frames that GRA shades). GRA finishes the gradient
+of sample (m, j, pb) when the beat (m + 1, j + 1, pb) arrives (it needs slice m + 1 and
+row j + 1), so the front end walks, for slice m + 1, its traversed rectangle T(m + 1)
+and rows T(m).j0 .. T(m).j1 over T(m)'s partial beams (row NJ, past the last, holds
+no sample), and one partial beam below T(m)'s first where T(m - 1) reaches it (the
+back neighbour i - 1 of a lane at t = 0 comes from the previous beat): the bounding
+rectangle of the three. The beats outside T(m + 1) carry no sample (no lane valid, no
+voxel read); GRA forwards only the beats of T(m). After the last slice with a rectangle
+GRA walks the rest itself (cube4_gra).
+
+Cost (``SliceRects.beats``): slice m walks its rows over its partial beams, plus one
+flush beam that emits its last row when the next slice walks other partial beams or it
+is the last (otherwise the next slice's first beam emits it, as in the fixed schedule);
+one drain beat ends the frame. With every rectangle the whole box and no GRA, that is
+the fixed schedule's (M·NJ + 1)·NB + 1 beats.
 """
 
 from __future__ import annotations
@@ -79,6 +90,7 @@ class SliceRects:
     i0: np.ndarray
     i1: np.ndarray
     table_s: float = 0.0
+    gra: bool = False
 
     def empty(self, m: int) -> bool:
         return not (0 <= m < self.j0.size) or self.j1[m] <= self.j0[m] or self.i1[m] <= self.i0[m]
@@ -110,29 +122,68 @@ class SliceRects:
         out[j0:j1 - (wy > 0), i0:i1 - (wx > 0)] = True
         return out
 
-    def beam_range(self, m: int, p: int) -> tuple[int, int] | None:
-        """The partial beams [pb0, pb1] slice m traverses on P pipelines (None: none)."""
+    def walk(self, m: int, p: int) -> tuple[int, int, int, int] | None:
+        """Rows [j0, j1) and partial beams [pb0, pb1] the front end walks for slice m on P
+        pipelines (None: none). Without GRA the traversed rectangle; with GRA (``gra``)
+        its bounding rectangle with the walk GRA needs to finish slice m - 1 (module
+        docstring, "GRA's walk"): rows T(m-1).j0 .. T(m-1).j1 (one below the rectangle,
+        up to row NJ, which holds no sample) over T(m-1)'s partial beams, and one partial
+        beam below T(m-1)'s first where T(m-2) reaches it."""
+        cur = self._beams(m, p)
+        if not self.gra:
+            return cur
+        prev, prev2 = self._beams(m - 1, p), self._beams(m - 2, p)
+        parts = [cur] if cur is not None else []
+        if prev is not None:
+            parts.append((prev[0], prev[1] + 1, prev[2], prev[3]))
+        if not parts:
+            return None
+        j0, j1 = min(b[0] for b in parts), max(b[1] for b in parts)
+        pb0, pb1 = min(b[2] for b in parts), max(b[3] for b in parts)
+        if prev is not None and prev2 is not None:
+            pb0 = min(pb0, max(prev2[2], prev[2] - 1))
+        return j0, j1, pb0, pb1
+
+    def _beams(self, m: int, p: int) -> tuple[int, int, int, int] | None:
+        """The traversed rectangle of slice m as rows [j0, j1) and partial beams [pb0, pb1]."""
         if self.empty(m):
             return None
-        _, _, i0, i1 = self.traversed(m)
-        return i0 // p, (i1 - 1) // p
+        j0, j1, i0, i1 = self.traversed(m)
+        return j0, j1, i0 // p, (i1 - 1) // p
+
+    def last(self) -> int:
+        """The last slice with a rectangle (-1: none): the front end's walk ends with it."""
+        live = [m for m in range(self.j0.size) if not self.empty(m)]
+        return live[-1] if live else -1
+
+    def beam_range(self, m: int, p: int) -> tuple[int, int] | None:
+        """The partial beams [pb0, pb1] the front end walks for slice m (None: none)."""
+        w = self.walk(m, p)
+        return None if w is None else (w[2], w[3])
+
+    def flushes(self, m: int, p: int) -> bool:
+        """A flush beam emits slice m's last row: the last slice, or the next walks other
+        partial beams."""
+        return m == self.last() or self.beam_range(m + 1, p) != self.beam_range(m, p)
 
     def slice_beats(self, m: int, p: int) -> int:
-        """Beats slice m takes on P pipelines: each of its rows, and a flush beam that
-        emits its last row unless the next slice traverses the same partial beams (then
+        """Beats slice m takes on P pipelines: each row it walks, and a flush beam that
+        emits its last row unless the next slice walks the same partial beams (then
         that slice's first beam emits it, as in the fixed schedule), each of the partial
-        beams that cover its columns."""
-        rng = self.beam_range(m, p)
-        if rng is None:
+        beams it walks."""
+        w = self.walk(m, p)
+        if w is None or m > self.last():
             return 0
-        j0, j1, _, _ = self.traversed(m)
-        flush = int(self.beam_range(m + 1, p) != rng)
-        return (j1 - j0 + flush) * (rng[1] - rng[0] + 1)
+        return (w[1] - w[0] + int(self.flushes(m, p))) * (w[3] - w[2] + 1)
 
     def beats(self, p: int) -> int:
         """Beats of the whole frame (every slice's, and the drain beat)."""
         total = sum(self.slice_beats(m, p) for m in range(self.j0.size))
         return total + 1 if total else 0
+
+    def empty_walks(self, p: int) -> int:
+        """Slices before the last that walk nothing: one idle cycle each in the front end."""
+        return sum(1 for m in range(self.last()) if self.walk(m, p) is None)
 
     def fraction(self) -> float:
         """Samples traversed / samples of the frame."""
@@ -233,4 +284,4 @@ def plan_rects(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, *, 
     t0 = time.perf_counter()
     busy = busy_traversal(vol, trav, lut[:, :4], mode, clip)
     need = needed_samples(busy, trav, gra)
-    return dataclasses.replace(rects_from_needed(need, trav), table_s=time.perf_counter() - t0)
+    return dataclasses.replace(rects_from_needed(need, trav), table_s=time.perf_counter() - t0, gra=gra)

@@ -24,6 +24,7 @@ Reproduce a failure with the printed COCOTB_RANDOM_SEED.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import time
@@ -164,22 +165,23 @@ def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log
 
 def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects, p: int, log) -> None:
     """Compare one slice-rectangle frame's sample beats with the golden model
-    (numerics.md §18): each slice's traversed rows and partial beams in order, the
-    lanes of its positions valid, samples from the rectangle's voxels (model.rect_slice),
+    (numerics.md §18): each slice's walked rows and partial beams in order
+    (SliceRects.walk: with GRA beyond the traversed rectangle), the lanes of its
+    traversed positions valid, samples from the rectangle's voxels (model.rect_slice),
     inside per its rectangle, and the control bits (y-last: the slice's last row)."""
     tp = padded_traversal(vol, trav)
     order, gold, gin, ylast = [], {}, {}, []
-    for m in range(trav.num_sample_slices):
-        rng = rects.beam_range(m, p)
-        if rng is None:
+    for m in range(rects.last() + 1):
+        walk = rects.walk(m, p)
+        if walk is None:
             continue
         b = rects.traversed(m)
         gold[m] = rect_slice(tp, trav, m, b, trav.weight_bits)
         gin[m] = inside_mask(trav, m) & rects.inside(m)
-        for j in range(b[0], b[1]):
-            for pb in range(rng[0], rng[1] + 1):
+        for j in range(walk[0], walk[1]):
+            for pb in range(walk[2], walk[3] + 1):
                 order.append((m, j, pb, b))
-                ylast.append(j == b[1] - 1)
+                ylast.append(j == walk[1] - 1)
     n = len(beats["m"])
     assert n == len(order), f"{n} sample beats, expected {len(order)}"
     fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
@@ -192,11 +194,11 @@ def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects,
         ck = nk - 1 - m if fk else m
         assert beats["skew"][r] == (cj + ck) % p, f"beat {r}: skew {beats['skew'][r]}"
         pos = lane_positions(int(beats["skew"][r]), pb, p, ni, fi)
-        valid = (pos >= b[2]) & (pos < b[3])
+        valid = (pos >= b[2]) & (pos < b[3]) & (b[0] <= j < b[1])
         assert (beats["lval"][r] == valid).all(), f"beat {r} (m={m}, j={j}, pb={pb}): lane_valid wrong"
-        ii = np.minimum(pos, ni - 1)
-        want = np.where(valid, gold[m][j, ii], 0)
-        want_in = np.where(valid, gin[m][j, ii], False)
+        ii, jc = np.minimum(pos, ni - 1), min(j, nj - 1)
+        want = np.where(valid, gold[m][jc, ii], 0)
+        want_in = np.where(valid, gin[m][jc, ii], False)
         have = np.where(valid, beats["smp"][r], 0)
         for q in np.nonzero((have != want) | (beats["lins"][r] != want_in))[0]:
             if bad < MAX_MISMATCH_LOGS:
@@ -403,14 +405,14 @@ async def test_rect_views(dut):
             fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
         density = (0.01, 0.05, 0.3)[n % 3]
         need = tb.rng.random((trav.num_sample_slices, trav.nj, trav.ni)) < density
-        rects = slices.rects_from_needed(need, trav)
+        # every other view with GRA's walk (rows and partial beams beyond the rectangles)
+        rects = dataclasses.replace(slices.rects_from_needed(need, trav), gra=n % 2 == 1)
         if rects.beats(tb.p) == 0:
             continue
         stalls = stall_sets[n % len(stall_sets)]
         beats, cycles, _ = await tb.frame(vol, trav, stalls, rects=rects)
         check_rect_frame(beats, vol, trav, rects, tb.p, tb.log)
-        live = [m for m in range(trav.num_sample_slices) if rects.beam_range(m, tb.p) is not None]
-        empty = live[-1] + 1 - len(live)   # the empty slices before the last: one cycle each
+        empty = rects.empty_walks(tb.p)   # the slices before the last that walk nothing: one cycle each
         if stalls == (0, 0, 0):
             want = rects.beats(tb.p) + empty + fill
             assert cycles == want, f"view {direction}: {cycles} cycles, expected {want}"
@@ -453,8 +455,7 @@ async def test_rect_scene(dut):
     fill = full_cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
     beats, cycles, wall = await tb.frame(box, trav, rects=rects)
     check_rect_frame(beats, box, trav, rects, tb.p, tb.log)
-    live = [m for m in range(trav.num_sample_slices) if rects.beam_range(m, tb.p) is not None]
-    predicted = rects.beats(tb.p) + (live[-1] + 1 - len(live)) + fill
+    predicted = rects.beats(tb.p) + rects.empty_walks(tb.p) + fill
     assert cycles == predicted, f"{cycles} cycles, predicted {predicted}"
     nz, ny, nx = whole.shape
     res = {"volume": vol_spec, "scene": scene_name, "p": tb.p, "box_dims": list(trav.dims),
