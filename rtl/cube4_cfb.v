@@ -366,6 +366,7 @@ module cube4_cfb #(
     wire              rowin_d = (jout_d >= (use_prev ? p_jin_q : e_jin))
                                 && !((jout_d == tjl_out) && (wy_out != '0));
     wire              rdrow_d = (j_q >= e_tj0) && (j_q <= e_tjl);   // the read row holds samples
+    wire              ylast_d = (jout_d == cfg_nj - 1'b1);          // the emitted row is row NJ - 1
 
     // ---- the beat's fields, as they travel s1 -> s2 -> output register ----
     // s1 holds the fields but the lane masks (F1_W bits); s2 adds the masks.
@@ -377,7 +378,7 @@ module cube4_cfb #(
                            in_run && upper_mem, in_run && (r_q != '0),
                            k0_q[0], sb_q, pb_q,
                            use_prev ? pwx_q : wx, wy_out, use_prev ? pwz_q : wz,
-                           mout_d, jout_d, skew_out, use_prev,
+                           mout_d, jout_d, skew_out, ylast_d,
                            use_prev ? psteps_q : steps};
 
     reg [F1_W-1:0]      f1_q;

@@ -60,7 +60,7 @@
 module cube4_gra #(
     parameter integer P       = 8, parameter integer MAX_DIM     = 256,
     parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8,
+    parameter integer WEIGHT_W = 8, parameter integer RECTS       = 0,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
@@ -77,6 +77,7 @@ module cube4_gra #(
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_gra", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_gra", "VOXEL_W", VOXEL_W, 1, 16)
+        `CUBE4_RANGE(g_bad_rects, "cube4_gra", "RECTS", RECTS, 0, 1)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -90,168 +91,402 @@ module cube4_gra #(
     `CUBE4_LANE_FUNCTIONS
 
     // ------------------------------------------------------------ stepping
-    // The output FIFO's credit and flush_q have NSTEP register copies each
-    // (cube4_prim_copies), so each group of registers (each delay line, the window and
-    // counters) gets its own step net: no single net drives every clock
-    // enable of the unit.
+    // The output FIFO's credit has NSTEP register copies (cube4_prim_copies),
+    // so each group of registers (each delay line, the window and counters)
+    // gets its own step net: no single net drives every clock enable of the
+    // unit.
     localparam integer NSTEP = 7;    // 0..5 the delay lines, 6 window and counters
-    localparam integer FIFO_DEPTH = 16;   // >= 4 cycles from a step to the FIFO's read
+    localparam integer FIFO_DEPTH = 16;   // >= 4 cycles from a step to the FIFO's read (6 with RECTS)
     wire [NSTEP-1:0] en_rep;         // copies of the output FIFO's credit
-    reg              flush_q;        // running the zero steps after a frame
-    wire [NSTEP-1:0] flush_rep;      // copies of flush_q
-    reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then two beats (row NJ + 1)
-    reg  [PB_W-1:0]  f_pb_q;
-    reg              f_tail_q;       // the previous flush step was in row NJ + 1
-    reg  [DIM_W:0]   nj_p1_q;        // NJ + 1
-
-    // ------------------------------------------------------------ input register
-    // The incoming beat is registered (i0) before anything uses it: a stream
-    // register, loaded whenever it is empty or its beat is taken by a step, so
-    // it passes one beat per cycle. in_ready depends on registers only.
-    reg               i0_v;
-    reg [P*VOXEL_W-1:0] i0_sample;
-    reg [HDR_W-1:0]   i0_hdr;
-    wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
-    wire i0_take = !i0_v || (en_rep[6] && !flush_rep[6]);   // i0 is free, or its beat steps now
-    assign in_ready = i0_take;
-    always @(posedge clk) begin
-        if (rst)          i0_v <= 1'b0;
-        else if (i0_take) i0_v <= in_valid;
-    end
-    always @(posedge clk) begin
-        if (i0_take) begin
-            i0_sample <= in_sample;
-            i0_hdr    <= in_hdr;
-        end
-    end
-
-    wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{i0_v}});
-    wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{i0_hdr[HDR_CTRL + CTRL_SOP]}};   // frame start, per copy
-    wire step = step_rep[6];
-
-    wire real_beat = !flush_q;
-    wire sop       = sop_rep[6];
-    wire eop       = real_beat && i0_hdr[HDR_CTRL + CTRL_EOP];
-
-    // position counters of the delay lines (beat index within a beam / slice);
-    // lb_q / ls_q: the position in pb_q / row_q is the last beam / the last
-    // beat of a slice (kept with the counters, so that the delay lines' last
-    // inputs are a multiplexer on registers)
-    reg  [PB_W-1:0]  pb_q;
-    reg  [DIM_W-1:0] row_q;
-    reg              lb_q, ls_q;
-    reg              nb1_q, nj1_q;   // NB = 1, NJ = 1
-    always @(posedge clk) begin
-        nb1_q   <= (cfg_nb == NB_W'(1));
-        nj1_q   <= (cfg_nj == DIM_W'(1));
-        nj_p1_q <= {1'b0, cfg_nj} + 1'b1;
-    end
-    wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
-    wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
-    wire last_beam  = sop ? nb1_q : lb_q;
-    wire last_slice = sop ? (nb1_q && nj1_q) : ls_q;
-    wire [PB_W-1:0]  pb_n  = last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
-    wire [DIM_W-1:0] row_n = !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
-    wire             lb_n  = (NB_W'(pb_n) == cfg_nb - 1'b1);
-
-    // flush_q and its copies
-    reg flush_d;
-    always @(*) begin
-        flush_d = flush_q;
-        if (rst)                    flush_d = 1'b0;
-        else if (step && flush_q)   flush_d = !f_tail_q;   // ends after the second step of row NJ + 1
-        else if (step && eop)       flush_d = 1'b1;
-    end
-    always @(posedge clk) flush_q <= flush_d;
-    cube4_prim_copies #(.N(NSTEP), .RESET(0)) u_flush (
-        .clk(clk), .rst(rst), .d(flush_d), .q(flush_rep));
     genvar q;
 
-    always @(posedge clk) begin
-        if (rst) begin
-            pb_q    <= {PB_W{1'b0}};
-            row_q   <= {DIM_W{1'b0}};
-            lb_q    <= 1'b0;
-            ls_q    <= 1'b0;
-            f_row_q <= {(DIM_W + 1){1'b0}};
-            f_pb_q  <= {PB_W{1'b0}};
-            f_tail_q <= 1'b0;
-        end else if (step) begin
-            pb_q  <= pb_n;
-            row_q <= row_n;
-            lb_q  <= lb_n;
-            ls_q  <= lb_n && (row_n == cfg_nj - 1'b1);
-            if (flush_q) begin
-                f_tail_q <= (f_row_q == nj_p1_q);
-                if (NB_W'(f_pb_q) == cfg_nb - 1'b1) begin
-                    f_pb_q  <= {PB_W{1'b0}};
-                    f_row_q <= f_row_q + 1'b1;
-                end else begin
-                    f_pb_q <= f_pb_q + 1'b1;
-                end
-            end else if (eop) begin
-                f_row_q  <= {(DIM_W + 1){1'b0}};
-                f_pb_q   <= {PB_W{1'b0}};
-                f_tail_q <= 1'b0;
-            end
-        end
-    end
+    // The source of the window: for the incoming centre c' = (m, j, pb) (the
+    // step's beat X = (m + 1, j + 1, pb)), its neighbourhood and flags.
+    wire              step;          // GRA steps: the source and the window move
+    wire              sop;           // the step's beat starts a frame (delay lines)
+    wire              fend;          // the step ends a frame (RECTS: the last centre may leave)
+    wire [PV-1:0]     x_data, b1, p1, c_d, p1b2, p2b1, p2b2;
+    wire [META_W-1:0] c_meta;        // {real, header} of c'
+    wire              dk_f, dk_b, j_first, m_first;
+    wire              y_last;        // c' is in row NJ - 1
+    wire              c_dyf, c_dyb;  // Y-step and old Y-step of c's slice
+    wire [1:0]        c_edge;        // {last, first}: c' is at its walk's last / first partial beam (RECTS)
 
-    // ------------------------------------------------------------ delay lines
-    wire [PV-1:0] x_data;
     generate
-        for (q = 0; q < P; q = q + 1) begin : g_mask
-            assign x_data[q*VW +: VW] = (real_beat && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
+        if (RECTS == 0) begin : g_lines
+            reg              flush_q;        // running the zero steps after a frame
+            wire [NSTEP-1:0] flush_rep;      // copies of flush_q
+            reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then two beats (row NJ + 1)
+            reg  [PB_W-1:0]  f_pb_q;
+            reg              f_tail_q;       // the previous flush step was in row NJ + 1
+            reg  [DIM_W:0]   nj_p1_q;        // NJ + 1
+
+            // ------------------------------------------------------------ input register
+            // The incoming beat is registered (i0) before anything uses it: a stream
+            // register, loaded whenever it is empty or its beat is taken by a step, so
+            // it passes one beat per cycle. in_ready depends on registers only.
+            reg               i0_v;
+            reg [P*VOXEL_W-1:0] i0_sample;
+            reg [HDR_W-1:0]   i0_hdr;
+            wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
+            wire i0_take = !i0_v || (en_rep[6] && !flush_rep[6]);   // i0 is free, or its beat steps now
+            assign in_ready = i0_take;
+            always @(posedge clk) begin
+                if (rst)          i0_v <= 1'b0;
+                else if (i0_take) i0_v <= in_valid;
+            end
+            always @(posedge clk) begin
+                if (i0_take) begin
+                    i0_sample <= in_sample;
+                    i0_hdr    <= in_hdr;
+                end
+            end
+
+            wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{i0_v}});
+            wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{i0_hdr[HDR_CTRL + CTRL_SOP]}};   // frame start, per copy
+            assign step = step_rep[6];
+
+            wire real_beat = !flush_q;
+            assign sop     = sop_rep[6];
+            wire eop       = real_beat && i0_hdr[HDR_CTRL + CTRL_EOP];
+
+            // position counters of the delay lines (beat index within a beam / slice);
+            // lb_q / ls_q: the position in pb_q / row_q is the last beam / the last
+            // beat of a slice (kept with the counters, so that the delay lines' last
+            // inputs are a multiplexer on registers)
+            reg  [PB_W-1:0]  pb_q;
+            reg  [DIM_W-1:0] row_q;
+            reg              lb_q, ls_q;
+            reg              nb1_q, nj1_q;   // NB = 1, NJ = 1
+            always @(posedge clk) begin
+                nb1_q   <= (cfg_nb == NB_W'(1));
+                nj1_q   <= (cfg_nj == DIM_W'(1));
+                nj_p1_q <= {1'b0, cfg_nj} + 1'b1;
+            end
+            wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
+            wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
+            wire last_beam  = sop ? nb1_q : lb_q;
+            wire last_slice = sop ? (nb1_q && nj1_q) : ls_q;
+            wire [PB_W-1:0]  pb_n  = last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
+            wire [DIM_W-1:0] row_n = !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
+            wire             lb_n  = (NB_W'(pb_n) == cfg_nb - 1'b1);
+
+            // flush_q and its copies
+            reg flush_d;
+            always @(*) begin
+                flush_d = flush_q;
+                if (rst)                    flush_d = 1'b0;
+                else if (step && flush_q)   flush_d = !f_tail_q;   // ends after the second step of row NJ + 1
+                else if (step && eop)       flush_d = 1'b1;
+            end
+            always @(posedge clk) flush_q <= flush_d;
+            cube4_prim_copies #(.N(NSTEP), .RESET(0)) u_flush (
+                .clk(clk), .rst(rst), .d(flush_d), .q(flush_rep));
+
+            always @(posedge clk) begin
+                if (rst) begin
+                    pb_q    <= {PB_W{1'b0}};
+                    row_q   <= {DIM_W{1'b0}};
+                    lb_q    <= 1'b0;
+                    ls_q    <= 1'b0;
+                    f_row_q <= {(DIM_W + 1){1'b0}};
+                    f_pb_q  <= {PB_W{1'b0}};
+                    f_tail_q <= 1'b0;
+                end else if (step) begin
+                    pb_q  <= pb_n;
+                    row_q <= row_n;
+                    lb_q  <= lb_n;
+                    ls_q  <= lb_n && (row_n == cfg_nj - 1'b1);
+                    if (flush_q) begin
+                        f_tail_q <= (f_row_q == nj_p1_q);
+                        if (NB_W'(f_pb_q) == cfg_nb - 1'b1) begin
+                            f_pb_q  <= {PB_W{1'b0}};
+                            f_row_q <= f_row_q + 1'b1;
+                        end else begin
+                            f_pb_q <= f_pb_q + 1'b1;
+                        end
+                    end else if (eop) begin
+                        f_row_q  <= {(DIM_W + 1){1'b0}};
+                        f_pb_q   <= {PB_W{1'b0}};
+                        f_tail_q <= 1'b0;
+                    end
+                end
+            end
+
+            // ------------------------------------------------------------ delay lines
+            for (q = 0; q < P; q = q + 1) begin : g_mask
+                assign x_data[q*VW +: VW] = (real_beat && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
+            end
+            wire [META_W-1:0] x_meta = {real_beat, i0_hdr};
+
+            wire [META_W-1:0]    p1_meta;
+            wire [3:0]           p1_flags, c_flags;   // {dk_f, dk_b, j_first, m_first} of the beat
+
+            // period of each delay line: NB (beam) and NJ*NB (plane), constant in a frame
+            localparam integer BL_W = ((NBMAX > 1) ? $clog2(NBMAX) : 1) + 1;
+            localparam integer PL_W = ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1) + 1;
+            wire [BL_W-1:0] beam_len = BL_W'(cfg_nb);
+            reg  [PL_W-1:0] plane_len;
+            always @(posedge clk) begin
+                plane_len <= PL_W'(PL_W'(cfg_nj) * PL_W'(cfg_nb));
+            end
+            cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_x_b1 (
+                .clk(clk), .rst(rst), .clear(sop_rep[0]), .step(step_rep[0]), .last(last_beam), .len(beam_len),
+                .din(x_data), .dout(b1));
+            cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(MAX_DIM * NBMAX)) u_x_p1 (
+                .clk(clk), .rst(rst), .clear(sop_rep[1]), .step(step_rep[1]), .last(last_slice), .len(plane_len),
+                .din({x_meta, x_data}), .dout({p1_meta, p1}));
+            // The centre's slice and row flags are computed from the beat one beam
+            // earlier (p1, a register) and travel with it, so they are registers at c.
+            wire [M_W-1:0]    p1_m    = p1_meta[HDR_M +: M_W];
+            wire [DIM_W-1:0]  p1_j    = p1_meta[HDR_J +: DIM_W];
+            wire [M_W-1:0]    ss_mask = M_W'((1 << cfg_ss_log2) - 1);
+            assign p1_flags = {((p1_m + 1'b1) & ss_mask) == '0,   // dk_f: voxel slice changes m -> m+1
+                               (p1_m & ss_mask) == '0,            // dk_b: voxel slice changes m-1 -> m
+                               p1_j == '0,                        // j_first
+                               p1_m == '0};                       // m_first
+            cube4_delay_line #(.DATA_W(4 + META_W + PV), .DEPTH(NBMAX)) u_p1_c (
+                .clk(clk), .rst(rst), .clear(sop_rep[2]), .step(step_rep[2]), .last(last_beam), .len(beam_len),
+                .din({p1_flags, p1_meta, p1}), .dout({c_flags, c_meta, c_d}));
+            cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
+                .clk(clk), .rst(rst), .clear(sop_rep[3]), .step(step_rep[3]), .last(last_beam), .len(beam_len),
+                .din(c_d), .dout(p1b2));
+            cube4_delay_line #(.DATA_W(PV), .DEPTH(MAX_DIM * NBMAX)) u_c_p2b1 (
+                .clk(clk), .rst(rst), .clear(sop_rep[4]), .step(step_rep[4]), .last(last_slice), .len(plane_len),
+                .din(c_d), .dout(p2b1));
+            cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_p2b1_p2b2 (
+                .clk(clk), .rst(rst), .clear(sop_rep[5]), .step(step_rep[5]), .last(last_beam), .len(beam_len),
+                .din(p2b1), .dout(p2b2));
+
+            assign {dk_f, dk_b, j_first, m_first} = c_flags;
+            assign y_last = c_meta[HDR_CTRL + CTRL_YLAST];   // row j = NJ-1
+        assign c_dyf  = c_meta[HDR_CTRL + CTRL_SY];      // Y-step of slice m
+        assign c_dyb  = c_meta[HDR_CTRL + CTRL_OSY];     // old Y-step
+            assign c_edge = 2'b00;                            // i - 1 and i + 1 lie in the frame's beams
+            assign fend   = 1'b0;
+
+        end else begin : g_walk
+            // ---- slice rectangles: GRA's walk and position buffers (header) ----
+            localparam integer RW  = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;   // row bits of a plane address
+            localparam integer PAW = RW + PB_W;                            // plane address {row, pb}
+            localparam integer AWD = META_W + PV;                          // plane A: X with its meta
+            localparam integer BMW = 4 * PV + META_W;                      // beam: X, P1 (meta), C, P2b1
+            localparam integer PBN = 1 << PB_W;                            // beam buffer entries
+
+            // i0: the position of the next step, with its sample beat (an input
+            // beat) or none (a step of GRA's own walk at the end of a frame)
+            reg               i0_v, i0_in, i0_dead, i0_fend;
+            reg [PV-1:0]      i0_sample;
+            reg [HDR_W-1:0]   i0_hdr;
+            reg [DIM_W-1:0]   i0_r;          // walk row r = the centre's row + 1
+            reg [PB_W-1:0]    i0_pb;
+            reg               i0_pg, i0_bg;  // the plane / beam words read for it are this walk's neighbours
+            reg               i0_pgb;        // plane B's (the centre's row is a row: r > 0)
+            reg [1:0]         i0_edge;
+            reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
+            reg               i0_ylast;
+            reg               i0_dyf, i0_dyb;
+            wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
+            wire [META_W-1:0] p1_meta;       // P1's {real, header} (gated)
+            assign step = i0_v && en_rep[6];
+            assign sop  = 1'b0;
+            assign fend = i0_fend;
+            wire i0_take = !i0_v || step;
+
+            // the input's walks: the current one (wk) and the one before (pv)
+            reg               wk_v, pv_ok;
+            // the Y-steps of a walk's slice (every beat of a pass has its steps):
+            // SY and OSY of wk, OSY of pv; a centre of slice w - 1 takes them from
+            // these, not from its own header (which a centre outside the
+            // rectangles does not have, and its neighbours need)
+            reg               wk_sy, wk_osy, pv_osy;
+            reg [M_W-1:0]     wk_m;
+            reg [DIM_W-1:0]   wk_j0, wk_jl, pv_j0, pv_jl;
+            reg [PB_W-1:0]    wk_pb0, wk_pbl, pv_pb0, pv_pbl;
+            // GRA's own walk after a frame's last beat: the rows wk_j0 .. wk_jl + 1
+            // (at most NJ) over wk's partial beams, then three trailing steps
+            reg               gen_q, g_rows_done;
+            reg [DIM_W-1:0]   g_r, g_j0;
+            reg [PB_W-1:0]    g_pb;
+            reg [1:0]         g_tail;
+
+            wire [M_W-1:0]    in_m   = in_hdr[HDR_M +: M_W];
+            wire [DIM_W-1:0]  in_j   = in_hdr[HDR_J +: DIM_W];
+            wire [PB_W-1:0]   in_pb  = in_hdr[HDR_PB +: PB_W];
+            wire              in_sop = in_hdr[HDR_CTRL + CTRL_SOP];
+            wire              in_eop = in_hdr[HDR_CTRL + CTRL_EOP];
+            wire              in_sy  = in_hdr[HDR_CTRL + CTRL_SY];
+            wire              in_osy = in_hdr[HDR_CTRL + CTRL_OSY];
+            assign in_ready = i0_take && !gen_q;
+            wire ld_in  = i0_take && !gen_q && in_valid;
+            wire ld_gen = i0_take && gen_q;
+            wire ld     = ld_in || ld_gen;
+
+            wire new_walk = in_sop || !wk_v || (in_m != wk_m);
+            wire prev_ok  = new_walk ? (wk_v && !in_sop && (in_m == wk_m + 1'b1)) : pv_ok;
+            wire [DIM_W-1:0] pj0  = new_walk ? wk_j0 : pv_j0;
+            wire [DIM_W-1:0] pjl  = new_walk ? wk_jl : pv_jl;
+            wire [PB_W-1:0]  ppb0 = new_walk ? wk_pb0 : pv_pb0;
+            wire [PB_W-1:0]  ppbl = new_walk ? wk_pbl : pv_pbl;
+            wire [DIM_W-1:0] g_last = (wk_jl >= cfg_nj) ? cfg_nj : wk_jl + 1'b1;
+            wire             g_dead = g_rows_done;
+
+            // the step being loaded: walk slice w, row r, partial beam pb
+            wire [M_W-1:0]   ld_w  = gen_q ? wk_m + 1'b1 : in_m;
+            wire [DIM_W-1:0] ld_r  = gen_q ? g_r : in_j;
+            wire [PB_W-1:0]  ld_pb = gen_q ? g_pb : in_pb;
+            wire ld_pg = gen_q ? (!g_dead && g_r >= wk_j0 && g_r <= wk_jl && g_pb >= wk_pb0 && g_pb <= wk_pbl)
+                               : (prev_ok && in_j >= pj0 && in_j <= pjl && in_pb >= ppb0 && in_pb <= ppbl);
+            wire ld_bg = gen_q ? (!g_dead && g_r != g_j0) : (!new_walk && in_j != wk_j0);
+            wire ld_e0 = gen_q ? (g_pb == wk_pb0) : (new_walk || in_pb == wk_pb0);
+            wire ld_e1 = gen_q ? (g_pb == wk_pbl) : (!new_walk && in_pb == wk_pbl);
+            wire [M_W-1:0] ss_mask = M_W'((1 << cfg_ss_log2) - 1);
+            wire [3:0] ld_flags = {(ld_w & ss_mask) == '0,                  // dk_f of centre slice w - 1
+                                   ((ld_w - 1'b1) & ss_mask) == '0,         // dk_b
+                                   ld_r == DIM_W'(1),                       // j_first (centre row 0)
+                                   ld_w == M_W'(1)};                        // m_first (centre slice 0)
+
+            always @(posedge clk) begin
+                if (rst) begin
+                    i0_v  <= 1'b0;
+                    gen_q <= 1'b0;
+                    wk_v  <= 1'b0;
+                    pv_ok <= 1'b0;
+                end else begin
+                    if (ld)        i0_v <= 1'b1;
+                    else if (step) i0_v <= 1'b0;
+                    if (ld_in) begin
+                        if (new_walk) begin
+                            wk_v   <= 1'b1;
+                            wk_m   <= in_m;
+                            wk_j0  <= in_j;
+                            wk_jl  <= in_j;
+                            wk_pb0 <= in_pb;
+                            wk_pbl <= in_pb;
+                            pv_ok  <= prev_ok;
+                            pv_j0  <= wk_j0;
+                            pv_jl  <= wk_jl;
+                            pv_pb0 <= wk_pb0;
+                            pv_pbl <= wk_pbl;
+                            wk_sy  <= in_sy;
+                            wk_osy <= in_osy;
+                            pv_osy <= wk_osy;
+                        end else begin
+                            wk_jl <= in_j;
+                            if (in_pb > wk_pbl) wk_pbl <= in_pb;
+                        end
+                        if (in_eop) begin
+                            gen_q       <= 1'b1;
+                            g_rows_done <= 1'b0;
+                            g_tail      <= 2'd0;
+                            g_r         <= new_walk ? in_j : wk_j0;
+                            g_j0        <= new_walk ? in_j : wk_j0;
+                            g_pb        <= new_walk ? in_pb : wk_pb0;
+                        end
+                    end
+                    if (ld_gen) begin
+                        if (!g_rows_done) begin
+                            if (g_pb == wk_pbl) begin
+                                g_pb <= wk_pb0;
+                                if (g_r == g_last) g_rows_done <= 1'b1;
+                                else               g_r <= g_r + 1'b1;
+                            end else begin
+                                g_pb <= g_pb + 1'b1;
+                            end
+                        end else begin
+                            g_tail <= g_tail + 1'b1;
+                            if (g_tail == 2'd2) begin
+                                gen_q <= 1'b0;
+                                wk_v  <= 1'b0;   // the frame is over
+                            end
+                        end
+                    end
+                end
+            end
+            always @(posedge clk) begin
+                if (ld) begin
+                    i0_sample <= gen_q ? {PV{1'b0}} : in_sample;
+                    i0_hdr    <= gen_q ? {HDR_W{1'b0}} : in_hdr;
+                    i0_in     <= !gen_q;
+                    i0_dead   <= gen_q && g_dead;
+                    i0_fend   <= gen_q && g_dead && (g_tail == 2'd2);
+                    i0_r      <= ld_r;
+                    i0_pb     <= ld_pb;
+                    i0_pg     <= ld_pg;
+                    i0_pgb    <= ld_pg && (ld_r != '0);
+                    i0_bg     <= ld_bg;
+                    i0_edge   <= {ld_e1, ld_e0};
+                    i0_flags  <= ld_flags;
+                    i0_ylast  <= (ld_r == cfg_nj);
+                    i0_dyf    <= gen_q ? wk_sy : in_osy;                      // SY(w - 1) = OSY(w)
+                    i0_dyb    <= gen_q ? wk_osy : (new_walk ? wk_osy : pv_osy); // OSY(w - 1)
+                end
+            end
+
+            for (q = 0; q < P; q = q + 1) begin : g_mask
+                assign x_data[q*VW +: VW] = (i0_in && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
+            end
+            wire [META_W-1:0] x_meta = {i0_in && (|i0_lane_valid), i0_hdr};
+
+            // ---- position buffers: read when a step's position loads into i0
+            // (a block RAM's registered read), written when it steps; a read of
+            // the word written in the same cycle takes the new word (bypass) ----
+            wire [RW-1:0]    ld_r1 = ld_r[RW-1:0] - 1'b1;   // the centre's row (plane B)
+            wire [RW-1:0]    i0_r1 = i0_r[RW-1:0] - 1'b1;
+            wire [PAW-1:0]   ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
+            wire [PAW-1:0]   ra_b = {ld_r1, ld_pb},        wa_b = {i0_r1, i0_pb};
+            wire we_a = step && !i0_dead && (i0_r < cfg_nj);   // plane A: X at its own position
+            wire we_b = step && !i0_dead && (i0_r != '0);      // plane B: C at the centre's position
+            wire we_m = step && !i0_dead;                      // beam buffer
+            wire [AWD-1:0] wd_a = {x_meta, x_data};
+            wire [PV-1:0]  wd_b = c_d;
+            wire [BMW-1:0] wd_m = {x_data, p1_meta, p1, c_d, p2b1};
+            wire [AWD-1:0] rd_a;
+            wire [PV-1:0]  rd_b;
+            wire [BMW-1:0] rd_m;
+            cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW)) u_plane_a (
+                .clk (clk), .rd_en (ld), .rd_addr (ra_a), .rd_data (rd_a),
+                .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
+            cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW)) u_plane_b (
+                .clk (clk), .rd_en (ld), .rd_addr (ra_b), .rd_data (rd_b),
+                .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
+            cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
+                .clk (clk), .rd_en (ld), .rd_addr (ld_pb), .rd_data (rd_m),
+                .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
+            reg            by_a, by_b, by_m;
+            reg [AWD-1:0]  bd_a;
+            reg [PV-1:0]   bd_b;
+            reg [BMW-1:0]  bd_m;
+            always @(posedge clk) begin
+                if (ld) begin
+                    by_a <= we_a && (wa_a == ra_a);
+                    by_b <= we_b && (wa_b == ra_b);
+                    by_m <= we_m && (i0_pb == ld_pb);
+                    bd_a <= wd_a;
+                    bd_b <= wd_b;
+                    bd_m <= wd_m;
+                end
+            end
+            wire [AWD-1:0] a_w = by_a ? bd_a : rd_a;
+            wire [PV-1:0]  b_w = by_b ? bd_b : rd_b;
+            wire [BMW-1:0] m_w = by_m ? bd_m : rd_m;
+            assign p1_meta = i0_pg ? a_w[PV +: META_W] : {META_W{1'b0}};
+            assign p1   = i0_pg ? a_w[PV-1:0] : {PV{1'b0}};
+            assign p2b1 = i0_pgb ? b_w : {PV{1'b0}};
+            assign b1     = i0_bg ? m_w[3*PV + META_W +: PV] : {PV{1'b0}};
+            assign c_meta = i0_bg ? m_w[3*PV +: META_W] : {META_W{1'b0}};
+            assign c_d    = i0_bg ? m_w[2*PV +: PV] : {PV{1'b0}};
+            assign p1b2   = i0_bg ? m_w[PV +: PV] : {PV{1'b0}};
+            assign p2b2   = i0_bg ? m_w[0 +: PV] : {PV{1'b0}};
+            assign {dk_f, dk_b, j_first, m_first} = i0_flags;
+            assign y_last = i0_ylast;
+            assign c_dyf  = i0_dyf;
+            assign c_dyb  = i0_dyb;
+            assign c_edge = i0_edge;
+            wire unused_walk = ^{en_rep[5:0]};
         end
     endgenerate
-    wire [META_W-1:0] x_meta = {real_beat, i0_hdr};
 
-    wire [PV-1:0]        b1, p1, c_d, p1b2, p2b1, p2b2;
-    wire [META_W-1:0]    p1_meta, c_meta;
-    wire [3:0]           p1_flags, c_flags;   // {dk_f, dk_b, j_first, m_first} of the beat
-
-    // period of each delay line: NB (beam) and NJ*NB (plane), constant in a frame
-    localparam integer BL_W = ((NBMAX > 1) ? $clog2(NBMAX) : 1) + 1;
-    localparam integer PL_W = ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1) + 1;
-    wire [BL_W-1:0] beam_len = BL_W'(cfg_nb);
-    reg  [PL_W-1:0] plane_len;
-    always @(posedge clk) begin
-        plane_len <= PL_W'(PL_W'(cfg_nj) * PL_W'(cfg_nb));
-    end
-    cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_x_b1 (
-        .clk(clk), .rst(rst), .clear(sop_rep[0]), .step(step_rep[0]), .last(last_beam), .len(beam_len),
-        .din(x_data), .dout(b1));
-    cube4_delay_line #(.DATA_W(META_W + PV), .DEPTH(MAX_DIM * NBMAX)) u_x_p1 (
-        .clk(clk), .rst(rst), .clear(sop_rep[1]), .step(step_rep[1]), .last(last_slice), .len(plane_len),
-        .din({x_meta, x_data}), .dout({p1_meta, p1}));
-    // The centre's slice and row flags are computed from the beat one beam
-    // earlier (p1, a register) and travel with it, so they are registers at c.
-    wire [M_W-1:0]    p1_m    = p1_meta[HDR_M +: M_W];
-    wire [DIM_W-1:0]  p1_j    = p1_meta[HDR_J +: DIM_W];
-    wire [M_W-1:0]    ss_mask = M_W'((1 << cfg_ss_log2) - 1);
-    assign p1_flags = {((p1_m + 1'b1) & ss_mask) == '0,   // dk_f: voxel slice changes m -> m+1
-                       (p1_m & ss_mask) == '0,            // dk_b: voxel slice changes m-1 -> m
-                       p1_j == '0,                        // j_first
-                       p1_m == '0};                       // m_first
-    cube4_delay_line #(.DATA_W(4 + META_W + PV), .DEPTH(NBMAX)) u_p1_c (
-        .clk(clk), .rst(rst), .clear(sop_rep[2]), .step(step_rep[2]), .last(last_beam), .len(beam_len),
-        .din({p1_flags, p1_meta, p1}), .dout({c_flags, c_meta, c_d}));
-    cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
-        .clk(clk), .rst(rst), .clear(sop_rep[3]), .step(step_rep[3]), .last(last_beam), .len(beam_len),
-        .din(c_d), .dout(p1b2));
-    cube4_delay_line #(.DATA_W(PV), .DEPTH(MAX_DIM * NBMAX)) u_c_p2b1 (
-        .clk(clk), .rst(rst), .clear(sop_rep[4]), .step(step_rep[4]), .last(last_slice), .len(plane_len),
-        .din(c_d), .dout(p2b1));
-    cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_p2b1_p2b2 (
-        .clk(clk), .rst(rst), .clear(sop_rep[5]), .step(step_rep[5]), .last(last_beam), .len(beam_len),
-        .din(p2b1), .dout(p2b2));
-
-    // fields of the incoming centre beat c' (becomes h1 after this step)
-    wire              c_dyf  = c_meta[HDR_CTRL + CTRL_SY];    // Y-step of slice m
-    wire              c_dyb  = c_meta[HDR_CTRL + CTRL_OSY];   // old Y-step
-    wire              y_last = c_meta[HDR_CTRL + CTRL_YLAST]; // row j = NJ-1
-    wire              dk_f, dk_b, j_first, m_first;
-    assign {dk_f, dk_b, j_first, m_first} = c_flags;
 
     // ------------------------------------------------------------ alignment hops
     // source skew - centre skew: P1 +s_j, P1b2 -s_j, X +s_j (+s_k), B1 (+s_k),
@@ -294,7 +529,7 @@ module cube4_gra #(
     reg               h1_live, h2_live;   // a beat of the current frame (not a stale RAM word)
     reg               live_q;    // the current frame's first beat has reached the centre
     wire              c_sop  = c_meta[HDR_CTRL + CTRL_SOP];
-    wire              c_live = c_sop || live_q;
+    wire              c_live = (RECTS != 0) || c_sop || live_q;   // (RECTS: the walk gates stale words)
     reg [META_W-1:0]  h1_meta, h2_meta;
     reg [PV-1:0]      h1_c, h2_c, h3_c, h1_f, h2_f, h1_b, h2_b, h3_b;
     reg [P*DW-1:0]    h1_gj, h2_gj;
@@ -347,6 +582,7 @@ module cube4_gra #(
     wire [IW-1:0]     ni_ext  = IW'(cfg_ni);
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
     reg  [P-1:0]      h2_hi_ok, h2_lo_ok, h2_hi_new, h2_lo_old;
+    reg  [1:0]        h1_edge, h2_edge;   // {last, first} partial beam of the walk (c_edge)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
             wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
@@ -363,6 +599,8 @@ module cube4_gra #(
             h2_lo_ok  <= lo_ok_d;
             h2_hi_new <= hi_new_d;
             h2_lo_old <= lo_old_d;
+            h1_edge   <= c_edge;
+            h2_edge   <= h1_edge;
         end
     end
 
@@ -382,8 +620,9 @@ module cube4_gra #(
     wire [P*DW-1:0] gi_d, gr_d;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_win
-            wire          hi_ok  = h2_hi_ok[q];
-            wire          lo_ok  = h2_lo_ok[q];
+            // beyond the walk's partial beams the neighbours are zero (outside the rectangles)
+            wire          hi_ok  = h2_hi_ok[q] && !(h2_hi_new[q] && h2_edge[1]);
+            wire          lo_ok  = h2_lo_ok[q] && !(h2_lo_old[q] && h2_edge[0]);
             wire          hi_new = h2_hi_new[q];
             wire          lo_old = h2_lo_old[q];
             wire [VW-1:0] c_hi = !hi_ok ? {VW{1'b0}} : hi_new ? c_next_new[q*VW +: VW] : c_next_same[q*VW +: VW];
@@ -464,18 +703,60 @@ module cube4_gra #(
 
     // ---- g3: the output FIFO's memory; g1 holds a beat: push at g3 ----
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
+    localparam integer EOP_BIT = OUT_W - HDR_W + HDR_CTRL + CTRL_EOP;   // the header's EOP in an item
     wire [OUT_W-1:0] fifo_out;
+    wire [OUT_W-1:0] item = {g2_meta, g2_s, gi_x, gj_x, gk_d};   // g2 holds a beat when g2_v
     wire unused_credit;                 // (en_rep: the step nets' own copies)
     wire credit_d;
+    wire push_d;
+    wire [OUT_W-1:0] fifo_in;
+    generate
+        if (RECTS == 0) begin : g_push
+            assign push_d  = g1_v;
+            assign fifo_in = item;
+            wire unused_g = ^{g2_v, fend};   // the FIFO's push copies are its copies
+        end else begin : g_hold
+            // The frame's last beat is known only when GRA's walk ends (the input's
+            // last beat may be one outside the rectangles): each beat waits in
+            // hold_q until the next one comes (then it is pushed) or the frame
+            // ends (then it is pushed with EOP). push_d says so one cycle before
+            // g3_q holds the beat, which the FIFO stores.
+            reg               g1_end, g2_end, hold_v;
+            reg [OUT_W-1:0]   hold_q, g3_q;
+            always @(posedge clk) begin
+                if (rst) begin
+                    g1_end <= 1'b0;
+                    g2_end <= 1'b0;
+                    hold_v <= 1'b0;
+                end else begin
+                    g1_end <= step && fend;
+                    g2_end <= g1_end;
+                    if (g2_v)        hold_v <= 1'b1;
+                    else if (g2_end) hold_v <= 1'b0;
+                end
+            end
+            always @(posedge clk) begin
+                if (g2_v) begin
+                    hold_q          <= item;
+                    hold_q[EOP_BIT] <= 1'b0;
+                end
+                if (g2_v || g2_end) begin
+                    g3_q          <= hold_q;
+                    g3_q[EOP_BIT] <= g2_end;
+                end
+            end
+            assign push_d  = (g2_v || g2_end) && hold_v;
+            assign fifo_in = g3_q;
+        end
+    endgenerate
     cube4_prim_copies #(.N(NSTEP), .RST_VAL(64'd1)) u_credit (
         .clk(clk), .rst(rst), .d(credit_d), .q(en_rep));
     cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(1'b0),
         .credit(unused_credit), .credit_d(credit_d),
-        .push_d(g1_v), .in_data({g2_meta, g2_s, gi_x, gj_x, gk_d}),
+        .push_d(push_d), .in_data(fifo_in),
         .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
     assign {out_hdr, out_sample, out_gi, out_gj, out_gk} = fifo_out;
-    wire unused_g2_v = g2_v;            // the FIFO's push copies are its copies
 
 endmodule
 `default_nettype wire

@@ -129,10 +129,10 @@ class SliceRects:
         docstring, "GRA's walk"): rows T(m-1).j0 .. T(m-1).j1 (one below the rectangle,
         up to row NJ, which holds no sample) over T(m-1)'s partial beams, and one partial
         beam below T(m-1)'s first where T(m-2) reaches it."""
-        cur = self._beams(m, p)
+        cur = self.beams(m, p)
         if not self.gra:
             return cur
-        prev, prev2 = self._beams(m - 1, p), self._beams(m - 2, p)
+        prev, prev2 = self.beams(m - 1, p), self.beams(m - 2, p)
         parts = [cur] if cur is not None else []
         if prev is not None:
             parts.append((prev[0], prev[1] + 1, prev[2], prev[3]))
@@ -144,7 +144,7 @@ class SliceRects:
             pb0 = min(pb0, max(prev2[2], prev[2] - 1))
         return j0, j1, pb0, pb1
 
-    def _beams(self, m: int, p: int) -> tuple[int, int, int, int] | None:
+    def beams(self, m: int, p: int) -> tuple[int, int, int, int] | None:
         """The traversed rectangle of slice m as rows [j0, j1) and partial beams [pb0, pb1]."""
         if self.empty(m):
             return None
@@ -180,6 +180,16 @@ class SliceRects:
         """Beats of the whole frame (every slice's, and the drain beat)."""
         total = sum(self.slice_beats(m, p) for m in range(self.j0.size))
         return total + 1 if total else 0
+
+    def gra_steps(self, p: int) -> int:
+        """The steps GRA walks on its own after the front end's last beat (cube4_gra
+        RECTS = 1): the rows of the last slice's walk and one more (up to row NJ) over its
+        partial beams, which finish its centres, and three that push the window empty."""
+        last = self.last()
+        if last < 0:
+            return 0
+        j0, j1, pb0, pb1 = self.walk(last, p)
+        return (min(j1, self.trav.nj) - j0 + 1) * (pb1 - pb0 + 1) + 3
 
     def empty_walks(self, p: int) -> int:
         """Slices before the last that walk nothing: one idle cycle each in the front end."""

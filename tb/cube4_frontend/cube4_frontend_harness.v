@@ -269,7 +269,8 @@ module cube4_frontend_harness #(
                 .VOXEL_W     (VOXEL_W),
                 .WEIGHT_W    (WEIGHT_W),
                 .MAX_DIM     (MAX_DIM),
-                .MAX_SS_LOG2 (MAX_SS_LOG2)
+                .MAX_SS_LOG2 (MAX_SS_LOG2),
+                .RECTS       (RECTS)
             ) u_gra (
                 .clk        (clk),
                 .rst        (rst_q),

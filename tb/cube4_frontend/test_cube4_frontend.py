@@ -163,25 +163,36 @@ def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log
     assert bad.size == 0, f"beat {bad[0]}: control bits {ctrl[bad[0]]:07b}, expected {want[bad[0]]:07b}"
 
 
-def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects, p: int, log) -> None:
+def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects, p: int, log,
+                     gra: bool = False) -> None:
     """Compare one slice-rectangle frame's sample beats with the golden model
     (numerics.md §18): each slice's walked rows and partial beams in order
     (SliceRects.walk: with GRA beyond the traversed rectangle), the lanes of its
     traversed positions valid, samples from the rectangle's voxels (model.rect_slice),
-    inside per its rectangle, and the control bits (y-last: the slice's last row)."""
+    inside per its rectangle, and the control bits (y-last: row NJ - 1)."""
     tp = padded_traversal(vol, trav)
     order, gold, gin, ylast = [], {}, {}, []
+    zero_filled = np.zeros((trav.num_sample_slices, trav.nj, trav.ni), dtype=np.int64)
     for m in range(rects.last() + 1):
         walk = rects.walk(m, p)
         if walk is None:
             continue
         b = rects.traversed(m)
-        gold[m] = rect_slice(tp, trav, m, b, trav.weight_bits)
+        if not rects.empty(m):
+            gold[m] = zero_filled[m] = rect_slice(tp, trav, m, b, trav.weight_bits)
         gin[m] = inside_mask(trav, m) & rects.inside(m)
-        for j in range(walk[0], walk[1]):
-            for pb in range(walk[2], walk[3] + 1):
+        # GRA forwards only the beats of the traversed rectangle
+        rows, pbs = (walk[:2], walk[2:]) if not gra else (None, None)
+        if gra:
+            t = rects.beams(m, p)
+            if t is None:
+                continue
+            rows, pbs = t[:2], t[2:]
+        for j in range(rows[0], rows[1]):
+            for pb in range(pbs[0], pbs[1] + 1):
                 order.append((m, j, pb, b))
-                ylast.append(j == walk[1] - 1)
+                ylast.append(j == trav.nj - 1)
+    grads = gradient_stream(zero_filled, trav) if gra else None
     n = len(beats["m"])
     assert n == len(order), f"{n} sample beats, expected {len(order)}"
     fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
@@ -200,6 +211,14 @@ def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects,
         want = np.where(valid, gold[m][jc, ii], 0)
         want_in = np.where(valid, gin[m][jc, ii], False)
         have = np.where(valid, beats["smp"][r], 0)
+        if gra:
+            for c, name in enumerate(("gi", "gj", "gk")):
+                want_g = np.where(valid, grads[m][c, jc, ii], 0)
+                for q in np.nonzero(np.where(valid, beats["grad"][r][c], 0) != want_g)[0]:
+                    if bad < MAX_MISMATCH_LOGS:
+                        log.error("%s (m=%d, j=%d, i=%d) lane %d: RTL %d, golden %d", name, m, j, pos[q], q,
+                                  beats["grad"][r][c][q], want_g[q])
+                    bad += 1
         for q in np.nonzero((have != want) | (beats["lins"][r] != want_in))[0]:
             if bad < MAX_MISMATCH_LOGS:
                 log.error("sample (m=%d, j=%d, i=%d) lane %d: RTL %d inside %d, golden %d inside %d",
@@ -316,7 +335,7 @@ class TB:
             getattr(d, "cfg_" + key.lower()).value = int(val)
         d.cfg_ph0_x.value, d.cfg_ph0_y.value = trav.phase_x, trav.phase_y   # a box starts at its own phase
         if self.rects:
-            await self.write_rects(trav, rects if rects is not None else whole_box(trav))
+            await self.write_rects(trav, rects if rects is not None else whole_box(trav, self.gra))
         d.stall_req.value, d.stall_rsp.value, d.stall_out.value = stalls
         await RisingEdge(d.clk)
         d.start.value = 1
@@ -351,9 +370,17 @@ class TB:
         return cycles
 
 
-def whole_box(trav):
-    """Slice rectangles that are the whole box in every slice (the fixed schedule)."""
-    return slices.rects_from_needed(np.ones((trav.num_sample_slices, trav.nj, trav.ni), dtype=bool), trav)
+def whole_box(trav, gra: bool = False):
+    """Slice rectangles that are the whole box in every slice (the fixed schedule; with
+    ``gra``, GRA's walk of it)."""
+    box = slices.rects_from_needed(np.ones((trav.num_sample_slices, trav.nj, trav.ni), dtype=bool), trav)
+    return dataclasses.replace(box, gra=gra)
+
+
+def rect_cycles(rects, p: int, gra: bool) -> int:
+    """A rectangle frame's cycles but the fill: the front end's beats, one per empty
+    slice before the last, and GRA's own steps after the last beat."""
+    return rects.beats(p) + rects.empty_walks(p) + (rects.gra_steps(p) if gra else 0)
 
 
 def random_volume(rng, dims, vw) -> np.ndarray:
@@ -401,20 +428,18 @@ async def test_rect_views(dut):
         trav = make_traversal(dims, direction, tb.w, 1)
         if fill is None:                # the whole box's pipeline fill on this build
             beats, cycles, _ = await tb.frame(vol, trav)
-            nb = -(-trav.ni // tb.p)
-            fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
+            fill = cycles - rect_cycles(whole_box(trav, tb.gra), tb.p, tb.gra)
         density = (0.01, 0.05, 0.3)[n % 3]
         need = tb.rng.random((trav.num_sample_slices, trav.nj, trav.ni)) < density
         # every other view with GRA's walk (rows and partial beams beyond the rectangles)
-        rects = dataclasses.replace(slices.rects_from_needed(need, trav), gra=n % 2 == 1)
+        rects = dataclasses.replace(slices.rects_from_needed(need, trav), gra=tb.gra or n % 2 == 1)
         if rects.beats(tb.p) == 0:
             continue
         stalls = stall_sets[n % len(stall_sets)]
         beats, cycles, _ = await tb.frame(vol, trav, stalls, rects=rects)
-        check_rect_frame(beats, vol, trav, rects, tb.p, tb.log)
-        empty = rects.empty_walks(tb.p)   # the slices before the last that walk nothing: one cycle each
+        check_rect_frame(beats, vol, trav, rects, tb.p, tb.log, tb.gra)
         if stalls == (0, 0, 0):
-            want = rects.beats(tb.p) + empty + fill
+            want = rect_cycles(rects, tb.p, tb.gra) + fill
             assert cycles == want, f"view {direction}: {cycles} cycles, expected {want}"
         tb.log.info("view %s rectangles (%.0f%% of the samples) stalls %s: %d cycles, bit-exact",
                     direction, 100 * rects.fraction(), stalls, cycles)
@@ -449,16 +474,16 @@ async def test_rect_scene(dut):
     rects = dataclasses.replace(rects, trav=trav)
     await tb.load(box)
     dut.dump_en.value = 0
-    _, full_cycles, _ = await tb.frame(box, trav, rects=whole_box(trav), dumped=False)
+    _, full_cycles, _ = await tb.frame(box, trav, rects=whole_box(trav, tb.gra), dumped=False)
     dut.dump_en.value = 1
-    nb = -(-trav.ni // tb.p)
-    fill = full_cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
+    fill = full_cycles - rect_cycles(whole_box(trav, tb.gra), tb.p, tb.gra)
+    rects = dataclasses.replace(rects, gra=tb.gra)   # a GRA build walks for GRA (unshaded scenes too)
     beats, cycles, wall = await tb.frame(box, trav, rects=rects)
-    check_rect_frame(beats, box, trav, rects, tb.p, tb.log)
-    predicted = rects.beats(tb.p) + rects.empty_walks(tb.p) + fill
+    check_rect_frame(beats, box, trav, rects, tb.p, tb.log, tb.gra)
+    predicted = rect_cycles(rects, tb.p, tb.gra) + fill
     assert cycles == predicted, f"{cycles} cycles, predicted {predicted}"
     nz, ny, nx = whole.shape
-    res = {"volume": vol_spec, "scene": scene_name, "p": tb.p, "box_dims": list(trav.dims),
+    res = {"volume": vol_spec, "scene": scene_name, "p": tb.p, "gra": tb.gra, "box_dims": list(trav.dims),
            "cycles": cycles, "predicted_cycles": predicted, "box_fixed_cycles": full_cycles,
            "n3_over_p": nx * ny * nz / tb.p, "sim_wall_s": wall}
     tb.log.info("RECT %s %s P=%d: front end %d cycles (predicted %d), box %d, n^3/P %.0f, bit-exact",
@@ -524,7 +549,9 @@ async def test_frame_cycles(dut):
         # exactly the documented schedule: (M*NJ + 1)*NB + 1 beats plus a fixed fill
         nb = -(-trav.ni // tb.p)
         fill = cycles - ((trav.num_sample_slices * trav.nj + 1) * nb + 1)
-        if tb.gra:  # GRA finishes the last slice with NJ*NB + NB + 2 zero steps
+        if tb.rects:  # the whole box from the table (with GRA, GRA's walk of it and its own steps)
+            fill = cycles - rect_cycles(whole_box(trav, tb.gra), tb.p, tb.gra)
+        elif tb.gra:  # GRA finishes the last slice with NJ*NB + NB + 2 zero steps
             fill -= trav.nj * nb + nb + 2
         assert 0 <= fill <= 28, f"pipeline fill of {fill} cycles: the schedule has bubbles"
         await RisingEdge(dut.clk)
@@ -576,22 +603,23 @@ def test_cube4_frontend(build):
     _run(_params(*build), ["test_views", "test_reset_mid_frame", "test_frame_cycles"])
 
 
-#: slice-rectangle builds (RECTS = 1, S = 1, no GRA): P = 1, 5 and 8
-RECT_BUILDS = [(1, 8, 32, 0, 0, 1), (5, 12, 32, 0, 0, 1), (8, 8, 64, 0, 0, 1)]
+#: slice-rectangle builds (RECTS = 1, S = 1): P = 1, 5 and 8, without and with GRA
+RECT_BUILDS = [(1, 8, 32, 0, 0, 1), (5, 12, 32, 0, 0, 1), (8, 8, 64, 0, 0, 1),
+               (1, 8, 32, 0, 1, 1), (5, 8, 32, 0, 1, 1), (8, 8, 64, 0, 1, 1)]
 
 
-@pytest.mark.parametrize("build", RECT_BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_rects" for b in RECT_BUILDS])
+@pytest.mark.parametrize("build", RECT_BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_gra{b[4]}_rects" for b in RECT_BUILDS])
 def test_cube4_frontend_rects(build):
     """The rectangle build: slice rectangles, the whole box as the fixed schedule
     (every view class, stalls), a reset in mid-frame, and the cycles of both."""
     _run(_params(*build), ["test_rect_views", "test_views", "test_reset_mid_frame", "test_frame_cycles"])
 
 
-def frontend_rect_scene(vol_spec: str, scene: str, p: int, max_dim: int, out: Path) -> dict:
-    """A scene's slice-rectangle frame through the RTL front end (test_rect_scene);
-    returns its results (also written to ``out``)."""
+def frontend_rect_scene(vol_spec: str, scene: str, p: int, max_dim: int, out: Path, gra: bool = True) -> dict:
+    """A scene's slice-rectangle frame through the RTL front end and, with ``gra``,
+    GRA (test_rect_scene); returns its results (also written to ``out``)."""
     out.parent.mkdir(parents=True, exist_ok=True)
-    _run(_params(p, 8, max_dim, 0, 0, 1), "test_rect_scene",
+    _run(_params(p, 8, max_dim, 0, int(gra), 1), "test_rect_scene",
          {"CUBE4_FE_RECT_SCENE": f"{vol_spec},{scene}", "CUBE4_FE_BENCH_OUT": str(out)})
     return json.loads(out.read_text())
 

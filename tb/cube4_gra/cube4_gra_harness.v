@@ -12,7 +12,7 @@
 //   the two streams.
 //
 // Parameters: as cube4_gra (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1).
 //
 // Latency: that of cube4_gra (the ports connect straight to it).
 //
@@ -29,6 +29,7 @@ module cube4_gra_harness #(
     parameter integer WEIGHT_W    = 8,
     parameter integer MAX_DIM     = 32,
     parameter integer MAX_SS_LOG2 = 0,
+    parameter integer RECTS       = 0,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5
@@ -57,7 +58,8 @@ module cube4_gra_harness #(
         .VOXEL_W     (VOXEL_W),
         .WEIGHT_W    (WEIGHT_W),
         .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS       (RECTS)
     ) u_gra (
         .clk        (clk),
         .rst        (rst),
