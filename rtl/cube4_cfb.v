@@ -236,7 +236,8 @@ module cube4_cfb #(
             assign rt_cur = rt_q;
         end else begin : g_box
             wire [ADDR_W-1:0] pbx_box = cfg_flip_i ? cfg_i_a0 : '0;
-            assign rt_cur = {cfg_nj - 1'b1, DIM_W'(0), SB_W'(1), SB_W'(0), IW'(0), pbx_box, cfg_j_r0, cfg_j_a0,
+            assign rt_cur = {1'b0, {4{DIM_W'(0)}},   // COM's fields (unused here)
+                             cfg_nj - 1'b1, DIM_W'(0), SB_W'(1), SB_W'(0), IW'(0), pbx_box, cfg_j_r0, cfg_j_a0,
                              cfg_ni, DIM_W'(0), DIM_W'(0),
                              PB_W'(cfg_nb - 1'b1), PB_W'(0),
                              DIM_W'(0), cfg_nj - 1'b1, DIM_W'(0), 1'b0, 1'b0, 1'b0};

@@ -100,7 +100,8 @@ module cube4_com #(
     parameter integer VOXEL_W  = 8,
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
     parameter integer PLW = 0,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
+    parameter integer RECTS = 0, parameter integer ADDR_W = 16,
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_RECT_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
 ) (
@@ -108,6 +109,9 @@ module cube4_com #(
     input  wire [VIEW_W-1:0] cfg,
     // the LUT's path-weight columns (PLW = 1)
     input  wire lut_we, input wire [VOXEL_W-1:0] lut_addr, input wire [PWC_W-1:0] lut_data,
+    // the rectangle table (RECTS = 1; cube4_cfb's, written alike; COM reads INS, J_IN,
+    // J_HI, I_IN, I_HIN, STX, STY)
+    input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
     // shaded stream in
     input  wire in_valid, output wire in_ready, input wire [HDR_W-1:0] in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
@@ -126,6 +130,10 @@ module cube4_com #(
         `CUBE4_RANGE(g_bad_compositing, "cube4_com", "COMPOSITING", COMPOSITING, 0, 1)
         `CUBE4_RANGE(g_bad_extremum, "cube4_com", "EXTREMUM", EXTREMUM, 0, 1)
         `CUBE4_RANGE(g_bad_plw, "cube4_com", "PLW", PLW, 0, 1)
+        `CUBE4_RANGE(g_bad_rects, "cube4_com", "RECTS", RECTS, 0, 1)
+        if (PLW != 0 && RECTS != 0) begin : g_plw_rects
+            $error("cube4_com: PLW = 1 with RECTS = 1 is not built (the path weights follow every slice's template)");
+        end
         if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
             $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
         end
@@ -174,7 +182,10 @@ module cube4_com #(
     // read).
     // Slices of L >= 9 beats never wait; smaller ones (volumes of fewer than 9
     // beats per slice) run at L beats per 9 cycles.
-    localparam integer SP_W  = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1;
+    // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
+    localparam integer RW    = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
+    localparam integer SP_W  = (RECTS != 0) ? RW + PB_W : ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1);
+    localparam integer SB_DEPTH = (RECTS != 0) ? (1 << SP_W) : MAX_DIM * NBMAX;
     localparam integer TA_W  = CW + ALPHA_W;    // T * A
     localparam integer WC_W  = CW + 8;          // w * C'
 
@@ -235,14 +246,103 @@ module cube4_com #(
     wire dyb   = r0_ctrl[CTRL_OSY];
     wire first_of_slice = r0_first;
     wire unused_y_last = r0_ctrl[CTRL_YLAST];   // rows are checked against cfg_nj directly
+    // ==== slice rectangles (RECTS = 1) ====
+    // The inside rectangles of slices m - 1 (a ray is fresh where its previous
+    // sample is not inside it) and m + 1 (a ray finishes where its next sample
+    // is not inside it) and the steps of m, from the host's table (three copies,
+    // read as a slice's first beat enters R0, so that R0's beat has them); a beat
+    // waits while the beat of the same slot is in R0 .. S7 (the read-after-write
+    // rule by position); and whether the previous beat is the row above at the
+    // same partial beam.
+    wire             rx_prev_v, rx_next_v;
+    wire [DIM_W-1:0] rx_p_j0, rx_p_j1, rx_p_i0, rx_p_i1, rx_n_j0, rx_n_j1, rx_n_i0, rx_n_i1;
+    wire [DIM_W-1:0] rx_stx, rx_sty;
+    wire             rx_hazard, rx_col1;
+    generate
+        if (RECTS != 0) begin : g_rx
+            localparam integer TAW = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
+            wire [M_W-1:0] in_m  = in_hdr[HDR_M +: M_W];
+            reg            cur_v;
+            reg [M_W-1:0]  cur_m;
+            wire           rd = take && (!cur_v || (in_m != cur_m) || in_hdr[HDR_CTRL + CTRL_SOP]);
+            always @(posedge clk) begin
+                if (rst)       cur_v <= 1'b0;
+                else if (take) cur_v <= 1'b1;
+                if (take) cur_m <= in_m;
+            end
+            wire [M_W-1:0]    m_pv = in_m - 1'b1;
+            wire [M_W-1:0]    m_nx = in_m + 1'b1;
+            wire [RECT_W-1:0] e_p, e_c, e_n;
+            cube4_sdp_ram #(.DATA_W(RECT_W), .DEPTH(MAX_DIM)) u_tab_p (
+                .clk(clk), .rd_en(rd), .rd_addr(TAW'(m_pv)), .rd_data(e_p),
+                .wr_en(rect_we), .wr_addr(TAW'(rect_addr)), .wr_data(rect_data));
+            cube4_sdp_ram #(.DATA_W(RECT_W), .DEPTH(MAX_DIM)) u_tab_c (
+                .clk(clk), .rd_en(rd), .rd_addr(TAW'(in_m)), .rd_data(e_c),
+                .wr_en(rect_we), .wr_addr(TAW'(rect_addr)), .wr_data(rect_data));
+            cube4_sdp_ram #(.DATA_W(RECT_W), .DEPTH(MAX_DIM)) u_tab_n (
+                .clk(clk), .rd_en(rd), .rd_addr(TAW'(m_nx)), .rd_data(e_n),
+                .wr_en(rect_we), .wr_addr(TAW'(rect_addr)), .wr_data(rect_data));
+            reg p_ok, n_ok;                  // slices m - 1 >= 0, m + 1 < M (= NK: S = 1)
+            always @(posedge clk) begin
+                if (rd) begin
+                    p_ok <= (in_m != '0);
+                    n_ok <= (m_nx < M_W'(cfg_nk));
+                end
+            end
+            assign rx_prev_v = p_ok && e_p[RT_INS];
+            assign rx_next_v = n_ok && e_n[RT_INS];
+            assign rx_p_j0 = e_p[RT_JIN +: DIM_W];
+            assign rx_p_j1 = e_p[RT_JHI +: DIM_W];
+            assign rx_p_i0 = e_p[RT_IIN +: DIM_W];
+            assign rx_p_i1 = e_p[RT_IHIN +: DIM_W];
+            assign rx_n_j0 = e_n[RT_JIN +: DIM_W];
+            assign rx_n_j1 = e_n[RT_JHI +: DIM_W];
+            assign rx_n_i0 = e_n[RT_IIN +: DIM_W];
+            assign rx_n_i1 = e_n[RT_IHIN +: DIM_W];
+            assign rx_stx  = e_c[RT_STX +: DIM_W];
+            assign rx_sty  = e_c[RT_STY +: DIM_W];
+            // read after write by position: the incoming slot against R0 .. S7
+            wire [SP_W-1:0] in_sp = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
+            reg hz;
+            integer kz;
+            always @* begin
+                hz = r0_v && (pos_sp == in_sp);
+                for (kz = 1; kz <= NS - 2; kz = kz + 1) hz = hz || (v_s[kz] && (sp_s[kz] == in_sp));
+            end
+            assign rx_hazard = hz;
+            // the last beat that left R0
+            reg             lb_v;
+            reg [M_W-1:0]   lb_m;
+            reg [DIM_W-1:0] lb_j;
+            reg [PB_W-1:0]  lb_pb;
+            always @(posedge clk) begin
+                if (rst) lb_v <= 1'b0;
+                else if (step) lb_v <= 1'b1;
+                if (step) begin
+                    lb_m  <= r0_m;
+                    lb_j  <= r0_j;
+                    lb_pb <= r0_pb;
+                end
+            end
+            assign rx_col1 = lb_v && (lb_m == r0_m) && (lb_pb == r0_pb) && (lb_j + 1'b1 == r0_j);
+            wire unused_rx = ^{e_p, e_c, e_n, hazard_q, nb1_q, f1_last, f1_wxn, f1_wyn, rect_addr, m_pv};
+        end else begin : g_no_rx
+            assign {rx_prev_v, rx_next_v, rx_hazard, rx_col1} = 4'b0000;
+            assign {rx_p_j0, rx_p_j1, rx_p_i0, rx_p_i1, rx_n_j0, rx_n_j1, rx_n_i0, rx_n_i1} = '0;
+            assign {rx_stx, rx_sty} = '0;
+            wire unused_rx = ^{rect_we, rect_addr, rect_data};
+        end
+    endgenerate
+
     // ==== S0 ====
     // ---- positions: partial beam, row and slice position (as cube4_gra) ----
     reg  [PB_W-1:0]  pb_q;
     reg  [DIM_W-1:0] row_q;
     reg  [SP_W-1:0]  sp_q;
-    wire [PB_W-1:0]  pos_pb  = sop ? {PB_W{1'b0}} : pb_q;
+    // with rectangles the position comes with the beat (its slot {j, pb})
+    wire [PB_W-1:0]  pos_pb  = (RECTS != 0) ? r0_pb : (sop ? {PB_W{1'b0}} : pb_q);
     wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
-    wire [SP_W-1:0]  pos_sp  = sop ? {SP_W{1'b0}} : sp_q;
+    wire [SP_W-1:0]  pos_sp  = (RECTS != 0) ? SP_W'({r0_j[RW-1:0], r0_pb}) : (sop ? {SP_W{1'b0}} : sp_q);
     wire last_beam  = (NB_W'(pos_pb) == cfg_nb - 1'b1);
     wire last_slice = last_beam && (pos_row == cfg_nj - 1'b1);
 
@@ -300,7 +400,13 @@ module cube4_com #(
             wire [IW-1:0] i_pos = pbp + IW'(t);
             assign t0_d[q]    = (t == '0);
             // the ray starts here: its previous sample is outside the slice
-            assign fresh_d[q] = (r0_m == '0) || (dyb && r0_j == '0) || (dxb && i_pos == '0);
+            // (rectangles: where it is not inside slice m - 1's inside rectangle)
+            wire [IW-1:0] i_pv = i_pos - IW'(dxb);
+            wire [IW-1:0] j_pv = j_ext - IW'(dyb);
+            wire pv_in = rx_prev_v && (j_pv >= IW'(rx_p_j0)) && (j_pv <= IW'(rx_p_j1))
+                                   && (i_pv >= IW'(rx_p_i0)) && (i_pv <= IW'(rx_p_i1));
+            assign fresh_d[q] = (RECTS != 0) ? !pv_in
+                                             : ((r0_m == '0) || (dyb && r0_j == '0) || (dxb && i_pos == '0));
             assign ins_d[q]   = r0_lane_valid[q] && r0_lane_inside[q];
             assign cnt_d[q]   = ins_d[q] && r0_lane_keep[q];   // the sample counts
             assign ipos_d[q*IW +: IW] = i_pos;
@@ -314,6 +420,8 @@ module cube4_com #(
     reg [IW-1:0]     f1_j;
     reg              f1_dxf, f1_dyf, f1_last, f1_wxn, f1_wyn;
     reg [DIM_W-1:0]  f1_stx, f1_sty;
+    reg              f1_nv;              // (rectangles) slice m + 1's inside rectangle
+    reg [DIM_W-1:0]  f1_nj0, f1_nj1, f1_ni0, f1_ni1;
     always @(posedge clk) begin
         f1_ipos <= ipos_d;
         f1_j    <= j_ext;
@@ -322,8 +430,13 @@ module cube4_com #(
         f1_last <= in_last_slice;
         f1_wxn  <= wxn_nz;
         f1_wyn  <= wyn_nz;
-        f1_stx  <= stx_n;
-        f1_sty  <= sty_n;
+        f1_stx  <= (RECTS != 0) ? rx_stx : stx_n;
+        f1_sty  <= (RECTS != 0) ? rx_sty : sty_n;
+        f1_nv   <= rx_next_v;
+        f1_nj0  <= rx_n_j0;
+        f1_nj1  <= rx_n_j1;
+        f1_ni0  <= rx_n_i0;
+        f1_ni1  <= rx_n_i1;
     end
     wire [P-1:0]      fin_1;
     wire [P*BX_W-1:0] bx_1;
@@ -333,8 +446,11 @@ module cube4_com #(
             wire [IW-1:0] i_pos = f1_ipos[q*IW +: IW];
             wire [IW-1:0] i_nx  = i_pos + IW'(f1_dxf);
             wire [IW-1:0] j_nx  = f1_j + IW'(f1_dyf);
-            wire nx_in = !f1_last && (i_nx < ni_ext) && (j_nx < nj_ext)
-                       && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
+            wire nx_box = !f1_last && (i_nx < ni_ext) && (j_nx < nj_ext)
+                        && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
+            wire nx_rect = f1_nv && (j_nx >= IW'(f1_nj0)) && (j_nx <= IW'(f1_nj1))
+                                 && (i_nx >= IW'(f1_ni0)) && (i_nx <= IW'(f1_ni1));
+            wire nx_in = (RECTS != 0) ? nx_rect : nx_box;
             assign fin_1[q] = ins_s1[q] && !nx_in;
             assign bx_1[q*BX_W +: BX_W] = BX_W'(i_pos) - BX_W'(f1_stx) + BX_W'(cfg_sx);
         end
@@ -446,6 +562,7 @@ module cube4_com #(
     reg [P*BX_W-1:0]  bx_s    [2:NS];
     reg [NS:1]        eop_s;
     reg [5:1]         dxb_s;
+    reg [4:1]         col1_s;            // (rectangles) the previous beat is the row above, same pb
     reg [4:1]         dyb_s, dkb_s;
     reg [P-1:0]       fresh_s [1:5];
     reg [P-1:0]       t0_s    [1:5];
@@ -461,6 +578,7 @@ module cube4_com #(
         t0_s[1] <= t0_d;
         eop_s <= {eop_s[NS-1:1], eop};
         dxb_s <= {dxb_s[4:1], dxb};
+        col1_s <= {col1_s[3:1], rx_col1};
         dyb_s <= {dyb_s[3:1], dyb};
         dkb_s <= {dkb_s[3:1], dk_b};
         for (k = 2; k <= NS; k = k + 1) begin
@@ -496,7 +614,7 @@ module cube4_com #(
         if (rst) hazard_q <= 1'b0;
         else     hazard_q <= (n_fly_d >= lim_q);
     end
-    assign hazard = hazard_q;
+    assign hazard = (RECTS != 0) ? rx_hazard : hazard_q;
 
     // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
     // Both RAM outputs go straight into a register (a block RAM's clock-to-out
@@ -507,7 +625,7 @@ module cube4_com #(
     // copies for their block RAMs, cube4_sdp_ram IN_REG): they get them one
     // stage early. The slice buffer is read at S1 (sp_s[1]) and written at the
     // end of S9 (sp_s[NS], v_s[NS]).
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(MAX_DIM * NBMAX), .IN_REG(1)) u_bp_slice (
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(SB_DEPTH), .IN_REG(1)) u_bp_slice (
         .clk(clk), .rd_en(1'b1), .rd_addr(pos_sp), .rd_data(a1_ram),
         .wr_en(v_s[NS-1]), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
     wire [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;   // per lane registers (g_buf)
@@ -557,7 +675,9 @@ module cube4_com #(
 
     // ==== S4: (m-1, j-dyb, i) in this beat's skew ====
     wire [PA-1:0] a1 = s4_a1;
-    wire [PA-1:0] a2 = nb1_q ? prev_a1_q : s4_a2;
+    // the row above at the same partial beam is the previous beat (NB = 1, or a
+    // rectangle one partial beam wide): its beam-buffer write comes too late
+    wire [PA-1:0] a2 = ((RECTS != 0) ? col1_s[4] : nb1_q) ? prev_a1_q : s4_a2;
     wire [PA-1:0] a1_k, a2_j, a2_jk;
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a1k  (.down(cfg_flip_k), .x(a1),   .y(a1_k));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2j  (.down(cfg_flip_j), .x(a2),   .y(a2_j));

@@ -326,6 +326,10 @@
 //                     rows J0 .. JL outside them are walked for GRA (slices.py
 //                     SliceRects.walk) with no read and no lane valid; JL may be
 //                     NJ (a row past the last, for GRA's last centres)
+//   (cube4_com) INS   the slice has an inside rectangle: J_IN .. J_HI,
+//                     I_IN .. I_HIN [DIM_W] (slices.py SliceRects.inside, the
+//                     high sides less a row / column where wy / wx > 0);
+//                     STX, STY [DIM_W]  stepx(m), stepy(m)
 `define CUBE4_RECT_LAYOUT \
     localparam integer RT_EMPTY = 0, \
     localparam integer RT_FLUSH = 1, \
@@ -346,10 +350,15 @@
     localparam integer RT_SBROW = RT_SB0 + SB_W, \
     localparam integer RT_TJ0   = RT_SBROW + SB_W, \
     localparam integer RT_TJL   = RT_TJ0 + DIM_W, \
-    localparam integer RECT_W   = RT_TJL + DIM_W
+    localparam integer RT_JHI   = RT_TJL + DIM_W, \
+    localparam integer RT_IHIN  = RT_JHI + DIM_W, \
+    localparam integer RT_STX   = RT_IHIN + DIM_W, \
+    localparam integer RT_STY   = RT_STX + DIM_W, \
+    localparam integer RT_INS   = RT_STY + DIM_W, \
+    localparam integer RECT_W   = RT_INS + 1
 
 // The table entry from one port per field (the harnesses), as CUBE4_VIEW_PORTS.
-`define CUBE4_RECT_PACK {rt_tjl, rt_tj0, rt_sbrow, rt_sb0, rt_pbp0, rt_pbx0, rt_rj0, rt_aj0, rt_i_hi, rt_i_in, \
+`define CUBE4_RECT_PACK {rt_ins, rt_sty, rt_stx, rt_i_hin, rt_j_hi, rt_tjl, rt_tj0, rt_sbrow, rt_sb0, rt_pbp0, rt_pbx0, rt_rj0, rt_aj0, rt_i_hi, rt_i_in, \
     rt_i_lo, rt_pbl, rt_pb0, rt_j_in, rt_jl, rt_j0, rt_last, rt_flush, rt_empty}
 `define CUBE4_RECT_PORTS \
     input  wire               rt_empty, \
@@ -370,7 +379,12 @@
     input  wire [SB_W-1:0]    rt_sb0, \
     input  wire [SB_W-1:0]    rt_sbrow, \
     input  wire [DIM_W-1:0]   rt_tj0, \
-    input  wire [DIM_W-1:0]   rt_tjl,
+    input  wire [DIM_W-1:0]   rt_tjl, \
+    input  wire [DIM_W-1:0]   rt_j_hi, \
+    input  wire [DIM_W-1:0]   rt_i_hin, \
+    input  wire [DIM_W-1:0]   rt_stx, \
+    input  wire [DIM_W-1:0]   rt_sty, \
+    input  wire               rt_ins,
 
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with

@@ -343,6 +343,7 @@ module cube4_top #(
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
         .PLW         (PLW),
+        .ADDR_W      (ADDR_W),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
@@ -352,6 +353,9 @@ module cube4_top #(
         .lut_we    (lut_we),
         .lut_addr  (lut_addr),
         .lut_data  (lut_data[LUT_W-1 -: PLW * 4 * ALPHA_W + (1 - PLW)]),
+        .rect_we   (1'b0),
+        .rect_addr ({M_W{1'b0}}),
+        .rect_data ({RECT_W{1'b0}}),
         .in_valid  (com_in_valid),
         .in_ready  (com_in_ready),
         .in_hdr    (sha_hdr),

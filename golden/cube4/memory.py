@@ -238,13 +238,26 @@ def rect_table(trav: Traversal, rects, p: int, addr_w: int, vol_dims=None) -> li
                       "j0": j0, "jl": j1 - 1, "j_in": jin, "pb0": pb0, "pbl": pbl,
                       "i_lo": i0, "i_in": iin, "i_hi": i1, "aj0": aj0 & mask, "rj0": rj0,
                       "pbx0": pbx0 & mask, "pbp0": pb0 * p, "sb0": j0 * nb + pb0,
-                      "sbrow": nb - (pbl - pb0), "tj0": tj0, "tjl": max(tj1 - 1, 0)})
+                      "sbrow": nb - (pbl - pb0), "tj0": tj0, "tjl": max(tj1 - 1, 0),
+                      **_inside_fields(trav, rects, m)})
     return table
+
+
+def _inside_fields(trav: Traversal, rects, m: int) -> dict[str, int]:
+    """COM's fields of slice m's entry: whether it has an inside rectangle (INS), its high
+    sides J_HI, I_HIN (SliceRects.inside: less a row / column where wy / wx > 0; its low
+    sides are J_IN, I_IN) and its steps."""
+    stx, sty = (int(v) for v in trav.steps(m))
+    wx, wy, _ = (int(w) for w in trav.weights(m))
+    j0, j1, i0, i1 = rects.bounds(m)
+    j_hi, i_hin = j1 - 1 - (wy > 0), i1 - 1 - (wx > 0)
+    ins = not rects.empty(m) and j_hi >= j0 and i_hin >= i0
+    return {"ins": int(ins), "j_hi": max(j_hi, 0), "i_hin": max(i_hin, 0), "stx": stx, "sty": sty}
 
 
 #: the fields of a rectangle-table entry (rt_<name> ports of the harnesses)
 RECT_FIELDS = ("empty", "flush", "last", "j0", "jl", "j_in", "pb0", "pbl", "i_lo", "i_in", "i_hi", "aj0", "rj0",
-               "pbx0", "pbp0", "sb0", "sbrow", "tj0", "tjl")
+               "pbx0", "pbp0", "sb0", "sbrow", "tj0", "tjl", "j_hi", "i_hin", "stx", "sty", "ins")
 
 
 def lane_positions(skew: int, pb: int, p: int, ni: int, flip_i: bool) -> np.ndarray:

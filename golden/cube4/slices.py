@@ -191,6 +191,65 @@ class SliceRects:
         j0, j1, pb0, pb1 = self.walk(last, p)
         return (min(j1, self.trav.nj) - j0 + 1) * (pb1 - pb0 + 1) + 3
 
+    def emitted(self, p: int) -> list[tuple[int, int, int, int]]:
+        """The front end's sample beats (m, j, pb, cycle) in order, without stalls: pass m
+        reads its walk's rows, a row leaves with the next row's beam, the last with the
+        next pass's first beam or its own flush beam; an empty pass takes one cycle."""
+        out, c, pend = [], 0, None
+        for m in range(self.last() + 1):
+            w = self.walk(m, p)
+            if w is None:
+                c += 1
+                continue
+            j0, j1, pb0, pb1 = w
+            for row in range(j0, j1):
+                for pb in range(pb0, pb1 + 1):
+                    if row > j0:
+                        out.append((m, row - 1, pb, c))
+                    elif pend is not None:
+                        out.append((pend[0], pend[1], pb, c))
+                    c += 1
+            if self.flushes(m, p):
+                for pb in range(pb0, pb1 + 1):
+                    out.append((m, j1 - 1, pb, c))
+                    c += 1
+                pend = None
+            else:
+                pend = (m, j1 - 1)
+        return out
+
+    def com_waits(self, p: int) -> int:
+        """The beats COM would make wait, without stalls: a beat whose base-plane slot
+        (j, pb) a beat fewer than COM_MIN_SLICE cycles before it wrote (cube4_com's
+        read-after-write rule by position). COM sees the traversed rectangles' beats, as
+        the front end emits them or, with GRA's walk, as GRA finishes them (the beat
+        (m + 1, j + 1, pb) of the walk and two steps, then GRA's own steps). The frame's
+        cycles are predicted exactly when this is 0; the renderer's scenes give 0, random
+        sparse rectangles with slices of a few beats do not."""
+        from .cycles import COM_MIN_SLICE
+        em = self.emitted(p)
+        if self.gra and em:
+            steps = [e[3] for e in em]
+            last = self.last()
+            j0, j1, pb0, pb1 = self.walk(last, p)
+            gen = [(last + 1, r, pb) for r in range(j0, min(j1, self.trav.nj) + 1) for pb in range(pb0, pb1 + 1)]
+            steps += [steps[-1] + 1 + k for k in range(len(gen) + 3)]
+            seq = [e[:3] for e in em] + gen
+            arrivals = []
+            for k, (m, j, pb) in enumerate(seq):
+                b = self.beams(m - 1, p)
+                if b is not None and b[0] <= j - 1 < b[1] and b[2] <= pb <= b[3]:
+                    arrivals.append((j - 1, pb, steps[k + 2]))
+        else:
+            arrivals = [(j, pb, c) for m, j, pb, c in em if self.beams(m, p) is not None
+                        and self.beams(m, p)[0] <= j < self.beams(m, p)[1]]
+        seen, waits = {}, 0
+        for j, pb, c in arrivals:
+            if (j, pb) in seen and c - seen[(j, pb)] < COM_MIN_SLICE:
+                waits += 1
+            seen[(j, pb)] = c
+        return waits
+
     def empty_walks(self, p: int) -> int:
         """Slices before the last that walk nothing: one idle cycle each in the front end."""
         return sum(1 for m in range(self.last()) if self.walk(m, p) is None)

@@ -119,15 +119,26 @@ def mask_bits(flags) -> int:
 class BeatSchedule:
     """The sample stream's beats of one view, in the order the hardware emits them."""
 
-    def __init__(self, trav: Traversal, p: int, inside: np.ndarray, keep: np.ndarray | None = None) -> None:
+    def __init__(self, trav: Traversal, p: int, inside: np.ndarray, keep: np.ndarray | None = None,
+                 rects=None) -> None:
         """inside: golden ``sample_stream`` inside flags, [m, j, i]; keep: the samples
-        that count (golden ``Clip.keep`` per slice, [m, j, i]; None: all)."""
+        that count (golden ``Clip.keep`` per slice, [m, j, i]; None: all); rects: slice
+        rectangles (cube4.slices.SliceRects): the beats of each slice's traversed
+        rectangle (what GRA forwards), its positions valid (None: the whole box)."""
         self.trav, self.p = trav, p
         M, nj, ni, nk = trav.num_sample_slices, trav.nj, trav.ni, trav.nk
         self.nb = nb = -(-ni // p)
-        n = M * nj * nb
-        idx = np.arange(n)
-        self.m, self.j, self.pb = idx // (nj * nb), (idx // nb) % nj, idx % nb
+        if rects is None:
+            n = M * nj * nb
+            idx = np.arange(n)
+            self.m, self.j, self.pb = idx // (nj * nb), (idx // nb) % nj, idx % nb
+        else:
+            order = [(m, j, pb) for m in range(M) if rects.beams(m, p) is not None
+                     for j in range(*rects.beams(m, p)[:2])
+                     for pb in range(rects.beams(m, p)[2], rects.beams(m, p)[3] + 1)]
+            self.m, self.j, self.pb = (np.array([o[c] for o in order], dtype=np.int64) for c in range(3))
+            n = len(order)
+            idx = np.arange(n)
         fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
         # skew: banks (c_i + c_j + c_k) mod p of the row above (j + 1) in the lower voxel
         # slice, in the whole volume (a box at trav.origin: its i offset included)
@@ -137,6 +148,10 @@ class BeatSchedule:
         self.skew = (cj + ck + sum(trav.origin)) % p
         self.pos = np.stack([lane_positions(int(s), int(b), p, ni, fi) for s, b in zip(self.skew, self.pb)])
         self.lval = self.pos < ni
+        if rects is not None:   # the traversed rectangle's columns
+            lo = np.array([rects.traversed(int(m))[2] for m in self.m])
+            hi = np.array([rects.traversed(int(m))[3] for m in self.m])
+            self.lval &= (self.pos >= lo[:, None]) & (self.pos < hi[:, None])
         self.lins = self.lanes(inside).astype(bool)
         self.lkeep = self.lval if keep is None else self.lanes(keep).astype(bool) & self.lval
         sx, sy = trav.steps(self.m)

@@ -36,8 +36,11 @@ module cube4_com_harness #(
     parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM    = 1,
     parameter integer PLW         = 0,
+    parameter integer RECTS       = 0,
+    parameter integer ADDR_W      = 16,   // the rectangle table's layout only
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
+    `CUBE4_RECT_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
     localparam integer BX_W    = DIM_W + 1,
     localparam integer IN_W    = P * (24 + ALPHA_W),
@@ -50,6 +53,9 @@ module cube4_com_harness #(
     input  wire                  lut_we,
     input  wire [VOXEL_W-1:0]    lut_addr,
     input  wire [PWC_W-1:0]      lut_data,
+    input  wire                  rect_we,     // write the rt_* fields as entry rect_addr (RECTS = 1)
+    input  wire [M_W-1:0]        rect_addr,
+    `CUBE4_RECT_PORTS
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
@@ -67,6 +73,7 @@ module cube4_com_harness #(
     cube4_sim_clock u_clock (.clk (clk));
 
     wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+    wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
 
     cube4_com #(
         .P           (P),
@@ -77,6 +84,8 @@ module cube4_com_harness #(
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
         .PLW         (PLW),
+        .RECTS       (RECTS),
+        .ADDR_W      (ADDR_W),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
     ) u_com (
@@ -86,6 +95,9 @@ module cube4_com_harness #(
         .lut_we    (lut_we),
         .lut_addr  (lut_addr),
         .lut_data  (lut_data),
+        .rect_we   (rect_we),
+        .rect_addr (rect_addr),
+        .rect_data (rect_data),
         .in_valid  (in_valid),
         .in_ready  (in_ready),
         .in_hdr    (in_hdr),
