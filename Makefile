@@ -79,7 +79,8 @@ LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
 LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 \
                                SHADING=0,EXTREMUM=0,CLIP=0 SHADING=0,COMPOSITING=0,CLIP=0,PLW=0 P=1,SHADING=0,COMPOSITING=0,PLW=0 \
                                P=5,SHADING=1,EXTREMUM=0,CLIP=1 P=8,VGRAD=1,MAX_SS_LOG2=2 P=1,VGRAD=1,EXTREMUM=0,CLIP=0 \
-                               PLW=0 P=1,PLW=0,EXTREMUM=0 SHADING=0,COMPOSITING=0,CLIP=0,PLW=0
+                               PLW=0 P=1,PLW=0,EXTREMUM=0 SHADING=0,COMPOSITING=0,CLIP=0,PLW=0 \
+                               RECTS=1,PLW=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 P=8,RECTS=1,PLW=0,VGRAD=1
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

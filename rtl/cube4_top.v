@@ -40,7 +40,12 @@
 //                = 0 turns them off for a frame); 0: none.  0..1. Default 1.
 //   Illegal (elaboration stops): COMPOSITING = EXTREMUM = 0; SHADING = 1 with
 //   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0;
-//   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted).
+//   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
+//   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0.
+//   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
+//                slice's entry of the table (rect_*), GRA and COM follow the
+//                rectangles; every frame needs its table (the whole box for the
+//                fixed schedule).                       0..1. Default 0.
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
@@ -75,6 +80,7 @@ module cube4_top #(
     parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1,
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1,
+    parameter integer RECTS    = 0,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
@@ -95,6 +101,11 @@ module cube4_top #(
     input  wire                      rmap_we,
     input  wire [RI_W-1:0]           rmap_addr,
     input  wire [19:0]               rmap_data,
+    // the slice-rectangle table (RECTS = 1; unused otherwise): entry rect_addr =
+    // sample slice, layout CUBE4_RECT_LAYOUT (golden/cube4/memory.py rect_table)
+    input  wire                      rect_we,
+    input  wire [M_W-1:0]            rect_addr,
+    input  wire [RECT_W-1:0]         rect_data,
     // view registers
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
@@ -134,6 +145,10 @@ module cube4_top #(
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_top: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
         end
+        `CUBE4_RANGE(g_bad_rects, "cube4_top", "RECTS", RECTS, 0, 1)
+        if (RECTS != 0 && (PLW != 0 || MAX_SS_LOG2 != 0)) begin : g_rects_plw
+            $error("cube4_top: RECTS = 1 needs PLW = 0 and MAX_SS_LOG2 = 0 (rectangles run with S = 1, unweighted)");
+        end
         if (SHADING != 0 && COMPOSITING == 0) begin : g_shading_alone
             $error("cube4_top: SHADING = 1 needs COMPOSITING = 1 (MIP, MinIP and X-ray are not shaded)");
         end
@@ -164,7 +179,8 @@ module cube4_top #(
         .ADDR_W      (ADDR_W),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
         .CLIP        (CLIP),
-        .VGRAD       (VGRAD)
+        .VGRAD       (VGRAD),
+        .RECTS       (RECTS)
     ) u_frontend (
         .clk           (clk),
         .rst           (rst),
@@ -174,9 +190,9 @@ module cube4_top #(
         .cycles        (unused_fe_cycles),
         .cfg           (cfg),
         .cfg_addr      (cfg_addr),
-        .rect_we       (1'b0),            // slice rectangles: not in the top yet (RECTS = 0)
-        .rect_addr     ({M_W{1'b0}}),
-        .rect_data     ({RECT_W{1'b0}}),
+        .rect_we       (rect_we),
+        .rect_addr     (rect_addr),
+        .rect_data     (rect_data),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),
@@ -257,7 +273,8 @@ module cube4_top #(
                 .VOXEL_W     (VOXEL_W),
                 .WEIGHT_W    (WEIGHT_W),
                 .MAX_DIM     (MAX_DIM),
-                .MAX_SS_LOG2 (MAX_SS_LOG2)
+                .MAX_SS_LOG2 (MAX_SS_LOG2),
+                .RECTS       (RECTS)
             ) u_gra (
                 .clk        (clk),
                 .rst        (rst),
@@ -343,6 +360,7 @@ module cube4_top #(
         .COMPOSITING (COMPOSITING),
         .EXTREMUM    (EXTREMUM),
         .PLW         (PLW),
+        .RECTS       (RECTS),
         .ADDR_W      (ADDR_W),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
@@ -353,9 +371,9 @@ module cube4_top #(
         .lut_we    (lut_we),
         .lut_addr  (lut_addr),
         .lut_data  (lut_data[LUT_W-1 -: PLW * 4 * ALPHA_W + (1 - PLW)]),
-        .rect_we   (1'b0),
-        .rect_addr ({M_W{1'b0}}),
-        .rect_data ({RECT_W{1'b0}}),
+        .rect_we   (rect_we),
+        .rect_addr (rect_addr),
+        .rect_data (rect_data),
         .in_valid  (com_in_valid),
         .in_ready  (com_in_ready),
         .in_hdr    (sha_hdr),

@@ -5,7 +5,7 @@
                  [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
                  [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
-                 [--no-skip] [--preset default|quality] [--gradient gra|central|sobel]
+                 [--no-skip | --rects] [--preset default|quality] [--gradient gra|central|sobel]
                  [--path-weights | --no-path-weights]
     cube4 volumes | cube4 scenes      list the built-ins
 
@@ -97,6 +97,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--no-skip", action="store_true",
                    help="traverse the whole volume (the fixed schedule) instead of only the box that can change "
                         "a ray; the image is the same, --stats compares the cycles")
+    r.add_argument("--rects", action="store_true",
+                   help="within the box, each sample slice traverses only its own rectangle (slice "
+                        "rectangles; S = 1); the image is the same, --stats compares the cycles")
     r.add_argument("--gradient", choices=GRADIENTS,
                    help="the gradient estimator instead of the scene's [render] gradient: gra (the paper's, on "
                         "the sample stream), central or sobel (at the voxels, interpolated by TRI)")
@@ -209,8 +212,12 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
     scene = load_scene(args.scene)
     scenes = _views(args, scene)
+    if args.no_skip and args.rects:
+        raise UserError("--no-skip and --rects exclude each other")
     if args.no_skip:
         scenes = [replace(sc, skip=False) for sc in scenes]
+    if args.rects:
+        scenes = [replace(sc, skip="rects") for sc in scenes]
     if args.preset:
         scenes = [apply_preset(sc, args.preset) for sc in scenes]
     if args.gradient:

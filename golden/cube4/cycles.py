@@ -39,6 +39,25 @@ def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: 
 
 
 
+#: Pipeline fill of a cube4_top build with slice rectangles (RECTS = 1) beyond the front end's
+#: beats, its empty passes and GRA's own steps (cube4.slices: beats, empty_walks, gra_steps); per
+#: build kind (with GRA: one more than FILL_CYCLES, GRA holding its last beat until its walk
+#: ends; without shading: FILL_CYCLES_UNSHADED), measured and checked by tb/cube4_top's
+#: rectangle tests. Voxel gradients with rectangles are not run (cube4_sim.rtl refuses them).
+FILL_CYCLES_RECTS = {"gra": FILL_CYCLES + 1, "unshaded": FILL_CYCLES_UNSHADED}
+
+
+def rect_frame_cycles(rects, p: int, shading: bool = True, vgrad: bool = False) -> int:
+    """Cycles of one slice-rectangle frame without stalls on a RECTS build (exact when
+    ``rects.com_waits(p)`` is 0: no beat waits in COM)."""
+    if vgrad:
+        raise ValueError("slice rectangles with voxel gradients are not run")
+    gra = shading
+    kind = "gra" if gra else "unshaded"
+    return (rects.beats(p) + rects.empty_walks(p) + (rects.gra_steps(p) if gra else 0)
+            + FILL_CYCLES_RECTS[kind])
+
+
 def slow_slice_factor(nj: int, ni: int, p: int) -> float:
     """How much slower than frame_cycles a frame with short slices (NJ·NB < COM_MIN_SLICE) runs, at most."""
     nb = -(-ni // p)

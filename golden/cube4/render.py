@@ -291,6 +291,7 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     vp = plan_view(vol, scene, cfg)
     box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
     results, streams = {}, {}
+    rects = rects or scene.skip == "rects"
     frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
     for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
         if plan.trav is None:       # nothing can change a ray: no frame

@@ -51,7 +51,8 @@ class Scene:
     shading: bool = True  # [material] shading: false classifies only (composite mode)
     crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
-    skip: bool = True  # [render] skip: traverse only the box that can change a ray (cube4.skip)
+    skip: bool | str = True  # [render] skip: only the box that can change a ray (cube4.skip); "rects":
+    #                          and within it each slice's rectangle (cube4.slices; S = 1)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
     gradient: str = "gra"  # [render] gradient: gra (the paper's), central or sobel (cube4.vgrad)
     path_weights: bool = False  # [render] path_weights: weight rays' first and last samples (cube4.pathlen)
@@ -143,8 +144,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if not isinstance(subpixel, int) or isinstance(subpixel, bool) or not 1 <= subpixel <= MAX_Q:
         raise UserError(f"scene: render.subpixel must be an integer in 1..{MAX_Q}, got {subpixel!r}")
     skip = rnd.get("skip", True)
-    if not isinstance(skip, bool):
-        raise UserError(f"scene: render.skip must be true or false, got {skip!r}")
+    if not isinstance(skip, bool) and skip != "rects":
+        raise UserError(f"scene: render.skip must be true, false or \"rects\", got {skip!r}")
     path_weights = rnd.get("path_weights", False)
     if not isinstance(path_weights, bool):
         raise UserError(f"scene: render.path_weights must be true or false, got {path_weights!r}")

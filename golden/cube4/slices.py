@@ -264,6 +264,12 @@ class SliceRects:
         return float(area) / float(t.num_sample_slices * t.nj * t.ni)
 
 
+def whole_box_rects(trav: Traversal) -> SliceRects:
+    """Every slice's rectangle the whole box: the fixed schedule, as a table."""
+    need = np.ones((trav.num_sample_slices, trav.nj, trav.ni), dtype=bool)
+    return rects_from_needed(need, trav)
+
+
 def busy_traversal(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str,
                    clip: Clip | None = None) -> np.ndarray:
     """(nk, nj, ni) bool: the busy cells of the traversal frame (cell (k, j, i) holds the

@@ -16,11 +16,12 @@ import numpy as np
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
-from cube4.render import (RenderResult, assemble_view, build_memory, plan_view, register_engine, schedule_stats, trav_stats,
-                          view_image, view_stats)
+from cube4.cycles import rect_frame_cycles
+from cube4.render import (RenderResult, assemble_view, build_memory, pass_rects, plan_view, register_engine,
+                          schedule_stats, trav_stats, view_image, view_stats)
 from cube4.scene import Scene
 
-from .rtl import FrameJob, baseplane_from_pixels, render_frames
+from .rtl import FrameJob, baseplane_from_pixels, frame_rects, render_frames
 from .errors import SimulationError
 
 NAME = "rtl"
@@ -33,15 +34,21 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     t0 = time.perf_counter()
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     vps = [plan_view(vol, sc, cfg) for sc in scenes]
+    use_rects = any(sc.skip == "rects" for sc in scenes)   # one build: a RECTS build for every view
+    if use_rects:
+        build = {**build, "PLW": 0}
     jobs, owners = [], []
     for nv, vp in enumerate(vps):
+        rects = pass_rects(vol, vp) if vp.scene.skip == "rects" else [None] * len(vp.plans)
         for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
-                jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip))
+                jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip,
+                                     rects=rects[n]))
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
-        outs = render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build) if jobs else []
+        outs = (render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build, rects=use_rects)
+                if jobs else [])
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None
     run_s = time.perf_counter() - t0
@@ -59,6 +66,15 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         stats.update(trav_stats(vp.trav))
         stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
         stats.update(schedule_stats(vp.plans, cfg, build))
+        if use_rects:   # the frames ran the rectangles (or the whole box): their prediction
+            gra = bool(build["SHADING"]) and not bool(build.get("VGRAD", 0))
+            rs = [frame_rects(job, gra) for job, _ in ran.values()]
+            stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, bool(build["SHADING"]),
+                                                              bool(build.get("VGRAD", 0))) for r in rs)
+            stats["cycles_saved"] = stats["fixed_schedule_cycles"] - stats["predicted_cycles"]
+            stats["skip"] = True
+            stats["rects"] = True
+            stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in rs)
         outs_v = [out for _, out in ran.values()]
         stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
         stats["build"] = dict(build)

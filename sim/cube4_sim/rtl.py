@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import json
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +26,9 @@ from cube4.vgrad import word_bits
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
-from cube4.cycles import frame_cycles, slow_slice_factor
+from cube4.cycles import COM_MIN_SLICE, frame_cycles, rect_frame_cycles, slow_slice_factor
+from cube4.slices import SliceRects, whole_box_rects
+from .rect_port import rect_width, rect_words
 from .dump import read_pixel_frames
 from .sources import rtl_sources, synth_sources
 
@@ -45,6 +47,7 @@ class FrameJob:
     stall: int = 0  # hold probability /256 on every internal stream
     stall_out: int = 0  # pixel-port not-ready probability /256
     reset_after_cycles: int = 0  # start, reset after this many cycles, then render
+    rects: SliceRects | None = None  # slice rectangles (a RECTS build; None there: the whole box)
     extra: dict = field(default_factory=dict)
 
 
@@ -127,14 +130,15 @@ def write_tables(lut: np.ndarray, rmap: np.ndarray | None, cfg: Cube4Config, lut
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
                   fit_memory: bool = False, waves: bool | None = None, workdir: Path | None = None,
                   progress: bool = False, quiet: bool = False, rtl_form: str = "generic",
-                  build: dict | None = None) -> list[dict]:
+                  build: dict | None = None, rects: bool = False) -> list[dict]:
     """Render every frame through the RTL; returns per frame
     {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}.
 
     The build is chosen by the configuration and max_dim (default: the volume's size
     class). ``fit_memory`` sizes the voxel memory to this volume (the next power of two
     of its words per bank) instead of a max_dim^3 cube: a long, thin volume then needs
-    no memory for a cube it never fills (a separate build)."""
+    no memory for a cube it never fills (a separate build). ``rects``: a build with
+    slice rectangles (RECTS = 1): each frame runs its FrameJob.rects, or the whole box."""
     nz, ny, nx = vol.shape
     max_dim = max_dim or build_max_dim((nx, ny, nz))
     depth = None
@@ -142,6 +146,12 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
     params = build_params(cfg, max_dim, depth, build)
     shading, vgrad = bool(params["SHADING"]), bool(params["VGRAD"])
+    if rects:
+        if vgrad:
+            raise UserError("slice rectangles run on a build without voxel gradients (VGRAD = 0)")
+        if params["PLW"] and any(path_weighted(fr.lut, fr.mode) for fr in frames):
+            raise UserError("slice rectangles do not run path-weighted frames (a build with PLW = 0)")
+        params.update(RECTS=1, PLW=0)
     check_limits(params, (nx, ny, nz))
 
     from . import runner  # cocotb is imported only when the RTL engine is used
@@ -166,16 +176,23 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
             ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
+            rect_p = workdir / f"rects{n}.hex"
+            if rects:
+                fr_rects = frame_rects(fr, shading and not vgrad)
+                write_hex(rect_p, rect_words(fr.trav, fr_rects, cfg.pipelines, max_dim, params["ADDR_W"], (nx, ny, nz)),
+                          rect_width(cfg.pipelines, max_dim, params["ADDR_W"]))
+                ideal = (rect_frame_cycles(fr_rects, cfg.pipelines, shading, vgrad) + 100) * COM_MIN_SLICE
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted),
-                "lut": str(lut_p), "rmap": str(rmap_p),
+                "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
                 "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,
             })
         job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
+               "rect": str(workdir / "rects.hex"),
                "result": str(workdir / "result.json")}
         job_path = workdir / "job.json"
         job_path.write_text(json.dumps(job, indent=1))
@@ -193,7 +210,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             extra_env={"CUBE4_JOB": str(job_path), "CUBE4_PROGRESS": "1" if progress else "0",
                        **({"COCOTB_LOG_LEVEL": "WARNING"} if quiet else {})},
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
-                      f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_DUMP={job['dump']}"],
+                      f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_RECTFILE={job['rect']}",
+                      f"+CUBE4_DUMP={job['dump']}"],
             quiet_logs=quiet,
             private_results=True,   # bricks on several workers may run this build at once
         )
@@ -206,6 +224,14 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     finally:
         if own_tmp is not None:
             own_tmp.cleanup()
+
+
+def frame_rects(fr: FrameJob, gra: bool) -> SliceRects:
+    """The rectangles a frame runs on a RECTS build: its own or the whole box, with GRA's
+    walk when the build has GRA (every frame passes GRA there, shaded or not)."""
+    t = fr.trav
+    r = fr.rects if fr.rects is not None else whole_box_rects(t)
+    return replace(r, gra=gra)
 
 
 def baseplane_from_pixels(pixels: np.ndarray, shape: tuple[int, int]) -> np.ndarray:

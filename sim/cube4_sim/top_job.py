@@ -109,6 +109,8 @@ async def run_job(dut):
             # the harness reads the files named by its plusargs; the host rewrote them
             Path(job["lut"]).write_text(Path(fr["lut"]).read_text())
             Path(job["rmap"]).write_text(Path(fr["rmap"]).read_text())
+            if fr.get("rect"):
+                Path(job["rect"]).write_text(Path(fr["rect"]).read_text())
             await drv.load_tables()
         if fr.get("reset_after_cycles"):
             # start a frame, reset it part way, then render cleanly

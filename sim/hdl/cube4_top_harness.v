@@ -46,9 +46,11 @@ module cube4_top_harness #(
     parameter integer CLIP        = 1,
     parameter integer VGRAD       = 0,
     parameter integer PLW         = 1,
+    parameter integer RECTS       = 0,    // 1: slice rectangles (the table from CUBE4_RECTFILE)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
+    `CUBE4_RECT_LAYOUT,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     `CUBE4_VIEW_PORTS
@@ -155,12 +157,14 @@ module cube4_top_harness #(
     reg [WORD_W-1:0]  img  [0:P*DEPTH-1];
     reg [LUT_W-1:0]   luti [0:(1 << VOXEL_W)-1];
     reg [19:0]        rmi  [0:RMAP_N-1];
-    string memfile, lutfile, rmapfile, dumpfile;
+    reg [RECT_W-1:0]  rti  [0:MAX_DIM-1];   // the rectangle table (RECTS = 1)
+    string memfile, lutfile, rmapfile, rectfile, dumpfile;
     integer dump_fd, b;
     initial begin
         if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile))   memfile  = "cube4_mem.hex";
         if (!$value$plusargs("CUBE4_LUTFILE=%s", lutfile))   lutfile  = "cube4_lut.hex";
         if (!$value$plusargs("CUBE4_RMAPFILE=%s", rmapfile)) rmapfile = "cube4_rmap.hex";
+        if (!$value$plusargs("CUBE4_RECTFILE=%s", rectfile)) rectfile = "cube4_rects.hex";
         if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.bin";
         dump_fd = $fopen(dumpfile, "wb");
     end
@@ -181,6 +185,7 @@ module cube4_top_harness #(
         end else if (load_tables_q && !mem_busy_q && !tab_busy_q) begin
             $readmemh(lutfile, luti);
             $readmemh(rmapfile, rmi);
+            if (RECTS != 0) $readmemh(rectfile, rti);
             tab_busy_q <= 1'b1;
             done_q     <= 1'b0;
             la_q       <= 32'd0;
@@ -191,7 +196,8 @@ module cube4_top_harness #(
             end
             la_q <= la_q + 32'd1;
         end else if (tab_busy_q) begin
-            if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= (1 << VOXEL_W)) begin
+            if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= (1 << VOXEL_W)
+                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM)) begin
                 tab_busy_q <= 1'b0;
                 done_q     <= 1'b1;
             end
@@ -204,6 +210,7 @@ module cube4_top_harness #(
     assign load_done = done_q;
     wire lut_we  = tab_busy_q && (la_q < (1 << VOXEL_W));
     wire rmap_we = tab_busy_q && (la_q < RMAP_N);
+    wire rect_we = (RECTS != 0) && tab_busy_q && (la_q < MAX_DIM);
 
     // ------------------------------------------------------------ random holds
     // LFSR s starts from the seed and its index (never from zero)
@@ -256,7 +263,8 @@ module cube4_top_harness #(
         .EXTREMUM    (EXTREMUM),
         .CLIP        (CLIP),
         .VGRAD       (VGRAD),
-        .PLW         (PLW)
+        .PLW         (PLW),
+        .RECTS       (RECTS)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -270,6 +278,9 @@ module cube4_top_harness #(
         .rmap_we     (rmap_we),
         .rmap_addr   (la_q[RI_W-1:0]),
         .rmap_data   (rmi[la_q[RI_W-1:0]]),
+        .rect_we     (rect_we),
+        .rect_addr   (M_W'(la_q)),
+        .rect_data   (rti[la_q[$clog2(MAX_DIM)-1:0]]),
         .cfg_ni      (cfg_ni_q),
         .cfg_nj      (cfg_nj_q),
         .cfg_nk      (cfg_nk_q),

@@ -303,6 +303,59 @@ def test_skip_schedule(p):
             assert res["cycles"] == plan.cycles(p, True), (label, res["cycles"], plan.cycles(p, True))
 
 
+# ---------------------------------------------------------------- slice rectangles
+@pytest.mark.parametrize("p, shading", [(1, 1), (5, 1), (8, 1), (5, 0)])
+def test_slice_rectangles(p, shading):
+    """Slice rectangles through the RTL (RECTS = 1): each frame runs the rectangles the
+    host plans within its box (cube4.slices.plan_rects; GRA's walk on a build with GRA);
+    its rays are the golden model's rectangle frame bit for bit, and its base plane placed
+    in the whole equals the golden fixed schedule's, with random stalls and a reset in
+    mid-frame; unstalled frames take exactly the predicted cycles
+    (cube4.cycles.rect_frame_cycles) where no beat waits in COM (SliceRects.com_waits;
+    otherwise at least those), and the fixed schedule runs as a whole-box table too.
+    Builds: with GRA at P = 1, 5, 8, and without shading at P = 5."""
+    from cube4.model import render_frame
+    from cube4.cycles import rect_frame_cycles
+    from cube4.slices import plan_rects
+    from cube4_sim.rtl import frame_rects
+
+    rng = np.random.default_rng(300 + p)
+    cfg = Cube4Config(pipelines=p)
+    nx, ny, nz = 21, 18, 20
+    vol = rng.integers(50, 150, size=(nz, ny, nx))
+    vol[5:12, 9:15, 4:13] = rng.integers(0, 200, size=(7, 6, 9))
+    vol[8, 11, 7] = 230
+    jobs, plans = skip_frames(rng, cfg, vol)
+    for job, plan in zip(jobs, plans):
+        if not shading:
+            job.rmap = None
+        job.rects = plan_rects(plan.box_volume(vol), plan.trav, job.lut, job.mode, gra=job.rmap is not None,
+                               clip=plan.clip)
+    first = jobs[0]
+    jobs.append(FrameJob(plans[0].whole, first.lut, first.rmap, mode=first.mode))   # the whole box, as a table
+    plans.append(None)
+    build = {"PLW": 0, "SHADING": shading}
+    results = render_frames(vol, jobs, cfg, max_dim=64, build=build, rects=True)
+    exact = 0
+    for n, (job, plan, res) in enumerate(zip(jobs, plans, results)):
+        label = f"rects P={p} view {n} {job.mode}"
+        check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip,
+              rects=job.rects)
+        if plan is not None:
+            full = render_frame(vol, plan.whole, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None)
+            placed = plan.place(baseplane_from_pixels(res["pixels"], job.trav.baseplane_shape))
+            assert (placed == full.baseplane).all(), f"{label}: differs from the fixed schedule"
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            rects = frame_rects(job, bool(shading))
+            want = rect_frame_cycles(rects, p, bool(shading))
+            if rects.com_waits(p) == 0:
+                assert res["cycles"] == want, (label, res["cycles"], want)
+                exact += 1
+            else:
+                assert res["cycles"] >= want, (label, res["cycles"], want)
+    assert exact >= 2, f"only {exact} frames had their cycles checked exactly"
+
+
 # ---------------------------------------------------------------- voxel gradients
 # (P, S, estimator, build: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD)
 VGRAD_RUNS = [(1, 1, "sobel", (1, 1, 0, 0, 1)), (8, 2, "central", (1, 1, 1, 1, 1))]
