@@ -138,9 +138,10 @@ def test_scene_renders_equal_with_and_without_skip(extra):
 
 
 def test_scene_key_must_be_a_bool():
-    with pytest.raises(UserError, match="render.skip must be true or false"):
+    with pytest.raises(UserError, match="render.skip must be true, false or \"rects\""):
         parse_scene({"render": {"skip": "no"}})
     assert parse_scene({"render": {"skip": False}}).skip is False
+    assert parse_scene({"render": {"skip": "rects"}}).skip == "rects"
     assert make_scene().skip is True
 
 

@@ -190,3 +190,52 @@ def test_golden_engine_with_rects():
     assert np.array_equal(on.frame.baseplane, fixed.frame.baseplane)
     assert np.array_equal(on.image, box.image)
     assert 0 < on.stats["rect_beats"] < box.stats["predicted_cycles"]
+
+
+@pytest.mark.parametrize("direction", SKIP_VIEWS)
+@pytest.mark.parametrize("p", [1, 5, 8])
+def test_gra_walk(direction, p):
+    """GRA's walk (SliceRects.walk with gra): every slice up to the last walks its own
+    traversed rectangle and the rows T(m-1).j0 .. T(m-1).j1 over T(m-1)'s partial beams
+    (at most row NJ), and the partial beam below T(m-1)'s first where T(m-2) reaches it;
+    nothing more than their bounding rectangle. Without GRA the walk is the traversed
+    rectangle. The beats count the walks; GRA's own steps finish the last slice."""
+    rng = np.random.default_rng(7 * p)
+    trav = make_traversal((13, 11, 9), direction, 8, 1)
+    for density in (0.003, 0.02, 0.2):
+        need = rng.random((trav.num_sample_slices, trav.nj, trav.ni)) < density
+        plain = slices.rects_from_needed(need, trav)
+        walked = dataclasses.replace(plain, gra=True)
+        last = plain.last()
+        for m in range(last + 1):
+            t, prev, prev2 = plain.beams(m, p), plain.beams(m - 1, p), plain.beams(m - 2, p)
+            assert plain.walk(m, p) == t
+            w = walked.walk(m, p)
+            parts = [b for b in (t, prev and (prev[0], min(prev[1] + 1, trav.nj + 1), prev[2], prev[3]))
+                     if b is not None]
+            if not parts:
+                assert w is None
+                continue
+            want = [min(b[0] for b in parts), max(b[1] for b in parts),
+                    min(b[2] for b in parts), max(b[3] for b in parts)]
+            if prev is not None and prev2 is not None:
+                want[2] = min(want[2], max(prev2[2], prev[2] - 1))
+            assert w == tuple(want), (m, w, want)
+            assert w[1] <= trav.nj + 1
+        if last >= 0:
+            assert walked.beats(p) >= plain.beats(p)
+            j0, j1, pb0, pb1 = walked.walk(last, p)
+            assert walked.gra_steps(p) == (min(j1, trav.nj) - j0 + 1) * (pb1 - pb0 + 1) + 3
+            assert len(walked.emitted(p)) == sum((w[1] - w[0]) * (w[3] - w[2] + 1)
+                                                  for w in (walked.walk(m, p) for m in range(last + 1)) if w)
+
+
+@pytest.mark.parametrize("scene_name", ["head", "head_unshaded", "head_xray"])
+def test_head_scenes_need_no_com_wait(scene_name):
+    """On the head phantom's scenes no beat waits in COM (SliceRects.com_waits): the cycle
+    prediction of a rectangle frame (cycles.rect_frame_cycles) is exact there."""
+    vol = load_volume("head:64")
+    scene = load_scene(scene_name)
+    vp = plan_view(vol, scene, config_for(scene, 8))
+    rects = dataclasses.replace(pass_rects(vol, vp)[0], gra=scene.shaded)
+    assert rects.com_waits(8) == 0

@@ -5,9 +5,10 @@ For each volume and a scene a user would pick, at several views, the box schedul
 ``cube4.skip``: the box, its share of the voxels, the cycles per frame it takes (the
 cycle formula with the box's dims, which tb/cube4_top holds the RTL to) against the
 fixed schedule's and against n³/P, the host's time to build its tables, and whether the
-image is the fixed schedule's bit for bit (the golden model renders both). One frame,
-the issue's goal case (head:128, scene head, P = 8), also runs through the RTL: its
-measured cycles against the prediction.
+image is the fixed schedule's bit for bit (the golden model renders both); and the slice
+rectangles within the box: their cycles through cube4_top (predicted) and their image.
+The issue's goal case (head:128, scene head, P = 8) also runs through the RTL, with the
+box and with the rectangles: measured cycles against the prediction, and the image.
 """
 
 from __future__ import annotations
@@ -15,8 +16,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -24,6 +23,7 @@ import numpy as np
 from tqdm import tqdm
 
 from cube4.config import resolve_build
+from cube4.cycles import rect_frame_cycles
 from cube4.render import config_for, pass_rects, plan_view, render, render_golden_view, schedule_stats
 from cube4.scene import load_scene, with_view
 from cube4.view import angles_from_direction, direction_from_angles
@@ -75,6 +75,11 @@ def measure(vol_spec: str, scene_name: str, check_images: bool) -> list[dict]:
                "n3_over_p": nx * ny * nz / P, "table_s": table_s, **st}
         rects = pass_rects(vol, vp)
         row["rect_beats"] = sum(r.beats(P) for r in rects if r is not None)
+        # the frames as cube4_top runs them on the scene's build (GRA's walk where it has GRA)
+        gra, vgrad = bool(build["SHADING"]), bool(build["VGRAD"])
+        ran = [dataclasses.replace(r, gra=gra) for r in rects if r is not None]
+        row["rect_cycles"] = None if vgrad else sum(rect_frame_cycles(r, P, gra) for r in ran)
+        row["rect_com_waits"] = None if vgrad else sum(r.com_waits(P) for r in ran)
         row["rect_table_s"] = sum(r.table_s for r in rects if r is not None)
         row["rect_fraction"] = float(np.mean([0.0 if r is None else r.fraction() * p.fraction
                                               for r, p in zip(rects, vp.plans)]))
@@ -88,8 +93,9 @@ def measure(vol_spec: str, scene_name: str, check_images: bool) -> list[dict]:
     return rows
 
 
-def rtl_goal_frame() -> dict:
-    """The goal case's scene view through the RTL, with the box schedule."""
+def rtl_goal_frame(rects: bool = False) -> dict:
+    """The goal case's scene view through the RTL, with the box schedule or (``rects``)
+    the slice rectangles within it."""
     from cube4_sim.engine import register
 
     register()
@@ -97,29 +103,13 @@ def rtl_goal_frame() -> dict:
     vol = load_volume(vol_spec)
     sc = load_scene(scene_name)
     cfg = config_for(sc, P)
-    res = render(vol, sc, cfg, "rtl", progress=sys.stderr.isatty())
+    res = render(vol, dataclasses.replace(sc, skip="rects") if rects else sc, cfg, "rtl",
+                 progress=sys.stderr.isatty())
     gold = render(vol, dataclasses.replace(sc, skip=False), cfg, "golden")
     return {"cycles": res.stats["cycles"], "predicted_cycles": res.stats["predicted_cycles"],
             "fixed_schedule_cycles": res.stats["fixed_schedule_cycles"],
             "bit_identical_to_fixed_golden": bool(np.array_equal(res.frame.baseplane, gold.frame.baseplane)),
             "sim_wall_s": res.stats["sim_wall_s"]}
-
-
-def rtl_front_end_rects() -> dict:
-    """The goal case's slice rectangles through the RTL front end (a RECTS = 1 build of
-    tb/cube4_frontend, test_cube4_frontend_rect_scene): bit-exact, its cycles measured
-    against the prediction."""
-    case = f"{GOAL[0]},{GOAL[1]},{GOAL[0].split(':')[1]}"
-    env = {**os.environ, "CUBE4_RECT_SCENE_CASE": case}
-    test = REPO_ROOT / "tb" / "cube4_frontend" / "test_cube4_frontend.py"
-    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
-                          f"{test}::test_cube4_frontend_rect_scene"], env=env, cwd=REPO_ROOT,
-                         capture_output=True, text=True)
-    if run.returncode != 0:
-        raise SystemExit(f"skipping: the front-end rectangle frame failed:\n{run.stdout[-3000:]}")
-    from cube4_sim import BUILD_ROOT
-
-    return json.loads((BUILD_ROOT / "reports" / "frontend_rects.json").read_text())
 
 
 def _pct(x: float) -> str:
@@ -130,10 +120,16 @@ def _image(same: bool | None) -> str:
     return "not checked" if same is None else ("identical" if same else "DIFFERENT")
 
 
-def write_md(rows: list[dict], rtl: dict | None, meta: dict, front: dict | None = None) -> str:
+def _rect_cycles(r: dict) -> str:
+    if r["rect_cycles"] is None:
+        return "— (voxel gradients)"
+    return fmt_int(r["rect_cycles"]) + ("" if r["rect_com_waits"] == 0 else f" (+{r['rect_com_waits']} waits)")
+
+
+def write_md(rows: list[dict], rtl: dict | None, meta: dict, rtl_rects: dict | None = None) -> str:
     head = ["volume (dims)", "scene (mode)", "view az, el", "box traversed", "voxels", "cycles",
             "fixed schedule", "cycles / (n³/P)", "saved", "host tables", "image",
-            "rectangles: samples", "beats", "beats / (n³/P)", "tables", "image"]
+            "rectangles: samples", "cycles", "cycles / (n³/P)", "tables", "image"]
     body = []
     for r in rows:
         box = "—" if r["skip_box"] is None else "×".join(str(d) for d in r["skip_box"]["dims"])
@@ -143,7 +139,8 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict, front: dict | None 
             fmt_int(r["predicted_cycles"]), fmt_int(r["fixed_schedule_cycles"]),
             f"{r['predicted_cycles'] / r['n3_over_p']:.3f}", _pct(r["cycles_saved"] / r["fixed_schedule_cycles"]),
             f"{1000 * r['table_s']:.0f} ms", _image(r.get("bit_identical")),
-            _pct(r["rect_fraction"]), fmt_int(r["rect_beats"]), f"{r['rect_beats'] / r['n3_over_p']:.3f}",
+            _pct(r["rect_fraction"]), _rect_cycles(r),
+            "—" if r["rect_cycles"] is None else f"{r['rect_cycles'] / r['n3_over_p']:.3f}",
             f"{1000 * r['rect_table_s']:.0f} ms", _image(r.get("rect_bit_identical"))])
     goal = [r for r in rows if (r["volume"], r["scene"]) == GOAL]
     lines = [
@@ -156,12 +153,12 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict, front: dict | None 
         "\"image\": the golden model's base plane with the box schedule against the fixed "
         "schedule's, bit for bit. \"host tables\": the host's time to find the box (cell "
         "ranges, the LUT's prefix sum, the box), in Python on this machine. \"rectangles\": "
-        "the slice rectangles within that box (`cube4.slices`, docs/numerics.md §18), the finer "
-        "schedule the golden model specifies and the RTL front end runs (not yet the whole "
-        "design, so no cycles through the RTL): the share of the "
-        "volume's samples they hold, the beats they take (each slice's rows and partial beams, a "
-        "flush beam where the next slice's partial beams differ, the drain beat; the pipeline "
-        "fill, about 50 cycles, comes on top), the host's time to find them, and the golden "
+        "the slice rectangles within that box (`cube4.slices`, docs/numerics.md §18; `cube4 render "
+        "--rects`): the share of the volume's samples they traverse, the cycles `cube4_top` takes "
+        "for them on the scene's build (`cube4.cycles.rect_frame_cycles`: each slice's walked rows "
+        "and partial beams, with GRA's walk where the build has GRA, flush beams, empty passes, GRA's "
+        "own steps, the fill; exact when no beat waits in COM, which `tb/cube4_top` holds the RTL "
+        "to; \"+N waits\" where N beats would), the host's time to find them, and the golden "
         "model's base plane with them against the fixed schedule's.",
         "",
         md_table(head, body, "lllrrrrrrrlrrrrl"),
@@ -171,16 +168,13 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict, front: dict | None 
         g = goal[0]
         lines += [f"**Goal** (head:128, scene head, P = 8, at most n³/(2P) = {fmt_int(g['n3_over_p'] / 2)} "
                   f"cycles): the scene's view takes {fmt_int(g['predicted_cycles'])} cycles, "
-                  f"{g['predicted_cycles'] / g['n3_over_p']:.3f} of n³/P; over the four views "
+                  f"{g['predicted_cycles'] / g['n3_over_p']:.3f} of n³/P with the box (over the four views "
                   f"{min(r['predicted_cycles'] for r in goal) / g['n3_over_p']:.3f} to "
-                  f"{max(r['predicted_cycles'] for r in goal) / g['n3_over_p']:.3f}. Not reached: a box "
-                  "cannot follow the head's rounded shape; the beats that hold a sample that counts "
-                  "are about a third of the volume (the issue's measurement), which only a finer "
-                  "schedule can reach (docs/architecture.md, \"Empty-space skipping\", says what stops it). "
-                  f"The slice rectangles take {fmt_int(g['rect_beats'])} beats there, "
-                  f"{g['rect_beats'] / g['n3_over_p']:.3f} of n³/P (over the four views "
-                  f"{min(r['rect_beats'] for r in goal) / g['n3_over_p']:.3f} to "
-                  f"{max(r['rect_beats'] for r in goal) / g['n3_over_p']:.3f}), in the golden model.", ""]
+                  f"{max(r['predicted_cycles'] for r in goal) / g['n3_over_p']:.3f}): a box cannot follow "
+                  "the head's rounded shape. With the slice rectangles it takes "
+                  f"{fmt_int(g['rect_cycles'])} cycles, {g['rect_cycles'] / g['n3_over_p']:.3f} of n³/P "
+                  f"(over the four views {min(r['rect_cycles'] for r in goal) / g['n3_over_p']:.3f} to "
+                  f"{max(r['rect_cycles'] for r in goal) / g['n3_over_p']:.3f}).", ""]
     if rtl is not None:
         lines += [f"**Through the RTL** (head:128, scene head, P = 8, `cube4 render head:128 --scene head "
                   f"--engine rtl --pipelines 8 --stats s.json`): {fmt_int(rtl['cycles'])} cycles measured, "
@@ -188,16 +182,14 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict, front: dict | None 
                   f"the fixed schedule; base plane "
                   f"{'identical to' if rtl['bit_identical_to_fixed_golden'] else 'DIFFERENT from'} the golden "
                   f"fixed schedule's.", ""]
-    if front is not None:
-        lines += [f"**Slice rectangles through the RTL front end** ({front['volume']}, scene {front['scene']}, "
-                  f"P = {front['p']}, a `RECTS = 1` build of `tb/cube4_frontend`: CFB, the voxel memory and TRI; "
-                  "`CUBE4_RECT_SCENE_CASE=head:128,head,128 pytest "
-                  "tb/cube4_frontend/test_cube4_frontend.py::test_cube4_frontend_rect_scene`): "
-                  f"{fmt_int(front['cycles'])} cycles measured, {fmt_int(front['predicted_cycles'])} predicted "
-                  f"(beats, empty slices, fill), {front['cycles'] / front['n3_over_p']:.3f} of n³/P, against "
-                  f"{fmt_int(front['box_fixed_cycles'])} for the box's fixed schedule through the same front end; "
-                  "the sample stream bit for bit as specified. GRA and COM do not run rectangles yet, so "
-                  "`cube4_top` and the renderer still take the box's cycles.", ""]
+    if rtl_rects is not None:
+        n3p = goal[0]["n3_over_p"] if goal else None
+        lines += [f"**Slice rectangles through the RTL** (head:128, scene head, P = 8, `cube4 render head:128 "
+                  f"--scene head --engine rtl --pipelines 8 --rects --stats s.json`): "
+                  f"{fmt_int(rtl_rects['cycles'])} cycles measured, {fmt_int(rtl_rects['predicted_cycles'])} "
+                  "predicted" + (f", {rtl_rects['cycles'] / n3p:.3f} of n³/P" if n3p else "")
+                  + f"; base plane {'identical to' if rtl_rects['bit_identical_to_fixed_golden'] else 'DIFFERENT from'}"
+                  " the golden fixed schedule's.", ""]
     lines += ["No CT volume ships in a PyPI package that I found: pydicom's test files hold one CT slice "
               "(CT_small.dcm) and pydicom-data's enhanced CT two frames (eCT_Supplemental.dcm, 2×512×512), "
               "so the real content here is the two MRI volumes of nibabel.", ""]
@@ -218,15 +210,15 @@ def main(argv: list[str] | None = None) -> int:
     for vol_spec, scene_name, _ in tqdm(CASES, desc="skipping", unit="volume", disable=not sys.stderr.isatty()):
         rows.extend(measure(vol_spec, scene_name, not args.no_images))
     rtl = None if args.no_rtl else rtl_goal_frame()
-    front = None if args.no_rtl else rtl_front_end_rects()
+    rtl_rects = None if args.no_rtl else rtl_goal_frame(rects=True)
     meta = {"git": git_describe(("rtl", "golden", "sim"))}
     out = REPO_ROOT / "build" / "reports"
     out.mkdir(parents=True, exist_ok=True)
-    (out / "skipping.json").write_text(json.dumps({"meta": meta, "rows": rows, "rtl": rtl, "front_end_rects": front},
+    (out / "skipping.json").write_text(json.dumps({"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects},
                                                   indent=1) + "\n")
     dest = Path(args.out)
     dest.mkdir(parents=True, exist_ok=True)
-    (dest / "skipping.md").write_text(write_md(rows, rtl, meta, front))
+    (dest / "skipping.md").write_text(write_md(rows, rtl, meta, rtl_rects))
     print(f"skipping: {dest / 'skipping.md'}")
     return 0
 

@@ -3,8 +3,6 @@ port per field of CUBE4_RECT_LAYOUT), driven from cocotb."""
 
 from __future__ import annotations
 
-from cocotb.triggers import RisingEdge
-
 from cube4.memory import RECT_FIELDS, rect_table
 
 from .beats import Geometry, clog2
@@ -13,6 +11,8 @@ from .beats import Geometry, clog2
 async def write_rect_table(dut, trav, rects, p: int, addr_w: int) -> None:
     """Write the table of ``rects`` (cube4.memory.rect_table), one entry a clock, then
     leave the port idle."""
+    from cocotb.triggers import RisingEdge   # only in a simulation: the host side imports no cocotb
+
     for m, entry in enumerate(rect_table(trav, rects, p, addr_w)):
         for name, val in entry.items():
             getattr(dut, "rt_" + name).value = int(val)

@@ -171,7 +171,7 @@ def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects,
     traversed positions valid, samples from the rectangle's voxels (model.rect_slice),
     inside per its rectangle, and the control bits (y-last: row NJ - 1)."""
     tp = padded_traversal(vol, trav)
-    order, gold, gin, ylast = [], {}, {}, []
+    order, gin, ylast = [], {}, []
     zero_filled = np.zeros((trav.num_sample_slices, trav.nj, trav.ni), dtype=np.int64)
     for m in range(rects.last() + 1):
         walk = rects.walk(m, p)
@@ -179,7 +179,7 @@ def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects,
             continue
         b = rects.traversed(m)
         if not rects.empty(m):
-            gold[m] = zero_filled[m] = rect_slice(tp, trav, m, b, trav.weight_bits)
+            zero_filled[m] = rect_slice(tp, trav, m, b, trav.weight_bits)
         gin[m] = inside_mask(trav, m) & rects.inside(m)
         # GRA forwards only the beats of the traversed rectangle
         rows, pbs = (walk[:2], walk[2:]) if not gra else (None, None)
@@ -208,7 +208,7 @@ def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects,
         valid = (pos >= b[2]) & (pos < b[3]) & (b[0] <= j < b[1])
         assert (beats["lval"][r] == valid).all(), f"beat {r} (m={m}, j={j}, pb={pb}): lane_valid wrong"
         ii, jc = np.minimum(pos, ni - 1), min(j, nj - 1)
-        want = np.where(valid, gold[m][jc, ii], 0)
+        want = np.where(valid, zero_filled[m][jc, ii], 0)
         want_in = np.where(valid, gin[m][jc, ii], False)
         have = np.where(valid, beats["smp"][r], 0)
         if gra:
