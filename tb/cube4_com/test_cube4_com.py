@@ -151,15 +151,21 @@ def check_pixel_beats(got: list[dict[str, int]], exp: dict[str, np.ndarray], sch
         check_lanes(rtl, exp["rgba"][:, c], exp["mask"], sched, log, name, beat)
 
 
-@cocotb.test()
-async def test_pixel_stream(dut):
-    """Golden shaded beats in, finished-ray beats out, bit for bit, with stalls."""
+def build_of(dut):
+    """The harness's build: P, ALPHA_W, ACC_W, its geometry, configuration, VOXEL_W and
+    the modes of its datapaths."""
     p, aw, acc_w = int(dut.P.value), int(dut.ALPHA_W.value), int(dut.ACC_W.value)
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
     cfg = Cube4Config(pipelines=p, weight_bits=int(dut.WEIGHT_W.value), alpha_bits=aw, acc_bits=acc_w)
-    vw = int(dut.VOXEL_W.value)
     modes = [m for m in ("composite", "xray") if int(dut.COMPOSITING.value)]
     modes += [m for m in ("mip", "minip") if int(dut.EXTREMUM.value)]
+    return p, aw, acc_w, geo, cfg, int(dut.VOXEL_W.value), modes
+
+
+@cocotb.test()
+async def test_pixel_stream(dut):
+    """Golden shaded beats in, finished-ray beats out, bit for bit, with stalls."""
+    p, aw, acc_w, geo, cfg, vw, modes = build_of(dut)
     plw = int(dut.PLW.value) != 0
     bench = UnitBench(dut)
     await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0})
@@ -209,12 +215,7 @@ async def test_rect_pixel_stream(dut):
     and stalls, every mode of the build, views with flipped axes, 45 degrees and an axis,
     sparse and dense rectangles, and slices of one or two beats (the read-after-write
     rule by position)."""
-    p, aw, acc_w = int(dut.P.value), int(dut.ALPHA_W.value), int(dut.ACC_W.value)
-    geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
-    cfg = Cube4Config(pipelines=p, weight_bits=int(dut.WEIGHT_W.value), alpha_bits=aw, acc_bits=acc_w)
-    vw = int(dut.VOXEL_W.value)
-    modes = [m for m in ("composite", "xray") if int(dut.COMPOSITING.value)]
-    modes += [m for m in ("mip", "minip") if int(dut.EXTREMUM.value)]
+    p, aw, acc_w, geo, cfg, vw, modes = build_of(dut)
     bench = UnitBench(dut)
     await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rect_we": 0})
     dims = volume_dims(p)
