@@ -53,6 +53,12 @@
 //   EXTREMUM    1: modes 2, 3 (comparators).       0..1.   Default 1.
 //               At least one of the two (elaboration stops otherwise).
 //   PLW         1: path-length weights (needs COMPOSITING). 0..1. Default 0.
+//   RECTS       1: slice rectangles (docs/architecture.md "COM"): the slot
+//               {j, pb} from the header, fresh and finished rays against the
+//               neighbouring slices' inside rectangles from the host's table
+//               (rect_*, cube4_cfb's layout), the read-after-write rule by
+//               position. Needs PLW = 0.              0..1.   Default 0.
+//   ADDR_W      the table layout's address width (cube4_cfb's).  Default 16.
 //
 // Latency
 //   10 register stages (R0, S1 .. S9, below) that move on every cycle and
@@ -67,7 +73,9 @@
 //   take exactly one slice (NJ*NB steps) round the base-plane buffer.
 //   Throughput is one beat per cycle when a slice has NJ*NB >= 9 beats; a
 //   smaller slice runs at NJ*NB beats per 9 cycles (the read-after-write
-//   hazard on the base-plane buffer, see "pipeline" below).
+//   hazard on the base-plane buffer, see "pipeline" below). RECTS = 1: a beat
+//   waits while the beat that wrote its slot is in R0 .. S7; in_ready then
+//   also depends on in_hdr (the slot compare).
 //
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),

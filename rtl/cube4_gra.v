@@ -26,8 +26,25 @@
 //   NJ*NB + NB + 2 zero "flush" steps, the samples of slice M and beyond, to
 //   finish the last slice; then it accepts the next frame.
 //
+//   Slice rectangles (RECTS = 1; docs/architecture.md "GRA", numerics.md
+//   section 18): the beats arrive as the front end's walk (golden/cube4/slices.py
+//   SliceRects.walk: each slice's rectangle and the rows and partial beams
+//   needed to finish the slice before; beats with no lane valid carry no
+//   sample). The delay lines become position buffers: plane A {row, pb} holds X
+//   (its old word is P1 = (m, j+1)), plane B holds C at the centre's position
+//   (old word P2b1 = (m-1, j)), and a beam buffer by pb holds X, P1, C, P2b1 of
+//   the row before (B1, C, P1b2, P2b2). Each is read in the cycle a step's
+//   position loads into the input register and written when it steps (a read
+//   of the word written in that cycle takes the new word); a plane word counts
+//   only where the previous walk covered the position, a beam word only after
+//   the walk's first row, otherwise it is zero. After the frame's last beat GRA
+//   walks the rest of the last slice itself (the rows of its walk and one more,
+//   then three steps). Only beats with a lane valid leave; the last waits in a
+//   register for the walk's end to carry EOP.
+//
 // Parameters
 //   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_tri (derived widths too)
+//   RECTS   1: slice rectangles (position buffers, above).  0..1.  Default 0.
 //   GRAD_W  gradient width = VOXEL_W + 5 (derived; signed)
 //
 // Latency
