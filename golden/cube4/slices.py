@@ -5,9 +5,8 @@ m of a frame gets its own rectangle R(m) = rows [j0, j1) × columns [i0, i1) of 
 traversal frame (empty where the slice holds nothing that counts), and the frame is
 specified as the hardware would run it: a slice traverses only the partial beams of its
 rectangle, in the same raster order. This module is the specification of that schedule;
-in the RTL the front end runs it (cube4_cfb RECTS = 1, S = 1) and so does GRA
-(cube4_gra RECTS = 1); COM does not yet, so cube4_top runs the box (docs/architecture.md,
-"Empty-space skipping").
+a RECTS = 1 build of cube4_top runs it (S = 1; ``cube4 render --rects``;
+docs/architecture.md, "Empty-space skipping").
 
 What a slice computes (``model.render_frame`` with ``rects``):
 
