@@ -145,7 +145,8 @@ def build_params(p: int, max_dim: int, build: dict | None = None) -> dict[str, i
             **(build or {})}
 
 
-BUILD_LETTERS = {"SHADING": "s", "COMPOSITING": "c", "EXTREMUM": "e", "CLIP": "k", "VGRAD": "g", "PLW": "w"}
+BUILD_LETTERS = {"SHADING": "s", "COMPOSITING": "c", "EXTREMUM": "e", "CLIP": "k", "VGRAD": "g", "PLW": "w",
+                 "RECTS": "r"}
 
 
 def build_tag(build: dict | None) -> str:
@@ -154,7 +155,7 @@ def build_tag(build: dict | None) -> str:
     if not build or {**FULL_BUILD, **build} == FULL_BUILD:
         return ""
     return "_" + "".join(f"{BUILD_LETTERS[k]}{build[k]}" for k in BUILD_LETTERS
-                         if k in build and (k != "VGRAD" or build[k]))
+                         if k in build and (k not in ("VGRAD", "RECTS") or build[k]))
 
 
 def yosys_script(params: dict[str, int], workdir: Path) -> str:
