@@ -16,7 +16,7 @@ import numpy as np
 
 from .config import Cube4Config, resolve_build
 from .errors import UserError
-from .cycles import frame_cycles
+from .cycles import frame_cycles, rect_frame_cycles
 from .model import PIXEL_DTYPE, Frame, render_frame
 from .skip import SkipPlan, find_box, plan_box
 from .slices import SliceRects, plan_rects
@@ -312,6 +312,13 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     if rects:
         stats["rect_beats"] = sum(r.beats(cfg.pipelines) for r in frame_rects if r is not None)
         stats["rect_table_s"] = sum(r.table_s for r in frame_rects if r is not None)
+        build = stats["build"]
+        if not build.get("VGRAD", 0):   # the cycles a RECTS build of cube4_top takes (GRA's walk with GRA)
+            shading = bool(build["SHADING"])
+            ran = [replace(r, gra=shading) for r in frame_rects if r is not None]
+            stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, shading) for r in ran)
+            stats["cycles_saved"] = stats["fixed_schedule_cycles"] - stats["predicted_cycles"]
+            stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in ran)
     return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)
 
 
