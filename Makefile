@@ -7,7 +7,7 @@
 #   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
-#   make fpga    ECP5-85F synth + place & route, P = 1..16: LUTs, Fmax, frames/s (reports/fpga.md; ~30 min)
+#   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~1-1.5 h)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, ECP5, cycles, error (reports/scenes.md; ~1 h)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
@@ -41,6 +41,7 @@ SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
 ECP5_SRCS    := $(sort $(wildcard rtl/ecp5/*.v))
 ECP5_MODULES := $(basename $(notdir $(ECP5_SRCS)))
 ECP5_BASE    := $(filter-out $(addprefix rtl/,$(notdir $(ECP5_SRCS))),$(RTL_SRCS))
+ECP5_MODELS  := $(sort $(wildcard sim/hdl/ecp5/*.v))   # behavioural models of the primitives it instantiates
 LINT_WAIVERS := rtl/lint_waivers.vlt
 LINT_FLAGS   := --lint-only -Wall --quiet -Irtl
 
@@ -51,6 +52,7 @@ comma := ,
 # parameters within a set are comma-separated.
 LINT_SETS_cube4_lerp        := LATENCY=0 LATENCY=1 LATENCY=2 LATENCY=3 \
                                DATA_W=1,WEIGHT_W=1,LATENCY=1 DATA_W=16,WEIGHT_W=12,LATENCY=3
+LINT_SETS_cube4_mul         := A_W=2,B_W=2 A_W=17,B_W=9 A_W=25 A_W=32,B_W=32
 LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
 FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
@@ -107,7 +109,7 @@ LINT_CMDS := \
 	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS)$(NL))) \
 	$(foreach m,$(ECP5_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
 	    echo "lint ecp5   $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS)$(NL))) \
+	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS) $(ECP5_MODELS)$(NL))) \
 	$(foreach m,$(SIM_MODULES),\
 	    echo "lint sim    $(m) [default, --timing]" && \
 	    $(VERILATOR) $(LINT_FLAGS) --timing --top-module $(m) $(LINT_WAIVERS) $(RTL_SRCS) $(SIM_HDL_SRCS)$(NL))

@@ -755,48 +755,61 @@ module cube4_com #(
 
             if (COMPOSITING != 0) begin : g_cmp
                 reg  [CMP_W-1:0] s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
-                reg  [23:0]      s7_c, s8_c;        // the sample's {R', G', B'}
+                reg  [23:0]      s7_c;              // the sample's {R', G', B'}
                 always @(posedge clk) begin
                     {s7_acc, s8_acc} <= {s6_acc[CMP_W-1:0], s7_acc};
-                    {s7_c, s8_c}     <= {s6_rgba[ALPHA_W +: 24], s7_c};
+                    s7_c             <= s6_rgba[ALPHA_W +: 24];
                 end
-                // S6: T * A (X-ray: 2^F * A)
-                wire [CW-1:0]  t_mul = mode_xray_q ? ONE : s6_acc[0 +: CW];
-                reg [TA_W-1:0] s7_ta;
-                always @(posedge clk) begin
-                    s7_ta <= {{ALPHA_W{1'b0}}, t_mul} * {{CW{1'b0}}, s6_rgba[0 +: ALPHA_W]};
-                end
+                // S6: T * A (X-ray: 2^F * A); cube4_mul's operand registers
+                // take S5's values as s6_acc and s6_rgba do, its product
+                // register is S7's
+                wire [CW-1:0] t_mul_d = mode_xray_q ? ONE : acc_in[0 +: CW];
+                wire signed [TA_W+1:0] ta_p;
+                cube4_mul #(.A_W(CW + 1), .B_W(ALPHA_W + 1)) u_ta (
+                    .clk (clk), .en (1'b1), .a ($signed({1'b0, t_mul_d})),
+                    .b ($signed({1'b0, rgba5[0 +: ALPHA_W]})), .p (ta_p));
+                wire [TA_W-1:0] s7_ta = ta_p[TA_W-1:0];   // 0 <= T * A < 2^TA_W
+                wire unused_ta = ^{ta_p[TA_W +: 2], s6_rgba[0 +: ALPHA_W]};   // (A's copy at S6: the extremum's)
                 // S7: w = round_shift(T * A, AW), 0 <= w <= T (X-ray: <= 2^F);
                 // 0 for a sample that does not count
                 wire signed [CW+1:0] w_rs;
                 cube4_round_shift #(.IN_W(TA_W + 1), .SHIFT(ALPHA_W)) u_w (
                     .x($signed({1'b0, s7_ta})), .y(w_rs));
-                reg [CW-1:0] s8_w;
+                wire [CW-1:0] w_d = cnt_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                reg  [CW-1:0] s8_w;
                 always @(posedge clk) begin
-                    s8_w <= cnt_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
+                    s8_w <= w_d;
                 end
-                // S8: w * C' per channel, T - w (X-ray: at least 0)
-                reg [3*WC_W-1:0] s9_wc;
-                reg [3*CW-1:0]   s9_cin;
-                reg [CW-1:0]     s9_t;
+                // S8: w * C' per channel (cube4_mul: its operand registers take
+                // S7's w and C' (s8_w keeps its own copy), its product register is
+                // S9's), T - w (X-ray: at least 0)
+                wire [3*WC_W-1:0] s9_wc;
+                reg  [3*WC_W-1:0] s9_cin;    // {C, 2^7} per channel: C * 2^8 + the rounding half
+                reg  [CW-1:0]     s9_t;
                 genvar ch;
-                for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul
-                    always @(posedge clk) begin   // channel ch = B, G, R for 0, 1, 2
-                        s9_wc[ch*WC_W +: WC_W] <= {8'd0, s8_w} * {{CW{1'b0}}, s8_c[8 * ch +: 8]};
+                for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // channel ch = B, G, R for 0, 1, 2
+                    wire signed [WC_W+1:0] wc_p;
+                    cube4_mul #(.A_W(CW + 1), .B_W(9)) u_wc (
+                        .clk (clk), .en (1'b1), .a ($signed({1'b0, w_d})),
+                        .b ($signed({1'b0, s7_c[8 * ch +: 8]})), .p (wc_p));
+                    assign s9_wc[ch*WC_W +: WC_W] = wc_p[WC_W-1:0];   // 0 <= w * C' < 2^WC_W
+                    wire unused_wc = ^wc_p[WC_W +: 2];
+                    always @(posedge clk) begin
+                        s9_cin[ch*WC_W +: WC_W] <= {s8_acc[CW + ch*CW +: CW], 8'h80};
                     end
                 end
                 wire [CW-1:0] t8 = s8_acc[0 +: CW];
                 always @(posedge clk) begin
-                    s9_cin <= s8_acc[CW +: 3*CW];
                     s9_t   <= (mode_xray_q && s8_w > t8) ? {CW{1'b0}} : t8 - s8_w;
                 end
-                // S9: C += round_shift(w * C', 8) (X-ray: at most 2^F)
+                // S9: C += round_shift(w * C', 8) (X-ray: at most 2^F), in one
+                // add: C + floor((wc + 2^7) / 2^8) = floor((C * 2^8 + 2^7 + wc) / 2^8)
+                // (w * C' / 2^8 < 2^CW, so the sum needs CW + 1 bits, as before)
                 wire [3*CW-1:0] c_out;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                    wire signed [CW+1:0] add;
-                    cube4_round_shift #(.IN_W(WC_W + 1), .SHIFT(8)) u_c (
-                        .x($signed({1'b0, s9_wc[ch*WC_W +: WC_W]})), .y(add));
-                    wire [CW:0] sum = {1'b0, s9_cin[ch*CW +: CW]} + {1'b0, add[CW-1:0]};
+                    wire [WC_W:0] sum_x = {1'b0, s9_cin[ch*WC_W +: WC_W]} + {1'b0, s9_wc[ch*WC_W +: WC_W]};
+                    wire [CW:0]   sum   = sum_x[WC_W:8];
+                    wire unused_frac = ^sum_x[7:0];
                     assign c_out[ch*CW +: CW] = (mode_xray_q && sum > {1'b0, ONE}) ? ONE : sum[CW-1:0];
                 end
                 assign word_cmp = AC_W'({c_out, s9_t});

@@ -69,10 +69,12 @@
 //   cfg                      view registers (cube4_defs.vh)
 //
 // Bit growth and rounding
-//   gi, gj, gr: VOXEL_W + 1 bits signed, exact. VIEW_X * gi + VIEW_Y * gj:
-//   W + VOXEL_W + 4 bits signed, exact; round_shift by W (half up, the only
-//   rounding) gives VOXEL_W + 5 bits; |gk| < 2^(VOXEL_W+3) + 2^(VOXEL_W+1),
-//   so GRAD_W = VOXEL_W + 5 holds every result exactly. No saturation.
+//   gi, gj, gr: VOXEL_W + 1 bits signed, exact. VIEW_X * gi, VIEW_Y * gj:
+//   W + VOXEL_W + 3 bits signed each (cube4_mul), exact; their sum rounded
+//   by W (half up, the only rounding; folded into one subtraction, see
+//   "arithmetic" below) gives VOXEL_W + 5 bits; |gk| < 2^(VOXEL_W+3) +
+//   2^(VOXEL_W+1), so GRAD_W = VOXEL_W + 5 holds every result exactly. No
+//   saturation.
 // =============================================================================
 module cube4_gra #(
     parameter integer P       = 8, parameter integer MAX_DIM     = 256,
@@ -101,7 +103,6 @@ module cube4_gra #(
     localparam integer PV     = P * VW;
     localparam integer DW     = VW + 1;                     // differences, signed
     localparam integer META_W = 1 + HDR_W;                  // {real, header}
-    localparam integer PROD_W = WEIGHT_W + VW + 4;
     localparam [LANE_W:0] PL  = P[LANE_W:0];
 
     `CUBE4_VIEW_FIELDS(cfg);
@@ -654,14 +655,28 @@ module cube4_gra #(
     endgenerate
 
     // ------------------------------------------------------------ arithmetic
-    // g1: differences; g2: VIEW_X*gi + VIEW_Y*gj; g3: gk, written into the
-    // output FIFO. g1 and g2 load on every cycle; g1_v marks a step whose
-    // centre is a real beat (the take of its FIFO entry).
+    // g1: differences; g2: VIEW_X*gi and VIEW_Y*gj, each a cube4_mul whose
+    // operand registers are g1's (they take gi_d and h2_gj as g1 does) and
+    // whose product register is g2's; g3: gk, written into the output FIFO.
+    // g1 and g2 load on every cycle; g1_v marks a step whose centre is a real
+    // beat (the take of its FIFO entry).
+    //   gk = (gr << ss) - round_shift(VIEW_X*gi + VIEW_Y*gj, WEIGHT_W) is formed
+    //   as floor((G' - VIEW_X*gi - VIEW_Y*gj) / 2^WEIGHT_W) with
+    //   G' = (gr << ss) * 2^WEIGHT_W + 2^(WEIGHT_W-1) - 1 (registered at g2;
+    //   its low bits are the constant, so no adder): the same integer, since
+    //   c - floor((x + h) / 2^W) = floor((c * 2^W - x - h + 2^W - 1) / 2^W).
+    //   Two subtractions in g3, as the rounding add and subtraction were.
+    //   Formed modulo 2^(GRAD_W + WEIGHT_W); the top GRAD_W bits are gk
+    //   modulo 2^GRAD_W, as before (gk fits GRAD_W bits: nothing wraps).
+    localparam integer MB_W  = WEIGHT_W + 2;                // a view weight (0 .. 2^W), signed
+    localparam integer MP_W  = DW + MB_W;                   // a product
+    localparam integer GX_W  = GRAD_W + WEIGHT_W;           // G' and the difference
+    localparam [WEIGHT_W-1:0] GK_LOW = WEIGHT_W'((1 << (WEIGHT_W - 1)) - 1);
     reg               g1_v, g2_v;
     reg [META_W-2:0]  g1_meta, g2_meta;
     reg [PV-1:0]      g1_s, g2_s;
-    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj, g2_gr;
-    reg [P*PROD_W-1:0] g2_prod;
+    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj;
+    reg [P*GX_W-1:0]  g2_gpre;
     wire              take = step && h2_v && h_real;
 
     always @(posedge clk) begin
@@ -674,29 +689,30 @@ module cube4_gra #(
         end
     end
 
-    wire [P*PROD_W-1:0] prod_d;
+    wire [P*GX_W-1:0]   gpre_d;
     wire [P*GRAD_W-1:0] gk_d, gi_x, gj_x;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_arith
-            wire signed [DW-1:0]     gi = g1_gi[q*DW +: DW];
-            wire signed [DW-1:0]     gj = g1_gj[q*DW +: DW];
-            wire signed [PROD_W-1:0] vx = $signed({{(PROD_W - WEIGHT_W - 1){1'b0}}, cfg_view_x});
-            wire signed [PROD_W-1:0] vy = $signed({{(PROD_W - WEIGHT_W - 1){1'b0}}, cfg_view_y});
-            wire signed [PROD_W-1:0] gi_e = {{(PROD_W - DW){gi[DW-1]}}, gi};
-            wire signed [PROD_W-1:0] gj_e = {{(PROD_W - DW){gj[DW-1]}}, gj};
-            assign prod_d[q*PROD_W +: PROD_W] = vx * gi_e + vy * gj_e;
-
-            wire signed [GRAD_W-1:0] rs;
-            cube4_round_shift #(
-                .IN_W  (PROD_W),
-                .SHIFT (WEIGHT_W)
-            ) u_rs (
-                .x (g2_prod[q*PROD_W +: PROD_W]),
-                .y (rs)
-            );
-            wire signed [DW-1:0]     gr = g2_gr[q*DW +: DW];
-            wire signed [GRAD_W-1:0] gr_e = {{(GRAD_W - DW){gr[DW-1]}}, gr};
-            assign gk_d[q*GRAD_W +: GRAD_W] = (gr_e <<< cfg_ss_log2) - rs;
+            wire signed [MP_W-1:0] px, py;     // at g2: VIEW_X * gi, VIEW_Y * gj
+            wire signed [DW-1:0]   gi_a = gi_d[q*DW +: DW];
+            wire signed [DW-1:0]   gj_a = h2_gj[q*DW +: DW];
+            wire signed [MB_W-1:0] vx_b = {1'b0, cfg_view_x};
+            wire signed [MB_W-1:0] vy_b = {1'b0, cfg_view_y};
+            cube4_mul #(.A_W(DW), .B_W(MB_W)) u_px (
+                .clk (clk), .en (1'b1), .a (gi_a), .b (vx_b), .p (px));
+            cube4_mul #(.A_W(DW), .B_W(MB_W)) u_py (
+                .clk (clk), .en (1'b1), .a (gj_a), .b (vy_b), .p (py));
+            // g1 -> g2: G' (a shift and a constant)
+            wire signed [DW-1:0]     gr1  = g1_gr[q*DW +: DW];
+            wire signed [GRAD_W-1:0] gr_e = {{(GRAD_W - DW){gr1[DW-1]}}, gr1};
+            wire signed [GRAD_W-1:0] gr_s = gr_e <<< cfg_ss_log2;
+            assign gpre_d[q*GX_W +: GX_W] = {gr_s, GK_LOW};
+            // g3: gk
+            wire signed [GX_W-1:0] px_e = GX_W'(px);
+            wire signed [GX_W-1:0] py_e = GX_W'(py);
+            wire signed [GX_W-1:0] dif  = $signed(g2_gpre[q*GX_W +: GX_W]) - px_e - py_e;
+            assign gk_d[q*GRAD_W +: GRAD_W] = dif[GX_W-1 -: GRAD_W];
+            wire unused_dif = ^dif[WEIGHT_W-1:0];   // the fraction the floor drops
             wire signed [DW-1:0] gi2 = g2_gi[q*DW +: DW];
             wire signed [DW-1:0] gj2 = g2_gj[q*DW +: DW];
             assign gi_x[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gi2[DW-1]}}, gi2};
@@ -714,8 +730,7 @@ module cube4_gra #(
         g2_s    <= g1_s;
         g2_gi   <= g1_gi;
         g2_gj   <= g1_gj;
-        g2_gr   <= g1_gr;
-        g2_prod <= prod_d;
+        g2_gpre <= gpre_d;
     end
 
     // ---- g3: the output FIFO's memory; g1 holds a beat: push at g3 ----

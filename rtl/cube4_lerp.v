@@ -18,8 +18,9 @@
 //               1: y registered.
 //               2: (b - a) * w and a registered, then y registered.
 //               3: b - a, w and a registered, then (b - a) * w and a, then
-//                  y: the multiplier (a DSP on an FPGA) has a register on
-//                  each side and no other logic in series.
+//                  y: the multiplier is a cube4_mul (a DSP with its own
+//                  registers on an FPGA), a register on each side and no
+//                  other logic in series.
 //
 // Latency
 //   LATENCY cycles. Registers advance only on a rising clk edge with en = 1
@@ -76,67 +77,51 @@ module cube4_lerp #(
     localparam integer PROD_W = DIFF_W + WEIGHT_W;      // (b - a) * w, signed
     localparam integer RND_W  = PROD_W - WEIGHT_W + 1;  // round_shift output = DATA_W + 2
 
-    // ---- difference (combinational, or registered with LATENCY == 3) ----
+    // ---- difference and product ----
+    // LATENCY 3: the product is a cube4_mul (b - a and w into its operand
+    // registers, its product register is the stage-1 register): on an FPGA a
+    // hard multiplier with its own registers. LATENCY 0..2: inferred here,
+    // with the product register for LATENCY 2. Both operands are extended to
+    // PROD_W bits so the product is formed at the width it needs; the true
+    // product fits PROD_W signed bits, so the modulo-2^PROD_W multiply is exact.
     wire signed [DIFF_W-1:0] diff_c = $signed({1'b0, b}) - $signed({1'b0, a});
-    wire signed [DIFF_W-1:0] diff;
-    wire        [WEIGHT_W-1:0] w_s0;
-    wire        [DATA_W-1:0] a_s0;
-
-    generate
-        if (LATENCY == 3) begin : g_stage0_reg
-            reg signed [DIFF_W-1:0]   diff_q;
-            reg        [WEIGHT_W-1:0] w_q;
-            reg        [DATA_W-1:0]   a_q;
-            always @(posedge clk) begin
-                if (en) begin
-                    diff_q <= diff_c;
-                    a_q    <= a;
-                end
-            end
-            // every lerp keeps its own weight register next to its multiplier
-            // (lerps that share a weight would otherwise share one flip-flop
-            // whose net spans the chip)
-            (* keep *)
-            always @(posedge clk) begin
-                if (en) w_q <= w;
-            end
-            assign diff = diff_q;
-            assign w_s0 = w_q;
-            assign a_s0 = a_q;
-        end else begin : g_stage0_comb
-            assign diff = diff_c;
-            assign w_s0 = w;
-            assign a_s0 = a;
-        end
-    endgenerate
-
-    // ---- product ----
-    // Both operands extended to PROD_W bits so the product is formed at the
-    // width it needs; the true product fits in PROD_W signed bits, so the
-    // modulo-2^PROD_W multiply is exact.
-    wire signed [PROD_W-1:0] diff_ext = {{WEIGHT_W{diff[DIFF_W-1]}}, diff};
-    wire signed [PROD_W-1:0] w_ext    = $signed({{DIFF_W{1'b0}}, w_s0});
-    wire signed [PROD_W-1:0] prod     = diff_ext * w_ext;
-
-    // ---- optional product register (LATENCY >= 2): split at the multiplier ----
     wire        [DATA_W-1:0] a_s1;
     wire signed [PROD_W-1:0] prod_s1;
 
     generate
-        if (LATENCY >= 2) begin : g_stage1_reg
-            reg        [DATA_W-1:0] a_q;
-            reg signed [PROD_W-1:0] prod_q;
+        if (LATENCY == 3) begin : g_mul3
+            reg [DATA_W-1:0] a_q0, a_q1;
             always @(posedge clk) begin
                 if (en) begin
-                    a_q    <= a_s0;
-                    prod_q <= prod;
+                    a_q0 <= a;
+                    a_q1 <= a_q0;
                 end
             end
-            assign a_s1    = a_q;
-            assign prod_s1 = prod_q;
-        end else begin : g_stage1_comb
-            assign a_s1    = a_s0;
-            assign prod_s1 = prod;
+            wire signed [PROD_W:0] p_full;     // one bit more than the product needs
+            cube4_mul #(.A_W(DIFF_W), .B_W(WEIGHT_W + 1)) u_mul (
+                .clk (clk), .en (en), .a (diff_c), .b ($signed({1'b0, w})), .p (p_full));
+            assign a_s1    = a_q1;
+            assign prod_s1 = p_full[PROD_W-1:0];
+            wire unused_p = p_full[PROD_W];
+        end else begin : g_mul_inferred
+            wire signed [PROD_W-1:0] diff_ext = {{WEIGHT_W{diff_c[DIFF_W-1]}}, diff_c};
+            wire signed [PROD_W-1:0] w_ext    = $signed({{DIFF_W{1'b0}}, w});
+            wire signed [PROD_W-1:0] prod     = diff_ext * w_ext;
+            if (LATENCY == 2) begin : g_stage1_reg
+                reg        [DATA_W-1:0] a_q;
+                reg signed [PROD_W-1:0] prod_q;
+                always @(posedge clk) begin
+                    if (en) begin
+                        a_q    <= a;
+                        prod_q <= prod;
+                    end
+                end
+                assign a_s1    = a_q;
+                assign prod_s1 = prod_q;
+            end else begin : g_stage1_comb
+                assign a_s1    = a;
+                assign prod_s1 = prod;
+            end
         end
     endgenerate
 

@@ -298,44 +298,47 @@ module cube4_sha #(
                 end
                 // d2: the RAM word registered
                 reg [RI_W-1:0]  d2_idx;
-                reg [19:0]      d2_dp;
+                reg [9:0]       d2_pp;       // P (D's copy is the multiplier's)
                 always @(posedge clk) begin
                     d2_idx <= d_idx;
-                    d2_dp  <= d_dp;
+                    d2_pp  <= d_dp[9:0];
                 end
-                wire [LUT_W-1:0] d_lut = lut_q[(NST-3)*LUT_W +: LUT_W];
+                wire [ALPHA_W-1:0] d_alpha = lut_q[(NST-3)*LUT_W +: ALPHA_W];
 
-                // e1: C * D, 8 x 10 bits, exact
-                reg [3*18-1:0]    e1_cd;
-                reg [9:0]         e1_pp;
-                reg [ALPHA_W-1:0] e1_a;
-                reg [RI_W-1:0]    e1_idx;
+                // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
+                // registers take C and D one stage early (C from the shift
+                // register's stage before d_alpha's, D as d2_pp takes P) and whose
+                // product register is e1's
+                wire [23:0] d_col_d = lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];   // C one stage early
+                wire unused_col = ^lut_q[(NST-3)*LUT_W + ALPHA_W +: 24];       // (its copy at d: not needed)
+                wire [3*18-1:0]   e1_cd;
+                reg  [17:0]       e1_ppx;    // P * 2^8 + the rounding half 2^7
+                reg  [ALPHA_W-1:0] e1_a;
+                reg  [RI_W-1:0]   e1_idx;
                 genvar ch;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
-                    always @(posedge clk) begin
-                        e1_cd[18*ch +: 18] <= {10'd0, d_lut[ALPHA_W + 8 * (2 - ch) +: 8]} * {8'd0, d2_dp[19:10]};
-                    end
+                    wire signed [19:0] cd_p;
+                    cube4_mul #(.A_W(9), .B_W(11)) u_cd (
+                        .clk (clk), .en (1'b1), .a ($signed({1'b0, d_col_d[8 * (2 - ch) +: 8]})),
+                        .b ($signed({1'b0, d_dp[19:10]})), .p (cd_p));
+                    assign e1_cd[18*ch +: 18] = cd_p[17:0];    // < 255 * 1023 < 2^18
+                    wire unused_cd = ^cd_p[19:18];
                 end
                 always @(posedge clk) begin
-                    e1_pp  <= d2_dp[9:0];
-                    e1_a   <= d_lut[ALPHA_W-1:0];
+                    e1_ppx <= {d2_pp, 8'h80};
+                    e1_a   <= d_alpha;
                     e1_idx <= d2_idx;
                 end
 
-                // e2: shade
+                // e2: shade, col = min(round_shift(C * D, 8) + P, 255), the rounding in
+                // the one add: round_shift(x, 8) + P = floor((x + P * 2^8 + 2^7) / 2^8)
                 wire [23:0] col_d;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                    wire signed [11:0] rs;
-                    cube4_round_shift #(
-                        .IN_W  (19),
-                        .SHIFT (8)
-                    ) u_rs (
-                        .x ($signed({1'b0, e1_cd[18*ch +: 18]})),
-                        .y (rs)
-                    );
-                    // rs >= 0 and < 2^11; rs + P < 2^12
-                    wire [11:0] sum = rs + {2'b00, e1_pp};
-                    assign col_d[8 * (2 - ch) +: 8] = (sum > 12'd255) ? 8'd255 : sum[7:0];
+                    // < 2^18 + 2^18; the sum / 2^8 < 2^11 (rs < 2^10, P < 2^10)
+                    wire [18:0] sum_x = {1'b0, e1_ppx} + {1'b0, e1_cd[18*ch +: 18]};
+                    wire [10:0] sum   = sum_x[18:8];
+                    wire unused_frac = ^sum_x[7:0];
+                    assign col_d[8 * (2 - ch) +: 8] = (sum > 11'd255) ? 8'd255 : sum[7:0];
                 end
                 assign e_rgba[q*LUT_W +: LUT_W] = {col_d, e1_a};
                 assign e_idx[q*RI_W +: RI_W]    = e1_idx;

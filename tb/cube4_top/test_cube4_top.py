@@ -162,13 +162,16 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     assert len({f["major_axis"] for f in st["frames"]}) == 3
 
 
-def test_synthesis_ram_form_p1():
+def test_synthesis_form_p1():
     """The RTL as synthesis reads it: the vendor layer's forms (rtl/ecp5/) in place of the
-    generic ones. cube4_sdp_ram's ECP5 form stores words deeper than 2048 as 4-, 2- or
+    generic ones, with the behavioural models of the primitives they instantiate
+    (sim/hdl/ecp5/). cube4_sdp_ram's ECP5 form stores words deeper than 2048 as 4-, 2- or
     1-bit slices with register copies per two slices; the generic form keeps one
     word-wide memory (Verilator evaluates one wide array much faster than many narrow
-    ones). Built here at P = 1 (COM's slice buffer: 4096 words, 4-bit slices): a phantom
-    and random stalled frames must still match the golden model bit for bit."""
+    ones). cube4_mul's ECP5 form is a MULT18X18D with its input and output registers
+    (TRI's lerps, GRA's view products, SHA's and COM's products). Built here at P = 1
+    (COM's slice buffer: 4096 words, 4-bit slices): a phantom and random stalled frames
+    must still match the golden model bit for bit."""
     from cube4.render import host_tables, setup_view
     from cube4.scene import load_scene
 
