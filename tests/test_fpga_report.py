@@ -1,0 +1,242 @@
+"""`make fpga` (sim/cube4_reports/fpga.py) over several nextpnr seeds: the median seed, the
+flatness figure, the per-seed cache, the order of the runs, the options, and the rtl/ commit
+stamp (cube4_reports.markdown). Fast: no Yosys or nextpnr run."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import threading
+from pathlib import Path
+
+import pytest
+
+from cube4_reports import fpga, markdown
+from cube4_reports.synth import UserError
+
+
+def run_of(seed: int, fmax: float | None, tmp_path: Path, luts: int = 1000, rc: int = 0) -> fpga.SeedRun:
+    """A finished seed run with a timing report (and a critical path naming the seed)."""
+    d = tmp_path / f"seed{seed}"
+    d.mkdir(parents=True, exist_ok=True)
+    (d / "nextpnr.log").write_text("ERROR: Unable to place cell\n" if rc else "")
+    report = {} if fmax is None else {
+        "fmax": {"clk": {"achieved": fmax}},
+        "critical_paths": [{"path": [
+            {"type": "clk-to-q", "from": {"cell": f"u_com.s{seed}", "port": "CLK"},
+             "to": {"cell": "u_com.b", "port": "A"}, "delay": 0.5, "net": "n1"},
+            {"type": "routing", "from": {"cell": "u_com.b", "port": "A"}, "to": {"cell": "u_com.c", "port": "D"},
+             "delay": 1.5, "net": "n2"}]}]}
+    return fpga.SeedRun(seed, d, rc, 100.0 + seed, report, {"TRELLIS_COMB": (luts, 83640)})
+
+
+def cfg_of(p: int = 8, seeds: tuple[int, ...] = (1, 2, 3)) -> fpga.BuildConfig:
+    return fpga.BuildConfig(p=p, max_dim=16, depth=64, freq=125.0, seeds=seeds)
+
+
+# ------------------------------------------------------------------ median, min, max
+def test_median_seed_odd_even_and_failed(tmp_path):
+    runs = [run_of(1, 80.0, tmp_path), run_of(2, 90.0, tmp_path), run_of(3, 70.0, tmp_path)]
+    assert fpga.median_run(runs).seed == 1
+    assert fpga.median_run(runs[:2]).seed == 1            # even count: the lower of the two middle ones
+    assert fpga.median_run([runs[1], runs[0]]).seed == 1  # not the order given
+    failed = run_of(4, None, tmp_path, rc=1)
+    assert fpga.median_run([failed, runs[1], runs[2]]).seed == 3   # a failed run ranks lowest
+    assert fpga.median_run([failed, runs[1]]).seed == 4 and fpga.median_run([failed, runs[1]]).fmax is None
+    tie = [run_of(5, 80.0, tmp_path), run_of(1, 80.0, tmp_path), run_of(2, 90.0, tmp_path)]
+    assert fpga.median_run(tie).seed == 5                  # equal Fmax: seed order
+
+
+def test_seed_fields(tmp_path):
+    runs = [run_of(3, 70.0, tmp_path), run_of(1, 80.0, tmp_path), run_of(2, 90.0, tmp_path),
+            run_of(4, None, tmp_path, rc=1)]
+    f = fpga.seed_fields(runs)
+    assert [s["seed"] for s in f["fmax_seeds"]] == [1, 2, 3, 4]
+    assert [s["fmax_mhz"] for s in f["fmax_seeds"]] == [80.0, 90.0, 70.0, None]
+    assert f["fmax_seeds"][0]["wall_s"] == 101.0 and "u_com.s1" in f["fmax_seeds"][0]["critical_path"]
+    assert f["fmax_seeds"][3]["critical_path"].startswith("failed: nextpnr exit 1: ERROR")
+    assert (f["fmax_median"], f["fmax_min"], f["fmax_max"]) == (70.0, 70.0, 90.0)  # 4 runs: lower middle
+    none = fpga.seed_fields([run_of(1, None, tmp_path, rc=1)])
+    assert (none["fmax_median"], none["fmax_min"], none["fmax_max"]) == (None, None, None)
+
+
+def test_combine_takes_the_median_seeds_run(tmp_path, monkeypatch):
+    monkeypatch.setattr(fpga, "SYNTH_DIR", tmp_path)
+    runs = [run_of(2, 90.0, tmp_path, luts=222), run_of(3, 70.0, tmp_path, luts=333),
+            run_of(1, 80.0, tmp_path, luts=111)]
+    res = fpga.combine(cfg_of(), {"LUT4": 5, "DP16KD": 3}, 12.5, runs)
+    assert res["seed"] == 1 and res["fmax_mhz"] == res["fmax_median"] == 80.0
+    assert (res["fmax_min"], res["fmax_max"]) == (70.0, 90.0)
+    assert res["luts"] == 111 and res["ebrs"] == 3         # nextpnr's count of the median seed; else Yosys's
+    assert "u_com.s1" in res["critical_path"] and res["log"].endswith("seed1/nextpnr.log")
+    assert res["wall_s"] == 12.5 + 101.0 and res["pnr_s"] == 101.0 and res["fits"]
+
+
+# ------------------------------------------------------------------ the report's lines
+def result(p: int, med: float | None, lo: float | None = None, hi: float | None = None) -> dict:
+    return {"p": p, "fmax_mhz": med, "fmax_median": med, "fmax_min": lo or med, "fmax_max": hi or med,
+            "fmax_seeds": [{"seed": 1, "fmax_mhz": lo or med}, {"seed": 2, "fmax_mhz": med},
+                           {"seed": 3, "fmax_mhz": hi or med}],
+            "seed": 2, "luts": 100, "ffs": 100, "dsps": 1, "ebrs": 1, "dpr16x4": 0, "fits": med is not None,
+            "wall_s": 10.0, "critical_path": "COM: a -> b" if med else "does not fit: 258 DSPs > 156"}
+
+
+def test_flatness_over_p_1_2_4_8():
+    rs = [result(1, 100.0), result(2, 95.0), result(4, 92.0), result(8, 90.0), result(16, None)]
+    f = fpga.flatness(rs)
+    assert f == {"ps": [1, 2, 4, 8], "min_mhz": 90.0, "max_mhz": 100.0, "spread_pct": 10.0}
+    assert ": met, 10.0 % over P = 1, 2, 4, 8 (90.0 – 100.0 MHz)" in fpga.flatness_line(rs)
+    rs[3] = result(8, 80.0)
+    assert fpga.flatness(rs)["spread_pct"] == 20.0 and "**not met**, 20.0 %" in fpga.flatness_line(rs)
+    assert fpga.flatness([result(4, 60.0), result(16, 200.0), result(8, 66.0)])["spread_pct"] == pytest.approx(9.1)
+    one = [result(1, 100.0), result(8, None)]
+    assert fpga.flatness(one) == {"ps": [1], "spread_pct": None}
+    assert "needs two of those P with an Fmax; this run has P = 1." in fpga.flatness_line(one)
+
+
+def test_goal_line_judges_the_median():
+    assert "met (130.0 MHz; seeds 120.0 – 140.0)" in fpga.goal_line([result(8, 130.0, 120.0, 140.0)])
+    line = fpga.goal_line([result(8, 100.0, 90.0, 130.0)])   # one seed above the goal is not enough
+    assert "**not met** (100.0 MHz; seeds 90.0 – 130.0)" in line
+    assert "**not met** (does not fit" in fpga.goal_line([result(8, None)])
+    assert fpga.goal_line([result(1, 100.0)]) == "P = 8 was not built in this run."
+
+
+def test_markdown_tables_and_header():
+    rs = [result(1, 86.27, 80.0, 95.84), result(8, 77.8, 76.2, 80.1)]
+    table = fpga.resource_table(rs).splitlines()
+    assert "| P | Fmax median (MHz) | seeds (min – max) |" in table[0]
+    assert table[2].startswith("| 1 | 86.3 | 1: 80.0, 2: 86.3, 3: 95.8 (80.0 – 95.8) | 100 |")
+    assert all(line.count("|") == table[0].count("|") for line in table)
+    meta = {"yosys": "Yosys", "nextpnr": "nextpnr", "git": "abc1234", "rtl_commit": "rtl/ at commit 1234567",
+            "rtl_digest": "d", "freq": 125.0, "seeds": [1, 2, 3], "jobs": 2, "router": "router2",
+            "max_dim": 128, "depth": 1024, "build": ""}
+    md = fpga.render_markdown(rs, [], meta)
+    assert "RTL: git abc1234, rtl/ at commit 1234567, sources sha256 d." in md
+    assert "nextpnr seeds 1, 2 and 3 (one run per `--seed`" in md and "2 at a time" in md
+    assert "--seed 1" not in md and "Flatness (aim" in md and "- P = 8 (seed 2, the median):" in md
+    assert fpga.seeds_text([7]) == "seed 7"
+
+
+# ------------------------------------------------------------------ cache and work order
+def test_keys_and_folders_per_seed():
+    cfg = cfg_of()
+    assert cfg.seed_dir(2) == cfg.workdir() / "seed2" and cfg.workdir().name == "p8_d16_w64"
+    assert cfg.key("d", 1) != cfg.key("d", 2) and cfg.key("d", 1) == cfg_of(seeds=(1,)).key("d", 1)
+    other = fpga.BuildConfig(p=8, max_dim=16, depth=64, freq=100.0, router="router1")
+    assert other.key("d", 1) != cfg.key("d", 1)
+    assert other.synth_key("d") == cfg.synth_key("d") != cfg.synth_key("e")   # synthesis: RTL and parameters
+    assert cfg_of(p=4).synth_key("d") != cfg.synth_key("d")
+
+
+def test_reuse_is_per_seed(tmp_path, monkeypatch):
+    monkeypatch.setattr(fpga, "SYNTH_DIR", tmp_path)
+    cfg = cfg_of(seeds=(1, 2))
+    ran = []
+
+    def fake_pnr(c, seed, timeout_s):
+        ran.append(seed)
+        sd = c.seed_dir(seed)
+        sd.mkdir(parents=True, exist_ok=True)
+        (sd / "report.json").write_text(json.dumps({"fmax": {"clk": {"achieved": 50.0 + seed}}}))
+        return 0, 3.0
+
+    monkeypatch.setattr(fpga, "run_pnr", fake_pnr)
+    first = [fpga.place_and_route(cfg, s, "digest", 10.0, reuse=True) for s in (1, 2)]
+    assert ran == [1, 2] and [r.fmax for r in first] == [51.0, 52.0]
+    assert json.loads((cfg.seed_dir(2) / "result.json").read_text())["key"] == cfg.key("digest", 2)
+    again = [fpga.place_and_route(cfg, s, "digest", 10.0, reuse=True) for s in (1, 2, 3)]
+    assert ran == [1, 2, 3] and [r.fmax for r in again] == [51.0, 52.0, 53.0] and again[0].wall_s == 3.0
+    fpga.place_and_route(cfg, 1, "new rtl", 10.0, reuse=True)
+    fpga.place_and_route(cfg, 2, "digest", 10.0, reuse=False)
+    assert ran == [1, 2, 3, 1, 2]
+
+
+def test_build_all_largest_p_first_synth_before_its_seeds(tmp_path, monkeypatch):
+    monkeypatch.setattr(fpga, "SYNTH_DIR", tmp_path)
+    events, lock = [], threading.Lock()
+
+    def fake_synth(cfg, digest, reuse):
+        with lock:
+            events.append(("synth", cfg.p))
+        return {"LUT4": cfg.p}, 1.0
+
+    def fake_pnr(cfg, seed, digest, timeout_s, reuse):
+        with lock:
+            events.append(("pnr", cfg.p, seed))
+        return run_of(seed, 10.0 * cfg.p + seed, tmp_path / f"p{cfg.p}")
+
+    monkeypatch.setattr(fpga, "synthesize", fake_synth)
+    monkeypatch.setattr(fpga, "place_and_route", fake_pnr)
+    cfgs = [cfg_of(p=p, seeds=(3, 1, 2)) for p in (1, 8, 2)]
+    res = fpga.build_all(cfgs, 10.0, "d", False, jobs=1)
+    assert [r["p"] for r in res] == [1, 8, 2]                       # in the order asked for
+    assert [r["fmax_median"] for r in res] == [12.0, 82.0, 22.0] and all(r["seed"] == 2 for r in res)
+    assert [e for e in events if e[0] == "pnr"][:3] == [("pnr", 8, 3), ("pnr", 8, 1), ("pnr", 8, 2)]
+    assert [e[1] for e in events if e[0] == "synth"] == [8, 2, 1]
+    for p in (1, 2, 8):
+        assert events.index(("synth", p)) < min(events.index(("pnr", p, s)) for s in (1, 2, 3))
+    events.clear()
+    assert [r["fmax_median"] for r in fpga.build_all(cfgs, 10.0, "d", False, jobs=3)] == [12.0, 82.0, 22.0]
+    assert len(events) == 12
+
+
+# ------------------------------------------------------------------ options
+def args_of(*argv: str):
+    return fpga.parse_args(list(argv))
+
+
+def test_seed_options():
+    assert fpga.seeds_of(args_of()) == (1, 2, 3)
+    assert fpga.seeds_of(args_of("--seed", "7")) == (7,)
+    assert fpga.seeds_of(args_of("--seeds", "4,5")) == (4, 5)
+    for argv, msg in ((("--seed", "1", "--seeds", "1,2"), "--seed and --seeds both given"),
+                      (("--seeds", "1,x"), "expected comma-separated integers"),
+                      (("--seeds", "2,2"), "duplicate"), (("--seeds", ""), "empty list"),
+                      (("--seed", "-1"), "out of range")):
+        with pytest.raises(UserError, match=msg):
+            fpga.seeds_of(args_of(*argv))
+
+
+def test_jobs_option_and_one_line_errors(capsys, monkeypatch):
+    def no_tools(name):
+        raise UserError(f"{name}: no tool runs in this test")
+
+    monkeypatch.setattr(fpga, "tool", no_tools)   # should the checks let it through, no build starts
+    assert args_of().jobs == 2
+    with pytest.raises(UserError, match="--jobs: 0 is out of range"):
+        fpga.check_args(args_of("--jobs", "0"))
+    assert fpga.main(["--seed", "1", "--seeds", "2"]) == 2
+    err = capsys.readouterr().err
+    assert err == "fpga: error: --seed and --seeds both given: use one (--seed N is short for --seeds N)\n"
+
+
+# ------------------------------------------------------------------ which rtl/ was built
+def test_rtl_commit_note():
+    assert markdown.rtl_commit_note("1a2b3c4", False) == "rtl/ at commit 1a2b3c4"
+    assert markdown.rtl_commit_note("1a2b3c4", True) == "rtl/ at commit 1a2b3c4 (rtl/ has uncommitted changes)"
+
+
+def test_rtl_commit_asks_git_about_rtl_only(monkeypatch):
+    calls = []
+
+    def fake_git(*args):
+        calls.append(args)
+        return {"log": "deadbee", "status": " M rtl/cube4_gra.v", "rev-parse": "1234567"}[args[0]]
+
+    monkeypatch.setattr(markdown, "_git", fake_git)
+    assert markdown.rtl_commit() == "rtl/ at commit deadbee (rtl/ has uncommitted changes)"
+    assert ("log", "-1", "--format=%h", "--", "rtl") in calls and ("status", "--porcelain", "--", "rtl") in calls
+    monkeypatch.setattr(markdown, "_git", lambda *a: "deadbee" if a[0] == "log" else "")
+    assert markdown.rtl_commit() == "rtl/ at commit deadbee"
+    monkeypatch.setattr(markdown, "_git", lambda *a: "")            # no git
+    assert markdown.rtl_commit() == "rtl/ at commit unknown"
+
+
+def test_last_commit_matches_git():
+    try:
+        want = subprocess.run(["git", "log", "-1", "--format=%h", "--", "rtl"], cwd=markdown.REPO_ROOT,
+                              capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        pytest.skip("no git")
+    assert markdown.last_commit() == (want or "unknown")
