@@ -177,6 +177,7 @@ module cube4_com #(
     //   S7  w = round_shift(T * A, AW)
     //   S8  w * C' (multipliers), T - w
     //   S9  C += round_shift(w * C', 8); write the slice buffer; push into the FIFO
+    //       (its input register: the pixel is in the FIFO one edge later)
     // Every stage moves on every cycle and carries a valid bit; the datapath
     // registers have no clock enable. The registers that must hold across
     // bubbles load under a valid bit: the position counters under step (R0's
@@ -198,7 +199,7 @@ module cube4_com #(
     localparam integer WC_W  = CW + 8;          // w * C'
 
     localparam integer NS      = 9;             // stages S1 .. S9
-    localparam integer FIFO_DEPTH = 16;         // >= 12 cycles from acceptance to the FIFO's read
+    localparam integer FIFO_DEPTH = 16;         // >= 13 cycles from acceptance to the FIFO's read
     reg  [NS:1] v_s;                    // stage valid bits
     wire        hazard;                 // the beat L back is in R0..S7 (see above)
     wire        credit;                 // the output FIFO has an entry for one more beat
@@ -876,7 +877,9 @@ module cube4_com #(
     localparam integer OUT_W = PX_W + SH_W;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+    // IN_REG: S9's sums end at a register beside them, the route to the
+    // distributed RAM gets a cycle of its own (one cycle more through COM)
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(1)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(give_q),
         .credit(credit), .credit_d(unused_credit_d),
         .push_d(out_d), .in_data({fin_s[NS], m_s[NS], by_s[NS], bx_s[NS], eop_s[NS], pix_d}),

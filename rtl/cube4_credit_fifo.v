@@ -26,18 +26,23 @@
 //   read pointers, so that no single net drives every memory cell of a wide
 //   word. The memory takes the place of the pipeline's last register: the
 //   caller says one cycle ahead (push_d) that its last stage will hold an
-//   item, and the FIFO stores that stage's results.
+//   item, and the FIFO stores that stage's results. With IN_REG = 1 those
+//   results pass a register first (one cycle later into the memory): the
+//   caller's last stage then ends at a flip-flop that can sit beside its
+//   logic, and the route to the memory has a cycle of its own.
 //
 // Parameters
 //   DATA_W     width of an item.                        1..8192.  Default 8.
 //   DEPTH      entries; a power of two.                 4..64.    Default 16.
 //              For full throughput DEPTH must be at least the number of
 //              cycles from a `take` to the first cycle its item could be read
-//              (the pipeline's stages + 2).
+//              (the pipeline's stages + 2, + 1 with IN_REG).
+//   IN_REG     1: in_data registered before the memory.  0..1.  Default 0.
 //
 // Latency
 //   An item pushed at a clock edge is on out_valid/out_data right after that
 //   edge (when the FIFO was empty): the memory is the last pipeline register.
+//   With IN_REG = 1 the push is one edge later (in_data's register).
 //   credit and out_valid are registers; out_data comes from the memory's
 //   read port, addressed by registers.
 //
@@ -60,7 +65,8 @@
 // =============================================================================
 module cube4_credit_fifo #(
     parameter integer DATA_W        = 8,
-    parameter integer DEPTH         = 16
+    parameter integer DEPTH         = 16,
+    parameter integer IN_REG        = 0
 ) (
     input  wire                     clk,
     input  wire                     rst,
@@ -80,13 +86,30 @@ module cube4_credit_fifo #(
         if (DEPTH < 4 || DEPTH > 64 || (1 << AW) != DEPTH) begin : g_bad_depth
             $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
         end
+        `CUBE4_RANGE(g_bad_in_reg, "cube4_credit_fifo", "IN_REG", IN_REG, 0, 1)
     endgenerate
 
     localparam integer GW   = 64;                            // bits per group (the last may be fewer)
     localparam integer NGRP = (DATA_W + GW - 1) / GW;
-    // the write enable: one flip-flop copy per group
+    // the write enable: one flip-flop copy per group (IN_REG: after one more register)
     wire [NGRP-1:0] push;
-    cube4_prim_copies #(.N(NGRP)) u_push (.clk(clk), .rst(rst), .d(push_d), .q(push));
+    wire [DATA_W-1:0] wr_data;          // the word the memory stores
+    generate
+        if (IN_REG == 1) begin : g_in_reg
+            reg push_dd;
+            reg [DATA_W-1:0] in_q;
+            always @(posedge clk) begin
+                if (rst) push_dd <= 1'b0;
+                else     push_dd <= push_d;
+            end
+            always @(posedge clk) in_q <= in_data;
+            cube4_prim_copies #(.N(NGRP)) u_push (.clk(clk), .rst(rst), .d(push_dd), .q(push));
+            assign wr_data = in_q;
+        end else begin : g_in_direct
+            cube4_prim_copies #(.N(NGRP)) u_push (.clk(clk), .rst(rst), .d(push_d), .q(push));
+            assign wr_data = in_data;
+        end
+    endgenerate
     localparam [AW:0]  DEPTH_C = DEPTH[AW:0];
 
     // out_ready comes from the next unit, often from far away on a chip, so
@@ -151,7 +174,7 @@ module cube4_credit_fifo #(
             end
             reg [W-1:0] mem [0:DEPTH-1];
             always @(posedge clk) begin
-                if (push[g]) mem[wp_q] <= in_data[LO +: W];
+                if (push[g]) mem[wp_q] <= wr_data[LO +: W];
             end
             assign rd_data[LO +: W] = mem[rp_q];
         end

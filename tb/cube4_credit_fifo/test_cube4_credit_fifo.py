@@ -11,11 +11,11 @@ random. Checked on every cycle:
 * credit is the credit_d of the cycle before; out_valid holds while out_ready is low;
 * with out_ready low for a long time the FIFO fills to exactly DEPTH items and the
   credit drops; nothing is lost when it drains;
-* full rate: with L + 2 <= DEPTH, input valid and out_ready high, a take happens on
+* full rate: with L + 2 <= DEPTH (L + 3 with IN_REG = 1), input valid and out_ready high, a take happens on
   every cycle (the credit never drops), which is what TRI, GRA, SHA and COM size
   their FIFOs for.
 
-The testbench reads DATA_W and DEPTH from the DUT (DATA_W > 64 has several write
+The testbench reads DATA_W, DEPTH and IN_REG from the DUT (DATA_W > 64 has several write
 enable copies inside).
 """
 
@@ -42,6 +42,7 @@ class TB:
         self.log = dut._log
         self.data_w = int(dut.DATA_W.value)
         self.depth = int(dut.DEPTH.value)
+        self.in_reg = int(dut.IN_REG.value)      # 1: the push is one edge later
         self.credit_next: int | None = None
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.expected: deque[int] = deque()
@@ -188,21 +189,24 @@ async def fills_to_depth(dut):
 
 @cocotb.test()
 async def full_rate(dut):
-    """L + 2 <= DEPTH, always valid and ready: one take per cycle, the credit never drops."""
+    """L + 2 + IN_REG <= DEPTH, always valid and ready: one take per cycle, the credit
+    never drops; one cycle more of latency and it must drop."""
     tb = TB(dut)
     await tb.reset()
-    latency = tb.depth - 2
+    latency = tb.depth - 2 - tb.in_reg
     takes = await tb.run(300, latency, 1.0, 1.0, 0.0)
-    assert all(takes), f"the credit dropped {takes.count(0)} times at L = DEPTH - 2"
-    # and at L = DEPTH - 1 it must drop (the FIFO is one entry short): the test can fail
+    assert all(takes), f"the credit dropped {takes.count(0)} times at L = {latency} (DEPTH {tb.depth})"
+    # and at one more it must drop (the FIFO is one entry short): the test can fail
     await tb.reset()
-    takes = await tb.run(300, tb.depth - 1, 1.0, 1.0, 0.0)
-    assert not all(takes), "full rate with L = DEPTH - 1: the credit rule is looser than stated"
+    takes = await tb.run(300, latency + 1, 1.0, 1.0, 0.0)
+    assert not all(takes), f"full rate with L = {latency + 1}: the credit rule is looser than stated"
 
 
 PARAM_SETS = [
     {"DATA_W": 5, "DEPTH": 4},
     {"DATA_W": 140, "DEPTH": 32},
+    {"DATA_W": 5, "DEPTH": 4, "IN_REG": 1},
+    {"DATA_W": 140, "DEPTH": 16, "IN_REG": 1},
 ]
 
 
