@@ -182,7 +182,7 @@ module cube4_com #(
     // registers have no clock enable. The registers that must hold across
     // bubbles load under a valid bit: the position counters under step (R0's
     // valid bit), the last beat's words for the X-step and NB = 1 under each
-    // lane's own copy of v_s[4] (u_v4).
+    // lane's own copies of v_s[4] (u_v3, u_v4).
     // A beat's slice position is read two edges after its acceptance into
     // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
@@ -652,25 +652,40 @@ module cube4_com #(
         nb1_q <= (cfg_nb == NB_W'(1));
     end
     // the wide buffer words, per lane (registers of the lane's own, so that a
-    // simulator writes each in place); v4[q] is the lane's copy of v_s[4]
+    // simulator writes each in place). Their enable is v_s[4], as a tree of
+    // copies: v3[q] (a copy of v_s[3] per lane) and, per lane, one copy of
+    // v_s[4] per quarter of each of its two registers (v4_l), so that no net
+    // drives more than a quarter word's flip-flops (one copy per lane drove
+    // 2 * AC_W of them and was the P = 8 build's critical net: 15 ns of routing).
+    localparam integer NQ = 4;                      // enable copies per register
+    localparam integer QW = (AC_W + NQ - 1) / NQ;   // bits per copy (the last may be fewer)
     wire [PA-1:0] s5_back, s5_prevb;   // this beat's and the previous beat's "back" (g_buf)
     wire [PA-1:0] back;
-    wire [P-1:0]  v4;
-    cube4_prim_copies #(.N(P)) u_v4 (.clk(clk), .rst(rst), .d(v_s[3]), .q(v4));
+    wire [P-1:0]  v3;
+    cube4_prim_copies #(.N(P)) u_v3 (.clk(clk), .rst(rst), .d(v_s[2]), .q(v3));
     generate
         for (q = 0; q < P; q = q + 1) begin : g_buf
             localparam integer LO = q * AC_W;
             reg [AC_W-1:0] s3_a1_q, s4_a1_q, s4_a2_q, prev_a1_q_l;
             reg [AC_W-1:0] s5_back_q, s5_prevb_q, lastb_q;
+            wire [2*NQ-1:0] v4_l;           // copies of v_s[4]: [NQ-1:0] prev_a1, [2*NQ-1:NQ] lastb
+            cube4_prim_copies #(.N(2 * NQ)) u_v4 (.clk(clk), .rst(rst), .d(v3[q]), .q(v4_l));
             always @(posedge clk) begin
                 s3_a1_q    <= a1_ram[LO +: AC_W];
                 s4_a1_q    <= s3_a1_q;
                 s4_a2_q    <= a2_ram[LO +: AC_W];
                 s5_back_q  <= back[LO +: AC_W];
                 s5_prevb_q <= lastb_q;      // the "back" of the last beat before this one
-                if (v4[q]) begin
-                    prev_a1_q_l <= s4_a1_q;
-                    lastb_q     <= back[LO +: AC_W];
+            end
+            genvar qq;
+            for (qq = 0; qq < NQ; qq = qq + 1) begin : g_q
+                localparam integer QL = qq * QW;
+                localparam integer QN = (AC_W - QL < QW) ? AC_W - QL : QW;
+                if (QN > 0) begin : g_bits
+                    always @(posedge clk) begin
+                        if (v4_l[qq])      prev_a1_q_l[QL +: QN] <= s4_a1_q[QL +: QN];
+                        if (v4_l[NQ + qq]) lastb_q[QL +: QN]     <= back[LO + QL +: QN];
+                    end
                 end
             end
             assign s3_a1[LO +: AC_W]     = s3_a1_q;

@@ -107,14 +107,15 @@ module cube4_sha #(
     //   b3     numerators (g + A) * R, denominator 2A
     //   c0..cR restoring division, one quotient bit per stage, for u and v at once
     //   d      reflectance-map read (address: face and the quotients, min(R-1, q))
-    //   d2     the read word registered
-    //   e1     C * D (multipliers)
+    //   d2     the read word registered (beside the block RAM)
+    //   d3     the multipliers' operand registers (C, D)
+    //   e1     C * D (the multipliers' product registers)
     //   e2     round_shift(C * D, 8) + P, min 255: written into the output FIFO
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    // stages after a: b1, bc, b2, b3, c*, d, d2, e1, e2 (SHADING = 0: b1, e1, then the FIFO)
-    localparam integer NST  = (SHADING != 0) ? 4 + NDIV + 4 : 3;
+    // stages after a: b1, bc, b2, b3, c*, d, d2, d3, e1, e2 (SHADING = 0: b1, e1, then the FIFO)
+    localparam integer NST  = (SHADING != 0) ? 4 + NDIV + 5 : 3;
     // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
     // FIFO's read)
     localparam integer FIFO_DEPTH = (NST + 2 <= 16) ? 16 : 32;
@@ -298,16 +299,22 @@ module cube4_sha #(
                 end
                 // d2: the RAM word registered
                 reg [RI_W-1:0]  d2_idx;
-                reg [9:0]       d2_pp;       // P (D's copy is the multiplier's)
+                reg [19:0]      d2_dp;
+                // d3: the multipliers' operand registers (D, C); P and the index ride along
+                reg [RI_W-1:0]  d3_idx;
+                reg [9:0]       d3_pp;
                 always @(posedge clk) begin
                     d2_idx <= d_idx;
-                    d2_pp  <= d_dp[9:0];
+                    d2_dp  <= d_dp;
+                    d3_idx <= d2_idx;
+                    d3_pp  <= d2_dp[9:0];
                 end
                 wire [ALPHA_W-1:0] d_alpha = lut_q[(NST-3)*LUT_W +: ALPHA_W];
 
                 // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
-                // registers take C and D one stage early (C from the shift
-                // register's stage before d_alpha's, D as d2_pp takes P) and whose
+                // registers are d3's (C from the shift register's stage before
+                // d_alpha's, D from d2's word): the block RAM's word reaches
+                // the multiplier through d2's register beside the RAM and whose
                 // product register is e1's
                 wire [23:0] d_col_d = lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];   // C one stage early
                 wire unused_col = ^lut_q[(NST-3)*LUT_W + ALPHA_W +: 24];       // (its copy at d: not needed)
@@ -320,14 +327,14 @@ module cube4_sha #(
                     wire signed [19:0] cd_p;
                     cube4_mul #(.A_W(9), .B_W(11)) u_cd (
                         .clk (clk), .en (1'b1), .a ($signed({1'b0, d_col_d[8 * (2 - ch) +: 8]})),
-                        .b ($signed({1'b0, d_dp[19:10]})), .p (cd_p));
+                        .b ($signed({1'b0, d2_dp[19:10]})), .p (cd_p));
                     assign e1_cd[18*ch +: 18] = cd_p[17:0];    // < 255 * 1023 < 2^18
                     wire unused_cd = ^cd_p[19:18];
                 end
                 always @(posedge clk) begin
-                    e1_ppx <= {d2_pp, 8'h80};
+                    e1_ppx <= {d3_pp, 8'h80};
                     e1_a   <= d_alpha;
-                    e1_idx <= d2_idx;
+                    e1_idx <= d3_idx;
                 end
 
                 // e2: shade, col = min(round_shift(C * D, 8) + P, 255), the rounding in
