@@ -21,6 +21,12 @@
 //   IN_REG  0: rd_en, rd_addr, wr_en and wr_addr act this cycle; 1: the RAM
 //           registers them itself (the caller gives them one cycle early),
 //           and the access uses the registered values.  0..1.  Default 0.
+//   OUT_REG 0: rd_data is the read register; 1: the read word passes a
+//           second register, loaded with the read register's word when the
+//           (registered, with IN_REG) read enable is 1: the output register
+//           of a block RAM (ECP5 DP16KD REGMODE "OUTREG"), which takes the
+//           block's clock-to-out off the path into the caller's logic.
+//           0..1.  Default 0.
 //   AW      address width (derived; not to be set).
 //
 // Latency
@@ -28,6 +34,11 @@
 //   it holds while rd_en = 0). Write: visible to a read one cycle later. A
 //   read of the word being written in the same cycle returns the old word.
 //   IN_REG = 1: the same, one cycle after the inputs (one register stage).
+//   OUT_REG = 1: one more: rd_data is the word of the read before the last
+//   one with rd_en = 1 (both registers advance with the read enable, so a
+//   caller that reads on every cycle sees a latency of 2, one that reads on
+//   its pipeline's step sees the word two steps later). Total read latency
+//   1 + IN_REG + OUT_REG.
 //
 // Ports
 //   rd_en, rd_addr  in   read enable, address  [AW]
@@ -41,6 +52,7 @@ module cube4_sdp_ram #(
     parameter  integer DATA_W = 8,
     parameter  integer DEPTH  = 16,
     parameter  integer IN_REG = 0,
+    parameter  integer OUT_REG = 0,
     localparam integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
     input  wire              clk,
@@ -57,6 +69,7 @@ module cube4_sdp_ram #(
             $error("cube4_sdp_ram: DEPTH = %0d is out of range 1..2^24", DEPTH);
         end
         `CUBE4_RANGE(g_bad_in_reg, "cube4_sdp_ram", "IN_REG", IN_REG, 0, 1)
+        `CUBE4_RANGE(g_bad_out_reg, "cube4_sdp_ram", "OUT_REG", OUT_REG, 0, 1)
     endgenerate
 
     wire          re, we;               // the access's enables and addresses
@@ -83,7 +96,17 @@ module cube4_sdp_ram #(
         if (we) mem[wa] <= wr_data;
         if (re) rd_q <= mem[ra];
     end
-    assign rd_data = rd_q;
+    generate
+        if (OUT_REG == 1) begin : g_out_reg
+            reg [DATA_W-1:0] out_q;
+            always @(posedge clk) begin
+                if (re) out_q <= rd_q;
+            end
+            assign rd_data = out_q;
+        end else begin : g_no_out_reg
+            assign rd_data = rd_q;
+        end
+    endgenerate
 
 endmodule
 `default_nettype wire
