@@ -626,25 +626,28 @@ module cube4_com #(
     assign hazard = (RECTS != 0) ? rx_hazard : hazard_q;
 
     // ==== S1 .. S4: base-plane buffers: partial results of slice m-1 ====
-    // Both RAM outputs go straight into a register (a block RAM's clock-to-out
-    // is most of a cycle on an FPGA).
+    // Both RAMs end in their output register (cube4_sdp_ram OUT_REG: the
+    // block RAM's own on an FPGA, whose clock-to-out is most of a cycle
+    // without it): s3_a1 and s4_a2 are those registers.
     wire [PA-1:0] acc_new;              // written at the end of S9: results after slice m
-    wire [PA-1:0] a1_ram, a2_ram;       // S2, S3: RAM outputs
+    wire [PA-1:0] a1_ram, a2_ram;       // S3, S4: the RAMs' output registers
     // Both buffers register their addresses and write enables themselves (with
     // copies for their block RAMs, cube4_sdp_ram IN_REG): they get them one
     // stage early. The slice buffer is read at S1 (sp_s[1]) and written at the
     // end of S9 (sp_s[NS], v_s[NS]).
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(SB_DEPTH), .IN_REG(1)) u_bp_slice (
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(SB_DEPTH), .IN_REG(1), .OUT_REG(1)) u_bp_slice (
         .clk(clk), .rd_en(1'b1), .rd_addr(pos_sp), .rd_data(a1_ram),
         .wr_en(v_s[NS-1]), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
-    wire [PA-1:0] s3_a1, s4_a1, s4_a2, prev_a1_q;   // per lane registers (g_buf)
+    wire [PA-1:0] s4_a1, prev_a1_q;     // per lane registers (g_buf)
+    wire [PA-1:0] s3_a1 = a1_ram;       // the slice buffer's output register
+    wire [PA-1:0] s4_a2 = a2_ram;       // the beam buffer's output register
     // One beam of the slice buffer's words (a2 of a beat = a1 of the beat NB
     // steps earlier, at the same beam position): read at the end of S2, written
     // at the end of S3. For NB >= 2 the write comes first; for NB = 1 a2 is the
     // previous beat's a1 (prev_a1_q).
     // (read at S2: address pb_s[1] given one stage early; written at the end of
     // S3: address pb_s[2] and enable v_s[2], one stage early)
-    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1)) u_bp_beam (
+    cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1), .OUT_REG(1)) u_bp_beam (
         .clk(clk), .rd_en(1'b1), .rd_addr(pb_s[1]), .rd_data(a2_ram),
         .wr_en(v_s[2]), .wr_addr(pb_s[2]), .wr_data(s3_a1));
     reg nb1_q;                          // NB = 1
@@ -666,14 +669,12 @@ module cube4_com #(
     generate
         for (q = 0; q < P; q = q + 1) begin : g_buf
             localparam integer LO = q * AC_W;
-            reg [AC_W-1:0] s3_a1_q, s4_a1_q, s4_a2_q, prev_a1_q_l;
+            reg [AC_W-1:0] s4_a1_q, prev_a1_q_l;
             reg [AC_W-1:0] s5_back_q, s5_prevb_q, lastb_q;
             wire [2*NQ-1:0] v4_l;           // copies of v_s[4]: [NQ-1:0] prev_a1, [2*NQ-1:NQ] lastb
             cube4_prim_copies #(.N(2 * NQ)) u_v4 (.clk(clk), .rst(rst), .d(v3[q]), .q(v4_l));
             always @(posedge clk) begin
-                s3_a1_q    <= a1_ram[LO +: AC_W];
-                s4_a1_q    <= s3_a1_q;
-                s4_a2_q    <= a2_ram[LO +: AC_W];
+                s4_a1_q    <= a1_ram[LO +: AC_W];
                 s5_back_q  <= back[LO +: AC_W];
                 s5_prevb_q <= lastb_q;      // the "back" of the last beat before this one
             end
@@ -688,9 +689,7 @@ module cube4_com #(
                     end
                 end
             end
-            assign s3_a1[LO +: AC_W]     = s3_a1_q;
             assign s4_a1[LO +: AC_W]     = s4_a1_q;
-            assign s4_a2[LO +: AC_W]     = s4_a2_q;
             assign prev_a1_q[LO +: AC_W] = prev_a1_q_l;
             assign s5_back[LO +: AC_W]   = s5_back_q;
             assign s5_prevb[LO +: AC_W]  = s5_prevb_q;

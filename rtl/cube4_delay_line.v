@@ -13,11 +13,11 @@
 //   word passes plain registers before dout's register with the bypass
 //   multiplexer, so neither the RAM's address nor its output has logic in
 //   series (a block RAM's clock-to-out is most of a cycle on an FPGA):
-//     up to 2048 words: one bank; rd_q, then rd2_q (a plain copy that can sit
-//       beside the block RAM), then dout; RA = 3;
+//     up to 2048 words: one bank, a cube4_sdp_ram with its output register
+//       (OUT_REG: the block RAM's own on an FPGA), then dout; RA = 3;
 //     more: banks of 2048 words (one block RAM deep each, 2048 x 9 on ECP5),
-//       each with its rd_q and plain rd2_q; the bank multiplexer, selected by
-//       a register, loads rd3_q; then dout; RA = 4.
+//       each a cube4_sdp_ram with its output register; the bank multiplexer,
+//       selected by a register, loads rd3_q; then dout; RA = 4.
 //   L = 1 .. RA are bypassed (din and its last RA - 1 values). Between steps
 //   everything holds.
 //
@@ -112,34 +112,20 @@ module cube4_delay_line #(
 
     generate
         if (NBANK == 1) begin : g_one_bank
-            reg [DATA_W-1:0] mem [0:(1 << AW)-1];
-            reg [DATA_W-1:0] rd_q;    // RAM read register
-            reg [DATA_W-1:0] rd2_q;   // rd_q one step later: no logic after the RAM
-            always @(posedge clk) begin
-                if (step) begin
-                    mem[pos] <= din;
-                    rd_q     <= mem[ra_q];
-                    rd2_q    <= rd_q;
-                end
-            end
-            assign rd_word = rd2_q;
+            // the RAM's read register, then its output register (rd2_q):
+            // no logic after the RAM
+            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << AW), .OUT_REG(1)) u_ram (
+                .clk(clk), .rd_en(step), .rd_addr(ra_q), .rd_data(rd_word),
+                .wr_en(step), .wr_addr(pos), .wr_data(din));
         end else begin : g_banks
             wire [DATA_W-1:0] rd2_w [0:NBANK-1];
             reg  [SW-1:0]     sel1_q, sel2_q;   // bank of the word in rd_q / rd2_q
             reg  [DATA_W-1:0] rd3_q;            // the selected bank's word
             genvar b;
             for (b = 0; b < NBANK; b = b + 1) begin : g_bank
-                reg [DATA_W-1:0] mem [0:(1 << BW)-1];
-                reg [DATA_W-1:0] rd_q;
-                reg [DATA_W-1:0] rd2_q;
-                always @(posedge clk) begin
-                    if (step) begin
-                        if (pos[AW-1:BW] == SW'(b)) mem[pos[BW-1:0]] <= din;
-                        rd_q  <= mem[ra_q[BW-1:0]];
-                        rd2_q <= rd_q;
-                    end
-                end
-                assign rd2_w[b] = rd2_q;
+                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << BW), .OUT_REG(1)) u_ram (
+                    .clk(clk), .rd_en(step), .rd_addr(ra_q[BW-1:0]), .rd_data(rd2_w[b]),
+                    .wr_en(step && pos[AW-1:BW] == SW'(b)), .wr_addr(pos[BW-1:0]), .wr_data(din));
             end
             always @(posedge clk) begin
                 if (step) begin

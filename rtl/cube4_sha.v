@@ -173,36 +173,21 @@ module cube4_sha #(
     genvar q, it;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // tables (this lane's copies)
-            reg [LUT_W-1:0] lut  [0:(1 << VW)-1];
-            always @(posedge clk) begin
-                if (lut_we)  lut[lut_addr]   <= lut_data;
-            end
-            // the sample's LUT entry rides along from b1 to d2
-            // (stage k's entry in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
-            reg [(NST-2)*LUT_W-1:0] lut_q;
-            if (NST > 3) begin : g_lut_sr
-                always @(posedge clk) begin
-                    lut_q <= {lut_q[(NST-3)*LUT_W-1:0], lut[a_s[q*VW +: VW]]};
-                end
-            end else begin : g_lut_reg
-                always @(posedge clk) begin
-                    lut_q <= lut[a_s[q*VW +: VW]];
-                end
-            end
+            // the classification table (this lane's copy), read at b1 and
+            // ending in its output register at stage 2 (cube4_sdp_ram OUT_REG:
+            // the block RAM's own register on an FPGA)
+            wire [LUT_W-1:0] lut_2;
+            cube4_sdp_ram #(.DATA_W(LUT_W), .DEPTH(1 << VW), .OUT_REG(1)) u_lut (
+                .clk(clk), .rd_en(1'b1), .rd_addr(a_s[q*VW +: VW]), .rd_data(lut_2),
+                .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
 
             if (SHADING == 0) begin : g_plain
-                // classification only: the LUT entry read at b1, registered at e1
-                reg [LUT_W-1:0] e1_rgba;
-                always @(posedge clk) e1_rgba <= lut_q[0 +: LUT_W];
-                assign e_rgba[q*LUT_W +: LUT_W] = e1_rgba;
+                // classification only: the LUT entry read at b1; its output
+                // register is e1's
+                assign e_rgba[q*LUT_W +: LUT_W] = lut_2;
                 assign e_idx[q*RI_W +: RI_W]    = '0;
                 wire unused_grad = ^{a_gi[q*GW +: GW], a_gj[q*GW +: GW], a_gk[q*GW +: GW]};
             end else begin : g_shade
-                reg [19:0]      rmap [0:RMAP_N-1];
-                always @(posedge clk) begin
-                    if (rmap_we) rmap[rmap_addr] <= rmap_data;
-                end
 
                 // b1: |g|; |g| < 2^(GW-1): no overflow
                 wire signed [GW-1:0] gi = a_gi[q*GW +: GW];
@@ -290,34 +275,40 @@ module cube4_sha #(
                 wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
                 wire [RI_W-1:0] idx = zero_n ? RI_W'(6 << (2 * RB)) : {face_n, uc, ub};
 
-                // d: reflectance-map read
+                // d: reflectance-map read; d2: the RAM's output register
+                // (cube4_sdp_ram OUT_REG: the block RAM's own on an FPGA)
                 reg [RI_W-1:0]  d_idx;
-                reg [19:0]      d_dp;
-                always @(posedge clk) begin
-                    d_idx <= idx;
-                    d_dp  <= rmap[idx];
-                end
-                // d2: the RAM word registered
+                wire [19:0]     d2_dp;
+                cube4_sdp_ram #(.DATA_W(20), .DEPTH(RMAP_N), .OUT_REG(1)) u_rmap (
+                    .clk(clk), .rd_en(1'b1), .rd_addr(idx), .rd_data(d2_dp),
+                    .wr_en(rmap_we), .wr_addr(rmap_addr), .wr_data(rmap_data));
                 reg [RI_W-1:0]  d2_idx;
-                reg [19:0]      d2_dp;
                 // d3: the multipliers' operand registers (D, C); P and the index ride along
                 reg [RI_W-1:0]  d3_idx;
                 reg [9:0]       d3_pp;
                 always @(posedge clk) begin
+                    d_idx  <= idx;
                     d2_idx <= d_idx;
-                    d2_dp  <= d_dp;
                     d3_idx <= d2_idx;
                     d3_pp  <= d2_dp[9:0];
                 end
-                wire [ALPHA_W-1:0] d_alpha = lut_q[(NST-3)*LUT_W +: ALPHA_W];
+                // the sample's LUT entry rides along from stage 2 to d2 (stage
+                // k's entry in bits [(k-2)*LUT_W +: LUT_W]: the RAM's output
+                // register, then a packed shift register)
+                reg  [(NST-4)*LUT_W-1:0] lut_sr;
+                wire [(NST-3)*LUT_W-1:0] lut_q = {lut_sr, lut_2};
+                always @(posedge clk) begin
+                    lut_sr <= lut_q[(NST-4)*LUT_W-1:0];
+                end
+                wire [ALPHA_W-1:0] d_alpha = lut_q[(NST-4)*LUT_W +: ALPHA_W];
 
                 // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
                 // registers are d3's (C from the shift register's stage before
                 // d_alpha's, D from d2's word): the block RAM's word reaches
                 // the multiplier through d2's register beside the RAM and whose
                 // product register is e1's
-                wire [23:0] d_col_d = lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];   // C one stage early
-                wire unused_col = ^lut_q[(NST-3)*LUT_W + ALPHA_W +: 24];       // (its copy at d: not needed)
+                wire [23:0] d_col_d = lut_q[(NST-5)*LUT_W + ALPHA_W +: 24];   // C one stage early
+                wire unused_col = ^lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];       // (its copy at d: not needed)
                 wire [3*18-1:0]   e1_cd;
                 reg  [17:0]       e1_ppx;    // P * 2^8 + the rounding half 2^7
                 reg  [ALPHA_W-1:0] e1_a;
