@@ -102,12 +102,13 @@ module cube4_sha #(
     // ---- pipeline ----
     //   a      input register
     //   b1     LUT read; |gi|, |gj|, |gk|
-    //   bc     the comparisons |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|
+    //   bc     the comparisons |gi| >= |gj|, |gi| >= |gk|, |gj| >= |gk|;
+    //          the LUT entry in the RAM's output register (OUT_REG)
     //   b2     cube-map face: the largest |g| (A), its sign, the other two (g_b, g_c)
     //   b3     numerators (g + A) * R, denominator 2A
     //   c0..cR restoring division, one quotient bit per stage, for u and v at once
     //   d      reflectance-map read (address: face and the quotients, min(R-1, q))
-    //   d2     the read word registered (beside the block RAM)
+    //   d2     the read word in the RAM's output register (OUT_REG)
     //   d3     the multipliers' operand registers (C, D)
     //   e1     C * D (the multipliers' product registers)
     //   e2     round_shift(C * D, 8) + P, min 255: written into the output FIFO

@@ -224,6 +224,9 @@ def unit_of_name(name: str) -> str | None:
     """The unit a flattened cell name lies in ('u_com.g_lane[3]...' -> 'COM'). None for a name
     without an instance prefix: Yosys names such cells after a top-level net (e.g. 'sha_skew',
     the wire from SHA into COM), which says where the signal came from, not where the cell is."""
+    # a unit inside a generate block of cube4_top ('genblk13.g_gra.u_gra....'): its
+    # instance name is the first that counts
+    name = re.sub(r"^(genblk\d+\.)?g_\w+\.(?=u_)", "", name)
     for prefix, unit in NET_UNITS:
         if name.startswith(prefix):
             return unit

@@ -182,7 +182,9 @@ def read_verilog_cmd(cwd: Path, vendor: bool = True) -> str:
     primitives' black boxes (``vendor``), or the generic forms. The paths are relative:
     the YoWASP runtime mounts its own private directory at /tmp inside the tool, so an
     absolute path under /tmp (a checkout there) would not be found."""
-    lib = "read_verilog -lib +/ecp5/cells_bb.v\n" if vendor else ""
+    # the primitives the vendor layer instantiates: MULT18X18D is in cells_bb.v, DP16KD in
+    # cells_sim.v (as a black box); synth_ecp5 reads both again, which replaces them
+    lib = "read_verilog -lib +/ecp5/cells_bb.v\nread_verilog -lib -specify +/ecp5/cells_sim.v\n" if vendor else ""
     return (lib + f"read_verilog -sv -I{os.path.relpath(RTL_INCLUDE_DIR, cwd)} "
             + " ".join(os.path.relpath(s, cwd) for s in design_sources(vendor)))
 
