@@ -9,14 +9,14 @@ cube4_skid.v
 cube4_credit_fifo.v
 cube4_ring_shift.v
 cube4_mul.v
-cube4_beam_ext.v
+cube4_sdp_ram.v
 cube4_voxel_mem.v
+cube4_beam_ext.v
 cube4_cfb.v
 cube4_clip.v
 cube4_tri.v
 cube4_frontend.v
 cube4_delay_line.v
-cube4_sdp_ram.v
 cube4_gra.v
 cube4_sha.v
 cube4_com.v
