@@ -570,11 +570,11 @@ module cube4_com #(
     reg [BX_W-1:0]    by_s    [2:NS];    // from S2 on (computed from S1's parts)
     reg [P*BX_W-1:0]  bx_s    [2:NS];
     reg [NS:1]        eop_s;
-    reg [5:1]         dxb_s;
+    reg [4:1]         dxb_s;             // S5's copies: g_lane's sel5
     reg [4:1]         col1_s;            // (rectangles) the previous beat is the row above, same pb
     reg [4:1]         dyb_s, dkb_s;
-    reg [P-1:0]       fresh_s [1:5];
-    reg [P-1:0]       t0_s    [1:5];
+    reg [P-1:0]       fresh_s [1:4];     // S5's copies: g_lane's sel5
+    reg [P-1:0]       t0_s    [1:4];
     integer k;
     always @(posedge clk) begin
         if (rst) v_s <= '0;
@@ -586,7 +586,7 @@ module cube4_com #(
         m_s[1]  <= r0_m;     by_s[2] <= by_1;    bx_s[2]  <= bx_1;   fresh_s[1] <= fresh_d;
         t0_s[1] <= t0_d;
         eop_s <= {eop_s[NS-1:1], eop};
-        dxb_s <= {dxb_s[4:1], dxb};
+        dxb_s <= {dxb_s[3:1], dxb};
         col1_s <= {col1_s[3:1], rx_col1};
         dyb_s <= {dyb_s[3:1], dyb};
         dkb_s <= {dkb_s[3:1], dk_b};
@@ -598,7 +598,7 @@ module cube4_com #(
         end
         pb_s[2] <= pb_s[1];
         for (k = 2; k <= 7; k = k + 1) cnt_s[k] <= cnt_s[k-1];
-        for (k = 2; k <= 5; k = k + 1) begin
+        for (k = 2; k <= 4; k = k + 1) begin
             fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
         end
     end
@@ -721,17 +721,38 @@ module cube4_com #(
         mode_min_q  <= (cfg_mode == 2'd3);
     end
     // a fresh ray: C = 0, T = 1 (compositing); v = 0 or 2^VOXEL_W - 1, RGBA = 0 (extremum)
-    wire [AC_W-1:0] fresh_cmp  = AC_W'({{(3*CW){1'b0}}, ONE});
-    wire [AC_W-1:0] fresh_ext  = AC_W'({{VOXEL_W{mode_min_q}}, {LUT_W{1'b0}}});
-    wire [AC_W-1:0] fresh_word = mode_ext_q ? fresh_ext : fresh_cmp;
+    // (the words; each lane's quarters choose with their own mode copies, g_sel)
+    localparam [AC_W-1:0] FRESH_CMP = AC_W'({{(3*CW){1'b0}}, ONE});
+    localparam [AC_W-1:0] FRESH_MIN = AC_W'({{VOXEL_W{1'b1}}, {LUT_W{1'b0}}});   // MinIP; MIP: 0
     wire [PX_W-1:0] pix_d;              // S9: the lane's {R, G, B, A}
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // S5: previous partial result, or a fresh ray
-            wire [AC_W-1:0] prev = dxb_s[5]
-                ? (t0_s[5][q] ? prevb_sh[q*AC_W +: AC_W] : back_sh[q*AC_W +: AC_W])
-                : s5_back[q*AC_W +: AC_W];
-            wire [AC_W-1:0] acc_in = fresh_s[5][q] ? fresh_word : prev;
+            // S5: previous partial result, or a fresh ray. The selects are
+            // S5's {dxb, t0, fresh} of this lane and the (static) mode bits,
+            // as NQ register copies (sel5), one per quarter of the word: one
+            // flip-flop for all lanes, or one per lane, drove 2 * AC_W
+            // multiplexers spread over the lane and was the P = 8 build's
+            // critical net (10.8 ns of routing).
+            wire [5*NQ-1:0] sel5;           // copy c: {dxb, t0, fresh, ext, min} at [5*c +: 5]
+            cube4_prim_copies #(.N(NQ), .W(5), .RESET(0)) u_sel5 (
+                .clk(clk), .rst(1'b0),
+                .d({dxb_s[4], t0_s[4][q], fresh_s[4][q], mode_ext_q, mode_min_q}), .q(sel5));
+            wire [AC_W-1:0] acc_in;
+            genvar qs;
+            for (qs = 0; qs < NQ; qs = qs + 1) begin : g_sel
+                localparam integer QL = qs * QW;
+                localparam integer QN = (AC_W - QL < QW) ? AC_W - QL : QW;
+                if (QN > 0) begin : g_bits
+                    wire dxb5 = sel5[5*qs + 4], t05 = sel5[5*qs + 3], fresh5 = sel5[5*qs + 2];
+                    wire ext5 = sel5[5*qs + 1], min5 = sel5[5*qs];
+                    wire [QN-1:0] prev = dxb5
+                        ? (t05 ? prevb_sh[q*AC_W + QL +: QN] : back_sh[q*AC_W + QL +: QN])
+                        : s5_back[q*AC_W + QL +: QN];
+                    wire [QN-1:0] fresh_q = ext5 ? (min5 ? FRESH_MIN[QL +: QN] : {QN{1'b0}})
+                                                 : FRESH_CMP[QL +: QN];
+                    assign acc_in[QL +: QN] = fresh5 ? fresh_q : prev;
+                end
+            end
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
             // PLW: at S2 -> S3 the A of a weighted sample becomes its column's
