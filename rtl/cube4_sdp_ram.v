@@ -90,7 +90,7 @@ module cube4_sdp_ram #(
         end
     endgenerate
 
-    reg [DATA_W-1:0] mem [0:(1 << AW)-1];
+    reg [DATA_W-1:0] mem [0:DEPTH-1];    // DEPTH words (reads at DEPTH and above: none in use)
     reg [DATA_W-1:0] rd_q;
     always @(posedge clk) begin
         if (we) mem[wa] <= wr_data;

@@ -325,9 +325,11 @@ def memory_role(module: str, memid: str, words: int, p: int, max_dim: int) -> st
     pow2 = lambda n: 1 << max(0, (n - 1).bit_length())  # noqa: E731 - the RTL's 1 << clog2(DEPTH)
     if module not in ("cube4_delay_line", "cube4_sdp_ram"):
         return f"`{module}` `{memid}`"
+    if words == max_dim * nb:
+        return f"`{module}`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats)"
     if words == pow2(max_dim * nb):
         return f"`{module}`: one slice (MAX_DIM·NB = {max_dim * nb:,} beats, RAM of 2^k words)"
-    if words == pow2(nb):
+    if words in (nb, pow2(nb)):
         return f"`{module}`: one beam (NB = {nb} beats)"
     return f"`{module}` `{memid}`"
 
