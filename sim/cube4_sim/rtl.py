@@ -30,7 +30,7 @@ from cube4.cycles import COM_MIN_SLICE, frame_cycles, rect_frame_cycles, slow_sl
 from cube4.slices import SliceRects, whole_box_rects
 from .rect_port import rect_width, rect_words
 from .dump import read_pixel_frames
-from .sources import rtl_sources, vendor_sim_sources
+from .sources import form_build_args, form_sources
 
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
 
@@ -199,9 +199,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         runner.run_test(
             top="cube4_top_harness",
             # rtl_form "ecp5": the vendor layer's forms (rtl/ecp5/), as synthesis reads them
-            sources=[*(vendor_sim_sources() if rtl_form == "ecp5" else rtl_sources()),
-                     *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
-            build_args=["-DCUBE4_RTL_FORM_ECP5"] if rtl_form == "ecp5" else [],
+            sources=[*form_sources(rtl_form), *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
+            build_args=form_build_args(rtl_form),
             params=params,
             test_module="cube4_sim.top_job",
             testcase="run_job",

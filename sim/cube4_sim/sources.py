@@ -61,3 +61,20 @@ def vendor_sim_sources(path: Path = SOURCES_F, vendor_dir: Path = VENDOR_DIR,
     """The synthesis list plus the behavioural models of the primitives it instantiates
     (e.g. MULT18X18D): the RTL as synthesis reads it, in a form a simulator runs."""
     return [*sorted(model_dir.glob("*.v")), *synth_sources(path, vendor_dir)]
+
+
+#: The forms the design can be simulated in: the generic RTL (rtl/sources.f) and the RTL
+#: as synthesis for the ECP5 reads it (the vendor layer, with the primitives' models).
+RTL_FORMS = ("generic", "ecp5")
+
+
+def form_sources(form: str) -> list[Path]:
+    """The Verilog files of one form of the design (``RTL_FORMS``), dependencies first."""
+    if form not in RTL_FORMS:
+        raise ValueError(f"unknown RTL form {form!r}: one of {', '.join(RTL_FORMS)}")
+    return vendor_sim_sources() if form == "ecp5" else rtl_sources()
+
+
+def form_build_args(form: str) -> list[str]:
+    """Verilator arguments of a form (a define, so that its builds have folders of their own)."""
+    return ["-DCUBE4_RTL_FORM_ECP5"] if form == "ecp5" else []

@@ -86,8 +86,8 @@ async def mul_random_stalls(dut):
 
 
 # ---------------------------------------------------------------- pytest half
-from cube4_sim import rtl_sources, run_test  # noqa: E402
-from cube4_sim.sources import vendor_sim_sources  # noqa: E402
+from cube4_sim import run_test  # noqa: E402
+from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # widths the design uses (COM's T * A and w * C', GRA's view products, the lerps),
 # the ECP5 form's fall-back beyond 18 bits, and the smallest
@@ -99,9 +99,8 @@ def _param_id(params: dict) -> str:
     return "-".join(f"{k}{v}" for k, v in params.items())
 
 
-@pytest.mark.parametrize("form", ["generic", "ecp5"])
+@pytest.mark.parametrize("form", RTL_FORMS)
 @pytest.mark.parametrize("params", PARAM_SETS, ids=_param_id)
 def test_cube4_mul(params, form):
-    run_test(top="cube4_mul", sources=rtl_sources() if form == "generic" else vendor_sim_sources(),
-             params=params, test_module=__file__,
-             build_args=["-DCUBE4_RTL_FORM_ECP5"] if form == "ecp5" else [])
+    run_test(top="cube4_mul", sources=form_sources(form), params=params, test_module=__file__,
+             build_args=form_build_args(form))

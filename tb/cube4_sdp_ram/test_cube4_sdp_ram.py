@@ -112,8 +112,8 @@ async def ram_random_stalls(dut):
 
 
 # ---------------------------------------------------------------- pytest half
-from cube4_sim import rtl_sources, run_test  # noqa: E402
-from cube4_sim.sources import vendor_sim_sources  # noqa: E402
+from cube4_sim import run_test  # noqa: E402
+from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (block RAM 1024 x 18 .. 16384 x 1, distributed RAM below
 # 128 words, inferred beyond 16384), with and without IN_REG's copies and OUT_REG
@@ -133,9 +133,8 @@ def _param_id(params: dict) -> str:
     return "-".join(f"{k}{v}" for k, v in params.items())
 
 
-@pytest.mark.parametrize("form", ["generic", "ecp5"])
+@pytest.mark.parametrize("form", RTL_FORMS)
 @pytest.mark.parametrize("params", PARAM_SETS, ids=_param_id)
 def test_cube4_sdp_ram(params, form):
-    run_test(top="cube4_sdp_ram", sources=rtl_sources() if form == "generic" else vendor_sim_sources(),
-             params=params, test_module=__file__,
-             build_args=["-DCUBE4_RTL_FORM_ECP5"] if form == "ecp5" else [])
+    run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
+             build_args=form_build_args(form))
