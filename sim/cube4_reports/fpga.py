@@ -1,7 +1,8 @@
 """`make fpga`: cube4_top on a Lattice ECP5-85F, out of context, for P in {1, 2, 4, 8, 16}.
 
-For each P: Yosys ``synth_ecp5 -noiopad`` once (block RAMs, distributed RAMs and
-multipliers inferred), then ``nextpnr-ecp5 --85k --out-of-context --freq F --seed S`` on
+For each P: Yosys ``synth_ecp5 -noiopad`` once (the vendor layer's block RAMs and
+multipliers instantiated with their registers, the other RAMs inferred), then
+``nextpnr-ecp5 --85k --speed G --out-of-context --freq F --seed S`` on
 that netlist once per seed S of ``--seeds`` (default 1,2,3; PyPI YoWASP builds of both).
 The nextpnr runs of all P and seeds run ``--jobs`` at a time (default 2), largest P first.
 A P's Fmax is the median over its seeds (for an even count the lower of the two middle
@@ -612,7 +613,8 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
            f"--out-of-context`: no I/O buffers, the clock on general "
            f"routing), `--freq {meta['freq']:g} --router {meta['router']}`, nextpnr {seeds_text(meta['seeds'])} "
            f"(one run per `--seed`, all on the same synthesized netlist, {meta['jobs']} at a time), "
-           f"`synth_ecp5 -noiopad` (EBRs, distributed RAM and multipliers inferred). "
+           f"`synth_ecp5 -noiopad` (the vendor layer's DP16KD and MULT18X18D instantiated with their own "
+           f"registers, rtl/ecp5/; the other block and distributed RAMs inferred). "
            f"cube4_top with MAX_DIM = {meta['max_dim']}, "
            f"DEPTH = {meta['depth']} words per bank (an on-chip stand-in for the external voxel DRAM: "
            f"a {meta['max_dim']}³ volume is {meta['max_dim'] ** 3 * 8 / 1e6:.1f} Mbit, the part has "
