@@ -446,8 +446,9 @@ def memory_budget(p: int, dims: tuple[int, ...]) -> list[dict]:
         params = {**cfg.params(), "ADDR_W": addr_bits(words_per_bank(n, p))}
         wd = SYNTH_DIR / "fpga" / f"budget_p{p}_d{n}"
         wd.mkdir(parents=True, exist_ok=True)
+        # the generic forms: the vendor layer's block RAMs are black boxes, not memories
         (wd / "budget.ys").write_text("\n".join([
-            read_verilog_cmd(wd), f"hierarchy -check -top {TOP} {chparam_args(params)}",
+            read_verilog_cmd(wd, vendor=False), f"hierarchy -check -top {TOP} {chparam_args(params)}",
             "proc", "opt_clean", "memory -nomap", "tee -q -o stat.json stat -json",
             "select t:$mem_v2", "write_json -selected memories.json", ""]))
         progress(TAG, f"memory budget: P={p} MAX_DIM={n} (elaboration only) ...")
@@ -753,7 +754,7 @@ def run(args: argparse.Namespace) -> None:
     budget = [] if (args.no_budget or args.quick) else memory_budget(8, BUDGET_DIMS)
     keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
             "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
-    report = {"part": PART, "max_dim": max_dim, "depth": depth, "seeds": list(seeds),
+    report = {"part": PART, "speed": args.speed, "max_dim": max_dim, "depth": depth, "seeds": list(seeds),
               "flatness": flatness(results), "results": [{k: r[k] for k in keys} for r in results]}
     write_report(TAG, report, json_path, render_markdown(results, budget, meta), md_path, t0)
 

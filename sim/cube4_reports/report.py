@@ -232,7 +232,7 @@ def fmax_note(path: Path | None = None) -> str:
     if not fmax:
         return f"no Fmax: {rel} is missing or has no routed result, run `make fpga`"
     ps = ", ".join(f"p = {r['p']}: {float(r['fmax_mhz']):.1f} MHz" for r in fmax)
-    where = ", ".join(f"{k} {data[k]}" for k in ("part", "max_dim") if k in data)
+    where = ", ".join(f"{k} {data[k]}" for k in ("part", "speed", "max_dim") if k in data)
     return (f"`make fpga` ({rel}{'; ' + where if where else ''}): {ps}. The Fmax is that of the p's build with "
             "the default word widths, also used for the W, F and S variants of the same p")
 
