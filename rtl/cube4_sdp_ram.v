@@ -32,7 +32,9 @@
 // Latency
 //   Read: 1 cycle (rd_data is mem[rd_addr] of the last cycle with rd_en = 1;
 //   it holds while rd_en = 0). Write: visible to a read one cycle later. A
-//   read of the word being written in the same cycle returns the old word.
+//   read of the word being written in the same cycle returns the old word
+//   here; on a device that is not promised (ECP5 DP16KD, whose two ports
+//   then collide), so no caller reads a word in the cycle it is written.
 //   IN_REG = 1: the same, one cycle after the inputs (one register stage).
 //   OUT_REG = 1: one more: rd_data is the word of the read before the last
 //   one with rd_en = 1 (both registers advance with the read enable, so a

@@ -189,7 +189,6 @@ module cube4_sha #(
                 assign e_idx[q*RI_W +: RI_W]    = '0;
                 wire unused_grad = ^{a_gi[q*GW +: GW], a_gj[q*GW +: GW], a_gk[q*GW +: GW]};
             end else begin : g_shade
-
                 // b1: |g|; |g| < 2^(GW-1): no overflow
                 wire signed [GW-1:0] gi = a_gi[q*GW +: GW];
                 wire signed [GW-1:0] gj = a_gj[q*GW +: GW];
@@ -306,7 +305,7 @@ module cube4_sha #(
                 // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
                 // registers are d3's (C from the shift register's stage before
                 // d_alpha's, D from d2's word): the block RAM's word reaches
-                // the multiplier through d2's register beside the RAM and whose
+                // the multiplier through d2, the RAM's output register; the
                 // product register is e1's
                 wire [23:0] d_col_d = lut_q[(NST-5)*LUT_W + ALPHA_W +: 24];   // C one stage early
                 wire unused_col = ^lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];       // (its copy at d: not needed)

@@ -30,7 +30,9 @@
 //     Yosys (distributed RAM), their output register in the fabric: a block
 //     RAM each would waste the part's EBRs; so are deeper ones (the output
 //     register in the fabric after Yosys's bank multiplexer).
-//     sim/hdl/ecp5/DP16KD.v models the primitive for simulation.
+//     sim/hdl/ecp5/DP16KD.v models the primitive for simulation. A read
+//     of the word written at the same edge is undefined on the device (the
+//     model returns the old word); cube4_sdp_ram's callers make none.
 //   tb/cube4_top test_synthesis_ram_form_p1 simulates this form, and
 //   tb/cube4_sdp_ram runs both forms against a model of the RAM.
 //
