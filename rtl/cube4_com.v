@@ -62,19 +62,20 @@
 //
 // Latency
 //   10 register stages (R0, S1 .. S9, below) that move on every cycle and
-//   carry a valid bit each (no stall enable); S9's results are written into
+//   carry a valid bit each (no stall enable), and S10, the slice buffer's write
+//   register; S9's results are written into
 //   the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
 //   for a last register: a finished-ray beat is on pix_* 10 cycles after it
 //   entered R0 when the FIFO was empty.
 //   Back-pressure is credit-based: a beat enters R0 only when the FIFO has an
 //   entry reserved for it, so pix_ready reaches only in_ready and the FIFO's
 //   pointers, never a datapath register. in_ready depends on registers only
-//   (the FIFO's credit and the valid bits of R0 .. S7). The partial results
+//   (the FIFO's credit and the valid bits of R0 .. S8). The partial results
 //   take exactly one slice (NJ*NB steps) round the base-plane buffer.
-//   Throughput is one beat per cycle when a slice has NJ*NB >= 9 beats; a
-//   smaller slice runs at NJ*NB beats per 9 cycles (the read-after-write
+//   Throughput is one beat per cycle when a slice has NJ*NB >= 10 beats; a
+//   smaller slice runs at NJ*NB beats per 10 cycles (the read-after-write
 //   hazard on the base-plane buffer, see "pipeline" below). RECTS = 1: a beat
-//   waits while the beat that wrote its slot is in R0 .. S7; in_ready then
+//   waits while the beat that wrote its slot is in R0 .. S8; in_ready then
 //   also depends on in_hdr (the slot compare).
 //
 // Ports
@@ -176,21 +177,24 @@ module cube4_com #(
     //   S6  T * A (multiplier)
     //   S7  w = round_shift(T * A, AW)
     //   S8  w * C' (multipliers), T - w
-    //   S9  C += round_shift(w * C', 8); write the slice buffer; push into the FIFO
-    //       (its input register: the pixel is in the FIFO one edge later)
+    //   S9  C += round_shift(w * C', 8); push into the FIFO (its input
+    //       register: the pixel is in the FIFO one edge later)
+    //   S10 the slice buffer's write register (acc_q, per lane): the block RAMs
+    //       of the slice buffer are spread over the die, and S9's sums went
+    //       straight into their write data (8-10 ns of routing at P = 8)
     // Every stage moves on every cycle and carries a valid bit; the datapath
     // registers have no clock enable. The registers that must hold across
     // bubbles load under a valid bit: the position counters under step (R0's
     // valid bit), the last beat's words for the X-step and NB = 1 under each
     // lane's own copies of v_s[4] (u_v3, u_v4).
     // A beat's slice position is read two edges after its acceptance into
-    // R0 (S1 -> S2) and written at the edge where it leaves S9. The ray's
+    // R0 (S1 -> S2) and written at the edge where it leaves S10. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
     // at the same position, so a beat is accepted only if that beat is not in
-    // R0..S7 (one in S8 is written at the edge after acceptance, before the
+    // R0..S8 (one in S9 is written at the edge after acceptance, before the
     // read).
-    // Slices of L >= 9 beats never wait; smaller ones (volumes of fewer than 9
-    // beats per slice) run at L beats per 9 cycles.
+    // Slices of L >= 10 beats never wait; smaller ones (volumes of fewer than 10
+    // beats per slice) run at L beats per 10 cycles.
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW    = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
     localparam integer SP_W  = (RECTS != 0) ? RW + PB_W : ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1);
@@ -201,7 +205,7 @@ module cube4_com #(
     localparam integer NS      = 9;             // stages S1 .. S9
     localparam integer FIFO_DEPTH = 16;         // >= 13 cycles from acceptance to the FIFO's read
     reg  [NS:1] v_s;                    // stage valid bits
-    wire        hazard;                 // the beat L back is in R0..S7 (see above)
+    wire        hazard;                 // the beat L back is in R0..S8 (see above)
     wire        credit;                 // the output FIFO has an entry for one more beat
     assign in_ready = credit && !hazard;
     wire take = in_valid && in_ready;   // a beat enters R0
@@ -260,7 +264,7 @@ module cube4_com #(
     // sample is not inside it) and m + 1 (a ray finishes where its next sample
     // is not inside it) and the steps of m, from the host's table (three copies,
     // read as a slice's first beat enters R0, so that R0's beat has them); a beat
-    // waits while the beat of the same slot is in R0 .. S7 (the read-after-write
+    // waits while the beat of the same slot is in R0 .. S8 (the read-after-write
     // rule by position); and whether the previous beat is the row above at the
     // same partial beam.
     wire             rx_prev_v, rx_next_v;
@@ -310,13 +314,13 @@ module cube4_com #(
             assign rx_n_i1 = e_n[RT_IHIN +: DIM_W];
             assign rx_stx  = e_c[RT_STX +: DIM_W];
             assign rx_sty  = e_c[RT_STY +: DIM_W];
-            // read after write by position: the incoming slot against R0 .. S7
+            // read after write by position: the incoming slot against R0 .. S8
             wire [SP_W-1:0] in_sp = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
             reg hz;
             integer kz;
             always @* begin
                 hz = r0_v && (pos_sp == in_sp);
-                for (kz = 1; kz <= NS - 2; kz = kz + 1) hz = hz || (v_s[kz] && (sp_s[kz] == in_sp));
+                for (kz = 1; kz <= NS - 1; kz = kz + 1) hz = hz || (v_s[kz] && (sp_s[kz] == in_sp));
             end
             assign rx_hazard = hz;
             // the last beat that left R0
@@ -561,7 +565,7 @@ module cube4_com #(
     // ---- the beat's fields, carried along the pipeline (index = stage) ----
     // (unpacked arrays: a packed [stage][field] array of fields that are not word
     // aligned made Verilator's model about 20% slower at P = 8)
-    reg [SP_W-1:0]    sp_s    [1:NS];    // slice position: read at S1, written at the end of S9
+    reg [SP_W-1:0]    sp_s    [1:NS];    // slice position: read at S1, written at the end of S10
     reg [PB_W-1:0]    pb_s    [1:2];     // beam position: read at S2, written at the end of S3 (RAM's registers)
     reg [P-1:0]       ins_s1;            // inside (finished rays, S1)
     reg [P-1:0]       cnt_s   [1:7];     // the sample counts (S6, S7)
@@ -604,19 +608,19 @@ module cube4_com #(
     end
     // Read-after-write rule: a beat's position repeats every L = NJ*NB beats,
     // so the beat it depends on is the L-th most recent one, and that one is
-    // in R0..S7 exactly when R0..S7 hold L or more valid beats. Counting them
+    // in R0..S8 exactly when R0..S8 hold L or more valid beats. Counting them
     // needs no field of the incoming beat. The count is made for the next
-    // cycle (R0..S7 after this edge hold take, r0_v, v_s[1..6]) and the
+    // cycle (R0..S8 after this edge hold take, r0_v, v_s[1..7]) and the
     // comparison registered, so hazard, like in_ready, is a register.
-    reg  [3:0] lim_q;                   // min(NJ*NB, 9): 9 never stalls
+    reg  [3:0] lim_q;                   // min(NJ*NB, 10): 10 never stalls
     always @(posedge clk) begin
-        lim_q <= (32'(cfg_nj) * 32'(cfg_nb) >= 32'd9) ? 4'd9 : 4'(32'(cfg_nj) * 32'(cfg_nb));
+        lim_q <= (32'(cfg_nj) * 32'(cfg_nb) >= 32'd10) ? 4'd10 : 4'(32'(cfg_nj) * 32'(cfg_nb));
     end
-    reg [3:0] n_fly_d;                  // valid beats in R0..S7 in the next cycle
+    reg [3:0] n_fly_d;                  // valid beats in R0..S8 in the next cycle (at most 9)
     integer kh;
     always @* begin
         n_fly_d = {3'b000, take} + {3'b000, r0_v};
-        for (kh = 1; kh < NS - 2; kh = kh + 1) n_fly_d = n_fly_d + {3'b000, v_s[kh]};
+        for (kh = 1; kh < NS - 1; kh = kh + 1) n_fly_d = n_fly_d + {3'b000, v_s[kh]};
     end
     reg hazard_q;
     always @(posedge clk) begin
@@ -629,15 +633,16 @@ module cube4_com #(
     // Both RAMs end in their output register (cube4_sdp_ram OUT_REG: the
     // block RAM's own on an FPGA, whose clock-to-out is most of a cycle
     // without it): s3_a1 and s4_a2 are those registers.
-    wire [PA-1:0] acc_new;              // written at the end of S9: results after slice m
+    wire [PA-1:0] acc_q;                // S10 (g_lane's registers): results after slice m
     wire [PA-1:0] a1_ram, a2_ram;       // S3, S4: the RAMs' output registers
     // Both buffers register their addresses and write enables themselves (with
     // copies for their block RAMs, cube4_sdp_ram IN_REG): they get them one
     // stage early. The slice buffer is read at S1 (sp_s[1]) and written at the
-    // end of S9 (sp_s[NS], v_s[NS]).
+    // end of S10 (from acc_q, at the address and enable of the beat that left
+    // S9: sp_s[NS], v_s[NS], given one stage early).
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(SB_DEPTH), .IN_REG(1), .OUT_REG(1)) u_bp_slice (
         .clk(clk), .rd_en(1'b1), .rd_addr(pos_sp), .rd_data(a1_ram),
-        .wr_en(v_s[NS-1]), .wr_addr(sp_s[NS-1]), .wr_data(acc_new));
+        .wr_en(v_s[NS]), .wr_addr(sp_s[NS]), .wr_data(acc_q));
     wire [PA-1:0] s4_a1, prev_a1_q;     // per lane registers (g_buf)
     wire [PA-1:0] s3_a1 = a1_ram;       // the slice buffer's output register
     wire [PA-1:0] s4_a2 = a2_ram;       // the beam buffer's output register
@@ -893,7 +898,11 @@ module cube4_com #(
                 assign pix_ext  = '0;
             end
 
-            assign acc_new[q*AC_W +: AC_W] = mode_ext_q ? word_ext : word_cmp;
+            // S10: the slice buffer's write register (loads on every cycle; the
+            // write enable is the beat's valid bit)
+            reg [AC_W-1:0] acc_q_l;
+            always @(posedge clk) acc_q_l <= mode_ext_q ? word_ext : word_cmp;
+            assign acc_q[q*AC_W +: AC_W] = acc_q_l;
             assign pix_d[q*CMP_W +: CMP_W] = mode_ext_q ? pix_ext : pix_cmp;
         end
     endgenerate

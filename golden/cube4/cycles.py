@@ -23,7 +23,7 @@ FILL_CYCLES_VGRAD = 49
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.
-COM_MIN_SLICE = 9
+COM_MIN_SLICE = 10
 
 
 def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: bool = False) -> int:

@@ -61,6 +61,42 @@ def test_random_volumes_all_views(p):
         check(vol, job.trav, cfg, job.lut, job.rmap, res, f"P={p} view {VIEWS[n]}")
 
 
+def test_short_slices():
+    """Slices of fewer than COM_MIN_SLICE beats (NJ*NB) at P = 8: COM's read-after-write rule
+    makes such a beat wait for the beat one slice back to be written, so the frames stay bit-exact
+    (a slice of COM_MIN_SLICE - 1 beats let through reads a word before it is written) and take
+    more cycles than the formula, by at most slow_slice_factor; a slice of COM_MIN_SLICE beats
+    takes exactly the formula's cycles."""
+    from cube4.cycles import COM_MIN_SLICE, slow_slice_factor
+
+    p = 8
+    rng = np.random.default_rng(31)
+    cfg = Cube4Config(pipelines=p)
+    # (dims (x, y, z), view, beats per slice L = NJ * ceil(NI / P), stalls)
+    cases = [((8, 9, 12), (0.2, 0.3, 1.0), COM_MIN_SLICE - 1, False),
+             ((12, 8, 9), (1.0, 0.3, 0.2), COM_MIN_SLICE - 1, True),
+             ((8, 10, 12), (-0.3, 0.2, -1.0), COM_MIN_SLICE, False),
+             ((3, 3, 6), (0.2, 0.3, 1.0), 3, False)]
+    for dims, view, beats, stall in cases:
+        nx, ny, nz = dims
+        vol = rng.integers(0, 256, size=(nz, ny, nx))
+        trav = make_traversal(dims, view, cfg.weight_bits, 1)
+        assert trav.nj * -(-trav.ni // p) == beats, (dims, view, trav.nj, trav.ni)
+        lut, rmap = random_tables(rng, cfg)
+        job = FrameJob(trav, lut, rmap, stall=60 if stall else 0, stall_out=90 if stall else 0)
+        res = render_frames(vol, [job], cfg, max_dim=64)[0]       # the build of the tests above
+        label = f"P={p} {dims} view {view}: {beats} beats per slice"
+        check(vol, trav, cfg, lut, rmap, res, label)
+        if stall:
+            continue
+        formula = frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, p)
+        print(f"{label}: {res['cycles']} cycles, formula {formula}")
+        if beats >= COM_MIN_SLICE:
+            assert res["cycles"] == formula, (label, res["cycles"], formula)
+        else:
+            assert formula < res["cycles"] <= formula * slow_slice_factor(trav.nj, trav.ni, p), (label, res["cycles"])
+
+
 @pytest.mark.parametrize("p", [1, 4, 5, 8])
 @pytest.mark.parametrize("name", ["sphere:64", "ml:64", "head:64"])
 def test_phantoms(name, p):
