@@ -12,13 +12,19 @@
 //   Fig. 3. The RAM is read RA steps ahead at a registered address, and its
 //   word passes plain registers before dout's register with the bypass
 //   multiplexer, so neither the RAM's address nor its output has logic in
-//   series (a block RAM's clock-to-out is most of a cycle on an FPGA):
+//   series (a block RAM's clock-to-out is most of a cycle on an FPGA). The
+//   write passes the RAM's write register (cube4_sdp_ram WR_REG: the write
+//   lands one cycle after its step, so a plane line's enable, address and
+//   data, spread over dozens of block RAMs, get a cycle of routing of their
+//   own):
 //     up to 2048 words: one bank, a cube4_sdp_ram with its output register
 //       (OUT_REG: the block RAM's own on an FPGA), then dout; RA = 3;
 //     more: banks of 2048 words (one block RAM deep each, 2048 x 9 on ECP5),
 //       each a cube4_sdp_ram with its output register; the bank multiplexer,
 //       selected by a register, loads rd3_q; then dout; RA = 4.
-//   L = 1 .. RA are bypassed (din and its last RA - 1 values). Between steps
+//   L = 1 .. RA + 1 are bypassed (din and its last RA values): the RAM is
+//   read for the step RA ahead and a word lands one cycle after its step, so
+//   its word must have been written at least two steps before. Between steps
 //   everything holds.
 //
 // Parameters
@@ -66,12 +72,13 @@ module cube4_delay_line #(
     localparam integer SW    = (AW > BW) ? AW - BW : 1;  // bank select bits
     localparam integer NBANK = 1 << (AW - BW);
     localparam integer RA    = (NBANK > 1) ? 4 : 3;      // steps read ahead
+    localparam integer RB    = RA + 1;                   // L = 1 .. RB are bypassed
 
     reg [DATA_W-1:0] out_q;             // dout
-    reg [DATA_W-1:0] dh_q [1:RA-1];     // din of 1 .. RA-1 steps back (bypass)
+    reg [DATA_W-1:0] dh_q [1:RB-1];     // din of 1 .. RB-1 steps back (bypass)
     reg [AW-1:0]     ptr_q;             // position of the next step (without a clear)
     reg [AW-1:0]     ra_q;              // position RA steps after the next one: the read address
-    reg [RA:1]       l_q;               // l_q[k]: L = k
+    reg [RB:1]       l_q;               // l_q[k]: L = k
     reg [RA-1:1]     clr_q;             // clr_q[k]: the step k back was a clear
     wire [DATA_W-1:0] rd_word;          // the RAM word for this step's dout
 
@@ -83,7 +90,7 @@ module cube4_delay_line #(
 
     genvar k;
     generate
-        for (k = 1; k <= RA; k = k + 1) begin : g_len
+        for (k = 1; k <= RB; k = k + 1) begin : g_len
             (* keep *)   // this line's own copy (lines with the same len would share one)
             always @(posedge clk) l_q[k] <= (len == (AW + 1)'(k));
         end
@@ -97,8 +104,9 @@ module cube4_delay_line #(
             ra_q  <= clear ? ra_clr : ra_inc;
         end
     end
-    // Step b writes position pos(b) and reads position pos(b + RA) (= ra_q; a
-    // word written at step b + RA - L <= b - 1 when L > RA); dout for step
+    // Step b writes position pos(b) (the word lands one cycle later) and reads
+    // position pos(b + RA) (= ra_q; a word written at step b + RA - L <= b - 2
+    // when L > RB, so it has landed before the read); dout for step
     // b + 1 is the word read at step b + 1 - RA. Right after a clear ra_q is
     // off for RA steps, so the RA outputs after a clear are zero words instead
     // (they fall in the first L steps, which the caller ignores; a zero word
@@ -114,7 +122,7 @@ module cube4_delay_line #(
         if (NBANK == 1) begin : g_one_bank
             // the RAM's read register, then its output register (rd2_q):
             // no logic after the RAM
-            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << AW), .OUT_REG(1)) u_ram (
+            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << AW), .WR_REG(1), .OUT_REG(1)) u_ram (
                 .clk(clk), .rd_en(step), .rd_addr(ra_q), .rd_data(rd_word),
                 .wr_en(step), .wr_addr(pos), .wr_data(din));
         end else begin : g_banks
@@ -123,7 +131,7 @@ module cube4_delay_line #(
             reg  [DATA_W-1:0] rd3_q;            // the selected bank's word
             genvar b;
             for (b = 0; b < NBANK; b = b + 1) begin : g_bank
-                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << BW), .OUT_REG(1)) u_ram (
+                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << BW), .WR_REG(1), .OUT_REG(1)) u_ram (
                     .clk(clk), .rd_en(step), .rd_addr(ra_q[BW-1:0]), .rd_data(rd2_w[b]),
                     .wr_en(step && pos[AW-1:BW] == SW'(b)), .wr_addr(pos[BW-1:0]), .wr_data(din));
             end
@@ -138,7 +146,8 @@ module cube4_delay_line #(
         end
     endgenerate
 
-    // dout: the bypass for L <= RA, the zero words after a clear, else the RAM
+    // dout: the bypass for L <= RA, the zero words after a clear, else the
+    // RAM, or for L = RB its bypass word (din of RB - 1 steps back)
     reg [DATA_W-1:0] byp;
     integer kb;
     always @(*) begin
@@ -147,12 +156,13 @@ module cube4_delay_line #(
             if (l_q[kb]) byp = dh_q[kb - 1];
         end
     end
+    wire [DATA_W-1:0] far = l_q[RB] ? dh_q[RB - 1] : rd_word;   // L > RA
     integer kd;
     always @(posedge clk) begin
         if (step) begin
             dh_q[1] <= din;
-            for (kd = 2; kd < RA; kd = kd + 1) dh_q[kd] <= dh_q[kd - 1];
-            out_q <= (|l_q) ? byp : ((clear || (|clr_q)) ? {DATA_W{1'b0}} : rd_word);
+            for (kd = 2; kd < RB; kd = kd + 1) dh_q[kd] <= dh_q[kd - 1];
+            out_q <= (|l_q[RA:1]) ? byp : ((clear || (|clr_q)) ? {DATA_W{1'b0}} : far);
         end
     end
 

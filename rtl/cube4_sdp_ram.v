@@ -21,6 +21,12 @@
 //   IN_REG  0: rd_en, rd_addr, wr_en and wr_addr act this cycle; 1: the RAM
 //           registers them itself (the caller gives them one cycle early),
 //           and the access uses the registered values.  0..1.  Default 0.
+//   WR_REG  0: the write acts this cycle; 1: wr_en, wr_addr and wr_data pass
+//           a register in the RAM, and the write lands one cycle after its
+//           inputs (a write port spread over many block RAMs gets a cycle of
+//           routing of its own). Not with IN_REG = 1 (which registers the
+//           write's enable and address; a caller that wants the data
+//           registered too gives it one cycle late).  0..1.  Default 0.
 //   OUT_REG 0: rd_data is the read register; 1: the read word passes a
 //           second register, loaded with the read register's word when the
 //           (registered, with IN_REG) read enable is 1: the output register
@@ -36,6 +42,8 @@
 //   here; on a device that is not promised (ECP5 DP16KD, whose two ports
 //   then collide), so no caller reads a word in the cycle it is written.
 //   IN_REG = 1: the same, one cycle after the inputs (one register stage).
+//   WR_REG = 1: a write is visible to a read two cycles after its inputs (a
+//   read in the cycle after them returns the old word).
 //   OUT_REG = 1: one more: rd_data is the word of the read before the last
 //   one with rd_en = 1 (both registers advance with the read enable, so a
 //   caller that reads on every cycle sees a latency of 2, one that reads on
@@ -46,7 +54,8 @@
 //   rd_en, rd_addr  in   read enable, address  [AW]
 //   rd_data         out  [DATA_W] any format
 //   wr_en, wr_addr  in   write enable, address [AW] (IN_REG = 1: one cycle early)
-//   wr_data         in   [DATA_W] the word, in the cycle of the write
+//   wr_data         in   [DATA_W] the word, in the cycle of wr_en (IN_REG = 1:
+//                        of the registered write enable)
 //
 // Bit growth and rounding: none. No reset: the contents are data.
 // =============================================================================
@@ -54,6 +63,7 @@ module cube4_sdp_ram #(
     parameter  integer DATA_W = 8,
     parameter  integer DEPTH  = 16,
     parameter  integer IN_REG = 0,
+    parameter  integer WR_REG = 0,
     parameter  integer OUT_REG = 0,
     localparam integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
@@ -71,11 +81,16 @@ module cube4_sdp_ram #(
             $error("cube4_sdp_ram: DEPTH = %0d is out of range 1..2^24", DEPTH);
         end
         `CUBE4_RANGE(g_bad_in_reg, "cube4_sdp_ram", "IN_REG", IN_REG, 0, 1)
+        `CUBE4_RANGE(g_bad_wr_reg, "cube4_sdp_ram", "WR_REG", WR_REG, 0, 1)
         `CUBE4_RANGE(g_bad_out_reg, "cube4_sdp_ram", "OUT_REG", OUT_REG, 0, 1)
+        if (IN_REG == 1 && WR_REG == 1) begin : g_bad_regs
+            $error("cube4_sdp_ram: IN_REG = 1 with WR_REG = 1 (IN_REG registers the write's enable and address already)");
+        end
     endgenerate
 
     wire          re, we;               // the access's enables and addresses
     wire [AW-1:0] ra, wa;
+    wire [DATA_W-1:0] wd;               // the word written
     generate
         if (IN_REG == 1) begin : g_in_reg
             reg          re_q, we_q;
@@ -87,15 +102,28 @@ module cube4_sdp_ram #(
                 wa_q <= wr_addr;
             end
             assign {re, we, ra, wa} = {re_q, we_q, ra_q, wa_q};
+            assign wd = wr_data;
+        end else if (WR_REG == 1) begin : g_wr_reg
+            reg              we_q;
+            reg [AW-1:0]     wa_q;
+            reg [DATA_W-1:0] wd_q;
+            always @(posedge clk) begin
+                we_q <= wr_en;
+                wa_q <= wr_addr;
+                wd_q <= wr_data;
+            end
+            assign {re, we, ra, wa} = {rd_en, we_q, rd_addr, wa_q};
+            assign wd = wd_q;
         end else begin : g_direct
             assign {re, we, ra, wa} = {rd_en, wr_en, rd_addr, wr_addr};
+            assign wd = wr_data;
         end
     endgenerate
 
     reg [DATA_W-1:0] mem [0:DEPTH-1];    // DEPTH words (reads at DEPTH and above: none in use)
     reg [DATA_W-1:0] rd_q;
     always @(posedge clk) begin
-        if (we) mem[wa] <= wr_data;
+        if (we) mem[wa] <= wd;
         if (re) rd_q <= mem[ra];
     end
     generate

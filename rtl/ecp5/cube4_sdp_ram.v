@@ -21,6 +21,9 @@
 //     flip-flop drives the address of every block RAM: a RAM spread over
 //     dozens of block RAMs across the die otherwise spends most of a cycle
 //     routing one address net.
+//   * With WR_REG = 1 the same copies hold the write's enable and address
+//     (the read's are not registered), and the word written passes a
+//     register of its own (each bit goes to one block RAM).
 //   * With OUT_REG = 1 and at least 128 words (EBR_MIN_AW), each slice is a
 //     DP16KD instantiated here with its output register (REGMODE_B = "OUTREG", loaded with the read enable):
 //     nextpnr times the block from clock to data in 0.7 ns instead of 4.1 ns
@@ -42,6 +45,7 @@ module cube4_sdp_ram #(
     parameter  integer DATA_W = 8,
     parameter  integer DEPTH  = 16,
     parameter  integer IN_REG = 0,
+    parameter  integer WR_REG = 0,
     parameter  integer OUT_REG = 0,
     localparam integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
@@ -59,7 +63,11 @@ module cube4_sdp_ram #(
             $error("cube4_sdp_ram: DEPTH = %0d is out of range 1..2^24", DEPTH);
         end
         `CUBE4_RANGE(g_bad_in_reg, "cube4_sdp_ram", "IN_REG", IN_REG, 0, 1)
+        `CUBE4_RANGE(g_bad_wr_reg, "cube4_sdp_ram", "WR_REG", WR_REG, 0, 1)
         `CUBE4_RANGE(g_bad_out_reg, "cube4_sdp_ram", "OUT_REG", OUT_REG, 0, 1)
+        if (IN_REG == 1 && WR_REG == 1) begin : g_bad_regs
+            $error("cube4_sdp_ram: IN_REG = 1 with WR_REG = 1 (IN_REG registers the write's enable and address already)");
+        end
     endgenerate
 
     localparam integer EBR_MIN_AW = 7;                  // block RAM from 128 words (OUT_REG = 1) ...
@@ -69,7 +77,7 @@ module cube4_sdp_ram #(
     // word (18 bits with IN_REG, so that the register copies have slices;
     // with OUT_REG the block's own shape: 18 bits to 1024 words, 9 to 2048)
     localparam integer SL_SHALLOW = (USE_EBR == 1) ? ((AW <= 10) ? 18 : 9)
-                                  : ((IN_REG == 1 && DATA_W > 18) ? 18 : DATA_W);
+                                  : (((IN_REG == 1 || WR_REG == 1) && DATA_W > 18) ? 18 : DATA_W);
     localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : SL_SHALLOW));
     // a DP16KD port of SL_W bits addresses AD13..AD(LOW)
     localparam integer LOW  = (SL_W == 18) ? 4 : ((SL_W == 9) ? 3 : ((SL_W == 4) ? 2 : ((SL_W == 2) ? 1 : 0)));
@@ -79,12 +87,27 @@ module cube4_sdp_ram #(
     localparam integer CW   = 2 * AW + 2;               // a copy: {re, we, ra, wa}
 
     wire [N_CP*CW-1:0] in_cp;           // the access's inputs, one set per copy
+    wire [DATA_W-1:0]  wd;              // the word written
     generate
         if (IN_REG == 1) begin : g_in_reg
             cube4_prim_copies #(.N(N_CP), .W(CW), .RESET(0)) u_in (
                 .clk(clk), .rst(1'b0), .d({rd_en, wr_en, rd_addr, wr_addr}), .q(in_cp));
+            assign wd = wr_data;
+        end else if (WR_REG == 1) begin : g_wr_reg
+            wire [N_CP*(AW+1)-1:0] wr_cp;       // {we, wa} per copy
+            cube4_prim_copies #(.N(N_CP), .W(AW + 1), .RESET(0)) u_wr (
+                .clk(clk), .rst(1'b0), .d({wr_en, wr_addr}), .q(wr_cp));
+            genvar c;
+            for (c = 0; c < N_CP; c = c + 1) begin : g_cp
+                wire [AW:0] w = wr_cp[c * (AW + 1) +: AW + 1];
+                assign in_cp[c * CW +: CW] = {rd_en, w[AW], rd_addr, w[AW-1:0]};
+            end
+            reg [DATA_W-1:0] wd_q;
+            always @(posedge clk) wd_q <= wr_data;
+            assign wd = wd_q;
         end else begin : g_direct
             assign in_cp = {N_CP{rd_en, wr_en, rd_addr, wr_addr}};
+            assign wd = wr_data;
         end
     endgenerate
 
@@ -103,7 +126,7 @@ module cube4_sdp_ram #(
                 // the 18-bit shape's byte enables (AD1..AD0 of port A) are 1
                 wire [13:0] ada = 14'({(14 - LOW)'(wa), (LOW == 4) ? 4'b0011 : 4'b0000} >> (4 - LOW));
                 wire [13:0] adb = 14'({(14 - LOW)'(ra), 4'b0000} >> (4 - LOW));
-                wire [17:0] di  = 18'(wr_data[LO +: W]);
+                wire [17:0] di  = 18'(wd[LO +: W]);
                 wire [17:0] dob;
                 wire [17:0] doa;                    // port A only writes
                 wire unused_doa = ^doa;
@@ -150,7 +173,7 @@ module cube4_sdp_ram #(
                 reg [W-1:0] mem [0:(1 << AW)-1];
                 reg [W-1:0] rd_q;
                 always @(posedge clk) begin
-                    if (we) mem[wa] <= wr_data[LO +: W];
+                    if (we) mem[wa] <= wd[LO +: W];
                     if (re) rd_q <= mem[ra];
                 end
                 if (OUT_REG == 1) begin : g_out_reg

@@ -3,13 +3,14 @@
 The property it must keep (its header): during step b (b counted from the last
 clear, which is step 0), dout equals din of step b - L, for b >= L; between
 steps dout holds. For L > RA (RA = 3 with one RAM bank, 4 with several: DEPTH
-above 2048 words) the RA outputs after a clear are zero words. clear, last and
+above 2048 words) the RA outputs after a clear are zero words. L = 1 .. RA + 1 take the
+bypass (the RAM's write lands a cycle after its step), longer ones the RAM. clear, last and
 din are driven with random values on cycles without a step: the line must
 ignore them, as GRA's delay lines see them when the unit stalls.
 
 Each cocotb test runs several "frames": a clear, then a random number of steps
-with a random L (the lengths the bypass covers, L = RA + 1, the largest, and
-random ones), steps at random (probability 0.7 or 1.0). One test resets in the
+with a random L (the lengths the bypass covers, L = RA + 2, the first through the
+RAM, the largest, and random ones), steps at random (probability 0.7 or 1.0). One test resets in the
 middle of a frame and then runs a clean frame. The testbench reads DATA_W and
 DEPTH from the DUT.
 """
@@ -120,7 +121,7 @@ class TB:
 
     def lengths(self) -> list[int]:
         """Bypassed lengths, the first through the RAM, the largest, random ones."""
-        fixed = [1, 2, 3, 4, 5, self.ra + 1, self.ra + 2, self.depth]
+        fixed = [1, 2, 3, 4, 5, self.ra + 1, self.ra + 2, self.ra + 3, self.depth]
         rand = [int(v) for v in self.rng.integers(1, self.depth + 1, size=4)]
         return [n for n in dict.fromkeys(fixed + rand) if 1 <= n <= self.depth]
 
@@ -173,7 +174,8 @@ async def delay_line_reset_mid_frame(dut):
 
 PARAM_SETS = [
     {"DATA_W": 12, "DEPTH": 16},     # one bank, RA = 3
-    {"DATA_W": 1, "DEPTH": 5},       # smallest RAM path (L = 4, 5)
+    {"DATA_W": 1, "DEPTH": 5},       # L = 4 the last bypassed, L = 5 the RAM's first
+    {"DATA_W": 3, "DEPTH": 8},       # L = 5, 6, 7, 8 through the RAM
     {"DATA_W": 20, "DEPTH": 2048},   # one full bank
     {"DATA_W": 12, "DEPTH": 5000},   # three banks used of four, RA = 4
 ]

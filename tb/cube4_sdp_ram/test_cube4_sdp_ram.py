@@ -2,12 +2,12 @@
 
 Both forms run the same cocotb tests against a Python model of the RAM: read latency
 1 + IN_REG + OUT_REG, the read register and the output register advancing with the
-(registered, with IN_REG) read enable, a read of the word written at the same edge
-returning the old word. The ECP5 form instantiates DP16KD block RAMs with their output
+(registered, with IN_REG) read enable, a write one edge after its inputs with WR_REG, a
+read of the word written at the same edge returning the old word. The ECP5 form instantiates DP16KD block RAMs with their output
 register (simulated with sim/hdl/ecp5/DP16KD.v) for 128 to 16384 words and OUT_REG = 1,
 in the block's shape for the depth (1024 x 18, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1),
 so the parameter sets cover every shape, the fall-back to inferred RAM on either side,
-and IN_REG's register copies. A wrong address or data mapping of a block fails here.
+and IN_REG's and WR_REG's register copies. A wrong address or data mapping of a block fails here.
 
 Cycle discipline: the TB drives the inputs on each falling edge and reads rd_data on the
 next falling edge, after the rising edge the model applies. Write addresses are random
@@ -32,16 +32,19 @@ CLK_PERIOD_NS = 10
 class RamModel:
     """The RAM at the port's clock edges (cube4_sdp_ram's header, 'Latency')."""
 
-    def __init__(self, depth: int, in_reg: int, out_reg: int) -> None:
+    def __init__(self, depth: int, in_reg: int, wr_reg: int, out_reg: int) -> None:
         self.mem: dict[int, int] = {}
-        self.in_reg, self.out_reg = in_reg, out_reg
+        self.in_reg, self.wr_reg, self.out_reg = in_reg, wr_reg, out_reg
         self.acc_q = (0, 0, 0, 0)       # IN_REG: (re, ra, we, wa) of the last edge
+        self.wr_q = (0, 0, 0)           # WR_REG: (we, wa, wd) of the last edge
         self.rd_q: int | None = None    # None: not read yet
         self.out_q: int | None = None
 
     def edge(self, re: int, ra: int, we: int, wa: int, wd: int) -> None:
         if self.in_reg:
             (re, ra, we, wa), self.acc_q = self.acc_q, (re, ra, we, wa)
+        if self.wr_reg:
+            (we, wa, wd), self.wr_q = self.wr_q, (we, wa, wd)
         if re:
             if self.out_reg:
                 self.out_q = self.rd_q
@@ -60,7 +63,7 @@ class TB:
         self.dut = dut
         self.data_w = int(dut.DATA_W.value)
         self.depth = int(dut.DEPTH.value)
-        self.model = RamModel(self.depth, int(dut.IN_REG.value), int(dut.OUT_REG.value))
+        self.model = RamModel(self.depth, int(dut.IN_REG.value), int(dut.WR_REG.value), int(dut.OUT_REG.value))
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
 
@@ -126,6 +129,9 @@ PARAM_SETS = [
     {"DATA_W": 9, "DEPTH": 16, "OUT_REG": 1},                   # distributed RAM
     {"DATA_W": 6, "DEPTH": 20000, "OUT_REG": 1},                # deeper: inferred
     {"DATA_W": 40, "DEPTH": 64, "IN_REG": 1},                   # no output register
+    {"DATA_W": 41, "DEPTH": 2048, "WR_REG": 1, "OUT_REG": 1},   # 2048 x 9, write copies
+    {"DATA_W": 5, "DEPTH": 16384, "WR_REG": 1, "OUT_REG": 1},   # 16384 x 1, write copies
+    {"DATA_W": 9, "DEPTH": 16, "WR_REG": 1},                    # distributed RAM
 ]
 
 
