@@ -338,7 +338,7 @@ module cube4_com #(
                 end
             end
             assign rx_col1 = lb_v && (lb_m == r0_m) && (lb_pb == r0_pb) && (lb_j + 1'b1 == r0_j);
-            wire unused_rx = ^{e_p, e_c, e_n, hazard_q, nb1_q, f1_last, f1_wxn, f1_wyn, rect_addr, m_pv};
+            wire unused_rx = ^{e_p, e_c, e_n, hazard_q, nb1_l, f1_last, f1_wxn, f1_wyn, rect_addr, m_pv};
         end else begin : g_no_rx
             assign {rx_prev_v, rx_next_v, rx_hazard, rx_col1} = 4'b0000;
             assign {rx_p_j0, rx_p_j1, rx_p_i0, rx_p_i1, rx_n_j0, rx_n_j1, rx_n_i0, rx_n_i1} = '0;
@@ -655,10 +655,11 @@ module cube4_com #(
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1), .OUT_REG(1)) u_bp_beam (
         .clk(clk), .rd_en(1'b1), .rd_addr(pb_s[1]), .rd_data(a2_ram),
         .wr_en(v_s[2]), .wr_addr(pb_s[2]), .wr_data(s3_a1));
-    reg nb1_q;                          // NB = 1
-    always @(posedge clk) begin
-        nb1_q <= (cfg_nb == NB_W'(1));
-    end
+    // NB = 1, one copy per lane (each selects a lane's AC_W-bit word at S4;
+    // one flip-flop for every lane was shared with GRA's and placed far from both)
+    wire [P-1:0] nb1_l;
+    cube4_prim_copies #(.N(P), .RESET(0)) u_nb1 (
+        .clk(clk), .rst(1'b0), .d(cfg_nb == NB_W'(1)), .q(nb1_l));
     // the wide buffer words, per lane (registers of the lane's own, so that a
     // simulator writes each in place). Their enable is v_s[4], as a tree of
     // copies: v3[q] (a copy of v_s[3] per lane) and, per lane, one copy of
@@ -705,7 +706,13 @@ module cube4_com #(
     wire [PA-1:0] a1 = s4_a1;
     // the row above at the same partial beam is the previous beat (NB = 1, or a
     // rectangle one partial beam wide): its beam-buffer write comes too late
-    wire [PA-1:0] a2 = ((RECTS != 0) ? col1_s[4] : nb1_q) ? prev_a1_q : s4_a2;
+    wire [PA-1:0] a2;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_a2
+            wire from_prev = (RECTS != 0) ? col1_s[4] : nb1_l[q];
+            assign a2[q*AC_W +: AC_W] = from_prev ? prev_a1_q[q*AC_W +: AC_W] : s4_a2[q*AC_W +: AC_W];
+        end
+    endgenerate
     wire [PA-1:0] a1_k, a2_j, a2_jk;
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a1k  (.down(cfg_flip_k), .x(a1),   .y(a1_k));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_a2j  (.down(cfg_flip_j), .x(a2),   .y(a2_j));

@@ -83,7 +83,11 @@ module cube4_delay_line #(
     wire [DATA_W-1:0] rd_word;          // the RAM word for this step's dout
 
     wire [AW-1:0] pos = clear ? {AW{1'b0}} : ptr_q;     // position of this step
-    wire [AW-1:0] nxt = last ? {AW{1'b0}} : pos + 1'b1; // position of the next step
+    // position of the next step: the increment of the register, the clear and
+    // last selected after it (pos feeds the RAM's write-address copies across
+    // the block RAMs; an increment of pos would wait for that net)
+    wire [AW-1:0] inc = ptr_q + 1'b1;
+    wire [AW-1:0] nxt = last ? {AW{1'b0}} : (clear ? AW'(1) : inc);
     // (x + 1) mod L, and (RA + 1) mod L (the read address after a clear, L > RA)
     wire [AW-1:0] ra_inc = ({1'b0, ra_q} + 1'b1 == len) ? {AW{1'b0}} : ra_q + 1'b1;
     wire [AW-1:0] ra_clr = (len == (AW + 1)'(RA + 1)) ? {AW{1'b0}} : AW'(RA + 1);

@@ -176,6 +176,9 @@ module cube4_gra #(
             reg  [DIM_W-1:0] row_q;
             reg              lb_q, ls_q;
             reg              nb1_q, nj1_q;   // NB = 1, NJ = 1
+            // "keep": GRA's own (synthesis would share one flip-flop with COM's
+            // copies of the same compare, placed among COM's hundreds of loads)
+            (* keep *)
             always @(posedge clk) begin
                 nb1_q   <= (cfg_nb == NB_W'(1));
                 nj1_q   <= (cfg_nj == DIM_W'(1));
