@@ -61,11 +61,10 @@
 //   ADDR_W      the table layout's address width (cube4_cfb's).  Default 16.
 //
 // Latency
-//   10 register stages (R0, S1 .. S9, below) that move on every cycle and
-//   carry a valid bit each (no stall enable), and S10, the slice buffer's write
-//   register; S9's results are written into
+//   11 register stages (R0, S1 .. S10, below) that move on every cycle and
+//   carry a valid bit each (no stall enable); S10's results are written into
 //   the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
-//   for a last register: a finished-ray beat is on pix_* 10 cycles after it
+//   for a last register: a finished-ray beat is on pix_* 11 cycles after it
 //   entered R0 when the FIFO was empty.
 //   Back-pressure is credit-based: a beat enters R0 only when the FIFO has an
 //   entry reserved for it, so pix_ready reaches only in_ready and the FIFO's
@@ -177,11 +176,10 @@ module cube4_com #(
     //   S6  T * A (multiplier)
     //   S7  w = round_shift(T * A, AW)
     //   S8  w * C' (multipliers), T - w
-    //   S9  C += round_shift(w * C', 8); push into the FIFO (its input
-    //       register: the pixel is in the FIFO one edge later)
-    //   S10 the slice buffer's write register (acc_q, per lane): the block RAMs
-    //       of the slice buffer are spread over the die, and S9's sums went
-    //       straight into their write data (8-10 ns of routing at P = 8)
+    //   S9  C += round_shift(w * C', 8)
+    //   S10 the new partial results (acc_q, per lane): the slice buffer's
+    //       write register (its block RAMs are spread over the die) and the
+    //       source of the pixels pushed into the FIFO (one edge later in it)
     // Every stage moves on every cycle and carries a valid bit; the datapath
     // registers have no clock enable. The registers that must hold across
     // bubbles load under a valid bit: the position counters under step (R0's
@@ -736,9 +734,12 @@ module cube4_com #(
     // (the words; each lane's quarters choose with their own mode copies, g_sel)
     localparam [AC_W-1:0] FRESH_CMP = AC_W'({{(3*CW){1'b0}}, ONE});
     localparam [AC_W-1:0] FRESH_MIN = AC_W'({{VOXEL_W{1'b1}}, {LUT_W{1'b0}}});   // MinIP; MIP: 0
-    wire [PX_W-1:0] pix_d;              // S9: the lane's {R, G, B, A}
+    wire [PX_W-1:0] pix_d;              // S10: the lanes' {R, G, B, A}, from acc_q
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
+            // S10: the lane's new partial result (below), the slice buffer's write
+            // register; the pixel for the FIFO is formed from it
+            reg [AC_W-1:0] acc_q_l;
             // S5: previous partial result, or a fresh ray. The selects are
             // S5's {dxb, t0, fresh} of this lane and the (static) mode bits,
             // as NQ register copies (sel5), one per quarter of the word: one
@@ -861,7 +862,8 @@ module cube4_com #(
                     assign c_out[ch*CW +: CW] = (mode_xray_q && sum > {1'b0, ONE}) ? ONE : sum[CW-1:0];
                 end
                 assign word_cmp = AC_W'({c_out, s9_t});
-                assign pix_cmp  = {c_out, ONE - s9_t};   // {R, G, B, A}
+                // S10: the pixel {R, G, B, A = 1 - T} from the register
+                assign pix_cmp  = {acc_q_l[CW +: 3*CW], ONE - acc_q_l[0 +: CW]};
             end else begin : g_no_cmp
                 wire unused_xray = mode_xray_q;
                 assign word_cmp = '0;
@@ -884,19 +886,21 @@ module cube4_com #(
                     s8_e <= s7_e;
                     s9_e <= s8_e;
                 end
-                // the pixel: colour << (F - 8), A to F bits
+                // S10: the pixel from the register: colour << (F - 8), A to F bits
+                wire [EXT_W-1:0] e10 = acc_q_l[EXT_W-1:0];
                 wire [CW-1:0] a_px;
                 if (ACC_W >= ALPHA_W) begin : g_a_up
-                    assign a_px = CW'(s9_e[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
+                    assign a_px = CW'(e10[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
                 end else begin : g_a_down
                     wire signed [ACC_W+1:0] a_rs;
                     cube4_round_shift #(.IN_W(ALPHA_W + 1), .SHIFT(ALPHA_W - ACC_W)) u_a (
-                        .x($signed({1'b0, s9_e[0 +: ALPHA_W]})), .y(a_rs));
+                        .x($signed({1'b0, e10[0 +: ALPHA_W]})), .y(a_rs));
                     assign a_px = a_rs[CW-1:0];
                 end
-                wire [CW-1:0] r_px = CW'(s9_e[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
-                wire [CW-1:0] g_px = CW'(s9_e[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
-                wire [CW-1:0] b_px = CW'(s9_e[ALPHA_W +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] r_px = CW'(e10[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] g_px = CW'(e10[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] b_px = CW'(e10[ALPHA_W +: 8]) << (ACC_W - 8);
+                wire unused_e10 = ^e10[EXT_W-1:LUT_W];   // v: kept for the next sample only
                 assign word_ext = AC_W'(s9_e);
                 assign pix_ext  = {r_px, g_px, b_px, a_px};
             end else begin : g_no_ext
@@ -907,20 +911,33 @@ module cube4_com #(
 
             // S10: the slice buffer's write register (loads on every cycle; the
             // write enable is the beat's valid bit)
-            reg [AC_W-1:0] acc_q_l;
             always @(posedge clk) acc_q_l <= mode_ext_q ? word_ext : word_cmp;
             assign acc_q[q*AC_W +: AC_W] = acc_q_l;
             assign pix_d[q*CMP_W +: CMP_W] = mode_ext_q ? pix_ext : pix_cmp;
         end
     endgenerate
 
-    // ---- output FIFO: an S9 beat with a finished ray, or the frame's last beat ----
+    // ---- output FIFO: an S10 beat with a finished ray, or the frame's last beat ----
     // give: an S9 beat that leaves nothing returns its FIFO entry.
     wire out_d = v_s[NS-1] && ((fin_s[NS-1] != '0) || eop_s[NS-1]);   // S8: will push
-    reg  give_q;
+    reg  give_q, push_q;                // S9: returns its entry; will push at S10
     always @(posedge clk) begin
-        if (rst) give_q <= 1'b0;
-        else     give_q <= v_s[NS-1] && !out_d;
+        if (rst) begin
+            give_q <= 1'b0;
+            push_q <= 1'b0;
+        end else begin
+            give_q <= v_s[NS-1] && !out_d;
+            push_q <= out_d;
+        end
+    end
+    // the beat's fields at S10, beside its pixels
+    reg [P-1:0]      fin_10;
+    reg [M_W-1:0]    m_10;
+    reg [BX_W-1:0]   by_10;
+    reg [P*BX_W-1:0] bx_10;
+    reg              eop_10;
+    always @(posedge clk) begin
+        fin_10 <= fin_s[NS];  m_10 <= m_s[NS];  by_10 <= by_s[NS];  bx_10 <= bx_s[NS];  eop_10 <= eop_s[NS];
     end
 
     // the word: P lane groups of AC_W bits (pixels), then the shared fields
@@ -928,12 +945,14 @@ module cube4_com #(
     localparam integer OUT_W = PX_W + SH_W;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    // IN_REG: S9's sums end at a register beside them, the route to the
-    // distributed RAM gets a cycle of its own (one cycle more through COM)
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(1)) u_fifo (
+    // The FIFO stores S10's word: S9's sums end at acc_q alone (the slice
+    // buffer's write register), and the pixels are formed from it on the
+    // route to the FIFO's distributed RAM (one cycle more through COM than
+    // a FIFO written at S9)
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(give_q),
         .credit(credit), .credit_d(unused_credit_d),
-        .push_d(out_d), .in_data({fin_s[NS], m_s[NS], by_s[NS], bx_s[NS], eop_s[NS], pix_d}),
+        .push_d(push_q), .in_data({fin_10, m_10, by_10, bx_10, eop_10, pix_d}),
         .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
     assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
 
