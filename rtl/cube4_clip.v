@@ -17,7 +17,10 @@
 //   The plane's beat terms are three products shared by the lanes:
 //     E = CUT_A * (pb * P * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * (m * 2^(W - g)) + CUT_D
 //         + (CUT_A * t) * 2^W
-//   and each lane adds its own CUT_A * t (a small product, t < P).
+//   and each lane adds its own CUT_A * t (t < P): a table of the P products
+//   in registers, formed from the (static) coefficient a cycle before, so
+//   the lane's position only selects (no multiplier after the position's
+//   logic).
 //
 // Parameters
 //   P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W as cube4_tri (derived widths and the
@@ -27,6 +30,8 @@
 //   3 register stages, no enable (the caller's pipeline moves on every cycle):
 //   keep belongs to the inputs of 3 cycles earlier.
 //     c1  window compares; the three beat products; each lane's CUT_A * t
+//         (from the table, which follows cfg one cycle late: cfg is written
+//         between frames, many cycles before a beat arrives)
 //     c2  the beat's sum
 //     c3  each lane's E and its sign, with the window: keep
 //
@@ -71,6 +76,7 @@ module cube4_clip #(
     reg                 c1_wjm;                       // j and m inside the window
     reg [P-1:0]         c1_wi;                        // lane's i inside the window
     reg signed [CUT_W+LANE_W+1:0] c1_at [0:P-1];      // CUT_A * t
+    reg signed [CUT_W+LANE_W+1:0] at_tab [0:P-1];     // CUT_A * k, k = 0 .. P - 1
     always @(posedge clk) begin
         c1_a   <= cfg_cut_a * xi;       // context width EW: both operands sign-extended
         c1_b   <= cfg_cut_b * xj;
@@ -79,12 +85,15 @@ module cube4_clip #(
     end
     genvar q;
     generate
+        for (q = 0; q < P; q = q + 1) begin : g_tab
+            always @(posedge clk) at_tab[q] <= cfg_cut_a * $signed({2'b00, LANE_W'(q)});
+        end
         for (q = 0; q < P; q = q + 1) begin : g_c1
             wire [LANE_W-1:0] t = lane_pos(q, in_skew, cfg_flip_i, cfg_i_r1);
             wire [IW-1:0]     i = pbp + IW'(t);
             always @(posedge clk) begin
                 c1_wi[q] <= (i >= IW'(cfg_win_i0)) && (i < IW'(cfg_win_i1));
-                c1_at[q] <= cfg_cut_a * $signed({2'b00, t});
+                c1_at[q] <= at_tab[t];
             end
         end
     endgenerate
