@@ -27,11 +27,14 @@
 //   view layout: cube4_defs.vh).
 //
 // Latency
-//   3 register stages, no enable (the caller's pipeline moves on every cycle):
-//   keep belongs to the inputs of 3 cycles earlier.
-//     c1  window compares; the three beat products; each lane's CUT_A * t
-//         (from the table, which follows cfg one cycle late: cfg is written
-//         between frames, many cycles before a beat arrives)
+//   4 register stages, no enable (the caller's pipeline moves on every cycle):
+//   keep belongs to the inputs of 4 cycles earlier.
+//     c0  window compares along j and m; each lane's position t; the
+//         operands of the three beat products (cube4_mul's input registers)
+//     c1  the three beat products (cube4_mul's output registers); window
+//         compares along i; each lane's CUT_A * t (from the table, which
+//         follows cfg one cycle late: cfg is written between frames, many
+//         cycles before a beat arrives)
 //     c2  the beat's sum
 //     c3  each lane's E and its sign, with the window: keep
 //
@@ -39,7 +42,7 @@
 //   cfg            view registers (WIN_*, CUT_*, FLIP_I, I_R1, SS_LOG2)
 //   in_m, in_j, in_pb, in_skew   the beat (as the header's fields)
 //   in_wx, in_wy   the beat's resampling weights, Q0.W
-//   keep [P]       lane q's sample counts (3 cycles later)
+//   keep [P]       lane q's sample counts (4 cycles later)
 //
 // Bit growth and rounding
 //   None: exact integers. i * 2^W + wx and m * 2^(W - g) are below
@@ -66,34 +69,45 @@ module cube4_clip #(
     localparam integer EW  = CUT_E_W;
     localparam integer X_W = IW + WEIGHT_W + 1;     // i * 2^W + wx, signed (>= 0)
 
-    // ---- c1: window compares, beat products, lane products ----
+    // ---- c0: the multipliers' operands; each lane's position ----
     wire [IW-1:0] pbp = IW'(in_pb) * IW'(P);
     wire signed [X_W-1:0] xi = $signed({1'b0, pbp, in_wx});                         // pb*P*2^W + wx
     wire signed [X_W-1:0] xj = $signed({1'b0, IW'(in_j), in_wy});                   // j*2^W + wy
     wire [X_W-2:0]        m_sh = (X_W - 1)'(in_m) << (WEIGHT_W[3:0] - {2'b00, cfg_ss_log2});
     wire signed [X_W-1:0] xm = $signed({1'b0, m_sh});                              // m * 2^(W - g)
-    reg signed [EW-1:0] c1_a, c1_b, c1_c;
-    reg                 c1_wjm;                       // j and m inside the window
+    reg                   c0_wjm;                     // j and m inside the window
+    reg [IW-1:0]          c0_pbp;                     // pb * P
+    reg [LANE_W-1:0]      c0_t [0:P-1];               // lane q's position t
+    always @(posedge clk) begin
+        c0_wjm <= (in_j >= cfg_win_j0) && (in_j < cfg_win_j1) && (in_m >= cfg_win_m0) && (in_m < cfg_win_m1);
+        c0_pbp <= pbp;
+    end
+
+    // ---- c0 .. c1: the three beat products (operand and product registers
+    // are cube4_mul's own: the ECP5 form is a MULT18X18D with its registers) ----
+    localparam integer PR_W = CUT_W + X_W;
+    wire signed [PR_W-1:0] c1_a, c1_b, c1_c;
+    cube4_mul #(.A_W(CUT_W), .B_W(X_W)) u_mul_a (.clk(clk), .en(1'b1), .a(cfg_cut_a), .b(xi), .p(c1_a));
+    cube4_mul #(.A_W(CUT_W), .B_W(X_W)) u_mul_b (.clk(clk), .en(1'b1), .a(cfg_cut_b), .b(xj), .p(c1_b));
+    cube4_mul #(.A_W(CUT_W), .B_W(X_W)) u_mul_c (.clk(clk), .en(1'b1), .a(cfg_cut_c), .b(xm), .p(c1_c));
+
+    // ---- c1: window compares along i; each lane's CUT_A * t ----
+    reg                 c1_wjm;
     reg [P-1:0]         c1_wi;                        // lane's i inside the window
     reg signed [CUT_W+LANE_W+1:0] c1_at [0:P-1];      // CUT_A * t
     reg signed [CUT_W+LANE_W+1:0] at_tab [0:P-1];     // CUT_A * k, k = 0 .. P - 1
-    always @(posedge clk) begin
-        c1_a   <= cfg_cut_a * xi;       // context width EW: both operands sign-extended
-        c1_b   <= cfg_cut_b * xj;
-        c1_c   <= cfg_cut_c * xm;
-        c1_wjm <= (in_j >= cfg_win_j0) && (in_j < cfg_win_j1) && (in_m >= cfg_win_m0) && (in_m < cfg_win_m1);
-    end
+    always @(posedge clk) c1_wjm <= c0_wjm;
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_tab
             always @(posedge clk) at_tab[q] <= cfg_cut_a * $signed({2'b00, LANE_W'(q)});
         end
-        for (q = 0; q < P; q = q + 1) begin : g_c1
-            wire [LANE_W-1:0] t = lane_pos(q, in_skew, cfg_flip_i, cfg_i_r1);
-            wire [IW-1:0]     i = pbp + IW'(t);
+        for (q = 0; q < P; q = q + 1) begin : g_lane
+            always @(posedge clk) c0_t[q] <= lane_pos(q, in_skew, cfg_flip_i, cfg_i_r1);
+            wire [IW-1:0] i = c0_pbp + IW'(c0_t[q]);
             always @(posedge clk) begin
                 c1_wi[q] <= (i >= IW'(cfg_win_i0)) && (i < IW'(cfg_win_i1));
-                c1_at[q] <= at_tab[t];
+                c1_at[q] <= at_tab[c0_t[q]];
             end
         end
     endgenerate
@@ -105,7 +119,7 @@ module cube4_clip #(
     reg signed [CUT_W+LANE_W+1:0] c2_at [0:P-1];
     integer k;
     always @(posedge clk) begin
-        c2_base <= c1_a + c1_b + c1_c + cfg_cut_d;
+        c2_base <= EW'(c1_a) + EW'(c1_b) + EW'(c1_c) + cfg_cut_d;
         c2_wjm  <= c1_wjm;
         c2_wi   <= c1_wi;
         for (k = 0; k < P; k = k + 1) c2_at[k] <= c1_at[k];

@@ -387,8 +387,8 @@ module cube4_tri #(
     localparam integer NL       = 3 * LERP_LAT;
     reg [NL-1:1]                     lv_q;     // (stage NL: the FIFO's push copies)
     reg [META_W-1:0]   lmeta_q [1:NL];
-    // which samples count (window, cut plane): 3 cycles from s4's fields
-    localparam integer CLIP_LAT = 3;
+    // which samples count (window, cut plane): CLIP_LAT cycles from s4's fields
+    localparam integer CLIP_LAT = 4;
     wire [P-1:0] clip_keep;
     generate
         if (CLIP != 0) begin : g_clip
@@ -425,7 +425,7 @@ module cube4_tri #(
     always @(posedge clk) begin
         lmeta_q[1] <= s4_meta;
         for (kl = 2; kl <= NL; kl = kl + 1) lmeta_q[kl] <= lmeta_q[kl - 1];
-        // cube4_clip's KEEP (3 cycles after s4) replaces the placeholder
+        // cube4_clip's KEEP (CLIP_LAT cycles after s4) replaces the placeholder
         lmeta_q[CLIP_LAT + 1][HDR_KEEP +: P] <= lmeta_q[CLIP_LAT][HDR_LVALID +: P] & clip_keep;
         lwy_q[1] <= s4_wy;
         for (kl = 2; kl <= LERP_LAT - 1; kl = kl + 1) lwy_q[kl] <= lwy_q[kl - 1];
