@@ -474,9 +474,10 @@ module cube4_com #(
     // below VIEW); exit: num = VIEW - ph(m+1) (a step has just wrapped ph(m+1)).
     // Three register stages, each with little logic: S0 -> S1 the phases of
     // slices m and m+1 and the entry causes; S1 -> S2 the bins and the exit
-    // causes; S2 -> S3 the lane's weight and its column's opacity (below, g_pwt).
-    wire [P-1:0] pw_use_2;               // S2: the lane's weight is not 1
-    wire [2*P-1:0] pw_col_2;             // S2: its column (w = 1/2, 3/4, 5/4, 3/2)
+    // causes; S2 -> S3 the lane's weight (a register per lane); S3 -> S4 its
+    // column's opacity (below, g_pwt).
+    wire [P-1:0] pw_use_3;               // S3: the lane's weight is not 1
+    wire [2*P-1:0] pw_col_3;             // S3: its column (w = 1/2, 3/4, 5/4, 3/2)
     generate
         if (PLW != 0) begin : g_pw
             localparam integer NW = PH_W + 4;
@@ -536,9 +537,11 @@ module cube4_com #(
                     s2_xout1[l] <= fc[1] && (f1_ipos[l*IW +: IW] + IW'(2) == ni_ext) && f1_dxf && f1_wxn;
                 end
             end
-            // S2: the weight wq = (entry ? rq_in : 2) + (exit ? rq_out : 2), clamped
-            // to 2..6 quarters, rq of an end the minimum over its active causes;
-            // 4 keeps the LUT's A
+            // S2 -> S3: the weight wq = (entry ? rq_in : 2) + (exit ? rq_out : 2),
+            // clamped to 2..6 quarters, rq of an end the minimum over its active
+            // causes; 4 keeps the LUT's A. The lane's own registers: the causes
+            // shared by the lanes fan out to P of them, not to P * ALPHA_W
+            // selects of the opacity
             for (q = 0; q < P; q = q + 1) begin : g_pw_lane
                 wire [3:0] in_x  = s2_xin[q] ? {1'b0, s2_rxi} : 4'd9;   // 9: no cause
                 wire [3:0] in_y  = s2_yin ? {1'b0, s2_ryi} : 4'd9;
@@ -550,13 +553,19 @@ module cube4_com #(
                 wire [3:0] rq_out = s2_kout ? 4'd0 : o_xy;
                 wire [3:0] wsum = ((rq_in == 4'd9) ? 4'd2 : rq_in) + ((rq_out == 4'd9) ? 4'd2 : rq_out);
                 wire [2:0] wq   = (wsum < 4'd2) ? 3'd2 : (wsum > 4'd6) ? 3'd6 : wsum[2:0];
-                assign pw_use_2[q] = (wq != 3'd4);
-                assign pw_col_2[2*q +: 2] = (wq == 3'd2) ? 2'd0 : (wq == 3'd3) ? 2'd1 : (wq == 3'd5) ? 2'd2 : 2'd3;
+                reg       use_q;
+                reg [1:0] col_q;
+                always @(posedge clk) begin
+                    use_q <= (wq != 3'd4);
+                    col_q <= (wq == 3'd2) ? 2'd0 : (wq == 3'd3) ? 2'd1 : (wq == 3'd5) ? 2'd2 : 2'd3;
+                end
+                assign pw_use_3[q] = use_q;
+                assign pw_col_3[2*q +: 2] = col_q;
             end
         end else begin : g_no_pw
             wire unused_pw = ^{cfg_faces, lut_we, lut_addr, lut_data};
-            assign pw_use_2 = '0;
-            assign pw_col_2 = '0;
+            assign pw_use_3 = '0;
+            assign pw_col_3 = '0;
         end
     endgenerate
 
@@ -768,29 +777,30 @@ module cube4_com #(
             end
             // the sample's {R', G', B', A}, R0's word carried along S1 .. S5
             // (stage k in bits [(k-1)*LUT_W +: LUT_W], a packed shift register)
-            // PLW: at S2 -> S3 the A of a weighted sample becomes its column's
+            // PLW: at S3 -> S4 the A of a weighted sample becomes its column's
             reg  [5*LUT_W-1:0] rgba_l;
-            wire [ALPHA_W-1:0] a_s2;
+            wire [ALPHA_W-1:0] a_s3;
             always @(posedge clk) begin
-                rgba_l <= {rgba_l[4*LUT_W-1:2*LUT_W], rgba_l[LUT_W+ALPHA_W +: 24], a_s2,
-                           rgba_l[0 +: LUT_W], r0_rgba[q*LUT_W +: LUT_W]};
+                rgba_l <= {rgba_l[4*LUT_W-1:3*LUT_W], rgba_l[2*LUT_W+ALPHA_W +: 24], a_s3,
+                           rgba_l[0 +: 2*LUT_W], r0_rgba[q*LUT_W +: LUT_W]};
             end
             if (PLW != 0) begin : g_pwt
                 // the lane's copy of the path-weight columns, read with R0's sample,
                 // and its word registered once more (in S2: a block RAM's output
-                // register, no logic after the RAM)
+                // register, no logic after the RAM), then carried to S3
                 reg [PWC_W-1:0] wtab [0:(1 << VOXEL_W)-1];
-                reg [PWC_W-1:0] w1_cols, w2_cols;
+                reg [PWC_W-1:0] w1_cols, w2_cols, w3_cols;
                 always @(posedge clk) begin
                     if (lut_we) wtab[lut_addr] <= lut_data;
                     w1_cols <= wtab[r0_smp[q*VOXEL_W +: VOXEL_W]];
                     w2_cols <= w1_cols;
+                    w3_cols <= w2_cols;
                 end
-                wire [ALPHA_W-1:0] a_col = w2_cols[pw_col_2[2*q +: 2] * ALPHA_W +: ALPHA_W];
-                assign a_s2 = (pw_use_2[q] && !mode_ext_q) ? a_col : rgba_l[LUT_W +: ALPHA_W];
+                wire [ALPHA_W-1:0] a_col = w3_cols[pw_col_3[2*q +: 2] * ALPHA_W +: ALPHA_W];
+                assign a_s3 = (pw_use_3[q] && !mode_ext_q) ? a_col : rgba_l[2*LUT_W +: ALPHA_W];
             end else begin : g_no_pwt
-                wire unused_pw_lane = ^{pw_use_2[q], pw_col_2[2*q +: 2]};
-                assign a_s2 = rgba_l[LUT_W +: ALPHA_W];
+                wire unused_pw_lane = ^{pw_use_3[q], pw_col_3[2*q +: 2]};
+                assign a_s3 = rgba_l[2*LUT_W +: ALPHA_W];
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
             reg  [AC_W-1:0]  s6_acc;
