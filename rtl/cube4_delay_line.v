@@ -78,7 +78,14 @@ module cube4_delay_line #(
     reg [DATA_W-1:0] dh_q [1:RB-1];     // din of 1 .. RB-1 steps back (bypass)
     reg [AW-1:0]     ptr_q;             // position of the next step (without a clear)
     reg [AW-1:0]     ra_q;              // position RA steps after the next one: the read address
-    reg [RB:1]       l_q;               // l_q[k]: L = k
+    // dout's multiplexers in groups of G_W bits (a block RAM's width): each
+    // group has its own copies of the length flags and of the zero-word flag,
+    // so that a wide line (a plane line spans dozens of block RAMs) needs no
+    // select routed across the chip
+    localparam integer G_W = 18;
+    localparam integer NG  = (DATA_W + G_W - 1) / G_W;
+    wire [NG*RB-1:0] l_c;               // group g's l_q: bit g*RB + k-1 is L = k
+    wire [NG-1:0]    z_c;               // group g's copy of |clr_q
     reg [RA-1:1]     clr_q;             // clr_q[k]: the step k back was a clear
     wire [DATA_W-1:0] rd_word;          // the RAM word for this step's dout
 
@@ -93,12 +100,15 @@ module cube4_delay_line #(
     wire [AW-1:0] ra_clr = (len == (AW + 1)'(RA + 1)) ? {AW{1'b0}} : AW'(RA + 1);
 
     genvar k;
+    wire [RB-1:0] l_d;
     generate
         for (k = 1; k <= RB; k = k + 1) begin : g_len
-            (* keep *)   // this line's own copy (lines with the same len would share one)
-            always @(posedge clk) l_q[k] <= (len == (AW + 1)'(k));
+            assign l_d[k - 1] = (len == (AW + 1)'(k));
         end
     endgenerate
+    // (copies: this line's own, lines with the same len share none)
+    cube4_prim_copies #(.N(NG), .W(RB), .RESET(0)) u_len (
+        .clk(clk), .rst(rst), .d(l_d), .q(l_c));
     always @(posedge clk) begin
         if (rst) begin
             ptr_q <= {AW{1'b0}};
@@ -121,6 +131,10 @@ module cube4_delay_line #(
         if (rst) clr_q <= '0;
         else if (step) clr_q <= (RA - 1)'({clr_q, clear});
     end
+    // |clr_q after this edge, in each group's copy
+    wire [RA-1:1] clr_nx = step ? (RA - 1)'({clr_q, clear}) : clr_q;
+    cube4_prim_copies #(.N(NG), .W(1), .RESET(1)) u_zero (
+        .clk(clk), .rst(rst), .d(|clr_nx), .q(z_c));
 
     generate
         if (NBANK == 1) begin : g_one_bank
@@ -151,24 +165,35 @@ module cube4_delay_line #(
     endgenerate
 
     // dout: the bypass for L <= RA, the zero words after a clear, else the
-    // RAM, or for L = RB its bypass word (din of RB - 1 steps back)
-    reg [DATA_W-1:0] byp;
-    integer kb;
-    always @(*) begin
-        byp = din;
-        for (kb = RA; kb >= 2; kb = kb - 1) begin
-            if (l_q[kb]) byp = dh_q[kb - 1];
-        end
-    end
-    wire [DATA_W-1:0] far = l_q[RB] ? dh_q[RB - 1] : rd_word;   // L > RA
+    // RAM, or for L = RB its bypass word (din of RB - 1 steps back); group g
+    // selects with its own copies
     integer kd;
     always @(posedge clk) begin
         if (step) begin
             dh_q[1] <= din;
             for (kd = 2; kd < RB; kd = kd + 1) dh_q[kd] <= dh_q[kd - 1];
-            out_q <= (|l_q[RA:1]) ? byp : ((clear || (|clr_q)) ? {DATA_W{1'b0}} : far);
         end
     end
+    genvar g;
+    generate
+        for (g = 0; g < NG; g = g + 1) begin : g_out
+            localparam integer LO = g * G_W;
+            localparam integer GW = (DATA_W - LO < G_W) ? DATA_W - LO : G_W;
+            wire [RB:1] lg = l_c[g*RB +: RB];
+            reg  [GW-1:0] byp;
+            integer kb;
+            always @(*) begin
+                byp = din[LO +: GW];
+                for (kb = RA; kb >= 2; kb = kb - 1) begin
+                    if (lg[kb]) byp = dh_q[kb - 1][LO +: GW];
+                end
+            end
+            wire [GW-1:0] far = lg[RB] ? dh_q[RB - 1][LO +: GW] : rd_word[LO +: GW];   // L > RA
+            always @(posedge clk) begin
+                if (step) out_q[LO +: GW] <= (|lg[RA:1]) ? byp : ((clear || z_c[g]) ? {GW{1'b0}} : far);
+            end
+        end
+    endgenerate
 
     assign dout = out_q;
 
