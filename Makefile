@@ -7,7 +7,7 @@
 #   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
-#   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min)
+#   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, ECP5, cycles, error (reports/scenes.md; ~1 h)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
