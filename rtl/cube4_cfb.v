@@ -337,9 +337,11 @@ module cube4_cfb #(
     wire [P*LANE_W-1:0] t_d, tout_d;
     wire [REM_W-1:0]    hi_rd_d  = rem_of(e_ihi, pbp_q);
     wire [REM_W-1:0]    lo_rd_d  = rem_of(e_ilo, pbp_q);
-    wire [REM_W-1:0]    hi_out_d = rem_of(use_prev ? p_ihi_q : e_ihi, pbp_q);
-    wire [REM_W-1:0]    lo_out_d = rem_of(use_prev ? p_ilo_q : e_ilo, pbp_q);
-    wire [REM_W-1:0]    in_out_d = rem_of(use_prev ? p_iin_q : e_iin, pbp_q);
+    // (the emitted row's: both candidates' remainders, selected after them, so
+    // that the state's use_prev is not in series with the subtraction)
+    wire [REM_W-1:0]    hi_out_d = use_prev ? rem_of(p_ihi_q, pbp_q) : hi_rd_d;
+    wire [REM_W-1:0]    lo_out_d = use_prev ? rem_of(p_ilo_q, pbp_q) : lo_rd_d;
+    wire [REM_W-1:0]    in_out_d = use_prev ? rem_of(p_iin_q, pbp_q) : rem_of(e_iin, pbp_q);
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane

@@ -27,29 +27,32 @@
 //   view layout: cube4_defs.vh).
 //
 // Latency
-//   4 register stages, no enable (the caller's pipeline moves on every cycle):
-//   keep belongs to the inputs of 4 cycles earlier.
+//   5 register stages, no enable (the caller's pipeline moves on every cycle):
+//   keep belongs to the inputs of 5 cycles earlier.
 //     c0  window compares along j and m; each lane's position t; the
 //         operands of the three beat products (cube4_mul's input registers)
 //     c1  the three beat products (cube4_mul's output registers); window
 //         compares along i; each lane's CUT_A * t (from the table, which
 //         follows cfg one cycle late: cfg is written between frames, many
 //         cycles before a beat arrives)
-//     c2  the beat's sum
-//     c3  each lane's E and its sign, with the window: keep
+//     c2  the beat's sum in two halves (CUT_A and CUT_B terms; CUT_C and CUT_D)
+//     c3  the beat's sum
+//     c4  each lane's E and its sign, with the window: keep
 //
 // Ports
 //   cfg            view registers (WIN_*, CUT_*, FLIP_I, I_R1, SS_LOG2)
 //   in_m, in_j, in_pb, in_skew   the beat (as the header's fields)
 //   in_wx, in_wy   the beat's resampling weights, Q0.W
-//   keep [P]       lane q's sample counts (4 cycles later)
+//   keep [P]       lane q's sample counts (5 cycles later)
 //
 // Bit growth and rounding
 //   None: exact integers. i * 2^W + wx and m * 2^(W - g) are below
 //   (MAX_DIM + 2P) * 2^W (IW + W bits), the
 //   coefficients are CUT_W = 18 bits signed, and the host chooses them so that
 //   |E| < 2^(CUT_E_W - 1) = 2^47 over the box (golden/cube4/clip.py
-//   cut_coefficients), so the CUT_E_W-bit sums never wrap.
+//   cut_coefficients), so E never wraps in CUT_E_W bits. c2's two halves are
+//   sums modulo 2^CUT_E_W, so their sum at c3 is E exactly even where a half
+//   alone would not fit.
 // =============================================================================
 module cube4_clip #(
     parameter integer P        = 8, parameter integer MAX_DIM     = 256,
@@ -112,28 +115,36 @@ module cube4_clip #(
         end
     endgenerate
 
-    // ---- c2: the beat's sum ----
-    reg signed [EW-1:0] c2_base;
-    reg                 c2_wjm;
-    reg [P-1:0]         c2_wi;
+    // ---- c2: the beat's sum in two halves; c3: the sum ----
+    // (two adders of two operands each, then one: a sum of four straight
+    // after the multipliers' registers was the P = 4 build's path)
+    reg signed [EW-1:0] c2_ab, c2_cd, c3_base;
+    reg                 c2_wjm, c3_wjm;
+    reg [P-1:0]         c2_wi, c3_wi;
     reg signed [CUT_W+LANE_W+1:0] c2_at [0:P-1];
+    reg signed [CUT_W+LANE_W+1:0] c3_at [0:P-1];
     integer k;
     always @(posedge clk) begin
-        c2_base <= EW'(c1_a) + EW'(c1_b) + EW'(c1_c) + cfg_cut_d;
-        c2_wjm  <= c1_wjm;
-        c2_wi   <= c1_wi;
-        for (k = 0; k < P; k = k + 1) c2_at[k] <= c1_at[k];
+        c2_ab   <= EW'(c1_a) + EW'(c1_b);
+        c2_cd   <= EW'(c1_c) + cfg_cut_d;
+        c3_base <= c2_ab + c2_cd;
+        {c3_wjm, c2_wjm} <= {c2_wjm, c1_wjm};
+        {c3_wi, c2_wi}   <= {c2_wi, c1_wi};
+        for (k = 0; k < P; k = k + 1) begin
+            c2_at[k] <= c1_at[k];
+            c3_at[k] <= c2_at[k];
+        end
     end
 
-    // ---- c3: each lane's E, its sign, the window ----
-    reg [P-1:0] c3_keep;
+    // ---- c4: each lane's E, its sign, the window ----
+    reg [P-1:0] c4_keep;
     generate
-        for (q = 0; q < P; q = q + 1) begin : g_c3
-            wire signed [EW-1:0] e = c2_base + (EW'(c2_at[q]) <<< WEIGHT_W);
-            always @(posedge clk) c3_keep[q] <= c2_wjm && c2_wi[q] && !e[EW-1];
+        for (q = 0; q < P; q = q + 1) begin : g_c4
+            wire signed [EW-1:0] e = c3_base + (EW'(c3_at[q]) <<< WEIGHT_W);
+            always @(posedge clk) c4_keep[q] <= c3_wjm && c3_wi[q] && !e[EW-1];
         end
     endgenerate
-    assign keep = c3_keep;
+    assign keep = c4_keep;
 
 endmodule
 `default_nettype wire

@@ -662,11 +662,6 @@ module cube4_com #(
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1), .OUT_REG(1)) u_bp_beam (
         .clk(clk), .rd_en(1'b1), .rd_addr(pb_s[1]), .rd_data(a2_ram),
         .wr_en(v_s[2]), .wr_addr(pb_s[2]), .wr_data(s3_a1));
-    // NB = 1, one copy per lane (each selects a lane's AC_W-bit word at S4;
-    // one flip-flop for every lane was shared with GRA's and placed far from both)
-    wire [P-1:0] nb1_l;
-    cube4_prim_copies #(.N(P), .RESET(0)) u_nb1 (
-        .clk(clk), .rst(1'b0), .d(cfg_nb == NB_W'(1)), .q(nb1_l));
     // the wide buffer words, per lane (registers of the lane's own, so that a
     // simulator writes each in place). Their enable is v_s[4], as a tree of
     // copies: v3[q] (a copy of v_s[3] per lane) and, per lane, one copy of
@@ -675,6 +670,14 @@ module cube4_com #(
     // 2 * AC_W of them and was the P = 8 build's critical net: 15 ns of routing).
     localparam integer NQ = 4;                      // enable copies per register
     localparam integer QW = (AC_W + NQ - 1) / NQ;   // bits per copy (the last may be fewer)
+    // NB = 1, one copy per quarter of each lane's word (each selects a quarter
+    // of a lane's AC_W-bit word at S4, whose result the ring shifts carry to
+    // the neighbouring lanes; one flip-flop for every lane was shared with
+    // GRA's and placed far from both, one per lane still drove AC_W selects
+    // spread over three lanes: 9 ns of routing at P = 8)
+    wire [P*NQ-1:0] nb1_l;
+    cube4_prim_copies #(.N(P * NQ), .RESET(0)) u_nb1 (
+        .clk(clk), .rst(1'b0), .d(cfg_nb == NB_W'(1)), .q(nb1_l));
     wire [PA-1:0] s5_back, s5_prevb;   // this beat's and the previous beat's "back" (g_buf)
     wire [PA-1:0] back;
     wire [P-1:0]  v3;
@@ -716,8 +719,15 @@ module cube4_com #(
     wire [PA-1:0] a2;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_a2
-            wire from_prev = (RECTS != 0) ? col1_s[4] : nb1_l[q];
-            assign a2[q*AC_W +: AC_W] = from_prev ? prev_a1_q[q*AC_W +: AC_W] : s4_a2[q*AC_W +: AC_W];
+            genvar qa;
+            for (qa = 0; qa < NQ; qa = qa + 1) begin : g_q
+                localparam integer QL = q * AC_W + qa * QW;
+                localparam integer QN = (AC_W - qa * QW < QW) ? AC_W - qa * QW : QW;
+                if (QN > 0) begin : g_bits
+                    wire from_prev = (RECTS != 0) ? col1_s[4] : nb1_l[q*NQ + qa];
+                    assign a2[QL +: QN] = from_prev ? prev_a1_q[QL +: QN] : s4_a2[QL +: QN];
+                end
+            end
         end
     endgenerate
     wire [PA-1:0] a1_k, a2_j, a2_jk;

@@ -85,8 +85,7 @@ module cube4_delay_line #(
     localparam integer G_W = 18;
     localparam integer NG  = (DATA_W + G_W - 1) / G_W;
     wire [NG*RB-1:0] l_c;               // group g's l_q: bit g*RB + k-1 is L = k
-    wire [NG-1:0]    z_c;               // group g's copy of |clr_q
-    reg [RA-1:1]     clr_q;             // clr_q[k]: the step k back was a clear
+    wire [NG-1:0]    z_c;               // group g: one of the last RA - 1 steps was a clear
     wire [DATA_W-1:0] rd_word;          // the RAM word for this step's dout
 
     wire [AW-1:0] pos = clear ? {AW{1'b0}} : ptr_q;     // position of this step
@@ -124,17 +123,23 @@ module cube4_delay_line #(
     // b + 1 is the word read at step b + 1 - RA. Right after a clear ra_q is
     // off for RA steps, so the RA outputs after a clear are zero words instead
     // (they fall in the first L steps, which the caller ignores; a zero word
-    // carries no stale frame-start flag). "keep": each delay line has its own
-    // copies, not one set shared by every line of the caller.
-    (* keep *)
-    always @(posedge clk) begin
-        if (rst) clr_q <= '0;
-        else if (step) clr_q <= (RA - 1)'({clr_q, clear});
-    end
-    // |clr_q after this edge, in each group's copy
-    wire [RA-1:1] clr_nx = step ? (RA - 1)'({clr_q, clear}) : clr_q;
-    cube4_prim_copies #(.N(NG), .W(1), .RESET(1)) u_zero (
-        .clk(clk), .rst(rst), .d(|clr_nx), .q(z_c));
+    // carries no stale frame-start flag): clr_g[k], the step k back was a
+    // clear, in a copy per group of dout's bits (step on its clock enable, as
+    // on the data registers: no logic between the step and the copies).
+    // "keep": each delay line has its own copies, not one set shared by every
+    // line of the caller.
+    genvar g;
+    generate
+        for (g = 0; g < NG; g = g + 1) begin : g_clr
+            reg [RA-1:1] clr_g;
+            (* keep *)
+            always @(posedge clk) begin
+                if (rst) clr_g <= '0;
+                else if (step) clr_g <= (RA - 1)'({clr_g, clear});
+            end
+            assign z_c[g] = |clr_g;
+        end
+    endgenerate
 
     generate
         if (NBANK == 1) begin : g_one_bank
@@ -174,7 +179,6 @@ module cube4_delay_line #(
             for (kd = 2; kd < RB; kd = kd + 1) dh_q[kd] <= dh_q[kd - 1];
         end
     end
-    genvar g;
     generate
         for (g = 0; g < NG; g = g + 1) begin : g_out
             localparam integer LO = g * G_W;

@@ -388,7 +388,7 @@ module cube4_tri #(
     reg [NL-1:1]                     lv_q;     // (stage NL: the FIFO's push copies)
     reg [META_W-1:0]   lmeta_q [1:NL];
     // which samples count (window, cut plane): CLIP_LAT cycles from s4's fields
-    localparam integer CLIP_LAT = 4;
+    localparam integer CLIP_LAT = 5;
     wire [P-1:0] clip_keep;
     generate
         if (CLIP != 0) begin : g_clip
