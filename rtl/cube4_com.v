@@ -350,12 +350,39 @@ module cube4_com #(
     reg  [PB_W-1:0]  pb_q;
     reg  [DIM_W-1:0] row_q;
     reg  [SP_W-1:0]  sp_q;
-    // with rectangles the position comes with the beat (its slot {j, pb})
+    // with rectangles the position comes with the beat (its slot {j, pb}).
+    // Without, sop (a register) only selects between results computed from
+    // registers: lb_q / ls_q say pb_q / row_q are at the last beam / the last
+    // slot of a slice (kept with the counters, as in cube4_gra), the increments
+    // run on pb_q, row_q, sp_q, and the compares on registered view constants.
     wire [PB_W-1:0]  pos_pb  = (RECTS != 0) ? r0_pb : (sop ? {PB_W{1'b0}} : pb_q);
     wire [DIM_W-1:0] pos_row = sop ? {DIM_W{1'b0}} : row_q;
     wire [SP_W-1:0]  pos_sp  = (RECTS != 0) ? SP_W'({r0_j[RW-1:0], r0_pb}) : (sop ? {SP_W{1'b0}} : sp_q);
-    wire last_beam  = (NB_W'(pos_pb) == cfg_nb - 1'b1);
-    wire last_slice = last_beam && (pos_row == cfg_nj - 1'b1);
+    reg              lb_q, ls_q;                 // pb_q = NB - 1; and row_q = NJ - 1
+    reg              nb1_q, nb2_q, nj1_q, nj2_q; // NB = 1, NB = 2, NJ = 1, NJ = 2
+    reg  [NB_W-1:0]  nbm1_q, nbm2_q;             // NB - 1, NB - 2
+    reg  [DIM_W-1:0] njm1_q, njm2_q;             // NJ - 1, NJ - 2
+    always @(posedge clk) begin
+        nb1_q  <= (cfg_nb == NB_W'(1));
+        nb2_q  <= (cfg_nb == NB_W'(2));
+        nj1_q  <= (cfg_nj == DIM_W'(1));
+        nj2_q  <= (cfg_nj == DIM_W'(2));
+        nbm1_q <= cfg_nb - NB_W'(1);
+        nbm2_q <= cfg_nb - NB_W'(2);
+        njm1_q <= cfg_nj - DIM_W'(1);
+        njm2_q <= cfg_nj - DIM_W'(2);
+    end
+    wire last_beam  = (RECTS != 0) ? (NB_W'(r0_pb) == nbm1_q) : (sop ? nb1_q : lb_q);
+    wire last_slice = (RECTS != 0) ? (last_beam && (pos_row == njm1_q)) : (sop ? (nb1_q && nj1_q) : ls_q);
+    // pos_pb + 1 == NB - 1, pos_row == NJ - 1, pos_row + 1 == NJ - 1 (used where NB > 1 / NJ > 1)
+    wire pb_e2  = sop ? nb2_q : (NB_W'(pb_q) == nbm2_q);
+    wire row_e1 = sop ? nj1_q : (row_q == njm1_q);
+    wire row_e2 = sop ? nj2_q : (row_q == njm2_q);
+    wire [PB_W-1:0]  pb_inc  = sop ? PB_W'(1) : pb_q + 1'b1;
+    wire [DIM_W-1:0] row_inc = sop ? DIM_W'(1) : row_q + 1'b1;
+    wire [SP_W-1:0]  sp_inc  = (RECTS != 0) ? pos_sp + 1'b1 : (sop ? SP_W'(1) : sp_q + 1'b1);
+    wire lb_n = last_beam ? nb1_q : pb_e2;
+    wire ls_n = lb_n && (!last_beam ? row_e1 : (last_slice ? nj1_q : row_e2));
 
     // ---- template of slice m+1 (for "next sample inside") and steps of slice m ----
     reg  [PH_W-1:0]  phx_q, phy_q;      // phase of slice m + 1
@@ -382,10 +409,14 @@ module cube4_com #(
             pb_q  <= {PB_W{1'b0}};
             row_q <= {DIM_W{1'b0}};
             sp_q  <= {SP_W{1'b0}};
+            lb_q  <= 1'b0;
+            ls_q  <= 1'b0;
         end else if (step) begin
-            pb_q  <= last_beam ? {PB_W{1'b0}} : pos_pb + 1'b1;
-            row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
-            sp_q  <= last_slice ? {SP_W{1'b0}} : pos_sp + 1'b1;
+            pb_q  <= last_beam ? {PB_W{1'b0}} : pb_inc;
+            row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : row_inc);
+            sp_q  <= last_slice ? {SP_W{1'b0}} : sp_inc;
+            lb_q  <= lb_n;
+            ls_q  <= ls_n;
         end
     end
     always @(posedge clk) begin

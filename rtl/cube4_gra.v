@@ -597,19 +597,29 @@ module cube4_gra #(
     // Per lane of h1 (the next centre), where its i - 1 and i + 1 are: inside
     // the volume (hi_ok, lo_ok) and in the next / previous beat (hi_new,
     // lo_old). Registered with h1 into h2 (the window of h2 uses them).
+    // With i = pb * P + t and NB = ceil(NI / P): i + 1 < NI holds in every
+    // partial beam but the last, and in the last where t < r = NI - 1 - (NB - 1) * P
+    // (0 <= r < P, exact modulo 2^LANE_W); i > 0 where pb > 0 or t > 0. So the
+    // flags are compares of h1's fields with registered view constants, with
+    // no sum of the position on the path.
     wire [PB_W-1:0]   h1_pb   = h1_meta[HDR_PB +: PB_W];
     wire [LANE_W-1:0] h1_skew = h1_meta[HDR_SKEW +: LANE_W];
-    wire [IW-1:0]     h1_pbp  = IW'(h1_pb) * IW'(P);
-    wire [IW-1:0]     ni_ext  = IW'(cfg_ni);
+    reg  [NB_W-1:0]   nbm1_q;             // NB - 1
+    reg  [LANE_W-1:0] ni_r_q;             // r: the last partial beam's last lane position
+    always @(posedge clk) begin
+        nbm1_q <= cfg_nb - 1'b1;
+        ni_r_q <= LANE_W'(IW'(cfg_ni) + IW'(P - 1) - IW'(cfg_nb) * IW'(P));
+    end
+    wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
+    wire              h1_pb_zero = (h1_pb == '0);
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
     reg  [P-1:0]      h2_hi_ok, h2_lo_ok, h2_hi_new, h2_lo_old;
     reg  [1:0]        h1_edge, h2_edge;   // {last, first} partial beam of the walk (c_edge)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
             wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
-            wire [IW-1:0] i_pos = h1_pbp + IW'(t);
-            assign hi_ok_d[q]  = (i_pos + 1'b1 < ni_ext);
-            assign lo_ok_d[q]  = (i_pos != '0);
+            assign hi_ok_d[q]  = !h1_pb_last || (t < ni_r_q);
+            assign lo_ok_d[q]  = !h1_pb_zero || (t != '0);
             assign hi_new_d[q] = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
             assign lo_old_d[q] = (t == '0);                  // i - 1 is in the previous beat
         end
