@@ -885,6 +885,7 @@ module cube4_com #(
                 // S9's), T - w (X-ray: at least 0)
                 wire [3*WC_W-1:0] s9_wc;
                 reg  [3*WC_W-1:0] s9_cin;    // {C, 2^7} per channel: C * 2^8 + the rounding half
+                reg  [3*(WC_W+1)-1:0] s9_dsat;   // C * 2^8 + 2^7 - (ONE + 1) * 2^8, signed
                 reg  [CW-1:0]     s9_t;
                 genvar ch;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // channel ch = B, G, R for 0, 1, 2
@@ -896,6 +897,8 @@ module cube4_com #(
                     wire unused_wc = ^wc_p[WC_W +: 2];
                     always @(posedge clk) begin
                         s9_cin[ch*WC_W +: WC_W] <= {s8_acc[CW + ch*CW +: CW], 8'h80};
+                        s9_dsat[ch*(WC_W+1) +: WC_W+1] <= (WC_W+1)'({1'b0, s8_acc[CW + ch*CW +: CW], 8'h80})
+                                                        - (WC_W+1)'({1'b0, ONE} + 1'b1) * (WC_W+1)'(256);
                     end
                 end
                 wire [CW-1:0] t8 = s8_acc[0 +: CW];
@@ -904,13 +907,21 @@ module cube4_com #(
                 end
                 // S9: C += round_shift(w * C', 8) (X-ray: at most 2^F), in one
                 // add: C + floor((wc + 2^7) / 2^8) = floor((C * 2^8 + 2^7 + wc) / 2^8)
-                // (w * C' / 2^8 < 2^CW, so the sum needs CW + 1 bits, as before)
+                // (w * C' / 2^8 < 2^CW, so the sum needs CW + 1 bits, as before).
+                // The X-ray's sum > ONE, i.e. C * 2^8 + 2^7 + wc >= (ONE + 1) * 2^8,
+                // is the sign of a second add beside the first, s9_dsat + wc, with
+                // s9_dsat in [-2^WC_W, 0) and wc in [0, 2^WC_W): it fits WC_W + 2
+                // signed bits and nothing wraps (no compare after the add)
                 wire [3*CW-1:0] c_out;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
                     wire [WC_W:0] sum_x = {1'b0, s9_cin[ch*WC_W +: WC_W]} + {1'b0, s9_wc[ch*WC_W +: WC_W]};
                     wire [CW:0]   sum   = sum_x[WC_W:8];
                     wire unused_frac = ^sum_x[7:0];
-                    assign c_out[ch*CW +: CW] = (mode_xray_q && sum > {1'b0, ONE}) ? ONE : sum[CW-1:0];
+                    wire signed [WC_W+1:0] sat_x = $signed({s9_dsat[ch*(WC_W+1) + WC_W], s9_dsat[ch*(WC_W+1) +: WC_W+1]})
+                                                 + $signed({2'b00, s9_wc[ch*WC_W +: WC_W]});
+                    wire over = !sat_x[WC_W+1];    // sum > ONE
+                    wire unused_sat = ^{sat_x[WC_W:0], sum[CW]};
+                    assign c_out[ch*CW +: CW] = (mode_xray_q && over) ? ONE : sum[CW-1:0];
                 end
                 assign word_cmp = AC_W'({c_out, s9_t});
                 // S10: the pixel {R, G, B, A = 1 - T} from the register
