@@ -120,7 +120,9 @@ module cube4_credit_fifo #(
     reg  [AW:0] cnt_q;                  // items stored in the memory
     reg         nonempty_q;
     wire        rd = nonempty_q && out_ready;    // an item leaves
-    wire [AW:0] cnt_d = cnt_q + {{AW{1'b0}}, push[0]} - {{AW{1'b0}}, rd};
+    // (rd selects between two sums of registers, after them)
+    wire [AW:0] cnt_p = cnt_q + {{AW{1'b0}}, push[0]};
+    wire [AW:0] cnt_d = rd ? cnt_p - 1'b1 : cnt_p;
     wire        cnt_ge2 = (cnt_q >= (AW + 1)'(2));
     always @(posedge clk) begin
         if (rst) begin
@@ -135,7 +137,8 @@ module cube4_credit_fifo #(
 
     // ---- reservations ----
     reg  [AW:0] res_q;                  // reservations held: 0 .. DEPTH
-    wire [AW:0] res_d = res_q + {{AW{1'b0}}, take} - {{AW{1'b0}}, give} - {{AW{1'b0}}, rd};
+    wire [AW:0] res_tg = res_q + {{AW{1'b0}}, take} - {{AW{1'b0}}, give};
+    wire [AW:0] res_d  = rd ? res_tg - 1'b1 : res_tg;   // (rd: a select after the sums)
     always @(posedge clk) begin
         if (rst) res_q <= '0;
         else     res_q <= res_d;
