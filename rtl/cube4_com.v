@@ -248,6 +248,11 @@ module cube4_com #(
         end
     endgenerate
     wire step = r0_v;                   // the R0 beat enters S1
+    // copies of r0_v for S0's position counters and slice template (kept apart
+    // in synthesis: r0_v itself drives the stage valid bits and the lanes' loads)
+    wire [1:0] step_c;
+    cube4_prim_copies #(.N(2), .RESET(1)) u_step (
+        .clk(clk), .rst(rst), .d(take), .q(step_c));
 
     wire sop   = r0_ctrl[CTRL_SOP];
     wire eop   = r0_ctrl[CTRL_EOP];
@@ -411,7 +416,7 @@ module cube4_com #(
             sp_q  <= {SP_W{1'b0}};
             lb_q  <= 1'b0;
             ls_q  <= 1'b0;
-        end else if (step) begin
+        end else if (step_c[0]) begin
             pb_q  <= last_beam ? {PB_W{1'b0}} : pb_inc;
             row_q <= !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : row_inc);
             sp_q  <= last_slice ? {SP_W{1'b0}} : sp_inc;
@@ -420,7 +425,7 @@ module cube4_com #(
         end
     end
     always @(posedge clk) begin
-        if (step) begin
+        if (step_c[1]) begin
             phx_q <= phx_n;
             phy_q <= phy_n;
             stx_q <= stx_n;
