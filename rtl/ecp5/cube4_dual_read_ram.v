@@ -1,0 +1,84 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_dual_read_ram  (ECP5 form; the generic form is rtl/cube4_dual_read_ram.v)
+// -----------------------------------------------------------------------------
+// Purpose
+//   The two-lane table of rtl/cube4_dual_read_ram.v (same ports, parameters
+//   and timing) on the ECP5's DP16KD block RAMs. With OUT_REG = 1 and 128
+//   to 16384 words, the word is sliced as rtl/ecp5/cube4_sdp_ram.v slices it
+//   (1024 x 18 up to 1024 words, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1),
+//   each slice one block (rtl/ecp5/cube4_prim_ebr.v) in true dual-port use:
+//   port A writes, or reads for port 0 (its address is the write's in a
+//   write cycle, port 0's otherwise), port B reads for port 1, both through
+//   the block's output register. Other sizes are left to Yosys as in the
+//   generic form.
+//
+// Parameters, latency, ports: as rtl/cube4_dual_read_ram.v.
+// =============================================================================
+module cube4_dual_read_ram #(
+    parameter  integer DATA_W  = 8,
+    parameter  integer DEPTH   = 16,
+    parameter  integer OUT_REG = 1,
+    localparam integer AW      = (DEPTH > 1) ? $clog2(DEPTH) : 1
+) (
+    input  wire              clk,
+    input  wire              rd_en,
+    input  wire [AW-1:0]     rd0_addr,
+    output wire [DATA_W-1:0] rd0_data,
+    input  wire [AW-1:0]     rd1_addr,
+    output wire [DATA_W-1:0] rd1_data,
+    input  wire              wr_en,
+    input  wire [AW-1:0]     wr_addr,
+    input  wire [DATA_W-1:0] wr_data
+);
+    generate
+        `CUBE4_RANGE(g_bad_data_w, "cube4_dual_read_ram", "DATA_W", DATA_W, 1, 4096)
+        if (DEPTH < 1 || DEPTH > (1 << 24)) begin : g_bad_depth
+            $error("cube4_dual_read_ram: DEPTH = %0d is out of range 1..2^24", DEPTH);
+        end
+        `CUBE4_RANGE(g_bad_out_reg, "cube4_dual_read_ram", "OUT_REG", OUT_REG, 0, 1)
+    endgenerate
+
+    localparam integer USE_EBR = (OUT_REG == 1 && AW >= 7 && AW <= 14) ? 1 : 0;
+    // the block's shape for the depth (as rtl/ecp5/cube4_sdp_ram.v with OUT_REG = 1)
+    localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : ((AW == 11) ? 9 : 18)));
+    localparam integer N_SL = (DATA_W + SL_W - 1) / SL_W;
+
+    generate
+        if (USE_EBR == 1) begin : g_ebr
+            wire [AW-1:0] a_addr = wr_en ? wr_addr : rd0_addr;
+            genvar sl;
+            for (sl = 0; sl < N_SL; sl = sl + 1) begin : g_slice
+                localparam integer LO = sl * SL_W;
+                localparam integer W  = (DATA_W - LO < SL_W) ? DATA_W - LO : SL_W;
+                cube4_prim_ebr #(.SHAPE_W(SL_W), .W(W), .AW(AW), .READ_A(1)) u_ebr (
+                    .clk(clk), .a_en(rd_en), .a_we(wr_en), .a_addr(a_addr), .a_wd(wr_data[LO +: W]),
+                    .a_rd(rd0_data[LO +: W]),
+                    .b_en(rd_en), .b_addr(rd1_addr), .b_rd(rd1_data[LO +: W]));
+            end
+        end else begin : g_infer
+            reg [DATA_W-1:0] mem [0:DEPTH-1];
+            reg [DATA_W-1:0] rd0_q, rd1_q;
+            always @(posedge clk) begin
+                if (wr_en) mem[wr_addr] <= wr_data;
+                if (rd_en && !wr_en) rd0_q <= mem[rd0_addr];
+                if (rd_en) rd1_q <= mem[rd1_addr];
+            end
+            if (OUT_REG == 1) begin : g_out_reg
+                reg [DATA_W-1:0] out0_q, out1_q;
+                always @(posedge clk) begin
+                    if (rd_en) out0_q <= rd0_q;
+                    if (rd_en) out1_q <= rd1_q;
+                end
+                assign rd0_data = out0_q;
+                assign rd1_data = out1_q;
+            end else begin : g_no_out_reg
+                assign rd0_data = rd0_q;
+                assign rd1_data = rd1_q;
+            end
+        end
+    endgenerate
+
+endmodule
+`default_nettype wire
