@@ -25,12 +25,13 @@
 //   loaded on an edge with the port's enable) and the output register
 //   (loaded with the enable too), so both hold while the enable is 0. A
 //   write is seen by a read one edge after it. Port A in a cycle with a_we
-//   does not read: its latch keeps its word (the block's NORMAL write mode).
+//   does not read: both its registers keep their words (the latch by the
+//   block's NORMAL write mode, the output register by its enable).
 //   Port B reading the word written at the same edge returns the old word
 //   (undefined on the device; the callers make no such read).
 //
 // Ports
-//   a_en  in   port A's read enable (READ_A = 1)
+//   a_en  in   port A's read enable (READ_A = 1; no read while a_we = 1)
 //   a_we  in   write enable
 //   a_addr, b_addr  in  [AW]
 //   a_wd  in   [W] the word written
@@ -78,7 +79,7 @@ module cube4_prim_ebr #(
             reg [W-1:0] a_lat_q, a_out_q;
             always @(posedge clk) begin
                 if (a_en && !a_we) a_lat_q <= mem[a_addr];
-                if (a_en)          a_out_q <= a_lat_q;
+                if (a_en && !a_we) a_out_q <= a_lat_q;
             end
             assign a_rd = a_out_q;
         end else begin : g_write_a

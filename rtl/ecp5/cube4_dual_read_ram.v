@@ -11,8 +11,10 @@
 //   each slice one block (rtl/ecp5/cube4_prim_ebr.v) in true dual-port use:
 //   port A writes, or reads for port 0 (its address is the write's in a
 //   write cycle, port 0's otherwise), port B reads for port 1, both through
-//   the block's output register. Other sizes are left to Yosys as in the
-//   generic form.
+//   the block's output register. Other sizes (or OUT_REG = 0) are one
+//   cube4_sdp_ram per read port, both written: a copy per lane, as if the
+//   table were not shared (SHA's map at RMAP_BITS = 6, its LUT at VOXEL_W
+//   above 14).
 //
 // Parameters, latency, ports: as rtl/cube4_dual_read_ram.v.
 // =============================================================================
@@ -57,26 +59,14 @@ module cube4_dual_read_ram #(
                     .a_rd(rd0_data[LO +: W]),
                     .b_en(rd_en), .b_addr(rd1_addr), .b_rd(rd1_data[LO +: W]));
             end
-        end else begin : g_infer
-            reg [DATA_W-1:0] mem [0:DEPTH-1];
-            reg [DATA_W-1:0] rd0_q, rd1_q;
-            always @(posedge clk) begin
-                if (wr_en) mem[wr_addr] <= wr_data;
-                if (rd_en && !wr_en) rd0_q <= mem[rd0_addr];
-                if (rd_en) rd1_q <= mem[rd1_addr];
-            end
-            if (OUT_REG == 1) begin : g_out_reg
-                reg [DATA_W-1:0] out0_q, out1_q;
-                always @(posedge clk) begin
-                    if (rd_en) out0_q <= rd0_q;
-                    if (rd_en) out1_q <= rd1_q;
-                end
-                assign rd0_data = out0_q;
-                assign rd1_data = out1_q;
-            end else begin : g_no_out_reg
-                assign rd0_data = rd0_q;
-                assign rd1_data = rd1_q;
-            end
+        end else begin : g_two
+            // one RAM per read port, both written (Yosys infers each)
+            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) u_rd0 (
+                .clk(clk), .rd_en(rd_en && !wr_en), .rd_addr(rd0_addr), .rd_data(rd0_data),
+                .wr_en(wr_en), .wr_addr(wr_addr), .wr_data(wr_data));
+            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) u_rd1 (
+                .clk(clk), .rd_en(rd_en), .rd_addr(rd1_addr), .rd_data(rd1_data),
+                .wr_en(wr_en), .wr_addr(wr_addr), .wr_data(wr_data));
         end
     endgenerate
 

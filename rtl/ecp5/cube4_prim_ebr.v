@@ -50,7 +50,7 @@ module cube4_prim_ebr #(
     wire [17:0] doa, dob;
     // port A's clock enable: its write, and its read with READ_A
     wire cea  = (READ_A == 1) ? (a_en || a_we) : 1'b1;
-    wire ocea = (READ_A == 1) ? a_en : 1'b1;
+    wire ocea = (READ_A == 1) ? (a_en && !a_we) : 1'b1;
     DP16KD #(
         .DATA_WIDTH_A (SHAPE_W), .DATA_WIDTH_B (SHAPE_W),
         .REGMODE_A ((READ_A == 1) ? "OUTREG" : "NOREG"), .REGMODE_B ("OUTREG"),

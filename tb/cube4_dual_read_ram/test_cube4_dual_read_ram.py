@@ -3,8 +3,8 @@
 Both forms run the same cocotb tests against a Python model of the RAM (the module's
 header, 'Latency'): two read ports of latency 1 + OUT_REG whose registers advance with
 rd_en, a write seen one edge later, port 1 reading the word written at the same edge
-returning the old word, and port 0 not reading in a cycle with wr_en (its registers keep
-their words). The ECP5 form puts each slice in one DP16KD (rtl/ecp5/cube4_prim_ebr.v,
+returning the old word, and port 0 not reading in a cycle with wr_en (both its registers
+keep their words). The ECP5 form puts each slice in one DP16KD (rtl/ecp5/cube4_prim_ebr.v,
 simulated with sim/hdl/ecp5/DP16KD.v) in true dual-port use, port A's address the
 write's or port 0's; the parameter sets cover every block shape and the fall-back to
 inferred RAM. A wrong address or data mapping of a block, a port 0 read that a write
@@ -39,12 +39,11 @@ class DualReadModel:
         self.out_q: list[int | None] = [None, None]
 
     def edge(self, re: int, ra: tuple[int, int], we: int, wa: int, wd: int) -> None:
-        if re:
-            for port in (0, 1):
+        for port in (0, 1):
+            if re and (port == 1 or not we):        # port 0 does not read while writing
                 if self.out_reg:
                     self.out_q[port] = self.rd_q[port]
-                if port == 1 or not we:             # port 0 does not read while writing
-                    self.rd_q[port] = self.mem.get(ra[port])
+                self.rd_q[port] = self.mem.get(ra[port])
         if we:
             self.mem[wa] = wd
 
