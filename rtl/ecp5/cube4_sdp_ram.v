@@ -36,7 +36,7 @@
 //     sim/hdl/ecp5/DP16KD.v models the primitive for simulation. A read
 //     of the word written at the same edge is undefined on the device (the
 //     model returns the old word); cube4_sdp_ram's callers make none.
-//   tb/cube4_top test_synthesis_ram_form_p1 simulates this form, and
+//   tb/cube4_top test_synthesis_form simulates this form, and
 //   tb/cube4_sdp_ram runs both forms against a model of the RAM.
 //
 // Parameters, latency, ports, bit growth: as rtl/cube4_sdp_ram.v.
