@@ -849,20 +849,19 @@ module cube4_com #(
                 assign a_s3 = rgba_l[2*LUT_W +: ALPHA_W];
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
-            reg  [AC_W-1:0]  s6_acc;
             reg  [LUT_W-1:0] s6_rgba;
             always @(posedge clk) begin
-                s6_acc  <= acc_in;
                 s6_rgba <= rgba5;
             end
             wire [AC_W-1:0]  word_cmp, word_ext;    // S9: the new partial result
             wire [CMP_W-1:0] pix_cmp, pix_ext;      // S9: {R, G, B, A} of a finished ray
 
             if (COMPOSITING != 0) begin : g_cmp
-                reg  [CMP_W-1:0] s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
+                reg  [CMP_W-1:0] s6_acc, s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
                 reg  [23:0]      s7_c;              // the sample's {R', G', B'}
                 always @(posedge clk) begin
-                    {s7_acc, s8_acc} <= {s6_acc[CMP_W-1:0], s7_acc};
+                    s6_acc           <= acc_in[CMP_W-1:0];
+                    {s7_acc, s8_acc} <= {s6_acc, s7_acc};
                     s7_c             <= s6_rgba[ALPHA_W +: 24];
                 end
                 // S6: T * A (X-ray: 2^F * A); cube4_mul's operand registers
@@ -944,12 +943,18 @@ module cube4_com #(
                     v_l <= {v_l[5*VOXEL_W-1:0], r0_smp[q*VOXEL_W +: VOXEL_W]};
                 end
                 wire [VOXEL_W-1:0] v6 = v_l[5*VOXEL_W +: VOXEL_W];
-                // S6: take the sample if it counts and is at least (MinIP: at most) the kept v
-                wire [VOXEL_W-1:0] kept = s6_acc[LUT_W +: VOXEL_W];
+                // S6: the extremum's register of the partial result (kept
+                // apart from g_cmp's s6_acc, whose low bits it shares: each
+                // placed by its own logic), then take
+                // the sample if it counts and is at least (MinIP: at most) the kept v
+                wire [EXT_W-1:0] s6_e;
+                cube4_prim_copies #(.N(1), .W(EXT_W), .RESET(0)) u_s6_e (
+                    .clk(clk), .rst(1'b0), .d(acc_in[EXT_W-1:0]), .q(s6_e));
+                wire [VOXEL_W-1:0] kept = s6_e[LUT_W +: VOXEL_W];
                 wire take_s = cnt_s[6][q] && (mode_min_q ? (v6 <= kept) : (v6 >= kept));
                 reg [EXT_W-1:0] s7_e, s8_e, s9_e;
                 always @(posedge clk) begin
-                    s7_e <= take_s ? {v6, s6_rgba} : s6_acc[EXT_W-1:0];
+                    s7_e <= take_s ? {v6, s6_rgba} : s6_e;
                     s8_e <= s7_e;
                     s9_e <= s8_e;
                 end
