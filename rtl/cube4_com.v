@@ -857,10 +857,15 @@ module cube4_com #(
             wire [CMP_W-1:0] pix_cmp, pix_ext;      // S9: {R, G, B, A} of a finished ray
 
             if (COMPOSITING != 0) begin : g_cmp
-                reg  [CMP_W-1:0] s6_acc, s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
+                // S6: compositing's register of the partial result, kept
+                // apart from the extremum's (g_ext's s6_e, which shares its
+                // low bits): each is placed by its own logic
+                wire [CMP_W-1:0] s6_acc;
+                cube4_prim_copies #(.N(1), .W(CMP_W), .RESET(0)) u_s6_acc (
+                    .clk(clk), .rst(1'b0), .d(acc_in[CMP_W-1:0]), .q(s6_acc));
+                reg  [CMP_W-1:0] s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
                 reg  [23:0]      s7_c;              // the sample's {R', G', B'}
                 always @(posedge clk) begin
-                    s6_acc           <= acc_in[CMP_W-1:0];
                     {s7_acc, s8_acc} <= {s6_acc, s7_acc};
                     s7_c             <= s6_rgba[ALPHA_W +: 24];
                 end
@@ -944,8 +949,9 @@ module cube4_com #(
                 end
                 wire [VOXEL_W-1:0] v6 = v_l[5*VOXEL_W +: VOXEL_W];
                 // S6: the extremum's register of the partial result (kept
-                // apart from g_cmp's s6_acc, whose low bits it shares: each
-                // placed by its own logic), then take
+                // apart from g_cmp's s6_acc, which shares its low bits: both
+                // are cube4_prim_copies, which synthesis never merges; a plain
+                // register would be merged into the kept one), then take
                 // the sample if it counts and is at least (MinIP: at most) the kept v
                 wire [EXT_W-1:0] s6_e;
                 cube4_prim_copies #(.N(1), .W(EXT_W), .RESET(0)) u_s6_e (
