@@ -209,7 +209,7 @@ module cube4_com #(
     wire take = in_valid && in_ready;   // a beat enters R0
 
     // ==== R0: input register (loads on every cycle; r0_v marks a beat) ====
-    reg                 r0_v;
+    wire                r0_v;           // u_step's first copy (below)
     wire [P*LUT_W-1:0]  r0_rgba;        // per lane registers (g_r0)
     wire [P*VOXEL_W-1:0] r0_smp;        // per lane registers (g_r0; extremum builds)
     reg [HDR_W-1:0]     r0_hdr;
@@ -221,10 +221,6 @@ module cube4_com #(
     wire [LANE_W-1:0]   r0_skew        = r0_hdr[HDR_SKEW +: LANE_W];
     wire [6:0]          r0_ctrl        = r0_hdr[HDR_CTRL +: 7];
     reg                 r0_first;       // j = 0 and pb = 0: the first beat of a slice
-    always @(posedge clk) begin
-        if (rst) r0_v <= 1'b0;
-        else     r0_v <= take;
-    end
     always @(posedge clk) begin
         r0_first <= (in_hdr[HDR_J +: DIM_W] == '0) && (in_hdr[HDR_PB +: PB_W] == '0);
         r0_hdr   <= in_hdr;
@@ -248,11 +244,12 @@ module cube4_com #(
         end
     endgenerate
     wire step = r0_v;                   // the R0 beat enters S1
-    // copies of r0_v for S0's position counters and slice template (kept apart
-    // in synthesis: r0_v itself drives the stage valid bits and the lanes' loads)
+    // R0's valid in three kept copies: r0_v (the stage valid bits and the
+    // lanes' loads), and one each for S0's position counters and slice
+    // template (a plain r0_v register would be merged into one of them)
     wire [1:0] step_c;
-    cube4_prim_copies #(.N(2), .RESET(1)) u_step (
-        .clk(clk), .rst(rst), .d(take), .q(step_c));
+    cube4_prim_copies #(.N(3), .RESET(1)) u_step (
+        .clk(clk), .rst(rst), .d(take), .q({step_c, r0_v}));
 
     wire sop   = r0_ctrl[CTRL_SOP];
     wire eop   = r0_ctrl[CTRL_EOP];
