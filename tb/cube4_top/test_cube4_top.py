@@ -73,9 +73,9 @@ def test_short_slices():
     rng = np.random.default_rng(31)
     cfg = Cube4Config(pipelines=p)
     # (dims (x, y, z), view, beats per slice L = NJ * ceil(NI / P), stalls)
-    cases = [((8, 9, 12), (0.2, 0.3, 1.0), COM_MIN_SLICE - 1, False),
-             ((12, 8, 9), (1.0, 0.3, 0.2), COM_MIN_SLICE - 1, True),
-             ((8, 10, 12), (-0.3, 0.2, -1.0), COM_MIN_SLICE, False),
+    cases = [((8, 10, 12), (0.2, 0.3, 1.0), COM_MIN_SLICE - 1, False),
+             ((12, 8, 10), (1.0, 0.3, 0.2), COM_MIN_SLICE - 1, True),
+             ((8, 11, 12), (-0.3, 0.2, -1.0), COM_MIN_SLICE, False),
              ((3, 3, 6), (0.2, 0.3, 1.0), 3, False)]
     for dims, view, beats, stall in cases:
         nx, ny, nz = dims
