@@ -61,9 +61,10 @@
 //   ADDR_W      the table layout's address width (cube4_cfb's).  Default 16.
 //
 // Latency
-//   12 register stages (R0, S1 .. S11, below) that move on every cycle and
-//   carry a valid bit each (no stall enable); S11's results are written into
-//   the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
+//   12 register stages (R0, S1 .. S11, below) that move on every cycle (no
+//   stall enable); R0 .. S10 carry a valid bit each, S11 (acc_q) is written
+//   under S10's (the slice buffer's write enable and the FIFO's push, both
+//   given one stage early). S11's results are written into the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
 //   for a last register: a finished-ray beat is on pix_* 12 cycles after it
 //   entered R0 when the FIFO was empty.
 //   Back-pressure is credit-based: a beat enters R0 only when the FIFO has an
@@ -971,20 +972,20 @@ module cube4_com #(
                     s10_e <= s9_e;
                 end
                 // S11: the pixel from the register: colour << (F - 8), A to F bits
-                wire [EXT_W-1:0] e10 = acc_q_l[EXT_W-1:0];
+                wire [EXT_W-1:0] e11 = acc_q_l[EXT_W-1:0];
                 wire [CW-1:0] a_px;
                 if (ACC_W >= ALPHA_W) begin : g_a_up
-                    assign a_px = CW'(e10[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
+                    assign a_px = CW'(e11[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
                 end else begin : g_a_down
                     wire signed [ACC_W+1:0] a_rs;
                     cube4_round_shift #(.IN_W(ALPHA_W + 1), .SHIFT(ALPHA_W - ACC_W)) u_a (
-                        .x($signed({1'b0, e10[0 +: ALPHA_W]})), .y(a_rs));
+                        .x($signed({1'b0, e11[0 +: ALPHA_W]})), .y(a_rs));
                     assign a_px = a_rs[CW-1:0];
                 end
-                wire [CW-1:0] r_px = CW'(e10[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
-                wire [CW-1:0] g_px = CW'(e10[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
-                wire [CW-1:0] b_px = CW'(e10[ALPHA_W +: 8]) << (ACC_W - 8);
-                wire unused_e10 = ^e10[EXT_W-1:LUT_W];   // v: kept for the next sample only
+                wire [CW-1:0] r_px = CW'(e11[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] g_px = CW'(e11[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] b_px = CW'(e11[ALPHA_W +: 8]) << (ACC_W - 8);
+                wire unused_e11 = ^e11[EXT_W-1:LUT_W];   // v: kept for the next sample only
                 assign word_ext = AC_W'(s10_e);
                 assign pix_ext  = {r_px, g_px, b_px, a_px};
             end else begin : g_no_ext

@@ -19,8 +19,9 @@
 //   DATA_W  word width.                     1..4096.  Default 8.
 //   DEPTH   words.                          1..2^24.  Default 16.
 //   OUT_REG 0: rd*_data is the read register; 1: the read word passes a
-//           second register, loaded with the read register's word when
-//           rd_en = 1 (a block RAM's output register, as cube4_sdp_ram's).
+//           second register, loaded with the read register's word with
+//           its port's read enable (rd_en; port 0: rd_en && !wr_en), a
+//           block RAM's output register, as cube4_sdp_ram's.
 //           0..1.  Default 1.
 //   AW      address width (derived; not to be set).
 //

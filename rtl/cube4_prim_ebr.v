@@ -16,9 +16,10 @@
 //   SHAPE_W the block's port width: 1, 2, 4, 9 or 18 (the DP16KD shapes
 //           16384 x 1 .. 1024 x 18).  Default 18.
 //   W       bits used of the port: 1..SHAPE_W.  Default 18.
-//   AW      address bits used: 1 .. 14 - log2 of the shape's depth step
-//           (14, 13, 12, 11, 10 for SHAPE_W 1, 2, 4, 9, 18).  Default 10.
+//   AW      address bits used: 1 .. 14 - k for SHAPE_W 1, 2, 4, 9, 18 and
+//           k = 0 .. 4 (14, 13, 12, 11, 10 bits).  Default 10.
 //   READ_A  1: port A reads too; 0: it only writes (a_rd = 0).  0..1.
+//           Default 0.
 //
 // Latency
 //   A read is 2 cycles on either port: a read register (the block's latch,

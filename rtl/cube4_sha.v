@@ -16,8 +16,9 @@
 //   other, an odd P's last lane a copy of its own. The host writes them
 //   through the load ports, which broadcast to all copies, at run time (a
 //   new transfer function or light needs no rebuild), between frames only:
-//   a write takes lane 2k's read in that cycle (cube4_top's contract). The host applies the opacity correction for the view's sample
-//   distance when it writes the LUT (golden/cube4/tables.py).
+//   a write takes lane 2k's read in that cycle (cube4_top's contract). The
+//   host applies the opacity correction for the view's sample distance when
+//   it writes the LUT (golden/cube4/tables.py).
 //   A build with SHADING = 0 classifies only (C' = C): it has no reflectance
 //   map, no face select, no division and no shading multipliers, and its
 //   gradient inputs are not read (cube4_top then builds no GRA).

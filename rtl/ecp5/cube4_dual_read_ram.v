@@ -5,8 +5,8 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   The two-lane table of rtl/cube4_dual_read_ram.v (same ports, parameters
-//   and timing) on the ECP5's DP16KD block RAMs. With OUT_REG = 1 and 128
-//   to 16384 words, the word is sliced as rtl/ecp5/cube4_sdp_ram.v slices it
+//   and timing) on the ECP5's DP16KD block RAMs. With OUT_REG = 1 and an
+//   address of 7 to 14 bits (DEPTH 65 .. 16384), the word is sliced as rtl/ecp5/cube4_sdp_ram.v slices it
 //   (1024 x 18 up to 1024 words, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1),
 //   each slice one block (rtl/ecp5/cube4_prim_ebr.v) in true dual-port use:
 //   port A writes, or reads for port 0 (its address is the write's in a
