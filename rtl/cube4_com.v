@@ -27,7 +27,7 @@
 //   results forwarded across partial beams and beams). A ray starts fresh
 //   (C = 0, T = 1) when its previous sample is outside the slice (m = 0,
 //   j - dyb < 0, i - dxb < 0). The compositing arithmetic is pipelined
-//   (S6..S9); the recurrence closes through the buffer one slice later, and a
+//   (S6..S10); the recurrence closes through the buffer one slice later, and a
 //   beat waits while the beat it depends on is still in flight.
 //
 //   Path-length weights (PLW = 1, numerics.md section 17): the first sample of
@@ -61,20 +61,21 @@
 //   ADDR_W      the table layout's address width (cube4_cfb's).  Default 16.
 //
 // Latency
-//   11 register stages (R0, S1 .. S10, below) that move on every cycle and
-//   carry a valid bit each (no stall enable); S10's results are written into
-//   the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
-//   for a last register: a finished-ray beat is on pix_* 11 cycles after it
+//   12 register stages (R0, S1 .. S11, below) that move on every cycle (no
+//   stall enable); R0 .. S10 carry a valid bit each, S11 (acc_q) is written
+//   under S10's (the slice buffer's write enable and the FIFO's push, both
+//   given one stage early). S11's results are written into the output FIFO (cube4_credit_fifo, 16 entries), whose memory stands in
+//   for a last register: a finished-ray beat is on pix_* 12 cycles after it
 //   entered R0 when the FIFO was empty.
 //   Back-pressure is credit-based: a beat enters R0 only when the FIFO has an
 //   entry reserved for it, so pix_ready reaches only in_ready and the FIFO's
 //   pointers, never a datapath register. in_ready depends on registers only
-//   (the FIFO's credit and the valid bits of R0 .. S8). The partial results
+//   (the FIFO's credit and the valid bits of R0 .. S9). The partial results
 //   take exactly one slice (NJ*NB steps) round the base-plane buffer.
-//   Throughput is one beat per cycle when a slice has NJ*NB >= 10 beats; a
-//   smaller slice runs at NJ*NB beats per 10 cycles (the read-after-write
+//   Throughput is one beat per cycle when a slice has NJ*NB >= 11 beats; a
+//   smaller slice runs at NJ*NB beats per 11 cycles (the read-after-write
 //   hazard on the base-plane buffer, see "pipeline" below). RECTS = 1: a beat
-//   waits while the beat that wrote its slot is in R0 .. S8; in_ready then
+//   waits while the beat that wrote its slot is in R0 .. S9; in_ready then
 //   also depends on in_hdr (the slot compare).
 //
 // Ports
@@ -175,9 +176,10 @@ module cube4_com #(
     //   S5  the X-step hop; the previous partial result, or a fresh ray
     //   S6  T * A (multiplier)
     //   S7  w = round_shift(T * A, AW)
-    //   S8  w * C' (multipliers), T - w
-    //   S9  C += round_shift(w * C', 8)
-    //   S10 the new partial results (acc_q, per lane): the slice buffer's
+    //   S8  w in a fabric register (between the two multipliers), T - w
+    //   S9  w * C' (multipliers)
+    //   S10 C += round_shift(w * C', 8)
+    //   S11 the new partial results (acc_q, per lane): the slice buffer's
     //       write register (its block RAMs are spread over the die) and the
     //       source of the pixels pushed into the FIFO (one edge later in it)
     // Every stage moves on every cycle and carries a valid bit; the datapath
@@ -186,13 +188,13 @@ module cube4_com #(
     // valid bit), the last beat's words for the X-step and NB = 1 under each
     // lane's own copies of v_s[4] (u_v3, u_v4).
     // A beat's slice position is read two edges after its acceptance into
-    // R0 (S1 -> S2) and written at the edge where it leaves S10. The ray's
+    // R0 (S1 -> S2) and written at the edge where it leaves S11. The ray's
     // previous partial result was written by the beat L = NJ*NB steps earlier
     // at the same position, so a beat is accepted only if that beat is not in
-    // R0..S8 (one in S9 is written at the edge after acceptance, before the
+    // R0..S9 (one in S10 is written at the edge after acceptance, before the
     // read).
-    // Slices of L >= 10 beats never wait; smaller ones (volumes of fewer than 10
-    // beats per slice) run at L beats per 10 cycles.
+    // Slices of L >= 11 beats never wait; smaller ones (volumes of fewer than 11
+    // beats per slice) run at L beats per 11 cycles.
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW    = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
     localparam integer SP_W  = (RECTS != 0) ? RW + PB_W : ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1);
@@ -200,16 +202,16 @@ module cube4_com #(
     localparam integer TA_W  = CW + ALPHA_W;    // T * A
     localparam integer WC_W  = CW + 8;          // w * C'
 
-    localparam integer NS      = 9;             // stages S1 .. S9
-    localparam integer FIFO_DEPTH = 16;         // >= 13 cycles from acceptance to the FIFO's read
+    localparam integer NS      = 10;            // stages S1 .. S10
+    localparam integer FIFO_DEPTH = 16;         // >= 14 cycles from acceptance to the FIFO's read
     reg  [NS:1] v_s;                    // stage valid bits
-    wire        hazard;                 // the beat L back is in R0..S8 (see above)
+    wire        hazard;                 // the beat L back is in R0..S9 (see above)
     wire        credit;                 // the output FIFO has an entry for one more beat
     assign in_ready = credit && !hazard;
     wire take = in_valid && in_ready;   // a beat enters R0
 
     // ==== R0: input register (loads on every cycle; r0_v marks a beat) ====
-    reg                 r0_v;
+    wire                r0_v;           // u_step's first copy (below)
     wire [P*LUT_W-1:0]  r0_rgba;        // per lane registers (g_r0)
     wire [P*VOXEL_W-1:0] r0_smp;        // per lane registers (g_r0; extremum builds)
     reg [HDR_W-1:0]     r0_hdr;
@@ -221,10 +223,6 @@ module cube4_com #(
     wire [LANE_W-1:0]   r0_skew        = r0_hdr[HDR_SKEW +: LANE_W];
     wire [6:0]          r0_ctrl        = r0_hdr[HDR_CTRL +: 7];
     reg                 r0_first;       // j = 0 and pb = 0: the first beat of a slice
-    always @(posedge clk) begin
-        if (rst) r0_v <= 1'b0;
-        else     r0_v <= take;
-    end
     always @(posedge clk) begin
         r0_first <= (in_hdr[HDR_J +: DIM_W] == '0) && (in_hdr[HDR_PB +: PB_W] == '0);
         r0_hdr   <= in_hdr;
@@ -248,11 +246,12 @@ module cube4_com #(
         end
     endgenerate
     wire step = r0_v;                   // the R0 beat enters S1
-    // copies of r0_v for S0's position counters and slice template (kept apart
-    // in synthesis: r0_v itself drives the stage valid bits and the lanes' loads)
+    // R0's valid in three kept copies: r0_v (the stage valid bits and the
+    // lanes' loads), and one each for S0's position counters and slice
+    // template (a plain r0_v register would be merged into one of them)
     wire [1:0] step_c;
-    cube4_prim_copies #(.N(2), .RESET(1)) u_step (
-        .clk(clk), .rst(rst), .d(take), .q(step_c));
+    cube4_prim_copies #(.N(3), .RESET(1)) u_step (
+        .clk(clk), .rst(rst), .d(take), .q({step_c, r0_v}));
 
     wire sop   = r0_ctrl[CTRL_SOP];
     wire eop   = r0_ctrl[CTRL_EOP];
@@ -267,7 +266,7 @@ module cube4_com #(
     // sample is not inside it) and m + 1 (a ray finishes where its next sample
     // is not inside it) and the steps of m, from the host's table (three copies,
     // read as a slice's first beat enters R0, so that R0's beat has them); a beat
-    // waits while the beat of the same slot is in R0 .. S8 (the read-after-write
+    // waits while the beat of the same slot is in R0 .. S9 (the read-after-write
     // rule by position); and whether the previous beat is the row above at the
     // same partial beam.
     wire             rx_prev_v, rx_next_v;
@@ -317,7 +316,7 @@ module cube4_com #(
             assign rx_n_i1 = e_n[RT_IHIN +: DIM_W];
             assign rx_stx  = e_c[RT_STX +: DIM_W];
             assign rx_sty  = e_c[RT_STY +: DIM_W];
-            // read after write by position: the incoming slot against R0 .. S8
+            // read after write by position: the incoming slot against R0 .. S9
             wire [SP_W-1:0] in_sp = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
             reg hz;
             integer kz;
@@ -608,7 +607,7 @@ module cube4_com #(
     // ---- the beat's fields, carried along the pipeline (index = stage) ----
     // (unpacked arrays: a packed [stage][field] array of fields that are not word
     // aligned made Verilator's model about 20% slower at P = 8)
-    reg [SP_W-1:0]    sp_s    [1:NS];    // slice position: read at S1, written at the end of S10
+    reg [SP_W-1:0]    sp_s    [1:NS];    // slice position: read at S1, written at the end of S11
     reg [PB_W-1:0]    pb_s    [1:2];     // beam position: read at S2, written at the end of S3 (RAM's registers)
     reg [P-1:0]       ins_s1;            // inside (finished rays, S1)
     reg [P-1:0]       cnt_s   [1:7];     // the sample counts (S6, S7)
@@ -651,15 +650,15 @@ module cube4_com #(
     end
     // Read-after-write rule: a beat's position repeats every L = NJ*NB beats,
     // so the beat it depends on is the L-th most recent one, and that one is
-    // in R0..S8 exactly when R0..S8 hold L or more valid beats. Counting them
+    // in R0..S9 exactly when R0..S9 hold L or more valid beats. Counting them
     // needs no field of the incoming beat. The count is made for the next
-    // cycle (R0..S8 after this edge hold take, r0_v, v_s[1..7]) and the
+    // cycle (R0..S9 after this edge hold take, r0_v, v_s[1..8]) and the
     // comparison registered, so hazard, like in_ready, is a register.
-    reg  [3:0] lim_q;                   // min(NJ*NB, 10): 10 never stalls
+    reg  [3:0] lim_q;                   // min(NJ*NB, 11): 11 never stalls
     always @(posedge clk) begin
-        lim_q <= (32'(cfg_nj) * 32'(cfg_nb) >= 32'd10) ? 4'd10 : 4'(32'(cfg_nj) * 32'(cfg_nb));
+        lim_q <= (32'(cfg_nj) * 32'(cfg_nb) >= 32'd11) ? 4'd11 : 4'(32'(cfg_nj) * 32'(cfg_nb));
     end
-    reg [3:0] n_fly_d;                  // valid beats in R0..S8 in the next cycle (at most 9)
+    reg [3:0] n_fly_d;                  // valid beats in R0..S9 in the next cycle (at most 10)
     integer kh;
     always @* begin
         n_fly_d = {3'b000, take} + {3'b000, r0_v};
@@ -676,13 +675,13 @@ module cube4_com #(
     // Both RAMs end in their output register (cube4_sdp_ram OUT_REG: the
     // block RAM's own on an FPGA, whose clock-to-out is most of a cycle
     // without it): s3_a1 and s4_a2 are those registers.
-    wire [PA-1:0] acc_q;                // S10 (g_lane's registers): results after slice m
+    wire [PA-1:0] acc_q;                // S11 (g_lane's registers): results after slice m
     wire [PA-1:0] a1_ram, a2_ram;       // S3, S4: the RAMs' output registers
     // Both buffers register their addresses and write enables themselves (with
     // copies for their block RAMs, cube4_sdp_ram IN_REG): they get them one
     // stage early. The slice buffer is read at S1 (sp_s[1]) and written at the
-    // end of S10 (from acc_q, at the address and enable of the beat that left
-    // S9: sp_s[NS], v_s[NS], given one stage early).
+    // end of S11 (from acc_q, at the address and enable of the beat that left
+    // S10: sp_s[NS], v_s[NS], given one stage early).
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(SB_DEPTH), .IN_REG(1), .OUT_REG(1)) u_bp_slice (
         .clk(clk), .rd_en(1'b1), .rd_addr(pos_sp), .rd_data(a1_ram),
         .wr_en(v_s[NS]), .wr_addr(sp_s[NS]), .wr_data(acc_q));
@@ -777,7 +776,7 @@ module cube4_com #(
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(s5_back),  .y(back_sh));
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(s5_prevb), .y(prevb_sh));
 
-    // ==== S6 .. S9: the ray's step, per lane ====
+    // ==== S6 .. S10: the ray's step, per lane ====
     // the mode (cfg is stable during a frame), registered once
     reg mode_xray_q, mode_ext_q, mode_min_q;
     always @(posedge clk) begin
@@ -789,10 +788,10 @@ module cube4_com #(
     // (the words; each lane's quarters choose with their own mode copies, g_sel)
     localparam [AC_W-1:0] FRESH_CMP = AC_W'({{(3*CW){1'b0}}, ONE});
     localparam [AC_W-1:0] FRESH_MIN = AC_W'({{VOXEL_W{1'b1}}, {LUT_W{1'b0}}});   // MinIP; MIP: 0
-    wire [PX_W-1:0] pix_d;              // S10: the lanes' {R, G, B, A}, from acc_q
+    wire [PX_W-1:0] pix_d;              // S11: the lanes' {R, G, B, A}, from acc_q
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // S10: the lane's new partial result (below), the slice buffer's write
+            // S11: the lane's new partial result (below), the slice buffer's write
             // register; the pixel for the FIFO is formed from it
             reg [AC_W-1:0] acc_q_l;
             // S5: previous partial result, or a fresh ray. The selects are
@@ -849,21 +848,26 @@ module cube4_com #(
                 assign a_s3 = rgba_l[2*LUT_W +: ALPHA_W];
             end
             wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
-            reg  [AC_W-1:0]  s6_acc;
             reg  [LUT_W-1:0] s6_rgba;
             always @(posedge clk) begin
-                s6_acc  <= acc_in;
                 s6_rgba <= rgba5;
             end
-            wire [AC_W-1:0]  word_cmp, word_ext;    // S9: the new partial result
-            wire [CMP_W-1:0] pix_cmp, pix_ext;      // S9: {R, G, B, A} of a finished ray
+            wire [AC_W-1:0]  word_cmp, word_ext;    // S10: the new partial result
+            wire [CMP_W-1:0] pix_cmp, pix_ext;      // S11: {R, G, B, A} of a finished ray
 
             if (COMPOSITING != 0) begin : g_cmp
+                // S6: compositing's register of the partial result, kept
+                // apart from the extremum's (g_ext's s6_e, which shares its
+                // low bits): each is placed by its own logic
+                wire [CMP_W-1:0] s6_acc;
+                cube4_prim_copies #(.N(1), .W(CMP_W), .RESET(0)) u_s6_acc (
+                    .clk(clk), .rst(1'b0), .d(acc_in[CMP_W-1:0]), .q(s6_acc));
                 reg  [CMP_W-1:0] s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
-                reg  [23:0]      s7_c;              // the sample's {R', G', B'}
+                reg  [3*CW-1:0]  s9_cc;             // {C_R, C_G, C_B} (T: s9_t)
+                reg  [23:0]      s7_c, s8_c;        // the sample's {R', G', B'}
                 always @(posedge clk) begin
-                    {s7_acc, s8_acc} <= {s6_acc[CMP_W-1:0], s7_acc};
-                    s7_c             <= s6_rgba[ALPHA_W +: 24];
+                    {s7_acc, s8_acc, s9_cc}  <= {s6_acc, s7_acc, s8_acc[CW +: 3*CW]};
+                    {s7_c, s8_c}             <= {s6_rgba[ALPHA_W +: 24], s7_c};
                 end
                 // S6: T * A (X-ray: 2^F * A); cube4_mul's operand registers
                 // take S5's values as s6_acc and s6_rgba do, its product
@@ -881,55 +885,61 @@ module cube4_com #(
                 cube4_round_shift #(.IN_W(TA_W + 1), .SHIFT(ALPHA_W)) u_w (
                     .x($signed({1'b0, s7_ta})), .y(w_rs));
                 wire [CW-1:0] w_d = cnt_s[7][q] ? w_rs[CW-1:0] : {CW{1'b0}};
-                reg  [CW-1:0] s8_w;
+                // S8: w in fabric registers between the two multipliers (the T * A
+                // product register through the rounding straight into the w * C'
+                // multipliers' operand registers was a DSP -> fabric -> DSP path
+                // of 7 ns of routing): one copy per w * C' multiplier and one for
+                // T - w, each placed by its own loads
+                wire [4*CW-1:0] s8_w;       // copy ch: channel ch's multiplier; copy 3: T - w
+                cube4_prim_copies #(.N(4), .W(CW), .RESET(0)) u_w8 (
+                    .clk(clk), .rst(1'b0), .d(w_d), .q(s8_w));
+                // S8: T - w (X-ray: at least 0)
+                wire [CW-1:0] w8_t = s8_w[3*CW +: CW];
+                wire [CW-1:0] t8   = s8_acc[0 +: CW];
+                reg  [CW-1:0] s9_t, s10_t;
                 always @(posedge clk) begin
-                    s8_w <= w_d;
+                    s9_t  <= (mode_xray_q && w8_t > t8) ? {CW{1'b0}} : t8 - w8_t;
+                    s10_t <= s9_t;
                 end
-                // S8: w * C' per channel (cube4_mul: its operand registers take
-                // S7's w and C' (s8_w keeps its own copy), its product register is
-                // S9's), T - w (X-ray: at least 0)
-                wire [3*WC_W-1:0] s9_wc;
-                reg  [3*WC_W-1:0] s9_cin;    // {C, 2^7} per channel: C * 2^8 + the rounding half
-                reg  [3*(WC_W+1)-1:0] s9_dsat;   // C * 2^8 + 2^7 - (ONE + 1) * 2^8, signed
-                reg  [CW-1:0]     s9_t;
+                // S9: w * C' per channel (cube4_mul: its operand registers take
+                // S8's w and C', its product register is S10's)
+                wire [3*WC_W-1:0] s10_wc;
+                reg  [3*WC_W-1:0] s10_cin;   // {C, 2^7} per channel: C * 2^8 + the rounding half
+                reg  [3*(WC_W+1)-1:0] s10_dsat;  // C * 2^8 + 2^7 - (ONE + 1) * 2^8, signed
                 genvar ch;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // channel ch = B, G, R for 0, 1, 2
                     wire signed [WC_W+1:0] wc_p;
                     cube4_mul #(.A_W(CW + 1), .B_W(9)) u_wc (
-                        .clk (clk), .en (1'b1), .a ($signed({1'b0, w_d})),
-                        .b ($signed({1'b0, s7_c[8 * ch +: 8]})), .p (wc_p));
-                    assign s9_wc[ch*WC_W +: WC_W] = wc_p[WC_W-1:0];   // 0 <= w * C' < 2^WC_W
+                        .clk (clk), .en (1'b1), .a ($signed({1'b0, s8_w[ch*CW +: CW]})),
+                        .b ($signed({1'b0, s8_c[8 * ch +: 8]})), .p (wc_p));
+                    assign s10_wc[ch*WC_W +: WC_W] = wc_p[WC_W-1:0];   // 0 <= w * C' < 2^WC_W
                     wire unused_wc = ^wc_p[WC_W +: 2];
                     always @(posedge clk) begin
-                        s9_cin[ch*WC_W +: WC_W] <= {s8_acc[CW + ch*CW +: CW], 8'h80};
-                        s9_dsat[ch*(WC_W+1) +: WC_W+1] <= (WC_W+1)'({1'b0, s8_acc[CW + ch*CW +: CW], 8'h80})
-                                                        - (WC_W+1)'({1'b0, ONE} + 1'b1) * (WC_W+1)'(256);
+                        s10_cin[ch*WC_W +: WC_W] <= {s9_cc[ch*CW +: CW], 8'h80};
+                        s10_dsat[ch*(WC_W+1) +: WC_W+1] <= (WC_W+1)'({1'b0, s9_cc[ch*CW +: CW], 8'h80})
+                                                         - (WC_W+1)'({1'b0, ONE} + 1'b1) * (WC_W+1)'(256);
                     end
                 end
-                wire [CW-1:0] t8 = s8_acc[0 +: CW];
-                always @(posedge clk) begin
-                    s9_t   <= (mode_xray_q && s8_w > t8) ? {CW{1'b0}} : t8 - s8_w;
-                end
-                // S9: C += round_shift(w * C', 8) (X-ray: at most 2^F), in one
+                // S10: C += round_shift(w * C', 8) (X-ray: at most 2^F), in one
                 // add: C + floor((wc + 2^7) / 2^8) = floor((C * 2^8 + 2^7 + wc) / 2^8)
                 // (w * C' / 2^8 < 2^CW, so the sum needs CW + 1 bits, as before).
                 // The X-ray's sum > ONE, i.e. C * 2^8 + 2^7 + wc >= (ONE + 1) * 2^8,
-                // is the sign of a second add beside the first, s9_dsat + wc, with
-                // s9_dsat in [-2^WC_W, 0) and wc in [0, 2^WC_W): it fits WC_W + 2
+                // is the sign of a second add beside the first, s10_dsat + wc, with
+                // s10_dsat in [-2^WC_W, 0) and wc in [0, 2^WC_W): it fits WC_W + 2
                 // signed bits and nothing wraps (no compare after the add)
                 wire [3*CW-1:0] c_out;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-                    wire [WC_W:0] sum_x = {1'b0, s9_cin[ch*WC_W +: WC_W]} + {1'b0, s9_wc[ch*WC_W +: WC_W]};
+                    wire [WC_W:0] sum_x = {1'b0, s10_cin[ch*WC_W +: WC_W]} + {1'b0, s10_wc[ch*WC_W +: WC_W]};
                     wire [CW:0]   sum   = sum_x[WC_W:8];
                     wire unused_frac = ^sum_x[7:0];
-                    wire signed [WC_W+1:0] sat_x = $signed({s9_dsat[ch*(WC_W+1) + WC_W], s9_dsat[ch*(WC_W+1) +: WC_W+1]})
-                                                 + $signed({2'b00, s9_wc[ch*WC_W +: WC_W]});
+                    wire signed [WC_W+1:0] sat_x = $signed({s10_dsat[ch*(WC_W+1) + WC_W], s10_dsat[ch*(WC_W+1) +: WC_W+1]})
+                                                 + $signed({2'b00, s10_wc[ch*WC_W +: WC_W]});
                     wire over = !sat_x[WC_W+1];    // sum > ONE
                     wire unused_sat = ^{sat_x[WC_W:0], sum[CW]};
                     assign c_out[ch*CW +: CW] = (mode_xray_q && over) ? ONE : sum[CW-1:0];
                 end
-                assign word_cmp = AC_W'({c_out, s9_t});
-                // S10: the pixel {R, G, B, A = 1 - T} from the register
+                assign word_cmp = AC_W'({c_out, s10_t});
+                // S11: the pixel {R, G, B, A = 1 - T} from the register
                 assign pix_cmp  = {acc_q_l[CW +: 3*CW], ONE - acc_q_l[0 +: CW]};
             end else begin : g_no_cmp
                 wire unused_xray = mode_xray_q;
@@ -944,31 +954,39 @@ module cube4_com #(
                     v_l <= {v_l[5*VOXEL_W-1:0], r0_smp[q*VOXEL_W +: VOXEL_W]};
                 end
                 wire [VOXEL_W-1:0] v6 = v_l[5*VOXEL_W +: VOXEL_W];
-                // S6: take the sample if it counts and is at least (MinIP: at most) the kept v
-                wire [VOXEL_W-1:0] kept = s6_acc[LUT_W +: VOXEL_W];
+                // S6: the extremum's register of the partial result (kept
+                // apart from g_cmp's s6_acc, which shares its low bits: both
+                // are cube4_prim_copies, which synthesis never merges; a plain
+                // register would be merged into the kept one), then take
+                // the sample if it counts and is at least (MinIP: at most) the kept v
+                wire [EXT_W-1:0] s6_e;
+                cube4_prim_copies #(.N(1), .W(EXT_W), .RESET(0)) u_s6_e (
+                    .clk(clk), .rst(1'b0), .d(acc_in[EXT_W-1:0]), .q(s6_e));
+                wire [VOXEL_W-1:0] kept = s6_e[LUT_W +: VOXEL_W];
                 wire take_s = cnt_s[6][q] && (mode_min_q ? (v6 <= kept) : (v6 >= kept));
-                reg [EXT_W-1:0] s7_e, s8_e, s9_e;
+                reg [EXT_W-1:0] s7_e, s8_e, s9_e, s10_e;
                 always @(posedge clk) begin
-                    s7_e <= take_s ? {v6, s6_rgba} : s6_acc[EXT_W-1:0];
-                    s8_e <= s7_e;
-                    s9_e <= s8_e;
+                    s7_e  <= take_s ? {v6, s6_rgba} : s6_e;
+                    s8_e  <= s7_e;
+                    s9_e  <= s8_e;
+                    s10_e <= s9_e;
                 end
-                // S10: the pixel from the register: colour << (F - 8), A to F bits
-                wire [EXT_W-1:0] e10 = acc_q_l[EXT_W-1:0];
+                // S11: the pixel from the register: colour << (F - 8), A to F bits
+                wire [EXT_W-1:0] e11 = acc_q_l[EXT_W-1:0];
                 wire [CW-1:0] a_px;
                 if (ACC_W >= ALPHA_W) begin : g_a_up
-                    assign a_px = CW'(e10[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
+                    assign a_px = CW'(e11[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
                 end else begin : g_a_down
                     wire signed [ACC_W+1:0] a_rs;
                     cube4_round_shift #(.IN_W(ALPHA_W + 1), .SHIFT(ALPHA_W - ACC_W)) u_a (
-                        .x($signed({1'b0, e10[0 +: ALPHA_W]})), .y(a_rs));
+                        .x($signed({1'b0, e11[0 +: ALPHA_W]})), .y(a_rs));
                     assign a_px = a_rs[CW-1:0];
                 end
-                wire [CW-1:0] r_px = CW'(e10[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
-                wire [CW-1:0] g_px = CW'(e10[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
-                wire [CW-1:0] b_px = CW'(e10[ALPHA_W +: 8]) << (ACC_W - 8);
-                wire unused_e10 = ^e10[EXT_W-1:LUT_W];   // v: kept for the next sample only
-                assign word_ext = AC_W'(s9_e);
+                wire [CW-1:0] r_px = CW'(e11[ALPHA_W + 16 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] g_px = CW'(e11[ALPHA_W + 8 +: 8]) << (ACC_W - 8);
+                wire [CW-1:0] b_px = CW'(e11[ALPHA_W +: 8]) << (ACC_W - 8);
+                wire unused_e11 = ^e11[EXT_W-1:LUT_W];   // v: kept for the next sample only
+                assign word_ext = AC_W'(s10_e);
                 assign pix_ext  = {r_px, g_px, b_px, a_px};
             end else begin : g_no_ext
                 wire unused_smp = ^r0_smp[q*VOXEL_W +: VOXEL_W];
@@ -976,7 +994,7 @@ module cube4_com #(
                 assign pix_ext  = '0;
             end
 
-            // S10: the slice buffer's write register (loads on every cycle; the
+            // S11: the slice buffer's write register (loads on every cycle; the
             // write enable is the beat's valid bit)
             always @(posedge clk) acc_q_l <= mode_ext_q ? word_ext : word_cmp;
             assign acc_q[q*AC_W +: AC_W] = acc_q_l;
@@ -984,10 +1002,10 @@ module cube4_com #(
         end
     endgenerate
 
-    // ---- output FIFO: an S10 beat with a finished ray, or the frame's last beat ----
-    // give: an S9 beat that leaves nothing returns its FIFO entry.
-    wire out_d = v_s[NS-1] && ((fin_s[NS-1] != '0) || eop_s[NS-1]);   // S8: will push
-    reg  give_q, push_q;                // S9: returns its entry; will push at S10
+    // ---- output FIFO: an S11 beat with a finished ray, or the frame's last beat ----
+    // give: an S10 beat that leaves nothing returns its FIFO entry.
+    wire out_d = v_s[NS-1] && ((fin_s[NS-1] != '0) || eop_s[NS-1]);   // S9: will push
+    reg  give_q, push_q;                // S10: returns its entry; will push at S11
     always @(posedge clk) begin
         if (rst) begin
             give_q <= 1'b0;
@@ -997,14 +1015,14 @@ module cube4_com #(
             push_q <= out_d;
         end
     end
-    // the beat's fields at S10, beside its pixels
-    reg [P-1:0]      fin_10;
-    reg [M_W-1:0]    m_10;
-    reg [BX_W-1:0]   by_10;
-    reg [P*BX_W-1:0] bx_10;
-    reg              eop_10;
+    // the beat's fields at S11, beside its pixels
+    reg [P-1:0]      fin_11;
+    reg [M_W-1:0]    m_11;
+    reg [BX_W-1:0]   by_11;
+    reg [P*BX_W-1:0] bx_11;
+    reg              eop_11;
     always @(posedge clk) begin
-        fin_10 <= fin_s[NS];  m_10 <= m_s[NS];  by_10 <= by_s[NS];  bx_10 <= bx_s[NS];  eop_10 <= eop_s[NS];
+        fin_11 <= fin_s[NS];  m_11 <= m_s[NS];  by_11 <= by_s[NS];  bx_11 <= bx_s[NS];  eop_11 <= eop_s[NS];
     end
 
     // the word: P lane groups of AC_W bits (pixels), then the shared fields
@@ -1012,14 +1030,14 @@ module cube4_com #(
     localparam integer OUT_W = PX_W + SH_W;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    // The FIFO stores S10's word: S9's sums end at acc_q alone (the slice
+    // The FIFO stores S11's word: S10's sums end at acc_q alone (the slice
     // buffer's write register), and the pixels are formed from it on the
     // route to the FIFO's distributed RAM (one cycle more through COM than
-    // a FIFO written at S9)
+    // a FIFO written at S10)
     cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(give_q),
         .credit(credit), .credit_d(unused_credit_d),
-        .push_d(push_q), .in_data({fin_10, m_10, by_10, bx_10, eop_10, pix_d}),
+        .push_d(push_q), .in_data({fin_11, m_11, by_11, bx_11, eop_11, pix_d}),
         .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
     assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
 

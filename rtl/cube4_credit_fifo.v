@@ -136,9 +136,18 @@ module cube4_credit_fifo #(
     end
 
     // ---- reservations ----
+    // res_d = res_q + take - give - rd: take, give and rd come late (the
+    // pipeline's input handshake, the next unit's ready), so they select
+    // among res_q + 1, res_q, res_q - 1 and res_q - 2, sums of the register
+    // alone (the same values modulo 2^(AW+1) as the one sum)
     reg  [AW:0] res_q;                  // reservations held: 0 .. DEPTH
-    wire [AW:0] res_tg = res_q + {{AW{1'b0}}, take} - {{AW{1'b0}}, give};
-    wire [AW:0] res_d  = rd ? res_tg - 1'b1 : res_tg;   // (rd: a select after the sums)
+    wire [AW:0] res_p1 = res_q + 1'b1;
+    wire [AW:0] res_m1 = res_q - 1'b1;
+    wire [AW:0] res_m2 = res_q - (AW + 1)'(2);
+    wire        dn_one = give ^ rd;                         // give + rd = 1
+    wire        dn_two = give && rd;                        // give + rd = 2
+    wire [AW:0] res_d  = take ? (dn_two ? res_m1 : (dn_one ? res_q : res_p1))
+                              : (dn_two ? res_m2 : (dn_one ? res_m1 : res_q));
     always @(posedge clk) begin
         if (rst) res_q <= '0;
         else     res_q <= res_d;

@@ -132,7 +132,7 @@ module cube4_gra #(
 
     generate
         if (RECTS == 0) begin : g_lines
-            reg              flush_q;        // running the zero steps after a frame
+            wire             flush_q;        // running the zero steps after a frame (u_flush's last copy)
             wire [NSTEP-1:0] flush_rep;      // copies of flush_q
             reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then two beats (row NJ + 1)
             reg  [PB_W-1:0]  f_pb_q;
@@ -200,9 +200,10 @@ module cube4_gra #(
                 else if (step && flush_q)   flush_d = !f_tail_q;   // ends after the second step of row NJ + 1
                 else if (step && eop)       flush_d = 1'b1;
             end
-            always @(posedge clk) flush_q <= flush_d;
-            cube4_prim_copies #(.N(NSTEP), .RESET(0)) u_flush (
-                .clk(clk), .rst(rst), .d(flush_d), .q(flush_rep));
+            // flush_q is a kept copy too (a plain register of flush_d would
+            // be merged into one of the others by synthesis)
+            cube4_prim_copies #(.N(NSTEP + 1), .RESET(0)) u_flush (
+                .clk(clk), .rst(rst), .d(flush_d), .q({flush_q, flush_rep}));
 
             always @(posedge clk) begin
                 if (rst) begin

@@ -11,14 +11,18 @@
 //   register for all. Neither Yosys nor nextpnr replicates registers for
 //   fan-out, so the copies are made here, in this one primitive; a block
 //   that needs copies instantiates it inside itself and keeps a one-bit
-//   interface. Simulation: every copy holds the same value.
+//   interface. Simulation: every copy holds the same value. Yosys merges
+//   a plain register of the same input into a kept copy (two kept copies
+//   stay apart), so a value wanted near two groups of loads takes all its
+//   registers from here.
 //
 // Parameters
 //   N        copies.                               1..512.  Default 1.
-//   W        bits of the register.                 1..64.   Default 1.
+//   W        bits of the register.                 1..4096. Default 1.
 //   RESET    1: synchronous reset to RST_VAL; 0: no reset (data registers).
 //                                                  0..1.    Default 1.
-//   RST_VAL  reset value of each copy.             W bits.  Default 0.
+//   RST_VAL  reset value of each copy (its low W bits; zero above 64).
+//                                                  64 bits. Default 0.
 //
 // Latency: 1 cycle (q is d of the last clock edge).
 //
@@ -41,7 +45,7 @@ module cube4_prim_copies #(
 );
     generate
         `CUBE4_RANGE(g_bad_n, "cube4_prim_copies", "N", N, 1, 512)
-        `CUBE4_RANGE(g_bad_w, "cube4_prim_copies", "W", W, 1, 64)
+        `CUBE4_RANGE(g_bad_w, "cube4_prim_copies", "W", W, 1, 4096)
     endgenerate
 
     genvar c;
@@ -50,7 +54,7 @@ module cube4_prim_copies #(
             reg [W-1:0] q_q;
             (* keep *)                  // one copy per group of loads: never merged
             always @(posedge clk) begin
-                if (RESET != 0 && rst) q_q <= RST_VAL[W-1:0];
+                if (RESET != 0 && rst) q_q <= W'(RST_VAL);
                 else                   q_q <= d;
             end
             assign q[c*W +: W] = q_q;

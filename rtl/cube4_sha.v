@@ -10,11 +10,15 @@
 //     idx = cube-map cell of the gradient (face, v, u), 6 R^2 for g = 0
 //     (D, P) = RMAP[idx]                               (Q2.8 each)
 //     C' = min(255, round_shift(C * D, 8) + P) for C in R, G, B;  A' = A
-//   Every lane has its own copy of both tables (as in the paper: tables per
-//   pipeline); the host writes them through the load ports, which broadcast
-//   to all lanes, at run time: a new transfer function or light needs no
-//   rebuild. The host applies the opacity correction for the view's sample
-//   distance when it writes the LUT (golden/cube4/tables.py).
+//   Every two lanes share one copy of both tables (the paper has tables per
+//   pipeline; a block RAM has two ports): cube4_dual_read_ram, lane 2k
+//   reading through the port that also writes, lane 2k + 1 through the
+//   other, an odd P's last lane a copy of its own. The host writes them
+//   through the load ports, which broadcast to all copies, at run time (a
+//   new transfer function or light needs no rebuild), between frames only:
+//   a write takes lane 2k's read in that cycle (cube4_top's contract). The
+//   host applies the opacity correction for the view's sample distance when
+//   it writes the LUT (golden/cube4/tables.py).
 //   A build with SHADING = 0 classifies only (C' = C): it has no reflectance
 //   map, no face select, no division and no shading multipliers, and its
 //   gradient inputs are not read (cube4_top then builds no GRA).
@@ -171,22 +175,25 @@ module cube4_sha #(
     wire [P*LUT_W-1:0] e_rgba;          // e2's results, written into the FIFO
     wire [P*RI_W-1:0]  e_idx;
 
+    // per lane: the classification table's word (stage 2), the reflectance
+    // map's index (d) and word (d2), between the lanes and g_pair's tables
+    wire [P*LUT_W-1:0] lut_2_all;
+    wire [P*RI_W-1:0]  idx_all;
+    wire [P*20-1:0]    dp_all;
+
     genvar q, it;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // the classification table (this lane's copy), read at b1 and
-            // ending in its output register at stage 2 (cube4_sdp_ram OUT_REG:
-            // the block RAM's own register on an FPGA)
-            wire [LUT_W-1:0] lut_2;
-            cube4_sdp_ram #(.DATA_W(LUT_W), .DEPTH(1 << VW), .OUT_REG(1)) u_lut (
-                .clk(clk), .rd_en(1'b1), .rd_addr(a_s[q*VW +: VW]), .rd_data(lut_2),
-                .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
+            // the classification table's word of this lane (g_pair), read at
+            // b1, from its output register at stage 2
+            wire [LUT_W-1:0] lut_2 = lut_2_all[q*LUT_W +: LUT_W];
 
             if (SHADING == 0) begin : g_plain
                 // classification only: the LUT entry read at b1; its output
                 // register is e1's
                 assign e_rgba[q*LUT_W +: LUT_W] = lut_2;
                 assign e_idx[q*RI_W +: RI_W]    = '0;
+                assign idx_all[q*RI_W +: RI_W]  = '0;
                 wire unused_grad = ^{a_gi[q*GW +: GW], a_gj[q*GW +: GW], a_gk[q*GW +: GW]};
             end else begin : g_shade
                 // b1: |g|; |g| < 2^(GW-1): no overflow
@@ -275,13 +282,10 @@ module cube4_sha #(
                 wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
                 wire [RI_W-1:0] idx = zero_n ? RI_W'(6 << (2 * RB)) : {face_n, uc, ub};
 
-                // d: reflectance-map read; d2: the RAM's output register
-                // (cube4_sdp_ram OUT_REG: the block RAM's own on an FPGA)
+                // d: reflectance-map read (g_pair); d2: the RAM's output register
+                assign idx_all[q*RI_W +: RI_W] = idx;
                 reg [RI_W-1:0]  d_idx;
-                wire [19:0]     d2_dp;
-                cube4_sdp_ram #(.DATA_W(20), .DEPTH(RMAP_N), .OUT_REG(1)) u_rmap (
-                    .clk(clk), .rd_en(1'b1), .rd_addr(idx), .rd_data(d2_dp),
-                    .wr_en(rmap_we), .wr_addr(rmap_addr), .wr_data(rmap_data));
+                wire [19:0]     d2_dp = dp_all[q*20 +: 20];
                 reg [RI_W-1:0]  d2_idx;
                 // d3: the multipliers' operand registers (D, C); P and the index ride along
                 reg [RI_W-1:0]  d3_idx;
@@ -343,7 +347,41 @@ module cube4_sha #(
             end
         end
         if (SHADING == 0) begin : g_no_rmap
-            wire unused_rmap = ^{rmap_we, rmap_addr, rmap_data};
+            assign dp_all = '0;
+            wire unused_rmap = ^{rmap_we, rmap_addr, rmap_data, idx_all, dp_all};
+        end
+        // The tables, one copy per two lanes (cube4_dual_read_ram: lane 2k
+        // reads through the write's port, lane 2k + 1 through the other;
+        // they are written between frames only, cube4_top's contract, so
+        // no read is lost to a write), each read ending in the RAM's output
+        // register (the block RAM's own on an FPGA). An odd P's last lane
+        // has a copy of its own (the second port unused).
+        for (q = 0; q < P; q = q + 2) begin : g_pair
+            localparam integer Q1 = (q + 1 < P) ? q + 1 : q;   // the second lane (q itself when none)
+            wire [LUT_W-1:0] lut_1;
+            cube4_dual_read_ram #(.DATA_W(LUT_W), .DEPTH(1 << VW), .OUT_REG(1)) u_lut (
+                .clk(clk), .rd_en(1'b1),
+                .rd0_addr(a_s[q*VW +: VW]), .rd0_data(lut_2_all[q*LUT_W +: LUT_W]),
+                .rd1_addr(a_s[Q1*VW +: VW]), .rd1_data(lut_1),
+                .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
+            if (SHADING != 0) begin : g_rmap
+                wire [19:0] dp_1;
+                cube4_dual_read_ram #(.DATA_W(20), .DEPTH(RMAP_N), .OUT_REG(1)) u_rmap (
+                    .clk(clk), .rd_en(1'b1),
+                    .rd0_addr(idx_all[q*RI_W +: RI_W]), .rd0_data(dp_all[q*20 +: 20]),
+                    .rd1_addr(idx_all[Q1*RI_W +: RI_W]), .rd1_data(dp_1),
+                    .wr_en(rmap_we), .wr_addr(rmap_addr), .wr_data(rmap_data));
+                if (Q1 != q) begin : g_second
+                    assign dp_all[Q1*20 +: 20] = dp_1;
+                end else begin : g_none
+                    wire unused_dp_1 = ^dp_1;
+                end
+            end
+            if (Q1 != q) begin : g_second
+                assign lut_2_all[Q1*LUT_W +: LUT_W] = lut_1;
+            end else begin : g_none
+                wire unused_lut_1 = ^lut_1;
+            end
         end
     endgenerate
 

@@ -252,3 +252,53 @@ def test_last_commit_matches_git():
 ])
 def test_unit_of_name(name, unit):
     assert fpga.unit_of_name(name) == unit
+
+
+def router2_log(tmp_path: Path, overuse: list[int]) -> Path:
+    """A nextpnr log with router2's iteration lines (iteration 1 .. len(overuse))."""
+    log = tmp_path / "nextpnr.out"
+    log.write_text("Info: Running router2...\n" + "".join(
+        f"Info:     iter={i} wires=410171 overused={o} overuse={o} archfail=NA\n"
+        for i, o in enumerate(overuse, start=1)))
+    return log
+
+
+def test_router2_divergence_rule(tmp_path):
+    """A run whose overuse grows DIVERGE_FACTOR-fold over its least is stopped, but only from
+    iteration DIVERGE_ITER on; a slow convergence (overuse falling, or a small bump) is not."""
+    n = fpga.DIVERGE_ITER
+    falling = [50000 // (i + 1) + 1 for i in range(n + 10)]
+    assert fpga.router2_diverged(router2_log(tmp_path, falling)) is None
+    early = [1000] * (n - 3) + [100, 100 * fpga.DIVERGE_FACTOR + 1]      # last: iteration n - 1
+    assert fpga.router2_diverged(router2_log(tmp_path, early)) is None
+    bump = [1000] * (n - 1) + [100, 100 * fpga.DIVERGE_FACTOR]                 # exactly the factor: goes on
+    assert fpga.router2_diverged(router2_log(tmp_path, bump)) is None
+    grown = [1000] * (n - 1) + [863, 863 * fpga.DIVERGE_FACTOR + 1]
+    why = fpga.router2_diverged(router2_log(tmp_path, grown))
+    assert why and f"iteration {n + 1}" in why and "863 at iteration" in why
+    assert fpga.router2_diverged(tmp_path / "missing.out") is None
+    assert fpga.router2_diverged(router2_log(tmp_path, [])) is None
+
+
+def test_run_tool_watch_stops_and_records_why(tmp_path):
+    """run_tool's watch kills a running tool once it returns a reason: exit -2, the reason in the
+    log, which a failed seed's path line then names; a tool that ends by itself is left alone."""
+    import sys
+    from cube4_reports.synth import run_tool, stop_reason
+
+    loop = [sys.executable, "-c", "import time\nfor i in range(600):\n print(f'iter={i}', flush=True); time.sleep(0.05)"]
+    seen = []
+
+    def watch(log: Path) -> str | None:
+        seen.append(log.read_text().count("iter="))
+        return "enough" if seen[-1] >= 3 else None
+
+    run = run_tool(loop, tmp_path / "seed1" / "nextpnr.out", tmp_path, check=False, watch=watch, poll_s=0.2)
+    assert run.rc == -2 and run.wall_s < 20
+    assert stop_reason(run.log) == "stopped: enough"
+    sr = fpga.SeedRun(1, tmp_path / "seed1", run.rc, run.wall_s)
+    assert sr.fmax is None and sr.path_line() == "failed: stopped: enough"
+    done = run_tool([sys.executable, "-c", "print('ok')"], tmp_path / "ok.out", tmp_path, watch=lambda _: None)
+    assert done.rc == 0 and stop_reason(done.log) is None
+    slow = run_tool(loop, tmp_path / "slow.out", tmp_path, check=False, timeout_s=0.5, poll_s=0.2)
+    assert slow.rc == -1 and stop_reason(slow.log) == "timeout after 0 s"

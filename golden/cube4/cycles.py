@@ -13,17 +13,17 @@ from __future__ import annotations
 #: Pipeline fill of cube4_top: cycles beyond the stream terms, measured at 128³, P = 8
 #: (``cube4 render sphere:128 --engine rtl --stats``); tb/cube4_top's phantom tests check the formula
 #: against the RTL for P = 1, 4, 5, 8.
-FILL_CYCLES = 53
+FILL_CYCLES = 54
 #: The same for a build without shading: no GRA (whose last slice waits for the slice after it)
 #: and a 3-stage SHA; measured the same way and checked by tb/cube4_top's build tests.
-FILL_CYCLES_UNSHADED = 37
+FILL_CYCLES_UNSHADED = 38
 #: The same for a build with voxel gradients (VGRAD = 1): no GRA, the shaded SHA; measured the
 #: same way and checked by tb/cube4_top's voxel-gradient test.
-FILL_CYCLES_VGRAD = 49
+FILL_CYCLES_VGRAD = 50
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.
-COM_MIN_SLICE = 10
+COM_MIN_SLICE = 11
 
 
 def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: bool = False) -> int:

@@ -25,7 +25,7 @@
 //     (the read's are not registered), and the word written passes a
 //     register of its own (each bit goes to one block RAM).
 //   * With OUT_REG = 1 and at least 128 words (EBR_MIN_AW), each slice is a
-//     DP16KD instantiated here with its output register (REGMODE_B = "OUTREG", loaded with the read enable):
+//     DP16KD (rtl/ecp5/cube4_prim_ebr.v) with its output register (REGMODE_B = "OUTREG", loaded with the read enable):
 //     nextpnr times the block from clock to data in 0.7 ns instead of 4.1 ns
 //     (speed grade 8), and Yosys infers no block RAM with that register. The
 //     slice is the block's shape for the depth: 1024 x 18 up to 1024 words,
@@ -36,7 +36,7 @@
 //     sim/hdl/ecp5/DP16KD.v models the primitive for simulation. A read
 //     of the word written at the same edge is undefined on the device (the
 //     model returns the old word); cube4_sdp_ram's callers make none.
-//   tb/cube4_top test_synthesis_ram_form_p1 simulates this form, and
+//   tb/cube4_top test_synthesis_form simulates this form, and
 //   tb/cube4_sdp_ram runs both forms against a model of the RAM.
 //
 // Parameters, latency, ports, bit growth: as rtl/cube4_sdp_ram.v.
@@ -79,8 +79,6 @@ module cube4_sdp_ram #(
     localparam integer SL_SHALLOW = (USE_EBR == 1) ? ((AW <= 10) ? 18 : 9)
                                   : (((IN_REG == 1 || WR_REG == 1) && DATA_W > 18) ? 18 : DATA_W);
     localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : SL_SHALLOW));
-    // a DP16KD port of SL_W bits addresses AD13..AD(LOW)
-    localparam integer LOW  = (SL_W == 18) ? 4 : ((SL_W == 9) ? 3 : ((SL_W == 4) ? 2 : ((SL_W == 2) ? 1 : 0)));
     localparam integer SPC  = 2;                        // slices per register copy
     localparam integer N_SL = (DATA_W + SL_W - 1) / SL_W;
     localparam integer N_CP = (N_SL + SPC - 1) / SPC;   // register copies (IN_REG = 1)
@@ -122,53 +120,12 @@ module cube4_sdp_ram #(
             wire [AW-1:0] ra = cp[AW +: AW];
             wire [AW-1:0] wa = cp[0 +: AW];
             if (USE_EBR == 1) begin : g_ebr
-                // port A writes, port B reads through its output register;
-                // the 18-bit shape's byte enables (AD1..AD0 of port A) are 1
-                wire [13:0] ada = 14'({(14 - LOW)'(wa), (LOW == 4) ? 4'b0011 : 4'b0000} >> (4 - LOW));
-                wire [13:0] adb = 14'({(14 - LOW)'(ra), 4'b0000} >> (4 - LOW));
-                wire [17:0] di  = 18'(wd[LO +: W]);
-                wire [17:0] dob;
-                wire [17:0] doa;                    // port A only writes
-                wire unused_doa = ^doa;
-                DP16KD #(
-                    .DATA_WIDTH_A (SL_W), .DATA_WIDTH_B (SL_W),
-                    .REGMODE_A ("NOREG"), .REGMODE_B ("OUTREG"),
-                    .RESETMODE ("SYNC"), .ASYNC_RESET_RELEASE ("SYNC"),
-                    .CSDECODE_A ("0b000"), .CSDECODE_B ("0b000"),
-                    .WRITEMODE_A ("NORMAL"), .WRITEMODE_B ("NORMAL"),
-                    .GSR ("DISABLED")
-                ) u_ebr (
-                    .DIA17(di[17]), .DIA16(di[16]), .DIA15(di[15]), .DIA14(di[14]), .DIA13(di[13]),
-                    .DIA12(di[12]), .DIA11(di[11]), .DIA10(di[10]), .DIA9(di[9]), .DIA8(di[8]),
-                    .DIA7(di[7]), .DIA6(di[6]), .DIA5(di[5]), .DIA4(di[4]), .DIA3(di[3]),
-                    .DIA2(di[2]), .DIA1(di[1]), .DIA0(di[0]),
-                    .ADA13(ada[13]), .ADA12(ada[12]), .ADA11(ada[11]), .ADA10(ada[10]), .ADA9(ada[9]),
-                    .ADA8(ada[8]), .ADA7(ada[7]), .ADA6(ada[6]), .ADA5(ada[5]), .ADA4(ada[4]),
-                    .ADA3(ada[3]), .ADA2(ada[2]), .ADA1(ada[1]), .ADA0(ada[0]),
-                    .CEA(1'b1), .OCEA(1'b1), .CLKA(clk), .WEA(we), .RSTA(1'b0),
-                    .CSA2(1'b0), .CSA1(1'b0), .CSA0(1'b0),
-                    .DOA17(doa[17]), .DOA16(doa[16]), .DOA15(doa[15]), .DOA14(doa[14]), .DOA13(doa[13]),
-                    .DOA12(doa[12]), .DOA11(doa[11]), .DOA10(doa[10]), .DOA9(doa[9]), .DOA8(doa[8]),
-                    .DOA7(doa[7]), .DOA6(doa[6]), .DOA5(doa[5]), .DOA4(doa[4]), .DOA3(doa[3]),
-                    .DOA2(doa[2]), .DOA1(doa[1]), .DOA0(doa[0]),
-                    .DIB17(1'b0), .DIB16(1'b0), .DIB15(1'b0), .DIB14(1'b0), .DIB13(1'b0),
-                    .DIB12(1'b0), .DIB11(1'b0), .DIB10(1'b0), .DIB9(1'b0), .DIB8(1'b0),
-                    .DIB7(1'b0), .DIB6(1'b0), .DIB5(1'b0), .DIB4(1'b0), .DIB3(1'b0),
-                    .DIB2(1'b0), .DIB1(1'b0), .DIB0(1'b0),
-                    .ADB13(adb[13]), .ADB12(adb[12]), .ADB11(adb[11]), .ADB10(adb[10]), .ADB9(adb[9]),
-                    .ADB8(adb[8]), .ADB7(adb[7]), .ADB6(adb[6]), .ADB5(adb[5]), .ADB4(adb[4]),
-                    .ADB3(adb[3]), .ADB2(adb[2]), .ADB1(adb[1]), .ADB0(adb[0]),
-                    .CEB(re), .OCEB(re), .CLKB(clk), .WEB(1'b0), .RSTB(1'b0),
-                    .CSB2(1'b0), .CSB1(1'b0), .CSB0(1'b0),
-                    .DOB17(dob[17]), .DOB16(dob[16]), .DOB15(dob[15]), .DOB14(dob[14]), .DOB13(dob[13]),
-                    .DOB12(dob[12]), .DOB11(dob[11]), .DOB10(dob[10]), .DOB9(dob[9]), .DOB8(dob[8]),
-                    .DOB7(dob[7]), .DOB6(dob[6]), .DOB5(dob[5]), .DOB4(dob[4]), .DOB3(dob[3]),
-                    .DOB2(dob[2]), .DOB1(dob[1]), .DOB0(dob[0])
-                );
-                assign rd_data[LO +: W] = dob[W-1:0];
-                if (W < 18) begin : g_unused
-                    wire unused_dob = ^dob[17:W];   // the slice's port is wider than its bits
-                end
+                // port A writes, port B reads through its output register
+                wire [W-1:0] unused_a_rd;
+                cube4_prim_ebr #(.SHAPE_W(SL_W), .W(W), .AW(AW), .READ_A(0)) u_ebr (
+                    .clk(clk), .a_en(1'b0), .a_we(we), .a_addr(wa), .a_wd(wd[LO +: W]), .a_rd(unused_a_rd),
+                    .b_en(re), .b_addr(ra), .b_rd(rd_data[LO +: W]));
+                wire unused_a = ^unused_a_rd;
             end else begin : g_infer
                 reg [W-1:0] mem [0:(1 << AW)-1];
                 reg [W-1:0] rd_q;

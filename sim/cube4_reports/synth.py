@@ -18,6 +18,7 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 from cube4_sim.sources import RTL_INCLUDE_DIR, SourceListError, rtl_sources, synth_sources
 
@@ -103,23 +104,54 @@ def short_version(text: str) -> str:
 
 
 def run_tool(cmd: list[str], log: Path, cwd: Path, *, timeout_s: float | None = None,
-             check: bool = True) -> ToolRun:
-    """Run a tool with stdout and stderr into ``log``; raise ToolError on failure when ``check``."""
+             check: bool = True, watch: Callable[[Path], str | None] | None = None,
+             poll_s: float = 10.0) -> ToolRun:
+    """Run a tool with stdout and stderr into ``log``; raise ToolError on failure when ``check``.
+    ``watch``, if given, reads the log every ``poll_s`` seconds while the tool runs and returns
+    a reason to stop it (the tool is killed, the reason written to the log as '[stopped: ...]',
+    exit status -2) or None; a timeout writes '[timeout after N s]' (exit status -1)."""
     log.parent.mkdir(parents=True, exist_ok=True)
     t0 = time.monotonic()
     with log.open("w") as fh:
         fh.write("$ " + " ".join(cmd) + "\n")
         fh.flush()
-        try:
-            rc = subprocess.run(cmd, cwd=cwd, stdout=fh, stderr=subprocess.STDOUT,
-                                timeout=timeout_s).returncode
-        except subprocess.TimeoutExpired:
-            rc = -1
-            fh.write(f"\n[timeout after {timeout_s:.0f} s]\n")
+        proc = subprocess.Popen(cmd, cwd=cwd, stdout=fh, stderr=subprocess.STDOUT)
+        stop = None
+        while True:
+            left = None if timeout_s is None else timeout_s - (time.monotonic() - t0)
+            if left is not None and left <= 0:
+                stop = f"[timeout after {timeout_s:.0f} s]"
+                rc_stop = -1
+                break
+            try:
+                rc = proc.wait(timeout=poll_s if left is None else min(poll_s, left))
+                break
+            except subprocess.TimeoutExpired:
+                reason = watch(log) if watch else None
+                if reason:
+                    stop, rc_stop = f"[stopped: {reason}]", -2
+                    break
+        if stop:
+            proc.kill()
+            proc.wait()
+            rc = rc_stop
+            fh.write(f"\n{stop}\n")
     wall = time.monotonic() - t0
     if check and rc != 0:
         raise ToolError(f"{Path(cmd[0]).name} failed (exit {rc}); see {rel(log)}: {last_error(log)}")
     return ToolRun(rc=rc, wall_s=wall, log=log)
+
+
+def stop_reason(log: Path) -> str | None:
+    """The '[timeout ...]' or '[stopped: ...]' line run_tool wrote to a log, None if none."""
+    try:
+        lines = log.read_text(errors="replace").splitlines()
+    except OSError:
+        return None
+    for ln in reversed(lines):
+        if ln.startswith(("[timeout after", "[stopped: ")):
+            return ln.strip("[]")
+    return None
 
 
 def last_error(log: Path) -> str:

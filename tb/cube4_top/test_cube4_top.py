@@ -73,9 +73,9 @@ def test_short_slices():
     rng = np.random.default_rng(31)
     cfg = Cube4Config(pipelines=p)
     # (dims (x, y, z), view, beats per slice L = NJ * ceil(NI / P), stalls)
-    cases = [((8, 9, 12), (0.2, 0.3, 1.0), COM_MIN_SLICE - 1, False),
-             ((12, 8, 9), (1.0, 0.3, 0.2), COM_MIN_SLICE - 1, True),
-             ((8, 10, 12), (-0.3, 0.2, -1.0), COM_MIN_SLICE, False),
+    cases = [((8, 10, 12), (0.2, 0.3, 1.0), COM_MIN_SLICE - 1, False),
+             ((12, 8, 10), (1.0, 0.3, 0.2), COM_MIN_SLICE - 1, True),
+             ((8, 11, 12), (-0.3, 0.2, -1.0), COM_MIN_SLICE, False),
              ((3, 3, 6), (0.2, 0.3, 1.0), 3, False)]
     for dims, view, beats, stall in cases:
         nx, ny, nz = dims
@@ -198,30 +198,34 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     assert len({f["major_axis"] for f in st["frames"]}) == 3
 
 
-def test_synthesis_form_p1():
+@pytest.mark.parametrize("p", [1, 3])
+def test_synthesis_form(p):
     """The RTL as synthesis reads it: the vendor layer's forms (rtl/ecp5/) in place of the
     generic ones, with the behavioural models of the primitives they instantiate
     (sim/hdl/ecp5/). cube4_sdp_ram's ECP5 form stores words deeper than 2048 as 4-, 2- or
     1-bit slices with register copies per two slices; the generic form keeps one
     word-wide memory (Verilator evaluates one wide array much faster than many narrow
     ones). cube4_mul's ECP5 form is a MULT18X18D with its input and output registers
-    (TRI's lerps, GRA's view products, SHA's and COM's products). Built here at P = 1
-    (COM's slice buffer: 4096 words, 4-bit slices): a phantom and random stalled frames
-    must still match the golden model bit for bit."""
+    (TRI's lerps, GRA's view products, SHA's and COM's products). SHA's tables
+    (cube4_dual_read_ram) are block RAMs read by two lanes, one through the port that
+    writes. Built at P = 1 (COM's slice buffer: 4096 words, 4-bit slices; SHA's one lane
+    alone on its tables) and P = 3 (a pair of lanes and a lane alone): a phantom and
+    random stalled frames with new tables each must still match the golden model bit
+    for bit."""
     from cube4.render import host_tables, setup_view
     from cube4.scene import load_scene
 
-    cfg = Cube4Config(pipelines=1)
+    cfg = Cube4Config(pipelines=p)
     vol = load_volume("sphere:64", voxel_bits=cfg.voxel_bits)
     nz, ny, nx = vol.shape
     trav, _ = setup_view((nx, ny, nz), load_scene("default"), cfg)
     lut, rmap = host_tables(load_scene("default"), cfg, trav)
     rng = np.random.default_rng(11)
     jobs = [FrameJob(trav, lut, rmap)]
-    for n, d in enumerate(VIEWS[:3]):
+    for n, d in enumerate(VIEWS[:3 if p == 1 else 1]):
         t = make_traversal((nx, ny, nz), d, cfg.weight_bits, 1)
         lt, rm = random_tables(rng, cfg)
-        jobs.append(FrameJob(t, lt, rm, stall=60, stall_out=90 if n else 0))
+        jobs.append(FrameJob(t, lt, rm, stall=60, stall_out=90 if (n or p > 1) else 0))
     results = render_frames(vol, jobs, cfg, rtl_form="ecp5")
     for n, (job, res) in enumerate(zip(jobs, results)):
         check(vol, job.trav, cfg, job.lut, job.rmap, res, f"SYNTHESIS RAMs, frame {n}")

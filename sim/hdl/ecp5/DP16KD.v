@@ -4,25 +4,27 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   Simulates the subset of the ECP5 16 kbit dual-port block RAM that the
-//   vendor layer (rtl/ecp5/cube4_sdp_ram.v) uses, so that the RTL as
-//   synthesis reads it can be simulated: port A writes, port B reads, one
-//   clock, port widths 1, 2, 4, 9 or 18 bits (16384 x 1 .. 1024 x 18), the
-//   read side with or without its output register (REGMODE_B = "OUTREG" or
-//   "NOREG"). Not modelled, and refused at elaboration: reads on port A,
-//   writes on port B, chip selects other than "0b000", the output register
-//   of port A, WRITEMODE other than NORMAL. The resets and the byte enables
-//   of the 18-bit shape are not modelled (RSTA/RSTB must stay 0; the
-//   vendor layer ties the 18-bit write port's byte enables AD1..AD0 to 1).
-//   Never read by synthesis (Yosys has its own black box of the primitive).
+//   vendor layer (rtl/ecp5/cube4_prim_ebr.v) uses, so that the RTL as
+//   synthesis reads it can be simulated: port A writes and may read, port B
+//   reads, one clock, port widths 1, 2, 4, 9 or 18 bits (16384 x 1 ..
+//   1024 x 18), each read side with or without its output register
+//   (REGMODE = "OUTREG" or "NOREG"). Port A in a write cycle does not read
+//   (WRITEMODE "NORMAL": the data output is not updated by a write). Not
+//   modelled, and refused at elaboration: writes on port B, chip selects
+//   other than "0b000", WRITEMODE other than NORMAL. The resets and the
+//   byte enables of the 18-bit shape are not modelled (RSTA/RSTB must stay
+//   0; the vendor layer ties the 18-bit write port's byte enables AD1..AD0
+//   to 1). Never read by synthesis (Yosys has its own black box of the
+//   primitive).
 //
 // Addressing (as the primitive): a port of width W uses AD13..ADk with
 //   k = 0, 1, 2, 3, 4 for W = 1, 2, 4, 9, 18; data on DI/DO[W-1:0].
 //
-// Latency (port B)
-//   NOREG: 1 (DOB is the word of the last CLKB edge with CEB = 1).
+// Latency (either port; port A's with CEA = 1 and WEA = 0)
+//   NOREG: 1 (DO is the word of the last edge with CE = 1).
 //   OUTREG: 2 (the latched word passes a register loaded on edges with
-//   OCEB = 1). A read of the address written at the same edge returns the
-//   old word (the vendor layer's callers never depend on it).
+//   OCE = 1). A port B read of the address written at the same edge returns
+//   the old word (the vendor layer's callers never depend on it).
 // =============================================================================
 /* verilator lint_off DECLFILENAME */
 module DP16KD #(
@@ -54,13 +56,14 @@ module DP16KD #(
     localparam integer LB = low_bits(DATA_WIDTH_B);
     localparam integer WORDS = 16384 >> LA;
     localparam OUTR = (REGMODE_B == "OUTREG");
+    localparam OUTA = (REGMODE_A == "OUTREG");
     generate
         if (DATA_WIDTH_A != DATA_WIDTH_B || low_bits(DATA_WIDTH_A) == 0 && DATA_WIDTH_A != 1
-            || REGMODE_A != "NOREG" || !(REGMODE_B == "NOREG" || OUTR)
+            || !(REGMODE_A == "NOREG" || OUTA) || !(REGMODE_B == "NOREG" || OUTR)
             || CSDECODE_A != "0b000" || CSDECODE_B != "0b000"
             || WRITEMODE_A != "NORMAL" || WRITEMODE_B != "NORMAL"
             || RESETMODE != "SYNC" || ASYNC_RESET_RELEASE != "SYNC" || GSR == "") begin : g_unsupported
-            $error("DP16KD model: only equal port widths of 1, 2, 4, 9 or 18, port A writing, port B reading (NOREG or OUTREG), NORMAL write mode, synchronous reset mode (reset unused) and no chip-select decode are modelled");
+            $error("DP16KD model: only equal port widths of 1, 2, 4, 9 or 18, port A writing and reading, port B reading (NOREG or OUTREG), NORMAL write mode, synchronous reset mode (reset unused) and no chip-select decode are modelled");
         end
     endgenerate
 
@@ -70,22 +73,26 @@ module DP16KD #(
     wire [13:0] adb = {ADB13, ADB12, ADB11, ADB10, ADB9, ADB8, ADB7, ADB6, ADB5, ADB4, ADB3, ADB2, ADB1, ADB0};
     wire unused = ^{DIB17, DIB16, DIB15, DIB14, DIB13, DIB12, DIB11, DIB10, DIB9,
                     DIB8, DIB7, DIB6, DIB5, DIB4, DIB3, DIB2, DIB1, DIB0,
-                    OCEA, RSTA, RSTB, WEB, CSA2, CSA1, CSA0, CSB2, CSB1, CSB0, CLKB,
+                    RSTA, RSTB, WEB, CSA2, CSA1, CSA0, CSB2, CSB1, CSB0, CLKB,
                     ada, adb, dia};   // (bits below the word are no address; above the width, no data)
 
     reg [DATA_WIDTH_A-1:0] mem [0:WORDS-1];
     reg [DATA_WIDTH_B-1:0] lat_q, out_q;
-    // port A writes and port B reads on one clock (the vendor layer's use)
+    reg [DATA_WIDTH_A-1:0] lat_a_q, out_a_q;
+    // port A writes or reads, port B reads, on one clock (the vendor layer's use)
     always @(posedge CLKA) begin
         if (CEA && WEA) mem[ada[13:LA]] <= dia[DATA_WIDTH_A-1:0];
+        if (CEA && !WEA) lat_a_q <= mem[ada[13:LA]];
+        if (OCEA) out_a_q <= lat_a_q;
         if (CEB) lat_q <= mem[adb[13:LB]];
         if (OCEB) out_q <= lat_q;
     end
     wire [17:0] dob = 18'(OUTR ? out_q : lat_q);
+    wire [17:0] doa = 18'(OUTA ? out_a_q : lat_a_q);
     assign {DOB17, DOB16, DOB15, DOB14, DOB13, DOB12, DOB11, DOB10, DOB9,
             DOB8, DOB7, DOB6, DOB5, DOB4, DOB3, DOB2, DOB1, DOB0} = dob;
     assign {DOA17, DOA16, DOA15, DOA14, DOA13, DOA12, DOA11, DOA10, DOA9,
-            DOA8, DOA7, DOA6, DOA5, DOA4, DOA3, DOA2, DOA1, DOA0} = 18'b0;
+            DOA8, DOA7, DOA6, DOA5, DOA4, DOA3, DOA2, DOA1, DOA0} = doa;
 endmodule
 /* verilator lint_on DECLFILENAME */
 `default_nettype wire
