@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import subprocess
 import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -302,3 +303,11 @@ def test_run_tool_watch_stops_and_records_why(tmp_path):
     assert done.rc == 0 and stop_reason(done.log) is None
     slow = run_tool(loop, tmp_path / "slow.out", tmp_path, check=False, timeout_s=0.5, poll_s=0.2)
     assert slow.rc == -1 and stop_reason(slow.log) == "timeout after 0 s"
+
+    def broken(log: Path) -> str | None:
+        raise RuntimeError("watch failed")
+
+    t0 = time.monotonic()
+    with pytest.raises(RuntimeError, match="watch failed"):      # the tool is killed, not waited for
+        run_tool(loop, tmp_path / "broken.out", tmp_path, check=False, watch=broken, poll_s=0.2)
+    assert time.monotonic() - t0 < 20

@@ -116,21 +116,12 @@ def run_tool(cmd: list[str], log: Path, cwd: Path, *, timeout_s: float | None = 
         fh.write("$ " + " ".join(cmd) + "\n")
         fh.flush()
         proc = subprocess.Popen(cmd, cwd=cwd, stdout=fh, stderr=subprocess.STDOUT)
-        stop = None
-        while True:
-            left = None if timeout_s is None else timeout_s - (time.monotonic() - t0)
-            if left is not None and left <= 0:
-                stop = f"[timeout after {timeout_s:.0f} s]"
-                rc_stop = -1
-                break
-            try:
-                rc = proc.wait(timeout=poll_s if left is None else min(poll_s, left))
-                break
-            except subprocess.TimeoutExpired:
-                reason = watch(log) if watch else None
-                if reason:
-                    stop, rc_stop = f"[stopped: {reason}]", -2
-                    break
+        try:
+            rc, stop, rc_stop = wait_tool(proc, log, t0, timeout_s, watch, poll_s)
+        except BaseException:           # Ctrl-C or an error in watch: do not leave the tool running
+            proc.kill()
+            proc.wait()
+            raise
         if stop:
             proc.kill()
             proc.wait()
@@ -140,6 +131,22 @@ def run_tool(cmd: list[str], log: Path, cwd: Path, *, timeout_s: float | None = 
     if check and rc != 0:
         raise ToolError(f"{Path(cmd[0]).name} failed (exit {rc}); see {rel(log)}: {last_error(log)}")
     return ToolRun(rc=rc, wall_s=wall, log=log)
+
+
+def wait_tool(proc: subprocess.Popen, log: Path, t0: float, timeout_s: float | None,
+              watch: Callable[[Path], str | None] | None, poll_s: float) -> tuple[int, str | None, int]:
+    """Wait for run_tool's process: (exit status, None, 0) when it ends, or (0, the line to
+    log, the exit status to report) when the timeout passes or watch gives a reason."""
+    while True:
+        left = None if timeout_s is None else timeout_s - (time.monotonic() - t0)
+        if left is not None and left <= 0:
+            return 0, f"[timeout after {timeout_s:.0f} s]", -1
+        try:
+            return proc.wait(timeout=poll_s if left is None else min(poll_s, left)), None, 0
+        except subprocess.TimeoutExpired:
+            reason = watch(log) if watch else None
+            if reason:
+                return 0, f"[stopped: {reason}]", -2
 
 
 def stop_reason(log: Path) -> str | None:
