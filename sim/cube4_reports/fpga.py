@@ -639,8 +639,8 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
            + (f"; cube4_top built with {meta['build']}" if meta.get("build") else "") + ". "
            "How to read this: [docs/reports.md](../docs/reports.md).", "",
            f"Part {PART}, speed grade {meta.get('speed', 6)} (`nextpnr-ecp5 {PART_FLAG} --speed {meta.get('speed', 6)} "
-           f"--out-of-context`: no I/O buffers, the clock on general "
-           f"routing), `--freq {meta['freq']:g} --router {meta['router']}`, nextpnr {seeds_text(meta['seeds'])} "
+           f"--out-of-context`: no I/O buffers, an ideal clock: no global network, no clock "
+           f"skew), `--freq {meta['freq']:g} --router {meta['router']}`, nextpnr {seeds_text(meta['seeds'])} "
            f"(one run per `--seed`, all on the same synthesized netlist, {meta['jobs']} at a time), "
            f"`synth_ecp5 -noiopad` (the vendor layer's DP16KD and MULT18X18D instantiated with their own "
            f"registers, rtl/ecp5/; the other block and distributed RAMs inferred). "
