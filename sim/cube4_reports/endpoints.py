@@ -1,0 +1,118 @@
+"""Late register inputs of one nextpnr run, grouped by register: where a build fails its clock.
+
+nextpnr's final timing report names one critical path per clock; a build that fails by a
+few percent can have dozens of independent late paths behind it. With
+``--detailed-timing-report`` nextpnr's JSON report (``--report``) lists, for the nets it
+times, the arrival time at each sink (ns from the launching clock edge). This reads that
+list and keeps the register inputs whose arrival exceeds the clock period: a flip-flop's
+DI, CE, LSR or M, a distributed RAM's write data, address or enable, and a multiplier's A
+or B. The sink's setup time is not counted (nextpnr's ECP5 flip-flop setup is 0; block
+inputs have some), so these are late inputs, at least. Lane and copy indices in the names
+are merged (``u_com.g_lane[3].rgba_l`` and ``u_com.g_lane[5].rgba_l`` are one group), and
+the suffixes synthesis adds are stripped, so a group is one register of the RTL.
+
+nextpnr's detailed list does not hold every net of the design (on the P = 8 build the first
+net of the critical path was absent), so a count here is a lower bound.
+
+    make fpga FPGA_ARGS="--p 8 --seeds 1,2 --detailed-timing --no-budget --json build/reports/p8.json --md build/reports/p8.md"
+    python -m cube4_reports.endpoints build/synth/fpga/p8_d128_w1024/seed1/report.json --freq 125
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+from pathlib import Path
+
+from .fpga import DEFAULT_FREQ, unit_of_name
+from .synth import UserError, cli_main
+
+# register inputs by port name (the ECP5 cells nextpnr times: TRELLIS_FF, the write side of a
+# distributed RAM, MULT18X18D); a flip-flop's M only on a flip-flop cell
+REG_PORT = re.compile(r"^(DI|CE|LSR|WD\d?|WAD\d|WRE)$")
+FF_CELL = re.compile(r"_TRELLIS_FF_Q(_\d+)?$")
+DSP_PORT = re.compile(r"^[AB]\d+$")
+# what synthesis and packing append to a register's name, and RAM slices
+GROUP_SUFFIX = re.compile(r"(_TRELLIS_FF_Q|\$|_DI_|_LUT4|\.mem\.).*$")
+
+
+def is_register_input(cell: str, port: str) -> bool:
+    """Whether a sink is a register input (see the module's docstring)."""
+    if REG_PORT.match(port):
+        return True
+    if port == "M":
+        return bool(FF_CELL.search(cell))
+    return ".u_mult" in cell and bool(DSP_PORT.match(port))
+
+
+def group_of(cell: str) -> str:
+    """'u_com.g_lane[3].rgba_l_TRELLIS_FF_Q_120' -> 'u_com.g_lane[*].rgba_l'."""
+    return re.sub(r"\[\d+\]", "[*]", GROUP_SUFFIX.sub("", cell))
+
+
+def arrival(sink: dict) -> float:
+    """The latest arrival at a sink ('delay' is [min, max] in nextpnr 0.11, a number before)."""
+    d = sink["delay"]
+    return float(max(d)) if isinstance(d, list) else float(d)
+
+
+def late_groups(report: dict, period_ns: float) -> list[dict]:
+    """Register inputs arriving after period_ns, grouped: [{group, unit, count, worst_ns}], the
+    latest group first."""
+    nets = report.get("detailed_net_timings")
+    if nets is None:
+        raise UserError("the report has no detailed net timings: run nextpnr with --detailed-timing-report "
+                        "(make fpga FPGA_ARGS=\"--detailed-timing ...\")")
+    groups: dict[str, dict] = {}
+    for net in nets:
+        for sink in net.get("endpoints", []):
+            t = arrival(sink)
+            if t <= period_ns or not is_register_input(sink["cell"], sink["port"]):
+                continue
+            name = group_of(sink["cell"])
+            g = groups.setdefault(name, {"group": name, "unit": unit_of_name(name) or "top",
+                                         "count": 0, "worst_ns": 0.0})
+            g["count"] += 1
+            g["worst_ns"] = round(max(g["worst_ns"], t), 2)
+    return sorted(groups.values(), key=lambda g: (-g["worst_ns"], g["group"]))
+
+
+def render(groups: list[dict], period_ns: float, top: int) -> str:
+    total = sum(g["count"] for g in groups)
+    lines = [f"{len(groups)} registers ({total} inputs) arrive after {period_ns:.3f} ns"]
+    for g in groups[:top]:
+        lines.append(f"{g['worst_ns']:6.2f} ns  {g['count']:4d}  {g['unit']:12s} {g['group']}")
+    if len(groups) > top:
+        lines.append(f"... {len(groups) - top} more (--top)")
+    return "\n".join(lines)
+
+
+def parse_args(argv: list[str] | None) -> argparse.Namespace:
+    ap = argparse.ArgumentParser(prog="python -m cube4_reports.endpoints", description=__doc__.splitlines()[0])
+    ap.add_argument("report", type=Path, help="nextpnr's JSON report of a run with --detailed-timing-report")
+    ap.add_argument("--freq", type=float, default=DEFAULT_FREQ,
+                    help=f"clock in MHz whose period is the limit (default {DEFAULT_FREQ:g})")
+    ap.add_argument("--top", type=int, default=40, help="groups printed (default 40)")
+    return ap.parse_args(argv)
+
+
+def run(args: argparse.Namespace) -> None:
+    if not 1.0 <= args.freq <= 1000.0:
+        raise UserError(f"--freq: {args.freq:g} MHz is out of range 1..1000")
+    try:
+        report = json.loads(args.report.read_text())
+    except OSError as e:
+        raise UserError(f"cannot read {args.report}: {e.strerror}") from None
+    except ValueError:
+        raise UserError(f"{args.report} is not a JSON file") from None
+    period = 1000.0 / args.freq
+    print(render(late_groups(report, period), period, args.top))
+
+
+def main(argv: list[str] | None = None) -> int:
+    return cli_main("endpoints", lambda: run(parse_args(argv)))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
