@@ -60,6 +60,8 @@ def test_cli_and_errors(tmp_path, capsys):
     (tmp_path / "plain.json").write_text(json.dumps({"fmax": {}}))
     assert endpoints.main([str(tmp_path / "plain.json")]) == 2
     assert "run nextpnr with --detailed-timing-report" in capsys.readouterr().err
+    assert endpoints.main([str(rep), "--top", "-1"]) == 2
+    assert capsys.readouterr().err == "endpoints: error: --top: -1 is negative\n"
     assert endpoints.main([str(tmp_path / "missing.json")]) == 2
     assert capsys.readouterr().err.startswith("endpoints: error: cannot read")
     with pytest.raises(UserError, match="no detailed net timings"):

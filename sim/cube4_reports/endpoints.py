@@ -100,6 +100,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
 def run(args: argparse.Namespace) -> None:
     if not 1.0 <= args.freq <= 1000.0:
         raise UserError(f"--freq: {args.freq:g} MHz is out of range 1..1000")
+    if args.top < 0:
+        raise UserError(f"--top: {args.top} is negative")
     try:
         report = json.loads(args.report.read_text())
     except OSError as e:
