@@ -43,7 +43,7 @@ def test_groups_beyond_the_period_latest_first():
     groups = endpoints.late_groups(REPORT, 8.0)
     names = [g["group"] for g in groups]
     assert names == ["genblk13.g_gra.u_gra.p2b1", "u_com.g_lane[*].rgba_l", "genblk13.g_gra.u_gra.h1_b",
-                     "u_com.g_lane[*].g_cmp.u_ta.g_dsp.u_mult", "u_com.u_fifo.g_grp[*]", "u_sha.a_s"]
+                     "u_com.g_lane[*].g_cmp.u_ta.g_dsp.u_mult", "u_com.u_fifo.g_grp[*].mem", "u_sha.a_s"]
     rgba = groups[1]
     assert rgba["count"] == 2 and rgba["worst_ns"] == 9.9 and rgba["unit"] == "COM"
     assert groups[0]["unit"] == "GRA" and groups[-1]["unit"] == "SHA"

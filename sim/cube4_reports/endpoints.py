@@ -25,7 +25,7 @@ import json
 import re
 from pathlib import Path
 
-from .fpga import DEFAULT_FREQ, unit_of_name
+from .fpga import DEFAULT_FREQ, signal_stem, unit_of_name
 from .synth import UserError, cli_main
 
 # register inputs by port name (the ECP5 cells nextpnr times: TRELLIS_FF, the write side of a
@@ -33,8 +33,6 @@ from .synth import UserError, cli_main
 REG_PORT = re.compile(r"^(DI|CE|LSR|WD\d?|WAD\d|WRE)$")
 FF_CELL = re.compile(r"_TRELLIS_FF_Q(_\d+)?$")
 DSP_PORT = re.compile(r"^[AB]\d+$")
-# what synthesis and packing append to a register's name, and RAM slices
-GROUP_SUFFIX = re.compile(r"(_TRELLIS_FF_Q|\$|_DI_|_LUT4|\.mem\.).*$")
 
 
 def is_register_input(cell: str, port: str) -> bool:
@@ -47,8 +45,10 @@ def is_register_input(cell: str, port: str) -> bool:
 
 
 def group_of(cell: str) -> str:
-    """'u_com.g_lane[3].rgba_l_TRELLIS_FF_Q_120' -> 'u_com.g_lane[*].rgba_l'."""
-    return re.sub(r"\[\d+\]", "[*]", GROUP_SUFFIX.sub("", cell))
+    """'u_com.g_lane[3].rgba_l_TRELLIS_FF_Q_120' -> 'u_com.g_lane[*].rgba_l': the report's
+    signal stem (synthesis's suffixes stripped) without what packing appends after a '$'
+    (a distributed RAM's '$DPRAM_COMB1'), lane and copy indices merged."""
+    return re.sub(r"\[\d+\]", "[*]", signal_stem(cell.split("$", 1)[0]))
 
 
 def arrival(sink: dict) -> float:

@@ -23,6 +23,8 @@ at MAX_DIM = 128, 256 and 512 against the part's 3,744 kbit of EBR.
     python -m cube4_reports.fpga --p 16 && python -m cube4_reports.fpga --reuse   # add P=16 later
     python -m cube4_reports.fpga --seeds 1,2,3,4,5 --reuse   # two more seeds, synthesis reused
     python -m cube4_reports.fpga --quick --seeds 1,2         # smoke test: P = 1, MAX_DIM = 16
+    python -m cube4_reports.fpga --detailed-timing           # arrival at every sink in report.json
+                                                             # (python -m cube4_reports.endpoints)
 
 Netlists and Yosys logs: build/synth/fpga/p<P>_d<MAX_DIM>_w<DEPTH>/ (synth.json holds the
 key and time of its synthesis); each seed's nextpnr.log, nextpnr.out, report.json and
