@@ -49,9 +49,11 @@
 //
 // Latency
 //   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
-//   beam delays and the window), plus the input register, 2 register stages
-//   and the output FIFO's memory (cube4_credit_fifo, 16 entries), which
-//   stands in for a third. The delay lines and the window move on GRA's step
+//   beam delays and the window), plus the input register, 3 register stages
+//   (the last the output FIFO's input register, IN_REG = 1: the two
+//   subtractions of gk end at a flip-flop beside them, not at the FIFO's
+//   distributed memory) and the FIFO's memory (cube4_credit_fifo, 16
+//   entries), which stands in for a fourth. The delay lines and the window move on GRA's step
 //   (a beat is taken or a flush step runs), which needs a credit of the
 //   output FIFO (an entry reserved for the gradient beat the step may
 //   produce); the credit comes as seven flip-flop copies, one per group of
@@ -114,7 +116,7 @@ module cube4_gra #(
     // gets its own step net: no single net drives every clock enable of the
     // unit.
     localparam integer NSTEP = 7;    // 0..5 the delay lines, 6 window and counters
-    localparam integer FIFO_DEPTH = 16;   // >= 4 cycles from a step to the FIFO's read (6 with RECTS)
+    localparam integer FIFO_DEPTH = 16;   // >= 5 cycles from a step to the FIFO's read (7 with RECTS)
     wire [NSTEP-1:0] en_rep;         // copies of the output FIFO's credit
     genvar q;
 
@@ -680,7 +682,8 @@ module cube4_gra #(
     // ------------------------------------------------------------ arithmetic
     // g1: differences; g2: VIEW_X*gi and VIEW_Y*gj, each a cube4_mul whose
     // operand registers are g1's (they take gi_d and h2_gj as g1 does) and
-    // whose product register is g2's; g3: gk, written into the output FIFO.
+    // whose product register is g2's; g3: gk, in the output FIFO's input
+    // register (IN_REG = 1), then its memory.
     // g1 and g2 load on every cycle; g1_v marks a step whose centre is a real
     // beat (the take of its FIFO entry).
     //   gk = (gr << ss) - round_shift(VIEW_X*gi + VIEW_Y*gj, WEIGHT_W) is formed
@@ -756,7 +759,8 @@ module cube4_gra #(
         g2_gpre <= gpre_d;
     end
 
-    // ---- g3: the output FIFO's memory; g1 holds a beat: push at g3 ----
+    // ---- g3: the output FIFO's input register, then its memory; g1 holds a
+    // beat: push at g3 (the FIFO stores it one cycle later) ----
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
     localparam integer EOP_BIT = OUT_W - HDR_W + HDR_CTRL + CTRL_EOP;   // the header's EOP in an item
     wire [OUT_W-1:0] fifo_out;
@@ -806,7 +810,7 @@ module cube4_gra #(
     endgenerate
     cube4_prim_copies #(.N(NSTEP), .RST_VAL(64'd1)) u_credit (
         .clk(clk), .rst(rst), .d(credit_d), .q(en_rep));
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(1)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(1'b0),
         .credit(unused_credit), .credit_d(credit_d),
         .push_d(push_d), .in_data(fifo_in),
