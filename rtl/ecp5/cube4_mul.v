@@ -14,8 +14,6 @@
 //   nextpnr time the block as registered; latency stays 2). SRIA/SRIB are
 //   left unconnected (tying them makes an unroutable net). Operands wider
 //   than 18 bits fall back to the generic shape (registers in the fabric).
-//   Each operand enters at the top of its port (below), the product leaves
-//   from the top of P.
 //   Simulation of this form uses the behavioural model of the primitive in
 //   sim/hdl/ecp5/MULT18X18D.v (tb/cube4_mul checks both forms agree).
 //
@@ -37,17 +35,8 @@ module cube4_mul #(
         `CUBE4_RANGE(g_bad_b_w, "cube4_mul", "B_W", B_W, 2, 32)
 
         if (A_W <= 18 && B_W <= 18) begin : g_dsp
-            // Each operand sits at the top of its 18-bit port, zeros below
-            // (SIGNEDA = SIGNEDB = 1): its sign bit drives one pin, not the
-            // 18 - A_W + 1 pins of a sign extension (the sign is the last bit
-            // out of the caller's carry chain, and its fan-out to the block's
-            // upper pins was the latest route into a multiplier). The block
-            // then forms a * b * 2^(SA + SB), exact in its 36 bits
-            // (SA + SB + P_W = 36), and p is its top P_W bits.
-            localparam integer SA = 18 - A_W;
-            localparam integer SB = 18 - B_W;
-            wire [17:0] a18 = 18'($unsigned(a)) << SA;
-            wire [17:0] b18 = 18'($unsigned(b)) << SB;
+            wire [17:0] a18 = 18'(a);    // sign-extended (SIGNEDA = SIGNEDB = 1)
+            wire [17:0] b18 = 18'(b);
             wire [35:0] p36;
             MULT18X18D #(
                 .REG_INPUTA_CLK   ("CLK0"), .REG_INPUTA_CE   ("CE0"), .REG_INPUTA_RST   ("RST0"),
@@ -123,9 +112,9 @@ module cube4_mul #(
         .P24(p36[24]), .P25(p36[25]), .P26(p36[26]), .P27(p36[27]), .P28(p36[28]), .P29(p36[29]),
         .P30(p36[30]), .P31(p36[31]), .P32(p36[32]), .P33(p36[33]), .P34(p36[34]), .P35(p36[35])
             );
-            assign p = p36[SA + SB +: P_W];
-            if (SA + SB > 0) begin : g_unused
-                wire unused_p = ^p36[SA + SB - 1:0];    // zeros: the operands' low pins are 0
+            assign p = p36[P_W-1:0];
+            if (P_W < 36) begin : g_unused
+                wire unused_p = ^p36[35:P_W];    // the product fits P_W bits
             end
         end else begin : g_fabric
             reg signed [A_W-1:0] a_q;
