@@ -66,3 +66,26 @@ def test_cli_and_errors(tmp_path, capsys):
     assert capsys.readouterr().err.startswith("endpoints: error: cannot read")
     with pytest.raises(UserError, match="no detailed net timings"):
         endpoints.late_groups({}, 8.0)
+
+
+def test_ports_per_group_and_inputs_with_drivers(tmp_path, capsys):
+    groups = {g["group"]: g for g in endpoints.late_groups(REPORT, 8.0)}
+    assert groups["genblk13.g_gra.u_gra.p2b1"]["ports"] == {"CE": 1}
+    assert groups["u_com.g_lane[*].g_cmp.u_ta.g_dsp.u_mult"]["ports"] == {"A": 1}
+    assert groups["u_com.u_fifo.g_grp[*].mem"]["ports"] == {"WAD": 1}
+    assert endpoints.port_kind("A17") == "A" and endpoints.port_kind("WD") == "WD"
+    inputs = endpoints.late_inputs(REPORT, 8.0)
+    assert [x["ns"] for x in inputs] == sorted((x["ns"] for x in inputs), reverse=True) and len(inputs) == 7
+    assert inputs[0] == {"group": "genblk13.g_gra.u_gra.p2b1", "cell": "genblk13.g_gra.u_gra.p2b1_TRELLIS_FF_Q_9",
+                         "port": "CE", "driver": "y", "ns": 11.3}
+    rep = tmp_path / "report.json"
+    rep.write_text(json.dumps(REPORT))
+    assert endpoints.main([str(rep), "--freq", "125"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[1].endswith("genblk13.g_gra.u_gra.p2b1  (CE 1)") and out[2].endswith("rgba_l  (DI 2)")
+    assert endpoints.main([str(rep), "--inputs", r"rgba_l$", "--top", "1"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out == ["2 inputs of groups matching 'rgba_l$' arrive after 8.000 ns",
+                   "  9.90 ns  u_com.g_lane[3].rgba_l_TRELLIS_FF_Q_120.DI  <- x", "... 1 more (--top)"]
+    assert endpoints.main([str(rep), "--inputs", "("]) == 2
+    assert capsys.readouterr().err.startswith("endpoints: error: --inputs: '(' is not a regular expression")
