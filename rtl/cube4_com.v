@@ -830,17 +830,16 @@ module cube4_com #(
                            rgba_l[0 +: 2*LUT_W], r0_rgba[q*LUT_W +: LUT_W]};
             end
             if (PLW != 0) begin : g_pwt
-                // the lane's copy of the path-weight columns, read with R0's sample,
-                // and its word registered once more (in S2: a block RAM's output
-                // register, no logic after the RAM), then carried to S3
-                reg [PWC_W-1:0] wtab [0:(1 << VOXEL_W)-1];
-                reg [PWC_W-1:0] w1_cols, w2_cols, w3_cols;
-                always @(posedge clk) begin
-                    if (lut_we) wtab[lut_addr] <= lut_data;
-                    w1_cols <= wtab[r0_smp[q*VOXEL_W +: VOXEL_W]];
-                    w2_cols <= w1_cols;
-                    w3_cols <= w2_cols;
-                end
+                // the lane's copy of the path-weight columns, read with R0's sample
+                // (S1: the RAM's read register), its word registered once more
+                // (S2: the RAM's output register, a block RAM's own, so no logic
+                // and no clock-to-out of the block after it), then carried to S3
+                wire [PWC_W-1:0] w2_cols;
+                reg  [PWC_W-1:0] w3_cols;
+                cube4_sdp_ram #(.DATA_W(PWC_W), .DEPTH(1 << VOXEL_W), .OUT_REG(1)) u_wtab (
+                    .clk(clk), .rd_en(1'b1), .rd_addr(r0_smp[q*VOXEL_W +: VOXEL_W]), .rd_data(w2_cols),
+                    .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
+                always @(posedge clk) w3_cols <= w2_cols;
                 wire [ALPHA_W-1:0] a_col = w3_cols[pw_col_3[2*q +: 2] * ALPHA_W +: ALPHA_W];
                 assign a_s3 = (pw_use_3[q] && !mode_ext_q) ? a_col : rgba_l[2*LUT_W +: ALPHA_W];
             end else begin : g_no_pwt
@@ -963,11 +962,17 @@ module cube4_com #(
                 cube4_prim_copies #(.N(1), .W(EXT_W), .RESET(0)) u_s6_e (
                     .clk(clk), .rst(1'b0), .d(acc_in[EXT_W-1:0]), .q(s6_e));
                 wire [VOXEL_W-1:0] kept = s6_e[LUT_W +: VOXEL_W];
+                // (the choice is registered as a flag beside both candidates and
+                // made at S7 -> S8: the compare's result reaches one flip-flop,
+                // not the select of every bit of the word)
                 wire take_s = cnt_s[6][q] && (mode_min_q ? (v6 <= kept) : (v6 >= kept));
-                reg [EXT_W-1:0] s7_e, s8_e, s9_e, s10_e;
+                reg              s7_take;
+                reg [EXT_W-1:0]  s7_new, s7_old, s8_e, s9_e, s10_e;
                 always @(posedge clk) begin
-                    s7_e  <= take_s ? {v6, s6_rgba} : s6_e;
-                    s8_e  <= s7_e;
+                    s7_take <= take_s;
+                    s7_new  <= {v6, s6_rgba};
+                    s7_old  <= s6_e;
+                    s8_e    <= s7_take ? s7_new : s7_old;
                     s9_e  <= s8_e;
                     s10_e <= s9_e;
                 end

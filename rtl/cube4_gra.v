@@ -49,9 +49,11 @@
 //
 // Latency
 //   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
-//   beam delays and the window), plus the input register, 2 register stages
-//   and the output FIFO's memory (cube4_credit_fifo, 16 entries), which
-//   stands in for a third. The delay lines and the window move on GRA's step
+//   beam delays and the window), plus the input register, 3 register stages
+//   (the last the output FIFO's input register, IN_REG = 1: the two
+//   subtractions of gk end at a flip-flop beside them, not at the FIFO's
+//   distributed memory) and the FIFO's memory (cube4_credit_fifo, 16
+//   entries), which stands in for a fourth. The delay lines and the window move on GRA's step
 //   (a beat is taken or a flush step runs), which needs a credit of the
 //   output FIFO (an entry reserved for the gradient beat the step may
 //   produce); the credit comes as seven flip-flop copies, one per group of
@@ -114,7 +116,7 @@ module cube4_gra #(
     // gets its own step net: no single net drives every clock enable of the
     // unit.
     localparam integer NSTEP = 7;    // 0..5 the delay lines, 6 window and counters
-    localparam integer FIFO_DEPTH = 16;   // >= 4 cycles from a step to the FIFO's read (6 with RECTS)
+    localparam integer FIFO_DEPTH = 16;   // >= 5 cycles from a step to the FIFO's read (7 with RECTS)
     wire [NSTEP-1:0] en_rep;         // copies of the output FIFO's credit
     genvar q;
 
@@ -125,9 +127,13 @@ module cube4_gra #(
     wire              fend;          // the step ends a frame (RECTS: the last centre may leave)
     wire [PV-1:0]     x_data, b1, p1, c_d, p1b2, p2b1, p2b2;
     wire [META_W-1:0] c_meta;        // {real, header} of c'
-    wire              dk_f, dk_b, j_first, m_first;
-    wire              y_last;        // c' is in row NJ - 1
-    wire              c_dyf, c_dyb;  // Y-step and old Y-step of c's slice
+    // c's select flags, one copy per lane (each lane's row selects below take
+    // their own copy: no single flag register drives the selects of all P
+    // lanes): bits {dk_f, dk_b, j_first, m_first, y_last, dyf, dyb} of copy q =
+    // the voxel slice changes m -> m+1 / m-1 -> m, c' is in row 0 / slice 0 /
+    // row NJ - 1, the Y-step and old Y-step of c's slice
+    localparam integer NSEL = 7;
+    wire [P*NSEL-1:0] sel_c;
     wire [1:0]        c_edge;        // {last, first}: c' is at its walk's last / first partial beam (RECTS)
 
     generate
@@ -242,7 +248,7 @@ module cube4_gra #(
             wire [META_W-1:0] x_meta = {real_beat, i0_hdr};
 
             wire [META_W-1:0]    p1_meta;
-            wire [3:0]           p1_flags, c_flags;   // {dk_f, dk_b, j_first, m_first} of the beat
+            wire [3:0]           p1_flags;   // {dk_f, dk_b, j_first, m_first} of the beat
 
             // period of each delay line: NB (beam) and NJ*NB (plane), constant in a frame
             localparam integer BL_W = ((NBMAX > 1) ? $clog2(NBMAX) : 1) + 1;
@@ -267,9 +273,13 @@ module cube4_gra #(
                                (p1_m & ss_mask) == '0,            // dk_b: voxel slice changes m-1 -> m
                                p1_j == '0,                        // j_first
                                p1_m == '0};                       // m_first
-            cube4_delay_line #(.DATA_W(4 + META_W + PV), .DEPTH(NBMAX)) u_p1_c (
+            // (the P copies of the flags are words of their own in the line: each
+            // copy's output register is its own)
+            wire [NSEL-1:0] p1_sel = {p1_flags, p1_meta[HDR_CTRL + CTRL_YLAST],
+                                      p1_meta[HDR_CTRL + CTRL_SY], p1_meta[HDR_CTRL + CTRL_OSY]};
+            cube4_delay_line #(.DATA_W(P * NSEL + META_W + PV), .DEPTH(NBMAX)) u_p1_c (
                 .clk(clk), .rst(rst), .clear(sop_rep[2]), .step(step_rep[2]), .last(last_beam), .len(beam_len),
-                .din({p1_flags, p1_meta, p1}), .dout({c_flags, c_meta, c_d}));
+                .din({{P{p1_sel}}, p1_meta, p1}), .dout({sel_c, c_meta, c_d}));
             cube4_delay_line #(.DATA_W(PV), .DEPTH(NBMAX)) u_c_p1b2 (
                 .clk(clk), .rst(rst), .clear(sop_rep[3]), .step(step_rep[3]), .last(last_beam), .len(beam_len),
                 .din(c_d), .dout(p1b2));
@@ -280,10 +290,6 @@ module cube4_gra #(
                 .clk(clk), .rst(rst), .clear(sop_rep[5]), .step(step_rep[5]), .last(last_beam), .len(beam_len),
                 .din(p2b1), .dout(p2b2));
 
-            assign {dk_f, dk_b, j_first, m_first} = c_flags;
-            assign y_last = c_meta[HDR_CTRL + CTRL_YLAST];   // row j = NJ-1
-        assign c_dyf  = c_meta[HDR_CTRL + CTRL_SY];      // Y-step of slice m
-        assign c_dyb  = c_meta[HDR_CTRL + CTRL_OSY];     // old Y-step
             assign c_edge = 2'b00;                            // i - 1 and i + 1 lie in the frame's beams
             assign fend   = 1'b0;
 
@@ -500,10 +506,7 @@ module cube4_gra #(
             assign c_d    = i0_bg ? m_w[2*PV +: PV] : {PV{1'b0}};
             assign p1b2   = i0_bg ? m_w[PV +: PV] : {PV{1'b0}};
             assign p2b2   = i0_bg ? m_w[0 +: PV] : {PV{1'b0}};
-            assign {dk_f, dk_b, j_first, m_first} = i0_flags;
-            assign y_last = i0_ylast;
-            assign c_dyf  = i0_dyf;
-            assign c_dyb  = i0_dyb;
+            assign sel_c = {P{i0_flags, i0_ylast, i0_dyf, i0_dyb}};
             assign c_edge = i0_edge;
             wire unused_walk = ^{en_rep[5:0]};
         end
@@ -513,7 +516,7 @@ module cube4_gra #(
     // ------------------------------------------------------------ alignment hops
     // source skew - centre skew: P1 +s_j, P1b2 -s_j, X +s_j (+s_k), B1 (+s_k),
     // P2b1 (-s_k), P2b2 -s_j (-s_k); a +1 difference means y[q] = x[q + 1].
-    wire [PV-1:0] p1_a, p1b2_a, x_j, x_a, b1_a, p2b1_a, p2b2_j, p2b2_a;
+    wire [PV-1:0] p1_a, p1b2_a, x_j, p2b2_j;
     wire [PV-1:0] x_jk, b1_k, p2b1_k, p2b2_jk;
     cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p1   (.down(!cfg_flip_j), .x(p1),     .y(p1_a));
     cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p1b2 (.down(cfg_flip_j),  .x(p1b2),   .y(p1b2_a));
@@ -523,17 +526,25 @@ module cube4_gra #(
     cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p2k  (.down(cfg_flip_k),  .x(p2b1),   .y(p2b1_k));
     cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p22j (.down(cfg_flip_j),  .x(p2b2),   .y(p2b2_j));
     cube4_ring_shift #(.P(P), .DATA_W(VW)) u_al_p22k (.down(cfg_flip_k),  .x(p2b2_j), .y(p2b2_jk));
-    assign x_a    = dk_f ? x_jk : x_j;
-    assign b1_a   = dk_f ? b1_k : b1;
-    assign p2b1_a = dk_b ? p2b1_k : p2b1;
-    assign p2b2_a = dk_b ? p2b2_jk : p2b2_j;
-
-    // zero rows and slices outside the volume, pick the ray neighbours
-    wire [PV-1:0] row_up   = y_last  ? {PV{1'b0}} : p1_a;                     // (m, j+1)
-    wire [PV-1:0] row_dn   = j_first ? {PV{1'b0}} : p1b2_a;                   // (m, j-1)
-    wire [PV-1:0] fwd_row  = c_dyf ? (y_last ? {PV{1'b0}} : x_a) : b1_a;  // (m+1, j+dyf)
-    wire [PV-1:0] back_row = m_first ? {PV{1'b0}}
-                           : (c_dyb ? (j_first ? {PV{1'b0}} : p2b2_a) : p2b1_a); // (m-1, j-dyb)
+    // then, per lane with the lane's copy of the flags: the slice hops, zero
+    // rows and slices outside the volume, pick the ray neighbours
+    wire [PV-1:0] row_up, row_dn, fwd_row, back_row;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_rows
+            wire dk_f, dk_b, j_first, m_first, y_last, c_dyf, c_dyb;
+            assign {dk_f, dk_b, j_first, m_first, y_last, c_dyf, c_dyb} = sel_c[q*NSEL +: NSEL];
+            localparam integer LO = q * VW;
+            wire [VW-1:0] x_a    = dk_f ? x_jk[LO +: VW] : x_j[LO +: VW];
+            wire [VW-1:0] b1_a   = dk_f ? b1_k[LO +: VW] : b1[LO +: VW];
+            wire [VW-1:0] p2b1_a = dk_b ? p2b1_k[LO +: VW] : p2b1[LO +: VW];
+            wire [VW-1:0] p2b2_a = dk_b ? p2b2_jk[LO +: VW] : p2b2_j[LO +: VW];
+            assign row_up[LO +: VW]   = y_last  ? {VW{1'b0}} : p1_a[LO +: VW];          // (m, j+1)
+            assign row_dn[LO +: VW]   = j_first ? {VW{1'b0}} : p1b2_a[LO +: VW];        // (m, j-1)
+            assign fwd_row[LO +: VW]  = c_dyf ? (y_last ? {VW{1'b0}} : x_a) : b1_a;    // (m+1, j+dyf)
+            assign back_row[LO +: VW] = m_first ? {VW{1'b0}}
+                                     : (c_dyb ? (j_first ? {VW{1'b0}} : p2b2_a) : p2b1_a);   // (m-1, j-dyb)
+        end
+    endgenerate
 
     // gj of c' per lane
     wire [P*DW-1:0] gj_in;
@@ -671,7 +682,8 @@ module cube4_gra #(
     // ------------------------------------------------------------ arithmetic
     // g1: differences; g2: VIEW_X*gi and VIEW_Y*gj, each a cube4_mul whose
     // operand registers are g1's (they take gi_d and h2_gj as g1 does) and
-    // whose product register is g2's; g3: gk, written into the output FIFO.
+    // whose product register is g2's; g3: gk, in the output FIFO's input
+    // register (IN_REG = 1), then its memory.
     // g1 and g2 load on every cycle; g1_v marks a step whose centre is a real
     // beat (the take of its FIFO entry).
     //   gk = (gr << ss) - round_shift(VIEW_X*gi + VIEW_Y*gj, WEIGHT_W) is formed
@@ -747,7 +759,8 @@ module cube4_gra #(
         g2_gpre <= gpre_d;
     end
 
-    // ---- g3: the output FIFO's memory; g1 holds a beat: push at g3 ----
+    // ---- g3: the output FIFO's input register, then its memory; g1 holds a
+    // beat: push at g3 (the FIFO stores it one cycle later) ----
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
     localparam integer EOP_BIT = OUT_W - HDR_W + HDR_CTRL + CTRL_EOP;   // the header's EOP in an item
     wire [OUT_W-1:0] fifo_out;
@@ -797,7 +810,7 @@ module cube4_gra #(
     endgenerate
     cube4_prim_copies #(.N(NSTEP), .RST_VAL(64'd1)) u_credit (
         .clk(clk), .rst(rst), .d(credit_d), .q(en_rep));
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(1)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(1'b0),
         .credit(unused_credit), .credit_d(credit_d),
         .push_d(push_d), .in_data(fifo_in),
