@@ -605,8 +605,6 @@ module cube4_gra #(
     end
 
     wire              h_real = h2_meta[META_W-1] && h2_live;
-    wire              h_dxf  = h2_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m
-    wire              h_dxb  = h2_meta[HDR_CTRL + CTRL_OSX];   // old X-step
 
     // Per lane of h1 (the next centre), where its i - 1 and i + 1 are: inside
     // the volume (hi_ok, lo_ok) and in the next / previous beat (hi_new,
@@ -615,8 +613,10 @@ module cube4_gra #(
     // i-1 from the previous beat / from this beat; both 0: zero), with the
     // walk's edge beams already applied (beyond them the neighbour is zero),
     // so each bit of a neighbour is one 4-input function of its selects and
-    // its two candidates. Two register copies: one for the centre's row,
-    // one for the forward and backward rows (each drives 2 x VOXEL_W loads).
+    // its two candidates. The forward and backward rows have their own
+    // registers, with the X-steps folded in (i + dxf: from the next beat,
+    // from this beat's neighbour, or the lane itself; i - dxb likewise), so
+    // no single X-step flip-flop drives the selects of every lane.
     // With i = pb * P + t and NB = ceil(NI / P): i + 1 < NI holds in every
     // partial beam but the last, and in the last where t < r = NI - 1 - (NB - 1) * P
     // (0 <= r < P, exact modulo 2^LANE_W); i > 0 where pb > 0 or t > 0. So the
@@ -648,13 +648,23 @@ module cube4_gra #(
             h1_edge   <= c_edge;
         end
     end
-    localparam integer NSEL_W = 4 * P;    // {lo_same, lo_old, hi_same, hi_new} per lane
+    localparam integer CSEL_W = 4 * P;    // {lo_same, lo_old, hi_same, hi_new} per lane
+    localparam integer RSEL_W = 6 * P;    // {b_self, b_same, b_old, f_self, f_same, f_new} per lane
+    wire              h1_dxf = h1_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m (h1's)
+    wire              h1_dxb = h1_meta[HDR_CTRL + CTRL_OSX];   // old X-step
     wire [P-1:0]      hi_okx = hi_ok_d & ~(hi_new_d & {P{h1_edge[1]}});
     wire [P-1:0]      lo_okx = lo_ok_d & ~(lo_old_d & {P{h1_edge[0]}});
-    wire [NSEL_W-1:0] nsel_d = {lo_okx & ~lo_old_d, lo_okx & lo_old_d, hi_okx & ~hi_new_d, hi_okx & hi_new_d};
-    wire [2*NSEL_W-1:0] nsel_q;           // copy 0: the centre's row; copy 1: the forward / backward rows
-    cube4_prim_copies #(.N(2), .W(NSEL_W), .RESET(0)) u_nsel (
-        .clk(clk), .rst(rst), .d(step ? nsel_d : nsel_q[0 +: NSEL_W]), .q(nsel_q));
+    wire [P-1:0]      hi_n = hi_okx & hi_new_d, hi_s = hi_okx & ~hi_new_d;
+    wire [P-1:0]      lo_o = lo_okx & lo_old_d, lo_s = lo_okx & ~lo_old_d;
+    wire [CSEL_W-1:0] csel_d = {lo_s, lo_o, hi_s, hi_n};
+    wire [RSEL_W-1:0] rsel_d = {{P{!h1_dxb}}, lo_s & {P{h1_dxb}}, lo_o & {P{h1_dxb}},
+                                {P{!h1_dxf}}, hi_s & {P{h1_dxf}}, hi_n & {P{h1_dxf}}};
+    wire [CSEL_W-1:0] csel_q;             // the centre's row
+    wire [RSEL_W-1:0] rsel_q;             // the forward and backward rows
+    cube4_prim_copies #(.N(1), .W(CSEL_W), .RESET(0)) u_csel (
+        .clk(clk), .rst(rst), .d(step ? csel_d : csel_q), .q(csel_q));
+    cube4_prim_copies #(.N(1), .W(RSEL_W), .RESET(0)) u_rsel (
+        .clk(clk), .rst(rst), .d(step ? rsel_d : rsel_q), .q(rsel_q));
 
     // neighbours i+1 (from lane q + s_i; the lane at t = P-1 from beat c + 1) and
     // i-1 (from lane q - s_i; the lane at t = 0 from beat c - 1)
@@ -673,17 +683,20 @@ module cube4_gra #(
     generate
         for (q = 0; q < P; q = q + 1) begin : g_win
             // beyond the walk's partial beams the neighbours are zero (outside the rectangles)
-            // selects: [0] i+1 from the next beat, [1] from this one, [2] i-1
-            // from the previous beat, [3] from this one (copy 0 for c, 1 for f/b)
-            wire [3:0] sc = {nsel_q[3*P + q], nsel_q[2*P + q], nsel_q[P + q], nsel_q[q]};
-            wire [3:0] sr = {nsel_q[NSEL_W + 3*P + q], nsel_q[NSEL_W + 2*P + q],
-                             nsel_q[NSEL_W + P + q], nsel_q[NSEL_W + q]};
+            // centre row: [0] i+1 from the next beat, [1] from this one, [2] i-1
+            // from the previous beat, [3] from this one; forward row i + dxf:
+            // [0] from the next beat, [1] this beat's neighbour, [2] the lane;
+            // backward row i - dxb: [3] from the previous beat, [4] this
+            // beat's neighbour, [5] the lane (all 0: zero)
+            wire [3:0] sc = {csel_q[3*P + q], csel_q[2*P + q], csel_q[P + q], csel_q[q]};
+            wire [5:0] sr = {rsel_q[5*P + q], rsel_q[4*P + q], rsel_q[3*P + q],
+                             rsel_q[2*P + q], rsel_q[P + q], rsel_q[q]};
             wire [VW-1:0] c_hi = ({VW{sc[0]}} & c_next_new[q*VW +: VW]) | ({VW{sc[1]}} & c_next_same[q*VW +: VW]);
             wire [VW-1:0] c_lo = ({VW{sc[2]}} & c_prev_old[q*VW +: VW]) | ({VW{sc[3]}} & c_prev_same[q*VW +: VW]);
-            wire [VW-1:0] f_hi = ({VW{sr[0]}} & f_next_new[q*VW +: VW]) | ({VW{sr[1]}} & f_next_same[q*VW +: VW]);
-            wire [VW-1:0] b_lo = ({VW{sr[2]}} & b_prev_old[q*VW +: VW]) | ({VW{sr[3]}} & b_prev_same[q*VW +: VW]);
-            wire [VW-1:0] fwd  = h_dxf ? f_hi : h2_f[q*VW +: VW];   // i + dxf
-            wire [VW-1:0] back = h_dxb ? b_lo : h2_b[q*VW +: VW];   // i - dxb
+            wire [VW-1:0] fwd  = ({VW{sr[0]}} & f_next_new[q*VW +: VW]) | ({VW{sr[1]}} & f_next_same[q*VW +: VW])
+                               | ({VW{sr[2]}} & h2_f[q*VW +: VW]);                        // i + dxf
+            wire [VW-1:0] back = ({VW{sr[3]}} & b_prev_old[q*VW +: VW]) | ({VW{sr[4]}} & b_prev_same[q*VW +: VW])
+                               | ({VW{sr[5]}} & h2_b[q*VW +: VW]);                        // i - dxb
             assign gi_d[q*DW +: DW] = $signed({1'b0, c_hi}) - $signed({1'b0, c_lo});
             assign gr_d[q*DW +: DW] = $signed({1'b0, fwd}) - $signed({1'b0, back});
         end
