@@ -179,9 +179,10 @@ module cube4_com #(
     //   S8  w in a fabric register (between the two multipliers), T - w
     //   S9  w * C' (multipliers)
     //   S10 C += round_shift(w * C', 8)
-    //   S11 the new partial results (acc_q, per lane): the slice buffer's
-    //       write register (its block RAMs are spread over the die) and the
-    //       source of the pixels pushed into the FIFO (one edge later in it)
+    //   S11 the new partial results (per lane, one register per mode): the
+    //       slice buffer's write word acc_q (the mode's select on the route
+    //       to its block RAMs, which are spread over the die) and the source
+    //       of the pixels pushed into the FIFO (one edge later in it)
     // Every stage moves on every cycle and carries a valid bit; the datapath
     // registers have no clock enable. The registers that must hold across
     // bubbles load under a valid bit: the position counters under step (R0's
@@ -791,9 +792,11 @@ module cube4_com #(
     wire [PX_W-1:0] pix_d;              // S11: the lanes' {R, G, B, A}, from acc_q
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            // S11: the lane's new partial result (below), the slice buffer's write
-            // register; the pixel for the FIFO is formed from it
-            reg [AC_W-1:0] acc_q_l;
+            // S11: the lane's new partial result (below), one register per mode
+            // (acc_c_l compositing, acc_e_l the extremum), each beside its own
+            // sums; the slice buffer's write word is chosen from them on the
+            // route to its block RAM, the pixel for the FIFO is formed from them
+            reg [AC_W-1:0] acc_c_l, acc_e_l;
             // S5: previous partial result, or a fresh ray. The selects are
             // S5's {dxb, t0, fresh} of this lane and the (static) mode bits,
             // as NQ register copies (sel5), one per quarter of the word: one
@@ -939,7 +942,7 @@ module cube4_com #(
                 end
                 assign word_cmp = AC_W'({c_out, s10_t});
                 // S11: the pixel {R, G, B, A = 1 - T} from the register
-                assign pix_cmp  = {acc_q_l[CW +: 3*CW], ONE - acc_q_l[0 +: CW]};
+                assign pix_cmp  = {acc_c_l[CW +: 3*CW], ONE - acc_c_l[0 +: CW]};
             end else begin : g_no_cmp
                 wire unused_xray = mode_xray_q;
                 assign word_cmp = '0;
@@ -977,7 +980,7 @@ module cube4_com #(
                     s10_e <= s9_e;
                 end
                 // S11: the pixel from the register: colour << (F - 8), A to F bits
-                wire [EXT_W-1:0] e11 = acc_q_l[EXT_W-1:0];
+                wire [EXT_W-1:0] e11 = acc_e_l[EXT_W-1:0];
                 wire [CW-1:0] a_px;
                 if (ACC_W >= ALPHA_W) begin : g_a_up
                     assign a_px = CW'(e11[0 +: ALPHA_W]) << (ACC_W - ALPHA_W);
@@ -999,10 +1002,23 @@ module cube4_com #(
                 assign pix_ext  = '0;
             end
 
-            // S11: the slice buffer's write register (loads on every cycle; the
-            // write enable is the beat's valid bit)
-            always @(posedge clk) acc_q_l <= mode_ext_q ? word_ext : word_cmp;
-            assign acc_q[q*AC_W +: AC_W] = acc_q_l;
+            // S11: the mode's registers (load on every cycle; the slice buffer's
+            // write enable is the beat's valid bit). One register for both
+            // modes sat between the two modes' logic, the slice buffer and
+            // the FIFO, and S10's compositing sums reached it over 4.9 ns of
+            // routing (P = 8). The write word's select per quarter uses that
+            // quarter's mode copy (sel5: static within a frame).
+            always @(posedge clk) begin
+                acc_c_l <= word_cmp;
+                acc_e_l <= word_ext;
+            end
+            for (qs = 0; qs < NQ; qs = qs + 1) begin : g_wr
+                localparam integer QL = qs * QW;
+                localparam integer QN = (AC_W - QL < QW) ? AC_W - QL : QW;
+                if (QN > 0) begin : g_bits
+                    assign acc_q[q*AC_W + QL +: QN] = sel5[5*qs + 1] ? acc_e_l[QL +: QN] : acc_c_l[QL +: QN];
+                end
+            end
             assign pix_d[q*CMP_W +: CMP_W] = mode_ext_q ? pix_ext : pix_cmp;
         end
     endgenerate

@@ -49,11 +49,13 @@
 //
 // Latency
 //   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
-//   beam delays and the window), plus the input register, 3 register stages
-//   (the last the output FIFO's input register, IN_REG = 1: the two
-//   subtractions of gk end at a flip-flop beside them, not at the FIFO's
-//   distributed memory) and the FIFO's memory (cube4_credit_fifo, 16
-//   entries), which stands in for a fourth. The delay lines and the window move on GRA's step
+//   beam delays and the window), plus the input register, 4 register stages
+//   (the differences; the multipliers' operand registers, fed from the
+//   differences' flip-flops, not from their carry chains; the products; the
+//   output FIFO's input register, IN_REG = 1: the two subtractions of gk end
+//   at a flip-flop beside them, not at the FIFO's distributed memory) and
+//   the FIFO's memory (cube4_credit_fifo, 16 entries), which stands in for a
+//   fifth. The delay lines and the window move on GRA's step
 //   (a beat is taken or a flush step runs), which needs a credit of the
 //   output FIFO (an entry reserved for the gradient beat the step may
 //   produce); the credit comes as seven flip-flop copies, one per group of
@@ -116,7 +118,7 @@ module cube4_gra #(
     // gets its own step net: no single net drives every clock enable of the
     // unit.
     localparam integer NSTEP = 7;    // 0..5 the delay lines, 6 window and counters
-    localparam integer FIFO_DEPTH = 16;   // >= 5 cycles from a step to the FIFO's read (7 with RECTS)
+    localparam integer FIFO_DEPTH = 16;   // >= 6 cycles from a step to the FIFO's read (8 with RECTS)
     wire [NSTEP-1:0] en_rep;         // copies of the output FIFO's credit
     genvar q;
 
@@ -603,12 +605,18 @@ module cube4_gra #(
     end
 
     wire              h_real = h2_meta[META_W-1] && h2_live;
-    wire              h_dxf  = h2_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m
-    wire              h_dxb  = h2_meta[HDR_CTRL + CTRL_OSX];   // old X-step
 
     // Per lane of h1 (the next centre), where its i - 1 and i + 1 are: inside
     // the volume (hi_ok, lo_ok) and in the next / previous beat (hi_new,
-    // lo_old). Registered with h1 into h2 (the window of h2 uses them).
+    // lo_old). Registered with h1 into h2 (the window of h2 uses them) as
+    // each neighbour's two selects (i+1 from the next beat / from this beat,
+    // i-1 from the previous beat / from this beat; both 0: zero), with the
+    // walk's edge beams already applied (beyond them the neighbour is zero),
+    // so each bit of a neighbour is one 4-input function of its selects and
+    // its two candidates. The forward and backward rows have their own
+    // registers, with the X-steps folded in (i + dxf: from the next beat,
+    // from this beat's neighbour, or the lane itself; i - dxb likewise), so
+    // no single X-step flip-flop drives the selects of every lane.
     // With i = pb * P + t and NB = ceil(NI / P): i + 1 < NI holds in every
     // partial beam but the last, and in the last where t < r = NI - 1 - (NB - 1) * P
     // (0 <= r < P, exact modulo 2^LANE_W); i > 0 where pb > 0 or t > 0. So the
@@ -625,8 +633,7 @@ module cube4_gra #(
     wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
     wire              h1_pb_zero = (h1_pb == '0);
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
-    reg  [P-1:0]      h2_hi_ok, h2_lo_ok, h2_hi_new, h2_lo_old;
-    reg  [1:0]        h1_edge, h2_edge;   // {last, first} partial beam of the walk (c_edge)
+    reg  [1:0]        h1_edge;            // {last, first} partial beam of the walk (c_edge)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
             wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
@@ -638,14 +645,26 @@ module cube4_gra #(
     endgenerate
     always @(posedge clk) begin
         if (step) begin
-            h2_hi_ok  <= hi_ok_d;
-            h2_lo_ok  <= lo_ok_d;
-            h2_hi_new <= hi_new_d;
-            h2_lo_old <= lo_old_d;
             h1_edge   <= c_edge;
-            h2_edge   <= h1_edge;
         end
     end
+    localparam integer CSEL_W = 4 * P;    // {lo_same, lo_old, hi_same, hi_new} per lane
+    localparam integer RSEL_W = 6 * P;    // {b_self, b_same, b_old, f_self, f_same, f_new} per lane
+    wire              h1_dxf = h1_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m (h1's)
+    wire              h1_dxb = h1_meta[HDR_CTRL + CTRL_OSX];   // old X-step
+    wire [P-1:0]      hi_okx = hi_ok_d & ~(hi_new_d & {P{h1_edge[1]}});
+    wire [P-1:0]      lo_okx = lo_ok_d & ~(lo_old_d & {P{h1_edge[0]}});
+    wire [P-1:0]      hi_n = hi_okx & hi_new_d, hi_s = hi_okx & ~hi_new_d;
+    wire [P-1:0]      lo_o = lo_okx & lo_old_d, lo_s = lo_okx & ~lo_old_d;
+    wire [CSEL_W-1:0] csel_d = {lo_s, lo_o, hi_s, hi_n};
+    wire [RSEL_W-1:0] rsel_d = {{P{!h1_dxb}}, lo_s & {P{h1_dxb}}, lo_o & {P{h1_dxb}},
+                                {P{!h1_dxf}}, hi_s & {P{h1_dxf}}, hi_n & {P{h1_dxf}}};
+    wire [CSEL_W-1:0] csel_q;             // the centre's row
+    wire [RSEL_W-1:0] rsel_q;             // the forward and backward rows
+    cube4_prim_copies #(.N(1), .W(CSEL_W), .RESET(0)) u_csel (
+        .clk(clk), .rst(rst), .d(step ? csel_d : csel_q), .q(csel_q));
+    cube4_prim_copies #(.N(1), .W(RSEL_W), .RESET(0)) u_rsel (
+        .clk(clk), .rst(rst), .d(step ? rsel_d : rsel_q), .q(rsel_q));
 
     // neighbours i+1 (from lane q + s_i; the lane at t = P-1 from beat c + 1) and
     // i-1 (from lane q - s_i; the lane at t = 0 from beat c - 1)
@@ -664,54 +683,63 @@ module cube4_gra #(
     generate
         for (q = 0; q < P; q = q + 1) begin : g_win
             // beyond the walk's partial beams the neighbours are zero (outside the rectangles)
-            wire          hi_ok  = h2_hi_ok[q] && !(h2_hi_new[q] && h2_edge[1]);
-            wire          lo_ok  = h2_lo_ok[q] && !(h2_lo_old[q] && h2_edge[0]);
-            wire          hi_new = h2_hi_new[q];
-            wire          lo_old = h2_lo_old[q];
-            wire [VW-1:0] c_hi = !hi_ok ? {VW{1'b0}} : hi_new ? c_next_new[q*VW +: VW] : c_next_same[q*VW +: VW];
-            wire [VW-1:0] c_lo = !lo_ok ? {VW{1'b0}} : lo_old ? c_prev_old[q*VW +: VW] : c_prev_same[q*VW +: VW];
-            wire [VW-1:0] f_hi = !hi_ok ? {VW{1'b0}} : hi_new ? f_next_new[q*VW +: VW] : f_next_same[q*VW +: VW];
-            wire [VW-1:0] b_lo = !lo_ok ? {VW{1'b0}} : lo_old ? b_prev_old[q*VW +: VW] : b_prev_same[q*VW +: VW];
-            wire [VW-1:0] fwd  = h_dxf ? f_hi : h2_f[q*VW +: VW];   // i + dxf
-            wire [VW-1:0] back = h_dxb ? b_lo : h2_b[q*VW +: VW];   // i - dxb
+            // centre row: [0] i+1 from the next beat, [1] from this one, [2] i-1
+            // from the previous beat, [3] from this one; forward row i + dxf:
+            // [0] from the next beat, [1] this beat's neighbour, [2] the lane;
+            // backward row i - dxb: [3] from the previous beat, [4] this
+            // beat's neighbour, [5] the lane (all 0: zero)
+            wire [3:0] sc = {csel_q[3*P + q], csel_q[2*P + q], csel_q[P + q], csel_q[q]};
+            wire [5:0] sr = {rsel_q[5*P + q], rsel_q[4*P + q], rsel_q[3*P + q],
+                             rsel_q[2*P + q], rsel_q[P + q], rsel_q[q]};
+            wire [VW-1:0] c_hi = ({VW{sc[0]}} & c_next_new[q*VW +: VW]) | ({VW{sc[1]}} & c_next_same[q*VW +: VW]);
+            wire [VW-1:0] c_lo = ({VW{sc[2]}} & c_prev_old[q*VW +: VW]) | ({VW{sc[3]}} & c_prev_same[q*VW +: VW]);
+            wire [VW-1:0] fwd  = ({VW{sr[0]}} & f_next_new[q*VW +: VW]) | ({VW{sr[1]}} & f_next_same[q*VW +: VW])
+                               | ({VW{sr[2]}} & h2_f[q*VW +: VW]);                        // i + dxf
+            wire [VW-1:0] back = ({VW{sr[3]}} & b_prev_old[q*VW +: VW]) | ({VW{sr[4]}} & b_prev_same[q*VW +: VW])
+                               | ({VW{sr[5]}} & h2_b[q*VW +: VW]);                        // i - dxb
             assign gi_d[q*DW +: DW] = $signed({1'b0, c_hi}) - $signed({1'b0, c_lo});
             assign gr_d[q*DW +: DW] = $signed({1'b0, fwd}) - $signed({1'b0, back});
         end
     endgenerate
 
     // ------------------------------------------------------------ arithmetic
-    // g1: differences; g2: VIEW_X*gi and VIEW_Y*gj, each a cube4_mul whose
-    // operand registers are g1's (they take gi_d and h2_gj as g1 does) and
-    // whose product register is g2's; g3: gk, in the output FIFO's input
-    // register (IN_REG = 1), then its memory.
-    // g1 and g2 load on every cycle; g1_v marks a step whose centre is a real
+    // g1: differences (the carry chains end at g1's flip-flops); g2, g3:
+    // VIEW_X*gi and VIEW_Y*gj, each a cube4_mul whose operand registers are
+    // g2's (they take g1_gi and g1_gj) and whose product register is g3's,
+    // so that the route from the fabric to the multiplier's pins starts at
+    // a flip-flop (the 9-bit difference's sign drove ten operand pins);
+    // g4: gk, in the output FIFO's input register (IN_REG = 1), then its
+    // memory.
+    // g1 .. g3 load on every cycle; g1_v marks a step whose centre is a real
     // beat (the take of its FIFO entry).
     //   gk = (gr << ss) - round_shift(VIEW_X*gi + VIEW_Y*gj, WEIGHT_W) is formed
     //   as floor((G' - VIEW_X*gi - VIEW_Y*gj) / 2^WEIGHT_W) with
-    //   G' = (gr << ss) * 2^WEIGHT_W + 2^(WEIGHT_W-1) - 1 (registered at g2;
+    //   G' = (gr << ss) * 2^WEIGHT_W + 2^(WEIGHT_W-1) - 1 (registered at g3;
     //   its low bits are the constant, so no adder): the same integer, since
     //   c - floor((x + h) / 2^W) = floor((c * 2^W - x - h + 2^W - 1) / 2^W).
-    //   Two subtractions in g3, as the rounding add and subtraction were.
+    //   Two subtractions in g4, as the rounding add and subtraction were.
     //   Formed modulo 2^(GRAD_W + WEIGHT_W); the top GRAD_W bits are gk
     //   modulo 2^GRAD_W, as before (gk fits GRAD_W bits: nothing wraps).
     localparam integer MB_W  = WEIGHT_W + 2;                // a view weight (0 .. 2^W), signed
     localparam integer MP_W  = DW + MB_W;                   // a product
     localparam integer GX_W  = GRAD_W + WEIGHT_W;           // G' and the difference
     localparam [WEIGHT_W-1:0] GK_LOW = WEIGHT_W'((1 << (WEIGHT_W - 1)) - 1);
-    reg               g1_v, g2_v;
-    reg [META_W-2:0]  g1_meta, g2_meta;
-    reg [PV-1:0]      g1_s, g2_s;
-    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj;
-    reg [P*GX_W-1:0]  g2_gpre;
+    reg               g1_v, g2_v, g3_v;
+    reg [META_W-2:0]  g1_meta, g2_meta, g3_meta;
+    reg [PV-1:0]      g1_s, g2_s, g3_s;
+    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj, g2_gr, g3_gi, g3_gj;
+    reg [P*GX_W-1:0]  g3_gpre;
     wire              take = step && h2_v && h_real;
 
     always @(posedge clk) begin
         if (rst) begin
             g1_v <= 1'b0;
             g2_v <= 1'b0;
+            g3_v <= 1'b0;
         end else begin
             g1_v <= take;
             g2_v <= g1_v;
+            g3_v <= g2_v;
         end
     end
 
@@ -719,28 +747,28 @@ module cube4_gra #(
     wire [P*GRAD_W-1:0] gk_d, gi_x, gj_x;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_arith
-            wire signed [MP_W-1:0] px, py;     // at g2: VIEW_X * gi, VIEW_Y * gj
-            wire signed [DW-1:0]   gi_a = gi_d[q*DW +: DW];
-            wire signed [DW-1:0]   gj_a = h2_gj[q*DW +: DW];
+            wire signed [MP_W-1:0] px, py;     // at g3: VIEW_X * gi, VIEW_Y * gj
+            wire signed [DW-1:0]   gi_a = g1_gi[q*DW +: DW];
+            wire signed [DW-1:0]   gj_a = g1_gj[q*DW +: DW];
             wire signed [MB_W-1:0] vx_b = {1'b0, cfg_view_x};
             wire signed [MB_W-1:0] vy_b = {1'b0, cfg_view_y};
             cube4_mul #(.A_W(DW), .B_W(MB_W)) u_px (
                 .clk (clk), .en (1'b1), .a (gi_a), .b (vx_b), .p (px));
             cube4_mul #(.A_W(DW), .B_W(MB_W)) u_py (
                 .clk (clk), .en (1'b1), .a (gj_a), .b (vy_b), .p (py));
-            // g1 -> g2: G' (a shift and a constant)
-            wire signed [DW-1:0]     gr1  = g1_gr[q*DW +: DW];
+            // g2 -> g3: G' (a shift and a constant)
+            wire signed [DW-1:0]     gr1  = g2_gr[q*DW +: DW];
             wire signed [GRAD_W-1:0] gr_e = {{(GRAD_W - DW){gr1[DW-1]}}, gr1};
             wire signed [GRAD_W-1:0] gr_s = gr_e <<< cfg_ss_log2;
             assign gpre_d[q*GX_W +: GX_W] = {gr_s, GK_LOW};
-            // g3: gk
+            // g4: gk
             wire signed [GX_W-1:0] px_e = GX_W'(px);
             wire signed [GX_W-1:0] py_e = GX_W'(py);
-            wire signed [GX_W-1:0] dif  = $signed(g2_gpre[q*GX_W +: GX_W]) - px_e - py_e;
+            wire signed [GX_W-1:0] dif  = $signed(g3_gpre[q*GX_W +: GX_W]) - px_e - py_e;
             assign gk_d[q*GRAD_W +: GRAD_W] = dif[GX_W-1 -: GRAD_W];
             wire unused_dif = ^dif[WEIGHT_W-1:0];   // the fraction the floor drops
-            wire signed [DW-1:0] gi2 = g2_gi[q*DW +: DW];
-            wire signed [DW-1:0] gj2 = g2_gj[q*DW +: DW];
+            wire signed [DW-1:0] gi2 = g3_gi[q*DW +: DW];
+            wire signed [DW-1:0] gj2 = g3_gj[q*DW +: DW];
             assign gi_x[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gi2[DW-1]}}, gi2};
             assign gj_x[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gj2[DW-1]}}, gj2};
         end
@@ -756,56 +784,63 @@ module cube4_gra #(
         g2_s    <= g1_s;
         g2_gi   <= g1_gi;
         g2_gj   <= g1_gj;
-        g2_gpre <= gpre_d;
+        g2_gr   <= g1_gr;
+        g3_meta <= g2_meta;
+        g3_s    <= g2_s;
+        g3_gi   <= g2_gi;
+        g3_gj   <= g2_gj;
+        g3_gpre <= gpre_d;
     end
 
-    // ---- g3: the output FIFO's input register, then its memory; g1 holds a
-    // beat: push at g3 (the FIFO stores it one cycle later) ----
+    // ---- g4: the output FIFO's input register, then its memory; g2 holds a
+    // beat: push at g4 (the FIFO stores it one cycle later) ----
     localparam integer OUT_W = META_W - 1 + PV + 3 * P * GRAD_W;
     localparam integer EOP_BIT = OUT_W - HDR_W + HDR_CTRL + CTRL_EOP;   // the header's EOP in an item
     wire [OUT_W-1:0] fifo_out;
-    wire [OUT_W-1:0] item = {g2_meta, g2_s, gi_x, gj_x, gk_d};   // g2 holds a beat when g2_v
+    wire [OUT_W-1:0] item = {g3_meta, g3_s, gi_x, gj_x, gk_d};   // g3 holds a beat when g3_v
     wire unused_credit;                 // (en_rep: the step nets' own copies)
     wire credit_d;
     wire push_d;
     wire [OUT_W-1:0] fifo_in;
     generate
         if (RECTS == 0) begin : g_push
-            assign push_d  = g1_v;
+            assign push_d  = g2_v;
             assign fifo_in = item;
-            wire unused_g = ^{g2_v, fend};   // the FIFO's push copies are its copies
+            wire unused_g = ^{g3_v, fend};   // the FIFO's push copies are its copies
         end else begin : g_hold
             // The frame's last beat is known only when GRA's walk ends (the input's
             // last beat may be one outside the rectangles): each beat waits in
             // hold_q until the next one comes (then it is pushed) or the frame
             // ends (then it is pushed with EOP). push_d says so one cycle before
-            // g3_q holds the beat, which the FIFO stores.
-            reg               g1_end, g2_end, hold_v;
-            reg [OUT_W-1:0]   hold_q, g3_q;
+            // g4_q holds the beat, which the FIFO stores.
+            reg               g1_end, g2_end, g3_end, hold_v;
+            reg [OUT_W-1:0]   hold_q, g4_q;
             always @(posedge clk) begin
                 if (rst) begin
                     g1_end <= 1'b0;
                     g2_end <= 1'b0;
+                    g3_end <= 1'b0;
                     hold_v <= 1'b0;
                 end else begin
                     g1_end <= step && fend;
                     g2_end <= g1_end;
-                    if (g2_v)        hold_v <= 1'b1;
-                    else if (g2_end) hold_v <= 1'b0;
+                    g3_end <= g2_end;
+                    if (g3_v)        hold_v <= 1'b1;
+                    else if (g3_end) hold_v <= 1'b0;
                 end
             end
             always @(posedge clk) begin
-                if (g2_v) begin
+                if (g3_v) begin
                     hold_q          <= item;
                     hold_q[EOP_BIT] <= 1'b0;
                 end
-                if (g2_v || g2_end) begin
-                    g3_q          <= hold_q;
-                    g3_q[EOP_BIT] <= g2_end;
+                if (g3_v || g3_end) begin
+                    g4_q          <= hold_q;
+                    g4_q[EOP_BIT] <= g3_end;
                 end
             end
-            assign push_d  = (g2_v || g2_end) && hold_v;
-            assign fifo_in = g3_q;
+            assign push_d  = (g3_v || g3_end) && hold_v;
+            assign fifo_in = g4_q;
         end
     endgenerate
     cube4_prim_copies #(.N(NSTEP), .RST_VAL(64'd1)) u_credit (

@@ -277,6 +277,12 @@ def test_router2_divergence_rule(tmp_path):
     grown = [1000] * (n - 1) + [863, 863 * fpga.DIVERGE_FACTOR + 1]
     why = fpga.router2_diverged(router2_log(tmp_path, grown))
     assert why and f"iteration {n + 1}" in why and "863 at iteration" in why
+    # a nearly routed run swinging between a few wires is not diverging (the floor) ...
+    nearly = [1000] * (n - 1) + [2, fpga.DIVERGE_FLOOR]
+    assert fpga.router2_diverged(router2_log(tmp_path, nearly)) is None
+    # ... but the same growth past the floor is
+    past = [1000] * (n - 1) + [2, fpga.DIVERGE_FLOOR + 1]
+    assert fpga.router2_diverged(router2_log(tmp_path, past))
     assert fpga.router2_diverged(tmp_path / "missing.out") is None
     assert fpga.router2_diverged(router2_log(tmp_path, [])) is None
 

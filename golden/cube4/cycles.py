@@ -13,7 +13,7 @@ from __future__ import annotations
 #: Pipeline fill of cube4_top: cycles beyond the stream terms, measured at 128³, P = 8
 #: (``cube4 render sphere:128 --engine rtl --stats``); tb/cube4_top's phantom tests check the formula
 #: against the RTL for P = 1, 4, 5, 8.
-FILL_CYCLES = 55
+FILL_CYCLES = 56
 #: The same for a build without shading: no GRA (whose last slice waits for the slice after it)
 #: and a 3-stage SHA; measured the same way and checked by tb/cube4_top's build tests.
 FILL_CYCLES_UNSHADED = 38
