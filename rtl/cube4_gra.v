@@ -140,8 +140,9 @@ module cube4_gra #(
 
     generate
         if (RECTS == 0) begin : g_lines
-            wire             flush_q;        // running the zero steps after a frame (u_flush's last copy)
+            wire             flush_q;        // running the zero steps after a frame (its last copy)
             wire [NSTEP-1:0] flush_rep;      // copies of flush_q
+            wire [NSTEP-1:0] sop_cp;         // copies of i0's frame-start bit, one per step net
             reg  [DIM_W:0]   f_row_q;        // flush: beam 0 .. NJ, then two beats (row NJ + 1)
             reg  [PB_W-1:0]  f_pb_q;
             reg              f_tail_q;       // the previous flush step was in row NJ + 1
@@ -167,9 +168,20 @@ module cube4_gra #(
                     i0_hdr    <= in_hdr;
                 end
             end
+            // i0's SOP bit again, one kept copy per step net (a delay line's
+            // clear reaches its write-address copies and its output groups
+            // from a flip-flop of its own, not from the one header bit)
+            for (q = 0; q < NSTEP; q = q + 1) begin : g_sop
+                reg sop_q;
+                (* keep *)
+                always @(posedge clk) begin
+                    if (i0_take) sop_q <= in_hdr[HDR_CTRL + CTRL_SOP];
+                end
+                assign sop_cp[q] = sop_q;
+            end
 
             wire [NSTEP-1:0] step_rep = en_rep[NSTEP-1:0] & (flush_rep | {NSTEP{i0_v}});
-            wire [NSTEP-1:0] sop_rep  = ~flush_rep & {NSTEP{i0_hdr[HDR_CTRL + CTRL_SOP]}};   // frame start, per copy
+            wire [NSTEP-1:0] sop_rep  = ~flush_rep & sop_cp;   // frame start, per copy
             assign step = step_rep[6];
 
             wire real_beat = !flush_q;
@@ -200,18 +212,24 @@ module cube4_gra #(
             wire [DIM_W-1:0] row_n = !last_beam ? pos_row : (last_slice ? {DIM_W{1'b0}} : pos_row + 1'b1);
             wire             lb_n  = (NB_W'(pb_n) == cfg_nb - 1'b1);
 
-            // flush_q and its copies
-            reg flush_d;
-            always @(*) begin
-                flush_d = flush_q;
-                if (rst)                    flush_d = 1'b0;
-                else if (step && flush_q)   flush_d = !f_tail_q;   // ends after the second step of row NJ + 1
-                else if (step && eop)       flush_d = 1'b1;
+            // flush_q and its copies. Each copy computes its own next value from
+            // its own value and its own credit copy (with i0_v, i0's EOP bit and
+            // f_tail_q): no step net and no shared next value lies between one
+            // copy and the others. All copies hold the same value, so each
+            // copy's next value is
+            //   flush:  step ? !f_tail_q : 1   (ends after the second step of row NJ + 1)
+            //   else:   step && eop            (a frame's last beat steps)
+            // with this copy's step = en && (flush || i0_v), eop = EOP && !flush.
+            wire [NSTEP:0] fl_en = {en_rep[6], en_rep};      // the credit copy of each flush copy
+            wire [NSTEP:0] fl_q;                             // {flush_q, flush_rep}
+            wire           i0_eop = i0_hdr[HDR_CTRL + CTRL_EOP];
+            for (q = 0; q <= NSTEP; q = q + 1) begin : g_flush
+                wire st = fl_en[q] && (fl_q[q] || i0_v);
+                wire d  = fl_q[q] ? (!st || !f_tail_q) : (st && i0_eop);
+                cube4_prim_copies #(.N(1), .RESET(1)) u_copy (
+                    .clk(clk), .rst(rst), .d(d), .q(fl_q[q]));
             end
-            // flush_q is a kept copy too (a plain register of flush_d would
-            // be merged into one of the others by synthesis)
-            cube4_prim_copies #(.N(NSTEP + 1), .RESET(0)) u_flush (
-                .clk(clk), .rst(rst), .d(flush_d), .q({flush_q, flush_rep}));
+            assign {flush_q, flush_rep} = fl_q;
 
             always @(posedge clk) begin
                 if (rst) begin
