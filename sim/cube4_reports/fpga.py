@@ -75,7 +75,7 @@ DEFAULT_SEED = 1                    # scenes.py's one seed
 DEFAULT_SEEDS = "1,2,3"
 MAX_SEED = 2**31 - 1
 DEFAULT_JOBS = 2
-DEFAULT_ROUTER = "router2"          # router1 gave 7 % more Fmax at P = 8 but took 2.6x as long (docs/reports.md)
+DEFAULT_ROUTER = "router1"          # on the same placements, faster circuits than router2 in about the same time (docs/reports.md)
 DEFAULT_TIMEOUT = 3600.0
 # router2 diverging: a run is stopped once, from iteration DIVERGE_ITER on, its overuse is more
 # than DIVERGE_FACTOR times the least it reached (routed runs here end in 25-40 iterations with
