@@ -52,7 +52,7 @@
 //   COMPOSITING 1: modes 0, 1 (multipliers).       0..1.   Default 1.
 //   EXTREMUM    1: modes 2, 3 (comparators).       0..1.   Default 1.
 //               At least one of the two (elaboration stops otherwise).
-//   PLW         1: path-length weights (needs COMPOSITING). 0..1. Default 0.
+//   PLW         1: path-length weights (needs COMPOSITING). 0..1. Default 1.
 //   RECTS       1: slice rectangles (docs/architecture.md "COM"): the slot
 //               {j, pb} from the header, fresh and finished rays against the
 //               neighbouring slices' inside rectangles from the host's table
@@ -108,7 +108,7 @@ module cube4_com #(
     parameter integer ALPHA_W  = 12, parameter integer ACC_W      = 16,
     parameter integer VOXEL_W  = 8,
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
-    parameter integer PLW = 0,
+    parameter integer PLW = 1,
     parameter integer RECTS = 0, parameter integer ADDR_W = 16,
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_RECT_LAYOUT,
     localparam integer BX_W = DIM_W + 1,

@@ -15,7 +15,8 @@ from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
 from cube4.brick_rays import composite_bound
 from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_bricked, render_brick_golden
-from cube4.config import FULL_BUILD, Cube4Config
+from cube4.builds import FULL_BUILD
+from cube4.config import Cube4Config
 from cube4.model import render_frame
 from cube4.render import host_tables
 from cube4.view import make_traversal

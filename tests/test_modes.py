@@ -15,7 +15,8 @@ import pytest
 from cube4_testutil import make_scene, random_volume, sphere_volume
 
 from cube4.clip import Clip, cut_coefficients, plane_value
-from cube4.config import FULL_BUILD, Cube4Config, parse_build, resolve_build, scene_build
+from cube4.builds import FULL_BUILD
+from cube4.config import Cube4Config, parse_build, resolve_build, scene_build
 from cube4.errors import UserError
 from cube4.model import render_frame, sample_stream
 from cube4.render import config_for, host_tables, image_metrics, render, setup_view
@@ -170,15 +171,15 @@ def test_window_counts_only_its_samples():
 def test_scene_builds_and_build_errors():
     head = load_scene("head")
     assert scene_build([head]) == {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0,
-                                   "PLW": 0}
+                                   "PLW": 0, "RECTS": 0}
     assert scene_build([load_scene("mri_mip")]) == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0,
-                                                    "VGRAD": 0, "PLW": 0}
+                                                    "VGRAD": 0, "PLW": 0, "RECTS": 0}
     assert scene_build([load_scene("ml")])["PLW"] == 1               # path-weighted
     assert scene_build([replace(load_scene("ml"), mode="mip")])["PLW"] == 0
     assert scene_build([load_scene("head_cut")])["CLIP"] == 1
     assert parse_build("full") == FULL_BUILD and parse_build("scene") is None
     assert parse_build("shading=0,compositing=0") == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 1,
-                                                      "VGRAD": 0, "PLW": 0}
+                                                      "VGRAD": 0, "PLW": 0, "RECTS": 0}
     for bad, msg in [("SHADING=2", "NAME=0/1"), ("FOO=1", "NAME=0/1"),
                      ("COMPOSITING=0,EXTREMUM=0", "no rendering mode"), ("COMPOSITING=0", "only compositing"),
                      ("SHADING=0,VGRAD=1", "VGRAD = 1 needs SHADING"),

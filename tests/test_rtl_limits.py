@@ -7,6 +7,7 @@ import pytest
 
 from cube4.config import Cube4Config
 from cube4.errors import UserError
+from cube4.builds import named
 from cube4_sim.rtl import SIM_MAX_DIM, build_max_dim, build_params, check_limits, render_frames
 
 
@@ -44,7 +45,7 @@ def test_voxel_gradient_words_count_their_bytes():
     """A voxel-gradient word (41 bits at V = 8) takes 8 bytes in the simulator: the 512³
     size class no longer fits, 256³ does."""
     cfg = Cube4Config(pipelines=8)
-    vg = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1, "VGRAD": 1}
+    vg = named("vgrad")
     check_limits(build_params(cfg, 256, build=vg), (256, 256, 256))
     check_limits(build_params(cfg, SIM_MAX_DIM), (SIM_MAX_DIM,) * 3)
     with pytest.raises(UserError, match="with voxel gradients"):

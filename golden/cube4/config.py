@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
+from .builds import BUILD_PARAMS, BY_NAME, FULL_BUILD, check_build, complete_build, parse_options
 from .errors import UserError
 from .modes import is_blend, is_extremum
 
@@ -30,8 +31,8 @@ class Cube4Config:
     acc_bits    ACC_W, compositing accumulators Q0.F (8..24)
     rmap_bits   RMAP_BITS, reflectance map has 6 * 4^RMAP_BITS + 1 entries (2..6)
     supersample S, samples per voxel slice along the major axis: 1, 2, 4 or 8
-    build       the hardware the build has, as BUILD_PARAMS -> 0 / 1 (SHADING,
-                COMPOSITING, EXTREMUM, CLIP, VGRAD, PLW); None: the smallest build the scene needs
+    build       the hardware the build has: every option of builds.OPTIONS -> 0 / 1;
+                None: the smallest build the scene needs
     """
 
     pipelines: int = 8
@@ -58,7 +59,7 @@ class Cube4Config:
         if self.supersample not in (1, 2, 4, 8):
             raise UserError(f"supersample must be 1, 2, 4 or 8, got {self.supersample!r}")
         if self.build is not None:
-            check_build_params(dict(self.build))
+            check_build(dict(self.build), self.widths())
 
     @property
     def guard_bits(self) -> int:
@@ -73,6 +74,12 @@ class Cube4Config:
     def rmap_entries(self) -> int:
         return 6 * self.rmap_res * self.rmap_res + 1
 
+    def widths(self) -> dict[str, int]:
+        """The word widths as cube4_top's parameters (VOXEL_W .. MAX_SS_LOG2); a default
+        Cube4Config gives cube4_top's defaults (tests/test_build_definition.py checks it)."""
+        return {"VOXEL_W": self.voxel_bits, "WEIGHT_W": self.weight_bits, "ALPHA_W": self.alpha_bits,
+                "ACC_W": self.acc_bits, "RMAP_BITS": self.rmap_bits, "MAX_SS_LOG2": self.guard_bits}
+
     def as_dict(self) -> dict:
         d = asdict(self)
         d["build"] = None if self.build is None else dict(self.build)
@@ -80,48 +87,14 @@ class Cube4Config:
 
 
 # ---------------------------------------------------------------- builds
-#: cube4_top's parameters that remove hardware a scene does not need (docs/architecture.md)
-BUILD_PARAMS = ("SHADING", "COMPOSITING", "EXTREMUM", "CLIP", "VGRAD", "PLW")
-#: the full build: every unit of the paper and the path weights (VGRAD = 1 swaps GRA for
-#: the voxel-gradient channels)
-FULL_BUILD = {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 1, "CLIP": 1, "VGRAD": 0, "PLW": 1}
-_NEEDS = {"SHADING": "shading (gradients and the reflectance map)",
-          "COMPOSITING": "the compositing datapath (composite, xray)",
-          "EXTREMUM": "the comparators (mip, minip)",
-          "CLIP": "the cut plane or window (cube4_clip)",
-          "VGRAD": "voxel gradients (the memory's gradient channels)",
-          "PLW": "path-length weights (the LUT's path-weight columns in COM)"}
-
-
-def complete_build(partial: dict | None) -> dict:
-    """A build from the parameters it names: the others as in the full build, but PLW
-    (path weights need the compositing datapath) is 0 where COMPOSITING = 0 and PLW is
-    not named."""
-    build = {**FULL_BUILD, **(partial or {})}
-    if "PLW" not in (partial or {}) and not build["COMPOSITING"]:
-        build["PLW"] = 0
-    return build
-
-
-def check_build_params(build: dict) -> None:
-    """A build's parameters: every one of BUILD_PARAMS, each 0 or 1, and a legal
-    combination (the same checks stop cube4_top's elaboration)."""
-    if set(build) != set(BUILD_PARAMS) or any(v not in (0, 1) for v in build.values()):
-        raise UserError(f"a build sets each of {', '.join(BUILD_PARAMS)} to 0 or 1, got {build}")
-    if not build["COMPOSITING"] and not build["EXTREMUM"]:
-        raise UserError("a build needs COMPOSITING = 1 or EXTREMUM = 1 (no rendering mode otherwise)")
-    if build["SHADING"] and not build["COMPOSITING"]:
-        raise UserError("a build with SHADING = 1 needs COMPOSITING = 1 (only compositing is shaded)")
-    if build["VGRAD"] and not build["SHADING"]:
-        raise UserError("a build with VGRAD = 1 needs SHADING = 1 (voxel gradients only feed shading)")
-    if build["PLW"] and not build["COMPOSITING"]:
-        raise UserError("a build with PLW = 1 needs COMPOSITING = 1 (only the blending modes are path-weighted)")
+# The build options, their defaults and legal combinations are defined once, in builds.py;
+# here: which build a scene needs.
 
 
 def scene_build(scenes) -> dict:
     """The smallest build that renders every one of the scenes. Shaded scenes take their
     gradient from GRA (VGRAD = 0) or from the voxels (VGRAD = 1): one build has one."""
-    b = {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0, "PLW": 0}
+    b = dict.fromkeys(BUILD_PARAMS, 0)
     for sc in scenes:
         b["SHADING"] |= int(sc.shaded)
         b["COMPOSITING"] |= int(is_blend(sc.mode))
@@ -129,6 +102,7 @@ def scene_build(scenes) -> dict:
         b["CLIP"] |= int(sc.cut is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
+        b["RECTS"] |= int(sc.skip == "rects")
     _one_gradient_source(scenes)
     return b
 
@@ -144,24 +118,16 @@ def _one_gradient_source(scenes) -> None:
 
 
 def parse_build(text: str) -> dict | None:
-    """--build: "scene" (None: the scene's smallest), "full", or NAME=0/1 pairs
-    (e.g. SHADING=0,COMPOSITING=0,EXTREMUM=1,CLIP=0; names not given as in the full build:
-    1, and VGRAD 0; PLW 0 without COMPOSITING, complete_build)."""
+    """--build: "scene" (None: the scene's smallest), "full", or NAME=0/1 pairs (e.g.
+    SHADING=0,COMPOSITING=0,EXTREMUM=1,CLIP=0); the options not named as in
+    builds.complete_build."""
     t = text.strip()
     if t.lower() == "scene":
         return None
     if t.lower() == "full":
         return dict(FULL_BUILD)
-    named = {}
-    for part in t.split(","):
-        name, _, val = part.partition("=")
-        name = name.strip().upper()
-        if name not in BUILD_PARAMS or val.strip() not in ("0", "1"):
-            raise UserError(f"--build must be scene, full or NAME=0/1 pairs with NAME in "
-                            f"{', '.join(BUILD_PARAMS)}, got {text!r}")
-        named[name] = int(val)
-    build = complete_build(named)
-    check_build_params(build)
+    build = complete_build(parse_options(t, "--build takes scene, full or"))
+    check_build(build)
     return build
 
 
@@ -179,5 +145,5 @@ def resolve_build(cfg: "Cube4Config", scenes) -> dict:
     for k in BUILD_PARAMS:
         if need[k] and not build[k]:
             name = next(sc.name for sc in scenes if scene_build([sc])[k])
-            raise UserError(f"scene {name} needs {_NEEDS[k]}, which the build leaves out ({k} = 0)")
+            raise UserError(f"scene {name} needs {BY_NAME[k].adds}, which the build leaves out ({k} = 0)")
     return build

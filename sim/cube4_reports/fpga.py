@@ -46,6 +46,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from cube4 import cycles
+from cube4.builds import build_tag, check_build, complete_build, parse_options
 
 from . import gates
 from .markdown import fmt_int, git_describe, md_table, rtl_commit
@@ -119,11 +120,11 @@ class BuildConfig:
 
     def params(self) -> dict[str, int]:
         return {"P": self.p, **TOP_DEFAULTS, "MAX_DIM": self.max_dim, "DEPTH": self.depth,
-                "ADDR_W": addr_bits(self.depth), **dict(self.build)}
+                "ADDR_W": addr_bits(self.depth), **complete_build(dict(self.build))}
 
     def workdir(self) -> Path:
         """The synthesis's folder (the netlist all seeds place and route)."""
-        return SYNTH_DIR / "fpga" / f"p{self.p}_d{self.max_dim}_w{self.depth}{gates.build_tag(dict(self.build))}"
+        return SYNTH_DIR / "fpga" / f"p{self.p}_d{self.max_dim}_w{self.depth}{build_tag(dict(self.build))}"
 
     def seed_dir(self, seed: int) -> Path:
         """One seed's nextpnr run: build/synth/fpga/p8_d128_w1024/seed2/."""
@@ -731,15 +732,10 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
 
 
 def parse_build_arg(text: str) -> tuple[tuple[str, int], ...]:
-    """--build: NAME=0/1 pairs of cube4_top's build parameters (the full build's and RECTS)."""
-    names = (*gates.BUILD_LETTERS, "RECTS")
-    out = []
-    for part in filter(None, (t.strip() for t in text.split(","))):
-        name, _, val = part.partition("=")
-        if name.strip().upper() not in names or val.strip() not in ("0", "1"):
-            raise UserError(f"--build takes NAME=0/1 pairs with NAME in {', '.join(names)}, got {part!r}")
-        out.append((name.strip().upper(), int(val)))
-    return tuple(out)
+    """--build: NAME=0/1 pairs of cube4_top's build options (cube4.builds), checked."""
+    named = parse_options(text, "--build")
+    check_build(complete_build(named), TOP_DEFAULTS)
+    return tuple(named.items())
 
 
 def nextpnr_version() -> str:

@@ -27,7 +27,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from cube4.config import FULL_BUILD
+from cube4.builds import build_tag, check_build, complete_build
 
 from .markdown import fmt_int, git_describe, md_table
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, ToolError, addr_bits,
@@ -139,23 +139,11 @@ def base_name(module: str) -> str:
 
 def build_params(p: int, max_dim: int, build: dict | None = None) -> dict[str, int]:
     """cube4_top parameters of a gate count: a voxel memory that holds a whole MAX_DIM^3 volume;
-    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD (default: cube4_top's, the full build)."""
+    ``build``: the build options it names (cube4.builds.complete_build; default: the full build)."""
     depth = words_per_bank(max_dim, p)
-    return {"P": p, **TOP_DEFAULTS, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth),
-            **(build or {})}
-
-
-BUILD_LETTERS = {"SHADING": "s", "COMPOSITING": "c", "EXTREMUM": "e", "CLIP": "k", "VGRAD": "g", "PLW": "w",
-                 "RECTS": "r"}
-
-
-def build_tag(build: dict | None) -> str:
-    """A build's folder suffix: '' for the full build, else e.g. '_s0c1e0k0' (and 'g1' with
-    voxel gradients)."""
-    if not build or {**FULL_BUILD, **build} == FULL_BUILD:
-        return ""
-    return "_" + "".join(f"{BUILD_LETTERS[k]}{build[k]}" for k in BUILD_LETTERS
-                         if k in build and (k not in ("VGRAD", "RECTS") or build[k]))
+    full = complete_build(build)
+    check_build(full, TOP_DEFAULTS)
+    return {"P": p, **TOP_DEFAULTS, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth), **full}
 
 
 def yosys_script(params: dict[str, int], workdir: Path) -> str:

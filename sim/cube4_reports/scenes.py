@@ -30,7 +30,8 @@ import time
 
 import numpy as np
 
-from cube4.config import BUILD_PARAMS, FULL_BUILD, complete_build, scene_build
+from cube4.builds import BUILD_PARAMS, FULL_BUILD, build_name, named
+from cube4.config import scene_build
 from cube4.render import config_for, image_metrics, plan_view, render, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
 from cube4.volumes import load_volume
@@ -54,12 +55,6 @@ def volume_of(scene: str) -> str:
 
 def build_key(build: dict) -> tuple:
     return tuple(build[k] for k in BUILD_PARAMS)
-
-
-def build_name(build: dict) -> str:
-    if build == FULL_BUILD:
-        return "full"
-    return ", ".join(f"{k}={v}" for k, v in build.items())
 
 
 def scene_rows(names: list[str]) -> list[dict]:
@@ -208,7 +203,7 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
 
 
 def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list[dict] | None = None) -> str:
-    mip_build = complete_build({"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0})
+    mip_build = named("mip")
     mip = next((r for r in recs if r["build"] == mip_build), None)
     full = next(r for r in recs if r["build"] == FULL_BUILD)
     lines = [

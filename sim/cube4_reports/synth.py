@@ -20,6 +20,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from cube4.config import Cube4Config
+from cube4.errors import UserError  # bad input or a missing tool: one line, exit status 2
 from cube4_sim.sources import RTL_INCLUDE_DIR, SourceListError, rtl_sources, synth_sources
 
 from .markdown import REPO_ROOT, rtl_digest
@@ -30,14 +32,8 @@ DOC_REPORTS = REPO_ROOT / "reports"
 
 TOP = "cube4_top"
 
-# cube4_top's defaults (rtl/cube4_top.v); the reports state every value they used.
-TOP_DEFAULTS: dict[str, int] = {
-    "VOXEL_W": 8, "WEIGHT_W": 8, "ALPHA_W": 12, "ACC_W": 16, "RMAP_BITS": 5, "MAX_SS_LOG2": 0,
-}
-
-
-class UserError(Exception):
-    """Bad input or a missing tool: reported as one line, exit status 2."""
+# cube4_top's default widths (those of a default Cube4Config); the reports state every value they used.
+TOP_DEFAULTS: dict[str, int] = Cube4Config().widths()
 
 
 class ToolError(Exception):

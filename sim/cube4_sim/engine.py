@@ -34,9 +34,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     t0 = time.perf_counter()
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     vps = [plan_view(vol, sc, cfg) for sc in scenes]
-    use_rects = any(sc.skip == "rects" for sc in scenes)   # one build: a RECTS build for every view
-    if use_rects:
-        build = {**build, "PLW": 0}
+    use_rects = bool(build["RECTS"])   # one build: a RECTS build runs every view with rectangles
     jobs, owners = [], []
     for nv, vp in enumerate(vps):
         rects = pass_rects(vol, vp) if vp.scene.skip == "rects" else [None] * len(vp.plans)
@@ -47,7 +45,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
-        outs = (render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build, rects=use_rects)
+        outs = (render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build)
                 if jobs else [])
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None

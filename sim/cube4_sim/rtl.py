@@ -19,7 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from cube4.clip import Clip
-from cube4.config import Cube4Config, complete_build
+from cube4.builds import check_build, complete_build
+from cube4.config import Cube4Config
 from cube4.errors import UserError
 from cube4.pathlen import path_weighted
 from cube4.vgrad import word_bits
@@ -55,15 +56,14 @@ def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
                  build: dict | None = None) -> dict[str, int]:
     """cube4_top_harness parameters for a configuration and a largest dimension; the
     voxel memory holds a max_dim^3 volume unless ``depth`` (words per bank) is given;
-    ``build``: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD, PLW (default: the full build)."""
+    ``build``: the build options it names (cube4.builds; the others as complete_build
+    gives them; default: the full build)."""
     p = cfg.pipelines
     depth = depth or words_per_bank((max_dim, max_dim, max_dim), p)
-    return {
-        "P": p, "VOXEL_W": cfg.voxel_bits, "WEIGHT_W": cfg.weight_bits, "ALPHA_W": cfg.alpha_bits,
-        "ACC_W": cfg.acc_bits, "RMAP_BITS": cfg.rmap_bits, "MAX_DIM": max_dim,
-        "MAX_SS_LOG2": cfg.guard_bits, "DEPTH": depth, "ADDR_W": max(1, (depth - 1).bit_length()),
-        **complete_build(build),            # a build that names fewer parameters keeps the full build's
-    }
+    build = complete_build(build)
+    check_build(build, cfg.widths())
+    return {"P": p, **cfg.widths(), "MAX_DIM": max_dim, "DEPTH": depth,
+            "ADDR_W": max(1, (depth - 1).bit_length()), **build}
 
 
 # The simulated voxel memory (the top harness's image, P * DEPTH words) must fit this
@@ -130,28 +130,26 @@ def write_tables(lut: np.ndarray, rmap: np.ndarray | None, cfg: Cube4Config, lut
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
                   fit_memory: bool = False, waves: bool | None = None, workdir: Path | None = None,
                   progress: bool = False, quiet: bool = False, rtl_form: str = "generic",
-                  build: dict | None = None, rects: bool = False) -> list[dict]:
+                  build: dict | None = None) -> list[dict]:
     """Render every frame through the RTL; returns per frame
     {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}.
 
     The build is chosen by the configuration and max_dim (default: the volume's size
     class). ``fit_memory`` sizes the voxel memory to this volume (the next power of two
     of its words per bank) instead of a max_dim^3 cube: a long, thin volume then needs
-    no memory for a cube it never fills (a separate build). ``rects``: a build with
-    slice rectangles (RECTS = 1): each frame runs its FrameJob.rects, or the whole box."""
+    no memory for a cube it never fills (a separate build). On a build with slice
+    rectangles (RECTS = 1) each frame runs its FrameJob.rects, or the whole box."""
     nz, ny, nx = vol.shape
     max_dim = max_dim or build_max_dim((nx, ny, nz))
     depth = None
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
     params = build_params(cfg, max_dim, depth, build)
-    shading, vgrad = bool(params["SHADING"]), bool(params["VGRAD"])
-    if rects:
-        if vgrad:
-            raise UserError("slice rectangles run on a build without voxel gradients (VGRAD = 0)")
-        if params["PLW"] and any(path_weighted(fr.lut, fr.mode) for fr in frames):
-            raise UserError("slice rectangles do not run path-weighted frames (a build with PLW = 0)")
-        params.update(RECTS=1, PLW=0)
+    shading, vgrad, rects = bool(params["SHADING"]), bool(params["VGRAD"]), bool(params["RECTS"])
+    if rects and vgrad:
+        raise UserError("slice rectangles run on a build without voxel gradients (VGRAD = 0)")
+    if rects and any(path_weighted(fr.lut, fr.mode) for fr in frames):
+        raise UserError("slice rectangles do not run path-weighted frames (a build with PLW = 0)")
     check_limits(params, (nx, ny, nz))
 
     from . import runner  # cocotb is imported only when the RTL engine is used

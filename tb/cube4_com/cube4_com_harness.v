@@ -35,7 +35,7 @@ module cube4_com_harness #(
     parameter integer VOXEL_W     = 8,
     parameter integer COMPOSITING = 1,
     parameter integer EXTREMUM    = 1,
-    parameter integer PLW         = 0,
+    parameter integer PLW         = 1,
     parameter integer RECTS       = 0,
     parameter integer ADDR_W      = 16,   // the rectangle table's layout only
     `CUBE4_GEOMETRY,

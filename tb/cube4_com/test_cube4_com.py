@@ -281,7 +281,7 @@ def test_cube4_com_rects(build):
     p, aw, acc_w, comp, ext = build
     run_test(top="cube4_com_harness", sources=SOURCES,
              params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "COMPOSITING": comp, "EXTREMUM": ext,
-                     "RECTS": 1},
+                     "RECTS": 1, "PLW": 0},
              test_module=__file__, testcase="test_rect_pixel_stream", timing=True)
 
 

@@ -18,6 +18,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from cube4.builds import named
 from cube4.config import Cube4Config
 from cube4.view import make_traversal
 from cube4.volumes import load_volume
@@ -233,7 +234,6 @@ def test_synthesis_form(p):
 
 # ---------------------------------------------------------------- modes, builds, crop, cut
 # (SHADING, COMPOSITING, EXTREMUM, CLIP): the full build and three a scene would choose
-MODE_BUILDS = {"full": (1, 1, 1, 1), "unshaded": (0, 1, 0, 0), "mip": (0, 0, 1, 0), "shaded": (1, 1, 0, 0)}
 # every mode and crop box on the full build at P = 1 and 5; each scene build once (the
 # shaded one at P = 8 shares its Verilator build with the command-line tests' sphere:48)
 MODE_RUNS = [("full", 1), ("full", 5), ("unshaded", 5), ("mip", 1), ("shaded", 8)]
@@ -274,7 +274,7 @@ def test_modes_builds_crop_cut(name, p):
     (a crop box: the box's dims)."""
     rng = np.random.default_rng(100 + p)
     cfg = Cube4Config(pipelines=p)
-    build = dict(zip(("SHADING", "COMPOSITING", "EXTREMUM", "CLIP"), MODE_BUILDS[name]))
+    build = named(name)
     dims = (12 + p, 11, 10)
     nx, ny, nz = dims
     vol = rng.integers(1, 256, size=(nz, ny, nx))    # no zero: MinIP sees the volume, not the air
@@ -377,8 +377,8 @@ def test_slice_rectangles(p, shading):
     first = jobs[0]
     jobs.append(FrameJob(plans[0].whole, first.lut, first.rmap, mode=first.mode))   # the whole box, as a table
     plans.append(None)
-    build = {"PLW": 0, "SHADING": shading}
-    results = render_frames(vol, jobs, cfg, max_dim=64, build=build, rects=True)
+    build = {"RECTS": 1, "SHADING": shading}
+    results = render_frames(vol, jobs, cfg, max_dim=64, build=build)
     exact = 0
     for n, (job, plan, res) in enumerate(zip(jobs, plans, results)):
         label = f"rects P={p} view {n} {job.mode}"
