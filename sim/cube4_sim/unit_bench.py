@@ -33,6 +33,11 @@ from .runner import SIM_HDL_DIR
 from .sources import rtl_sources
 
 
+def param_id(params: dict) -> str:
+    """A test id naming a parameter set: {"P": 5, "VOXEL_W": 8} -> "P=5,VOXEL_W=8"."""
+    return ",".join(f"{k}={v}" for k, v in params.items())
+
+
 def harness_sources(*files) -> list:
     """rtl/sources.f (the one list of RTL sources, dependency order), the Verilog clock,
     then the simulation files named: a Path as it is (a harness beside its testbench),

@@ -40,7 +40,7 @@ from cube4.model import gradient_stream, sample_stream, shade
 from cube4.view import make_traversal
 from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -133,14 +133,14 @@ async def test_shaded_stream(dut):
                        dims, direction, gap, stall, len(got))
 
 
-# (P, VOXEL_W, ALPHA_W, RMAP_BITS, SHADING, CARRY_SAMPLE)
-BUILDS = [(1, 8, 12, 5, 1, 1), (5, 8, 12, 3, 1, 0), (8, 12, 16, 4, 1, 1), (1, 8, 12, 5, 0, 1), (5, 12, 16, 5, 0, 0)]
+BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1),
+          dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=3, SHADING=1, CARRY_SAMPLE=0),
+          dict(P=8, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=4, SHADING=1, CARRY_SAMPLE=1),
+          dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=1),
+          dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_a{b[2]}_r{b[3]}_s{b[4]}_c{b[5]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=param_id)
 def test_cube4_sha(build):
-    p, vw, aw, rb, sh, carry = build
-    run_test(top="cube4_sha_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "ALPHA_W": aw, "RMAP_BITS": rb, "MAX_DIM": 32, "MAX_SS_LOG2": 0,
-                     "SHADING": sh, "CARRY_SAMPLE": carry},
+    run_test(top="cube4_sha_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "MAX_SS_LOG2": 0},
              test_module=__file__, testcase="test_shaded_stream", timing=True)

@@ -52,7 +52,7 @@ from cube4.vgrad import pack_channels, pack_words, word_bits
 from cube4.view import make_traversal
 from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, random_clip
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id, random_clip
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -135,15 +135,14 @@ async def test_sample_stream(dut):
                        stall_req, stall_in, stall, len(got))
 
 
-# (P, VOXEL_W, MAX_SS_LOG2, CLIP, VGRAD)
-BUILDS = [(1, 8, 0, 1, 0), (5, 8, 0, 1, 0), (8, 12, 1, 1, 0), (5, 8, 0, 0, 0), (1, 8, 1, 1, 1), (5, 8, 0, 1, 1),
-          (8, 12, 1, 0, 1)]
+BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0),
+          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=1, VGRAD=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=0, VGRAD=0),
+          dict(P=1, VOXEL_W=8, MAX_SS_LOG2=1, CLIP=1, VGRAD=1), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=1),
+          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=0, VGRAD=1)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}_c{b[3]}_g{b[4]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=param_id)
 def test_cube4_tri(build):
-    p, vw, ss, clip, vgrad = build
     run_test(top="cube4_tri_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 32, "MAX_SS_LOG2": ss, "DEPTH": DEPTH, "ADDR_W": ADDR_W,
-                     "CLIP": clip, "VGRAD": vgrad},
+             params={**build, "MAX_DIM": 32, "DEPTH": DEPTH, "ADDR_W": ADDR_W},
              test_module=__file__, testcase="test_sample_stream", timing=True)
