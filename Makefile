@@ -4,7 +4,9 @@
 #   make lint    verilator --lint-only -Wall on every module in rtl/ (waivers: rtl/lint_waivers.vlt)
 #   make sim     RTL regression: cocotb + Verilator testbenches in tb/ (WAVES=1 dumps FST)
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
-#   make test    whole regression: Python golden-model tests (tests/) + RTL (tb/) + lint
+#   make test    the regression a change must pass: golden-model tests (tests/) + RTL (tb/) + lint (<= 10 min)
+#   make regress make test plus the exhaustive sweeps (pytest marker `regress`); run before RTL lands
+#   make simspeed cube4_top's simulation speed, P = 8: clock cycles per second of wall time
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
@@ -93,7 +95,7 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test demo report bricks gates fpga scenes skipping clean
+.PHONY: help setup lint sim bench test regress simspeed demo report bricks gates fpga scenes skipping clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -128,7 +130,7 @@ lint: setup
 	@echo "lint: clean"
 
 sim: setup
-	$(PY) -m pytest tb -q -n $(TEST_JOBS)
+	$(PY) -m pytest tb -q -n $(TEST_JOBS) -m "not regress"
 
 bench: setup
 	$(PY) -m pytest tb/cube4_frontend/test_cube4_frontend.py::test_cube4_frontend_cycles_128 -q -s \
@@ -136,8 +138,16 @@ bench: setup
 	@echo "report: build/reports/frontend_cycles.json"
 
 test: setup
-	$(PY) -m pytest $(wildcard tests) tb -q --durations=12 -n $(TEST_JOBS)
+	$(PY) -m pytest $(wildcard tests) tb -q --durations=12 -n $(TEST_JOBS) -m "not regress"
 	$(MAKE) --no-print-directory lint
+
+regress: setup
+	$(PY) -m pytest $(wildcard tests) tb -q --durations=25 -n $(TEST_JOBS)
+	$(MAKE) --no-print-directory lint
+
+# SIMSPEED_ARGS, e.g. "--runs 1 --volume head:128 --scene head" (python -m cube4_reports.simspeed --help)
+simspeed: setup
+	$(PY) -m cube4_reports.simspeed $(SIMSPEED_ARGS)
 
 demo: setup
 	mkdir -p out/demo
