@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cube4.app.render import engine_names, register_engine, render_views
 from cube4.errors import UserError
-from cube4.render import engine_names, register_engine, render_views
 
 REPO = Path(__file__).resolve().parents[1]
 UPPER_PACKAGES = ("cube4_sim", "cube4_reports", "cocotb", "cocotb_tools")
@@ -69,13 +69,13 @@ def test_console_script_registers_the_rtl_engine():
     assert scripts["cube4"] == "cube4_sim.cli:main"
     r = subprocess.run([sys.executable, "-m", "cube4_sim.cli", "render", "--help"], capture_output=True, text=True)
     assert r.returncode == 0 and "rtl" in r.stdout
-    r = subprocess.run([sys.executable, "-m", "cube4.cli", "render", "--help"], capture_output=True, text=True)
+    r = subprocess.run([sys.executable, "-m", "cube4.app.cli", "render", "--help"], capture_output=True, text=True)
     assert r.returncode == 0 and "rtl" not in r.stdout.split("--engine")[1].split("--out")[0]
 
 
 def test_registered_engine_is_used(monkeypatch):
-    from cube4 import render as render_mod
-    from cube4.render import RenderResult
+    from cube4.app import render as render_mod
+    from cube4.app.render import RenderResult
     from cube4.scene import load_scene
 
     monkeypatch.setattr(render_mod, "_ENGINES", dict(render_mod._ENGINES))

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from cube4.config import Cube4Config
-from cube4.errors import UserError
 from cube4.cycles import frame_cycles
-from cube4.render import config_for, setup_view
+from cube4.errors import UserError
+from cube4.host import config_for, setup_view
 from cube4.scene import PRESETS, load_scene
 from cube4_reports import report
 

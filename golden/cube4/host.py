@@ -1,0 +1,264 @@
+"""The host's work for one view, and the bit-exact frame it gets back.
+
+For a scene's view of a volume the host sets up the traversal and the camera, writes the
+tables (classification LUT, reflectance map), plans the q×q sub-pixel passes and each
+pass's empty-space box, and assembles the passes' base planes into the view's frame
+(``plan_view``, ``assemble_view``); ``golden_view`` runs the passes through the bit-exact
+model. The warp into the image plane and the engines that make images are the
+application's (``cube4.app.render``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .clip import Clip, cut_coefficients
+from .config import Cube4Config, resolve_build
+from .cycles import frame_cycles, rect_frame_cycles
+from .model import PIXEL_DTYPE, Frame, render_frame
+from .modes import is_extremum
+from .pathlen import weighted_columns
+from .progress import Progress
+from .scene import Scene, crop_box
+from .skip import SkipPlan, find_box, plan_box
+from .slices import SliceRects, plan_rects
+from .subpixel import Pass, fine_origin, interleave, passes
+from .tables import classification_lut, extremum_lut, reflectance_map
+from .vgrad import pack_words
+from .view import Camera, Traversal, make_camera, make_traversal
+
+
+def config_for(scene: Scene, pipelines: int | None = None, **overrides) -> Cube4Config:
+    """The hardware configuration a scene asks for (scene [precision], supersampling),
+    with command-line overrides."""
+    kw = dict(scene.precision)
+    kw["supersample"] = scene.supersample
+    if pipelines is not None:
+        kw["pipelines"] = pipelines
+    kw.update({k: v for k, v in overrides.items() if v is not None})
+    return Cube4Config(**kw)
+
+
+def setup_view(dims, scene: Scene, cfg: Cube4Config) -> tuple[Traversal, Camera]:
+    """The traversal (of the crop box, if the scene has one) and the camera (framing
+    the whole volume, so that a crop stays where it is in the picture)."""
+    origin, box = crop_box(scene, dims)
+    trav = make_traversal(box, scene.direction, cfg.weight_bits, cfg.supersample, origin=origin)
+    cam = make_camera(dims, scene.direction, scene.width, scene.height, scene.up)
+    return trav, cam
+
+
+def crop_volume(vol: np.ndarray, trav: Traversal) -> np.ndarray:
+    """The traversed part of vol[z, y, x] (a view, no copy): the crop box or the whole."""
+    (x0, y0, z0), (nx, ny, nz) = trav.origin, trav.dims
+    return vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
+
+
+def frame_clip(scene: Scene, trav: Traversal) -> Clip | None:
+    """The scene's cut plane as the clip registers of this view (None: no cut)."""
+    if scene.cut is None:
+        return None
+    return Clip(plane=cut_coefficients(trav, *scene.cut))
+
+
+def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.ndarray, np.ndarray | None]:
+    """What the host writes into the LUT load ports for this view: the classification
+    LUT (opacity corrected for the sample distance; for MIP/MinIP colour premultiplied
+    and opacity as given; a path-weighted scene's LUT carries the path-weight columns,
+    cube4.pathlen) and the reflectance map (None when the scene is unshaded)."""
+    if is_extremum(scene.mode):
+        lut = extremum_lut(scene, cfg)
+    else:
+        lut = classification_lut(scene, cfg, trav.sample_distance)
+    if scene.path_weighted:
+        lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
+    return lut, (reflectance_map(scene, cfg, trav, volume_axes=scene.voxel_gradients) if scene.shaded else None)
+
+
+def build_memory(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, build: dict) -> np.ndarray:
+    """What a build's voxel memory holds for these scenes (checked by resolve_build to share
+    one gradient): the volume, or on a VGRAD build the words with the scenes' voxel gradient
+    (central when no scene is shaded)."""
+    if not build.get("VGRAD"):
+        return vol
+    kind = next((sc.gradient for sc in scenes if sc.voxel_gradients), "central")
+    return pack_words(vol, kind, cfg.voxel_bits)
+
+
+def memory_volume(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> np.ndarray:
+    """What the voxel memory holds for this scene: vol[z, y, x] itself, or with voxel
+    gradients ([render] gradient = central / sobel) the words of cube4.vgrad, estimated
+    over the whole volume (a crop box or a brick reads the same words): the memory of the
+    scene's own build."""
+    return build_memory(vol, [scene], cfg, {"VGRAD": int(scene.voxel_gradients)})
+
+
+def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pass], lut: np.ndarray) -> list[SkipPlan]:
+    """Each pass's frame: the box that can change a ray (``cube4.skip``; found once per
+    view, it does not depend on the phase), or the whole traversed box when the scene asks
+    for the fixed schedule ([render] skip = false)."""
+    box, table_s = ((0, 0, 0), tuple(pss[0].trav.dims)), 0.0        # the fixed schedule: the whole box
+    if scene.skip:
+        box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines, frame_clip(scene, pss[0].trav))
+    return [plan_box(ps.trav, box, frame_clip(scene, ps.trav), table_s if n == 0 else 0.0)
+            for n, ps in enumerate(pss)]
+
+
+def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict:
+    """What the frames of one view (one per sub-pixel pass) traverse and the cycles they
+    predict, against the fixed schedule."""
+    shading, vgrad = bool(build["SHADING"]), bool(build.get("VGRAD", 0))
+    full = cycles = 0
+    boxes = []
+    for plan in plans:
+        t = plan.whole
+        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading, vgrad)
+        cycles += plan.cycles(cfg.pipelines, shading, vgrad)
+        boxes.append(None if plan.box is None else
+                     {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
+                      "dims": [int(b) - int(a) for a, b in zip(*plan.box)]})
+    return {"skip": any(p.skips for p in plans), "skip_box": boxes[0],
+            "skip_fraction": float(np.mean([p.fraction for p in plans])),
+            "predicted_cycles": cycles, "fixed_schedule_cycles": full, "cycles_saved": full - cycles,
+            "skip_table_s": sum(p.table_s for p in plans), "frames": len(plans)}
+
+
+@dataclass
+class ViewPlan:
+    """Everything the host sends for one view: its tables and one frame per sub-pixel
+    pass (each with its empty-space box)."""
+
+    scene: Scene
+    trav: Traversal               # the view's traversal (phase 0)
+    cam: Camera
+    lut: np.ndarray
+    rmap: np.ndarray | None
+    passes: list[Pass]
+    plans: list[SkipPlan]         # one per pass
+
+    def jobs(self) -> list[tuple[Pass, SkipPlan]]:
+        """The passes that run a frame (a pass in which nothing counts runs none)."""
+        return [(ps, pl) for ps, pl in zip(self.passes, self.plans) if pl.trav is not None]
+
+
+def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
+    """The host's work for one view of vol[z, y, x]: traversal, camera, tables, the q×q
+    sub-pixel passes ([render] subpixel) and each pass's schedule."""
+    nz, ny, nx = vol.shape
+    trav, cam = setup_view((nx, ny, nz), scene, cfg)
+    lut, rmap = host_tables(scene, cfg, trav)
+    box_vol = crop_volume(vol, trav)
+    pss = passes(trav, scene.subpixel)
+    plans = schedules(box_vol, scene, cfg, pss, lut)
+    return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
+
+
+def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.ndarray, np.ndarray]]) -> Frame:
+    """The view's frame from its passes' results ({pass index: (box base plane, box
+    finished rays)}; a pass that ran no frame is absent): each box placed in its pass's
+    base plane, the passes interleaved when q > 1 (the frame's base plane and its rays'
+    addresses are then the fine plane's)."""
+    q = vp.scene.subpixel
+    planes, pix = [], []
+    for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
+        sub, rays = results.get(n, (None, np.empty(0, PIXEL_DTYPE)))
+        planes.append((ps, plan.place(sub)))
+        rays = plan.place_pixels(rays)
+        if q > 1 and rays.size:     # place_pixels returned a copy
+            r0, c0 = fine_origin(vp.trav, q, ps)
+            rays["by"], rays["bx"] = r0 + q * rays["by"], c0 + q * rays["bx"]
+        pix.append(rays)
+    base = planes[0][1] if q == 1 else interleave(vp.trav, q, planes)
+    return Frame(trav=vp.trav, cfg=cfg, baseplane=base, pixels=np.concatenate(pix))
+
+
+def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:
+    """RMSE, max |error| and PSNR (peak 1.0) over all four premultiplied RGBA channels."""
+    err = img.astype(np.float64) - ref.astype(np.float64)
+    rmse = float(np.sqrt(np.mean(err * err)))
+    psnr = float("inf") if rmse == 0 else float(20.0 * np.log10(1.0 / rmse))
+    return {"rmse": rmse, "max_abs": float(np.max(np.abs(err))), "psnr": psnr}
+
+
+def view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
+    return {
+        "engine": engine,
+        "dims": list(dims),
+        "pipelines": cfg.pipelines,
+        "view": [float(c) for c in scene.direction],
+        "config": cfg.as_dict(),
+        "gradient": scene.gradient if scene.shaded else None,
+        "path_weights": scene.path_weighted,
+    }
+
+
+def trav_stats(trav: Traversal) -> dict:
+    return {
+        "traversed_box": {"origin": list(trav.origin), "dims": list(trav.dims)},
+        "major_axis": "xyz"[trav.major],
+        "view_x": trav.view_x,
+        "view_y": trav.view_y,
+        "sample_distance": trav.sample_distance,
+        "baseplane_shape": list(trav.baseplane_shape),
+    }
+
+
+def pass_rects(vol: np.ndarray, vp: ViewPlan) -> list[SliceRects | None]:
+    """The slice rectangles (cube4.slices, numerics.md §18) of each pass's frame, within
+    its empty-space box (None: the pass has no frame)."""
+    raw, sc = crop_volume(vol, vp.trav), vp.scene
+    return [None if plan.trav is None else
+            plan_rects(plan.box_volume(raw), plan.trav, vp.lut, sc.mode, clip=plan.clip,
+                       gra=sc.shaded and not sc.voxel_gradients)
+            for plan in vp.plans]
+
+
+def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
+                progress: Progress | None = None, rects: bool = False) -> tuple[ViewPlan, Frame, dict]:
+    """One view through the bit-exact model: its plan, its frame (the passes' base planes
+    placed and interleaved) and the stats of what it did; ``rects``: each frame computes
+    only its slice rectangles (the specified finer schedule; stats ``rect_beats``);
+    ``keep_streams``: the frame keeps the model's intermediate streams."""
+    nz, ny, nx = vol.shape
+    dims = (nx, ny, nz)
+    trav, _ = setup_view(dims, scene, cfg)
+    stats = view_stats("golden", dims, scene, cfg)
+    stats["build"] = resolve_build(cfg, [scene])     # the build this frame models
+    if keep_streams:
+        # the streams are a verification aid, indexed by the whole traversal: one pass, the fixed schedule
+        if scene.subpixel != 1:
+            raise ValueError("keep_streams renders one pass: [render] subpixel must be 1")
+        scene = replace(scene, skip=False)
+    vp = plan_view(vol, scene, cfg)
+    box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
+    results, streams = {}, {}
+    rects = rects or scene.skip == "rects"
+    frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
+    for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
+        if plan.trav is None:       # nothing can change a ray: no frame
+            continue
+        sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
+                           progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
+                           vgrad=scene.voxel_gradients, rects=frame_rects[n])
+        results[n] = (sub.baseplane, sub.pixels)
+        if keep_streams:
+            streams = sub.streams
+    frame = assemble_view(vp, cfg, results)
+    frame.streams = streams
+    stats.update(trav_stats(trav))
+    stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
+    stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
+    stats["pixels"] = int(frame.pixels.size)
+    if rects:
+        stats["rect_beats"] = sum(r.beats(cfg.pipelines) for r in frame_rects if r is not None)
+        stats["rect_table_s"] = sum(r.table_s for r in frame_rects if r is not None)
+        build = stats["build"]
+        if not build.get("VGRAD", 0):   # the cycles a RECTS build of cube4_top takes (GRA's walk with GRA)
+            shading = bool(build["SHADING"])
+            ran = [replace(r, gra=shading) for r in frame_rects if r is not None]
+            stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, shading) for r in ran)
+            stats["cycles_saved"] = stats["fixed_schedule_cycles"] - stats["predicted_cycles"]
+            stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in ran)
+    return vp, frame, stats
