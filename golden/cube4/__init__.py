@@ -12,6 +12,6 @@ __version__ = "0.1.0"
 
 #: the modules of this package above the specification, which may use file-format, image,
 #: cluster and progress libraries: the application (``cube4.app``) and two old import
-#: paths kept for the testbenches, which re-export it. Every other module is the
-#: specification: NumPy and the standard library only (tests/test_layering.py).
+#: paths kept for their remaining callers, which re-export it. Every other module is the
+#: specification: NumPy and the standard library only (tests/test_layers.py).
 APPLICATION = ("cube4.app", "cube4.render", "cube4.volumes")

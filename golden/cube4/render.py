@@ -1,7 +1,7 @@
-"""The old import path of the engines and of the host's plan of a view, kept for the
-testbenches in tb/: the engines and images are ``cube4.app.render``, the plan is the
-specification's ``cube4.host``. This module is part of the application
-(``cube4.APPLICATION``); new code imports those two modules."""
+"""The old import path of the engines and of the host's plan of a view, kept for its
+remaining callers (the testbenches in tb/, cube4_reports.scenes): the engines and images
+are ``cube4.app.render``, the plan is the specification's ``cube4.host``. This module is
+part of the application (``cube4.APPLICATION``); new code imports those two modules."""
 
 from __future__ import annotations
 

@@ -1,7 +1,8 @@
-"""The old import path of the volume loader, kept for the testbenches in tb/: volume files
-and ``load_volume`` are ``cube4.app.volumes``, the generated phantoms the
-specification's ``cube4.phantoms``. This module is part of the application
-(``cube4.APPLICATION``); new code imports those two modules."""
+"""The old import path of the volume loader, kept for its remaining callers (the
+testbenches in tb/, cube4_reports.scenes): volume files and ``load_volume`` are
+``cube4.app.volumes``, the generated phantoms the specification's ``cube4.phantoms``.
+This module is part of the application (``cube4.APPLICATION``); new code imports those
+two modules."""
 
 from __future__ import annotations
 

@@ -14,5 +14,5 @@ around it, and the libraries that brings:
 * ``progress``: progress bars (tqdm) for the specification's progress callbacks;
 * ``cli``: the ``cube4`` command line.
 
-Nothing in the specification imports this package (tests/test_layering.py).
+Nothing in the specification imports this package (tests/test_layers.py).
 """
