@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from cube4_testutil import write_series
 
-from cube4.cli import main
+from cube4.app.cli import main
 
 
 def _nrrd(path: Path, header: str, payload: bytes) -> None:

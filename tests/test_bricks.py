@@ -17,8 +17,8 @@ from cube4.bricks import (OVERLAP_HIGH, OVERLAP_LOW, Tile, composite_tiles, coun
 from cube4.clip import Clip, cut_coefficients
 from cube4.config import Cube4Config
 from cube4.errors import UserError
+from cube4.host import host_tables
 from cube4.model import render_frame
-from cube4.render import host_tables
 from cube4.view import make_traversal
 
 VIEWS = [(0.3, -0.5, 1.0), (-1.0, 0.2, -0.7), (0.6, 1.0, -0.45), (1.0, 1.0, 1.0), (-0.2, -0.1, -1.0), (0.0, 0.0, 1.0)]
@@ -187,8 +187,8 @@ def test_views_with_a_crop_box_and_a_cut_plane():
     """render_bricked_views: the scene's crop box is split into bricks (their origins in
     the whole volume), its cut plane moves into them; the composite is within the bound
     of the monolithic render of the same box, and the picture is warped like it."""
-    from cube4.render import frame_clip, render_golden_view, setup_view
-    from cube4.bricks import render_bricked_views
+    from cube4.app.render import render_bricked_views, render_golden_view
+    from cube4.host import frame_clip, setup_view
     vol = brick_volume()
     sc = make_scene(transfer=TF, crop={"box": [[2, 3, 1], [16, 19, 22]]},
                     cut={"normal": [1.0, 0.2, 0.5], "point": [9.0, 11.0, 12.0]}, view={"direction": [0.4, -1, 0.3]})

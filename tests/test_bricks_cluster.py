@@ -16,10 +16,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cube4.app.cli import main
 from cube4.bricks import make_grid, render_bricked
-from cube4.cli import main
 from cube4.config import Cube4Config
-from cube4.render import host_tables
+from cube4.host import host_tables
 from cube4.view import make_traversal
 from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
@@ -41,7 +41,7 @@ def test_worker_killed_in_mid_frame_costs_a_retry_not_the_frame(tmp_path):
     fault-injection hook) until the test has SIGKILLed the worker running one of them.
     The frame still completes, bit for bit the same as rendered in this process, and
     the journal shows the interrupted brick run again in another process."""
-    from cube4.cluster import DaskExecutor
+    from cube4.app.cluster import DaskExecutor
 
     vol = brick_volume()
     nz, ny, nx = vol.shape
@@ -159,7 +159,7 @@ def test_board_dim_chooses_the_bricks(tmp_path):
 def test_golden_bricks_never_import_dask(tmp_path):
     """The golden package renders bricks in-process without dask; only --workers or
     --scheduler import it (cube4.cluster)."""
-    code = ("import sys; from cube4.cli import main; "
+    code = ("import sys; from cube4.app.cli import main; "
             f"rc = main(['render', 'sphere:16', '--bricks', '2,1,2', '--quiet', '--out', {str(tmp_path / 'x.png')!r}]); "
             "import cube4.bricks, cube4.brick_rays, cube4.model; "
             "bad = [m for m in ('dask', 'distributed') if m in sys.modules]; "

@@ -14,11 +14,11 @@ import numpy as np
 from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
 from cube4.brick_rays import composite_bound
-from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_bricked, render_brick_golden
+from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_brick_golden, render_bricked
 from cube4.builds import FULL_BUILD
 from cube4.config import Cube4Config
+from cube4.host import host_tables
 from cube4.model import render_frame
-from cube4.render import host_tables
 from cube4.view import make_traversal
 from cube4_sim.bricks import render_brick_rtl
 from cube4_sim.engine import register
@@ -57,10 +57,10 @@ def test_rtl_bricks_on_two_workers_share_one_build():
     """Two worker processes simulate the same cached build at once: each reads its own
     results file (with one shared file about every other frame lost a brick's results,
     which then ran again), and the composite is the golden one."""
+    from cube4.app.cluster import DaskExecutor
+    from cube4.app.volumes import load_volume
     from cube4.bricks import assemble
-    from cube4.cluster import DaskExecutor
     from cube4.scene import load_scene
-    from cube4.volumes import load_volume
 
     register()
     vol = load_volume("head:32")
@@ -83,8 +83,8 @@ def test_rtl_bricks_with_voxel_gradients():
     """Bricks of a voxel-gradient scene through the RTL (the boards a VGRAD build, each
     loaded with its brick of the whole volume's words): the composited base plane equals
     the golden bricked render's, bit for bit."""
-    from cube4.bricks import render_bricked_views
-    from cube4.render import config_for
+    from cube4.app.render import render_bricked_views
+    from cube4.host import config_for
 
     register()
     vol = brick_volume()

@@ -9,7 +9,7 @@ import argparse
 import numpy as np
 import pytest
 
-from cube4.cli import _views
+from cube4.app.cli import _views
 from cube4.scene import load_scene
 from cube4.view import make_camera
 

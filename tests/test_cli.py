@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cube4.cli import main
+from cube4.app.cli import main
 
 SMALL_SCENE = """
 [view]
@@ -156,7 +156,7 @@ def test_rtl_engine_bad_input_fails_before_simulating(tmp_path, scene_file, caps
 
 
 def test_bad_input_as_a_subprocess_has_no_traceback(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "cube4.cli", "render", "sphere:16", "--pipelines", "99",
+    r = subprocess.run([sys.executable, "-m", "cube4.app.cli", "render", "sphere:16", "--pipelines", "99",
                         "--out", str(tmp_path / "out.png")], capture_output=True, text=True)
     assert r.returncode == 2
     assert r.stderr.strip().count("\n") == 0 and "Traceback" not in r.stderr

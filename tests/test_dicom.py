@@ -11,12 +11,12 @@ import pytest
 from cube4_testutil import write_series
 from pydicom.uid import generate_uid
 
+from cube4.app.dicom import load_series
+from cube4.app.render import render
+from cube4.app.volumes import load_volume
 from cube4.config import Cube4Config
-from cube4.dicom import load_series
 from cube4.errors import UserError
-from cube4.render import render
 from cube4.scene import parse_scene
-from cube4.volumes import load_volume
 
 
 @pytest.fixture

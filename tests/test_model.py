@@ -11,8 +11,8 @@ from cube4_testutil import make_scene, random_volume
 
 from cube4.config import Cube4Config
 from cube4.fixed import lerp, round_shift
+from cube4.host import config_for, host_tables
 from cube4.model import gradient, inside_mask, interpolate_slice, render_frame, rmap_index
-from cube4.render import config_for, host_tables
 from cube4.view import make_traversal
 
 

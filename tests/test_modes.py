@@ -14,12 +14,13 @@ import numpy as np
 import pytest
 from cube4_testutil import make_scene, random_volume, sphere_volume
 
+from cube4.app.render import render
 from cube4.clip import Clip, cut_coefficients, plane_value
 from cube4.builds import FULL_BUILD
 from cube4.config import Cube4Config, parse_build, resolve_build, scene_build
 from cube4.errors import UserError
+from cube4.host import config_for, host_tables, image_metrics, setup_view
 from cube4.model import render_frame, sample_stream
-from cube4.render import config_for, host_tables, image_metrics, render, setup_view
 from cube4.scene import load_scene
 from cube4.tables import classification_lut, extremum_lut
 from cube4.view import make_traversal
@@ -226,7 +227,7 @@ def test_scene_keys_and_errors():
 def test_builtin_mode_scenes_against_the_reference(name):
     """Every built-in mode scene renders on its volume close to the float64 reference."""
     vol_name = "mri" if name == "mri_mip" else "head:64"
-    from cube4.volumes import load_volume
+    from cube4.app.volumes import load_volume
 
     vol = load_volume(vol_name)
     sc = dataclasses.replace(load_scene(name), width=96, height=96)

@@ -11,7 +11,7 @@ def test_extreme_finite_volume_values_rescale_without_overflow():
 
     import numpy as np
 
-    from cube4.volumes import to_voxels
+    from cube4.app.volumes import to_voxels
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")      # no RuntimeWarning, no silent zeros

@@ -7,7 +7,7 @@ import nibabel as nib
 import nrrd
 import numpy as np
 
-from cube4.volumes import load_volume
+from cube4.app.volumes import load_volume
 
 
 def _ramp_zyx() -> np.ndarray:

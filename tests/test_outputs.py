@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from cube4 import cli
+from cube4.app import cli
+from cube4.app.outputs import check_destinations, write_all
 from cube4.errors import UserError
-from cube4.outputs import check_destinations, write_all
 
 SCENE = "[view]\ndirection = [0.4, 0.3, 0.86]\n[output]\nwidth = 32\n"
 

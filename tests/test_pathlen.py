@@ -8,14 +8,15 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from cube4.app.render import render
+from cube4.app.volumes import load_volume
 from cube4.config import Cube4Config
+from cube4.host import config_for, image_metrics
 from cube4.model import inside_mask, render_frame
 from cube4.pathlen import ALL_FACES, weight_quarters, weighted_columns
-from cube4.render import config_for, image_metrics, render
 from cube4.scene import load_scene
 from cube4.tables import classification_lut
 from cube4.view import make_traversal, sub_traversal
-from cube4.volumes import load_volume
 
 DIRECTIONS = [(-0.814, -0.47, -0.342), (0.3, 0.9, 0.2), (1.0, 0.5, 0.999), (0.1, 0.05, 1.0), (0.0, 0.0, 1.0),
               (1.0, 1.0, 1.0), (1.0, -1.0, 0.0)]
@@ -142,7 +143,7 @@ def test_cli_path_weights(tmp_path):
     import subprocess
     import sys
     stats = tmp_path / "s.json"
-    base = [sys.executable, "-m", "cube4.cli", "render", "ml:16", "--scene", "ml", "--quiet", "--stats", str(stats)]
+    base = [sys.executable, "-m", "cube4.app.cli", "render", "ml:16", "--scene", "ml", "--quiet", "--stats", str(stats)]
     subprocess.run([*base, "--out", str(tmp_path / "a.png")], check=True)
     st = json.loads(stats.read_text())
     assert st["path_weights"] and st["build"]["PLW"] == 1

@@ -10,7 +10,7 @@ from __future__ import annotations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from cube4.cli import main
+from cube4.app.cli import main
 from cube4.errors import UserError
 from cube4.scene import parse_scene
 

@@ -7,10 +7,12 @@ import numpy as np
 import pytest
 from cube4_testutil import make_scene
 
-from cube4.render import config_for, render
+from cube4.app.render import render
+from cube4.app.volumes import load_volume
+from cube4.host import config_for
+from cube4.phantoms import sphere_centre, sphere_radius
 from cube4.scene import load_scene
 from cube4.view import make_camera
-from cube4.volumes import load_volume, sphere_centre, sphere_radius
 
 ALPHA = 0.05  # per voxel of distance
 
@@ -67,7 +69,7 @@ def test_golden_model_against_reference(volume, scene_name, ss, floor):
     vol = load_volume(volume, voxel_bits=cfg.voxel_bits)
     golden = render(vol, scene, cfg, "golden")
     ref = render(vol, scene, cfg, "reference")
-    from cube4.render import image_metrics
+    from cube4.host import image_metrics
 
     m = image_metrics(golden.image, ref.image)
     assert m["psnr"] > floor, m

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from cube4.config import Cube4Config
-from cube4.errors import UserError
 from cube4.cycles import frame_cycles
-from cube4.render import config_for, setup_view
+from cube4.errors import UserError
+from cube4.host import config_for, setup_view
 from cube4.scene import PRESETS, load_scene
 from cube4_reports import report
 
@@ -114,7 +114,13 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     assert "p = 1: 50.0 MHz" in new_meta["fmax_note"] and new_meta["tables_rewritten"]
     paths = report.write_outputs(new_rows, new_meta, tmp_path / "out")
     assert all(p.exists() for p in paths)
-    assert "0.1600 @ 50.0 MHz" in (tmp_path / "out" / f"{report.STEM}.md").read_text()
+    text = (tmp_path / "out" / f"{report.STEM}.md").read_text()
+    assert "0.1600 @ 50.0 MHz" in text
+    # the gradient angles are the research prototype's stored results, not measured here
+    assert "| `vgrad_sobel` | 1.40 | 1.34 | 1.31 | 1.31 | 1.48 at (0, 0, 1), S = 1 | 3.5 |" in text
+    monkeypatch.setattr(report, "ANGLES_JSON", tmp_path / "missing.json")
+    with pytest.raises(UserError, match="missing.json.*scripts/research/gradients.py"):
+        report.write_outputs(new_rows, new_meta, tmp_path / "out")
 
 
 def test_pareto_front() -> None:

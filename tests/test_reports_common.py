@@ -59,8 +59,8 @@ def test_design_sources_error_is_one_line(monkeypatch):
         synth.design_sources()
 
 
-@pytest.mark.parametrize("name", ["fpga", "gates", "scenes", "bricks", "report", "skipping", "gradients",
-                                  "gradient_tables", "synth", "markdown"])
+@pytest.mark.parametrize("name", ["fpga", "gates", "scenes", "bricks", "report", "skipping",
+                                  "synth", "markdown"])
 def test_report_modules_import(name):
     """Every report module imports (a report is not part of make test; a broken import
     would show only when someone runs it)."""

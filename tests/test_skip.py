@@ -12,16 +12,15 @@ import sys
 
 import numpy as np
 import pytest
-from cube4_testutil import SKIP_VIEWS as VIEWS
-from cube4_testutil import make_scene, sparse_case
+from cube4_testutil import SKIP_VIEWS as VIEWS, make_scene, sparse_case
 
 import cube4.skip as skip
+from cube4.app.render import render
 from cube4.clip import Clip, cut_coefficients
 from cube4.config import Cube4Config
 from cube4.cycles import frame_cycles
 from cube4.errors import UserError
 from cube4.model import render_frame
-from cube4.render import render
 from cube4.scene import parse_scene
 from cube4.view import make_traversal
 
@@ -117,7 +116,7 @@ TF = {"points": [[0, 0, 0, 0, 0], [0.3, 0.2, 0.4, 0.9, 0.0], [0.5, 0.9, 0.6, 0.3
                                    {"render": {"supersample": 2}}, {"render": {"mode": "mip"}},
                                    {"material": {"shading": False}}])
 def test_scene_renders_equal_with_and_without_skip(extra):
-    """Through cube4.render: the head-like sphere's image and base plane with the box
+    """Through cube4.app.render: the head-like sphere's image and base plane with the box
     schedule equal the fixed schedule's; the statistics count the cycles saved."""
     from cube4_testutil import sphere_volume
 
@@ -151,7 +150,7 @@ def test_cli_no_skip_and_stats(tmp_path):
     def run(*extra):
         st = tmp_path / f"s{len(extra)}.json"
         bp = tmp_path / f"b{len(extra)}.npy"
-        subprocess.run([sys.executable, "-m", "cube4.cli", "render", "head:48", "--scene", "head", "--out",
+        subprocess.run([sys.executable, "-m", "cube4.app.cli", "render", "head:48", "--scene", "head", "--out",
                         str(tmp_path / "x.png"), "--baseplane", str(bp), "--stats", str(st), "--quiet", *extra],
                        check=True)
         return json.loads(st.read_text()), np.load(bp)
@@ -192,7 +191,7 @@ def test_skip_flag_and_streams():
     it refuses."""
     from cube4_testutil import sphere_volume
 
-    from cube4.render import render_golden_view
+    from cube4.app.render import render_golden_view
 
     dense = parse_scene({"transfer": {"points": [[0, 0, 0, 0, 0.2], [1, 1, 1, 1, 0.5]]}, "output": {"width": 32}})
     vol = sphere_volume(16)
@@ -254,9 +253,9 @@ def test_cut_cells_against_the_corners(d):
 
 def test_cut_plane_shrinks_the_box():
     """head_cut: the cut removes half the head, the box follows, the image is the same."""
-    from cube4.render import config_for, plan_view
+    from cube4.app.volumes import load_volume
+    from cube4.host import config_for, plan_view
     from cube4.scene import load_scene
-    from cube4.volumes import load_volume
 
     vol = load_volume("head:48")
     scene = load_scene("head_cut")

@@ -14,13 +14,14 @@ import pytest
 from cube4_testutil import SKIP_VIEWS, sparse_case
 
 import cube4.slices as slices
+from cube4.app.render import render, render_golden_view
+from cube4.app.volumes import load_volume
 from cube4.config import Cube4Config
 from cube4.cycles import FILL_CYCLES_UNSHADED, frame_cycles
+from cube4.host import config_for, crop_volume, memory_volume, pass_rects, plan_view
 from cube4.model import inside_mask, render_frame
-from cube4.render import config_for, crop_volume, memory_volume, pass_rects, plan_view, render, render_golden_view
 from cube4.scene import load_scene
 from cube4.view import make_traversal
-from cube4.volumes import load_volume
 
 SEEDS = range(40)
 

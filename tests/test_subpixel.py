@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 from cube4_testutil import sphere_volume
 
+from cube4.app.render import render
 from cube4.config import Cube4Config
 from cube4.errors import UserError
+from cube4.host import config_for, crop_volume, image_metrics, plan_view
 from cube4.model import render_frame
-from cube4.render import config_for, crop_volume, image_metrics, plan_view, render
 from cube4.scene import load_scene, parse_scene
 from cube4.subpixel import fine_origin, fine_shape, interleave, passes
 from cube4.view import make_traversal

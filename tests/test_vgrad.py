@@ -13,15 +13,16 @@ import numpy as np
 import pytest
 from cube4_testutil import BRICK_TF, brick_volume, make_scene, sphere_volume
 
-from cube4.bricks import make_grid, plan_bricks, render_bricked_views
+from cube4.app.render import render, render_bricked_views
+from cube4.app.volumes import load_volume
+from cube4.bricks import make_grid, plan_bricks
 from cube4.config import Cube4Config
 from cube4.errors import UserError
+from cube4.host import config_for, host_tables, image_metrics
 from cube4.model import render_frame
-from cube4.render import config_for, host_tables, image_metrics, render
 from cube4.scene import load_scene
-from cube4.view import make_traversal
-from cube4.volumes import load_volume
 from cube4.vgrad import grad_bits, pack_words, unpack_words, voxel_gradients, word_bits
+from cube4.view import make_traversal
 
 VIEWS = [(0.3, -0.45, 1.0), (1.0, 1.0, 1.0), (-1.0, 0.5, 0.2), (1.0, -1.0, 0.0)]
 
@@ -127,7 +128,7 @@ def test_central_converges_with_s_where_gra_does_not():
 
 def test_cli_gradient_switch(tmp_path):
     stats = tmp_path / "s.json"
-    cmd = [sys.executable, "-m", "cube4.cli", "render", "sphere:24", "--gradient", "sobel", "--out",
+    cmd = [sys.executable, "-m", "cube4.app.cli", "render", "sphere:24", "--gradient", "sobel", "--out",
            str(tmp_path / "a.png"), "--stats", str(stats), "--quiet"]
     subprocess.run(cmd, check=True)
     st = json.loads(stats.read_text())
@@ -156,7 +157,7 @@ def test_quality_preset():
 def test_cli_preset_sets_the_hardware(tmp_path):
     """--preset quality reaches the configuration too: S = 4 and four passes per view."""
     stats = tmp_path / "s.json"
-    subprocess.run([sys.executable, "-m", "cube4.cli", "render", "sphere:16", "--preset", "quality", "--out",
+    subprocess.run([sys.executable, "-m", "cube4.app.cli", "render", "sphere:16", "--preset", "quality", "--out",
                     str(tmp_path / "a.png"), "--stats", str(stats), "--quiet"], check=True)
     st = json.loads(stats.read_text())
     assert st["config"]["supersample"] == 4 and st["frames"] == 4 and st["build"]["VGRAD"] == 1

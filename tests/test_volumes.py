@@ -1,4 +1,4 @@
-"""Tests of cube4.volumes: built-in generators, raw/NRRD/NIfTI loaders, voxel conversion."""
+"""Tests of cube4.app.volumes and cube4.phantoms: built-in generators, raw/NRRD/NIfTI loaders, voxel conversion."""
 
 from __future__ import annotations
 
@@ -10,17 +10,10 @@ import nrrd
 import numpy as np
 import pytest
 
-from cube4 import volumes
+from cube4.app import volumes
+from cube4.app.volumes import BUILTINS, builtin_names, load_volume, to_voxels
 from cube4.errors import UserError
-from cube4.volumes import (
-    BUILTINS,
-    builtin_names,
-    load_volume,
-    ml_density,
-    sphere_centre,
-    sphere_radius,
-    to_voxels,
-)
+from cube4.phantoms import ml_density, sphere_centre, sphere_radius
 
 GENERATED = ["sphere", "ml", "head", "cube", "shells", "noise", "constant"]
 

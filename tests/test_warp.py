@@ -10,14 +10,16 @@ import numpy as np
 import pytest
 from cube4_testutil import make_scene
 
-from cube4.cli import main
+from cube4.app.cli import main
+from cube4.app.render import render
+from cube4.app.volumes import load_volume
+from cube4.app.warp import warp_to_image
 from cube4.config import Cube4Config
 from cube4.errors import UserError
-from cube4.render import config_for, image_metrics, render, setup_view
+from cube4.host import config_for, image_metrics, setup_view
 from cube4.scene import parse_scene, with_view
 from cube4.view import warp_matrix
-from cube4.volumes import load_volume
-from cube4.warp import WARP_FILTERS, convex_hull, footprint_mask, footprint_polygon, warp_to_image
+from cube4.warp import WARP_FILTERS, convex_hull, footprint_mask, footprint_polygon
 
 OBLIQUE = {"direction": [0.4, -0.7, 0.5]}
 

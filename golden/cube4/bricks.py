@@ -14,10 +14,11 @@ the same pipeline, the partial base planes composited front to back (numerics.md
 * **Over** (``over``, ``composite_tiles``): exact integer compositing of partial base
   planes at the accumulators' precision, ``front + T_front * back`` on premultiplied
   R, G, B, A in Q0.ACC_W, as a balanced tree over the front-to-back order.
-* **Render** (``render_bricked_views``): plan, render every brick with a brick renderer
+* **Render** (``render_bricked``): plan, render every brick with a brick renderer
   (``golden`` here; other engines register theirs by import path, so a worker process
-  can import it), composite, warp. An executor runs the bricks: ``LocalExecutor`` one
-  after the other in this process; ``cube4.cluster.DaskExecutor`` on a Dask cluster.
+  can import it), composite. An executor runs the bricks: ``LocalExecutor`` one after
+  the other in this process; ``cube4.app.cluster.DaskExecutor`` on a Dask cluster. The
+  views of scenes, warped to images, are ``cube4.app.render.render_bricked_views``.
 """
 
 from __future__ import annotations
@@ -28,7 +29,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-from tqdm import tqdm
 
 from .clip import Clip, move_plane
 from .config import Cube4Config
@@ -36,6 +36,7 @@ from .errors import UserError
 from .fixed import round_shift
 from .model import PIXEL_DTYPE, Frame, render_frame
 from .modes import MODES, is_blend
+from .progress import Progress, counted
 from .view import Traversal, sub_traversal
 
 #: voxels a brick stores beyond its own range on the low and the high side of every axis
@@ -381,11 +382,8 @@ class LocalExecutor:
     def __exit__(self, *exc):
         return False
 
-    def run(self, tasks: Sequence[BrickTask], progress: bool = False) -> list[BrickResult]:
-        out = []
-        for task in tqdm(tasks, desc="bricks", unit="brick", disable=not progress, leave=False):
-            out.append(run_task(task))
-        return out
+    def run(self, tasks: Sequence[BrickTask], progress: Progress | None = None) -> list[BrickResult]:
+        return [run_task(task) for task in counted(tasks, progress, "bricks")]
 
     def stats(self) -> dict:
         return {"executor": self.name, "workers": 1, "retries": 0}
@@ -438,67 +436,10 @@ def assemble(trav: Traversal, cfg: Cube4Config, bricks: Sequence[Brick], results
 
 def render_bricked(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut, rmap, grid: BrickGrid, *,
                    engine: str = "golden", mode: str = "composite", shading: bool = True,
-                   clip: Clip | None = None, executor=None, progress: bool = False) -> BrickedFrame:
+                   clip: Clip | None = None, executor=None, progress: Progress | None = None) -> BrickedFrame:
     """One view of the traversed box ``vol`` rendered brick by brick and composited."""
     bricks, tasks = brick_tasks(vol, trav, cfg, lut, rmap, grid, engine=engine, mode=mode, shading=shading,
                                 clip=clip)
     results = (executor or LocalExecutor()).run(tasks, progress=progress)
     frame, comp_s = assemble(trav, cfg, bricks, results, mode)
     return BrickedFrame(frame=frame, bricks=bricks, results=results, composite_s=comp_s)
-
-
-def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str, grid_counts, *,
-                         board_dim: int | None = None, executor=None, progress: bool = False) -> list:
-    """Every scene's view of vol[z, y, x] rendered in bricks (``grid_counts`` bricks per
-    axis of the traversed box; None: the fewest that fit ``board_dim``), composited and
-    warped: one ``render.RenderResult`` per scene. All bricks of all views go to the
-    executor at once."""
-    from .render import (RenderResult, crop_volume, frame_clip, host_tables, memory_volume, scene_warp, setup_view,
-                         trav_stats, view_stats)
-
-    if grid_counts is None and board_dim is None:
-        raise ValueError("give the bricks per axis or the board's largest brick")
-    if any(sc.subpixel != 1 for sc in scenes):
-        raise UserError("--bricks renders one pass per view: set [render] subpixel = 1 in the scene")
-    nz, ny, nx = vol.shape
-    dims = (nx, ny, nz)
-    executor = executor or LocalExecutor()
-    t0 = time.perf_counter()
-    views, all_tasks, spans = [], [], []
-    for nv, sc in enumerate(scenes):
-        trav, cam = setup_view(dims, sc, cfg)
-        counts = tuple(grid_counts) if grid_counts is not None else counts_for_board(trav.dims, board_dim)
-        grid = make_grid(trav.dims, counts)
-        check_board(grid, board_dim)
-        lut, rmap = host_tables(sc, cfg, trav)
-        bricks, tasks = brick_tasks(crop_volume(memory_volume(vol, sc, cfg), trav), trav, cfg, lut, rmap, grid,
-                                    engine=engine, mode=sc.mode, shading=sc.shaded, clip=frame_clip(sc, trav),
-                                    board_dim=board_dim, vgrad=sc.voxel_gradients)
-        if len(scenes) > 1:
-            for t in tasks:
-                t.label = f"view {nv} {t.label}"
-        views.append((sc, trav, cam, grid, bricks))
-        spans.append((len(all_tasks), len(all_tasks) + len(tasks)))
-        all_tasks.extend(tasks)
-    results = executor.run(all_tasks, progress=progress)
-    run_s = time.perf_counter() - t0
-    ex_stats = executor.stats()
-    out = []
-    for (sc, trav, cam, grid, bricks), (a, b) in zip(views, spans):
-        t1 = time.perf_counter()
-        frame, comp_s = assemble(trav, cfg, bricks, results[a:b], sc.mode)
-        img = scene_warp(frame.baseplane_float, trav, cam, sc)
-        stats = view_stats(engine, dims, sc, cfg)
-        stats.update(trav_stats(trav))
-        res = results[a:b]
-        stats["bricks"] = {
-            "grid": list(grid.counts), "count": grid.size, "largest": list(grid.largest_brick()),
-            "stored_voxels": grid.stored_voxels(), "memory_overhead": grid.memory_overhead,
-            "brick_wall_s": sum(r.wall_s for r in res), "composite_s": comp_s, **ex_stats,
-        }
-        if all(r.cycles is not None for r in res):
-            stats["cycles"] = sum(int(r.cycles) for r in res)
-        wall = run_s / len(views) + time.perf_counter() - t1
-        stats["wall_s"] = wall
-        out.append(RenderResult(engine, img, wall, frame=frame, stats=stats))
-    return out

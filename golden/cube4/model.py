@@ -23,13 +23,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from tqdm import tqdm
 
 from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
 from .clip import Clip
 from .modes import MODES, is_blend
 from .pathlen import path_weighted, weight_quarters, weighted_alpha
+from .progress import Progress, counted
 from .slices import SliceRects
 from .vgrad import unpack_words
 from .view import Traversal
@@ -297,7 +297,7 @@ def render_frame(
     lut: np.ndarray,
     rmap: np.ndarray | None,
     keep_streams: bool = False,
-    progress: bool = False,
+    progress: Progress | None = None,
     mode: str = "composite",
     shading: bool = True,
     clip: Clip | None = None,
@@ -371,7 +371,7 @@ def render_frame(
     pix_chunks = []
     prev, cur, nxt = padded(-1), padded(0), padded(1)
     jj, ii = np.mgrid[0:nj, 0:ni]
-    for m in tqdm(range(M), desc="golden", unit="slice", disable=not progress, leave=False):
+    for m in counted(range(M), progress, "golden"):
         s = cur[1:-1, 1:-1]
         inside = inside_of(m)
         keep = clip.keep(trav, m) if clip is not None else np.ones((nj, ni), dtype=bool)

@@ -29,9 +29,9 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
 from __future__ import annotations
 
 import numpy as np
-from tqdm import tqdm
 
 from .modes import is_extremum
+from .progress import Progress
 from .scene import Scene
 from .tables import phong_terms, unshaded_terms
 from .view import Camera, Traversal
@@ -94,7 +94,7 @@ def render_reference(
     scene: Scene,
     cam: Camera,
     step: float = 0.125,
-    progress: bool = False,
+    progress: Progress | None = None,
     box=None,
 ) -> np.ndarray:
     """Render vol[z, y, x] into the image plane: (H, W, 4) premultiplied RGBA float64.
@@ -114,7 +114,7 @@ def reference_baseplane(
     scene: Scene,
     trav: Traversal,
     step: float = 0.125,
-    progress: bool = False,
+    progress: Progress | None = None,
 ) -> np.ndarray:
     """The reference on the hardware's base-plane grid: for every base-plane pixel one ray
     along the exact view direction through the point where the pixel's (quantised)
@@ -152,7 +152,7 @@ def cast_rays(
     origins: np.ndarray,
     d: np.ndarray,
     step: float = 0.125,
-    progress: bool = False,
+    progress: Progress | None = None,
     offset=None,
 ) -> np.ndarray:
     """Composite the rays o + t d (origins (N, 3) in volume coordinates, one unit
@@ -187,7 +187,6 @@ def cast_rays(
     if scene.cut is not None:
         cut_n, cut_p = scene.cut
         cut_p = cut_p - (np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64))
-    bar = tqdm(total=total, desc="reference", unit="step", disable=not progress, leave=False)
     while active.size:
         pts = origins[active] + (t_in[active] + q * step)[:, None] * d
         vals = _trilinear(grid, pts)
@@ -220,12 +219,14 @@ def cast_rays(
                 color[active] += w[:, None] * c
                 trans[active] -= w
         q += 1
-        bar.update(1)
+        if progress is not None:
+            progress("reference", q, total)
         keep = q < steps_of[active]
         if mode == "composite":
             keep &= trans[active] > 1e-7
         active = active[keep]
-    bar.close()
+    if progress is not None:
+        progress("reference", total, total)
     if extreme:
         out = np.zeros((n_rays, 4))
         seen = np.isfinite(value)

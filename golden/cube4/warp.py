@@ -1,10 +1,11 @@
-"""The host's warp: the float base plane resampled into the image plane.
+"""The host's warp, as the scene states it: the filter and the footprint.
 
-OpenImageIO's ``warp`` resamples the base plane through the affine map of
-``view.warp_matrix`` with a chosen reconstruction filter (``[output] filter``), black
-outside. The image may then be cut to the footprint of the traversed box
-(``[output] footprint``): the convex polygon its eight corners project to in the image,
-outside of which no ray meets the box.
+The warp resamples the float base plane into the image plane through the affine map of
+``view.warp_matrix`` with a reconstruction filter (``[output] filter``, one of
+``WARP_FILTERS``), black outside; OpenImageIO does the resampling
+(``cube4.app.warp.warp_to_image``). The image may then be cut to the footprint of the
+traversed box (``[output] footprint``): the convex polygon its eight corners project to
+in the image, outside of which no ray meets the box (``footprint_mask``).
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import UserError
-from .view import Camera, Traversal, warp_matrix
+from .view import Camera, Traversal
 
 #: OpenImageIO 2-D filters offered for the warp (docs/scenes.md, [output] filter); each
 #: keeps its OpenImageIO width in base-plane pixels (triangle: 2, bilinear interpolation)
@@ -29,40 +30,6 @@ def check_filter(name, where: str = "") -> str:
     if not isinstance(name, str) or name not in WARP_FILTERS:
         raise UserError(f"{where}filter {name!r} is not a warp filter (filters: {', '.join(WARP_FILTERS)})")
     return name
-
-
-def oiio_matrix(trav: Traversal, cam: Camera, pre: np.ndarray | None = None) -> tuple[float, ...]:
-    """``view.warp_matrix`` (times ``pre``, if given) in OpenImageIO's convention: pixel
-    centres at +0.5, a row-vector matrix (p' = p M), nine Python floats (numpy scalars
-    read as identity)."""
-    a = warp_matrix(trav, cam)
-    if pre is not None:
-        a = a @ pre
-    shift = np.array([[1.0, 0.0, 0.5], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]])
-    unshift = np.array([[1.0, 0.0, -0.5], [0.0, 1.0, -0.5], [0.0, 0.0, 1.0]])
-    m = shift @ a @ unshift
-    return tuple(float(x) for x in m.T.reshape(-1))
-
-
-def warp_to_image(base: np.ndarray, trav: Traversal, cam: Camera, filtername: str = DEFAULT_FILTER,
-                  footprint: bool = False, pre: np.ndarray | None = None) -> np.ndarray:
-    """Warp a float base plane (rows, cols, 4) to the image plane (H, W, 4) with
-    OpenImageIO (``filtername``, black outside); with ``footprint``, every pixel whose
-    centre lies outside the traversed box's projection is set to 0. ``pre`` (3×3): the
-    plane's pixels map to ``trav``'s base-plane points by it (a q×q fine plane)."""
-    import OpenImageIO as oiio
-
-    check_filter(filtername)
-    src = oiio.ImageBuf(np.ascontiguousarray(base, dtype=np.float32))
-    roi = oiio.ROI(0, cam.width, 0, cam.height, 0, 1, 0, 4)
-    dst = oiio.ImageBufAlgo.warp(src, oiio_matrix(trav, cam, pre), filtername=filtername, wrap="black", roi=roi)
-    if dst.has_error:
-        raise RuntimeError(f"OpenImageIO warp failed: {dst.geterror()}")
-    out = dst.get_pixels(oiio.FLOAT, roi)
-    img = np.asarray(out, dtype=np.float64).reshape(cam.height, cam.width, 4)
-    if footprint:
-        img *= footprint_mask(trav, cam)[..., None]
-    return img
 
 
 def box_corners(trav: Traversal) -> np.ndarray:

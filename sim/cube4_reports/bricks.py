@@ -34,15 +34,16 @@ from pathlib import Path
 
 import numpy as np
 
+from cube4.app.volumes import load_volume
+from cube4.app.warp import warp_to_image
 from cube4.brick_rays import (brick_partials, composite_bound, composite_framebuffers, seam_lines,
                               seed004_correction)
 from cube4.bricks import (Tile, brick_tasks, composite_tiles, make_grid, plan_bricks, render_bricked, run_task)
+from cube4.host import config_for, host_tables, setup_view
 from cube4.memory import words_per_bank
 from cube4.model import render_frame
-from cube4.render import config_for, host_tables, setup_view, warp_to_image
 from cube4.scene import load_scene, with_view
 from cube4.view import direction_from_angles, make_traversal
-from cube4.volumes import load_volume
 
 from cube4.cycles import frame_cycles, slow_slice_factor
 

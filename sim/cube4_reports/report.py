@@ -40,11 +40,12 @@ from typing import Any, TextIO
 
 import numpy as np
 
+from cube4.app.render import render
+from cube4.app.volumes import load_volume
 from cube4.config import Cube4Config
 from cube4.errors import UserError
-from cube4.render import config_for, image_metrics, render
+from cube4.host import config_for, image_metrics
 from cube4.scene import PRESETS, Scene, load_scene
-from cube4.volumes import load_volume
 
 from cube4_sim.engine import register as register_rtl_engine
 
@@ -420,8 +421,7 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
         out.write("Non-dominated (no configuration is faster and at least as good): "
                   + ", ".join(f"{r.label} ({r.psnr:.2f} dB, {r.cycles:,} cycles)" for r in front) + ".\n\n")
     out.write(presets_section(rows))
-    if meta.get("angles"):
-        out.write(angle_section(meta["angles"]))
+    out.write(angle_section(load_angles()))
     notes = p_invariance_note(rows)
     failed = [r for r in rows if r.rtl_error]
     mismatched = [r for r in rows if r.bit_exact is False]
@@ -440,8 +440,22 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
 
 
 GOAL_PSNR = 40.0
-ANGLE_ESTIMATORS = ("gra", "vgrad_central", "vgrad_sobel")
-ANGLE_VIEWS = ((0, 0, 1), (0.3, -0.45, 1), (1, 1, 1), (1, 0.5, 0.2), (-0.6, 0.25, -1), (0.5, 0.5, 1))
+#: The gradient-angle error of the bit-exact model's estimators on sphere:64, as the research
+#: prototype stored it (reports/gradient_research.md): the report reads it, it measures nothing.
+ANGLES_JSON = DEFAULT_OUT / "gradient_research" / "model_angles.json"
+ANGLES_COMMAND = ('python scripts/research/gradients.py --est gra,vgrad_central,vgrad_sobel '
+                  '--views "0,0,1;0.3,-0.45,1;1,1,1;1,0.5,0.2;-0.6,0.25,-1;0.5,0.5,1" '
+                  '--json reports/gradient_research/model_angles.json')
+
+
+def load_angles(path: Path | None = None) -> list[dict]:
+    """The stored angle rows (ANGLES_JSON): estimator, view, S, mean and max angle (degrees)."""
+    path = path or ANGLES_JSON
+    try:
+        return json.loads(path.read_text())
+    except (OSError, ValueError) as e:
+        raise UserError(f"cannot read the stored gradient angles {_rel(path)} ({e}); `{ANGLES_COMMAND}` "
+                        "writes them") from None
 
 
 def presets_section(rows: list[Row]) -> str:
@@ -487,15 +501,20 @@ def angle_section(angles: list[dict]) -> str:
         sel = [a for a in angles if a["estimator"] == e]
         worst = max(sel, key=lambda a: a["mean"])
         cells.append([f"`{e}`", *(f"{np.mean([a['mean'] for a in sel if a['S'] == S]):.2f}" for S in ss),
-                      f"{worst['mean']:.2f} at {tuple(worst['view'])}, S = {worst['S']}",
+                      f"{worst['mean']:.2f} at {_view_text(worst['view'])}, S = {worst['S']}",
                       f"{max(a['max'] for a in sel):.1f}"])
     text = ("## Gradient angle error\n\nMean angle (degrees) between each estimator's gradient and the "
             "analytic normal of sphere:64, over the inside samples within half a voxel of the surface, "
-            f"averaged over the views {', '.join(str(v) for v in views)} "
+            f"averaged over the views {', '.join(_view_text(v) for v in views)} "
             "(`gra`: the paper's GRA; `vgrad_central`, `vgrad_sobel`: `[render] gradient = central / sobel`, "
-            "the bit-exact model; `python -m cube4_reports.gradients` measures more).\n\n")
+            f"the bit-exact model), as stored in {_rel(ANGLES_JSON)} by the research prototype "
+            "(reports/gradient_research.md, which measures more estimators).\n\n")
     return text + md_table(["estimator", *(f"S = {S}" for S in ss), "worst view mean", "largest"], cells,
                            "l" + "r" * (len(ss) + 2)) + "\n\n"
+
+
+def _view_text(view) -> str:
+    return "(" + ", ".join(f"{c:g}" for c in view) + ")"
 
 
 def write_csv(path: Path, rows: list[Row]) -> None:
@@ -697,9 +716,6 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
                 bar.write(_progress_line(row), file=term)
                 bar.update()
     finish_rows(rows, load_fmax())
-    from .gradients import angle_table
-    bar.write("gradient angles on sphere:64 ...", file=term)
-    meta["angles"] = angle_table(ANGLE_ESTIMATORS, ANGLE_VIEWS, (1, 2, 4, 8) if not quick else (1,))
     meta.update({
         "loadavg_end": _loadavg(),
         "wall_s": time.perf_counter() - t0,
@@ -779,6 +795,7 @@ def main(argv: list[str] | None = None) -> int:
             raise UserError(f"--out {args.out!r} is not a folder")
         if args.tables_only and (args.quick or args.no_rtl):
             raise UserError("--tables-only renders nothing, so --quick and --no-rtl do not apply")
+        load_angles()       # the stored gradient angles the tables show: before any work
         rows, meta = rewrite_tables(out_dir) if args.tables_only else run(args.quick, not args.no_rtl, out_dir, term)
         paths = write_outputs(rows, meta, out_dir)
     except UserError as e:

@@ -32,9 +32,10 @@ import numpy as np
 
 from cube4.builds import BUILD_PARAMS, FULL_BUILD, build_name, named
 from cube4.config import scene_build
-from cube4.render import config_for, image_metrics, plan_view, render, schedule_stats
+from cube4.app.render import render
+from cube4.host import config_for, image_metrics, plan_view, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
-from cube4.volumes import load_volume
+from cube4.app.volumes import load_volume
 
 from . import fpga, gates
 from .markdown import fmt_int, git_describe, md_table

@@ -22,12 +22,13 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
+from cube4.app.render import render, render_golden_view
+from cube4.app.volumes import load_volume
 from cube4.config import resolve_build
 from cube4.cycles import rect_frame_cycles
-from cube4.render import config_for, pass_rects, plan_view, render, render_golden_view, schedule_stats
+from cube4.host import config_for, pass_rects, plan_view, schedule_stats
 from cube4.scene import load_scene, with_view
 from cube4.view import angles_from_direction, direction_from_angles
-from cube4.volumes import load_volume
 
 from .markdown import REPO_ROOT, fmt_int, git_describe, md_table
 

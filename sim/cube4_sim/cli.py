@@ -8,7 +8,7 @@ import sys
 
 def main(argv: list[str] | None = None) -> int:
     try:                     # an interrupt during start-up (the imports) is one line too
-        from cube4.cli import main as cube4_main
+        from cube4.app.cli import main as cube4_main
 
         from .engine import register
 

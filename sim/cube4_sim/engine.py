@@ -1,6 +1,6 @@
 """The ``rtl`` render engine: views rendered by the simulated cube4_top.
 
-``register()`` adds it to ``cube4.render``'s engines (the ``cube4`` command and
+``register()`` adds it to ``cube4.app.render``'s engines (the ``cube4`` command and
 ``make report`` call it). All views of one call run in one simulation: the volume is
 loaded into the simulated voxel memory once and the frames run back to back, each with
 its own view registers and tables. Each result's ``wall_s`` is its share of the whole
@@ -13,12 +13,12 @@ import time
 
 import numpy as np
 
+from cube4.app.render import RenderResult, register_engine, view_image
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
-from cube4.errors import UserError
 from cube4.cycles import rect_frame_cycles
-from cube4.render import (RenderResult, assemble_view, build_memory, pass_rects, plan_view, register_engine,
-                          schedule_stats, trav_stats, view_image, view_stats)
+from cube4.errors import UserError
+from cube4.host import assemble_view, build_memory, pass_rects, plan_view, schedule_stats, trav_stats, view_stats
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, frame_rects, render_frames
@@ -98,7 +98,7 @@ def _cycle_stats(outs: list[dict], ideal: float) -> dict:
 
 
 def register() -> None:
-    """Add the ``rtl`` engine to ``cube4.render``, and its brick renderer to
+    """Add the ``rtl`` engine to ``cube4.app.render``, and its brick renderer to
     ``cube4.bricks`` (by import path: a Dask worker imports it there)."""
     register_engine(NAME, render_rtl)
     register_brick_renderer(NAME, "cube4_sim.bricks:render_brick_rtl")

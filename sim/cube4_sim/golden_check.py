@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 
 from cube4.config import Cube4Config
+from cube4.host import crop_volume
 from cube4.model import Frame, render_frame
-from cube4.render import crop_volume
 from cube4.view import Traversal
 
 from .rtl import baseplane_from_pixels

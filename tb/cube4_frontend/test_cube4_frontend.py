@@ -450,7 +450,7 @@ async def test_rect_views(dut):
 async def test_rect_scene(dut):
     """CUBE4_FE_RECT_SCENE = 'volume,scene' (a RECTS build): the scene's frame with its
     empty-space box and the slice rectangles within it, as the renderer plans it
-    (cube4.render.plan_view, pass_rects), through the front end without stalls: the
+    (cube4.host.plan_view, pass_rects), through the front end without stalls: the
     sample stream bit for bit, and the cycles against beats + empty slices + the fill
     (measured on the box's fixed schedule, not dumped). Results to CUBE4_FE_BENCH_OUT."""
     spec = os.environ.get("CUBE4_FE_RECT_SCENE")
@@ -458,9 +458,9 @@ async def test_rect_scene(dut):
         return
     import dataclasses
 
-    from cube4.render import config_for, crop_volume, pass_rects, plan_view
+    from cube4.host import config_for, crop_volume, pass_rects, plan_view
     from cube4.scene import load_scene
-    from cube4.volumes import load_volume
+    from cube4.app.volumes import load_volume
 
     tb = TB(dut)
     await tb.reset()

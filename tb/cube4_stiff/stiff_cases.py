@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cube4.scene import Scene, parse_scene
-from cube4.volumes import load_volume
+from cube4.app.volumes import load_volume
 
 
 

@@ -38,7 +38,7 @@ from stiff_cases import SHARED_BUILD, Case, faint_thousands  # noqa: E402
 
 from cube4.model import render_frame  # noqa: E402
 from cube4.reference import _box_interval, reference_baseplane  # noqa: E402
-from cube4.render import config_for, host_tables, image_metrics, setup_view  # noqa: E402
+from cube4.host import config_for, host_tables, image_metrics, setup_view  # noqa: E402
 from cube4.scene import with_view  # noqa: E402
 from cube4_sim.golden_check import assert_frame_matches_golden  # noqa: E402
 from cube4_sim.rtl import FrameJob, render_frames  # noqa: E402

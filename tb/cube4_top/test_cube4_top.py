@@ -21,7 +21,7 @@ import pytest
 from cube4.builds import named
 from cube4.config import Cube4Config
 from cube4.view import make_traversal
-from cube4.volumes import load_volume
+from cube4.app.volumes import load_volume
 from cube4_sim.golden_check import assert_frame_matches_golden
 from cube4.cycles import frame_cycles
 from cube4_sim.rtl import FrameJob, baseplane_from_pixels, render_frames
@@ -114,7 +114,7 @@ def test_phantoms_128(name, p):
 def render_phantom(name: str, p: int) -> None:
     """Render one phantom with its scene's tables through the RTL; check it bit for bit
     against the golden model and its cycle count against the formula."""
-    from cube4.render import host_tables, setup_view
+    from cube4.host import host_tables, setup_view
     from cube4.scene import load_scene
 
     cfg = Cube4Config(pipelines=p)
@@ -213,7 +213,7 @@ def test_synthesis_form(p):
     alone on its tables) and P = 3 (a pair of lanes and a lane alone): a phantom and
     random stalled frames with new tables each must still match the golden model bit
     for bit."""
-    from cube4.render import host_tables, setup_view
+    from cube4.host import host_tables, setup_view
     from cube4.scene import load_scene
 
     cfg = Cube4Config(pipelines=p)
@@ -450,7 +450,8 @@ def test_subpixel_passes(p, q):
     with its empty-space box) run back to back in one simulation on the volume loaded
     once, with random stalls on some; every pass is the golden model's frame bit for bit,
     and the interleaved plane equals the golden engine's."""
-    from cube4.render import assemble_view, plan_view, render
+    from cube4.app.render import render
+    from cube4.host import assemble_view, plan_view
     from cube4.scene import load_scene
 
     cfg = Cube4Config(pipelines=p)
@@ -516,7 +517,7 @@ def test_path_weights(p, s):
         gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode)
         if n == 0:   # the weights change this frame: the test sees them
             from cube4.model import render_frame
-            from cube4.render import crop_volume
+            from cube4.host import crop_volume
             unweighted = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut[:, :4], job.rmap)
             assert (unweighted.baseplane != gold.baseplane).any(), f"{label}: the weights changed nothing"
         if not (job.stall or job.stall_out or job.reset_after_cycles):

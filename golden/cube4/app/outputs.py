@@ -17,7 +17,7 @@ import tempfile
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from .errors import UserError
+from ..errors import UserError
 
 Writer = Callable[[str], None]  # writes the output to the (temporary) path it is given
 

@@ -1,43 +1,33 @@
-"""One render, any engine: volume + scene -> image-plane RGBA (+ base plane, stats).
+"""The host's work for one view, and the bit-exact frame it gets back.
 
-This package owns two engines: ``reference`` (float64 truth, straight into the image
-plane) and ``golden`` (the bit-exact Cube-4 model, base plane warped to the image plane
-by OpenImageIO). Other engines are added from outside with ``register_engine``; the
-package never imports them (the ``cube4`` command registers the simulated RTL, ``rtl``).
+For a scene's view of a volume the host sets up the traversal and the camera, writes the
+tables (classification LUT, reflectance map), plans the q×q sub-pixel passes and each
+pass's empty-space box, and assembles the passes' base planes into the view's frame
+(``plan_view``, ``assemble_view``); ``golden_view`` runs the passes through the bit-exact
+model. The warp into the image plane and the engines that make images are the
+application's (``cube4.app.render``).
 """
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .clip import Clip, cut_coefficients
 from .config import Cube4Config, resolve_build
-from .errors import UserError
 from .cycles import frame_cycles, rect_frame_cycles
 from .model import PIXEL_DTYPE, Frame, render_frame
+from .modes import is_extremum
+from .pathlen import weighted_columns
+from .progress import Progress
+from .scene import Scene, crop_box
 from .skip import SkipPlan, find_box, plan_box
 from .slices import SliceRects, plan_rects
-from .subpixel import Pass, fine_origin, fine_to_base, interleave, passes
-from .reference import render_reference
-from .clip import Clip, cut_coefficients
-from .modes import is_extremum
-from .scene import Scene, crop_box
-from .pathlen import weighted_columns
+from .subpixel import Pass, fine_origin, interleave, passes
 from .tables import classification_lut, extremum_lut, reflectance_map
 from .vgrad import pack_words
 from .view import Camera, Traversal, make_camera, make_traversal
-from .warp import warp_to_image
-
-@dataclass
-class RenderResult:
-    engine: str
-    image: np.ndarray  # (H, W, 4) premultiplied RGBA float64 in [0, 1]
-    wall_s: float
-    frame: Frame | None = None
-    stats: dict = field(default_factory=dict)
 
 
 def config_for(scene: Scene, pipelines: int | None = None, **overrides) -> Cube4Config:
@@ -184,19 +174,6 @@ def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.nd
     return Frame(trav=vp.trav, cfg=cfg, baseplane=base, pixels=np.concatenate(pix))
 
 
-def view_image(vp: ViewPlan, frame: Frame) -> np.ndarray:
-    """The frame's base plane warped to the view's image plane."""
-    q = vp.scene.subpixel
-    return scene_warp(frame.baseplane_float, vp.trav, vp.cam, vp.scene, pre=None if q == 1 else fine_to_base(q))
-
-
-def scene_warp(base: np.ndarray, trav: Traversal, cam: Camera, scene: Scene,
-               pre: np.ndarray | None = None) -> np.ndarray:
-    """The base plane warped to the image as the scene's [output] asks (filter, footprint);
-    ``pre``: a plane whose pixels map to ``trav``'s base-plane points by it (q×q passes)."""
-    return warp_to_image(base, trav, cam, filtername=scene.filter, footprint=scene.footprint, pre=pre)
-
-
 def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:
     """RMSE, max |error| and PSNR (peak 1.0) over all four premultiplied RGBA channels."""
     err = img.astype(np.float64) - ref.astype(np.float64)
@@ -228,40 +205,6 @@ def trav_stats(trav: Traversal) -> dict:
     }
 
 
-#: An engine renders one or more views of one volume:
-#: (vol[z, y, x], scenes, cfg, progress) -> one RenderResult per scene, in order.
-Engine = Callable[[np.ndarray, list[Scene], Cube4Config, bool], list[RenderResult]]
-
-_ENGINES: dict[str, Engine] = {}
-
-
-def register_engine(name: str, fn: Engine) -> None:
-    """Make an engine available to ``render``, ``render_views`` and the command line."""
-    _ENGINES[name] = fn
-
-
-def engine_names() -> tuple[str, ...]:
-    """The registered engines, in registration order."""
-    return tuple(_ENGINES)
-
-
-def _engine(name: str) -> Engine:
-    if name not in _ENGINES:
-        raise UserError(f"unknown engine {name!r} (engines: {', '.join(_ENGINES)})")
-    return _ENGINES[name]
-
-
-def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progress: bool = False) -> RenderResult:
-    """The float64 reference image of one view."""
-    nz, ny, nx = vol.shape
-    dims = (nx, ny, nz)
-    _, cam = setup_view(dims, scene, cfg)
-    stats = view_stats("reference", dims, scene, cfg)
-    t0 = time.perf_counter()
-    img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=progress, box=crop_box(scene, dims))
-    return _timed(RenderResult("reference", img, 0.0, stats=stats), t0)
-
-
 def pass_rects(vol: np.ndarray, vp: ViewPlan) -> list[SliceRects | None]:
     """The slice rectangles (cube4.slices, numerics.md §18) of each pass's frame, within
     its empty-space box (None: the pass has no frame)."""
@@ -272,17 +215,17 @@ def pass_rects(vol: np.ndarray, vp: ViewPlan) -> list[SliceRects | None]:
             for plan in vp.plans]
 
 
-def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
-                       progress: bool = False, rects: bool = False) -> RenderResult:
-    """One view through the bit-exact model, warped to the image plane; ``rects``: each
-    frame computes only its slice rectangles (the specified finer schedule; stats
-    ``rect_beats``)."""
+def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
+                progress: Progress | None = None, rects: bool = False) -> tuple[ViewPlan, Frame, dict]:
+    """One view through the bit-exact model: its plan, its frame (the passes' base planes
+    placed and interleaved) and the stats of what it did; ``rects``: each frame computes
+    only its slice rectangles (the specified finer schedule; stats ``rect_beats``);
+    ``keep_streams``: the frame keeps the model's intermediate streams."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
-    trav, cam = setup_view(dims, scene, cfg)
+    trav, _ = setup_view(dims, scene, cfg)
     stats = view_stats("golden", dims, scene, cfg)
     stats["build"] = resolve_build(cfg, [scene])     # the build this frame models
-    t0 = time.perf_counter()
     if keep_streams:
         # the streams are a verification aid, indexed by the whole traversal: one pass, the fixed schedule
         if scene.subpixel != 1:
@@ -304,7 +247,6 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
             streams = sub.streams
     frame = assemble_view(vp, cfg, results)
     frame.streams = streams
-    img = view_image(vp, frame)
     stats.update(trav_stats(trav))
     stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
     stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
@@ -319,47 +261,4 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
             stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, shading) for r in ran)
             stats["cycles_saved"] = stats["fixed_schedule_cycles"] - stats["predicted_cycles"]
             stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in ran)
-    return _timed(RenderResult("golden", img, 0.0, frame=frame, stats=stats), t0)
-
-
-def _timed(res: RenderResult, t0: float) -> RenderResult:
-    res.wall_s = time.perf_counter() - t0
-    res.stats["wall_s"] = res.wall_s
-    return res
-
-
-register_engine("reference", lambda vol, scenes, cfg, progress: [
-    render_reference_view(vol, sc, cfg, progress) for sc in scenes])
-register_engine("golden", lambda vol, scenes, cfg, progress: [
-    render_golden_view(vol, sc, cfg, progress=progress) for sc in scenes])
-
-
-def render(
-    vol: np.ndarray,
-    scene: Scene,
-    cfg: Cube4Config,
-    engine: str,
-    keep_streams: bool = False,
-    progress: bool = False,
-) -> RenderResult:
-    """Render vol[z, y, x] (VOXEL_W-bit unsigned) with one engine; ``keep_streams``
-    (golden only) keeps the model's intermediate streams in the frame."""
-    if engine == "golden":
-        return render_golden_view(vol, scene, cfg, keep_streams=keep_streams, progress=progress)
-    return render_views(vol, [scene], cfg, engine, progress=progress)[0]
-
-
-def render_views(
-    vol: np.ndarray,
-    scenes: list[Scene],
-    cfg: Cube4Config,
-    engine: str,
-    progress: bool = False,
-) -> list[RenderResult]:
-    """Render several views (one scene each, e.g. ``scene.with_view``) of one volume.
-    An engine may run them together (the RTL engine loads the volume once and runs the
-    frames back to back)."""
-    fn = _engine(engine)
-    if not scenes:
-        raise UserError("no view to render")
-    return fn(vol, scenes, cfg, progress)
+    return vp, frame, stats

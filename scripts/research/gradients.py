@@ -1,5 +1,9 @@
-"""Gradient estimators on the sample stream: a study for the next GRA (not part of the
-bit-exact model; reports/gradient_research.md).
+"""Gradient estimators on the sample stream: a study for the next GRA (a research
+prototype, not part of the bit-exact model or of the shipped packages;
+reports/gradient_research.md). Run it from the repository's root as
+``python scripts/research/gradients.py``; its results are stored in
+reports/gradient_research/*.json, which ``make report`` reads; its tests beside it
+(``pytest scripts/research``) are not part of ``make test``.
 
 Every estimator returns integer gradients (M, 3, nj, ni) in traversal axes (i, j, k)
 for the sample stream of one traversal, like ``model.gradient_stream``; only the
@@ -395,7 +399,8 @@ def angle_table(estimators=ESTIMATORS, views=VIEWS, supersamples=SUPERSAMPLES, s
                 weight_bits: int = 8, log=None) -> list[dict]:
     """One row per (estimator, view, S): mean, max angle, number of samples, and the
     largest |component| (bit growth check)."""
-    from cube4.volumes import load_volume, sphere_centre, sphere_radius
+    from cube4.app.volumes import load_volume
+    from cube4.phantoms import sphere_centre, sphere_radius
 
     vol = load_volume(spec)
     nz, ny, nx = vol.shape
@@ -450,7 +455,8 @@ def render_frame_with(vol: np.ndarray, trav: Traversal, cfg, lut: np.ndarray, rm
 
 def render_image(vol: np.ndarray, scene, cfg, estimator: str) -> np.ndarray:
     """The golden image of one view (whole box, no skipping, q = 1) with ``estimator``."""
-    from cube4.render import host_tables, setup_view, warp_to_image
+    from cube4.app.warp import warp_to_image
+    from cube4.host import host_tables, setup_view
 
     nz, ny, nx = vol.shape
     trav, cam = setup_view((nx, ny, nz), scene, cfg)
@@ -463,7 +469,7 @@ def analytic_gradient(spec: str, dims, pts: np.ndarray) -> np.ndarray | None:
     """The analytic gradient direction (x, y, z) of a built-in's continuous field at
     volume points (N, 3) (any positive scale), or None for a volume without one.
     sphere: inward radial; ml: the Marschner-Lobb signal's gradient."""
-    from cube4.volumes import ML_ALPHA, ML_FM, sphere_centre
+    from cube4.phantoms import ML_ALPHA, ML_FM, sphere_centre
 
     name = spec.split(":")[0]
     if name == "sphere":
@@ -488,7 +494,7 @@ def truth_image(vol: np.ndarray, spec: str, scene, cfg) -> np.ndarray:
     difference (sphere: only where the reference's gradient is not flat, so the flat
     interior stays flat; ml: everywhere)."""
     from cube4 import reference as R
-    from cube4.render import render
+    from cube4.app.render import render
 
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
@@ -520,9 +526,10 @@ def psnr_table(estimators, cases=PSNR_CASES, supersamples=SUPERSAMPLES, log=None
     and S; also the shipped golden engine (``golden``) as a check."""
     from dataclasses import replace
 
-    from cube4.render import config_for, image_metrics, render
+    from cube4.app.render import render
+    from cube4.app.volumes import load_volume
+    from cube4.host import config_for, image_metrics
     from cube4.scene import load_scene
-    from cube4.volumes import load_volume
 
     rows = []
     for spec, scene_name in cases:

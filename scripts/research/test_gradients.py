@@ -1,11 +1,12 @@
-"""The gradient-estimator study (cube4_reports.gradients): the measurement reproduces the
+"""The gradient-estimator study (scripts/research/gradients.py): the measurement reproduces the
 model, and the recommended estimators behave as documented."""
 import numpy as np
 
-from cube4_reports import gradients as G
+import gradients as G
+from cube4.app.volumes import load_volume
 from cube4.model import gradient_stream, sample_stream
+from cube4.phantoms import sphere_centre, sphere_radius
 from cube4.view import make_traversal
-from cube4.volumes import load_volume, sphere_centre, sphere_radius
 
 
 def test_gra_is_the_model():

@@ -9,10 +9,15 @@
                  [--path-weights | --no-path-weights]
     cube4 volumes | cube4 scenes      list the built-ins
 
-Engines: those registered with ``cube4.render.register_engine`` when ``main`` runs:
+Engines: those registered with ``cube4.app.render.register_engine`` when ``main`` runs:
 ``reference`` and ``golden`` from this package. The installed ``cube4`` command is the
 simulation package's entry point, which registers ``rtl`` (the simulated hardware) and
 then runs this ``main``.
+
+``cube4 render`` runs in stages: every input checked before any work (``_parse_inputs``:
+the options, the scenes of the views, the bricks, the destinations, the build), the volume
+loaded (``_load_volume``), the views rendered with their stats (``_render``), the outputs
+written all or none (``_outputs``, ``write_all``), one line per view (``_summary``).
 
 Bad input gives one line on stderr and exit status 2; nothing is written unless the
 whole render succeeded (outputs go to a temporary file in the target folder first).
@@ -23,20 +28,21 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
-from .bricks import (BRICK_MODES, MIN_BOARD_DIM, LocalExecutor, brick_renderer, parse_bricks,
-                     render_bricked_views)
-from .config import MAX_DIM, MAX_PIPELINES, parse_build, resolve_build
-from .errors import UserError
+from ..bricks import BRICK_MODES, MIN_BOARD_DIM, LocalExecutor, brick_renderer, parse_bricks
+from ..config import MAX_DIM, MAX_PIPELINES, Cube4Config, parse_build, resolve_build
+from ..errors import UserError
+from ..host import config_for, image_metrics
+from ..scene import PRESETS, Scene, apply_preset, builtin_scene_names, load_scene, with_view
+from ..vgrad import GRADIENTS
+from ..view import POLE_Z, angles_from_direction, direction_from_angles, up_from_angles
+from .images import write_image
 from .outputs import Writer, check_destination, check_destinations, write_all
-from .render import config_for, engine_names, image_metrics, render, render_views
-from .scene import PRESETS, Scene, apply_preset, builtin_scene_names, load_scene, with_view
-from .vgrad import GRADIENTS
-from .view import POLE_Z, angles_from_direction, direction_from_angles, up_from_angles
+from .render import RenderResult, engine_names, render, render_bricked_views, render_views
 from .volumes import BUILTINS, load_volume
 
 IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
@@ -129,22 +135,6 @@ def _json_safe(d: dict) -> dict:
     return {k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in d.items()}
 
 
-def write_image(path: str, rgba: np.ndarray, background=(0.0, 0.0, 0.0)) -> None:
-    """Premultiplied RGBA -> file: EXR keeps float RGBA; PNG/TIFF get 8-bit RGB over the
-    background colour."""
-    import OpenImageIO as oiio
-
-    if path.lower().endswith(".exr"):
-        data, fmt = rgba.astype(np.float32), oiio.HALF
-    else:
-        bg = np.asarray(background, dtype=np.float64)
-        rgb = rgba[..., :3] + (1.0 - rgba[..., 3:4]) * bg
-        data, fmt = np.clip(rgb, 0.0, 1.0).astype(np.float32), oiio.UINT8
-    buf = oiio.ImageBuf(np.ascontiguousarray(data))
-    if not buf.write(path, fmt):
-        raise UserError(f"cannot write image {path}: {buf.geterror()}")
-
-
 def _background(text: str) -> tuple[float, float, float]:
     try:
         vals = tuple(float(v) for v in text.split(","))
@@ -201,7 +191,58 @@ def _numbered(path: Path, n: int, count: int) -> Path:
     return path.with_name(f"{path.stem}_{n:03d}{path.suffix}")
 
 
+@dataclass
+class RenderRun:
+    """A ``cube4 render`` call, every input checked: where its outputs go, the scenes (one
+    per view) and the hardware they run on."""
+
+    out: Path
+    baseplane: Path | None
+    stats: Path | None
+    background: tuple[float, float, float]
+    scenes: list[Scene]
+    bricks: tuple | None = None      # (grid counts or None, board dim or None) for a bricked render
+    cfg: Cube4Config | None = None
+
+    def numbered(self, path: Path, n: int) -> Path:
+        return _numbered(path, n, len(self.scenes))
+
+    def destinations(self) -> list[tuple[Path, str]]:
+        """Every output file, numbered per view."""
+        views = range(len(self.scenes))
+        named = [(self.numbered(self.out, n), "--out") for n in views]
+        if self.baseplane is not None:
+            named += [(self.numbered(self.baseplane, n), "--baseplane") for n in views]
+        if self.stats is not None:
+            named.append((self.stats, "--stats"))
+        return named
+
+
 def cmd_render(args: argparse.Namespace) -> int:
+    """Check every input, load the volume, render, write all outputs or none, report."""
+    run = _parse_inputs(args)
+    vol = _load_volume(args, run.cfg)
+    results, frames = _render(args, run, vol)
+    write_all(_outputs(run, results, frames))
+    if not args.quiet:
+        _summary(args, run, results, frames)
+    return 0
+
+
+def _parse_inputs(args: argparse.Namespace) -> RenderRun:
+    """Stage 1, before any work: the options, the scenes, the bricks, every destination and
+    the build (one line for the first thing wrong)."""
+    out, bp, st, bg = _check_options(args)
+    scenes = _resolve_scenes(args)
+    run = RenderRun(out, bp, st, bg, scenes, bricks=_brick_options(args, scenes[0]))
+    check_destinations(run.destinations())
+    run.cfg = _hardware(args, scenes)
+    return run
+
+
+def _check_options(args: argparse.Namespace) -> tuple[Path, Path | None, Path | None, tuple[float, float, float]]:
+    """The output names (--out, --baseplane, --stats), the background, and the options
+    that need each other."""
     out = _check_output(args.out, IMAGE_SUFFIXES, "--out")
     bp = _check_output(args.baseplane, (".npy",), "--baseplane") if args.baseplane else None
     st = _check_output(args.stats, (".json",), "--stats") if args.stats else None
@@ -210,90 +251,112 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise UserError("--baseplane needs a Cube-4 engine (golden or rtl); the reference has no base plane")
     if args.pipelines is not None and not 1 <= args.pipelines <= MAX_PIPELINES:
         raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
-    scene = load_scene(args.scene)
-    scenes = _views(args, scene)
+    return out, bp, st, bg
+
+
+def _resolve_scenes(args: argparse.Namespace) -> list[Scene]:
+    """The scene, one per view (--view, --orbit), each with the command line's changes."""
+    scenes = _views(args, load_scene(args.scene))
     if args.no_skip and args.rects:
         raise UserError("--no-skip and --rects exclude each other")
-    if args.no_skip:
-        scenes = [replace(sc, skip=False) for sc in scenes]
-    if args.rects:
-        scenes = [replace(sc, skip="rects") for sc in scenes]
+    return [_changed(sc, args) for sc in scenes]
+
+
+def _changed(scene: Scene, args: argparse.Namespace) -> Scene:
+    """A scene with --no-skip or --rects, then --preset, then --gradient and
+    --path-weights over the preset."""
+    if args.no_skip or args.rects:
+        scene = replace(scene, skip="rects" if args.rects else False)
     if args.preset:
-        scenes = [apply_preset(sc, args.preset) for sc in scenes]
-    if args.gradient:
-        scenes = [replace(sc, gradient=args.gradient) for sc in scenes]
-    if args.path_weights is not None:
-        scenes = [replace(sc, path_weights=args.path_weights) for sc in scenes]
-    scene = scenes[0]       # with the preset, --gradient, --path-weights: its keys (S among them) choose the hardware
-    bricks = _brick_options(args, scene)
-    count = len(scenes)
-    # every destination, numbered per view, checked before any work
-    named = [(_numbered(out, n, count), "--out") for n in range(count)]
-    if bp is not None:
-        named += [(_numbered(bp, n, count), "--baseplane") for n in range(count)]
-    if st is not None:
-        named.append((st, "--stats"))
-    check_destinations(named)
+        scene = apply_preset(scene, args.preset)
+    over = {k: v for k, v in (("gradient", args.gradient), ("path_weights", args.path_weights)) if v is not None}
+    return replace(scene, **over) if over else scene
+
+
+def _hardware(args: argparse.Namespace, scenes: list[Scene]) -> Cube4Config:
+    """The hardware: the first scene's configuration (with the preset, --gradient and
+    --path-weights its keys, S among them, choose it) with the command line's, on the
+    build asked for; a scene that needs what the build leaves out is one line here."""
     build = parse_build(args.build)
-    cfg = config_for(scene, pipelines=args.pipelines, voxel_bits=args.voxel_bits,
+    cfg = config_for(scenes[0], pipelines=args.pipelines, voxel_bits=args.voxel_bits,
                      build=None if build is None else tuple(build.items()))
-    resolve_build(cfg, scenes)    # a scene that needs what the build leaves out: one line, before any work
+    resolve_build(cfg, scenes)
+    return cfg
+
+
+def _load_volume(args: argparse.Namespace, cfg: Cube4Config):
+    """Stage 2: the volume, as voxels of the configuration's width."""
     raw_dims = _dims(args.dims) if args.dims else None
-    vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
+    return load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
+
+
+def _render(args: argparse.Namespace, run: RenderRun, vol) -> tuple[list[RenderResult], list[dict]]:
+    """Stage 3: every view through the engine (in bricks if asked), and each view's stats
+    (with the error against the reference if asked)."""
     progress = not args.quiet and sys.stderr.isatty()
-    if bricks is None:
-        results = render_views(vol, scenes, cfg, args.engine, progress=progress)
+    if run.bricks is None:
+        results = render_views(vol, run.scenes, run.cfg, args.engine, progress=progress)
     else:
-        results = _render_bricked(args, vol, scenes, cfg, bricks, progress)
+        results = _render_bricked(args, vol, run.scenes, run.cfg, run.bricks, progress)
     frames = []
-    for res, sc in zip(results, scenes):
+    for res, sc in zip(results, run.scenes):
         stats = dict(res.stats)
         stats["volume"] = args.volume
-        stats["scene"] = scene.name
+        stats["scene"] = run.scenes[0].name
         stats["azimuth"], stats["elevation"] = angles_from_direction(sc.direction)
         if args.compare_to:
-            ref = render(vol, sc, cfg, "reference", progress=progress)
+            ref = render(vol, sc, run.cfg, "reference", progress=progress)
             stats.update(image_metrics(res.image, ref.image))
             stats["reference_wall_s"] = ref.wall_s
         frames.append(stats)
+    return results, frames
 
+
+def _outputs(run: RenderRun, results: list[RenderResult], frames: list[dict]) -> list[tuple[Path, Writer]]:
+    """Stage 4: what goes into each output file (written by write_all, all or none)."""
     outputs: list[tuple[Path, Writer]] = []
     for n, res in enumerate(results):
-        outputs.append((_numbered(out, n, count), lambda tmp, img=res.image: write_image(tmp, img, bg)))
-        if bp is not None and res.frame is not None:
-            outputs.append((_numbered(bp, n, count), lambda tmp, base=res.frame.baseplane: np.save(tmp, base)))
-    if st is not None:
-        if count == 1:
-            doc = _json_safe(frames[0])
-        else:
-            doc = {"views": count, "frames": [_json_safe(f) for f in frames],
-                   "wall_s": sum(f["wall_s"] for f in frames)}
-            if all("cycles" in f for f in frames):
-                doc["cycles"] = sum(f["cycles"] for f in frames)
-                doc["sim_wall_s"] = sum(f["sim_wall_s"] for f in frames)
-                doc["sim_cycles_per_s"] = doc["cycles"] / doc["sim_wall_s"] if doc["sim_wall_s"] > 0 else None
-        text = json.dumps(doc, indent=2, allow_nan=False) + "\n"
-        outputs.append((st, lambda tmp: Path(tmp).write_text(text)))
-    write_all(outputs)
-    if not args.quiet:
-        for n, (stats, res) in enumerate(zip(frames, results)):
-            line = (f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} "
-                    f"in {res.wall_s:.2f} s -> {_numbered(out, n, count)}")
-            if count > 1:
-                line += f" (azimuth {stats['azimuth']:.1f}, elevation {stats['elevation']:.1f})"
-            if "bricks" in stats:
-                b = stats["bricks"]
-                line += (f" ({b['count']} bricks {'x'.join(str(c) for c in b['grid'])}, memory "
-                         f"+{100 * b['memory_overhead']:.1f}%, on {b['workers']} worker"
-                         f"{'s' if b['workers'] != 1 else ''}{_retries_note(b)})")
-            if stats.get("skip"):
-                saved = stats["cycles_saved"] / max(1, stats["fixed_schedule_cycles"])
-                line += f" (empty space skipped: {100 * saved:.0f}% of the cycles)"
-            if args.compare_to:
-                line += (f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
-                         f"max {stats['max_abs']:.3f}")
-            print(line)
-    return 0
+        outputs.append((run.numbered(run.out, n), lambda tmp, img=res.image: write_image(tmp, img, run.background)))
+        if run.baseplane is not None and res.frame is not None:
+            outputs.append((run.numbered(run.baseplane, n), lambda tmp, base=res.frame.baseplane: np.save(tmp, base)))
+    if run.stats is not None:
+        text = json.dumps(_stats_doc(frames), indent=2, allow_nan=False) + "\n"
+        outputs.append((run.stats, lambda tmp: Path(tmp).write_text(text)))
+    return outputs
+
+
+def _stats_doc(frames: list[dict]) -> dict:
+    """The --stats document: one view's stats, or every view's with their sums."""
+    if len(frames) == 1:
+        return _json_safe(frames[0])
+    doc = {"views": len(frames), "frames": [_json_safe(f) for f in frames], "wall_s": sum(f["wall_s"] for f in frames)}
+    if all("cycles" in f for f in frames):
+        doc["cycles"] = sum(f["cycles"] for f in frames)
+        doc["sim_wall_s"] = sum(f["sim_wall_s"] for f in frames)
+        doc["sim_cycles_per_s"] = doc["cycles"] / doc["sim_wall_s"] if doc["sim_wall_s"] > 0 else None
+    return doc
+
+
+def _summary(args: argparse.Namespace, run: RenderRun, results: list[RenderResult], frames: list[dict]) -> None:
+    """Stage 5: one line per view on stdout."""
+    count = len(run.scenes)
+    for n, (stats, res) in enumerate(zip(frames, results)):
+        line = (f"cube4: {args.engine} render of {args.volume} {tuple(stats['dims'])} "
+                f"in {res.wall_s:.2f} s -> {run.numbered(run.out, n)}")
+        if count > 1:
+            line += f" (azimuth {stats['azimuth']:.1f}, elevation {stats['elevation']:.1f})"
+        if "bricks" in stats:
+            b = stats["bricks"]
+            line += (f" ({b['count']} bricks {'x'.join(str(c) for c in b['grid'])}, memory "
+                     f"+{100 * b['memory_overhead']:.1f}%, on {b['workers']} worker"
+                     f"{'s' if b['workers'] != 1 else ''}{_retries_note(b)})")
+        if stats.get("skip"):
+            saved = stats["cycles_saved"] / max(1, stats["fixed_schedule_cycles"])
+            line += f" (empty space skipped: {100 * saved:.0f}% of the cycles)"
+        if args.compare_to:
+            line += (f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
+                     f"max {stats['max_abs']:.3f}")
+        print(line)
 
 
 def _brick_options(args: argparse.Namespace, scene: Scene):

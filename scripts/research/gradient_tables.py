@@ -1,4 +1,4 @@
-"""Markdown tables of reports/gradient_research/*.json (written by python -m cube4_reports.gradients)."""
+"""Markdown tables of reports/gradient_research/*.json (written by scripts/research/gradients.py)."""
 import json
 from pathlib import Path
 

@@ -27,8 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import UserError
-from .volumes import to_ras
+from ..errors import UserError
+from .orient import to_ras
 
 GAP_FACTOR = 1.5      # a spacing this many times the median one means a missing slice
 

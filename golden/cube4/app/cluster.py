@@ -7,7 +7,7 @@ task carries its brick's voxels, view, tables and window, so the scheduler can s
 again: a worker that dies in mid-frame (killed, out of memory, its machine gone) costs
 that brick a retry on another worker, not the frame (Dask reschedules the tasks of a lost
 worker; ``RETRIES`` more runs are allowed for a task that raises). The partial base
-planes come back as they finish (a progress bar counts the bricks done) and are
+planes come back as they finish (a progress callback counts the bricks done) and are
 composited in this process, front to back, as a tree of ``over``.
 
 This module is the host side of the renderer; the golden model never imports it, and
@@ -26,10 +26,9 @@ import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
-from tqdm import tqdm
-
-from .bricks import BrickResult, BrickTask, run_task
-from .errors import UserError
+from ..bricks import BrickResult, BrickTask, run_task
+from ..errors import UserError
+from ..progress import Progress, counted
 
 RETRIES = 2              # more runs of a task that raised (a worker's death is counted by Dask itself)
 CONNECT_TIMEOUT_S = 20   # reaching the scheduler
@@ -129,8 +128,8 @@ class DaskExecutor:
         return len(self.client.scheduler_info(n_workers=-1).get("workers", {}))
 
     # --- work
-    def run(self, tasks: Sequence[BrickTask], progress: bool = False) -> list[BrickResult]:
-        """Every task's result, in task order; a progress bar counts the bricks done."""
+    def run(self, tasks: Sequence[BrickTask], progress: Progress | None = None) -> list[BrickResult]:
+        """Every task's result, in task order; ``progress`` (cube4.progress) counts the bricks done."""
         from distributed import as_completed
 
         if self.client is None:
@@ -145,18 +144,16 @@ class DaskExecutor:
         out: list[BrickResult | None] = [None] * len(tasks)
         t_end = None if self.timeout is None else time.monotonic() + self.timeout
         try:
-            with tqdm(total=len(tasks), desc="bricks", unit="brick", disable=not progress, leave=False) as bar:
-                for fut in as_completed(futures, timeout=self.timeout):
-                    left = None if t_end is None else max(1.0, t_end - time.monotonic())
-                    try:
-                        out[pos[fut.key]] = fut.result(timeout=left)
-                    except UserError:
-                        raise
-                    except Exception as exc:  # a task that failed RETRIES + 1 times, or lost too often
-                        raise UserError(f"brick {tasks[pos[fut.key]].label} failed on the cluster: "
-                                        f"{type(exc).__name__}: {exc}".replace("\n", " ")) from None
-                    fut.release()
-                    bar.update(1)
+            for fut in counted(as_completed(futures, timeout=self.timeout), progress, "bricks", total=len(tasks)):
+                left = None if t_end is None else max(1.0, t_end - time.monotonic())
+                try:
+                    out[pos[fut.key]] = fut.result(timeout=left)
+                except UserError:
+                    raise
+                except Exception as exc:  # a task that failed RETRIES + 1 times, or lost too often
+                    raise UserError(f"brick {tasks[pos[fut.key]].label} failed on the cluster: "
+                                    f"{type(exc).__name__}: {exc}".replace("\n", " ")) from None
+                fut.release()
         except TimeoutError:
             raise UserError(f"the cluster did not finish the frame's {len(tasks)} bricks in {self.timeout} s") from None
         finally:

@@ -1,0 +1,193 @@
+"""One render, any engine: volume + scene -> image-plane RGBA (+ base plane, stats).
+
+This module owns two engines: ``reference`` (float64 truth, straight into the image
+plane) and ``golden`` (the bit-exact Cube-4 model, ``cube4.host.golden_view``, its base
+plane warped to the image plane by OpenImageIO, ``cube4.app.warp``). Other engines are
+added from outside with ``register_engine``; this package never imports them (the
+``cube4`` command registers the simulated RTL, ``rtl``). ``render_bricked_views`` renders
+views in bricks (``cube4.bricks``) on an executor, composited and warped.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..bricks import LocalExecutor, assemble, brick_tasks, check_board, counts_for_board, make_grid
+from ..config import Cube4Config
+from ..errors import UserError
+from ..host import (ViewPlan, crop_volume, frame_clip, golden_view, host_tables, memory_volume, setup_view,
+                    trav_stats, view_stats)
+from ..model import Frame
+from ..reference import render_reference
+from ..scene import Scene, crop_box
+from ..subpixel import fine_to_base
+from ..view import Camera, Traversal
+from .progress import bars
+from .warp import warp_to_image
+
+
+@dataclass
+class RenderResult:
+    engine: str
+    image: np.ndarray  # (H, W, 4) premultiplied RGBA float64 in [0, 1]
+    wall_s: float
+    frame: Frame | None = None
+    stats: dict = field(default_factory=dict)
+
+
+def view_image(vp: ViewPlan, frame: Frame) -> np.ndarray:
+    """The frame's base plane warped to the view's image plane."""
+    q = vp.scene.subpixel
+    return scene_warp(frame.baseplane_float, vp.trav, vp.cam, vp.scene, pre=None if q == 1 else fine_to_base(q))
+
+
+def scene_warp(base: np.ndarray, trav: Traversal, cam: Camera, scene: Scene,
+               pre: np.ndarray | None = None) -> np.ndarray:
+    """The base plane warped to the image as the scene's [output] asks (filter, footprint);
+    ``pre``: a plane whose pixels map to ``trav``'s base-plane points by it (q×q passes)."""
+    return warp_to_image(base, trav, cam, filtername=scene.filter, footprint=scene.footprint, pre=pre)
+
+
+#: An engine renders one or more views of one volume:
+#: (vol[z, y, x], scenes, cfg, progress) -> one RenderResult per scene, in order.
+Engine = Callable[[np.ndarray, list[Scene], Cube4Config, bool], list[RenderResult]]
+
+_ENGINES: dict[str, Engine] = {}
+
+
+def register_engine(name: str, fn: Engine) -> None:
+    """Make an engine available to ``render``, ``render_views`` and the command line."""
+    _ENGINES[name] = fn
+
+
+def engine_names() -> tuple[str, ...]:
+    """The registered engines, in registration order."""
+    return tuple(_ENGINES)
+
+
+def _engine(name: str) -> Engine:
+    if name not in _ENGINES:
+        raise UserError(f"unknown engine {name!r} (engines: {', '.join(_ENGINES)})")
+    return _ENGINES[name]
+
+
+def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progress: bool = False) -> RenderResult:
+    """The float64 reference image of one view."""
+    nz, ny, nx = vol.shape
+    dims = (nx, ny, nz)
+    _, cam = setup_view(dims, scene, cfg)
+    stats = view_stats("reference", dims, scene, cfg)
+    t0 = time.perf_counter()
+    img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=bars(progress), box=crop_box(scene, dims))
+    return _timed(RenderResult("reference", img, 0.0, stats=stats), t0)
+
+
+def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
+                       progress: bool = False, rects: bool = False) -> RenderResult:
+    """One view through the bit-exact model (``cube4.host.golden_view``), warped to the
+    image plane; ``rects``: each frame computes only its slice rectangles (stats
+    ``rect_beats``)."""
+    t0 = time.perf_counter()
+    vp, frame, stats = golden_view(vol, scene, cfg, keep_streams=keep_streams, progress=bars(progress), rects=rects)
+    return _timed(RenderResult("golden", view_image(vp, frame), 0.0, frame=frame, stats=stats), t0)
+
+
+def _timed(res: RenderResult, t0: float) -> RenderResult:
+    res.wall_s = time.perf_counter() - t0
+    res.stats["wall_s"] = res.wall_s
+    return res
+
+
+register_engine("reference", lambda vol, scenes, cfg, progress: [
+    render_reference_view(vol, sc, cfg, progress) for sc in scenes])
+register_engine("golden", lambda vol, scenes, cfg, progress: [
+    render_golden_view(vol, sc, cfg, progress=progress) for sc in scenes])
+
+
+def render(
+    vol: np.ndarray,
+    scene: Scene,
+    cfg: Cube4Config,
+    engine: str,
+    keep_streams: bool = False,
+    progress: bool = False,
+) -> RenderResult:
+    """Render vol[z, y, x] (VOXEL_W-bit unsigned) with one engine; ``keep_streams``
+    (golden only) keeps the model's intermediate streams in the frame."""
+    if engine == "golden":
+        return render_golden_view(vol, scene, cfg, keep_streams=keep_streams, progress=progress)
+    return render_views(vol, [scene], cfg, engine, progress=progress)[0]
+
+
+def render_views(
+    vol: np.ndarray,
+    scenes: list[Scene],
+    cfg: Cube4Config,
+    engine: str,
+    progress: bool = False,
+) -> list[RenderResult]:
+    """Render several views (one scene each, e.g. ``scene.with_view``) of one volume.
+    An engine may run them together (the RTL engine loads the volume once and runs the
+    frames back to back)."""
+    fn = _engine(engine)
+    if not scenes:
+        raise UserError("no view to render")
+    return fn(vol, scenes, cfg, progress)
+
+
+def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str, grid_counts, *,
+                         board_dim: int | None = None, executor=None, progress: bool = False) -> list:
+    """Every scene's view of vol[z, y, x] rendered in bricks (``grid_counts`` bricks per
+    axis of the traversed box; None: the fewest that fit ``board_dim``), composited and
+    warped: one ``RenderResult`` per scene. All bricks of all views go to the
+    executor at once."""
+    if grid_counts is None and board_dim is None:
+        raise ValueError("give the bricks per axis or the board's largest brick")
+    if any(sc.subpixel != 1 for sc in scenes):
+        raise UserError("--bricks renders one pass per view: set [render] subpixel = 1 in the scene")
+    nz, ny, nx = vol.shape
+    dims = (nx, ny, nz)
+    executor = executor or LocalExecutor()
+    t0 = time.perf_counter()
+    views, all_tasks, spans = [], [], []
+    for nv, sc in enumerate(scenes):
+        trav, cam = setup_view(dims, sc, cfg)
+        counts = tuple(grid_counts) if grid_counts is not None else counts_for_board(trav.dims, board_dim)
+        grid = make_grid(trav.dims, counts)
+        check_board(grid, board_dim)
+        lut, rmap = host_tables(sc, cfg, trav)
+        bricks, tasks = brick_tasks(crop_volume(memory_volume(vol, sc, cfg), trav), trav, cfg, lut, rmap, grid,
+                                    engine=engine, mode=sc.mode, shading=sc.shaded, clip=frame_clip(sc, trav),
+                                    board_dim=board_dim, vgrad=sc.voxel_gradients)
+        if len(scenes) > 1:
+            for t in tasks:
+                t.label = f"view {nv} {t.label}"
+        views.append((sc, trav, cam, grid, bricks))
+        spans.append((len(all_tasks), len(all_tasks) + len(tasks)))
+        all_tasks.extend(tasks)
+    results = executor.run(all_tasks, progress=bars(progress))
+    run_s = time.perf_counter() - t0
+    ex_stats = executor.stats()
+    out = []
+    for (sc, trav, cam, grid, bricks), (a, b) in zip(views, spans):
+        t1 = time.perf_counter()
+        frame, comp_s = assemble(trav, cfg, bricks, results[a:b], sc.mode)
+        img = scene_warp(frame.baseplane_float, trav, cam, sc)
+        stats = view_stats(engine, dims, sc, cfg)
+        stats.update(trav_stats(trav))
+        res = results[a:b]
+        stats["bricks"] = {
+            "grid": list(grid.counts), "count": grid.size, "largest": list(grid.largest_brick()),
+            "stored_voxels": grid.stored_voxels(), "memory_overhead": grid.memory_overhead,
+            "brick_wall_s": sum(r.wall_s for r in res), "composite_s": comp_s, **ex_stats,
+        }
+        if all(r.cycles is not None for r in res):
+            stats["cycles"] = sum(int(r.cycles) for r in res)
+        wall = run_s / len(views) + time.perf_counter() - t1
+        stats["wall_s"] = wall
+        out.append(RenderResult(engine, img, wall, frame=frame, stats=stats))
+    return out
