@@ -3,14 +3,16 @@ voxels as a board's whole memory, the template's starting phase PH0_X/Y, the win
 registers) equals the golden model's brick, bit for bit, so the RTL composite is the
 golden composite, within the §14 bound of the monolithic render.
 
-The boards are the full build at P = 4 and MAX_DIM = 64 that tb/cube4_top also uses, so
-`make test` builds it once for both."""
+The boards are the full build at P = 5 and MAX_DIM = 64 that tb/cube4_top also uses, so
+`make test` builds it once for both; the voxel-gradient boards (a build of their own) run in
+`make regress`."""
 
 from __future__ import annotations
 
 import dataclasses
 
 import numpy as np
+import pytest
 from cube4_testutil import BRICK_TF, brick_volume, make_scene
 
 from cube4.brick_rays import composite_bound
@@ -23,7 +25,7 @@ from cube4.view import make_traversal
 from cube4_sim.bricks import render_brick_rtl
 from cube4_sim.engine import register
 
-BOARD_CFG = Cube4Config(pipelines=4, build=tuple(FULL_BUILD.items()))
+BOARD_CFG = Cube4Config(pipelines=5, build=tuple(FULL_BUILD.items()))
 BOARD_DIM = 64
 
 
@@ -79,6 +81,7 @@ def test_rtl_bricks_on_two_workers_share_one_build():
     assert np.array_equal(frame.baseplane, render_bricked(vol, trav, cfg, lut, rmap, grid).frame.baseplane)
 
 
+@pytest.mark.regress
 def test_rtl_bricks_with_voxel_gradients():
     """Bricks of a voxel-gradient scene through the RTL (the boards a VGRAD build, each
     loaded with its brick of the whole volume's words): the composited base plane equals

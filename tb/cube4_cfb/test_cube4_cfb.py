@@ -29,6 +29,7 @@ import cube4.slices as slices
 from cube4.memory import address_of, bank_of, frontend_regs
 from cube4.view import make_traversal
 from cube4_sim import rtl_sources, run_test
+from cube4_sim.sweeps import sweep
 from cube4_sim.rect_port import write_rect_table
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
@@ -202,7 +203,7 @@ async def test_slice_rectangles(dut):
 
 # P = 2, 4 and 8 are covered by the front-end builds (tb/cube4_frontend), which
 # check every sample and therefore every address too.
-@pytest.mark.parametrize("p", [1, 5, 16])
+@pytest.mark.parametrize("p", sweep([1, 5, 16], quick=(0, 1)))
 def test_cube4_cfb(p):
     run_test(
         top="cube4_cfb_harness",
@@ -212,7 +213,7 @@ def test_cube4_cfb(p):
     )
 
 
-@pytest.mark.parametrize("p", [1, 5, 8])
+@pytest.mark.parametrize("p", sweep([1, 5, 8], quick=(0, 2)))
 def test_cube4_cfb_rects(p):
     """The rectangle build (RECTS = 1): the whole-box frames as the fixed build's, and
     slice rectangles."""

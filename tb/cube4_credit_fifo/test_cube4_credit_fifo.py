@@ -30,6 +30,7 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4_sim import rtl_sources, run_test
+from cube4_sim.sweeps import sweep
 
 CLK_PERIOD_NS = 10
 
@@ -210,7 +211,7 @@ PARAM_SETS = [
 ]
 
 
-@pytest.mark.parametrize("params", PARAM_SETS, ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 3), ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items())))
 def test_cube4_credit_fifo(params):
     run_test(
         top="cube4_credit_fifo",

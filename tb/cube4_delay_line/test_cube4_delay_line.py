@@ -26,6 +26,7 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
 from cube4_sim import rtl_sources, run_test
+from cube4_sim.sweeps import sweep
 
 CLK_PERIOD_NS = 10
 MAX_MISMATCH_LOGS = 10
@@ -181,7 +182,7 @@ PARAM_SETS = [
 ]
 
 
-@pytest.mark.parametrize("params", PARAM_SETS, ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 4), ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items())))
 def test_cube4_delay_line(params):
     run_test(
         top="cube4_delay_line",

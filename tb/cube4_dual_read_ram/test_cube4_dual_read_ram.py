@@ -126,6 +126,7 @@ async def dual_read_random_stalls(dut):
 
 # ---------------------------------------------------------------- pytest half
 from cube4_sim import run_test  # noqa: E402
+from cube4_sim.sweeps import sweep
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (one block 1024 x 18 .. 16384 x 1 per slice; inferred
@@ -147,7 +148,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", PARAM_SETS, ids=_param_id)
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 7), ids=_param_id))
 def test_cube4_dual_read_ram(params, form):
     run_test(top="cube4_dual_read_ram", sources=form_sources(form), params=params,
              test_module=__file__, build_args=form_build_args(form))

@@ -217,6 +217,7 @@ async def lerp_random_streaming(dut):
 # ----------------------------------------------------------------------------
 
 from cube4_sim import RTL_INCLUDE_DIR, SIM_HDL_DIR, rtl_sources, run_test  # noqa: E402  (pytest half)
+from cube4_sim.sweeps import sweep
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -240,7 +241,7 @@ def _param_id(params: dict) -> str:
     return "-".join(f"{k}{v}" for k, v in params.items())
 
 
-@pytest.mark.parametrize("params", PARAM_SETS, ids=_param_id)
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10, 11), ids=_param_id))
 def test_cube4_lerp(params):
     run_test(
         top="cube4_lerp",

@@ -87,6 +87,7 @@ async def mul_random_stalls(dut):
 
 # ---------------------------------------------------------------- pytest half
 from cube4_sim import run_test  # noqa: E402
+from cube4_sim.sweeps import sweep
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # widths the design uses (COM's T * A and w * C', GRA's view products, the lerps),
@@ -100,7 +101,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", PARAM_SETS, ids=_param_id)
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 2), ids=_param_id))
 def test_cube4_mul(params, form):
     run_test(top="cube4_mul", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))

@@ -16,6 +16,7 @@ from cocotb.triggers import Timer
 
 from cube4.fixed import round_shift
 from cube4_sim import rtl_sources, run_test
+from cube4_sim.sweeps import sweep
 
 MAX_MISMATCH_LOGS = 10
 
@@ -60,7 +61,7 @@ PARAM_SETS = [
 ]
 
 
-@pytest.mark.parametrize("params", PARAM_SETS, ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(3, 4), ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items())))
 def test_cube4_round_shift(params):
     run_test(
         top="cube4_round_shift",

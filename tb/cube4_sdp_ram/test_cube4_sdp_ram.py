@@ -116,6 +116,7 @@ async def ram_random_stalls(dut):
 
 # ---------------------------------------------------------------- pytest half
 from cube4_sim import run_test  # noqa: E402
+from cube4_sim.sweeps import sweep
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (block RAM 1024 x 18 .. 16384 x 1, distributed RAM below
@@ -140,7 +141,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", PARAM_SETS, ids=_param_id)
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8), ids=_param_id))
 def test_cube4_sdp_ram(params, form):
     run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))

@@ -39,6 +39,7 @@ from cocotb.triggers import FallingEdge
 from cube4.model import gradient_stream, sample_stream, shade
 from cube4.view import make_traversal
 from cube4_sim import run_test
+from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id
 
@@ -140,7 +141,7 @@ BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=
           dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=param_id)
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 2, 3, 4), ids=param_id))
 def test_cube4_sha(build):
     run_test(top="cube4_sha_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "MAX_SS_LOG2": 0},
              test_module=__file__, testcase="test_shaded_stream", timing=True)

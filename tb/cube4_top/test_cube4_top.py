@@ -25,6 +25,7 @@ from cube4.app.volumes import load_volume
 from cube4_sim.golden_check import assert_frame_matches_golden
 from cube4.cycles import frame_cycles
 from cube4_sim.rtl import FrameJob, baseplane_from_pixels, render_frames
+from cube4_sim.sweeps import regress, sweep
 
 VIEWS = [
     (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (-1.0, -0.8, 0.2),
@@ -44,7 +45,7 @@ def random_tables(rng, cfg: Cube4Config):
 check = assert_frame_matches_golden
 
 
-@pytest.mark.parametrize("p", [1, 4, 5, 8])
+@pytest.mark.parametrize("p", sweep([1, 4, 5, 8], quick=(0, 2, 3)))
 def test_random_volumes_all_views(p):
     rng = np.random.default_rng(p)
     cfg = Cube4Config(pipelines=p)
@@ -98,16 +99,18 @@ def test_short_slices():
             assert formula < res["cycles"] <= formula * slow_slice_factor(trav.nj, trav.ni, p), (label, res["cycles"])
 
 
-@pytest.mark.parametrize("p", [1, 4, 5, 8])
+@pytest.mark.parametrize("p", sweep([1, 4, 5, 8], quick=(0, 2, 3)))
 @pytest.mark.parametrize("name", ["sphere:64", "ml:64", "head:64"])
 def test_phantoms(name, p):
     """Sphere, Marschner-Lobb and the head phantom, scene tables, bit-exact base planes."""
     render_phantom(name, p)
 
 
+@regress
 @pytest.mark.parametrize(("name", "p"), [("sphere:128", 8), ("ml:128", 1), ("head:128", 5), ("head:128", 4)])
 def test_phantoms_128(name, p):
-    """The same at 128^3 (builds with MAX_DIM = 128): each phantom once, each P once."""
+    """The same at 128^3 (builds with MAX_DIM = 128, four of their own: `make regress`):
+    each phantom once, each P once."""
     render_phantom(name, p)
 
 
@@ -199,7 +202,7 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     assert len({f["major_axis"] for f in st["frames"]}) == 3
 
 
-@pytest.mark.parametrize("p", [1, 3])
+@pytest.mark.parametrize("p", sweep([1, 3], quick=(0,)))
 def test_synthesis_form(p):
     """The RTL as synthesis reads it: the vendor layer's forms (rtl/ecp5/) in place of the
     generic ones, with the behavioural models of the primitives they instantiate
@@ -347,7 +350,7 @@ def test_skip_schedule(p):
 
 
 # ---------------------------------------------------------------- slice rectangles
-@pytest.mark.parametrize("p, shading", [(1, 1), (5, 1), (8, 1), (5, 0)])
+@pytest.mark.parametrize("p, shading", sweep([(1, 1), (5, 1), (8, 1), (5, 0)], quick=(0, 2)))
 def test_slice_rectangles(p, shading):
     """Slice rectangles through the RTL (RECTS = 1): each frame runs the rectangles the
     host plans within its box (cube4.slices.plan_rects; GRA's walk on a build with GRA);

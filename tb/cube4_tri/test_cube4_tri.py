@@ -51,6 +51,7 @@ from cube4.model import sample_stream
 from cube4.vgrad import pack_channels, pack_words, word_bits
 from cube4.view import make_traversal
 from cube4_sim import run_test
+from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id, random_clip
 
@@ -141,7 +142,7 @@ BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0), dict(P=5, VOXEL_
           dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=0, VGRAD=1)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=param_id)
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 4, 5, 6), ids=param_id))
 def test_cube4_tri(build):
     run_test(top="cube4_tri_harness", sources=SOURCES,
              params={**build, "MAX_DIM": 32, "DEPTH": DEPTH, "ADDR_W": ADDR_W},
