@@ -42,6 +42,8 @@ from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
 from cube4_sim.dump import BEAT, LAST, START, frame_bounds
 from cube4_sim.rect_port import write_rect_table
+from cube4_sim.sweeps import regress, sweep
+from cube4_sim.unit_bench import param_id
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -564,23 +566,25 @@ async def test_frame_cycles(dut):
 
 
 # --------------------------------------------------------------------------- pytest side
-# (P, VOXEL_W, MAX_DIM, MAX_SS_LOG2, OPT_GRA): every p the issue names, 8- and
-# 12-bit voxels, supersampling on some builds, the gradient unit after the front end.
+# every P from 1 to 16, 8- and 12-bit voxels, supersampling on some builds, the gradient
+# unit after the front end (OPT_GRA); make test runs P = 1, 5 and 8, make regress all
 BUILDS = [
-    (1, 8, 32, 1, 1),
-    (2, 8, 32, 0, 1),
-    (4, 12, 32, 2, 1),
-    (5, 8, 32, 1, 1),
-    (8, 8, 64, 3, 1),
-    (16, 12, 64, 0, 1),
+    dict(P=1, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=1, OPT_GRA=1),
+    dict(P=2, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, OPT_GRA=1),
+    dict(P=4, VOXEL_W=12, MAX_DIM=32, MAX_SS_LOG2=2, OPT_GRA=1),
+    dict(P=5, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=1, OPT_GRA=1),
+    dict(P=8, VOXEL_W=8, MAX_DIM=64, MAX_SS_LOG2=3, OPT_GRA=1),
+    dict(P=16, VOXEL_W=12, MAX_DIM=64, MAX_SS_LOG2=0, OPT_GRA=1),
 ]
 
 
-def _params(p: int, vw: int, max_dim: int, ss: int, gra: int = 0, rects: int = 0) -> dict[str, int]:
-    words = -(-max_dim // p) * max_dim * max_dim
+def _params(P: int, VOXEL_W: int, MAX_DIM: int, MAX_SS_LOG2: int, OPT_GRA: int = 0,  # noqa: N803
+            RECTS: int = 0) -> dict[str, int]:
+    """The harness's parameters: a voxel memory that holds a MAX_DIM^3 volume."""
+    words = -(-MAX_DIM // P) * MAX_DIM * MAX_DIM
     addr_w = max(1, (words - 1).bit_length())
-    return {"P": p, "VOXEL_W": vw, "MAX_DIM": max_dim, "MAX_SS_LOG2": ss,
-            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": gra, "RECTS": rects}
+    return {"P": P, "VOXEL_W": VOXEL_W, "MAX_DIM": MAX_DIM, "MAX_SS_LOG2": MAX_SS_LOG2,
+            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": OPT_GRA, "RECTS": RECTS}
 
 
 def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
@@ -601,21 +605,24 @@ def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
     )
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_ss{b[3]}_gra{b[4]}" for b in BUILDS])
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 3, 4), ids=param_id))
 def test_cube4_frontend(build):
-    _run(_params(*build), ["test_views", "test_reset_mid_frame", "test_frame_cycles"])
+    _run(_params(**build), ["test_views", "test_reset_mid_frame", "test_frame_cycles"])
 
 
 #: slice-rectangle builds (RECTS = 1, S = 1): P = 1, 5 and 8 without GRA, P = 8 with GRA
-#: (GRA's rectangle build has its own testbench at P = 1, 5, 8, and cube4_top's at P = 1, 5, 8)
-RECT_BUILDS = [(1, 8, 32, 0, 0, 1), (5, 12, 32, 0, 0, 1), (8, 8, 64, 0, 0, 1), (8, 8, 64, 0, 1, 1)]
+#: (GRA's rectangle build has its own testbench, and cube4_top's runs at P = 1 and 8)
+RECT_BUILDS = [dict(P=1, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, OPT_GRA=0, RECTS=1),
+               dict(P=5, VOXEL_W=12, MAX_DIM=32, MAX_SS_LOG2=0, OPT_GRA=0, RECTS=1),
+               dict(P=8, VOXEL_W=8, MAX_DIM=64, MAX_SS_LOG2=0, OPT_GRA=0, RECTS=1),
+               dict(P=8, VOXEL_W=8, MAX_DIM=64, MAX_SS_LOG2=0, OPT_GRA=1, RECTS=1)]
 
 
-@pytest.mark.parametrize("build", RECT_BUILDS, ids=[f"p{b[0]}_v{b[1]}_d{b[2]}_gra{b[4]}_rects" for b in RECT_BUILDS])
+@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 3), ids=param_id))
 def test_cube4_frontend_rects(build):
     """The rectangle build: slice rectangles, the whole box as the fixed schedule
     (every view class, stalls), a reset in mid-frame, and the cycles of both."""
-    _run(_params(*build), ["test_rect_views", "test_views", "test_reset_mid_frame", "test_frame_cycles"])
+    _run(_params(**build), ["test_rect_views", "test_views", "test_reset_mid_frame", "test_frame_cycles"])
 
 
 def frontend_rect_scene(vol_spec: str, scene: str, p: int, max_dim: int, out: Path, gra: bool = True) -> dict:
@@ -629,17 +636,19 @@ def frontend_rect_scene(vol_spec: str, scene: str, p: int, max_dim: int, out: Pa
 
 def test_cube4_frontend_rect_scene():
     """A scene through a P = 8 rectangle build: bit-exact, and the cycles as predicted.
-    By default the head phantom at 48³; CUBE4_RECT_SCENE_CASE = 'volume,scene,MAX_DIM'
-    chooses another (make skipping runs the goal case, head:128), with its results in
-    build/reports/frontend_rects.json."""
-    vol_spec, scene, max_dim = os.environ.get("CUBE4_RECT_SCENE_CASE", "head:48,head,48").split(",")
+    By default the head phantom at 48³ (on the MAX_DIM = 64 build of the P = 8 rectangle
+    test); CUBE4_RECT_SCENE_CASE = 'volume,scene,MAX_DIM' chooses another (make skipping
+    runs the goal case, head:128), with its results in build/reports/frontend_rects.json."""
+    vol_spec, scene, max_dim = os.environ.get("CUBE4_RECT_SCENE_CASE", "head:48,head,64").split(",")
     res = frontend_rect_scene(vol_spec, scene, 8, int(max_dim), BUILD_ROOT / "reports" / "frontend_rects.json")
     assert res["cycles"] == res["predicted_cycles"] < res["box_fixed_cycles"]
 
 
+@regress
 def test_cube4_frontend_cycles_128():
-    """128^3, P = 8: bit-exact frames and cycles per frame against nx*ny*nz/P
-    (printed, and written to build/reports/frontend_cycles.json)."""
+    """128^3, P = 8 (a MAX_DIM = 128 build of its own: make regress, and make bench runs it):
+    bit-exact frames and cycles per frame against nx*ny*nz/P (printed, and written to
+    build/reports/frontend_cycles.json)."""
     report = BUILD_ROOT / "reports" / "frontend_cycles.json"
     report.parent.mkdir(parents=True, exist_ok=True)
     _run(_params(8, 8, 128, 0), "test_frame_cycles",
