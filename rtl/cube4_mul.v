@@ -38,21 +38,8 @@
 //   |a * b| <= 2^(A_W-1) * 2^(B_W-1) = 2^(A_W+B_W-2), so the product fits
 //   A_W + B_W signed bits exactly: no rounding, no saturation, no wrap.
 // =============================================================================
-module cube4_mul #(
-    parameter  integer A_W = 18,
-    parameter  integer B_W = 18,
-    localparam integer P_W = A_W + B_W
-) (
-    input  wire                  clk,
-    input  wire                  en,
-    input  wire signed [A_W-1:0] a,
-    input  wire signed [B_W-1:0] b,
-    output wire signed [P_W-1:0] p
-);
-    generate
-        `CUBE4_RANGE(g_bad_a_w, "cube4_mul", "A_W", A_W, 2, 32)
-        `CUBE4_RANGE(g_bad_b_w, "cube4_mul", "B_W", B_W, 2, 32)
-    endgenerate
+module cube4_mul
+`include "cube4_mul_if.vh"
 
     reg signed [A_W-1:0] a_q;
     reg signed [B_W-1:0] b_q;

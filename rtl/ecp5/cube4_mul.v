@@ -19,21 +19,9 @@
 //
 // Parameters, latency, ports, bit growth: as rtl/cube4_mul.v.
 // =============================================================================
-module cube4_mul #(
-    parameter  integer A_W = 18,
-    parameter  integer B_W = 18,
-    localparam integer P_W = A_W + B_W
-) (
-    input  wire                  clk,
-    input  wire                  en,
-    input  wire signed [A_W-1:0] a,
-    input  wire signed [B_W-1:0] b,
-    output wire signed [P_W-1:0] p
-);
+module cube4_mul
+`include "cube4_mul_if.vh"
     generate
-        `CUBE4_RANGE(g_bad_a_w, "cube4_mul", "A_W", A_W, 2, 32)
-        `CUBE4_RANGE(g_bad_b_w, "cube4_mul", "B_W", B_W, 2, 32)
-
         if (A_W <= 18 && B_W <= 18) begin : g_dsp
             wire [17:0] a18 = 18'(a);    // sign-extended (SIGNEDA = SIGNEDB = 1)
             wire [17:0] b18 = 18'(b);

@@ -218,7 +218,7 @@ def top_interface(sources: Sequence[Path], top: str) -> list[str]:
     for src in sources:
         if src.suffix not in (".v", ".sv"):
             continue
-        lines = src.read_text().splitlines()
+        lines = _with_includes(src.read_text().splitlines(), [src.parent, RTL_INCLUDE_DIR])
         for i, line in enumerate(lines):
             if not start.match(line):
                 continue
@@ -234,6 +234,23 @@ def top_interface(sources: Sequence[Path], top: str) -> list[str]:
                     break
             return names
     return []
+
+
+_INCLUDE = re.compile(r'^\s*`include\s+"([^"]+)"')
+
+
+def _with_includes(lines: list[str], dirs: Sequence[Path]) -> list[str]:
+    """The lines with each `include of a file found in ``dirs`` replaced by that file's lines
+    (a module whose interface is an include, such as cube4_sdp_ram_if.vh)."""
+    out: list[str] = []
+    for line in lines:
+        m = _INCLUDE.match(line)
+        found = next((d / m.group(1) for d in dirs if (d / m.group(1)).is_file()), None) if m else None
+        if found is None:
+            out.append(line)
+        else:
+            out.extend(_with_includes(found.read_text().splitlines(), dirs))
+    return out
 
 
 @contextlib.contextmanager
