@@ -25,6 +25,7 @@
 //       CUBE4_TAG_LAYOUT  the above
 //       CUBE4_ADDR_LAYOUT ADDR_W
 //       CUBE4_WORD_LAYOUT VOXEL_W, VGRAD
+//       CUBE4_GRA_LAYOUT  CUBE4_GEOMETRY
 //   `CUBE4_RANGE(...) in a generate region checks a parameter's range.
 //   `CUBE4_LANE_FUNCTIONS in a module body (after CUBE4_GEOMETRY) defines the
 //   lane functions. `CUBE4_VIEW_FIELDS(bus) in a module body declares one wire
@@ -385,6 +386,28 @@
     input  wire [DIM_W-1:0]   rt_stx, \
     input  wire [DIM_W-1:0]   rt_sty, \
     input  wire               rt_ins,
+
+// ---------------------------------------------------------------- GRA's neighbourhood
+// Between GRA's neighbourhood source (cube4_gra_lines, or cube4_gra_walk with
+// slice rectangles) and its window (cube4_gra_window). Needs CUBE4_GEOMETRY.
+//   GRA_STEPS    copies of the output FIFO's credit, one per group of step
+//                registers (the six delay lines; the window and counters)
+//   GRA_META_W   a beat's {real, header}: real = a sample beat of the frame
+//   GRA_NSEL     the centre's select flags per lane, bits GSEL_*: the voxel
+//                slice changes m -> m+1 (DKF) / m-1 -> m (DKB), the centre is
+//                in row 0 (JFIRST) / slice 0 (MFIRST) / row NJ - 1 (YLAST),
+//                the Y-step (DYF) and old Y-step (DYB) of its slice
+`define CUBE4_GRA_LAYOUT \
+    localparam integer GRA_STEPS   = 7, \
+    localparam integer GRA_META_W  = 1 + HDR_W, \
+    localparam integer GRA_NSEL    = 7, \
+    localparam integer GSEL_DYB    = 0, \
+    localparam integer GSEL_DYF    = 1, \
+    localparam integer GSEL_YLAST  = 2, \
+    localparam integer GSEL_MFIRST = 3, \
+    localparam integer GSEL_JFIRST = 4, \
+    localparam integer GSEL_DKB    = 5, \
+    localparam integer GSEL_DKF    = 6
 
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with

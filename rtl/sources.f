@@ -4,6 +4,7 @@
 # (the vendor layer) is replaced by that counterpart. Include directory: rtl/.
 cube4_round_shift.v
 cube4_prim_copies.v
+cube4_prim_reg_copies.v
 cube4_lerp.v
 cube4_skid.v
 cube4_credit_fifo.v
@@ -19,6 +20,10 @@ cube4_clip.v
 cube4_tri.v
 cube4_frontend.v
 cube4_delay_line.v
+cube4_gra_lines.v
+cube4_gra_walk.v
+cube4_gra_window.v
+cube4_gra_arith.v
 cube4_gra.v
 cube4_sha.v
 cube4_com.v

@@ -154,6 +154,39 @@ def sample_stream(vol: np.ndarray, trav: Traversal, vgrad_bits: int | None = Non
 
 
 # ---------------------------------------------------------------- numerics.md §5
+def gradient_operands(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
+    """The samples the gradient of sample slice m is made of (GRA's window,
+    rtl/cube4_gra_window.v), from sample slices m-1, m, m+1 (each zero-padded by one
+    sample on every side, shape (nj + 2, ni + 2)). Returns (6, nj, ni) int64:
+
+    hi = s[m, j, i+1]    lo = s[m, j, i-1]    up = s[m, j+1, i]    dn = s[m, j-1, i]
+    fwd = s[m+1, j + Ystep(m), i + Xstep(m)]    back = s[m-1, j - oldYstep(m), i - oldXstep(m)]
+    """
+    nj, ni = trav.nj, trav.ni
+    sx0, sy0 = (int(v) for v in trav.steps(m))
+    sxf, syf = (int(v) for v in trav.steps(m + 1))
+    sxb, syb = (int(v) for v in trav.steps(m - 1))
+    dxf, dyf = sxf - sx0, syf - sy0  # X-step, Y-step: 0 or 1
+    dxb, dyb = sx0 - sxb, sy0 - syb  # old-X-step, old-Y-step
+    c = cur.astype(np.int64)
+    fwd = nxt[1 + dyf:1 + dyf + nj, 1 + dxf:1 + dxf + ni].astype(np.int64)
+    back = prev[1 - dyb:1 - dyb + nj, 1 - dxb:1 - dxb + ni].astype(np.int64)
+    return np.stack([c[1:-1, 2:], c[1:-1, :-2], c[2:, 1:-1], c[:-2, 1:-1], fwd, back])
+
+
+def gradient_of(ops: np.ndarray, trav: Traversal) -> np.ndarray:
+    """(gi, gj, gk) from the operands of ``gradient_operands`` (GRA's arithmetic,
+    rtl/cube4_gra_arith.v), stacked on a new first axis, int64:
+
+    gi = hi - lo,  gj = up - dn,  gr = fwd - back
+    gk = S * gr - round_shift(VIEW_X * gi + VIEW_Y * gj, W)  (the shear correction)
+    """
+    hi, lo, up, dn, fwd, back = (np.asarray(o, dtype=np.int64) for o in ops)
+    gi, gj, gr = hi - lo, up - dn, fwd - back
+    gk = trav.supersample * gr - round_shift(trav.view_x * gi + trav.view_y * gj, trav.weight_bits)
+    return np.stack([gi, gj, gk])
+
+
 def gradient(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
     """Gradient of sample slice m from sample slices m-1, m, m+1 (each zero-padded by
     one sample on every side, shape (nj + 2, ni + 2)). Returns (3, nj, ni) int64:
@@ -165,20 +198,7 @@ def gradient(prev: np.ndarray, cur: np.ndarray, nxt: np.ndarray, trav: Traversal
 
     i.e. twice the central differences, in traversal-frame axes.
     """
-    nj, ni = trav.nj, trav.ni
-    sx0, sy0 = (int(v) for v in trav.steps(m))
-    sxf, syf = (int(v) for v in trav.steps(m + 1))
-    sxb, syb = (int(v) for v in trav.steps(m - 1))
-    dxf, dyf = sxf - sx0, syf - sy0  # X-step, Y-step: 0 or 1
-    dxb, dyb = sx0 - sxb, sy0 - syb  # old-X-step, old-Y-step
-    c = cur.astype(np.int64)
-    gi = c[1:-1, 2:] - c[1:-1, :-2]
-    gj = c[2:, 1:-1] - c[:-2, 1:-1]
-    fwd = nxt[1 + dyf:1 + dyf + nj, 1 + dxf:1 + dxf + ni].astype(np.int64)
-    back = prev[1 - dyb:1 - dyb + nj, 1 - dxb:1 - dxb + ni].astype(np.int64)
-    gr = fwd - back
-    gk = trav.supersample * gr - round_shift(trav.view_x * gi + trav.view_y * gj, trav.weight_bits)
-    return np.stack([gi, gj, gk])
+    return gradient_of(gradient_operands(prev, cur, nxt, trav, m), trav)
 
 
 def voxel_gradient_slice(comps: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
@@ -196,6 +216,18 @@ def gradient_stream(samples: np.ndarray, trav: Traversal) -> np.ndarray:
     out = np.empty((M, 3, nj, ni), dtype=np.int64)
     for m in range(M):
         out[m] = gradient(pad[m], pad[m + 1], pad[m + 2], trav, m)
+    return out
+
+
+def gradient_operand_stream(samples: np.ndarray, trav: Traversal) -> np.ndarray:
+    """The operands (M, 6, nj, ni) of ``gradient_operands`` for a whole sample stream
+    (what GRA's window hands its arithmetic)."""
+    M, nj, ni = samples.shape
+    pad = np.zeros((M + 2, nj + 2, ni + 2), dtype=np.int32)
+    pad[1:-1, 1:-1, 1:-1] = samples
+    out = np.empty((M, 6, nj, ni), dtype=np.int64)
+    for m in range(M):
+        out[m] = gradient_operands(pad[m], pad[m + 1], pad[m + 2], trav, m)
     return out
 
 

@@ -1,0 +1,66 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_gra_arith_harness  (simulation only: needs Verilator --timing)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Unit test harness of cube4_gra_arith (tb/cube4_gra_arith): a Verilog
+//   clock, the view registers as individual ports packed into the cfg bus
+//   (CUBE4_VIEW_PACK), and the unit's operand input and gradient output as
+//   top-level ports, which the testbench drives and reads every cycle.
+//
+// Parameters: as cube4_gra_arith (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//
+// Latency: that of cube4_gra_arith (the ports connect straight to it).
+//
+// Ports
+//   clk     out  the harness's clock (cube4_sim_clock, 10 ns)
+//   rst     in   synchronous reset
+//   cfg_*   in   view registers (golden/cube4/memory.py top_regs)
+//   in_*, out_*  as cube4_gra_arith
+// =============================================================================
+module cube4_gra_arith_harness #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_DIM     = 32,
+    parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    localparam integer GRAD_W = VOXEL_W + 5
+) (
+    output wire                     clk,
+    input  wire                     rst,
+    `CUBE4_VIEW_PORTS
+    input  wire                     in_v,
+    input  wire [HDR_W-1:0]         in_hdr,
+    input  wire [P*VOXEL_W-1:0]     in_s,
+    input  wire [P*VOXEL_W-1:0]     in_hi,
+    input  wire [P*VOXEL_W-1:0]     in_lo,
+    input  wire [P*VOXEL_W-1:0]     in_fwd,
+    input  wire [P*VOXEL_W-1:0]     in_back,
+    input  wire [P*(VOXEL_W+1)-1:0] in_gj,
+    output wire                     out_v_d,
+    output wire [HDR_W-1:0]         out_hdr,
+    output wire [P*VOXEL_W-1:0]     out_sample,
+    output wire [P*GRAD_W-1:0]      out_gi,
+    output wire [P*GRAD_W-1:0]      out_gj,
+    output wire [P*GRAD_W-1:0]      out_gk
+);
+    cube4_sim_clock u_clock (.clk (clk));
+
+    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+
+    cube4_gra_arith #(
+        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2)
+    ) u_arith (
+        .clk (clk), .rst (rst), .cfg (cfg),
+        .in_v (in_v), .in_hdr (in_hdr), .in_s (in_s), .in_hi (in_hi), .in_lo (in_lo),
+        .in_fwd (in_fwd), .in_back (in_back), .in_gj (in_gj),
+        .out_v_d (out_v_d), .out_hdr (out_hdr), .out_sample (out_sample),
+        .out_gi (out_gi), .out_gj (out_gj), .out_gk (out_gk)
+    );
+
+endmodule
+`default_nettype wire

@@ -1,0 +1,75 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_gra_window_harness  (simulation only: needs Verilator --timing)
+// -----------------------------------------------------------------------------
+// Purpose
+//   Unit test harness of cube4_gra_window (tb/cube4_gra_window): a Verilog
+//   clock, the view registers as individual ports packed into the cfg bus
+//   (CUBE4_VIEW_PACK), and the window's source side (step and the
+//   neighbourhood) and operand side as top-level ports, which the testbench
+//   drives and reads every cycle.
+//
+// Parameters: as cube4_gra_window (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1).
+//
+// Latency: that of cube4_gra_window (the ports connect straight to it).
+//
+// Ports
+//   clk      out  the harness's clock (cube4_sim_clock, 10 ns)
+//   rst      in   synchronous reset
+//   cfg_*    in   view registers (golden/cube4/memory.py top_regs)
+//   step .. c_edge   in   as cube4_gra_window (the source's interface)
+//   take .. gj       out  as cube4_gra_window
+// =============================================================================
+module cube4_gra_window_harness #(
+    parameter integer P           = 8,
+    parameter integer VOXEL_W     = 8,
+    parameter integer WEIGHT_W    = 8,
+    parameter integer MAX_DIM     = 32,
+    parameter integer MAX_SS_LOG2 = 0,
+    parameter integer RECTS       = 0,
+    `CUBE4_GEOMETRY,
+    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_GRA_LAYOUT
+) (
+    output wire                     clk,
+    input  wire                     rst,
+    `CUBE4_VIEW_PORTS
+    input  wire                     step,
+    input  wire                     sop,
+    input  wire [P*VOXEL_W-1:0]     x,
+    input  wire [P*VOXEL_W-1:0]     b1,
+    input  wire [P*VOXEL_W-1:0]     p1,
+    input  wire [P*VOXEL_W-1:0]     c,
+    input  wire [P*VOXEL_W-1:0]     p1b2,
+    input  wire [P*VOXEL_W-1:0]     p2b1,
+    input  wire [P*VOXEL_W-1:0]     p2b2,
+    input  wire [GRA_META_W-1:0]    c_meta,
+    input  wire [P*GRA_NSEL-1:0]    c_sel,
+    input  wire [1:0]               c_edge,
+    output wire                     take,
+    output wire [HDR_W-1:0]         c_hdr,
+    output wire [P*VOXEL_W-1:0]     s,
+    output wire [P*VOXEL_W-1:0]     hi,
+    output wire [P*VOXEL_W-1:0]     lo,
+    output wire [P*VOXEL_W-1:0]     fwd,
+    output wire [P*VOXEL_W-1:0]     back,
+    output wire [P*(VOXEL_W+1)-1:0] gj
+);
+    cube4_sim_clock u_clock (.clk (clk));
+
+    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+
+    cube4_gra_window #(
+        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS (RECTS)
+    ) u_window (
+        .clk (clk), .rst (rst), .cfg (cfg), .step (step), .sop (sop),
+        .x (x), .b1 (b1), .p1 (p1), .c (c), .p1b2 (p1b2), .p2b1 (p2b1), .p2b2 (p2b2),
+        .c_meta (c_meta), .c_sel (c_sel), .c_edge (c_edge),
+        .take (take), .c_hdr (c_hdr), .s (s), .hi (hi), .lo (lo), .fwd (fwd), .back (back), .gj (gj)
+    );
+
+endmodule
+`default_nettype wire
