@@ -4,6 +4,8 @@
 # (the vendor layer) is replaced by that counterpart. Include directory: rtl/.
 cube4_round_shift.v
 cube4_prim_copies.v
+cube4_prim_spread.v
+cube4_prim_reg_en.v
 cube4_lerp.v
 cube4_skid.v
 cube4_credit_fifo.v
@@ -21,6 +23,14 @@ cube4_frontend.v
 cube4_delay_line.v
 cube4_gra.v
 cube4_sha.v
+cube4_com_seq.v
+cube4_com_walk.v
+cube4_com_rect.v
+cube4_com_plw.v
+cube4_com_bpb.v
+cube4_com_blend.v
+cube4_com_ext.v
+cube4_com_lane.v
 cube4_com.v
 cube4_stream_hold.v
 cube4_stream_check.v
