@@ -20,16 +20,17 @@
 // Latency
 //   5 + 1 cycles, no stall: acc5 and a5 (S5) are registered at the edge into
 //   S6 (acc5 in a kept register of its own, cube4_prim_copies; a5 in the
-//   T * A multiplier's operand register), c6 is S6's; S7 T * A, S8 w (one
+//   T * A multiplier's operand register); S7 T * A, S8 w (one
 //   kept copy per w * C' multiplier and one for T - w), S9 w * C', S10 the
 //   sums; acc_q is the S11 register (loads on every cycle) and pix is formed
-//   from it. cnt7 is S7's.
+//   from it. c7 and cnt7 are S7's (c7: cube4_com_lane's register, shared with
+//   the extremum lane).
 //
 // Ports
 //   acc5       in   S5: {C_R, C_G, C_B, T}, ACC_W + 1 bits each, Q0.ACC_W
 //                   (0 .. 2^ACC_W; T starts at 2^ACC_W)
 //   a5         in   S5: the sample's A, Q0.ALPHA_W
-//   c6         in   S6: the sample's {R', G', B'}, Q0.8 each
+//   c7         in   S7: the sample's {R', G', B'}, Q0.8 each
 //   cnt7       in   S7: the sample counts
 //   mode_xray  in   X-ray (else composite); static within a frame
 //   acc_q      out  S11: the new {C_R, C_G, C_B, T}, as acc5
@@ -48,7 +49,7 @@ module cube4_com_blend #(
     localparam integer CMP_W = 4 * CW
 ) (
     input  wire clk,
-    input  wire [CMP_W-1:0] acc5, input wire [ALPHA_W-1:0] a5, input wire [23:0] c6,
+    input  wire [CMP_W-1:0] acc5, input wire [ALPHA_W-1:0] a5, input wire [23:0] c7,
     input  wire cnt7, input wire mode_xray,
     output reg  [CMP_W-1:0] acc_q, output wire [CMP_W-1:0] pix
 );
@@ -67,10 +68,10 @@ module cube4_com_blend #(
         .clk(clk), .rst(1'b0), .d(acc5), .q(s6_acc));
     reg  [CMP_W-1:0] s7_acc, s8_acc;    // {C_R, C_G, C_B, T}
     reg  [3*CW-1:0]  s9_cc;             // {C_R, C_G, C_B} (T: s9_t)
-    reg  [23:0]      s7_c, s8_c;        // the sample's {R', G', B'}
+    reg  [23:0]      s8_c;              // the sample's {R', G', B'}
     always @(posedge clk) begin
         {s7_acc, s8_acc, s9_cc} <= {s6_acc, s7_acc, s8_acc[CW +: 3*CW]};
-        {s7_c, s8_c}            <= {c6, s7_c};
+        s8_c                    <= c7;
     end
 
     // S6: T * A (X-ray: 2^F * A); cube4_mul's operand registers take S5's

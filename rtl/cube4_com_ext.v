@@ -22,13 +22,15 @@
 //   R0's sample v0 is carried S1 .. S6; acc5 (S5) is registered at the edge
 //   into S6 (a kept register of its own, cube4_prim_copies: the blending
 //   lane's shares its low bits). S6 compares, S7 registers the choice beside
-//   both candidates, S8 selects, S9, S10 carry; acc_q is the S11 register
-//   (loads on every cycle), pix is formed from it. rgba6 and cnt6 are S6's.
+//   both candidates (the sample's {R, G, B, A} in cube4_com_lane's S7
+//   register, rgba7, shared with the blending lane), S8 selects, S9, S10
+//   carry; acc_q is the S11 register (loads on every cycle), pix is formed
+//   from it. cnt6 is S6's.
 //
 // Ports
 //   v0        in   R0: the sample v, unsigned VOXEL_W
 //   acc5      in   S5: the kept {v, R, G, B, A} (VOXEL_W, 8, 8, 8, ALPHA_W bits)
-//   rgba6     in   S6: the sample's {R, G, B (Q0.8), A (Q0.ALPHA_W)}
+//   rgba7     in   S7: the sample's {R, G, B (Q0.8), A (Q0.ALPHA_W)}
 //   cnt6      in   S6: the sample counts
 //   mode_min  in   MinIP (else MIP); static within a frame
 //   acc_q     out  S11: the new {v, R, G, B, A}, as acc5
@@ -44,7 +46,7 @@ module cube4_com_ext #(
     localparam integer EXT_W = VOXEL_W + LUT_W
 ) (
     input  wire clk,
-    input  wire [VOXEL_W-1:0] v0, input wire [EXT_W-1:0] acc5, input wire [LUT_W-1:0] rgba6,
+    input  wire [VOXEL_W-1:0] v0, input wire [EXT_W-1:0] acc5, input wire [LUT_W-1:0] rgba7,
     input  wire cnt6, input wire mode_min,
     output reg  [EXT_W-1:0] acc_q, output wire [4*CW-1:0] pix
 );
@@ -72,11 +74,13 @@ module cube4_com_ext #(
     // S7 -> S8: the compare's result reaches one flip-flop, not the select of
     // every bit of the word)
     wire take_s = cnt6 && (mode_min ? (v6 <= kept) : (v6 >= kept));
-    reg              s7_take;
-    reg [EXT_W-1:0]  s7_new, s7_old, s8_e, s9_e, s10_e;
+    reg               s7_take;
+    reg [VOXEL_W-1:0] s7_v;             // the new candidate: {s7_v, rgba7}
+    reg [EXT_W-1:0]   s7_old, s8_e, s9_e, s10_e;
+    wire [EXT_W-1:0]  s7_new = {s7_v, rgba7};
     always @(posedge clk) begin
         s7_take <= take_s;
-        s7_new  <= {v6, rgba6};
+        s7_v    <= v6;
         s7_old  <= s6_e;
         s8_e    <= s7_take ? s7_new : s7_old;
         s9_e    <= s8_e;

@@ -26,7 +26,7 @@
 // Latency
 //   R0 registers in_rgba and in_sample; the sample's word is carried R0 ->
 //   S5 (S3's A goes out as a3 and comes back as a3_w into S4: the path
-//   weights) and S6; the S5 controls are registered here once more (their
+//   weights), S6 and S7; the S5 controls are registered here once more (their
 //   copies) with the buffers' S5 words; the datapaths end in S11 registers,
 //   from which acc_q and pix are combinational. 12 cycles from in_* to pix.
 //
@@ -75,7 +75,7 @@ module cube4_com_lane #(
     // ---- R0 .. S6: the sample's word ----
     reg  [LUT_W-1:0]   r0_rgba;
     reg  [5*LUT_W-1:0] rgba_l;           // stage k (S1 .. S5) at [(k-1)*LUT_W +: LUT_W]
-    reg  [LUT_W-1:0]   s6_rgba;
+    reg  [LUT_W-1:0]   s6_rgba, s7_rgba; // S7: one register for both datapaths
     assign a3 = rgba_l[2*LUT_W +: ALPHA_W];
     wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
     always @(posedge clk) begin
@@ -83,6 +83,7 @@ module cube4_com_lane #(
         rgba_l  <= {rgba_l[4*LUT_W-1:3*LUT_W], rgba_l[2*LUT_W+ALPHA_W +: 24], a3_w,
                     rgba_l[0 +: 2*LUT_W], r0_rgba};
         s6_rgba <= rgba5;
+        s7_rgba <= s6_rgba;
     end
     generate
         if (SAMPLE != 0) begin : g_smp
@@ -116,7 +117,7 @@ module cube4_com_lane #(
             wire [CMP_W-1:0] acc_c_q;
             cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
                 .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(rgba5[0 +: ALPHA_W]),
-                .c6(s6_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray),
+                .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray),
                 .acc_q(acc_c_q), .pix(pix_c));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
@@ -127,11 +128,11 @@ module cube4_com_lane #(
         if (EXTREMUM != 0) begin : g_ext
             wire [EXT_W-1:0] acc_e_q;
             cube4_com_ext #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W)) u_ext (
-                .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba6(s6_rgba), .cnt6(cnt_6),
+                .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba7(s7_rgba), .cnt6(cnt_6),
                 .mode_min(mode_min), .acc_q(acc_e_q), .pix(pix_e));
             assign acc_e = AC_W'(acc_e_q);
         end else begin : g_no_ext
-            wire unused_ext = ^{cnt_6, s6_rgba[0 +: ALPHA_W]};
+            wire unused_ext = ^{cnt_6, s7_rgba[0 +: ALPHA_W]};
             assign acc_e = '0;
             assign pix_e = '0;
         end

@@ -1,8 +1,7 @@
 """Unit testbench of rtl/cube4_com_blend.v: one lane's composite / X-ray step, bit for bit.
 
 Every cycle a new sample enters at S5 (acc5 = the ray's {C_R, C_G, C_B, T}, a5 = its A),
-with its colour one cycle later (c6, S6) and its "counts" flag two cycles later (cnt7,
-S7); six edges later acc_q and pix must equal the golden step (``cube4.model.composite``
+with its colour and its "counts" flag two cycles later (c7, cnt7: S7); six edges later acc_q and pix must equal the golden step (``cube4.model.composite``
 or ``cube4.model.xray`` on the same values: w, the rounding, X-ray's saturation) and
 the pixel {C_R, C_G, C_B, 2^ACC_W - T}. The partial results are random but legal
 (composite: C <= 2^ACC_W - T per channel, as numerics.md section 7 guarantees; X-ray:
@@ -72,9 +71,8 @@ async def test_blend(dut):
             if t < N:
                 dut.acc5.value = pack([*acc[:, t], trans[t]], cw)
                 dut.a5.value = int(rgba[3, t])
-            if 1 <= t <= N:
-                dut.c6.value = pack(rgba[:3, t - 1], 8)
             if 2 <= t <= N + 1:
+                dut.c7.value = pack(rgba[:3, t - 2], 8)
                 dut.cnt7.value = int(count[t - 2])
             k = t - LATENCY
             if k >= 0:

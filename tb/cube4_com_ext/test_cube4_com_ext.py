@@ -1,8 +1,8 @@
 """Unit testbench of rtl/cube4_com_ext.v: one lane's MIP / MinIP step, bit for bit.
 
 Every cycle a new sample enters: its v at R0 (v0), the ray's kept {v, R, G, B, A} at S5
-(acc5, five cycles later), the sample's {R, G, B, A} and "counts" flag at S6 (rgba6,
-cnt6); six edges after S5, acc_q and pix must equal the golden step
+(acc5, five cycles later), the sample's "counts" flag at S6 (cnt6) and its {R, G, B, A}
+at S7 (rgba7); six edges after S5, acc_q and pix must equal the golden step
 (``cube4.model.extremum``: take when v >= (MinIP: <=) the kept v and the sample counts)
 and ``cube4.model.extremum_pixel`` of the result (colour << (ACC_W - 8), A shifted or
 round_shift'ed to ACC_W bits). v and the kept v are drawn from a few values so that
@@ -63,9 +63,9 @@ async def test_extremum(dut):
                 k = t - 5
                 dut.acc5.value = pack([value[k], *held[:, k]], widths)
             if 6 <= t < N + 6:
-                k = t - 6
-                dut.rgba6.value = pack(rgba[:, k], widths[1:])
-                dut.cnt6.value = int(count[k])
+                dut.cnt6.value = int(count[t - 6])
+            if 7 <= t < N + 7:
+                dut.rgba7.value = pack(rgba[:, t - 7], widths[1:])
             k = t - 11
             if k >= 0:
                 got, want = int(dut.acc_q.value), pack([exp_v[k], *exp_h[:, k]], widths)
