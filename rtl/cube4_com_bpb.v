@@ -22,7 +22,9 @@
 //   P, MAX_DIM, MAX_SS_LOG2: as cube4_com (1..64, 2..2048, 0..3).
 //   WEIGHT_W  as cube4_com (the view layout).                    4..12.
 //   AC_W      a lane's word.                                     1..4096.
-//   SP_W      the slot's width; SB_DEPTH the slice buffer's words (cube4_com).
+//   SP_W      the slot's width (1..22, default 13); SB_DEPTH the slice buffer's
+//             words, MAX_DIM * NBMAX or 2^SP_W with rectangles (default 8192)
+//             (cube4_com derives both).
 //   RECTS     0: the row above is the previous beat when NB = 1 (cfg, a
 //             copied register); 1: when col1_4 says so.           0..1.
 //   COPIES    enable and select copies per lane word.            1..64.  Default 4.

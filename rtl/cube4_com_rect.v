@@ -20,7 +20,7 @@
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (0 here: rectangles run with S = 1),
 //   ADDR_W: as cube4_com (the table layout).
-//   SP_W   the slot's width, clog2(MAX_DIM) + PB_W (cube4_com).
+//   SP_W   the slot's width, clog2(MAX_DIM) + PB_W (cube4_com).  2..22.  Default 13.
 //
 // Latency
 //   The table: read at the edge a slice's first beat enters R0 (take), its

@@ -19,7 +19,7 @@
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: as cube4_com (1..64, 2..2048, 4..12, 0..3).
-//   SP_W    the slice-buffer slot's width (cube4_com).   1..24.
+//   SP_W    the slice-buffer slot's width (cube4_com).   1..22.  Default 13.
 //   COMPOSITING, EXTREMUM: as cube4_com (the mode registers).  0..1.
 //
 // Latency

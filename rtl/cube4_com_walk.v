@@ -20,7 +20,7 @@
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: as cube4_com (1..64, 2..2048, 4..12, 0..3).
-//   SP_W   the slot's width, clog2(MAX_DIM * NBMAX) (cube4_com).
+//   SP_W   the slot's width, clog2(MAX_DIM * NBMAX) (cube4_com).  1..22.  Default 13.
 //
 // Latency
 //   pos_*, fresh, stx, sty, phases: combinational from R0 (S0) and this
