@@ -5,6 +5,8 @@
 cube4_round_shift.v
 cube4_prim_copies.v
 cube4_prim_reg_copies.v
+cube4_prim_spread.v
+cube4_prim_reg_en.v
 cube4_lerp.v
 cube4_skid.v
 cube4_credit_fifo.v
@@ -26,6 +28,14 @@ cube4_gra_window.v
 cube4_gra_arith.v
 cube4_gra.v
 cube4_sha.v
+cube4_com_seq.v
+cube4_com_walk.v
+cube4_com_rect.v
+cube4_com_plw.v
+cube4_com_bpb.v
+cube4_com_blend.v
+cube4_com_ext.v
+cube4_com_lane.v
 cube4_com.v
 cube4_stream_hold.v
 cube4_stream_check.v

@@ -1,0 +1,154 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_com_lane
+// -----------------------------------------------------------------------------
+// Purpose
+//   One of COM's P lanes around its datapaths (docs/architecture.md "COM"):
+//   registers the lane's shaded sample {R', G', B', A} (and its v) at R0 and
+//   carries it to the datapaths; at S5 takes the ray's previous partial result
+//     prev = dxb ? (t0 ? prevb_sh : back_sh) : back5     (cube4_com_bpb)
+//     acc  = fresh ? the fresh word : prev
+//   with the fresh word {C = 0, T = 2^ACC_W} (blending), v = 0 (MIP) or
+//   2^VOXEL_W - 1 (MinIP) with RGBA = 0; steps the ray in the blending lane
+//   (cube4_com_blend) and / or the extremum lane (cube4_com_ext), and at S11
+//   chooses the mode's word for the slice buffer and its pixel for the FIFO.
+//   The S5 selects and the write word's select take their controls from a
+//   register spread over the word (cube4_prim_spread, COPIES copies).
+//
+// Parameters
+//   ALPHA_W, ACC_W, VOXEL_W, COMPOSITING, EXTREMUM: as cube4_com.
+//   AC_W     the buffer word: max of the build's modes' words
+//            (blending 4 * (ACC_W + 1), extremum VOXEL_W + 24 + ALPHA_W).
+//   SAMPLE   1: R0 registers the sample v (extremum, path weights).  0..1.
+//   COPIES   control copies over the word.                 1..64.  Default 4.
+//
+// Latency
+//   R0 registers in_rgba and in_sample; the sample's word is carried R0 ->
+//   S5 (S3's A goes out as a3 and comes back as a3_w into S4: the path
+//   weights), S6 and S7; the S5 controls are registered here once more (their
+//   copies) with the buffers' S5 words; the datapaths end in S11 registers,
+//   from which acc_q and pix are combinational. 12 cycles from in_* to pix.
+//
+// Ports
+//   in_rgba    in   {R', G', B' (Q0.8), A (Q0.ALPHA_W)} of the lane's sample
+//   in_sample  in   its v (unsigned VOXEL_W)
+//   smp0       out  R0's v (0 when SAMPLE = 0)
+//   a3, a3_w   out / in   S3's A, and the A that goes on to S4 (Q0.ALPHA_W)
+//   back5, back_sh, prevb_sh   in   S5: the buffer words (cube4_com_bpb)
+//   dxb4, t0_4, fresh_4, mode_ext, mode_min   in   S4: X back step, lane at
+//              t = 0, fresh ray; the mode (static within a frame)
+//   mode_xray, cnt_6, cnt_7   in   the blending mode; S6's, S7's "counts"
+//   acc_q      out  S11: the word for the slice buffer [AC_W]
+//   pix        out  S11: {R, G, B, A}, ACC_W + 1 bits each, Q0.ACC_W
+//
+// Bit growth and rounding: none here (see cube4_com_blend, cube4_com_ext).
+// =============================================================================
+module cube4_com_lane #(
+    parameter integer ALPHA_W = 12, parameter integer ACC_W = 16, parameter integer VOXEL_W = 8,
+    parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
+    parameter integer AC_W   = 68, parameter integer SAMPLE = 1, parameter integer COPIES = 4,
+    localparam integer CW    = ACC_W + 1,
+    localparam integer CMP_W = 4 * CW,
+    localparam integer LUT_W = 24 + ALPHA_W,
+    localparam integer EXT_W = VOXEL_W + LUT_W
+) (
+    input  wire clk,
+    input  wire [LUT_W-1:0] in_rgba, input wire [VOXEL_W-1:0] in_sample,
+    output wire [VOXEL_W-1:0] smp0,
+    output wire [ALPHA_W-1:0] a3, input wire [ALPHA_W-1:0] a3_w,
+    input  wire [AC_W-1:0] back5, input wire [AC_W-1:0] back_sh, input wire [AC_W-1:0] prevb_sh,
+    input  wire dxb4, input wire t0_4, input wire fresh_4,
+    input  wire mode_xray, input wire mode_ext, input wire mode_min,
+    input  wire cnt_6, input wire cnt_7,
+    output wire [AC_W-1:0] acc_q, output wire [CMP_W-1:0] pix
+);
+    generate
+        if (AC_W < ((COMPOSITING != 0) ? CMP_W : 1) || AC_W < ((EXTREMUM != 0) ? EXT_W : 1)) begin : g_bad_ac_w
+            $error("cube4_com_lane: AC_W is narrower than a datapath's word");
+        end
+    endgenerate
+    localparam [CW-1:0]   ONE       = {1'b1, {ACC_W{1'b0}}};
+    localparam [AC_W-1:0] FRESH_CMP = AC_W'({{(3*CW){1'b0}}, ONE});                 // C = 0, T = 1
+    localparam [AC_W-1:0] FRESH_MIN = AC_W'({{VOXEL_W{1'b1}}, {LUT_W{1'b0}}});     // MinIP; MIP: 0
+
+    // ---- R0 .. S6: the sample's word ----
+    reg  [LUT_W-1:0]   r0_rgba;
+    reg  [5*LUT_W-1:0] rgba_l;           // stage k (S1 .. S5) at [(k-1)*LUT_W +: LUT_W]
+    reg  [LUT_W-1:0]   s6_rgba, s7_rgba; // S7: one register for both datapaths
+    assign a3 = rgba_l[2*LUT_W +: ALPHA_W];
+    wire [LUT_W-1:0] rgba5 = rgba_l[4*LUT_W +: LUT_W];
+    always @(posedge clk) begin
+        r0_rgba <= in_rgba;
+        rgba_l  <= {rgba_l[4*LUT_W-1:3*LUT_W], rgba_l[2*LUT_W+ALPHA_W +: 24], a3_w,
+                    rgba_l[0 +: 2*LUT_W], r0_rgba};
+        s6_rgba <= rgba5;
+        s7_rgba <= s6_rgba;
+    end
+    generate
+        if (SAMPLE != 0) begin : g_smp
+            reg [VOXEL_W-1:0] r0_smp;
+            always @(posedge clk) r0_smp <= in_sample;
+            assign smp0 = r0_smp;
+        end else begin : g_no_smp
+            wire unused_in_smp = ^in_sample;
+            assign smp0 = '0;
+        end
+    endgenerate
+
+    // ---- S5: the previous partial result, or a fresh ray ----
+    // (one flip-flop for all lanes, or one per lane, drove 2 * AC_W multiplexers
+    // spread over the lane and was the P = 8 build's critical net)
+    wire [5*AC_W-1:0] ctl;              // {dxb, t0, fresh, ext, min} over the word
+    cube4_prim_spread #(.W(5), .D(AC_W), .COPIES(COPIES)) u_ctl (
+        .clk(clk), .rst(1'b0), .d({dxb4, t0_4, fresh_4, mode_ext, mode_min}), .q(ctl));
+    wire [AC_W-1:0] min_v   = ctl[0 +: AC_W],      ext_v = ctl[AC_W +: AC_W];
+    wire [AC_W-1:0] fresh_v = ctl[2*AC_W +: AC_W], t0_v  = ctl[3*AC_W +: AC_W];
+    wire [AC_W-1:0] dxb_v   = ctl[4*AC_W +: AC_W];
+    wire [AC_W-1:0] prev    = (dxb_v & ((t0_v & prevb_sh) | (~t0_v & back_sh))) | (~dxb_v & back5);
+    wire [AC_W-1:0] fresh_w = (ext_v & min_v & FRESH_MIN) | (~ext_v & FRESH_CMP);
+    wire [AC_W-1:0] acc_in  = (fresh_v & fresh_w) | (~fresh_v & prev);
+
+    // ---- S6 .. S11: the datapaths (their S11 registers) ----
+    wire [AC_W-1:0]  acc_c, acc_e;       // S11: the blending, the extremum word
+    wire [CMP_W-1:0] pix_c, pix_e;
+    generate
+        if (COMPOSITING != 0) begin : g_blend
+            wire [CMP_W-1:0] acc_c_q;
+            cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
+                .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(rgba5[0 +: ALPHA_W]),
+                .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray),
+                .acc_q(acc_c_q), .pix(pix_c));
+            assign acc_c = AC_W'(acc_c_q);
+        end else begin : g_no_blend
+            wire unused_blend = ^{mode_xray, cnt_7};
+            assign acc_c = '0;
+            assign pix_c = '0;
+        end
+        if (EXTREMUM != 0) begin : g_ext
+            wire [EXT_W-1:0] acc_e_q;
+            cube4_com_ext #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W)) u_ext (
+                .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba7(s7_rgba), .cnt6(cnt_6),
+                .mode_min(mode_min), .acc_q(acc_e_q), .pix(pix_e));
+            assign acc_e = AC_W'(acc_e_q);
+        end else begin : g_no_ext
+            wire unused_ext = ^{cnt_6, s7_rgba[0 +: ALPHA_W]};
+            assign acc_e = '0;
+            assign pix_e = '0;
+        end
+        // the pixel for the FIFO: the mode's
+        if (COMPOSITING != 0 && EXTREMUM != 0) begin : g_pix_both
+            assign pix = mode_ext ? pix_e : pix_c;
+        end else if (COMPOSITING != 0) begin : g_pix_blend
+            wire unused_pix_e = ^pix_e;
+            assign pix = pix_c;
+        end else begin : g_pix_ext
+            wire unused_pix_c = ^pix_c;
+            assign pix = pix_e;
+        end
+    endgenerate
+    // the slice buffer's write word: the mode's, chosen with the ext copies
+    // (on the route to its block RAMs, which are spread over the die)
+    assign acc_q = (ext_v & acc_e) | (~ext_v & acc_c);
+endmodule
+`default_nettype wire
