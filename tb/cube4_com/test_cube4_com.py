@@ -65,9 +65,10 @@ from cube4.model import render_frame
 from cube4.pathlen import ALL_FACES
 from cube4.view import make_traversal
 from cube4_sim import run_test
+from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.rect_port import write_rect_table
-from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources, random_clip
+from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources, param_id, random_clip
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -264,32 +265,32 @@ async def write_columns(bench, dut, cols: np.ndarray, aw: int) -> None:
     dut.lut_we.value = 0
 
 
-# (P, ALPHA_W, ACC_W, COMPOSITING, EXTREMUM, MAX_SS_LOG2, PLW): ACC_W 8 < ALPHA_W 16 with both
-# datapaths makes the buffer word the extremum's ({v, R, G, B, A} wider than {R, G, B, T});
-# MAX_SS_LOG2 = 1 runs the views at S = 2 with phases up to 2^(W+1)
-BUILDS = [(1, 12, 16, 1, 1, 0, 1), (5, 12, 16, 1, 1, 1, 1), (8, 16, 24, 1, 1, 0, 1), (5, 12, 16, 1, 0, 0, 0),
-          (3, 16, 8, 0, 1, 0, 0), (3, 16, 8, 1, 1, 0, 0)]
+# ACC_W 8 < ALPHA_W 16 with both datapaths makes the buffer word the extremum's ({v, R, G,
+# B, A} wider than {R, G, B, T}); MAX_SS_LOG2 = 1 runs the views at S = 2 with phases up
+# to 2^(W+1); make test runs P = 1, P = 5 (with and without the extremum) and the
+# extremum alone, make regress all
+BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=0, PLW=1),
+          dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=1, PLW=1),
+          dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=0, PLW=1),
+          dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=0, MAX_SS_LOG2=0, PLW=0),
+          dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1, MAX_SS_LOG2=0, PLW=0),
+          dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=0, PLW=0)]
 
 
 # slice-rectangle builds: P = 1, 5, 8 (both datapaths), one with the extremum only
-RECT_BUILDS = [(1, 12, 16, 1, 1), (5, 12, 16, 1, 1), (8, 16, 24, 1, 1), (3, 16, 8, 0, 1)]
+RECT_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
+               dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
+               dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1),
+               dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1)]
 
 
-@pytest.mark.parametrize("build", RECT_BUILDS, ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}_rects"
-                                                    for b in RECT_BUILDS])
+@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 2), ids=param_id))
 def test_cube4_com_rects(build):
-    p, aw, acc_w, comp, ext = build
-    run_test(top="cube4_com_harness", sources=SOURCES,
-             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "COMPOSITING": comp, "EXTREMUM": ext,
-                     "RECTS": 1, "PLW": 0},
+    run_test(top="cube4_com_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "RECTS": 1, "PLW": 0},
              test_module=__file__, testcase="test_rect_pixel_stream", timing=True)
 
 
-@pytest.mark.parametrize("build", BUILDS,
-                         ids=[f"p{b[0]}_a{b[1]}_f{b[2]}_c{b[3]}_e{b[4]}_ss{b[5]}_w{b[6]}" for b in BUILDS])
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 1, 3, 4), ids=param_id))
 def test_cube4_com(build):
-    p, aw, acc_w, comp, ext, ss, plw = build
-    run_test(top="cube4_com_harness", sources=SOURCES,
-             params={"P": p, "ALPHA_W": aw, "ACC_W": acc_w, "MAX_DIM": 32, "MAX_SS_LOG2": ss,
-                     "COMPOSITING": comp, "EXTREMUM": ext, "PLW": plw},
+    run_test(top="cube4_com_harness", sources=SOURCES, params={**build, "MAX_DIM": 32},
              test_module=__file__, testcase="test_pixel_stream", timing=True)

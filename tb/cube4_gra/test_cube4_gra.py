@@ -42,9 +42,10 @@ from cube4.memory import lane_positions
 from cube4.model import gradient_stream, inside_mask, padded_traversal, rect_slice, sample_stream
 from cube4.view import make_traversal
 from cube4_sim import run_test
+from cube4_sim.sweeps import sweep
 from cube4_sim.beats import (CTRL_EOP, CTRL_OSX, CTRL_OSY, CTRL_SOP, CTRL_SX, CTRL_SY, CTRL_YLAST, BeatSchedule,
                              Geometry, mask_bits, pack_lanes, unpack_lanes)
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -92,14 +93,13 @@ async def test_gradient_stream(dut):
                        dims, direction, ss, gap, stall, len(got))
 
 
-BUILDS = [(1, 8, 0), (5, 8, 0), (8, 12, 1)]   # (P, VOXEL_W, MAX_SS_LOG2)
+BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0),
+          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1)]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}" for b in BUILDS])
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 2), ids=param_id))
 def test_cube4_gra(build):
-    p, vw, ss = build
-    run_test(top="cube4_gra_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 32, "MAX_SS_LOG2": ss},
+    run_test(top="cube4_gra_harness", sources=SOURCES, params={**build, "MAX_DIM": 32},
              test_module=__file__, testcase="test_gradient_stream", timing=True)
 
 
@@ -225,12 +225,10 @@ async def test_rect_walks(dut):
     assert frames >= 6, f"only {frames} frames had a rectangle"
 
 
-RECT_BUILDS = [(1, 8), (5, 8), (8, 12)]   # (P, VOXEL_W)
+RECT_BUILDS = [dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=8), dict(P=8, VOXEL_W=12)]
 
 
-@pytest.mark.parametrize("build", RECT_BUILDS, ids=[f"p{b[0]}_v{b[1]}_rects" for b in RECT_BUILDS])
+@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 2), ids=param_id))
 def test_cube4_gra_rects(build):
-    p, vw = build
-    run_test(top="cube4_gra_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 32, "RECTS": 1},
+    run_test(top="cube4_gra_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "RECTS": 1},
              test_module=__file__, testcase="test_rect_walks", timing=True)
