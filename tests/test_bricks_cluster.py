@@ -167,6 +167,6 @@ def test_golden_bricks_never_import_dask(tmp_path):
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=dict(os.environ))
     assert r.returncode == 0, r.stderr[-2000:]
     src = Path(__file__).resolve().parents[1] / "golden" / "cube4"
-    for name in ("model.py", "bricks.py", "brick_rays.py", "render.py", "view.py", "clip.py"):
+    for name in ("model.py", "bricks.py", "brick_rays.py", "host.py", "view.py", "clip.py"):
         text = (src / name).read_text()
         assert "import dask" not in text and "from distributed" not in text and "from dask" not in text, name
