@@ -143,8 +143,9 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     import sys
 
     exe = [sys.executable, "-m", "cube4_sim.cli"]  # what the installed `cube4` runs
-    for eng in ("rtl", "golden"):
-        run = subprocess.run([*exe, "render", "sphere:48", "--engine", eng, "--quiet", "--baseplane",
+    for eng in ("rtl", "golden"):   # the full build at P = 5 that the phantoms' tests build too
+        run = subprocess.run([*exe, "render", "sphere:48", "--engine", eng, "--pipelines", "5", "--build", "full",
+                              "--quiet", "--baseplane",
                               str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
                               "--out", str(tmp_path / f"{eng}.png")], check=True, capture_output=True, text=True)
         assert run.stdout == "" and run.stderr == "", (eng, run.stdout[-2000:], run.stderr[-2000:])
@@ -236,9 +237,9 @@ def test_synthesis_form(p):
 
 
 # ---------------------------------------------------------------- modes, builds, crop, cut
-# (SHADING, COMPOSITING, EXTREMUM, CLIP): the full build and three a scene would choose
-# every mode and crop box on the full build at P = 1 and 5; each scene build once (the
-# shaded one at P = 8 shares its Verilator build with the command-line tests' sphere:48)
+# named builds (cube4.builds): every mode and crop box on the full build at P = 1 and 5;
+# each smaller build a scene would choose once (the shaded one at P = 8 shares its
+# Verilator build with the command-line test's ml:41, whose scene needs exactly it)
 MODE_RUNS = [("full", 1), ("full", 5), ("unshaded", 5), ("mip", 1), ("shaded", 8)]
 
 
