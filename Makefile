@@ -5,7 +5,8 @@
 #   make sim     RTL regression: cocotb + Verilator testbenches in tb/ (WAVES=1 dumps FST)
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
 #   make test    the regression a change must pass: golden-model tests (tests/) + RTL (tb/) + lint (<= 10 min)
-#   make regress make test plus the exhaustive sweeps (pytest marker `regress`); run before RTL lands
+#   make regress make test plus the exhaustive sweeps (pytest marker `regress`) and the research
+#                prototype's tests (the voxel gradient's 2-degree bound); run before RTL lands
 #   make simspeed cube4_top's simulation speed, P = 8: clock cycles per second of wall time
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
@@ -165,7 +166,7 @@ test: setup
 	$(MAKE) --no-print-directory lint
 
 regress: setup
-	$(PY) -m pytest $(wildcard tests) tb -q --durations=25 -n $(TEST_JOBS)
+	$(PY) -m pytest $(wildcard tests) tb scripts/research -q --durations=25 -n $(TEST_JOBS)
 	$(MAKE) --no-print-directory lint
 
 # SIMSPEED_ARGS, e.g. "--runs 1 --volume head:128 --scene head" (python -m cube4_reports.simspeed --help)
