@@ -20,6 +20,7 @@ transfer it records is exactly one that the next rising edge performs.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 import cocotb
@@ -29,7 +30,7 @@ from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 from cube4.memory import top_regs
 from cube4.view import Traversal
 
-from .runner import SIM_HDL_DIR
+from .runner import SIM_HDL_DIR, run_test
 from .sources import rtl_sources
 
 
@@ -44,6 +45,20 @@ def harness_sources(*files) -> list:
     a bare name from sim/hdl/ (the shared simulation blocks, e.g. cube4_sim_stall.v)."""
     extra = [f if isinstance(f, Path) else SIM_HDL_DIR / f for f in files]
     return [*rtl_sources(), SIM_HDL_DIR / "cube4_sim_clock.v", *extra]
+
+
+def run_unit(test_file: str, params: dict, testcase: str | None = None, harness: str | None = None,
+             blocks: tuple[str, ...] = ()) -> None:
+    """Build the harness of the unit testbench ``test_file`` (tb/<unit>/test_<unit>.py, its
+    ``__file__``) with ``params`` and run the testbench's cocotb tests (or ``testcase``) on it.
+    The harness is <unit>_harness.v beside the testbench, or ``harness``, the name of a
+    shared one in sim/hdl/; ``blocks``: the sim/hdl/ blocks it instantiates besides the
+    Verilog clock (which needs Verilator's --timing)."""
+    here = Path(test_file).resolve().parent
+    top = harness or f"{here.name}_harness"
+    src = SIM_HDL_DIR / f"{top}.v" if harness else here / f"{top}.v"
+    run_test(top=top, sources=harness_sources(*blocks, src), params=params, test_module=test_file,
+             testcase=testcase, timing=True)
 
 
 class UnitBench:
@@ -119,6 +134,38 @@ class UnitBench:
         d.out_ready.value = 0
         assert len(got) == expected, (f"{len(got)} output beats, expected {expected}: "
                                       f"{len(got) - expected} extra beat(s) within {tail} cycles of the last one")
+        return got
+
+    async def run_steps(self, inputs: list[dict[str, int]], n_steps: int, record: Sequence[str], gap: float,
+                        stall: float, tail: int = 30) -> list[dict[str, int]]:
+        """For a unit that steps on its output FIFO's credit (GRA's source): offer ``inputs``
+        with gap probability ``gap``, give the credit with probability 1 - ``stall``, and
+        record the signals ``record`` in every cycle with step = 1, until ``n_steps`` steps
+        happened and every input was taken; then ``tail`` cycles with the credit high and no
+        input (a step there is an extra one). Returns the steps, in order."""
+        d = self.dut
+        got, k, offering, quiet, cycle = [], 0, False, 0, 0
+        while quiet < tail:
+            await FallingEdge(d.clk)
+            if not offering and k < len(inputs) and self.rng.random() >= gap:
+                for name, val in inputs[k].items():
+                    self.sig(name).value = val
+                offering = True
+            d.in_valid.value = int(offering)
+            done = len(got) >= n_steps and k == len(inputs)
+            d.credit.value = 1 if done else int(self.rng.random() >= stall)
+            await ReadOnly()
+            if offering and int(d.in_ready.value):
+                offering, k = False, k + 1
+            if int(d.step.value):
+                got.append({n: int(self.sig(n).value) for n in record})
+            quiet += int(done)
+            cycle += 1
+            assert cycle < 200000, f"{len(got)} of {n_steps} steps and {k} of {len(inputs)} beats after {cycle} cycles"
+        await FallingEdge(d.clk)
+        d.in_valid.value = 0
+        d.credit.value = 0
+        assert len(got) == n_steps, f"{len(got)} steps, expected {n_steps}: {len(got) - n_steps} extra"
         return got
 
 

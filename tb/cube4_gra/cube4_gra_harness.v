@@ -12,7 +12,7 @@
 //   the two streams.
 //
 // Parameters: as cube4_gra (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; cube4_unit_params.vh).
 //
 // Latency: that of cube4_gra (the ports connect straight to it).
 //
@@ -24,14 +24,9 @@
 //   out_*     out  gradient stream (cube4_gra's format)
 // =============================================================================
 module cube4_gra_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer RECTS       = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    `include "cube4_unit_params.vh"
+    parameter integer VOXEL_W = 8,
+    parameter integer RECTS   = 0,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
     output wire                  clk,
@@ -54,28 +49,9 @@ module cube4_gra_harness #(
     wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
 
     cube4_gra #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .WEIGHT_W    (WEIGHT_W),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS       (RECTS)
-    ) u_gra (
-        .clk        (clk),
-        .rst        (rst),
-        .cfg        (cfg),
-        .in_valid   (in_valid),
-        .in_ready   (in_ready),
-        .in_hdr     (in_hdr),
-        .in_sample  (in_sample),
-        .out_valid  (out_valid),
-        .out_ready  (out_ready),
-        .out_hdr    (out_hdr),
-        .out_sample (out_sample),
-        .out_gi     (out_gi),
-        .out_gj     (out_gj),
-        .out_gk     (out_gk)
-    );
+        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS (RECTS)
+    ) u_gra (.*);
 
     cube4_stream_check #(
         .NAME   ("gra.in (samples)"),

@@ -10,7 +10,7 @@
 //   top-level ports, which the testbench drives and reads every cycle.
 //
 // Parameters: as cube4_gra_arith (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3; cube4_unit_params.vh).
 //
 // Latency: that of cube4_gra_arith (the ports connect straight to it).
 //
@@ -21,13 +21,8 @@
 //   in_*, out_*  as cube4_gra_arith
 // =============================================================================
 module cube4_gra_arith_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    `include "cube4_unit_params.vh"
+    parameter integer VOXEL_W = 8,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
     output wire                     clk,
@@ -54,13 +49,7 @@ module cube4_gra_arith_harness #(
 
     cube4_gra_arith #(
         .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2)
-    ) u_arith (
-        .clk (clk), .rst (rst), .cfg (cfg),
-        .in_v (in_v), .in_hdr (in_hdr), .in_s (in_s), .in_hi (in_hi), .in_lo (in_lo),
-        .in_fwd (in_fwd), .in_back (in_back), .in_gj (in_gj),
-        .out_v_d (out_v_d), .out_hdr (out_hdr), .out_sample (out_sample),
-        .out_gi (out_gi), .out_gj (out_gj), .out_gk (out_gk)
-    );
+    ) u_arith (.*);
 
 endmodule
 `default_nettype wire
