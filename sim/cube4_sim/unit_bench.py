@@ -30,6 +30,7 @@ from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 from cube4.memory import top_regs
 from cube4.view import Traversal
 
+from .beats import Geometry
 from .runner import SIM_HDL_DIR, run_test
 from .sources import rtl_sources
 
@@ -136,13 +137,26 @@ class UnitBench:
                                       f"{len(got) - expected} extra beat(s) within {tail} cycles of the last one")
         return got
 
+
+class SourceBench(UnitBench):
+    """UnitBench around GRA's source (sim/hdl/cube4_gra_source_harness.v; tb/cube4_gra_lines,
+    tb/cube4_gra_walk): the build's parameters and geometry, and a random test volume whose
+    rows span several beams (2P + 1 voxels, at least 7)."""
+
+    def __init__(self, dut) -> None:
+        super().__init__(dut)
+        self.p, self.vw, self.w = (int(self.sig(n).value) for n in ("P", "VOXEL_W", "WEIGHT_W"))
+        self.geo = Geometry(self.p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
+        self.dims = (max(7, 2 * self.p + 1), 6, 5)
+        self.vol = self.rng.integers(0, 1 << self.vw, size=self.dims[::-1], dtype=np.int64)
+
     async def run_steps(self, inputs: list[dict[str, int]], n_steps: int, record: Sequence[str], gap: float,
                         stall: float, tail: int = 30) -> list[dict[str, int]]:
-        """For a unit that steps on its output FIFO's credit (GRA's source): offer ``inputs``
-        with gap probability ``gap``, give the credit with probability 1 - ``stall``, and
-        record the signals ``record`` in every cycle with step = 1, until ``n_steps`` steps
-        happened and every input was taken; then ``tail`` cycles with the credit high and no
-        input (a step there is an extra one). Returns the steps, in order."""
+        """Offer ``inputs`` with gap probability ``gap``, give the output FIFO's credit with
+        probability 1 - ``stall``, and record the signals ``record`` in every cycle with
+        step = 1, until ``n_steps`` steps happened and every input was taken; then ``tail``
+        cycles with the credit high and no input (a step there is an extra one). Returns the
+        steps, in order."""
         d = self.dut
         got, k, offering, quiet, cycle = [], 0, False, 0, 0
         while quiet < tail:

@@ -20,14 +20,13 @@ P = 1 and P = 5; the P = 5 build runs them supersampled (S = 2).
 from __future__ import annotations
 
 import cocotb
-import numpy as np
 import pytest
 
 from cube4.model import sample_stream
 from cube4.view import make_traversal
-from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes
+from cube4_sim.beats import BeatSchedule, pack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, lines_steps
-from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.unit_bench import SourceBench, param_id, run_unit
 
 # (direction, input gap probability, credit stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.5, 0.2)]
@@ -59,12 +58,9 @@ def check_steps(got, want, sched, hdr_w: int, log) -> None:
 @cocotb.test()
 async def test_lines_steps(dut):
     """Golden sample beats in, the expected neighbourhood at every step, with stalls."""
-    p, vw, w = int(dut.P.value), int(dut.VOXEL_W.value), int(dut.WEIGHT_W.value)
-    geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
-    bench = UnitBench(dut)
+    bench = SourceBench(dut)
+    p, vw, w, geo, dims, vol = bench.p, bench.vw, bench.w, bench.geo, bench.dims, bench.vol
     await bench.reset({"in_valid": 0, "credit": 0})
-    dims = (max(7, 2 * p + 1), 6, 5)
-    vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     for direction, gap, stall in VIEWS:
         trav = make_traversal(dims, direction, w, 1 << geo.max_ss_log2)
         samples, inside = sample_stream(vol, trav)

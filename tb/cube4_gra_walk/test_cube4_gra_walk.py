@@ -33,7 +33,7 @@ from cube4.model import padded_traversal, rect_slice
 from cube4.view import make_traversal
 from cube4_sim.beats import Geometry, mask_bits, pack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, walk_beats, walk_steps
-from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.unit_bench import SourceBench, param_id, run_unit
 
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (1.0, 1.0, 1.0), (-1.0, 1.0, 0.0)]
 RECORD = NEIGHBOURS + ("c_meta", "c_sel", "c_edge", "fend", "sop")
@@ -81,12 +81,9 @@ def check_steps(got, want, p: int, hdr_w: int, log) -> None:
 @cocotb.test()
 async def test_walk_steps(dut):
     """Walk frames in, the position buffers' neighbourhoods at every step, with stalls."""
-    p, vw, w = int(dut.P.value), int(dut.VOXEL_W.value), int(dut.WEIGHT_W.value)
-    geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
-    bench = UnitBench(dut)
+    bench = SourceBench(dut)
+    p, vw, w, geo, dims, vol = bench.p, bench.vw, bench.w, bench.geo, bench.dims, bench.vol
     await bench.reset({"in_valid": 0, "credit": 0})
-    dims = (max(7, 2 * p + 1), 6, 5)
-    vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     frames = 0
     for n, direction in enumerate(VIEWS):
         trav = make_traversal(dims, direction, w, 1)
