@@ -51,8 +51,6 @@ with the golden G of the first finished ray raised by one, P = 1 fails with
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import cocotb
 import numpy as np
 import pytest
