@@ -25,6 +25,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4.memory import top_regs
@@ -60,6 +61,25 @@ def run_unit(test_file: str, params: dict, testcase: str | None = None, harness:
     src = SIM_HDL_DIR / f"{top}.v" if harness else here / f"{top}.v"
     run_test(top=top, sources=harness_sources(*blocks, src), params=params, test_module=test_file,
              testcase=testcase, timing=True)
+
+
+def run_rtl(test_file: str, params: dict) -> None:
+    """Run the testbench ``test_file`` (tb/<unit>/test_<unit>.py, its ``__file__``) on the
+    RTL unit <unit> itself (rtl/sources.f), built with ``params``; the testbench drives the
+    clock from cocotb."""
+    top = Path(test_file).resolve().parent.name
+    run_test(top=top, sources=rtl_sources(), params=params, test_module=test_file)
+
+
+def top_params(dut, *names: str) -> list[int]:
+    """The values of the top's parameters ``names`` (the runner makes them VPI-visible)."""
+    return [int(getattr(dut, name).value) for name in names]
+
+
+def start_clock(dut) -> None:
+    """Start the cocotb clock of a top without a Verilog clock: 10 ns, low first (the
+    first rising edge at 5 ns)."""
+    Clock(dut.clk, 10, unit="ns").start(start_high=False)
 
 
 class UnitBench:
