@@ -196,12 +196,14 @@ class Macro(NamedTuple):
 
     def expand(self, actual: str | None) -> list[str]:
         """The body with each formal argument replaced by its actual one (``actual``: the
-        comma-separated arguments of a use, such as ``input`` in CUBE4_COM_STEP_PORTS(input))."""
+        comma-separated arguments of a use, such as ``input`` in CUBE4_COM_STEP_PORTS(input));
+        the token paste `` joins what it stands between."""
         if not self.args:
             return self.body
         subst = dict(zip(self.args, (a.strip() for a in (actual or "").split(","))))
         formal = re.compile(r"\b(" + "|".join(map(re.escape, self.args)) + r")\b")
-        return [formal.sub(lambda m: subst.get(m.group(1), m.group(1)), line) for line in self.body]
+        return [formal.sub(lambda m: subst.get(m.group(1), m.group(1)), line).replace("``", "")
+                for line in self.body]
 
 
 def header_macros(dirs: Sequence[Path]) -> dict[str, Macro]:

@@ -1,9 +1,10 @@
 // cube4_unit_ports.vh: the groups of ports that one unit of GRA or COM drives and another
 // reads, declared once for the unit harnesses (tb/cube4_gra_*, tb/cube4_com_*). The argument
 // is the direction: the harness of the unit that drives a group declares it output, the
-// harness of a unit that reads it input. Widths come from CUBE4_GEOMETRY and CUBE4_GRA_LAYOUT
-// (cube4_defs.vh); SP_W, the slot width, from the harness. Each declaration ends with a
-// comma: a macro stands on its own line before further ports.
+// harness of a unit that reads it input (a stream's beat also takes the prefix of its port
+// names). Widths come from CUBE4_GEOMETRY and CUBE4_GRA_LAYOUT (cube4_defs.vh); SP_W, the
+// slot width, from the harness. Each declaration ends with a comma: a macro stands on its
+// own line before further ports.
 `ifndef CUBE4_UNIT_PORTS_VH
 `define CUBE4_UNIT_PORTS_VH
 
@@ -60,5 +61,15 @@
     DIR wire [GRA_META_W-1:0] c_meta, \
     DIR wire [P*GRA_NSEL-1:0] c_sel, \
     DIR wire [1:0]            c_edge,
+
+// A beat of GRA's gradient stream (cube4_gra's output, cube4_gra_arith's, cube4_sha's
+// input): the header, the samples (Q0.VOXEL_W) and the gradient components gi, gj, gk
+// (VOXEL_W + 5 bits signed each, P lanes), the port names prefixed by PFX (in, out).
+`define CUBE4_GRA_BEAT_PORTS(DIR, PFX) \
+    DIR wire [HDR_W-1:0]           PFX``_hdr, \
+    DIR wire [P*VOXEL_W-1:0]       PFX``_sample, \
+    DIR wire [P*(VOXEL_W+5)-1:0]   PFX``_gi, \
+    DIR wire [P*(VOXEL_W+5)-1:0]   PFX``_gj, \
+    DIR wire [P*(VOXEL_W+5)-1:0]   PFX``_gk,
 
 `endif

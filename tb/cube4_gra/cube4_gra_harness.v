@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_gra_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -21,7 +22,7 @@
 //   rst       in   synchronous reset
 //   cfg_*     in   view registers (golden/cube4/memory.py top_regs)
 //   in_*      in   sample stream (cube4_tri's format, cube4_defs.vh)
-//   out_*     out  gradient stream (cube4_gra's format)
+//   out_*     out  gradient stream (cube4_gra's format, CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_harness #(
     `include "cube4_unit_params.vh"
@@ -32,17 +33,13 @@ module cube4_gra_harness #(
     output wire                  clk,
     input  wire                  rst,
     `CUBE4_VIEW_PORTS
+    `CUBE4_GRA_BEAT_PORTS(output, out)
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
     input  wire [P*VOXEL_W-1:0]  in_sample,
     output wire                  out_valid,
-    input  wire                  out_ready,
-    output wire [HDR_W-1:0]      out_hdr,
-    output wire [P*VOXEL_W-1:0]  out_sample,
-    output wire [P*GRAD_W-1:0]   out_gi,
-    output wire [P*GRAD_W-1:0]   out_gj,
-    output wire [P*GRAD_W-1:0]   out_gk
+    input  wire                  out_ready
 );
     cube4_sim_clock u_clock (.clk (clk));
 

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_gra_arith_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -18,16 +19,16 @@
 //   clk     out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst     in   synchronous reset
 //   cfg_*   in   view registers (golden/cube4/memory.py top_regs)
-//   in_*, out_*  as cube4_gra_arith
+//   in_*, out_*  as cube4_gra_arith (out_*: CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_arith_harness #(
     `include "cube4_unit_params.vh"
-    parameter integer VOXEL_W = 8,
-    localparam integer GRAD_W = VOXEL_W + 5
+    parameter integer VOXEL_W = 8
 ) (
     output wire                     clk,
     input  wire                     rst,
     `CUBE4_VIEW_PORTS
+    `CUBE4_GRA_BEAT_PORTS(output, out)
     input  wire                     in_v,
     input  wire [HDR_W-1:0]         in_hdr,
     input  wire [P*VOXEL_W-1:0]     in_s,
@@ -36,12 +37,7 @@ module cube4_gra_arith_harness #(
     input  wire [P*VOXEL_W-1:0]     in_fwd,
     input  wire [P*VOXEL_W-1:0]     in_back,
     input  wire [P*(VOXEL_W+1)-1:0] in_gj,
-    output wire                     out_v_d,
-    output wire [HDR_W-1:0]         out_hdr,
-    output wire [P*VOXEL_W-1:0]     out_sample,
-    output wire [P*GRAD_W-1:0]      out_gi,
-    output wire [P*GRAD_W-1:0]      out_gj,
-    output wire [P*GRAD_W-1:0]      out_gk
+    output wire                     out_v_d
 );
     cube4_sim_clock u_clock (.clk (clk));
 
