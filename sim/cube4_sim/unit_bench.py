@@ -1,4 +1,6 @@
-"""cocotb side shared by the unit testbenches (tb/cube4_tri, _gra, _sha, _com).
+"""What the unit testbenches of tb/ share: how each is built and run (``run_unit`` for a
+unit harness, ``run_rtl`` for a unit tested directly, ``param_id`` naming its parameter
+sets) and the cocotb side of the harnessed ones (tb/cube4_tri, _gra*, _sha, _com*).
 
 A unit harness (tb/cube4_<unit>/cube4_<unit>_harness.v) has a Verilog clock, the unit's
 view registers as individual ``cfg_*`` ports, and the unit's input and output
@@ -16,6 +18,7 @@ Randomness comes from ``cocotb.RANDOM_SEED`` (COCOTB_RANDOM_SEED reproduces a ru
 Handshake timing: inputs change just after the falling edge; in the read-only
 phase of that time step the bench samples in_ready / out_valid / data, so a
 transfer it records is exactly one that the next rising edge performs.
+``SourceBench`` drives GRA's source instead, which steps on its output FIFO's credit.
 """
 
 from __future__ import annotations
