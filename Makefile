@@ -46,7 +46,7 @@ ECP5_MODULES := $(basename $(notdir $(ECP5_SRCS)))
 ECP5_BASE    := $(filter-out $(addprefix rtl/,$(notdir $(ECP5_SRCS))),$(RTL_SRCS))
 ECP5_MODELS  := $(sort $(wildcard sim/hdl/ecp5/*.v))   # behavioural models of the primitives it instantiates
 LINT_WAIVERS := rtl/lint_waivers.vlt
-LINT_FLAGS   := --lint-only -Wall --quiet -Irtl
+LINT_FLAGS   := --lint-only -Wall --quiet -Irtl -Isim/hdl
 
 comma := ,
 

@@ -15,14 +15,61 @@ tb/cube4_gra_lines expects from the source and what tb/cube4_gra_window gives it
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-from .beats import CTRL_OSY, CTRL_SY, BeatSchedule, Geometry, pack_lanes
+from cube4.memory import lane_positions
+
+from .beats import (CTRL_EOP, CTRL_OSX, CTRL_OSY, CTRL_SOP, CTRL_SX, CTRL_SY, CTRL_YLAST, BeatSchedule, Geometry,
+                    pack_lanes)
 
 # bits of the centre's select flags (GSEL_* in cube4_defs.vh)
 GSEL_DYB, GSEL_DYF, GSEL_YLAST, GSEL_MFIRST, GSEL_JFIRST, GSEL_DKB, GSEL_DKF = range(7)
 GRA_NSEL = 7
 NEIGHBOURS = ("x", "b1", "p1", "c", "p1b2", "p2b1", "p2b2")
+
+
+class WalkBeat(NamedTuple):
+    """One beat of a slice-rectangle frame as the front end walks it (``walk_beats``)."""
+
+    m: int
+    j: int
+    pb: int
+    skew: int
+    pos: np.ndarray     # i of each lane (P)
+    valid: np.ndarray   # the lane's sample lies in the traversed rectangle (P, bool)
+    ctrl: int           # the header's control bits (CTRL_*), EOP on the frame's last beat
+    sy: int             # stepy(m + 1) - stepy(m): the Y-step forward ...
+    osy: int            # ... and stepy(m) - stepy(m - 1), back
+
+
+def walk_beats(rects, trav, p: int) -> list[WalkBeat]:
+    """The beats of a slice-rectangle frame in the order the front end walks them
+    (``cube4.slices.SliceRects.walk`` of each slice, rows j, partial beams pb), with each
+    beat's skew, lane positions, valid lanes and control bits, as tb/cube4_gra and
+    tb/cube4_gra_walk feed them to GRA."""
+    nj, ni, nk = trav.nj, trav.ni, trav.nk
+    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    order = []
+    for m in range(rects.last() + 1):
+        w = rects.walk(m, p)
+        if w is not None:
+            order += [(m, j, pb) for j in range(w[0], w[1]) for pb in range(w[2], w[3] + 1)]
+    beats = []
+    for n, (m, j, pb) in enumerate(order):
+        cj = nj - 1 - (j + 1) if fj else j + 1
+        ck = nk - 1 - m if fk else m
+        skew = (cj + ck + sum(int(o) for o in trav.origin)) % p
+        pos = lane_positions(skew, pb, p, ni, fi)
+        tj0, tj1, i0, i1 = rects.traversed(m)
+        valid = (pos >= i0) & (pos < i1) & (tj0 <= j < tj1)
+        (sx, sy), (sx1, sy1), (sxb, syb) = (trav.steps(k) for k in (m, m + 1, m - 1))
+        ysf, ysb = int(sy1 - sy), int(sy - syb)
+        ctrl = ((int(sx1 - sx) << CTRL_SX) | (ysf << CTRL_SY) | (int(sx - sxb) << CTRL_OSX) | (ysb << CTRL_OSY)
+                | (int(n == 0) << CTRL_SOP) | (int(n == len(order) - 1) << CTRL_EOP) | (int(j == nj - 1) << CTRL_YLAST))
+        beats.append(WalkBeat(m, j, pb, skew, pos, valid, ctrl, ysf, ysb))
+    return beats
 
 
 def centre_flags(sched: BeatSchedule, n: int) -> int:

@@ -56,6 +56,7 @@ import shutil
 import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator
@@ -183,14 +184,32 @@ def _declared_names(code: str) -> list[str]:
     return names
 
 
-_DEFINE = re.compile(r"^\s*`define\s+(\w+)(?!\()\s?(.*)$")
-_USE = re.compile(r"`(\w+)\b")
+_DEFINE = re.compile(r"^\s*`define\s+(\w+)(?:\(([^)]*)\))?\s?(.*)$")
+_USE = re.compile(r"`(\w+)\b(?:\s*\(([^)]*)\))?")
 
 
-def header_macros(dirs: Sequence[Path]) -> dict[str, list[str]]:
-    """The argument-free macros of the Verilog headers (``*.vh``) in ``dirs``: name ->
-    the lines of its body (continuation backslashes removed)."""
-    macros: dict[str, list[str]] = {}
+class Macro(NamedTuple):
+    """A header macro: its formal arguments (none for most) and the lines of its body."""
+
+    args: tuple[str, ...]
+    body: list[str]
+
+    def expand(self, actual: str | None) -> list[str]:
+        """The body with each formal argument replaced by its actual one (``actual``: the
+        comma-separated arguments of a use, such as ``input`` in CUBE4_COM_STEP_PORTS(input));
+        the token paste `` joins what it stands between."""
+        if not self.args:
+            return self.body
+        subst = dict(zip(self.args, (a.strip() for a in (actual or "").split(","))))
+        formal = re.compile(r"\b(" + "|".join(map(re.escape, self.args)) + r")\b")
+        return [formal.sub(lambda m: subst.get(m.group(1), m.group(1)), line).replace("``", "")
+                for line in self.body]
+
+
+def header_macros(dirs: Sequence[Path]) -> dict[str, Macro]:
+    """The macros of the Verilog headers (``*.vh``) in ``dirs``: name -> its formal
+    arguments and the lines of its body (continuation backslashes removed)."""
+    macros: dict[str, Macro] = {}
     for d in dict.fromkeys(dirs):
         for vh in sorted(Path(d).glob("*.vh")):
             lines = vh.read_text().splitlines()
@@ -200,33 +219,37 @@ def header_macros(dirs: Sequence[Path]) -> dict[str, list[str]]:
                 i += 1
                 if not m:
                     continue
-                body = [m.group(2)]
+                body = [m.group(3)]
                 while body[-1].rstrip().endswith("\\") and i < len(lines):
                     body[-1] = body[-1].rstrip()[:-1]
                     body.append(lines[i])
                     i += 1
-                macros[m.group(1)] = body
+                args = tuple(a.strip() for a in m.group(2).split(",")) if m.group(2) else ()
+                macros[m.group(1)] = Macro(args, body)
     return macros
 
 
 def top_interface(sources: Sequence[Path], top: str) -> list[str]:
     """Names of the ports and header parameters of module ``top`` (ANSI style, as every
-    module here is written; a line may declare several ports, or be a header macro that
-    declares them, such as CUBE4_VIEW_PORTS); empty if not found."""
+    module here is written; a line may declare several ports, be a header macro that
+    declares them, such as CUBE4_VIEW_PORTS or CUBE4_COM_STEP_PORTS(input), or include a
+    header of parameters, as the unit harnesses do); empty if not found."""
     start = re.compile(rf"^\s*module\s+{re.escape(top)}\b")
-    macros = header_macros([RTL_INCLUDE_DIR, *(Path(s).parent for s in sources)])
+    include_dirs = [RTL_INCLUDE_DIR, SIM_HDL_DIR]
+    macros = header_macros([*include_dirs, *(Path(s).parent for s in sources)])
     for src in sources:
         if src.suffix not in (".v", ".sv"):
             continue
-        lines = _with_includes(src.read_text().splitlines(), [src.parent, RTL_INCLUDE_DIR])
+        lines = _with_includes(src.read_text().splitlines(), [src.parent, *include_dirs])
         for i, line in enumerate(lines):
             if not start.match(line):
                 continue
             names: list[str] = []
             for decl in lines[i + 1:]:
                 code = decl.split("//", 1)[0]
-                for use in _USE.findall(code):      # a macro of ports (not of parameters)
-                    for body in macros.get(use, []):
+                for use, actual in _USE.findall(code):      # a macro of ports (not of parameters)
+                    macro = macros.get(use)
+                    for body in macro.expand(actual) if macro else []:
                         if not re.match(r"\s*(?:parameter|localparam)\b", body):
                             names.extend(_declared_names(body.split("//", 1)[0]))
                 names.extend(_declared_names(code))
@@ -241,7 +264,8 @@ _INCLUDE = re.compile(r'^\s*`include\s+"([^"]+)"')
 
 def _with_includes(lines: list[str], dirs: Sequence[Path]) -> list[str]:
     """The lines with each `include of a file found in ``dirs`` replaced by that file's lines
-    (a module whose interface is an include, such as cube4_sdp_ram_if.vh)."""
+    (a module whose interface is an include, such as cube4_sdp_ram_if.vh, or a harness's
+    parameters, sim/hdl/cube4_unit_params.vh)."""
     out: list[str] = []
     for line in lines:
         m = _INCLUDE.match(line)
@@ -353,7 +377,7 @@ def run_test(
             ``CUBE4_PUBLIC_FLAT_RW`` environment variable, default off.
         build_args: extra Verilator arguments.
         defines: Verilog defines (``-D``).
-        includes: include directories besides ``rtl/`` (always searched).
+        includes: include directories besides ``rtl/`` and ``sim/hdl/`` (always searched).
         seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random).
         plusargs: simulator plusargs (``+NAME=value``), read by ``$value$plusargs``.
         quiet_logs: write the Verilator/C++ build output and the simulator's
@@ -429,7 +453,7 @@ def run_test(
         try:
             runner.build(
                 sources=all_sources,
-                includes=[Path(i).resolve() for i in (RTL_INCLUDE_DIR, *includes)],
+                includes=[Path(i).resolve() for i in (RTL_INCLUDE_DIR, SIM_HDL_DIR, *includes)],
                 defines=defines,
                 parameters=params,
                 build_args=all_build_args,

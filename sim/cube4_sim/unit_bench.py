@@ -1,4 +1,6 @@
-"""cocotb side shared by the unit testbenches (tb/cube4_tri, _gra, _sha, _com).
+"""What the unit testbenches of tb/ share: how each is built and run (``run_unit`` for a
+unit harness, ``run_rtl`` for a unit tested directly, ``param_id`` naming its parameter
+sets) and the cocotb side of the harnessed ones (tb/cube4_tri, _gra*, _sha, _com*).
 
 A unit harness (tb/cube4_<unit>/cube4_<unit>_harness.v) has a Verilog clock, the unit's
 view registers as individual ``cfg_*`` ports, and the unit's input and output
@@ -16,20 +18,24 @@ Randomness comes from ``cocotb.RANDOM_SEED`` (COCOTB_RANDOM_SEED reproduces a ru
 Handshake timing: inputs change just after the falling edge; in the read-only
 phase of that time step the bench samples in_ready / out_valid / data, so a
 transfer it records is exactly one that the next rising edge performs.
+``SourceBench`` drives GRA's source instead, which steps on its output FIFO's credit.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 import cocotb
 import numpy as np
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4.memory import top_regs
 from cube4.view import Traversal
 
-from .runner import SIM_HDL_DIR
+from .beats import Geometry
+from .runner import SIM_HDL_DIR, run_test
 from .sources import rtl_sources
 
 
@@ -44,6 +50,39 @@ def harness_sources(*files) -> list:
     a bare name from sim/hdl/ (the shared simulation blocks, e.g. cube4_sim_stall.v)."""
     extra = [f if isinstance(f, Path) else SIM_HDL_DIR / f for f in files]
     return [*rtl_sources(), SIM_HDL_DIR / "cube4_sim_clock.v", *extra]
+
+
+def run_unit(test_file: str, params: dict, testcase: str | None = None, harness: str | None = None,
+             blocks: tuple[str, ...] = ()) -> None:
+    """Build the harness of the unit testbench ``test_file`` (tb/<unit>/test_<unit>.py, its
+    ``__file__``) with ``params`` and run the testbench's cocotb tests (or ``testcase``) on it.
+    The harness is <unit>_harness.v beside the testbench, or ``harness``, the name of a
+    shared one in sim/hdl/; ``blocks``: the sim/hdl/ blocks it instantiates besides the
+    Verilog clock (which needs Verilator's --timing)."""
+    here = Path(test_file).resolve().parent
+    top = harness or f"{here.name}_harness"
+    src = SIM_HDL_DIR / f"{top}.v" if harness else here / f"{top}.v"
+    run_test(top=top, sources=harness_sources(*blocks, src), params=params, test_module=test_file,
+             testcase=testcase, timing=True)
+
+
+def run_rtl(test_file: str, params: dict) -> None:
+    """Run the testbench ``test_file`` (tb/<unit>/test_<unit>.py, its ``__file__``) on the
+    RTL unit <unit> itself (rtl/sources.f), built with ``params``; the testbench drives the
+    clock from cocotb."""
+    top = Path(test_file).resolve().parent.name
+    run_test(top=top, sources=rtl_sources(), params=params, test_module=test_file)
+
+
+def top_params(dut, *names: str) -> list[int]:
+    """The values of the top's parameters ``names`` (the runner makes them VPI-visible)."""
+    return [int(getattr(dut, name).value) for name in names]
+
+
+def start_clock(dut) -> None:
+    """Start the cocotb clock of a top without a Verilog clock: 10 ns, low first (the
+    first rising edge at 5 ns)."""
+    Clock(dut.clk, 10, unit="ns").start(start_high=False)
 
 
 class UnitBench:
@@ -119,6 +158,51 @@ class UnitBench:
         d.out_ready.value = 0
         assert len(got) == expected, (f"{len(got)} output beats, expected {expected}: "
                                       f"{len(got) - expected} extra beat(s) within {tail} cycles of the last one")
+        return got
+
+
+class SourceBench(UnitBench):
+    """UnitBench around GRA's source (sim/hdl/cube4_gra_source_harness.v; tb/cube4_gra_lines,
+    tb/cube4_gra_walk): the build's parameters and geometry, and a random test volume whose
+    rows span several beams (2P + 1 voxels, at least 7)."""
+
+    def __init__(self, dut) -> None:
+        super().__init__(dut)
+        self.p, self.vw, self.w = (int(self.sig(n).value) for n in ("P", "VOXEL_W", "WEIGHT_W"))
+        self.geo = Geometry(self.p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
+        self.dims = (max(7, 2 * self.p + 1), 6, 5)
+        self.vol = self.rng.integers(0, 1 << self.vw, size=self.dims[::-1], dtype=np.int64)
+
+    async def run_steps(self, inputs: list[dict[str, int]], n_steps: int, record: Sequence[str], gap: float,
+                        stall: float, tail: int = 30) -> list[dict[str, int]]:
+        """Offer ``inputs`` with gap probability ``gap``, give the output FIFO's credit with
+        probability 1 - ``stall``, and record the signals ``record`` in every cycle with
+        step = 1, until ``n_steps`` steps happened and every input was taken; then ``tail``
+        cycles with the credit high and no input (a step there is an extra one). Returns the
+        steps, in order."""
+        d = self.dut
+        got, k, offering, quiet, cycle = [], 0, False, 0, 0
+        while quiet < tail:
+            await FallingEdge(d.clk)
+            if not offering and k < len(inputs) and self.rng.random() >= gap:
+                for name, val in inputs[k].items():
+                    self.sig(name).value = val
+                offering = True
+            d.in_valid.value = int(offering)
+            done = len(got) >= n_steps and k == len(inputs)
+            d.credit.value = 1 if done else int(self.rng.random() >= stall)
+            await ReadOnly()
+            if offering and int(d.in_ready.value):
+                offering, k = False, k + 1
+            if int(d.step.value):
+                got.append({n: int(self.sig(n).value) for n in record})
+            quiet += int(done)
+            cycle += 1
+            assert cycle < 200000, f"{len(got)} of {n_steps} steps and {k} of {len(inputs)} beats after {cycle} cycles"
+        await FallingEdge(d.clk)
+        d.in_valid.value = 0
+        d.credit.value = 0
+        assert len(got) == n_steps, f"{len(got)} steps, expected {n_steps}: {len(got) - n_steps} extra"
         return got
 
 

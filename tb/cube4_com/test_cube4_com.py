@@ -51,8 +51,6 @@ with the golden G of the first finished ray raised by one, P = 1 fails with
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import cocotb
 import numpy as np
 import pytest
@@ -64,15 +62,11 @@ from cube4.config import Cube4Config
 from cube4.model import render_frame
 from cube4.pathlen import ALL_FACES
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.rect_port import write_rect_table
-from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources, param_id, random_clip
+from cube4_sim.unit_bench import UnitBench, check_lanes, param_id, random_clip, run_unit
 
-HERE = Path(__file__).resolve().parent   # the harness sits beside this file
-
-SOURCES = harness_sources(HERE / "cube4_com_harness.v")
 
 # (direction, input gap probability, output stall probability, mode, clip, phase)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0, "composite", None, (0, 0)),
@@ -286,11 +280,9 @@ RECT_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
 
 @pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 2), ids=param_id))
 def test_cube4_com_rects(build):
-    run_test(top="cube4_com_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "RECTS": 1, "PLW": 0},
-             test_module=__file__, testcase="test_rect_pixel_stream", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 32, "RECTS": 1, "PLW": 0}, "test_rect_pixel_stream")
 
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 1, 3, 4), ids=param_id))
 def test_cube4_com(build):
-    run_test(top="cube4_com_harness", sources=SOURCES, params={**build, "MAX_DIM": 32},
-             test_module=__file__, testcase="test_pixel_stream", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 32}, "test_pixel_stream")

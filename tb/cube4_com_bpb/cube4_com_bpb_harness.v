@@ -8,22 +8,18 @@
 //   the view registers as ports packed into the unit's cfg bus
 //   (CUBE4_VIEW_PACK), every other port of the unit as a top-level port.
 //
-// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W, AC_W, RECTS as cube4_com_bpb;
-//   the slot width and the slice buffer's depth as cube4_com derives them.
+// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), AC_W,
+//   RECTS as cube4_com_bpb; the slot width and the slice buffer's depth as
+//   cube4_com derives them.
 //
 // Latency: that of cube4_com_bpb (the ports connect straight to it).
 //
 // Ports: clk out (cube4_sim_clock, 10 ns); rst, cfg_* and the unit's ports.
 // =============================================================================
 module cube4_com_bpb_harness #(
-    parameter integer P           = 5,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer AC_W        = 40,
-    parameter integer RECTS       = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    `include "cube4_unit_params.vh"
+    parameter integer AC_W  = 40,
+    parameter integer RECTS = 0,
     localparam integer RW       = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1,
     localparam integer SP_W     = (RECTS != 0) ? RW + PB_W : ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1),
     localparam integer SB_DEPTH = (RECTS != 0) ? (1 << SP_W) : MAX_DIM * NBMAX,
@@ -51,10 +47,6 @@ module cube4_com_bpb_harness #(
     cube4_com_bpb #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .AC_W(AC_W),
         .SP_W(SP_W), .SB_DEPTH(SB_DEPTH), .RECTS(RECTS)
-    ) u_bpb (
-        .clk(clk), .rst(rst), .cfg(cfg),
-        .rd_sp(rd_sp), .pb_rd(pb_rd), .pb_wr(pb_wr), .v2(v2), .wr_en(wr_en), .wr_sp(wr_sp),
-        .acc_q(acc_q), .dyb4(dyb4), .dkb4(dkb4), .col1_4(col1_4),
-        .s5_back(s5_back), .back_sh(back_sh), .prevb_sh(prevb_sh));
+    ) u_bpb (.*);
 endmodule
 `default_nettype wire

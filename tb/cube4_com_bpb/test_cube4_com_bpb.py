@@ -22,20 +22,16 @@ The test can fail (tried with a deliberately corrupted expectation, not kept).
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge
 
-from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, harness_sources
+from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 from cube4.view import make_traversal
 
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_com_bpb_harness.v")
 
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (0.5, 1.0, 0.5), (-0.2, -1.0, -0.9)]
 RAW = 11   # a beat enters at least 11 cycles after the beat of its slot L beats back
@@ -132,7 +128,6 @@ async def test_previous_words(dut):
 BUILDS = [{"P": 1, "AC_W": 36, "MAX_SS_LOG2": 1}, {"P": 5, "AC_W": 44}, {"P": 3, "AC_W": 40, "RECTS": 1}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=lambda p: "_".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", BUILDS, ids=param_id)
 def test_cube4_com_bpb(params):
-    run_test(top="cube4_com_bpb_harness", sources=SOURCES, params={"MAX_DIM": 32, **params},
-             test_module=__file__, timing=True)
+    run_unit(__file__, {"MAX_DIM": 32, **params})

@@ -22,7 +22,6 @@ The test can fail (tried with a deliberately corrupted expectation, not kept).
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -31,13 +30,10 @@ from cocotb.triggers import FallingEdge, ReadOnly
 
 import cube4.slices as slices
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, clog2, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.rect_port import rect_words
-from cube4_sim.unit_bench import UnitBench, harness_sources
+from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_com_rect_harness.v")
 
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (0.5, 1.0, 0.5), (-0.2, -1.0, -0.9),
          (1.0, 1.0, 1.0), (0.0, 0.0, -1.0)]
@@ -154,7 +150,6 @@ async def test_rects(dut):
 BUILDS = [{"P": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=lambda p: "_".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", BUILDS, ids=param_id)
 def test_cube4_com_rect(params):
-    run_test(top="cube4_com_rect_harness", sources=SOURCES, params={"MAX_DIM": 32, **params},
-             test_module=__file__, timing=True)
+    run_unit(__file__, {"MAX_DIM": 32, **params})

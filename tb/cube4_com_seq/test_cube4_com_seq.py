@@ -27,7 +27,6 @@ The test can fail (tried with a deliberately corrupted expectation, not kept).
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -37,12 +36,9 @@ from cocotb.triggers import FallingEdge, ReadOnly
 from cube4.config import Cube4Config
 from cube4.model import render_frame
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, clog2, mask_bits, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, harness_sources, random_clip
+from cube4_sim.unit_bench import UnitBench, param_id, random_clip, run_unit
 
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_com_seq_harness.v")
 
 # (direction, gap, credit low, hazard, mode, clip)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0, 0.0, "composite", None),
@@ -189,7 +185,6 @@ async def test_sequencer(dut):
 BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=lambda p: "_".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", BUILDS, ids=param_id)
 def test_cube4_com_seq(params):
-    run_test(top="cube4_com_seq_harness", sources=SOURCES, params={"MAX_DIM": 32, **params},
-             test_module=__file__, timing=True)
+    run_unit(__file__, {"MAX_DIM": 32, **params})

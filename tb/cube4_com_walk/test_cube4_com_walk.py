@@ -23,7 +23,6 @@ The test can fail (tried with a deliberately corrupted expectation, not kept).
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -32,12 +31,9 @@ from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.model import inside_mask
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, clog2, mask_bits, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, harness_sources
+from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_com_walk_harness.v")
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 8)), ((-0.6, 0.25, -1.0), (11, 10, 9)), ((1.0, 0.4, -0.7), (9, 12, 8)),
          ((0.5, 1.0, 0.5), (10, 9, 11)), ((-0.2, -1.0, -0.9), (8, 11, 10)), ((0.7, 0.3, 1.0), (3, 2, 6))]
@@ -158,7 +154,6 @@ async def test_walk(dut):
 BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=lambda p: "_".join(f"{k}{v}" for k, v in p.items()))
+@pytest.mark.parametrize("params", BUILDS, ids=param_id)
 def test_cube4_com_walk(params):
-    run_test(top="cube4_com_walk_harness", sources=SOURCES, params={"MAX_DIM": 32, **params},
-             test_module=__file__, timing=True)
+    run_unit(__file__, {"MAX_DIM": 32, **params})

@@ -26,13 +26,10 @@ from collections import deque
 import cocotb
 import numpy as np
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
-from cube4_sim import rtl_sources, run_test
 from cube4_sim.sweeps import sweep
-
-CLK_PERIOD_NS = 10
+from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
 
 class TB:
@@ -41,15 +38,14 @@ class TB:
     def __init__(self, dut) -> None:
         self.dut = dut
         self.log = dut._log
-        self.data_w = int(dut.DATA_W.value)
-        self.depth = int(dut.DEPTH.value)
-        self.in_reg = int(dut.IN_REG.value)      # 1: the push is one edge later
+        # IN_REG = 1: the push is one edge later
+        self.data_w, self.depth, self.in_reg = top_params(dut, "DATA_W", "DEPTH", "IN_REG")
         self.credit_next: int | None = None
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.expected: deque[int] = deque()
         self.received = 0
         self.takes = 0
-        Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
+        start_clock(dut)
         self.log.info("cube4_credit_fifo DATA_W=%d DEPTH=%d", self.data_w, self.depth)
 
     def _idle_inputs(self) -> None:
@@ -211,11 +207,6 @@ PARAM_SETS = [
 ]
 
 
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 3), ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items())))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 3), ids=param_id))
 def test_cube4_credit_fifo(params):
-    run_test(
-        top="cube4_credit_fifo",
-        sources=rtl_sources(),
-        params=params,
-        test_module=__file__,
-    )
+    run_rtl(__file__, params)

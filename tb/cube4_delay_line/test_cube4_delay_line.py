@@ -22,13 +22,11 @@ import math
 import cocotb
 import numpy as np
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
-from cube4_sim import rtl_sources, run_test
 from cube4_sim.sweeps import sweep
+from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
-CLK_PERIOD_NS = 10
 MAX_MISMATCH_LOGS = 10
 
 
@@ -38,14 +36,13 @@ class TB:
     def __init__(self, dut) -> None:
         self.dut = dut
         self.log = dut._log
-        self.data_w = int(dut.DATA_W.value)
-        self.depth = int(dut.DEPTH.value)
+        self.data_w, self.depth = top_params(dut, "DATA_W", "DEPTH")
         aw = max(1, math.ceil(math.log2(self.depth))) if self.depth > 1 else 1
         self.ra = 4 if aw > 11 else 3
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.mismatches = 0
         self.checked = 0
-        Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
+        start_clock(dut)
         self.log.info("cube4_delay_line DATA_W=%d DEPTH=%d (reads %d steps ahead)",
                       self.data_w, self.depth, self.ra)
 
@@ -182,11 +179,6 @@ PARAM_SETS = [
 ]
 
 
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 4), ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items())))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 4), ids=param_id))
 def test_cube4_delay_line(params):
-    run_test(
-        top="cube4_delay_line",
-        sources=rtl_sources(),
-        params=params,
-        test_module=__file__,
-    )
+    run_rtl(__file__, params)

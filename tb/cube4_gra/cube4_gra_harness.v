@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_gra_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -12,7 +13,7 @@
 //   the two streams.
 //
 // Parameters: as cube4_gra (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; cube4_unit_params.vh).
 //
 // Latency: that of cube4_gra (the ports connect straight to it).
 //
@@ -21,61 +22,33 @@
 //   rst       in   synchronous reset
 //   cfg_*     in   view registers (golden/cube4/memory.py top_regs)
 //   in_*      in   sample stream (cube4_tri's format, cube4_defs.vh)
-//   out_*     out  gradient stream (cube4_gra's format)
+//   out_*     out  gradient stream (cube4_gra's format, CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer RECTS       = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    `include "cube4_unit_params.vh"
+    parameter integer VOXEL_W = 8,
+    parameter integer RECTS   = 0,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
     output wire                  clk,
     input  wire                  rst,
     `CUBE4_VIEW_PORTS
+    `CUBE4_GRA_BEAT_PORTS(output, out)
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
     input  wire [P*VOXEL_W-1:0]  in_sample,
     output wire                  out_valid,
-    input  wire                  out_ready,
-    output wire [HDR_W-1:0]      out_hdr,
-    output wire [P*VOXEL_W-1:0]  out_sample,
-    output wire [P*GRAD_W-1:0]   out_gi,
-    output wire [P*GRAD_W-1:0]   out_gj,
-    output wire [P*GRAD_W-1:0]   out_gk
+    input  wire                  out_ready
 );
     cube4_sim_clock u_clock (.clk (clk));
 
     wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
 
     cube4_gra #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .WEIGHT_W    (WEIGHT_W),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS       (RECTS)
-    ) u_gra (
-        .clk        (clk),
-        .rst        (rst),
-        .cfg        (cfg),
-        .in_valid   (in_valid),
-        .in_ready   (in_ready),
-        .in_hdr     (in_hdr),
-        .in_sample  (in_sample),
-        .out_valid  (out_valid),
-        .out_ready  (out_ready),
-        .out_hdr    (out_hdr),
-        .out_sample (out_sample),
-        .out_gi     (out_gi),
-        .out_gj     (out_gj),
-        .out_gk     (out_gk)
-    );
+        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2),
+        .RECTS (RECTS)
+    ) u_gra (.*);
 
     cube4_stream_check #(
         .NAME   ("gra.in (samples)"),

@@ -30,7 +30,6 @@ beats, expected N-1: 1 extra beat(s) within 300 cycles of the last one".
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -38,18 +37,13 @@ import pytest
 
 import cube4.slices as slices
 from cocotb.triggers import FallingEdge, ReadOnly
-from cube4.memory import lane_positions
 from cube4.model import gradient_stream, inside_mask, padded_traversal, rect_slice, sample_stream
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.sweeps import sweep
-from cube4_sim.beats import (CTRL_EOP, CTRL_OSX, CTRL_OSY, CTRL_SOP, CTRL_SX, CTRL_SY, CTRL_YLAST, BeatSchedule,
-                             Geometry, mask_bits, pack_lanes, unpack_lanes)
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id
+from cube4_sim.beats import CTRL_EOP, BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
+from cube4_sim.gra_beats import walk_beats
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id, run_unit
 
-HERE = Path(__file__).resolve().parent   # the harness sits beside this file
-
-SOURCES = harness_sources(HERE / "cube4_gra_harness.v")
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]
@@ -99,8 +93,7 @@ BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 2), ids=param_id))
 def test_cube4_gra(build):
-    run_test(top="cube4_gra_harness", sources=SOURCES, params={**build, "MAX_DIM": 32},
-             test_module=__file__, testcase="test_gradient_stream", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 32}, "test_gradient_stream")
 
 
 # --------------------------------------------------------------------------- slice rectangles
@@ -109,8 +102,7 @@ def walk_frame(rects, trav, p: int, geo: Geometry, vw: int):
     beats the front end emits: outside the traversed rectangles no lane valid and zero
     samples) and the output expected: the beats of the traversed rectangles, in order,
     with their headers (EOP on the last of them) and golden samples and gradients."""
-    M, nj, ni, nk = trav.num_sample_slices, trav.nj, trav.ni, trav.nk
-    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    M, nj, ni = trav.num_sample_slices, trav.nj, trav.ni
     samples = np.zeros((M, nj, ni), dtype=np.int64)
     inside = np.zeros((M, nj, ni), dtype=bool)
     for m in range(M):
@@ -118,31 +110,17 @@ def walk_frame(rects, trav, p: int, geo: Geometry, vw: int):
             samples[m] = rect_slice(trav_src[0], trav, m, rects.traversed(m), trav.weight_bits)
             inside[m] = inside_mask(trav, m) & rects.inside(m)
     grads = gradient_stream(samples, trav)
-    order = []
-    for m in range(rects.last() + 1):
-        w = rects.walk(m, p)
-        if w is not None:
-            order += [(m, j, pb, w[1] - 1) for j in range(w[0], w[1]) for pb in range(w[2], w[3] + 1)]
     inputs, outputs = [], []
-    for n, (m, j, pb, jlast) in enumerate(order):
-        cj = nj - 1 - (j + 1) if fj else j + 1
-        ck = nk - 1 - m if fk else m
-        skew = (cj + ck + sum(int(o) for o in trav.origin)) % p
-        pos = lane_positions(skew, pb, p, ni, fi)
-        tj0, tj1, i0, i1 = rects.traversed(m)
-        valid = (pos >= i0) & (pos < i1) & (tj0 <= j < tj1)
-        jc, ii = min(j, nj - 1), np.minimum(pos, ni - 1)
-        smp = np.where(valid, samples[m, jc, ii], 0)
-        lins = valid & inside[m, jc, ii]
-        (sx, sy), (sx1, sy1), (sxb, syb) = (trav.steps(k) for k in (m, m + 1, m - 1))
-        ctrl = ((int(sx1 - sx) << CTRL_SX) | (int(sy1 - sy) << CTRL_SY) | (int(sx - sxb) << CTRL_OSX)
-                | (int(sy - syb) << CTRL_OSY) | (int(n == 0) << CTRL_SOP) | (int(n == len(order) - 1) << CTRL_EOP)
-                | (int(j == nj - 1) << CTRL_YLAST))
-        fields = {"inside": mask_bits(lins), "lval": mask_bits(valid), "keep": mask_bits(valid), "ctrl": ctrl,
-                  "skew": skew, "pb": pb, "j": j, "m": m}
+    for b in walk_beats(rects, trav, p):
+        jc, ii = min(b.j, nj - 1), np.minimum(b.pos, ni - 1)
+        smp = np.where(b.valid, samples[b.m, jc, ii], 0)
+        lins = b.valid & inside[b.m, jc, ii]
+        fields = {"inside": mask_bits(lins), "lval": mask_bits(b.valid), "keep": mask_bits(b.valid), "ctrl": b.ctrl,
+                  "skew": b.skew, "pb": b.pb, "j": b.j, "m": b.m}
         inputs.append({"in_hdr": geo.pack_header(fields), "in_sample": pack_lanes(smp, vw)})
-        if valid.any():
-            outputs.append((fields, valid, smp, np.where(valid[None, :], grads[m][:, jc, ii], 0), (m, j, pb), pos))
+        if b.valid.any():
+            outputs.append((fields, b.valid, smp, np.where(b.valid[None, :], grads[b.m][:, jc, ii], 0),
+                            (b.m, b.j, b.pb), b.pos))
     if outputs:   # the output's EOP: its last beat (the input's may lie outside the rectangles)
         for fields, *_ in outputs:
             fields["ctrl"] &= ~(1 << CTRL_EOP)
@@ -230,5 +208,4 @@ RECT_BUILDS = [dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=8), dict(P=8, VOXEL_W=12)
 
 @pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 2), ids=param_id))
 def test_cube4_gra_rects(build):
-    run_test(top="cube4_gra_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "RECTS": 1},
-             test_module=__file__, testcase="test_rect_walks", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 32, "RECTS": 1}, "test_rect_walks")

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_gra_arith_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -10,7 +11,7 @@
 //   top-level ports, which the testbench drives and reads every cycle.
 //
 // Parameters: as cube4_gra_arith (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3; cube4_unit_params.vh).
 //
 // Latency: that of cube4_gra_arith (the ports connect straight to it).
 //
@@ -18,21 +19,16 @@
 //   clk     out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst     in   synchronous reset
 //   cfg_*   in   view registers (golden/cube4/memory.py top_regs)
-//   in_*, out_*  as cube4_gra_arith
+//   in_*, out_*  as cube4_gra_arith (out_*: CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_arith_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
-    localparam integer GRAD_W = VOXEL_W + 5
+    `include "cube4_unit_params.vh"
+    parameter integer VOXEL_W = 8
 ) (
     output wire                     clk,
     input  wire                     rst,
     `CUBE4_VIEW_PORTS
+    `CUBE4_GRA_BEAT_PORTS(output, out)
     input  wire                     in_v,
     input  wire [HDR_W-1:0]         in_hdr,
     input  wire [P*VOXEL_W-1:0]     in_s,
@@ -41,12 +37,7 @@ module cube4_gra_arith_harness #(
     input  wire [P*VOXEL_W-1:0]     in_fwd,
     input  wire [P*VOXEL_W-1:0]     in_back,
     input  wire [P*(VOXEL_W+1)-1:0] in_gj,
-    output wire                     out_v_d,
-    output wire [HDR_W-1:0]         out_hdr,
-    output wire [P*VOXEL_W-1:0]     out_sample,
-    output wire [P*GRAD_W-1:0]      out_gi,
-    output wire [P*GRAD_W-1:0]      out_gj,
-    output wire [P*GRAD_W-1:0]      out_gk
+    output wire                     out_v_d
 );
     cube4_sim_clock u_clock (.clk (clk));
 
@@ -54,13 +45,7 @@ module cube4_gra_arith_harness #(
 
     cube4_gra_arith #(
         .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2)
-    ) u_arith (
-        .clk (clk), .rst (rst), .cfg (cfg),
-        .in_v (in_v), .in_hdr (in_hdr), .in_s (in_s), .in_hi (in_hi), .in_lo (in_lo),
-        .in_fwd (in_fwd), .in_back (in_back), .in_gj (in_gj),
-        .out_v_d (out_v_d), .out_hdr (out_hdr), .out_sample (out_sample),
-        .out_gi (out_gi), .out_gj (out_gj), .out_gk (out_gk)
-    );
+    ) u_arith (.*);
 
 endmodule
 `default_nettype wire

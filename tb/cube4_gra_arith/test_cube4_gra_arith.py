@@ -16,7 +16,6 @@ own gap probability, in one simulation per build.
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -25,12 +24,9 @@ from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.model import gradient_of, gradient_operand_stream, sample_stream
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.beats import Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, harness_sources
+from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_gra_arith_harness.v")
 
 # (direction, log2 S, gap probability)
 VIEWS = [((0.3, -0.45, 1.0), 0, 0.0), ((-0.6, 0.25, -1.0), 1, 0.4), ((1.0, 0.4, -0.7), 2, 0.7)]
@@ -115,12 +111,9 @@ async def test_arith_stream(dut):
         bench.log.info("view %s S=%d gap %.1f: %d beats bit-exact", direction, 1 << ss_log2, gap, len(got))
 
 
-BUILDS = [(1, 8, 1), (5, 12, 2)]   # (P, VOXEL_W, MAX_SS_LOG2)
+BUILDS = [{"P": 1, "VOXEL_W": 8, "MAX_SS_LOG2": 1}, {"P": 5, "VOXEL_W": 12, "MAX_SS_LOG2": 2}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=param_id)
 def test_cube4_gra_arith(build):
-    p, vw, ss = build
-    run_test(top="cube4_gra_arith_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 16, "MAX_SS_LOG2": ss},
-             test_module=__file__, testcase="test_arith_stream", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 16}, "test_arith_stream")

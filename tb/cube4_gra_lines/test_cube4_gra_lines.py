@@ -1,8 +1,8 @@
 """Unit testbench of rtl/cube4_gra_lines.v: GRA's delay lines, step by step.
 
-The DUT is ``cube4_gra_lines_harness.v``: cube4_gra_lines with its view registers as
-ports, a Verilog clock, the output FIFO's credit as one port and a cube4_stream_check on
-the input. The input is the golden sample stream (``cube4.model.sample_stream``) in the
+The DUT is ``sim/hdl/cube4_gra_source_harness.v`` with WALK = 0: cube4_gra_lines with its
+view registers as ports, a Verilog clock, the output FIFO's credit as one port and a
+cube4_stream_check on the input. The input is the golden sample stream (``cube4.model.sample_stream``) in the
 hardware's beat order (``cube4_sim.beats.BeatSchedule``), offered with random gaps in
 valid; the credit is random (seeded from COCOTB_RANDOM_SEED), which stalls the steps.
 In every cycle with step = 1 the bench records the interface and checks it, in order,
@@ -19,56 +19,18 @@ P = 1 and P = 5; the P = 5 build runs them supersampled (S = 2).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import cocotb
-import numpy as np
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.model import sample_stream
 from cube4.view import make_traversal
-from cube4_sim import run_test
-from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes
+from cube4_sim.beats import BeatSchedule, pack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, lines_steps
-from cube4_sim.unit_bench import UnitBench, harness_sources
-
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_gra_lines_harness.v")
+from cube4_sim.unit_bench import SourceBench, param_id, run_unit
 
 # (direction, input gap probability, credit stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.5, 0.2)]
 RECORD = NEIGHBOURS + ("c_meta", "c_sel", "sop", "fend", "c_edge")
-
-
-async def run_frame(bench, inputs, n_steps: int, gap: float, stall: float, tail: int = 30) -> list[dict]:
-    """Offer ``inputs`` with random gaps and random credit; record every step's interface
-    until ``n_steps`` steps happened and every input was taken, then ``tail`` cycles with
-    the credit high and no input (a step there is an extra one)."""
-    d = bench.dut
-    got, k, offering, quiet, cycle = [], 0, False, 0, 0
-    while quiet < tail:
-        await FallingEdge(d.clk)
-        if not offering and k < len(inputs) and bench.rng.random() >= gap:
-            for name, val in inputs[k].items():
-                bench.sig(name).value = val
-            offering = True
-        d.in_valid.value = int(offering)
-        done = len(got) >= n_steps and k == len(inputs)
-        d.credit.value = 1 if done else int(bench.rng.random() >= stall)
-        await ReadOnly()
-        if offering and int(d.in_ready.value):
-            offering, k = False, k + 1
-        if int(d.step.value):
-            got.append({n: int(bench.sig(n).value) for n in RECORD})
-        quiet += int(done)
-        cycle += 1
-        assert cycle < 200000, f"{len(got)} of {n_steps} steps and {k} of {len(inputs)} beats after {cycle} cycles"
-    await FallingEdge(d.clk)
-    d.in_valid.value = 0
-    d.credit.value = 0
-    assert len(got) == n_steps, f"{len(got)} steps, expected {n_steps}: {len(got) - n_steps} extra"
-    return got
 
 
 def check_steps(got, want, sched, hdr_w: int, log) -> None:
@@ -96,12 +58,9 @@ def check_steps(got, want, sched, hdr_w: int, log) -> None:
 @cocotb.test()
 async def test_lines_steps(dut):
     """Golden sample beats in, the expected neighbourhood at every step, with stalls."""
-    p, vw, w = int(dut.P.value), int(dut.VOXEL_W.value), int(dut.WEIGHT_W.value)
-    geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
-    bench = UnitBench(dut)
+    bench = SourceBench(dut)
+    p, vw, w, geo, dims, vol = bench.p, bench.vw, bench.w, bench.geo, bench.dims, bench.vol
     await bench.reset({"in_valid": 0, "credit": 0})
-    dims = (max(7, 2 * p + 1), 6, 5)
-    vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     for direction, gap, stall in VIEWS:
         trav = make_traversal(dims, direction, w, 1 << geo.max_ss_log2)
         samples, inside = sample_stream(vol, trav)
@@ -112,18 +71,15 @@ async def test_lines_steps(dut):
         want = lines_steps(sched, samples, geo, vw)
         bench.set_view(trav, p)
         await bench.cycles(2)
-        got = await run_frame(bench, inputs, len(want), gap, stall)
+        got = await bench.run_steps(inputs, len(want), RECORD, gap, stall)
         check_steps(got, want, sched, geo.hdr_w, bench.log)
         bench.log.info("view %s S=%d: %d beats, %d steps as expected", direction, trav.supersample, len(sched),
                        len(got))
 
 
-BUILDS = [(1, 8, 0), (5, 8, 1)]   # (P, VOXEL_W, MAX_SS_LOG2)
+BUILDS = [{"P": 1, "VOXEL_W": 8, "MAX_SS_LOG2": 0}, {"P": 5, "VOXEL_W": 8, "MAX_SS_LOG2": 1}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=param_id)
 def test_cube4_gra_lines(build):
-    p, vw, ss = build
-    run_test(top="cube4_gra_lines_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 16, "MAX_SS_LOG2": ss},
-             test_module=__file__, testcase="test_lines_steps", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 16, "WALK": 0}, "test_lines_steps", harness="cube4_gra_source_harness")

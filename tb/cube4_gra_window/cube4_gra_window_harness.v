@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_gra_window_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -11,7 +12,7 @@
 //   drives and reads every cycle.
 //
 // Parameters: as cube4_gra_window (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; cube4_unit_params.vh).
 //
 // Latency: that of cube4_gra_window (the ports connect straight to it).
 //
@@ -19,35 +20,20 @@
 //   clk      out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst      in   synchronous reset
 //   cfg_*    in   view registers (golden/cube4/memory.py top_regs)
-//   step .. c_edge   in   as cube4_gra_window (the source's interface)
+//   step .. c_edge   in   as cube4_gra_window (the source's interface,
+//                         CUBE4_GRA_STEP_PORTS of cube4_unit_ports.vh)
 //   take .. gj       out  as cube4_gra_window
 // =============================================================================
 module cube4_gra_window_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer RECTS       = 0,
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    `include "cube4_unit_params.vh"
+    parameter integer VOXEL_W = 8,
+    parameter integer RECTS   = 0,
     `CUBE4_GRA_LAYOUT
 ) (
     output wire                     clk,
     input  wire                     rst,
     `CUBE4_VIEW_PORTS
-    input  wire                     step,
-    input  wire                     sop,
-    input  wire [P*VOXEL_W-1:0]     x,
-    input  wire [P*VOXEL_W-1:0]     b1,
-    input  wire [P*VOXEL_W-1:0]     p1,
-    input  wire [P*VOXEL_W-1:0]     c,
-    input  wire [P*VOXEL_W-1:0]     p1b2,
-    input  wire [P*VOXEL_W-1:0]     p2b1,
-    input  wire [P*VOXEL_W-1:0]     p2b2,
-    input  wire [GRA_META_W-1:0]    c_meta,
-    input  wire [P*GRA_NSEL-1:0]    c_sel,
-    input  wire [1:0]               c_edge,
+    `CUBE4_GRA_STEP_PORTS(input)
     output wire                     take,
     output wire [HDR_W-1:0]         c_hdr,
     output wire [P*VOXEL_W-1:0]     s,
@@ -64,12 +50,7 @@ module cube4_gra_window_harness #(
     cube4_gra_window #(
         .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2),
         .RECTS (RECTS)
-    ) u_window (
-        .clk (clk), .rst (rst), .cfg (cfg), .step (step), .sop (sop),
-        .x (x), .b1 (b1), .p1 (p1), .c (c), .p1b2 (p1b2), .p2b1 (p2b1), .p2b2 (p2b2),
-        .c_meta (c_meta), .c_sel (c_sel), .c_edge (c_edge),
-        .take (take), .c_hdr (c_hdr), .s (s), .hi (hi), .lo (lo), .fwd (fwd), .back (back), .gj (gj)
-    );
+    ) u_window (.*);
 
 endmodule
 `default_nettype wire

@@ -20,7 +20,6 @@ P = 1 and P = 5; the P = 5 build runs them supersampled (S = 2). The walk's edge
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -29,13 +28,10 @@ from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.model import gradient_operand_stream, sample_stream
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.beats import BeatSchedule, Geometry, unpack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, lines_steps
-from cube4_sim.unit_bench import UnitBench, check_lanes, harness_sources
+from cube4_sim.unit_bench import UnitBench, check_lanes, param_id, run_unit
 
-HERE = Path(__file__).resolve().parent
-SOURCES = harness_sources(HERE / "cube4_gra_window_harness.v")
 
 VIEWS = [((0.3, -0.45, 1.0), 0.0), ((-0.6, 0.25, -1.0), 0.4), ((1.0, 0.4, -0.7), 0.6)]   # (direction, stall)
 INPUTS = NEIGHBOURS + ("c_meta", "c_sel", "sop")
@@ -106,12 +102,9 @@ async def test_window_operands(dut):
                        stall, len(got))
 
 
-BUILDS = [(1, 8, 0), (5, 8, 1)]   # (P, VOXEL_W, MAX_SS_LOG2)
+BUILDS = [{"P": 1, "VOXEL_W": 8, "MAX_SS_LOG2": 0}, {"P": 5, "VOXEL_W": 8, "MAX_SS_LOG2": 1}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=[f"p{b[0]}_v{b[1]}_ss{b[2]}" for b in BUILDS])
+@pytest.mark.parametrize("build", BUILDS, ids=param_id)
 def test_cube4_gra_window(build):
-    p, vw, ss = build
-    run_test(top="cube4_gra_window_harness", sources=SOURCES,
-             params={"P": p, "VOXEL_W": vw, "MAX_DIM": 16, "MAX_SS_LOG2": ss},
-             test_module=__file__, testcase="test_window_operands", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 16}, "test_window_operands")

@@ -218,6 +218,7 @@ async def lerp_random_streaming(dut):
 
 from cube4_sim import RTL_INCLUDE_DIR, SIM_HDL_DIR, rtl_sources, run_test  # noqa: E402  (pytest half)
 from cube4_sim.sweeps import sweep
+from cube4_sim.unit_bench import param_id, run_rtl
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
@@ -237,18 +238,9 @@ PARAM_SETS = [
 ]
 
 
-def _param_id(params: dict) -> str:
-    return "-".join(f"{k}{v}" for k, v in params.items())
-
-
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10, 11), ids=_param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10, 11), ids=param_id))
 def test_cube4_lerp(params):
-    run_test(
-        top="cube4_lerp",
-        sources=rtl_sources(),
-        params=params,
-        test_module=__file__,
-    )
+    run_rtl(__file__, params)
 
 
 def test_cube4_lerp_verilog_clock():
@@ -270,7 +262,7 @@ def test_cube4_lerp_verilog_clock():
 @pytest.mark.parametrize(
     "params",
     [{"DATA_W": 0}, {"DATA_W": 20}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 4}],
-    ids=_param_id,
+    ids=param_id,
 )
 def test_cube4_lerp_illegal_params(params):
     """Out-of-range parameters must stop elaboration with the module's message."""

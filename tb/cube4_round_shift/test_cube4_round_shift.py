@@ -15,8 +15,8 @@ import pytest
 from cocotb.triggers import Timer
 
 from cube4.fixed import round_shift
-from cube4_sim import rtl_sources, run_test
 from cube4_sim.sweeps import sweep
+from cube4_sim.unit_bench import param_id, run_rtl
 
 MAX_MISMATCH_LOGS = 10
 
@@ -61,11 +61,6 @@ PARAM_SETS = [
 ]
 
 
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(3, 4), ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items())))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(3, 4), ids=param_id))
 def test_cube4_round_shift(params):
-    run_test(
-        top="cube4_round_shift",
-        sources=rtl_sources(),
-        params=params,
-        test_module=__file__,
-    )
+    run_rtl(__file__, params)

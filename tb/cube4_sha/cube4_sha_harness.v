@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_sha_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -47,11 +48,7 @@ module cube4_sha_harness #(
     input  wire [19:0]               rmap_data,
     input  wire                      in_valid,
     output wire                      in_ready,
-    input  wire [HDR_W-1:0]          in_hdr,
-    input  wire [P*VOXEL_W-1:0]      in_sample,
-    input  wire [P*GRAD_W-1:0]       in_gi,
-    input  wire [P*GRAD_W-1:0]       in_gj,
-    input  wire [P*GRAD_W-1:0]       in_gk,
+    `CUBE4_GRA_BEAT_PORTS(input, in)
     output wire                      out_valid,
     input  wire                      out_ready,
     output wire [HDR_W-1:0]          out_hdr,
@@ -70,29 +67,7 @@ module cube4_sha_harness #(
         .CARRY_SAMPLE(CARRY_SAMPLE),
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2)
-    ) u_sha (
-        .clk       (clk),
-        .rst       (rst),
-        .lut_we    (lut_we),
-        .lut_addr  (lut_addr),
-        .lut_data  (lut_data),
-        .rmap_we   (rmap_we),
-        .rmap_addr (rmap_addr),
-        .rmap_data (rmap_data),
-        .in_valid  (in_valid),
-        .in_ready  (in_ready),
-        .in_hdr    (in_hdr),
-        .in_sample (in_sample),
-        .in_gi     (in_gi),
-        .in_gj     (in_gj),
-        .in_gk     (in_gk),
-        .out_valid (out_valid),
-        .out_ready (out_ready),
-        .out_hdr   (out_hdr),
-        .out_rgba  (out_rgba),
-        .out_idx   (out_idx),
-        .out_sample(out_sample)
-    );
+    ) u_sha (.*);
 
     cube4_stream_check #(
         .NAME   ("sha.in (gradients)"),

@@ -29,7 +29,6 @@ differ from the golden model".
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -38,14 +37,10 @@ from cocotb.triggers import FallingEdge
 
 from cube4.model import gradient_stream, sample_stream, shade
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id, run_unit
 
-HERE = Path(__file__).resolve().parent   # the harness sits beside this file
-
-SOURCES = harness_sources(HERE / "cube4_sha_harness.v")
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]
@@ -143,5 +138,4 @@ BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 2, 3, 4), ids=param_id))
 def test_cube4_sha(build):
-    run_test(top="cube4_sha_harness", sources=SOURCES, params={**build, "MAX_DIM": 32, "MAX_SS_LOG2": 0},
-             test_module=__file__, testcase="test_shaded_stream", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 32, "MAX_SS_LOG2": 0}, "test_shaded_stream")

@@ -39,7 +39,6 @@ flip moved one bit down (the RTL's FLIP at CW - 2), P = 5 with VGRAD fails with
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -50,14 +49,10 @@ from cube4.memory import pack_volume
 from cube4.model import sample_stream
 from cube4.vgrad import pack_channels, pack_words, word_bits
 from cube4.view import make_traversal
-from cube4_sim import run_test
 from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
-from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, harness_sources, param_id, random_clip
+from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id, random_clip, run_unit
 
-HERE = Path(__file__).resolve().parent   # the harness sits beside this file
-
-SOURCES = harness_sources("cube4_sim_stall.v", HERE / "cube4_tri_harness.v")
 
 # (direction, memory-request stall /256, TRI-input stall /256, output stall probability)
 # (direction, memory-request stall, memory-response stall, output stall probability,
@@ -144,6 +139,4 @@ BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0), dict(P=5, VOXEL_
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 4, 5, 6), ids=param_id))
 def test_cube4_tri(build):
-    run_test(top="cube4_tri_harness", sources=SOURCES,
-             params={**build, "MAX_DIM": 32, "DEPTH": DEPTH, "ADDR_W": ADDR_W},
-             test_module=__file__, testcase="test_sample_stream", timing=True)
+    run_unit(__file__, {**build, "MAX_DIM": 32, "DEPTH": DEPTH, "ADDR_W": ADDR_W}, "test_sample_stream", blocks=("cube4_sim_stall.v",))
