@@ -79,14 +79,7 @@
 //   saturates C at 2^F and T at 0 (section 13).
 // =============================================================================
 module cube4_com #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer ALPHA_W  = 12, parameter integer ACC_W      = 16,
-    parameter integer VOXEL_W  = 8,
-    parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
-    parameter integer PLW = 1,
-    parameter integer RECTS = 0, parameter integer ADDR_W = 16,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_RECT_LAYOUT,
+    `CUBE4_BUILD_PARAMS, `CUBE4_RECT_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
 ) (
@@ -108,14 +101,7 @@ module cube4_com #(
     output wire [P*4*(ACC_W+1)-1:0] pix_rgba
 );
     generate
-        `CUBE4_RANGE(g_bad_p, "cube4_com", "P", P, 1, 64)
-        `CUBE4_RANGE(g_bad_alpha_w, "cube4_com", "ALPHA_W", ALPHA_W, 8, 16)
-        `CUBE4_RANGE(g_bad_acc_w, "cube4_com", "ACC_W", ACC_W, 8, 24)
-        `CUBE4_RANGE(g_bad_voxel_w, "cube4_com", "VOXEL_W", VOXEL_W, 1, 16)
-        `CUBE4_RANGE(g_bad_compositing, "cube4_com", "COMPOSITING", COMPOSITING, 0, 1)
-        `CUBE4_RANGE(g_bad_extremum, "cube4_com", "EXTREMUM", EXTREMUM, 0, 1)
-        `CUBE4_RANGE(g_bad_plw, "cube4_com", "PLW", PLW, 0, 1)
-        `CUBE4_RANGE(g_bad_rects, "cube4_com", "RECTS", RECTS, 0, 1)
+        `CUBE4_BUILD_CHECKS("cube4_com")
         if (PLW != 0 && RECTS != 0) begin : g_plw_rects
             $error("cube4_com: PLW = 1 with RECTS = 1 is not built (the path weights follow every slice's template)");
         end

@@ -51,12 +51,10 @@
 // Bit growth and rounding: none (words move, nothing is computed).
 // =============================================================================
 module cube4_com_bpb #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_SLICE_PARAMS,
     parameter integer AC_W     = 68,
     parameter integer SP_W     = 13, parameter integer SB_DEPTH   = 8192,
     parameter integer RECTS    = 0,  parameter integer COPIES     = 4,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer PA = P * AC_W
 ) (
     input  wire clk, input wire rst,

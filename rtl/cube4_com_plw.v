@@ -47,10 +47,8 @@
 //   1 - (1 - A)^w in Q0.ALPHA_W); 8 num in PHASE_W + 4 bits.
 // =============================================================================
 module cube4_com_plw #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_SLICE_PARAMS,
     parameter integer VOXEL_W  = 8, parameter integer ALPHA_W     = 12,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer PH_W = PHASE_W
 ) (
     input  wire clk,

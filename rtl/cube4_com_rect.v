@@ -41,10 +41,9 @@
 // Bit growth and rounding: comparisons of positions in IW bits only.
 // =============================================================================
 module cube4_com_rect #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_SLICE_PARAMS,
     parameter integer ADDR_W   = 16, parameter integer SP_W       = 13,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_RECT_LAYOUT
+    `CUBE4_RECT_LAYOUT
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,

@@ -59,11 +59,9 @@
 //   (0 .. SX + NI, no wrap: numerics.md 8); no rounding.
 // =============================================================================
 module cube4_com_seq #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_SLICE_PARAMS,
     parameter integer SP_W     = 13,
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer NS   = 10                 // stages S1 .. S10
 ) (

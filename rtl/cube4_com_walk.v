@@ -44,10 +44,8 @@
 //   2^(W+g) after each add of VIEW); positions in IW bits; no rounding.
 // =============================================================================
 module cube4_com_walk #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
+    `CUBE4_SLICE_PARAMS,
     parameter integer SP_W     = 13,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
     localparam integer PH_W = PHASE_W
 ) (
     input  wire clk, input wire rst,

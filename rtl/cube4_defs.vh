@@ -409,6 +409,45 @@
     localparam integer GSEL_DKB    = 5, \
     localparam integer GSEL_DKF    = 6
 
+// ---------------------------------------------------------------- unit parameter lists
+// The parameter lists several modules share, with the top's defaults (the
+// ranges: cube4_top, and for a unit its block's top, document them):
+//   CUBE4_SLICE_PARAMS  P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2, CUBE4_GEOMETRY and
+//                       CUBE4_VIEW_LAYOUT: a unit that follows the slice walk
+//   CUBE4_GRA_PARAMS    CUBE4_SLICE_PARAMS, VOXEL_W and CUBE4_GRA_LAYOUT: GRA's units
+//   CUBE4_BUILD_PARAMS  the build's parameters (widths and options, the full
+//                       build's defaults; golden/cube4/builds.py is their
+//                       definition and a test holds this list to it),
+//                       CUBE4_GEOMETRY and CUBE4_VIEW_LAYOUT: the blocks
+//                       (cube4_top, cube4_frontend, cube4_sha, cube4_com) take
+//                       the whole set and use what they need; CUBE4_BUILD_PASS
+//                       passes it on to a block by name
+`define CUBE4_BUILD_PARAMS \
+    parameter integer P        = 8,  parameter integer MAX_DIM     = 256, \
+    parameter integer VOXEL_W  = 8,  parameter integer MAX_SS_LOG2 = 0, \
+    parameter integer WEIGHT_W = 8,  parameter integer RMAP_BITS   = 5, \
+    parameter integer ALPHA_W  = 12, parameter integer ACC_W       = 16, \
+    parameter integer ADDR_W   = 16, \
+    parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1, \
+    parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1, \
+    parameter integer VGRAD    = 0,  parameter integer PLW         = 1, \
+    parameter integer RECTS    = 0, \
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
+
+`define CUBE4_BUILD_PASS \
+    .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), \
+    .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
+    .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
+    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS)
+
+`define CUBE4_SLICE_PARAMS \
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
+    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0, \
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
+
+`define CUBE4_GRA_PARAMS \
+    `CUBE4_SLICE_PARAMS, parameter integer VOXEL_W = 8, `CUBE4_GRA_LAYOUT
+
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with
 // (c_i + c_j + c_k) mod P = q (Teramac paper, eq. 1), skew = (c_j + c_k) mod P:
@@ -441,5 +480,26 @@
     if ((VALUE) < (LO) || (VALUE) > (HI)) begin : LABEL \
         $error("%s: %s = %0d is out of range %0d..%0d", MODULE, NAME, VALUE, LO, HI); \
     end
+
+// In a generate region of a block that takes CUBE4_BUILD_PARAMS: the range of every
+// build parameter (the one statement of the ranges; the rules between options are
+// cube4_top's checks).
+`define CUBE4_BUILD_CHECKS(MODULE) \
+    `CUBE4_RANGE(g_bad_p, MODULE, "P", P, 1, 64) \
+    `CUBE4_RANGE(g_bad_max_dim, MODULE, "MAX_DIM", MAX_DIM, 2, 2048) \
+    `CUBE4_RANGE(g_bad_voxel_w, MODULE, "VOXEL_W", VOXEL_W, 1, 16) \
+    `CUBE4_RANGE(g_bad_ss, MODULE, "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3) \
+    `CUBE4_RANGE(g_bad_weight_w, MODULE, "WEIGHT_W", WEIGHT_W, 4, 12) \
+    `CUBE4_RANGE(g_bad_rmap_bits, MODULE, "RMAP_BITS", RMAP_BITS, 2, 6) \
+    `CUBE4_RANGE(g_bad_alpha_w, MODULE, "ALPHA_W", ALPHA_W, 8, 16) \
+    `CUBE4_RANGE(g_bad_acc_w, MODULE, "ACC_W", ACC_W, 8, 24) \
+    `CUBE4_RANGE(g_bad_addr_w, MODULE, "ADDR_W", ADDR_W, 1, 30) \
+    `CUBE4_RANGE(g_bad_shading, MODULE, "SHADING", SHADING, 0, 1) \
+    `CUBE4_RANGE(g_bad_compositing, MODULE, "COMPOSITING", COMPOSITING, 0, 1) \
+    `CUBE4_RANGE(g_bad_extremum, MODULE, "EXTREMUM", EXTREMUM, 0, 1) \
+    `CUBE4_RANGE(g_bad_clip, MODULE, "CLIP", CLIP, 0, 1) \
+    `CUBE4_RANGE(g_bad_vgrad, MODULE, "VGRAD", VGRAD, 0, 1) \
+    `CUBE4_RANGE(g_bad_plw, MODULE, "PLW", PLW, 0, 1) \
+    `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1)
 
 `endif

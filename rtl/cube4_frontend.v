@@ -46,12 +46,7 @@
 // Bit growth and rounding: see cube4_tri (one rounding per lerp).
 // =============================================================================
 module cube4_frontend #(
-    parameter integer P        = 8, parameter integer MAX_DIM     = 256,
-    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer VOXEL_W  = 8, parameter integer ADDR_W      = 16,
-    parameter integer CLIP     = 1, parameter integer VGRAD       = 0,
-    parameter integer RECTS    = 0,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    `CUBE4_BUILD_PARAMS, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT
 ) (
     input  wire clk, input wire rst,

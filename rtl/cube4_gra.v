@@ -63,10 +63,7 @@
 //   exact in GRAD_W = VOXEL_W + 5 bits. No saturation.
 // =============================================================================
 module cube4_gra #(
-    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
-    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8, parameter integer RECTS       = 0,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_GRA_LAYOUT,
+    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
     input  wire clk, input wire rst,
@@ -95,27 +92,24 @@ module cube4_gra #(
     wire [GRA_META_W-1:0] c_meta;
     wire [P*GRA_NSEL-1:0] c_sel;
     wire [1:0]            c_edge;
+    // the source, by one port map (cube4_gra_source_if.vh): delay lines or the walk
+`define CUBE4_GRA_SOURCE(MODULE) \
+            MODULE #( \
+                .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W) \
+            ) u_src ( \
+                .clk(clk), .rst(rst), .cfg(cfg), \
+                .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr), .in_sample(in_sample), \
+                .credit(credit), .step(step), .sop(sop), .fend(fend), \
+                .x(x), .b1(b1), .p1(p1), .c(c), .p1b2(p1b2), .p2b1(p2b1), .p2b2(p2b2), \
+                .c_meta(c_meta), .c_sel(c_sel), .c_edge(c_edge));
     generate
         if (RECTS == 0) begin : g_lines
-            cube4_gra_lines #(
-                .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W)
-            ) u_src (
-                .clk(clk), .rst(rst), .cfg(cfg),
-                .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr), .in_sample(in_sample),
-                .credit(credit), .step(step), .sop(sop), .fend(fend),
-                .x(x), .b1(b1), .p1(p1), .c(c), .p1b2(p1b2), .p2b1(p2b1), .p2b2(p2b2),
-                .c_meta(c_meta), .c_sel(c_sel), .c_edge(c_edge));
+            `CUBE4_GRA_SOURCE(cube4_gra_lines)
         end else begin : g_walk
-            cube4_gra_walk #(
-                .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W)
-            ) u_src (
-                .clk(clk), .rst(rst), .cfg(cfg),
-                .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr), .in_sample(in_sample),
-                .credit(credit), .step(step), .sop(sop), .fend(fend),
-                .x(x), .b1(b1), .p1(p1), .c(c), .p1b2(p1b2), .p2b1(p2b1), .p2b2(p2b2),
-                .c_meta(c_meta), .c_sel(c_sel), .c_edge(c_edge));
+            `CUBE4_GRA_SOURCE(cube4_gra_walk)
         end
     endgenerate
+`undef CUBE4_GRA_SOURCE
 
     // ------------------------------------------------------------ window
     wire                     take;        // a real centre steps: its FIFO entry is taken

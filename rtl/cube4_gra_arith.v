@@ -52,10 +52,7 @@
 //   saturation.
 // =============================================================================
 module cube4_gra_arith #(
-    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
-    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT,
+    `CUBE4_GRA_PARAMS,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
     input  wire clk, input wire rst,

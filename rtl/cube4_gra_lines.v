@@ -51,29 +51,8 @@
 //
 // Bit growth and rounding: none (samples are passed, not computed).
 // =============================================================================
-module cube4_gra_lines #(
-    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
-    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_GRA_LAYOUT
-) (
-    input  wire clk, input wire rst,
-    input  wire [VIEW_W-1:0] cfg,
-    input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
-    input  wire [P*VOXEL_W-1:0] in_sample,
-    input  wire [GRA_STEPS-1:0] credit,
-    output wire step, output wire sop, output wire fend,
-    output wire [P*VOXEL_W-1:0] x, output wire [P*VOXEL_W-1:0] b1, output wire [P*VOXEL_W-1:0] p1,
-    output wire [P*VOXEL_W-1:0] c, output wire [P*VOXEL_W-1:0] p1b2,
-    output wire [P*VOXEL_W-1:0] p2b1, output wire [P*VOXEL_W-1:0] p2b2,
-    output wire [GRA_META_W-1:0] c_meta,
-    output wire [P*GRA_NSEL-1:0] c_sel,
-    output wire [1:0] c_edge
-);
-    generate
-        `CUBE4_RANGE(g_bad_p, "cube4_gra_lines", "P", P, 1, 64)
-        `CUBE4_RANGE(g_bad_voxel_w, "cube4_gra_lines", "VOXEL_W", VOXEL_W, 1, 16)
-    endgenerate
+module cube4_gra_lines
+`include "cube4_gra_source_if.vh"
 
     localparam integer VW     = VOXEL_W;
     localparam integer PV     = P * VW;

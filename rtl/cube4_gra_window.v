@@ -52,10 +52,7 @@
 //   samples, VOXEL_W + 1 bits signed, exact.
 // =============================================================================
 module cube4_gra_window #(
-    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
-    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8, parameter integer RECTS       = 0,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_GRA_LAYOUT
+    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,

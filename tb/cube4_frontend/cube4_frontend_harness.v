@@ -23,17 +23,9 @@
 // Parameters: as cube4_frontend, plus DEPTH (words per bank).
 // =============================================================================
 module cube4_frontend_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer WEIGHT_W    = 8,
-    parameter integer MAX_DIM     = 64,
+    `CUBE4_BUILD_PARAMS,
     parameter integer DEPTH       = 4096,
-    parameter integer ADDR_W      = 12,
-    parameter integer MAX_SS_LOG2 = 0,
     parameter integer OPT_GRA     = 0,    // 1: cube4_gra after the front end, gradients dumped too
-    parameter integer RECTS       = 0,    // 1: slice rectangles (the table through rect_we, rt_*)
-    `CUBE4_GEOMETRY,
-    `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
     `CUBE4_TAG_LAYOUT,
     `CUBE4_RECT_LAYOUT,
@@ -163,13 +155,7 @@ module cube4_frontend_harness #(
     wire [PV-1:0]     smp_sample;
 
     cube4_frontend #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .WEIGHT_W    (WEIGHT_W),
-        .MAX_DIM     (MAX_DIM),
-        .ADDR_W      (ADDR_W),
-        .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS       (RECTS)
+        `CUBE4_BUILD_PASS
     ) u_fe (
         .clk             (clk),
         .rst             (rst_q),

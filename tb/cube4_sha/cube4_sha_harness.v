@@ -25,15 +25,7 @@
 //                        out_sample)
 // =============================================================================
 module cube4_sha_harness #(
-    parameter integer P           = 8,
-    parameter integer VOXEL_W     = 8,
-    parameter integer ALPHA_W     = 12,
-    parameter integer RMAP_BITS   = 5,
-    parameter integer MAX_DIM     = 32,
-    parameter integer MAX_SS_LOG2 = 0,
-    parameter integer SHADING     = 1,
-    parameter integer CARRY_SAMPLE = 1,
-    `CUBE4_GEOMETRY,
+    `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3,
     localparam integer RGBA_W = P * (24 + ALPHA_W)   // out_rgba (a name, for the runner's port scan)
@@ -59,14 +51,8 @@ module cube4_sha_harness #(
     cube4_sim_clock u_clock (.clk (clk));
 
     cube4_sha #(
-        .P           (P),
-        .VOXEL_W     (VOXEL_W),
-        .ALPHA_W     (ALPHA_W),
-        .RMAP_BITS   (RMAP_BITS),
-        .SHADING     (SHADING),
-        .CARRY_SAMPLE(CARRY_SAMPLE),
-        .MAX_DIM     (MAX_DIM),
-        .MAX_SS_LOG2 (MAX_SS_LOG2)
+        `CUBE4_BUILD_PASS,
+        .CARRY_SAMPLE(CARRY_SAMPLE)
     ) u_sha (.*);
 
     cube4_stream_check #(
