@@ -54,6 +54,7 @@ import os
 import re
 import shutil
 import sys
+import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import NamedTuple
@@ -66,6 +67,9 @@ from .sources import REPO_ROOT, RTL_INCLUDE_DIR
 
 SIM_HDL_DIR = REPO_ROOT / "sim" / "hdl"
 BUILD_ROOT = REPO_ROOT / "build" / "sim"
+#: one JSON line per run_test: the test, its build, the build's and the simulation's wall
+#: seconds (python -m cube4_sim.timings sums them: where a test run's time goes)
+TIMINGS = BUILD_ROOT / "timings.jsonl"
 
 #: Verilator arguments added to every simulation build (and -CFLAGS with cxx_opt()).
 FAST_BUILD_ARGS = ["-O3", "--x-assign", "fast", "--x-initial", "fast"]
@@ -459,6 +463,7 @@ def run_test(
     # several processes simulating one build each keep their own log
     sim_log = (build_dir / (f"sim.{os.getpid()}.log" if private_results else "sim.log")) if quiet_logs else None
     log_hint = f"see {sim_log}" if sim_log else "see the log above"
+    t_start = time.monotonic()
     with _build_lock(build_dir):  # two processes must not compile into one directory at once
         # unchanged files keep their time stamps, so a build is not redone under a running simulation
         _write_if_changed(build_dir / "build_info.json", json.dumps(key, indent=2) + "\n")
@@ -482,6 +487,7 @@ def run_test(
                 raise
             raise SimulationError(f"{top}: the Verilator build failed ({_first_line(exc)}); see {build_log}") from exc
 
+    t_built = time.monotonic()
     test_args: list[str] = []
     wave_file: Path | None = None
     if waves:
@@ -516,6 +522,7 @@ def run_test(
             WAVE_FILES.append(wave_file)
             print(f"cube4_sim: FST waveform written to {wave_file}")
 
+    _record_timing(top, build_dir, module_name, t_built - t_start, time.monotonic() - t_built)
     if not results.is_file():
         raise SimulationError(
             f"{top}: simulation crashed (exit status {exit_status}), no results file; "
@@ -535,6 +542,19 @@ def run_test(
         if sim_log is not None:
             sim_log.unlink(missing_ok=True)
     return results
+
+
+def _record_timing(top: str, build_dir: Path, module_name: str, build_s: float, sim_s: float) -> None:
+    """Append one line to TIMINGS (a line per write: parallel workers do not mix lines)."""
+    line = json.dumps({"test": os.environ.get("PYTEST_CURRENT_TEST", module_name).split(" ")[0],
+                       "top": top, "build": build_dir.name, "build_s": round(build_s, 2),
+                       "sim_s": round(sim_s, 2)}) + "\n"
+    with contextlib.suppress(OSError):
+        fd = os.open(TIMINGS, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+        try:
+            os.write(fd, line.encode())
+        finally:
+            os.close(fd)
 
 
 def clean() -> None:
