@@ -141,11 +141,13 @@ def test_constant():
 
 @pytest.mark.parametrize("name", GENERATED)
 def test_generation_256_fast(name):
+    """A generated 256^3 phantom in under 2 s of this process's CPU time (CPU, not wall
+    time: the suite runs beside other workers that would make a wall-time bound flaky)."""
     best = math.inf
     for _ in range(2):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         vol = load_volume(f"{name}:256")
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, time.process_time() - t0)
         if best < 2.0:
             break
     assert vol.shape == (256, 256, 256)
