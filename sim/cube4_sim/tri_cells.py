@@ -23,6 +23,7 @@ from cube4.vgrad import pack_words, word_bits
 from cube4.view import Traversal, make_traversal
 
 from .beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
+from .sweeps import sweep
 from .unit_bench import UnitBench, param_id, run_unit
 
 DEPTH, ADDR_W = 4096, 12
@@ -34,9 +35,15 @@ VIEWS = [((0.3, -0.45, 1.0), False, 0, 0, (0, 0)),
          ((-0.2, -1.0, -0.9), True, 30, 30, (200, 9))]
 
 
+# the builds (MAX_DIM = 32): P = 1, S <= 2; P = 5, S <= 4 (later passes read the upper slice
+# from its buffer), voxel gradients; `make regress` also P = 8, VOXEL_W = 12
+CELL_BUILDS = sweep([dict(P=1, VOXEL_W=8, MAX_SS_LOG2=1, VGRAD=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=2, VGRAD=1),
+                     dict(P=8, VOXEL_W=12, MAX_SS_LOG2=2, VGRAD=0)], quick=(0, 1), ids=param_id)
+
+
 def run_cells(test_file: str, build: dict) -> None:
     """Run a cell-path testbench (its ``__file__``) on the shared harness built with ``build``."""
-    run_unit(test_file, {**build, "DEPTH": DEPTH, "ADDR_W": ADDR_W}, harness="cube4_tri_cell_harness",
+    run_unit(test_file, {**build, "MAX_DIM": 32, "DEPTH": DEPTH, "ADDR_W": ADDR_W}, harness="cube4_tri_cell_harness",
              blocks=("cube4_sim_stall.v",))
 
 

@@ -29,9 +29,8 @@ import cocotb
 import numpy as np
 import pytest
 
-from cube4_sim.sweeps import sweep
-from cube4_sim.tri_cells import VIEWS, CellBench, run_cells
-from cube4_sim.unit_bench import check_headers, check_lanes, param_id
+from cube4_sim.tri_cells import CELL_BUILDS, VIEWS, CellBench, run_cells
+from cube4_sim.unit_bench import check_headers, check_lanes
 
 
 @cocotb.test()
@@ -57,10 +56,6 @@ async def test_s1_stream(dut):
                        cv.trav.supersample, stall_req, stall_in, len(got), counts)
 
 
-BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=1, VGRAD=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=2, VGRAD=1),
-          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=2, VGRAD=0)]
-
-
-@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 1), ids=param_id))
+@pytest.mark.parametrize("build", CELL_BUILDS)
 def test_cube4_tri_src(build):
-    run_cells(__file__, {**build, "MAX_DIM": 32})
+    run_cells(__file__, build)
