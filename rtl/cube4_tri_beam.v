@@ -160,7 +160,9 @@ module cube4_tri_beam #(
         s4_wx    <= s3_wx;
         s4_wy    <= s3_ctl[TRI_C_WY +: WEIGHT_W];
         s4_wz    <= s3_ctl[TRI_C_WZ +: WEIGHT_W];
-        s4_meta  <= s3_ctl[0 +: HDR_W];
+        // KEEP = LVALID (a copy of the same register: the ctl word's KEEP bits go unused)
+        s4_meta  <= {s3_ctl[HDR_KEEP + P +: HDR_W - HDR_KEEP - P], s3_ctl[HDR_LVALID +: P],
+                     s3_ctl[HDR_LVALID +: P], s3_ctl[HDR_INSIDE +: P]};
     end
 endmodule
 `default_nettype wire
