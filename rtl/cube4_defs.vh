@@ -502,4 +502,32 @@
     `CUBE4_RANGE(g_bad_plw, MODULE, "PLW", PLW, 0, 1) \
     `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1)
 
+// ---------------------------------------------------------------- TRI units
+// cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").
+//   CUBE4_TRI_PARAMS  the build parameters the top and its stages share, with the
+//                     geometry, tag, word and TRI layouts derived from them
+//   CUBE4_TRI_LAYOUT  (needs CUBE4_GEOMETRY and WEIGHT_W)
+//     TRI_LERP_LAT    stages of one lerp (cube4_lerp: b - a, the multiply, the add;
+//                     CUBE4_TRI_LERP_LAT where no geometry is in scope)
+//     TRI_CLIP_LAT    cube4_clip's latency from its fields to KEEP
+//     TRI_C_*         a beat's fields that ride s0 .. s3 as one word, LSB first:
+//                     the header (KEEP = LVALID), the lanes' wrap and neighbour
+//                     flags, wz, wy, wx, emit; TRI_C_W bits
+`define CUBE4_TRI_LERP_LAT 3
+`define CUBE4_TRI_LAYOUT \
+    localparam integer TRI_LERP_LAT = `CUBE4_TRI_LERP_LAT, \
+    localparam integer TRI_CLIP_LAT = 5, \
+    localparam integer TRI_C_WRAP   = HDR_W, \
+    localparam integer TRI_C_NBR    = TRI_C_WRAP + P, \
+    localparam integer TRI_C_WZ     = TRI_C_NBR + P, \
+    localparam integer TRI_C_WY     = TRI_C_WZ + WEIGHT_W, \
+    localparam integer TRI_C_WX     = TRI_C_WY + WEIGHT_W, \
+    localparam integer TRI_C_EMIT   = TRI_C_WX + WEIGHT_W, \
+    localparam integer TRI_C_W      = TRI_C_EMIT + 1
+`define CUBE4_TRI_PARAMS \
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
+    parameter integer VOXEL_W  = 8, parameter integer MAX_SS_LOG2 = 0, \
+    parameter integer WEIGHT_W = 8, parameter integer VGRAD       = 0, \
+    `CUBE4_GEOMETRY, `CUBE4_TAG_LAYOUT, `CUBE4_WORD_LAYOUT, `CUBE4_TRI_LAYOUT
+
 `endif

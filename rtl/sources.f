@@ -19,6 +19,10 @@ cube4_voxel_mem.v
 cube4_beam_ext.v
 cube4_cfb.v
 cube4_clip.v
+cube4_tri_src.v
+cube4_tri_beam.v
+cube4_tri_meta.v
+cube4_tri_lane.v
 cube4_tri.v
 cube4_frontend.v
 cube4_delay_line.v
