@@ -17,6 +17,13 @@ cube4_sdp_ram.v
 cube4_dual_read_ram.v
 cube4_voxel_mem.v
 cube4_beam_ext.v
+cube4_cfb_tmpl.v
+cube4_cfb_trav.v
+cube4_cfb_ctl.v
+cube4_cfb_rect.v
+cube4_cfb_box.v
+cube4_cfb_addr.v
+cube4_cfb_mask.v
 cube4_cfb.v
 cube4_clip.v
 cube4_tri.v
