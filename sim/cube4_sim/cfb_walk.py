@@ -117,3 +117,20 @@ def read_addresses(trav, p: int, k: int, j: int, pb: int, i_range=None) -> list[
             c[ax] = trav.dims[ax] - 1 - coord if trav.flip[ax] else coord
         addr[int(bank_of(*c, p))] = int(address_of(*c, trav.dims, p))
     return addr
+
+
+def tag_offsets(p: int, max_dim: int, ss_log2: int, weight_w: int) -> dict[str, int]:
+    """Bit offsets of the CFB beat tag's fields (cube4_defs.vh CUBE4_TAG_LAYOUT), "F1" the
+    width of the fields below the lane masks and "W" the tag's."""
+    from .beats import Geometry, clog2
+
+    geo = Geometry(p, max_dim, ss_log2)
+    off, pos = {}, 0
+    for name, w in (("STEPS", 4), ("YLAST", 1), ("SKEW", geo.lane_w), ("J", geo.dim_w), ("M", geo.m_w),
+                    ("WZ", weight_w), ("WY", weight_w), ("WX", weight_w), ("PB", geo.pb_w),
+                    ("SB", clog2(max_dim * geo.nbmax)), ("K0ODD", 1), ("UUSE", 1), ("UMEM", 1), ("LMEM", 1),
+                    ("BBWE", 1), ("YWRAP", 1), ("EOP", 1), ("SOP", 1), ("EMIT", 1), ("LWRAP", p), ("LNBR", p),
+                    ("LVAL", p), ("LINL", p)):
+        off[name], pos = pos, pos + w
+    off["F1"], off["W"] = off["LWRAP"], pos
+    return off
