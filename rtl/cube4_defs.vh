@@ -445,17 +445,19 @@
 // ---------------------------------------------------------------- CFB units
 // CUBE4_CFB_PARAMS: the parameter list of cube4_cfb's units (cube4_cfb_*,
 // docs/architecture.md "Front end"): the build parameters (ranges as
-// cube4_cfb's), the layouts, CFB_R_W (bits of m mod S) and CFB_F1_W (the tag
-// without its lane masks). CUBE4_ADDR_FIELDS(bus): one wire cfg_<name> per
-// address register, read from the address bus (module body).
+// cube4_cfb's) and CUBE4_CFB_LAYOUT: the layouts past the geometry and the
+// view registers', CFB_R_W (bits of m mod S) and CFB_F1_W (the tag without
+// its lane masks). CUBE4_ADDR_FIELDS(bus): one wire cfg_<name> per address
+// register, read from the address bus (module body).
+`define CUBE4_CFB_LAYOUT \
+    `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_RECT_LAYOUT, \
+    localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
+    localparam integer CFB_F1_W = TAG_W - 4 * P
 `define CUBE4_CFB_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0, \
     parameter integer ADDR_W   = 16, \
-    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, \
-    `CUBE4_RECT_LAYOUT, \
-    localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
-    localparam integer CFB_F1_W = TAG_W - 4 * P
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_CFB_LAYOUT
 `define CUBE4_ADDR_FIELDS(bus) \
     wire [ADDR_W-1:0] cfg_j_a0  = bus[ADR_J_A0 +: ADDR_W]; \
     wire [ADDR_W-1:0] cfg_j_lin = bus[ADR_J_LIN +: ADDR_W]; \

@@ -134,3 +134,11 @@ def tag_offsets(p: int, max_dim: int, ss_log2: int, weight_w: int) -> dict[str, 
         off[name], pos = pos, pos + w
     off["F1"], off["W"] = off["LWRAP"], pos
     return off
+
+
+def template(trav, m: int) -> tuple[int, int, int, int]:
+    """The template of pass m as cube4_cfb_tmpl gives it: wx, wy, wz (``Traversal.weights``)
+    and the steps {old Y, old X, Y, X} (``Traversal.steps`` m-1 -> m, m -> m+1) as 4 bits."""
+    wx, wy, wz = (int(w) for w in trav.weights(m))
+    (sx0, sy0), (sx1, sy1), (sx2, sy2) = (trav.steps(k) for k in (m - 1, m, m + 1))
+    return wx, wy, wz, int(sx2 - sx1) | int(sy2 - sy1) << 1 | int(sx1 - sx0) << 2 | int(sy1 - sy0) << 3

@@ -4,8 +4,8 @@ For golden views (``cube4.view.make_traversal``: S = 1 and S = 2, random startin
 the unit is loaded while idle and stepped pass by pass (next_pass, with seeded random
 stalls between passes; r = m mod S as the traversal unit gives it). In every pass m its
 weights must be ``Traversal.weights(m)`` and its steps {old Y, old X, Y, X} the golden
-``Traversal.steps`` differences (m-1 -> m, m -> m+1); during a stall nothing moves, and
-back in idle the unit holds pass 0's values again.
+``Traversal.steps`` differences (m-1 -> m, m -> m+1; ``cube4_sim.cfb_walk.template``);
+during a stall nothing moves, and back in idle the unit holds pass 0's values again.
 """
 
 from __future__ import annotations
@@ -15,17 +15,11 @@ import pytest
 from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.view import make_traversal
+from cube4_sim.cfb_walk import template
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
 VIEWS = [((0.3, -0.45, 1.0), (9, 7, 6)), ((-0.6, 0.25, -1.0), (8, 10, 5)), ((1.0, 0.9, -0.7), (9, 6, 8)),
          ((0.5, -1.0, 0.05), (10, 7, 9))]
-
-
-def golden(trav, m: int) -> tuple[int, int, int, int]:
-    wx, wy, wz = (int(w) for w in trav.weights(m))
-    (sx0, sy0), (sx1, sy1), (sx2, sy2) = (trav.steps(k) for k in (m - 1, m, m + 1))
-    steps = int(sx2 - sx1) | int(sy2 - sy1) << 1 | int(sx1 - sx0) << 2 | int(sy1 - sy0) << 3
-    return wx, wy, wz, steps
 
 
 def outputs(dut) -> tuple[int, int, int, int]:
@@ -46,7 +40,7 @@ async def play(dut, bench, trav, gap: float) -> int:
             await FallingEdge(dut.clk)
             assert outputs(dut) == held, f"pass {m}: moved during a stall"
         await ReadOnly()
-        got, want = outputs(dut), golden(trav, m)
+        got, want = outputs(dut), template(trav, m)
         assert got == want, f"pass {m} (wx, wy, wz, steps): RTL {got}, golden {want}"
         await FallingEdge(dut.clk)
         dut.next_pass.value = int(m < M - 1)
@@ -55,7 +49,7 @@ async def play(dut, bench, trav, gap: float) -> int:
     dut.idle.value, dut.r.value = 1, 0
     await bench.cycles(2)
     await ReadOnly()
-    assert outputs(dut) == golden(trav, 0), "idle again: not back at pass 0"
+    assert outputs(dut) == template(trav, 0), "idle again: not back at pass 0"
     await FallingEdge(dut.clk)
     return M
 
