@@ -45,14 +45,7 @@
 module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
-    input  wire idle, input wire issue, input wire [CFB_F1_W-1:0] fields,
-    input  wire use_prev, input wire [LANE_W-1:0] skew_out,
-    input  wire [DIM_W-1:0] p_ilo, input wire [DIM_W-1:0] p_iin, input wire [DIM_W-1:0] p_ihi,
-    input  wire rowv, input wire rowin, input wire rd,
-    input  wire [RECT_W-1:0] rt_cur, input wire [IW-1:0] pbp, input wire [P*LANE_W-1:0] t1,
-    output wire advance, output wire busy,
-    output wire req_valid, input wire req_ready,
-    output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
+    `CUBE4_CFB_MASK_PORTS
 );
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_LANE_FUNCTIONS

@@ -47,15 +47,7 @@
 module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg, input wire [ADR_W_ALL-1:0] cfg_addr,
-    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt,
-    input  wire idle, input wire next_pass, input wire beat, input wire row, input wire flush_row,
-    output wire [M_W-1:0] m, output wire k0_odd, output wire [CFB_R_W-1:0] r,
-    output wire [DIM_W-1:0] j, output wire [PB_W-1:0] pb, output wire [SB_W-1:0] sb,
-    output wire [IW-1:0] pbp, output wire [ADDR_W-1:0] pbx,
-    output wire [ADDR_W-1:0] aj, output wire [ADDR_W-1:0] ak,
-    output wire last_pb, output wire last_j, output wire last_pass,
-    output wire lower_mem, output wire upper_mem,
-    output wire [LANE_W-1:0] skew_rd, output wire [LANE_W-1:0] skew_pas, output wire [LANE_W-1:0] skew_vrt
+    `CUBE4_CFB_TRAV_PORTS
 );
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_LANE_FUNCTIONS

@@ -469,4 +469,41 @@
     wire [ADDR_W-1:0] cfg_i_pb  = bus[ADR_I_PB +: ADDR_W]; \
     wire [ADDR_W-1:0] cfg_i_lin = bus[ADR_I_LIN +: ADDR_W]
 
+// CUBE4_CFB_TRAV_PORTS, _CTL_PORTS, _MASK_PORTS: the ports of those units past
+// clk, rst and the register buses (declared once for the unit and its harness).
+`define CUBE4_CFB_TRAV_PORTS \
+    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt, \
+    input  wire idle, input wire next_pass, input wire beat, input wire row, input wire flush_row, \
+    output wire [M_W-1:0] m, output wire k0_odd, output wire [CFB_R_W-1:0] r, \
+    output wire [DIM_W-1:0] j, output wire [PB_W-1:0] pb, output wire [SB_W-1:0] sb, \
+    output wire [IW-1:0] pbp, output wire [ADDR_W-1:0] pbx, \
+    output wire [ADDR_W-1:0] aj, output wire [ADDR_W-1:0] ak, \
+    output wire last_pb, output wire last_j, output wire last_pass, \
+    output wire lower_mem, output wire upper_mem, \
+    output wire [LANE_W-1:0] skew_rd, output wire [LANE_W-1:0] skew_pas, output wire [LANE_W-1:0] skew_vrt
+`define CUBE4_CFB_CTL_PORTS \
+    input  wire start, input wire busy, input wire advance, \
+    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt, \
+    input  wire [M_W-1:0] m, input wire k0_odd, input wire [CFB_R_W-1:0] r, \
+    input  wire [DIM_W-1:0] j, input wire [PB_W-1:0] pb, input wire [SB_W-1:0] sb, \
+    input  wire last_pb, input wire last_j, input wire lower_mem, input wire upper_mem, \
+    input  wire [LANE_W-1:0] skew_pas, input wire [LANE_W-1:0] skew_vrt, \
+    input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz, \
+    input  wire [3:0] steps, \
+    output wire idle, output wire go, output wire next_pass, output wire pass_done, \
+    output wire beat, output wire row, output wire flush_row, \
+    output wire issue, output wire [CFB_F1_W-1:0] fields, \
+    output wire use_prev, output wire [LANE_W-1:0] skew_out, \
+    output wire [DIM_W-1:0] p_ilo, output wire [DIM_W-1:0] p_iin, output wire [DIM_W-1:0] p_ihi, \
+    output wire rowv, output wire rowin, output wire rd
+`define CUBE4_CFB_MASK_PORTS \
+    input  wire idle, input wire issue, input wire [CFB_F1_W-1:0] fields, \
+    input  wire use_prev, input wire [LANE_W-1:0] skew_out, \
+    input  wire [DIM_W-1:0] p_ilo, input wire [DIM_W-1:0] p_iin, input wire [DIM_W-1:0] p_ihi, \
+    input  wire rowv, input wire rowin, input wire rd, \
+    input  wire [RECT_W-1:0] rt_cur, input wire [IW-1:0] pbp, input wire [P*LANE_W-1:0] t1, \
+    output wire advance, output wire busy, \
+    output wire req_valid, input wire req_ready, \
+    output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
+
 `endif

@@ -108,14 +108,9 @@ def read_addresses(trav, p: int, k: int, j: int, pb: int, i_range=None) -> list[
     nothing (padding, or outside the positions [lo, hi) of ``i_range``)."""
     lo, hi = (0, trav.ni) if i_range is None else i_range
     addr: list[int | None] = [None] * p
-    for t in range(p):
-        i = pb * p + t
-        if not lo <= i < hi:
-            continue
-        c = [0, 0, 0]
-        for coord, ax in ((i, trav.axis_i), (j, trav.axis_j), (k, trav.major)):
-            c[ax] = trav.dims[ax] - 1 - coord if trav.flip[ax] else coord
-        addr[int(bank_of(*c, p))] = int(address_of(*c, trav.dims, p))
+    for i in range(max(lo, pb * p), min(hi, pb * p + p)):
+        x, y, z = (int(c) for c in trav.traversal_to_volume_points(i, j, k))
+        addr[int(bank_of(x, y, z, p))] = int(address_of(x, y, z, trav.dims, p))
     return addr
 
 

@@ -20,20 +20,7 @@ module cube4_cfb_ctl_harness #(
 ) (
     output wire clk, input wire rst,
     `CUBE4_VIEW_PORTS
-    input  wire start, input wire busy, input wire advance,
-    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt,
-    input  wire [M_W-1:0] m, input wire k0_odd, input wire [CFB_R_W-1:0] r,
-    input  wire [DIM_W-1:0] j, input wire [PB_W-1:0] pb, input wire [SB_W-1:0] sb,
-    input  wire last_pb, input wire last_j, input wire lower_mem, input wire upper_mem,
-    input  wire [LANE_W-1:0] skew_pas, input wire [LANE_W-1:0] skew_vrt,
-    input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz,
-    input  wire [3:0] steps,
-    output wire idle, output wire go, output wire next_pass, output wire pass_done,
-    output wire beat, output wire row, output wire flush_row,
-    output wire issue, output wire [CFB_F1_W-1:0] fields,
-    output wire use_prev, output wire [LANE_W-1:0] skew_out,
-    output wire [DIM_W-1:0] p_ilo, output wire [DIM_W-1:0] p_iin, output wire [DIM_W-1:0] p_ihi,
-    output wire rowv, output wire rowin, output wire rd
+    `CUBE4_CFB_CTL_PORTS
 );
     cube4_sim_clock u_clock (.clk (clk));
     wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;

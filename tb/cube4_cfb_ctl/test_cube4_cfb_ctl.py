@@ -27,18 +27,10 @@ import cube4.slices as slices
 from cube4.memory import rect_table
 from cube4.view import make_traversal
 from cube4_sim.cfb_walk import cfb_walk, read_terms, tag_offsets, template
-from cube4_sim.rect_port import rect_layout
+from cube4_sim.rect_port import rect_layout, rect_word
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 6)), ((-0.6, 0.25, -1.0), (11, 10, 5)), ((1.0, -0.4, 0.7), (9, 12, 6))]
-
-
-def pack_entry(entry: dict, layout) -> int:
-    word, pos = 0, 0
-    for name, w in layout:
-        word |= int(entry[name]) << pos
-        pos += w
-    return word
 
 
 def field(word: int, off: dict, name: str, width: int) -> int:
@@ -77,7 +69,7 @@ def want_fields(trav, p: int, aw: int, st, inp: dict, table, first_emit: bool, l
 async def play(dut, bench, trav, p: int, aw: int, table: list[dict], rects, off: dict, widths: dict,
                stall: float) -> int:
     layout = rect_layout(p, int(dut.MAX_DIM.value), aw)
-    entry = lambda m: pack_entry(table[m], layout) if m < len(table) else 0  # noqa: E731
+    entry = lambda m: rect_word(table[m], layout) if m < len(table) else 0  # noqa: E731
     states = cfb_walk(trav, p, rects)
     nb = -(-trav.ni // p)
     await FallingEdge(dut.clk)

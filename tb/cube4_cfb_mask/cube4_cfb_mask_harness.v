@@ -21,14 +21,7 @@ module cube4_cfb_mask_harness #(
 ) (
     output wire clk, input wire rst,
     `CUBE4_VIEW_PORTS
-    input  wire idle, input wire issue, input wire [CFB_F1_W-1:0] fields,
-    input  wire use_prev, input wire [LANE_W-1:0] skew_out,
-    input  wire [DIM_W-1:0] p_ilo, input wire [DIM_W-1:0] p_iin, input wire [DIM_W-1:0] p_ihi,
-    input  wire rowv, input wire rowin, input wire rd,
-    input  wire [RECT_W-1:0] rt_cur, input wire [IW-1:0] pbp, input wire [P*LANE_W-1:0] t1,
-    output wire advance, output wire busy,
-    output wire req_valid, input wire req_ready,
-    output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
+    `CUBE4_CFB_MASK_PORTS
 );
     cube4_sim_clock u_clock (.clk (clk));
     wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;

@@ -27,18 +27,10 @@ from cube4.memory import lane_positions, rect_table
 from cube4.view import make_traversal
 from cube4_sim.beats import mask_bits, pack_lanes
 from cube4_sim.cfb_walk import cfb_walk, read_terms, tag_offsets
-from cube4_sim.rect_port import rect_layout
+from cube4_sim.rect_port import rect_layout, rect_word
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 6)), ((-0.6, 0.25, -1.0), (11, 10, 5)), ((1.0, -0.4, 0.7), (9, 12, 6))]
-
-
-def pack_entry(entry: dict, layout) -> int:
-    word, pos = 0, 0
-    for name, w in layout:
-        word |= int(entry[name]) << pos
-        pos += w
-    return word
 
 
 def beat_inputs(trav, p: int, aw: int, st, table, rng, f1: int) -> dict:
@@ -90,7 +82,7 @@ async def play(dut, bench, trav, p: int, aw: int, table: list[dict], rects, off:
             for name, val in b.items():
                 if not name.startswith("_") and name != "issue":
                     getattr(dut, name).value = val
-            dut.rt_cur.value = pack_entry(b["_e"], layout)
+            dut.rt_cur.value = rect_word(b["_e"], layout)
         dut.t1.value = 0 if s1 is None else pack_lanes(s1["_t_rd"], max(1, (p - 1).bit_length()))
         ready = int(b is None or bench.rng.random() >= stall)
         dut.req_ready.value = ready

@@ -22,15 +22,7 @@ module cube4_cfb_trav_harness #(
     output wire clk, input wire rst,
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
-    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt,
-    input  wire idle, input wire next_pass, input wire beat, input wire row, input wire flush_row,
-    output wire [M_W-1:0] m, output wire k0_odd, output wire [CFB_R_W-1:0] r,
-    output wire [DIM_W-1:0] j, output wire [PB_W-1:0] pb, output wire [SB_W-1:0] sb,
-    output wire [IW-1:0] pbp, output wire [ADDR_W-1:0] pbx,
-    output wire [ADDR_W-1:0] aj, output wire [ADDR_W-1:0] ak,
-    output wire last_pb, output wire last_j, output wire last_pass,
-    output wire lower_mem, output wire upper_mem,
-    output wire [LANE_W-1:0] skew_rd, output wire [LANE_W-1:0] skew_pas, output wire [LANE_W-1:0] skew_vrt
+    `CUBE4_CFB_TRAV_PORTS
 );
     cube4_sim_clock u_clock (.clk (clk));
     wire [VIEW_W-1:0]    cfg      = `CUBE4_VIEW_PACK;
