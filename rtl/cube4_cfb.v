@@ -119,13 +119,13 @@ module cube4_cfb #(
 
     // ==== control ====
     wire              idle, go, next_pass, pass_done, beat, row, flush_row, issue, advance;
-    wire [CFB_F1_W-1:0]   fields;
+    wire [CFB_F1_W-1:0] fields;
     wire              use_prev, rowv, rowin, rd;
     wire [LANE_W-1:0] skew_out, skew_rd, skew_pas, skew_vrt;
     wire [DIM_W-1:0]  p_ilo, p_iin, p_ihi;
     wire [RECT_W-1:0] rt_cur, rt_nxt;
     wire [M_W-1:0]    m;
-    wire [CFB_R_W-1:0]    r;
+    wire [CFB_R_W-1:0] r;
     wire [DIM_W-1:0]  j;
     wire [PB_W-1:0]   pb;
     wire [SB_W-1:0]   sb;

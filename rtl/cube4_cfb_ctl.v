@@ -24,7 +24,7 @@
 //   state's beat leaves); everything else is combinational from registers
 //   (here, in cube4_cfb_trav and cube4_cfb_tmpl, rt_cur) and start / busy.
 //
-// Ports
+// Ports (past clk, rst and the register buses: CUBE4_CFB_CTL_PORTS)
 //   clk, rst     clock, synchronous active-high reset (resets the state only)
 //   cfg          in   [VIEW_W] view registers (NJ)
 //   start, busy  in   start a frame (taken while not busy); cube4_cfb's busy

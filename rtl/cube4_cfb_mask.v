@@ -26,7 +26,7 @@
 //   that describes it. All stages move under advance = the output register
 //   is free or taken by req_ready; req_valid never depends on req_ready.
 //
-// Ports
+// Ports (past clk, rst and the register buses: CUBE4_CFB_MASK_PORTS)
 //   clk, rst     clock, synchronous active-high reset (the valid bits only)
 //   cfg          in   [VIEW_W] view registers (I flip, I_R1)
 //   idle, issue  in   the control unit is idle; its state describes a beat

@@ -25,7 +25,7 @@
 //   The pass counters load while idle (not in reset) and step at next_pass;
 //   the row counters load while idle and at next_pass, and step with beat.
 //
-// Ports
+// Ports (past clk, rst and the register buses: CUBE4_CFB_TRAV_PORTS)
 //   clk, rst     clock, synchronous active-high reset (no register is reset;
 //                the pass counters hold while rst is high)
 //   cfg, cfg_addr  in  view and address registers (cube4_defs.vh)
