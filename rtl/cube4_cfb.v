@@ -93,10 +93,7 @@
 //   every enabled lane; disabled lanes may wrap and are never read). The phase
 //   accumulators are W + log2 S bits and wrap by design (the carry is the step).
 // =============================================================================
-module cube4_cfb #(
-    `CUBE4_CFB_PARAMS,
-    parameter integer RECTS = 0
-) (
+module cube4_cfb #(`CUBE4_CFB_PARAMS) (
     input  wire clk, input wire rst,
     input  wire start, output wire busy,
     input  wire [VIEW_W-1:0]    cfg,        // view registers (cube4_defs.vh)
@@ -135,7 +132,8 @@ module cube4_cfb #(
     wire [WEIGHT_W-1:0] wx, wy, wz;
     wire [3:0]        steps;
     cube4_cfb_ctl #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
+        .RECTS(RECTS)
     ) u_ctl (
         .clk(clk), .rst(rst), .cfg(cfg), .start(start), .busy(busy), .advance(advance),
         .rt_cur(rt_cur), .rt_nxt(rt_nxt),
@@ -149,7 +147,8 @@ module cube4_cfb #(
 
     // ==== traversal and template ====
     cube4_cfb_trav #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
+        .RECTS(RECTS)
     ) u_trav (
         .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr), .rt_cur(rt_cur), .rt_nxt(rt_nxt),
         .idle(idle), .next_pass(next_pass), .beat(beat), .row(row), .flush_row(flush_row),
@@ -189,7 +188,8 @@ module cube4_cfb #(
         .clk(clk), .cfg(cfg), .cfg_addr(cfg_addr), .advance(advance), .skew_rd(skew_rd),
         .aj(aj), .ak(ak), .pbx(pbx), .t1(t1), .addr(req_addr));
     cube4_cfb_mask #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
+        .RECTS(RECTS)
     ) u_mask (
         .clk(clk), .rst(rst), .cfg(cfg), .idle(idle), .issue(issue), .fields(fields),
         .use_prev(use_prev), .skew_out(skew_out), .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi),

@@ -34,12 +34,12 @@ module cube4_cfb_box #(`CUBE4_CFB_PARAMS) (
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_ADDR_FIELDS(cfg_addr);
     wire [ADDR_W-1:0] pbx_box = cfg_flip_i ? cfg_i_a0 : '0;
-    assign rt_cur = {1'b0, {4{DIM_W'(0)}},   // COM's fields
-                     cfg_nj - 1'b1, DIM_W'(0), SB_W'(1), SB_W'(0), IW'(0), pbx_box, cfg_j_r0,
-                     cfg_j_a0,
-                     cfg_ni, DIM_W'(0), DIM_W'(0),
-                     PB_W'(cfg_nb - 1'b1), PB_W'(0),
-                     DIM_W'(0), cfg_nj - 1'b1, DIM_W'(0), last_pass, last_pass, 1'b0};
+    // the constant fields (CFB_BOX_CONST, cube4_defs.vh) and those from the registers
+    wire [DIM_W-1:0] jl = cfg_nj - 1'b1;
+    assign rt_cur = CFB_BOX_CONST | ((RECT_W)'(last_pass) << RT_FLUSH) | ((RECT_W)'(last_pass) << RT_LAST)
+                  | ((RECT_W)'(jl) << RT_JL) | ((RECT_W)'(jl) << RT_TJL) | ((RECT_W)'(cfg_ni) << RT_IHI)
+                  | ((RECT_W)'(PB_W'(cfg_nb - 1'b1)) << RT_PBL) | ((RECT_W)'(cfg_j_a0) << RT_AJ0)
+                  | ((RECT_W)'(cfg_j_r0) << RT_RJ0) | ((RECT_W)'(pbx_box) << RT_PBX0);
     assign rt_nxt = rt_cur;
 endmodule
 `default_nettype wire

@@ -49,6 +49,9 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
     input  wire clk, input wire rst, input wire [VIEW_W-1:0] cfg,
     `CUBE4_CFB_CTL_PORTS
 );
+    // the entries (the box's constant fields as constants: CUBE4_CFB_ENTRY)
+    wire [RECT_W-1:0] cur = `CUBE4_CFB_ENTRY(rt_cur);
+    wire [RECT_W-1:0] nxt = `CUBE4_CFB_ENTRY(rt_nxt);
     `CUBE4_VIEW_FIELDS(cfg);
 
     localparam [1:0] ST_IDLE = 2'd0, ST_RUN = 2'd1, ST_FLUSH = 2'd2, ST_DRAIN = 2'd3;
@@ -69,11 +72,11 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
     wire [DIM_W-1:0]   p_jl, p_jin, p_tj0, p_tjl;
     assign {p_jl, p_jin, p_tj0, p_tjl, p_ilo, p_iin, p_ihi} = prow_q;
 
-    wire             e_empty = rt_cur[RT_EMPTY];
-    wire             e_last  = rt_cur[RT_LAST];
-    wire [DIM_W-1:0] e_tj0   = rt_cur[RT_TJ0 +: DIM_W];
-    wire [DIM_W-1:0] e_tjl   = rt_cur[RT_TJL +: DIM_W];
-    wire unused_ctl = ^{rt_cur, rt_nxt};   // the fields cube4_cfb_trav reads
+    wire             e_empty = cur[RT_EMPTY];
+    wire             e_last  = cur[RT_LAST];
+    wire [DIM_W-1:0] e_tj0   = cur[RT_TJ0 +: DIM_W];
+    wire [DIM_W-1:0] e_tjl   = cur[RT_TJL +: DIM_W];
+    wire unused_ctl = ^{cur, nxt};   // the fields cube4_cfb_trav reads
 
     // ---- the state's moves ----
     wire in_run   = (state_q == ST_RUN);
@@ -82,7 +85,7 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
     wire run_out  = run_end && !e_empty;                          // ... that emits a row
     assign idle      = (state_q == ST_IDLE);
     assign go        = start && !busy;
-    assign pass_done = advance && ((run_end && (e_empty || !rt_cur[RT_FLUSH])) || (in_flush && last_pb));
+    assign pass_done = advance && ((run_end && (e_empty || !cur[RT_FLUSH])) || (in_flush && last_pb));
     assign next_pass = pass_done && !e_last;
     assign beat      = advance && !idle;
     assign row       = in_run && last_pb && !last_j && !e_empty;
@@ -101,7 +104,7 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
     wire [DIM_W-1:0]    tjl_out = use_prev ? p_tjl : e_tjl;
     wire [WEIGHT_W-1:0] wy_out  = use_prev ? pwy_q : wy;
     assign rowv  = (jout_d >= tj0_out) && (jout_d <= tjl_out);
-    assign rowin = (jout_d >= (use_prev ? p_jin : rt_cur[RT_JIN +: DIM_W]))
+    assign rowin = (jout_d >= (use_prev ? p_jin : cur[RT_JIN +: DIM_W]))
                    && !((jout_d == tjl_out) && (wy_out != '0));
     assign rd    = in_run && (lower_mem || upper_mem) && (j >= e_tj0) && (j <= e_tjl);
     assign fields = {emit_d, emit_d && sopp_q, in_flush && last_pb && e_last, use_prev,
@@ -122,7 +125,7 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
             fr_q    <= 1'b1;
             pend_q  <= 1'b0;
             sopp_q  <= 1'b1;
-            prow_q  <= rows_of(rt_nxt);
+            prow_q  <= rows_of(nxt);
         end else if (advance) begin
             if (issue && emit_d) sopp_q <= 1'b0;
             if (row) fr_q <= 1'b0;   // the next row
@@ -133,9 +136,9 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
                 pwz_q    <= wz;
                 psteps_q <= steps;
                 pskew_q  <= skew_vrt;
-                prow_q   <= rows_of(rt_cur);
+                prow_q   <= rows_of(cur);
                 fr_q     <= 1'b0;
-                if (rt_cur[RT_FLUSH]) state_q <= ST_FLUSH;
+                if (cur[RT_FLUSH]) state_q <= ST_FLUSH;
             end
             if (pass_done) begin
                 pend_q  <= in_run && !e_empty;   // no flush: the next pass's first beam emits it

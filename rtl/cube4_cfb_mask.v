@@ -47,11 +47,13 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     input  wire [VIEW_W-1:0] cfg,
     `CUBE4_CFB_MASK_PORTS
 );
+    // the entries (the box's constant fields as constants: CUBE4_CFB_ENTRY)
+    wire [RECT_W-1:0] cur = `CUBE4_CFB_ENTRY(rt_cur);
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_LANE_FUNCTIONS
     localparam integer REM_W = $clog2(P + 2);               // 0 .. P + 1
     localparam integer F_W   = P + TAG_W;
-    wire unused_rt = ^rt_cur;   // the fields besides I_LO, I_IN, I_HI
+    wire unused_rt = ^cur;   // the fields besides I_LO, I_IN, I_HI
 
     function automatic [REM_W-1:0] rem_of(input [DIM_W-1:0] bound, input [IW-1:0] pbp_v);
         reg [IW-1:0] b, diff;            // IW >= DIM_W: the bound zero-extended
@@ -61,13 +63,13 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
             rem_of = (b <= pbp_v) ? {REM_W{1'b0}} : (diff > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(diff);
         end
     endfunction
-    wire [REM_W-1:0] hi_rd_d  = rem_of(rt_cur[RT_IHI +: DIM_W], pbp);
-    wire [REM_W-1:0] lo_rd_d  = rem_of(rt_cur[RT_ILO +: DIM_W], pbp);
+    wire [REM_W-1:0] hi_rd_d  = rem_of(cur[RT_IHI +: DIM_W], pbp);
+    wire [REM_W-1:0] lo_rd_d  = rem_of(cur[RT_ILO +: DIM_W], pbp);
     // (the emitted row's: both candidates' remainders, selected after them, so
     // that the state's use_prev is not in series with the subtraction)
     wire [REM_W-1:0] hi_out_d = use_prev ? rem_of(p_ihi, pbp) : hi_rd_d;
     wire [REM_W-1:0] lo_out_d = use_prev ? rem_of(p_ilo, pbp) : lo_rd_d;
-    wire [REM_W-1:0] in_out_d = use_prev ? rem_of(p_iin, pbp) : rem_of(rt_cur[RT_IIN +: DIM_W], pbp);
+    wire [REM_W-1:0] in_out_d = use_prev ? rem_of(p_iin, pbp) : rem_of(cur[RT_IIN +: DIM_W], pbp);
     wire [P*LANE_W-1:0] tout_d;       // lane positions t of the emitted row
 
     reg [CFB_F1_W-1:0]     f1_q;

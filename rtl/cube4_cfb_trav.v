@@ -49,11 +49,14 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
     input  wire [VIEW_W-1:0] cfg, input wire [ADR_W_ALL-1:0] cfg_addr,
     `CUBE4_CFB_TRAV_PORTS
 );
+    // the entries (the box's constant fields as constants: CUBE4_CFB_ENTRY)
+    wire [RECT_W-1:0] cur = `CUBE4_CFB_ENTRY(rt_cur);
+    wire [RECT_W-1:0] nxt = `CUBE4_CFB_ENTRY(rt_nxt);
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_LANE_FUNCTIONS
     localparam [LANE_W:0] PL = P[LANE_W:0];
     `CUBE4_ADDR_FIELDS(cfg_addr);
-    wire unused_trav = ^{rt_cur, rt_nxt};   // the fields read elsewhere
+    wire unused_trav = ^{cur, nxt};   // the fields read elsewhere
 
     // step a coordinate by +/-1: (c mod P, address term)
     function automatic [LANE_W-1:0] r_step(input [LANE_W-1:0] rr, input down);
@@ -129,22 +132,22 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
     end
 
     // ---- the row and partial beam, slot, address terms ----
-    wire [DIM_W-1:0] e_jl  = rt_cur[RT_JL +: DIM_W];
-    wire [PB_W-1:0]  e_pb0 = rt_cur[RT_PB0 +: PB_W];
-    wire [PB_W-1:0]  e_pbl = rt_cur[RT_PBL +: PB_W];
-    wire [DIM_W-1:0] n_j0  = rt_nxt[RT_J0 +: DIM_W];
-    wire [PB_W-1:0]  n_pb0 = rt_nxt[RT_PB0 +: PB_W];
+    wire [DIM_W-1:0] e_jl  = cur[RT_JL +: DIM_W];
+    wire [PB_W-1:0]  e_pb0 = cur[RT_PB0 +: PB_W];
+    wire [PB_W-1:0]  e_pbl = cur[RT_PBL +: PB_W];
+    wire [DIM_W-1:0] n_j0  = nxt[RT_J0 +: DIM_W];
+    wire [PB_W-1:0]  n_pb0 = nxt[RT_PB0 +: PB_W];
     always @(posedge clk) begin
         if (idle || next_pass) begin
             j_q   <= n_j0;
-            lj_q  <= (n_j0 == rt_nxt[RT_JL +: DIM_W]);
+            lj_q  <= (n_j0 == nxt[RT_JL +: DIM_W]);
             pb_q  <= n_pb0;
-            lpb_q <= (n_pb0 == rt_nxt[RT_PBL +: PB_W]);
-            sb_q  <= rt_nxt[RT_SB0 +: SB_W];
-            pbp_q <= rt_nxt[RT_PBP0 +: IW];
-            pbx_q <= rt_nxt[RT_PBX0 +: ADDR_W];
-            rj_q  <= rt_nxt[RT_RJ0 +: LANE_W];
-            aj_q  <= rt_nxt[RT_AJ0 +: ADDR_W];
+            lpb_q <= (n_pb0 == nxt[RT_PBL +: PB_W]);
+            sb_q  <= nxt[RT_SB0 +: SB_W];
+            pbp_q <= nxt[RT_PBP0 +: IW];
+            pbx_q <= nxt[RT_PBX0 +: ADDR_W];
+            rj_q  <= nxt[RT_RJ0 +: LANE_W];
+            aj_q  <= nxt[RT_AJ0 +: ADDR_W];
         end else if (beat) begin
             if (!lpb_q) begin
                 pb_q  <= pb_q + 1'b1;
@@ -155,17 +158,17 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
             end else begin
                 pb_q  <= e_pb0;
                 lpb_q <= (e_pb0 == e_pbl);
-                pbp_q <= rt_cur[RT_PBP0 +: IW];
-                pbx_q <= rt_cur[RT_PBX0 +: ADDR_W];
+                pbp_q <= cur[RT_PBP0 +: IW];
+                pbx_q <= cur[RT_PBX0 +: ADDR_W];
             end
             if (row) begin
                 j_q  <= j_q + 1'b1;
                 lj_q <= (j_q + 1'b1 == e_jl);
-                sb_q <= sb_q + rt_cur[RT_SBROW +: SB_W];
+                sb_q <= sb_q + cur[RT_SBROW +: SB_W];
                 rj_q <= r_step(rj_q, cfg_flip_j);
                 aj_q <= a_step(aj_q, rj_q, cfg_flip_j, cfg_j_lin, cfg_j_blk);
             end
-            if (flush_row) sb_q <= rt_cur[RT_SB0 +: SB_W];   // the flush beam's slots
+            if (flush_row) sb_q <= cur[RT_SB0 +: SB_W];   // the flush beam's slots
         end
     end
 

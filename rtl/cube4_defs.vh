@@ -446,17 +446,27 @@
 // CUBE4_CFB_PARAMS: the parameter list of cube4_cfb's units (cube4_cfb_*,
 // docs/architecture.md "Front end"): the build parameters (ranges as
 // cube4_cfb's) and CUBE4_CFB_LAYOUT: the layouts past the geometry and the
-// view registers', CFB_R_W (bits of m mod S) and CFB_F1_W (the tag without
-// its lane masks). CUBE4_ADDR_FIELDS(bus): one wire cfg_<name> per address
-// register, read from the address bus (module body).
+// view registers', CFB_R_W (bits of m mod S), CFB_F1_W (the tag without its
+// lane masks), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
+// fields it holds at a constant, CFB_BOX_CONST (SBROW = 1, the rest 0).
+// CUBE4_CFB_ENTRY(e): a table entry as a unit reads it; without rectangles
+// (RECTS = 0) the box's constant fields are constants, so that synthesis sees
+// them past the units' boundaries. CUBE4_ADDR_FIELDS(bus): one wire
+// cfg_<name> per address register, read from the address bus (module body).
+`define CUBE4_CFB_BITS(W, POS) ((((RECT_W)'(1) << (W)) - (RECT_W)'(1)) << (POS))
 `define CUBE4_CFB_LAYOUT \
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_RECT_LAYOUT, \
     localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
-    localparam integer CFB_F1_W = TAG_W - 4 * P
+    localparam integer CFB_F1_W = TAG_W - 4 * P, \
+    localparam [RECT_W-1:0] CFB_BOX_CONST = (RECT_W)'(1) << RT_SBROW, \
+    localparam [RECT_W-1:0] CFB_BOX_FIXED = `CUBE4_CFB_BITS(1, RT_EMPTY) | `CUBE4_CFB_BITS(DIM_W, RT_J0) \
+        | `CUBE4_CFB_BITS(DIM_W, RT_JIN) | `CUBE4_CFB_BITS(PB_W, RT_PB0) | `CUBE4_CFB_BITS(2 * DIM_W, RT_ILO) \
+        | `CUBE4_CFB_BITS(IW + 2 * SB_W + DIM_W, RT_PBP0) | `CUBE4_CFB_BITS(RECT_W - RT_JHI, RT_JHI)
+`define CUBE4_CFB_ENTRY(e) ((RECTS != 0) ? (e) : (((e) & ~CFB_BOX_FIXED) | CFB_BOX_CONST))
 `define CUBE4_CFB_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0, \
-    parameter integer ADDR_W   = 16, \
+    parameter integer ADDR_W   = 16, parameter integer RECTS       = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_CFB_LAYOUT
 `define CUBE4_ADDR_FIELDS(bus) \
     wire [ADDR_W-1:0] cfg_j_a0  = bus[ADR_J_A0 +: ADDR_W]; \

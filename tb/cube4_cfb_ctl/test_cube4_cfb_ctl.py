@@ -146,7 +146,7 @@ async def test_ctl(dut):
             table = [{**box, "flush": int(m == M - 1), "last": int(m == M - 1)} for m in range(M)]
             bench.set_view(trav, p)
             total += await play(dut, bench, trav, p, aw, table, None, off, widths, stall)
-        for density in (0.05, 0.3):
+        for density in (0.05, 0.3) if int(dut.RECTS.value) else ():
             need = bench.rng.random((one.num_sample_slices, one.nj, one.ni)) < density
             rects = slices.rects_from_needed(need, one)
             if rects.last() >= 0:
@@ -155,7 +155,7 @@ async def test_ctl(dut):
     dut._log.info("%d states: moves, tag fields and emitted rows as the golden walk", total)
 
 
-BUILDS = [{"P": 1}, {"P": 5}]
+BUILDS = [{"P": 1, "RECTS": 0}, {"P": 5, "RECTS": 1}]   # RECTS = 0: whole-box frames only
 
 
 @pytest.mark.parametrize("params", BUILDS, ids=param_id)

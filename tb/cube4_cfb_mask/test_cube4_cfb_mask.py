@@ -115,7 +115,7 @@ async def test_mask(dut):
         stall = (0.0, 0.3, 0.6)[n % 3]
         whole = rect_table(trav, slices.whole_box_rects(trav), p, aw)
         total += await play(dut, bench, trav, p, aw, whole, None, off, stall)
-        for density in (0.05, 0.3):
+        for density in (0.05, 0.3) if int(dut.RECTS.value) else ():
             need = bench.rng.random((trav.num_sample_slices, trav.nj, trav.ni)) < density
             rects = slices.rects_from_needed(need, trav)
             if rects.last() >= 0:
@@ -123,7 +123,7 @@ async def test_mask(dut):
     dut._log.info("%d beats: read enables and lane bits as the golden positions", total)
 
 
-BUILDS = [{"P": 1}, {"P": 5}]
+BUILDS = [{"P": 1, "RECTS": 0}, {"P": 5, "RECTS": 1}]   # RECTS = 0: whole-box frames only
 
 
 @pytest.mark.parametrize("params", BUILDS, ids=param_id)

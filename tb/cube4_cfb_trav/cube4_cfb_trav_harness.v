@@ -9,14 +9,15 @@
 //   (CUBE4_VIEW_PACK, CUBE4_ADDR_PACK), every other port of the unit as a
 //   top-level port (the rectangle entries as words, CUBE4_RECT_LAYOUT).
 //
-// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), ADDR_W
-//   as cube4_cfb_trav.
+// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), ADDR_W,
+//   RECTS as cube4_cfb_trav (RECTS = 0: the box's entry only).
 // Latency: that of cube4_cfb_trav (the ports connect straight to it).
 // Ports: clk out (cube4_sim_clock, 10 ns); rst, cfg_* and the unit's ports.
 // =============================================================================
 module cube4_cfb_trav_harness #(
     `include "cube4_unit_params.vh"
     parameter integer ADDR_W = 16,
+    parameter integer RECTS  = 1,
     `CUBE4_CFB_LAYOUT
 ) (
     output wire clk, input wire rst,
@@ -28,7 +29,8 @@ module cube4_cfb_trav_harness #(
     wire [VIEW_W-1:0]    cfg      = `CUBE4_VIEW_PACK;
     wire [ADR_W_ALL-1:0] cfg_addr = `CUBE4_ADDR_PACK;
     cube4_cfb_trav #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
+        .RECTS(RECTS)
     ) u_trav (.*);
 endmodule
 `default_nettype wire
