@@ -530,4 +530,78 @@
     parameter integer WEIGHT_W = 8, parameter integer VGRAD       = 0, \
     `CUBE4_GEOMETRY, `CUBE4_TAG_LAYOUT, `CUBE4_WORD_LAYOUT, `CUBE4_TRI_LAYOUT
 
+// ---------------------------------------------------------------- CFB units
+// CUBE4_CFB_PARAMS: the parameter list of cube4_cfb's units (cube4_cfb_*,
+// docs/architecture.md "Front end"): the build parameters (ranges as
+// cube4_cfb's) and CUBE4_CFB_LAYOUT: the layouts past the geometry and the
+// view registers', CFB_R_W (bits of m mod S), CFB_F1_W (the tag without its
+// lane masks), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
+// fields it holds at a constant, CFB_BOX_CONST (SBROW = 1, the rest 0).
+// CUBE4_CFB_ENTRY(e): a table entry as a unit reads it; without rectangles
+// (RECTS = 0) the box's constant fields are constants, so that synthesis sees
+// them past the units' boundaries. CUBE4_ADDR_FIELDS(bus): one wire
+// cfg_<name> per address register, read from the address bus (module body).
+`define CUBE4_CFB_BITS(W, POS) ((((RECT_W)'(1) << (W)) - (RECT_W)'(1)) << (POS))
+`define CUBE4_CFB_LAYOUT \
+    `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_RECT_LAYOUT, \
+    localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
+    localparam integer CFB_F1_W = TAG_W - 4 * P, \
+    localparam [RECT_W-1:0] CFB_BOX_CONST = (RECT_W)'(1) << RT_SBROW, \
+    localparam [RECT_W-1:0] CFB_BOX_FIXED = `CUBE4_CFB_BITS(1, RT_EMPTY) | `CUBE4_CFB_BITS(DIM_W, RT_J0) \
+        | `CUBE4_CFB_BITS(DIM_W, RT_JIN) | `CUBE4_CFB_BITS(PB_W, RT_PB0) | `CUBE4_CFB_BITS(2 * DIM_W, RT_ILO) \
+        | `CUBE4_CFB_BITS(IW + 2 * SB_W + DIM_W, RT_PBP0) | `CUBE4_CFB_BITS(RECT_W - RT_JHI, RT_JHI)
+`define CUBE4_CFB_ENTRY(e) ((RECTS != 0) ? (e) : (((e) & ~CFB_BOX_FIXED) | CFB_BOX_CONST))
+`define CUBE4_CFB_PARAMS \
+    parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
+    parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0, \
+    parameter integer ADDR_W   = 16, parameter integer RECTS       = 0, \
+    `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_CFB_LAYOUT
+`define CUBE4_ADDR_FIELDS(bus) \
+    wire [ADDR_W-1:0] cfg_j_a0  = bus[ADR_J_A0 +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_j_lin = bus[ADR_J_LIN +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_j_blk = bus[ADR_J_BLK +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_k_a0  = bus[ADR_K_A0 +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_k_lin = bus[ADR_K_LIN +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_k_blk = bus[ADR_K_BLK +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_i_a0  = bus[ADR_I_A0 +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_i_pb  = bus[ADR_I_PB +: ADDR_W]; \
+    wire [ADDR_W-1:0] cfg_i_lin = bus[ADR_I_LIN +: ADDR_W]
+
+// CUBE4_CFB_TRAV_PORTS, _CTL_PORTS, _MASK_PORTS: the ports of those units past
+// clk, rst and the register buses (declared once for the unit and its harness).
+`define CUBE4_CFB_TRAV_PORTS \
+    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt, \
+    input  wire idle, input wire next_pass, input wire beat, input wire row, input wire flush_row, \
+    output wire [M_W-1:0] m, output wire k0_odd, output wire [CFB_R_W-1:0] r, \
+    output wire [DIM_W-1:0] j, output wire [PB_W-1:0] pb, output wire [SB_W-1:0] sb, \
+    output wire [IW-1:0] pbp, output wire [ADDR_W-1:0] pbx, \
+    output wire [ADDR_W-1:0] aj, output wire [ADDR_W-1:0] ak, \
+    output wire last_pb, output wire last_j, output wire last_pass, \
+    output wire lower_mem, output wire upper_mem, \
+    output wire [LANE_W-1:0] skew_rd, output wire [LANE_W-1:0] skew_pas, output wire [LANE_W-1:0] skew_vrt
+`define CUBE4_CFB_CTL_PORTS \
+    input  wire start, input wire busy, input wire advance, \
+    input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt, \
+    input  wire [M_W-1:0] m, input wire k0_odd, input wire [CFB_R_W-1:0] r, \
+    input  wire [DIM_W-1:0] j, input wire [PB_W-1:0] pb, input wire [SB_W-1:0] sb, \
+    input  wire last_pb, input wire last_j, input wire lower_mem, input wire upper_mem, \
+    input  wire [LANE_W-1:0] skew_pas, input wire [LANE_W-1:0] skew_vrt, \
+    input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz, \
+    input  wire [3:0] steps, \
+    output wire idle, output wire go, output wire next_pass, output wire pass_done, \
+    output wire beat, output wire row, output wire flush_row, \
+    output wire issue, output wire [CFB_F1_W-1:0] fields, \
+    output wire use_prev, output wire [LANE_W-1:0] skew_out, \
+    output wire [DIM_W-1:0] p_ilo, output wire [DIM_W-1:0] p_iin, output wire [DIM_W-1:0] p_ihi, \
+    output wire rowv, output wire rowin, output wire rd
+`define CUBE4_CFB_MASK_PORTS \
+    input  wire idle, input wire issue, input wire [CFB_F1_W-1:0] fields, \
+    input  wire use_prev, input wire [LANE_W-1:0] skew_out, \
+    input  wire [DIM_W-1:0] p_ilo, input wire [DIM_W-1:0] p_iin, input wire [DIM_W-1:0] p_ihi, \
+    input  wire rowv, input wire rowin, input wire rd, \
+    input  wire [RECT_W-1:0] rt_cur, input wire [IW-1:0] pbp, input wire [P*LANE_W-1:0] t1, \
+    output wire advance, output wire busy, \
+    output wire req_valid, input wire req_ready, \
+    output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
+
 `endif

@@ -3,8 +3,8 @@
 # synthesis. For synthesis, a file with a counterpart of the same name in rtl/ecp5/
 # (the vendor layer) is replaced by that counterpart. Include directory: rtl/.
 cube4_round_shift.v
-cube4_prim_copies.v
 cube4_prim_reg_copies.v
+cube4_prim_copies.v
 cube4_prim_spread.v
 cube4_prim_reg_en.v
 cube4_lerp.v
@@ -17,6 +17,13 @@ cube4_sdp_ram.v
 cube4_dual_read_ram.v
 cube4_voxel_mem.v
 cube4_beam_ext.v
+cube4_cfb_tmpl.v
+cube4_cfb_trav.v
+cube4_cfb_ctl.v
+cube4_cfb_rect.v
+cube4_cfb_box.v
+cube4_cfb_addr.v
+cube4_cfb_mask.v
 cube4_cfb.v
 cube4_clip.v
 cube4_tri_src.v

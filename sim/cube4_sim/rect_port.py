@@ -39,19 +39,22 @@ def rect_words(trav, rects, p: int, max_dim: int, addr_w: int, vol_dims=None) ->
     """The table of ``rects`` as MAX_DIM words of RECT_W bits (entries past the frame's
     slices zero): the image cube4_top_harness loads with the tables."""
     layout = rect_layout(p, max_dim, addr_w)
-    words = []
-    for entry in rect_table(trav, rects, p, addr_w, vol_dims):
-        word, pos = 0, 0
-        for name, w in layout:
-            v = int(entry[name])
-            if not 0 <= v < (1 << w):
-                raise ValueError(f"rectangle table field {name} = {v} does not fit {w} bits")
-            word |= v << pos
-            pos += w
-        words.append(word)
+    words = [rect_word(entry, layout) for entry in rect_table(trav, rects, p, addr_w, vol_dims)]
     if len(words) > max_dim:
         raise ValueError(f"{len(words)} slices do not fit a table of {max_dim} entries")
     return words + [0] * (max_dim - len(words))
+
+
+def rect_word(entry: dict[str, int], layout: list[tuple[str, int]]) -> int:
+    """One table entry (field -> value) as a RECT_W-bit word (``rect_layout``)."""
+    word, pos = 0, 0
+    for name, w in layout:
+        v = int(entry[name])
+        if not 0 <= v < (1 << w):
+            raise ValueError(f"rectangle table field {name} = {v} does not fit {w} bits")
+        word |= v << pos
+        pos += w
+    return word
 
 
 def rect_width(p: int, max_dim: int, addr_w: int) -> int:
