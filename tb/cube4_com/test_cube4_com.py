@@ -283,6 +283,6 @@ def test_cube4_com_rects(build):
     run_unit(__file__, {**build, "MAX_DIM": 32, "RECTS": 1, "PLW": 0}, "test_rect_pixel_stream")
 
 
-@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 1, 3, 4), ids=param_id))
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 1, 4), ids=param_id))
 def test_cube4_com(build):
     run_unit(__file__, {**build, "MAX_DIM": 32}, "test_pixel_stream")

@@ -188,6 +188,7 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     views = ["-150,35", "0,90", "75,-10"]  # y-major mixed signs, exactly on the z axis, x-major
     for eng in ("rtl", "golden"):
         args = [*exe, "render", "ml:41", "--scene", "ml", "--engine", eng, "--quiet",
+                "--pipelines", "5", "--build", "full",     # the phantoms' P = 5 build
                 "--baseplane", str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
                 "--out", str(tmp_path / f"{eng}.png")]
         for v in views:
@@ -271,7 +272,7 @@ def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
     return jobs
 
 
-@pytest.mark.parametrize(("name", "p"), MODE_RUNS, ids=[f"{n}-{p}" for n, p in MODE_RUNS])
+@pytest.mark.parametrize(("name", "p"), sweep(MODE_RUNS, quick=(0, 1, 2, 3), ids=lambda r: f"{r[0]}-{r[1]}"))
 def test_modes_builds_crop_cut(name, p):
     """Every mode of a build, crop boxes, cut planes and windows, bit-exact, with random
     stalls and a reset in mid-frame; the cycles of unstalled frames against the formula
@@ -405,10 +406,10 @@ def test_slice_rectangles(p, shading):
 
 # ---------------------------------------------------------------- voxel gradients
 # (P, S, estimator, build: SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD)
-VGRAD_RUNS = [(1, 1, "sobel", (1, 1, 0, 0, 1)), (8, 2, "central", (1, 1, 1, 1, 1))]
+VGRAD_RUNS = [(1, 1, "sobel", (1, 1, 0, 0, 1)), (5, 1, "central", (1, 1, 1, 1, 1)), (8, 2, "central", (1, 1, 1, 1, 1))]
 
 
-@pytest.mark.parametrize(("p", "s", "kind", "bits"), VGRAD_RUNS, ids=[f"p{r[0]}-s{r[1]}-{r[2]}" for r in VGRAD_RUNS])
+@pytest.mark.parametrize(("p", "s", "kind", "bits"), sweep(VGRAD_RUNS, quick=(0, 1), ids=lambda r: f"p{r[0]}-s{r[1]}-{r[2]}"))
 def test_voxel_gradients(p, s, kind, bits):
     """Voxel gradients (VGRAD = 1, numerics.md §5b): the memory holds each voxel with its
     gradient (cube4.vgrad), TRI interpolates all four channels and SHA shades with them.
@@ -480,7 +481,7 @@ def test_subpixel_passes(p, q):
 
 
 # ---------------------------------------------------------------- path-length weights
-@pytest.mark.parametrize(("p", "s"), [(1, 1), (5, 2), (8, 1)])
+@pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 1), (8, 1), (5, 2)], quick=(0, 1, 2)))
 def test_path_weights(p, s):
     """Path-length weights (PLW, numerics.md §17): the LUT's path-weight columns are written
     through the load port with the LUT, and COM weights the first and last samples of the
