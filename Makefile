@@ -7,7 +7,7 @@
 #   make test    the regression a change must pass: golden-model tests (tests/) + RTL (tb/) + lint (<= 10 min)
 #   make regress make test plus the exhaustive sweeps (pytest marker `regress`) and the research
 #                prototype's tests (the voxel gradient's 2-degree bound); run before RTL lands
-#   make simspeed cube4_top's simulation speed, P = 8: clock cycles per second of wall time
+#   make simspeed cube4_top's simulation speed, P = 8: clock cycles per second of wall time, per build (reports/simspeed.md)
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
