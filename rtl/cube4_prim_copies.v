@@ -44,8 +44,8 @@ module cube4_prim_copies #(
     input  wire [W-1:0]   d,
     output wire [N*W-1:0] q
 );
-    // the kept copies: cube4_prim_reg_copies, every copy enabled, all loading d
-    cube4_prim_reg_copies #(.COPIES(N), .W(W), .RESET(RESET), .RST_VAL(RST_VAL)) u_copies (
+    // the kept copies: cube4_prim_reg_copies without enables, all loading d
+    cube4_prim_reg_copies #(.COPIES(N), .W(W), .RESET(RESET), .RST_VAL(RST_VAL), .ENABLE(0)) u_copies (
         .clk(clk), .rst(rst), .en({N{1'b1}}), .d({N{d}}), .q(q));
 endmodule
 `default_nettype wire

@@ -22,6 +22,9 @@
 //            0: no reset (data registers).         0..1.    Default 1.
 //   RST_VAL  reset value of each copy (its low W bits; zero above 64).
 //                                                  64 bits. Default 0.
+//   ENABLE   1: copy c loads when en[c]; 0: every copy loads on every
+//            edge and en is not read (cube4_prim_copies: no enable logic
+//            even where synthesis keeps the hierarchy).  0..1. Default 1.
 //
 // Latency: 1 cycle (q[c] is d[c] of the last clock edge with en[c] = 1).
 //
@@ -36,7 +39,8 @@ module cube4_prim_reg_copies #(
     parameter integer COPIES  = 1,
     parameter integer W       = 1,
     parameter integer RESET   = 1,
-    parameter [63:0]  RST_VAL = 64'd0
+    parameter [63:0]  RST_VAL = 64'd0,
+    parameter integer ENABLE  = 1
 ) (
     input  wire                clk,
     input  wire                rst,
@@ -47,6 +51,7 @@ module cube4_prim_reg_copies #(
     generate
         `CUBE4_RANGE(g_bad_copies, "cube4_prim_reg_copies", "COPIES", COPIES, 1, 512)
         `CUBE4_RANGE(g_bad_w, "cube4_prim_reg_copies", "W", W, 1, 4096)
+        `CUBE4_RANGE(g_bad_enable, "cube4_prim_reg_copies", "ENABLE", ENABLE, 0, 1)
     endgenerate
 
     genvar c;
@@ -56,12 +61,15 @@ module cube4_prim_reg_copies #(
             (* keep *)                  // one copy per group of loads: never merged
             always @(posedge clk) begin
                 if (RESET != 0 && rst) q_q <= W'(RST_VAL);
-                else if (en[c])        q_q <= d[c*W +: W];
+                else if (ENABLE == 0 || en[c]) q_q <= d[c*W +: W];
             end
             assign q[c*W +: W] = q_q;
         end
         if (RESET == 0) begin : g_no_reset
             wire unused_rst = rst;
+        end
+        if (ENABLE == 0) begin : g_no_enable
+            wire unused_en = ^en;
         end
     endgenerate
 endmodule

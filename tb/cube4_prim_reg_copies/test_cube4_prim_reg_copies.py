@@ -4,8 +4,9 @@ A cocotb clock drives the primitive directly. Every cycle the bench sets each co
 enable and next value at random (seeded from COCOTB_RANDOM_SEED), with a reset now and
 then, and checks every copy after the clock edge against a model of COPIES registers:
 copy c takes d[c] when en[c], holds otherwise, and with RESET = 1 returns to RST_VAL
-on a reset (before the enable). Built with three copies of a 5-bit register with a
-reset value, and one copy of one bit without reset.
+on a reset (before the enable); with ENABLE = 0 every copy loads on every edge,
+whatever en says (cube4_prim_copies' form). Built with three copies of a 5-bit register
+with a reset value, one copy of one bit without reset, and two copies without enables.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ CYCLES = 400
 @cocotb.test()
 async def copies_follow_their_enables(dut):
     n, w, reset = int(dut.COPIES.value), int(dut.W.value), int(dut.RESET.value)
+    enable = int(dut.ENABLE.value)
     rst_val = int(dut.RST_VAL.value) & ((1 << w) - 1)
     rng = np.random.default_rng(cocotb.RANDOM_SEED)
     Clock(dut.clk, 10, unit="ns").start(start_high=False)
@@ -44,7 +46,7 @@ async def copies_follow_their_enables(dut):
         for c in range(n):
             if reset and rst:
                 model[c] = rst_val
-            elif en[c]:
+            elif en[c] or not enable:
                 model[c] = d[c]
         await FallingEdge(dut.clk)
         q = int(dut.q.value)
@@ -56,7 +58,8 @@ async def copies_follow_their_enables(dut):
     assert checks > CYCLES // 2, f"only {checks} checks"
 
 
-PARAM_SETS = [{"COPIES": 3, "W": 5, "RESET": 1, "RST_VAL": "64'd21"}, {"COPIES": 1, "W": 1, "RESET": 0}]
+PARAM_SETS = [{"COPIES": 3, "W": 5, "RESET": 1, "RST_VAL": "64'd21"}, {"COPIES": 1, "W": 1, "RESET": 0},
+              {"COPIES": 2, "W": 3, "RESET": 1, "ENABLE": 0}]
 
 
 @pytest.mark.parametrize("params", PARAM_SETS, ids=lambda p: "-".join(f"{k}{v}" for k, v in p.items()))
