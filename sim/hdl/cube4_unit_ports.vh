@@ -97,6 +97,17 @@
     DIR wire [P*GRA_NSEL-1:0] c_sel, \
     DIR wire [1:0]            c_edge,
 
+// The operands cube4_gra_window gives cube4_gra_arith for a centre: its samples s, the
+// neighbours hi, lo (i +/- 1), fwd, back (along the ray; Q0.VOXEL_W, P lanes) and gj
+// (VOXEL_W + 1 bits signed a lane), the port names prefixed by PFX (empty, in_).
+`define CUBE4_GRA_OPERAND_PORTS(DIR, PFX) \
+    DIR wire [P*VOXEL_W-1:0]     PFX``s, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``hi, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``lo, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``fwd, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``back, \
+    DIR wire [P*(VOXEL_W+1)-1:0] PFX``gj,
+
 // A beat of GRA's gradient stream (cube4_gra's output, cube4_gra_arith's, cube4_sha's
 // input): the header, the samples (Q0.VOXEL_W) and the gradient components gi, gj, gk
 // (VOXEL_W + 5 bits signed each, P lanes), the port names prefixed by PFX (in, out).

@@ -19,7 +19,8 @@
 //   clk     out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst     in   synchronous reset
 //   cfg_*   in   view registers (golden/cube4/memory.py top_regs)
-//   in_*, out_*  as cube4_gra_arith (out_*: CUBE4_GRA_BEAT_PORTS)
+//   in_*, out_*  as cube4_gra_arith (in_s .. in_gj: CUBE4_GRA_OPERAND_PORTS,
+//                out_*: CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_arith_harness #(
     `CUBE4_UNIT_PARAMS
@@ -27,14 +28,9 @@ module cube4_gra_arith_harness #(
 ) (
     `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_BEAT_PORTS(output, out)
+    `CUBE4_GRA_OPERAND_PORTS(input, in_)
     input  wire                     in_v,
     input  wire [HDR_W-1:0]         in_hdr,
-    input  wire [P*VOXEL_W-1:0]     in_s,
-    input  wire [P*VOXEL_W-1:0]     in_hi,
-    input  wire [P*VOXEL_W-1:0]     in_lo,
-    input  wire [P*VOXEL_W-1:0]     in_fwd,
-    input  wire [P*VOXEL_W-1:0]     in_back,
-    input  wire [P*(VOXEL_W+1)-1:0] in_gj,
     output wire                     out_v_d
 );
     `CUBE4_HARNESS_VIEW

@@ -22,7 +22,7 @@
 //   cfg_*    in   view registers (golden/cube4/memory.py top_regs)
 //   step .. c_edge   in   as cube4_gra_window (the source's interface,
 //                         CUBE4_GRA_STEP_PORTS of cube4_unit_ports.vh)
-//   take .. gj       out  as cube4_gra_window
+//   take .. gj       out  as cube4_gra_window (s .. gj: CUBE4_GRA_OPERAND_PORTS)
 // =============================================================================
 module cube4_gra_window_harness #(
     `CUBE4_UNIT_PARAMS
@@ -32,14 +32,9 @@ module cube4_gra_window_harness #(
 ) (
     `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_STEP_PORTS(input)
+    `CUBE4_GRA_OPERAND_PORTS(output, )
     output wire                     take,
-    output wire [HDR_W-1:0]         c_hdr,
-    output wire [P*VOXEL_W-1:0]     s,
-    output wire [P*VOXEL_W-1:0]     hi,
-    output wire [P*VOXEL_W-1:0]     lo,
-    output wire [P*VOXEL_W-1:0]     fwd,
-    output wire [P*VOXEL_W-1:0]     back,
-    output wire [P*(VOXEL_W+1)-1:0] gj
+    output wire [HDR_W-1:0]         c_hdr
 );
     `CUBE4_HARNESS_VIEW
 
