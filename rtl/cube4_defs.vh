@@ -448,6 +448,11 @@
 `define CUBE4_GRA_PARAMS \
     `CUBE4_SLICE_PARAMS, parameter integer VOXEL_W = 8, `CUBE4_GRA_LAYOUT
 
+// CUBE4_SLICE_PASS, CUBE4_GRA_PASS: pass CUBE4_SLICE_PARAMS's (CUBE4_GRA_PARAMS's)
+// build parameters on to a unit by name (its geometry and layouts it derives itself).
+`define CUBE4_SLICE_PASS .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2)
+`define CUBE4_GRA_PASS `CUBE4_SLICE_PASS, .VOXEL_W(VOXEL_W)
+
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with
 // (c_i + c_j + c_k) mod P = q (Teramac paper, eq. 1), skew = (c_j + c_k) mod P:
@@ -537,6 +542,7 @@
 // view registers', CFB_R_W (bits of m mod S), CFB_F1_W (the tag without its
 // lane masks), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
 // fields it holds at a constant, CFB_BOX_CONST (SBROW = 1, the rest 0).
+// CUBE4_CFB_PASS passes the build parameters on to a unit by name.
 // CUBE4_CFB_ENTRY(e): a table entry as a unit reads it; without rectangles
 // (RECTS = 0) the box's constant fields are constants, so that synthesis sees
 // them past the units' boundaries. CUBE4_ADDR_FIELDS(bus): one wire
@@ -556,6 +562,7 @@
     parameter integer WEIGHT_W = 8, parameter integer MAX_SS_LOG2 = 0, \
     parameter integer ADDR_W   = 16, parameter integer RECTS       = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT, `CUBE4_CFB_LAYOUT
+`define CUBE4_CFB_PASS `CUBE4_SLICE_PASS, .ADDR_W(ADDR_W), .RECTS(RECTS)
 `define CUBE4_ADDR_FIELDS(bus) \
     wire [ADDR_W-1:0] cfg_j_a0  = bus[ADR_J_A0 +: ADDR_W]; \
     wire [ADDR_W-1:0] cfg_j_lin = bus[ADR_J_LIN +: ADDR_W]; \

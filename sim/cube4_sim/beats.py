@@ -100,6 +100,17 @@ def pack_lanes(values, width: int) -> int:
     return word
 
 
+def pack_fields(values, width: int) -> int:
+    """Unsigned fields of ``width`` bits, the first in the top bits (as the Verilog
+    concatenation {a, b, ...}) -> a bus; a value that does not fit is an error."""
+    word = 0
+    for v in values:
+        if not 0 <= int(v) < 1 << width:
+            raise ValueError(f"field value {int(v)} does not fit in {width} bits")
+        word = (word << width) | int(v)
+    return word
+
+
 def unpack_lanes(word: int, p: int, width: int, signed: bool = False, stride: int | None = None) -> np.ndarray:
     """A lane bus -> per-lane integers (lane 0 first): lane q is ``width`` bits at
     q * ``stride`` (default ``width``); shift ``word`` first to pick a field of a lane."""

@@ -250,8 +250,8 @@ def _expanded(macros: dict[str, Macro], name: str, actual: str | None, depth: in
 def top_interface(sources: Sequence[Path], top: str) -> list[str]:
     """Names of the ports and header parameters of module ``top`` (ANSI style, as every
     module here is written; a line may declare several ports, be a header macro that
-    declares them, such as CUBE4_VIEW_PORTS or CUBE4_COM_STEP_PORTS(input), or include a
-    header of parameters, as the unit harnesses do); empty if not found."""
+    declares them, such as CUBE4_VIEW_PORTS or CUBE4_COM_STEP_PORTS(input), or include
+    a header of them); empty if not found."""
     start = re.compile(rf"^\s*module\s+{re.escape(top)}\b")
     include_dirs = [RTL_INCLUDE_DIR, SIM_HDL_DIR]
     macros = header_macros([*include_dirs, *(Path(s).parent for s in sources)])
@@ -282,8 +282,7 @@ _INCLUDE = re.compile(r'^\s*`include\s+"([^"]+)"')
 
 def _with_includes(lines: list[str], dirs: Sequence[Path]) -> list[str]:
     """The lines with each `include of a file found in ``dirs`` replaced by that file's lines
-    (a module whose interface is an include, such as cube4_sdp_ram_if.vh, or a harness's
-    parameters, sim/hdl/cube4_unit_params.vh)."""
+    (a module whose interface is an include, such as cube4_sdp_ram_if.vh)."""
     out: list[str] = []
     for line in lines:
         m = _INCLUDE.match(line)

@@ -13,7 +13,7 @@
 //   source's interface as top-level ports.
 //
 // Parameters: as cube4_gra_lines and cube4_gra_walk (P 1..64, VOXEL_W 1..16,
-//   WEIGHT_W 4..12, MAX_DIM 2..2048, MAX_SS_LOG2 0..3; cube4_unit_params.vh);
+//   WEIGHT_W 4..12, MAX_DIM 2..2048, MAX_SS_LOG2 0..3; CUBE4_UNIT_PARAMS);
 //   WALK 0..1: 0 tests cube4_gra_lines, 1 cube4_gra_walk.
 //
 // Latency: that of the source (the ports connect straight to it).
@@ -28,14 +28,12 @@
 //   step .. c_edge, fend  out  as the source (CUBE4_GRA_STEP_PORTS)
 // =============================================================================
 module cube4_gra_source_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8,
     parameter integer WALK    = 0,
     `CUBE4_GRA_LAYOUT
 ) (
-    output wire                  clk,
-    input  wire                  rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_STEP_PORTS(output)
     input  wire                  in_valid,
     output wire                  in_ready,
@@ -44,20 +42,14 @@ module cube4_gra_source_harness #(
     input  wire                  credit,
     output wire                  fend
 );
-    cube4_sim_clock u_clock (.clk (clk));
-
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+    `CUBE4_HARNESS_VIEW
 
     generate
         `CUBE4_RANGE(g_bad_walk, "cube4_gra_source_harness", "WALK", WALK, 0, 1)
         if (WALK != 0) begin : g_walk
-            cube4_gra_walk #(
-                .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2)
-            ) u_src (.credit ({GRA_STEPS{credit}}), .*);
+            cube4_gra_walk #(`CUBE4_GRA_PASS) u_src (.credit ({GRA_STEPS{credit}}), .*);
         end else begin : g_lines
-            cube4_gra_lines #(
-                .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2)
-            ) u_src (.credit ({GRA_STEPS{credit}}), .*);
+            cube4_gra_lines #(`CUBE4_GRA_PASS) u_src (.credit ({GRA_STEPS{credit}}), .*);
         end
     endgenerate
 

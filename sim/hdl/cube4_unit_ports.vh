@@ -1,12 +1,47 @@
-// cube4_unit_ports.vh: the groups of ports that one unit of GRA or COM drives and another
-// reads, declared once for the unit harnesses (tb/cube4_gra_*, tb/cube4_com_*). The argument
-// is the direction: the harness of the unit that drives a group declares it output, the
-// harness of a unit that reads it input (a stream's beat also takes the prefix of its port
-// names). Widths come from CUBE4_GEOMETRY and CUBE4_GRA_LAYOUT (cube4_defs.vh); SP_W, the
-// slot width, from the harness. Each declaration ends with a comma: a macro stands on its
-// own line before further ports.
+// cube4_unit_ports.vh: what the unit harnesses (tb/cube4_gra_*, tb/cube4_com_*,
+// tb/cube4_cfb_*, sim/hdl/cube4_gra_source_harness.v) share, declared once: their
+// parameters, their first ports and body, and the groups of ports that one unit of GRA or COM
+// drives and another reads. The argument of a port group is the direction: the harness of
+// the unit that drives a group declares it output, the harness of a unit that reads it input
+// (a stream's beat also takes the prefix of its port names). Widths come from CUBE4_GEOMETRY
+// and CUBE4_GRA_LAYOUT (cube4_defs.vh); SP_W, the slot width, from the harness. Each
+// declaration ends with a comma: a macro stands on its own line before further ports.
 `ifndef CUBE4_UNIT_PORTS_VH
 `define CUBE4_UNIT_PORTS_VH
+
+// The parameters every unit harness starts its parameter list with: the build parameters
+// of the unit (ranges as in its header; the testbenches' defaults) and the geometry and
+// view layout derived from them (cube4_defs.vh). The harness's own parameters follow.
+`define CUBE4_UNIT_PARAMS \
+    parameter integer P           = 5, \
+    parameter integer MAX_DIM     = 32, \
+    parameter integer MAX_SS_LOG2 = 0, \
+    parameter integer WEIGHT_W    = 8, \
+    `CUBE4_GEOMETRY, \
+    `CUBE4_VIEW_LAYOUT,
+
+// The whole parameter list of a CFB unit's harness (CUBE4_CFB_PARAMS with the
+// testbenches' defaults; RECTS_DEFAULT: RECTS's), passed on with CUBE4_CFB_PASS.
+`define CUBE4_CFB_UNIT_PARAMS(RECTS_DEFAULT) \
+    `CUBE4_UNIT_PARAMS \
+    parameter integer ADDR_W = 16, \
+    parameter integer RECTS  = RECTS_DEFAULT, \
+    `CUBE4_CFB_LAYOUT
+
+// A harness's first ports: the Verilog clock (an output, cube4_sim_clock, 10 ns), the
+// reset and the view registers, one port per field (CUBE4_VIEW_PORTS).
+`define CUBE4_HARNESS_PORTS \
+    output wire clk, \
+    input  wire rst, \
+    `CUBE4_VIEW_PORTS
+
+// A harness's clock and the view registers packed into the unit's cfg bus; with
+// CUBE4_HARNESS_ADDR also the address registers into its cfg_addr bus (CUBE4_ADDR_PORTS).
+`define CUBE4_HARNESS_VIEW \
+    cube4_sim_clock u_clock (.clk (clk)); \
+    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+`define CUBE4_HARNESS_ADDR \
+    wire [ADR_W_ALL-1:0] cfg_addr = `CUBE4_ADDR_PACK;
 
 // R0's step fields of cube4_com_seq, read by cube4_com_walk, _rect and _plw: slice m and
 // row j, the back steps dxb, dyb, i of each lane (ipos, pb * P + lane position), and the S1
@@ -61,6 +96,17 @@
     DIR wire [GRA_META_W-1:0] c_meta, \
     DIR wire [P*GRA_NSEL-1:0] c_sel, \
     DIR wire [1:0]            c_edge,
+
+// The operands cube4_gra_window gives cube4_gra_arith for a centre: its samples s, the
+// neighbours hi, lo (i +/- 1), fwd, back (along the ray; Q0.VOXEL_W, P lanes) and gj
+// (VOXEL_W + 1 bits signed a lane), the port names prefixed by PFX (empty, in_).
+`define CUBE4_GRA_OPERAND_PORTS(DIR, PFX) \
+    DIR wire [P*VOXEL_W-1:0]     PFX``s, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``hi, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``lo, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``fwd, \
+    DIR wire [P*VOXEL_W-1:0]     PFX``back, \
+    DIR wire [P*(VOXEL_W+1)-1:0] PFX``gj,
 
 // A beat of GRA's gradient stream (cube4_gra's output, cube4_gra_arith's, cube4_sha's
 // input): the header, the samples (Q0.VOXEL_W) and the gradient components gi, gj, gk

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_cfb_addr_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -8,15 +9,13 @@
 //   the view and address registers as ports packed into the unit's buses
 //   (CUBE4_VIEW_PACK, CUBE4_ADDR_PACK), every other port of the unit as a top-level port.
 //
-// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), ADDR_W
-//   as cube4_cfb_addr.
+// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W, ADDR_W, RECTS (0)
+//   as cube4_cfb_addr (CUBE4_CFB_UNIT_PARAMS, cube4_unit_ports.vh).
 // Latency: that of cube4_cfb_addr (the ports connect straight to it).
 // Ports: clk out (cube4_sim_clock, 10 ns); cfg_* and the unit's ports.
 // =============================================================================
 module cube4_cfb_addr_harness #(
-    `include "cube4_unit_params.vh"
-    parameter integer ADDR_W = 16,
-    `CUBE4_CFB_LAYOUT
+    `CUBE4_CFB_UNIT_PARAMS(0)
 ) (
     output wire clk,
     `CUBE4_VIEW_PORTS
@@ -25,11 +24,8 @@ module cube4_cfb_addr_harness #(
     input  wire [ADDR_W-1:0] aj, input wire [ADDR_W-1:0] ak, input wire [ADDR_W-1:0] pbx,
     output wire [P*LANE_W-1:0] t1, output wire [P*ADDR_W-1:0] addr
 );
-    cube4_sim_clock u_clock (.clk (clk));
-    wire [VIEW_W-1:0]    cfg      = `CUBE4_VIEW_PACK;
-    wire [ADR_W_ALL-1:0] cfg_addr = `CUBE4_ADDR_PACK;
-    cube4_cfb_addr #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
-    ) u_addr (.*);
+    `CUBE4_HARNESS_VIEW
+    `CUBE4_HARNESS_ADDR
+    cube4_cfb_addr #(`CUBE4_CFB_PASS) u_addr (.*);
 endmodule
 `default_nettype wire

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_cfb_rect_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -9,15 +10,13 @@
 //   CUBE4_RECT_PACK), every other port of the unit as a top-level port (the entries read as
 //   words, CUBE4_RECT_LAYOUT).
 //
-// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), ADDR_W
-//   as cube4_cfb_rect.
+// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W, ADDR_W, RECTS (0)
+//   as cube4_cfb_rect (CUBE4_CFB_UNIT_PARAMS, cube4_unit_ports.vh).
 // Latency: that of cube4_cfb_rect (the ports connect straight to it).
 // Ports: clk out (cube4_sim_clock, 10 ns); rt_* and the unit's ports.
 // =============================================================================
 module cube4_cfb_rect_harness #(
-    `include "cube4_unit_params.vh"
-    parameter integer ADDR_W = 16,
-    `CUBE4_CFB_LAYOUT
+    `CUBE4_CFB_UNIT_PARAMS(0)
 ) (
     output wire clk,
     `CUBE4_RECT_PORTS
@@ -27,8 +26,6 @@ module cube4_cfb_rect_harness #(
 );
     cube4_sim_clock u_clock (.clk (clk));
     wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
-    cube4_cfb_rect #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
-    ) u_rect (.*);
+    cube4_cfb_rect #(`CUBE4_CFB_PASS) u_rect (.*);
 endmodule
 `default_nettype wire

@@ -23,6 +23,7 @@ from cocotb.triggers import FallingEdge
 from cube4.config import Cube4Config
 from cube4.model import composite, xray
 from cube4_sim import rtl_sources, run_test
+from cube4_sim.beats import pack_fields
 
 LATENCY = 6       # S5 -> S11
 N = 600           # samples per mode
@@ -45,14 +46,6 @@ def random_states(rng, n: int, acc_w: int, alpha_w: int, mode: str):
     return acc.astype(np.int64), trans.astype(np.int64), rgba.astype(np.int64), count
 
 
-def pack(vals, width: int) -> int:
-    """Fields MSB first."""
-    word = 0
-    for v in vals:
-        word = (word << width) | int(v)
-    return word
-
-
 @cocotb.test()
 async def test_blend(dut):
     aw, acc_w = int(dut.ALPHA_W.value), int(dut.ACC_W.value)
@@ -69,17 +62,17 @@ async def test_blend(dut):
         for t in range(N + LATENCY):
             await FallingEdge(dut.clk)
             if t < N:
-                dut.acc5.value = pack([*acc[:, t], trans[t]], cw)
+                dut.acc5.value = pack_fields([*acc[:, t], trans[t]], cw)
                 dut.a5.value = int(rgba[3, t])
             if 2 <= t <= N + 1:
-                dut.c7.value = pack(rgba[:3, t - 2], 8)
+                dut.c7.value = pack_fields(rgba[:3, t - 2], 8)
                 dut.cnt7.value = int(count[t - 2])
             k = t - LATENCY
             if k >= 0:
                 got = int(dut.acc_q.value)
-                want = pack([*exp_acc[:, k], exp_t[k]], cw)
+                want = pack_fields([*exp_acc[:, k], exp_t[k]], cw)
                 pix = int(dut.pix.value)
-                want_pix = pack([*exp_acc[:, k], (1 << acc_w) - exp_t[k]], cw)
+                want_pix = pack_fields([*exp_acc[:, k], (1 << acc_w) - exp_t[k]], cw)
                 assert got == want, (f"{mode} sample {k}: acc_q {got:#x}, golden {want:#x} (C {acc[:, k]}, "
                                      f"T {trans[k]}, RGBA {rgba[:, k]}, counts {count[k]})")
                 assert pix == want_pix, f"{mode} sample {k}: pix {pix:#x}, golden {want_pix:#x}"

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "cube4_defs.vh"
+`include "cube4_unit_ports.vh"
 // =============================================================================
 // cube4_com_bpb_harness  (simulation only: needs Verilator --timing)
 // -----------------------------------------------------------------------------
@@ -8,7 +9,7 @@
 //   the view registers as ports packed into the unit's cfg bus
 //   (CUBE4_VIEW_PACK), every other port of the unit as a top-level port.
 //
-// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), AC_W,
+// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (CUBE4_UNIT_PARAMS), AC_W,
 //   RECTS as cube4_com_bpb; the slot width and the slice buffer's depth as
 //   cube4_com derives them.
 //
@@ -17,7 +18,7 @@
 // Ports: clk out (cube4_sim_clock, 10 ns); rst, cfg_* and the unit's ports.
 // =============================================================================
 module cube4_com_bpb_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer AC_W  = 40,
     parameter integer RECTS = 0,
     localparam integer RW       = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1,
@@ -25,9 +26,7 @@ module cube4_com_bpb_harness #(
     localparam integer SB_DEPTH = (RECTS != 0) ? (1 << SP_W) : MAX_DIM * NBMAX,
     localparam integer PA       = P * AC_W
 ) (
-    output wire            clk,
-    input  wire            rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     input  wire [SP_W-1:0] rd_sp,
     input  wire [PB_W-1:0] pb_rd,
     input  wire [PB_W-1:0] pb_wr,
@@ -42,11 +41,9 @@ module cube4_com_bpb_harness #(
     output wire [PA-1:0]   back_sh,
     output wire [PA-1:0]   prevb_sh
 );
-    cube4_sim_clock u_clock (.clk (clk));
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+    `CUBE4_HARNESS_VIEW
     cube4_com_bpb #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .AC_W(AC_W),
-        .SP_W(SP_W), .SB_DEPTH(SB_DEPTH), .RECTS(RECTS)
+        `CUBE4_SLICE_PASS, .AC_W(AC_W), .SP_W(SP_W), .SB_DEPTH(SB_DEPTH), .RECTS(RECTS)
     ) u_bpb (.*);
 endmodule
 `default_nettype wire

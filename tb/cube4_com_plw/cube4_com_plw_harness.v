@@ -9,7 +9,7 @@
 //   the view registers as ports packed into the unit's cfg bus
 //   (CUBE4_VIEW_PACK), every other port of the unit as a top-level port.
 //
-// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (cube4_unit_params.vh), VOXEL_W,
+// Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W (CUBE4_UNIT_PARAMS), VOXEL_W,
 //   ALPHA_W as cube4_com_plw.
 //
 // Latency: that of cube4_com_plw (the ports connect straight to it).
@@ -19,13 +19,11 @@
 //   cube4_unit_ports.vh).
 // =============================================================================
 module cube4_com_plw_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8,
     parameter integer ALPHA_W = 12
 ) (
-    output wire                   clk,
-    input  wire                   rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_COM_STEP_PORTS(input)
     `CUBE4_COM_PHASE_PORTS(input)
     input  wire                   step,
@@ -38,12 +36,8 @@ module cube4_com_plw_harness #(
     input  wire [P*ALPHA_W-1:0]   a3,
     output wire [P*ALPHA_W-1:0]   a_w
 );
-    cube4_sim_clock u_clock (.clk (clk));
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
+    `CUBE4_HARNESS_VIEW
     wire unused_rst = rst;
-    cube4_com_plw #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
-        .VOXEL_W(VOXEL_W), .ALPHA_W(ALPHA_W)
-    ) u_plw (.*);
+    cube4_com_plw #(`CUBE4_SLICE_PASS, .VOXEL_W(VOXEL_W), .ALPHA_W(ALPHA_W)) u_plw (.*);
 endmodule
 `default_nettype wire

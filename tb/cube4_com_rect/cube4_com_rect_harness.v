@@ -11,7 +11,7 @@
 //   table entry rect_data as one word, CUBE4_RECT_LAYOUT).
 //
 // Parameters: P, MAX_DIM, ADDR_W as cube4_com_rect (MAX_SS_LOG2 = 0;
-//   cube4_unit_params.vh); the slot width as cube4_com derives it.
+//   CUBE4_UNIT_PARAMS); the slot width as cube4_com derives it.
 //
 // Latency: that of cube4_com_rect (the ports connect straight to it).
 //
@@ -19,14 +19,12 @@
 //   (the groups shared with cube4_com_seq: cube4_unit_ports.vh).
 // =============================================================================
 module cube4_com_rect_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer ADDR_W = 16,
     `CUBE4_RECT_LAYOUT,
     localparam integer SP_W  = ((MAX_DIM > 1) ? $clog2(MAX_DIM) : 1) + PB_W
 ) (
-    output wire              clk,
-    input  wire              rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_COM_STEP_PORTS(input)
     `CUBE4_COM_SLOT_PORTS(output)
     input  wire              rect_we,
@@ -40,11 +38,7 @@ module cube4_com_rect_harness #(
     input  wire [PB_W-1:0]   r0_pb,
     output wire              col1_4
 );
-    cube4_sim_clock u_clock (.clk (clk));
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
-    cube4_com_rect #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
-        .ADDR_W(ADDR_W), .SP_W(SP_W)
-    ) u_rect (.*);
+    `CUBE4_HARNESS_VIEW
+    cube4_com_rect #(`CUBE4_SLICE_PASS, .ADDR_W(ADDR_W), .SP_W(SP_W)) u_rect (.*);
 endmodule
 `default_nettype wire

@@ -11,7 +11,7 @@
 //   a cube4_stream_check on the input stream.
 //
 // Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W as cube4_com_seq
-//   (cube4_unit_params.vh); the slot width as cube4_com derives it without
+//   (CUBE4_UNIT_PARAMS); the slot width as cube4_com derives it without
 //   rectangles.
 //
 // Latency: that of cube4_com_seq (the ports connect straight to it).
@@ -20,13 +20,11 @@
 //   (the groups shared with cube4_com_walk and _rect: cube4_unit_ports.vh).
 // =============================================================================
 module cube4_com_seq_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     localparam integer SP_W  = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1,
     localparam integer BX_W  = DIM_W + 1
 ) (
-    output wire               clk,
-    input  wire               rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_COM_STEP_PORTS(output)
     `CUBE4_COM_SLOT_PORTS(input)
     input  wire               in_valid,
@@ -62,11 +60,8 @@ module cube4_com_seq_harness #(
     output wire [P*BX_W-1:0]  bx_o,
     output wire               eop_o
 );
-    cube4_sim_clock u_clock (.clk (clk));
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
-    cube4_com_seq #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
-    ) u_seq (.*);
+    `CUBE4_HARNESS_VIEW
+    cube4_com_seq #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_seq (.*);
     cube4_stream_check #(.NAME("com_seq.in (shaded headers)"), .DATA_W(HDR_W)) u_chk_in (
         .clk(clk), .rst(rst), .valid(in_valid), .ready(in_ready), .data(in_hdr));
 endmodule

@@ -10,7 +10,7 @@
 //   (CUBE4_VIEW_PACK), every other port of the unit as a top-level port.
 //
 // Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W as cube4_com_walk
-//   (cube4_unit_params.vh); the slot width as cube4_com derives it.
+//   (CUBE4_UNIT_PARAMS); the slot width as cube4_com derives it.
 //
 // Latency: that of cube4_com_walk (the ports connect straight to it).
 //
@@ -18,12 +18,10 @@
 //   (the groups shared with cube4_com_seq and _plw: cube4_unit_ports.vh).
 // =============================================================================
 module cube4_com_walk_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     localparam integer SP_W = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1
 ) (
-    output wire       clk,
-    input  wire       rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_COM_STEP_PORTS(input)
     `CUBE4_COM_SLOT_PORTS(output)
     `CUBE4_COM_PHASE_PORTS(output)
@@ -34,10 +32,7 @@ module cube4_com_walk_harness #(
     input  wire       sop,
     input  wire       first
 );
-    cube4_sim_clock u_clock (.clk (clk));
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
-    cube4_com_walk #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
-    ) u_walk (.*);
+    `CUBE4_HARNESS_VIEW
+    cube4_com_walk #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_walk (.*);
 endmodule
 `default_nettype wire

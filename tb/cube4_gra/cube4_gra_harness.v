@@ -13,7 +13,7 @@
 //   the two streams.
 //
 // Parameters: as cube4_gra (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; cube4_unit_params.vh).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; CUBE4_UNIT_PARAMS).
 //
 // Latency: that of cube4_gra (the ports connect straight to it).
 //
@@ -25,14 +25,12 @@
 //   out_*     out  gradient stream (cube4_gra's format, CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8,
     parameter integer RECTS   = 0,
     localparam integer GRAD_W = VOXEL_W + 5
 ) (
-    output wire                  clk,
-    input  wire                  rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_BEAT_PORTS(output, out)
     input  wire                  in_valid,
     output wire                  in_ready,
@@ -41,14 +39,9 @@ module cube4_gra_harness #(
     output wire                  out_valid,
     input  wire                  out_ready
 );
-    cube4_sim_clock u_clock (.clk (clk));
+    `CUBE4_HARNESS_VIEW
 
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
-
-    cube4_gra #(
-        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS (RECTS)
-    ) u_gra (.*);
+    cube4_gra #(`CUBE4_GRA_PASS, .RECTS (RECTS)) u_gra (.*);
 
     cube4_stream_check #(
         .NAME   ("gra.in (samples)"),

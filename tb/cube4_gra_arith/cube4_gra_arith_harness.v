@@ -11,7 +11,7 @@
 //   top-level ports, which the testbench drives and reads every cycle.
 //
 // Parameters: as cube4_gra_arith (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3; cube4_unit_params.vh).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3; CUBE4_UNIT_PARAMS).
 //
 // Latency: that of cube4_gra_arith (the ports connect straight to it).
 //
@@ -19,33 +19,23 @@
 //   clk     out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst     in   synchronous reset
 //   cfg_*   in   view registers (golden/cube4/memory.py top_regs)
-//   in_*, out_*  as cube4_gra_arith (out_*: CUBE4_GRA_BEAT_PORTS)
+//   in_*, out_*  as cube4_gra_arith (in_s .. in_gj: CUBE4_GRA_OPERAND_PORTS,
+//                out_*: CUBE4_GRA_BEAT_PORTS)
 // =============================================================================
 module cube4_gra_arith_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8
 ) (
-    output wire                     clk,
-    input  wire                     rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_BEAT_PORTS(output, out)
+    `CUBE4_GRA_OPERAND_PORTS(input, in_)
     input  wire                     in_v,
     input  wire [HDR_W-1:0]         in_hdr,
-    input  wire [P*VOXEL_W-1:0]     in_s,
-    input  wire [P*VOXEL_W-1:0]     in_hi,
-    input  wire [P*VOXEL_W-1:0]     in_lo,
-    input  wire [P*VOXEL_W-1:0]     in_fwd,
-    input  wire [P*VOXEL_W-1:0]     in_back,
-    input  wire [P*(VOXEL_W+1)-1:0] in_gj,
     output wire                     out_v_d
 );
-    cube4_sim_clock u_clock (.clk (clk));
+    `CUBE4_HARNESS_VIEW
 
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
-
-    cube4_gra_arith #(
-        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2)
-    ) u_arith (.*);
+    cube4_gra_arith #(`CUBE4_GRA_PASS) u_arith (.*);
 
 endmodule
 `default_nettype wire

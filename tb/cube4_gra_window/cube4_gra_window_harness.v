@@ -12,7 +12,7 @@
 //   drives and reads every cycle.
 //
 // Parameters: as cube4_gra_window (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; cube4_unit_params.vh).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; CUBE4_UNIT_PARAMS).
 //
 // Latency: that of cube4_gra_window (the ports connect straight to it).
 //
@@ -22,35 +22,23 @@
 //   cfg_*    in   view registers (golden/cube4/memory.py top_regs)
 //   step .. c_edge   in   as cube4_gra_window (the source's interface,
 //                         CUBE4_GRA_STEP_PORTS of cube4_unit_ports.vh)
-//   take .. gj       out  as cube4_gra_window
+//   take .. gj       out  as cube4_gra_window (s .. gj: CUBE4_GRA_OPERAND_PORTS)
 // =============================================================================
 module cube4_gra_window_harness #(
-    `include "cube4_unit_params.vh"
+    `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8,
     parameter integer RECTS   = 0,
     `CUBE4_GRA_LAYOUT
 ) (
-    output wire                     clk,
-    input  wire                     rst,
-    `CUBE4_VIEW_PORTS
+    `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_STEP_PORTS(input)
+    `CUBE4_GRA_OPERAND_PORTS(output, )
     output wire                     take,
-    output wire [HDR_W-1:0]         c_hdr,
-    output wire [P*VOXEL_W-1:0]     s,
-    output wire [P*VOXEL_W-1:0]     hi,
-    output wire [P*VOXEL_W-1:0]     lo,
-    output wire [P*VOXEL_W-1:0]     fwd,
-    output wire [P*VOXEL_W-1:0]     back,
-    output wire [P*(VOXEL_W+1)-1:0] gj
+    output wire [HDR_W-1:0]         c_hdr
 );
-    cube4_sim_clock u_clock (.clk (clk));
+    `CUBE4_HARNESS_VIEW
 
-    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
-
-    cube4_gra_window #(
-        .P (P), .VOXEL_W (VOXEL_W), .WEIGHT_W (WEIGHT_W), .MAX_DIM (MAX_DIM), .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS (RECTS)
-    ) u_window (.*);
+    cube4_gra_window #(`CUBE4_GRA_PASS, .RECTS (RECTS)) u_window (.*);
 
 endmodule
 `default_nettype wire

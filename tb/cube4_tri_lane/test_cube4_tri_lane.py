@@ -25,6 +25,7 @@ from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.model import interpolate_pair
 from cube4.vgrad import grad_bits, pack_channels, unpack_words
+from cube4_sim.beats import pack_fields
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock
 
@@ -76,11 +77,7 @@ def golden_sample(cell: np.ndarray, wts, vw: int, w: int, vgrad: bool) -> int:
 def lane_words(cell: np.ndarray, col: int, ww: int) -> int:
     """The 4 words of column ``col``: {prev upper, prev lower, cur upper, cur lower}, MSB first
     (row 0 = j, the previous row; row 1 = j + 1, the current one; slice 0 lower, 1 upper)."""
-    words = [cell[1, 0, col], cell[0, 0, col], cell[1, 1, col], cell[0, 1, col]]
-    out = 0
-    for x in words:
-        out = (out << ww) | int(x)
-    return out
+    return pack_fields([cell[1, 0, col], cell[0, 0, col], cell[1, 1, col], cell[0, 1, col]], ww)
 
 
 @cocotb.test()
