@@ -7,8 +7,9 @@
   projected on the cross product of ImageOrientationPatient's row and column
   directions), or by InstanceNumber where a slice has no position. Two slices at the
   same position, or a gap of more than 1.5 times the usual spacing (a missing slice),
-  is an error.
-* RescaleSlope and RescaleIntercept are applied (e.g. CT values in Hounsfield units).
+  is an error; so are positions that are not finite numbers, two slices without positions
+  that share an InstanceNumber, and an InstanceNumber that is not an integer.
+* RescaleSlope (finite, non-zero, at most 1e100 in size) and RescaleIntercept are applied (e.g. CT values in Hounsfield units).
   Integer results whose range fits 16 bits are shifted so that the series' minimum is 0
   and kept exactly: a 12-bit CT series stays 12 bits, voxel = value - minimum; anything
   else is returned as floats, which the caller rescales min..max.
@@ -22,15 +23,19 @@ axes are LPS); no resampling.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import UserError
+from ..values import shown
 from .orient import to_ras
 
 GAP_FACTOR = 1.5      # a spacing this many times the median one means a missing slice
+MAX_SLOPE = 1e100     # |RescaleSlope|: pixels (< 2^32) times it stay far inside float64
+MAX_INTERCEPT = 1e300
 
 
 def _read(path: Path):
@@ -54,30 +59,64 @@ def _files(folder: Path) -> list[Path]:
 
 def _normal(ds) -> np.ndarray | None:
     iop = getattr(ds, "ImageOrientationPatient", None)
-    if iop is None or len(iop) != 6:
+    if iop is None:
         return None
-    row, col = np.array(iop[:3], dtype=float), np.array(iop[3:], dtype=float)
+    try:
+        v = np.array([float(c) for c in iop], dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    if v.shape != (6,) or not np.all(np.isfinite(v)):
+        return None
+    row, col = v[:3], v[3:]
     n = np.cross(row, col)
     norm = float(np.linalg.norm(n))
-    return n / norm if norm > 0 else None
+    return n / norm if norm > 0 and np.isfinite(norm) else None
+
+
+def _numbers(value, count: int, path: Path, key: str) -> np.ndarray | None:
+    """A multi-valued DICOM number (ImagePositionPatient, ...) as count finite floats."""
+    if value is None:
+        return None
+    try:
+        v = np.array([float(c) for c in value], dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        raise UserError(f"{path}: {key} must be {count} numbers, got {shown(str(value), 60)}") from None
+    if v.shape != (count,) or not np.all(np.isfinite(v)):
+        raise UserError(f"{path}: {key} must be {count} finite numbers, got {shown(str(value), 60)}")
+    return v
+
+
+def _instance(ds, path: Path) -> int | None:
+    n = getattr(ds, "InstanceNumber", None)
+    if n is None or n == "":
+        return None
+    try:
+        return int(str(n).strip())
+    except ValueError:
+        raise UserError(f"{path}: InstanceNumber must be an integer, got {shown(str(n), 40)}") from None
 
 
 def _order(slices: list, files: list[Path]) -> list[int]:
     """Slice order along the normal (or by InstanceNumber), with the spacing checked."""
     normal = _normal(slices[0])
     pos = []
-    for ds in slices:
-        ipp = getattr(ds, "ImagePositionPatient", None)
+    for ds, f in zip(slices, files):
+        ipp = _numbers(getattr(ds, "ImagePositionPatient", None), 3, f, "ImagePositionPatient")
         if normal is None or ipp is None:
             pos = None
             break
-        pos.append(float(np.dot(np.array(ipp, dtype=float), normal)))
+        pos.append(float(np.dot(ipp, normal)))
     if pos is None:
-        nums = [getattr(ds, "InstanceNumber", None) for ds in slices]
+        nums = [_instance(ds, f) for ds, f in zip(slices, files)]
         if any(n is None for n in nums):
             raise UserError(f"{files[0].parent}: slices have neither positions nor instance numbers: "
                             "their order is unknown")
-        return sorted(range(len(slices)), key=lambda i: int(nums[i]))
+        order = sorted(range(len(slices)), key=lambda i: nums[i])
+        for a, b in zip(order, order[1:]):
+            if nums[a] == nums[b]:
+                raise UserError(f"{files[a].name} and {files[b].name} have the same InstanceNumber {nums[a]} "
+                                "and no positions: two series, or a duplicated slice")
+        return order
     order = sorted(range(len(slices)), key=lambda i: pos[i])
     p = np.array([pos[i] for i in order])
     if len(p) > 1:
@@ -106,6 +145,23 @@ def _pixels(ds, path: Path) -> np.ndarray:
     if a.ndim != 2:
         raise UserError(f"{path}: a slice must be one 2-D image, got pixel data of shape {a.shape}")
     return a
+
+
+def _rescale_value(ds, path: Path, key: str, default: float) -> float:
+    """RescaleSlope / RescaleIntercept: finite (a slope also non-zero, and at most
+    MAX_SLOPE in size so that no voxel overflows)."""
+    raw = getattr(ds, key, None)
+    if raw is None or raw == "":
+        return default
+    try:
+        v = float(raw)
+    except (TypeError, ValueError, OverflowError):
+        raise UserError(f"{path}: {key} must be a number, got {shown(str(raw), 40)}") from None
+    limit = MAX_SLOPE if key == "RescaleSlope" else MAX_INTERCEPT
+    if not math.isfinite(v) or abs(v) > limit or (key == "RescaleSlope" and v == 0.0):
+        need = "finite, non-zero and at most" if key == "RescaleSlope" else "finite and at most"
+        raise UserError(f"{path}: {key} = {shown(str(raw), 40)}: must be {need} {limit:g} in size")
+    return v
 
 
 def _rescale(stack: np.ndarray, slopes: list[float], intercepts: list[float]) -> np.ndarray:
@@ -142,8 +198,8 @@ def load_series(folder: str | os.PathLike) -> np.ndarray:
             raise UserError(f"{f}: its orientation differs from the rest of the series")
     order = _order(slices, files)
     stack = np.stack([_pixels(slices[i], files[i]) for i in order])   # [z, rows (y), columns (x)]
-    slopes = [float(getattr(slices[i], "RescaleSlope", 1.0) or 1.0) for i in order]
-    intercepts = [float(getattr(slices[i], "RescaleIntercept", 0.0) or 0.0) for i in order]
+    slopes = [_rescale_value(slices[i], files[i], "RescaleSlope", 1.0) for i in order]
+    intercepts = [_rescale_value(slices[i], files[i], "RescaleIntercept", 0.0) for i in order]
     vol = _rescale(stack, slopes, intercepts)
     directions = _ras_directions(slices[order[0]])
     return vol if directions is None else to_ras(vol, directions)
