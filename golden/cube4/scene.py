@@ -301,7 +301,8 @@ def _read_scene_file(path: Path, spec: str) -> str:
         with open(path, "rb") as f:
             data = f.read(MAX_SCENE_BYTES + 1)
     except OSError as e:
-        raise UserError(f"cannot read scene {spec[:200]}: {e.strerror or e}") from None
+        name = spec if len(spec) <= 200 else spec[:60] + "..."
+        raise UserError(f"cannot read scene {name}: {e.strerror or e}") from None
     if len(data) > MAX_SCENE_BYTES:
         raise UserError(f"scene {spec} is larger than {MAX_SCENE_BYTES >> 20} MiB: not a scene file")
     try:

@@ -16,12 +16,14 @@ never a temporary.
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import fcntl
 import json
 import os
 import stat
 import struct
+import sys
 import tempfile
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -120,9 +122,9 @@ def check_destination(path: Path, what: str) -> None:
                         f"({whole} bytes, at most {_path_max(anc) - 1})")
     if os.path.isdir(path):
         raise UserError(f"{what} {str(path)!r} is a folder")
+    _replaceable(path, anc, what)
     if not os.access(anc, os.W_OK | os.X_OK):
         raise UserError(f"{what} {str(path)!r}: cannot write in {str(anc)!r} (permission denied)")
-    _replaceable(path, anc, what)
 
 
 def check_destinations(named: Sequence[tuple[Path, str]]) -> None:
@@ -151,19 +153,37 @@ def _make_parents(path: Path, created: list[Path]) -> None:
 # ------------------------------------------------------------------ checking what was written
 
 
+@contextlib.contextmanager
+def _quiet_stderr():
+    """The image libraries' own complaints (libpng prints to the file descriptor) kept
+    off the terminal while a file is read back: the error is one line of ours."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    try:
+        with open(os.devnull, "wb") as null:
+            os.dup2(null.fileno(), 2)
+        yield
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+
+
 def _read_image(tmp: str) -> None:
     import OpenImageIO as oiio
 
-    inp = oiio.ImageInput.open(tmp)
-    if inp is None:
-        raise OSError(errno.EIO, f"the written image cannot be read back ({oiio.geterror()})")
-    try:
-        spec = inp.spec()
-        pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
-        if pixels is None or inp.has_error:
-            raise OSError(errno.EIO, f"the written image is incomplete ({inp.geterror()})")
-    finally:
-        inp.close()
+    with _quiet_stderr():
+        inp = oiio.ImageInput.open(tmp)
+        if inp is None:
+            oiio.geterror()
+            raise OSError(errno.EIO, "the written image cannot be read back")
+        try:
+            spec = inp.spec()
+            pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
+            if pixels is None or inp.has_error:
+                inp.geterror()
+                raise OSError(errno.EIO, "the written image is incomplete")
+        finally:
+            inp.close()
 
 
 def _read_npy(tmp: str) -> None:
@@ -214,6 +234,7 @@ def _reason(e: BaseException, tmp: str | None, path: Path) -> str:
         text = str(e)
     if tmp:
         text = text.replace(tmp, str(path)).replace(os.path.basename(tmp), path.name)
+    text = " ".join(text.split())
     try:
         vfs = os.statvfs(path.parent if _exists(path.parent) else _existing_ancestor(path.parent))
         if vfs.f_bavail * vfs.f_frsize < 64 * 1024 and "space" not in text.lower():
