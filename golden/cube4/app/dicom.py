@@ -31,6 +31,7 @@ import numpy as np
 
 from ..errors import UserError
 from ..values import shown
+from .libs import quiet_library
 from .orient import to_ras
 
 GAP_FACTOR = 1.5      # a spacing this many times the median one means a missing slice
@@ -43,7 +44,8 @@ def _read(path: Path):
     from pydicom.errors import InvalidDicomError
 
     try:
-        return pydicom.dcmread(path)
+        with quiet_library():
+            return pydicom.dcmread(path)
     except InvalidDicomError:
         raise UserError(f"{path}: not a DICOM file (a DICOM series folder holds only its slices)") from None
     except Exception as e:  # truncated or corrupt files raise many kinds
@@ -135,7 +137,8 @@ def _order(slices: list, files: list[Path]) -> list[int]:
 
 def _pixels(ds, path: Path) -> np.ndarray:
     try:
-        a = ds.pixel_array
+        with quiet_library():
+            a = ds.pixel_array
     except Exception as e:
         ts = getattr(getattr(ds, "file_meta", None), "TransferSyntaxUID", None)
         if ts is not None and ts.is_compressed:

@@ -35,6 +35,7 @@ from ..config import MAX_DIM
 from ..errors import UserError
 from ..phantoms import PHANTOMS, Dims, check_bits, check_dims, check_memory, parse_dims, quantise
 from .dicom import load_series
+from .libs import quiet_library
 from .orient import to_ras
 
 # --------------------------------------------------------------------------------------
@@ -275,7 +276,8 @@ def _load_nrrd(path: str) -> np.ndarray:
     try:
         # index_order='C' gives the slowest axis first: [z, y, x] for a 3-D file whose
         # first NRRD axis (fastest) is x. (The default 'F' order would give [x, y, z].)
-        data, header = nrrd.read(path, index_order="C")
+        with quiet_library():
+            data, header = nrrd.read(path, index_order="C")
     except KeyError as e:        # pynrrd's table of types
         raise UserError(f"cannot read NRRD file {path}: unknown NRRD type {e}") from None
     except Exception as e:       # corrupt payloads raise many kinds (zlib, EOF, value errors)
@@ -319,7 +321,7 @@ def _nifti_header(img, path: str) -> None:
     from nibabel.openers import ImageOpener
 
     try:
-        with ImageOpener(path) as f:
+        with quiet_library(), ImageOpener(path) as f:
             hdr = img.header_class.from_fileobj(f)
         slope, inter = float(hdr["scl_slope"]), float(hdr["scl_inter"])
     except Exception as e:  # nibabel read it once already; a second read failing is corrupt data
@@ -337,14 +339,16 @@ def _load_nifti(path: str) -> np.ndarray:
     import nibabel as nib
 
     try:
-        img = nib.load(path)
+        with quiet_library():
+            img = nib.load(path)
     except Exception as e:  # nibabel raises many kinds for corrupt files
         raise UserError(f"cannot read NIfTI file {path}: {type(e).__name__}: {e}") from None
     _nifti_header(img, path)
     try:
-        if len(img.shape) >= 3:
-            img = nib.as_closest_canonical(img)   # RAS: x right, y anterior, z superior
-        data = np.asarray(img.dataobj)  # [x, y, z(, t)]; scl_slope applied if set
+        with quiet_library():
+            if len(img.shape) >= 3:
+                img = nib.as_closest_canonical(img)   # RAS: x right, y anterior, z superior
+            data = np.asarray(img.dataobj)  # [x, y, z(, t)]; scl_slope applied if set
     except Exception as e:  # nibabel raises many kinds for corrupt files
         raise UserError(f"cannot read NIfTI file {path}: {type(e).__name__}: {e}".rstrip(": ")) from None
     data = _spatial_3d(data, path, t_axis=3)
