@@ -465,7 +465,8 @@ def main(argv: list[str] | None = None) -> int:
             print("\n".join(builtin_scene_names()))
             return 0
     except UserError as e:
-        print(f"cube4: error: {e}", file=sys.stderr)
+        text = " ".join(str(e).split())     # one line, whatever a library's message held
+        print(f"cube4: error: {text}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("cube4: interrupted", file=sys.stderr)
