@@ -11,9 +11,10 @@ Every generated case must end in one of two ways:
 
 never a traceback, and never a temporary (``.cube4-*``) or a new folder left behind.
 
-``make test`` runs FUZZ_EXAMPLES (200) cases per kind, derandomized; ``make regress`` runs
-the long fuzz (FUZZ_LONG_EXAMPLES per kind, 3400 by default: more than 10,000 in all,
-seeded, 10-15 minutes on one core). CUBE4_FUZZ_EXAMPLES overrides both counts.
+Five kinds: scenes with command lines, NRRD, NIfTI, raw files and DICOM series (slice
+attributes changed or deleted). ``make test`` runs FUZZ_EXAMPLES (150) cases per kind,
+derandomized (about 30 s); ``make regress`` runs the long fuzz (FUZZ_LONG_EXAMPLES per
+kind, 2500 by default: 12,500 in all, seeded). CUBE4_FUZZ_EXAMPLES overrides both counts.
 
 Clusters are not started: a case that would start a Dask cluster or reach a scheduler
 gets one line from a stand-in (the addresses themselves are checked before that).
@@ -36,8 +37,8 @@ from hypothesis import strategies as st
 from cube4.app import cli, cluster
 from cube4.errors import UserError
 
-FUZZ_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "200"))
-FUZZ_LONG_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "3400"))
+FUZZ_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "150"))
+FUZZ_LONG_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "2500"))
 EARLIER = b"earlier output"
 COUNT = {"cases": 0, "ok": 0, "refused": 0}
 
@@ -310,6 +311,57 @@ def raw_files(draw) -> tuple[bytes, list[str]]:
     return data, ["--dims", dims, "--dtype", dtype]
 
 
+DICOM_ATTRS = ["ImagePositionPatient", "ImageOrientationPatient", "InstanceNumber", "RescaleSlope",
+               "RescaleIntercept", "Rows", "Columns", "BitsAllocated", "PixelRepresentation", "SeriesInstanceUID",
+               "PixelData", "SamplesPerPixel"]
+
+
+def _dicom_value(draw, attr: str):
+    if attr in ("ImagePositionPatient", "ImageOrientationPatient"):
+        n = 3 if attr == "ImagePositionPatient" else 6
+        return [draw(st.sampled_from(["0", "1", "-1", "NaN", "inf", "1e308", "x", "0.5"])) for _ in range(n)] \
+            if draw(st.booleans()) else draw(st.sampled_from([None, ["1", "0"], []]))
+    if attr in ("InstanceNumber", "RescaleSlope", "RescaleIntercept"):
+        return draw(st.sampled_from([None, "0", "1", "-3", "1e300", "inf", "NaN", "third", "", "2.5"]))
+    if attr in ("Rows", "Columns", "BitsAllocated", "PixelRepresentation", "SamplesPerPixel"):
+        return draw(st.sampled_from([None, 0, 1, 3, 4, 8, 16, 32, 65535]))
+    if attr == "SeriesInstanceUID":
+        return draw(st.sampled_from([None, "1.2.3", "1.2.4"]))
+    return draw(st.sampled_from([None, b"", b"\0" * 7, b"\1" * 32, b"\2" * 64]))
+
+
+@st.composite
+def dicom_series(draw) -> list[tuple[int, str, object]]:
+    """Changes to a 3-slice series: (slice, attribute, new value or None to delete)."""
+    return [(draw(st.integers(0, 2)), attr, _dicom_value(draw, attr))
+            for attr in draw(st.lists(st.sampled_from(DICOM_ATTRS), max_size=3))]
+
+
+def _write_dicom(folder: Path, changes) -> None:
+    import warnings
+
+    import pydicom
+    from cube4_testutil import write_series
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        write_series(folder, np.arange(3 * 4 * 4, dtype=np.uint16).reshape(3, 4, 4) * 50)
+        files = sorted(folder.iterdir())
+        for n, attr, value in changes:
+            ds = pydicom.dcmread(files[n])
+            try:
+                if value is None:
+                    if attr in ds:
+                        delattr(ds, attr)
+                else:
+                    if attr == "InstanceNumber":
+                        ds["InstanceNumber"].VR = "LO"
+                    setattr(ds, attr, value)
+                ds.save_as(files[n])
+            except Exception:      # a value pydicom will not write: the change is skipped
+                pass
+
+
 # ------------------------------------------------------------------ the property
 
 
@@ -332,7 +384,7 @@ def _no_cluster(monkeypatch):
 
 
 def _run_case(capfd, volume: str | None, files: dict[str, bytes], args: list[str], out_name: str,
-              scene: str | None) -> None:
+              scene: str | None, dicom=None) -> None:
     """Run one generated case in a fresh folder and check the outcome (module docstring)."""
     import OpenImageIO as oiio
 
@@ -341,6 +393,9 @@ def _run_case(capfd, volume: str | None, files: dict[str, bytes], args: list[str
         root = Path(d)
         for name, data in files.items():
             (root / name).write_bytes(data)
+        if dicom is not None:
+            _write_dicom(root / "series", dicom)
+            volume = str(root / "series")
         earlier = root / "out.png"
         earlier.write_bytes(EARLIER)
         argv = ["render", volume if volume is not None else str(root / next(iter(files)))]
@@ -403,10 +458,15 @@ def _fuzz(n: int):
         data, extra = raw
         _run_case(capfd, None, {"v.raw": data}, [*extra, *args], "out.png", None)
 
-    return {"scenes_and_options": scenes_and_options, "nrrd": nrrd, "nifti": nifti, "raw": raw}
+    @_settings(n)
+    @given(changes=dicom_series(), args=option_lists())
+    def dicom(capfd, changes, args):
+        _run_case(capfd, None, {}, args, "out.png", None, dicom=changes)
+
+    return {"scenes_and_options": scenes_and_options, "nrrd": nrrd, "nifti": nifti, "raw": raw, "dicom": dicom}
 
 
-KINDS = ["scenes_and_options", "nrrd", "nifti", "raw"]
+KINDS = ["scenes_and_options", "nrrd", "nifti", "raw", "dicom"]
 
 
 @pytest.mark.parametrize("kind", KINDS)

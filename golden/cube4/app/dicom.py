@@ -150,6 +150,17 @@ def _pixels(ds, path: Path) -> np.ndarray:
     return a
 
 
+def _size(ds, path: Path) -> tuple[int, int]:
+    """(Rows, Columns): both present and positive integers."""
+    try:
+        rows, cols = int(ds.Rows), int(ds.Columns)
+    except (AttributeError, TypeError, ValueError):
+        raise UserError(f"{path}: a slice needs Rows and Columns (positive integers)") from None
+    if rows < 1 or cols < 1:
+        raise UserError(f"{path}: Rows and Columns must be positive, got {rows}x{cols}")
+    return rows, cols
+
+
 def _rescale_value(ds, path: Path, key: str, default: float) -> float:
     """RescaleSlope / RescaleIntercept: finite (a slope also non-zero, and at most
     MAX_SLOPE in size so that no voxel overflows)."""
@@ -190,10 +201,10 @@ def load_series(folder: str | os.PathLike) -> np.ndarray:
     for ds, f in zip(slices, files):
         if "PixelData" not in ds:
             raise UserError(f"{f}: a DICOM file without an image")
-    shape0 = (int(slices[0].Rows), int(slices[0].Columns))
-    for ds, f in zip(slices, files):
-        if (int(ds.Rows), int(ds.Columns)) != shape0:
-            raise UserError(f"{f}: a {ds.Rows}x{ds.Columns} slice in a series of {shape0[0]}x{shape0[1]}")
+    shapes = [_size(ds, f) for ds, f in zip(slices, files)]
+    for shape, f in zip(shapes, files):
+        if shape != shapes[0]:
+            raise UserError(f"{f}: a {shape[0]}x{shape[1]} slice in a series of {shapes[0][0]}x{shapes[0][1]}")
     n0 = _normal(slices[0])
     for ds, f in zip(slices, files):
         n = _normal(ds)
