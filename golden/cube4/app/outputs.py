@@ -215,6 +215,15 @@ def _sync(path: str, flags: int = os.O_RDONLY) -> None:
         os.close(fd)
 
 
+def _sync_folder(folder: Path) -> None:
+    """The moves on the disk; a file system that cannot sync a folder is no failure."""
+    try:
+        _sync(str(folder))
+    except OSError as e:
+        if e.errno not in (errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EBADF, errno.EACCES):
+            raise
+
+
 def _settle(tmp: str, suffix: str) -> None:
     """The temporary on the disk and whole: synced, not empty, read back."""
     _sync(tmp)
@@ -279,7 +288,7 @@ def write_all(outputs: Sequence[tuple[Path, Writer]]) -> None:
             placed.append(path)
         tmp = None
         for folder in {p.parent for _, p in temps}:
-            _sync(str(folder))
+            _sync_folder(folder)
         for bak, _ in backups:
             _remove(bak)
         backups.clear()
