@@ -380,3 +380,36 @@ def test_sticky_folder_of_another_user(tmp_path, capfd, monkeypatch):
     monkeypatch.setattr(os, "geteuid", lambda: 4242)
     rc, err = _render(capfd, "sphere:16", "--out", str(out))
     _check(rc, err, out, tmp_path, "sticky")
+
+
+def test_full_disk_for_the_stats_after_the_image(small_disk, capfd):
+    """One page free: the small image takes it, the stats file finds the disk full. The
+    image written first is not kept either."""
+    out, stats = small_disk / "out.png", small_disk / "st.json"
+    out.write_bytes(EARLIER)
+    stats.write_text("earlier stats")
+    scene = small_disk.parent / "s.toml"
+    scene.write_text("[output]\nwidth = 8\n")
+    _fill(small_disk, 4096)
+    rc, err = _render(capfd, "sphere:4", "--scene", str(scene), "--out", str(out), "--stats", str(stats))
+    _check(rc, err, out, small_disk, "st.json")
+    assert stats.read_text() == "earlier stats"
+
+
+def test_interrupt_while_writing(tmp_path, capfd, monkeypatch):
+    """Ctrl-C while the outputs are written: exit 130, one line, the earlier image back,
+    nothing left behind."""
+    from cube4.app import cli
+
+    out = tmp_path / "out.png"
+    out.write_bytes(EARLIER)
+
+    def interrupted(path, *a, **k):
+        Path(path).write_bytes(b"half an image")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "write_image", interrupted)
+    rc = main(["render", "sphere:8", "--quiet", "--out", str(out)])
+    err = capfd.readouterr().err
+    assert rc == 130 and err == "cube4: interrupted\n", err
+    assert out.read_bytes() == EARLIER and not _leftovers(tmp_path)

@@ -11,10 +11,11 @@ Every generated case must end in one of two ways:
 
 never a traceback, and never a temporary (``.cube4-*``) or a new folder left behind.
 
-Five kinds: scenes with command lines, NRRD, NIfTI, raw files and DICOM series (slice
-attributes changed or deleted). ``make test`` runs FUZZ_EXAMPLES (150) cases per kind,
-derandomized (about 30 s); ``make regress`` runs the long fuzz (FUZZ_LONG_EXAMPLES per
-kind, 2500 by default: 12,500 in all, seeded). CUBE4_FUZZ_EXAMPLES overrides both counts.
+Six kinds: scenes alone (on a small built-in), scenes with command lines, NRRD, NIfTI,
+raw files and DICOM series (slice attributes changed or deleted). ``make test`` runs
+FUZZ_EXAMPLES (120) cases per kind, derandomized (about 30 s); ``make regress`` runs the
+long fuzz (FUZZ_LONG_EXAMPLES per kind, 2000 by default: 12,000 in all, seeded).
+CUBE4_FUZZ_EXAMPLES overrides both counts.
 
 Clusters are not started: a case that would start a Dask cluster or reach a scheduler
 gets one line from a stand-in (the addresses themselves are checked before that).
@@ -37,8 +38,8 @@ from hypothesis import strategies as st
 from cube4.app import cli, cluster
 from cube4.errors import UserError
 
-FUZZ_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "150"))
-FUZZ_LONG_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "2500"))
+FUZZ_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "120"))
+FUZZ_LONG_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "2000"))
 EARLIER = b"earlier output"
 COUNT = {"cases": 0, "ok": 0, "refused": 0}
 
@@ -440,6 +441,13 @@ def _fuzz(n: int):
         _run_case(capfd, volume, {}, args, out_name, scene)
 
     @_settings(n)
+    @given(scene=scene_files(), n_vox=st.integers(3, 10), out_name=st.sampled_from(OUT_NAMES[:3]),
+           engine=st.sampled_from(["golden", "reference"]))
+    def scenes(capfd, scene, n_vox, out_name, engine):
+        """The scene alone hostile: a small built-in, a good output name, no other option."""
+        _run_case(capfd, f"sphere:{n_vox}", {}, ["--engine", engine], out_name, scene)
+
+    @_settings(n)
     @given(data=nrrd_files(), args=option_lists())
     def nrrd(capfd, data, args):
         _run_case(capfd, None, {"v.nrrd": data}, args, "out.png", None)
@@ -463,10 +471,10 @@ def _fuzz(n: int):
     def dicom(capfd, changes, args):
         _run_case(capfd, None, {}, args, "out.png", None, dicom=changes)
 
-    return {"scenes_and_options": scenes_and_options, "nrrd": nrrd, "nifti": nifti, "raw": raw, "dicom": dicom}
+    return {"scenes": scenes, "scenes_and_options": scenes_and_options, "nrrd": nrrd, "nifti": nifti, "raw": raw, "dicom": dicom}
 
 
-KINDS = ["scenes_and_options", "nrrd", "nifti", "raw", "dicom"]
+KINDS = ["scenes", "scenes_and_options", "nrrd", "nifti", "raw", "dicom"]
 
 
 @pytest.mark.parametrize("kind", KINDS)
