@@ -9,7 +9,7 @@ Every generated case must end in one of two ways:
 * exit status 2, exactly one ``cube4: error:`` line on stderr and nothing on stdout, the
   earlier output untouched byte for byte;
 
-never a traceback, and never a temporary (``.cube4-*``) or a new folder left behind.
+never a traceback or a warning, and never a temporary (``.cube4-*``) or a new folder left behind.
 
 Six kinds: scenes alone (on a small built-in), scenes with command lines, NRRD, NIfTI,
 raw files and DICOM series (slice attributes changed or deleted). ``make test`` runs
@@ -28,6 +28,7 @@ import math
 import os
 import struct
 import tempfile
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -405,10 +406,13 @@ def _run_case(capfd, volume: str | None, files: dict[str, bytes], args: list[str
             argv += ["--scene", str(root / "s.toml")]
         argv += ["--out", str(root / out_name), *args]
         before = {p for p in root.rglob("*")}
-        rc = cli.main(argv)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")        # a warning would be a second line on the terminal
+            rc = cli.main(argv)
         out, err = capfd.readouterr()
         COUNT["cases"] += 1
         assert "Traceback" not in err, (argv, err)
+        assert not caught, (argv, [str(w.message) for w in caught])
         left = [p for p in root.rglob("*") if p.name.startswith(".cube4-")]
         assert not left, (argv, left)
         if rc == 0:

@@ -35,6 +35,7 @@ from .libs import quiet_library
 from .orient import to_ras
 
 GAP_FACTOR = 1.5      # a spacing this many times the median one means a missing slice
+MAX_POSITION_MM = 1e6  # |ImagePositionPatient| components: a kilometre is not a patient
 MAX_SLOPE = 1e100     # |RescaleSlope|: pixels (< 2^32) times it stay far inside float64
 MAX_INTERCEPT = 1e300
 
@@ -59,20 +60,19 @@ def _files(folder: Path) -> list[Path]:
     return files
 
 
-def _normal(ds) -> np.ndarray | None:
+def _normal(ds, path: Path | None = None) -> np.ndarray | None:
+    """The slice normal from ImageOrientationPatient (six direction cosines, each within
+    +-1 up to rounding); None where the slice has none."""
     iop = getattr(ds, "ImageOrientationPatient", None)
     if iop is None:
         return None
-    try:
-        v = np.array([float(c) for c in iop], dtype=np.float64)
-    except (TypeError, ValueError, OverflowError):
-        return None
-    if v.shape != (6,) or not np.all(np.isfinite(v)):
-        return None
-    row, col = v[:3], v[3:]
-    n = np.cross(row, col)
+    v = _numbers(iop, 6, path or Path(getattr(ds, "filename", None) or "slice"), "ImageOrientationPatient")
+    if np.any(np.abs(v) > 1.0 + 1e-3):
+        raise UserError(f"{path or 'a slice'}: ImageOrientationPatient must be six direction cosines (each within "
+                        f"-1..1), got {shown(str(list(iop)), 60)}")
+    n = np.cross(v[:3], v[3:])
     norm = float(np.linalg.norm(n))
-    return n / norm if norm > 0 and np.isfinite(norm) else None
+    return n / norm if norm > 1e-6 else None
 
 
 def _numbers(value, count: int, path: Path, key: str) -> np.ndarray | None:
@@ -100,10 +100,13 @@ def _instance(ds, path: Path) -> int | None:
 
 def _order(slices: list, files: list[Path]) -> list[int]:
     """Slice order along the normal (or by InstanceNumber), with the spacing checked."""
-    normal = _normal(slices[0])
+    normal = _normal(slices[0], files[0])
     pos = []
     for ds, f in zip(slices, files):
         ipp = _numbers(getattr(ds, "ImagePositionPatient", None), 3, f, "ImagePositionPatient")
+        if ipp is not None and np.any(np.abs(ipp) > MAX_POSITION_MM):
+            raise UserError(f"{f}: ImagePositionPatient {list(map(float, ipp))} lies more than "
+                            f"{MAX_POSITION_MM:g} mm from the origin")
         if normal is None or ipp is None:
             pos = None
             break
@@ -205,9 +208,9 @@ def load_series(folder: str | os.PathLike) -> np.ndarray:
     for shape, f in zip(shapes, files):
         if shape != shapes[0]:
             raise UserError(f"{f}: a {shape[0]}x{shape[1]} slice in a series of {shapes[0][0]}x{shapes[0][1]}")
-    n0 = _normal(slices[0])
+    n0 = _normal(slices[0], files[0])
     for ds, f in zip(slices, files):
-        n = _normal(ds)
+        n = _normal(ds, f)
         if n0 is not None and n is not None and not np.allclose(n, n0, atol=1e-4):
             raise UserError(f"{f}: its orientation differs from the rest of the series")
     order = _order(slices, files)

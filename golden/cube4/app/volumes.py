@@ -307,8 +307,13 @@ def _nrrd_ras_affine(header: dict, path: str = "NRRD file") -> np.ndarray | None
     if len(rows) != 3 or any(r.shape != (3,) for r in rows):
         return None
     m = np.array(rows).T
-    norms = np.linalg.norm(m, axis=0)
-    if np.any(norms == 0) or abs(np.linalg.det(m / norms)) < 1e-6:
+    big = np.max(np.abs(m), axis=0)
+    if np.any(big == 0):
+        raise UserError(f"{path}: space directions {[list(map(float, r)) for r in rows]} are zero or not "
+                        "independent: the axes do not span a volume")
+    m = m / big                      # each axis to at most 1 first: huge spacings neither overflow nor vanish
+    m = m / np.linalg.norm(m, axis=0)
+    if abs(np.linalg.det(m)) < 1e-6:
         raise UserError(f"{path}: space directions {[list(map(float, r)) for r in rows]} are zero or not "
                         "independent: the axes do not span a volume")
     return m * np.array(_NRRD_SPACES[space], dtype=np.float64)[:, None]
