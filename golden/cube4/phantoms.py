@@ -12,6 +12,7 @@ data and volume files (``cube4.app.volumes.load_volume``).
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from collections.abc import Callable
@@ -289,12 +290,13 @@ def memory_room() -> tuple[int | None, str]:
     return min(rooms)
 
 
-def check_memory(dims: Dims, spec: str) -> None:
-    """A built-in is generated in memory: refuse a size this process cannot hold (under
-    the limits it runs under, not only the machine's memory)."""
-    need = int(np.prod(dims, dtype=np.int64)) * BUILTIN_BYTES_PER_VOXEL
-    have, what = memory_room()
+def check_memory(dims: Dims, spec: str, bytes_per_voxel: int = BUILTIN_BYTES_PER_VOXEL,
+                 doing: str = "to generate", what: str = "built-in") -> None:
+    """A volume is generated (or loaded) in memory: refuse a size this process cannot hold
+    (under the limits it runs under, not only the machine's memory)."""
+    need = math.prod(max(0, int(n)) for n in dims) * bytes_per_voxel
+    have, limit = memory_room()
     if have is not None and need > have:
-        side = int((have / BUILTIN_BYTES_PER_VOXEL) ** (1 / 3))
-        raise UserError(f"built-in {spec} needs about {need / 2**30:.1f} GiB of memory to generate, {what} "
+        side = int((have / bytes_per_voxel) ** (1 / 3))
+        raise UserError(f"{what} {spec} needs about {need / 2**30:.1f} GiB of memory {doing}, {limit} "
                         f"{have / 2**30:.1f} GiB: choose at most about {side}^3 voxels")

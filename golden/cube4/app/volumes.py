@@ -24,6 +24,7 @@ without a known space) keep their stored index order (first axis = x).
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from collections.abc import Callable
@@ -257,8 +258,19 @@ def _load_raw(path: str, raw_dims: Dims | None, raw_dtype: str | None, max_dim: 
             f"raw file {path} is {kind}: {actual} bytes, but {nx}x{ny}x{nz} {dtype.name} "
             f"needs exactly {expected} bytes"
         )
+    _check_room((nx, ny, nz), dtype.itemsize, path)
     data = np.fromfile(path, dtype=dtype, count=nx * ny * nz)
     return data.reshape(nz, ny, nx)  # x varies fastest in the file
+
+
+# loading a file takes its data, a float64 copy while rescaling, the result and temporaries
+LOAD_BYTES_PER_VOXEL = 24
+
+
+def _check_room(dims, itemsize: int, path: str) -> None:
+    """Refuse, before reading, a file whose voxels this process cannot hold."""
+    check_memory(tuple(int(n) for n in dims), path, bytes_per_voxel=itemsize + LOAD_BYTES_PER_VOXEL,
+                 doing="to load", what="volume file")
 
 
 def _spatial_3d(data: np.ndarray, path: str, t_axis: int) -> np.ndarray:
@@ -277,7 +289,12 @@ def _load_nrrd(path: str) -> np.ndarray:
         # index_order='C' gives the slowest axis first: [z, y, x] for a 3-D file whose
         # first NRRD axis (fastest) is x. (The default 'F' order would give [x, y, z].)
         with quiet_library():
+            head = nrrd.read_header(path)
+            sizes = [int(n) for n in head.get("sizes", [])]
+            _check_room((sizes + [1, 1, 1])[:3], 8 * math.prod(sizes[3:]), path)   # 8: the widest type
             data, header = nrrd.read(path, index_order="C")
+    except UserError:
+        raise
     except KeyError as e:        # pynrrd's table of types
         raise UserError(f"cannot read NRRD file {path}: unknown NRRD type {e}") from None
     except Exception as e:       # corrupt payloads raise many kinds (zlib, EOF, value errors)
@@ -349,6 +366,8 @@ def _load_nifti(path: str) -> np.ndarray:
     except Exception as e:  # nibabel raises many kinds for corrupt files
         raise UserError(f"cannot read NIfTI file {path}: {type(e).__name__}: {e}") from None
     _nifti_header(img, path)
+    shape = tuple(int(n) for n in img.shape) or (1,)
+    _check_room((shape + (1, 1, 1))[:3], math.prod(shape[3:]) * img.get_data_dtype().itemsize, path)
     try:
         with quiet_library():
             if len(img.shape) >= 3:
