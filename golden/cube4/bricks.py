@@ -38,6 +38,7 @@ from .model import PIXEL_DTYPE, Frame, render_frame
 from .modes import MODES, is_blend
 from .progress import Progress, counted
 from .view import Traversal, sub_traversal
+from .values import int_text, shown
 
 #: voxels a brick stores beyond its own range on the low and the high side of every axis
 OVERLAP_LOW = 1
@@ -100,10 +101,10 @@ class BrickGrid:
 
 def parse_bricks(text: str) -> tuple[int, int, int]:
     """'BX,BY,BZ' (or 'BXxBYxBZ'): bricks along x, y, z, each a positive integer."""
-    bad = UserError(f"--bricks must be BX,BY,BZ (three positive integers: bricks along x, y, z), got {text!r}")
+    bad = UserError(f"--bricks must be BX,BY,BZ (three positive integers: bricks along x, y, z), got {shown(text)}")
     try:
-        parts = tuple(int(p) for p in str(text).replace("x", ",").split(","))
-    except ValueError:
+        parts = tuple(int_text(p, "--bricks") for p in str(text).replace("x", ",").split(","))
+    except UserError:
         raise bad from None
     if len(parts) != 3 or any(p < 1 for p in parts):
         raise bad

@@ -11,6 +11,7 @@ from dataclasses import asdict, dataclass
 from .builds import BUILD_PARAMS, BY_NAME, FULL_BUILD, check_build, complete_build, parse_options
 from .errors import UserError
 from .modes import is_blend, is_extremum
+from .values import shown
 
 MAX_PIPELINES = 64
 MAX_DIM = 2048
@@ -55,9 +56,9 @@ class Cube4Config:
         ]
         for name, val, lo, hi in checks:
             if not isinstance(val, int) or isinstance(val, bool) or not lo <= val <= hi:
-                raise UserError(f"{name} must be an integer in {lo}..{hi}, got {val!r}")
+                raise UserError(f"{name} must be an integer in {lo}..{hi}, got {shown(val)}")
         if self.supersample not in (1, 2, 4, 8):
-            raise UserError(f"supersample must be 1, 2, 4 or 8, got {self.supersample!r}")
+            raise UserError(f"supersample must be 1, 2, 4 or 8, got {shown(self.supersample)}")
         if self.build is not None:
             check_build(dict(self.build), self.widths())
 

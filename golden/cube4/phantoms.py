@@ -12,6 +12,7 @@ data and volume files (``cube4.app.volumes.load_volume``).
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from collections.abc import Callable
@@ -236,11 +237,66 @@ def _physical_memory() -> int | None:
         return None
 
 
-def check_memory(dims: Dims, spec: str) -> None:
-    """A built-in is generated in memory: refuse a size this machine cannot hold."""
-    need = int(np.prod(dims, dtype=np.int64)) * BUILTIN_BYTES_PER_VOXEL
-    have = _physical_memory()
-    if have is not None and need > 0.75 * have:
-        side = int((0.75 * have / BUILTIN_BYTES_PER_VOXEL) ** (1 / 3))
-        raise UserError(f"built-in {spec} needs about {need / 2**30:.0f} GiB of memory to generate, this "
-                        f"machine has {have / 2**30:.0f} GiB: choose at most about {side}^3 voxels")
+def _status_bytes(field: str) -> int:
+    """A /proc/self/status size (VmSize, VmData) in bytes; 0 where unknown."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
+
+
+def _cgroup_room() -> int | None:
+    """Bytes the process's cgroup (v2 memory.max, v1 memory.limit_in_bytes) has left."""
+    for limit, usage in (("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"),
+                         ("/sys/fs/cgroup/memory/memory.limit_in_bytes", "/sys/fs/cgroup/memory/memory.usage_in_bytes")):
+        try:
+            with open(limit) as f:
+                text = f.read().strip()
+            if text == "max":
+                return None
+            with open(usage) as f:
+                used = int(f.read().strip())
+            cap = int(text)
+            return max(0, cap - used) if cap < 1 << 60 else None
+        except (OSError, ValueError):
+            continue
+    return None
+
+
+def memory_room() -> tuple[int | None, str]:
+    """The memory this process may still take, and what limits it: three quarters of the
+    machine's memory, the address-space and data limits the process runs under
+    (ulimit -v, -d) less what it uses, the cgroup's limit less its usage; the smallest."""
+    import resource
+
+    rooms: list[tuple[int, str]] = []
+    phys = _physical_memory()
+    if phys is not None:
+        rooms.append((int(0.75 * phys), "this machine has"))
+    for lim, field, what in ((resource.RLIMIT_AS, "VmSize", "the address-space limit leaves"),
+                             (resource.RLIMIT_DATA, "VmData", "the data-size limit leaves")):
+        soft = resource.getrlimit(lim)[0]
+        if soft != resource.RLIM_INFINITY:
+            rooms.append((max(0, soft - _status_bytes(field)), what))
+    cg = _cgroup_room()
+    if cg is not None:
+        rooms.append((cg, "the cgroup's memory limit leaves"))
+    if not rooms:
+        return None, ""
+    return min(rooms)
+
+
+def check_memory(dims: Dims, spec: str, bytes_per_voxel: int = BUILTIN_BYTES_PER_VOXEL,
+                 doing: str = "to generate", what: str = "built-in") -> None:
+    """A volume is generated (or loaded) in memory: refuse a size this process cannot hold
+    (under the limits it runs under, not only the machine's memory)."""
+    need = math.prod(max(0, int(n)) for n in dims) * bytes_per_voxel
+    have, limit = memory_room()
+    if have is not None and need > have:
+        side = int((have / bytes_per_voxel) ** (1 / 3))
+        raise UserError(f"{what} {spec} needs about {need / 2**30:.1f} GiB of memory {doing}, {limit} "
+                        f"{have / 2**30:.1f} GiB: choose at most about {side}^3 voxels")

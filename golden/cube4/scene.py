@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import UserError
+from .values import integer, real, shown, vector
 from .modes import MODES, is_blend  # docs/scenes.md, docs/numerics.md §13
 from .subpixel import MAX_Q
 from .view import direction_from_angles, normalize_direction
@@ -22,6 +23,7 @@ from .warp import DEFAULT_FILTER, check_filter
 
 #: [output] footprint when a scene does not say (docs/scenes.md)
 FOOTPRINT_DEFAULT = True
+CUT_POINT_BOUND = 1e6   # [cut] point: each coordinate within +-this many voxels
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
@@ -84,19 +86,15 @@ class Scene:
 
 
 def _num(tbl: dict, key: str, default, lo=None, hi=None, where=""):
-    val = tbl.get(key, default)
-    if isinstance(val, bool) or not isinstance(val, (int, float)):
-        raise UserError(f"scene: {where}{key} must be a number, got {val!r}")
-    if not math.isfinite(val) or (lo is not None and val < lo) or (hi is not None and val > hi):
-        raise UserError(f"scene: {where}{key} = {val!r} is out of range [{lo}, {hi}]")
-    return val
+    return real(tbl.get(key, default), f"scene: {where}{key}", lo, hi)
 
 
 def _int(tbl: dict, key: str, default, lo, hi, where=""):
-    val = tbl.get(key, default)
-    if isinstance(val, bool) or not isinstance(val, int) or not lo <= val <= hi:
-        raise UserError(f"scene: {where}{key} must be an integer in {lo}..{hi}, got {val!r}")
-    return val
+    return integer(tbl.get(key, default), f"scene: {where}{key}", lo, hi)
+
+
+def _direction(value, key: str) -> np.ndarray:
+    return normalize_direction(value, f"scene: {key}")
 
 
 def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
@@ -115,12 +113,12 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if "direction" in view:
         if "azimuth" in view or "elevation" in view:
             raise UserError("scene: [view] takes either direction or azimuth/elevation, not both")
-        direction = normalize_direction(view["direction"])
+        direction = _direction(view["direction"], "view.direction")
     else:
         az = _num(view, "azimuth", 30.0, -360, 360, "view.")
         el = _num(view, "elevation", 20.0, -90, 90, "view.")
         direction = direction_from_angles(az, el)
-    up = normalize_direction(view["up"]) if "up" in view else None
+    up = _direction(view["up"], "view.up") if "up" in view else None
 
     out = data.get("output", {})
     _check_keys(out, ("width", "height", "filter", "footprint"), "output")
@@ -129,7 +127,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     warp_filter = check_filter(out.get("filter", DEFAULT_FILTER), "scene: output.")
     footprint = out.get("footprint", FOOTPRINT_DEFAULT)
     if not isinstance(footprint, bool):
-        raise UserError(f"scene: output.footprint must be true or false, got {footprint!r}")
+        raise UserError(f"scene: output.footprint must be true or false, got {shown(footprint)}")
 
     rnd = data.get("render", {})
     _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights"), "render")
@@ -139,22 +137,22 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError(f"scene: render.mode {mode!r} is not supported (supported: {', '.join(MODES)})")
     supersample = rnd.get("supersample", 1)
     if not isinstance(supersample, int) or isinstance(supersample, bool) or supersample not in (1, 2, 4, 8):
-        raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {supersample!r}")
+        raise UserError(f"scene: render.supersample must be 1, 2, 4 or 8, got {shown(supersample)}")
     subpixel = rnd.get("subpixel", 1)
     if not isinstance(subpixel, int) or isinstance(subpixel, bool) or not 1 <= subpixel <= MAX_Q:
-        raise UserError(f"scene: render.subpixel must be an integer in 1..{MAX_Q}, got {subpixel!r}")
+        raise UserError(f"scene: render.subpixel must be an integer in 1..{MAX_Q}, got {shown(subpixel)}")
     skip = rnd.get("skip", True)
     if not isinstance(skip, bool) and skip != "rects":
-        raise UserError(f"scene: render.skip must be true, false or \"rects\", got {skip!r}")
+        raise UserError(f"scene: render.skip must be true, false or \"rects\", got {shown(skip)}")
     path_weights = rnd.get("path_weights", False)
     if not isinstance(path_weights, bool):
-        raise UserError(f"scene: render.path_weights must be true or false, got {path_weights!r}")
+        raise UserError(f"scene: render.path_weights must be true or false, got {shown(path_weights)}")
 
     mat = data.get("material", {})
     _check_keys(mat, ("ambient", "diffuse", "specular", "shininess", "shading"), "material")
     shading = mat.get("shading", True)
     if not isinstance(shading, bool):
-        raise UserError(f"scene: material.shading must be true or false, got {shading!r}")
+        raise UserError(f"scene: material.shading must be true or false, got {shown(shading)}")
     ka = _num(mat, "ambient", 0.25, 0, 4, "material.")
     kd = _num(mat, "diffuse", 0.65, 0, 4, "material.")
     ks = _num(mat, "specular", 0.35, 0, 4, "material.")
@@ -169,13 +167,13 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         inten = _num(lt, "intensity", 1.0, 0, 100, f"light #{n + 1} ")
         headlight = lt.get("headlight", False)
         if not isinstance(headlight, bool):
-            raise UserError(f"scene: light #{n + 1} headlight must be true or false, got {headlight!r}")
+            raise UserError(f"scene: light #{n + 1} headlight must be true or false, got {shown(headlight)}")
         if headlight:
             if "direction" in lt:
                 raise UserError(f"scene: light #{n + 1} is a headlight and also has a direction")
             ldir = direction
         elif "direction" in lt:
-            ldir = normalize_direction(lt["direction"])
+            ldir = _direction(lt["direction"], f"light #{n + 1} direction")
         else:
             raise UserError(f"scene: light #{n + 1} needs a direction or headlight = true")
         lights.append(Light(direction=ldir, intensity=float(inten), headlight=headlight))
@@ -183,14 +181,11 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     tf = data.get("transfer", {})
     _check_keys(tf, ("points",), "transfer")
     pts = tf.get("points", [[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]])
-    try:
-        arr = np.asarray(pts, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise UserError("scene: transfer.points must be a list of [value, r, g, b, a] rows") from None
-    if arr.ndim != 2 or arr.shape[1] != 5 or arr.shape[0] < 1:
+    rows_ok = isinstance(pts, list) and len(pts) >= 1 and all(isinstance(r, list) and len(r) == 5 for r in pts)
+    if not rows_ok:
         raise UserError("scene: transfer.points must be a list of [value, r, g, b, a] rows")
-    if not np.all(np.isfinite(arr)) or arr.min() < 0 or arr.max() > 1:
-        raise UserError("scene: transfer.points values must lie in [0, 1]")
+    arr = np.array([[real(v, f"scene: transfer.points[{n}][{c}]", 0, 1) for c, v in enumerate(row)]
+                    for n, row in enumerate(pts)], dtype=np.float64)
     if np.any(np.diff(arr[:, 0]) < 0):
         raise UserError("scene: transfer.points must be sorted by value")
 
@@ -219,7 +214,7 @@ def _crop(tbl: dict):
     box = tbl["box"]
     ok = (isinstance(box, list) and len(box) == 2
           and all(isinstance(c, list) and len(c) == 3 for c in box)
-          and all(isinstance(v, int) and not isinstance(v, bool) for c in box for v in c))
+          and all(isinstance(v, int) and not isinstance(v, bool) and abs(v) < 2**31 for c in box for v in c))
     if not ok:
         raise UserError("scene: crop.box must be [[x0, y0, z0], [x1, y1, z1]] (voxel indices)")
     lo, hi = tuple(box[0]), tuple(box[1])
@@ -236,16 +231,8 @@ def _cut(tbl: dict):
         return None
     if "normal" not in tbl or "point" not in tbl:
         raise UserError("scene: [cut] needs both normal and point")
-    try:
-        normal = normalize_direction(tbl["normal"])
-    except UserError as e:
-        raise UserError(f"scene: cut.normal: {e}") from None
-    try:
-        point = np.asarray([float(c) for c in tbl["point"]], dtype=np.float64)
-    except (TypeError, ValueError):
-        raise UserError(f"scene: cut.point must be three numbers, got {tbl['point']!r}") from None
-    if point.shape != (3,) or not np.all(np.isfinite(point)):
-        raise UserError(f"scene: cut.point must be three finite numbers, got {tbl['point']!r}")
+    normal = _direction(tbl["normal"], "cut.normal")
+    point = np.asarray(vector(tbl["point"], "scene: cut.point", bound=CUT_POINT_BOUND), dtype=np.float64)
     return normal, point
 
 
@@ -291,20 +278,44 @@ PRESETS: dict[str, dict] = {
 def apply_preset(scene: Scene, name: str) -> Scene:
     """The scene with a named preset's render keys (``default`` leaves the scene as it is)."""
     if name not in PRESETS:
-        raise UserError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}")
+        raise UserError(f"preset must be one of {', '.join(PRESETS)}, got {shown(name)}")
     return replace(scene, **PRESETS[name])
+
+
+def _exists(path: Path) -> bool:
+    try:
+        return path.exists()
+    except (OSError, ValueError):      # a name longer than the system allows, a NUL byte
+        return False
+
+
+MAX_SCENE_BYTES = 1 << 20     # a scene file is a few hundred bytes; more is not a scene
+
+
+def _read_scene_file(path: Path, spec: str) -> str:
+    """A scene file's text: a regular file (not a device or a pipe) of at most
+    MAX_SCENE_BYTES, UTF-8."""
+    try:
+        if path.exists() and not path.is_file():
+            raise UserError(f"scene {spec} is not a regular file (a scene is a TOML file)")
+        with open(path, "rb") as f:
+            data = f.read(MAX_SCENE_BYTES + 1)
+    except OSError as e:
+        name = spec if len(spec) <= 200 else spec[:60] + "..."
+        raise UserError(f"cannot read scene {name}: {e.strerror or e}") from None
+    if len(data) > MAX_SCENE_BYTES:
+        raise UserError(f"scene {spec} is larger than {MAX_SCENE_BYTES >> 20} MiB: not a scene file")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise UserError(f"scene {spec} is not UTF-8 text (a scene is a TOML file)") from None
 
 
 def load_scene(spec: str) -> Scene:
     """A scene from a TOML file path or a built-in name (see builtin_scene_names())."""
     path = Path(spec)
-    if path.suffix == ".toml" or path.exists():
-        try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as e:
-            raise UserError(f"cannot read scene {spec}: {e.strerror}") from None
-        except UnicodeDecodeError:
-            raise UserError(f"scene {spec} is not UTF-8 text (a scene is a TOML file)") from None
+    if path.suffix == ".toml" or _exists(path):
+        text = _read_scene_file(path, spec)
         name = path.stem
     else:
         names = builtin_scene_names()

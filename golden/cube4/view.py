@@ -21,26 +21,22 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .errors import UserError
+from .values import shown, vector
 
 AXIS_NAMES = "xyz"
 ARRAY_AXIS = {0: 2, 1: 1, 2: 0}  # volume axis (x=0, y=1, z=2) -> numpy axis of vol[z, y, x]
 
 
-def normalize_direction(d) -> np.ndarray:
+def normalize_direction(d, what: str = "direction") -> np.ndarray:
     """Validate a view or light direction: three finite numbers, not all zero."""
-    if isinstance(d, (str, bytes)):
-        raise UserError(f"a direction must be three numbers, got {d!r}")
-    try:
-        v = np.asarray([float(c) for c in d], dtype=np.float64)
-    except (TypeError, ValueError):
-        raise UserError(f"a direction must be three numbers, got {d!r}") from None
-    if v.shape != (3,):
-        raise UserError(f"a direction must have three components, got {len(v)}")
-    if not np.all(np.isfinite(v)):
-        raise UserError(f"direction {list(d)} is not finite (NaN or infinity)")
+    if isinstance(d, (str, bytes)) or not hasattr(d, "__len__"):
+        raise UserError(f"{what} must be three numbers, got {shown(d)}")
+    if len(d) != 3:
+        raise UserError(f"{what} must have three components, got {len(d)}")
+    v = np.asarray(vector(list(d), what), dtype=np.float64)
     big = float(np.max(np.abs(v)))
     if big == 0.0:
-        raise UserError(f"direction {list(d)} is zero: a view needs a non-zero vector")
+        raise UserError(f"{what} {list(d)} is zero: a view needs a non-zero vector")
     v = v / big                  # first to at most 1: huge or tiny components neither overflow nor vanish
     return v / float(np.linalg.norm(v))
 

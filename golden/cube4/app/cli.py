@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -39,6 +40,7 @@ from ..errors import UserError
 from ..host import config_for, image_metrics
 from ..scene import PRESETS, Scene, apply_preset, builtin_scene_names, load_scene, with_view
 from ..vgrad import GRADIENTS
+from ..values import int_text, real_text, shown
 from ..view import POLE_Z, angles_from_direction, direction_from_angles, up_from_angles
 from .images import write_image
 from .outputs import Writer, check_destination, check_destinations, write_all
@@ -50,17 +52,57 @@ IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
 
 def _dims(text: str) -> tuple[int, int, int]:
     try:
-        parts = tuple(int(p) for p in text.replace("x", ",").split(","))
-    except ValueError:
-        raise UserError(f"--dims must be NX,NY,NZ (three integers), got {text!r}") from None
+        parts = tuple(int_text(p, "--dims") for p in text.replace("x", ",").split(","))
+    except UserError:
+        raise UserError(f"--dims must be NX,NY,NZ (three integers), got {shown(text)}") from None
     if len(parts) != 3:
         raise UserError(f"--dims must be NX,NY,NZ (three integers), got {text!r}")
     return parts  # type: ignore[return-value]
 
 
+def _int_arg(text: str) -> int:
+    """An integer option: decimal digits only (no 1_0, no spaces inside)."""
+    try:
+        return int_text(text, "must be an integer")
+    except UserError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {shown(text)}") from None
+
+
+class _Once:
+    """An option that may be given once: a second --out (or --build, ...) is an error,
+    not a silent override."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        seen = namespace.__dict__.setdefault("_given", {})
+        if self.dest in seen:
+            parser.error(f"{option_string or self.dest} given twice ({seen[self.dest]} and {option_string}): "
+                         "give it once")
+        seen[self.dest] = option_string
+        super().__call__(parser, namespace, values, option_string)
+
+
+class _StoreOnce(_Once, argparse._StoreAction):
+    pass
+
+
+class _StoreTrueOnce(_Once, argparse._StoreTrueAction):
+    pass
+
+
+class _BooleanOnce(_Once, argparse.BooleanOptionalAction):
+    pass
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, with its errors (a missing --out, a bad choice, a non-integer) as one
-    line like every other error, instead of the usage text."""
+    line like every other error, instead of the usage text; options other than --view
+    may be given once."""
+
+    def __init__(self, *a, **k):
+        super().__init__(*a, **k)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+        self.register("action", "store_true", _StoreTrueOnce)
 
     def error(self, message: str):
         raise UserError(f"{self.prog}: {message} (see {self.prog} --help)")
@@ -76,7 +118,7 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--out", required=True, help="output image (.png, .exr, .tif)")
     r.add_argument("--baseplane", help="write the exact integer base-plane RGBA (rows, cols, 4) as .npy")
     r.add_argument("--stats", help="write run statistics as JSON")
-    r.add_argument("--pipelines", type=int, help=f"number of pipelines p (1..{MAX_PIPELINES})")
+    r.add_argument("--pipelines", type=_int_arg, help=f"number of pipelines p (1..{MAX_PIPELINES})")
     r.add_argument("--build", default="scene",
                    help="the hardware build: scene (default: the smallest the scene needs), full, or "
                         "NAME=0/1 pairs of SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD (others as in full: "
@@ -84,19 +126,19 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--compare-to", choices=["reference"], help="also render the reference and report the error")
     r.add_argument("--dims", help="raw volumes: NX,NY,NZ")
     r.add_argument("--dtype", help="raw volumes: uint8, uint16, int16, uint32, int32, float32, float64")
-    r.add_argument("--voxel-bits", type=int, help="voxel width VOXEL_W (default: the scene's, else 8)")
+    r.add_argument("--voxel-bits", type=_int_arg, help="voxel width VOXEL_W (default: the scene's, else 8)")
     r.add_argument("--background", default="0,0,0", help="R,G,B in [0,1] behind the volume in PNG/TIFF output")
     r.add_argument("--view", action="append", metavar="AZ,EL",
                    help="render from azimuth,elevation in degrees instead of the scene's view; repeat for "
                         "several views (outputs get _000, _001, ... before the suffix, or put {n} in the name)")
-    r.add_argument("--orbit", type=int, metavar="N",
+    r.add_argument("--orbit", type=_int_arg, metavar="N",
                    help="render N views evenly spaced in azimuth around the scene's view (elevation kept)")
     r.add_argument("--bricks", metavar="BX,BY,BZ",
                    help="render in BX*BY*BZ bricks (sub-volumes with overlap) and composite them in order")
-    r.add_argument("--board-dim", type=int, metavar="N",
+    r.add_argument("--board-dim", type=_int_arg, metavar="N",
                    help="largest brick (with its overlap) one board takes, voxels per axis; without --bricks "
                         "the fewest bricks that fit are used")
-    r.add_argument("--workers", type=int, metavar="N",
+    r.add_argument("--workers", type=_int_arg, metavar="N",
                    help="render the bricks on a local Dask cluster of N worker processes")
     r.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="render the bricks on the Dask cluster of this scheduler")
@@ -109,7 +151,7 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--gradient", choices=GRADIENTS,
                    help="the gradient estimator instead of the scene's [render] gradient: gra (the paper's, on "
                         "the sample stream), central or sobel (at the voxels, interpolated by TRI)")
-    r.add_argument("--path-weights", action=argparse.BooleanOptionalAction, default=None,
+    r.add_argument("--path-weights", action=_BooleanOnce, default=None,
                    help="weight each ray's first and last samples by their share of the ray's path (the scene's "
                         "[render] path_weights; needs a build with PLW = 1)")
     r.add_argument("--preset", choices=tuple(PRESETS),
@@ -123,9 +165,13 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _check_output(path: str, suffixes: tuple[str, ...], what: str) -> Path:
+    if path.endswith(("/", os.sep)) or os.path.basename(path) in ("", ".", ".."):
+        raise UserError(f"{what} {shown(path, 200)} names a folder: give a file name")
+    if "\0" in path:
+        raise UserError(f"{what} {shown(path, 200)} holds a NUL character")
     p = Path(path)
     if p.suffix.lower() not in suffixes:
-        raise UserError(f"{what} {path!r} must end in {', '.join(suffixes)}")
+        raise UserError(f"{what} {shown(path, 200)} must end in {', '.join(suffixes)}")
     check_destination(p, what)
     return p
 
@@ -137,11 +183,11 @@ def _json_safe(d: dict) -> dict:
 
 def _background(text: str) -> tuple[float, float, float]:
     try:
-        vals = tuple(float(v) for v in text.split(","))
-    except ValueError:
+        vals = tuple(real_text(v, "--background") for v in text.split(","))
+    except UserError:
         vals = ()
     if len(vals) != 3 or not all(0.0 <= v <= 1.0 for v in vals):
-        raise UserError(f"--background must be R,G,B with values in [0, 1], got {text!r}")
+        raise UserError(f"--background must be R,G,B with values in [0, 1], got {shown(text)}")
     return vals  # type: ignore[return-value]
 
 
@@ -164,11 +210,11 @@ def _views(args: argparse.Namespace, scene: Scene) -> list[Scene]:
     scenes = []
     for text in args.view:
         try:
-            az, el = (float(v) for v in text.split(","))
-        except ValueError:
-            raise UserError(f"--view must be AZ,EL in degrees, got {text!r}") from None
+            az, el = (real_text(v, "--view") for v in text.split(","))
+        except (UserError, ValueError):
+            raise UserError(f"--view must be AZ,EL in degrees, got {shown(text)}") from None
         if not (-360.0 <= az <= 360.0 and -90.0 <= el <= 90.0):
-            raise UserError(f"--view {text!r}: azimuth must be in -360..360 and elevation in -90..90")
+            raise UserError(f"--view {shown(text)}: azimuth must be in -360..360 and elevation in -90..90")
         scenes.append(_view(scene, az, el))
     return scenes
 
@@ -419,11 +465,16 @@ def main(argv: list[str] | None = None) -> int:
             print("\n".join(builtin_scene_names()))
             return 0
     except UserError as e:
-        print(f"cube4: error: {e}", file=sys.stderr)
+        text = " ".join(str(e).split())     # one line, whatever a library's message held
+        print(f"cube4: error: {text}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("cube4: interrupted", file=sys.stderr)
         return 130
+    except MemoryError:
+        print("cube4: error: out of memory (more than this process may use): choose a smaller volume "
+              "or output, or raise the memory limit", file=sys.stderr)
+        return 2
     return 1
 
 

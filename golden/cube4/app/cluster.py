@@ -17,6 +17,7 @@ This module is the host side of the renderer; the golden model never imports it,
 from __future__ import annotations
 
 import contextlib
+import ipaddress
 import logging
 import os
 import re
@@ -29,17 +30,35 @@ from pathlib import Path
 from ..bricks import BrickResult, BrickTask, run_task
 from ..errors import UserError
 from ..progress import Progress, counted
+from ..values import shown
 
 RETRIES = 2              # more runs of a task that raised (a worker's death is counted by Dask itself)
 CONNECT_TIMEOUT_S = 20   # reaching the scheduler
 MAX_WORKERS = 256
 NO_TRIM = "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"
-_SCHEDULER = re.compile(r"^(tcp|tls|ws|wss|inproc)://(\[[0-9A-Fa-f:.]+\]|[^\s/:\[\]]+)(:\d{1,5})?$")
+_SCHEDULER = re.compile(r"^tcp://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9]([A-Za-z0-9.-]{0,252}))(?::([0-9]{1,5}))?$")
 
 
 def check_scheduler(address: str) -> str:
-    if not _SCHEDULER.match(address or ""):
-        raise UserError(f"--scheduler must be a Dask scheduler address like tcp://HOST:PORT, got {address!r}")
+    """tcp://HOST[:PORT] with HOST a name, an IPv4 address or a bracketed IPv6 address and
+    PORT in 1..65535 (Dask's default 8786 when left out); other protocols are refused."""
+    bad = f"--scheduler must be a Dask scheduler address tcp://HOST:PORT, got {shown(address, 80)}"
+    m = _SCHEDULER.match(address) if isinstance(address, str) else None
+    if not m:
+        if isinstance(address, str) and re.match(r"^[a-z]+://", address) and not address.startswith("tcp://"):
+            raise UserError(f"{bad} (only tcp:// is supported)")
+        raise UserError(bad)
+    host, port = m[1], m[3]
+    if host.startswith("["):
+        try:
+            ipaddress.IPv6Address(host[1:-1])
+        except ValueError:
+            raise UserError(f"{bad} ({host} is not an IPv6 address)") from None
+    elif any(not 1 <= len(label) <= 63 or label.startswith("-") or label.endswith("-")
+             for label in host.rstrip(".").split(".")):
+        raise UserError(f"{bad} ({host!r} is not a host name)")
+    if port is not None and not 1 <= int(port) <= 65535:
+        raise UserError(f"{bad} (the port must be in 1..65535)")
     return address
 
 
@@ -108,7 +127,7 @@ class DaskExecutor:
                 self.client = self._stack.enter_context(Client(self.cluster, timeout=CONNECT_TIMEOUT_S))
             else:
                 self.client = self._stack.enter_context(Client(self.scheduler, timeout=CONNECT_TIMEOUT_S))
-        except (OSError, TimeoutError) as exc:
+        except (OSError, TimeoutError, ValueError, TypeError) as exc:
             self._stack.close()
             where = self.scheduler or "a local cluster"
             raise UserError(f"cannot reach the Dask scheduler at {where}: {exc}".replace("\n", " ")) from None

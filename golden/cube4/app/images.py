@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import numpy as np
+import errno
 
-from ..errors import UserError
+import numpy as np
 
 
 def write_image(path: str, rgba: np.ndarray, background=(0.0, 0.0, 0.0)) -> None:
@@ -20,4 +20,4 @@ def write_image(path: str, rgba: np.ndarray, background=(0.0, 0.0, 0.0)) -> None
         data, fmt = np.clip(rgb, 0.0, 1.0).astype(np.float32), oiio.UINT8
     buf = oiio.ImageBuf(np.ascontiguousarray(data))
     if not buf.write(path, fmt):
-        raise UserError(f"cannot write image {path}: {buf.geterror()}")
+        raise OSError(errno.EIO, buf.geterror() or "the image library could not write the file")

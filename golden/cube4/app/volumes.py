@@ -24,6 +24,7 @@ without a known space) keep their stored index order (first axis = x).
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from collections.abc import Callable
@@ -35,6 +36,7 @@ from ..config import MAX_DIM
 from ..errors import UserError
 from ..phantoms import PHANTOMS, Dims, check_bits, check_dims, check_memory, parse_dims, quantise
 from .dicom import load_series
+from .libs import quiet_library
 from .orient import to_ras
 
 # --------------------------------------------------------------------------------------
@@ -256,8 +258,19 @@ def _load_raw(path: str, raw_dims: Dims | None, raw_dtype: str | None, max_dim: 
             f"raw file {path} is {kind}: {actual} bytes, but {nx}x{ny}x{nz} {dtype.name} "
             f"needs exactly {expected} bytes"
         )
+    _check_room((nx, ny, nz), dtype.itemsize, path)
     data = np.fromfile(path, dtype=dtype, count=nx * ny * nz)
     return data.reshape(nz, ny, nx)  # x varies fastest in the file
+
+
+# loading a file takes its data, a float64 copy while rescaling, the result and temporaries
+LOAD_BYTES_PER_VOXEL = 24
+
+
+def _check_room(dims, itemsize: int, path: str) -> None:
+    """Refuse, before reading, a file whose voxels this process cannot hold."""
+    check_memory(tuple(int(n) for n in dims), path, bytes_per_voxel=itemsize + LOAD_BYTES_PER_VOXEL,
+                 doing="to load", what="volume file")
 
 
 def _spatial_3d(data: np.ndarray, path: str, t_axis: int) -> np.ndarray:
@@ -275,13 +288,19 @@ def _load_nrrd(path: str) -> np.ndarray:
     try:
         # index_order='C' gives the slowest axis first: [z, y, x] for a 3-D file whose
         # first NRRD axis (fastest) is x. (The default 'F' order would give [x, y, z].)
-        data, header = nrrd.read(path, index_order="C")
+        with quiet_library():
+            head = nrrd.read_header(path)
+            sizes = [int(n) for n in head.get("sizes", [])]
+            _check_room((sizes + [1, 1, 1])[:3], 8 * math.prod(sizes[3:]), path)   # 8: the widest type
+            data, header = nrrd.read(path, index_order="C")
+    except UserError:
+        raise
     except KeyError as e:        # pynrrd's table of types
         raise UserError(f"cannot read NRRD file {path}: unknown NRRD type {e}") from None
     except Exception as e:       # corrupt payloads raise many kinds (zlib, EOF, value errors)
         raise UserError(f"cannot read NRRD file {path}: {type(e).__name__}: {e}") from None
     data = _spatial_3d(np.asarray(data), path, t_axis=0)
-    affine = _nrrd_ras_affine(header)
+    affine = _nrrd_ras_affine(header, path)
     return data if affine is None else to_ras(data, affine)
 
 
@@ -293,7 +312,7 @@ _NRRD_SPACES = {
 }
 
 
-def _nrrd_ras_affine(header: dict) -> np.ndarray | None:
+def _nrrd_ras_affine(header: dict, path: str = "NRRD file") -> np.ndarray | None:
     """The 3 x 3 direction matrix (columns = file axes x, y, z) in RAS, from the NRRD
     'space' and 'space directions'; None when the file does not say (stored order kept)."""
     space = str(header.get("space", "")).lower()
@@ -304,21 +323,63 @@ def _nrrd_ras_affine(header: dict) -> np.ndarray | None:
             if r is not None and np.all(np.isfinite(np.asarray(r, dtype=np.float64)))]
     if len(rows) != 3 or any(r.shape != (3,) for r in rows):
         return None
-    return np.array(rows).T * np.array(_NRRD_SPACES[space], dtype=np.float64)[:, None]
+    m = np.array(rows).T
+    big = np.max(np.abs(m), axis=0)
+    if np.any(big == 0):
+        raise UserError(f"{path}: space directions {[list(map(float, r)) for r in rows]} are zero or not "
+                        "independent: the axes do not span a volume")
+    m = m / big                      # each axis to at most 1 first: huge spacings neither overflow nor vanish
+    m = m / np.linalg.norm(m, axis=0)
+    if abs(np.linalg.det(m)) < 1e-6:
+        raise UserError(f"{path}: space directions {[list(map(float, r)) for r in rows]} are zero or not "
+                        "independent: the axes do not span a volume")
+    return m * np.array(_NRRD_SPACES[space], dtype=np.float64)[:, None]
+
+
+def _nifti_header(img, path: str) -> None:
+    """The header's scaling finite (nibabel would ignore an infinite slope; a slope of 0
+    or NaN means "unscaled" in the standard), and an uncompressed file as long as its
+    header says."""
+    from nibabel.openers import ImageOpener
+
+    try:
+        with quiet_library(), ImageOpener(path) as f:
+            hdr = img.header_class.from_fileobj(f)
+        slope, inter = float(hdr["scl_slope"]), float(hdr["scl_inter"])
+    except Exception as e:  # nibabel read it once already; a second read failing is corrupt data
+        raise UserError(f"cannot read NIfTI file {path}: {type(e).__name__}: {e}") from None
+    if np.isinf(slope) or (np.isinf(inter) and slope not in (0.0,) and not np.isnan(slope)):
+        raise UserError(f"NIfTI file {path}: scale slope {slope:g} and intercept {inter:g} must be finite")
+    if path.lower().endswith(".nii"):
+        need = int(hdr.get_data_offset()) + int(np.prod(hdr.get_data_shape(), dtype=np.int64)) * hdr.get_data_dtype().itemsize
+        have = os.path.getsize(path)
+        if have < need:
+            raise UserError(f"NIfTI file {path} is truncated: {have} bytes, its header needs {need}")
 
 
 def _load_nifti(path: str) -> np.ndarray:
     import nibabel as nib
 
     try:
-        img = nib.load(path)
-        if len(img.shape) >= 3:
-            img = nib.as_closest_canonical(img)   # RAS: x right, y anterior, z superior
-        data = np.asarray(img.dataobj)  # [x, y, z(, t)]; scl_slope applied if set
+        with quiet_library():
+            img = nib.load(path)
     except Exception as e:  # nibabel raises many kinds for corrupt files
-        raise UserError(f"cannot read NIfTI file {path}: {e}") from None
+        raise UserError(f"cannot read NIfTI file {path}: {type(e).__name__}: {e}") from None
+    _nifti_header(img, path)
+    shape = tuple(int(n) for n in img.shape) or (1,)
+    _check_room((shape + (1, 1, 1))[:3], math.prod(shape[3:]) * img.get_data_dtype().itemsize, path)
+    try:
+        with quiet_library():
+            if len(img.shape) >= 3:
+                img = nib.as_closest_canonical(img)   # RAS: x right, y anterior, z superior
+            data = np.asarray(img.dataobj)  # [x, y, z(, t)]; scl_slope applied if set
+    except Exception as e:  # nibabel raises many kinds for corrupt files
+        raise UserError(f"cannot read NIfTI file {path}: {type(e).__name__}: {e}".rstrip(": ")) from None
     data = _spatial_3d(data, path, t_axis=3)
     return data.transpose(2, 1, 0)  # -> [z, y, x]
+
+
+_PATH_MAX = 4096
 
 
 def _suffix_kind(path: str) -> str | None:
@@ -336,6 +397,8 @@ def _load_file(path: str, voxel_bits: int, raw_dims, raw_dtype, max_dim: int) ->
             f"unknown volume file type {path!r}: use .raw/.bin/.dat, .nrrd/.nhdr or "
             f".nii/.nii.gz, or a built-in NAME:N ({_builtin_list()})"
         )
+    if len(os.fsencode(os.path.abspath(path))) >= _PATH_MAX:
+        raise UserError(f"volume file {path[:60]!r}...: the path is longer than the system allows")
     if not os.path.isfile(path):
         raise UserError(f"volume file not found: {path}")
     check_bits(voxel_bits)
