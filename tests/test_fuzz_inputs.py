@@ -13,7 +13,7 @@ never a traceback or a warning, and never a temporary (``.cube4-*``) or a new fo
 
 Six kinds: scenes alone (on a small built-in), scenes with command lines, NRRD, NIfTI,
 raw files and DICOM series (slice attributes changed or deleted). ``make test`` runs
-FUZZ_EXAMPLES (120) cases per kind, derandomized (about 30 s); ``make regress`` runs the
+FUZZ_EXAMPLES (60) cases per kind, derandomized (about 15 s); ``make regress`` runs the
 long fuzz (FUZZ_LONG_EXAMPLES per kind, 2000 by default: 12,000 in all, seeded).
 CUBE4_FUZZ_EXAMPLES overrides both counts.
 
@@ -39,7 +39,7 @@ from hypothesis import strategies as st
 from cube4.app import cli, cluster
 from cube4.errors import UserError
 
-FUZZ_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "120"))
+FUZZ_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "60"))
 FUZZ_LONG_EXAMPLES = int(os.environ.get("CUBE4_FUZZ_EXAMPLES", "2000"))
 EARLIER = b"earlier output"
 COUNT = {"cases": 0, "ok": 0, "refused": 0}

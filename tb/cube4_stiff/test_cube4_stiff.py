@@ -42,6 +42,7 @@ from cube4.host import config_for, host_tables, image_metrics, setup_view  # noq
 from cube4.scene import with_view  # noqa: E402
 from cube4_sim.golden_check import assert_frame_matches_golden  # noqa: E402
 from cube4_sim.rtl import FrameJob, render_frames  # noqa: E402
+from cube4_sim.sweeps import regress  # noqa: E402
 
 P = 8
 
@@ -126,6 +127,7 @@ def test_stiff_case(case_fn):
             assert m["rmse"] <= case.rmse_bound, f"{case.name} view {v}: RMSE {m['rmse']:.4f} > {case.rmse_bound}"
 
 
+@regress   # its own MAX_DIM = 256, S = 8 build: make regress
 def test_thousands_of_faint_samples():
     """Seed 004's case through the RTL: 2041 samples (S = 8) of opacity 8/4096."""
     case = faint_thousands()
