@@ -20,3 +20,9 @@ def test_table_rows_and_ratio():
 
 def test_default_builds_start_with_full():
     assert simspeed.parse_args([]).build[0] == "full"
+
+
+def test_named_builds_become_option_pairs():
+    assert simspeed.build_flag("full") == "full"
+    assert simspeed.build_flag("shaded") == "EXTREMUM=0,CLIP=0"
+    assert simspeed.build_flag("SHADING=0") == "SHADING=0"

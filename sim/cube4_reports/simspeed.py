@@ -24,6 +24,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from cube4.builds import FULL_BUILD, NAMED
 from cube4.errors import UserError
 
 from .markdown import REPO_ROOT, git_state, md_table, rtl_commit
@@ -52,10 +53,18 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     return args
 
 
+def build_flag(build: str) -> str:
+    """The --build of cube4 render for a build: a named build (cube4.builds NAMED) as the
+    NAME=0/1 pairs where it differs from the full build; anything else as given."""
+    if build in NAMED and build != "full":
+        return ",".join(f"{k}={v}" for k, v in NAMED[build].items() if v != FULL_BUILD[k])
+    return build
+
+
 def one_run(args: argparse.Namespace, build: str, tmp: Path, n: int) -> dict:
     stats_path = tmp / f"stats{n}.json"
     cmd = [sys.executable, "-m", "cube4_sim.cli", "render", args.volume, "--scene", args.scene, "--engine", "rtl",
-           "--pipelines", str(args.pipelines), "--build", build, "--stats", str(stats_path),
+           "--pipelines", str(args.pipelines), "--build", build_flag(build), "--stats", str(stats_path),
            "--out", str(tmp / f"image{n}.png")]
     t0 = time.perf_counter()
     res = subprocess.run(cmd, capture_output=True, text=True)
