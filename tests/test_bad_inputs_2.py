@@ -248,9 +248,9 @@ def test_scanner_case(tmp_path, capfd, name):
 # ------------------------------------------------------------------ memory limits
 
 
-def test_builtin_under_an_address_space_limit(tmp_path):
-    """Under ulimit -v the size check compares with what the limit leaves, not with the
-    machine's memory: one line, before the volume is generated."""
+def _render_under_an_address_space_limit(tmp_path, volume: str) -> None:
+    """`cube4 render volume` in a process whose address space is capped 1 GiB above what it
+    uses: one line naming the limit, exit 2, the earlier image untouched."""
     out = tmp_path / "out.png"
     out.write_bytes(EARLIER)
     code = ("import resource, sys\n"
@@ -258,28 +258,24 @@ def test_builtin_under_an_address_space_limit(tmp_path):
             "cap = _status_bytes('VmSize') + (1 << 30)\n"
             "resource.setrlimit(resource.RLIMIT_AS, (cap, cap))\n"
             "from cube4.app.cli import main\n"
-            f"sys.exit(main(['render', 'sphere:512', '--quiet', '--out', {str(out)!r}]))\n")
+            f"sys.exit(main(['render', {volume!r}, '--quiet', '--out', {str(out)!r}]))\n")
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
                        env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
     _check(p.returncode, p.stderr, out, tmp_path, "address-space limit")
+
+
+def test_builtin_under_an_address_space_limit(tmp_path):
+    """Under ulimit -v the size check compares with what the limit leaves, not with the
+    machine's memory: one line, before the volume is generated."""
+    _render_under_an_address_space_limit(tmp_path, "sphere:512")
 
 
 def test_volume_file_under_an_address_space_limit(tmp_path):
     """A 512^3 raw file (sparse: no disk used) under ulimit -v: refused before it is read."""
-    out = tmp_path / "out.png"
-    out.write_bytes(EARLIER)
     raw = tmp_path / "ct_512x512x512_u16.raw"
     with open(raw, "wb") as f:
         f.truncate(2 * 512**3)
-    code = ("import resource, sys\n"
-            "from cube4.phantoms import _status_bytes\n"
-            "cap = _status_bytes('VmSize') + (1 << 30)\n"
-            "resource.setrlimit(resource.RLIMIT_AS, (cap, cap))\n"
-            "from cube4.app.cli import main\n"
-            f"sys.exit(main(['render', {str(raw)!r}, '--quiet', '--out', {str(out)!r}]))\n")
-    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
-                       env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
-    _check(p.returncode, p.stderr, out, tmp_path, "address-space limit")
+    _render_under_an_address_space_limit(tmp_path, str(raw))
 
 
 # ------------------------------------------------------------------ full disks and stuck files
