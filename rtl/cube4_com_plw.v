@@ -24,8 +24,9 @@
 //   ALPHA_W  opacity width.                                   8..16.
 //
 // Latency
-//   S0 -> S1 the phases of slices m and m+1 and the entry causes; S1 -> S2
-//   the bins and the exit causes; S2 -> S3 each lane's weight class; the
+//   S0 -> S1 the entry bins, slice m+1's phases and the entry causes; S1 ->
+//   S2 each lane's entry bin, the exit bins and causes; S2 -> S3 each lane's
+//   weight class; the
 //   columns: read with R0's sample (S1: the RAM's read register, S2: its
 //   output register), carried to S3. a_w: combinational at S3 (the lane
 //   registers it into S4).
@@ -89,14 +90,16 @@ module cube4_com_plw #(
     wire [IW-1:0] ni_ext = IW'(cfg_ni);
     wire [IW-1:0] nj_ext = IW'(cfg_nj);
 
-    // ---- S0 -> S1: the phases of slices m and m+1, the entry causes ----
-    reg  [PH_W-1:0] f1_phxm, f1_phym, f1_phxn, f1_phyn;
+    // ---- S0 -> S1: the entry bins (of slice m's phase), the phases of slice
+    // m + 1, the entry causes ----
+    reg  [2:0]      f1_rxi, f1_ryi;
+    reg  [PH_W-1:0] f1_phxn, f1_phyn;
     reg             f1_kin, f1_yin;
     reg  [P-1:0]    f1_xin;
     integer         l;
     always @(posedge clk) begin
-        f1_phxm <= phx_m;
-        f1_phym <= phy_m;
+        f1_rxi  <= qbins(NW'(phx_m), vx);
+        f1_ryi  <= qbins(NW'(phy_m), vy);
         f1_phxn <= phn_x;
         f1_phyn <= phn_y;
         f1_kin  <= fc[4] && (r0_m == '0);
@@ -105,22 +108,22 @@ module cube4_com_plw #(
             f1_xin[l] <= fc[0] && dxb && (ipos[l*IW +: IW] == '0);
     end
 
-    // ---- S1 -> S2: the bins and the exit causes ----
-    reg  [2:0]   s2_rxi, s2_rxo, s2_ryi, s2_ryo;
-    reg          s2_kin, s2_yin, s2_kout, s2_yout0, s2_yout1;
-    reg  [P-1:0] s2_xin, s2_xout0, s2_xout1;
+    // ---- S1 -> S2: each lane's entry bin rq_in (the minimum over its
+    // causes, NONE without one), the exit bins and causes ----
+    localparam [3:0] NONE = 4'd9;
+    wire [3:0]   in_yk = f1_kin ? 4'd0 : (f1_yin ? {1'b0, f1_ryi} : NONE);   // shared by the lanes
+    reg  [2:0]   s2_rxo, s2_ryo;
+    reg          s2_kout, s2_yout0, s2_yout1;
+    reg  [P-1:0] s2_xout0, s2_xout1;
+    reg  [3:0]   s2_rq_in [0:P-1];
     always @(posedge clk) begin
-        s2_rxi   <= qbins(NW'(f1_phxm), vx);
-        s2_ryi   <= qbins(NW'(f1_phym), vy);
         s2_rxo   <= qbins(vx - NW'(f1_phxn), vx);
         s2_ryo   <= qbins(vy - NW'(f1_phyn), vy);
-        s2_kin   <= f1_kin;
-        s2_yin   <= f1_yin;
-        s2_xin   <= f1_xin;
         s2_kout  <= fc[5] && f1_last;
         s2_yout0 <= fc[3] && (f1_j + IW'(1) == nj_ext) && (f1_dyf || f1_wyn);
         s2_yout1 <= fc[3] && (f1_j + IW'(2) == nj_ext) && f1_dyf && f1_wyn;
         for (l = 0; l < P; l = l + 1) begin
+            s2_rq_in[l] <= (f1_xin[l] && {1'b0, f1_rxi} < in_yk) ? {1'b0, f1_rxi} : in_yk;
             s2_xout0[l] <= fc[1] && (f1_ipos[l*IW +: IW] + IW'(1) == ni_ext) && (f1_dxf || f1_wxn);
             s2_xout1[l] <= fc[1] && (f1_ipos[l*IW +: IW] + IW'(2) == ni_ext) && f1_dxf && f1_wxn;
         end
@@ -132,15 +135,12 @@ module cube4_com_plw #(
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            wire [3:0] in_x  = s2_xin[q] ? {1'b0, s2_rxi} : 4'd9;   // 9: no cause
-            wire [3:0] in_y  = s2_yin ? {1'b0, s2_ryi} : 4'd9;
-            wire [3:0] in_xy = (in_x < in_y) ? in_x : in_y;
-            wire [3:0] rq_in = s2_kin ? 4'd0 : in_xy;
-            wire [3:0] o_x   = s2_xout0[q] ? 4'd0 : (s2_xout1[q] ? {1'b0, s2_rxo} : 4'd9);
-            wire [3:0] o_y   = s2_yout0 ? 4'd0 : (s2_yout1 ? {1'b0, s2_ryo} : 4'd9);
+            wire [3:0] rq_in = s2_rq_in[q];
+            wire [3:0] o_x   = s2_xout0[q] ? 4'd0 : (s2_xout1[q] ? {1'b0, s2_rxo} : NONE);
+            wire [3:0] o_y   = s2_yout0 ? 4'd0 : (s2_yout1 ? {1'b0, s2_ryo} : NONE);
             wire [3:0] o_xy  = (o_x < o_y) ? o_x : o_y;
             wire [3:0] rq_out = s2_kout ? 4'd0 : o_xy;
-            wire [3:0] wsum = ((rq_in == 4'd9) ? 4'd2 : rq_in) + ((rq_out == 4'd9) ? 4'd2 : rq_out);
+            wire [3:0] wsum = ((rq_in == NONE) ? 4'd2 : rq_in) + ((rq_out == NONE) ? 4'd2 : rq_out);
             wire [2:0] wq   = (wsum < 4'd2) ? 3'd2 : (wsum > 4'd6) ? 3'd6 : wsum[2:0];
             reg       use_q;                 // S3: wq != 4
             reg [1:0] col_q;                 // S3: its column (wq = 2, 3, 5, 6)

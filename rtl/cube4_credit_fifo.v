@@ -113,27 +113,29 @@ module cube4_credit_fifo #(
     localparam [AW:0]  DEPTH_C = DEPTH[AW:0];
 
     // out_ready comes from the next unit, often from far away on a chip, so
-    // it (through rd) reaches only a few flip-flops, each through one small
-    // gate: the next values of nonempty and credit are chosen by rd (and
-    // push, take, give) among flags computed from registers.
+    // it reaches only a few flip-flops, each through one small gate beside
+    // it: the next values of nonempty and credit are chosen by a read (and
+    // push, take, give) among flags computed from registers. nonempty has
+    // kept copies (cube4_prim_copies): [0] out_valid and the occupancy, [1]
+    // the reservations, [2 + g] group g's read pointer; each ANDs its own
+    // copy with out_ready, so no one net carries "an item leaves" across
+    // the FIFO.
+    localparam integer NNE = NGRP + 2;
+    wire [NNE-1:0] ne_q;                // copies of nonempty
     // ---- occupancy of the memory: pushes - reads (push[0] is the reference copy) ----
     reg  [AW:0] cnt_q;                  // items stored in the memory
-    reg         nonempty_q;
-    wire        rd = nonempty_q && out_ready;    // an item leaves
+    wire        rd = ne_q[0] && out_ready;          // an item leaves
     // (rd selects between two sums of registers, after them)
     wire [AW:0] cnt_p = cnt_q + {{AW{1'b0}}, push[0]};
     wire [AW:0] cnt_d = rd ? cnt_p - 1'b1 : cnt_p;
     wire        cnt_ge2 = (cnt_q >= (AW + 1)'(2));
     always @(posedge clk) begin
-        if (rst) begin
-            cnt_q      <= '0;
-            nonempty_q <= 1'b0;
-        end else begin
-            cnt_q      <= cnt_d;
-            // cnt_d != 0
-            nonempty_q <= push[0] || cnt_ge2 || (nonempty_q && !rd);
-        end
+        if (rst) cnt_q <= '0;
+        else     cnt_q <= cnt_d;
     end
+    // cnt_d != 0
+    wire ne_d = push[0] || cnt_ge2 || (ne_q[0] && !rd);
+    cube4_prim_copies #(.N(NNE), .RESET(1)) u_nonempty (.clk(clk), .rst(rst), .d(ne_d), .q(ne_q));
 
     // ---- reservations ----
     // res_d = res_q + take - give - rd: take, give and rd come late (the
@@ -144,8 +146,9 @@ module cube4_credit_fifo #(
     wire [AW:0] res_p1 = res_q + 1'b1;
     wire [AW:0] res_m1 = res_q - 1'b1;
     wire [AW:0] res_m2 = res_q - (AW + 1)'(2);
-    wire        dn_one = give ^ rd;                         // give + rd = 1
-    wire        dn_two = give && rd;                        // give + rd = 2
+    wire        rd_r   = ne_q[1] && out_ready;              // rd, from copy 1
+    wire        dn_one = give ^ rd_r;                       // give + rd = 1
+    wire        dn_two = give && rd_r;                      // give + rd = 2
     wire [AW:0] res_d  = take ? (dn_two ? res_m1 : (dn_one ? res_q : res_p1))
                               : (dn_two ? res_m2 : (dn_one ? res_m1 : res_q));
     always @(posedge clk) begin
@@ -156,8 +159,8 @@ module cube4_credit_fifo #(
     // negative, and res_q <= DEPTH
     wire res_lt_dm1 = (res_q < DEPTH_C - 1'b1);
     wire res_lt_d   = (res_q < DEPTH_C);
-    wire up   = take && !give && !rd;                       // res_d = res_q + 1
-    wire same = take ? (give != rd) : (!give && !rd);       // res_d = res_q
+    wire up   = take && !give && !rd_r;                     // res_d = res_q + 1
+    wire same = take ? (give != rd_r) : (!give && !rd_r);   // res_d = res_q
     assign credit_d = up ? res_lt_dm1 : (same ? res_lt_d : 1'b1);
     reg credit_q;
     always @(posedge clk) begin
@@ -174,6 +177,7 @@ module cube4_credit_fifo #(
             localparam integer LO = g * GW;
             localparam integer W  = (DATA_W - LO < GW) ? DATA_W - LO : GW;
             reg [AW-1:0] wp_q, rp_q;
+            wire rd_g = ne_q[2 + g] && out_ready;           // rd, from copy 2 + g
             (* keep *)
             always @(posedge clk) begin
                 if (rst) begin
@@ -181,7 +185,7 @@ module cube4_credit_fifo #(
                     rp_q <= '0;
                 end else begin
                     if (push[g]) wp_q <= wp_q + 1'b1;
-                    if (rd)      rp_q <= rp_q + 1'b1;
+                    if (rd_g)    rp_q <= rp_q + 1'b1;
                 end
             end
             reg [W-1:0] mem [0:DEPTH-1];
@@ -191,7 +195,7 @@ module cube4_credit_fifo #(
             assign rd_data[LO +: W] = mem[rp_q];
         end
     endgenerate
-    assign out_valid = nonempty_q;
+    assign out_valid = ne_q[0];
     assign out_data  = rd_data;
 
 endmodule
