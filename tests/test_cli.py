@@ -48,6 +48,9 @@ def test_render_golden_with_stats_and_compare(tmp_path, scene_file, capsys):
         assert key in d
     assert d["engine"] == "golden" and d["dims"] == [24, 24, 24] and d["pipelines"] == 5
     assert d["psnr"] > 25
+    # the error is against the area truth, and the stats say how it converged
+    assert d["reference"] == "reference" and d["truth"] == "area" and d["truth_k"] in (3, 9)
+    assert d["truth_change"] <= 2.0 ** -9 or not d["truth_converged"]
     base = np.load(bp)
     assert base.ndim == 3 and base.shape[2] == 4 and base.max() > 0
     assert "PSNR" in so
@@ -174,8 +177,8 @@ def test_unwritable_output_leaves_nothing(tmp_path, scene_file, capsys):
 def test_stats_are_strict_json_and_files_world_readable(tmp_path, scene_file, capsys):
     stats = tmp_path / "s.json"
     out = tmp_path / "r.png"
-    rc, _, err = run_cli(["render", "sphere:16", "--scene", str(scene_file), "--engine", "reference",
-                          "--compare-to", "reference", "--stats", str(stats), "--out", str(out)], capsys)
+    rc, _, err = run_cli(["render", "sphere:16", "--scene", str(scene_file), "--engine", "reference-point",
+                          "--compare-to", "reference-point", "--stats", str(stats), "--out", str(out)], capsys)
     assert rc == 0, err
     d = json.loads(stats.read_text(), parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
     assert d["psnr"] is None and d["rmse"] == 0.0

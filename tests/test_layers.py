@@ -104,7 +104,7 @@ def test_registered_engine_is_used(monkeypatch):
         render_views(np.zeros((4, 4, 4)), [load_scene("default")], None, "fake")
     register_engine("fake", fake)
     out = render_views(np.zeros((4, 4, 4)), [load_scene("default")] * 3, None, "fake")
-    assert calls == [3] and len(out) == 3 and engine_names()[:2] == ("reference", "golden")
+    assert calls == [3] and len(out) == 3 and engine_names()[:3] == ("reference", "reference-point", "golden")
 
 
 # ------------------------------------------------------------------ specification and application

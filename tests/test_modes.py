@@ -120,7 +120,7 @@ def test_crop_box_is_the_subvolume_at_its_place(d):
     smooth = sphere_volume(14)
     res = render(smooth, sc, config_for(sc, 3), "golden")
     assert res.stats["traversed_box"] == {"origin": list(lo), "dims": list(box)}
-    ref = render(smooth, sc, config_for(sc, 3), "reference")
+    ref = render(smooth, sc, config_for(sc, 3), "reference-point")
     # 24 to 31 dB uncropped on this 14^3 sphere; the box's cut faces cost up to 5 dB more
     # (the bilinear warp spreads the base plane about a voxel past a face: issue of the warp)
     assert image_metrics(res.image, ref.image)["psnr"] > 22.0
@@ -233,7 +233,7 @@ def test_builtin_mode_scenes_against_the_reference(name):
     sc = dataclasses.replace(load_scene(name), width=96, height=96)
     cfg = config_for(sc, 4)
     g = render(vol, sc, cfg, "golden")
-    r = render(vol, sc, cfg, "reference")
+    r = render(vol, sc, cfg, "reference-point")
     assert g.image[..., 3].max() > 0.1          # the picture is not empty
     assert image_metrics(g.image, r.image)["psnr"] > 24.0
 
@@ -269,5 +269,5 @@ def test_sphere_reference_modes_agree_with_golden():
     for mode in ("xray", "mip", "composite"):
         sc = make_scene(render={"mode": mode}, transfer={"points": [[0, 0, 0, 0, 0], [1, 1, 0.8, 0.6, 0.2]]})
         cfg = config_for(sc, 2)
-        g, r = render(vol, sc, cfg, "golden"), render(vol, sc, cfg, "reference")
+        g, r = render(vol, sc, cfg, "golden"), render(vol, sc, cfg, "reference-point")
         assert image_metrics(g.image, r.image)["psnr"] > 28.0, mode

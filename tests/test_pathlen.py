@@ -118,7 +118,7 @@ def test_weights_reduce_error_on_ml():
     scene = load_scene("ml")
     assert scene.path_weights
     cfg = config_for(scene, 8)
-    ref = render(vol, scene, cfg, "reference").image
+    ref = render(vol, scene, cfg, "reference-point").image
     on = image_metrics(render(vol, scene, cfg, "golden").image, ref)["psnr"]
     off = image_metrics(render(vol, replace(scene, path_weights=False), cfg, "golden").image, ref)["psnr"]
     assert on > off + 0.5, (on, off)

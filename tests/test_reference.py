@@ -30,7 +30,7 @@ def test_reference_sphere_matches_analytic_chord_opacity():
         transfer={"points": [[0, 1, 1, 1, 0], [0.45, 1, 1, 1, 0], [0.55, 1, 1, 1, ALPHA], [1, 1, 1, 1, ALPHA]]},
     )
     cfg = config_for(scene)
-    img = render(vol, scene, cfg, "reference").image
+    img = render(vol, scene, cfg, "reference-point").image
     cam = make_camera((n, n, n), scene.direction, scene.width, scene.height)
     origins, d = cam.ray_origins()
     c = np.asarray(sphere_centre((n, n, n)))
@@ -68,10 +68,79 @@ def test_golden_model_against_reference(volume, scene_name, ss, floor):
     cfg = config_for(scene)
     vol = load_volume(volume, voxel_bits=cfg.voxel_bits)
     golden = render(vol, scene, cfg, "golden")
-    ref = render(vol, scene, cfg, "reference")
+    ref = render(vol, scene, cfg, "reference-point")
     from cube4.host import image_metrics
 
     m = image_metrics(golden.image, ref.image)
     assert m["psnr"] > floor, m
     # and the pictures are not trivially empty
     assert ref.image[..., 3].max() > 0.2
+
+
+# ------------------------------------------------------------------ the area truth
+
+
+def _small_case(volume="head:20", scene_name="head", size=24):
+    from cube4.host import setup_view
+
+    sc = load_scene(scene_name)
+    sc.width = sc.height = size
+    cfg = config_for(sc)
+    vol = load_volume(volume, voxel_bits=cfg.voxel_bits)
+    nz, ny, nx = vol.shape
+    _, cam = setup_view((nx, ny, nz), sc, cfg)
+    return vol, sc, cfg, cam
+
+
+def test_subpixel_grids_are_nested_and_centred():
+    from cube4.reference import TRUTH_KS, subpixel_offsets
+
+    for k in TRUTH_KS[:3]:
+        offs = subpixel_offsets(k)
+        assert offs.shape == (k * k, 2) and np.allclose(offs.mean(axis=0), 0.0)
+        assert np.all(np.abs(offs) < 0.5)
+        big = {tuple(np.round(o, 9)) for o in subpixel_offsets(3 * k)}
+        assert {tuple(np.round(o, 9)) for o in offs} <= big
+    with pytest.raises(ValueError):
+        subpixel_offsets(0)
+
+
+def test_area_truth_converges_and_refines_only_where_the_picture_is_not_flat():
+    """The adaptive area truth equals the uniform k x k mean wherever it refined, and its
+    centre samples elsewhere (where the picture is flat: the two agree within the
+    flatness tolerance there); each step changes the image less than the one before."""
+    from cube4.reference import TRUTH_TOL, converged_reference, render_reference
+
+    vol, sc, cfg, cam = _small_case("head:20", size=30)
+    point = render_reference(vol, cfg.voxel_bits, sc, cam)
+    img, conv = converged_reference(vol, cfg.voxel_bits, sc, cam)
+    assert [k for k, _, _ in conv.steps][:2] == [1, 3] and conv.converged and conv.change <= TRUTH_TOL
+    changes = [c for _, _, c in conv.steps[1:]]
+    assert all(b < a for a, b in zip(changes, changes[1:]))
+    uniform = render_reference(vol, cfg.voxel_bits, sc, cam, samples=conv.k)
+    refined = np.abs(img - point).max(axis=-1) > 0
+    assert refined.any() and not refined.all()
+    assert np.allclose(img[refined], uniform[refined], atol=1e-12)
+    # where it kept the centre sample, the k x k mean is within a few flatness tolerances
+    assert np.abs(uniform[~refined] - point[~refined]).max() < 4 * 2.0 ** -8
+    # and the area truth is the better one: it is nearer the uniform mean than the point
+    assert np.sqrt(np.mean((img - uniform) ** 2)) < 0.25 * np.sqrt(np.mean((point - uniform) ** 2))
+
+
+def test_area_truth_reports_when_k_max_stops_it():
+    from cube4.reference import converged_reference
+
+    vol, sc, cfg, cam = _small_case(size=16)
+    _, conv = converged_reference(vol, cfg.voxel_bits, sc, cam, tol=0.0, k_max=3)
+    assert not conv.converged and conv.k == 3 and "not converged" in conv.text()
+    with pytest.raises(ValueError, match="k_max"):
+        converged_reference(vol, cfg.voxel_bits, sc, cam, k_max=4)
+
+
+def test_reference_engines_point_and_area():
+    vol, sc, cfg, _ = _small_case(size=20)
+    point = render(vol, sc, cfg, "reference-point")
+    area = render(vol, sc, cfg, "reference")
+    assert point.stats["truth"] == "point" and area.stats["truth"] == "area"
+    assert area.stats["truth_k"] >= 3 and area.image.shape == point.image.shape
+    assert 0 < np.abs(area.image - point.image).max() < 0.5

@@ -104,7 +104,12 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
         report.rewrite_tables(tmp_path / "out")
     rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1)]
     meta = {"command": "make report", "finished": "then", "wall_s": 60.0, "git": {"commit": "x", "rtl_dirty": False},
-            "rtl": True, "cycles_note": "measured", "loadavg_start": "0", "loadavg_end": "0"}
+            "rtl": True, "cycles_note": "measured", "loadavg_start": "0", "loadavg_end": "0",
+            "truth": {"v, scene `s`": {"truth_k": 3, "truth_change": 0.001, "truth_converged": True,
+                                       "truth_steps": "k=1: 100.0% of pixels; k=3: 20.0% of pixels, RMS change 1.00e-03",
+                                       "wall_s": 12.0}},
+            "axis": [{"volume": "head:24", "scene": "head", "axis": "+x", "axis_area": 30.0, "tilted_area": 31.5,
+                      "axis_point": 28.0, "tilted_point": 31.0}]}
     report.write_json(report.json_path(tmp_path / "out"), rows, meta)
     (tmp_path / "fpga.json").write_text(json.dumps({"part": "LFE5U-85F", "max_dim": 128, "results": [
         {"p": 1, "fmax_mhz": 50.0, "fits": True}, {"p": 8, "fmax_mhz": 99.0, "fits": False}]}))
@@ -116,6 +121,10 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     assert all(p.exists() for p in paths)
     text = (tmp_path / "out" / f"{report.STEM}.md").read_text()
     assert "0.1600 @ 50.0 MHz" in text
+    # the budget lines (the front: p=1 is slower and no better) and the truth's convergence
+    assert "≥ 1,000 cycles: default (34.00 dB)" in text and "p=1 (" not in text.split("## The truth")[0].split("budget")[1]
+    assert "| head:24, `head` | +x | 30.00 | 31.50 | -1.50 | 28.00 | 31.00 | -3.00 |" in text
+    assert "- v, scene `s`: k=1: 100.0% of pixels; k=3: 20.0% of pixels, RMS change 1.00e-03; 12 s." in text
     # the gradient angles are the research prototype's stored results, not measured here
     assert "| `vgrad_sobel` | 1.40 | 1.34 | 1.31 | 1.31 | 1.48 at (0, 0, 1), S = 1 | 3.5 |" in text
     monkeypatch.setattr(report, "ANGLES_JSON", tmp_path / "missing.json")

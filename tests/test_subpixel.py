@@ -63,7 +63,7 @@ def test_q2_lowers_the_error():
     vol = sphere_volume(48)
     scene = load_scene("default")
     cfg = config_for(scene, 4)
-    ref = render(vol, scene, cfg, "reference").image
+    ref = render(vol, scene, cfg, "reference-point").image
     psnr = {}
     for q in (1, 2):
         sq = dataclasses.replace(scene, subpixel=q)

@@ -121,7 +121,7 @@ def test_central_converges_with_s_where_gra_does_not():
             sc = dataclasses.replace(load_scene("default"), gradient=gradient, supersample=s, width=128, height=128)
             cfg = config_for(sc, 4)
             img = render(vol, sc, cfg, "golden").image
-            ref = render(vol, sc, cfg, "reference").image
+            ref = render(vol, sc, cfg, "reference-point").image
             psnr[gradient, s] = image_metrics(img, ref)["psnr"]
     assert psnr["central", 4] > psnr["central", 1] > psnr["gra", 1] > psnr["gra", 4], psnr
 

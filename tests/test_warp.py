@@ -132,7 +132,7 @@ def test_footprint_is_where_the_reference_rays_meet_the_box():
     vol = np.full((10, 9, 8), 200, np.uint16)
     sc = make_scene(view=OBLIQUE, output={"width": 48}, crop={"box": [[1, 2, 3], [6, 7, 8]]})
     _, trav, cam = _golden(vol, sc)
-    ref = render(vol, sc, config_for(sc), "reference").image
+    ref = render(vol, sc, config_for(sc), "reference-point").image
     assert np.array_equal(footprint_mask(trav, cam) > 0, ref[..., 3] > 0)
 
 
@@ -143,7 +143,7 @@ def test_footprint_lowers_the_error_on_2x2x2(vol):
     """Measured: RMSE 0.160 -> 0.067 (full), 0.091 -> 0.043 (checker)."""
     sc = make_scene(view=OBLIQUE, output={"width": 64})
     cfg = Cube4Config()
-    ref = render(vol, sc, cfg, "reference").image
+    ref = render(vol, sc, cfg, "reference-point").image
     without = image_metrics(render(vol, replace(sc, footprint=False), cfg, "golden").image, ref)["rmse"]
     with_fp = image_metrics(render(vol, sc, cfg, "golden").image, ref)["rmse"]
     assert with_fp < 0.7 * without, (with_fp, without)
@@ -160,7 +160,7 @@ def test_footprint_lowers_the_error_in_a_crops_rim():
                  crop=((32, 24, 4), (95, 71, 19)))
     vol = load_volume("mri")
     res, trav, cam = _golden(vol, sc)
-    ref = render(vol, sc, config_for(sc), "reference").image
+    ref = render(vol, sc, config_for(sc), "reference-point").image
     masked = warp_to_image(res.frame.baseplane_float, trav, cam, footprint=True)
     mask = footprint_mask(trav, cam) > 0
     err_before, err_after = res.image - ref, masked - ref

@@ -1,5 +1,13 @@
 """The float64 reference renderer: the "true" picture that error is measured against.
 
+A pixel of the image is the average of the picture over the pixel's square (a box
+filter), not the picture at its centre: ``render_reference(samples=k)`` casts k x k rays
+per pixel on a regular grid over its square and averages their premultiplied RGBA, and
+``converged_reference`` raises k (1, 3, 9, ...: each grid holds the one before it) until
+the image changes by less than ``TRUTH_TOL`` (RMS over premultiplied RGBA) from one k to
+the next. ``samples=1`` is the point-sampled picture, one ray through each pixel's
+centre (docs/numerics.md section 9, "the truth").
+
 Parallel projection straight into the final image plane (``view.Camera``), the exact
 (unquantised) view direction, the same voxels, transfer function and lights as the
 hardware, and fine sampling (step ``h`` <= 1/8 voxel) with the opacity corrected for
@@ -27,6 +35,8 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -88,6 +98,29 @@ def _box_interval(origins: np.ndarray, d: np.ndarray, dims) -> tuple[np.ndarray,
     return t0, t1
 
 
+#: The area truth's tolerance: k is raised until the image's RMS change (premultiplied
+#: RGBA, peak 1) from the last k is at most this (2^-9: 54.2 dB as a PSNR).
+TRUTH_TOL = 2.0 ** -9
+#: The largest k the area truth tries (9 x 9 = 81 rays in a pixel that needs them).
+TRUTH_K_MAX = 9
+#: The ks it tries: a 3k x 3k grid holds the k x k one, so every ray is reused.
+TRUTH_KS = (1, 3, 9, 27)
+#: A pixel is refined to the next k when the picture is not flat across it: its rays
+#: (k > 1), or at k = 1 the second differences of the centre samples around it, differ
+#: by more than this in some channel; also its 8 neighbours (a feature between rays).
+TRUTH_EPS = 2.0 ** -8
+
+
+def subpixel_offsets(k: int) -> np.ndarray:
+    """The k x k positions of the box filter's rays in a pixel, (k*k, 2) as (dx, dy) in
+    pixels from its centre (dy down the image): (i + 1/2) / k - 1/2 on each axis."""
+    if k < 1:
+        raise ValueError("samples per pixel side must be at least 1")
+    t = (np.arange(k) + 0.5) / k - 0.5
+    dy, dx = np.meshgrid(t, t, indexing="ij")
+    return np.stack([dx.ravel(), dy.ravel()], axis=1)
+
+
 def render_reference(
     vol: np.ndarray,
     voxel_bits: int,
@@ -96,16 +129,143 @@ def render_reference(
     step: float = 0.125,
     progress: Progress | None = None,
     box=None,
+    samples: int = 1,
 ) -> np.ndarray:
-    """Render vol[z, y, x] into the image plane: (H, W, 4) premultiplied RGBA float64.
+    """Render vol[z, y, x] into the image plane: (H, W, 4) premultiplied RGBA float64,
+    each pixel the mean of samples x samples rays over its square (1: its centre).
     box = (origin, dims) of a crop box (scene.crop_box), None for the whole volume."""
+    pix = np.arange(cam.height * cam.width)
+    rays = _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, pix, subpixel_offsets(samples))
+    return rays.mean(axis=0).reshape(cam.height, cam.width, 4)
+
+
+#: rays cast by one call of cast_rays (memory against the per-step overhead of many calls)
+_RAYS_PER_CAST = 1 << 19
+
+
+def _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, pix, offsets) -> np.ndarray:
+    """The rays of the pixels pix (flat indices) at these sub-pixel offsets:
+    (len(offsets), len(pix), 4) premultiplied RGBA."""
     origins, d = cam.ray_origins()
+    origins = origins[pix]
     if box is not None:
         (x0, y0, z0), (nx, ny, nz) = box
         vol = vol[z0:z0 + nz, y0:y0 + ny, x0:x0 + nx]
         origins = origins - np.asarray([x0, y0, z0], dtype=np.float64)
-    img = cast_rays(vol, voxel_bits, scene, origins, d, step, progress, offset=None if box is None else box[0])
-    return img.reshape(cam.height, cam.width, 4)
+    n = origins.shape[0]
+    out = np.zeros((len(offsets), n, 4))
+    per_cast = max(1, _RAYS_PER_CAST // max(n, 1))      # offsets cast together
+    for b in range(0, len(offsets), per_cast):
+        shifts = [cam.pixel * (float(dx) * cam.right - float(dy) * cam.up) for dx, dy in offsets[b:b + per_cast]]
+        pts = np.concatenate([origins + sh for sh in shifts])
+        rgba = cast_rays(vol, voxel_bits, scene, pts, d, step, progress, offset=None if box is None else box[0])
+        out[b:b + len(shifts)] = rgba.reshape(len(shifts), n, 4)
+    return out
+
+
+@dataclass(frozen=True)
+class Convergence:
+    """How the area truth converged: each k tried, with the fraction of the pixels cast
+    at it and the image's RMS change from the k before it (None for k = 1), and whether
+    the last change met the tolerance."""
+
+    steps: tuple[tuple[int, float, float | None], ...]
+    tol: float
+    converged: bool
+
+    @property
+    def k(self) -> int:
+        return self.steps[-1][0]
+
+    @property
+    def change(self) -> float | None:
+        return self.steps[-1][2]
+
+    def text(self) -> str:
+        """One line: k, fraction of pixels and change of each step."""
+        parts = [f"k={k}: {100 * f:.1f}% of pixels" + ("" if c is None else f", RMS change {c:.2e}")
+                 for k, f, c in self.steps]
+        return "; ".join(parts) + ("" if self.converged else f" (not converged to {self.tol:.2e})")
+
+
+def _dilate(mask: np.ndarray) -> np.ndarray:
+    """mask or any of its 8 neighbours."""
+    p = np.pad(mask, 1)
+    h, w = mask.shape
+    out = np.zeros_like(mask)
+    for dy in (0, 1, 2):
+        for dx in (0, 1, 2):
+            out |= p[dy:dy + h, dx:dx + w]
+    return out
+
+
+def _not_flat(img: np.ndarray, eps: float) -> np.ndarray:
+    """(H, W) pixels where a second difference of the point image (along rows, columns
+    and both diagonals, any channel) exceeds eps: where it is not locally linear."""
+    p = np.pad(img, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    c = p[1:-1, 1:-1]
+    worst = np.zeros(img.shape[:2])
+    for (ay, ax), (by, bx) in (((0, 1), (2, 1)), ((1, 0), (1, 2)), ((0, 0), (2, 2)), ((0, 2), (2, 0))):
+        h, w = img.shape[:2]
+        dd = p[ay:ay + h, ax:ax + w] + p[by:by + h, bx:bx + w] - 2.0 * c
+        worst = np.maximum(worst, np.abs(dd).max(axis=-1))
+    return worst > eps
+
+
+def converged_reference(
+    vol: np.ndarray,
+    voxel_bits: int,
+    scene: Scene,
+    cam: Camera,
+    step: float = 0.125,
+    progress: Progress | None = None,
+    box=None,
+    tol: float = TRUTH_TOL,
+    k_max: int = TRUTH_K_MAX,
+    eps: float = TRUTH_EPS,
+) -> tuple[np.ndarray, Convergence]:
+    """The area truth, k x k rays per pixel with k = 1, 3, 9, ... (up to k_max), each
+    grid holding the one before it, until the image's RMS change from the previous k is
+    at most tol. Only pixels where the picture is not flat are refined (TRUTH_EPS: a
+    flat pixel's mean is its centre's, or its rays' common value). Returns the image and
+    how it got there (``converged`` False when k_max stopped it first)."""
+    if k_max not in TRUTH_KS:
+        raise ValueError(f"k_max must be one of {TRUTH_KS}")
+    h, w = cam.height, cam.width
+    allpix = np.arange(h * w)
+    first = _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, allpix, subpixel_offsets(1))[0]
+    total, count = first.copy(), np.ones(h * w)
+    lo, hi = first.copy(), first.copy()
+    img = first.reshape(h, w, 4)
+    refine = _dilate(_not_flat(img, eps)).ravel()
+    steps: list[tuple[int, float, float | None]] = [(1, 1.0, None)]
+    k = 1
+    while k < k_max:
+        k3 = 3 * k
+        old = {_key(o) for o in subpixel_offsets(k)}
+        new = np.array([o for o in subpixel_offsets(k3) if _key(o) not in old])
+        pix = np.nonzero(refine)[0]
+        if pix.size:
+            rays = _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, pix, new)
+            total[pix] += rays.sum(axis=0)
+            count[pix] += len(new)
+            lo[pix] = np.minimum(lo[pix], rays.min(axis=0))
+            hi[pix] = np.maximum(hi[pix], rays.max(axis=0))
+        nxt = (total / count[:, None]).reshape(h, w, 4)
+        change = float(np.sqrt(np.mean((nxt - img) ** 2)))
+        steps.append((k3, pix.size / (h * w), change))
+        img, k = nxt, k3
+        if change <= tol:
+            break
+        spread = ((hi - lo).max(axis=-1) > eps).reshape(h, w)
+        refine = _dilate(spread).ravel() & refine
+    ok = steps[-1][2] is not None and steps[-1][2] <= tol
+    return img, Convergence(tuple(steps), tol, ok)
+
+
+def _key(o) -> tuple[float, float]:
+    """A sub-pixel offset as a key that equal positions of two grids share."""
+    return (round(float(o[0]), 9), round(float(o[1]), 9))
 
 
 def reference_baseplane(

@@ -56,8 +56,11 @@ DEFAULT_OUT = REPO_ROOT / "reports"
 FPGA_JSON = REPORTS_BUILD / "fpga.json"
 STEM = "error_vs_runtime"
 
-#: (volume, scene) pairs. 64³ (and 41³, same build size class) keeps the RTL runs short.
-CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"), ("head:64", "head"), ("ml:41", "ml"))
+#: (volume, scene) pairs. 64³ (and 41³, same build size class) keeps the RTL runs short. The
+#: phantoms, then two real MRIs that ship inside nibabel (the `mri` volume resampled to
+#: 64×48×24, the `mri_t1` crop at its native 33×41×25).
+CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"), ("head:64", "head"), ("ml:41", "ml"),
+                                      ("mri:64,48,24", "mri_skin"), ("mri_t1", "mri_t1_tissue"))
 QUICK_CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"),)
 
 #: Parameter sweeps, one parameter at a time from the scene's default configuration.
@@ -404,10 +407,12 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               f"{'Tables and plot rewritten from that run (`--tables-only`, current Fmax) on ' + meta['tables_rewritten'] + '. ' if meta.get('tables_rewritten') else ''}"
               "Do not edit: rerun `make report`. Explained in [docs/reports.md](../docs/reports.md#error-against-run-time).\n\n")
     out.write(f"![PSNR against cycles]({STEM}.png)\n\n")
+    out.write(budget_section(rows))
     d = next((r for r in rows if r.varied == "default"), rows[0])
     out.write(f"Each configuration is the default (`S = {d.supersample}, W = {d.weight_bits}, F = {d.acc_bits}, "
               f"p = {d.pipelines}`, V = {d.voxel_bits}, AW = {d.alpha_bits}, RMAP_BITS = {d.rmap_bits}) "
-              "with one parameter changed (**bold**). Error: golden model image against the float64 reference, "
+              "with one parameter changed (**bold**). Error: golden model image against the float64 reference's "
+              "area truth (each pixel the mean of the picture over its square; docs/numerics.md §10), "
               "over the premultiplied RGBA of the 256×256 image (PSNR peak 1.0). "
               f"Cycles: {meta['cycles_note']}. Frame time = cycles / Fmax; {meta['fmax_note']}. "
               "sim (s): wall-clock seconds of the Verilator simulation of the frame alone "
@@ -420,6 +425,8 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
         front = pareto([r for r in rs if r.cycles is not None])
         out.write("Non-dominated (no configuration is faster and at least as good): "
                   + ", ".join(f"{r.label} ({r.psnr:.2f} dB, {r.cycles:,} cycles)" for r in front) + ".\n\n")
+    out.write(truth_section(meta.get("truth", {})))
+    out.write(axis_section(meta.get("axis", [])))
     out.write(presets_section(rows))
     out.write(angle_section(load_angles()))
     notes = p_invariance_note(rows)
@@ -437,6 +444,95 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
             dev = [r.cycles - r.formula_cycles for r in ok]
             out.write(f"- Measured cycles minus the formula of docs/architecture.md with the empty-space box's dims: {min(dev):+d} .. {max(dev):+d}.\n")
     path.write_text(out.getvalue())
+
+
+#: Views exactly along each axis against views tilted by AXIS_TILT_DEG (issue: the outline
+#: on axis views): (volume, scene) pairs.
+AXIS_CASES: tuple[tuple[str, str], ...] = (("head:24", "head"), ("sphere:24", "default"))
+AXIS_TILT_DEG = 3.0
+
+
+def _tilted(axis: np.ndarray, deg: float) -> np.ndarray:
+    """The axis direction turned by deg towards the sum of the other two axes."""
+    other = np.ones(3) - np.abs(axis)
+    other /= np.linalg.norm(other)
+    t = np.radians(deg)
+    return np.cos(t) * axis + np.sin(t) * other
+
+
+def axis_rows(progress_bar=None) -> list[dict]:
+    """Golden model against both truths, for a view exactly along each axis and one tilted
+    by AXIS_TILT_DEG from it (the default configuration)."""
+    from cube4.scene import with_view
+
+    out = []
+    for vol_name, scn in AXIS_CASES:
+        base = load_scene(scn)
+        cfg = config_for(base)
+        vol = load_volume(vol_name, voxel_bits=cfg.voxel_bits)
+        for n, sign in ((0, 1), (0, -1), (1, 1), (1, -1), (2, 1), (2, -1)):
+            axis = np.zeros(3)
+            axis[n] = sign
+            row = {"volume": vol_name, "scene": scn, "axis": f"{'+' if sign > 0 else '-'}{'xyz'[n]}"}
+            for key, d in (("axis", axis), ("tilted", _tilted(axis, AXIS_TILT_DEG))):
+                sc = with_view(base, d.tolist())
+                g = render(vol, sc, cfg, "golden").image
+                row[f"{key}_area"] = image_metrics(g, render(vol, sc, cfg, "reference").image)["psnr"]
+                row[f"{key}_point"] = image_metrics(g, render(vol, sc, cfg, "reference-point").image)["psnr"]
+            out.append(row)
+            if progress_bar is not None:
+                progress_bar.set_postfix_str(f"axis views {vol_name} {row['axis']}")
+    return out
+
+
+def axis_section(rows: list[dict]) -> str:
+    """The axis-view table: PSNR along each axis and tilted, against both truths."""
+    if not rows:
+        return ""
+    body = []
+    for r in rows:
+        body.append(f"| {r['volume']}, `{r['scene']}` | {r['axis']} | {r['axis_area']:.2f} | {r['tilted_area']:.2f} | "
+                    f"{r['axis_area'] - r['tilted_area']:+.2f} | {r['axis_point']:.2f} | {r['tilted_point']:.2f} | "
+                    f"{r['axis_point'] - r['tilted_point']:+.2f} |")
+    worst = min(r["axis_area"] - r["tilted_area"] for r in rows)
+    return ("## Views along an axis\n\n"
+            f"The default configuration, golden model against the area truth and the point-sampled one, for a view "
+            f"exactly along each axis and one turned {AXIS_TILT_DEG:g}° from it towards the other two axes (the goal: "
+            f"the axis view within 2 dB of the tilted one; the worst difference against the area truth here is "
+            f"{worst:+.2f} dB).\n\n"
+            "| volume | axis | PSNR along it (area) | tilted (area) | difference | along it (point) | tilted (point) | "
+            "difference |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n" + "\n".join(body) + "\n\n")
+
+
+def budget_section(rows: list[Row]) -> str:
+    """One line per volume: which configuration to use for a budget of cycles per frame
+    (the non-dominated front: the best error that fits each budget)."""
+    lines = ["## Which configuration for a budget", "",
+             "For each volume, the non-dominated configurations in order of cycles per frame: with a budget of "
+             "at least that many cycles, that one gives the best error of all configurations measured "
+             "(frame time = cycles / Fmax of the build that runs it, in the tables below).", ""]
+    for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
+        front = pareto([r for r in rows if (r.volume, r.scene) == (vol, scn) and r.cycles is not None])
+        if not front:
+            continue
+        steps = "; ".join(f"≥ {r.cycles:,} cycles: {r.label} ({r.psnr:.2f} dB)" for r in front)
+        best = max(r.psnr for r in front)
+        lines.append(f"- **{vol}, `{scn}`** (best {best:.2f} dB{'' if best >= GOAL_PSNR else ', below the 40 dB goal'}): "
+                     + steps)
+    return "\n".join(lines) + "\n\n"
+
+
+def truth_section(truth: dict) -> str:
+    """How the area truth converged on each volume."""
+    if not truth:
+        return ""
+    lines = ["## The truth", "",
+             "The reference of every table is the area truth (docs/numerics.md §10): k × k rays per pixel, k = 1, "
+             "3, 9, refined where the picture is not flat, until the image's RMS change from the last k is at most "
+             "2⁻⁹. Per volume, each step's k, the share of pixels it cast and the RMS change it made:", ""]
+    for name, t in truth.items():
+        lines.append(f"- {name}: {t['truth_steps']}; {t['wall_s']:.0f} s.")
+    return "\n".join(lines) + "\n\n"
 
 
 GOAL_PSNR = 40.0
@@ -697,7 +793,11 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
     with bar, log_path.open("w") as log:
         for case in cases:
             bar.set_postfix_str(f"reference {case[0]}")
-            refs[case] = render(vols[case], scenes[case[1]], config_for(scenes[case[1]]), "reference").image
+            ref = render(vols[case], scenes[case[1]], config_for(scenes[case[1]]), "reference")
+            refs[case] = ref.image
+            meta.setdefault("truth", {})[f"{case[0]}, scene `{case[1]}`"] = {
+                k: ref.stats[k] for k in ("truth_k", "truth_change", "truth_converged", "truth_steps")}
+            meta["truth"][f"{case[0]}, scene `{case[1]}`"]["wall_s"] = ref.wall_s
             bar.update()
         # Configurations outermost: every volume of a configuration reuses its RTL build.
         for variant in all_variants:
@@ -715,6 +815,8 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
                 rows.append(row)
                 bar.write(_progress_line(row), file=term)
                 bar.update()
+    if not quick:
+        meta["axis"] = axis_rows()
     finish_rows(rows, load_fmax())
     meta.update({
         "loadavg_end": _loadavg(),

@@ -2,7 +2,7 @@
 
     cube4 render VOLUME --scene S.toml --engine ENGINE --out IMG.png
                  [--baseplane BP.npy] [--stats STATS.json] [--pipelines P] [--build B]
-                 [--compare-to reference] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
+                 [--compare-to reference|reference-point] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
                  [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
                  [--no-skip | --rects] [--preset default|quality] [--gradient gra|central|sobel]
@@ -10,7 +10,7 @@
     cube4 volumes | cube4 scenes      list the built-ins
 
 Engines: those registered with ``cube4.app.render.register_engine`` when ``main`` runs:
-``reference`` and ``golden`` from this package. The installed ``cube4`` command is the
+``reference``, ``reference-point`` and ``golden`` from this package. The installed ``cube4`` command is the
 simulation package's entry point, which registers ``rtl`` (the simulated hardware) and
 then runs this ``main``.
 
@@ -123,7 +123,9 @@ def _parser() -> argparse.ArgumentParser:
                    help="the hardware build: scene (default: the smallest the scene needs), full, or "
                         "NAME=0/1 pairs of SHADING, COMPOSITING, EXTREMUM, CLIP, VGRAD (others as in full: "
                         "1, VGRAD 0); --stats names it")
-    r.add_argument("--compare-to", choices=["reference"], help="also render the reference and report the error")
+    r.add_argument("--compare-to", choices=["reference", "reference-point"],
+                   help="also render the reference and report the error against it: the truth, each pixel the "
+                        "mean over its square (reference), or one ray through its centre (reference-point)")
     r.add_argument("--dims", help="raw volumes: NX,NY,NZ")
     r.add_argument("--dtype", help="raw volumes: uint8, uint16, int16, uint32, int32, float32, float64")
     r.add_argument("--voxel-bits", type=_int_arg, help="voxel width VOXEL_W (default: the scene's, else 8)")
@@ -293,7 +295,7 @@ def _check_options(args: argparse.Namespace) -> tuple[Path, Path | None, Path | 
     bp = _check_output(args.baseplane, (".npy",), "--baseplane") if args.baseplane else None
     st = _check_output(args.stats, (".json",), "--stats") if args.stats else None
     bg = _background(args.background)
-    if args.baseplane and args.engine == "reference":
+    if args.baseplane and args.engine.startswith("reference"):
         raise UserError("--baseplane needs a Cube-4 engine (golden or rtl); the reference has no base plane")
     if args.pipelines is not None and not 1 <= args.pipelines <= MAX_PIPELINES:
         raise UserError(f"--pipelines must be in 1..{MAX_PIPELINES}, got {args.pipelines}")
@@ -351,9 +353,11 @@ def _render(args: argparse.Namespace, run: RenderRun, vol) -> tuple[list[RenderR
         stats["scene"] = run.scenes[0].name
         stats["azimuth"], stats["elevation"] = angles_from_direction(sc.direction)
         if args.compare_to:
-            ref = render(vol, sc, run.cfg, "reference", progress=progress)
+            ref = render(vol, sc, run.cfg, args.compare_to, progress=progress)
             stats.update(image_metrics(res.image, ref.image))
             stats["reference_wall_s"] = ref.wall_s
+            stats["reference"] = args.compare_to
+            stats.update({k: v for k, v in ref.stats.items() if k.startswith("truth")})
         frames.append(stats)
     return results, frames
 
@@ -400,7 +404,7 @@ def _summary(args: argparse.Namespace, run: RenderRun, results: list[RenderResul
             saved = stats["cycles_saved"] / max(1, stats["fixed_schedule_cycles"])
             line += f" (empty space skipped: {100 * saved:.0f}% of the cycles)"
         if args.compare_to:
-            line += (f"; vs reference: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
+            line += (f"; vs {args.compare_to}: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
                      f"max {stats['max_abs']:.3f}")
         print(line)
 

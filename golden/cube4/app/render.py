@@ -1,7 +1,8 @@
 """One render, any engine: volume + scene -> image-plane RGBA (+ base plane, stats).
 
-This module owns two engines: ``reference`` (float64 truth, straight into the image
-plane) and ``golden`` (the bit-exact Cube-4 model, ``cube4.host.golden_view``, its base
+This module owns three engines: ``reference`` (the float64 truth straight into the image
+plane, each pixel the mean over its square, ``cube4.reference.converged_reference``),
+``reference-point`` (the same with one ray through each pixel's centre) and ``golden`` (the bit-exact Cube-4 model, ``cube4.host.golden_view``, its base
 plane warped to the image plane by OpenImageIO, ``cube4.app.warp``). Other engines are
 added from outside with ``register_engine``; this package never imports them (the
 ``cube4`` command registers the simulated RTL, ``rtl``). ``render_bricked_views`` renders
@@ -22,7 +23,7 @@ from ..errors import UserError
 from ..host import (ViewPlan, crop_volume, frame_clip, golden_view, host_tables, memory_volume, setup_view,
                     trav_stats, view_stats)
 from ..model import Frame
-from ..reference import render_reference
+from ..reference import converged_reference, render_reference
 from ..scene import Scene, crop_box
 from ..subpixel import fine_to_base
 from ..view import Camera, Traversal
@@ -75,15 +76,25 @@ def _engine(name: str) -> Engine:
     return _ENGINES[name]
 
 
-def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progress: bool = False) -> RenderResult:
-    """The float64 reference image of one view."""
+def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progress: bool = False,
+                          area: bool = True) -> RenderResult:
+    """The float64 reference image of one view: the area truth (``area``, the stats say
+    how it converged: ``truth_k``, ``truth_change``, ``truth``) or the centre points."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     _, cam = setup_view(dims, scene, cfg)
-    stats = view_stats("reference", dims, scene, cfg)
+    name = "reference" if area else "reference-point"
+    stats = view_stats(name, dims, scene, cfg)
     t0 = time.perf_counter()
-    img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=bars(progress), box=crop_box(scene, dims))
-    return _timed(RenderResult("reference", img, 0.0, stats=stats), t0)
+    box = crop_box(scene, dims)
+    if area:
+        img, conv = converged_reference(vol, cfg.voxel_bits, scene, cam, progress=bars(progress), box=box)
+        stats.update(truth="area", truth_k=conv.k, truth_change=conv.change, truth_converged=conv.converged,
+                     truth_steps=conv.text())
+    else:
+        img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=bars(progress), box=box)
+        stats.update(truth="point")
+    return _timed(RenderResult(name, img, 0.0, stats=stats), t0)
 
 
 def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
@@ -104,6 +115,8 @@ def _timed(res: RenderResult, t0: float) -> RenderResult:
 
 register_engine("reference", lambda vol, scenes, cfg, progress: [
     render_reference_view(vol, sc, cfg, progress) for sc in scenes])
+register_engine("reference-point", lambda vol, scenes, cfg, progress: [
+    render_reference_view(vol, sc, cfg, progress, area=False) for sc in scenes])
 register_engine("golden", lambda vol, scenes, cfg, progress: [
     render_golden_view(vol, sc, cfg, progress=progress) for sc in scenes])
 
