@@ -3,10 +3,11 @@
 A pixel of the image is the average of the picture over the pixel's square (a box
 filter), not the picture at its centre: ``render_reference(samples=k)`` casts k x k rays
 per pixel on a regular grid over its square and averages their premultiplied RGBA, and
-``converged_reference`` raises k (1, 3, 9, ...: each grid holds the one before it) until
-the image changes by less than ``TRUTH_TOL`` (RMS over premultiplied RGBA) from one k to
-the next. ``samples=1`` is the point-sampled picture, one ray through each pixel's
-centre (docs/numerics.md section 9, "the truth").
+``converged_reference`` raises k (1, 3, 9: each grid holds the one before it) where the
+picture is not flat until the change the next k would make (RMS over premultiplied
+RGBA, estimated on a sample of pixels) is at most ``TRUTH_TOL``. ``samples=1`` is the
+point-sampled picture, one ray through each pixel's centre (docs/numerics.md section 10,
+"the area truth").
 
 Parallel projection straight into the final image plane (``view.Camera``), the exact
 (unquantised) view direction, the same voxels, transfer function and lights as the
@@ -36,6 +37,7 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -101,8 +103,10 @@ def _box_interval(origins: np.ndarray, d: np.ndarray, dims) -> tuple[np.ndarray,
 #: The area truth's tolerance: k is raised until the image's RMS change (premultiplied
 #: RGBA, peak 1) from the last k is at most this (2^-9: 54.2 dB as a PSNR).
 TRUTH_TOL = 2.0 ** -9
-#: The largest k the area truth tries (9 x 9 = 81 rays in a pixel that needs them).
+#: The largest k the area truth casts for every refined pixel (9 x 9 = 81 rays).
 TRUTH_K_MAX = 9
+#: Refined pixels on which the change to the next k is estimated (the convergence test).
+TRUTH_SAMPLE = 2048
 #: The ks it tries: a 3k x 3k grid holds the k x k one, so every ray is reused.
 TRUTH_KS = (1, 3, 9, 27)
 #: A pixel is refined to the next k when the picture is not flat across it: its rays
@@ -165,13 +169,15 @@ def _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, pix, offsets)
 
 @dataclass(frozen=True)
 class Convergence:
-    """How the area truth converged: each k tried, with the fraction of the pixels cast
-    at it and the image's RMS change from the k before it (None for k = 1), and whether
-    the last change met the tolerance."""
+    """How the area truth converged: per k cast, the fraction of the pixels cast at it,
+    the image's RMS change from the k before it (None for k = 1) and the RMS change the
+    next k would make, estimated on a sample of the refined pixels (None where not
+    estimated); whether the last estimate met the tolerance."""
 
-    steps: tuple[tuple[int, float, float | None], ...]
+    steps: tuple[tuple[int, float, float | None, float | None], ...]
     tol: float
     converged: bool
+    sample: int = 0             # refined pixels the estimate cast at the next k
 
     @property
     def k(self) -> int:
@@ -179,12 +185,18 @@ class Convergence:
 
     @property
     def change(self) -> float | None:
-        return self.steps[-1][2]
+        """The accuracy claim: the estimated RMS change to the next k, else the last change."""
+        last = self.steps[-1]
+        return last[3] if last[3] is not None else last[2]
 
     def text(self) -> str:
-        """One line: k, fraction of pixels and change of each step."""
-        parts = [f"k={k}: {100 * f:.1f}% of pixels" + ("" if c is None else f", RMS change {c:.2e}")
-                 for k, f, c in self.steps]
+        """One line: each step's k, fraction of pixels, change from the last k and to the next."""
+        parts = []
+        for k, f, c, nxt in self.steps:
+            t = f"k={k}: {100 * f:.1f}% of pixels"
+            t += "" if c is None else f", RMS change {c:.2e}"
+            t += "" if nxt is None else f", to k={3 * k} {nxt:.2e} (estimated on {self.sample} pixels)"
+            parts.append(t)
         return "; ".join(parts) + ("" if self.converged else f" (not converged to {self.tol:.2e})")
 
 
@@ -223,44 +235,71 @@ def converged_reference(
     tol: float = TRUTH_TOL,
     k_max: int = TRUTH_K_MAX,
     eps: float = TRUTH_EPS,
+    sample: int = TRUTH_SAMPLE,
 ) -> tuple[np.ndarray, Convergence]:
-    """The area truth, k x k rays per pixel with k = 1, 3, 9, ... (up to k_max), each
-    grid holding the one before it, until the image's RMS change from the previous k is
-    at most tol. Only pixels where the picture is not flat are refined (TRUTH_EPS: a
-    flat pixel's mean is its centre's, or its rays' common value). Returns the image and
-    how it got there (``converged`` False when k_max stopped it first)."""
-    if k_max not in TRUTH_KS:
-        raise ValueError(f"k_max must be one of {TRUTH_KS}")
+    """The area truth, k x k rays per pixel with k = 1, 3, 9 (at most k_max), each grid
+    holding the one before it. Only pixels where the picture is not flat are refined
+    (TRUTH_EPS: a flat pixel's mean is its centre's, or its rays' common value). After
+    each k > 1 the RMS change that k -> 3k would make is estimated on ``sample`` of the
+    refined pixels (seeded, uniform; the rest of the image counted at that mean); the image
+    is accepted when the estimate is at most tol, else 3k is cast for every refined pixel.
+    Returns the image and how it got there (``converged`` False when k_max stopped it)."""
+    if k_max not in TRUTH_KS[1:]:
+        raise ValueError(f"k_max must be one of {TRUTH_KS[1:]}")
     h, w = cam.height, cam.width
-    allpix = np.arange(h * w)
-    first = _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, allpix, subpixel_offsets(1))[0]
-    total, count = first.copy(), np.ones(h * w)
+    npix = h * w
+    cast = functools.partial(_cast_pixels, vol, voxel_bits, scene, cam, step, progress, box)
+    first = cast(np.arange(npix), subpixel_offsets(1))[0]
+    total, count = first.copy(), np.ones(npix)
     lo, hi = first.copy(), first.copy()
     img = first.reshape(h, w, 4)
     refine = _dilate(_not_flat(img, eps)).ravel()
-    steps: list[tuple[int, float, float | None]] = [(1, 1.0, None)]
-    k = 1
+    steps: list[tuple[int, float, float | None, float | None]] = [(1, 1.0, None, None)]
+    rng = np.random.default_rng(0)
+    k, est, used = 1, None, 0
     while k < k_max:
         k3 = 3 * k
-        old = {_key(o) for o in subpixel_offsets(k)}
-        new = np.array([o for o in subpixel_offsets(k3) if _key(o) not in old])
+        new = _new_offsets(k, k3)
         pix = np.nonzero(refine)[0]
         if pix.size:
-            rays = _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, pix, new)
+            rays = cast(pix, new)
             total[pix] += rays.sum(axis=0)
             count[pix] += len(new)
             lo[pix] = np.minimum(lo[pix], rays.min(axis=0))
             hi[pix] = np.maximum(hi[pix], rays.max(axis=0))
         nxt = (total / count[:, None]).reshape(h, w, 4)
         change = float(np.sqrt(np.mean((nxt - img) ** 2)))
-        steps.append((k3, pix.size / (h * w), change))
         img, k = nxt, k3
-        if change <= tol:
+        refine = _dilate(((hi - lo).max(axis=-1) > eps).reshape(h, w)).ravel() & refine
+        est, used = None, 0
+        if k < TRUTH_KS[-1]:
+            est, used = _estimate_next(cast, total, count, refine, k, sample, rng, npix)
+        steps.append((k, pix.size / npix, change, est))
+        if est is not None and est <= tol:
             break
-        spread = ((hi - lo).max(axis=-1) > eps).reshape(h, w)
-        refine = _dilate(spread).ravel() & refine
-    ok = steps[-1][2] is not None and steps[-1][2] <= tol
-    return img, Convergence(tuple(steps), tol, ok)
+    ok = est is not None and est <= tol
+    return img, Convergence(tuple(steps), tol, ok, used)
+
+
+def _new_offsets(k: int, k3: int) -> np.ndarray:
+    """The offsets of the k3 grid that the k grid does not hold."""
+    old = {_key(o) for o in subpixel_offsets(k)}
+    return np.array([o for o in subpixel_offsets(k3) if _key(o) not in old]).reshape(-1, 2)
+
+
+def _estimate_next(cast, total, count, refine, k, sample, rng, npix) -> tuple[float, int]:
+    """The RMS change over the image that k -> 3k would make, from a uniform sample of the
+    refined pixels (the others do not change): (estimate, pixels sampled)."""
+    pix = np.nonzero(refine)[0]
+    if pix.size == 0:
+        return 0.0, 0
+    pick = pix if pix.size <= sample else np.sort(rng.choice(pix, size=sample, replace=False))
+    new = _new_offsets(k, 3 * k)
+    rays = cast(pick, new)
+    now = total[pick] / count[pick][:, None]
+    then = (total[pick] + rays.sum(axis=0)) / (count[pick] + len(new))[:, None]
+    mean_sq = float(np.mean((then - now) ** 2, axis=None))        # per value of a sampled pixel
+    return float(np.sqrt(mean_sq * pix.size / npix)), int(pick.size)
 
 
 def _key(o) -> tuple[float, float]:
