@@ -112,7 +112,7 @@ def test_area_truth_converges_and_refines_only_where_the_picture_is_not_flat():
     that k actually makes."""
     from cube4.reference import TRUTH_TOL, converged_reference, render_reference
 
-    vol, sc, cfg, cam = _small_case("head:20", size=30)
+    vol, sc, cfg, cam = _small_case("head:16", size=22)
     point = render_reference(vol, cfg.voxel_bits, sc, cam)
     img, conv = converged_reference(vol, cfg.voxel_bits, sc, cam, sample=64)
     assert conv.converged and conv.k == 3 and conv.change <= TRUTH_TOL and conv.sample == 64
