@@ -528,8 +528,9 @@ def truth_section(truth: dict) -> str:
         return ""
     lines = ["## The truth", "",
              "The reference of every table is the area truth (docs/numerics.md §10): k × k rays per pixel, k = 1, "
-             "3, 9, refined where the picture is not flat, until the image's RMS change from the last k is at most "
-             "2⁻⁹. Per volume, each step's k, the share of pixels it cast and the RMS change it made:", ""]
+             "3, 9, refined where the picture is not flat, until the RMS change the next k would make (estimated by casting "
+             "it for 2,048 of the refined pixels) is at most 2⁻⁹. Per volume, each step's k, the share of pixels it "
+             "cast, the RMS change it made and the estimate for the next k; the seconds the truth took:", ""]
     for name, t in truth.items():
         lines.append(f"- {name}: {t['truth_steps']}; {t['wall_s']:.0f} s.")
     return "\n".join(lines) + "\n\n"
