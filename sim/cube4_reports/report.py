@@ -460,7 +460,7 @@ def _tilted(axis: np.ndarray, deg: float) -> np.ndarray:
     return np.cos(t) * axis + np.sin(t) * other
 
 
-def axis_rows(progress_bar=None) -> list[dict]:
+def axis_rows() -> list[dict]:
     """Golden model against both truths, for a view exactly along each axis and one tilted
     by AXIS_TILT_DEG from it (the default configuration)."""
     from cube4.scene import with_view
@@ -480,8 +480,6 @@ def axis_rows(progress_bar=None) -> list[dict]:
                 row[f"{key}_area"] = image_metrics(g, render(vol, sc, cfg, "reference").image)["psnr"]
                 row[f"{key}_point"] = image_metrics(g, render(vol, sc, cfg, "reference-point").image)["psnr"]
             out.append(row)
-            if progress_bar is not None:
-                progress_bar.set_postfix_str(f"axis views {vol_name} {row['axis']}")
     return out
 
 
