@@ -24,6 +24,9 @@
 //   Registers; every output is a register or combinational from them and cfg.
 //   The pass counters load while idle (not in reset) and step at next_pass;
 //   the row counters load while idle and at next_pass, and step with beat.
+//   last_pass is a register kept with the pass counters (set from the counters'
+//   next values), so that the box's FLUSH and LAST, and with them pass_done
+//   and next_pass, start at a flop rather than behind k0's compare.
 //
 // Ports (past clk, rst and the register buses: CUBE4_CFB_TRAV_PORTS)
 //   clk, rst     clock, synchronous active-high reset (no register is reset;
@@ -92,12 +95,14 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
     reg [LANE_W-1:0]   rk_q;       // c_k mod P of the next slice to read
     reg [ADDR_W-1:0]   ak_q;       // A_k(c_k) of the next slice to read
     reg [LANE_W-1:0]   rk0_q;      // c_k mod P of the pass's lower slice
+    reg                lp_q;       // k0_q = NK - 1 and r_q = 0 (last_pass)
 
     wire [2:0]     g      = {1'b0, cfg_ss_log2};
     wire [CFB_R_W-1:0] ss_m1  = CFB_R_W'((1 << g) - 1);
     wire           last_r = (r_q == ss_m1);
     wire           any_read = lower_mem || upper_mem;
-    assign last_pass = (k0_q == cfg_nk - 1'b1) && (r_q == '0);
+    wire [DIM_W-1:0] k0_inc = k0_q + 1'b1;
+    assign last_pass = lp_q;
     assign lower_mem = (g == 3'd0) || (m_q == '0);
     assign upper_mem = (g != 3'd0) && (r_q == CFB_R_W'(1));
     assign skew_rd   = add_p(rj_q, rk_q);
@@ -114,6 +119,7 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
                 rk_q  <= cfg_k_r0;
                 ak_q  <= cfg_k_a0;
                 rk0_q <= cfg_k_r0;
+                lp_q  <= (cfg_nk == DIM_W'(1));   // k0 = 0 = NK - 1, r = 0
             end else if (next_pass) begin
                 m_q <= m_q + 1'b1;
                 if (any_read) begin
@@ -122,10 +128,12 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
                 end
                 if (last_r) begin
                     r_q   <= '0;
-                    k0_q  <= k0_q + 1'b1;
+                    k0_q  <= k0_inc;
                     rk0_q <= r_step(rk0_q, cfg_flip_k);
+                    lp_q  <= (k0_inc == cfg_nk - 1'b1);
                 end else begin
-                    r_q <= r_q + 1'b1;
+                    r_q  <= r_q + 1'b1;
+                    lp_q <= 1'b0;                        // r_q + 1 <= S - 1 is not 0
                 end
             end
         end

@@ -588,8 +588,9 @@ def _params(P: int, VOXEL_W: int, MAX_DIM: int, MAX_SS_LOG2: int, OPT_GRA: int =
 
 
 def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
+    # one folder per build and process: two tests of one build may run at once
     key = "_".join(f"{k}{v}" for k, v in params.items())
-    work = BUILD_ROOT / "frontend_io" / key
+    work = BUILD_ROOT / "frontend_io" / f"{key}_pid{os.getpid()}"
     work.mkdir(parents=True, exist_ok=True)
     env = {"CUBE4_FE_MEMFILE": str(work / "mem.hex"), "CUBE4_FE_DUMP": str(work / "samples.txt")}
     env.update(extra_env or {})
