@@ -14,7 +14,7 @@ from cube4.brick_rays import (brick_partials, composite_bound, composite_framebu
                               seed004_correction)
 from cube4.bricks import (OVERLAP_HIGH, OVERLAP_LOW, Tile, composite_tiles, counts_for_board, make_grid, over_planes,
                           owner_maps, parse_bricks, plan_bricks, render_bricked)
-from cube4.clip import Clip, cut_coefficients
+from cube4.clip import Clip, check_window, cut_coefficients
 from cube4.config import Cube4Config
 from cube4.errors import UserError
 from cube4.host import host_tables
@@ -69,7 +69,7 @@ def test_too_many_bricks_for_the_volume():
         make_grid((16, 7, 16), (1, 8, 1))
 
 
-@pytest.mark.parametrize("supersample", [1, 2])
+@pytest.mark.parametrize("supersample", [1, 2, 8])
 @pytest.mark.parametrize("direction", VIEWS)
 def test_every_sample_owned_by_exactly_one_brick(direction, supersample):
     """The windows partition the samples (owner_maps checks overlaps and gaps), and a
@@ -90,6 +90,7 @@ def test_every_sample_owned_by_exactly_one_brick(direction, supersample):
                 assert hi <= n - 2 or start + n == full
             assert m0 >= supersample or br.start[2] == 0
             assert m1 <= bt.num_sample_slices - 1 or br.start[2] + bt.nk == trav.nk
+            check_window(br.clip.window, bt)   # what the window registers hold (S > 1: the last brick's m1)
         # front to back: a ray moves to bricks later in the list only
         pos = [br.start[::-1] for br in bricks]
         assert pos == sorted(pos)

@@ -198,7 +198,9 @@ def plan_bricks(trav: Traversal, grid: BrickGrid, clip: Clip | None = None) -> l
         for role, ax in enumerate(roles):
             n, flip, st = grid.dims[ax], bool(trav.flip[ax]), start[role]
             a, b = _owned_traversal(n, o0[ax], o1[ax], flip, major=role == 2)
-            win.append((a - st, b - st) if role < 2 else ((a - st) * S, (b - st) * S))
+            # along k the window counts sample slices; the last brick's ends at its last
+            # sample slice ((count - 1) S + 1 of them), not at count * S (the registers hold no more)
+            win.append((a - st, b - st) if role < 2 else ((a - st) * S, min((b - st) * S, bt.num_sample_slices)))
         plane = move_plane(clip.plane if clip is not None else None, start, trav.weight_bits)
         window = (win[0][0], win[0][1], win[1][0], win[1][1], win[2][0], win[2][1])
         bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane), offset=offset,
