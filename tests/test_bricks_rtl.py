@@ -70,7 +70,7 @@ def test_rtl_bricks_on_two_workers_share_one_build():
     cfg = BOARD_CFG
     trav = make_traversal((32, 32, 32), scene.direction, cfg.weight_bits, 1)
     lut, rmap = host_tables(scene, cfg, trav)
-    grid = make_grid(trav.dims, (2, 2, 3))
+    grid = make_grid(trav.dims, (2, 1, 2))    # four bricks: two at a time on each worker
     bricks, tasks = brick_tasks(vol, trav, cfg, lut, rmap, grid, engine="rtl", board_dim=BOARD_DIM)
     with DaskExecutor(workers=2, timeout=240) as ex:
         results = ex.run(tasks)

@@ -109,6 +109,8 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
                                        "truth_steps": "k=1: 100.0% of pixels; k=3: 20.0% of pixels, RMS change 1.00e-03",
                                        "wall_s": 12.0}},
             "axis": [{"volume": "head:24", "scene": "head", "axis": "+x", "axis_area": 30.0, "tilted_area": 31.5,
+                      "axis_point": 28.0, "tilted_point": 31.0, "axis_quality": 40.0, "tilted_quality": 40.5},
+                     {"volume": "head:24", "scene": "head", "axis": "-x", "axis_area": 30.0, "tilted_area": 31.0,
                       "axis_point": 28.0, "tilted_point": 31.0}]}
     report.write_json(report.json_path(tmp_path / "out"), rows, meta)
     (tmp_path / "fpga.json").write_text(json.dumps({"part": "LFE5U-85F", "max_dim": 128, "results": [
@@ -123,7 +125,9 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     assert "0.1600 @ 50.0 MHz" in text
     # the budget lines (the front: p=1 is slower and no better) and the truth's convergence
     assert "≥ 1,000 cycles: default (34.00 dB)" in text and "p=1 (" not in text.split("## The truth")[0].split("budget")[1]
-    assert "| head:24, `head` | +x | 30.00 | 31.50 | -1.50 | 28.00 | 31.00 | -3.00 |" in text
+    assert "| head:24, `head` | +x | 30.00 | 31.50 | -1.50 | 28.00 | 31.00 | -3.00 | 40.00 | 40.50 | -0.50 |" in text
+    assert "| -x | 30.00 | 31.00 | -1.00 | 28.00 | 31.00 | -3.00 | not run | not run | — |" in text
+    assert "-1.50 dB in the default configuration and -0.50 dB with the quality preset" in text
     assert "- v, scene `s`: k=1: 100.0% of pixels; k=3: 20.0% of pixels, RMS change 1.00e-03; 12 s." in text
     # the gradient angles are the research prototype's stored results, not measured here
     assert "| `vgrad_sobel` | 1.40 | 1.34 | 1.31 | 1.31 | 1.48 at (0, 0, 1), S = 1 | 3.5 |" in text
