@@ -19,6 +19,7 @@ from cube4.memory import rect_table
 from cube4.view import make_traversal
 from cube4_sim.rect_port import rect_layout
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (-0.5, -1.0, 0.5), (0.0, 0.0, 1.0)]
 COM_FIELDS = ("j_hi", "i_hin", "stx", "sty", "ins")
@@ -64,6 +65,6 @@ async def test_box(dut):
 BUILDS = [{"P": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_cfb_box(params):
     run_unit(__file__, {"MAX_DIM": 32, "ADDR_W": 16, "WEIGHT_W": 8, "MAX_SS_LOG2": 1, **params})

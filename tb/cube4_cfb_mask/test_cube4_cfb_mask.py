@@ -29,6 +29,7 @@ from cube4_sim.beats import mask_bits, pack_lanes
 from cube4_sim.cfb_walk import cfb_walk, read_terms, tag_offsets
 from cube4_sim.rect_port import rect_layout, rect_word
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 6)), ((-0.6, 0.25, -1.0), (11, 10, 5)), ((1.0, -0.4, 0.7), (9, 12, 6))]
 
@@ -126,6 +127,6 @@ async def test_mask(dut):
 BUILDS = [{"P": 1, "RECTS": 0}, {"P": 5, "RECTS": 1}]   # RECTS = 0: whole-box frames only
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_cfb_mask(params):
     run_unit(__file__, {"MAX_DIM": 32, "ADDR_W": 16, "WEIGHT_W": 8, "MAX_SS_LOG2": 0, **params})

@@ -18,6 +18,7 @@ import cube4.slices as slices
 from cube4.view import make_traversal
 from cube4_sim.rect_port import rect_words, write_rect_table
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 8)), ((-0.6, 0.25, -1.0), (11, 10, 9)), ((1.0, -1.0, 0.0), (9, 12, 8))]
 
@@ -81,6 +82,6 @@ async def test_rect(dut):
 BUILDS = [{"P": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_cfb_rect(params):
     run_unit(__file__, {"MAX_DIM": 32, "ADDR_W": 16, "WEIGHT_W": 8, **params})

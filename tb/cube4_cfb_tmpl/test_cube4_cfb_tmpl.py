@@ -17,6 +17,7 @@ from cocotb.triggers import FallingEdge, ReadOnly
 from cube4.view import make_traversal
 from cube4_sim.cfb_walk import template
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 VIEWS = [((0.3, -0.45, 1.0), (9, 7, 6)), ((-0.6, 0.25, -1.0), (8, 10, 5)), ((1.0, 0.9, -0.7), (9, 6, 8)),
          ((0.5, -1.0, 0.05), (10, 7, 9))]
@@ -73,6 +74,6 @@ async def test_tmpl(dut):
 BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5, "MAX_SS_LOG2": 2, "WEIGHT_W": 12}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_cfb_tmpl(params):
     run_unit(__file__, {"MAX_DIM": 32, "ADDR_W": 16, "WEIGHT_W": 8, **params})

@@ -30,6 +30,7 @@ from cube4.view import make_traversal
 from cube4_sim.cfb_walk import cfb_walk, read_addresses, read_terms
 from cube4_sim.rect_port import rect_words
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 6)), ((-0.6, 0.25, -1.0), (11, 10, 5)), ((1.0, 0.4, -0.7), (9, 12, 8)),
          ((0.5, -1.0, 0.5), (10, 7, 11))]
@@ -149,6 +150,6 @@ async def test_trav(dut):
 BUILDS = [{"P": 1, "RECTS": 0}, {"P": 5, "RECTS": 1}]   # RECTS = 0: whole-box frames only
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_cfb_trav(params):
     run_unit(__file__, {"MAX_DIM": 32, "ADDR_W": 16, "MAX_SS_LOG2": 1, "WEIGHT_W": 8, **params})

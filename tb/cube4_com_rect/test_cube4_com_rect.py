@@ -33,6 +33,7 @@ from cube4.view import make_traversal
 from cube4_sim.beats import BeatSchedule, Geometry, clog2, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.rect_port import rect_words
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (0.5, 1.0, 0.5), (-0.2, -1.0, -0.9),
@@ -150,6 +151,6 @@ async def test_rects(dut):
 BUILDS = [{"P": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_com_rect(params):
     run_unit(__file__, {"MAX_DIM": 32, **params})

@@ -38,6 +38,7 @@ from cube4.model import render_frame
 from cube4.view import make_traversal
 from cube4_sim.beats import BeatSchedule, Geometry, clog2, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, param_id, random_clip, run_unit
+from cube4_sim.sweeps import sweep
 
 
 # (direction, gap, credit low, hazard, mode, clip)
@@ -185,6 +186,6 @@ async def test_sequencer(dut):
 BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_com_seq(params):
     run_unit(__file__, {"MAX_DIM": 32, **params})

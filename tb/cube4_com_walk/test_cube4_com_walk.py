@@ -33,6 +33,7 @@ from cube4.model import inside_mask
 from cube4.view import make_traversal
 from cube4_sim.beats import BeatSchedule, clog2, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 
 VIEWS = [((0.3, -0.45, 1.0), (13, 9, 8)), ((-0.6, 0.25, -1.0), (11, 10, 9)), ((1.0, 0.4, -0.7), (9, 12, 8)),
@@ -154,6 +155,6 @@ async def test_walk(dut):
 BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_com_walk(params):
     run_unit(__file__, {"MAX_DIM": 32, **params})

@@ -26,6 +26,7 @@ from cube4.model import gradient_of, gradient_operand_stream, sample_stream
 from cube4.view import make_traversal
 from cube4_sim.beats import Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 
 # (direction, log2 S, gap probability)
@@ -114,6 +115,6 @@ async def test_arith_stream(dut):
 BUILDS = [{"P": 1, "VOXEL_W": 8, "MAX_SS_LOG2": 1}, {"P": 5, "VOXEL_W": 12, "MAX_SS_LOG2": 2}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=param_id)
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_gra_arith(build):
     run_unit(__file__, {**build, "MAX_DIM": 16}, "test_arith_stream")

@@ -27,6 +27,7 @@ from cube4.view import make_traversal
 from cube4_sim.beats import BeatSchedule, pack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, lines_steps
 from cube4_sim.unit_bench import SourceBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 # (direction, input gap probability, credit stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.5, 0.2)]
@@ -80,6 +81,6 @@ async def test_lines_steps(dut):
 BUILDS = [{"P": 1, "VOXEL_W": 8, "MAX_SS_LOG2": 0}, {"P": 5, "VOXEL_W": 8, "MAX_SS_LOG2": 1}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=param_id)
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_gra_lines(build):
     run_unit(__file__, {**build, "MAX_DIM": 16, "WALK": 0}, "test_lines_steps", harness="cube4_gra_source_harness")

@@ -34,6 +34,7 @@ from cube4.view import make_traversal
 from cube4_sim.beats import Geometry, mask_bits, pack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, walk_beats, walk_steps
 from cube4_sim.unit_bench import SourceBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (1.0, 1.0, 1.0), (-1.0, 1.0, 0.0)]
 RECORD = NEIGHBOURS + ("c_meta", "c_sel", "c_edge", "fend", "sop")
@@ -109,6 +110,6 @@ async def test_walk_steps(dut):
 BUILDS = [{"P": 1, "VOXEL_W": 8}, {"P": 5, "VOXEL_W": 8}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=param_id)
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_gra_walk(build):
     run_unit(__file__, {**build, "MAX_DIM": 16, "WALK": 1}, "test_walk_steps", harness="cube4_gra_source_harness")

@@ -31,6 +31,7 @@ from cube4.view import make_traversal
 from cube4_sim.beats import BeatSchedule, Geometry, unpack_lanes
 from cube4_sim.gra_beats import NEIGHBOURS, lines_steps
 from cube4_sim.unit_bench import UnitBench, check_lanes, param_id, run_unit
+from cube4_sim.sweeps import sweep
 
 
 VIEWS = [((0.3, -0.45, 1.0), 0.0), ((-0.6, 0.25, -1.0), 0.4), ((1.0, 0.4, -0.7), 0.6)]   # (direction, stall)
@@ -105,6 +106,6 @@ async def test_window_operands(dut):
 BUILDS = [{"P": 1, "VOXEL_W": 8, "MAX_SS_LOG2": 0}, {"P": 5, "VOXEL_W": 8, "MAX_SS_LOG2": 1}]
 
 
-@pytest.mark.parametrize("build", BUILDS, ids=param_id)
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
 def test_cube4_gra_window(build):
     run_unit(__file__, {**build, "MAX_DIM": 16}, "test_window_operands")
