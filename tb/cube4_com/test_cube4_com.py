@@ -278,7 +278,7 @@ RECT_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
                dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1)]
 
 
-@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 1), ids=param_id))
+@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(1,), ids=param_id))
 def test_cube4_com_rects(build):
     run_unit(__file__, {**build, "MAX_DIM": 32, "RECTS": 1, "PLW": 0}, "test_rect_pixel_stream")
 

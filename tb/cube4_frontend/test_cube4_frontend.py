@@ -619,7 +619,7 @@ RECT_BUILDS = [dict(P=1, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, OPT_GRA=0, RECTS=
                dict(P=8, VOXEL_W=8, MAX_DIM=64, MAX_SS_LOG2=0, OPT_GRA=1, RECTS=1)]
 
 
-@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(0, 3), ids=param_id))
+@pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(3,), ids=param_id))
 def test_cube4_frontend_rects(build):
     """The rectangle build: slice rectangles, the whole box as the fixed schedule
     (every view class, stalls), a reset in mid-frame, and the cycles of both."""

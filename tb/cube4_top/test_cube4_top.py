@@ -352,7 +352,7 @@ def test_skip_schedule(p):
 
 
 # ---------------------------------------------------------------- slice rectangles
-@pytest.mark.parametrize("p, shading", sweep([(1, 1), (5, 1), (8, 1), (5, 0)], quick=(0, 1)))
+@pytest.mark.parametrize("p, shading", sweep([(1, 1), (5, 1), (8, 1), (5, 0)], quick=(1,)))
 def test_slice_rectangles(p, shading):
     """Slice rectangles through the RTL (RECTS = 1): each frame runs the rectangles the
     host plans within its box (cube4.slices.plan_rects; GRA's walk on a build with GRA);
