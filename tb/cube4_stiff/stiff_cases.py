@@ -14,7 +14,19 @@ import numpy as np
 
 from cube4.scene import Scene, parse_scene
 from cube4.app.volumes import load_volume
+from cube4.reference import _box_interval
 
+
+
+def path_lengths(trav, scene: Scene) -> np.ndarray:
+    """Length inside the traversed box (trav.origin + [0, dims - 1]) of each base-plane
+    pixel's reference ray (reference.reference_baseplane's rays)."""
+    rows, cols = trav.baseplane_shape
+    by, bx = np.mgrid[0:rows, 0:cols]
+    origins = trav.baseplane_to_volume(bx.ravel(), by.ravel()) - np.asarray(trav.origin, dtype=np.float64)
+    d = np.asarray(scene.direction, dtype=np.float64)
+    t0, t1 = _box_interval(origins, d / np.linalg.norm(d), trav.dims)
+    return np.maximum(t1 - t0, 0.0).reshape(rows, cols)
 
 
 @dataclass

@@ -34,10 +34,10 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from stiff_cases import SHARED_BUILD, Case, faint_thousands  # noqa: E402
+from stiff_cases import SHARED_BUILD, Case, faint_thousands, path_lengths  # noqa: E402
 
 from cube4.model import render_frame  # noqa: E402
-from cube4.reference import _box_interval, reference_baseplane  # noqa: E402
+from cube4.reference import reference_baseplane  # noqa: E402
 from cube4.host import config_for, host_tables, image_metrics, setup_view  # noqa: E402
 from cube4.scene import with_view  # noqa: E402
 from cube4_sim.golden_check import assert_frame_matches_golden  # noqa: E402
@@ -65,23 +65,13 @@ def _render_case(case: Case, max_dim: int | None, fit_memory: bool = False):
     return cfg, out
 
 
-def _path_lengths(trav, scene) -> np.ndarray:
-    """Length inside the box [0, n-1]^3 of each base-plane pixel's reference ray."""
-    rows, cols = trav.baseplane_shape
-    by, bx = np.mgrid[0:rows, 0:cols]
-    origins = trav.baseplane_to_volume(bx.ravel(), by.ravel())
-    d = np.asarray(scene.direction, dtype=np.float64)
-    t0, t1 = _box_interval(origins, d / np.linalg.norm(d), trav.dims)
-    return np.maximum(t1 - t0, 0.0).reshape(rows, cols)
-
-
 def _check_opaque(cfg, scene, trav, gold, lut, ref) -> None:
     assert math.isclose(trav.sample_distance, math.sqrt(3.0)), trav.sample_distance
     one = 1 << cfg.acc_bits
     base = gold.baseplane
     assert base.max() <= one and (base[..., :3] <= base[..., 3:4]).all()
     a = base[..., 3] / one
-    long_rays = _path_lengths(trav, scene) >= 2 * trav.sample_distance
+    long_rays = path_lengths(trav, scene) >= 2 * trav.sample_distance
     assert long_rays.sum() > 0
     assert (a[long_rays] >= 1 - 2.0 ** -cfg.alpha_bits).all(), a[long_rays].min()
     assert (ref[..., 3][long_rays] >= 1 - 1e-9).all()

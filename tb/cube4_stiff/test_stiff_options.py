@@ -21,8 +21,8 @@ model is then held against the float64 reference on each frame's base-plane grid
 * rmse       base-plane RMSE against the reference below the case's regression bound.
 
 The builds are those tb/cube4_top builds too (the full build at P = 1 and 5 with
-MAX_DIM = 64, the voxel-gradient builds), and the VOXEL_W = 12, S = 8 builds at
-MAX_DIM = 32 that tb/cube4_top's path-weight test shares.
+MAX_DIM = 64, the voxel-gradient builds), and VOXEL_W = 12, S = 8 builds at MAX_DIM = 32
+(the q x q and brick cases).
 """
 
 from __future__ import annotations
@@ -37,6 +37,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from option_cases import CASES, OptionCase  # noqa: E402
+from stiff_cases import path_lengths  # noqa: E402
 
 from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_brick_golden  # noqa: E402
 from cube4.brick_rays import composite_bound  # noqa: E402
@@ -73,7 +74,7 @@ def golden_frames(case: OptionCase, cfg, build: dict):
     frames = []
     for sc in case.scenes:
         vp = plan_view(case.volume, sc, cfg)
-        for n, (_, plan) in enumerate(vp.jobs()):
+        for _, plan in vp.jobs():
             stall, stall_out = STALLS[len(frames) % len(STALLS)]
             job = FrameJob(plan.trav, vp.lut, vp.rmap, mode=sc.mode, clip=plan.clip, stall=stall, stall_out=stall_out)
             frames.append((sc, job))
@@ -90,12 +91,12 @@ def check_against_reference(case: OptionCase, cfg, sc, trav, gold, lut, label: s
     raw = gold.baseplane
     assert raw.max() <= one, f"{label}: a channel above 1.0"
     if case.check == "saturate":
-        long_rays = _path_lengths(trav, sc) >= 4.0
+        long_rays = path_lengths(trav, sc) >= 4.0
         assert long_rays.sum() > 0
         assert (raw[long_rays] == one).all(), f"{label}: a long ray not saturated"
         assert (ref[long_rays] == 1.0).all()
     elif case.check == "extremum":
-        entered = _path_lengths(trav, sc) >= 1.0
+        entered = path_lengths(trav, sc) >= 1.0
         tol = np.array([2.0 ** -8] * 3 + [2.0 ** -cfg.alpha_bits]) + 1e-12
         worst = np.abs(base - ref)[entered].max(axis=0)
         assert (worst <= tol).all(), f"{label}: {worst} beyond one LUT step"
@@ -104,7 +105,7 @@ def check_against_reference(case: OptionCase, cfg, sc, trav, gold, lut, label: s
         m.update(_check_constant(case, cfg, sc, trav, base, ref, label))
     elif case.check == "opaque":
         assert (lut[:, 3] == (1 << cfg.alpha_bits) - 1).all()
-        two = _path_lengths(trav, sc) >= 2 * trav.sample_distance
+        two = path_lengths(trav, sc) >= 2 * trav.sample_distance
         assert two.sum() > 0
         assert (base[..., 3][two] >= 1 - 2.0 ** -cfg.alpha_bits).all(), f"{label}: a ray not opaque"
         assert (raw[..., :3] <= raw[..., 3:4]).all()
@@ -125,7 +126,7 @@ def _check_constant(case: OptionCase, cfg, sc, trav, base, ref, label: str) -> d
     rounding = n * (2.0 ** -(cfg.alpha_bits + 1) + 2.0 ** -(cfg.acc_bits + 1)) + _weight_rounding(sc, cfg)
     sample = 1 - (1 - a_voxel) ** trav.sample_distance
     half = 1 - (1 - a_voxel) ** (trav.sample_distance / 2)
-    inner = _path_lengths(trav, sc) >= 1.0
+    inner = path_lengths(trav, sc) >= 1.0
     diff = np.abs(base[..., 3] - ref[..., 3])
     bound_in = (0.0 if sc.path_weighted else sample) + rounding
     bound_out = (half if sc.path_weighted else sample) + rounding
@@ -141,18 +142,6 @@ def _weight_rounding(sc, cfg) -> float:
     and last sample, one LSB each."""
     return 2 * 2.0 ** -cfg.alpha_bits if sc.path_weighted else 0.0
 
-
-
-def _path_lengths(trav, sc) -> np.ndarray:
-    """Length inside the traversed box of each base-plane pixel's reference ray."""
-    from cube4.reference import _box_interval
-
-    rows, cols = trav.baseplane_shape
-    by, bx = np.mgrid[0:rows, 0:cols]
-    origins = trav.baseplane_to_volume(bx.ravel(), by.ravel())
-    d = np.asarray(sc.direction, dtype=np.float64)
-    t0, t1 = _box_interval(origins - np.asarray(trav.origin, dtype=np.float64), d / np.linalg.norm(d), trav.dims)
-    return np.maximum(t1 - t0, 0.0).reshape(rows, cols)
 
 
 def run_bricks(case: OptionCase, cfg, build: dict, p: int) -> None:
