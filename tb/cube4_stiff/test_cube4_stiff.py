@@ -1,10 +1,10 @@
 """Stiff and extreme cases through the whole Cube-4 (issue 5; docs/numerics.md section 11).
 
-Every case (``stiff_cases.py``) is rendered through the RTL (``cube4_sim.rtl``, P = 8)
-and must equal the golden model bit for bit, frame by frame. The golden model is then
-held against the float64 reference (``cube4.reference.reference_baseplane``: one exact
-ray per base-plane pixel, so the warp's resampling is not part of the error) with the
-check the case calls for:
+Every case (``stiff_cases.py``) is rendered through the RTL (``cube4_sim.rtl``; P = 5 in
+`make test`, P = 8 too in `make regress`: the builds of tb/cube4_top) and must equal the
+golden model bit for bit, frame by frame. The golden model is then held against the
+float64 reference (``cube4.reference.reference_baseplane``: one exact ray per base-plane
+pixel, so the warp's resampling is not part of the error) with the check the case calls for:
 
 * opaque_longest   sample distance exactly sqrt(3); every ray with an inside sample is
                    opaque to within one LUT step (1 - 2^-ALPHA_W), as in the reference;
@@ -42,14 +42,11 @@ from cube4.host import config_for, host_tables, image_metrics, setup_view  # noq
 from cube4.scene import with_view  # noqa: E402
 from cube4_sim.golden_check import assert_frame_matches_golden  # noqa: E402
 from cube4_sim.rtl import FrameJob, render_frames  # noqa: E402
-from cube4_sim.sweeps import regress  # noqa: E402
+from cube4_sim.sweeps import regress, sweep  # noqa: E402
 
-P = 8
-
-
-def _render_case(case: Case, max_dim: int | None, fit_memory: bool = False):
-    """All views of a case in one RTL simulation; returns [(scene, trav, golden frame)]."""
-    cfg = config_for(case.scene, pipelines=P, **case.cfg)
+def _render_case(case: Case, max_dim: int | None, p: int = 8, fit_memory: bool = False):
+    """All views of a case in one RTL simulation at P = ``p``; returns [(scene, trav, golden frame)]."""
+    cfg = config_for(case.scene, pipelines=p, **case.cfg)
     nz, ny, nx = case.volume.shape
     views = []
     for v in case.views:
@@ -103,10 +100,11 @@ def _check_saturated(cfg, scene, trav, gold, lut, ref) -> None:
 ANALYTIC = {"opaque_longest": _check_opaque, "constant": _check_constant, "saturated_lut": _check_saturated}
 
 
+@pytest.mark.parametrize("p", sweep([5, 8], quick=(0,)))
 @pytest.mark.parametrize("case_fn", SHARED_BUILD, ids=[f.__name__ for f in SHARED_BUILD])
-def test_stiff_case(case_fn):
+def test_stiff_case(case_fn, p):
     case = case_fn()
-    cfg, frames = _render_case(case, max_dim=64)  # the MAX_DIM = 64 build of tb/cube4_top
+    cfg, frames = _render_case(case, max_dim=64, p=p)  # the MAX_DIM = 64 builds of tb/cube4_top
     for (sc, trav, gold, lut), v in zip(frames, case.views):
         ref = reference_baseplane(case.volume, cfg.voxel_bits, sc, trav)
         m = image_metrics(gold.baseplane_float, ref)
