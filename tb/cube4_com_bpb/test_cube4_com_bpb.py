@@ -30,6 +30,7 @@ from cocotb.triggers import FallingEdge
 
 from cube4_sim.beats import BeatSchedule, Geometry, pack_lanes, unpack_lanes
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
+from cube4_sim.sweeps import sweep
 from cube4.view import make_traversal
 
 
@@ -128,6 +129,6 @@ async def test_previous_words(dut):
 BUILDS = [{"P": 1, "AC_W": 36, "MAX_SS_LOG2": 1}, {"P": 5, "AC_W": 44}, {"P": 3, "AC_W": 40, "RECTS": 1}]
 
 
-@pytest.mark.parametrize("params", BUILDS, ids=param_id)
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(0, 1), ids=param_id))
 def test_cube4_com_bpb(params):
     run_unit(__file__, {"MAX_DIM": 32, **params})

@@ -204,7 +204,7 @@ def test_cli_rtl_several_views_in_one_simulation(tmp_path):
     assert len({f["major_axis"] for f in st["frames"]}) == 3
 
 
-@pytest.mark.parametrize("p", sweep([1, 3], quick=(0,)))
+@pytest.mark.parametrize("p", sweep([1, 3], quick=()))
 def test_synthesis_form(p):
     """The RTL as synthesis reads it: the vendor layer's forms (rtl/ecp5/) in place of the
     generic ones, with the behavioural models of the primitives they instantiate
