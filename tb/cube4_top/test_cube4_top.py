@@ -241,7 +241,7 @@ def test_synthesis_form(p):
 # named builds (cube4.builds): every mode and crop box on the full build at P = 1 and 5;
 # each smaller build a scene would choose once (the shaded one at P = 8 shares its
 # Verilator build with the command-line test's ml:41, whose scene needs exactly it)
-MODE_RUNS = [("full", 1), ("full", 5), ("unshaded", 5), ("mip", 1), ("shaded", 8)]
+MODE_RUNS = [("full", 1), ("full", 5), ("unshaded", 5), ("mip", 1), ("mip", 5), ("shaded", 8)]
 
 
 def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
@@ -272,7 +272,7 @@ def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
     return jobs
 
 
-@pytest.mark.parametrize(("name", "p"), sweep(MODE_RUNS, quick=(0, 1, 2, 3), ids=lambda r: f"{r[0]}-{r[1]}"))
+@pytest.mark.parametrize(("name", "p"), sweep(MODE_RUNS, quick=(0, 1, 2, 3, 4), ids=lambda r: f"{r[0]}-{r[1]}"))
 def test_modes_builds_crop_cut(name, p):
     """Every mode of a build, crop boxes, cut planes and windows, bit-exact, with random
     stalls and a reset in mid-frame; the cycles of unstalled frames against the formula
@@ -352,7 +352,7 @@ def test_skip_schedule(p):
 
 
 # ---------------------------------------------------------------- slice rectangles
-@pytest.mark.parametrize("p, shading", sweep([(1, 1), (5, 1), (8, 1), (5, 0)], quick=(1,)))
+@pytest.mark.parametrize("p, shading", sweep([(1, 1), (5, 1), (8, 1), (5, 0)], quick=(0, 1)))
 def test_slice_rectangles(p, shading):
     """Slice rectangles through the RTL (RECTS = 1): each frame runs the rectangles the
     host plans within its box (cube4.slices.plan_rects; GRA's walk on a build with GRA);
