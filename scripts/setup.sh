@@ -29,10 +29,12 @@ stamp=.venv/.cube4-stamp
 if [ ! -f "$stamp" ] || [ requirements.txt -nt "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
   echo "setup: installing Python packages into .venv (pinned in requirements.txt)"
   # uv installs the pinned set in seconds where pip took about 45 s here; pip stays in
-  # .venv for users, and is the fallback when uv cannot be installed
+  # .venv for users, and is the fallback when uv cannot be installed. --compile-bytecode
+  # as pip does: where PYTHONDONTWRITEBYTECODE is set, every process (each simulation
+  # too) would otherwise compile numpy, pytest and cocotb from source on import.
   if .venv/bin/python -m pip install -q --disable-pip-version-check "uv==0.13.9"; then
-    .venv/bin/uv pip install -q --python .venv/bin/python -r requirements.txt
-    .venv/bin/uv pip install -q --python .venv/bin/python --no-deps -e .
+    .venv/bin/uv pip install -q --compile-bytecode --python .venv/bin/python -r requirements.txt
+    .venv/bin/uv pip install -q --compile-bytecode --python .venv/bin/python --no-deps -e .
   else
     .venv/bin/python -m pip install -q -r requirements.txt
     .venv/bin/python -m pip install -q --no-deps -e .
