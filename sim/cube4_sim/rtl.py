@@ -24,6 +24,7 @@ from cube4.config import Cube4Config
 from cube4.errors import UserError
 from cube4.pathlen import path_weighted
 from cube4.vgrad import word_bits
+from cube4.modes import is_blend, is_extremum
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
@@ -50,6 +51,20 @@ class FrameJob:
     reset_after_cycles: int = 0  # start, reset after this many cycles, then render
     rects: SliceRects | None = None  # slice rectangles (a RECTS build; None there: the whole box)
     extra: dict = field(default_factory=dict)
+
+
+def check_frame_fits(fr: FrameJob, params: dict) -> None:
+    """UserError unless the build has what the frame uses: its mode's datapath, the clip
+    unit for a window or cut plane (a brick's window too), shading for a shaded frame.
+    Without this check the RTL would render such a frame without it, silently."""
+    if is_blend(fr.mode) and not params["COMPOSITING"]:
+        raise UserError(f"a {fr.mode} frame needs a build with COMPOSITING = 1")
+    if is_extremum(fr.mode) and not params["EXTREMUM"]:
+        raise UserError(f"a {fr.mode} frame needs a build with EXTREMUM = 1")
+    if fr.clip is not None and not params["CLIP"]:
+        raise UserError("a frame with a window or a cut plane needs a build with CLIP = 1")
+    if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
+        raise UserError("a shaded frame needs a build with SHADING = 1")
 
 
 def build_params(cfg: Cube4Config, max_dim: int, depth: int | None = None,
@@ -150,6 +165,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         raise UserError("slice rectangles run on a build without voxel gradients (VGRAD = 0)")
     if rects and any(path_weighted(fr.lut, fr.mode) for fr in frames):
         raise UserError("slice rectangles do not run path-weighted frames (a build with PLW = 0)")
+    for fr in frames:
+        check_frame_fits(fr, params)
     check_limits(params, (nx, ny, nz))
 
     from . import runner  # cocotb is imported only when the RTL engine is used

@@ -9,7 +9,7 @@ the RTL at P = 1 and P = 5 with random stalls, bit for bit against the golden mo
 and holds the golden model against the float64 reference with the case's check.
 
 ``build``: the RTL build the case runs on (None: the full build; "vgrad": the
-voxel-gradient builds tb/cube4_top also uses; "wide": VOXEL_W = 12 with S = 8).
+voxel-gradient builds tb/cube4_top also uses; "wide": VOXEL_W = 12 with S = 8, on the full build without MIP).
 """
 
 from __future__ import annotations

@@ -41,7 +41,7 @@ from stiff_cases import path_lengths  # noqa: E402
 
 from cube4.bricks import Tile, brick_tasks, composite_tiles, make_grid, render_brick_golden  # noqa: E402
 from cube4.brick_rays import composite_bound  # noqa: E402
-from cube4.builds import named  # noqa: E402
+from cube4.builds import complete_build, named  # noqa: E402
 from cube4.host import build_memory, config_for, crop_volume, frame_clip, image_metrics, plan_view  # noqa: E402
 from cube4.model import render_frame  # noqa: E402
 from cube4.reference import reference_baseplane  # noqa: E402
@@ -60,7 +60,12 @@ MAX_DIM = {None: 64, "vgrad": 64, "wide": 32}
 
 
 def case_build(case: OptionCase, p: int) -> dict:
-    return VGRAD_BUILDS[p] if case.build == "vgrad" else named("full")
+    """The full build; the voxel-gradient builds; for the 12-bit S = 8 cases (composite
+    only) the full build without MIP (with the clip unit: bricks count their samples with
+    its window): make test's builds with EXTREMUM = 0."""
+    if case.build == "vgrad":
+        return VGRAD_BUILDS[p]
+    return complete_build({"EXTREMUM": 0}) if case.build == "wide" else named("full")
 
 
 def case_config(case: OptionCase, p: int):
