@@ -63,24 +63,31 @@ def _padded_grids(vol: np.ndarray, voxel_bits: int) -> np.ndarray:
 
 def _trilinear(grid: np.ndarray, pts: np.ndarray) -> np.ndarray:
     """Interpolate the padded (nz+2, ny+2, nx+2, C) grid at volume points (N, 3) = (x, y, z)
-    lying in [0, n-1]; returns (N, C)."""
+    lying in [0, n-1]; returns (N, C). The eight corners are gathered by one flat index
+    each (a third of the time of indexing the 4-D grid with three arrays; same values)."""
     q = pts + 1.0  # padding offset
     i0 = np.floor(q).astype(np.int64)
-    f = q - i0
-    nz, ny, nx = grid.shape[:3]
+    nz, ny, nx, nc = grid.shape
     i0[:, 0] = np.clip(i0[:, 0], 0, nx - 2)
     i0[:, 1] = np.clip(i0[:, 1], 0, ny - 2)
     i0[:, 2] = np.clip(i0[:, 2], 0, nz - 2)
     f = q - i0
-    x, y, z = i0[:, 0], i0[:, 1], i0[:, 2]
+    flat = grid.reshape(-1, nc)
+    base = (i0[:, 2] * ny + i0[:, 1]) * nx + i0[:, 0]
+    sy, sz = nx, ny * nx
+
+    def at(offset: int) -> np.ndarray:
+        return flat.take(base + offset, axis=0)
+
     fx, fy, fz = f[:, 0:1], f[:, 1:2], f[:, 2:3]
-    c00 = grid[z, y, x] * (1 - fx) + grid[z, y, x + 1] * fx
-    c01 = grid[z, y + 1, x] * (1 - fx) + grid[z, y + 1, x + 1] * fx
-    c10 = grid[z + 1, y, x] * (1 - fx) + grid[z + 1, y, x + 1] * fx
-    c11 = grid[z + 1, y + 1, x] * (1 - fx) + grid[z + 1, y + 1, x + 1] * fx
-    c0 = c00 * (1 - fy) + c01 * fy
-    c1 = c10 * (1 - fy) + c11 * fy
-    return c0 * (1 - fz) + c1 * fz
+    gx, gy, gz = 1 - fx, 1 - fy, 1 - fz
+    c00 = at(0) * gx + at(1) * fx
+    c01 = at(sy) * gx + at(sy + 1) * fx
+    c10 = at(sz) * gx + at(sz + 1) * fx
+    c11 = at(sz + sy) * gx + at(sz + sy + 1) * fx
+    c0 = c00 * gy + c01 * fy
+    c1 = c10 * gy + c11 * fy
+    return c0 * gz + c1 * fz
 
 
 def _box_interval(origins: np.ndarray, d: np.ndarray, dims) -> tuple[np.ndarray, np.ndarray]:
