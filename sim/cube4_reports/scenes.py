@@ -26,6 +26,7 @@ Results: build/reports/scenes.json and reports/scenes.md.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import time
 
 import numpy as np
@@ -59,6 +60,15 @@ def build_key(build: dict) -> tuple:
     return tuple(build[k] for k in BUILD_PARAMS)
 
 
+def image_digest(image: np.ndarray) -> str:
+    """The first 12 hex digits of the SHA-256 of an image's array (dtype, shape, bytes):
+    a scene's picture changed exactly when this did."""
+    a = np.ascontiguousarray(image)
+    h = hashlib.sha256(f"{a.dtype.str}{a.shape}".encode())
+    h.update(a.tobytes())
+    return h.hexdigest()[:12]
+
+
 def scene_rows(names: list[str]) -> list[dict]:
     """Per scene: its build, cycles on it and on the full build, and the image error."""
     rows = []
@@ -84,7 +94,8 @@ def scene_rows(names: list[str]) -> list[dict]:
                      "cycles_fixed": own["fixed_schedule_cycles"],
                      "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None, "rmse": m["rmse"],
                      "psnr_point_db": mp["psnr"] if np.isfinite(mp["psnr"]) else None,
-                     "truth_k": ref.stats["truth_k"], "truth_change": ref.stats["truth_change"]})
+                     "truth_k": ref.stats["truth_k"], "truth_change": ref.stats["truth_change"],
+                     "image_sha": image_digest(gold.image)})
     return rows
 
 
@@ -203,10 +214,11 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
                     "—" if s["cycles_full"] is None else fmt_int(s["cycles_full"]),
                     fmt_int(s["cycles_fixed"]), t, t_full, pct_change(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
                     _db(s["psnr_db"]), _db(s.get("psnr_point_db")),
-                    "—" if s.get("truth_k") is None else f"{s['truth_k']}"])
+                    "—" if s.get("truth_k") is None else f"{s['truth_k']}", f"`{s.get('image_sha', '—')}`"])
     head = ["scene", "volume", "mode", "smallest build", "cycles / frame", "on the full build",
-            "fixed schedule", "ms / frame at Fmax", "full build", "NAND2 vs full", "PSNR dB vs area truth", "PSNR dB vs point truth", "truth k"]
-    return md_table(head, out, "llll" + "r" * 9)
+            "fixed schedule", "ms / frame at Fmax", "full build", "NAND2 vs full", "PSNR dB vs area truth",
+            "PSNR dB vs point truth", "truth k", "image"]
+    return md_table(head, out, "llll" + "r" * 9 + "l")
 
 
 def _db(x: float | None) -> str:
@@ -258,7 +270,9 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
     lines += ["## Scenes", "", scenes_table(rows, recs), "",
               "A frame traverses only the box that can change a ray (within a crop box, if the scene has one): "
               "its cycles follow that box's dims. A build without GRA "
-              "has no slice of GRA delay at the end of a frame (NJ·NB + NB + 2 cycles fewer).", ""]
+              "has no slice of GRA delay at the end of a frame (NJ·NB + NB + 2 cycles fewer). "
+              "image: the first 12 hex digits of the SHA-256 of the golden engine's image (the RGBA array "
+              "as rendered, before it is written as a file); a scene's picture changed exactly when its digest did.", ""]
     if matrix:
         lines += ["## Every scene in every mode", "",
                   "Each built-in scene's volume, view, transfer function (and crop box or cut plane) in each "
