@@ -21,26 +21,29 @@
 # header as text (no -Winvalid-pch): slower, never different.
 
 ifneq ($(CUBE4_PCH_ROOT),)
-CUBE4_PCH_FLAGS := $(filter-out -MMD -MP,$(OPT_FAST) $(CXXFLAGS) $(CPPFLAGS))
-CUBE4_PCH_DIR := $(CUBE4_PCH_ROOT)/$(shell printf '%s' '$(CXX) $(CUBE4_PCH_FLAGS)' | sha1sum | cut -c1-12)
-CUBE4_PCH_H := $(CUBE4_PCH_DIR)/cube4_verilated.h
+# the flags of a compile at optimisation level $(1) (as verilated.mk orders them), and the
+# shared header for them: CUBE4_PCH_ROOT/<12 hex digits of their SHA-1>/cube4_verilated.h
+cube4_pch_flags = $(filter-out -MMD -MP,$(1) $(CXXFLAGS) $(CPPFLAGS))
+cube4_pch_h = $(CUBE4_PCH_ROOT)/$(shell printf '%s' '$(CXX) $(call cube4_pch_flags,$(1))' | sha1sum | cut -c1-12)/cube4_verilated.h
 
-$(CUBE4_PCH_H).gch:
-	@mkdir -p $(CUBE4_PCH_DIR)
-	flock $(CUBE4_PCH_DIR)/.lock sh -c 'test -f $@ || { printf "#include \"verilated.h\"\n" > $(CUBE4_PCH_H) && $(CXX) $(CUBE4_PCH_FLAGS) -x c++-header $(CUBE4_PCH_H) -o $@.$$$$ && mv $@.$$$$ $@; }'
+# the rule that compiles header $(1) with the flags of level $(2), once, under a lock
+define cube4_pch_rule
+$(1).gch:
+	@mkdir -p $(dir $(1))
+	flock $(dir $(1)).lock sh -c 'test -f $$@ || { printf "#include \"verilated.h\"\n" > $(1) && $(CXX) $(call cube4_pch_flags,$(2)) -x c++-header $(1) -o $$@.$$$$$$$$ && mv $$@.$$$$$$$$ $$@; }'
+endef
 
+CUBE4_PCH_H := $(call cube4_pch_h,$(OPT_FAST))
+CUBE4_PCH_H_SLOW := $(call cube4_pch_h,$(OPT_SLOW))
+$(eval $(call cube4_pch_rule,$(CUBE4_PCH_H),$(OPT_FAST)))
+$(if $(filter-out $(CUBE4_PCH_H),$(CUBE4_PCH_H_SLOW)),$(eval $(call cube4_pch_rule,$(CUBE4_PCH_H_SLOW),$(OPT_SLOW))))
+
+# one-file models: their one compile includes the fast header first
 $(VM_PREFIX)__ALL.o: $(CUBE4_PCH_H).gch
 $(VM_PREFIX)__ALL.o: CPPFLAGS += -include $(CUBE4_PCH_H)
 
-# the slow files' shared header (OPT_SLOW), and the per-build headers replaced by both
-CUBE4_PCH_FLAGS_SLOW := $(filter-out -MMD -MP,$(OPT_SLOW) $(CXXFLAGS) $(CPPFLAGS))
-CUBE4_PCH_DIR_SLOW := $(CUBE4_PCH_ROOT)/$(shell printf '%s' '$(CXX) $(CUBE4_PCH_FLAGS_SLOW)' | sha1sum | cut -c1-12)
-CUBE4_PCH_H_SLOW := $(CUBE4_PCH_DIR_SLOW)/cube4_verilated.h
-
-$(CUBE4_PCH_H_SLOW).gch:
-	@mkdir -p $(CUBE4_PCH_DIR_SLOW)
-	flock $(CUBE4_PCH_DIR_SLOW)/.lock sh -c 'test -f $@ || { printf "#include \"verilated.h\"\n" > $(CUBE4_PCH_H_SLOW) && $(CXX) $(CUBE4_PCH_FLAGS_SLOW) -x c++-header $(CUBE4_PCH_H_SLOW) -o $@.$$$$ && mv $@.$$$$ $@; }'
-
+# models in several files: the fast and slow files include the shared headers, and the
+# per-build headers verilated.mk's rules name as prerequisites are empty stamps
 VK_PCH_I_FAST = -include $(CUBE4_PCH_H)
 VK_PCH_I_SLOW = -include $(CUBE4_PCH_H_SLOW)
 
