@@ -137,10 +137,13 @@ def test_scene_renders_equal_with_and_without_skip(extra):
 
 
 def test_scene_key_must_be_a_bool():
-    with pytest.raises(UserError, match="render.skip must be true, false or \"rects\""):
+    with pytest.raises(UserError, match="render.skip must be true, false, \"rects\" or \"beats\""):
         parse_scene({"render": {"skip": "no"}})
     assert parse_scene({"render": {"skip": False}}).skip is False
     assert parse_scene({"render": {"skip": "rects"}}).skip == "rects"
+    assert parse_scene({"render": {"skip": "beats", "tau": 0.01}}).tau == 0.01
+    with pytest.raises(UserError, match="render.tau"):
+        parse_scene({"render": {"skip": "beats", "tau": 0.9}})
     assert make_scene().skip is True
 
 

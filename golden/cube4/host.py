@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .beats import BeatSchedule, BeatStats, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
 from .clip import Clip, cut_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, rect_frame_cycles
@@ -215,12 +216,60 @@ def pass_rects(vol: np.ndarray, vp: ViewPlan) -> list[SliceRects | None]:
             for plan in vp.plans]
 
 
+def tau_fixed(tau: float, cfg: Cube4Config) -> int:
+    """The termination threshold τ (a transmittance in [0, 1)) in Q0.ACC_W, rounded down."""
+    return int(np.floor(float(tau) * (1 << cfg.acc_bits)))
+
+
+def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) -> list:
+    """Each pass's (BeatSchedule, TerminationRule) within its empty-space box
+    (None: the pass has no frame); the block table is the whole volume's."""
+    unknown = set(opts) - {"block", "lag", "tau", "terminate"}
+    if unknown:
+        raise ValueError(f"beat_skip: unknown keys {sorted(unknown)}")
+    sc = vp.scene
+    t0 = __import__("time").perf_counter()
+    table = BlockTable.of(vol, opts.get("block", 4))
+    bits = table.bits(vp.lut, sc.mode)
+    table_s = __import__("time").perf_counter() - t0
+    terminate = bool(opts.get("terminate", True))
+    out = []
+    for plan in vp.plans:
+        if plan.trav is None:
+            out.append(None)
+            continue
+        occ = frame_occupancy(bits, table.block, plan.trav)
+        sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", 2), terminate=terminate,
+                             gra=sc.shaded and not sc.voxel_gradients)
+        sched.table_s = table_s
+        rule = TerminationRule(sc.mode, int(opts.get("tau", 0)), 1 << cfg.acc_bits, int(vol.min()),
+                               int(vol.max()), enabled=terminate, value_bits=cfg.voxel_bits)
+        out.append((sched, rule))
+    return out
+
+
+def beat_view_stats(frames: list, cfg: Cube4Config, build: dict) -> dict:
+    """The beats the view's frames ran and skipped (after they ran), and the front end's walk."""
+    tot: dict = {}
+    for fr in frames:
+        if fr is None:
+            continue
+        st = beat_stats(fr[0], fr[0].table_s).as_dict()
+        for k, v in st.items():
+            tot[k] = tot.get(k, 0) + v
+        tot["table_s"] = st["table_s"]
+    return tot
+
+
 def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
-                progress: Progress | None = None, rects: bool = False) -> tuple[ViewPlan, Frame, dict]:
+                progress: Progress | None = None, rects: bool = False,
+                beat_skip: dict | None = None) -> tuple[ViewPlan, Frame, dict]:
     """One view through the bit-exact model: its plan, its frame (the passes' base planes
     placed and interleaved) and the stats of what it did; ``rects``: each frame computes
     only its slice rectangles (the specified finer schedule; stats ``rect_beats``);
-    ``keep_streams``: the frame keeps the model's intermediate streams."""
+    ``keep_streams``: the frame keeps the model's intermediate streams; ``beat_skip``:
+    each frame skips beats and ends rays (cube4.beats; keys block, lag, tau, terminate;
+    stats ``beats``)."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     trav, _ = setup_view(dims, scene, cfg)
@@ -235,13 +284,17 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
     results, streams = {}, {}
     rects = rects or scene.skip == "rects"
+    if beat_skip is None and scene.skip == "beats":
+        beat_skip = {"tau": tau_fixed(scene.tau, cfg)}
     frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
+    beat_frames = beat_schedules(vol, vp, cfg, beat_skip) if beat_skip is not None else None
     for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
         if plan.trav is None:       # nothing can change a ray: no frame
             continue
+        sched, rule = beat_frames[n] if beat_frames else (None, None)
         sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
-                           vgrad=scene.voxel_gradients, rects=frame_rects[n])
+                           vgrad=scene.voxel_gradients, rects=frame_rects[n], beats=sched, done=rule)
         results[n] = (sub.baseplane, sub.pixels)
         if keep_streams:
             streams = sub.streams
@@ -251,6 +304,8 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1
     stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
     stats["pixels"] = int(frame.pixels.size)
+    if beat_frames:
+        stats["beats"] = beat_view_stats(beat_frames, cfg, stats["build"])
     if rects:
         stats["rect_beats"] = sum(r.beats(cfg.pipelines) for r in frame_rects if r is not None)
         stats["rect_table_s"] = sum(r.table_s for r in frame_rects if r is not None)

@@ -335,6 +335,8 @@ def render_frame(
     clip: Clip | None = None,
     vgrad: bool = False,
     rects: SliceRects | None = None,
+    beats: "BeatSchedule | None" = None,
+    done: "TerminationRule | None" = None,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
@@ -349,7 +351,14 @@ def render_frame(
     composite and X-ray).
     rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
     rectangle, and only its samples count; None: every slice is the whole box.
+    beats: beat skipping (cube4.beats, numerics.md §19): samples outside the slice's
+    running beats are zero, only running rays count, and ``done`` (a TerminationRule)
+    ends rays; each slice's done rays are reported to ``beats``.
     """
+    if rects is not None and beats is not None:
+        raise ValueError("slice rectangles and beat skipping are two schedules: give one")
+    if beats is not None and done is None:
+        raise ValueError("beat skipping needs the termination rule (done)")
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
     shading = shading and mode == "composite"
@@ -376,12 +385,16 @@ def render_frame(
     def sample_slice(src: np.ndarray, m: int) -> np.ndarray:
         """Slice m interpolated from ``src`` (padded, traversal frame): with rectangles,
         from the voxels slice m traverses (zero beyond), and zero outside (numerics.md §18)."""
+        if beats is not None:
+            return np.where(beats.run_samples(m), interpolate_slice(src, trav, m, W), 0)
         if rects is None:
             return interpolate_slice(src, trav, m, W)
         return rect_slice(src, trav, m, rects.traversed(m), W)
 
     def inside_of(m: int) -> np.ndarray:
         mask = inside_mask(trav, m)
+        if beats is not None:
+            return mask & beats.running(m)
         return mask if rects is None else mask & rects.inside(m)
 
     def padded(m: int) -> np.ndarray:
@@ -408,6 +421,13 @@ def render_frame(
         inside = inside_of(m)
         keep = clip.keep(trav, m) if clip is not None else np.ones((nj, ni), dtype=bool)
         count = inside & keep
+        stx, sty = (int(v) for v in trav.steps(m))
+        r0, c0 = sym - sty, sxm - stx
+        win = (slice(r0, r0 + nj), slice(c0, c0 + ni))
+        if beats is not None:       # only samples that may count; a ray that is done counts no further one
+            count &= beats.sample_occ(m)
+            count &= ~(done.dead(acc[:, win[0], win[1]], trans[win], None) if blend
+                       else done.dead(None, None, value[win]))
         if not shading:
             g = None
         elif vgrad:
@@ -415,9 +435,6 @@ def render_frame(
         else:
             g = gradient(prev, cur, nxt, trav, m)
         rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits)
-        stx, sty = (int(v) for v in trav.steps(m))
-        r0, c0 = sym - sty, sxm - stx
-        win = (slice(r0, r0 + nj), slice(c0, c0 + ni))
         wrgba = rgba
         if path_cols is not None and trav.faces:
             wrgba = rgba.copy()   # the shaded stream keeps the LUT's A; COM weights it
@@ -428,6 +445,12 @@ def render_frame(
             xray(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg)
         else:
             extremum(value[win], held[:, win[0], win[1]], s, rgba, count, mode == "minip")
+        if beats is not None:
+            if blend:
+                live_now, dead_now = done.live(acc, trans, None, None), done.dead(acc, trans, None)
+            else:
+                live_now, dead_now = done.live(None, None, value, held), done.dead(None, None, value)
+            beats.report(m, live_now, dead_now)
         # rays whose next sample (slice m + 1, along the ray) is outside finish here
         if m + 1 < M:
             sxf, syf = (int(v) for v in trav.steps(m + 1))
@@ -436,6 +459,8 @@ def render_frame(
             fin = inside & ~nxt_in[jj + (syf - sty), ii + (sxf - stx)]
         else:
             fin = inside
+        if beats is not None:       # a ray that holds nothing leaves no pixel (the base plane's zero)
+            fin &= live_now[win]
         if fin.any():
             fj, fi = np.nonzero(fin)  # row-major: (j, i) order within the slice
             chunk = np.empty(fj.size, dtype=PIXEL_DTYPE)

@@ -54,7 +54,9 @@ class Scene:
     crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     skip: bool | str = True  # [render] skip: only the box that can change a ray (cube4.skip); "rects":
-    #                          and within it each slice's rectangle (cube4.slices; S = 1)
+    #                          and within it each slice's rectangle (cube4.slices; S = 1); "beats":
+    #                          within it only the beats that can change a ray, and rays end (cube4.beats)
+    tau: float = 0.0  # [render] tau: with skip = "beats", a ray ends at transmittance <= tau (0: exact)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
     gradient: str = "gra"  # [render] gradient: gra (the paper's), central or sobel (cube4.vgrad)
     path_weights: bool = False  # [render] path_weights: weight rays' first and last samples (cube4.pathlen)
@@ -130,7 +132,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError(f"scene: output.footprint must be true or false, got {shown(footprint)}")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights"), "render")
+    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights", "tau"), "render")
     gradient = check_gradient(rnd.get("gradient", "gra"))
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
@@ -142,8 +144,9 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if not isinstance(subpixel, int) or isinstance(subpixel, bool) or not 1 <= subpixel <= MAX_Q:
         raise UserError(f"scene: render.subpixel must be an integer in 1..{MAX_Q}, got {shown(subpixel)}")
     skip = rnd.get("skip", True)
-    if not isinstance(skip, bool) and skip != "rects":
-        raise UserError(f"scene: render.skip must be true, false or \"rects\", got {shown(skip)}")
+    if not isinstance(skip, bool) and skip not in ("rects", "beats"):
+        raise UserError(f"scene: render.skip must be true, false, \"rects\" or \"beats\", got {shown(skip)}")
+    tau = _num(rnd, "tau", 0.0, 0.0, 0.5, "render.")
     path_weights = rnd.get("path_weights", False)
     if not isinstance(path_weights, bool):
         raise UserError(f"scene: render.path_weights must be true or false, got {shown(path_weights)}")
@@ -200,7 +203,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, cut=cut, skip=skip, subpixel=subpixel, filter=warp_filter,
+        shading=shading, crop=crop, cut=cut, skip=skip, tau=tau, subpixel=subpixel, filter=warp_filter,
         footprint=footprint, gradient=gradient, path_weights=path_weights,
     )
 

@@ -32,6 +32,9 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
+    if any(sc.skip == "beats" for sc in scenes):
+        raise UserError("beat skipping and ray termination (--beats) run in the golden model only; "
+                        "use --engine golden, or the box (default) or --rects on the RTL")
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     vps = [plan_view(vol, sc, cfg) for sc in scenes]
     use_rects = bool(build["RECTS"])   # one build: a RECTS build runs every view with rectangles

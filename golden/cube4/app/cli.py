@@ -5,7 +5,7 @@
                  [--compare-to reference|reference-point] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
                  [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
-                 [--no-skip | --rects] [--preset default|quality] [--gradient gra|central|sobel]
+                 [--no-skip | --rects | --beats [--tau T]] [--preset default|quality] [--gradient gra|central|sobel]
                  [--path-weights | --no-path-weights]
     cube4 volumes | cube4 scenes      list the built-ins
 
@@ -150,6 +150,13 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--rects", action="store_true",
                    help="within the box, each sample slice traverses only its own rectangle (slice "
                         "rectangles; S = 1); the image is the same, --stats compares the cycles")
+    r.add_argument("--beats", action="store_true",
+                   help="within the box, run only the beats (partial beams) that can change a ray, and end "
+                        "rays that can change no more (beat skipping and ray termination; golden engine); "
+                        "the image is the same, --stats gives the beats skipped by cause")
+    r.add_argument("--tau", type=float, metavar="T",
+                   help="with --beats: end a ray once its transmittance is at most T (0 <= T <= 0.5; "
+                        "default 0, exact): error against run time")
     r.add_argument("--gradient", choices=GRADIENTS,
                    help="the gradient estimator instead of the scene's [render] gradient: gra (the paper's, on "
                         "the sample stream), central or sobel (at the voxels, interpolated by TRI)")
@@ -305,16 +312,22 @@ def _check_options(args: argparse.Namespace) -> tuple[Path, Path | None, Path | 
 def _resolve_scenes(args: argparse.Namespace) -> list[Scene]:
     """The scene, one per view (--view, --orbit), each with the command line's changes."""
     scenes = _views(args, load_scene(args.scene))
-    if args.no_skip and args.rects:
-        raise UserError("--no-skip and --rects exclude each other")
+    if sum(bool(f) for f in (args.no_skip, args.rects, args.beats)) > 1:
+        raise UserError("--no-skip, --rects and --beats exclude each other")
+    if args.tau is not None and not args.beats:
+        raise UserError("--tau needs --beats (ray termination)")
+    if args.tau is not None and not 0.0 <= args.tau <= 0.5:
+        raise UserError(f"--tau must be in 0..0.5, got {args.tau}")
     return [_changed(sc, args) for sc in scenes]
 
 
 def _changed(scene: Scene, args: argparse.Namespace) -> Scene:
     """A scene with --no-skip or --rects, then --preset, then --gradient and
     --path-weights over the preset."""
-    if args.no_skip or args.rects:
-        scene = replace(scene, skip="rects" if args.rects else False)
+    if args.no_skip or args.rects or args.beats:
+        scene = replace(scene, skip="rects" if args.rects else "beats" if args.beats else False)
+    if args.tau is not None:
+        scene = replace(scene, tau=args.tau)
     if args.preset:
         scene = apply_preset(scene, args.preset)
     over = {k: v for k, v in (("gradient", args.gradient), ("path_weights", args.path_weights)) if v is not None}
@@ -403,6 +416,12 @@ def _summary(args: argparse.Namespace, run: RenderRun, results: list[RenderResul
         if stats.get("skip"):
             saved = stats["cycles_saved"] / max(1, stats["fixed_schedule_cycles"])
             line += f" (empty space skipped: {100 * saved:.0f}% of the cycles)"
+        if "beats" in stats:
+            b = stats["beats"]
+            box = max(1, b["box_beats"])
+            line += (f" (beats within the box: {100 * b['run_beats'] / box:.0f}% ran, "
+                     f"{100 * b['skipped_empty'] / box:.0f}% skipped empty, "
+                     f"{100 * b['skipped_terminated'] / box:.0f}% skipped after their rays ended)")
         if args.compare_to:
             line += (f"; vs {args.compare_to}: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
                      f"max {stats['max_abs']:.3f}")
@@ -414,6 +433,8 @@ def _brick_options(args: argparse.Namespace, scene: Scene):
     every option checked before any work."""
     if args.workers is not None and args.scheduler is not None:
         raise UserError("--workers and --scheduler exclude each other")
+    if (args.bricks is not None or args.board_dim is not None) and scene.skip == "beats":
+        raise UserError("--beats (or render.skip = \"beats\") does not run in bricks: render the volume whole")
     if args.bricks is None and args.board_dim is None:
         if args.workers is not None or args.scheduler is not None:
             raise UserError("--workers and --scheduler render bricks: give --bricks BX,BY,BZ or --board-dim N")

@@ -1,0 +1,364 @@
+"""Beat skipping and ray termination: the specification (docs/numerics.md §19).
+
+The box of ``cube4.skip`` and the slice rectangles of ``cube4.slices`` are planned per
+view. Here a frame decides per beat (one partial beam of one row of one sample slice)
+whether it runs, from two sources that cost the host nothing per view:
+
+* **The block table** (``BlockTable``), independent of the view. The volume is cut into
+  blocks of B×B×B voxels (the memory image's axes). For each block the host keeps the
+  minimum and maximum voxel over the block grown by ``MARGIN`` voxels on every side
+  (once per volume), and one bit per block: does a value in that range count
+  (``skip.counting_values``, two reads of the LUT's prefix sum; once per transfer
+  function). A sample *may count* when the block of its first voxel (i, j, m // S of the
+  traversal frame, in the volume's axes) has its bit set. The margin of 2 makes that
+  test cover every sample that counts and every sample the gradient of a counting
+  sample reads: a sample lies in the 2×2×2 cell at its first voxel c, its gradient's
+  neighbours have first voxels within ±1 of c along every axis, so a counting cell lies
+  within c' − 2 … c' + 2 of each neighbour's first voxel c' whichever way the axes are
+  flipped.
+* **Ray termination from COM.** Rays come in *groups*: the G = P rays of base-plane row
+  ``by`` at columns gx·P … gx·P + P − 1. COM reports a group *done* after the slice d in
+  which its last ray ended (``TerminationRule``: transmittance at or below τ; X-ray also
+  every colour saturated; MIP and MinIP holding the volume's largest or smallest value).
+  The traversal reads the group map ``lag`` slices later: the group runs no slice after
+  d + lag.
+
+**Runs.** A group *starts* at the first slice in which one of its samples may count and
+runs every slice from there until the frame's last or until d + lag (``BeatSchedule``):
+one run per ray, as COM needs (a ray's partial result sits at the position of its latest
+sample; numerics.md §18 for the rectangles' same rule). Before its run a ray holds
+nothing that counted, so it starts fresh; after its run it is finished and leaves on the
+pixel stream. Only samples of running rays count; a ray whose transmittance is at or
+below τ counts no further sample (with τ = 0 such a sample would add nothing).
+
+**Beats.** A beat *runs* when one of its lanes holds a running ray (set A), or when it
+may count and lies next to (±1 slice, row and partial beam) a beat of A (the neighbours
+whose samples the gradients of A's counting samples read, where termination ended their
+own rays). Samples of beats that do not run are zero (what GRA reads). Every sample that
+counts, and every sample its gradient reads, runs and is computed from the voxels the
+fixed schedule uses: the base plane is the fixed schedule's, bit for bit, at τ = 0.
+
+**The walk.** The front end reads, for a running beat, the voxel beats its samples
+interpolate: rows j and j + 1 and partial beams pb and pb + 1 (the beam-extension
+neighbour) of both voxel slices. A pass that reads a voxel slice for the slice buffers
+(S > 1) reads what every pass that uses that slice may run, as far as it knows then (the
+beats that may count and the running rays not yet reported done). The walk's beats are
+those; each takes a cycle and a beat that is not walked takes none (``walk_cycles``).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .modes import MODES
+from .skip import counting_values
+from .view import Traversal
+
+#: voxels a block's value range reaches beyond the block on every side (see above)
+MARGIN = 2
+#: default block edge B and default lag (slices between COM's report and the traversal's use)
+BLOCK = 4
+LAG = 2
+
+
+def _axis_ranges(a: np.ndarray, axis: int, block: int, margin: int) -> tuple[np.ndarray, np.ndarray]:
+    """min and max of ``a`` over windows [b·B − margin, b·B + B + margin) along ``axis``,
+    clipped to the array (edge padding repeats voxels already in the window)."""
+    n = a.shape[axis]
+    nb = -(-n // block)
+    width = block + 2 * margin
+    hi_pad = nb * block + margin - n
+    pad = [(0, 0)] * a.ndim
+    pad[axis] = (margin, max(hi_pad, 0))
+    p = np.pad(a, pad, mode="edge")
+    lo = hi = None
+    for o in range(width):
+        idx = [slice(None)] * a.ndim
+        idx[axis] = slice(o, o + nb * block, block)
+        s = p[tuple(idx)]
+        lo = s if lo is None else np.minimum(lo, s)
+        hi = s if hi is None else np.maximum(hi, s)
+    return lo, hi
+
+
+@dataclass
+class BlockTable:
+    """The view-independent occupancy table of one volume: per block of B³ voxels, the
+    value range over the block grown by MARGIN voxels; ``bits`` for one LUT."""
+
+    block: int
+    dims: tuple[int, int, int]          # (nx, ny, nz) of the volume
+    lo: np.ndarray                      # (bz, by, bx)
+    hi: np.ndarray
+    build_s: float = 0.0                # host time for the ranges (once per volume)
+
+    @classmethod
+    def of(cls, vol: np.ndarray, block: int = BLOCK) -> "BlockTable":
+        if block < 1:
+            raise ValueError(f"block must be at least 1, got {block}")
+        t0 = time.perf_counter()
+        v = vol.astype(np.int32)
+        lo, hi = v, v
+        for axis in range(3):
+            lo, _ = _axis_ranges(lo, axis, block, MARGIN)
+            _, hi = _axis_ranges(hi, axis, block, MARGIN)
+        nz, ny, nx = vol.shape
+        return cls(block, (nx, ny, nz), lo, hi, time.perf_counter() - t0)
+
+    def bits(self, lut: np.ndarray, mode: str) -> np.ndarray:
+        """(bz, by, bx) bool: may a sample whose first voxel lies in the block count."""
+        flags = counting_values(lut, mode).astype(np.int64)
+        prefix = np.concatenate([[0], np.cumsum(flags)])
+        return prefix[self.hi + 1] - prefix[self.lo] > 0
+
+    @property
+    def entries(self) -> int:
+        return int(self.lo.size)
+
+
+def frame_occupancy(bits: np.ndarray, block: int, trav: Traversal) -> np.ndarray:
+    """(nk, nj, ni) bool in ``trav``'s frame (a box placed at trav.origin of the volume):
+    the bit of each voxel's block."""
+    nx, ny, nz = trav.dims
+    x0, y0, z0 = trav.origin
+    zi = (np.arange(z0, z0 + nz) // block)[:, None, None]
+    yi = (np.arange(y0, y0 + ny) // block)[None, :, None]
+    xi = (np.arange(x0, x0 + nx) // block)[None, None, :]
+    return np.ascontiguousarray(trav.to_traversal(bits[zi, yi, xi]))
+
+
+@dataclass
+class TerminationRule:
+    """When a ray is done (numerics.md §19): mode, τ in Q0.ACC_W and the volume's value
+    range (for MIP and MinIP)."""
+
+    mode: str
+    tau: int = 0
+    one: int = 1 << 16
+    vmin: int = 0
+    vmax: int = 0
+    enabled: bool = True
+    value_bits: int = 8
+
+    def __post_init__(self):
+        if self.mode not in MODES:
+            raise ValueError(f"mode must be one of {MODES}, got {self.mode!r}")
+        if not 0 <= self.tau < self.one:
+            raise ValueError(f"tau must be in 0 .. {self.one - 1} (Q0.ACC_W), got {self.tau}")
+
+    def live(self, acc, trans, value, held) -> np.ndarray:
+        """Per ray: its partial result is not the fresh one (a sample added to it)."""
+        if self.mode in ("composite", "xray"):
+            return (trans != self.one) | np.any(acc != 0, axis=0)
+        fresh = (1 << self.value_bits) - 1 if self.mode == "minip" else 0
+        return (value != fresh) | np.any(held != 0, axis=0)
+
+    def dead(self, acc, trans, value) -> np.ndarray:
+        """Per ray of the base plane: can no later sample change it (or, τ > 0, may none)."""
+        if not self.enabled:
+            shape = (trans if trans is not None else value).shape
+            return np.zeros(shape, dtype=bool)
+        if self.mode == "composite":
+            return trans <= self.tau
+        if self.mode == "xray":
+            return (trans == 0) & np.all(acc == self.one, axis=0)
+        return value == (self.vmax if self.mode == "mip" else self.vmin)
+
+
+@dataclass
+class BeatSchedule:
+    """The beats of one frame (``trav``: the frame's box) and the state of its rays.
+
+    ``occ`` (nk, nj, ni): the block table's bits in the frame. The golden model reports
+    each slice's rays (``report``) before it asks for slice m + 1 … m + lag."""
+
+    trav: Traversal
+    p: int
+    occ: np.ndarray
+    lag: int = LAG
+    terminate: bool = True
+    gra: bool = True
+    done: np.ndarray = field(init=False)      # (rows, cols): slice the ray was reported done (M: never)
+    reported: int = field(init=False, default=-1)
+    table_s: float = 0.0
+    _live: dict = field(init=False, default_factory=dict)
+    _a: dict = field(init=False, default_factory=dict)
+    _e: dict = field(init=False, default_factory=dict)
+
+    def __post_init__(self):
+        if self.lag < 2:
+            raise ValueError(f"lag must be at least 2 slices, got {self.lag}")
+        t = self.trav
+        self.M, self.NJ, self.NI = t.num_sample_slices, t.nj, t.ni
+        self.NB = -(-self.NI // self.p)
+        self.rows, self.cols = t.baseplane_shape
+        self.sxm, self.sym = t.max_steps
+        self.done = np.full((self.rows, self.cols), self.M, dtype=np.int64)
+        # per ray: the slices in which its sample may count
+        self.occ_ray = np.zeros((self.M, self.rows, self.cols), dtype=bool)
+        for m in range(self.M):
+            r0, c0 = self.window(m)
+            self.occ_ray[m, r0:r0 + self.NJ, c0:c0 + self.NI] = self.sample_occ(m)
+
+    # --- geometry
+    def window(self, m: int) -> tuple[int, int]:
+        """(row, col) of slice m's sample (0, 0) in the base plane."""
+        stx, sty = (int(v) for v in self.trav.steps(m))
+        return self.sym - sty, self.sxm - stx
+
+    def sample_occ(self, m: int) -> np.ndarray:
+        return self.occ[m // self.trav.supersample]
+
+    def _lanes_of(self, rays: np.ndarray, m: int) -> np.ndarray:
+        """(nj, ni): the samples of slice m whose ray is set in ``rays`` (rows, cols)."""
+        r0, c0 = self.window(m)
+        return rays[r0:r0 + self.NJ, c0:c0 + self.NI]
+
+    def _beats_of(self, mask: np.ndarray) -> np.ndarray:
+        pad = np.zeros((self.NJ, self.NB * self.p), dtype=bool)
+        pad[:, :self.NI] = mask
+        return pad.reshape(self.NJ, self.NB, self.p).any(-1)
+
+    # --- rays
+    def occ_window(self, m0: int, m1: int) -> np.ndarray:
+        """(rows, cols): rays with a sample that may count in slices m0 … m1."""
+        a, b = max(m0, 0), min(m1, self.M - 1)
+        if a > b:
+            return np.zeros((self.rows, self.cols), dtype=bool)
+        return self.occ_ray[a:b + 1].any(0)
+
+    def live_at(self, d: int) -> np.ndarray:
+        """(rows, cols): rays COM reported live (holding what a sample added) after slice d."""
+        if d < 0:
+            return np.zeros((self.rows, self.cols), dtype=bool)
+        return self._live[d]
+
+    def running_rays(self, m: int) -> np.ndarray:
+        """(rows, cols): rays that run slice m: not done as of COM's report of slice
+        m − lag − 1, and either live then or with a sample that may count in slices
+        m − lag … m (one that might have made them live since)."""
+        k = m - self.lag - 1
+        if k > self.reported:
+            raise RuntimeError(f"slice {m} needs COM's report of slice {k} (have {self.reported})")
+        run = self.occ_window(m - self.lag, m) | self.live_at(k)
+        if self.terminate:
+            run &= ~(self.done <= k)
+        return run
+
+    def running(self, m: int) -> np.ndarray:
+        """(nj, ni): samples of slice m whose ray runs (they are the only ones that count)."""
+        if not 0 <= m < self.M:
+            return np.zeros((self.NJ, self.NI), dtype=bool)
+        return self._lanes_of(self.running_rays(m), m)
+
+    def report(self, m: int, live: np.ndarray, dead: np.ndarray) -> None:
+        """COM's report after slice m, per ray of the base plane: ``live`` holds what a
+        sample added (its partial result is not the fresh one), ``dead`` is done."""
+        if m != self.reported + 1:
+            raise RuntimeError(f"reports come slice by slice: got {m} after {self.reported}")
+        self._live[m] = live.copy()
+        if self.terminate:
+            self.done[dead & (self.done == self.M)] = m
+        self.reported = m
+
+    # --- beats
+    def active_beats(self, m: int) -> np.ndarray:
+        """(nj, nb): beats of slice m with a lane of a running ray (set A)."""
+        if not 0 <= m < self.M:
+            return np.zeros((self.NJ, self.NB), dtype=bool)
+        if m not in self._a:
+            self._a[m] = self._beats_of(self.running(m))
+        return self._a[m]
+
+    def run_beats(self, m: int) -> np.ndarray:
+        """(nj, nb): beats of slice m that run: A, and with GRA the beats that may count
+        next to a beat of A (rays that ended there still feed A's gradients)."""
+        if not 0 <= m < self.M:
+            return np.zeros((self.NJ, self.NB), dtype=bool)
+        if m not in self._e:
+            a = self.active_beats(m)
+            e = a
+            if self.gra and self.terminate:
+                near = dilate(np.stack([self.active_beats(m - 1), a, self.active_beats(m + 1)]))[1]
+                e = a | (near & self._beats_of(self.sample_occ(m)))
+            self._e[m] = e
+        return self._e[m]
+
+    def run_samples(self, m: int) -> np.ndarray:
+        """(nj, ni): samples of slice m in running beats."""
+        b = np.repeat(self.run_beats(m), self.p, axis=1)
+        return b[:, :self.NI]
+
+    # --- the walk
+    def footprint(self, beats: np.ndarray) -> np.ndarray:
+        """(nj + 1, nb): the voxel beats (rows j, j + 1; partial beams pb, pb + 1) that
+        the sample beats read."""
+        f = np.zeros((self.NJ + 1, self.NB + 1), dtype=bool)
+        f[:-1, :-1] |= beats
+        f[1:, :-1] |= beats
+        f[:, 1:] |= f[:, :-1].copy()
+        return f[:, :self.NB]
+
+    def walk(self, m: int) -> np.ndarray:
+        """(nj + 1, nb): the front end's beats of slice m (call after the frame)."""
+        S = self.trav.supersample
+        f = self.footprint(self.run_beats(m))
+        if S > 1 and (m == 0 or m % S == 1):
+            # the pass that reads voxel slice k for the slice buffers reads what the
+            # passes that use it may run, as far as it knows now
+            k = 0 if m == 0 else m // S + 1
+            known = m - self.lag - 1
+            for u in range(max(0, (k - 1) * S + 1), min(self.M, k * S + S)):
+                maybe = self.occ_window(known - self.lag, u) | self.live_at(known)
+                if self.terminate:
+                    maybe &= ~(self.done <= known)
+                f |= self.footprint(self._beats_of(self._lanes_of(maybe, u)))
+        return f
+
+
+def dilate(b: np.ndarray) -> np.ndarray:
+    """(n0, n1, n2) bool grown by one along every axis, diagonals included."""
+    out = b.copy()
+    for axis in range(3):
+        grown = out.copy()
+        lo = [slice(None)] * 3
+        hi = [slice(None)] * 3
+        lo[axis], hi[axis] = slice(1, None), slice(None, -1)
+        grown[tuple(lo)] |= out[tuple(hi)]
+        grown[tuple(hi)] |= out[tuple(lo)]
+        out = grown
+    return out
+
+
+@dataclass
+class BeatStats:
+    """What one frame's beat schedule ran and skipped."""
+
+    box_beats: int          # the fixed schedule's sample beats in the frame's box (M·NJ·NB)
+    run_beats: int          # sample beats that ran
+    skipped_empty: int      # skipped, and would be without termination
+    skipped_terminated: int  # skipped because their rays were done
+    walk_beats: int         # the front end's beats (reads included)
+    table_s: float = 0.0
+
+    def as_dict(self) -> dict:
+        return {k: getattr(self, k) for k in ("box_beats", "run_beats", "skipped_empty",
+                                              "skipped_terminated", "walk_beats", "table_s")}
+
+
+def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
+    """The frame's counts, after the frame (every slice reported)."""
+    run = sum(int(sched.run_beats(m).sum()) for m in range(sched.M))
+    walk = sum(int(sched.walk(m).sum()) for m in range(sched.M))
+    box = sched.M * sched.NJ * sched.NB
+    if sched.terminate:
+        free = BeatSchedule(sched.trav, sched.p, sched.occ, sched.lag, terminate=False, gra=sched.gra)
+        free._live = sched._live       # the same rays are live; none ends
+        free.reported = sched.reported
+        run_free = sum(int(free.run_beats(m).sum()) for m in range(free.M))
+    else:
+        run_free = run
+    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s)
