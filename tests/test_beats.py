@@ -231,3 +231,19 @@ def test_cli_beats_and_stats(tmp_path):
                        (("--beats", "--tau", "0.7"), "--tau must be in 0..0.5")):
         r = run(*extra, check=False)
         assert r.returncode != 0 and msg in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+def test_skipping_report_beat_rows():
+    """make skipping's beat section on small volumes: four views, images identical,
+    fewer beats with termination on an opaque surface, τ and block rows, its Markdown."""
+    from cube4_reports import skipping
+
+    rows = skipping.beat_rows("mri:32,24,12", "mri_skin")
+    assert len(rows) == 4 and all(r["identical"] for r in rows)
+    assert any(r["ended"]["run_beats"] < r["free"]["run_beats"] for r in rows)
+    taus = skipping.tau_rows("mri:32,24,12", "mri_skin")
+    assert taus[0]["rmse"] == 0 and taus[-1]["beats"]["run_beats"] <= taus[0]["beats"]["run_beats"]
+    blocks = skipping.block_rows("head:24", "head")
+    assert [b["block"] for b in blocks] == skipping.BLOCKS
+    text = skipping.write_beats_md(rows, taus, blocks)
+    assert "mri:32,24,12" in text and "identical" in text and "DIFFERENT" not in text

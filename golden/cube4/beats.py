@@ -349,10 +349,24 @@ class BeatStats:
                                               "skipped_terminated", "walk_beats", "table_s")}
 
 
+def walk_beats(sched: BeatSchedule) -> int:
+    """The front end's beats of a frame: each slice's walk, whose row NJ (the read that
+    completes the slice's last row) is the next slice's row 0, as in the fixed schedule
+    (Y-wrap), and after the last slice a flush row."""
+    total = 0
+    carry = np.zeros(sched.NB, dtype=bool)
+    for m in range(sched.M):
+        w = sched.walk(m)
+        first = w[0] | carry
+        total += int(first.sum()) + int(w[1:sched.NJ].sum())
+        carry = w[sched.NJ]
+    return total + int(carry.sum())
+
+
 def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
     """The frame's counts, after the frame (every slice reported)."""
     run = sum(int(sched.run_beats(m).sum()) for m in range(sched.M))
-    walk = sum(int(sched.walk(m).sum()) for m in range(sched.M))
+    walk = walk_beats(sched)
     box = sched.M * sched.NJ * sched.NB
     if sched.terminate:
         free = BeatSchedule(sched.trav, sched.p, sched.occ, sched.lag, terminate=False, gra=sched.gra)
