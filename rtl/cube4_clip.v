@@ -6,6 +6,10 @@
 // Purpose
 //   Which samples of a beat count (docs/numerics.md section 12): the window
 //     WIN_I0 <= i < WIN_I1,  WIN_J0 <= j < WIN_J1,  WIN_M0 <= m < WIN_M1
+//   the crop regions: along i a sample is below (0) when i < CR_I0, above (2)
+//   when i > CR_I1 or i = CR_I1 and wx > 0, else within (1); j alike with wy;
+//   m below when m < CR_M0, above when m > CR_M1; it counts unless bit
+//   ri + 3 rj + 9 rm of CR_HIDE is set;
 //   and the kept side of the cut plane
 //     E = CUT_A * (i * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * (m * 2^(W - g)) + CUT_D >= 0
 //   (g = log2 S: every coordinate in units of 2^-W voxel)
@@ -29,10 +33,13 @@
 // Latency
 //   5 register stages, no enable (the caller's pipeline moves on every cycle):
 //   keep belongs to the inputs of 5 cycles earlier.
-//     c0  window compares along j and m; each lane's position t; the
-//         operands of the three beat products (cube4_mul's input registers)
+//     c0  window compares along j and m; the beat's regions along j and m
+//         and the three CR_HIDE bits of its row of regions along i; each
+//         lane's position t; the operands of the three beat products
+//         (cube4_mul's input registers)
 //     c1  the three beat products (cube4_mul's output registers); window
-//         compares along i; each lane's CUT_A * t (from the table, which
+//         compares along i; each lane's region along i and its CR_HIDE bit;
+//         each lane's CUT_A * t (from the table, which
 //         follows cfg one cycle late: cfg is written between frames, many
 //         cycles before a beat arrives)
 //     c2  the beat's sum in two halves (CUT_A and CUT_B terms; CUT_C and CUT_D)
@@ -40,7 +47,7 @@
 //     c4  each lane's E and its sign, with the window: keep
 //
 // Ports
-//   cfg            view registers (WIN_*, CUT_*, FLIP_I, I_R1, SS_LOG2)
+//   cfg            view registers (WIN_*, CR_*, CUT_*, FLIP_I, I_R1, SS_LOG2)
 //   in_m, in_j, in_pb, in_skew   the beat (as the header's fields)
 //   in_wx, in_wy   the beat's resampling weights, Q0.W
 //   keep [P]       lane q's sample counts (5 cycles later)
@@ -81,9 +88,19 @@ module cube4_clip #(
     reg                   c0_wjm;                     // j and m inside the window
     reg [IW-1:0]          c0_pbp;                     // pb * P
     reg [LANE_W-1:0]      c0_t [0:P-1];               // lane q's position t
+    // the beat's crop regions along j and m (0 below, 1 within, 2 above), and
+    // the CR_HIDE bits of its three regions along i
+    wire [1:0] rj = (in_j < cfg_cr_j0) ? 2'd0
+                  : ((in_j > cfg_cr_j1) || (in_j == cfg_cr_j1 && in_wy != '0)) ? 2'd2 : 2'd1;
+    wire [1:0] rm = (in_m < cfg_cr_m0) ? 2'd0 : (in_m > cfg_cr_m1) ? 2'd2 : 2'd1;
+    wire [4:0] row = 5'(rj) * 5'd3 + 5'(rm) * 5'd9;     // region (0, rj, rm)
+    reg [2:0]             c0_hide;                    // CR_HIDE of regions (ri, rj, rm), ri = 0, 1, 2
+    reg                   c0_wx_nz;                   // wx > 0: a lane at i = CR_I1 lies past it
     always @(posedge clk) begin
-        c0_wjm <= (in_j >= cfg_win_j0) && (in_j < cfg_win_j1) && (in_m >= cfg_win_m0) && (in_m < cfg_win_m1);
-        c0_pbp <= pbp;
+        c0_wjm   <= (in_j >= cfg_win_j0) && (in_j < cfg_win_j1) && (in_m >= cfg_win_m0) && (in_m < cfg_win_m1);
+        c0_pbp   <= pbp;
+        c0_hide  <= cfg_cr_hide[row +: 3];
+        c0_wx_nz <= in_wx != '0;
     end
 
     // ---- c0 .. c1: the three beat products (operand and product registers
@@ -96,7 +113,7 @@ module cube4_clip #(
 
     // ---- c1: window compares along i; each lane's CUT_A * t ----
     reg                 c1_wjm;
-    reg [P-1:0]         c1_wi;                        // lane's i inside the window
+    reg [P-1:0]         c1_wi;                        // lane's i inside the window, its region kept
     reg signed [CUT_W+LANE_W+1:0] c1_at [0:P-1];      // CUT_A * t
     reg signed [CUT_W+LANE_W+1:0] at_tab [0:P-1];     // CUT_A * k, k = 0 .. P - 1
     always @(posedge clk) c1_wjm <= c0_wjm;
@@ -108,8 +125,11 @@ module cube4_clip #(
         for (q = 0; q < P; q = q + 1) begin : g_lane
             always @(posedge clk) c0_t[q] <= lane_pos(q, in_skew, cfg_flip_i, cfg_i_r1);
             wire [IW-1:0] i = c0_pbp + IW'(c0_t[q]);
+            wire below = i < IW'(cfg_cr_i0);
+            wire above = (i > IW'(cfg_cr_i1)) || (i == IW'(cfg_cr_i1) && c0_wx_nz);
+            wire hide  = below ? c0_hide[0] : above ? c0_hide[2] : c0_hide[1];
             always @(posedge clk) begin
-                c1_wi[q] <= (i >= IW'(cfg_win_i0)) && (i < IW'(cfg_win_i1));
+                c1_wi[q] <= (i >= IW'(cfg_win_i0)) && (i < IW'(cfg_win_i1)) && !hide;
                 c1_at[q] <= at_tab[c0_t[q]];
             end
         end

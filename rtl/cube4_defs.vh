@@ -114,6 +114,12 @@
 //   WIN_I0, WIN_I1, WIN_J0, WIN_J1 [DIM_W], WIN_M0, WIN_M1 [M_W]
 //                        the window: samples with I0 <= i < I1, J0 <= j < J1,
 //                        M0 <= m < M1 count (numerics.md section 12)
+//   CR_I0, CR_I1, CR_J0, CR_J1 [DIM_W], CR_M0, CR_M1 [M_W], CR_HIDE [27]
+//                        crop regions: along i a sample is below (0) when i < CR_I0,
+//                        above (2) when i > CR_I1 or i = CR_I1 and wx > 0, else
+//                        within (1); j alike with wy; m below when m < CR_M0, above
+//                        when m > CR_M1; it counts unless bit ri + 3 rj + 9 rm of
+//                        CR_HIDE is set (0: every region counts; numerics.md section 12)
 //   CUT_A, CUT_B, CUT_C [CUT_W], CUT_D [CUT_E_W]  the cut plane, signed: a sample
 //                        counts when A (i 2^W + wx) + B (j 2^W + wy) + C m + D >= 0
 //   FACES [6]            the faces of the frame's box that are the volume's, whose
@@ -147,9 +153,16 @@
     localparam integer VIEW_WIN_J1  = VIEW_WIN_J0 + DIM_W, \
     localparam integer VIEW_WIN_M0  = VIEW_WIN_J1 + DIM_W, \
     localparam integer VIEW_WIN_M1  = VIEW_WIN_M0 + M_W, \
+    localparam integer VIEW_CR_I0   = VIEW_WIN_M1 + M_W, \
+    localparam integer VIEW_CR_I1   = VIEW_CR_I0 + DIM_W, \
+    localparam integer VIEW_CR_J0   = VIEW_CR_I1 + DIM_W, \
+    localparam integer VIEW_CR_J1   = VIEW_CR_J0 + DIM_W, \
+    localparam integer VIEW_CR_M0   = VIEW_CR_J1 + DIM_W, \
+    localparam integer VIEW_CR_M1   = VIEW_CR_M0 + M_W, \
+    localparam integer VIEW_CR_HIDE = VIEW_CR_M1 + M_W, \
     localparam integer CUT_W        = 18, \
     localparam integer CUT_E_W      = 48, \
-    localparam integer VIEW_CUT_A   = VIEW_WIN_M1 + M_W, \
+    localparam integer VIEW_CUT_A   = VIEW_CR_HIDE + 27, \
     localparam integer VIEW_CUT_B   = VIEW_CUT_A + CUT_W, \
     localparam integer VIEW_CUT_C   = VIEW_CUT_B + CUT_W, \
     localparam integer VIEW_CUT_D   = VIEW_CUT_C + CUT_W, \
@@ -158,6 +171,7 @@
 
 // The view bus from the individual register ports (cube4_top and the harnesses).
 `define CUBE4_VIEW_PACK {cfg_faces, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
+    cfg_cr_hide, cfg_cr_m1, cfg_cr_m0, cfg_cr_j1, cfg_cr_j0, cfg_cr_i1, cfg_cr_i0, \
     cfg_win_m1, cfg_win_m0, cfg_win_j1, cfg_win_j0, cfg_win_i1, cfg_win_i0, \
     cfg_ph0_y, cfg_ph0_x, cfg_mode, cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
     cfg_view_y, cfg_view_x, cfg_ss_log2, cfg_flip_k, cfg_flip_j, cfg_flip_i, \
@@ -192,6 +206,13 @@
     input  wire [DIM_W-1:0]   cfg_win_j1, \
     input  wire [M_W-1:0]     cfg_win_m0, \
     input  wire [M_W-1:0]     cfg_win_m1, \
+    input  wire [DIM_W-1:0]   cfg_cr_i0, \
+    input  wire [DIM_W-1:0]   cfg_cr_i1, \
+    input  wire [DIM_W-1:0]   cfg_cr_j0, \
+    input  wire [DIM_W-1:0]   cfg_cr_j1, \
+    input  wire [M_W-1:0]     cfg_cr_m0, \
+    input  wire [M_W-1:0]     cfg_cr_m1, \
+    input  wire [26:0]        cfg_cr_hide, \
     input  wire [CUT_W-1:0]   cfg_cut_a, \
     input  wire [CUT_W-1:0]   cfg_cut_b, \
     input  wire [CUT_W-1:0]   cfg_cut_c, \
@@ -225,6 +246,13 @@
     wire [DIM_W-1:0]    cfg_win_j1  = bus[VIEW_WIN_J1 +: DIM_W]; \
     wire [M_W-1:0]      cfg_win_m0  = bus[VIEW_WIN_M0 +: M_W]; \
     wire [M_W-1:0]      cfg_win_m1  = bus[VIEW_WIN_M1 +: M_W]; \
+    wire [DIM_W-1:0]    cfg_cr_i0   = bus[VIEW_CR_I0 +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_cr_i1   = bus[VIEW_CR_I1 +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_cr_j0   = bus[VIEW_CR_J0 +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_cr_j1   = bus[VIEW_CR_J1 +: DIM_W]; \
+    wire [M_W-1:0]      cfg_cr_m0   = bus[VIEW_CR_M0 +: M_W]; \
+    wire [M_W-1:0]      cfg_cr_m1   = bus[VIEW_CR_M1 +: M_W]; \
+    wire [26:0]         cfg_cr_hide = bus[VIEW_CR_HIDE +: 27]; \
     wire signed [CUT_W-1:0]   cfg_cut_a = bus[VIEW_CUT_A +: CUT_W]; \
     wire signed [CUT_W-1:0]   cfg_cut_b = bus[VIEW_CUT_B +: CUT_W]; \
     wire signed [CUT_W-1:0]   cfg_cut_c = bus[VIEW_CUT_C +: CUT_W]; \

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .clip import Clip, move_plane
+from .clip import Clip, fit_regions, move_plane, move_regions
 from .config import Cube4Config
 from .errors import UserError
 from .fixed import round_shift
@@ -202,9 +202,11 @@ def plan_bricks(trav: Traversal, grid: BrickGrid, clip: Clip | None = None) -> l
             # sample slice ((count - 1) S + 1 of them), not at count * S (the registers hold no more)
             win.append((a - st, b - st) if role < 2 else ((a - st) * S, min((b - st) * S, bt.num_sample_slices)))
         plane = move_plane(clip.plane if clip is not None else None, start, trav.weight_bits)
+        regions = move_regions(clip.regions if clip is not None else None, start, S)
         window = (win[0][0], win[0][1], win[1][0], win[1][1], win[2][0], win[2][1])
-        bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane), offset=offset,
-                            start=start))
+        bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane,
+                                                         regions=None if regions is None else fit_regions(regions, bt)),
+                            offset=offset, start=start))
     return sorted(bricks, key=lambda br: br.start[::-1])
 
 

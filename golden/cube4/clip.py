@@ -8,6 +8,17 @@ kept half-space are convex, so the samples of a ray that count are consecutive.
 
 * **Window** ``(i0, i1, j0, j1, m0, m1)``: half-open bounds on the sample indices; a
   brick counts only its own samples, not those of its overlap.
+* **Crop regions** ``(I0, I1, J0, J1, M0, M1, TABLE)``: three slabs of the traversal
+  frame (``crop_regions``) cut it into 3 × 3 × 3 regions, and TABLE (27 bits) keeps
+  some: along i a sample at i + wx/2^W lies *below* (r = 0) when i < I0, *above* (r = 2)
+  when i > I1 or i = I1 and wx > 0 (its position passes the plane I1), else *inside*
+  (r = 1); along j alike with wy; along k the sample slice m (at m/S) lies below when
+  m < M0 and above when m > M1 (M0, M1 in sample slices). The sample counts when bit
+  r_i + 3 r_j + 9 r_k of TABLE is set. The planes are the scene's crop box's faces
+  (``[crop] mode``: VTK's subvolume, fence, inverted fence, cross, inverted cross, or
+  its 27 region flags), exactly at the sample's quantised position. A region set need
+  not be convex: a ray's samples that count may come in several runs, which changes
+  nothing (a sample that does not count adds nothing).
 * **Cut plane** ``(CA, CB, CC, CD)``, signed integers: a sample counts when
 
       E = CA * (i * 2^W + wx(m)) + CB * (j * 2^W + wy(m)) + CC * (m * 2^(W - g)) + CD  >=  0,
@@ -41,6 +52,7 @@ class Clip:
 
     window: tuple[int, int, int, int, int, int] | None = None
     plane: tuple[int, int, int, int] | None = None
+    regions: tuple[int, int, int, int, int, int, int] | None = None
 
     def keep(self, trav: Traversal, m: int) -> np.ndarray:
         """(nj, ni) bool: the samples of slice m that the window and the plane keep."""
@@ -54,7 +66,102 @@ class Clip:
                 keep[:] = False
         if self.plane is not None:
             keep &= plane_value(self.plane, trav, m, jj, ii) >= 0
+        if self.regions is not None:
+            keep &= region_keep(self.regions, trav, m, jj, ii)
         return keep
+
+
+#: VTK's cropping region flags (vtkVolumeMapper): bit rx + 3 ry + 9 rz, r = 0 below the
+#: box's low face along that axis, 1 within, 2 above
+CROP_MODES = {
+    "subvolume": 0x0002000,        # the box
+    "fence": 0x2EBFEBA,            # regions within the box along at least one axis
+    "inverted_fence": 0x5140145,   # within along none (the eight corners)
+    "cross": 0x0417410,            # within along at least two
+    "inverted_cross": 0x7BE8BEF,   # within along at most one
+}
+REGIONS_ALL = (1 << 27) - 1
+
+
+def _region(u, lo: int, hi: int, frac):
+    """0 below, 1 inside, 2 above: u the sample's integer coordinate, frac its fraction
+    (non-zero: the position lies past u)."""
+    u = np.asarray(u, dtype=np.int64)
+    above = (u > hi) | ((u == hi) & (np.asarray(frac) > 0))
+    return np.where(u < lo, 0, np.where(above, 2, 1))
+
+
+def region_keep(regions, trav: Traversal, m: int, jj, ii) -> np.ndarray:
+    """The samples (m, jj, ii) whose region TABLE keeps (see the module text)."""
+    i0, i1, j0, j1, m0, m1, table = (int(v) for v in regions)
+    wx, wy, _ = (int(w) for w in trav.weights(m))
+    ri = _region(ii, i0, i1, wx)
+    rj = _region(jj, j0, j1, wy)
+    rm = 0 if m < m0 else (2 if m > m1 else 1)
+    return ((table >> (ri + 3 * rj + 9 * rm)) & 1).astype(bool)
+
+
+def _fold(table: int, axis: int, to: int) -> int:
+    """``table`` with every region along ``axis`` (0: i, 1: j, 2: k) taking region ``to``'s bit."""
+    out = 0
+    for r in range(27):
+        a = [r % 3, (r // 3) % 3, r // 9]
+        a[axis] = to
+        if (table >> (a[0] + 3 * a[1] + 9 * a[2])) & 1:
+            out |= 1 << r
+    return out
+
+
+def crop_regions(trav: Traversal, lo, hi, flags: int) -> tuple[int, int, int, int, int, int, int]:
+    """The crop regions of ``trav``'s frame from the box [lo, hi] (voxel coordinates of
+    the whole volume, inclusive, x y z) and VTK's 27 region flags (bit rx + 3 ry + 9 rz):
+    each volume axis becomes its traversal axis, a flipped axis swaps below and above."""
+    S = trav.supersample
+    bounds, perm, flipped = [], [], []
+    for ax in (trav.axis_i, trav.axis_j, trav.major):
+        a, b = int(lo[ax]) - int(trav.origin[ax]), int(hi[ax]) - int(trav.origin[ax])
+        if trav.flip[ax]:
+            n = int(trav.dims[ax])
+            a, b = n - 1 - b, n - 1 - a
+        bounds.append((a, b))
+        perm.append(ax)
+        flipped.append(bool(trav.flip[ax]))
+    table = 0
+    for r in range(27):
+        t = [r % 3, (r // 3) % 3, r // 9]            # traversal axes i, j, k
+        v = [0, 0, 0]                                # volume axes x, y, z
+        for pos, ax in enumerate(perm):
+            v[ax] = 2 - t[pos] if flipped[pos] else t[pos]
+        if (int(flags) >> (v[0] + 3 * v[1] + 9 * v[2])) & 1:
+            table |= 1 << r
+    (i0, i1), (j0, j1), (k0, k1) = bounds
+    return fit_regions((i0, i1, j0, j1, k0 * S, k1 * S, table), trav)
+
+
+def fit_regions(regions, trav: Traversal) -> tuple[int, int, int, int, int, int, int]:
+    """The same regions with every plane within its register's range: a low plane below
+    0 is 0 (nothing lies below it either way) and above n is n; a high plane above n is n;
+    a high plane below 0 puts every sample above it, so the table takes the above
+    region's bits along that axis."""
+    i0, i1, j0, j1, m0, m1, table = (int(v) for v in regions)
+    out = []
+    for axis, (a, b, n) in enumerate(((i0, i1, trav.ni), (j0, j1, trav.nj), (m0, m1, trav.num_sample_slices))):
+        if b < 0:
+            table = _fold(table, axis, 2)
+            a, b = 0, 0
+        out += [min(max(a, 0), n), min(b, n)]
+    return (*out, table)
+
+
+def move_regions(regions, start, supersample: int):
+    """The crop regions of a traversal whose voxel (0, 0, 0) lies at ``start`` = (i, j, k)
+    of the regions' frame (the empty-space box, a sub-pixel pass's box): the planes move
+    by the start (k in sample slices). None stays None. ``fit_regions`` then fits them."""
+    if regions is None:
+        return None
+    i0, i1, j0, j1, m0, m1, table = (int(v) for v in regions)
+    a, b, c = (int(v) for v in start)
+    return (i0 - a, i1 - a, j0 - b, j1 - b, m0 - c * supersample, m1 - c * supersample, table)
 
 
 def plane_value(plane, trav: Traversal, m: int, jj, ii) -> np.ndarray:
@@ -119,3 +226,28 @@ def check_window(window, trav: Traversal) -> None:
     for lo, hi, n, name in ((i0, i1, trav.ni, "i"), (j0, j1, trav.nj, "j"), (m0, m1, trav.num_sample_slices, "m")):
         if not 0 <= lo <= hi <= n:
             raise UserError(f"window: {name} bounds {lo}..{hi} must satisfy 0 <= lo <= hi <= {n}")
+
+
+def region_cells(trav: Traversal, regions) -> np.ndarray:
+    """(nz, ny, nx) bool: the cells of ``trav``'s box that reach a kept region. A cell
+    spans one voxel along every axis of the traversal frame, [u, u + 1], and reaches the
+    regions its span meets (along k, the sample slices m with u <= m/S <= u + 1)."""
+    i0, i1, j0, j1, m0, m1, table = (int(v) for v in regions)
+    S = trav.supersample
+    per_axis = {}
+    for ax, (lo, hi, scale) in ((trav.axis_i, (i0, i1, 1)), (trav.axis_j, (j0, j1, 1)),
+                                (trav.major, (m0, m1, S))):
+        n = int(trav.dims[ax])
+        c = np.arange(n, dtype=np.int64)
+        u = (n - 2 - c if trav.flip[ax] else c) * scale      # the cell's low corner, traversal frame
+        span = scale                                          # its high corner is u + span
+        per_axis[ax] = np.stack([u < lo, (u + span >= lo) & (u <= hi), u + span > hi])
+    out = np.zeros((int(trav.dims[2]), int(trav.dims[1]), int(trav.dims[0])), dtype=bool)
+    order = (trav.axis_i, trav.axis_j, trav.major)
+    for r in range(27):
+        if not (table >> r) & 1:
+            continue
+        t = (r % 3, (r // 3) % 3, r // 9)
+        reach = {ax: per_axis[ax][t[pos]] for pos, ax in enumerate(order)}
+        out |= reach[2][:, None, None] & reach[1][None, :, None] & reach[0][None, None, :]
+    return out

@@ -100,7 +100,7 @@ def scene_build(scenes) -> dict:
         b["SHADING"] |= int(sc.shaded)
         b["COMPOSITING"] |= int(is_blend(sc.mode))
         b["EXTREMUM"] |= int(is_extremum(sc.mode))
-        b["CLIP"] |= int(sc.cut is not None)
+        b["CLIP"] |= int(sc.cut is not None or sc.crop_regions is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
         b["RECTS"] |= int(sc.skip == "rects")

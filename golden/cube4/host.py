@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .beats import BeatSchedule, BeatStats, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
-from .clip import Clip, cut_coefficients
+from .clip import Clip, crop_regions, cut_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, rect_frame_cycles
 from .model import PIXEL_DTYPE, Frame, render_frame
@@ -58,10 +58,13 @@ def crop_volume(vol: np.ndarray, trav: Traversal) -> np.ndarray:
 
 
 def frame_clip(scene: Scene, trav: Traversal) -> Clip | None:
-    """The scene's cut plane as the clip registers of this view (None: no cut)."""
-    if scene.cut is None:
+    """The scene's cut plane and crop regions as the clip registers of this view (None:
+    neither)."""
+    if scene.cut is None and scene.crop_regions is None:
         return None
-    return Clip(plane=cut_coefficients(trav, *scene.cut))
+    plane = None if scene.cut is None else cut_coefficients(trav, *scene.cut)
+    regions = None if scene.crop_regions is None else crop_regions(trav, *scene.crop, scene.crop_regions)
+    return Clip(plane=plane, regions=regions)
 
 
 def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.ndarray, np.ndarray | None]:

@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .clip import CUT_E_W, CUT_W, check_window  # the cut plane's register widths (cube4_defs.vh)
+from .clip import CUT_E_W, CUT_W, REGIONS_ALL, check_window  # the cut plane's register widths (cube4_defs.vh)
 from .errors import UserError
 from .modes import MODE_CODES
 from .view import Traversal
@@ -204,6 +204,10 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
     check_window(window, trav)
     for name, v in zip(("WIN_I0", "WIN_I1", "WIN_J0", "WIN_J1", "WIN_M0", "WIN_M1"), window):
         regs[name] = int(v)
+    regions = (0, 0, 0, 0, 0, 0, REGIONS_ALL) if clip is None or clip.regions is None else clip.regions
+    for name, v in zip(("CR_I0", "CR_I1", "CR_J0", "CR_J1", "CR_M0", "CR_M1"), regions[:6]):
+        regs[name] = int(v)
+    regs["CR_HIDE"] = REGIONS_ALL & ~int(regions[6])      # the regions that do not count
     plane = (0, 0, 0, 0) if clip is None or clip.plane is None else clip.plane
     for name, v, w in zip(("CUT_A", "CUT_B", "CUT_C", "CUT_D"), plane, (CUT_W, CUT_W, CUT_W, CUT_E_W)):
         regs[name] = int(v) & ((1 << w) - 1)

@@ -31,7 +31,8 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
   and classify it (colour premultiplied by opacity); unshaded compositing uses the
   transfer function's colour as it is;
 * a crop box is rendered as a volume of its own placed at its origin (zero outside
-  it, like the volume's own faces); a cut plane removes the samples p with
+  it, like the volume's own faces), and crop regions keep the samples in the regions
+  their flags keep (cube4.clip; the whole volume traversed); a cut plane removes the samples p with
   normal . (p - point) > 0.
 """
 
@@ -351,6 +352,16 @@ def _midpoint_weights(q: int, n: np.ndarray, length: np.ndarray, step: float) ->
     return np.where(last, tail + 0.5, w)
 
 
+def _region_kept(pts: np.ndarray, box, flags: int) -> np.ndarray:
+    """The points (N, 3) of the whole volume's coordinates that the crop regions keep:
+    region 0 / 1 / 2 along an axis below / within / above the box [lo, hi] (inclusive),
+    VTK's flag bit rx + 3 ry + 9 rz."""
+    lo, hi = (np.asarray(b, dtype=np.float64) for b in box)
+    r = np.where(pts < lo, 0, np.where(pts > hi, 2, 1))
+    idx = r[:, 0] + 3 * r[:, 1] + 9 * r[:, 2]
+    return ((int(flags) >> idx) & 1).astype(bool)
+
+
 def cast_rays(
     vol: np.ndarray,
     voxel_bits: int,
@@ -399,6 +410,9 @@ def cast_rays(
         counts = np.ones(active.size, dtype=bool)
         if scene.cut is not None:
             counts = (pts - cut_p) @ cut_n <= 0.0
+        if scene.crop_regions is not None:
+            counts &= _region_kept(pts + (0.0 if offset is None else np.asarray(offset, dtype=np.float64)),
+                                   scene.crop, scene.crop_regions)
         if extreme:
             v = np.where(counts, vals[:, 0], value[active])
             value[active] = np.minimum(value[active], v) if mode == "minip" else np.maximum(value[active], v)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .clip import CROP_MODES
 from .errors import UserError
 from .values import integer, real, shown, vector
 from .modes import MODES, is_blend  # docs/scenes.md, docs/numerics.md §13
@@ -52,6 +53,8 @@ class Scene:
     name: str = "scene"
     shading: bool = True  # [material] shading: false classifies only (composite mode)
     crop: tuple | None = None  # [crop] box: ((x0, y0, z0), (x1, y1, z1)) voxels, inclusive
+    crop_regions: int | None = None  # [crop] mode / regions: VTK's 27 region flags of the box's
+    #                                  slabs (cube4.clip); None: the box alone is traversed
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     skip: bool | str = True  # [render] skip: only the box that can change a ray (cube4.skip); "rects":
     #                          and within it each slice's rectangle (cube4.slices; S = 1); "beats":
@@ -196,24 +199,30 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     _check_keys(prec, PRECISION_KEYS, "precision")
     precision = {k: prec[k] for k in PRECISION_KEYS if k in prec}
 
-    crop = _crop(data.get("crop", {}))
+    crop, crop_regions = _crop(data.get("crop", {}))
     cut = _cut(data.get("cut", {}))
 
     return Scene(
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, cut=cut, skip=skip, tau=tau, subpixel=subpixel, filter=warp_filter,
+        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, skip=skip, tau=tau, subpixel=subpixel, filter=warp_filter,
         footprint=footprint, gradient=gradient, path_weights=path_weights,
     )
 
 
 def _crop(tbl: dict):
     """[crop] box = [[x0, y0, z0], [x1, y1, z1]]: voxel indices, inclusive (checked
-    against the volume's dims when the scene meets a volume: ``crop_box``)."""
-    _check_keys(tbl, ("box",), "crop")
+    against the volume's dims when the scene meets a volume: ``crop_box``); mode =
+    "subvolume" (the box alone is traversed; the default), "fence", "inverted_fence",
+    "cross" or "inverted_cross", or regions = VTK's 27 region flags (an integer): the
+    box's three slabs cut the volume into 27 regions and these keep some (cube4.clip).
+    Returns (box or None, region flags or None)."""
+    _check_keys(tbl, ("box", "mode", "regions"), "crop")
     if "box" not in tbl:
-        return None
+        if "mode" in tbl or "regions" in tbl:
+            raise UserError("scene: crop.mode and crop.regions need crop.box (the slabs' faces)")
+        return None, None
     box = tbl["box"]
     ok = (isinstance(box, list) and len(box) == 2
           and all(isinstance(c, list) and len(c) == 3 for c in box)
@@ -223,7 +232,20 @@ def _crop(tbl: dict):
     lo, hi = tuple(box[0]), tuple(box[1])
     if any(a < 0 or b < a for a, b in zip(lo, hi)):
         raise UserError(f"scene: crop.box {box} needs 0 <= x0 <= x1 (and likewise y, z)")
-    return lo, hi
+    if "mode" in tbl and "regions" in tbl:
+        raise UserError("scene: give crop.mode or crop.regions, not both")
+    flags = None
+    if "mode" in tbl:
+        mode = tbl["mode"]
+        if mode not in CROP_MODES:
+            raise UserError(f"scene: crop.mode must be one of {', '.join(CROP_MODES)}, got {shown(mode)}")
+        flags = None if mode == "subvolume" else CROP_MODES[mode]
+    if "regions" in tbl:
+        flags = tbl["regions"]
+        if not isinstance(flags, int) or isinstance(flags, bool) or not 0 <= flags < (1 << 27):
+            raise UserError(f"scene: crop.regions must be an integer in 0..{(1 << 27) - 1} (27 region flags), "
+                            f"got {shown(flags)}")
+    return (lo, hi), flags
 
 
 def _cut(tbl: dict):
@@ -249,6 +271,8 @@ def crop_box(scene: Scene, dims) -> tuple[tuple[int, int, int], tuple[int, int, 
     if any(b >= n for b, n in zip(hi, dims)):
         raise UserError(f"scene: crop.box {[list(lo), list(hi)]} reaches outside the volume "
                         f"(voxels 0..{dims[0] - 1}, 0..{dims[1] - 1}, 0..{dims[2] - 1})")
+    if scene.crop_regions is not None:       # the regions are clipped, the whole volume traversed
+        return (0, 0, 0), dims
     size = tuple(b - a + 1 for a, b in zip(lo, hi))
     if min(size) < 2:
         raise UserError(f"scene: crop.box {[list(lo), list(hi)]} is thinner than 2 voxels")

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .clip import Clip, move_plane
+from .clip import Clip, fit_regions, move_plane, move_regions, region_cells
 from .cycles import COM_MIN_SLICE, frame_cycles
 from .modes import MODES
 from .view import Traversal, sub_traversal
@@ -236,6 +236,8 @@ def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: in
     busy = busy_cells(vol, lut, mode)
     if clip is not None and clip.plane is not None:
         busy &= ~cut_cells(trav, clip.plane)
+    if clip is not None and clip.regions is not None:
+        busy &= region_cells(trav, clip.regions)
     box = busy_box(busy)
     if box is not None:
         box = fit_slice(box, trav, p)
@@ -251,8 +253,10 @@ def plan_box(trav: Traversal, box, clip: Clip | None = None, table_s: float = 0.
         return SkipPlan(trav, None, None, (0, 0), (0, 0, 0), None, table_s)
     sub, offset, start = sub_traversal(trav, *box)
     moved = None
-    if clip is not None and clip.plane is not None:
-        moved = Clip(plane=move_plane(clip.plane, start, trav.weight_bits))
+    if clip is not None and (clip.plane is not None or clip.regions is not None):
+        regions = move_regions(clip.regions, start, trav.supersample)
+        moved = Clip(plane=move_plane(clip.plane, start, trav.weight_bits),
+                     regions=None if regions is None else fit_regions(regions, sub))
     return SkipPlan(trav, box, sub, offset, start, moved, table_s)
 
 

@@ -55,14 +55,14 @@ class FrameJob:
 
 def check_frame_fits(fr: FrameJob, params: dict) -> None:
     """UserError unless the build has what the frame uses: its mode's datapath, the clip
-    unit for a window or cut plane (a brick's window too), shading for a shaded frame.
+    unit for a window, crop regions or a cut plane (a brick's window too), shading for a shaded frame.
     Without this check the RTL would render such a frame without it, silently."""
     if is_blend(fr.mode) and not params["COMPOSITING"]:
         raise UserError(f"a {fr.mode} frame needs a build with COMPOSITING = 1")
     if is_extremum(fr.mode) and not params["EXTREMUM"]:
         raise UserError(f"a {fr.mode} frame needs a build with EXTREMUM = 1")
     if fr.clip is not None and not params["CLIP"]:
-        raise UserError("a frame with a window or a cut plane needs a build with CLIP = 1")
+        raise UserError("a frame with a window, crop regions or a cut plane needs a build with CLIP = 1")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
         raise UserError("a shaded frame needs a build with SHADING = 1")
 

@@ -233,14 +233,21 @@ def check_lanes(got: np.ndarray, want: np.ndarray, valid: np.ndarray, sched, log
 
 
 def random_clip(trav, kind: str | None, rng):
-    """A window and/or a cut plane for testbenches (``kind``: None, "window", "cut" or
-    "window+cut"): the window keeps a random sub-box of the samples, the plane passes
-    near the volume's centre in a random direction, so both sides hold samples."""
-    from cube4.clip import Clip, cut_coefficients
+    """A window, a cut plane and/or crop regions for testbenches (``kind``: None or
+    names joined by "+": "window", "cut", "regions"): the window keeps a random
+    sub-box of the samples, the plane passes near the volume's centre in a random
+    direction, so both sides hold samples, and the regions are a random box's 27
+    regions (a low face may lie outside the traversed box) with random flags."""
+    from cube4.clip import Clip, crop_regions, cut_coefficients
 
     if kind is None:
         return None
-    window = plane = None
+    window = plane = regions = None
+    if "regions" in kind:
+        o, n = np.asarray(trav.origin), np.asarray(trav.dims)
+        lo = o + rng.integers(-1, np.maximum(n // 2, 1))
+        hi = lo + rng.integers(0, np.maximum(n // 2, 1) + 1)
+        regions = crop_regions(trav, lo, hi, int(rng.integers(1, 1 << 27)))
     if "window" in kind:
         M = trav.num_sample_slices
         i0, j0, m0 = (int(rng.integers(0, max(1, n // 3))) for n in (trav.ni, trav.nj, M))
@@ -252,4 +259,4 @@ def random_clip(trav, kind: str | None, rng):
         centre = np.asarray(trav.origin, dtype=np.float64) + (np.asarray(trav.dims) - 1) / 2.0
         point = centre + rng.uniform(-0.2, 0.2, size=3) * np.asarray(trav.dims)
         plane = cut_coefficients(trav, normal, point)
-    return Clip(window=window, plane=plane)
+    return Clip(window=window, plane=plane, regions=regions)

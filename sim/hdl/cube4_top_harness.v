@@ -94,6 +94,9 @@ module cube4_top_harness #(
     reg [PHASE_W-1:0]    cfg_ph0_x_q, cfg_ph0_y_q;
     reg [DIM_W-1:0]      cfg_win_i0_q, cfg_win_i1_q, cfg_win_j0_q, cfg_win_j1_q;
     reg [M_W-1:0]        cfg_win_m0_q, cfg_win_m1_q;
+    reg [DIM_W-1:0]      cfg_cr_i0_q, cfg_cr_i1_q, cfg_cr_j0_q, cfg_cr_j1_q;
+    reg [M_W-1:0]        cfg_cr_m0_q, cfg_cr_m1_q;
+    reg [26:0]           cfg_cr_hide_q;
     reg [CUT_W-1:0]      cfg_cut_a_q, cfg_cut_b_q, cfg_cut_c_q;
     reg [CUT_E_W-1:0]    cfg_cut_d_q;
     reg [5:0]            cfg_faces_q;
@@ -141,6 +144,13 @@ module cube4_top_harness #(
         cfg_win_j1_q    <= cfg_win_j1;
         cfg_win_m0_q    <= cfg_win_m0;
         cfg_win_m1_q    <= cfg_win_m1;
+        cfg_cr_i0_q     <= cfg_cr_i0;
+        cfg_cr_i1_q     <= cfg_cr_i1;
+        cfg_cr_j0_q     <= cfg_cr_j0;
+        cfg_cr_j1_q     <= cfg_cr_j1;
+        cfg_cr_m0_q     <= cfg_cr_m0;
+        cfg_cr_m1_q     <= cfg_cr_m1;
+        cfg_cr_hide_q   <= cfg_cr_hide;
         cfg_cut_a_q     <= cfg_cut_a;
         cfg_cut_b_q     <= cfg_cut_b;
         cfg_cut_c_q     <= cfg_cut_c;
@@ -315,6 +325,13 @@ module cube4_top_harness #(
         .cfg_win_j1   (cfg_win_j1_q),
         .cfg_win_m0   (cfg_win_m0_q),
         .cfg_win_m1   (cfg_win_m1_q),
+        .cfg_cr_i0    (cfg_cr_i0_q),
+        .cfg_cr_i1    (cfg_cr_i1_q),
+        .cfg_cr_j0    (cfg_cr_j0_q),
+        .cfg_cr_j1    (cfg_cr_j1_q),
+        .cfg_cr_m0    (cfg_cr_m0_q),
+        .cfg_cr_m1    (cfg_cr_m1_q),
+        .cfg_cr_hide  (cfg_cr_hide_q),
         .cfg_cut_a    (cfg_cut_a_q),
         .cfg_cut_b    (cfg_cut_b_q),
         .cfg_cut_c    (cfg_cut_c_q),

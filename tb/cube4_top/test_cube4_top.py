@@ -270,7 +270,7 @@ MODE_RUNS = [("full", 1), ("full", 5), ("unshaded", 5), ("mip", 1), ("mip", 5), 
 
 def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
     """Frames for a build: every mode it has, shaded and unshaded compositing, a crop box,
-    a cut plane and a window (where the build has CLIP), starting phases, stalls, and
+    a cut plane, a window and crop regions (where the build has CLIP), starting phases, stalls, and
     one frame reset in mid-frame; the last frame unstalled (its cycles are checked)."""
     from cube4_sim.unit_bench import random_clip
 
@@ -289,7 +289,8 @@ def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
         lut, rmap = random_tables(rng, cfg)
         if mode in ("mip", "minip"):
             lut[:, 3] = rng.integers(0, 1 << cfg.alpha_bits, size=lut.shape[0])
-        clip = random_clip(trav, ("cut", "window", "window+cut")[n % 3], rng) if build["CLIP"] else None
+        kind = ("cut", "window+regions", "window+cut", "regions", "cut+regions", "window", "regions")[n]
+        clip = random_clip(trav, kind, rng) if build["CLIP"] else None
         jobs.append(FrameJob(trav, lut, rmap if shaded else None, mode=mode, clip=clip,
                              stall=(0, 60, 0, 120, 30, 0, 0)[n], stall_out=(0, 0, 90, 60, 0, 40, 0)[n],
                              reset_after_cycles=150 if n == 3 else 0))
@@ -298,7 +299,7 @@ def mode_frames(rng, cfg: Cube4Config, dims, build: dict) -> list[FrameJob]:
 
 @pytest.mark.parametrize(("name", "p"), sweep(MODE_RUNS, quick=(0, 1, 3, 4), ids=lambda r: f"{r[0]}-{r[1]}"))
 def test_modes_builds_crop_cut(name, p):
-    """Every mode of a build, crop boxes, cut planes and windows, bit-exact, with random
+    """Every mode of a build, crop boxes, cut planes, windows and crop regions, bit-exact, with random
     stalls and a reset in mid-frame; the cycles of unstalled frames against the formula
     (a crop box: the box's dims)."""
     rng = np.random.default_rng(100 + p)

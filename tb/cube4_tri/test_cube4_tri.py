@@ -59,9 +59,11 @@ from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id
 #  window / cut plane (the header's KEEP), starting phase, crop box (origin, dims) or None)
 VIEWS = [((0.3, -0.45, 1.0), 0, 0, 0.0, None, (0, 0), None),
          ((-0.6, 0.25, -1.0), 60, 120, 0.4, "window+cut", (0, 0), None),
-         ((1.0, 0.4, -0.7), 0, 200, 0.2, "cut", (101, 250), None),
+         ((1.0, 0.4, -0.7), 0, 200, 0.2, "cut+regions", (101, 250), None),
          ((0.5, 1.0, 0.5), 30, 30, 0.3, "window", (5, 77), ((3, 2, 1), (7, 6, 6))),
-         ((-0.2, -1.0, -0.9), 0, 60, 0.1, None, (200, 9), ((1, 3, 2), (9, 5, 5)))]
+         ((-0.2, -1.0, -0.9), 0, 60, 0.1, "regions", (200, 9), ((1, 3, 2), (9, 5, 5))),
+         # no slope along i (wx = 0 on every slice): samples lie on a region's high face
+         ((0.0, 0.3, 1.0), 0, 0, 0.2, "regions", (0, 0), None)]
 OUTPUTS = ["out_hdr", "out_sample"]
 DEPTH, ADDR_W = 4096, 12
 
