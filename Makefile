@@ -14,7 +14,7 @@
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, ECP5, cycles, error (reports/scenes.md; ~1 h)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
-#   make skipping empty-space skipping on real content: box, cycles vs fixed schedule and n^3/P, host time (reports/skipping.md; ~1 min)
+#   make skipping empty-space skipping on real content: box, rectangles, beats and ray termination vs n^3/P (reports/skipping.md; ~5 min)
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.

@@ -14,10 +14,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .beats import BeatSchedule, BeatStats, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
+from .beats import BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
 from .clip import Clip, crop_regions, cut_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, rect_frame_cycles
+from .errors import UserError
+from .levels import level_dims, level_volume
 from .model import PIXEL_DTYPE, Frame, render_frame
 from .modes import is_extremum
 from .pathlen import weighted_columns
@@ -28,7 +30,7 @@ from .slices import SliceRects, plan_rects
 from .subpixel import Pass, fine_origin, interleave, passes
 from .tables import classification_lut, extremum_lut, reflectance_map
 from .vgrad import pack_words
-from .view import Camera, Traversal, make_camera, make_traversal
+from .view import Camera, Traversal, level_camera, make_camera, make_traversal
 
 
 def config_for(scene: Scene, pipelines: int | None = None, **overrides) -> Cube4Config:
@@ -43,12 +45,27 @@ def config_for(scene: Scene, pipelines: int | None = None, **overrides) -> Cube4
 
 
 def setup_view(dims, scene: Scene, cfg: Cube4Config) -> tuple[Traversal, Camera]:
-    """The traversal (of the crop box, if the scene has one) and the camera (framing
-    the whole volume, so that a crop stays where it is in the picture)."""
+    """The traversal (of the crop box, if the scene has one; of the preview level, if the
+    scene asks for one) and the camera (framing the whole volume, so that a crop stays
+    where it is in the picture; in a level's coordinates, the same picture). ``dims``
+    are the whole volume's."""
+    cam = make_camera(dims, scene.direction, scene.width, scene.height, scene.up)
+    if scene.preview > 1:
+        if scene.crop is not None or scene.cut is not None:
+            raise UserError("a preview level ([render] preview, --preview) renders the whole volume: "
+                            "leave out [crop] and [cut]")
+        ldims = level_dims(dims, scene.preview)
+        trav = make_traversal(ldims, scene.direction, cfg.weight_bits, cfg.supersample)
+        return trav, level_camera(cam, ldims, scene.preview)
     origin, box = crop_box(scene, dims)
     trav = make_traversal(box, scene.direction, cfg.weight_bits, cfg.supersample, origin=origin)
-    cam = make_camera(dims, scene.direction, scene.width, scene.height, scene.up)
     return trav, cam
+
+
+def level_of(vol: np.ndarray, scene: Scene) -> np.ndarray:
+    """What the host loads for a scene: vol[z, y, x] itself, or its preview level
+    (cube4.levels)."""
+    return level_volume(vol, scene.preview) if scene.preview > 1 else vol
 
 
 def crop_volume(vol: np.ndarray, trav: Traversal) -> np.ndarray:
@@ -74,8 +91,8 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
     cube4.pathlen) and the reflectance map (None when the scene is unshaded)."""
     if is_extremum(scene.mode):
         lut = extremum_lut(scene, cfg)
-    else:
-        lut = classification_lut(scene, cfg, trav.sample_distance)
+    else:       # a preview level's sample is preview times as far from the next, in the volume's voxels
+        lut = classification_lut(scene, cfg, trav.sample_distance * scene.preview)
     if scene.path_weighted:
         lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
     return lut, (reflectance_map(scene, cfg, trav, volume_axes=scene.voxel_gradients) if scene.shaded else None)
@@ -85,6 +102,10 @@ def build_memory(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, build: 
     """What a build's voxel memory holds for these scenes (checked by resolve_build to share
     one gradient): the volume, or on a VGRAD build the words with the scenes' voxel gradient
     (central when no scene is shaded)."""
+    levels = {sc.preview for sc in scenes}
+    if len(levels) > 1:
+        raise UserError("one render holds one preview level in memory: render the levels separately")
+    vol = level_volume(vol, levels.pop()) if scenes else vol
     if not build.get("VGRAD"):
         return vol
     kind = next((sc.gradient for sc in scenes if sc.voxel_gradients), "central")
@@ -153,7 +174,7 @@ def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
     nz, ny, nx = vol.shape
     trav, cam = setup_view((nx, ny, nz), scene, cfg)
     lut, rmap = host_tables(scene, cfg, trav)
-    box_vol = crop_volume(vol, trav)
+    box_vol = crop_volume(level_of(vol, scene), trav)
     pss = passes(trav, scene.subpixel)
     plans = schedules(box_vol, scene, cfg, pss, lut)
     return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
@@ -195,6 +216,7 @@ def view_stats(engine: str, dims, scene: Scene, cfg: Cube4Config) -> dict:
         "config": cfg.as_dict(),
         "gradient": scene.gradient if scene.shaded else None,
         "path_weights": scene.path_weighted,
+        "preview": scene.preview,
     }
 
 
@@ -212,7 +234,7 @@ def trav_stats(trav: Traversal) -> dict:
 def pass_rects(vol: np.ndarray, vp: ViewPlan) -> list[SliceRects | None]:
     """The slice rectangles (cube4.slices, numerics.md §18) of each pass's frame, within
     its empty-space box (None: the pass has no frame)."""
-    raw, sc = crop_volume(vol, vp.trav), vp.scene
+    raw, sc = crop_volume(level_of(vol, vp.scene), vp.trav), vp.scene
     return [None if plan.trav is None else
             plan_rects(plan.box_volume(raw), plan.trav, vp.lut, sc.mode, clip=plan.clip,
                        gra=sc.shaded and not sc.voxel_gradients)
@@ -232,7 +254,7 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
         raise ValueError(f"beat_skip: unknown keys {sorted(unknown)}")
     sc = vp.scene
     t0 = __import__("time").perf_counter()
-    table = BlockTable.of(vol, opts.get("block", 4))
+    table = BlockTable.of(level_of(vol, sc), opts.get("block", 4))
     bits = table.bits(vp.lut, sc.mode)
     table_s = __import__("time").perf_counter() - t0
     terminate = bool(opts.get("terminate", True))
@@ -245,8 +267,9 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
         sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", 2), terminate=terminate,
                              gra=sc.shaded and not sc.voxel_gradients)
         sched.table_s = table_s
-        rule = TerminationRule(sc.mode, int(opts.get("tau", 0)), 1 << cfg.acc_bits, int(vol.min()),
-                               int(vol.max()), enabled=terminate, value_bits=cfg.voxel_bits)
+        lv = level_of(vol, sc)
+        rule = TerminationRule(sc.mode, int(opts.get("tau", 0)), 1 << cfg.acc_bits, int(lv.min()),
+                               int(lv.max()), enabled=terminate, value_bits=cfg.voxel_bits)
         out.append((sched, rule))
     return out
 

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .clip import CROP_MODES
+from .levels import LEVELS
 from .errors import UserError
 from .values import integer, real, shown, vector
 from .modes import MODES, is_blend  # docs/scenes.md, docs/numerics.md §13
@@ -60,6 +61,7 @@ class Scene:
     #                          and within it each slice's rectangle (cube4.slices; S = 1); "beats":
     #                          within it only the beats that can change a ray, and rays end (cube4.beats)
     tau: float = 0.0  # [render] tau: with skip = "beats", a ray ends at transmittance <= tau (0: exact)
+    preview: int = 1  # [render] preview: render the volume at 1/preview of its resolution (cube4.levels)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
     gradient: str = "gra"  # [render] gradient: gra (the paper's), central or sobel (cube4.vgrad)
     path_weights: bool = False  # [render] path_weights: weight rays' first and last samples (cube4.pathlen)
@@ -135,7 +137,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError(f"scene: output.footprint must be true or false, got {shown(footprint)}")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights", "tau"), "render")
+    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights", "tau", "preview"),
+                "render")
     gradient = check_gradient(rnd.get("gradient", "gra"))
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
@@ -150,6 +153,9 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if not isinstance(skip, bool) and skip not in ("rects", "beats"):
         raise UserError(f"scene: render.skip must be true, false, \"rects\" or \"beats\", got {shown(skip)}")
     tau = _num(rnd, "tau", 0.0, 0.0, 0.5, "render.")
+    preview = rnd.get("preview", 1)
+    if not isinstance(preview, int) or isinstance(preview, bool) or preview not in LEVELS:
+        raise UserError(f"scene: render.preview must be one of {', '.join(map(str, LEVELS))}, got {shown(preview)}")
     path_weights = rnd.get("path_weights", False)
     if not isinstance(path_weights, bool):
         raise UserError(f"scene: render.path_weights must be true or false, got {shown(path_weights)}")
@@ -206,7 +212,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, skip=skip, tau=tau, subpixel=subpixel, filter=warp_filter,
+        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, skip=skip, tau=tau, preview=preview,
+        subpixel=subpixel, filter=warp_filter,
         footprint=footprint, gradient=gradient, path_weights=path_weights,
     )
 

@@ -302,9 +302,14 @@ class Camera:
     width: int
     height: int
     pixel: float  # voxels per image pixel
+    # the point the image centres on, in the volume's coordinates; None: the centre of
+    # dims (a preview level's camera puts the whole volume's centre here: level_camera)
+    at: tuple[float, float, float] | None = None
 
     @property
     def centre(self) -> np.ndarray:
+        if self.at is not None:
+            return np.asarray(self.at, dtype=np.float64)
         return (np.asarray(self.dims, dtype=np.float64) - 1.0) / 2.0
 
     def project(self, pts: np.ndarray) -> np.ndarray:
@@ -345,6 +350,15 @@ def make_camera(dims, direction, width: int, height: int, up=None) -> Camera:
         height=int(height),
         pixel=diag / min(width, height),
     )
+
+
+def level_camera(cam: Camera, level_dims, factor: int) -> Camera:
+    """The camera ``cam`` of the whole volume in the coordinates of a preview level whose
+    voxel u stands for the whole volume's voxels f·u … f·u + f − 1 (its centre at
+    f·u + (f − 1)/2): the same picture of the same place, at 1/f of the voxels per pixel."""
+    f = float(factor)
+    at = tuple((float(c) - (f - 1.0) / 2.0) / f for c in cam.centre)
+    return replace(cam, dims=tuple(int(n) for n in level_dims), pixel=cam.pixel / f, at=at)
 
 
 def warp_matrix(trav: Traversal, cam: Camera) -> np.ndarray:

@@ -554,3 +554,33 @@ def test_path_weights(p, s):
             t = job.trav
             want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, False)
             assert res["cycles"] == want, (label, res["cycles"], want)
+
+
+@pytest.mark.parametrize("p", [1, 5])
+def test_preview_level_frames(p):
+    """A preview level (cube4.levels, [render] preview = 2) through the full build: the
+    host's level in memory, its frames at three views (45° and (1, 1, 1) among them)
+    bit-exact against the golden model with random stalls and a reset in mid-frame, and
+    the unstalled frame's cycles those of the level's box (the builds the mode tests use)."""
+    from cube4.host import build_memory, level_of, plan_view
+    from cube4.scene import load_scene, with_view
+
+    vol = load_volume("head:40")
+    cfg = Cube4Config(pipelines=p)
+    build = named("full")
+    jobs, scenes = [], []
+    for n, d in enumerate([(1.0, 1.0, 1.0), (1.0, -1.0, 0.0), (0.3, -0.45, 1.0)]):
+        sc = dataclasses.replace(with_view(load_scene("head"), d), preview=2)
+        vp = plan_view(vol, sc, cfg)
+        (ps, plan), = vp.jobs()
+        jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=sc.mode, clip=plan.clip,
+                             stall=(40, 0, 0)[n], stall_out=(0, 70, 0)[n], reset_after_cycles=(0, 120, 0)[n]))
+        scenes.append(sc)
+    mem = build_memory(vol, scenes, cfg, build)
+    assert mem.shape == (20, 20, 20)
+    results = render_frames(mem, jobs, cfg, max_dim=64, build=build)
+    level = level_of(vol, scenes[0])
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        check(level, job.trav, cfg, job.lut, job.rmap, res, f"preview P={p} view {n}", mode=job.mode, clip=job.clip)
+    t = jobs[2].trav
+    assert results[2]["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -82,6 +82,7 @@ def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progr
     how it converged: ``truth_k``, ``truth_change``, ``truth``) or the centre points."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
+    scene = replace(scene, preview=1)       # the truth of a preview level is the whole volume's
     _, cam = setup_view(dims, scene, cfg)
     name = "reference" if area else "reference-point"
     stats = view_stats(name, dims, scene, cfg)
@@ -162,6 +163,8 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
         raise ValueError("give the bricks per axis or the board's largest brick")
     if any(sc.subpixel != 1 for sc in scenes):
         raise UserError("--bricks renders one pass per view: set [render] subpixel = 1 in the scene")
+    if any(sc.preview != 1 for sc in scenes):
+        raise UserError("a preview level ([render] preview, --preview) does not run in bricks: render it whole")
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     executor = executor or LocalExecutor()
