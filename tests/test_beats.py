@@ -185,7 +185,7 @@ def test_block_table_ranges():
 @pytest.mark.parametrize("spec, scene, extra", [
     ("head:24", "head_quality", {}),               # S = 4, q = 2, path weights
     ("head:24", "head", {"gradient": "central"}),  # voxel gradients
-    ("head:24", "head_cut", {}),                  # crop box and cut plane
+    ("head:24", "head_cut", {"crop": ((2, 3, 1), (20, 19, 22))}),   # crop box and cut plane
     ("mri:32,24,12", "mri_skin", {}),
     ("mri:32,24,12", "mri_mip", {}),
     ("head:24", "head_xray", {}),
