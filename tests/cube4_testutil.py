@@ -121,3 +121,19 @@ def sparse_case(seed: int):
     trav = make_traversal((nx, ny, nz), SKIP_VIEWS[seed % len(SKIP_VIEWS)], cfg.weight_bits, S)
     clip = Clip(plane=cut_coefficients(trav, (1.0, 0.3, -0.2), (nx / 2, ny / 2, nz / 2))) if seed % 4 == 1 else None
     return vol, trav, cfg, lut, rmap, mode, seed % 2 == 0, clip
+
+
+def rays_agree(full, part) -> bool:
+    """Each ray leaves the skipping frame ``part`` (slice rectangles, beat skipping) at
+    most once, and every ray that leaves either frame with a value other than zero leaves
+    both with the same value (``full``: the fixed schedule's frame)."""
+    def by_address(pixels):
+        addr = pixels["by"].astype(np.int64) * (1 << 20) + pixels["bx"]
+        return addr, {a: tuple(p)[3:] for a, p in zip(addr.tolist(), pixels.tolist())}
+
+    addr, got = by_address(part.pixels)
+    if np.unique(addr).size != addr.size:
+        return False
+    _, want = by_address(full.pixels)
+    nonzero = {a for a, v in want.items() if any(v)} | {a for a, v in got.items() if any(v)}
+    return all(got.get(a) == want.get(a) for a in nonzero)

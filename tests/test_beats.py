@@ -12,7 +12,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from cube4_testutil import sparse_case
+from cube4_testutil import rays_agree, sparse_case
 
 import cube4.beats as beats
 from cube4.app.volumes import load_volume
@@ -53,21 +53,6 @@ def frames(seed: int, block=4, p=None, make_opaque=False, tau=0, **kw):
     sched, rule = schedule(vol, trav, cfg, lut, mode, shading, block, tau=tau, **kw)
     part = render_frame(vol, trav, cfg, lut, rmap, beats=sched, done=rule, **args)
     return full, part, sched
-
-
-def rays_agree(full, part) -> bool:
-    """Each ray leaves the skipping frame at most once, and every ray that leaves either
-    frame with a value other than zero leaves both with the same value."""
-    def by_address(pixels):
-        addr = pixels["by"].astype(np.int64) * (1 << 20) + pixels["bx"]
-        return addr, {a: tuple(p)[3:] for a, p in zip(addr.tolist(), pixels.tolist())}
-
-    addr, got = by_address(part.pixels)
-    if np.unique(addr).size != addr.size:
-        return False
-    _, want = by_address(full.pixels)
-    nonzero = {a for a, v in want.items() if any(v)} | {a for a, v in got.items() if any(v)}
-    return all(got.get(a) == want.get(a) for a in nonzero)
 
 
 def mismatches(seeds, **kw) -> list[int]:

@@ -11,7 +11,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from cube4_testutil import SKIP_VIEWS, sparse_case
+from cube4_testutil import SKIP_VIEWS, rays_agree, sparse_case
 
 import cube4.slices as slices
 from cube4.app.render import render, render_golden_view
@@ -35,21 +35,6 @@ def frames(seed: int, gra=None):
     full = render_frame(vol, trav, cfg, lut, rmap, **kw)
     part = render_frame(vol, trav, cfg, lut, rmap, rects=rects, **kw)
     return full, part, rects
-
-
-def rays_agree(full, part) -> bool:
-    """Each ray leaves the rectangles' frame at most once, and every ray that leaves
-    either frame with a value other than zero leaves both with the same value."""
-    def by_address(pixels):
-        addr = pixels["by"].astype(np.int64) * (1 << 20) + pixels["bx"]
-        return addr, {a: tuple(p)[3:] for a, p in zip(addr.tolist(), pixels.tolist())}
-
-    addr, got = by_address(part.pixels)
-    if np.unique(addr).size != addr.size:
-        return False
-    _, want = by_address(full.pixels)
-    nonzero = {a for a, v in want.items() if any(v)} | {a for a, v in got.items() if any(v)}
-    return all(got.get(a) == want.get(a) for a in nonzero)
 
 
 def mismatches(seeds, gra=None) -> list[int]:

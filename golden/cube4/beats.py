@@ -16,20 +16,22 @@ whether it runs, from two sources that cost the host nothing per view:
   neighbours have first voxels within ±1 of c along every axis, so a counting cell lies
   within c' − 2 … c' + 2 of each neighbour's first voxel c' whichever way the axes are
   flipped.
-* **Ray termination from COM.** Rays come in *groups*: the G = P rays of base-plane row
-  ``by`` at columns gx·P … gx·P + P − 1. COM reports a group *done* after the slice d in
-  which its last ray ended (``TerminationRule``: transmittance at or below τ; X-ray also
-  every colour saturated; MIP and MinIP holding the volume's largest or smallest value).
-  The traversal reads the group map ``lag`` slices later: the group runs no slice after
-  d + lag.
+* **COM's reports**, per ray, after each slice d (``TerminationRule``): *live*, its
+  partial result is not the fresh one; *done*, no later sample may change it
+  (transmittance at or below τ; X-ray also every colour saturated; MIP and MinIP holding
+  the volume's largest or smallest value). The traversal reads the report of slice
+  m − lag − 1 when it decides slice m (lag ≥ 2).
 
-**Runs.** A group *starts* at the first slice in which one of its samples may count and
-runs every slice from there until the frame's last or until d + lag (``BeatSchedule``):
-one run per ray, as COM needs (a ray's partial result sits at the position of its latest
-sample; numerics.md §18 for the rectangles' same rule). Before its run a ray holds
-nothing that counted, so it starts fresh; after its run it is finished and leaves on the
-pixel stream. Only samples of running rays count; a ray whose transmittance is at or
-below τ counts no further sample (with τ = 0 such a sample would add nothing).
+**Runs** (``BeatSchedule.running_rays``). A ray runs slice m when it is not done as of
+that report and either was live then or has a sample that may count in slices
+m − lag … m (one that may have made it live since). A ray becomes live only at a sample
+that may count, so a live ray runs every slice until it is done or leaves the box: one
+run per live ray, as COM needs (a ray's partial result sits at the position of its
+latest sample; numerics.md §18 for the rectangles' same rule). A ray that is not live
+holds the fresh result, so it loses nothing where it does not run and starts fresh where
+it runs again; a live ray finishes, and leaves on the pixel stream, at the end of its
+run. Only samples of running rays that may count are counted; a done ray counts no
+further sample (with τ = 0 such a sample would add nothing).
 
 **Beats.** A beat *runs* when one of its lanes holds a running ray (set A), or when it
 may count and lies next to (±1 slice, row and partial beam) a beat of A (the neighbours
@@ -43,7 +45,7 @@ interpolate: rows j and j + 1 and partial beams pb and pb + 1 (the beam-extensio
 neighbour) of both voxel slices. A pass that reads a voxel slice for the slice buffers
 (S > 1) reads what every pass that uses that slice may run, as far as it knows then (the
 beats that may count and the running rays not yet reported done). The walk's beats are
-those; each takes a cycle and a beat that is not walked takes none (``walk_cycles``).
+those; each takes a cycle and a beat that is not walked takes none (``walk_beats``).
 """
 
 from __future__ import annotations

@@ -10,6 +10,7 @@ application's (``cube4.app.render``).
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -253,10 +254,10 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
     if unknown:
         raise ValueError(f"beat_skip: unknown keys {sorted(unknown)}")
     sc = vp.scene
-    t0 = __import__("time").perf_counter()
+    t0 = time.perf_counter()
     table = BlockTable.of(level_of(vol, sc), opts.get("block", 4))
     bits = table.bits(vp.lut, sc.mode)
-    table_s = __import__("time").perf_counter() - t0
+    table_s = time.perf_counter() - t0
     terminate = bool(opts.get("terminate", True))
     out = []
     for plan in vp.plans:
@@ -274,7 +275,7 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
     return out
 
 
-def beat_view_stats(frames: list, cfg: Cube4Config, build: dict) -> dict:
+def beat_view_stats(frames: list) -> dict:
     """The beats the view's frames ran and skipped (after they ran), and the front end's walk."""
     tot: dict = {}
     for fr in frames:
@@ -331,7 +332,7 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     stats.update(schedule_stats(vp.plans, cfg, stats["build"]))
     stats["pixels"] = int(frame.pixels.size)
     if beat_frames:
-        stats["beats"] = beat_view_stats(beat_frames, cfg, stats["build"])
+        stats["beats"] = beat_view_stats(beat_frames)
     if rects:
         stats["rect_beats"] = sum(r.beats(cfg.pipelines) for r in frame_rects if r is not None)
         stats["rect_table_s"] = sum(r.table_s for r in frame_rects if r is not None)

@@ -302,7 +302,6 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
         "",
     ]
     if taus:
-        t0 = taus[0]
         lines += [f"**τ as a knob** ({OPAQUE_GOAL[0]}, scene {OPAQUE_GOAL[1]}, its own view; "
                   "`cube4 render … --beats --tau T`): a ray ends once its transmittance is at most τ. "
                   "Error: the base plane (premultiplied RGBA in [0, 1]) against τ = 0's.", "",
@@ -315,7 +314,6 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
                              f"{t['rmse']:.2e}", f"{t['max_abs']:.2e}",
                              "exact" if t["psnr"] == float("inf") else f"{t['psnr']:.1f} dB"] for t in taus],
                            "lrrrrrr"), ""]
-        del t0
     if blocks:
         lines += [f"**Block size** ({GOAL[0]}, scene {GOAL[1]}, its own view): the table's entries (one "
                   "bit each per transfer function; two value ranges each per volume) against the beats.", "",
