@@ -63,7 +63,10 @@
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
 //             A (Q0.ALPHA_W)}; in_sample lane q = the sample v (unsigned
-//             VOXEL_W; read by the extremum datapath and the path weights only)
+//             VOXEL_W; read by the extremum datapath and the path weights only);
+//             in_fall lane q = the slab's falloff weight f, 0 .. 256 (SLAB = 1
+//             with COMPOSITING: the blending modes' A becomes round_shift(A f, 8)
+//             at S5, cube4_com_lane; otherwise unused)
 //   lut_*     the LUT's path-weight columns (PLW = 1): lut_data = {A at w = 3/2,
 //             5/4, 3/4, 1/2}, Q0.ALPHA_W each, written at lut_addr when lut_we
 //             (between frames); PLW = 0: one unused bit
@@ -94,6 +97,7 @@ module cube4_com #(
     input  wire in_valid, output wire in_ready, input wire [HDR_W-1:0] in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
     input  wire [P*VOXEL_W-1:0] in_sample,
+    input  wire [P*FALL_W-1:0] in_fall,
     // finished rays out: lane mask, slice, base-plane row and columns, RGBA, last beat
     output wire pix_valid, input wire pix_ready,
     output wire [P-1:0] pix_mask, output wire [M_W-1:0] pix_m, output wire pix_eop,
@@ -245,10 +249,12 @@ module cube4_com #(
             cube4_com_lane #(
                 .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W),
                 .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), .AC_W(AC_W),
-                .SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0), .COPIES(NQ)
+                .SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0), .COPIES(NQ),
+                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0)
             ) u_lane (
                 .clk(clk),
                 .in_rgba(in_rgba[q*LUT_W +: LUT_W]), .in_sample(in_sample[q*VOXEL_W +: VOXEL_W]),
+                .in_fall(in_fall[q*FALL_W +: FALL_W]),
                 .smp0(smp0[q*VOXEL_W +: VOXEL_W]),
                 .a3(a3[q*ALPHA_W +: ALPHA_W]), .a3_w(a3_w[q*ALPHA_W +: ALPHA_W]),
                 .back5(s5_back[q*AC_W +: AC_W]), .back_sh(back_sh[q*AC_W +: AC_W]),

@@ -22,6 +22,8 @@
 //            (blending 4 * (ACC_W + 1), extremum VOXEL_W + 24 + ALPHA_W).
 //   SAMPLE   1: R0 registers the sample v (extremum, path weights).  0..1.
 //   COPIES   control copies over the word.                 1..64.  Default 4.
+//   FALL     1: the slab's falloff: the blending datapath's A is
+//            round_shift(A * f, 8) (numerics.md section 12).  0..1.  Default 0.
 //
 // Latency
 //   R0 registers in_rgba and in_sample; the sample's word is carried R0 ->
@@ -33,6 +35,7 @@
 // Ports
 //   in_rgba    in   {R', G', B' (Q0.8), A (Q0.ALPHA_W)} of the lane's sample
 //   in_sample  in   its v (unsigned VOXEL_W)
+//   in_fall    in   its falloff weight f, 0 .. 256 (Q1.8; FALL = 1, else unused)
 //   smp0       out  R0's v (0 when SAMPLE = 0)
 //   a3, a3_w   out / in   S3's A, and the A that goes on to S4 (Q0.ALPHA_W)
 //   back5, back_sh, prevb_sh   in   S5: the buffer words (cube4_com_bpb)
@@ -48,6 +51,8 @@ module cube4_com_lane #(
     parameter integer ALPHA_W = 12, parameter integer ACC_W = 16, parameter integer VOXEL_W = 8,
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
     parameter integer AC_W   = 68, parameter integer SAMPLE = 1, parameter integer COPIES = 4,
+    parameter integer FALL   = 0,
+    localparam integer FALL_W = 9,
     localparam integer CW    = ACC_W + 1,
     localparam integer CMP_W = 4 * CW,
     localparam integer LUT_W = 24 + ALPHA_W,
@@ -55,6 +60,7 @@ module cube4_com_lane #(
 ) (
     input  wire clk,
     input  wire [LUT_W-1:0] in_rgba, input wire [VOXEL_W-1:0] in_sample,
+    input  wire [FALL_W-1:0] in_fall,
     output wire [VOXEL_W-1:0] smp0,
     output wire [ALPHA_W-1:0] a3, input wire [ALPHA_W-1:0] a3_w,
     input  wire [AC_W-1:0] back5, input wire [AC_W-1:0] back_sh, input wire [AC_W-1:0] prevb_sh,
@@ -96,6 +102,29 @@ module cube4_com_lane #(
         end
     endgenerate
 
+    // ---- S3 .. S5: the slab's falloff (FALL = 1): the blending A at S5 is
+    // round_shift(A_w * f, 8), A_w the A that goes on to S4 (a3_w, after the
+    // path weights), f the sample's falloff weight carried R0 .. S3; a
+    // cube4_mul whose operand registers are S4's and product register S5's ----
+    wire [ALPHA_W-1:0] a5_blend;
+    generate
+        if (FALL != 0) begin : g_fall
+            reg  [FALL_W-1:0] r0_f, s1_f, s2_f, s3_f;
+            always @(posedge clk) {s3_f, s2_f, s1_f, r0_f} <= {s2_f, s1_f, r0_f, in_fall};
+            localparam integer FP_W = ALPHA_W + FALL_W + 2;
+            wire signed [FP_W-1:0] s5_p;
+            cube4_mul #(.A_W(ALPHA_W + 1), .B_W(FALL_W + 1)) u_fall (
+                .clk(clk), .en(1'b1), .a($signed({1'b0, a3_w})), .b($signed({1'b0, s3_f})), .p(s5_p));
+            // A_w * f <= A_w * 2^8: the rounded product fits ALPHA_W bits
+            wire [FP_W-1:0] s5_r = $unsigned(s5_p) + FP_W'(128);
+            assign a5_blend = s5_r[8 +: ALPHA_W];
+            wire unused_r = ^{s5_r[FP_W-1:8+ALPHA_W], s5_r[7:0], rgba5[0 +: ALPHA_W]};
+        end else begin : g_no_fall
+            assign a5_blend = rgba5[0 +: ALPHA_W];
+            wire unused_fall = ^in_fall;
+        end
+    endgenerate
+
     // ---- S5: the previous partial result, or a fresh ray ----
     // (one flip-flop for all lanes, or one per lane, drove 2 * AC_W multiplexers
     // spread over the lane and was the P = 8 build's critical net)
@@ -116,12 +145,12 @@ module cube4_com_lane #(
         if (COMPOSITING != 0) begin : g_blend
             wire [CMP_W-1:0] acc_c_q;
             cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
-                .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(rgba5[0 +: ALPHA_W]),
+                .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend),
                 .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray),
                 .acc_q(acc_c_q), .pix(pix_c));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
-            wire unused_blend = ^{mode_xray, cnt_7};
+            wire unused_blend = ^{mode_xray, cnt_7, a5_blend};
             assign acc_c = '0;
             assign pix_c = '0;
         end

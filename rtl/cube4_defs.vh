@@ -122,6 +122,12 @@
 //                        CR_HIDE is set (0: every region counts; numerics.md section 12)
 //   CUT_A, CUT_B, CUT_C [CUT_W], CUT_D [CUT_E_W]  the cut plane, signed: a sample
 //                        counts when A (i 2^W + wx) + B (j 2^W + wy) + C m + D >= 0
+//   CUT_T [CUT_E_W]      the slab's far face (SLAB = 1): a sample counts only when
+//                        also E <= CUT_T (2^47 - 1: no slab)
+//   FALL_SH [6], FALL_ON [1]  the slab's falloff (SLAB = 1, blending modes): with
+//                        FALL_ON the sample's opacity is multiplied by
+//                        f = min(min(E, CUT_T - E) >> FALL_SH, 256), FALL_W = 9 bits
+//                        (numerics.md section 12, golden/cube4/clip.py)
 //   FACES [6]            the faces of the frame's box that are the volume's, whose
 //                        rays' first and last samples are path-weighted (bits I0, I1,
 //                        J0, J1, K0, K1 from bit 0; 0: no weighting; numerics.md
@@ -166,11 +172,15 @@
     localparam integer VIEW_CUT_B   = VIEW_CUT_A + CUT_W, \
     localparam integer VIEW_CUT_C   = VIEW_CUT_B + CUT_W, \
     localparam integer VIEW_CUT_D   = VIEW_CUT_C + CUT_W, \
-    localparam integer VIEW_FACES   = VIEW_CUT_D + CUT_E_W, \
+    localparam integer VIEW_CUT_T   = VIEW_CUT_D + CUT_E_W, \
+    localparam integer VIEW_FALL_SH = VIEW_CUT_T + CUT_E_W, \
+    localparam integer VIEW_FALL_ON = VIEW_FALL_SH + 6, \
+    localparam integer FALL_W       = 9, \
+    localparam integer VIEW_FACES   = VIEW_FALL_ON + 1, \
     localparam integer VIEW_W       = VIEW_FACES + 6
 
 // The view bus from the individual register ports (cube4_top and the harnesses).
-`define CUBE4_VIEW_PACK {cfg_faces, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
+`define CUBE4_VIEW_PACK {cfg_faces, cfg_fall_on, cfg_fall_sh, cfg_cut_t, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
     cfg_cr_hide, cfg_cr_m1, cfg_cr_m0, cfg_cr_j1, cfg_cr_j0, cfg_cr_i1, cfg_cr_i0, \
     cfg_win_m1, cfg_win_m0, cfg_win_j1, cfg_win_j0, cfg_win_i1, cfg_win_i0, \
     cfg_ph0_y, cfg_ph0_x, cfg_mode, cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
@@ -217,6 +227,9 @@
     input  wire [CUT_W-1:0]   cfg_cut_b, \
     input  wire [CUT_W-1:0]   cfg_cut_c, \
     input  wire [CUT_E_W-1:0] cfg_cut_d, \
+    input  wire [CUT_E_W-1:0] cfg_cut_t, \
+    input  wire [5:0]         cfg_fall_sh, \
+    input  wire               cfg_fall_on, \
     input  wire [5:0]         cfg_faces,
 
 // One wire per view register, read from a view bus (module body).
@@ -257,6 +270,9 @@
     wire signed [CUT_W-1:0]   cfg_cut_b = bus[VIEW_CUT_B +: CUT_W]; \
     wire signed [CUT_W-1:0]   cfg_cut_c = bus[VIEW_CUT_C +: CUT_W]; \
     wire signed [CUT_E_W-1:0] cfg_cut_d = bus[VIEW_CUT_D +: CUT_E_W]; \
+    wire signed [CUT_E_W-1:0] cfg_cut_t = bus[VIEW_CUT_T +: CUT_E_W]; \
+    wire [5:0]          cfg_fall_sh = bus[VIEW_FALL_SH +: 6]; \
+    wire                cfg_fall_on = bus[VIEW_FALL_ON]; \
     wire [5:0]          cfg_faces   = bus[VIEW_FACES +: 6]
 
 // ---------------------------------------------------------------- address registers
@@ -459,14 +475,14 @@
     parameter integer SHADING  = 1,  parameter integer COMPOSITING = 1, \
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1, \
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1, \
-    parameter integer RECTS    = 0, \
+    parameter integer RECTS    = 0,  parameter integer SLAB        = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
 
 `define CUBE4_BUILD_PASS \
     .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), \
     .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
     .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
-    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS)
+    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB)
 
 `define CUBE4_SLICE_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
@@ -533,7 +549,8 @@
     `CUBE4_RANGE(g_bad_clip, MODULE, "CLIP", CLIP, 0, 1) \
     `CUBE4_RANGE(g_bad_vgrad, MODULE, "VGRAD", VGRAD, 0, 1) \
     `CUBE4_RANGE(g_bad_plw, MODULE, "PLW", PLW, 0, 1) \
-    `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1)
+    `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1) \
+    `CUBE4_RANGE(g_bad_slab, MODULE, "SLAB", SLAB, 0, 1)
 
 // ---------------------------------------------------------------- TRI units
 // cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").
@@ -546,6 +563,9 @@
 //     TRI_C_*         a beat's fields that ride s0 .. s3 as one word, LSB first:
 //                     the header (KEEP = LVALID), the lanes' wrap and neighbour
 //                     flags, wz, wy, wx, emit; TRI_C_W bits
+// cube4_sha_slab's latency from a beat's fields to its falloff weights (cube4_sha
+// carries the beat that long at least when it builds the unit)
+`define CUBE4_SLAB_LAT 9
 `define CUBE4_TRI_LERP_LAT 3
 `define CUBE4_TRI_LAYOUT \
     localparam integer TRI_LERP_LAT = `CUBE4_TRI_LERP_LAT, \

@@ -18,6 +18,7 @@
 //   ADDR_W       memory address width.               1..30.   Default 16.
 //   MAX_SS_LOG2  log2 of the largest supersampling.  0..3.    Default 0.
 //   CLIP         1: TRI's cube4_clip (window, cut plane). 0..1. Default 1.
+//   SLAB         1: cube4_clip's slab far face too (needs CLIP). 0..1. Default 0.
 //   VGRAD        1: memory words carry voxel gradients, which TRI
 //                interpolates (CUBE4_WORD_LAYOUT).   0..1.    Default 0.
 //   RECTS        1: slice rectangles (cube4_cfb).      0..1.    Default 0.
@@ -118,6 +119,7 @@ module cube4_frontend #(
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
         .CLIP        (CLIP),
+        .SLAB        (SLAB),
         .VGRAD       (VGRAD)
     ) u_tri (
         .clk        (clk),

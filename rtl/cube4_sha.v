@@ -32,6 +32,9 @@
 //   RMAP_BITS   cube-map resolution R = 2^RMAP_BITS. 2..6.  Default 5.
 //   SHADING     1: shading by the reflectance map; 0: classification only. 0..1. Default 1.
 //   CARRY_SAMPLE 1: the sample rides along to out_sample; 0: out_sample = 0. 0..1. Default 1.
+//   SLAB        1 (with COMPOSITING = 1, FALL): the slab's falloff weights
+//               (cube4_sha_slab), out_fall carried beside the beat; SHA then
+//               has at least SLAB_LAT + 1 = 10 stages. 0..1. Default 0.
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
@@ -40,7 +43,7 @@
 //   division; reflectance-map read; its output register; C * D; shading),
 //   15 at RMAP_BITS = 5: a beat is on out_* 14 cycles after it entered the
 //   input register when the output FIFO was empty. SHADING = 0: 4 stages
-//   (input; LUT read; its register; the output FIFO). The stages move on every
+//   (input; LUT read; its register; the output FIFO), 11 with FALL. The stages move on every
 //   cycle and carry a valid bit (no stall enable); the last one is the
 //   memory of the output FIFO (cube4_credit_fifo), and a beat
 //   enters the input register only when that FIFO has an entry reserved for
@@ -57,6 +60,9 @@
 //                               0 when SHADING = 0)
 //   out_sample [P*VOXEL_W]      the beat's samples, unchanged (CARRY_SAMPLE = 1; else 0)
 //   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
+//   out_fall  [P*FALL_W]        the slab's falloff weight f of each lane, 0 .. 256
+//                               (cube4_sha_slab; FALL = 1, else 256)
+//   cfg                         view registers (read by cube4_sha_slab only)
 //
 // Bit growth and rounding
 //   Face select: |g| is GRAD_W bits unsigned. u = min(R-1, floor((g_b + A) R / 2A))
@@ -70,6 +76,7 @@ module cube4_sha #(
     localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
     input  wire clk, input wire rst,
+    input  wire [VIEW_W-1:0] cfg,      // view registers (the slab's falloff, FALL = 1)
     // table load ports (broadcast to every lane's copy)
     input  wire lut_we,  input wire [VOXEL_W-1:0] lut_addr, input wire [24+ALPHA_W-1:0] lut_data,
     input  wire rmap_we, input wire [RI_W-1:0] rmap_addr,   input wire [19:0] rmap_data,
@@ -81,7 +88,8 @@ module cube4_sha #(
     output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
     output wire [P*(24+ALPHA_W)-1:0] out_rgba,
     output wire [P*RI_W-1:0] out_idx,
-    output wire [P*VOXEL_W-1:0] out_sample
+    output wire [P*VOXEL_W-1:0] out_sample,
+    output wire [P*FALL_W-1:0]  out_fall
 );
     generate
         `CUBE4_BUILD_CHECKS("cube4_sha")
@@ -112,8 +120,12 @@ module cube4_sha #(
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    // stages after a: b1, bc, b2, b3, c*, d, d2, d3, e1, e2 (SHADING = 0: b1, e1, then the FIFO)
-    localparam integer NST  = (SHADING != 0) ? 4 + NDIV + 5 : 3;
+    // stages after a: b1, bc, b2, b3, c*, d, d2, d3, e1, e2 (SHADING = 0: b1, e1, then the FIFO);
+    // with the slab's falloff (FALL) at least the falloff unit's latency before e1
+    localparam integer FALL     = (SLAB != 0 && COMPOSITING != 0) ? 1 : 0;
+    localparam integer SLAB_LAT = `CUBE4_SLAB_LAT;   // cube4_sha_slab's latency
+    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 5 : 3;
+    localparam integer NST      = (FALL != 0 && NST_SH < SLAB_LAT + 1) ? SLAB_LAT + 1 : NST_SH;
     // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
     // FIFO's read)
     localparam integer FIFO_DEPTH = (NST + 2 <= 16) ? 16 : 32;
@@ -183,8 +195,15 @@ module cube4_sha #(
 
             if (SHADING == 0) begin : g_plain
                 // classification only: the LUT entry read at b1; its output
-                // register is e1's
-                assign e_rgba[q*LUT_W +: LUT_W] = lut_2;
+                // register is e1's (with the falloff, stage 2's, carried to e1)
+                if (NST > 3) begin : g_late
+                    reg [(NST-3)*LUT_W-1:0] lut_sr;
+                    wire [(NST-2)*LUT_W-1:0] lut_q = {lut_sr, lut_2};
+                    always @(posedge clk) lut_sr <= lut_q[(NST-3)*LUT_W-1:0];
+                    assign e_rgba[q*LUT_W +: LUT_W] = lut_q[(NST-3)*LUT_W +: LUT_W];
+                end else begin : g_now
+                    assign e_rgba[q*LUT_W +: LUT_W] = lut_2;
+                end
                 assign e_idx[q*RI_W +: RI_W]    = '0;
                 assign idx_all[q*RI_W +: RI_W]  = '0;
                 wire unused_grad = ^{a_gi[q*GW +: GW], a_gj[q*GW +: GW], a_gk[q*GW +: GW]};
@@ -378,16 +397,54 @@ module cube4_sha #(
         end
     endgenerate
 
+    // ---- the slab's falloff weights (FALL = 1): from stage a's fields, carried to e1 ----
+    localparam integer FW = (FALL != 0) ? P * FALL_W : 0;
+    wire [P*FALL_W-1:0] e_fall;
+    generate
+        if (FALL != 0) begin : g_fall
+            wire [P*FALL_W-1:0] f9;             // stage SLAB_LAT
+            cube4_sha_slab #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2)
+            ) u_slab (
+                .clk(clk), .cfg(cfg),
+                .in_m(a_meta[HDR_M +: M_W]), .in_j(a_meta[HDR_J +: DIM_W]),
+                .in_pb(a_meta[HDR_PB +: PB_W]), .in_skew(a_meta[HDR_SKEW +: LANE_W]), .fall(f9));
+            if (NST - 1 > SLAB_LAT) begin : g_delay
+                reg [(NST-1-SLAB_LAT)*FW-1:0] f_sr;
+                wire [(NST-SLAB_LAT)*FW-1:0] f_q = {f_sr, f9};
+                always @(posedge clk) f_sr <= f_q[(NST-1-SLAB_LAT)*FW-1:0];
+                assign e_fall = f_q[(NST-1-SLAB_LAT)*FW +: FW];
+            end else begin : g_now
+                assign e_fall = f9;
+            end
+        end else begin : g_no_fall
+            assign e_fall = {P{FALL_W'(256)}};
+            wire unused_view = ^cfg;
+        end
+    endgenerate
+
     // ---- e2: the output FIFO's memory; stage e1 holds a beat: push at e2 ----
-    localparam integer OUT_W = META_W + P * LUT_W + P * RI_W + P * VW;
+    localparam integer OUT_W = META_W + P * LUT_W + P * RI_W + P * VW + FW;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
-        .clk(clk), .rst(rst), .take(take), .give(1'b0),
-        .credit(credit), .credit_d(unused_credit_d),
-        .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),
-        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
-    assign {out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
+    generate
+        if (FALL != 0) begin : g_fifo_fall
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+                .clk(clk), .rst(rst), .take(take), .give(1'b0),
+                .credit(credit), .credit_d(unused_credit_d),
+                .push_d(st_v[NST-2]), .in_data({e_fall, e_meta, e_rgba, e_idx, e_s}),
+                .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
+            assign {out_fall, out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
+        end else begin : g_fifo
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+                .clk(clk), .rst(rst), .take(take), .give(1'b0),
+                .credit(credit), .credit_d(unused_credit_d),
+                .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),
+                .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
+            assign {out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
+            assign out_fall = e_fall;
+        end
+    endgenerate
     wire unused_st_v = st_v[NST-1];     // e1's valid bit: the FIFO's push copies are its copies
 
 endmodule

@@ -41,11 +41,15 @@
 //   Illegal (elaboration stops): COMPOSITING = EXTREMUM = 0; SHADING = 1 with
 //   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0;
 //   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
-//   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0.
+//   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0.
 //   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
 //                slice's entry of the table (rect_*), GRA and COM follow the
 //                rectangles; every frame needs its table (the whole box for the
 //                fixed schedule).                       0..1. Default 0.
+//   SLAB         1: the cut slab (numerics.md section 12): its far face in
+//                cube4_clip (CUT_T), and with COMPOSITING its falloff weights
+//                (cube4_sha_slab, FALL_*) by which COM multiplies the blending
+//                modes' opacity.                        0..1. Default 0.
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
@@ -134,6 +138,9 @@ module cube4_top #(
         end
         if (RECTS != 0 && (PLW != 0 || MAX_SS_LOG2 != 0)) begin : g_rects_plw
             $error("cube4_top: RECTS = 1 needs PLW = 0 and MAX_SS_LOG2 = 0 (rectangles run with S = 1, unweighted)");
+        end
+        if (SLAB != 0 && CLIP == 0) begin : g_slab_clip
+            $error("cube4_top: SLAB = 1 needs CLIP = 1 (the slab is the cut plane's)");
         end
         if (SHADING != 0 && COMPOSITING == 0) begin : g_shading_alone
             $error("cube4_top: SHADING = 1 needs COMPOSITING = 1 (MIP, MinIP and X-ray are not shaded)");
@@ -290,6 +297,7 @@ module cube4_top #(
     wire [P*(24+ALPHA_W)-1:0]  sha_rgba;
     wire [P*RI_W-1:0]          unused_sha_idx;
     wire [PV-1:0]              sha_sample;
+    wire [P*FALL_W-1:0]        sha_fall;
 
     cube4_sha #(
         `CUBE4_BUILD_PASS,
@@ -297,6 +305,7 @@ module cube4_top #(
     ) u_sha (
         .clk       (clk),
         .rst       (rst),
+        .cfg       (cfg),
         .lut_we    (lut_we),
         .lut_addr  (lut_addr),
         .lut_data  (lut_data[0 +: 24 + ALPHA_W]),
@@ -315,7 +324,8 @@ module cube4_top #(
         .out_hdr   (sha_hdr),
         .out_rgba  (sha_rgba),
         .out_idx   (unused_sha_idx),
-        .out_sample(sha_sample)
+        .out_sample(sha_sample),
+        .out_fall  (sha_fall)
     );
 
     cube4_stream_hold u_hold_sha (
@@ -340,6 +350,7 @@ module cube4_top #(
         .in_hdr    (sha_hdr),
         .in_rgba   (sha_rgba),
         .in_sample (sha_sample),
+        .in_fall   (sha_fall),
         .pix_valid (pix_valid),
         .pix_ready (pix_ready),
         .pix_mask  (pix_mask),
@@ -369,9 +380,9 @@ module cube4_top #(
                 .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
         end
     endgenerate
-    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W) + PV)) u_chk_sha (
+    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W)) u_chk_sha (
         .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
-        .data ({sha_hdr, sha_rgba, sha_sample}));
+        .data ({sha_hdr, sha_rgba, sha_sample, sha_fall}));
     cube4_stream_check #(
         .NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1)
     ) u_chk_pix (

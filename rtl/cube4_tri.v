@@ -42,6 +42,7 @@
 //   MAX_SS_LOG2  log2 of the largest supersampling.   0..3.    Default 0.
 //   CLIP         1: the window and the cut plane (cube4_clip) set the
 //                header's KEEP; 0: KEEP = LVALID.     0..1.    Default 1.
+//   SLAB         1: cube4_clip's slab far face too.  0..CLIP. Default 0.
 //   VGRAD        1: a memory word is the voxel and its gradient's three
 //                components (CUBE4_WORD_LAYOUT); every buffer holds whole
 //                words and each of the four channels has its seven lerps
@@ -87,7 +88,7 @@
 //   both slices, then y, then z.
 // =============================================================================
 module cube4_tri #(
-    parameter integer CLIP = 1,
+    parameter integer CLIP = 1, parameter integer SLAB = 0,
     `CUBE4_TRI_PARAMS, `CUBE4_VIEW_LAYOUT
 ) (
     input  wire clk, input wire rst,
@@ -102,6 +103,7 @@ module cube4_tri #(
     // (P, MAX_SS_LOG2: checked by the units; VOXEL_W, VGRAD: by cube4_tri_lane)
     generate
         `CUBE4_RANGE(g_bad_clip, "cube4_tri", "CLIP", CLIP, 0, 1)
+        `CUBE4_RANGE(g_bad_slab, "cube4_tri", "SLAB", SLAB, 0, CLIP)
     endgenerate
 
     localparam integer VW = WORD_W;
@@ -142,7 +144,7 @@ module cube4_tri #(
     generate
         if (CLIP != 0) begin : g_clip
             cube4_clip #(
-                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2)
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SLAB(SLAB)
             ) u_clip (
                 .clk(clk), .cfg(cfg),
                 .in_m(s4_meta[HDR_M +: M_W]), .in_j(s4_meta[HDR_J +: DIM_W]),

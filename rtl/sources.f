@@ -25,6 +25,7 @@ cube4_cfb_box.v
 cube4_cfb_addr.v
 cube4_cfb_mask.v
 cube4_cfb.v
+cube4_plane.v
 cube4_clip.v
 cube4_tri_src.v
 cube4_tri_beam.v
@@ -38,6 +39,7 @@ cube4_gra_walk.v
 cube4_gra_window.v
 cube4_gra_arith.v
 cube4_gra.v
+cube4_sha_slab.v
 cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v

@@ -204,7 +204,8 @@ def plan_bricks(trav: Traversal, grid: BrickGrid, clip: Clip | None = None) -> l
         plane = move_plane(clip.plane if clip is not None else None, start, trav.weight_bits)
         regions = move_regions(clip.regions if clip is not None else None, start, S)
         window = (win[0][0], win[0][1], win[1][0], win[1][1], win[2][0], win[2][1])
-        bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane,
+        slab = clip.slab if clip is not None else None
+        bricks.append(Brick(index=ix, trav=bt, clip=Clip(window=window, plane=plane, slab=slab,
                                                          regions=None if regions is None else fit_regions(regions, bt)),
                             offset=offset, start=start))
     return sorted(bricks, key=lambda br: br.start[::-1])

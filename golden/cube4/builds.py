@@ -48,6 +48,8 @@ OPTIONS: tuple[Option, ...] = (
            ("cube4_tri gradient channels", "no cube4_gra")),
     Option("PLW", 1, "w", "path-length weights (the LUT's path-weight columns in COM)",
            ("cube4_com path-weight columns",), auto_off=True),
+    Option("SLAB", 0, "l", "the cut slab (its far face, the falloff weights in SHA and COM)",
+           ("cube4_clip far face", "cube4_sha_slab", "cube4_com falloff multipliers")),
     Option("RECTS", 0, "r", "slice rectangles (the rectangle table in CFB, GRA's walk, COM)",
            ("cube4_cfb rectangle walk", "cube4_gra position walk", "cube4_com rectangle reader")),
 )
@@ -94,6 +96,7 @@ RULES: tuple[Rule, ...] = (
     Rule({"SHADING": 1}, {"COMPOSITING": (1,)}, "only compositing is shaded"),
     Rule({"VGRAD": 1}, {"SHADING": (1,)}, "voxel gradients only feed shading"),
     Rule({"PLW": 1}, {"COMPOSITING": (1,)}, "only the blending modes are path-weighted"),
+    Rule({"SLAB": 1}, {"CLIP": (1,)}, "the slab is the cut plane's"),
     Rule({"RECTS": 1}, {"PLW": (0,), "MAX_SS_LOG2": (0,)}, "rectangles run with S = 1, unweighted"),
 )
 

@@ -28,6 +28,16 @@ kept half-space are convex, so the samples of a ray that count are consecutive.
   (g = log2 S). ``cut_coefficients`` turns a plane given in volume
   coordinates into these coefficients: CA, CB, CC fit CUT_W = 18 signed bits, CD and E fit
   CUT_E_W = 48.
+* **Slab** ``(CT, FS, FON)`` beside the plane: a sample counts only when also
+  E <= CT (the slab's far face: the plane's value there is CT), and with FON = 1 its
+  opacity is multiplied by the falloff weight
+
+      f = min(min(E, CT - E) >> FS, 256)          (Q.8: 256 is one)
+
+  in the blending modes (composite, X-ray: A' = round_shift(A f, 8) after the path
+  weights; MIP and MinIP take none). ``slab_coefficients`` scales the plane so that one
+  falloff width is 2^(FS + 8) units of E: f = floor(256 d / F) for a sample at d voxels
+  inside the nearer face, F the falloff width.
 
 The RTL computes the same predicate (``rtl/cube4_clip.v``) from the same registers.
 """
@@ -44,6 +54,7 @@ from .view import Traversal
 CUT_W = 18      # CA, CB, CC: signed
 CUT_E_W = 48    # CD and the plane value E: signed
 CUT_MAX = (1 << (CUT_W - 1)) - 1
+CUT_T_NONE = (1 << (CUT_E_W - 1)) - 1   # CT without a slab: every E of the box lies below it
 
 
 @dataclass(frozen=True)
@@ -53,6 +64,7 @@ class Clip:
     window: tuple[int, int, int, int, int, int] | None = None
     plane: tuple[int, int, int, int] | None = None
     regions: tuple[int, int, int, int, int, int, int] | None = None
+    slab: tuple[int, int, int] | None = None      # (CT, FS, FON) with ``plane``
 
     def keep(self, trav: Traversal, m: int) -> np.ndarray:
         """(nj, ni) bool: the samples of slice m that the window and the plane keep."""
@@ -65,10 +77,36 @@ class Clip:
             if not m0 <= m < m1:
                 keep[:] = False
         if self.plane is not None:
-            keep &= plane_value(self.plane, trav, m, jj, ii) >= 0
+            e = plane_value(self.plane, trav, m, jj, ii)
+            keep &= e >= 0
+            if self.slab is not None:
+                keep &= e <= int(self.slab[0])
         if self.regions is not None:
             keep &= region_keep(self.regions, trav, m, jj, ii)
         return keep
+
+    def far_plane(self) -> tuple[int, int, int, int] | None:
+        """The slab's far face as a plane of its own, CT - E >= 0 (None: no slab)."""
+        if self.plane is None or self.slab is None:
+            return None
+        ca, cb, cc, cd = (int(c) for c in self.plane)
+        return (-ca, -cb, -cc, int(self.slab[0]) - cd)
+
+    def falloff(self, trav: Traversal, m: int) -> np.ndarray | None:
+        """(nj, ni) int64: the slab's falloff weight f of slice m's samples (0 .. 256; see
+        the module text), or None when the frame has none (f = 256 everywhere)."""
+        if self.slab is None or not int(self.slab[2]):
+            return None
+        ct, fs = int(self.slab[0]), int(self.slab[1])
+        jj, ii = np.mgrid[0:trav.nj, 0:trav.ni]
+        e = plane_value(self.plane, trav, m, jj, ii)
+        return np.minimum(np.maximum(np.minimum(e, ct - e), 0) >> fs, FALL_ONE)
+
+
+FALL_W = 9          # the falloff weight f: 0 .. 256 (Q.8)
+FALL_SHIFT = 8
+FALL_ONE = 1 << FALL_SHIFT
+FALL_SH_MAX = 63    # FS: a 6-bit register
 
 
 #: VTK's cropping region flags (vtkVolumeMapper): bit rx + 3 ry + 9 rz, r = 0 below the
@@ -185,11 +223,24 @@ def move_plane(plane, start, weight_bits: int) -> tuple[int, int, int, int] | No
     return (ca, cb, cc, cd + ca * (i0 << W) + cb * (j0 << W) + cc * (k0 << W))
 
 
-def cut_coefficients(trav: Traversal, normal, point) -> tuple[int, int, int, int]:
+def _largest_coefficient(trav: Traversal, n) -> float:
+    """The largest |component| of the unit normal n over the traversal's three axes."""
+    return float(max(abs(n[ax]) for ax in (trav.axis_i, trav.axis_j, trav.major)))
+
+
+def _reach(trav: Traversal, plane) -> int:
+    """The largest |E| of ``plane`` over the box: every coordinate at most 2^W (n + 1)."""
+    ca, cb, cc, cd = (int(c) for c in plane)
+    return (abs(ca) * (trav.ni + 1) + abs(cb) * (trav.nj + 1) + abs(cc) * (trav.nk + 1)) * (1 << trav.weight_bits) \
+        + abs(cd)
+
+
+def cut_coefficients(trav: Traversal, normal, point, scale: float | None = None) -> tuple[int, int, int, int]:
     """The cut plane through ``point`` (volume coordinates of the whole volume) with unit
     ``normal`` pointing into the half-space that is cut away, as (CA, CB, CC, CD) for
     ``trav``: a sample p counts when normal . (p - point) <= 0, evaluated at the
-    quantised coefficients (the largest of CA, CB, CC is +-(2^(CUT_W-1) - 1))."""
+    quantised coefficients (the largest of CA, CB, CC is +-(2^(CUT_W-1) - 1); ``scale``:
+    E's units per 2^-W voxel instead, at most that)."""
     n = np.asarray(normal, dtype=np.float64)
     n = n / np.linalg.norm(n)
     c = np.asarray(point, dtype=np.float64) - np.asarray(trav.origin, dtype=np.float64)
@@ -208,15 +259,43 @@ def cut_coefficients(trav: Traversal, normal, point) -> tuple[int, int, int, int
     # E = CA (i 2^W + wx) + CB (j 2^W + wy) + CC (m 2^(W-g)) + CD  =  K 2^W f(u), u_k = m / S:
     # every coordinate in units of 2^-W voxel, so the three coefficients share one scale
     big = float(np.max(np.abs(a)))
-    k = CUT_MAX / big
+    k = CUT_MAX / big if scale is None else float(scale)
     ca, cb, cc = (int(np.floor(v * k + 0.5)) for v in a)
     cd = int(np.floor(e * k * (1 << W) + 0.5))
-    bound = 1 << (CUT_E_W - 1)
-    # the largest |E| over the box: every coordinate at most 2^W * (n + 1)
-    reach = (abs(ca) * (trav.ni + 1) + abs(cb) * (trav.nj + 1) + abs(cc) * (trav.nk + 1)) * (1 << W) + abs(cd)
-    if reach >= bound:
+    if _reach(trav, (ca, cb, cc, cd)) >= 1 << (CUT_E_W - 1):
         raise UserError("cut plane: the plane lies too far from the volume (its offset does not fit the register)")
     return ca, cb, cc, cd
+
+
+def slab_coefficients(trav: Traversal, normal, center, thickness: float,
+                      falloff: float = 0.0) -> tuple[tuple[int, int, int, int], tuple[int, int, int]]:
+    """The slab |normal . (p - center)| <= thickness / 2 (volume coordinates of the whole
+    volume, unit ``normal``) as the plane (CA, CB, CC, CD), E >= 0 on the side away from
+    ``normal``'s face, and (CT, FS, FON): E <= CT on the other face, and with a falloff
+    width F > 0 (voxels) the plane scaled so that F is 2^(FS + 8) units of E."""
+    n = np.asarray(normal, dtype=np.float64)
+    n = n / np.linalg.norm(n)
+    t = float(thickness)
+    face = np.asarray(center, dtype=np.float64) + 0.5 * t * n     # the face normal points out of
+    W = trav.weight_bits
+    big = _largest_coefficient(trav, n)
+    if falloff > 0:
+        # the largest FS with 2^(FS + 8 - W) / F * big <= CUT_MAX: one falloff width is
+        # 2^(FS + 8) units of E exactly
+        fs = int(np.floor(np.log2(CUT_MAX * float(falloff) / big))) + W - 8
+        if fs < 0:
+            raise UserError("slab: the falloff is too narrow for the plane's coefficients")
+        if fs > FALL_SH_MAX:
+            raise UserError("slab: the falloff is too wide for the falloff register")
+        scale = 2.0 ** (fs + 8 - W) / float(falloff)
+    else:
+        fs, scale = 0, CUT_MAX / big
+    plane = cut_coefficients(trav, n, face, scale=scale)
+    ct = int(np.floor(scale * t * (1 << W) + 0.5))
+    reach = _reach(trav, plane)
+    if reach + ct >= 1 << (CUT_E_W - 1):
+        raise UserError("slab: the slab lies too far from the volume or is too thick (its registers do not fit)")
+    return plane, (ct, fs, int(falloff > 0))
 
 
 def check_window(window, trav: Traversal) -> None:

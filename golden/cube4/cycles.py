@@ -20,19 +20,30 @@ FILL_CYCLES_UNSHADED = 38
 #: The same for a build with voxel gradients (VGRAD = 1): no GRA, the shaded SHA; measured the
 #: same way and checked by tb/cube4_top's voxel-gradient test.
 FILL_CYCLES_VGRAD = 50
+#: The slab's falloff unit (SLAB = 1 with COMPOSITING = 1, rtl/cube4_sha_slab.v) makes SHA at
+#: least 10 stages: a build without shading (3 stages) takes this many cycles more; a shaded
+#: SHA is longer already. Checked by tb/cube4_top's slab test.
+FALL_EXTRA_UNSHADED = 7
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.
 COM_MIN_SLICE = 11
 
 
-def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: bool = False) -> int:
+def has_falloff(build: dict) -> bool:
+    """Does the build have the slab's falloff unit (SLAB = 1 with COMPOSITING = 1)?"""
+    return bool(build.get("SLAB", 0)) and bool(build.get("COMPOSITING", 1))
+
+
+def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: bool = False,
+                 fall: bool = False) -> int:
     """Cycles of one frame without stalls, for M sample slices of NJ rows of NI samples on P
     pipelines; ``shading`` False: a build without shading; ``vgrad``: a shaded build whose
-    gradient comes from the voxels (no GRA)."""
+    gradient comes from the voxels (no GRA); ``fall``: the build has the slab's falloff
+    unit (``has_falloff``)."""
     nb = -(-ni // p)
     if not shading:
-        return (m * nj + 1) * nb + 1 + FILL_CYCLES_UNSHADED
+        return (m * nj + 1) * nb + 1 + FILL_CYCLES_UNSHADED + (FALL_EXTRA_UNSHADED if fall else 0)
     if vgrad:
         return (m * nj + 1) * nb + 1 + FILL_CYCLES_VGRAD
     return (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + FILL_CYCLES
@@ -47,7 +58,7 @@ def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: 
 FILL_CYCLES_RECTS = {"gra": FILL_CYCLES + 1, "unshaded": FILL_CYCLES_UNSHADED}
 
 
-def rect_frame_cycles(rects, p: int, shading: bool = True, vgrad: bool = False) -> int:
+def rect_frame_cycles(rects, p: int, shading: bool = True, vgrad: bool = False, fall: bool = False) -> int:
     """Cycles of one slice-rectangle frame without stalls on a RECTS build (exact when
     ``rects.com_waits(p)`` is 0: no beat waits in COM)."""
     if vgrad:
@@ -55,7 +66,7 @@ def rect_frame_cycles(rects, p: int, shading: bool = True, vgrad: bool = False) 
     gra = shading
     kind = "gra" if gra else "unshaded"
     return (rects.beats(p) + rects.empty_walks(p) + (rects.gra_steps(p) if gra else 0)
-            + FILL_CYCLES_RECTS[kind])
+            + FILL_CYCLES_RECTS[kind] + (FALL_EXTRA_UNSHADED if fall and not shading else 0))
 
 
 def slow_slice_factor(nj: int, ni: int, p: int) -> float:

@@ -16,9 +16,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .beats import BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
-from .clip import Clip, crop_regions, cut_coefficients
+from .clip import Clip, crop_regions, cut_coefficients, slab_coefficients
 from .config import Cube4Config, resolve_build
-from .cycles import frame_cycles, rect_frame_cycles
+from .cycles import frame_cycles, has_falloff, rect_frame_cycles
 from .errors import UserError
 from .levels import level_dims, level_volume
 from .model import PIXEL_DTYPE, Frame, render_frame
@@ -52,9 +52,9 @@ def setup_view(dims, scene: Scene, cfg: Cube4Config) -> tuple[Traversal, Camera]
     are the whole volume's."""
     cam = make_camera(dims, scene.direction, scene.width, scene.height, scene.up)
     if scene.preview > 1:
-        if scene.crop is not None or scene.cut is not None:
+        if scene.crop is not None or scene.cut is not None or scene.slab is not None:
             raise UserError("a preview level ([render] preview, --preview) renders the whole volume: "
-                            "leave out [crop] and [cut]")
+                            "leave out [crop], [cut] and [slab]")
         ldims = level_dims(dims, scene.preview)
         trav = make_traversal(ldims, scene.direction, cfg.weight_bits, cfg.supersample)
         return trav, level_camera(cam, ldims, scene.preview)
@@ -78,11 +78,14 @@ def crop_volume(vol: np.ndarray, trav: Traversal) -> np.ndarray:
 def frame_clip(scene: Scene, trav: Traversal) -> Clip | None:
     """The scene's cut plane and crop regions as the clip registers of this view (None:
     neither)."""
-    if scene.cut is None and scene.crop_regions is None:
+    if scene.cut is None and scene.slab is None and scene.crop_regions is None:
         return None
     plane = None if scene.cut is None else cut_coefficients(trav, *scene.cut)
+    slab = None
+    if scene.slab is not None:
+        plane, slab = slab_coefficients(trav, *scene.slab)
     regions = None if scene.crop_regions is None else crop_regions(trav, *scene.crop, scene.crop_regions)
-    return Clip(plane=plane, regions=regions)
+    return Clip(plane=plane, regions=regions, slab=slab)
 
 
 def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.ndarray, np.ndarray | None]:
@@ -135,13 +138,13 @@ def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pas
 def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict:
     """What the frames of one view (one per sub-pixel pass) traverse and the cycles they
     predict, against the fixed schedule."""
-    shading, vgrad = bool(build["SHADING"]), bool(build.get("VGRAD", 0))
+    shading, vgrad, fall = bool(build["SHADING"]), bool(build.get("VGRAD", 0)), has_falloff(build)
     full = cycles = 0
     boxes = []
     for plan in plans:
         t = plan.whole
-        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading, vgrad)
-        cycles += plan.cycles(cfg.pipelines, shading, vgrad)
+        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading, vgrad, fall)
+        cycles += plan.cycles(cfg.pipelines, shading, vgrad, fall)
         boxes.append(None if plan.box is None else
                      {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
                       "dims": [int(b) - int(a) for a, b in zip(*plan.box)]})
@@ -340,7 +343,8 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
         if not build.get("VGRAD", 0):   # the cycles a RECTS build of cube4_top takes (GRA's walk with GRA)
             shading = bool(build["SHADING"])
             ran = [replace(r, gra=shading) for r in frame_rects if r is not None]
-            stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, shading) for r in ran)
+            stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, shading, fall=has_falloff(build))
+                                            for r in ran)
             stats["cycles_saved"] = stats["fixed_schedule_cycles"] - stats["predicted_cycles"]
             stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in ran)
     return vp, frame, stats

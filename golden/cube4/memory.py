@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .clip import CUT_E_W, CUT_W, REGIONS_ALL, check_window  # the cut plane's register widths (cube4_defs.vh)
+from .clip import CUT_E_W, CUT_T_NONE, CUT_W, REGIONS_ALL, check_window  # the cut plane's register widths (cube4_defs.vh)
 from .errors import UserError
 from .modes import MODE_CODES
 from .view import Traversal
@@ -211,6 +211,9 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
     plane = (0, 0, 0, 0) if clip is None or clip.plane is None else clip.plane
     for name, v, w in zip(("CUT_A", "CUT_B", "CUT_C", "CUT_D"), plane, (CUT_W, CUT_W, CUT_W, CUT_E_W)):
         regs[name] = int(v) & ((1 << w) - 1)
+    slab = (CUT_T_NONE, 0, 0) if clip is None or clip.slab is None else clip.slab
+    for name, v in zip(("CUT_T", "FALL_SH", "FALL_ON"), slab):
+        regs[name] = int(v)
     regs["FACES"] = int(trav.faces) if path_weights else 0
     return regs
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
-from .clip import Clip
+from .clip import FALL_ONE, FALL_SHIFT, Clip
 from .modes import MODES, is_blend
 from .pathlen import path_weighted, weight_quarters, weighted_alpha
 from .progress import Progress, counted
@@ -412,6 +412,7 @@ def render_frame(
             "gradients": np.zeros((M, 3, nj, ni), dtype=np.int64),
             "rmap_index": np.zeros((M, nj, ni), dtype=np.int64),
             "shaded": np.zeros((M, 4, nj, ni), dtype=np.int64),
+            "falloff": np.full((M, nj, ni), FALL_ONE, dtype=np.int64),
         }
     pix_chunks = []
     prev, cur, nxt = padded(-1), padded(0), padded(1)
@@ -439,6 +440,12 @@ def render_frame(
         if path_cols is not None and trav.faces:
             wrgba = rgba.copy()   # the shaded stream keeps the LUT's A; COM weights it
             wrgba[3] = weighted_alpha(rgba[3], s, path_cols, weight_quarters(trav, m, trav.faces))
+        fall = clip.falloff(trav, m) if clip is not None else None
+        if fall is not None and keep_streams:
+            streams["falloff"][m] = fall
+        if fall is not None and blend:      # the slab's falloff weight, after the path weights (COM)
+            wrgba = wrgba.copy() if wrgba is rgba else wrgba
+            wrgba[3] = round_shift(wrgba[3] * fall, FALL_SHIFT)
         if mode == "composite":
             composite(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg)
         elif mode == "xray":

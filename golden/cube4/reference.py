@@ -33,7 +33,11 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
 * a crop box is rendered as a volume of its own placed at its origin (zero outside
   it, like the volume's own faces), and crop regions keep the samples in the regions
   their flags keep (cube4.clip; the whole volume traversed); a cut plane removes the samples p with
-  normal . (p - point) > 0.
+  normal . (p - point) > 0; a slab keeps the p with |normal . (p - center)| <= t / 2, and
+  its falloff multiplies the opacity of one hardware sample (a stretch of the ray as long
+  as the hardware's sample distance d, 1 / (S max |d_axis|) voxel) by
+  w = clamp(inset / F, 0, 1), inset the distance inside the nearer face:
+  alpha_h = 1 - (1 - w (1 - (1 - alpha)^d))^(w_q h / d).
 """
 
 from __future__ import annotations
@@ -404,12 +408,24 @@ def cast_rays(
     if scene.cut is not None:
         cut_n, cut_p = scene.cut
         cut_p = cut_p - (np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64))
+    shift = np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64)
+    if scene.slab is not None:
+        slab_n, slab_c, slab_t, slab_f = scene.slab
+        slab_c = slab_c - shift
+        # the hardware's sample distance: slices 1/S voxel apart along the major axis
+        d_hw = 1.0 / (scene.supersample * float(np.max(np.abs(d))))
     while active.size:
         pts = origins[active] + (t_in[active] + q * step)[:, None] * d
         vals = _trilinear(grid, pts)
         counts = np.ones(active.size, dtype=bool)
+        fall = None
         if scene.cut is not None:
             counts = (pts - cut_p) @ cut_n <= 0.0
+        if scene.slab is not None:
+            inset = 0.5 * slab_t - np.abs((pts - slab_c) @ slab_n)   # voxels inside the nearer face
+            counts = inset >= 0.0
+            if slab_f > 0:
+                fall = np.clip(inset / slab_f, 0.0, 1.0)
         if scene.crop_regions is not None:
             counts &= _region_kept(pts + (0.0 if offset is None else np.asarray(offset, dtype=np.float64)),
                                    scene.crop, scene.crop_regions)
@@ -419,7 +435,12 @@ def cast_rays(
         else:
             rgba = scene.tf(vals[:, 0])
             wq = _midpoint_weights(q, steps_of[active], length[active], step)
-            alpha = np.where(counts, 1.0 - np.power(1.0 - np.clip(rgba[:, 3], 0.0, 1.0), step * wq), 0.0)
+            a = np.clip(rgba[:, 3], 0.0, 1.0)
+            if fall is None:
+                alpha = np.where(counts, 1.0 - np.power(1.0 - a, step * wq), 0.0)
+            else:       # the falloff scales the opacity of one hardware sample (d_hw long)
+                a_hw = fall * (1.0 - np.power(1.0 - a, d_hw))
+                alpha = np.where(counts, 1.0 - np.power(1.0 - a_hw, step * wq / d_hw), 0.0)
             if shaded:
                 g = vals[:, 1:4]
                 gn = np.linalg.norm(g, axis=1)

@@ -26,6 +26,8 @@ from .warp import DEFAULT_FILTER, check_filter
 #: [output] footprint when a scene does not say (docs/scenes.md)
 FOOTPRINT_DEFAULT = True
 CUT_POINT_BOUND = 1e6   # [cut] point: each coordinate within +-this many voxels
+SLAB_MAX = 4096.0       # [slab] thickness and falloff: at most this many voxels
+SLAB_FALLOFF_MIN = 0.125  # [slab] falloff: 0 (a hard slab) or at least this many voxels
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
@@ -57,6 +59,7 @@ class Scene:
     crop_regions: int | None = None  # [crop] mode / regions: VTK's 27 region flags of the box's
     #                                  slabs (cube4.clip); None: the box alone is traversed
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
+    slab: tuple | None = None  # [slab]: (normal, center, thickness, falloff), volume coordinates, voxels
     skip: bool | str = True  # [render] skip: only the box that can change a ray (cube4.skip); "rects":
     #                          and within it each slice's rectangle (cube4.slices; S = 1); "beats":
     #                          within it only the beats that can change a ray, and rays end (cube4.beats)
@@ -113,7 +116,7 @@ def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
 
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
-    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut"),
+    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut", "slab"),
                 "top level")
     view = data.get("view", {})
     _check_keys(view, ("direction", "azimuth", "elevation", "up"), "view")
@@ -207,12 +210,15 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
 
     crop, crop_regions = _crop(data.get("crop", {}))
     cut = _cut(data.get("cut", {}))
+    slab = _slab(data.get("slab", {}))
+    if cut is not None and slab is not None:
+        raise UserError("scene: give [cut] or [slab], not both (they share the plane's registers)")
 
     return Scene(
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, skip=skip, tau=tau, preview=preview,
+        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, skip=skip, tau=tau, preview=preview,
         subpixel=subpixel, filter=warp_filter,
         footprint=footprint, gradient=gradient, path_weights=path_weights,
     )
@@ -266,6 +272,27 @@ def _cut(tbl: dict):
     normal = _direction(tbl["normal"], "cut.normal")
     point = np.asarray(vector(tbl["point"], "scene: cut.point", bound=CUT_POINT_BOUND), dtype=np.float64)
     return normal, point
+
+
+def _slab(tbl: dict):
+    """[slab] normal = [nx, ny, nz], center = [x, y, z], thickness = t (voxels, > 0),
+    falloff = F (voxels, >= 0; default 0): only the samples within t / 2 of the plane
+    through center count, and with F > 0 a sample's opacity falls linearly to 0 over the
+    F voxels inside each face (cube4.clip)."""
+    _check_keys(tbl, ("normal", "center", "thickness", "falloff"), "slab")
+    if not tbl:
+        return None
+    if any(k not in tbl for k in ("normal", "center", "thickness")):
+        raise UserError("scene: [slab] needs normal, center and thickness")
+    normal = _direction(tbl["normal"], "slab.normal")
+    center = np.asarray(vector(tbl["center"], "scene: slab.center", bound=CUT_POINT_BOUND), dtype=np.float64)
+    thickness = real(tbl["thickness"], "scene: slab.thickness", 0, SLAB_MAX)
+    falloff = real(tbl.get("falloff", 0.0), "scene: slab.falloff", 0, SLAB_MAX)
+    if thickness <= 0:
+        raise UserError("scene: slab.thickness must be > 0 voxels")
+    if 0 < falloff < SLAB_FALLOFF_MIN:
+        raise UserError(f"scene: slab.falloff must be 0 or at least {SLAB_FALLOFF_MIN} voxel")
+    return normal, center, float(thickness), float(falloff)
 
 
 def crop_box(scene: Scene, dims) -> tuple[tuple[int, int, int], tuple[int, int, int]]:

@@ -170,13 +170,13 @@ class SkipPlan:
             return 0.0
         return float(np.prod(self.trav.dims)) / float(np.prod(self.whole.dims))
 
-    def cycles(self, p: int, shading: bool, vgrad: bool = False) -> int:
-        """Cycles of the frame without stalls (0: no frame); shading, vgrad: the build's
-        (cycles.frame_cycles)."""
+    def cycles(self, p: int, shading: bool, vgrad: bool = False, fall: bool = False) -> int:
+        """Cycles of the frame without stalls (0: no frame); shading, vgrad, fall: the
+        build's (cycles.frame_cycles)."""
         if self.trav is None:
             return 0
         t = self.trav
-        return frame_cycles(t.num_sample_slices, t.nj, t.ni, p, shading, vgrad)
+        return frame_cycles(t.num_sample_slices, t.nj, t.ni, p, shading, vgrad, fall)
 
     def box_volume(self, vol: np.ndarray) -> np.ndarray:
         """The box's voxels, vol[z, y, x] of the whole box (a view)."""
@@ -236,6 +236,8 @@ def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: in
     busy = busy_cells(vol, lut, mode)
     if clip is not None and clip.plane is not None:
         busy &= ~cut_cells(trav, clip.plane)
+        if clip.slab is not None:
+            busy &= ~cut_cells(trav, clip.far_plane())
     if clip is not None and clip.regions is not None:
         busy &= region_cells(trav, clip.regions)
     box = busy_box(busy)
@@ -256,7 +258,7 @@ def plan_box(trav: Traversal, box, clip: Clip | None = None, table_s: float = 0.
     if clip is not None and (clip.plane is not None or clip.regions is not None):
         regions = move_regions(clip.regions, start, trav.supersample)
         moved = Clip(plane=move_plane(clip.plane, start, trav.weight_bits),
-                     regions=None if regions is None else fit_regions(regions, sub))
+                     regions=None if regions is None else fit_regions(regions, sub), slab=clip.slab)
     return SkipPlan(trav, box, sub, offset, start, moved, table_s)
 
 

@@ -16,7 +16,7 @@ import numpy as np
 from cube4.app.render import RenderResult, register_engine, view_image
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
-from cube4.cycles import rect_frame_cycles
+from cube4.cycles import has_falloff, rect_frame_cycles
 from cube4.errors import UserError
 from cube4.host import assemble_view, build_memory, pass_rects, plan_view, schedule_stats, trav_stats, view_stats
 from cube4.scene import Scene
@@ -71,7 +71,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
             gra = bool(build["SHADING"]) and not bool(build.get("VGRAD", 0))
             rs = [frame_rects(job, gra) for job, _ in ran.values()]
             stats["predicted_cycles"] = sum(rect_frame_cycles(r, cfg.pipelines, bool(build["SHADING"]),
-                                                              bool(build.get("VGRAD", 0))) for r in rs)
+                                                              bool(build.get("VGRAD", 0)), has_falloff(build))
+                                            for r in rs)
             stats["cycles_saved"] = stats["fixed_schedule_cycles"] - stats["predicted_cycles"]
             stats["skip"] = True
             stats["rects"] = True

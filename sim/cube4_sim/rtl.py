@@ -28,7 +28,7 @@ from cube4.modes import is_blend, is_extremum
 from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
-from cube4.cycles import COM_MIN_SLICE, frame_cycles, rect_frame_cycles, slow_slice_factor
+from cube4.cycles import COM_MIN_SLICE, frame_cycles, has_falloff, rect_frame_cycles, slow_slice_factor
 from cube4.slices import SliceRects, whole_box_rects
 from .rect_port import rect_width, rect_words
 from .dump import read_pixel_frames
@@ -55,7 +55,8 @@ class FrameJob:
 
 def check_frame_fits(fr: FrameJob, params: dict) -> None:
     """UserError unless the build has what the frame uses: its mode's datapath, the clip
-    unit for a window, crop regions or a cut plane (a brick's window too), shading for a shaded frame.
+    unit for a window, crop regions or a cut plane (a brick's window too), the slab's for a
+    slab, shading for a shaded frame.
     Without this check the RTL would render such a frame without it, silently."""
     if is_blend(fr.mode) and not params["COMPOSITING"]:
         raise UserError(f"a {fr.mode} frame needs a build with COMPOSITING = 1")
@@ -63,6 +64,8 @@ def check_frame_fits(fr: FrameJob, params: dict) -> None:
         raise UserError(f"a {fr.mode} frame needs a build with EXTREMUM = 1")
     if fr.clip is not None and not params["CLIP"]:
         raise UserError("a frame with a window, crop regions or a cut plane needs a build with CLIP = 1")
+    if fr.clip is not None and fr.clip.slab is not None and not params["SLAB"]:
+        raise UserError("a frame with a slab needs a build with SLAB = 1")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
         raise UserError("a shaded frame needs a build with SHADING = 1")
 
@@ -189,7 +192,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p,
                          plw=bool(params["PLW"]))
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
-            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad) + 100)
+            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad, has_falloff(params)) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
             rect_p = workdir / f"rects{n}.hex"
             if rects:

@@ -47,6 +47,7 @@ module cube4_top_harness #(
     parameter integer VGRAD       = 0,
     parameter integer PLW         = 1,
     parameter integer RECTS       = 0,    // 1: slice rectangles (the table from CUBE4_RECTFILE)
+    parameter integer SLAB        = 0,    // 1: the cut slab (CUT_T, FALL_*)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
@@ -99,6 +100,9 @@ module cube4_top_harness #(
     reg [26:0]           cfg_cr_hide_q;
     reg [CUT_W-1:0]      cfg_cut_a_q, cfg_cut_b_q, cfg_cut_c_q;
     reg [CUT_E_W-1:0]    cfg_cut_d_q;
+    reg [CUT_E_W-1:0]    cfg_cut_t_q;
+    reg [5:0]            cfg_fall_sh_q;
+    reg                  cfg_fall_on_q;
     reg [5:0]            cfg_faces_q;
     always @(posedge clk) begin
         rst_q         <= rst;
@@ -155,6 +159,9 @@ module cube4_top_harness #(
         cfg_cut_b_q     <= cfg_cut_b;
         cfg_cut_c_q     <= cfg_cut_c;
         cfg_cut_d_q     <= cfg_cut_d;
+        cfg_cut_t_q     <= cfg_cut_t;
+        cfg_fall_sh_q   <= cfg_fall_sh;
+        cfg_fall_on_q   <= cfg_fall_on;
         cfg_faces_q     <= cfg_faces;
     end
 
@@ -274,7 +281,8 @@ module cube4_top_harness #(
         .CLIP        (CLIP),
         .VGRAD       (VGRAD),
         .PLW         (PLW),
-        .RECTS       (RECTS)
+        .RECTS       (RECTS),
+        .SLAB        (SLAB)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -336,6 +344,9 @@ module cube4_top_harness #(
         .cfg_cut_b    (cfg_cut_b_q),
         .cfg_cut_c    (cfg_cut_c_q),
         .cfg_cut_d    (cfg_cut_d_q),
+        .cfg_cut_t    (cfg_cut_t_q),
+        .cfg_fall_sh  (cfg_fall_sh_q),
+        .cfg_fall_on  (cfg_fall_on_q),
         .cfg_faces    (cfg_faces_q),
         .start       (start_q),
         .busy        (busy),

@@ -21,7 +21,7 @@
 //   clk       out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst       in   synchronous reset
 //   cfg_*     in   view registers (golden/cube4/memory.py top_regs)
-//   in_*      in   shaded stream (cube4_sha's format, with in_sample)
+//   in_*      in   shaded stream (cube4_sha's format, with in_sample and in_fall)
 //   out_*     out  finished rays: cube4_com's pix_* (valid, ready, mask, m,
 //                  by, bx, rgba, eop)
 // =============================================================================
@@ -48,6 +48,7 @@ module cube4_com_harness #(
     input  wire [HDR_W-1:0]      in_hdr,
     input  wire [IN_W-1:0]       in_rgba,
     input  wire [P*VOXEL_W-1:0]  in_sample,
+    input  wire [P*FALL_W-1:0]   in_fall,
     output wire                  out_valid,
     input  wire                  out_ready,
     output wire [P-1:0]          out_mask,
@@ -79,6 +80,7 @@ module cube4_com_harness #(
         .in_hdr    (in_hdr),
         .in_rgba   (in_rgba),
         .in_sample (in_sample),
+        .in_fall   (in_fall),
         .pix_valid (out_valid),
         .pix_ready (out_ready),
         .pix_mask  (out_mask),
@@ -91,13 +93,13 @@ module cube4_com_harness #(
 
     cube4_stream_check #(
         .NAME   ("com.in (shaded)"),
-        .DATA_W (HDR_W + IN_W + P * VOXEL_W)
+        .DATA_W (HDR_W + IN_W + P * VOXEL_W + P * FALL_W)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),
         .valid (in_valid),
         .ready (in_ready),
-        .data  ({in_hdr, in_rgba, in_sample})
+        .data  ({in_hdr, in_rgba, in_sample, in_fall})
     );
 
     cube4_stream_check #(

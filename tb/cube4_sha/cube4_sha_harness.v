@@ -9,16 +9,18 @@
 //   table load ports, its gradient input and shaded output as top-level ports,
 //   which the testbench drives and reads every cycle (golden gradient beats
 //   in with random gaps in valid; random ready out), and a cube4_stream_check
-//   on each of the two streams. SHA has no view registers.
+//   on each of the two streams. The view registers (cfg_*) reach SHA's slab
+//   unit only (SLAB = 1).
 //
 // Parameters: as cube4_sha (P 1..64, VOXEL_W 1..16, ALPHA_W 8..16,
-//   RMAP_BITS 2..6, SHADING 0..1, CARRY_SAMPLE 0..1, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   RMAP_BITS 2..6, SHADING 0..1, CARRY_SAMPLE 0..1, SLAB 0..1, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
 //
 // Latency: that of cube4_sha (the ports connect straight to it).
 //
 // Ports
 //   clk             out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst             in   synchronous reset
+//   cfg_*           in   view registers (cube4_defs.vh)
 //   lut_*, rmap_*   in   table writes (cube4_sha)
 //   in_*            in   gradient stream (cube4_gra's format)
 //   out_*           out  shaded stream (cube4_sha's format, with out_idx and
@@ -32,6 +34,7 @@ module cube4_sha_harness #(
 ) (
     output wire                      clk,
     input  wire                      rst,
+    `CUBE4_VIEW_PORTS
     input  wire                      lut_we,
     input  wire [VOXEL_W-1:0]        lut_addr,
     input  wire [24+ALPHA_W-1:0]     lut_data,
@@ -46,9 +49,12 @@ module cube4_sha_harness #(
     output wire [HDR_W-1:0]          out_hdr,
     output wire [RGBA_W-1:0]         out_rgba,
     output wire [P*RI_W-1:0]         out_idx,
-    output wire [P*VOXEL_W-1:0]      out_sample
+    output wire [P*VOXEL_W-1:0]      out_sample,
+    output wire [P*FALL_W-1:0]       out_fall
 );
     cube4_sim_clock u_clock (.clk (clk));
+
+    wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
 
     cube4_sha #(
         `CUBE4_BUILD_PASS,
@@ -68,13 +74,13 @@ module cube4_sha_harness #(
 
     cube4_stream_check #(
         .NAME   ("sha.out (shaded)"),
-        .DATA_W (HDR_W + RGBA_W + P * RI_W + P * VOXEL_W)
+        .DATA_W (HDR_W + RGBA_W + P * RI_W + P * VOXEL_W + P * FALL_W)
     ) u_chk_out (
         .clk   (clk),
         .rst   (rst),
         .valid (out_valid),
         .ready (out_ready),
-        .data  ({out_hdr, out_rgba, out_idx, out_sample})
+        .data  ({out_hdr, out_rgba, out_idx, out_sample, out_fall})
     );
 
 endmodule

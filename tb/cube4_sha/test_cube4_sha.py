@@ -35,6 +35,7 @@ import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge
 
+from cube4.clip import FALL_ONE, FALL_W, Clip, slab_coefficients
 from cube4.model import gradient_stream, sample_stream, shade
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
@@ -44,13 +45,22 @@ from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id
 
 # (direction, input gap probability, output stall probability)
 VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0), ((-0.6, 0.25, -1.0), 0.3, 0.4), ((1.0, 0.4, -0.7), 0.6, 0.2)]
-OUTPUTS = ["out_hdr", "out_rgba", "out_idx", "out_sample"]
+OUTPUTS = ["out_hdr", "out_rgba", "out_idx", "out_sample", "out_fall"]
 CHANNELS = ("R", "G", "B", "A")
 
 
 def volume_dims(p: int) -> tuple[int, int, int]:
     """Small and non-cubic, with several partial beams along every axis."""
     return (max(11, 2 * p + 3), max(9, p + 4), max(8, p + 2))
+
+
+def view_slab(trav, dims, n: int) -> Clip:
+    """View n's slab: a thin one with a falloff wider than half of it (no weight reaches
+    one), a thick one with a narrow falloff, or a hard one (FALL_ON = 0), each tilted."""
+    centre = tuple((d - 1) / 2 for d in dims)
+    thickness, falloff = ((2.5, 1.75), (6.0, 0.75), (4.0, 0.0))[n % 3]
+    plane, slab = slab_coefficients(trav, (0.4, -0.7, 0.6), centre, thickness, falloff)
+    return Clip(plane=plane, slab=slab)
 
 
 def random_tables(rng, vw: int, aw: int, rmap_bits: int) -> tuple[np.ndarray, np.ndarray]:
@@ -100,8 +110,12 @@ async def test_shaded_stream(dut):
     await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rmap_we": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
-    for direction, gap, stall in VIEWS:
-        trav = make_traversal(dims, direction, 8, 1)
+    slab = bool(int(dut.SLAB.value)) and bool(int(dut.COMPOSITING.value))
+    ss = 1 << int(dut.MAX_SS_LOG2.value)
+    for n_view, (direction, gap, stall) in enumerate(VIEWS):
+        trav = make_traversal(dims, direction, 8, ss)
+        clip = view_slab(trav, dims, n_view) if slab else None
+        bench.set_view(trav, p, clip=clip)
         lut, rmap = random_tables(bench.rng, vw, aw, rb)
         await load_tables(dut, lut, rmap, aw)
         samples, inside = sample_stream(vol, trav)
@@ -125,18 +139,28 @@ async def test_shaded_stream(dut):
         rtl_smp = np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got])
         carried = smp if int(dut.CARRY_SAMPLE.value) else np.zeros_like(smp)
         check_lanes(rtl_smp, carried, sched.lval, sched, bench.log, "sample (passed through, or 0)")
+        fall = np.full(samples.shape, FALL_ONE, dtype=np.int64)
+        if clip is not None and clip.falloff(trav, 0) is not None:
+            fall = np.stack([clip.falloff(trav, m) for m in range(trav.num_sample_slices)])
+        rtl_fall = np.stack([unpack_lanes(b["out_fall"], p, FALL_W) for b in got])
+        check_lanes(rtl_fall, sched.lanes(fall), sched.lval, sched, bench.log, "falloff weight (or 256)")
+        if clip is not None:
+            bench.log.info("slab %s: falloff weights %d .. %d", clip.slab, int(fall.min()), int(fall.max()))
         bench.log.info("dims %s view %s gap %.1f stall %.1f: %d shaded beats bit-exact",
                        dims, direction, gap, stall, len(got))
 
 
-# make test: P = 1 shaded and P = 5 unshaded with 12-bit voxels; make regress all
+# make test: P = 1 shaded and P = 5 unshaded with 12-bit voxels and the slab's falloff (S = 4);
+# make regress all
 BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1),
           dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=3, SHADING=1, CARRY_SAMPLE=0),
           dict(P=8, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=4, SHADING=1, CARRY_SAMPLE=1),
           dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=1),
-          dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0)]
+          dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0),
+          dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=2, SHADING=1, CARRY_SAMPLE=1, SLAB=1, MAX_SS_LOG2=1),
+          dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0, SLAB=1, MAX_SS_LOG2=2)]
 
 
-@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 4), ids=param_id))
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 6), ids=param_id))
 def test_cube4_sha(build):
-    run_unit(__file__, {**build, "MAX_DIM": 32, "MAX_SS_LOG2": 0}, "test_shaded_stream")
+    run_unit(__file__, {"MAX_DIM": 32, "MAX_SS_LOG2": 0, **build}, "test_shaded_stream")

@@ -584,3 +584,70 @@ def test_preview_level_frames(p):
         check(level, job.trav, cfg, job.lut, job.rmap, res, f"preview P={p} view {n}", mode=job.mode, clip=job.clip)
     t = jobs[2].trav
     assert results[2]["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True)
+
+
+# ---------------------------------------------------------------- the cut slab
+SLAB_VIEWS = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
+              (1.0, 0.4, -0.7)]
+
+
+@pytest.mark.parametrize(("p", "s", "shading"), sweep([(1, 1, 0), (5, 2, 1), (8, 1, 1), (5, 1, 0)], quick=(0, 1)))
+def test_slab_frames(p, s, shading):
+    """The cut slab (SLAB = 1, numerics.md §12) on the full build with it (or its unshaded
+    build): the far face in CLIP, the falloff weights in SHA, COM's multiply after the path
+    weights. Six views (45° and (1, 1, 1) among them): composite (shaded where the build
+    shades), X-ray, MIP (the slab bounds the samples, no falloff), a path-weighted frame
+    with a hard slab, the box schedule of cube4.skip (cells beyond either face are not
+    traversed), random stalls and a reset in mid-frame, bit for bit against the golden
+    model; unstalled frames take the predicted cycles (an unshaded SHA is longer by the
+    falloff unit), and the falloff changes the picture (the test sees it)."""
+    from cube4.clip import Clip, slab_coefficients
+    from cube4.cycles import has_falloff
+    from cube4.host import crop_volume
+    from cube4.model import render_frame
+    from cube4.pathlen import weighted_columns
+    from cube4.skip import plan_skip
+
+    rng = np.random.default_rng(500 + p)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    build = {"SLAB": 1} if shading else {"SLAB": 1, "SHADING": 0}
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    modes = ["composite", "composite", "xray", "mip", "composite", "composite"]
+    slabs = [(5.0, 2.0), (3.0, 1.5), (6.0, 1.0), (4.0, 1.0), (4.0, 0.0), (3.0, 1.0)]
+    normals = [(0.5, -0.8, 0.3), (0.0, 0.0, 1.0), (1.0, 0.2, -0.4), (-0.3, 1.0, 0.5), (0.6, 0.6, -0.5),
+               (0.1, 0.0, 1.0)]
+    centre = ((nx - 1) / 2, (ny - 1) / 2, (nz - 1) / 2)
+    jobs = []
+    for n, (d, mode) in enumerate(zip(SLAB_VIEWS, modes)):
+        trav = make_traversal(dims, d, cfg.weight_bits, s)
+        plane, slab = slab_coefficients(trav, normals[n], centre, *slabs[n])
+        clip = Clip(plane=plane, slab=slab)
+        lut, rmap = random_tables(rng, cfg)
+        lut[:, 3] = rng.integers(0, 1 << cfg.alpha_bits, size=lut.shape[0])   # opaque too
+        if n == 4:       # path weights with a hard slab
+            lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
+        if n == 5:       # the box schedule: cells beyond either face are not traversed
+            lut[:60] = 0
+            plan = plan_skip(vol, trav, lut, mode, clip=clip, p=p)
+            assert plan.box is not None and plan.fraction < 1.0, plan.box
+            trav, clip = plan.trav, plan.clip
+        shaded = bool(shading) and mode == "composite" and n in (0, 4, 5)
+        jobs.append(FrameJob(trav, lut, rmap if shaded else None, mode=mode, clip=clip,
+                             stall=(0, 60, 0, 120, 30, 0)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
+                             reset_after_cycles=150 if n == 3 else 0))
+    results = render_frames(vol, jobs, cfg, max_dim=64, build=build)
+    fall = has_falloff({"COMPOSITING": 1, **build})
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"slab P={p} S={s} view {SLAB_VIEWS[n]} {job.mode} slab {job.clip.slab}"
+        gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip)
+        if n == 0:   # the falloff changes this frame: the test sees it
+            hard = Clip(plane=job.clip.plane, slab=(job.clip.slab[0], 0, 0))
+            other = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, mode=job.mode,
+                                 shading=job.rmap is not None, clip=hard)
+            assert (other.baseplane != gold.baseplane).any(), f"{label}: the falloff changed nothing"
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, bool(shading), False, fall)
+            assert res["cycles"] == want, (label, res["cycles"], want)
