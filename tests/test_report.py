@@ -36,7 +36,12 @@ def test_variants_one_parameter_at_a_time() -> None:
     assert {k: getattr(quality.scene(scene), k) for k, _ in quality.value} == PRESETS["quality"]
     quick = [v.label for v, _ in report.case_variants(scene, report.variants(quick=True))]
     assert quick == ["default", "S=2", "W=4", "F=8", "p=1", "q=2", "warp=mitchell", "grad=sobel", "pw=True",
-                     "quality: grad=central S=4 q=2 pw=True"]
+                     "preview=2", "beats τ=0.03125", "quality: grad=central S=4 q=2 pw=True"]
+    # the preview levels and the beat schedule's thresholds: scene keys on the default hardware
+    tau = [v for v, _ in plan if v.varied == "tau"]
+    assert [v.value for v in tau] == [0.0, 1 / 256, 1 / 32, 1 / 8]
+    assert all(v.scene(scene).skip == "beats" and v.scene(scene).tau == v.value for v in tau)
+    assert [v.scene(scene).preview for v, _ in plan if v.varied == "preview"] == [2, 4]
 
 
 def test_cycle_formula_matches_docs() -> None:

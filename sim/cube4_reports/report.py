@@ -73,6 +73,8 @@ SWEEPS: dict[str, tuple] = {
     "filter": ("mitchell", "catmull-rom", "bspline", "lanczos3"),
     "gradient": ("central", "sobel"),
     "path_weights": (False, True),
+    "preview": (2, 4),
+    "tau": (0.0, 1 / 256, 1 / 32, 1 / 8),
 }
 #: Combinations of scene keys (S, q, gradient, warp) beside the one-at-a-time sweeps: the ways
 #: to buy error with run time that need more than one key. "quality" is the named preset.
@@ -98,11 +100,18 @@ QUICK_SWEEPS: dict[str, tuple] = {
     "filter": ("mitchell",),
     "gradient": ("sobel",),
     "path_weights": (True,),
+    "preview": (2,),
+    "tau": (1 / 32,),
 }
 SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "p", "subpixel": "q",
-         "filter": "warp", "gradient": "grad", "path_weights": "pw"}
-#: sweeps of a scene key (the render's, not the hardware's configuration)
-SCENE_SWEEPS = ("subpixel", "filter", "gradient", "path_weights")
+         "filter": "warp", "gradient": "grad", "path_weights": "pw", "preview": "preview", "tau": "beats τ"}
+#: sweeps of a scene key (the render's, not the hardware's configuration); "tau" renders
+#: with beat skipping and ray termination at that threshold (skip = "beats", cube4.beats),
+#: which the golden model specifies and no RTL runs yet: its cycles are the front end's
+#: beats of the golden schedule (walk_beats), not simulated
+SCENE_SWEEPS = ("subpixel", "filter", "gradient", "path_weights", "preview", "tau")
+#: the cycles source of a "tau" row
+BEATS_SOURCE = "golden beat walk (not built)"
 CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
 NA_FMAX = "n/a (run make fpga)"
 
@@ -119,6 +128,8 @@ class Variant:
         if self.varied == "combo":
             name = next((f"{k}: " for k, v in PRESET_COMBOS.items() if v == self.value), "")
             return name + " ".join(f"{SHORT[k]}={v}" for k, v in self.value)
+        if self.varied == "tau":
+            return f"beats τ={self.value:.4g}"
         return "default" if self.varied == "default" else f"{SHORT[self.varied]}={self.value}"
 
     def config(self, scene: Scene) -> Cube4Config:
@@ -132,6 +143,8 @@ class Variant:
         """The scene this variant renders (a scene sweep or a combination changes its keys)."""
         if self.varied == "combo":
             return replace(scene, **dict(self.value))
+        if self.varied == "tau":
+            return replace(scene, skip="beats", tau=float(self.value))
         return replace(scene, **{self.varied: self.value}) if self.varied in SCENE_SWEEPS else scene
 
 
@@ -174,6 +187,8 @@ class Row:
     filter: str = "triangle"  # the warp's filter
     gradient: str = "gra"  # the gradient estimator ([render] gradient)
     path_weights: bool = False  # [render] path_weights (numerics.md §17)
+    preview: int = 1  # [render] preview: the level rendered (numerics.md §20)
+    tau: float | None = None  # beat skipping's termination threshold (None: the box schedule)
 
 
 # ---------------------------------------------------------------------------- configs
@@ -296,7 +311,10 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               rmse_rgb=float(np.sqrt(np.mean(err[..., :3] ** 2))), rmse_alpha=float(np.sqrt(np.mean(err[..., 3] ** 2))),
               golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
               baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter,
-              gradient=scene.gradient, path_weights=scene.path_weighted)
+              gradient=scene.gradient, path_weights=scene.path_weighted, preview=scene.preview,
+              tau=scene.tau if scene.skip == "beats" else None)
+    if row.tau is not None:     # no RTL runs the beat schedule: its cycles are the golden walk's beats
+        row.formula_cycles = int(res.stats["beats"]["walk_beats"])
     return row, res.frame.baseplane
 
 
@@ -327,7 +345,7 @@ def finish_rows(rows: list[Row], fmax: list[dict] | None) -> None:
         cfg = Cube4Config(pipelines=r.pipelines, voxel_bits=r.voxel_bits, weight_bits=r.weight_bits,
                           alpha_bits=r.alpha_bits, acc_bits=r.acc_bits, rmap_bits=r.rmap_bits,
                           supersample=r.supersample)
-        r.fmax_mhz = fmax_for(fmax, cfg)
+        r.fmax_mhz = None if r.tau is not None else fmax_for(fmax, cfg)   # the beat schedule has no build
         if r.fmax_mhz and r.cycles is not None:
             r.frame_time_ms = r.cycles / (r.fmax_mhz * 1e6) * 1e3
         base = defaults.get((r.volume, r.scene))
@@ -358,15 +376,15 @@ def _param_cells(r: Row) -> list[str]:
     cells = []
     combo = dict(COMBOS_BY_LABEL.get(r.label, ()))
     for key in ("supersample", "weight_bits", "acc_bits", "pipelines", "subpixel", "filter", "gradient",
-                "path_weights"):
+                "path_weights", "preview", "tau"):
         v = {True: "yes", False: "no"}.get(getattr(r, key), str(getattr(r, key))) if key == "path_weights" \
-            else str(getattr(r, key))
+            else "–" if key == "tau" and r.tau is None else f"{r.tau:.4g}" if key == "tau" else str(getattr(r, key))
         cells.append(f"**{v}**" if r.varied == key or key in combo else v)
     return cells
 
 
 COMBOS_BY_LABEL = {Variant("combo", c).label: c for c in COMBOS}
-TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "gradient", "path weights", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
+TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "gradient", "path weights", "preview", "τ", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
                  "× cycles", "source", "frame time at Fmax (ms)", "sim (s)", "sim cycles/s", "bit_exact"]
 
 
@@ -417,7 +435,11 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               f"Cycles: {meta['cycles_note']}. Frame time = cycles / Fmax; {meta['fmax_note']}. "
               "sim (s): wall-clock seconds of the Verilator simulation of the frame alone "
               f"(machine load average {meta['loadavg_start']} at the start, {meta['loadavg_end']} at the end). "
-              "bit_exact: the RTL base plane equals the golden one.\n\n")
+              "bit_exact: the RTL base plane equals the golden one. "
+              "`preview`: the scene rendered from its ½ or ¼ level (docs/numerics.md §20) through the RTL, its error "
+              "against the whole volume's truth. `beats τ`: beat skipping and ray termination at transmittance τ "
+              "(docs/numerics.md §19), which the golden model specifies and no RTL runs yet: its cycles are the "
+              f"front end's beats in the golden schedule (source `{BEATS_SOURCE}`), with no frame time.\n\n")
     for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
         rs = [r for r in rows if (r.volume, r.scene) == (vol, scn)]
         out.write(f"## {vol}, scene `{scn}`\n\n")
@@ -435,7 +457,9 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
     out.write("## Checks\n\n")
     out.write("\n".join(notes) + ("\n" if notes else ""))
     if meta["rtl"]:
-        out.write(f"- RTL runs: {sum(r.cycles_source == 'rtl' for r in rows)} of {len(rows)} succeeded; "
+        built = [r for r in rows if r.tau is None]
+        out.write(f"- RTL runs: {sum(r.cycles_source == 'rtl' for r in rows)} of {len(built)} succeeded "
+                  f"(the {len(rows) - len(built)} rows of beat skipping, which no RTL runs, not tried); "
                   f"{len(mismatched)} base-plane mismatches against golden.\n")
         for r in failed:
             out.write(f"- RTL failed for {r.volume} {r.label}: {r.rtl_error}\n")
@@ -661,6 +685,8 @@ SERIES_STYLE = {  # marker, colour
     "filter": ("P", "tab:brown"),
     "gradient": ("X", "tab:cyan"),
     "path_weights": ("h", "tab:olive"),
+    "preview": ("<", "tab:pink"),
+    "tau": (">", "tab:gray"),
 }
 
 
@@ -702,6 +728,15 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
     for r in pts:
         ax.annotate(r.label.replace("grad=", "").replace("quality: ", "quality "), (r.cycles, r.psnr),
                     textcoords="offset points", xytext=(-6, 5), fontsize=6, color=colour, ha="right")
+    for key, what in (("preview", "preview levels (½, ¼ resolution)"),
+                      ("tau", "beats and ray termination, τ (golden walk, not built)")):
+        marker, colour = SERIES_STYLE[key]
+        pts = [r for r in rs if r.varied == key]
+        ax.plot([r.cycles for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker, color=colour,
+                alpha=0.8, label=what)
+        for r in pts:
+            ax.annotate(r.label.replace("beats ", ""), (r.cycles, r.psnr), textcoords="offset points",
+                        xytext=(4, -10), fontsize=6, color=colour)
     for key in ("weight_bits", "acc_bits", "filter", "path_weights"):
         marker, colour = SERIES_STYLE[key]
         pts = [r for r in rs if r.varied == key]
@@ -821,10 +856,12 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
                 scene, vol = variant.scene(scenes[case[1]]), vols[case]
                 bar.set_postfix_str(f"{case[0]} {variant.label}" + (" (RTL build/sim)" if use_rtl else ""))
                 row, golden_base = golden_row(vol, case[0], scene, variant, match[0], refs[case])
-                if use_rtl:
+                if use_rtl and row.tau is None:
                     add_rtl(row, vol, scene, match[0], golden_base, refs[case], log)
                 else:
                     row.cycles = row.formula_cycles
+                    if row.tau is not None:
+                        row.cycles_source = BEATS_SOURCE
                 rows.append(row)
                 bar.write(_progress_line(row), file=term)
                 bar.update()
