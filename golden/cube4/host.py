@@ -184,23 +184,53 @@ def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
     return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
 
 
-def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.ndarray, np.ndarray]]) -> Frame:
+def depth_threshold(scene: Scene, cfg: Cube4Config) -> int | None:
+    """The depth-out threshold on the transmittance (numerics.md §21): a ray passes the
+    scene's opacity threshold theta when T <= floor((1 - theta) 2^ACC_W); None: no depth out."""
+    if scene.depth_threshold is None:
+        return None
+    return int(np.floor((1.0 - scene.depth_threshold) * (1 << cfg.acc_bits)))
+
+
+def depth_z(trav: Traversal, cam: Camera, depth_m: np.ndarray, scale: float = 1.0) -> np.ndarray:
+    """Depth out as distances: the point of each base-plane pixel's ray in its slice m
+    (depth_m, (rows, cols, c), -1: none) along the view direction from the camera's
+    centre, in voxels of the whole volume (``scale``: a preview level's factor); NaN: none."""
+    rows, cols = depth_m.shape[:2]
+    by, bx = np.mgrid[0:rows, 0:cols]
+    out = np.full(depth_m.shape, np.nan)
+    for c in range(depth_m.shape[-1]):
+        m = depth_m[..., c]
+        pts = trav.ray_point(bx, by, m / float(trav.supersample))
+        out[..., c] = np.where(m >= 0, ((pts - cam.centre) @ cam.direction) * scale, np.nan)
+    return out
+
+
+def assemble_view(vp: ViewPlan, cfg: Cube4Config, results: dict[int, tuple[np.ndarray, np.ndarray]],
+                  depths: dict[int, np.ndarray] | None = None) -> Frame:
     """The view's frame from its passes' results ({pass index: (box base plane, box
     finished rays)}; a pass that ran no frame is absent): each box placed in its pass's
     base plane, the passes interleaved when q > 1 (the frame's base plane and its rays'
-    addresses are then the fine plane's)."""
+    addresses are then the fine plane's). ``depths`` ({pass index: the box frame's
+    depth_m}): the frame's depth_z, each pass's slices turned into distances with its own
+    traversal, then interleaved."""
     q = vp.scene.subpixel
-    planes, pix = [], []
+    planes, pix, zplanes = [], [], []
     for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
         sub, rays = results.get(n, (None, np.empty(0, PIXEL_DTYPE)))
         planes.append((ps, plan.place(sub)))
+        if depths is not None:
+            zplanes.append((ps, depth_z(plan.whole, vp.cam, plan.place_depth(depths.get(n)), vp.scene.preview)))
         rays = plan.place_pixels(rays)
         if q > 1 and rays.size:     # place_pixels returned a copy
             r0, c0 = fine_origin(vp.trav, q, ps)
             rays["by"], rays["bx"] = r0 + q * rays["by"], c0 + q * rays["bx"]
         pix.append(rays)
     base = planes[0][1] if q == 1 else interleave(vp.trav, q, planes)
-    return Frame(trav=vp.trav, cfg=cfg, baseplane=base, pixels=np.concatenate(pix))
+    zs = None
+    if depths is not None:
+        zs = zplanes[0][1] if q == 1 else interleave(vp.trav, q, zplanes, fill=np.nan)
+    return Frame(trav=vp.trav, cfg=cfg, baseplane=base, pixels=np.concatenate(pix), depth_z=zs)
 
 
 def image_metrics(img: np.ndarray, ref: np.ndarray) -> dict:
@@ -312,7 +342,7 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
         scene = replace(scene, skip=False)
     vp = plan_view(vol, scene, cfg)
     box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
-    results, streams = {}, {}
+    results, streams, depths = {}, {}, {}
     rects = rects or scene.skip == "rects"
     if beat_skip is None and scene.skip == "beats":
         beat_skip = {"tau": tau_fixed(scene.tau, cfg)}
@@ -324,11 +354,14 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
         sched, rule = beat_frames[n] if beat_frames else (None, None)
         sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
-                           vgrad=scene.voxel_gradients, rects=frame_rects[n], beats=sched, done=rule)
+                           vgrad=scene.voxel_gradients, rects=frame_rects[n], beats=sched, done=rule,
+                           depth_t=depth_threshold(scene, cfg))
         results[n] = (sub.baseplane, sub.pixels)
+        if sub.depth_m is not None:
+            depths[n] = sub.depth_m
         if keep_streams:
             streams = sub.streams
-    frame = assemble_view(vp, cfg, results)
+    frame = assemble_view(vp, cfg, results, depths if scene.depth_threshold is not None else None)
     frame.streams = streams
     stats.update(trav_stats(trav))
     stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1

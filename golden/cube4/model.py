@@ -49,6 +49,13 @@ class Frame:
     baseplane: np.ndarray  # (rows, cols, 4) int64: R, G, B, A in Q0.ACC_W, 0..2^ACC_W
     pixels: np.ndarray  # PIXEL_DTYPE, emission order
     streams: dict = field(default_factory=dict)
+    # depth out (numerics.md §21), render_frame(depth_t=...): (rows, cols, 2) int64, per ray
+    # the sample slice m of the sample after which it passes the opacity threshold (MIP /
+    # MinIP: its held sample's) and of its first sample that adds something; -1: none
+    depth_m: np.ndarray | None = None
+    # the same as distances (voxels) along the view direction from the volume's centre,
+    # float64, NaN: none (cube4.host.assemble_view, on the view's whole (fine) base plane)
+    depth_z: np.ndarray | None = None
 
     @property
     def baseplane_float(self) -> np.ndarray:
@@ -273,7 +280,7 @@ def shade(samples: np.ndarray, grad: np.ndarray | None, lut: np.ndarray, rmap: n
 
 
 # ---------------------------------------------------------------- numerics.md §7
-def composite(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray, cfg: Cube4Config) -> None:
+def composite(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray, cfg: Cube4Config) -> np.ndarray:
     """Front-to-back compositing, in place, of one slice of shaded samples.
 
     acc (3, ...) colour and trans (...) transmittance, Q0.ACC_W, trans starts at 2^ACC_W.
@@ -284,9 +291,10 @@ def composite(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.nd
     w = np.where(count, round_shift(trans * rgba[3], cfg.alpha_bits), 0)
     acc += round_shift(w * rgba[:3], COLOR_W)
     trans -= w
+    return w
 
 
-def xray(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray, cfg: Cube4Config) -> None:
+def xray(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray, cfg: Cube4Config) -> np.ndarray:
     """X-ray (numerics.md §13), in place: the attenuation sum without occlusion.
 
     w = round_shift(2^ACC_W * A, ALPHA_W) (compositing's w with T held at 1);
@@ -297,10 +305,11 @@ def xray(acc: np.ndarray, trans: np.ndarray, rgba: np.ndarray, count: np.ndarray
     w = np.where(count, round_shift(one * rgba[3], cfg.alpha_bits), 0)
     np.minimum(one, acc + round_shift(w * rgba[:3], COLOR_W), out=acc)
     np.maximum(0, trans - w, out=trans)
+    return w
 
 
 def extremum(value: np.ndarray, held: np.ndarray, s: np.ndarray, rgba: np.ndarray, count: np.ndarray,
-             minimum: bool) -> None:
+             minimum: bool) -> np.ndarray:
     """MIP / MinIP (numerics.md §13), in place: the ray keeps the largest (smallest)
     interpolated value of the samples that count, with that sample's classification:
     taken when s >= value (s <= value); value starts at 0 (2^VOXEL_W - 1) and held at 0,
@@ -308,6 +317,7 @@ def extremum(value: np.ndarray, held: np.ndarray, s: np.ndarray, rgba: np.ndarra
     take = count & ((s <= value) if minimum else (s >= value))
     value[take] = s[take]
     held[:, take] = rgba[:, take]
+    return take
 
 
 def extremum_pixel(held: np.ndarray, cfg: Cube4Config) -> np.ndarray:
@@ -337,6 +347,7 @@ def render_frame(
     rects: SliceRects | None = None,
     beats: "BeatSchedule | None" = None,
     done: "TerminationRule | None" = None,
+    depth_t: int | None = None,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
@@ -349,6 +360,9 @@ def render_frame(
     (cube4.pathlen.weighted_columns): then the first and last samples of each ray that
     enters or leaves through a face in trav.faces are path-weighted (numerics.md §17;
     composite and X-ray).
+    depth_t: depth out (numerics.md §21): the frame's ``depth_m``, per ray the slice after
+    which T <= depth_t (MIP / MinIP: the held sample's) and the first slice whose sample
+    adds something (w > 0; MIP / MinIP: the first counted sample); None: not tracked.
     rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
     rectangle, and only its samples count; None: every slice is the whole box.
     beats: beat skipping (cube4.beats, numerics.md §19): samples outside the slice's
@@ -415,6 +429,7 @@ def render_frame(
             "falloff": np.full((M, nj, ni), FALL_ONE, dtype=np.int64),
         }
     pix_chunks = []
+    zbuf = None if depth_t is None else np.full((2, rows, cols), -1, dtype=np.int64)
     prev, cur, nxt = padded(-1), padded(0), padded(1)
     jj, ii = np.mgrid[0:nj, 0:ni]
     for m in counted(range(M), progress, "golden"):
@@ -447,11 +462,18 @@ def render_frame(
             wrgba = wrgba.copy() if wrgba is rgba else wrgba
             wrgba[3] = round_shift(wrgba[3] * fall, FALL_SHIFT)
         if mode == "composite":
-            composite(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg)
+            added = composite(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg) > 0
         elif mode == "xray":
-            xray(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg)
+            added = xray(acc[:, win[0], win[1]], trans[win], wrgba, count, cfg) > 0
         else:
-            extremum(value[win], held[:, win[0], win[1]], s, rgba, count, mode == "minip")
+            added = extremum(value[win], held[:, win[0], win[1]], s, rgba, count, mode == "minip")
+        if zbuf is not None:        # depth out: the first sample that adds, the threshold's
+            z_pass, z_first = zbuf[0][win], zbuf[1][win]
+            z_first[added & (z_first < 0)] = m
+            if blend:
+                z_pass[(trans[win] <= depth_t) & (z_pass < 0)] = m
+            else:
+                z_pass[added] = m
         if beats is not None:
             if blend:
                 live_now, dead_now = done.live(acc, trans, None, None), done.dead(acc, trans, None)
@@ -498,4 +520,5 @@ def render_frame(
     else:
         base[:] = np.moveaxis(extremum_pixel(held, cfg), 0, -1)
     pixels = np.concatenate(pix_chunks) if pix_chunks else np.empty(0, dtype=PIXEL_DTYPE)
-    return Frame(trav=trav, cfg=cfg, baseplane=base, pixels=pixels, streams=streams)
+    return Frame(trav=trav, cfg=cfg, baseplane=base, pixels=pixels, streams=streams,
+                 depth_m=None if zbuf is None else np.moveaxis(zbuf, 0, -1))

@@ -70,6 +70,7 @@ class Scene:
     path_weights: bool = False  # [render] path_weights: weight rays' first and last samples (cube4.pathlen)
     filter: str = DEFAULT_FILTER  # [output] filter: the warp's OpenImageIO filter
     footprint: bool = FOOTPRINT_DEFAULT  # [output] footprint: cut the image to the box's projection
+    depth_threshold: float | None = None  # [output] depth_threshold: depth out at this opacity (None: none)
 
     @property
     def shaded(self) -> bool:
@@ -131,13 +132,18 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     up = _direction(view["up"], "view.up") if "up" in view else None
 
     out = data.get("output", {})
-    _check_keys(out, ("width", "height", "filter", "footprint"), "output")
+    _check_keys(out, ("width", "height", "filter", "footprint", "depth_threshold"), "output")
     width = _int(out, "width", 256, 8, 8192, "output.")
     height = _int(out, "height", width, 8, 8192, "output.")
     warp_filter = check_filter(out.get("filter", DEFAULT_FILTER), "scene: output.")
     footprint = out.get("footprint", FOOTPRINT_DEFAULT)
     if not isinstance(footprint, bool):
         raise UserError(f"scene: output.footprint must be true or false, got {shown(footprint)}")
+    depth = None
+    if "depth_threshold" in out:
+        depth = real(out["depth_threshold"], "scene: output.depth_threshold", 0, 1)
+        if depth <= 0:
+            raise UserError("scene: output.depth_threshold must be in (0, 1]")
 
     rnd = data.get("render", {})
     _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights", "tau", "preview"),
@@ -220,7 +226,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
         shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, skip=skip, tau=tau, preview=preview,
         subpixel=subpixel, filter=warp_filter,
-        footprint=footprint, gradient=gradient, path_weights=path_weights,
+        footprint=footprint, depth_threshold=depth, gradient=gradient, path_weights=path_weights,
     )
 
 

@@ -194,6 +194,17 @@ class SkipPlan:
             base[r0:r0 + br, c0:c0 + bc] = sub
         return base
 
+    def place_depth(self, sub: np.ndarray | None) -> np.ndarray:
+        """The whole base plane's depth out (rows, cols, 2) from the box's (model.Frame
+        depth_m; None: no frame): its slices moved to the whole frame's, -1 elsewhere."""
+        rows, cols = self.whole.baseplane_shape
+        out = np.full((rows, cols, 2), -1, dtype=np.int64)
+        if self.trav is not None and sub is not None:
+            r0, c0 = self.offset
+            br, bc = sub.shape[:2]
+            out[r0:r0 + br, c0:c0 + bc] = np.where(sub >= 0, sub + self.start[2] * self.whole.supersample, -1)
+        return out
+
     def place_pixels(self, pixels: np.ndarray) -> np.ndarray:
         """The box's finished rays with base-plane addresses and slices of the whole frame."""
         out = pixels.copy()

@@ -74,10 +74,11 @@ def fine_origin(trav: Traversal, q: int, ps: Pass) -> tuple[int, int]:
     return q * (sym0 - sym + 1) + ps.b, q * (sxm0 - sxm + 1) + ps.a
 
 
-def interleave(trav: Traversal, q: int, planes: list[tuple[Pass, np.ndarray]]) -> np.ndarray:
-    """The q×q passes' base planes (each (rows_a, cols_a, 4) of its own traversal) as one
-    base plane of fine_shape(trav, q); pixels no pass holds are 0."""
-    fine = np.zeros((*fine_shape(trav, q), 4), dtype=np.int64)
+def interleave(trav: Traversal, q: int, planes: list[tuple[Pass, np.ndarray]], fill=0) -> np.ndarray:
+    """The q×q passes' base planes (each (rows_a, cols_a, c) of its own traversal) as one
+    base plane of fine_shape(trav, q); pixels no pass holds are ``fill``."""
+    first = planes[0][1]
+    fine = np.full((*fine_shape(trav, q), first.shape[-1]), fill, dtype=first.dtype)
     for ps, base in planes:
         rows, cols = base.shape[:2]
         r0, c0 = fine_origin(trav, q, ps)

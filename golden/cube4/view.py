@@ -203,13 +203,18 @@ class Traversal:
 
     def baseplane_to_volume(self, bx, by) -> np.ndarray:
         """Base-plane pixel -> the point of its (quantised) ray at mid depth."""
+        return self.ray_point(bx, by, (self.nk - 1) / 2.0)
+
+    def ray_point(self, bx, by, k) -> np.ndarray:
+        """Base-plane pixel -> the point of its (quantised) ray in voxel slice k (a sample
+        slice m lies at k = m / S), volume coordinates (..., 3)."""
         sxm, sym = self.max_steps
         sx, sy = self.slope
-        km = (self.nk - 1) / 2.0
         ph = float(1 << self.phase_bits)
         u = np.asarray(bx, dtype=np.float64) - sxm + self.phase_x / ph
         v = np.asarray(by, dtype=np.float64) - sym + self.phase_y / ph
-        return self.traversal_to_volume_points(u + sx * km, v + sy * km, np.full(np.shape(u), km))
+        k = np.broadcast_to(np.asarray(k, dtype=np.float64), np.shape(u))
+        return self.traversal_to_volume_points(u + sx * k, v + sy * k, k)
 
 
 def make_traversal(dims, direction, weight_bits: int = 8, supersample: int = 1,

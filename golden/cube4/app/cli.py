@@ -387,7 +387,7 @@ def _outputs(run: RenderRun, results: list[RenderResult], frames: list[dict]) ->
     """Stage 4: what goes into each output file (written by write_all, all or none)."""
     outputs: list[tuple[Path, Writer]] = []
     for n, res in enumerate(results):
-        outputs.append((run.numbered(run.out, n), lambda tmp, img=res.image: write_image(tmp, img, run.background)))
+        outputs.append((run.numbered(run.out, n), lambda tmp, img=res.image, z=res.depth: write_image(tmp, img, run.background, depth=z)))
         if run.baseplane is not None and res.frame is not None:
             outputs.append((run.numbered(run.baseplane, n), lambda tmp, base=res.frame.baseplane: np.save(tmp, base)))
     if run.stats is not None:
@@ -443,6 +443,8 @@ def _brick_options(args: argparse.Namespace, scene: Scene):
         raise UserError("--workers and --scheduler exclude each other")
     if (args.bricks is not None or args.board_dim is not None) and scene.skip == "beats":
         raise UserError("--beats (or render.skip = \"beats\") does not run in bricks: render the volume whole")
+    if (args.bricks is not None or args.board_dim is not None) and scene.depth_threshold is not None:
+        raise UserError("depth out ([output] depth_threshold) is not rendered in bricks: render the volume whole")
     if args.bricks is None and args.board_dim is None:
         if args.workers is not None or args.scheduler is not None:
             raise UserError("--workers and --scheduler render bricks: give --bricks BX,BY,BZ or --board-dim N")

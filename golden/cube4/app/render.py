@@ -26,7 +26,7 @@ from ..model import Frame
 from ..reference import converged_reference, render_reference
 from ..scene import Scene, crop_box
 from ..subpixel import fine_to_base
-from ..view import Camera, Traversal
+from ..view import Camera, Traversal, warp_matrix
 from .progress import bars
 from .warp import warp_to_image
 
@@ -38,12 +38,50 @@ class RenderResult:
     wall_s: float
     frame: Frame | None = None
     stats: dict = field(default_factory=dict)
+    # depth out (numerics.md §21): (H, W, 2) float64, the threshold's and the first sample's
+    # distance along the view direction from the volume's centre (voxels), NaN: none
+    depth: np.ndarray | None = None
 
 
 def view_image(vp: ViewPlan, frame: Frame) -> np.ndarray:
     """The frame's base plane warped to the view's image plane."""
     q = vp.scene.subpixel
     return scene_warp(frame.baseplane_float, vp.trav, vp.cam, vp.scene, pre=None if q == 1 else fine_to_base(q))
+
+
+def depth_image(vp: ViewPlan, frame: Frame) -> np.ndarray:
+    """The frame's depth out in the image plane (numerics.md §21): each image pixel takes
+    the depths of the (fine) base-plane pixel nearest to its centre under the warp's
+    inverse, unfiltered, so that no depth lies between two surfaces; NaN where that pixel
+    holds none or lies outside the plane."""
+    q = vp.scene.subpixel
+    m = warp_matrix(vp.trav, vp.cam)
+    if q > 1:
+        m = m @ fine_to_base(q)
+    inv = np.linalg.inv(m)
+    h, w = vp.cam.height, vp.cam.width
+    rr, cc = np.mgrid[0:h, 0:w]
+    fx = np.floor(inv[0, 0] * cc + inv[0, 1] * rr + inv[0, 2] + 0.5).astype(np.int64)
+    fy = np.floor(inv[1, 0] * cc + inv[1, 1] * rr + inv[1, 2] + 0.5).astype(np.int64)
+    z = frame.depth_z
+    rows, cols = z.shape[:2]
+    ok = (fx >= 0) & (fx < cols) & (fy >= 0) & (fy < rows)
+    out = np.full((h, w, z.shape[-1]), np.nan)
+    out[ok] = z[fy[ok], fx[ok]]
+    return out
+
+
+def depth_stats(depth: np.ndarray, threshold: float) -> dict:
+    """--stats key ``depth``: the threshold, the share of image pixels with each depth and
+    their range (voxels along the view direction from the volume's centre)."""
+    out = {"threshold": threshold}
+    for c, name in enumerate(("passed", "first")):
+        z = depth[..., c]
+        seen = np.isfinite(z)
+        out[name] = {"pixels": float(seen.mean()),
+                     "min": float(z[seen].min()) if seen.any() else None,
+                     "max": float(z[seen].max()) if seen.any() else None}
+    return out
 
 
 def scene_warp(base: np.ndarray, trav: Traversal, cam: Camera, scene: Scene,
@@ -105,7 +143,11 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     ``rect_beats``)."""
     t0 = time.perf_counter()
     vp, frame, stats = golden_view(vol, scene, cfg, keep_streams=keep_streams, progress=bars(progress), rects=rects)
-    return _timed(RenderResult("golden", view_image(vp, frame), 0.0, frame=frame, stats=stats), t0)
+    res = RenderResult("golden", view_image(vp, frame), 0.0, frame=frame, stats=stats)
+    if frame.depth_z is not None:
+        res.depth = depth_image(vp, frame)
+        res.stats["depth"] = depth_stats(res.depth, scene.depth_threshold)
+    return _timed(res, t0)
 
 
 def _timed(res: RenderResult, t0: float) -> RenderResult:
@@ -165,6 +207,8 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
         raise UserError("--bricks renders one pass per view: set [render] subpixel = 1 in the scene")
     if any(sc.preview != 1 for sc in scenes):
         raise UserError("a preview level ([render] preview, --preview) does not run in bricks: render it whole")
+    if any(sc.depth_threshold is not None for sc in scenes):
+        raise UserError("depth out ([output] depth_threshold) is not rendered in bricks: render the volume whole")
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     executor = executor or LocalExecutor()
