@@ -123,5 +123,5 @@ def test_slab_needs_its_build():
 def test_preview_refuses_a_slab():
     vol = load_volume("head:16")
     sc = dataclasses.replace(slab_scene(), preview=2)
-    with pytest.raises(UserError, match=r"leave out \[crop\], \[cut\] and \[slab\]"):
+    with pytest.raises(UserError, match=r"leave out \[crop\], \[cut\], \[slab\] and \[geometry\]"):
         golden_view(vol, sc, config_for(sc, 1))

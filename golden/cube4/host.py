@@ -19,6 +19,7 @@ from .beats import BeatSchedule, BlockTable, TerminationRule, frame_occupancy, s
 from .clip import Clip, crop_regions, cut_coefficients, slab_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, has_falloff, rect_frame_cycles
+from .geometry import Geometry, check_geometry, stop_slices
 from .errors import UserError
 from .levels import level_dims, level_volume
 from .model import PIXEL_DTYPE, Frame, render_frame
@@ -52,9 +53,9 @@ def setup_view(dims, scene: Scene, cfg: Cube4Config) -> tuple[Traversal, Camera]
     are the whole volume's."""
     cam = make_camera(dims, scene.direction, scene.width, scene.height, scene.up)
     if scene.preview > 1:
-        if scene.crop is not None or scene.cut is not None or scene.slab is not None:
+        if scene.crop is not None or scene.cut is not None or scene.slab is not None or scene.geometry is not None:
             raise UserError("a preview level ([render] preview, --preview) renders the whole volume: "
-                            "leave out [crop], [cut] and [slab]")
+                            "leave out [crop], [cut], [slab] and [geometry]")
         ldims = level_dims(dims, scene.preview)
         trav = make_traversal(ldims, scene.direction, cfg.weight_bits, cfg.supersample)
         return trav, level_camera(cam, ldims, scene.preview)
@@ -182,6 +183,17 @@ def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
     pss = passes(trav, scene.subpixel)
     plans = schedules(box_vol, scene, cfg, pss, lut)
     return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
+
+
+def scene_geometry(scene: Scene, cam: Camera) -> Geometry | None:
+    """The scene's [geometry] as the application resolved it (cube4.app.mesh), checked
+    against the camera (None: none)."""
+    if scene.geometry is None:
+        return None
+    if not isinstance(scene.geometry, Geometry):
+        raise ValueError("[geometry] must be resolved for the view first (cube4.app.mesh.resolve_geometry)")
+    check_geometry(scene.geometry, cam)
+    return scene.geometry
 
 
 def depth_threshold(scene: Scene, cfg: Cube4Config) -> int | None:
@@ -347,6 +359,7 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     if beat_skip is None and scene.skip == "beats":
         beat_skip = {"tau": tau_fixed(scene.tau, cfg)}
     frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
+    geo = scene_geometry(scene, vp.cam)
     beat_frames = beat_schedules(vol, vp, cfg, beat_skip) if beat_skip is not None else None
     for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
         if plan.trav is None:       # nothing can change a ray: no frame
@@ -355,7 +368,8 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
         sub = render_frame(plan.box_volume(box_vol), plan.trav, cfg, vp.lut, vp.rmap, keep_streams=keep_streams,
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
                            vgrad=scene.voxel_gradients, rects=frame_rects[n], beats=sched, done=rule,
-                           depth_t=depth_threshold(scene, cfg))
+                           depth_t=depth_threshold(scene, cfg),
+                           stop_m=None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z)))
         results[n] = (sub.baseplane, sub.pixels)
         if sub.depth_m is not None:
             depths[n] = sub.depth_m

@@ -348,6 +348,7 @@ def render_frame(
     beats: "BeatSchedule | None" = None,
     done: "TerminationRule | None" = None,
     depth_t: int | None = None,
+    stop_m: np.ndarray | None = None,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
@@ -363,6 +364,8 @@ def render_frame(
     depth_t: depth out (numerics.md §21): the frame's ``depth_m``, per ray the slice after
     which T <= depth_t (MIP / MinIP: the held sample's) and the first slice whose sample
     adds something (w > 0; MIP / MinIP: the first counted sample); None: not tracked.
+    stop_m: depth in (numerics.md §22): (rows, cols) per base-plane pixel, its ray counts
+    the sample slices m < stop_m only (cube4.geometry.stop_slices).
     rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
     rectangle, and only its samples count; None: every slice is the whole box.
     beats: beat skipping (cube4.beats, numerics.md §19): samples outside the slice's
@@ -440,6 +443,8 @@ def render_frame(
         stx, sty = (int(v) for v in trav.steps(m))
         r0, c0 = sym - sty, sxm - stx
         win = (slice(r0, r0 + nj), slice(c0, c0 + ni))
+        if stop_m is not None:      # depth in: a ray counts its slices in front of the geometry
+            count &= m < stop_m[win]
         if beats is not None:       # only samples that may count; a ray that is done counts no further one
             count &= beats.sample_occ(m)
             count &= ~(done.dead(acc[:, win[0], win[1]], trans[win], None) if blend

@@ -174,7 +174,11 @@ def _cast_pixels(vol, voxel_bits, scene, cam, step, progress, box, pix, offsets)
     for b in range(0, len(offsets), per_cast):
         shifts = [cam.pixel * (float(dx) * cam.right - float(dy) * cam.up) for dx, dy in offsets[b:b + per_cast]]
         pts = np.concatenate([origins + sh for sh in shifts])
-        rgba = cast_rays(vol, voxel_bits, scene, pts, d, step, progress, offset=None if box is None else box[0])
+        z_stop = None
+        if scene.geometry is not None:      # depth in: each ray ends at its pixel's geometry (cube4.geometry)
+            z_stop = np.tile(scene.geometry.z.ravel()[pix], len(shifts))
+        rgba = cast_rays(vol, voxel_bits, scene, pts, d, step, progress, offset=None if box is None else box[0],
+                         z_stop=z_stop, centre=cam.centre)
         out[b:b + len(shifts)] = rgba.reshape(len(shifts), n, 4)
     return out
 
@@ -375,11 +379,14 @@ def cast_rays(
     step: float = 0.125,
     progress: Progress | None = None,
     offset=None,
+    z_stop: np.ndarray | None = None,
+    centre=None,
 ) -> np.ndarray:
     """Composite the rays o + t d (origins (N, 3) in volume coordinates, one unit
     direction d) front to back through vol[z, y, x]: (N, 4) premultiplied RGBA, in the
     scene's mode. offset: where vol's voxel (0, 0, 0) lies in the whole volume (a crop
-    box), for the cut plane."""
+    box), for the cut plane. z_stop (N,): depth in, a ray counts its points whose depth
+    along d from ``centre`` (the whole volume's coordinates) is below it."""
     if not 0 < step <= 0.125:
         raise ValueError("reference step must be in (0, 1/8] voxel")
     nz, ny, nx = vol.shape
@@ -426,6 +433,8 @@ def cast_rays(
             counts = inset >= 0.0
             if slab_f > 0:
                 fall = np.clip(inset / slab_f, 0.0, 1.0)
+        if z_stop is not None:
+            counts &= (pts + shift - centre) @ d < z_stop[active]
         if scene.crop_regions is not None:
             counts &= _region_kept(pts + (0.0 if offset is None else np.asarray(offset, dtype=np.float64)),
                                    scene.crop, scene.crop_regions)

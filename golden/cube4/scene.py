@@ -71,6 +71,9 @@ class Scene:
     filter: str = DEFAULT_FILTER  # [output] filter: the warp's OpenImageIO filter
     footprint: bool = FOOTPRINT_DEFAULT  # [output] footprint: cut the image to the box's projection
     depth_threshold: float | None = None  # [output] depth_threshold: depth out at this opacity (None: none)
+    # [geometry]: ("image", EXR path) or ("mesh", "needle" or a mesh file), which the application
+    # turns into a cube4.geometry.Geometry for the view (cube4.app.mesh.resolve_geometry)
+    geometry: object = None
 
     @property
     def shaded(self) -> bool:
@@ -117,7 +120,8 @@ def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
 
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
-    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut", "slab"),
+    _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut", "slab",
+                       "geometry"),
                 "top level")
     view = data.get("view", {})
     _check_keys(view, ("direction", "azimuth", "elevation", "up"), "view")
@@ -217,6 +221,14 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     crop, crop_regions = _crop(data.get("crop", {}))
     cut = _cut(data.get("cut", {}))
     slab = _slab(data.get("slab", {}))
+    geo = data.get("geometry", {})
+    _check_keys(geo, ("image", "mesh"), "geometry")
+    geometry = None
+    if geo:
+        if len(geo) != 1 or not isinstance(next(iter(geo.values())), str) or not next(iter(geo.values())):
+            raise UserError("scene: [geometry] takes image = \"file.exr\" (a depth image, channel Z) "
+                            "or mesh = \"needle\" or a mesh file, one of them")
+        geometry = next(iter(geo.items()))
     if cut is not None and slab is not None:
         raise UserError("scene: give [cut] or [slab], not both (they share the plane's registers)")
 
@@ -224,7 +236,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, skip=skip, tau=tau, preview=preview,
+        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, geometry=geometry, skip=skip, tau=tau, preview=preview,
         subpixel=subpixel, filter=warp_filter,
         footprint=footprint, depth_threshold=depth, gradient=gradient, path_weights=path_weights,
     )

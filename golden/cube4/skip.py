@@ -194,6 +194,16 @@ class SkipPlan:
             base[r0:r0 + br, c0:c0 + bc] = sub
         return base
 
+    def box_stop(self, stop: np.ndarray) -> np.ndarray | None:
+        """The whole frame's stop slices (cube4.geometry.stop_slices, (rows, cols)) as the
+        box frame's: its base-plane window, its slices counted from its first (None: no frame)."""
+        if self.trav is None:
+            return None
+        r0, c0 = self.offset
+        br, bc = self.trav.baseplane_shape
+        return np.clip(stop[r0:r0 + br, c0:c0 + bc] - self.start[2] * self.whole.supersample, 0,
+                       self.trav.num_sample_slices)
+
     def place_depth(self, sub: np.ndarray | None) -> np.ndarray:
         """The whole base plane's depth out (rows, cols, 2) from the box's (model.Frame
         depth_m; None: no frame): its slices moved to the whole frame's, -1 elsewhere."""

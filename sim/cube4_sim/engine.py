@@ -35,6 +35,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     if any(sc.skip == "beats" for sc in scenes):
         raise UserError("beat skipping and ray termination (--beats) run in the golden model only; "
                         "use --engine golden, or the box (default) or --rects on the RTL")
+    if any(sc.geometry is not None for sc in scenes):
+        raise UserError("depth in ([geometry]) runs in the golden model only; use --engine golden")
     if any(sc.depth_threshold is not None for sc in scenes):
         raise UserError("depth out ([output] depth_threshold) runs in the golden model only; use --engine golden")
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more

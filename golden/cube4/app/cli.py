@@ -41,7 +41,7 @@ from ..host import config_for, image_metrics
 from ..scene import PRESETS, Scene, apply_preset, builtin_scene_names, load_scene, with_view
 from ..vgrad import GRADIENTS
 from ..values import int_text, real_text, shown
-from ..view import POLE_Z, angles_from_direction, direction_from_angles, up_from_angles
+from ..view import POLE_Z, angles_from_direction, direction_from_angles, make_camera, up_from_angles
 from .images import write_image
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import RenderResult, engine_names, render, render_bricked_views, render_views
@@ -172,6 +172,13 @@ def _parser() -> argparse.ArgumentParser:
                         "differences, S = 4, 2x2 sub-pixel passes, path weights: 40 dB or more on the built-in "
                         "phantoms); --gradient and --path-weights still override it")
     r.add_argument("--quiet", action="store_true", help="no progress bars or summary")
+    me = sub.add_parser("mesh", help="draw a mesh with a scene's camera into a geometry image ([geometry] image)")
+    me.add_argument("volume", help="the volume the scene renders (its dims frame the camera)")
+    me.add_argument("--scene", default="default", help="scene TOML file or built-in scene name (default: default)")
+    me.add_argument("--mesh", default="needle",
+                    help="a mesh file trimesh reads (.stl, .obj, .ply, ...) in the volume's voxel coordinates, "
+                         "or needle (default): a needle from near a corner to just past the centre")
+    me.add_argument("--out", required=True, help="the geometry image (.exr: R, G, B, A and Z)")
     sub.add_parser("volumes", help="list the built-in volumes")
     sub.add_parser("scenes", help="list the built-in scenes")
     return ap
@@ -275,6 +282,25 @@ class RenderRun:
         if self.stats is not None:
             named.append((self.stats, "--stats"))
         return named
+
+
+def cmd_mesh(args: argparse.Namespace) -> int:
+    """Draw a mesh (or the built-in needle) with the scene's camera into a geometry image."""
+    from ..geometry import check_geometry
+    from .mesh import draw_mesh, load_mesh, needle_mesh, write_geometry
+
+    out = _check_output(args.out, (".exr",), "--out")
+    scene = load_scene(args.scene)
+    vol = load_volume(args.volume)
+    nz, ny, nx = vol.shape
+    cam = make_camera((nx, ny, nz), scene.direction, scene.width, scene.height, scene.up)
+    mesh = needle_mesh((nx, ny, nz)) if args.mesh == "needle" else load_mesh(args.mesh)
+    geo = draw_mesh(mesh, cam)
+    check_geometry(geo, cam)
+    write_geometry(str(out), geo)
+    print(f"cube4: mesh drawn for {args.volume} with scene {scene.name}: "
+          f"{float(np.isfinite(geo.z).mean()):.1%} of the pixels -> {out}")
+    return 0
 
 
 def cmd_render(args: argparse.Namespace) -> int:
@@ -492,6 +518,8 @@ def main(argv: list[str] | None = None) -> int:
         args = _parser().parse_args(argv)
         if args.cmd == "render":
             return cmd_render(args)
+        if args.cmd == "mesh":
+            return cmd_mesh(args)
         if args.cmd == "volumes":
             for name, (_, desc) in sorted(BUILTINS.items()):
                 print(f"{name:10s} {desc}")

@@ -20,13 +20,15 @@ import numpy as np
 from ..bricks import LocalExecutor, assemble, brick_tasks, check_board, counts_for_board, make_grid
 from ..config import Cube4Config
 from ..errors import UserError
-from ..host import (ViewPlan, crop_volume, frame_clip, golden_view, host_tables, memory_volume, setup_view,
+from ..geometry import composite_over
+from ..host import (ViewPlan, crop_volume, frame_clip, golden_view, host_tables, memory_volume, scene_geometry, setup_view,
                     trav_stats, view_stats)
 from ..model import Frame
 from ..reference import converged_reference, render_reference
 from ..scene import Scene, crop_box
 from ..subpixel import fine_to_base
 from ..view import Camera, Traversal, warp_matrix
+from .mesh import resolve_geometry
 from .progress import bars
 from .warp import warp_to_image
 
@@ -126,6 +128,8 @@ def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progr
     stats = view_stats(name, dims, scene, cfg)
     t0 = time.perf_counter()
     box = crop_box(scene, dims)
+    scene = resolve_geometry(scene, cam)
+    geo = scene_geometry(scene, cam)
     if area:
         img, conv = converged_reference(vol, cfg.voxel_bits, scene, cam, progress=bars(progress), box=box)
         stats.update(truth="area", truth_k=conv.k, truth_change=conv.change, truth_converged=conv.converged,
@@ -133,7 +137,7 @@ def render_reference_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, progr
     else:
         img = render_reference(vol, cfg.voxel_bits, scene, cam, progress=bars(progress), box=box)
         stats.update(truth="point")
-    return _timed(RenderResult(name, img, 0.0, stats=stats), t0)
+    return _timed(RenderResult(name, composite_over(img, geo), 0.0, stats=stats), t0)
 
 
 def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
@@ -142,8 +146,11 @@ def render_golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_str
     image plane; ``rects``: each frame computes only its slice rectangles (stats
     ``rect_beats``)."""
     t0 = time.perf_counter()
+    nz, ny, nx = vol.shape
+    scene = resolve_geometry(scene, setup_view((nx, ny, nz), scene, cfg)[1])
     vp, frame, stats = golden_view(vol, scene, cfg, keep_streams=keep_streams, progress=bars(progress), rects=rects)
-    res = RenderResult("golden", view_image(vp, frame), 0.0, frame=frame, stats=stats)
+    res = RenderResult("golden", composite_over(view_image(vp, frame), scene_geometry(scene, vp.cam)), 0.0,
+                       frame=frame, stats=stats)
     if frame.depth_z is not None:
         res.depth = depth_image(vp, frame)
         res.stats["depth"] = depth_stats(res.depth, scene.depth_threshold)
@@ -209,6 +216,8 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
         raise UserError("a preview level ([render] preview, --preview) does not run in bricks: render it whole")
     if any(sc.depth_threshold is not None for sc in scenes):
         raise UserError("depth out ([output] depth_threshold) is not rendered in bricks: render the volume whole")
+    if any(sc.geometry is not None for sc in scenes):
+        raise UserError("depth in ([geometry]) is not rendered in bricks: render the volume whole")
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     executor = executor or LocalExecutor()
