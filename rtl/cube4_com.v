@@ -73,7 +73,9 @@
 //   rect_*    the rectangle table (RECTS = 1; cube4_cfb's, written alike)
 //   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
 //             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
-//             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame)
+//             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame), pix_z
+//             lane q = {passed, first}, each {valid, m} (ZOUT = 1, depth out,
+//             numerics.md section 21; else 0)
 //   cfg       view registers (cube4_defs.vh); SX, SY = stepx(M-1), stepy(M-1)
 //
 // Bit growth and rounding: in the units (cube4_com_blend: T * A, w * C';
@@ -102,7 +104,8 @@ module cube4_com #(
     output wire pix_valid, input wire pix_ready,
     output wire [P-1:0] pix_mask, output wire [M_W-1:0] pix_m, output wire pix_eop,
     output wire [BX_W-1:0] pix_by, output wire [P*BX_W-1:0] pix_bx,
-    output wire [P*4*(ACC_W+1)-1:0] pix_rgba
+    output wire [P*4*(ACC_W+1)-1:0] pix_rgba,
+    output wire [P*2*(M_W+1)-1:0] pix_z
 );
     generate
         `CUBE4_BUILD_CHECKS("cube4_com")
@@ -117,12 +120,21 @@ module cube4_com #(
         end
     endgenerate
 
+    `CUBE4_VIEW_FIELDS(cfg);
     localparam integer CW     = ACC_W + 1;          // one accumulator channel
+    generate
+        if (CW < 25) begin : g_depth_t_top
+            wire unused_depth_t = ^cfg_depth_t[24:CW];   // DEPTH_T holds T of the widest ACC_W
+        end
+    endgenerate
     localparam integer CMP_W  = 4 * CW;             // blending word {R, G, B, T}; a pixel {R, G, B, A}
     localparam integer LUT_W  = 24 + ALPHA_W;       // a sample's {R', G', B', A}
     localparam integer EXT_W  = VOXEL_W + LUT_W;    // extremum word {v, R, G, B, A}
     // a ray's partial result in the buffers: wide enough for the build's modes
-    localparam integer AC_W   = (COMPOSITING != 0 && (EXTREMUM == 0 || CMP_W >= EXT_W)) ? CMP_W : EXT_W;
+    localparam integer AM_W   = (COMPOSITING != 0 && (EXTREMUM == 0 || CMP_W >= EXT_W)) ? CMP_W : EXT_W;
+    // depth out (ZOUT = 1): the ray's two slice numbers {valid, m} above the mode's word
+    localparam integer ZW     = 2 * (M_W + 1);
+    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0);
     localparam integer PA     = P * AC_W;
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW     = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
@@ -214,6 +226,7 @@ module cube4_com #(
     wire [P*ALPHA_W-1:0] a3, a3_w;
     wire [PA-1:0]        s5_back, back_sh, prevb_sh, acc_q;
     wire [P*CMP_W-1:0]   pix_d;
+    wire [P*ZW-1:0]      pix_zd;
     generate
         if (PLW != 0) begin : g_plw
             cube4_com_plw #(
@@ -250,7 +263,7 @@ module cube4_com #(
                 .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W),
                 .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), .AC_W(AC_W),
                 .SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0), .COPIES(NQ),
-                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0)
+                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0), .ZOUT(ZOUT), .ZM_W(M_W)
             ) u_lane (
                 .clk(clk),
                 .in_rgba(in_rgba[q*LUT_W +: LUT_W]), .in_sample(in_sample[q*VOXEL_W +: VOXEL_W]),
@@ -262,19 +275,34 @@ module cube4_com #(
                 .dxb4(dxb4), .t0_4(t0_4[q]), .fresh_4(fresh_4[q]),
                 .mode_xray(mode_xray), .mode_ext(mode_ext), .mode_min(mode_min),
                 .cnt_6(cnt_6[q]), .cnt_7(cnt_7[q]),
-                .acc_q(acc_q[q*AC_W +: AC_W]), .pix(pix_d[q*CMP_W +: CMP_W]));
+                .depth_t(cfg_depth_t[CW-1:0]), .m11(m_o),
+                .acc_q(acc_q[q*AC_W +: AC_W]), .pix(pix_d[q*CMP_W +: CMP_W]), .pix_z(pix_zd[q*ZW +: ZW]));
         end
     endgenerate
 
     // ==== the output FIFO: the S11 beat's fields beside its pixels ====
     localparam integer OUT_W = P * CMP_W + P + M_W + BX_W + P * BX_W + 1;
-    wire [OUT_W-1:0] fifo_out;
+    localparam integer OZ_W  = (ZOUT != 0) ? P * ZW : 0;   // depth out beside the pixels
+    wire [OUT_W+OZ_W-1:0] fifo_out;
     wire unused_credit_d;
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
-        .clk(clk), .rst(rst), .take(take), .give(give),
-        .credit(credit), .credit_d(unused_credit_d),
-        .push_d(push_d), .in_data({fin_o, m_o, by_o, bx_o, eop_o, pix_d}),
-        .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
-    assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
+    generate
+        if (ZOUT != 0) begin : g_fifo_z
+            cube4_credit_fifo #(.DATA_W(OUT_W + OZ_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+                .clk(clk), .rst(rst), .take(take), .give(give),
+                .credit(credit), .credit_d(unused_credit_d),
+                .push_d(push_d), .in_data({pix_zd, fin_o, m_o, by_o, bx_o, eop_o, pix_d}),
+                .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
+            assign {pix_z, pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
+        end else begin : g_fifo
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+                .clk(clk), .rst(rst), .take(take), .give(give),
+                .credit(credit), .credit_d(unused_credit_d),
+                .push_d(push_d), .in_data({fin_o, m_o, by_o, bx_o, eop_o, pix_d}),
+                .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
+            assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
+            assign pix_z = '0;
+            wire unused_zd = ^pix_zd;
+        end
+    endgenerate
 endmodule
 `default_nettype wire

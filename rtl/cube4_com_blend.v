@@ -35,6 +35,9 @@
 //   mode_xray  in   X-ray (else composite); static within a frame
 //   acc_q      out  S11: the new {C_R, C_G, C_B, T}, as acc5
 //   pix        out  S11: {R, G, B, A}, ACC_W + 1 bits each, Q0.ACC_W
+//   depth_t    in   the depth-out threshold on T (DEPTH_T), static
+//   added_q    out  S11: the sample added something (w > 0)
+//   passed_q   out  S11: the new T <= depth_t
 //
 // Bit growth and rounding
 //   T * A: (F+1) x AW bits; round_shift by AW (half up) gives w <= T (F+1 bits).
@@ -50,8 +53,9 @@ module cube4_com_blend #(
 ) (
     input  wire clk,
     input  wire [CMP_W-1:0] acc5, input wire [ALPHA_W-1:0] a5, input wire [23:0] c7,
-    input  wire cnt7, input wire mode_xray,
-    output reg  [CMP_W-1:0] acc_q, output wire [CMP_W-1:0] pix
+    input  wire cnt7, input wire mode_xray, input wire [CW-1:0] depth_t,
+    output reg  [CMP_W-1:0] acc_q, output wire [CMP_W-1:0] pix,
+    output reg  added_q, output reg passed_q
 );
     generate
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_com_blend", "ALPHA_W", ALPHA_W, 8, 16)
@@ -104,6 +108,16 @@ module cube4_com_blend #(
     always @(posedge clk) begin
         s9_t  <= (mode_xray && w8_t > t8) ? {CW{1'b0}} : t8 - w8_t;
         s10_t <= s9_t;
+    end
+    // depth out: the sample added something (w > 0, S8) and the new T is at most
+    // DEPTH_T (S9), carried to S11 beside acc_q
+    reg s9_add, s10_add, s10_pass;
+    always @(posedge clk) begin
+        s9_add   <= w8_t != '0;
+        s10_add  <= s9_add;
+        s10_pass <= s9_t <= depth_t;
+        added_q  <= s10_add;
+        passed_q <= s10_pass;
     end
 
     // S9: w * C' per channel (cube4_mul: its operand registers take S8's w

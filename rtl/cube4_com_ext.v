@@ -35,6 +35,7 @@
 //   mode_min  in   MinIP (else MIP); static within a frame
 //   acc_q     out  S11: the new {v, R, G, B, A}, as acc5
 //   pix       out  S11: {R, G, B, A}, ACC_W + 1 bits each, Q0.ACC_W
+//   take_q    out  S11: the sample was taken (depth out)
 //
 // Bit growth and rounding: no arithmetic but the comparison; the pixel's
 //   shifts lose nothing, A's round_shift rounds half up and stays <= 2^ACC_W.
@@ -48,7 +49,8 @@ module cube4_com_ext #(
     input  wire clk,
     input  wire [VOXEL_W-1:0] v0, input wire [EXT_W-1:0] acc5, input wire [LUT_W-1:0] rgba7,
     input  wire cnt6, input wire mode_min,
-    output reg  [EXT_W-1:0] acc_q, output wire [4*CW-1:0] pix
+    output reg  [EXT_W-1:0] acc_q, output wire [4*CW-1:0] pix,
+    output reg  take_q
 );
     generate
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_com_ext", "ALPHA_W", ALPHA_W, 8, 16)
@@ -87,6 +89,9 @@ module cube4_com_ext #(
         s10_e   <= s9_e;
         acc_q   <= s10_e;               // S11
     end
+    // depth out: the sample was taken, carried S7 -> S11 beside the word
+    reg s8_take, s9_take, s10_take;
+    always @(posedge clk) {take_q, s10_take, s9_take, s8_take} <= {s10_take, s9_take, s8_take, s7_take};
     // S11: the pixel from the register: colour << (F - 8), A to F bits
     wire [CW-1:0] a_px;
     generate

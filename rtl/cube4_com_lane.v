@@ -22,6 +22,10 @@
 //            (blending 4 * (ACC_W + 1), extremum VOXEL_W + 24 + ALPHA_W).
 //   SAMPLE   1: R0 registers the sample v (extremum, path weights).  0..1.
 //   COPIES   control copies over the word.                 1..64.  Default 4.
+//   ZOUT     1: depth out: the buffer word's top 2 (ZM_W + 1) bits hold the
+//            ray's slice numbers {passed, first}, each {valid, m} (AC_W
+//            includes them).                                 0..1.  Default 0.
+//   ZM_W     the slice number's width (COM's M_W).            1..16. Default 14.
 //   FALL     1: the slab's falloff: the blending datapath's A is
 //            round_shift(A * f, 8) (numerics.md section 12).  0..1.  Default 0.
 //
@@ -42,6 +46,9 @@
 //   dxb4, t0_4, fresh_4, mode_ext, mode_min   in   S4: X back step, lane at
 //              t = 0, fresh ray; the mode (static within a frame)
 //   mode_xray, cnt_6, cnt_7   in   the blending mode; S6's, S7's "counts"
+//   depth_t    in   DEPTH_T (the blending lane's threshold on T), static
+//   m11        in   S11: the beat's slice m (depth out)
+//   pix_z      out  S11: {passed, first}, each {valid, m} (ZOUT = 1; else 0)
 //   acc_q      out  S11: the word for the slice buffer [AC_W]
 //   pix        out  S11: {R, G, B, A}, ACC_W + 1 bits each, Q0.ACC_W
 //
@@ -52,7 +59,10 @@ module cube4_com_lane #(
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
     parameter integer AC_W   = 68, parameter integer SAMPLE = 1, parameter integer COPIES = 4,
     parameter integer FALL   = 0,
+    parameter integer ZOUT   = 0, parameter integer ZM_W = 14,
     localparam integer FALL_W = 9,
+    localparam integer ZF_W  = ZM_W + 1,            // a depth field {valid, m}
+    localparam integer ZW    = 2 * ZF_W,            // {passed, first}
     localparam integer CW    = ACC_W + 1,
     localparam integer CMP_W = 4 * CW,
     localparam integer LUT_W = 24 + ALPHA_W,
@@ -67,7 +77,8 @@ module cube4_com_lane #(
     input  wire dxb4, input wire t0_4, input wire fresh_4,
     input  wire mode_xray, input wire mode_ext, input wire mode_min,
     input  wire cnt_6, input wire cnt_7,
-    output wire [AC_W-1:0] acc_q, output wire [CMP_W-1:0] pix
+    input  wire [CW-1:0] depth_t, input wire [ZM_W-1:0] m11,
+    output wire [AC_W-1:0] acc_q, output wire [CMP_W-1:0] pix, output wire [ZW-1:0] pix_z
 );
     generate
         if (AC_W < ((COMPOSITING != 0) ? CMP_W : 1) || AC_W < ((EXTREMUM != 0) ? EXT_W : 1)) begin : g_bad_ac_w
@@ -139,6 +150,7 @@ module cube4_com_lane #(
     wire [AC_W-1:0] acc_in  = (fresh_v & fresh_w) | (~fresh_v & prev);
 
     // ---- S6 .. S11: the datapaths (their S11 registers) ----
+    wire added_c, passed_c, take_e;     // S11: the datapaths' depth-out flags
     wire [AC_W-1:0]  acc_c, acc_e;       // S11: the blending, the extremum word
     wire [CMP_W-1:0] pix_c, pix_e;
     generate
@@ -146,24 +158,26 @@ module cube4_com_lane #(
             wire [CMP_W-1:0] acc_c_q;
             cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
                 .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend),
-                .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray),
-                .acc_q(acc_c_q), .pix(pix_c));
+                .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray), .depth_t(depth_t),
+                .acc_q(acc_c_q), .pix(pix_c), .added_q(added_c), .passed_q(passed_c));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
-            wire unused_blend = ^{mode_xray, cnt_7, a5_blend};
+            wire unused_blend = ^{mode_xray, cnt_7, a5_blend, depth_t};
             assign acc_c = '0;
             assign pix_c = '0;
+            assign {added_c, passed_c} = 2'b00;
         end
         if (EXTREMUM != 0) begin : g_ext
             wire [EXT_W-1:0] acc_e_q;
             cube4_com_ext #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W)) u_ext (
                 .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba7(s7_rgba), .cnt6(cnt_6),
-                .mode_min(mode_min), .acc_q(acc_e_q), .pix(pix_e));
+                .mode_min(mode_min), .acc_q(acc_e_q), .pix(pix_e), .take_q(take_e));
             assign acc_e = AC_W'(acc_e_q);
         end else begin : g_no_ext
             wire unused_ext = ^{cnt_6, s7_rgba[0 +: ALPHA_W]};
             assign acc_e = '0;
             assign pix_e = '0;
+            assign take_e = 1'b0;
         end
         // the pixel for the FIFO: the mode's
         if (COMPOSITING != 0 && EXTREMUM != 0) begin : g_pix_both
@@ -178,6 +192,31 @@ module cube4_com_lane #(
     endgenerate
     // the slice buffer's write word: the mode's, chosen with the ext copies
     // (on the route to its block RAMs, which are spread over the die)
-    assign acc_q = (ext_v & acc_e) | (~ext_v & acc_c);
+    wire [AC_W-1:0] acc_m = (ext_v & acc_e) | (~ext_v & acc_c);
+    // ---- depth out (ZOUT = 1; numerics.md section 21): the ray's two slice
+    // numbers {valid, m} ride above the mode's word, S5 -> S11, and are set at
+    // S11 with the beat's slice m11 when not yet valid: passed when the blending
+    // lane's T <= DEPTH_T (the extremum lane: at every take), first when the
+    // sample added something (the extremum lane: was taken) ----
+    generate
+        if (ZOUT != 0) begin : g_depth
+            localparam integer AM_W = AC_W - ZW;        // the mode's word
+            reg [ZW-1:0] z6, z7, z8, z9, z10, z11;
+            always @(posedge clk) {z11, z10, z9, z8, z7, z6} <= {z10, z9, z8, z7, z6, acc_in[AM_W +: ZW]};
+            wire ext = ext_v[AC_W-1];
+            wire [ZF_W-1:0] zp = z11[ZF_W +: ZF_W], zf = z11[0 +: ZF_W];
+            wire [ZF_W-1:0] now = {1'b1, m11};
+            wire added = ext ? take_e : added_c;
+            wire [ZF_W-1:0] zp_n = ext ? (take_e ? now : zp) : ((!zp[ZM_W] && passed_c) ? now : zp);
+            wire [ZF_W-1:0] zf_n = (!zf[ZM_W] && added) ? now : zf;
+            assign pix_z = {zp_n, zf_n};
+            assign acc_q = {zp_n, zf_n, acc_m[AM_W-1:0]};
+            wire unused_top = ^acc_m[AC_W-1:AM_W];
+        end else begin : g_no_depth
+            assign pix_z = '0;
+            assign acc_q = acc_m;
+            wire unused_depth = ^{added_c, passed_c, take_e, m11, depth_t};
+        end
+    endgenerate
 endmodule
 `default_nettype wire

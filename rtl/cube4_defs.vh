@@ -128,6 +128,8 @@
 //                        FALL_ON the sample's opacity is multiplied by
 //                        f = min(min(E, CUT_T - E) >> FALL_SH, 256), FALL_W = 9 bits
 //                        (numerics.md section 12, golden/cube4/clip.py)
+//   DEPTH_T [25]         depth out (ZOUT = 1): a blending ray passes when its T <=
+//                        DEPTH_T (Q0.ACC_W, ACC_W <= 24; numerics.md section 21)
 //   FACES [6]            the faces of the frame's box that are the volume's, whose
 //                        rays' first and last samples are path-weighted (bits I0, I1,
 //                        J0, J1, K0, K1 from bit 0; 0: no weighting; numerics.md
@@ -176,11 +178,12 @@
     localparam integer VIEW_FALL_SH = VIEW_CUT_T + CUT_E_W, \
     localparam integer VIEW_FALL_ON = VIEW_FALL_SH + 6, \
     localparam integer FALL_W       = 9, \
-    localparam integer VIEW_FACES   = VIEW_FALL_ON + 1, \
+    localparam integer VIEW_DEPTH_T = VIEW_FALL_ON + 1, \
+    localparam integer VIEW_FACES   = VIEW_DEPTH_T + 25, \
     localparam integer VIEW_W       = VIEW_FACES + 6
 
 // The view bus from the individual register ports (cube4_top and the harnesses).
-`define CUBE4_VIEW_PACK {cfg_faces, cfg_fall_on, cfg_fall_sh, cfg_cut_t, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
+`define CUBE4_VIEW_PACK {cfg_faces, cfg_depth_t, cfg_fall_on, cfg_fall_sh, cfg_cut_t, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
     cfg_cr_hide, cfg_cr_m1, cfg_cr_m0, cfg_cr_j1, cfg_cr_j0, cfg_cr_i1, cfg_cr_i0, \
     cfg_win_m1, cfg_win_m0, cfg_win_j1, cfg_win_j0, cfg_win_i1, cfg_win_i0, \
     cfg_ph0_y, cfg_ph0_x, cfg_mode, cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
@@ -230,6 +233,7 @@
     input  wire [CUT_E_W-1:0] cfg_cut_t, \
     input  wire [5:0]         cfg_fall_sh, \
     input  wire               cfg_fall_on, \
+    input  wire [24:0]        cfg_depth_t, \
     input  wire [5:0]         cfg_faces,
 
 // One wire per view register, read from a view bus (module body).
@@ -273,6 +277,7 @@
     wire signed [CUT_E_W-1:0] cfg_cut_t = bus[VIEW_CUT_T +: CUT_E_W]; \
     wire [5:0]          cfg_fall_sh = bus[VIEW_FALL_SH +: 6]; \
     wire                cfg_fall_on = bus[VIEW_FALL_ON]; \
+    wire [24:0]         cfg_depth_t = bus[VIEW_DEPTH_T +: 25]; \
     wire [5:0]          cfg_faces   = bus[VIEW_FACES +: 6]
 
 // ---------------------------------------------------------------- address registers
@@ -476,13 +481,14 @@
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1, \
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1, \
     parameter integer RECTS    = 0,  parameter integer SLAB        = 0, \
+    parameter integer ZOUT     = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
 
 `define CUBE4_BUILD_PASS \
     .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), \
     .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
     .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
-    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB)
+    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB), .ZOUT(ZOUT)
 
 `define CUBE4_SLICE_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
@@ -550,7 +556,8 @@
     `CUBE4_RANGE(g_bad_vgrad, MODULE, "VGRAD", VGRAD, 0, 1) \
     `CUBE4_RANGE(g_bad_plw, MODULE, "PLW", PLW, 0, 1) \
     `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1) \
-    `CUBE4_RANGE(g_bad_slab, MODULE, "SLAB", SLAB, 0, 1)
+    `CUBE4_RANGE(g_bad_slab, MODULE, "SLAB", SLAB, 0, 1) \
+    `CUBE4_RANGE(g_bad_zout, MODULE, "ZOUT", ZOUT, 0, 1)
 
 // ---------------------------------------------------------------- TRI units
 // cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").

@@ -50,6 +50,9 @@
 //                cube4_clip (CUT_T), and with COMPOSITING its falloff weights
 //                (cube4_sha_slab, FALL_*) by which COM multiplies the blending
 //                modes' opacity.                        0..1. Default 0.
+//   ZOUT         1: depth out (numerics.md section 21): COM keeps two slice
+//                numbers per ray in its buffer word and gives them beside each
+//                finished ray (pix_z; DEPTH_T).          0..1. Default 0.
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
@@ -119,6 +122,7 @@ module cube4_top #(
     output wire [P*BX_W-1:0]         pix_bx,
     output wire [P*4*(ACC_W+1)-1:0]  pix_rgba,
     output wire                      pix_eop,
+    output wire [P*2*(M_W+1)-1:0]    pix_z,       // depth out (ZOUT = 1): lane q {passed, first}, {valid, m} each
     // verification hook
     input  wire [4:0]                dbg_hold
 );
@@ -358,7 +362,8 @@ module cube4_top #(
         .pix_by    (pix_by),
         .pix_bx    (pix_bx),
         .pix_rgba  (pix_rgba),
-        .pix_eop   (pix_eop)
+        .pix_eop   (pix_eop),
+        .pix_z     (pix_z)
     );
 
     // ---------------------------------------------------------------- stream checks
@@ -384,10 +389,10 @@ module cube4_top #(
         .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
         .data ({sha_hdr, sha_rgba, sha_sample, sha_fall}));
     cube4_stream_check #(
-        .NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1)
+        .NAME ("top.pixels"), .DATA_W (P + M_W + BX_W + P * BX_W + P * 4 * (ACC_W + 1) + 1 + P * 2 * (M_W + 1))
     ) u_chk_pix (
         .clk (clk), .rst (rst), .valid (pix_valid), .ready (pix_ready),
-        .data ({pix_mask, pix_m, pix_by, pix_bx, pix_rgba, pix_eop}));
+        .data ({pix_mask, pix_m, pix_by, pix_bx, pix_rgba, pix_eop, pix_z}));
 
     // ---------------------------------------------------------------- frame control
     cube4_frame_ctl u_frame (

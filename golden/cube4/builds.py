@@ -50,6 +50,8 @@ OPTIONS: tuple[Option, ...] = (
            ("cube4_com path-weight columns",), auto_off=True),
     Option("SLAB", 0, "l", "the cut slab (its far face, the falloff weights in SHA and COM)",
            ("cube4_clip far face", "cube4_sha_slab", "cube4_com falloff multipliers")),
+    Option("ZOUT", 0, "z", "depth out (two slice numbers per ray in COM's buffer word)",
+           ("cube4_com depth fields",)),
     Option("RECTS", 0, "r", "slice rectangles (the rectangle table in CFB, GRA's walk, COM)",
            ("cube4_cfb rectangle walk", "cube4_gra position walk", "cube4_com rectangle reader")),
 )

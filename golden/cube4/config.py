@@ -102,6 +102,7 @@ def scene_build(scenes) -> dict:
         b["EXTREMUM"] |= int(is_extremum(sc.mode))
         b["CLIP"] |= int(sc.cut is not None or sc.slab is not None or sc.crop_regions is not None)
         b["SLAB"] |= int(sc.slab is not None)
+        b["ZOUT"] |= int(sc.depth_threshold is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
         b["RECTS"] |= int(sc.skip == "rects")

@@ -188,7 +188,7 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None) -> dict[str, int]:
 
 
 def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None,
-             path_weights: bool = False) -> dict[str, int]:
+             path_weights: bool = False, depth_t: int | None = None) -> dict[str, int]:
     """Registers of cube4_top: the front end's plus the base-plane offsets
     SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8), the mode, the template's
     starting phase, the window and cut plane (clip.Clip; None: every sample counts), and
@@ -214,6 +214,7 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
     slab = (CUT_T_NONE, 0, 0) if clip is None or clip.slab is None else clip.slab
     for name, v in zip(("CUT_T", "FALL_SH", "FALL_ON"), slab):
         regs[name] = int(v)
+    regs["DEPTH_T"] = 0 if depth_t is None else int(depth_t)     # depth out's threshold on T (ZOUT)
     regs["FACES"] = int(trav.faces) if path_weights else 0
     return regs
 

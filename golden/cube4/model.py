@@ -36,7 +36,8 @@ from .view import Traversal
 
 PIXEL_DTYPE = np.dtype(
     [("m", np.int32), ("by", np.int32), ("bx", np.int32),
-     ("r", np.int64), ("g", np.int64), ("b", np.int64), ("a", np.int64)]
+     ("r", np.int64), ("g", np.int64), ("b", np.int64), ("a", np.int64),
+     ("zp", np.int32), ("zf", np.int32)]   # depth out's slices (passed, first; -1: none or not tracked)
 )
 
 
@@ -500,6 +501,7 @@ def render_frame(
             chunk = np.empty(fj.size, dtype=PIXEL_DTYPE)
             chunk["m"] = m
             chunk["by"], chunk["bx"] = fj + r0, fi + c0
+            chunk["zp"], chunk["zf"] = ((zbuf[0][win][fin], zbuf[1][win][fin]) if zbuf is not None else (-1, -1))
             if blend:
                 a_win, t_win = acc[:, win[0], win[1]], trans[win]
                 chunk["r"], chunk["g"], chunk["b"] = a_win[0][fin], a_win[1][fin], a_win[2][fin]

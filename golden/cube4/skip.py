@@ -222,6 +222,8 @@ class SkipPlan:
             out["by"] += self.offset[0]
             out["bx"] += self.offset[1]
             out["m"] += self.start[2] * self.whole.supersample
+            for z in ("zp", "zf"):          # depth out's slices, where the ray has one
+                out[z] = np.where(out[z] >= 0, out[z] + self.start[2] * self.whole.supersample, -1)
         return out
 
 

@@ -56,7 +56,7 @@ def frame_bounds(kinds: np.ndarray, unfinished: list[bool], what: str = "dump") 
 
 def record_words(p: int) -> int:
     """32-bit words per pixel record for P lanes."""
-    return 3 + -(-p // 32) + 5 * p
+    return 3 + -(-p // 32) + 7 * p
 
 
 def read_records(path: Path, p: int) -> np.ndarray:
@@ -83,12 +83,14 @@ def pixels_of(rec: np.ndarray, p: int) -> np.ndarray:
     lanes = np.arange(p)
     mask = ((rec[:, 3 + lanes // 32] >> (lanes % 32).astype(np.uint32)) & 1).astype(bool)
     bx = rec[:, 3 + mw:3 + mw + p]
-    rgba = rec[:, 3 + mw + p:].reshape(-1, p, 4)
+    rgba = rec[:, 3 + mw + p:3 + mw + 5 * p].reshape(-1, p, 4)
+    z = rec[:, 3 + mw + 5 * p:].reshape(-1, p, 2).astype(np.int64) - 1      # m + 1, 0: none
     beat, lane = np.nonzero(mask)
     out = np.empty(beat.size, dtype=PIXEL_DTYPE)
     out["m"], out["by"], out["bx"] = rec[beat, 1], rec[beat, 2], bx[beat, lane]
     for c, name in enumerate("rgba"):
         out[name] = rgba[beat, lane, c]
+    out["zp"], out["zf"] = z[beat, lane, 0], z[beat, lane, 1]
     return out
 
 

@@ -13,15 +13,16 @@ import time
 
 import numpy as np
 
-from cube4.app.render import RenderResult, register_engine, view_image
+from cube4.app.render import RenderResult, depth_image, depth_stats, register_engine, view_image
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.cycles import has_falloff, rect_frame_cycles
 from cube4.errors import UserError
-from cube4.host import assemble_view, build_memory, pass_rects, plan_view, schedule_stats, trav_stats, view_stats
+from cube4.host import (assemble_view, build_memory, depth_threshold, pass_rects, plan_view, schedule_stats,
+                        trav_stats, view_stats)
 from cube4.scene import Scene
 
-from .rtl import FrameJob, baseplane_from_pixels, frame_rects, render_frames
+from .rtl import FrameJob, baseplane_from_pixels, depth_from_pixels, frame_rects, render_frames
 from .errors import SimulationError
 
 NAME = "rtl"
@@ -37,8 +38,6 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
                         "use --engine golden, or the box (default) or --rects on the RTL")
     if any(sc.geometry is not None for sc in scenes):
         raise UserError("depth in ([geometry]) runs in the golden model only; use --engine golden")
-    if any(sc.depth_threshold is not None for sc in scenes):
-        raise UserError("depth out ([output] depth_threshold) runs in the golden model only; use --engine golden")
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     vps = [plan_view(vol, sc, cfg) for sc in scenes]
     use_rects = bool(build["RECTS"])   # one build: a RECTS build runs every view with rectangles
@@ -48,7 +47,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
                 jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip,
-                                     rects=rects[n]))
+                                     rects=rects[n], depth_t=depth_threshold(vp.scene, cfg)))
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
@@ -64,8 +63,11 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     results = []
     for vp, ran in zip(vps, per_view):
         t1 = time.perf_counter()
+        depth = vp.scene.depth_threshold is not None
         frame = assemble_view(vp, cfg, {n: (baseplane_from_pixels(out["pixels"], job.trav.baseplane_shape),
-                                            out["pixels"]) for n, (job, out) in ran.items()})
+                                            out["pixels"]) for n, (job, out) in ran.items()},
+                              {n: depth_from_pixels(out["pixels"], job.trav.baseplane_shape)
+                               for n, (job, out) in ran.items()} if depth else None)
         img = view_image(vp, frame)
         stats = view_stats(NAME, dims, vp.scene, cfg)
         stats.update(trav_stats(vp.trav))
@@ -87,7 +89,11 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         sim_s = sum(o["sim_wall_s"] for o in outs_v)
         wall = sim_s + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
         stats["wall_s"] = wall
-        results.append(RenderResult(NAME, img, wall, frame=frame, stats=stats))
+        res = RenderResult(NAME, img, wall, frame=frame, stats=stats)
+        if depth:
+            res.depth = depth_image(vp, frame)
+            res.stats["depth"] = depth_stats(res.depth, vp.scene.depth_threshold)
+        results.append(res)
     return results
 
 

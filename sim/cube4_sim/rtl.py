@@ -50,6 +50,7 @@ class FrameJob:
     stall_out: int = 0  # pixel-port not-ready probability /256
     reset_after_cycles: int = 0  # start, reset after this many cycles, then render
     rects: SliceRects | None = None  # slice rectangles (a RECTS build; None there: the whole box)
+    depth_t: int | None = None  # depth out's threshold on T (a ZOUT build; None: not tracked)
     extra: dict = field(default_factory=dict)
 
 
@@ -66,6 +67,8 @@ def check_frame_fits(fr: FrameJob, params: dict) -> None:
         raise UserError("a frame with a window, crop regions or a cut plane needs a build with CLIP = 1")
     if fr.clip is not None and fr.clip.slab is not None and not params["SLAB"]:
         raise UserError("a frame with a slab needs a build with SLAB = 1")
+    if fr.depth_t is not None and not params["ZOUT"]:
+        raise UserError("a frame with depth out needs a build with ZOUT = 1")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
         raise UserError("a shaded frame needs a build with SHADING = 1")
 
@@ -202,7 +205,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                 ideal = (rect_frame_cycles(fr_rects, cfg.pipelines, shading, vgrad) + 100) * COM_MIN_SLICE
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
-                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted),
+                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted, fr.depth_t),
                 "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
@@ -249,6 +252,15 @@ def frame_rects(fr: FrameJob, gra: bool) -> SliceRects:
     t = fr.trav
     r = fr.rects if fr.rects is not None else whole_box_rects(t)
     return replace(r, gra=gra)
+
+
+def depth_from_pixels(pixels: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """Depth out's slices (rows, cols, 2) int64 (passed, first; model.Frame.depth_m) from
+    the finished rays; pixels never hit stay -1."""
+    z = np.full((*shape, 2), -1, dtype=np.int64)
+    z[pixels["by"], pixels["bx"], 0] = pixels["zp"]
+    z[pixels["by"], pixels["bx"], 1] = pixels["zf"]
+    return z
 
 
 def baseplane_from_pixels(pixels: np.ndarray, shape: tuple[int, int]) -> np.ndarray:

@@ -22,6 +22,8 @@
 //     words 3 ..          mask, MASK_WORDS words (lane q: bit q % 32 of word q / 32)
 //     next P words        bx of lane q
 //     next 4P words       R, G, B, A of lane q at 4q .. 4q + 3
+//     next 2P words       depth out of lane q at 2q, 2q + 1: passed, first,
+//                         each m + 1 when valid, 0 when not (0 without ZOUT)
 //   A start record is zero after its header. The file is flushed after each
 //   last beat and after any beat outside a frame, so stray beats are seen.
 //
@@ -48,6 +50,7 @@ module cube4_top_harness #(
     parameter integer PLW         = 1,
     parameter integer RECTS       = 0,    // 1: slice rectangles (the table from CUBE4_RECTFILE)
     parameter integer SLAB        = 0,    // 1: the cut slab (CUT_T, FALL_*)
+    parameter integer ZOUT        = 0,    // 1: depth out (DEPTH_T, pix_z)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
@@ -103,6 +106,7 @@ module cube4_top_harness #(
     reg [CUT_E_W-1:0]    cfg_cut_t_q;
     reg [5:0]            cfg_fall_sh_q;
     reg                  cfg_fall_on_q;
+    reg [24:0]           cfg_depth_t_q;
     reg [5:0]            cfg_faces_q;
     always @(posedge clk) begin
         rst_q         <= rst;
@@ -162,6 +166,7 @@ module cube4_top_harness #(
         cfg_cut_t_q     <= cfg_cut_t;
         cfg_fall_sh_q   <= cfg_fall_sh;
         cfg_fall_on_q   <= cfg_fall_on;
+        cfg_depth_t_q   <= cfg_depth_t;
         cfg_faces_q     <= cfg_faces;
     end
 
@@ -263,6 +268,7 @@ module cube4_top_harness #(
     wire [BX_W-1:0]           pix_by;
     wire [P*BX_W-1:0]         pix_bx;
     wire [P*4*(ACC_W+1)-1:0]  pix_rgba;
+    wire [P*2*(M_W+1)-1:0]    pix_z;
 
     cube4_top #(
         .P           (P),
@@ -282,7 +288,8 @@ module cube4_top_harness #(
         .VGRAD       (VGRAD),
         .PLW         (PLW),
         .RECTS       (RECTS),
-        .SLAB        (SLAB)
+        .SLAB        (SLAB),
+        .ZOUT        (ZOUT)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -347,6 +354,7 @@ module cube4_top_harness #(
         .cfg_cut_t    (cfg_cut_t_q),
         .cfg_fall_sh  (cfg_fall_sh_q),
         .cfg_fall_on  (cfg_fall_on_q),
+        .cfg_depth_t  (cfg_depth_t_q),
         .cfg_faces    (cfg_faces_q),
         .start       (start_q),
         .busy        (busy),
@@ -360,6 +368,7 @@ module cube4_top_harness #(
         .pix_bx      (pix_bx),
         .pix_rgba    (pix_rgba),
         .pix_eop     (pix_eop),
+        .pix_z       (pix_z),
         .dbg_hold    (hold)
     );
 
@@ -368,7 +377,9 @@ module cube4_top_harness #(
     localparam integer MASK_WORDS = (P + 31) / 32;
     localparam integer BX_WORD0   = 3 + MASK_WORDS;
     localparam integer RGBA_WORD0 = BX_WORD0 + P;
-    localparam integer REC_WORDS  = RGBA_WORD0 + 4 * P;
+    localparam integer Z_WORD0    = RGBA_WORD0 + 4 * P;
+    localparam integer REC_WORDS  = Z_WORD0 + 2 * P;
+    localparam integer ZF_W       = M_W + 1;
     localparam [7:0]   REC_MAGIC  = 8'hC4;
     localparam [7:0]   REC_START  = 8'd1;
     localparam [7:0]   REC_BEAT   = 8'd2;
@@ -390,6 +401,9 @@ module cube4_top_harness #(
             beat_rec[32 * (BX_WORD0 + l) +: BX_W] = pix_bx[l * BX_W +: BX_W];
             for (c = 0; c < 4; c = c + 1)   // pix_rgba lane l: {R, G, B, A}, R on top
                 beat_rec[32 * (RGBA_WORD0 + 4 * l + c) +: CW] = pix_rgba[(4 * l + 3 - c) * CW +: CW];
+            for (c = 0; c < 2; c = c + 1)   // pix_z lane l: {passed, first}, {valid, m} each
+                beat_rec[32 * (Z_WORD0 + 2 * l + c) +: ZF_W] =
+                    pix_z[(2 * l + 1 - c) * ZF_W + M_W] ? ZF_W'(pix_z[(2 * l + 1 - c) * ZF_W +: M_W]) + 1'b1 : '0;
         end
     end
 

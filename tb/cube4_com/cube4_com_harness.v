@@ -56,7 +56,8 @@ module cube4_com_harness #(
     output wire [BX_W-1:0]       out_by,
     output wire [P*BX_W-1:0]     out_bx,
     output wire [PIX_W-1:0]      out_rgba,
-    output wire                  out_eop
+    output wire                  out_eop,
+    output wire [P*2*(M_W+1)-1:0] out_z
 );
     cube4_sim_clock u_clock (.clk (clk));
 
@@ -88,7 +89,8 @@ module cube4_com_harness #(
         .pix_by    (out_by),
         .pix_bx    (out_bx),
         .pix_rgba  (out_rgba),
-        .pix_eop   (out_eop)
+        .pix_eop   (out_eop),
+        .pix_z     (out_z)
     );
 
     cube4_stream_check #(
@@ -104,13 +106,13 @@ module cube4_com_harness #(
 
     cube4_stream_check #(
         .NAME   ("com.out (pixels)"),
-        .DATA_W (P + M_W + BX_W + P * BX_W + PIX_W + 1)
+        .DATA_W (P + M_W + BX_W + P * BX_W + PIX_W + 1 + P * 2 * (M_W + 1))
     ) u_chk_out (
         .clk   (clk),
         .rst   (rst),
         .valid (out_valid),
         .ready (out_ready),
-        .data  ({out_mask, out_m, out_by, out_bx, out_rgba, out_eop})
+        .data  ({out_mask, out_m, out_by, out_bx, out_rgba, out_eop, out_z})
     );
 
 endmodule

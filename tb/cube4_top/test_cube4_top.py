@@ -651,3 +651,55 @@ def test_slab_frames(p, s, shading):
             t = job.trav
             want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, bool(shading), False, fall)
             assert res["cycles"] == want, (label, res["cycles"], want)
+
+
+# ---------------------------------------------------------------- depth out
+@pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
+def test_depth_out_frames(p, s):
+    """Depth out (ZOUT = 1, numerics.md §21): every finished ray carries the slice where its
+    transmittance first reached DEPTH_T and the slice of its first sample that added
+    something (MIP / MinIP: its held and its first counted sample), bit for bit against the
+    golden model: composite (shaded and not), X-ray, MIP, MinIP, a crop box and the box
+    schedule (slices of the whole frame), six views with 45° and (1, 1, 1), random stalls
+    and a reset in mid-frame; the depths are not all equal (the test sees them), and the
+    unstalled frames take the cycles of a build without them."""
+    from cube4.skip import plan_skip
+
+    rng = np.random.default_rng(600 + p)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    vol[:2], vol[:, :2], vol[:, :, -3:] = 0, 0, 0     # empty space for the box schedule's frame
+    views = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
+             (1.0, 0.4, -0.7)]
+    modes = ["composite", "composite", "xray", "mip", "minip", "composite"]
+    one = 1 << cfg.acc_bits
+    thresholds = [one // 2, one // 10, one // 4, 0, 0, one * 3 // 4]
+    jobs = []
+    for n, (d, mode) in enumerate(zip(views, modes)):
+        if n == 2:      # a crop box
+            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
+        else:
+            trav = make_traversal(dims, d, cfg.weight_bits, s)
+        lut, rmap = random_tables(rng, cfg)
+        lut[:, 3] = rng.integers(0, 1 << (cfg.alpha_bits - 1), size=lut.shape[0])
+        clip = None
+        if n == 5:      # the box schedule: the box's slices moved to the whole frame's
+            lut[:80] = 0
+            plan = plan_skip(vol, trav, lut, mode, p=p)
+            assert plan.box is not None and plan.fraction < 1.0, plan.box
+            trav, clip = plan.trav, plan.clip
+        jobs.append(FrameJob(trav, lut, rmap if n in (0, 5) else None, mode=mode, clip=clip,
+                             depth_t=thresholds[n], stall=(0, 60, 0, 120, 30, 0)[n],
+                             stall_out=(0, 0, 90, 60, 0, 0)[n], reset_after_cycles=150 if n == 3 else 0))
+    results = render_frames(vol, jobs, cfg, max_dim=64, build={"ZOUT": 1})
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"depth out P={p} S={s} view {views[n]} {job.mode} DEPTH_T {job.depth_t}"
+        check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip, depth_t=job.depth_t)
+        px = res["pixels"]
+        assert (px["zp"] >= 0).any() and (px["zf"] >= 0).any(), label
+        assert len(np.unique(px["zf"][px["zf"] >= 0])) > 1, label
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True), label
