@@ -19,18 +19,21 @@ def start(p: int, frame: int) -> list[int]:
     return [header(START, frame)] + [0] * (record_words(p) - 1)
 
 
-def beat(p: int, frame: int, m: int, by: int, lanes: dict[int, tuple[int, int, int, int, int]],
+def beat(p: int, frame: int, m: int, by: int, lanes: dict[int, tuple],
          last: bool = False) -> list[int]:
-    """lanes: lane -> (bx, r, g, b, a)."""
+    """lanes: lane -> (bx, r, g, b, a) or (bx, r, g, b, a, zp + 1, zf + 1): depth out's
+    slices as the harness writes them (m + 1; 0: none)."""
     mw = -(-p // 32)
     mask = [0] * mw
     bx = [0] * p
     rgba = [0] * (4 * p)
+    z = [0] * (2 * p)
     for q, (x, *c) in lanes.items():
         mask[q // 32] |= 1 << (q % 32)
         bx[q] = x
-        rgba[4 * q:4 * q + 4] = c
-    return [header(LAST if last else BEAT, frame), m, by, *mask, *bx, *rgba]
+        rgba[4 * q:4 * q + 4] = c[:4]
+        z[2 * q:2 * q + 2] = c[4:] or [0, 0]
+    return [header(LAST if last else BEAT, frame), m, by, *mask, *bx, *rgba, *z]
 
 
 def write(tmp_path, records: list[list[int]]):
@@ -40,21 +43,22 @@ def write(tmp_path, records: list[list[int]]):
 
 
 def test_record_size():
-    assert record_words(1) == 3 + 1 + 5 and record_words(32) == 3 + 1 + 160 and record_words(33) == 3 + 2 + 165
+    assert record_words(1) == 3 + 1 + 7 and record_words(32) == 3 + 1 + 224 and record_words(33) == 3 + 2 + 231
 
 
 @pytest.mark.parametrize("p", [2, 5, 33, 64])
 def test_pixels_of_two_frames(tmp_path, p):
     hi = p - 1
     recs = [start(p, 0),
-            beat(p, 0, 3, 7, {0: (11, 1, 2, 3, 4), hi: (12, 5, 6, 7, (1 << 25) - 1)}),
+            beat(p, 0, 3, 7, {0: (11, 1, 2, 3, 4, 6, 0), hi: (12, 5, 6, 7, (1 << 25) - 1)}),
             beat(p, 0, 4, 8, {hi: (13, 9, 10, 11, 12)}, last=True),
             start(p, 1),
             beat(p, 1, 0, 0, {0: (1, 0, 0, 0, 1)}, last=True)]
     f0, f1 = read_pixel_frames(write(tmp_path, recs), p, [False, False])
-    want0 = [(3, 7, 11, 1, 2, 3, 4), (3, 7, 12, 5, 6, 7, (1 << 25) - 1), (4, 8, 13, 9, 10, 11, 12)]
+    want0 = [(3, 7, 11, 1, 2, 3, 4, 5, -1), (3, 7, 12, 5, 6, 7, (1 << 25) - 1, -1, -1),
+             (4, 8, 13, 9, 10, 11, 12, -1, -1)]
     assert [tuple(int(v) for v in r) for r in f0] == want0
-    assert [tuple(int(v) for v in r) for r in f1] == [(0, 0, 1, 0, 0, 0, 1)]
+    assert [tuple(int(v) for v in r) for r in f1] == [(0, 0, 1, 0, 0, 0, 1, -1, -1)]
 
 
 def test_unfinished_frame_is_skipped_only_when_expected(tmp_path):
