@@ -129,7 +129,7 @@ def rays_agree(full, part) -> bool:
     both with the same value (``full``: the fixed schedule's frame)."""
     def by_address(pixels):
         addr = pixels["by"].astype(np.int64) * (1 << 20) + pixels["bx"]
-        return addr, {a: tuple(p)[3:] for a, p in zip(addr.tolist(), pixels.tolist())}
+        return addr, {a: tuple(p)[3:7] for a, p in zip(addr.tolist(), pixels.tolist())}   # r, g, b, a
 
     addr, got = by_address(part.pixels)
     if np.unique(addr).size != addr.size:
