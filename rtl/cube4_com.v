@@ -38,6 +38,10 @@
 //               (rect_*, cube4_cfb's layout), the read-after-write rule by
 //               position. Needs PLW = 0.              0..1.   Default 0.
 //   ADDR_W      the table layout's address width (cube4_cfb's).  Default 16.
+//   SLAB        1 (with COMPOSITING): each lane multiplies the blending A by
+//               the sample's falloff weight (in_fall; cube4_com_lane).  0..1.  Default 0.
+//   ZOUT        1: depth out: the buffer word grows by 2 (M_W + 1) bits, the
+//               ray's {passed, first} slice numbers, given on pix_z.  0..1.  Default 0.
 //   The defaults are cube4_top's.
 //
 // Latency

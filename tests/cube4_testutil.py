@@ -137,3 +137,11 @@ def rays_agree(full, part) -> bool:
     _, want = by_address(full.pixels)
     nonzero = {a for a, v in want.items() if any(v)} | {a for a, v in got.items() if any(v)}
     return all(got.get(a) == want.get(a) for a in nonzero)
+
+
+def psnr_vs_point(vol, scene, cfg) -> float:
+    """The golden model's PSNR (peak 1) against the reference's centre points, one view."""
+    from cube4.app.render import render
+
+    err = render(vol, scene, cfg, "golden").image - render(vol, scene, cfg, "reference-point").image
+    return float(-20 * np.log10(np.sqrt(np.mean(err * err))))

@@ -12,7 +12,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from cube4_testutil import SKIP_VIEWS
+from cube4_testutil import SKIP_VIEWS, psnr_vs_point
 
 from cube4.app.render import render, render_bricked_views
 from cube4.app.volumes import load_volume
@@ -90,11 +90,7 @@ def test_golden_near_the_reference():
     plain = dataclasses.replace(sc, slab=None)
     hard = dataclasses.replace(sc, slab=(*sc.slab[:3], 0.0))
 
-    def psnr(scene):
-        err = render(vol, scene, cfg, "golden").image - render(vol, scene, cfg, "reference-point").image
-        return -20 * np.log10(np.sqrt(np.mean(err * err)))
-
-    assert psnr(sc) > psnr(plain) - 3.0
+    assert psnr_vs_point(vol, sc, cfg) > psnr_vs_point(vol, plain, cfg) - 3.0
     assert np.abs(render(vol, sc, cfg, "golden").image - render(vol, hard, cfg, "golden").image).max() > 0.02
 
 
