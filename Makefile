@@ -111,7 +111,10 @@ LINT_SETS_cube4_com         := P=1,PLW=0 P=5,MAX_SS_LOG2=2,PLW=0 P=16,ALPHA_W=16
                                PLW=0 P=1,EXTREMUM=0 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,VOXEL_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 \
                                RECTS=1,PLW=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,MAX_DIM=64,PLW=0 P=16,RECTS=1,EXTREMUM=0,MAX_DIM=2048,PLW=0 \
                                P=2,RECTS=1,MAX_DIM=2,COMPOSITING=0,PLW=0 SLAB=1 P=1,SLAB=1,PLW=0 SLAB=1,COMPOSITING=0,PLW=0 \
-                               ZOUT=1 P=1,ZOUT=1,EXTREMUM=0,PLW=0 ZOUT=1,COMPOSITING=0,PLW=0 P=5,ZOUT=1,ACC_W=24,ALPHA_W=16,MAX_SS_LOG2=3
+                               ZOUT=1 P=1,ZOUT=1,EXTREMUM=0,PLW=0 ZOUT=1,COMPOSITING=0,PLW=0 P=5,ZOUT=1,ACC_W=24,ALPHA_W=16,MAX_SS_LOG2=3 \
+                               ZIN=1 P=1,ZIN=1,EXTREMUM=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 P=3,MAX_DIM=3,ZIN=1,PLW=0
+LINT_SETS_cube4_com_stop    := P=1 P=5,MAX_SS_LOG2=2 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=2,MAX_DIM=2 P=64,MAX_DIM=64 P=3,MAX_DIM=3 \
+                               P=8,MAX_DIM=128
 LINT_SETS_cube4_com_seq     := P=1,SP_W=9 P=5,MAX_SS_LOG2=2,SP_W=14 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,SP_W=18 \
                                P=2,MAX_DIM=2,SP_W=1 COMPOSITING=0 EXTREMUM=0 P=64,MAX_DIM=64,SP_W=6
 LINT_SETS_cube4_com_walk    := P=1,SP_W=16 P=5,MAX_SS_LOG2=2,SP_W=14 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,SP_W=18 \
@@ -136,7 +139,8 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
                                PLW=0 P=1,PLW=0,EXTREMUM=0 SHADING=0,COMPOSITING=0,CLIP=0,PLW=0 \
                                RECTS=1,PLW=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 P=8,RECTS=1,PLW=0,VGRAD=1 \
                                SLAB=1 P=1,SLAB=1,SHADING=0 P=5,SLAB=1,MAX_SS_LOG2=2 SLAB=1,COMPOSITING=0,SHADING=0,PLW=0 \
-                               ZOUT=1 P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2
+                               ZOUT=1 P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2 \
+                               ZIN=1 P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

@@ -42,6 +42,9 @@
 //               the sample's falloff weight (in_fall; cube4_com_lane).  0..1.  Default 0.
 //   ZOUT        1: depth out: the buffer word grows by 2 (M_W + 1) bits, the
 //               ray's {passed, first} slice numbers, given on pix_z.  0..1.  Default 0.
+//   ZIN         1: depth in: cube4_com_stop reads each lane's stop slice from
+//               the host's table (stop_*) and the sample counts only when
+//               m < stop (S5 -> S6).  0..1.  Default 0.
 //   The defaults are cube4_top's.
 //
 // Latency
@@ -75,6 +78,8 @@
 //             5/4, 3/4, 1/2}, Q0.ALPHA_W each, written at lut_addr when lut_we
 //             (between frames); PLW = 0: one unused bit
 //   rect_*    the rectangle table (RECTS = 1; cube4_cfb's, written alike)
+//   stop_*    the stop table (ZIN = 1; cube4_com_stop, CUBE4_STOP_LAYOUT),
+//             written between frames
 //   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
 //             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
 //             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame), pix_z
@@ -88,7 +93,7 @@
 //   saturates C at 2^F and T at 0 (section 13).
 // =============================================================================
 module cube4_com #(
-    `CUBE4_BUILD_PARAMS, `CUBE4_RECT_LAYOUT,
+    `CUBE4_BUILD_PARAMS, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
 ) (
@@ -99,6 +104,8 @@ module cube4_com #(
     // the rectangle table (RECTS = 1; cube4_cfb's, written alike; COM reads INS, J_IN,
     // J_HI, I_IN, I_HIN, STX, STY)
     input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
+    // the stop table (ZIN = 1; cube4_com_stop: one word of all P banks per address)
+    input  wire stop_we, input wire [STOP_AW-1:0] stop_addr, input wire [P*M_W-1:0] stop_data,
     // shaded stream in
     input  wire in_valid, output wire in_ready, input wire [HDR_W-1:0] in_hdr,
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
@@ -156,6 +163,8 @@ module cube4_com #(
     wire [DIM_W-1:0]  r0_j;
     wire [PB_W-1:0]   r0_pb;
     wire [P*IW-1:0]   ipos, f1_ipos;
+    wire [P*LANE_W-1:0] tpos;
+    wire [P-1:0]      keep_5;
     wire [IW-1:0]     f1_j;
     wire              f1_dxf, f1_dyf;
     wire [SP_W-1:0]   pos_sp, sp_wr;
@@ -181,11 +190,11 @@ module cube4_com #(
         .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr),
         .take(take), .credit(credit), .hazard(hazard), .step(step), .step_c(step_c),
         .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb), .sop(sop), .first(first), .dxb(dxb), .dyb(dyb),
-        .ipos(ipos), .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
+        .ipos(ipos), .tpos(tpos), .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
         .pos_sp(pos_sp), .pos_pb(pos_pb), .fresh(fresh), .stx(stx), .sty(sty), .nx_in(nx_in),
         .v_s(v_s), .sp_fly(sp_fly), .sp_wr(sp_wr), .pb_rd(pb_rd), .pb_wr(pb_wr),
         .dxb4(dxb4), .dyb4(dyb4), .dkb4(dkb4), .t0_4(t0_4), .fresh_4(fresh_4),
-        .cnt_6(cnt_6), .cnt_7(cnt_7),
+        .keep_5(keep_5), .cnt_6(cnt_6), .cnt_7(cnt_7),
         .mode_xray(mode_xray), .mode_ext(mode_ext), .mode_min(mode_min),
         .push_d(push_d), .give(give),
         .fin_o(fin_o), .m_o(m_o), .by_o(by_o), .bx_o(bx_o), .eop_o(eop_o));
@@ -222,6 +231,22 @@ module cube4_com #(
             assign {ph_x, ph_y, phn_x, phn_y} = '0;
             assign {f1_last, f1_wxn, f1_wyn} = 3'b000;
             wire unused_rect = ^{step_c, sop, first, v_s[NS]};
+        end
+    endgenerate
+
+    // ==== depth in: the lanes' samples in front of the geometry (S5) ====
+    generate
+        if (ZIN != 0) begin : g_stop
+            cube4_com_stop #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2)
+            ) u_stop (
+                .clk(clk), .cfg(cfg),
+                .stop_we(stop_we), .stop_addr(stop_addr), .stop_data(stop_data),
+                .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb), .tpos(tpos), .stx(stx), .sty(sty),
+                .ok(keep_5));
+        end else begin : g_no_stop
+            assign keep_5 = '1;
+            wire unused_stop = ^{stop_we, stop_addr, stop_data, tpos};
         end
     endgenerate
 

@@ -39,6 +39,7 @@
 //   r0_*, sop, first, dxb, dyb   R0's fields: slice m [M_W], row j [DIM_W],
 //             partial beam pb [PB_W]; first: j = 0 and pb = 0
 //   ipos      S0: i of each lane [IW] (pb * P + lane position)
+//   tpos      S0: each lane's position t [LANE_W] (lane_pos)
 //   f1_*      S1 registers: ipos, j [IW], the next sample's steps dxf, dyf
 //   pos_sp, pos_pb   in   R0's slot and partial beam (walk / rect)
 //   fresh     in   S0: the lane's ray starts (its previous sample is outside)
@@ -49,7 +50,9 @@
 //   sp_wr, pb_rd, pb_wr   S10's slot, S1's and S2's partial beam
 //   dxb4, dyb4, dkb4, t0_4, fresh_4   S4's back steps (x, y, voxel slice
 //             changed), lane at t = 0 and fresh ray per lane
-//   cnt_6, cnt_7   S6, S7: the lane's sample counts (inside and KEEP)
+//   keep_5    in   S5: the lane's sample may count (depth in, cube4_com_stop;
+//             all ones without), ANDed into S6's counts
+//   cnt_6, cnt_7   S6, S7: the lane's sample counts (inside, KEEP, keep_5)
 //   mode_xray, mode_ext, mode_min   the mode, registered
 //   push_d, give   S10: pushes at S11; returns its FIFO entry
 //   fin_o, m_o, by_o, bx_o, eop_o   S11: finished-ray mask, slice, by, bx
@@ -72,7 +75,7 @@ module cube4_com_seq #(
     output wire step, output wire [1:0] step_c,
     output wire [M_W-1:0] r0_m, output wire [DIM_W-1:0] r0_j, output wire [PB_W-1:0] r0_pb,
     output wire sop, output wire first, output wire dxb, output wire dyb,
-    output wire [P*IW-1:0] ipos,
+    output wire [P*IW-1:0] ipos, output wire [P*LANE_W-1:0] tpos,
     output reg  [P*IW-1:0] f1_ipos, output reg [IW-1:0] f1_j, output reg f1_dxf, output reg f1_dyf,
     input  wire [SP_W-1:0] pos_sp, input wire [PB_W-1:0] pos_pb, input wire [P-1:0] fresh,
     input  wire [DIM_W-1:0] stx, input wire [DIM_W-1:0] sty, input wire [P-1:0] nx_in,
@@ -80,6 +83,7 @@ module cube4_com_seq #(
     output wire [(NS-1)*SP_W-1:0] sp_fly, output wire [SP_W-1:0] sp_wr,
     output wire [PB_W-1:0] pb_rd, output wire [PB_W-1:0] pb_wr,
     output wire dxb4, output wire dyb4, output wire dkb4, output wire [P-1:0] t0_4, output wire [P-1:0] fresh_4,
+    input  wire [P-1:0] keep_5,
     output wire [P-1:0] cnt_6, output wire [P-1:0] cnt_7,
     output reg  mode_xray, output reg mode_ext, output reg mode_min,
     output reg  push_d, output reg give,
@@ -131,6 +135,7 @@ module cube4_com_seq #(
             assign ins_d[q] = r0_lane_valid[q] && r0_lane_inside[q];
             assign cnt_d[q] = ins_d[q] && r0_lane_keep[q];   // the sample counts
             assign ipos[q*IW +: IW] = pbp + IW'(t);
+            assign tpos[q*LANE_W +: LANE_W] = t;
         end
     endgenerate
 
@@ -190,6 +195,7 @@ module cube4_com_seq #(
         end
         pb_s[2] <= pb_s[1];
         for (k = 2; k <= 7; k = k + 1) cnt_s[k] <= cnt_s[k-1];
+        cnt_s[6] <= cnt_s[5] & keep_5;       // depth in: in front of the geometry (all ones without)
         for (k = 2; k <= 4; k = k + 1) begin
             fresh_s[k] <= fresh_s[k-1];  t0_s[k] <= t0_s[k-1];
         end

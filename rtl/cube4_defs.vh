@@ -355,6 +355,18 @@
     localparam integer TAG_LINL  = TAG_LVAL + P, \
     localparam integer TAG_W     = TAG_LINL + P
 
+// ---------------------------------------------------------------- stop table
+// Depth in (ZIN = 1, cube4_com_stop; golden/cube4/memory.py stop_table): the
+// stop slices of the base plane's pixels (by, bx) in P banks, bank bx mod P,
+// word {by [ROWS_W], bx div P [COLS_W]}; a base plane has at most 2 MAX_DIM - 1
+// rows and columns (NI + SX, NJ + SY).
+//   ROWS_W = clog2(2 MAX_DIM), COLS_W = clog2(ceil(2 MAX_DIM / P)) (at least 1),
+//   STOP_AW = ROWS_W + COLS_W
+`define CUBE4_STOP_LAYOUT \
+    localparam integer ROWS_W  = $clog2(2 * MAX_DIM), \
+    localparam integer COLS_W  = ((2 * MAX_DIM + P - 1) / P > 1) ? $clog2((2 * MAX_DIM + P - 1) / P) : 1, \
+    localparam integer STOP_AW = ROWS_W + COLS_W
+
 // ---------------------------------------------------------------- slice rectangles
 // One entry per sample slice of the rectangle table of cube4_cfb (RECTS = 1;
 // golden/cube4/slices.py, memory.py rect_table; numerics.md section 18), LSB
@@ -481,14 +493,15 @@
     parameter integer EXTREMUM = 1,  parameter integer CLIP        = 1, \
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1, \
     parameter integer RECTS    = 0,  parameter integer SLAB        = 0, \
-    parameter integer ZOUT     = 0, \
+    parameter integer ZOUT     = 0,  parameter integer ZIN         = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
 
 `define CUBE4_BUILD_PASS \
     .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), \
     .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
     .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
-    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB), .ZOUT(ZOUT)
+    .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB), .ZOUT(ZOUT), \
+    .ZIN(ZIN)
 
 `define CUBE4_SLICE_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
@@ -557,7 +570,8 @@
     `CUBE4_RANGE(g_bad_plw, MODULE, "PLW", PLW, 0, 1) \
     `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1) \
     `CUBE4_RANGE(g_bad_slab, MODULE, "SLAB", SLAB, 0, 1) \
-    `CUBE4_RANGE(g_bad_zout, MODULE, "ZOUT", ZOUT, 0, 1)
+    `CUBE4_RANGE(g_bad_zout, MODULE, "ZOUT", ZOUT, 0, 1) \
+    `CUBE4_RANGE(g_bad_zin, MODULE, "ZIN", ZIN, 0, 1)
 
 // ---------------------------------------------------------------- TRI units
 // cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").

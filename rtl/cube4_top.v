@@ -41,7 +41,8 @@
 //   Illegal (elaboration stops): COMPOSITING = EXTREMUM = 0; SHADING = 1 with
 //   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0;
 //   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
-//   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0.
+//   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0;
+//   ZIN = 1 with RECTS = 1.
 //   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
 //                slice's entry of the table (rect_*), GRA and COM follow the
 //                rectangles; every frame needs its table (the whole box for the
@@ -53,6 +54,10 @@
 //   ZOUT         1: depth out (numerics.md section 21): COM keeps two slice
 //                numbers per ray in its buffer word and gives them beside each
 //                finished ray (pix_z; DEPTH_T).          0..1. Default 0.
+//   ZIN          1: depth in (numerics.md section 22): COM reads each lane's
+//                stop slice from the host's table (stop_*, cube4_com_stop)
+//                and counts only the samples in front of it; every frame
+//                needs its table (all 2^M_W - 1: no geometry). 0..1. Default 0.
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
@@ -81,7 +86,7 @@
 module cube4_top #(
     `CUBE4_BUILD_PARAMS, parameter integer DEPTH = 65536,
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
-    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT,
+    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3,
     localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W   // a LUT entry (lut_data)
@@ -105,6 +110,11 @@ module cube4_top #(
     input  wire                      rect_we,
     input  wire [M_W-1:0]            rect_addr,
     input  wire [RECT_W-1:0]         rect_data,
+    // the stop table (ZIN = 1; unused otherwise): address {by, bx div P}, bank b
+    // of the word at [b*M_W] (golden/cube4/memory.py stop_table, CUBE4_STOP_LAYOUT)
+    input  wire                      stop_we,
+    input  wire [STOP_AW-1:0]        stop_addr,
+    input  wire [P*M_W-1:0]          stop_data,
     // view registers
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
@@ -145,6 +155,9 @@ module cube4_top #(
         end
         if (SLAB != 0 && CLIP == 0) begin : g_slab_clip
             $error("cube4_top: SLAB = 1 needs CLIP = 1 (the slab is the cut plane's)");
+        end
+        if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
+            $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
         end
         if (SHADING != 0 && COMPOSITING == 0) begin : g_shading_alone
             $error("cube4_top: SHADING = 1 needs COMPOSITING = 1 (MIP, MinIP and X-ray are not shaded)");
@@ -349,6 +362,9 @@ module cube4_top #(
         .rect_we   (rect_we),
         .rect_addr (rect_addr),
         .rect_data (rect_data),
+        .stop_we   (stop_we),
+        .stop_addr (stop_addr),
+        .stop_data (stop_data),
         .in_valid  (com_in_valid),
         .in_ready  (com_in_ready),
         .in_hdr    (sha_hdr),

@@ -52,6 +52,8 @@ OPTIONS: tuple[Option, ...] = (
            ("cube4_clip far face", "cube4_sha_slab", "cube4_com falloff multipliers")),
     Option("ZOUT", 0, "z", "depth out (two slice numbers per ray in COM's buffer word)",
            ("cube4_com depth fields",)),
+    Option("ZIN", 0, "d", "depth in (the stop-slice table in COM)",
+           ("cube4_com_stop",)),
     Option("RECTS", 0, "r", "slice rectangles (the rectangle table in CFB, GRA's walk, COM)",
            ("cube4_cfb rectangle walk", "cube4_gra position walk", "cube4_com rectangle reader")),
 )
@@ -100,6 +102,7 @@ RULES: tuple[Rule, ...] = (
     Rule({"PLW": 1}, {"COMPOSITING": (1,)}, "only the blending modes are path-weighted"),
     Rule({"SLAB": 1}, {"CLIP": (1,)}, "the slab is the cut plane's"),
     Rule({"RECTS": 1}, {"PLW": (0,), "MAX_SS_LOG2": (0,)}, "rectangles run with S = 1, unweighted"),
+    Rule({"ZIN": 1}, {"RECTS": (0,)}, "depth in runs on the fixed and box schedules"),
 )
 
 

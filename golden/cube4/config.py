@@ -103,6 +103,7 @@ def scene_build(scenes) -> dict:
         b["CLIP"] |= int(sc.cut is not None or sc.slab is not None or sc.crop_regions is not None)
         b["SLAB"] |= int(sc.slab is not None)
         b["ZOUT"] |= int(sc.depth_threshold is not None)
+        b["ZIN"] |= int(sc.geometry is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
         b["RECTS"] |= int(sc.skip == "rects")

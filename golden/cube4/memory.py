@@ -277,3 +277,35 @@ def lane_positions(skew: int, pb: int, p: int, ni: int, flip_i: bool) -> np.ndar
     q = np.arange(p)
     t = (((ni - 1) + skew - q) if flip_i else (q - skew)) % p
     return pb * p + t
+
+
+def stop_layout(p: int, max_dim: int) -> tuple[int, int]:
+    """(ROWS_W, COLS_W) of the stop table (cube4_defs.vh CUBE4_STOP_LAYOUT): a base plane
+    has at most 2 max_dim - 1 rows and columns; a bank's word is {by, bx div p}."""
+    rows_w = (2 * max_dim - 1).bit_length()
+    cols = -(-2 * max_dim // p)
+    return rows_w, max(1, (cols - 1).bit_length())
+
+
+def stop_table(stop: np.ndarray | None, p: int, max_dim: int, m_bits: int) -> list[int]:
+    """Depth in's stop table (ZIN = 1, rtl/cube4_com_stop.v, docs/numerics.md §22): per
+    address {by [ROWS_W], bx div p [COLS_W]} one word of p banks, bank b = the stop slice of
+    pixel (by, bx = (bx div p) p + b) at bits [b m_bits, (b + 1) m_bits). ``stop``: (rows,
+    cols) stop slices of the frame's base plane (cube4.geometry.stop_slices, 0 .. M), None:
+    no geometry. Words of no pixel, and every word without geometry, hold 2^m_bits - 1 (no
+    slice reaches it)."""
+    rows_w, cols_w = stop_layout(p, max_dim)
+    none = (1 << m_bits) - 1
+    table = np.full((1 << rows_w, 1 << cols_w, p), none, dtype=np.int64)
+    if stop is not None:
+        rows, cols = stop.shape
+        if rows > 1 << rows_w or -(-cols // p) > 1 << cols_w:
+            raise ValueError(f"a {rows}x{cols} base plane does not fit the stop table of MAX_DIM = {max_dim}")
+        if stop.size and (stop.min() < 0 or stop.max() > none):
+            raise ValueError(f"stop slices must lie in 0 .. {none} ({m_bits} bits)")
+        padded = np.full((rows, -(-cols // p) * p), none, dtype=np.int64)
+        padded[:, :cols] = stop
+        table[:rows, :padded.shape[1] // p] = padded.reshape(rows, -1, p)
+    shifts = np.arange(p, dtype=object) * m_bits
+    flat = table.reshape(-1, p).astype(object)
+    return [int(sum(int(v) << int(s) for v, s in zip(row, shifts))) for row in flat]

@@ -13,13 +13,15 @@ import time
 
 import numpy as np
 
+from cube4.app.mesh import resolve_geometry
 from cube4.app.render import RenderResult, depth_image, depth_stats, register_engine, view_image
 from cube4.bricks import register_brick_renderer
 from cube4.config import Cube4Config, resolve_build
 from cube4.cycles import has_falloff, rect_frame_cycles
 from cube4.errors import UserError
-from cube4.host import (assemble_view, build_memory, depth_threshold, pass_rects, plan_view, schedule_stats,
-                        trav_stats, view_stats)
+from cube4.geometry import composite_over, stop_slices
+from cube4.host import (assemble_view, build_memory, depth_threshold, pass_rects, plan_view, scene_geometry,
+                        schedule_stats, setup_view, trav_stats, view_stats)
 from cube4.scene import Scene
 
 from .rtl import FrameJob, baseplane_from_pixels, depth_from_pixels, frame_rects, render_frames
@@ -36,18 +38,20 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     if any(sc.skip == "beats" for sc in scenes):
         raise UserError("beat skipping and ray termination (--beats) run in the golden model only; "
                         "use --engine golden, or the box (default) or --rects on the RTL")
-    if any(sc.geometry is not None for sc in scenes):
-        raise UserError("depth in ([geometry]) runs in the golden model only; use --engine golden")
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
+    scenes = [resolve_geometry(sc, setup_view(dims, sc, cfg)[1]) for sc in scenes]   # depth in: its image
     vps = [plan_view(vol, sc, cfg) for sc in scenes]
     use_rects = bool(build["RECTS"])   # one build: a RECTS build runs every view with rectangles
     jobs, owners = [], []
+    geos = [scene_geometry(vp.scene, vp.cam) for vp in vps]
     for nv, vp in enumerate(vps):
         rects = pass_rects(vol, vp) if vp.scene.skip == "rects" else [None] * len(vp.plans)
+        geo = geos[nv]
         for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
+                stop = None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z))
                 jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip,
-                                     rects=rects[n], depth_t=depth_threshold(vp.scene, cfg)))
+                                     rects=rects[n], depth_t=depth_threshold(vp.scene, cfg), stop_m=stop))
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
@@ -61,14 +65,14 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     for (nv, n), job, out in zip(owners, jobs, outs):
         per_view[nv][n] = (job, out)
     results = []
-    for vp, ran in zip(vps, per_view):
+    for vp, ran, geo in zip(vps, per_view, geos):
         t1 = time.perf_counter()
         depth = vp.scene.depth_threshold is not None
         frame = assemble_view(vp, cfg, {n: (baseplane_from_pixels(out["pixels"], job.trav.baseplane_shape),
                                             out["pixels"]) for n, (job, out) in ran.items()},
                               {n: depth_from_pixels(out["pixels"], job.trav.baseplane_shape)
                                for n, (job, out) in ran.items()} if depth else None)
-        img = view_image(vp, frame)
+        img = composite_over(view_image(vp, frame), geo)    # the volume over the geometry (depth in)
         stats = view_stats(NAME, dims, vp.scene, cfg)
         stats.update(trav_stats(vp.trav))
         stats["baseplane_shape"] = list(frame.baseplane.shape[:2])     # the fine plane's with q > 1

@@ -25,11 +25,12 @@ from cube4.errors import UserError
 from cube4.pathlen import path_weighted
 from cube4.vgrad import word_bits
 from cube4.modes import is_blend, is_extremum
-from cube4.memory import load_image, pack_volume, top_regs, words_per_bank, write_hex
+from cube4.memory import load_image, pack_volume, stop_table, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
 from cube4.cycles import COM_MIN_SLICE, frame_cycles, has_falloff, rect_frame_cycles, slow_slice_factor
 from cube4.slices import SliceRects, whole_box_rects
+from .beats import Geometry
 from .rect_port import rect_width, rect_words
 from .dump import read_pixel_frames
 from .sources import form_build_args, form_sources
@@ -51,6 +52,7 @@ class FrameJob:
     reset_after_cycles: int = 0  # start, reset after this many cycles, then render
     rects: SliceRects | None = None  # slice rectangles (a RECTS build; None there: the whole box)
     depth_t: int | None = None  # depth out's threshold on T (a ZOUT build; None: not tracked)
+    stop_m: np.ndarray | None = None  # depth in: (rows, cols) stop slices of the base plane (a ZIN build)
     extra: dict = field(default_factory=dict)
 
 
@@ -69,6 +71,8 @@ def check_frame_fits(fr: FrameJob, params: dict) -> None:
         raise UserError("a frame with a slab needs a build with SLAB = 1")
     if fr.depth_t is not None and not params["ZOUT"]:
         raise UserError("a frame with depth out needs a build with ZOUT = 1")
+    if fr.stop_m is not None and not params["ZIN"]:
+        raise UserError("a frame with depth in needs a build with ZIN = 1")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
         raise UserError("a shaded frame needs a build with SHADING = 1")
 
@@ -197,7 +201,10 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
             ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad, has_falloff(params)) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
-            rect_p = workdir / f"rects{n}.hex"
+            rect_p, stop_p = workdir / f"rects{n}.hex", workdir / f"stop{n}.hex"
+            if params["ZIN"]:       # every frame loads its table (no geometry: no slice stops)
+                m_w = Geometry(cfg.pipelines, max_dim, params["MAX_SS_LOG2"]).m_w
+                write_hex(stop_p, stop_table(fr.stop_m, cfg.pipelines, max_dim, m_w), cfg.pipelines * m_w)
             if rects:
                 fr_rects = frame_rects(fr, shading and not vgrad)
                 write_hex(rect_p, rect_words(fr.trav, fr_rects, cfg.pipelines, max_dim, params["ADDR_W"], (nx, ny, nz)),
@@ -207,13 +214,14 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted, fr.depth_t),
                 "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
+                "stop": str(stop_p) if params["ZIN"] else None,
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
                 "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,
             })
         job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
-               "rect": str(workdir / "rects.hex"),
+               "rect": str(workdir / "rects.hex"), "stop": str(workdir / "stop.hex"),
                "result": str(workdir / "result.json")}
         job_path = workdir / "job.json"
         job_path.write_text(json.dumps(job, indent=1))
@@ -231,6 +239,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                        **({"COCOTB_LOG_LEVEL": "WARNING"} if quiet else {})},
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
                       f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_RECTFILE={job['rect']}",
+                      f"+CUBE4_STOPFILE={job['stop']}",
                       f"+CUBE4_DUMP={job['dump']}"],
             quiet_logs=quiet,
             private_results=True,   # bricks on several workers may run this build at once

@@ -55,8 +55,8 @@ class TopDriver:
         self.dut.load_words.value = words
         await self._load(self.dut.load_mem, words)
 
-    async def load_tables(self) -> None:
-        await self._load(self.dut.load_tables, 1 << 16)
+    async def load_tables(self, words: int = 1 << 16) -> None:
+        await self._load(self.dut.load_tables, words)
 
     def set_regs(self, regs: dict) -> None:
         for key, val in regs.items():
@@ -111,7 +111,11 @@ async def run_job(dut):
             Path(job["rmap"]).write_text(Path(fr["rmap"]).read_text())
             if fr.get("rect"):
                 Path(job["rect"]).write_text(Path(fr["rect"]).read_text())
-            await drv.load_tables()
+            words = 1 << 16
+            if fr.get("stop"):
+                Path(job["stop"]).write_text(Path(fr["stop"]).read_text())
+                words = max(words, len(Path(fr["stop"]).read_text().split()))
+            await drv.load_tables(words)
         if fr.get("reset_after_cycles"):
             # start a frame, reset it part way, then render cleanly
             drv.set_regs(fr["regs"])

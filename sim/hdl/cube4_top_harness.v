@@ -27,7 +27,11 @@
 //   A start record is zero after its header. The file is flushed after each
 //   last beat and after any beat outside a frame, so stray beats are seen.
 //
-//   Plusargs: +CUBE4_MEMFILE= +CUBE4_LUTFILE= +CUBE4_RMAPFILE= +CUBE4_DUMP=
+//   The stop table (ZIN = 1; golden/cube4/memory.py stop_table: one word of
+//   all P banks per line) is loaded with the tables, one line a clock.
+//
+//   Plusargs: +CUBE4_MEMFILE= +CUBE4_LUTFILE= +CUBE4_RMAPFILE= +CUBE4_RECTFILE=
+//   +CUBE4_STOPFILE= +CUBE4_DUMP=
 //
 // Parameters: as cube4_top.
 // =============================================================================
@@ -51,10 +55,12 @@ module cube4_top_harness #(
     parameter integer RECTS       = 0,    // 1: slice rectangles (the table from CUBE4_RECTFILE)
     parameter integer SLAB        = 0,    // 1: the cut slab (CUT_T, FALL_*)
     parameter integer ZOUT        = 0,    // 1: depth out (DEPTH_T, pix_z)
+    parameter integer ZIN         = 0,    // 1: depth in (the stop table from CUBE4_STOPFILE)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
     `CUBE4_RECT_LAYOUT,
+    `CUBE4_STOP_LAYOUT,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     `CUBE4_VIEW_PORTS
@@ -180,13 +186,17 @@ module cube4_top_harness #(
     reg [LUT_W-1:0]   luti [0:(1 << VOXEL_W)-1];
     reg [19:0]        rmi  [0:RMAP_N-1];
     reg [RECT_W-1:0]  rti  [0:MAX_DIM-1];   // the rectangle table (RECTS = 1)
-    string memfile, lutfile, rmapfile, rectfile, dumpfile;
+    localparam integer STOP_IW = (ZIN != 0) ? STOP_AW : 1;
+    localparam integer STOP_N  = 1 << STOP_IW;
+    reg [P*M_W-1:0]   sti  [0:STOP_N-1];    // the stop table (ZIN = 1)
+    string memfile, lutfile, rmapfile, rectfile, stopfile, dumpfile;
     integer dump_fd, b;
     initial begin
         if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile))   memfile  = "cube4_mem.hex";
         if (!$value$plusargs("CUBE4_LUTFILE=%s", lutfile))   lutfile  = "cube4_lut.hex";
         if (!$value$plusargs("CUBE4_RMAPFILE=%s", rmapfile)) rmapfile = "cube4_rmap.hex";
         if (!$value$plusargs("CUBE4_RECTFILE=%s", rectfile)) rectfile = "cube4_rects.hex";
+        if (!$value$plusargs("CUBE4_STOPFILE=%s", stopfile)) stopfile = "cube4_stop.hex";
         if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.bin";
         dump_fd = $fopen(dumpfile, "wb");
     end
@@ -208,6 +218,7 @@ module cube4_top_harness #(
             $readmemh(lutfile, luti);
             $readmemh(rmapfile, rmi);
             if (RECTS != 0) $readmemh(rectfile, rti);
+            if (ZIN != 0) $readmemh(stopfile, sti);
             tab_busy_q <= 1'b1;
             done_q     <= 1'b0;
             la_q       <= 32'd0;
@@ -219,7 +230,7 @@ module cube4_top_harness #(
             la_q <= la_q + 32'd1;
         end else if (tab_busy_q) begin
             if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= (1 << VOXEL_W)
-                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM)) begin
+                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && (ZIN == 0 || la_q + 32'd1 >= STOP_N)) begin
                 tab_busy_q <= 1'b0;
                 done_q     <= 1'b1;
             end
@@ -233,6 +244,7 @@ module cube4_top_harness #(
     wire lut_we  = tab_busy_q && (la_q < (1 << VOXEL_W));
     wire rmap_we = tab_busy_q && (la_q < RMAP_N);
     wire rect_we = (RECTS != 0) && tab_busy_q && (la_q < MAX_DIM);
+    wire stop_we = (ZIN != 0) && tab_busy_q && (la_q < STOP_N);   // STOP_N: 2 without ZIN (unused)
 
     // ------------------------------------------------------------ random holds
     // LFSR s starts from the seed and its index (never from zero)
@@ -289,7 +301,8 @@ module cube4_top_harness #(
         .PLW         (PLW),
         .RECTS       (RECTS),
         .SLAB        (SLAB),
-        .ZOUT        (ZOUT)
+        .ZOUT        (ZOUT),
+        .ZIN         (ZIN)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -306,6 +319,9 @@ module cube4_top_harness #(
         .rect_we     (rect_we),
         .rect_addr   (M_W'(la_q)),
         .rect_data   (rti[la_q[$clog2(MAX_DIM)-1:0]]),
+        .stop_we     (stop_we),
+        .stop_addr   (la_q[STOP_AW-1:0]),
+        .stop_data   (sti[la_q[STOP_IW-1:0]]),
         .cfg_ni      (cfg_ni_q),
         .cfg_nj      (cfg_nj_q),
         .cfg_nk      (cfg_nk_q),

@@ -21,6 +21,7 @@
 //   clk       out  the harness's clock (cube4_sim_clock, 10 ns)
 //   rst       in   synchronous reset
 //   cfg_*     in   view registers (golden/cube4/memory.py top_regs)
+//   rect_*, rt_*, stop_*  in   the rectangle (RECTS = 1) and stop (ZIN = 1) tables
 //   in_*      in   shaded stream (cube4_sha's format, with in_sample and in_fall)
 //   out_*     out  finished rays: cube4_com's pix_* (valid, ready, mask, m,
 //                  by, bx, rgba, eop)
@@ -28,6 +29,7 @@
 module cube4_com_harness #(
     `CUBE4_BUILD_PARAMS,
     `CUBE4_RECT_LAYOUT,
+    `CUBE4_STOP_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
     localparam integer BX_W    = DIM_W + 1,
     localparam integer IN_W    = P * (24 + ALPHA_W),
@@ -43,6 +45,9 @@ module cube4_com_harness #(
     input  wire                  rect_we,     // write the rt_* fields as entry rect_addr (RECTS = 1)
     input  wire [M_W-1:0]        rect_addr,
     `CUBE4_RECT_PORTS
+    input  wire                  stop_we,     // the stop table (ZIN = 1): one word of all P banks
+    input  wire [STOP_AW-1:0]    stop_addr,
+    input  wire [P*M_W-1:0]      stop_data,
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
@@ -76,6 +81,9 @@ module cube4_com_harness #(
         .rect_we   (rect_we),
         .rect_addr (rect_addr),
         .rect_data (rect_data),
+        .stop_we   (stop_we),
+        .stop_addr (stop_addr),
+        .stop_data (stop_data),
         .in_valid  (in_valid),
         .in_ready  (in_ready),
         .in_hdr    (in_hdr),

@@ -59,6 +59,7 @@ from dataclasses import replace
 
 import cube4.slices as slices
 from cube4.config import Cube4Config
+from cube4.memory import stop_table
 from cube4.model import render_frame
 from cube4.pathlen import ALL_FACES
 from cube4.view import make_traversal
@@ -249,6 +250,54 @@ async def test_rect_pixel_stream(dut):
     assert frames >= 8, f"only {frames} frames had a rectangle"
 
 
+@cocotb.test()
+async def test_stop_pixel_stream(dut):
+    """Depth in (ZIN = 1): a random stop table per view written through the stop_* port
+    (cube4.memory.stop_table: each base-plane pixel's stop slice uniform in 0 .. M, a
+    quarter of them M or 0), the golden shaded stream in, finished-ray beats out bit for
+    bit against ``render_frame(..., stop_m=...)``, every mode of the build, the five views
+    with their gaps, stalls, windows and cut planes."""
+    p, aw, acc_w, geo, cfg, vw, modes = build_of(dut)
+    bench = UnitBench(dut)
+    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "stop_we": 0})
+    dims = volume_dims(p)
+    vol = bench.rng.integers(0, 1 << cfg.voxel_bits, size=dims[::-1], dtype=np.int64)
+    ss = 1 << int(dut.MAX_SS_LOG2.value)
+    for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS):
+        mode = mode if mode in modes else modes[n % len(modes)]
+        trav = make_traversal(dims, direction, cfg.weight_bits, ss, phase=(phase[0] * ss, phase[1] * ss))
+        lut, rmap = random_tables(bench.rng, cfg)
+        clip = random_clip(trav, clip_kind, bench.rng)
+        M = trav.num_sample_slices
+        rows, cols = trav.baseplane_shape
+        stop = bench.rng.integers(0, M + 1, size=(rows, cols))
+        edge = bench.rng.random((rows, cols))
+        stop[edge < 0.125] = 0
+        stop[edge > 0.875] = M
+        frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True, mode=mode, clip=clip, stop_m=stop)
+        sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"])
+        hdrs = sched.headers(geo)
+        shaded = sched.lanes(frame.streams["shaded"])
+        words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
+        smp = sched.lanes(frame.streams["samples"])
+        inputs = [{"in_hdr": hdrs[k], "in_rgba": pack_lanes(words[k], 24 + aw), "in_sample": pack_lanes(smp[k], vw)}
+                  for k in range(len(sched))]
+        exp = expected_pixel_beats(frame, sched)
+        bench.set_view(trav, p, mode, clip)
+        for a, word in enumerate(stop_table(stop, p, geo.max_dim, geo.m_w)):
+            dut.stop_we.value, dut.stop_addr.value, dut.stop_data.value = 1, a, word
+            await bench.cycles(1)
+        dut.stop_we.value = 0
+        await bench.cycles(2)
+        got = await bench.run_stream(inputs, len(exp["beat"]), OUTPUTS, gap, stall)
+        check_pixel_beats(got, exp, sched, p, geo.dim_w + 1, acc_w, bench.log)
+        unstopped = render_frame(vol, trav, cfg, lut, rmap, mode=mode, clip=clip)
+        assert not np.array_equal(unstopped.baseplane, frame.baseplane), "the stop table changed no ray"
+        bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f: %d pixel beats, %d finished rays with "
+                       "their stop slices bit-exact", dims, direction, mode, clip_kind, gap, stall, len(got),
+                       len(frame.pixels))
+
+
 async def write_columns(bench, dut, cols: np.ndarray, aw: int) -> None:
     """Write the path-weight columns (2^V, 4) through the lut_* port, one entry per cycle."""
     for a in range(cols.shape[0]):
@@ -282,6 +331,17 @@ RECT_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
 @pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(), ids=param_id))
 def test_cube4_com_rects(build):
     run_unit(__file__, {**build, "MAX_DIM": 32, "RECTS": 1, "PLW": 0}, "test_rect_pixel_stream")
+
+
+# depth-in builds: P = 1, 5 with S = 2 (make test), 8 with ACC_W 24
+STOP_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=0, PLW=0),
+               dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=1, PLW=0),
+               dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=0, PLW=0)]
+
+
+@pytest.mark.parametrize("build", sweep(STOP_BUILDS, quick=(1,), ids=param_id))
+def test_cube4_com_stop(build):
+    run_unit(__file__, {**build, "MAX_DIM": 32, "ZIN": 1}, "test_stop_pixel_stream")
 
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(4,), ids=param_id))

@@ -653,7 +653,11 @@ def test_slab_frames(p, s, shading):
             assert res["cycles"] == want, (label, res["cycles"], want)
 
 
-# ---------------------------------------------------------------- depth out
+# ---------------------------------------------------------------- depth out and in
+# one build for both (each frame without geometry loads a table that stops no ray)
+DEPTH_BUILD = {"ZOUT": 1, "ZIN": 1}
+
+
 @pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
 def test_depth_out_frames(p, s):
     """Depth out (ZOUT = 1, numerics.md §21): every finished ray carries the slice where its
@@ -693,7 +697,7 @@ def test_depth_out_frames(p, s):
         jobs.append(FrameJob(trav, lut, rmap if n in (0, 5) else None, mode=mode, clip=clip,
                              depth_t=thresholds[n], stall=(0, 60, 0, 120, 30, 0)[n],
                              stall_out=(0, 0, 90, 60, 0, 0)[n], reset_after_cycles=150 if n == 3 else 0))
-    results = render_frames(vol, jobs, cfg, max_dim=64, build={"ZOUT": 1})
+    results = render_frames(vol, jobs, cfg, max_dim=64, build=DEPTH_BUILD)
     for n, (job, res) in enumerate(zip(jobs, results)):
         label = f"depth out P={p} S={s} view {views[n]} {job.mode} DEPTH_T {job.depth_t}"
         check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip, depth_t=job.depth_t)
@@ -703,3 +707,78 @@ def test_depth_out_frames(p, s):
         if not (job.stall or job.stall_out or job.reset_after_cycles):
             t = job.trav
             assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True), label
+
+
+@pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
+def test_depth_in_frames(p, s):
+    """Depth in (ZIN = 1, numerics.md §22): each frame's stop table (a tilted surface with
+    a step and a hole, so that rays stop at many slices, at 0 and never) through the stop_*
+    port; every finished ray and the base plane bit for bit against the golden model with
+    the same stop slices: composite (shaded and not), X-ray, MIP, MinIP, a crop box and the
+    box schedule (the whole frame's table cut to the box, ``SkipPlan.box_stop``), six views
+    with 45° and (1, 1, 1), random stalls and a reset in mid-frame, depth out alongside; the
+    stops change every frame's picture (the test sees them), and the unstalled frames take
+    the cycles the golden model predicts (those of the schedule: depth in ends no traversal)."""
+    from cube4.host import crop_volume
+    from cube4.model import render_frame
+    from cube4.modes import is_blend
+    from cube4.skip import plan_skip
+
+    rng = np.random.default_rng(700 + p)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    vol[:2], vol[:, :2], vol[:, :, -3:] = 0, 0, 0     # empty space for the box schedule's frame
+    views = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
+             (1.0, 0.4, -0.7)]
+    modes = ["composite", "composite", "xray", "mip", "minip", "composite"]
+    one = 1 << cfg.acc_bits
+    jobs, unstopped = [], []
+    for n, (d, mode) in enumerate(zip(views, modes)):
+        if n == 2:      # a crop box
+            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
+        else:
+            trav = make_traversal(dims, d, cfg.weight_bits, s)
+        lut, rmap = random_tables(rng, cfg)
+        lut[:, 3] = rng.integers(0, 1 << (cfg.alpha_bits - 2), size=lut.shape[0])
+        whole = trav
+        clip = None
+        if n == 5:      # the box schedule: the box's slices and base plane moved to the whole frame's
+            lut[:80] = 0
+            plan = plan_skip(vol, trav, lut, mode, p=p)
+            assert plan.box is not None and plan.fraction < 1.0, plan.box
+            trav, clip = plan.trav, plan.clip
+        stop = surface_stops(whole, rng)
+        if n == 5:
+            stop = plan.box_stop(stop)
+        jobs.append(FrameJob(trav, lut, rmap if n in (0, 5) else None, mode=mode, clip=clip, stop_m=stop,
+                             depth_t=one // 3 if is_blend(mode) else 0,
+                             stall=(0, 60, 0, 120, 30, 0)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
+                             reset_after_cycles=150 if n == 3 else 0))
+    results = render_frames(vol, jobs, cfg, max_dim=64, build=DEPTH_BUILD)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"depth in P={p} S={s} view {views[n]} {job.mode}"
+        gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip,
+                     depth_t=job.depth_t, stop_m=job.stop_m)
+        free = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, mode=job.mode,
+                            shading=job.rmap is not None, clip=job.clip)
+        assert (free.baseplane != gold.baseplane).any(), f"{label}: the stop slices changed nothing"
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True), label
+
+
+def surface_stops(trav, rng) -> np.ndarray:
+    """(rows, cols) stop slices of a tilted surface through the middle of the frame with a
+    step along the columns and a hole (rays that never stop), a row that stops at once and
+    a little noise: rays end at many different slices."""
+    rows, cols = trav.baseplane_shape
+    M = trav.num_sample_slices
+    by, bx = np.mgrid[0:rows, 0:cols]
+    z = M * (0.35 + 0.3 * by / max(rows - 1, 1)) + np.where(bx > cols // 2, M // 5, 0)
+    z = z + rng.integers(-1, 2, size=z.shape)
+    stop = np.clip(np.round(z), 0, M).astype(np.int64)
+    stop[rows // 3:rows // 2, cols // 4:cols // 2] = M      # a hole: no geometry
+    stop[-1] = 0                                             # geometry in front of the volume
+    return stop
