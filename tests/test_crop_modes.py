@@ -158,3 +158,15 @@ def test_crop_modes_need_the_clip_unit():
     assert scene_build([crop_scene("cross")])["CLIP"] == 1
     plain = dataclasses.replace(load_scene("head"), crop=((4, 5, 6), (14, 13, 12)))
     assert scene_build([plain])["CLIP"] == 0
+
+
+def test_builtin_scenes_of_each_mode():
+    """A built-in scene per crop mode (head_crop_<mode>), each the same scene with its mode;
+    subvolume traverses the box alone (no regions, no clip unit)."""
+    from cube4.config import scene_build
+    base = load_scene("head_crop_inverted_cross")
+    for mode in ("subvolume", "fence", "inverted_fence", "cross", "inverted_cross"):
+        sc = load_scene(f"head_crop_{mode}")
+        assert sc.crop == base.crop and np.array_equal(sc.tf_points, base.tf_points), mode
+        assert sc.crop_regions == (None if mode == "subvolume" else CROP_MODES[mode]), mode
+        assert scene_build([sc])["CLIP"] == int(mode != "subvolume"), mode

@@ -126,6 +126,13 @@ def test_bad_geometry_is_one_line(tmp_path):
     write_geometry(str(far), Geometry(z=z))
     with pytest.raises(UserError, match=r"at pixel \(4, 3\) lies outside the view"):
         resolve_geometry(dataclasses.replace(sc, geometry=("image", str(far))), cam)
+    # the RTL engine checks the image before it builds or writes anything
+    out = tmp_path / "never.png"
+    scene_file = tmp_path / "far.toml"
+    scene_file.write_text(f'[geometry]\nimage = "{far}"\n')
+    from cube4_sim.cli import main as cube4_main     # the cube4 command, with the RTL engine
+    assert cube4_main(["render", "head:16", "--scene", str(scene_file), "--engine", "rtl", "--out", str(out)]) != 0
+    assert not out.exists()
     with pytest.raises(UserError, match="has no channel Z"):
         plain = tmp_path / "plain.exr"
         from cube4.app.images import write_image

@@ -91,3 +91,13 @@ def test_bad_requests():
     with pytest.raises(UserError, match="one preview level"):
         from cube4.host import build_memory
         build_memory(vol, [sc, dataclasses.replace(sc, preview=2)], cfg, {"VGRAD": 0})
+
+
+def test_builtin_preview_scene():
+    """head_preview is head at its ½ level: the same scene otherwise."""
+    pv, full = load_scene("head_preview"), load_scene("head")
+    assert pv.preview == 2
+    for f in dataclasses.fields(full):
+        if f.name not in ("preview", "name"):
+            a, b = getattr(pv, f.name), getattr(full, f.name)
+            assert repr(a) == repr(b), f.name

@@ -49,7 +49,7 @@ def check_geometry(geo: Geometry, cam: Camera) -> None:
     bad = ~(np.isposinf(z) | (np.isfinite(z) & (np.abs(z) <= reach)))
     if bad.any():
         r, c = (int(v) for v in np.argwhere(bad)[0])
-        raise UserError(f"geometry depth {z[r, c]!r} at pixel ({c}, {r}) lies outside the view "
+        raise UserError(f"geometry depth {float(z[r, c])!r} at pixel ({c}, {r}) lies outside the view "
                         f"(finite within +-{reach:.1f} voxels of the volume's centre, or +inf for none)")
     if geo.rgba is not None and not (np.isfinite(geo.rgba).all() and (geo.rgba >= 0).all()
                                      and (geo.rgba <= 1).all()):

@@ -47,6 +47,8 @@ module cube4_com_seq_harness #(
     output wire               dkb4,
     output wire [P-1:0]       t0_4,
     output wire [P-1:0]       fresh_4,
+    output wire [P*LANE_W-1:0] tpos,      // S0: the lanes' positions t
+    input  wire [P-1:0]       keep_5,     // S5: depth in's ok (ANDed into S6's counts)
     output wire [P-1:0]       cnt_6,
     output wire [P-1:0]       cnt_7,
     output wire               mode_xray,

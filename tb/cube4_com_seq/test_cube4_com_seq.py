@@ -81,6 +81,7 @@ async def play(dut, bench, frame, p: int, geo: Geometry, sp_w: int, gap, credit_
     fin = sched.lanes(finished_mask(frame)).astype(bool) & sched.lval
     nx_in = np.where(ins, ~fin, rng.random((n, p)) < 0.5)
     fresh = rng.random((n, p)) < 0.5
+    keep5 = rng.random((n, p)) < 0.8          # depth in's ok, given at S5 (cube4_com_stop)
     slot = (j * sched.nb + pb) % (1 << sp_w)
     bmask = (1 << bx_w) - 1
     r0, k, c, offering = {}, 0, 0, False
@@ -94,6 +95,8 @@ async def play(dut, bench, frame, p: int, geo: Geometry, sp_w: int, gap, credit_
             dut.stx.value, dut.sty.value = int(sx[b[0]]), int(sy[b[0]])
         if b[1] is not None:
             dut.nx_in.value = mask_bits(nx_in[b[1]])
+        if b[5] is not None:
+            dut.keep_5.value = mask_bits(keep5[b[5]])
         if not offering and k < n and rng.random() >= gap:
             offering = True
             dut.in_hdr.value = hdrs[k]
@@ -112,6 +115,8 @@ async def play(dut, bench, frame, p: int, geo: Geometry, sp_w: int, gap, credit_
             want = [m[x], j[x], pb[x], int(x == 0), int(j[x] == 0 and pb[x] == 0), sx[x] - sxb[x], sy[x] - syb[x]]
             assert got == [int(w) for w in want], f"{sched.describe(x)} R0 (m j pb sop first dxb dyb): {got} {want}"
             assert (unpack_lanes(int(dut.ipos.value), p, iw) == pos[x]).all(), f"{sched.describe(x)}: ipos"
+            tpos = unpack_lanes(int(dut.tpos.value), p, geo.lane_w)
+            assert (tpos == pos[x] - pb[x] * p).all(), f"{sched.describe(x)}: tpos {tpos}"
         if (x := b[1]) is not None:
             got = [int(dut.f1_j.value), int(dut.f1_dxf.value), int(dut.f1_dyf.value), int(dut.pb_rd.value)]
             assert got == [j[x], sxf[x] - sx[x], syf[x] - sy[x], pb[x]], f"{sched.describe(x)} S1: {got}"
@@ -129,7 +134,7 @@ async def play(dut, bench, frame, p: int, geo: Geometry, sp_w: int, gap, credit_
             assert got == [int(w) for w in want], f"{sched.describe(x)} S4 (dxb dyb dkb t0 fresh): {got} {want}"
         for s, name in ((6, "cnt_6"), (7, "cnt_7")):
             if (x := b[s]) is not None:
-                want = mask_bits(ins[x] & sched.lkeep[x])
+                want = mask_bits(ins[x] & sched.lkeep[x] & keep5[x])
                 assert int(getattr(dut, name).value) == want, f"{sched.describe(x)}: {name}"
         if (x := b[10]) is not None:
             out = bool(fin[x].any()) or x == n - 1
