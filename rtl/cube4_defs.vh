@@ -494,6 +494,7 @@
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1, \
     parameter integer RECTS    = 0,  parameter integer SLAB        = 0, \
     parameter integer ZOUT     = 0,  parameter integer ZIN         = 0, \
+    parameter integer GMOD     = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
 
 `define CUBE4_BUILD_PASS \
@@ -501,7 +502,7 @@
     .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
     .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
     .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB), .ZOUT(ZOUT), \
-    .ZIN(ZIN)
+    .ZIN(ZIN), .GMOD(GMOD)
 
 `define CUBE4_SLICE_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
@@ -571,7 +572,8 @@
     `CUBE4_RANGE(g_bad_rects, MODULE, "RECTS", RECTS, 0, 1) \
     `CUBE4_RANGE(g_bad_slab, MODULE, "SLAB", SLAB, 0, 1) \
     `CUBE4_RANGE(g_bad_zout, MODULE, "ZOUT", ZOUT, 0, 1) \
-    `CUBE4_RANGE(g_bad_zin, MODULE, "ZIN", ZIN, 0, 1)
+    `CUBE4_RANGE(g_bad_zin, MODULE, "ZIN", ZIN, 0, 1) \
+    `CUBE4_RANGE(g_bad_gmod, MODULE, "GMOD", GMOD, 0, 1)
 
 // ---------------------------------------------------------------- TRI units
 // cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").
@@ -587,6 +589,16 @@
 // cube4_sha_slab's latency from a beat's fields to its falloff weights (cube4_sha
 // carries the beat that long at least when it builds the unit)
 `define CUBE4_SLAB_LAT 9
+// Gradient-magnitude modulation (GMOD = 1; cube4_sha_gm, golden/cube4/gmod.py): the
+// table's entries and address width for gradients of GW = VOXEL_W + 5 bits (s = |g|^2
+// in 2 GW bits, 2^3 mantissa steps per bit position, entry 0 for s = 0), and the
+// unit's latency from the gradient (stage a) to the factors (cube4_sha carries them on)
+`define CUBE4_GM_LAT 7
+`define CUBE4_GM_LAYOUT \
+    localparam integer GM_MB  = 3, \
+    localparam integer GM_N   = 2 * (VOXEL_W + 5) * (1 << GM_MB) + 1, \
+    localparam integer GMA_W  = $clog2(GM_N), \
+    localparam integer GMF_W  = 9
 `define CUBE4_TRI_LERP_LAT 3
 `define CUBE4_TRI_LAYOUT \
     localparam integer TRI_LERP_LAT = `CUBE4_TRI_LERP_LAT, \

@@ -72,6 +72,7 @@
 // =============================================================================
 module cube4_sha #(
     `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
+    `CUBE4_GM_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
@@ -80,6 +81,7 @@ module cube4_sha #(
     // table load ports (broadcast to every lane's copy)
     input  wire lut_we,  input wire [VOXEL_W-1:0] lut_addr, input wire [24+ALPHA_W-1:0] lut_data,
     input  wire rmap_we, input wire [RI_W-1:0] rmap_addr,   input wire [19:0] rmap_data,
+    input  wire gm_we,   input wire [GMA_W-1:0] gm_addr,    input wire [2*GMF_W-1:0] gm_data,
     // gradient stream in
     input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
     input  wire [P*VOXEL_W-1:0] in_sample,
@@ -124,7 +126,9 @@ module cube4_sha #(
     // with the slab's falloff (FALL) at least the falloff unit's latency before e1
     localparam integer FALL     = (SLAB != 0 && COMPOSITING != 0) ? 1 : 0;
     localparam integer SLAB_LAT = `CUBE4_SLAB_LAT;   // cube4_sha_slab's latency
-    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 5 : 3;
+    localparam integer GM       = (GMOD != 0 && SHADING != 0) ? 1 : 0;   // the modulation's two stages m1, m2
+    localparam integer GM_LAT   = `CUBE4_GM_LAT;
+    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 5 + 2 * GM : 3;
     localparam integer NST      = (FALL != 0 && NST_SH < SLAB_LAT + 1) ? SLAB_LAT + 1 : NST_SH;
     // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
     // FIFO's read)
@@ -185,6 +189,10 @@ module cube4_sha #(
     wire [P*LUT_W-1:0] lut_2_all;
     wire [P*RI_W-1:0]  idx_all;
     wire [P*20-1:0]    dp_all;
+
+    // gradient-magnitude modulation's factors of each lane (GM = 1): fs at d2 (the
+    // modulation's operands at m1), fa at m2 (A's operand at d3)
+    wire [P*GMF_W-1:0] gm_fs_d2, gm_fa_m2;
 
     genvar q, it;
     generate
@@ -299,16 +307,50 @@ module cube4_sha #(
                 reg [RI_W-1:0]  d_idx;
                 wire [19:0]     d2_dp = dp_all[q*20 +: 20];
                 reg [RI_W-1:0]  d2_idx;
+                always @(posedge clk) begin
+                    d_idx  <= idx;
+                    d2_idx <= d_idx;
+                end
+                // GM = 1: m1, m2 modulate D and P by the lane's fs (cube4_sha_gm):
+                //   D' = 256 + round_shift((D - 256) fs, 8),  P' = round_shift(P fs, 8)
+                // (cube4_mul: operand registers m1, products m2); D' and P' then
+                // take D's and P's places at d3. Without: d2's word goes on to d3.
+                wire [9:0]      dd_d3, pp_d3;       // D and P, one stage before d3
+                wire [RI_W-1:0] idx_d3;             // the index, one stage before d3
+                if (GM != 0) begin : g_gm
+                    wire [GMF_W-1:0] fs_d2 = gm_fs_d2[q*GMF_W +: GMF_W];
+                    wire signed [20:0] dm, pm;        // 11 x 10 bits
+                    cube4_mul #(.A_W(11), .B_W(10)) u_dm (
+                        .clk(clk), .en(1'b1), .a($signed({1'b0, d2_dp[19:10]}) - 11'sd256),
+                        .b($signed({1'b0, fs_d2})), .p(dm));
+                    cube4_mul #(.A_W(11), .B_W(10)) u_pm (
+                        .clk(clk), .en(1'b1), .a($signed({1'b0, d2_dp[9:0]})),
+                        .b($signed({1'b0, fs_d2})), .p(pm));
+                    // -256 <= round_shift((D - 256) fs, 8) <= 767: D' in 0 .. 1023; P' in 0 .. 1023
+                    wire signed [20:0] dr = (dm + 21'sd128) >>> 8;
+                    wire signed [20:0] pr = (pm + 21'sd128) >>> 8;
+                    assign dd_d3 = 10'(dr + 21'sd256);
+                    assign pp_d3 = 10'(pr);
+                    wire unused_r = ^{dr[20:10], pr[20:10]};
+                    reg [RI_W-1:0] m1_idx, m2_idx;
+                    always @(posedge clk) begin
+                        m1_idx <= d2_idx;
+                        m2_idx <= m1_idx;
+                    end
+                    assign idx_d3 = m2_idx;
+                end else begin : g_no_gm
+                    assign dd_d3  = d2_dp[19:10];
+                    assign pp_d3  = d2_dp[9:0];
+                    assign idx_d3 = d2_idx;
+                end
                 // d3: the multipliers' operand registers (D, C); P and the index ride along
                 reg [RI_W-1:0]  d3_idx;
                 reg [9:0]       d3_pp;
                 always @(posedge clk) begin
-                    d_idx  <= idx;
-                    d2_idx <= d_idx;
-                    d3_idx <= d2_idx;
-                    d3_pp  <= d2_dp[9:0];
+                    d3_idx <= idx_d3;
+                    d3_pp  <= pp_d3;
                 end
-                // the sample's LUT entry rides along from stage 2 to d2 (stage
+                // the sample's LUT entry rides along from stage 2 to d3 (stage
                 // k's entry in bits [(k-2)*LUT_W +: LUT_W]: the RAM's output
                 // register, then a packed shift register)
                 reg  [(NST-4)*LUT_W-1:0] lut_sr;
@@ -320,28 +362,42 @@ module cube4_sha #(
 
                 // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
                 // registers are d3's (C from the shift register's stage before
-                // d_alpha's, D from d2's word): the block RAM's word reaches
-                // the multiplier through d2, the RAM's output register; the
-                // product register is e1's
+                // d_alpha's, D from d2's word or D'): the block RAM's word
+                // reaches the multiplier through d2, the RAM's output register;
+                // the product register is e1's
                 wire [23:0] d_col_d = lut_q[(NST-5)*LUT_W + ALPHA_W +: 24];   // C one stage early
-                wire unused_col = ^lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];       // (its copy at d: not needed)
+                wire unused_col = ^lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];       // (its copy at d3: not needed)
                 wire [3*18-1:0]   e1_cd;
                 reg  [17:0]       e1_ppx;    // P * 2^8 + the rounding half 2^7
-                reg  [ALPHA_W-1:0] e1_a;
+                wire [ALPHA_W-1:0] e1_a;     // A, or A' = round_shift(A fa, 8) with GM
                 reg  [RI_W-1:0]   e1_idx;
                 genvar ch;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
                     wire signed [19:0] cd_p;
                     cube4_mul #(.A_W(9), .B_W(11)) u_cd (
                         .clk (clk), .en (1'b1), .a ($signed({1'b0, d_col_d[8 * (2 - ch) +: 8]})),
-                        .b ($signed({1'b0, d2_dp[19:10]})), .p (cd_p));
+                        .b ($signed({1'b0, dd_d3})), .p (cd_p));
                     assign e1_cd[18*ch +: 18] = cd_p[17:0];    // < 255 * 1023 < 2^18
                     wire unused_cd = ^cd_p[19:18];
                 end
                 always @(posedge clk) begin
                     e1_ppx <= {d3_pp, 8'h80};
-                    e1_a   <= d_alpha;
                     e1_idx <= d3_idx;
+                end
+                if (GM != 0) begin : g_gm_a
+                    // A' = round_shift(A fa, 8) <= A: operand registers d3 (A one stage
+                    // early), product e1
+                    wire signed [ALPHA_W+10:0] am;
+                    cube4_mul #(.A_W(ALPHA_W + 1), .B_W(10)) u_am (
+                        .clk(clk), .en(1'b1), .a($signed({1'b0, lut_q[(NST-5)*LUT_W +: ALPHA_W]})),
+                        .b($signed({1'b0, gm_fa_m2[q*GMF_W +: GMF_W]})), .p(am));
+                    wire [ALPHA_W+10:0] ar = ($unsigned(am) + (ALPHA_W + 11)'(128)) >> 8;
+                    assign e1_a = ar[ALPHA_W-1:0];
+                    wire unused_ar = ^{ar[ALPHA_W+10:ALPHA_W], d_alpha};
+                end else begin : g_no_gm_a
+                    reg [ALPHA_W-1:0] e1_a_q;
+                    always @(posedge clk) e1_a_q <= d_alpha;
+                    assign e1_a = e1_a_q;
                 end
 
                 // e2: shade, col = min(round_shift(C * D, 8) + P, 255), the rounding in
@@ -394,6 +450,39 @@ module cube4_sha #(
             end else begin : g_none
                 wire unused_lut_1 = ^lut_1;
             end
+        end
+    endgenerate
+
+    // ---- gradient-magnitude modulation (GM = 1): cube4_sha_gm from stage a's gradient,
+    // its factors (stage GM_LAT) carried to d2 (fs) and m2 (fa) ----
+    generate
+        if (GM != 0) begin : g_gmod
+            localparam integer FW2 = P * GMF_W;
+            localparam integer D2  = 6 + NDIV;        // stage d2 (a = 0)
+            wire [FW2-1:0] fa7, fs7;
+            cube4_sha_gm #(.P(P), .VOXEL_W(VOXEL_W)) u_gm (
+                .clk(clk), .gm_we(gm_we), .gm_addr(gm_addr), .gm_data(gm_data),
+                .in_gi(a_gi), .in_gj(a_gj), .in_gk(a_gk), .fa(fa7), .fs(fs7));
+            if (D2 < GM_LAT) begin : g_late
+                $error("cube4_sha: the modulation's factors come at stage %0d, after d2 (%0d)", GM_LAT, D2);
+            end
+            // fs: NSF = D2 - GM_LAT (>= 2: NDIV >= 3) more stages; fa: two more (m1, m2)
+            localparam integer NSF = D2 - GM_LAT;
+            localparam integer NSA = NSF + 2;
+            reg  [NSF*FW2-1:0]     fs_sr;
+            reg  [NSA*FW2-1:0]     fa_sr;
+            wire [(NSF+1)*FW2-1:0] fs_q = {fs_sr, fs7};
+            wire [(NSA+1)*FW2-1:0] fa_q = {fa_sr, fa7};
+            always @(posedge clk) begin
+                fs_sr <= fs_q[NSF*FW2-1:0];
+                fa_sr <= fa_q[NSA*FW2-1:0];
+            end
+            assign gm_fs_d2 = fs_q[NSF*FW2 +: FW2];
+            assign gm_fa_m2 = fa_q[NSA*FW2 +: FW2];
+        end else begin : g_no_gmod
+            assign gm_fs_d2 = '0;
+            assign gm_fa_m2 = '0;
+            wire unused_gm = ^{gm_we, gm_addr, gm_data, gm_fs_d2, gm_fa_m2};
         end
     endgenerate
 

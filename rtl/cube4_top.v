@@ -42,7 +42,7 @@
 //   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0;
 //   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
 //   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0;
-//   ZIN = 1 with RECTS = 1.
+//   ZIN = 1 with RECTS = 1; GMOD = 1 with SHADING = 0 or RECTS = 1.
 //   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
 //                slice's entry of the table (rect_*), GRA and COM follow the
 //                rectangles; every frame needs its table (the whole box for the
@@ -54,6 +54,9 @@
 //   ZOUT         1: depth out (numerics.md section 21): COM keeps two slice
 //                numbers per ray in its buffer word and gives them beside each
 //                finished ray (pix_z; DEPTH_T).          0..1. Default 0.
+//   GMOD         1: gradient-magnitude modulation (numerics.md section 23):
+//                cube4_sha_gm's factors of |g|^2 from the host's table (gm_*)
+//                modulate A, D and P in SHA (two more SHA stages). 0..1. Default 0.
 //   ZIN          1: depth in (numerics.md section 22): COM reads each lane's
 //                stop slice from the host's table (stop_*, cube4_com_stop)
 //                and counts only the samples in front of it; every frame
@@ -86,7 +89,7 @@
 module cube4_top #(
     `CUBE4_BUILD_PARAMS, parameter integer DEPTH = 65536,
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
-    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
+    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT, `CUBE4_GM_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3,
     localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W   // a LUT entry (lut_data)
@@ -105,6 +108,11 @@ module cube4_top #(
     input  wire                      rmap_we,
     input  wire [RI_W-1:0]           rmap_addr,
     input  wire [19:0]               rmap_data,
+    // gradient-magnitude modulation's table (GMOD = 1; unused otherwise): entry
+    // gm_addr = {fa, fs}, GMF_W bits each (golden/cube4/gmod.py gm_table)
+    input  wire                      gm_we,
+    input  wire [GMA_W-1:0]          gm_addr,
+    input  wire [2*GMF_W-1:0]        gm_data,
     // the slice-rectangle table (RECTS = 1; unused otherwise): entry rect_addr =
     // sample slice, layout CUBE4_RECT_LAYOUT (golden/cube4/memory.py rect_table)
     input  wire                      rect_we,
@@ -155,6 +163,9 @@ module cube4_top #(
         end
         if (SLAB != 0 && CLIP == 0) begin : g_slab_clip
             $error("cube4_top: SLAB = 1 needs CLIP = 1 (the slab is the cut plane's)");
+        end
+        if (GMOD != 0 && (SHADING == 0 || RECTS != 0)) begin : g_gmod_shading
+            $error("cube4_top: GMOD = 1 needs SHADING = 1 and RECTS = 0 (the gradient comes with shading; not with rectangles)");
         end
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
@@ -329,6 +340,9 @@ module cube4_top #(
         .rmap_we   (rmap_we),
         .rmap_addr (rmap_addr),
         .rmap_data (rmap_data),
+        .gm_we     (gm_we),
+        .gm_addr   (gm_addr),
+        .gm_data   (gm_data),
         .in_valid  (sha_in_valid),
         .in_ready  (sha_in_ready),
         .in_hdr    (gra_hdr),

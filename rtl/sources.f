@@ -40,6 +40,7 @@ cube4_gra_window.v
 cube4_gra_arith.v
 cube4_gra.v
 cube4_sha_slab.v
+cube4_sha_gm.v
 cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v

@@ -54,6 +54,8 @@ OPTIONS: tuple[Option, ...] = (
            ("cube4_com depth fields",)),
     Option("ZIN", 0, "d", "depth in (the stop-slice table in COM)",
            ("cube4_com_stop",)),
+    Option("GMOD", 0, "m", "gradient-magnitude modulation (cube4_sha_gm and SHA's modulation multipliers)",
+           ("cube4_sha_gm", "cube4_sha modulation stages")),
     Option("RECTS", 0, "r", "slice rectangles (the rectangle table in CFB, GRA's walk, COM)",
            ("cube4_cfb rectangle walk", "cube4_gra position walk", "cube4_com rectangle reader")),
 )
@@ -103,6 +105,7 @@ RULES: tuple[Rule, ...] = (
     Rule({"SLAB": 1}, {"CLIP": (1,)}, "the slab is the cut plane's"),
     Rule({"RECTS": 1}, {"PLW": (0,), "MAX_SS_LOG2": (0,)}, "rectangles run with S = 1, unweighted"),
     Rule({"ZIN": 1}, {"RECTS": (0,)}, "depth in runs on the fixed and box schedules"),
+    Rule({"GMOD": 1}, {"SHADING": (1,), "RECTS": (0,)}, "the gradient comes with shading; not with rectangles"),
 )
 
 

@@ -24,6 +24,9 @@ FILL_CYCLES_VGRAD = 50
 #: least 10 stages: a build without shading (3 stages) takes this many cycles more; a shaded
 #: SHA is longer already. Checked by tb/cube4_top's slab test.
 FALL_EXTRA_UNSHADED = 7
+#: Gradient-magnitude modulation (GMOD = 1, shaded builds only) adds two SHA stages (m1, m2:
+#: rtl/cube4_sha.v): a frame takes this many cycles more. Checked by tb/cube4_top's test.
+GM_EXTRA = 2
 
 #: cube4_com runs a slice of L = NJ·NB beats at one beat per cycle only if L >= this; a smaller
 #: slice takes L beats per COM_MIN_SLICE cycles.
@@ -35,18 +38,24 @@ def has_falloff(build: dict) -> bool:
     return bool(build.get("SLAB", 0)) and bool(build.get("COMPOSITING", 1))
 
 
+def has_gmod(build: dict) -> bool:
+    """Does the build have gradient-magnitude modulation's stages (GMOD = 1, shaded)?"""
+    return bool(build.get("GMOD", 0)) and bool(build.get("SHADING", 1))
+
+
 def frame_cycles(m: int, nj: int, ni: int, p: int, shading: bool = True, vgrad: bool = False,
-                 fall: bool = False) -> int:
+                 fall: bool = False, gm: bool = False) -> int:
     """Cycles of one frame without stalls, for M sample slices of NJ rows of NI samples on P
     pipelines; ``shading`` False: a build without shading; ``vgrad``: a shaded build whose
     gradient comes from the voxels (no GRA); ``fall``: the build has the slab's falloff
-    unit (``has_falloff``)."""
+    unit (``has_falloff``); ``gm``: the shaded build has the modulation's stages (``has_gmod``)."""
     nb = -(-ni // p)
     if not shading:
         return (m * nj + 1) * nb + 1 + FILL_CYCLES_UNSHADED + (FALL_EXTRA_UNSHADED if fall else 0)
+    extra = GM_EXTRA if gm else 0
     if vgrad:
-        return (m * nj + 1) * nb + 1 + FILL_CYCLES_VGRAD
-    return (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + FILL_CYCLES
+        return (m * nj + 1) * nb + 1 + FILL_CYCLES_VGRAD + extra
+    return (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + FILL_CYCLES + extra
 
 
 

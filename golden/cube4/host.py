@@ -18,8 +18,9 @@ import numpy as np
 from .beats import BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
 from .clip import Clip, crop_regions, cut_coefficients, slab_coefficients
 from .config import Cube4Config, resolve_build
-from .cycles import frame_cycles, has_falloff, rect_frame_cycles
+from .cycles import frame_cycles, has_falloff, has_gmod, rect_frame_cycles
 from .geometry import Geometry, check_geometry, stop_slices
+from .gmod import gm_table
 from .errors import UserError
 from .levels import level_dims, level_volume
 from .model import PIXEL_DTYPE, Frame, render_frame
@@ -103,6 +104,20 @@ def host_tables(scene: Scene, cfg: Cube4Config, trav: Traversal) -> tuple[np.nda
     return lut, (reflectance_map(scene, cfg, trav, volume_axes=scene.voxel_gradients) if scene.shaded else None)
 
 
+def gm_frame_table(scene: Scene, cfg: Cube4Config) -> np.ndarray | None:
+    """The gradient-magnitude modulation table the host writes for this scene (cube4.gmod,
+    numerics.md §23; None: the scene has none). One line if the scene cannot have it."""
+    if scene.gmod is None:
+        return None
+    if not scene.shaded:
+        raise UserError("[gradient_modulation] needs a shaded composite scene (the gradient comes with shading)")
+    if scene.path_weighted:
+        raise UserError("[gradient_modulation] does not combine with path weights (the first and last samples "
+                        "of a ray take the LUT's weighted opacity): set [render] path_weights = false")
+    opacity, shading = scene.gmod
+    return gm_table(opacity, shading, cfg.voxel_bits, scene.gradient)
+
+
 def build_memory(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, build: dict) -> np.ndarray:
     """What a build's voxel memory holds for these scenes (checked by resolve_build to share
     one gradient): the volume, or on a VGRAD build the words with the scenes' voxel gradient
@@ -140,12 +155,13 @@ def schedule_stats(plans: list[SkipPlan], cfg: Cube4Config, build: dict) -> dict
     """What the frames of one view (one per sub-pixel pass) traverse and the cycles they
     predict, against the fixed schedule."""
     shading, vgrad, fall = bool(build["SHADING"]), bool(build.get("VGRAD", 0)), has_falloff(build)
+    gm = has_gmod(build)
     full = cycles = 0
     boxes = []
     for plan in plans:
         t = plan.whole
-        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading, vgrad, fall)
-        cycles += plan.cycles(cfg.pipelines, shading, vgrad, fall)
+        full += frame_cycles(t.num_sample_slices, t.nj, t.ni, cfg.pipelines, shading, vgrad, fall, gm)
+        cycles += plan.cycles(cfg.pipelines, shading, vgrad, fall, gm)
         boxes.append(None if plan.box is None else
                      {"origin": [int(a) + int(o) for a, o in zip(plan.box[0], t.origin)],
                       "dims": [int(b) - int(a) for a, b in zip(*plan.box)]})
@@ -167,6 +183,7 @@ class ViewPlan:
     rmap: np.ndarray | None
     passes: list[Pass]
     plans: list[SkipPlan]         # one per pass
+    gm: np.ndarray | None = None  # gradient-magnitude modulation's table (cube4.gmod; None: none)
 
     def jobs(self) -> list[tuple[Pass, SkipPlan]]:
         """The passes that run a frame (a pass in which nothing counts runs none)."""
@@ -182,7 +199,7 @@ def plan_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config) -> ViewPlan:
     box_vol = crop_volume(level_of(vol, scene), trav)
     pss = passes(trav, scene.subpixel)
     plans = schedules(box_vol, scene, cfg, pss, lut)
-    return ViewPlan(scene, trav, cam, lut, rmap, pss, plans)
+    return ViewPlan(scene, trav, cam, lut, rmap, pss, plans, gm_frame_table(scene, cfg))
 
 
 def scene_geometry(scene: Scene, cam: Camera) -> Geometry | None:
@@ -369,7 +386,8 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
                            progress=progress, mode=scene.mode, shading=scene.shaded, clip=plan.clip,
                            vgrad=scene.voxel_gradients, rects=frame_rects[n], beats=sched, done=rule,
                            depth_t=depth_threshold(scene, cfg),
-                           stop_m=None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z)))
+                           stop_m=None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z)),
+                           gm=vp.gm)
         results[n] = (sub.baseplane, sub.pixels)
         if sub.depth_m is not None:
             depths[n] = sub.depth_m

@@ -26,6 +26,7 @@ import numpy as np
 
 from .config import COLOR_W, RMAP_FRAC, Cube4Config
 from .fixed import lerp, round_shift
+from .gmod import gm_index, modulate
 from .clip import FALL_ONE, FALL_SHIFT, Clip
 from .modes import MODES, is_blend
 from .pathlen import path_weighted, weight_quarters, weighted_alpha
@@ -262,21 +263,28 @@ def rmap_index(g: np.ndarray, rmap_bits: int) -> np.ndarray:
     return np.where(big == 0, 6 * r * r, idx)
 
 
-def shade(samples: np.ndarray, grad: np.ndarray | None, lut: np.ndarray, rmap: np.ndarray | None, rmap_bits: int):
+def shade(samples: np.ndarray, grad: np.ndarray | None, lut: np.ndarray, rmap: np.ndarray | None, rmap_bits: int,
+          gm: np.ndarray | None = None):
     """Classify and shade: returns (rgba (4, ...) int64, rmap index or None).
 
     (R, G, B, A) = LUT[sample]; (D, P) = RMAP[index(gradient)];
     C' = min(2^8 - 1, round_shift(C * D, 8) + P) for C in R, G, B; A unchanged.
     Unshaded (grad None, a build without GRA and reflectance map): C' = C.
+    gm: gradient-magnitude modulation's table (cube4.gmod, numerics.md §23): D, P and A
+    are modulated by the factors of the gradient's entry first.
     """
     entry = lut[samples]  # (..., 4)
     if grad is None:
         return np.moveaxis(entry.astype(np.int64), -1, 0), None
     idx = rmap_index(grad, rmap_bits)
     dp = rmap[idx]
+    alpha = entry[..., 3:4]
+    d, p = dp[..., 0:1], dp[..., 1:2]
+    if gm is not None:
+        d, p, alpha = modulate(entry, dp, gm[gm_index(grad)])
     top = (1 << COLOR_W) - 1
-    col = np.minimum(top, round_shift(entry[..., :3] * dp[..., 0:1], RMAP_FRAC) + dp[..., 1:2])
-    rgba = np.concatenate([col, entry[..., 3:4]], axis=-1)
+    col = np.minimum(top, round_shift(entry[..., :3] * d, RMAP_FRAC) + p)
+    rgba = np.concatenate([col, alpha], axis=-1)
     return np.moveaxis(rgba, -1, 0), idx
 
 
@@ -350,6 +358,7 @@ def render_frame(
     done: "TerminationRule | None" = None,
     depth_t: int | None = None,
     stop_m: np.ndarray | None = None,
+    gm: np.ndarray | None = None,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
@@ -367,6 +376,7 @@ def render_frame(
     adds something (w > 0; MIP / MinIP: the first counted sample); None: not tracked.
     stop_m: depth in (numerics.md §22): (rows, cols) per base-plane pixel, its ray counts
     the sample slices m < stop_m only (cube4.geometry.stop_slices).
+    gm: gradient-magnitude modulation's table (cube4.gmod, numerics.md §23; shaded frames).
     rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
     rectangle, and only its samples count; None: every slice is the whole box.
     beats: beat skipping (cube4.beats, numerics.md §19): samples outside the slice's
@@ -456,7 +466,7 @@ def render_frame(
             g = np.stack([sample_slice(c, m) for c in comps])   # voxel_gradient_slice, per rectangle
         else:
             g = gradient(prev, cur, nxt, trav, m)
-        rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits)
+        rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits, gm)
         wrgba = rgba
         if path_cols is not None and trav.faces:
             wrgba = rgba.copy()   # the shaded stream keeps the LUT's A; COM weights it

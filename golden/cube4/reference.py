@@ -50,6 +50,7 @@ import numpy as np
 from .modes import is_extremum
 from .progress import Progress
 from .scene import Scene
+from .gmod import eval_points
 from .tables import phong_terms, unshaded_terms
 from .view import Camera, Traversal
 
@@ -445,19 +446,25 @@ def cast_rays(
             rgba = scene.tf(vals[:, 0])
             wq = _midpoint_weights(q, steps_of[active], length[active], step)
             a = np.clip(rgba[:, 3], 0.0, 1.0)
+            if shaded:
+                g = vals[:, 1:4]
+                gn = np.linalg.norm(g, axis=1)
+                if scene.gmod is not None:     # gradient-magnitude modulation at the exact |grad f|
+                    a = a * eval_points(scene.gmod[0], gn)
             if fall is None:
                 alpha = np.where(counts, 1.0 - np.power(1.0 - a, step * wq), 0.0)
             else:       # the falloff scales the opacity of one hardware sample (d_hw long)
                 a_hw = fall * (1.0 - np.power(1.0 - a, d_hw))
                 alpha = np.where(counts, 1.0 - np.power(1.0 - a_hw, step * wq / d_hw), 0.0)
             if shaded:
-                g = vals[:, 1:4]
-                gn = np.linalg.norm(g, axis=1)
                 flat = gn < 1e-12
                 normals = -g / np.where(flat, 1.0, gn)[:, None]
                 dd, pp = phong_terms(scene, normals, lights, eye)
                 dd = np.where(flat, d0, dd)
                 pp = np.where(flat, p0, pp)
+                if scene.gmod is not None:     # the lighting towards unshaded as the factor falls
+                    fs = eval_points(scene.gmod[1], gn)
+                    dd, pp = 1.0 + fs * (dd - 1.0), fs * pp
                 c = np.minimum(1.0, rgba[:, :3] * dd[:, None] + pp[:, None])
             else:
                 c = rgba[:, :3]

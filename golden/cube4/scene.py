@@ -74,6 +74,9 @@ class Scene:
     # [geometry]: ("image", EXR path) or ("mesh", "needle" or a mesh file), which the application
     # turns into a cube4.geometry.Geometry for the view (cube4.app.mesh.resolve_geometry)
     geometry: object = None
+    # [gradient_modulation]: (opacity points, shading points), each (n, 2) [|grad f|, factor] or
+    # None (1 everywhere); None: no modulation (cube4.gmod)
+    gmod: tuple | None = None
 
     @property
     def shaded(self) -> bool:
@@ -121,7 +124,7 @@ def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
     _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut", "slab",
-                       "geometry"),
+                       "geometry", "gradient_modulation"),
                 "top level")
     view = data.get("view", {})
     _check_keys(view, ("direction", "azimuth", "elevation", "up"), "view")
@@ -231,6 +234,10 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         geometry = next(iter(geo.items()))
     if cut is not None and slab is not None:
         raise UserError("scene: give [cut] or [slab], not both (they share the plane's registers)")
+    gmod = _gradient_modulation(data.get("gradient_modulation", {}))
+    if gmod is not None and not (shading and mode == "composite"):
+        raise UserError("scene: [gradient_modulation] needs a shaded composite scene (mode = \"composite\", "
+                        "shading = true): the gradient comes with shading")
 
     return Scene(
         direction=direction, up=up, width=width, height=height, mode=mode,
@@ -238,8 +245,18 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
         shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, geometry=geometry, skip=skip, tau=tau, preview=preview,
         subpixel=subpixel, filter=warp_filter,
-        footprint=footprint, depth_threshold=depth, gradient=gradient, path_weights=path_weights,
+        footprint=footprint, depth_threshold=depth, gradient=gradient, path_weights=path_weights, gmod=gmod,
     )
+
+
+def _gradient_modulation(tbl: dict):
+    """[gradient_modulation] opacity / shading = [[|grad f|, factor], ...] (cube4.gmod): at
+    least one of the two; the other is 1 everywhere."""
+    _check_keys(tbl, ("opacity", "shading"), "gradient_modulation")
+    if not tbl:
+        return None
+    from .gmod import parse_points
+    return parse_points(tbl, "opacity"), parse_points(tbl, "shading")
 
 
 def _crop(tbl: dict):

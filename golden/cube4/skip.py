@@ -170,13 +170,13 @@ class SkipPlan:
             return 0.0
         return float(np.prod(self.trav.dims)) / float(np.prod(self.whole.dims))
 
-    def cycles(self, p: int, shading: bool, vgrad: bool = False, fall: bool = False) -> int:
-        """Cycles of the frame without stalls (0: no frame); shading, vgrad, fall: the
+    def cycles(self, p: int, shading: bool, vgrad: bool = False, fall: bool = False, gm: bool = False) -> int:
+        """Cycles of the frame without stalls (0: no frame); shading, vgrad, fall, gm: the
         build's (cycles.frame_cycles)."""
         if self.trav is None:
             return 0
         t = self.trav
-        return frame_cycles(t.num_sample_slices, t.nj, t.ni, p, shading, vgrad, fall)
+        return frame_cycles(t.num_sample_slices, t.nj, t.ni, p, shading, vgrad, fall, gm)
 
     def box_volume(self, vol: np.ndarray) -> np.ndarray:
         """The box's voxels, vol[z, y, x] of the whole box (a view)."""

@@ -51,7 +51,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
                 stop = None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z))
                 jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip,
-                                     rects=rects[n], depth_t=depth_threshold(vp.scene, cfg), stop_m=stop))
+                                     rects=rects[n], depth_t=depth_threshold(vp.scene, cfg), stop_m=stop,
+                                     gm=vp.gm))
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients

@@ -28,7 +28,8 @@ from cube4.modes import is_blend, is_extremum
 from cube4.memory import load_image, pack_volume, stop_table, top_regs, words_per_bank, write_hex
 from cube4.view import Traversal
 
-from cube4.cycles import COM_MIN_SLICE, frame_cycles, has_falloff, rect_frame_cycles, slow_slice_factor
+from cube4.cycles import COM_MIN_SLICE, frame_cycles, has_falloff, has_gmod, rect_frame_cycles, slow_slice_factor
+from cube4.gmod import GMF_BITS, identity_table
 from cube4.slices import SliceRects, whole_box_rects
 from .beats import Geometry
 from .rect_port import rect_width, rect_words
@@ -53,6 +54,7 @@ class FrameJob:
     rects: SliceRects | None = None  # slice rectangles (a RECTS build; None there: the whole box)
     depth_t: int | None = None  # depth out's threshold on T (a ZOUT build; None: not tracked)
     stop_m: np.ndarray | None = None  # depth in: (rows, cols) stop slices of the base plane (a ZIN build)
+    gm: np.ndarray | None = None  # gradient-magnitude modulation's table (cube4.gmod; a GMOD build)
     extra: dict = field(default_factory=dict)
 
 
@@ -71,6 +73,8 @@ def check_frame_fits(fr: FrameJob, params: dict) -> None:
         raise UserError("a frame with a slab needs a build with SLAB = 1")
     if fr.depth_t is not None and not params["ZOUT"]:
         raise UserError("a frame with depth out needs a build with ZOUT = 1")
+    if fr.gm is not None and not params["GMOD"]:
+        raise UserError("a frame with gradient-magnitude modulation needs a build with GMOD = 1")
     if fr.stop_m is not None and not params["ZIN"]:
         raise UserError("a frame with depth in needs a build with ZIN = 1")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
@@ -199,9 +203,12 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p,
                          plw=bool(params["PLW"]))
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
-            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad, has_falloff(params)) + 100)
+            ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad, has_falloff(params), has_gmod(params)) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
-            rect_p, stop_p = workdir / f"rects{n}.hex", workdir / f"stop{n}.hex"
+            rect_p, stop_p, gm_p = workdir / f"rects{n}.hex", workdir / f"stop{n}.hex", workdir / f"gm{n}.hex"
+            if params["GMOD"]:      # every frame loads its table (no modulation: the identity)
+                gm = fr.gm if fr.gm is not None else identity_table(cfg.voxel_bits)
+                write_hex(gm_p, [(int(a) << GMF_BITS) | int(s) for a, s in gm], 2 * GMF_BITS)
             if params["ZIN"]:       # every frame loads its table (no geometry: no slice stops)
                 m_w = Geometry(cfg.pipelines, max_dim, params["MAX_SS_LOG2"]).m_w
                 write_hex(stop_p, stop_table(fr.stop_m, cfg.pipelines, max_dim, m_w), cfg.pipelines * m_w)
@@ -215,6 +222,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                 "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted, fr.depth_t),
                 "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
                 "stop": str(stop_p) if params["ZIN"] else None,
+                "gm": str(gm_p) if params["GMOD"] else None,
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
                 "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,
@@ -222,6 +230,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
                "rect": str(workdir / "rects.hex"), "stop": str(workdir / "stop.hex"),
+               "gm": str(workdir / "gm.hex"),
                "result": str(workdir / "result.json")}
         job_path = workdir / "job.json"
         job_path.write_text(json.dumps(job, indent=1))
@@ -239,7 +248,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                        **({"COCOTB_LOG_LEVEL": "WARNING"} if quiet else {})},
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
                       f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_RECTFILE={job['rect']}",
-                      f"+CUBE4_STOPFILE={job['stop']}",
+                      f"+CUBE4_STOPFILE={job['stop']}", f"+CUBE4_GMFILE={job['gm']}",
                       f"+CUBE4_DUMP={job['dump']}"],
             quiet_logs=quiet,
             private_results=True,   # bricks on several workers may run this build at once

@@ -112,6 +112,8 @@ async def run_job(dut):
             if fr.get("rect"):
                 Path(job["rect"]).write_text(Path(fr["rect"]).read_text())
             words = 1 << 16
+            if fr.get("gm"):
+                Path(job["gm"]).write_text(Path(fr["gm"]).read_text())
             if fr.get("stop"):
                 Path(job["stop"]).write_text(Path(fr["stop"]).read_text())
                 words = max(words, len(Path(fr["stop"]).read_text().split()))

@@ -31,7 +31,7 @@
 //   all P banks per line) is loaded with the tables, one line a clock.
 //
 //   Plusargs: +CUBE4_MEMFILE= +CUBE4_LUTFILE= +CUBE4_RMAPFILE= +CUBE4_RECTFILE=
-//   +CUBE4_STOPFILE= +CUBE4_DUMP=
+//   +CUBE4_STOPFILE= +CUBE4_GMFILE= +CUBE4_DUMP=
 //
 // Parameters: as cube4_top.
 // =============================================================================
@@ -56,11 +56,13 @@ module cube4_top_harness #(
     parameter integer SLAB        = 0,    // 1: the cut slab (CUT_T, FALL_*)
     parameter integer ZOUT        = 0,    // 1: depth out (DEPTH_T, pix_z)
     parameter integer ZIN         = 0,    // 1: depth in (the stop table from CUBE4_STOPFILE)
+    parameter integer GMOD        = 0,    // 1: gradient-magnitude modulation (its table from CUBE4_GMFILE)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
     `CUBE4_RECT_LAYOUT,
     `CUBE4_STOP_LAYOUT,
+    `CUBE4_GM_LAYOUT,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     `CUBE4_VIEW_PORTS
@@ -189,7 +191,8 @@ module cube4_top_harness #(
     localparam integer STOP_IW = (ZIN != 0) ? STOP_AW : 1;
     localparam integer STOP_N  = 1 << STOP_IW;
     reg [P*M_W-1:0]   sti  [0:STOP_N-1];    // the stop table (ZIN = 1)
-    string memfile, lutfile, rmapfile, rectfile, stopfile, dumpfile;
+    reg [2*GMF_W-1:0] gmi  [0:GM_N-1];      // the modulation table (GMOD = 1)
+    string memfile, lutfile, rmapfile, rectfile, stopfile, gmfile, dumpfile;
     integer dump_fd, b;
     initial begin
         if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile))   memfile  = "cube4_mem.hex";
@@ -197,6 +200,7 @@ module cube4_top_harness #(
         if (!$value$plusargs("CUBE4_RMAPFILE=%s", rmapfile)) rmapfile = "cube4_rmap.hex";
         if (!$value$plusargs("CUBE4_RECTFILE=%s", rectfile)) rectfile = "cube4_rects.hex";
         if (!$value$plusargs("CUBE4_STOPFILE=%s", stopfile)) stopfile = "cube4_stop.hex";
+        if (!$value$plusargs("CUBE4_GMFILE=%s", gmfile))     gmfile   = "cube4_gm.hex";
         if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.bin";
         dump_fd = $fopen(dumpfile, "wb");
     end
@@ -219,6 +223,7 @@ module cube4_top_harness #(
             $readmemh(rmapfile, rmi);
             if (RECTS != 0) $readmemh(rectfile, rti);
             if (ZIN != 0) $readmemh(stopfile, sti);
+            if (GMOD != 0) $readmemh(gmfile, gmi);
             tab_busy_q <= 1'b1;
             done_q     <= 1'b0;
             la_q       <= 32'd0;
@@ -230,7 +235,7 @@ module cube4_top_harness #(
             la_q <= la_q + 32'd1;
         end else if (tab_busy_q) begin
             if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= (1 << VOXEL_W)
-                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && (ZIN == 0 || la_q + 32'd1 >= STOP_N)) begin
+                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && (ZIN == 0 || la_q + 32'd1 >= STOP_N) && (GMOD == 0 || la_q + 32'd1 >= GM_N)) begin
                 tab_busy_q <= 1'b0;
                 done_q     <= 1'b1;
             end
@@ -244,7 +249,8 @@ module cube4_top_harness #(
     wire lut_we  = tab_busy_q && (la_q < (1 << VOXEL_W));
     wire rmap_we = tab_busy_q && (la_q < RMAP_N);
     wire rect_we = (RECTS != 0) && tab_busy_q && (la_q < MAX_DIM);
-    wire stop_we = (ZIN != 0) && tab_busy_q && (la_q < STOP_N);   // STOP_N: 2 without ZIN (unused)
+    wire stop_we = (ZIN != 0) && tab_busy_q && (la_q < STOP_N);
+    wire gm_we   = (GMOD != 0) && tab_busy_q && (la_q < GM_N);   // STOP_N: 2 without ZIN (unused)
 
     // ------------------------------------------------------------ random holds
     // LFSR s starts from the seed and its index (never from zero)
@@ -302,7 +308,8 @@ module cube4_top_harness #(
         .RECTS       (RECTS),
         .SLAB        (SLAB),
         .ZOUT        (ZOUT),
-        .ZIN         (ZIN)
+        .ZIN         (ZIN),
+        .GMOD        (GMOD)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -319,6 +326,9 @@ module cube4_top_harness #(
         .rect_we     (rect_we),
         .rect_addr   (M_W'(la_q)),
         .rect_data   (rti[la_q[$clog2(MAX_DIM)-1:0]]),
+        .gm_we       (gm_we),
+        .gm_addr     (la_q[GMA_W-1:0]),
+        .gm_data     (gmi[la_q[GMA_W-1:0]]),
         .stop_we     (stop_we),
         .stop_addr   (la_q[STOP_AW-1:0]),
         .stop_data   (sti[la_q[STOP_IW-1:0]]),

@@ -28,6 +28,7 @@
 // =============================================================================
 module cube4_sha_harness #(
     `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
+    `CUBE4_GM_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3,
     localparam integer RGBA_W = P * (24 + ALPHA_W)   // out_rgba (a name, for the runner's port scan)
@@ -41,6 +42,9 @@ module cube4_sha_harness #(
     input  wire                      rmap_we,
     input  wire [RI_W-1:0]           rmap_addr,
     input  wire [19:0]               rmap_data,
+    input  wire                      gm_we,       // the modulation table (GMOD = 1): {fa, fs}
+    input  wire [GMA_W-1:0]          gm_addr,
+    input  wire [2*GMF_W-1:0]        gm_data,
     input  wire                      in_valid,
     output wire                      in_ready,
     `CUBE4_GRA_BEAT_PORTS(input, in)

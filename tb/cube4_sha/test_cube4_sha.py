@@ -36,6 +36,7 @@ import pytest
 from cocotb.triggers import FallingEdge
 
 from cube4.clip import FALL_ONE, FALL_W, Clip, slab_coefficients
+from cube4.gmod import GMF_BITS, GM_ONE, table_entries
 from cube4.model import gradient_stream, sample_stream, shade
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
@@ -91,6 +92,16 @@ async def load_tables(dut, lut: np.ndarray, rmap: np.ndarray, aw: int) -> None:
     dut.rmap_we.value = 0
 
 
+async def load_gm_table(dut, gm: np.ndarray) -> None:
+    """Write the modulation table {fa, fs} through gm_*, one entry per cycle."""
+    for a, (fa, fs) in enumerate(gm):
+        await FallingEdge(dut.clk)
+        dut.gm_we.value, dut.gm_addr.value = 1, a
+        dut.gm_data.value = (int(fa) << GMF_BITS) | int(fs)
+    await FallingEdge(dut.clk)
+    dut.gm_we.value = 0
+
+
 def split_rgba(words: list[int], p: int, aw: int) -> np.ndarray:
     """out_rgba words -> (beats, 4, P): R, G, B, A per lane."""
     lanes = np.stack([unpack_lanes(wd, p, 24 + aw) for wd in words])
@@ -107,7 +118,8 @@ async def test_shaded_stream(dut):
     gw, ri_w = vw + 5, 2 * rb + 3
     shading = bool(int(dut.SHADING.value))   # 0: classification only, C' = C
     bench = UnitBench(dut)
-    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rmap_we": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rmap_we": 0, "gm_we": 0})
+    gmod = shading and bool(int(dut.GMOD.value))
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     slab = bool(int(dut.SLAB.value)) and bool(int(dut.COMPOSITING.value))
@@ -118,9 +130,14 @@ async def test_shaded_stream(dut):
         bench.set_view(trav, p, clip=clip)
         lut, rmap = random_tables(bench.rng, vw, aw, rb)
         await load_tables(dut, lut, rmap, aw)
+        gm = None
+        if gmod:    # random factors over their range, a quarter of them 256 (the identity)
+            gm = bench.rng.integers(0, GM_ONE + 1, size=(table_entries(gw), 2))
+            gm[bench.rng.random(gm.shape) < 0.25] = GM_ONE
+            await load_gm_table(dut, gm)
         samples, inside = sample_stream(vol, trav)
         grads = gradient_stream(samples, trav)  # (M, 3, nj, ni)
-        rgba, idx = shade(samples, np.moveaxis(grads, 1, 0) if shading else None, lut, rmap, rb)
+        rgba, idx = shade(samples, np.moveaxis(grads, 1, 0) if shading else None, lut, rmap, rb, gm)
         if idx is None:
             idx = np.zeros_like(samples)     # (M, nj, ni); out_idx is 0 without shading
         sched = BeatSchedule(trav, p, inside)
@@ -150,7 +167,8 @@ async def test_shaded_stream(dut):
                        dims, direction, gap, stall, len(got))
 
 
-# make test: P = 1 shaded and P = 5 unshaded with 12-bit voxels and the slab's falloff (S = 4);
+# make test: P = 1 shaded, P = 5 unshaded with 12-bit voxels and the slab's falloff (S = 4), and P = 5
+# with gradient-magnitude modulation (RMAP_BITS = 2: the factors come just in time, S = 2);
 # make regress all
 BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1),
           dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=3, SHADING=1, CARRY_SAMPLE=0),
@@ -158,9 +176,12 @@ BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=
           dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=1),
           dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0),
           dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=2, SHADING=1, CARRY_SAMPLE=1, SLAB=1, MAX_SS_LOG2=1),
-          dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0, SLAB=1, MAX_SS_LOG2=2)]
+          dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0, SLAB=1, MAX_SS_LOG2=2),
+          dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=2, SHADING=1, CARRY_SAMPLE=1, GMOD=1, MAX_SS_LOG2=1),
+          dict(P=1, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=0, GMOD=1, SLAB=1),
+          dict(P=8, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1, GMOD=1)]
 
 
-@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 6), ids=param_id))
+@pytest.mark.parametrize("build", sweep(BUILDS, quick=(0, 6, 7), ids=param_id))
 def test_cube4_sha(build):
     run_unit(__file__, {"MAX_DIM": 32, "MAX_SS_LOG2": 0, **build}, "test_shaded_stream")

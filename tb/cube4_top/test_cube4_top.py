@@ -782,3 +782,58 @@ def surface_stops(trav, rng) -> np.ndarray:
     stop[rows // 3:rows // 2, cols // 4:cols // 2] = M      # a hole: no geometry
     stop[-1] = 0                                             # geometry in front of the volume
     return stop
+
+
+# ---------------------------------------------------------------- gradient-magnitude modulation
+# (P, S, voxel gradients): make test P = 1 and 5 (S = 2) with GRA, make regress P = 8 with Sobel
+GM_RUNS = [(1, 1, None), (5, 2, None), (8, 1, "sobel")]
+
+
+@pytest.mark.parametrize(("p", "s", "kind"), sweep(GM_RUNS, quick=(0, 1), ids=lambda r: f"p{r[0]}-s{r[1]}-{r[2]}"))
+def test_gradient_modulation_frames(p, s, kind):
+    """Gradient-magnitude modulation (GMOD = 1, numerics.md §23): each frame's table of
+    {fa, fs} through the load port (random factors, a step as ULTRAVIS's threshold, and the
+    identity), SHA's modulated A, D and P bit for bit against the golden model through
+    cube4_top: six views with 45° and (1, 1, 1), a crop box, random stalls and a reset in
+    mid-frame, GRA's gradient or the voxels'; the modulation changes the picture, and the
+    unstalled frames take the predicted cycles (two SHA stages more: cycles.GM_EXTRA)."""
+    from cube4.gmod import GM_ONE, gm_table, identity_table, table_entries
+    from cube4.host import crop_volume
+    from cube4.model import render_frame
+    from cube4.vgrad import pack_words
+
+    rng = np.random.default_rng(800 + p)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    build = {"GMOD": 1, **({"VGRAD": 1} if kind else {})}
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    mem = pack_words(vol, kind, cfg.voxel_bits) if kind else vol
+    n_gm = table_entries(cfg.voxel_bits + 5)
+    tables = [rng.integers(0, GM_ONE + 1, size=(n_gm, 2)),
+              gm_table(np.array([[0.0, 0.0], [0.02, 0.0], [0.021, 1.0]]), np.array([[0.0, 0.0], [0.05, 1.0]]),
+                       cfg.voxel_bits, kind or "gra"),
+              identity_table(cfg.voxel_bits)]
+    jobs = []
+    views = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
+             (1.0, 0.4, -0.7)]
+    for n, d in enumerate(views):
+        if n == 2:      # a crop box
+            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
+        else:
+            trav = make_traversal(dims, d, cfg.weight_bits, s)
+        lut, rmap = random_tables(rng, cfg)
+        jobs.append(FrameJob(trav, lut, rmap, gm=tables[(0, 1, 0, 1, 0, 2)[n]],
+                             stall=(0, 60, 0, 120, 30, 0)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
+                             reset_after_cycles=150 if n == 3 else 0))
+    results = render_frames(mem, jobs, cfg, max_dim=64, build=build)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"gradient modulation P={p} S={s} {kind or 'gra'} view {views[n]}"
+        gold = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, vgrad=bool(kind), gm=job.gm)
+        if n < 5:       # not the identity table: the modulation changes the frame
+            plain = render_frame(crop_volume(mem, job.trav), job.trav, cfg, job.lut, job.rmap, vgrad=bool(kind))
+            assert (plain.baseplane != gold.baseplane).any(), f"{label}: the modulation changed nothing"
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            t = job.trav
+            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, bool(kind), gm=True)
+            assert res["cycles"] == want, (label, res["cycles"], want)
