@@ -101,10 +101,12 @@ LINT_SETS_cube4_dual_read_ram := DEPTH=1 DEPTH=2,DATA_W=1,OUT_REG=0 DEPTH=128,DA
                                DEPTH=4096,DATA_W=5 DEPTH=6145,DATA_W=20 DEPTH=16384,DATA_W=3 DEPTH=24577,DATA_W=20 DEPTH=70000,DATA_W=3,OUT_REG=0
 LINT_SETS_cube4_prim_ebr    := READ_A=1 SHAPE_W=9,W=5,AW=11,READ_A=1 SHAPE_W=4,W=4,AW=12 SHAPE_W=2,W=1,AW=13,READ_A=1 \
                                SHAPE_W=1,W=1,AW=14,READ_A=1 SHAPE_W=18,W=1,AW=1
+LINT_SETS_cube4_sha_gm      := P=1 P=5 VOXEL_W=16 P=3,VOXEL_W=1 P=64,VOXEL_W=12
 LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8 \
                                SHADING=0 P=1,SHADING=0,VOXEL_W=12 CARRY_SAMPLE=0 SHADING=0,CARRY_SAMPLE=0 \
                                SLAB=1 P=5,SLAB=1,RMAP_BITS=2 SHADING=0,SLAB=1 P=1,SHADING=0,SLAB=1,CARRY_SAMPLE=0 \
-                               SLAB=1,COMPOSITING=0,SHADING=0
+                               SLAB=1,COMPOSITING=0,SHADING=0 GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=5,GMOD=1,SLAB=1,VOXEL_W=12,ALPHA_W=16 \
+                               GMOD=1,RMAP_BITS=6,VOXEL_W=16,ALPHA_W=8
 LINT_SETS_cube4_com         := P=1,PLW=0 P=5,MAX_SS_LOG2=2,PLW=0 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3,PLW=0 \
                                P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8,PLW=0 COMPOSITING=0,PLW=0 EXTREMUM=0,PLW=0 \
                                COMPOSITING=0,ACC_W=8,ALPHA_W=16,VOXEL_W=16,PLW=0 P=1,EXTREMUM=0,ACC_W=24,PLW=0 \
@@ -140,7 +142,8 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
                                RECTS=1,PLW=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 P=8,RECTS=1,PLW=0,VGRAD=1 \
                                SLAB=1 P=1,SLAB=1,SHADING=0 P=5,SLAB=1,MAX_SS_LOG2=2 SLAB=1,COMPOSITING=0,SHADING=0,PLW=0 \
                                ZOUT=1 P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2 \
-                               ZIN=1 P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2
+                               ZIN=1 P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 \
+                               GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

@@ -654,8 +654,10 @@ def test_slab_frames(p, s, shading):
 
 
 # ---------------------------------------------------------------- depth out and in
-# one build for both (each frame without geometry loads a table that stops no ray)
-DEPTH_BUILD = {"ZOUT": 1, "ZIN": 1}
+# one build for depth out, depth in and gradient-magnitude modulation (each frame without
+# geometry loads a table that stops no ray, each without modulation the identity table; the
+# modulation's two SHA stages are in every frame's cycles)
+DEPTH_BUILD = {"ZOUT": 1, "ZIN": 1, "GMOD": 1}
 
 
 @pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
@@ -666,7 +668,7 @@ def test_depth_out_frames(p, s):
     golden model: composite (shaded and not), X-ray, MIP, MinIP, a crop box and the box
     schedule (slices of the whole frame), six views with 45° and (1, 1, 1), random stalls
     and a reset in mid-frame; the depths are not all equal (the test sees them), and the
-    unstalled frames take the cycles of a build without them."""
+    unstalled frames take the predicted cycles (of this build: cycles.GM_EXTRA with it)."""
     from cube4.skip import plan_skip
 
     rng = np.random.default_rng(600 + p)
@@ -706,7 +708,7 @@ def test_depth_out_frames(p, s):
         assert len(np.unique(px["zf"][px["zf"] >= 0])) > 1, label
         if not (job.stall or job.stall_out or job.reset_after_cycles):
             t = job.trav
-            assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True), label
+            assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, gm=True), label
 
 
 @pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
@@ -766,7 +768,7 @@ def test_depth_in_frames(p, s):
         assert (free.baseplane != gold.baseplane).any(), f"{label}: the stop slices changed nothing"
         if not (job.stall or job.stall_out or job.reset_after_cycles):
             t = job.trav
-            assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True), label
+            assert res["cycles"] == frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, gm=True), label
 
 
 def surface_stops(trav, rng) -> np.ndarray:
@@ -804,7 +806,7 @@ def test_gradient_modulation_frames(p, s, kind):
 
     rng = np.random.default_rng(800 + p)
     cfg = Cube4Config(pipelines=p, supersample=s)
-    build = {"GMOD": 1, **({"VGRAD": 1} if kind else {})}
+    build = {"GMOD": 1, "VGRAD": 1} if kind else DEPTH_BUILD     # GRA's: the depth tests' build
     dims = (12 + p, 11, 10)
     nx, ny, nz = dims
     vol = rng.integers(0, 256, size=(nz, ny, nx))
@@ -817,19 +819,21 @@ def test_gradient_modulation_frames(p, s, kind):
     jobs = []
     views = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
              (1.0, 0.4, -0.7)]
+    depth_t = None if kind else (1 << cfg.acc_bits) // 3     # the depth build tracks depth out too
     for n, d in enumerate(views):
         if n == 2:      # a crop box
             trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
         else:
             trav = make_traversal(dims, d, cfg.weight_bits, s)
         lut, rmap = random_tables(rng, cfg)
-        jobs.append(FrameJob(trav, lut, rmap, gm=tables[(0, 1, 0, 1, 0, 2)[n]],
+        jobs.append(FrameJob(trav, lut, rmap, gm=tables[(0, 1, 0, 1, 0, 2)[n]], depth_t=depth_t,
                              stall=(0, 60, 0, 120, 30, 0)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
                              reset_after_cycles=150 if n == 3 else 0))
     results = render_frames(mem, jobs, cfg, max_dim=64, build=build)
     for n, (job, res) in enumerate(zip(jobs, results)):
         label = f"gradient modulation P={p} S={s} {kind or 'gra'} view {views[n]}"
-        gold = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, vgrad=bool(kind), gm=job.gm)
+        gold = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, vgrad=bool(kind), gm=job.gm,
+                     depth_t=job.depth_t)
         if n < 5:       # not the identity table: the modulation changes the frame
             plain = render_frame(crop_volume(mem, job.trav), job.trav, cfg, job.lut, job.rmap, vgrad=bool(kind))
             assert (plain.baseplane != gold.baseplane).any(), f"{label}: the modulation changed nothing"
