@@ -48,7 +48,8 @@ MAX_DIM = 128
 DEPTH = 1024
 # the volume each built-in scene is made for
 SCENE_VOLUME = {"default": "sphere:64", "ml": "ml:41", "mri_mip": "mri", "mri_skin": "mri:64,48,24",
-                "mri_t1_tissue": "mri_t1", "mri_needle": "mri"}
+                "mri_t1_tissue": "mri_t1", "mri_needle": "mri",
+                "mri_boundaries": "mri"}
 UNIT_COLS = ["CFB", "TRI", "GRA", "SHA", "COM", "RING"]
 
 
