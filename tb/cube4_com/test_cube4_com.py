@@ -339,7 +339,7 @@ STOP_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1, MAX_SS
                dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=0, PLW=0)]
 
 
-@pytest.mark.parametrize("build", sweep(STOP_BUILDS, quick=(1,), ids=param_id))
+@pytest.mark.parametrize("build", sweep(STOP_BUILDS, quick=(0,), ids=param_id))
 def test_cube4_com_stop(build):
     run_unit(__file__, {**build, "MAX_DIM": 32, "ZIN": 1}, "test_stop_pixel_stream")
 

@@ -593,7 +593,8 @@ SLAB_VIEWS = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25,
 
 @pytest.mark.parametrize(("p", "s", "shading"), sweep([(1, 1, 0), (5, 2, 1), (8, 1, 1), (5, 1, 0)], quick=(0, 1)))
 def test_slab_frames(p, s, shading):
-    """The cut slab (SLAB = 1, numerics.md §12) on the full build with it (or its unshaded
+    """The cut slab (SLAB = 1, numerics.md §12) on the feature build (DEPTH_BUILD: the full build with
+    SLAB, ZOUT, ZIN and GMOD; or the slab's unshaded
     build): the far face in CLIP, the falloff weights in SHA, COM's multiply after the path
     weights. Six views (45° and (1, 1, 1) among them): composite (shaded where the build
     shades), X-ray, MIP (the slab bounds the samples, no falloff), a path-weighted frame
@@ -602,7 +603,7 @@ def test_slab_frames(p, s, shading):
     model; unstalled frames take the predicted cycles (an unshaded SHA is longer by the
     falloff unit), and the falloff changes the picture (the test sees it)."""
     from cube4.clip import Clip, slab_coefficients
-    from cube4.cycles import has_falloff
+    from cube4.cycles import has_falloff, has_gmod
     from cube4.host import crop_volume
     from cube4.model import render_frame
     from cube4.pathlen import weighted_columns
@@ -610,7 +611,8 @@ def test_slab_frames(p, s, shading):
 
     rng = np.random.default_rng(500 + p)
     cfg = Cube4Config(pipelines=p, supersample=s)
-    build = {"SLAB": 1} if shading else {"SLAB": 1, "SHADING": 0}
+    build = DEPTH_BUILD if shading else {"SLAB": 1, "SHADING": 0}   # shaded: the feature build (depth too)
+    depth_t = (1 << cfg.acc_bits) // 3 if shading else None
     dims = (12 + p, 11, 10)
     nx, ny, nz = dims
     vol = rng.integers(0, 256, size=(nz, ny, nx))
@@ -634,14 +636,15 @@ def test_slab_frames(p, s, shading):
             assert plan.box is not None and plan.fraction < 1.0, plan.box
             trav, clip = plan.trav, plan.clip
         shaded = bool(shading) and mode == "composite" and n in (0, 4, 5)
-        jobs.append(FrameJob(trav, lut, rmap if shaded else None, mode=mode, clip=clip,
+        jobs.append(FrameJob(trav, lut, rmap if shaded else None, mode=mode, clip=clip, depth_t=depth_t,
                              stall=(0, 60, 0, 120, 30, 0)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
                              reset_after_cycles=150 if n == 3 else 0))
     results = render_frames(vol, jobs, cfg, max_dim=64, build=build)
     fall = has_falloff({"COMPOSITING": 1, **build})
     for n, (job, res) in enumerate(zip(jobs, results)):
         label = f"slab P={p} S={s} view {SLAB_VIEWS[n]} {job.mode} slab {job.clip.slab}"
-        gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip)
+        gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip,
+                     depth_t=job.depth_t)
         if n == 0:   # the falloff changes this frame: the test sees it
             hard = Clip(plane=job.clip.plane, slab=(job.clip.slab[0], 0, 0))
             other = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, mode=job.mode,
@@ -649,15 +652,17 @@ def test_slab_frames(p, s, shading):
             assert (other.baseplane != gold.baseplane).any(), f"{label}: the falloff changed nothing"
         if not (job.stall or job.stall_out or job.reset_after_cycles):
             t = job.trav
-            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, bool(shading), False, fall)
+            want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, bool(shading), False, fall,
+                                has_gmod({"SHADING": shading, **build}))
             assert res["cycles"] == want, (label, res["cycles"], want)
 
 
 # ---------------------------------------------------------------- depth out and in
-# one build for depth out, depth in and gradient-magnitude modulation (each frame without
-# geometry loads a table that stops no ray, each without modulation the identity table; the
-# modulation's two SHA stages are in every frame's cycles)
-DEPTH_BUILD = {"ZOUT": 1, "ZIN": 1, "GMOD": 1}
+# one build for depth out, depth in, gradient-magnitude modulation and the shaded slab
+# frames (each frame without geometry loads a table that stops no ray, each without
+# modulation the identity table; the modulation's two SHA stages are in every frame's
+# cycles; a frame without a slab has its falloff off)
+DEPTH_BUILD = {"ZOUT": 1, "ZIN": 1, "GMOD": 1, "SLAB": 1}
 
 
 @pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
