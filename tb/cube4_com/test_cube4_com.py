@@ -128,6 +128,17 @@ def expected_pixel_beats(frame, sched: BeatSchedule) -> dict[str, np.ndarray]:
             "rgba": sched.lanes(np.moveaxis(rgba, 0, 1))[beat]}  # (beats, 4, P)
 
 
+def shaded_beats(frame, sched: BeatSchedule, geo: Geometry, aw: int, vw: int) -> list[dict[str, int]]:
+    """The golden frame's shaded stream as COM's input beats, in the schedule's order:
+    header, {R, G, B, A} per lane and the sample per lane."""
+    hdrs = sched.headers(geo)
+    shaded = sched.lanes(frame.streams["shaded"])  # [m, c, j, i] -> (beats, 4, P)
+    words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
+    smp = sched.lanes(frame.streams["samples"])
+    return [{"in_hdr": hdrs[k], "in_rgba": pack_lanes(words[k], 24 + aw), "in_sample": pack_lanes(smp[k], vw)}
+            for k in range(len(sched))]
+
+
 def check_pixel_beats(got: list[dict[str, int]], exp: dict[str, np.ndarray], sched, p: int, bx_w: int,
                       acc_w: int, log) -> None:
     """Every pixel beat against the golden one: m, by, mask, eop; bx and RGBA per masked lane."""
@@ -187,12 +198,7 @@ async def test_pixel_stream(dut):
             trav = replace(trav, faces=faces)
         frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True, mode=mode, clip=clip)
         sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"])
-        hdrs = sched.headers(geo)
-        shaded = sched.lanes(frame.streams["shaded"])  # [m, c, j, i] -> (beats, 4, P)
-        words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
-        smp = sched.lanes(frame.streams["samples"])
-        inputs = [{"in_hdr": hdrs[n], "in_rgba": pack_lanes(words[n], 24 + aw), "in_sample": pack_lanes(smp[n], vw)}
-                  for n in range(len(sched))]
+        inputs = shaded_beats(frame, sched, geo, aw, vw)
         exp = expected_pixel_beats(frame, sched)
         bench.set_view(trav, p, mode, clip, path_weights=weighted)
         await bench.cycles(2)
@@ -230,12 +236,7 @@ async def test_rect_pixel_stream(dut):
         clip = random_clip(trav, (None, "window", "cut")[n % 3], bench.rng)
         frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True, mode=mode, clip=clip, rects=rects)
         sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"], rects=rects)
-        hdrs = sched.headers(geo)
-        shaded = sched.lanes(frame.streams["shaded"])
-        words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
-        smp = sched.lanes(frame.streams["samples"])
-        inputs = [{"in_hdr": hdrs[k], "in_rgba": pack_lanes(words[k], 24 + aw), "in_sample": pack_lanes(smp[k], vw)}
-                  for k in range(len(sched))]
+        inputs = shaded_beats(frame, sched, geo, aw, vw)
         exp = expected_pixel_beats(frame, sched)
         bench.set_view(trav, p, mode, clip)
         await write_rect_table(dut, trav, rects, p, int(dut.ADDR_W.value))
@@ -276,12 +277,7 @@ async def test_stop_pixel_stream(dut):
         stop[edge > 0.875] = M
         frame = render_frame(vol, trav, cfg, lut, rmap, keep_streams=True, mode=mode, clip=clip, stop_m=stop)
         sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"])
-        hdrs = sched.headers(geo)
-        shaded = sched.lanes(frame.streams["shaded"])
-        words = (shaded[:, 0] << (16 + aw)) | (shaded[:, 1] << (8 + aw)) | (shaded[:, 2] << aw) | shaded[:, 3]
-        smp = sched.lanes(frame.streams["samples"])
-        inputs = [{"in_hdr": hdrs[k], "in_rgba": pack_lanes(words[k], 24 + aw), "in_sample": pack_lanes(smp[k], vw)}
-                  for k in range(len(sched))]
+        inputs = shaded_beats(frame, sched, geo, aw, vw)
         exp = expected_pixel_beats(frame, sched)
         bench.set_view(trav, p, mode, clip)
         for a, word in enumerate(stop_table(stop, p, geo.max_dim, geo.m_w)):

@@ -665,6 +665,44 @@ def test_slab_frames(p, s, shading):
 DEPTH_BUILD = {"ZOUT": 1, "ZIN": 1, "GMOD": 1, "SLAB": 1}
 
 
+# the depth tests' six frames: (view, mode), a crop box at 2, the box schedule at 5
+DEPTH_VIEWS = [((1.0, -1.0, 0.0), "composite"), ((1.0, 1.0, 1.0), "composite"), ((0.3, -0.45, 1.0), "xray"),
+               ((-0.6, 0.25, -1.0), "mip"), ((-0.2, -1.0, -0.9), "minip"), ((1.0, 0.4, -0.7), "composite")]
+DEPTH_STALLS = ((0, 60, 0, 120, 30, 0), (0, 0, 90, 60, 0, 0))     # per frame: stall, stall_out
+
+
+def depth_frames(p: int, s: int, seed: int, alpha_bits_less: int):
+    """The depth tests' volume (empty space at three faces, for the box schedule's frame)
+    and per frame of DEPTH_VIEWS: (view, mode, traversal, the whole frame's traversal,
+    LUT, reflectance map or None, clip, skip plan or None). Frame 2 traverses a crop
+    box, frame 5 the empty-space box of a LUT clear below 80; frames 0 and 5 are shaded;
+    the LUT's opacities stay below 2^(ALPHA_W - alpha_bits_less)."""
+    from cube4.skip import plan_skip
+
+    rng = np.random.default_rng(seed)
+    cfg = Cube4Config(pipelines=p, supersample=s)
+    dims = (12 + p, 11, 10)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    vol[:2], vol[:, :2], vol[:, :, -3:] = 0, 0, 0
+    frames = []
+    for n, (d, mode) in enumerate(DEPTH_VIEWS):
+        if n == 2:
+            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
+        else:
+            trav = make_traversal(dims, d, cfg.weight_bits, s)
+        lut, rmap = random_tables(rng, cfg)
+        lut[:, 3] = rng.integers(0, 1 << (cfg.alpha_bits - alpha_bits_less), size=lut.shape[0])
+        whole, clip, plan = trav, None, None
+        if n == 5:      # the box's slices and base plane moved to the whole frame's
+            lut[:80] = 0
+            plan = plan_skip(vol, trav, lut, mode, p=p)
+            assert plan.box is not None and plan.fraction < 1.0, plan.box
+            trav, clip = plan.trav, plan.clip
+        frames.append((d, mode, trav, whole, lut, rmap if n in (0, 5) else None, clip, plan))
+    return cfg, vol, frames, rng
+
+
 @pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 2), (8, 1)], quick=(0, 1)))
 def test_depth_out_frames(p, s):
     """Depth out (ZOUT = 1, numerics.md §21): every finished ray carries the slice where its
@@ -674,39 +712,15 @@ def test_depth_out_frames(p, s):
     schedule (slices of the whole frame), six views with 45° and (1, 1, 1), random stalls
     and a reset in mid-frame; the depths are not all equal (the test sees them), and the
     unstalled frames take the predicted cycles (of this build: cycles.GM_EXTRA with it)."""
-    from cube4.skip import plan_skip
-
-    rng = np.random.default_rng(600 + p)
-    cfg = Cube4Config(pipelines=p, supersample=s)
-    dims = (12 + p, 11, 10)
-    nx, ny, nz = dims
-    vol = rng.integers(0, 256, size=(nz, ny, nx))
-    vol[:2], vol[:, :2], vol[:, :, -3:] = 0, 0, 0     # empty space for the box schedule's frame
-    views = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
-             (1.0, 0.4, -0.7)]
-    modes = ["composite", "composite", "xray", "mip", "minip", "composite"]
+    cfg, vol, frames, _ = depth_frames(p, s, 600 + p, 1)
     one = 1 << cfg.acc_bits
     thresholds = [one // 2, one // 10, one // 4, 0, 0, one * 3 // 4]
-    jobs = []
-    for n, (d, mode) in enumerate(zip(views, modes)):
-        if n == 2:      # a crop box
-            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
-        else:
-            trav = make_traversal(dims, d, cfg.weight_bits, s)
-        lut, rmap = random_tables(rng, cfg)
-        lut[:, 3] = rng.integers(0, 1 << (cfg.alpha_bits - 1), size=lut.shape[0])
-        clip = None
-        if n == 5:      # the box schedule: the box's slices moved to the whole frame's
-            lut[:80] = 0
-            plan = plan_skip(vol, trav, lut, mode, p=p)
-            assert plan.box is not None and plan.fraction < 1.0, plan.box
-            trav, clip = plan.trav, plan.clip
-        jobs.append(FrameJob(trav, lut, rmap if n in (0, 5) else None, mode=mode, clip=clip,
-                             depth_t=thresholds[n], stall=(0, 60, 0, 120, 30, 0)[n],
-                             stall_out=(0, 0, 90, 60, 0, 0)[n], reset_after_cycles=150 if n == 3 else 0))
+    jobs = [FrameJob(trav, lut, rmap, mode=mode, clip=clip, depth_t=thresholds[n], stall=DEPTH_STALLS[0][n],
+                     stall_out=DEPTH_STALLS[1][n], reset_after_cycles=150 if n == 3 else 0)
+            for n, (_, mode, trav, _, lut, rmap, clip, _) in enumerate(frames)]
     results = render_frames(vol, jobs, cfg, max_dim=64, build=DEPTH_BUILD)
     for n, (job, res) in enumerate(zip(jobs, results)):
-        label = f"depth out P={p} S={s} view {views[n]} {job.mode} DEPTH_T {job.depth_t}"
+        label = f"depth out P={p} S={s} view {frames[n][0]} {job.mode} DEPTH_T {job.depth_t}"
         check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip, depth_t=job.depth_t)
         px = res["pixels"]
         assert (px["zp"] >= 0).any() and (px["zf"] >= 0).any(), label
@@ -729,43 +743,20 @@ def test_depth_in_frames(p, s):
     from cube4.host import crop_volume
     from cube4.model import render_frame
     from cube4.modes import is_blend
-    from cube4.skip import plan_skip
 
-    rng = np.random.default_rng(700 + p)
-    cfg = Cube4Config(pipelines=p, supersample=s)
-    dims = (12 + p, 11, 10)
-    nx, ny, nz = dims
-    vol = rng.integers(0, 256, size=(nz, ny, nx))
-    vol[:2], vol[:, :2], vol[:, :, -3:] = 0, 0, 0     # empty space for the box schedule's frame
-    views = [(1.0, -1.0, 0.0), (1.0, 1.0, 1.0), (0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (-0.2, -1.0, -0.9),
-             (1.0, 0.4, -0.7)]
-    modes = ["composite", "composite", "xray", "mip", "minip", "composite"]
+    cfg, vol, frames, rng = depth_frames(p, s, 700 + p, 2)
     one = 1 << cfg.acc_bits
-    jobs, unstopped = [], []
-    for n, (d, mode) in enumerate(zip(views, modes)):
-        if n == 2:      # a crop box
-            trav = make_traversal((nx - 4, ny - 3, nz - 2), d, cfg.weight_bits, s, origin=(2, 1, 1))
-        else:
-            trav = make_traversal(dims, d, cfg.weight_bits, s)
-        lut, rmap = random_tables(rng, cfg)
-        lut[:, 3] = rng.integers(0, 1 << (cfg.alpha_bits - 2), size=lut.shape[0])
-        whole = trav
-        clip = None
-        if n == 5:      # the box schedule: the box's slices and base plane moved to the whole frame's
-            lut[:80] = 0
-            plan = plan_skip(vol, trav, lut, mode, p=p)
-            assert plan.box is not None and plan.fraction < 1.0, plan.box
-            trav, clip = plan.trav, plan.clip
+    jobs = []
+    for n, (_, mode, trav, whole, lut, rmap, clip, plan) in enumerate(frames):
         stop = surface_stops(whole, rng)
-        if n == 5:
+        if plan is not None:       # the whole frame's table cut to the box
             stop = plan.box_stop(stop)
-        jobs.append(FrameJob(trav, lut, rmap if n in (0, 5) else None, mode=mode, clip=clip, stop_m=stop,
-                             depth_t=one // 3 if is_blend(mode) else 0,
-                             stall=(0, 60, 0, 120, 30, 0)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
-                             reset_after_cycles=150 if n == 3 else 0))
+        jobs.append(FrameJob(trav, lut, rmap, mode=mode, clip=clip, stop_m=stop,
+                             depth_t=one // 3 if is_blend(mode) else 0, stall=DEPTH_STALLS[0][n],
+                             stall_out=DEPTH_STALLS[1][n], reset_after_cycles=150 if n == 3 else 0))
     results = render_frames(vol, jobs, cfg, max_dim=64, build=DEPTH_BUILD)
     for n, (job, res) in enumerate(zip(jobs, results)):
-        label = f"depth in P={p} S={s} view {views[n]} {job.mode}"
+        label = f"depth in P={p} S={s} view {frames[n][0]} {job.mode}"
         gold = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip,
                      depth_t=job.depth_t, stop_m=job.stop_m)
         free = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, mode=job.mode,
