@@ -35,6 +35,10 @@
 //   SLAB        1 (with COMPOSITING = 1, FALL): the slab's falloff weights
 //               (cube4_sha_slab), out_fall carried beside the beat; SHA then
 //               has at least SLAB_LAT + 1 = 10 stages. 0..1. Default 0.
+//   GMOD        1 (with SHADING): gradient-magnitude modulation (numerics.md
+//               section 23): cube4_sha_gm's factors fa, fs of each lane's |g|^2
+//               from the table written through gm_*; two more stages (m1, m2)
+//               after d2 modulate D and P, and A' = round_shift(A fa, 8). 0..1. Default 0.
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
@@ -42,7 +46,7 @@
 //   comparisons; face; numerators; one stage per quotient bit of the
 //   division; reflectance-map read; its output register; C * D; shading),
 //   15 at RMAP_BITS = 5: a beat is on out_* 14 cycles after it entered the
-//   input register when the output FIFO was empty. SHADING = 0: 4 stages
+//   input register when the output FIFO was empty; 2 more with GMOD (m1, m2). SHADING = 0: 4 stages
 //   (input; LUT read; its register; the output FIFO), 11 with FALL. The stages move on every
 //   cycle and carry a valid bit (no stall enable); the last one is the
 //   memory of the output FIFO (cube4_credit_fifo), and a beat
@@ -54,6 +58,8 @@
 // Ports
 //   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)}
 //   rmap_we/rmap_addr/rmap_data  reflectance-map write: rmap_data = {D, P} (Q2.8 each)
+//   gm_we/gm_addr/gm_data        modulation table write (GMOD): gm_data = {fa, fs},
+//                                0 .. 256 each (Q0.8), GMF_W bits each
 //   in_*    the gradient stream of cube4_gra (gi, gj, gk signed GRAD_W bits)
 //   out_rgba  [P*(24+ALPHA_W)]  per lane {R', G', B' (Q0.8), A (Q0.ALPHA_W)}
 //   out_idx   [P*RI_W]          reflectance-map entry used (for checking and waves;
@@ -69,6 +75,9 @@
 //   is an exact restoring division with an RMAP_BITS+1-bit quotient (no
 //   rounding). C * D is 8 x 10 = 18 bits; round_shift by 8 (half up) gives 11
 //   bits; + P (10 bits) < 2^12; the min with 255 is the one saturation.
+//   GMOD: (D - 256) fs is 11 x 10 bits signed, D' = 256 + round_shift(., 8)
+//   in 0 .. 1023; P' = round_shift(P fs, 8) in 0 .. 1023; A fa is (ALPHA_W +
+//   1) x 10 bits, A' = round_shift(A fa, 8) <= A: no saturation.
 // =============================================================================
 module cube4_sha #(
     `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
