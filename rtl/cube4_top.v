@@ -75,6 +75,9 @@
 //   lut_*, rmap_*  table load ports: lut_data = {the path-weight columns (PLW = 1:
 //                  A at w = 3/2, 5/4, 3/4, 1/2 from the top, Q0.ALPHA_W each; cube4_com),
 //                  R, G, B (Q0.8), A (Q0.ALPHA_W) (cube4_sha)}
+//   rect_*, stop_*, gm_*   the slice-rectangle (RECTS), stop-slice (ZIN) and
+//                  modulation (GMOD) tables, written between frames (layouts
+//                  at the ports below)
 //   cfg_*          view registers, stable from start to done
 //   start, busy, done, cycles   frame control
 //   pix_*          finished rays (cube4_com)
