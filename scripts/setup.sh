@@ -7,9 +7,11 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
 # --- Debian packages (FST waves need lz4 and zlib headers; venv needs python3-venv;
-#     ccache keeps Verilator's runtime from being recompiled for every testbench build) ---
+#     ccache keeps Verilator's runtime from being recompiled for every testbench build;
+#     mricron-data holds the Colin27 head MRI and its atlases: the built-in volume colin
+#     and its label map aal_lobes) ---
 need=()
-for pkg in g++ make ccache liblz4-dev zlib1g-dev python3-venv; do
+for pkg in g++ make ccache liblz4-dev zlib1g-dev python3-venv mricron-data; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need+=("$pkg")
 done
 if [ ${#need[@]} -gt 0 ]; then

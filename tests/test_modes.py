@@ -172,20 +172,21 @@ def test_window_counts_only_its_samples():
 def test_scene_builds_and_build_errors():
     head = load_scene("head")
     assert scene_build([head]) == {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0,
-                                   "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "RECTS": 0}
+                                   "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0}
     assert scene_build([load_scene("mri_mip")]) == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0,
-                                                    "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "RECTS": 0}
+                                                    "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0}
     assert scene_build([load_scene("ml")])["PLW"] == 1               # path-weighted
     assert scene_build([replace(load_scene("ml"), mode="mip")])["PLW"] == 0
     assert scene_build([load_scene("head_cut")])["CLIP"] == 1
     assert parse_build("full") == FULL_BUILD and parse_build("scene") is None
     assert parse_build("shading=0,compositing=0") == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 1,
-                                                      "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "RECTS": 0}
+                                                      "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0}
     for bad, msg in [("SHADING=2", "NAME=0/1"), ("FOO=1", "NAME=0/1"),
                      ("COMPOSITING=0,EXTREMUM=0", "no rendering mode"), ("COMPOSITING=0", "only compositing"),
                      ("SHADING=0,VGRAD=1", "VGRAD = 1 needs SHADING"),
                      ("COMPOSITING=0,SHADING=0,PLW=1", "PLW = 1 needs COMPOSITING"),
-                     ("SLAB=1,CLIP=0", "SLAB = 1 needs CLIP")]:
+                     ("SLAB=1,CLIP=0", "SLAB = 1 needs CLIP"),
+                     ("LABELS=1,PLW=1", "LABELS = 1 needs VGRAD = 0 and PLW = 0")]:
         with pytest.raises(UserError, match=msg):
             parse_build(bad)
     cfg = config_for(head, 4, build=tuple(parse_build("SHADING=0").items()))

@@ -56,6 +56,9 @@ OPTIONS: tuple[Option, ...] = (
            ("cube4_com_stop",)),
     Option("GMOD", 0, "m", "gradient-magnitude modulation (cube4_sha_gm and SHA's modulation multipliers)",
            ("cube4_sha_gm", "cube4_sha modulation stages")),
+    Option("LABELS", 0, "t", "label volumes (the label in the memory word, its nearest-corner pick in TRI, "
+           "a LUT block per label in SHA)",
+           ("cube4_tri_lane label pick", "cube4_gra label carry", "cube4_sha label LUT")),
     Option("RECTS", 0, "r", "slice rectangles (the rectangle table in CFB, GRA's walk, COM)",
            ("cube4_cfb rectangle walk", "cube4_gra position walk", "cube4_com rectangle reader")),
 )
@@ -106,6 +109,8 @@ RULES: tuple[Rule, ...] = (
     Rule({"RECTS": 1}, {"PLW": (0,), "MAX_SS_LOG2": (0,)}, "rectangles run with S = 1, unweighted"),
     Rule({"ZIN": 1}, {"RECTS": (0,)}, "depth in runs on the fixed and box schedules"),
     Rule({"GMOD": 1}, {"SHADING": (1,), "RECTS": (0,)}, "the gradient comes with shading; not with rectangles"),
+    Rule({"LABELS": 1}, {"VGRAD": (0,), "PLW": (0,), "RECTS": (0,)},
+         "labels run without voxel gradients, path weights and rectangles"),
 )
 
 

@@ -105,6 +105,7 @@ def scene_build(scenes) -> dict:
         b["ZOUT"] |= int(sc.depth_threshold is not None)
         b["ZIN"] |= int(sc.geometry is not None)
         b["GMOD"] |= int(sc.gmod is not None)
+        b["LABELS"] |= int(sc.labels is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
         b["RECTS"] |= int(sc.skip == "rects")

@@ -146,7 +146,8 @@ def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pas
     for the fixed schedule ([render] skip = false)."""
     box, table_s = ((0, 0, 0), tuple(pss[0].trav.dims)), 0.0        # the fixed schedule: the whole box
     if scene.skip:
-        box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines, frame_clip(scene, pss[0].trav))
+        box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines, frame_clip(scene, pss[0].trav),
+                                labelled=scene.labels is not None)
     return [plan_box(ps.trav, box, frame_clip(scene, ps.trav), table_s if n == 0 else 0.0)
             for n, ps in enumerate(pss)]
 
@@ -387,7 +388,7 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
                            vgrad=scene.voxel_gradients, rects=frame_rects[n], beats=sched, done=rule,
                            depth_t=depth_threshold(scene, cfg),
                            stop_m=None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z)),
-                           gm=vp.gm)
+                           gm=vp.gm, labels=scene.labels is not None)
         results[n] = (sub.baseplane, sub.pixels)
         if sub.depth_m is not None:
             depths[n] = sub.depth_m

@@ -32,6 +32,7 @@ from .modes import MODES, is_blend
 from .pathlen import path_weighted, weight_quarters, weighted_alpha
 from .progress import Progress, counted
 from .slices import SliceRects
+from .labels import nearest_pair, split_words
 from .vgrad import unpack_words
 from .view import Traversal
 
@@ -110,6 +111,13 @@ def rect_slice(src: np.ndarray, trav: Traversal, m: int, bounds, weight_bits: in
     return out
 
 
+def label_slice(lp: np.ndarray, trav: Traversal, m: int) -> np.ndarray:
+    """The labels of sample slice m (numerics.md §24, cube4.labels.nearest_pair) from the
+    padded traversal-frame labels ``lp`` (as interpolate_slice's ``tp``)."""
+    k0 = m // trav.supersample
+    return nearest_pair(lp[k0], lp[k0 + 1], trav.weights(m), trav.weight_bits)
+
+
 def inside_mask(trav: Traversal, m: int) -> np.ndarray:
     """Samples of slice m that lie inside the volume box [0, n-1]^3 (numerics.md §4):
     the last column is outside when wx > 0, the last row when wy > 0."""
@@ -138,13 +146,18 @@ def voxel_channels(words: np.ndarray, trav: Traversal, voxel_bits: int) -> tuple
     return unpack_words(padded_traversal(words, trav), voxel_bits)
 
 
-def sample_stream(vol: np.ndarray, trav: Traversal, vgrad_bits: int | None = None):
+def sample_stream(vol: np.ndarray, trav: Traversal, vgrad_bits: int | None = None, label_bits: int | None = None):
     """The tri-linear sample stream alone (what the RTL front end emits):
     samples (M, nj, ni) int64 and inside (M, nj, ni) bool, indexed [m, j, i].
     ``vgrad_bits`` = VOXEL_W when vol holds memory words with voxel gradients: the
-    samples are then (M, 4, nj, ni), the value and the three interpolated components."""
+    samples are then (M, 4, nj, ni), the value and the three interpolated components.
+    ``label_bits`` = VOXEL_W when vol holds labelled words (cube4.labels): each sample is
+    then the word label · 2^V + value, the label the nearest corner's (numerics.md §24)."""
+    lp = None
     if vgrad_bits is None:
         tp, comps = padded_traversal(vol, trav), None
+        if label_bits is not None:
+            tp, lp = split_words(tp, label_bits)
     else:
         tp, comps = voxel_channels(vol, trav, vgrad_bits)
     nj, ni = tp.shape[1] - 1, tp.shape[2] - 1
@@ -153,6 +166,8 @@ def sample_stream(vol: np.ndarray, trav: Traversal, vgrad_bits: int | None = Non
     inside = np.empty((M, nj, ni), dtype=bool)
     for m in range(M):
         s = interpolate_slice(tp, trav, m, trav.weight_bits)
+        if lp is not None:
+            s = s + (label_slice(lp, trav, m) << label_bits)
         if comps is None:
             samples[m] = s
         else:
@@ -359,6 +374,7 @@ def render_frame(
     depth_t: int | None = None,
     stop_m: np.ndarray | None = None,
     gm: np.ndarray | None = None,
+    labels: bool = False,
 ) -> Frame:
     """Render one view of vol[z, y, x] (unsigned VOXEL_W-bit integers) bit-exactly.
 
@@ -377,6 +393,9 @@ def render_frame(
     stop_m: depth in (numerics.md §22): (rows, cols) per base-plane pixel, its ray counts
     the sample slices m < stop_m only (cube4.geometry.stop_slices).
     gm: gradient-magnitude modulation's table (cube4.gmod, numerics.md §23; shaded frames).
+    labels: vol holds labelled words (cube4.labels.pack_words) and lut has 16 · 2^V rows:
+    each sample is classified by the entry label · 2^V + value, its label the nearest
+    corner's (numerics.md §24; the fixed and box schedules only).
     rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
     rectangle, and only its samples count; None: every slice is the whole box.
     beats: beat skipping (cube4.beats, numerics.md §19): samples outside the slice's
@@ -387,6 +406,8 @@ def render_frame(
         raise ValueError("slice rectangles and beat skipping are two schedules: give one")
     if beats is not None and done is None:
         raise ValueError("beat skipping needs the termination rule (done)")
+    if labels and (vgrad or rects is not None or beats is not None or not is_blend(mode)):
+        raise ValueError("labels run on the fixed and box schedules, in the blending modes, without voxel gradients")
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
     shading = shading and mode == "composite"
@@ -397,6 +418,9 @@ def render_frame(
         tp, comps = voxel_channels(vol, trav, cfg.voxel_bits)
     else:
         tp, comps = padded_traversal(vol, trav), None
+    lp = None
+    if labels:
+        tp, lp = split_words(tp, cfg.voxel_bits)
     nj, ni = tp.shape[1] - 1, tp.shape[2] - 1
     M = trav.num_sample_slices
     rows, cols = trav.baseplane_shape
@@ -466,7 +490,8 @@ def render_frame(
             g = np.stack([sample_slice(c, m) for c in comps])   # voxel_gradient_slice, per rectangle
         else:
             g = gradient(prev, cur, nxt, trav, m)
-        rgba, idx = shade(s, g, lut, rmap, cfg.rmap_bits, gm)
+        entry = s if lp is None else s + (label_slice(lp, trav, m) << cfg.voxel_bits)
+        rgba, idx = shade(entry, g, lut, rmap, cfg.rmap_bits, gm)
         wrgba = rgba
         if path_cols is not None and trav.faces:
             wrgba = rgba.copy()   # the shaded stream keeps the LUT's A; COM weights it
@@ -521,7 +546,7 @@ def render_frame(
                 chunk["r"], chunk["g"], chunk["b"], chunk["a"] = px
             pix_chunks.append(chunk)
         if keep_streams:
-            streams["samples"][m] = s
+            streams["samples"][m] = entry
             streams["inside"][m] = inside
             streams["keep"][m] = keep
             if g is not None:

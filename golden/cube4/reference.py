@@ -51,6 +51,7 @@ from .modes import is_extremum
 from .progress import Progress
 from .scene import Scene
 from .gmod import eval_points
+from .labels import label_tf, split_words
 from .tables import phong_terms, unshaded_terms
 from .view import Camera, Traversal
 
@@ -94,6 +95,64 @@ def _trilinear(grid: np.ndarray, pts: np.ndarray) -> np.ndarray:
     c0 = c00 * gy + c01 * fy
     c1 = c10 * gy + c11 * fy
     return c0 * gz + c1 * fz
+
+
+def _cell_corners(shape, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The eight corners of each point's cell in a padded (nz+2, ny+2, nx+2) grid, as
+    _trilinear reads them: flat indices (N, 8), their tri-linear weights (N, 8), and the
+    corner nearest each point (N,) (per axis the upper one where the fraction is at least
+    1/2, as the hardware picks a label). Corner c = 4 dz + 2 dy + dx."""
+    nz, ny, nx = shape
+    q = pts + 1.0
+    i0 = np.floor(q).astype(np.int64)
+    i0[:, 0] = np.clip(i0[:, 0], 0, nx - 2)
+    i0[:, 1] = np.clip(i0[:, 1], 0, ny - 2)
+    i0[:, 2] = np.clip(i0[:, 2], 0, nz - 2)
+    f = q - i0
+    base = (i0[:, 2] * ny + i0[:, 1]) * nx + i0[:, 0]
+    idx, wts = [], []
+    for dz in (0, 1):
+        for dy in (0, 1):
+            for dx in (0, 1):
+                idx.append(base + (dz * ny + dy) * nx + dx)
+                wts.append((f[:, 0] if dx else 1 - f[:, 0]) * (f[:, 1] if dy else 1 - f[:, 1])
+                           * (f[:, 2] if dz else 1 - f[:, 2]))
+    near = 4 * (f[:, 2] >= 0.5) + 2 * (f[:, 1] >= 0.5) + (f[:, 0] >= 0.5)
+    return np.stack(idx, axis=1), np.stack(wts, axis=1), near.astype(np.int64)
+
+
+def _per_label(scene: Scene, lab: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Each point's classification by its own label's transfer function: (N, 4)."""
+    out = np.zeros((v.size, 4))
+    for lb in np.unique(lab):
+        sel = lab == lb
+        out[sel] = label_tf(scene, int(lb), v[sel])
+    return out
+
+
+def _label_classify(scene: Scene, grid: np.ndarray, labs: np.ndarray, pts: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The classification (N, 4) RGBA (colour not premultiplied, alpha per voxel) of points
+    of a labelled volume by the scene's [labels] resample (cube4.labels): ``grid`` the
+    padded value grid (_padded_grids), ``labs`` the labels padded alike, ``v`` the value
+    interpolated from all eight corners."""
+    idx, w, near = _cell_corners(labs.shape, pts)
+    lab_c = labs.reshape(-1)[idx]
+    rule = scene.labels.resample
+    if rule == "blended":       # each label's classification, weighted by its corners' weights
+        acc = np.zeros((v.size, 4))
+        for lb in np.unique(lab_c):
+            wl = (w * (lab_c == lb)).sum(axis=1)
+            rgba = label_tf(scene, int(lb), v)
+            a = np.clip(rgba[:, 3], 0.0, 1.0) * wl
+            acc[:, :3] += a[:, None] * rgba[:, :3]
+            acc[:, 3] += a
+        acc[:, :3] /= np.where(acc[:, 3] > 0, acc[:, 3], 1.0)[:, None]
+        return acc
+    lab = np.take_along_axis(lab_c, near[:, None], axis=1)[:, 0]
+    if rule == "masked":        # ULTRAVIS: the corners of other labels count as zero
+        vals_c = grid[..., 0].reshape(-1)[idx]
+        v = (w * vals_c * (lab_c == lab[:, None])).sum(axis=1)
+    return _per_label(scene, lab, v)
 
 
 def _box_interval(origins: np.ndarray, d: np.ndarray, dims) -> tuple[np.ndarray, np.ndarray]:
@@ -391,6 +450,10 @@ def cast_rays(
     if not 0 < step <= 0.125:
         raise ValueError("reference step must be in (0, 1/8] voxel")
     nz, ny, nx = vol.shape
+    labs = None
+    if scene.labels is not None:        # vol holds labelled words (cube4.labels)
+        vol, labs = split_words(vol, voxel_bits)
+        labs = np.pad(labs, 1)
     grid = _padded_grids(vol, voxel_bits)
     t_in, t_out = _box_interval(origins, d, (nx, ny, nz))
     hit = np.nonzero(t_out >= t_in)[0]
@@ -443,7 +506,7 @@ def cast_rays(
             v = np.where(counts, vals[:, 0], value[active])
             value[active] = np.minimum(value[active], v) if mode == "minip" else np.maximum(value[active], v)
         else:
-            rgba = scene.tf(vals[:, 0])
+            rgba = scene.tf(vals[:, 0]) if labs is None else _label_classify(scene, grid, labs, pts, vals[:, 0])
             wq = _midpoint_weights(q, steps_of[active], length[active], step)
             a = np.clip(rgba[:, 3], 0.0, 1.0)
             if shaded:

@@ -77,6 +77,9 @@ class Scene:
     # [gradient_modulation]: (opacity points, shading points), each (n, 2) [|grad f|, factor] or
     # None (1 everywhere); None: no modulation (cube4.gmod)
     gmod: tuple | None = None
+    # [labels] and [[label]]: each label's transfer function and visibility (cube4.labels); the
+    # volume then comes with a label map, and what render_frame reads are its memory words
+    labels: object = None
 
     @property
     def shaded(self) -> bool:
@@ -124,7 +127,7 @@ def _check_keys(tbl: dict, allowed: tuple, where: str) -> None:
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
     _check_keys(data, ("view", "output", "render", "material", "light", "transfer", "precision", "crop", "cut", "slab",
-                       "geometry", "gradient_modulation"),
+                       "geometry", "gradient_modulation", "labels", "label"),
                 "top level")
     view = data.get("view", {})
     _check_keys(view, ("direction", "azimuth", "elevation", "up"), "view")
@@ -239,6 +242,11 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         raise UserError("scene: [gradient_modulation] needs a shaded composite scene (mode = \"composite\", "
                         "shading = true): the gradient comes with shading")
 
+    from .labels import parse_labels
+    labels = parse_labels(data.get("labels", {}), data.get("label", []))
+    if labels is not None:
+        label_scene_checks(mode, skip, path_weights, preview)
+
     return Scene(
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
@@ -246,7 +254,23 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, geometry=geometry, skip=skip, tau=tau, preview=preview,
         subpixel=subpixel, filter=warp_filter,
         footprint=footprint, depth_threshold=depth, gradient=gradient, path_weights=path_weights, gmod=gmod,
+        labels=labels,
     )
+
+
+def label_scene_checks(mode: str, skip, path_weights: bool, preview: int) -> None:
+    """What a scene with labels cannot have, one line each (numerics.md §24)."""
+    if not is_blend(mode):
+        raise UserError(f"scene: labels classify the blending modes (composite, xray), not {mode}: "
+                        "MIP and MinIP pick a value, not a material")
+    if skip in ("rects", "beats"):
+        raise UserError(f"scene: labels run on the fixed and box schedules: render.skip must be true or false, "
+                        f"got {shown(skip)}")
+    if path_weights:
+        raise UserError("scene: labels do not combine with path weights (one table of weighted opacities): "
+                        "set [render] path_weights = false")
+    if preview != 1:
+        raise UserError("scene: labels are not resampled to a preview level: set [render] preview = 1")
 
 
 def _gradient_modulation(tbl: dict):

@@ -87,12 +87,34 @@ def cell_ranges(vol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return lo, hi
 
 
-def busy_cells(vol: np.ndarray, lut: np.ndarray, mode: str) -> np.ndarray:
-    """(nz, ny, nx) bool: the cells in which a sample could change a ray."""
+def busy_cells(vol: np.ndarray, lut: np.ndarray, mode: str, labelled: bool = False) -> np.ndarray:
+    """(nz, ny, nx) bool: the cells in which a sample could change a ray. ``labelled``: vol
+    holds labelled words and lut has a block per label (cube4.labels): a sample takes the
+    label of one of its cell's corners, so the cell is busy when, for a label among its
+    corners, a value in the cell's range counts in that label's block (numerics.md §24)."""
+    if labelled:
+        return _busy_labelled(vol, lut, mode)
     flags = counting_values(lut, mode).astype(np.int64)
     prefix = np.concatenate([[0], np.cumsum(flags)])
     lo, hi = cell_ranges(vol)
     return prefix[hi + 1] - prefix[lo] > 0
+
+
+def _busy_labelled(words: np.ndarray, lut: np.ndarray, mode: str) -> np.ndarray:
+    from .labels import lut_value_bits, split_words
+    vbits = lut_value_bits(lut)
+    vals, labs = split_words(words, vbits)
+    lo, hi = cell_ranges(vals)
+    n = 1 << vbits
+    busy = np.zeros(words.shape, dtype=bool)
+    for lb in np.unique(labs):
+        flags = counting_values(lut[int(lb) * n:(int(lb) + 1) * n], mode).astype(np.int64)
+        if not flags.any():     # a hidden label (or one that shows nothing) is empty space
+            continue
+        prefix = np.concatenate([[0], np.cumsum(flags)])
+        present = cell_ranges((labs == lb).astype(np.int32))[1] > 0
+        busy |= present & (prefix[hi + 1] - prefix[lo] > 0)
+    return busy
 
 
 def _cut_whole(plane, weight_bits: int, terms) -> np.ndarray:
@@ -249,14 +271,16 @@ def fit_slice(box, trav: Traversal, p: int):
     return tuple(s0), tuple(s1)
 
 
-def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: int, clip: Clip | None = None):
+def find_box(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, p: int, clip: Clip | None = None,
+             labelled: bool = False):
     """The box [s0, s1) of one view that can change a ray (None: nothing can), sized for
     P pipelines (``fit_slice``), and the host seconds it took. ``vol`` is the traversed
     box's voxels (vol[z, y, x] of trav.dims), ``lut`` the classification LUT the host
-    loads for the view, ``clip`` its cut plane (cells it removes whole are not busy).
-    It does not depend on the template's phase: the q×q passes of a view share it."""
+    loads for the view, ``clip`` its cut plane (cells it removes whole are not busy),
+    ``labelled``: vol holds labelled words (busy_cells). It does not depend on the
+    template's phase: the q×q passes of a view share it."""
     t0 = time.perf_counter()
-    busy = busy_cells(vol, lut, mode)
+    busy = busy_cells(vol, lut, mode, labelled)
     if clip is not None and clip.plane is not None:
         busy &= ~cut_cells(trav, clip.plane)
         if clip.slab is not None:
@@ -286,7 +310,7 @@ def plan_box(trav: Traversal, box, clip: Clip | None = None, table_s: float = 0.
 
 
 def plan_skip(vol: np.ndarray, trav: Traversal, lut: np.ndarray, mode: str, clip: Clip | None = None,
-              p: int = 1) -> SkipPlan:
+              p: int = 1, labelled: bool = False) -> SkipPlan:
     """The empty-space schedule of one view on P pipelines (``find_box``, ``plan_box``)."""
-    box, table_s = find_box(vol, trav, lut, mode, p, clip)
+    box, table_s = find_box(vol, trav, lut, mode, p, clip, labelled)
     return plan_box(trav, box, clip, table_s)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .labels import label_lut, label_tf
 from .config import COLOR_W, RMAP_FRAC, RMAP_W, Cube4Config
 from .scene import Scene
 from .view import Traversal
@@ -27,13 +28,20 @@ def correct_opacity(alpha, distance: float) -> np.ndarray:
 
 
 def classification_lut(scene: Scene, cfg: Cube4Config, distance: float) -> np.ndarray:
-    """(2^VOXEL_W, 4) int64: R, G, B (Q0.8), A (Q0.ALPHA_W) per voxel value."""
+    """(2^VOXEL_W, 4) int64: R, G, B (Q0.8), A (Q0.ALPHA_W) per voxel value; a scene with
+    labels: (16 · 2^VOXEL_W, 4), label l's block its own transfer function (cube4.labels)."""
     n = 1 << cfg.voxel_bits
-    rgba = scene.tf(np.arange(n) / (n - 1))
-    lut = np.empty((n, 4), dtype=np.int64)
-    lut[:, :3] = quantize_unit(rgba[:, :3], COLOR_W)
-    lut[:, 3] = quantize_unit(correct_opacity(rgba[:, 3], distance), cfg.alpha_bits)
-    return lut
+    x = np.arange(n) / (n - 1)
+
+    def table(rgba: np.ndarray) -> np.ndarray:
+        lut = np.empty((n, 4), dtype=np.int64)
+        lut[:, :3] = quantize_unit(rgba[:, :3], COLOR_W)
+        lut[:, 3] = quantize_unit(correct_opacity(rgba[:, 3], distance), cfg.alpha_bits)
+        return lut
+
+    if scene.labels is not None:
+        return label_lut(lambda lb: table(label_tf(scene, lb, x)))
+    return table(scene.tf(x))
 
 
 def extremum_lut(scene: Scene, cfg: Cube4Config) -> np.ndarray:

@@ -47,9 +47,11 @@ def grad_bits(voxel_bits: int) -> int:
 MAX_VGRAD_VOXEL_BITS = 13
 
 
-def word_bits(voxel_bits: int, vgrad: bool) -> int:
-    """Bits of a memory word: the voxel alone, or the voxel and three components."""
-    return voxel_bits + (3 * grad_bits(voxel_bits) if vgrad else 0)
+def word_bits(voxel_bits: int, vgrad: bool, labels: bool = False) -> int:
+    """Bits of a memory word: the voxel alone, or the voxel and three components; with
+    labels (cube4.labels) the label's bits above them."""
+    from .labels import LABEL_W
+    return voxel_bits + (3 * grad_bits(voxel_bits) if vgrad else 0) + (LABEL_W if labels else 0)
 
 
 def check_gradient(name: str, where: str = "scene: render.") -> str:

@@ -38,7 +38,7 @@ from ..bricks import BRICK_MODES, MIN_BOARD_DIM, LocalExecutor, brick_renderer, 
 from ..config import MAX_DIM, MAX_PIPELINES, Cube4Config, parse_build, resolve_build
 from ..errors import UserError
 from ..host import config_for, image_metrics
-from ..scene import PRESETS, Scene, apply_preset, builtin_scene_names, load_scene, with_view
+from ..scene import PRESETS, Scene, label_scene_checks, apply_preset, builtin_scene_names, load_scene, with_view
 from ..vgrad import GRADIENTS
 from ..values import int_text, real_text, shown
 from ..view import POLE_Z, angles_from_direction, direction_from_angles, make_camera, up_from_angles
@@ -46,6 +46,8 @@ from .images import write_image
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import RenderResult, engine_names, render, render_bricked_views, render_views
 from .volumes import BUILTINS, load_volume
+from .labelmaps import load_label_map
+from ..labels import pack_words
 
 IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
 
@@ -114,6 +116,9 @@ def _parser() -> argparse.ArgumentParser:
     r = sub.add_parser("render", help="render a volume with a scene into an image")
     r.add_argument("volume", help="a volume file (.raw, .nrrd, .nii[.gz]) or a built-in like sphere:64, ml:41")
     r.add_argument("--scene", default="default", help="scene TOML file or built-in scene name (default: default)")
+    r.add_argument("--labels", metavar="MAP",
+                   help="a label map beside the volume (.nii[.gz], .nrrd, or a built-in such as aal_lobes): "
+                        "each label classified by the scene's [[label]] tables (over the scene's [labels] map)")
     r.add_argument("--engine", default="golden", choices=engine_names())
     r.add_argument("--out", required=True, help="output image (.png, .exr, .tif)")
     r.add_argument("--baseplane", help="write the exact integer base-plane RGBA (rows, cols, 4) as .npy")
@@ -306,7 +311,7 @@ def cmd_mesh(args: argparse.Namespace) -> int:
 def cmd_render(args: argparse.Namespace) -> int:
     """Check every input, load the volume, render, write all outputs or none, report."""
     run = _parse_inputs(args)
-    vol = _load_volume(args, run.cfg)
+    vol = _load_volume(args, run.cfg, run.scenes)
     results, frames = _render(args, run, vol)
     write_all(_outputs(run, results, frames))
     if not args.quiet:
@@ -350,7 +355,17 @@ def _resolve_scenes(args: argparse.Namespace) -> list[Scene]:
         raise UserError(f"--tau must be in 0..0.5, got {args.tau}")
     if args.preview is not None and args.preview not in (1, 2, 4):
         raise UserError(f"--preview must be 1, 2 or 4, got {args.preview}")
-    return [_changed(sc, args) for sc in scenes]
+    scenes = [_changed(sc, args) for sc in scenes]
+    labels = scenes[0].labels
+    if getattr(args, "labels", None) and labels is None:
+        raise UserError(f"--labels needs a scene with [[label]] tables (each label's transfer function); "
+                        f"scene {scenes[0].name} has none")
+    if labels is not None and not (getattr(args, "labels", None) or labels.map):
+        raise UserError(f"scene {scenes[0].name} classifies labels: give their map with --labels "
+                        "(or [labels] map in the scene)")
+    if labels is not None:      # the changes of the command line, checked as the scene's own
+        label_scene_checks(scenes[0].mode, scenes[0].skip, scenes[0].path_weighted, scenes[0].preview)
+    return scenes
 
 
 def _changed(scene: Scene, args: argparse.Namespace) -> Scene:
@@ -379,10 +394,17 @@ def _hardware(args: argparse.Namespace, scenes: list[Scene]) -> Cube4Config:
     return cfg
 
 
-def _load_volume(args: argparse.Namespace, cfg: Cube4Config):
-    """Stage 2: the volume, as voxels of the configuration's width."""
+def _load_volume(args: argparse.Namespace, cfg: Cube4Config, scenes: list[Scene] | None = None):
+    """Stage 2: the volume, as voxels of the configuration's width; with a label map (a
+    scene with labels), the labelled memory words (cube4.labels)."""
     raw_dims = _dims(args.dims) if args.dims else None
-    return load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
+    vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
+    labels = (scenes or [None])[0]
+    labels = None if labels is None else labels.labels
+    if labels is None:
+        return vol
+    spec = args.labels or labels.map
+    return pack_words(vol, load_label_map(spec, args.volume, vol.shape), cfg.voxel_bits)
 
 
 def _render(args: argparse.Namespace, run: RenderRun, vol) -> tuple[list[RenderResult], list[dict]]:

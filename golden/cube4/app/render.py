@@ -218,6 +218,8 @@ def render_bricked_views(vol: np.ndarray, scenes, cfg: Cube4Config, engine: str,
         raise UserError("depth out ([output] depth_threshold) is not rendered in bricks: render the volume whole")
     if any(sc.geometry is not None for sc in scenes):
         raise UserError("depth in ([geometry]) is not rendered in bricks: render the volume whole")
+    if any(sc.labels is not None for sc in scenes):
+        raise UserError("label volumes ([[label]]) are not rendered in bricks: render the volume whole")
     if any(sc.gmod is not None for sc in scenes):
         raise UserError("gradient-magnitude modulation ([gradient_modulation]) is not rendered in bricks: "
                         "render the volume whole")

@@ -141,7 +141,45 @@ def gen_mri_t1(nx: int, ny: int, nz: int) -> np.ndarray:
     return _mri_generator("mri_t1")(nx, ny, nz)
 
 
+# Real MRI from a Debian package (scripts/setup.sh installs it): mricron-data's templates,
+#   ch2.nii.gz        the Colin27 T1 (Holmes 1998), 181 x 217 x 181 voxels of 1 mm, uint8,
+#                     MNI space; its label maps (cube4.app.labelmaps) lie on the same grid.
+MRICRON_TEMPLATES = "/usr/share/mricron/templates"
+_PACKAGE_FILES = {"colin": ("ch2.nii.gz", "mricron-data")}
+
+
+def package_file(fname: str, package: str = "mricron-data") -> str:
+    """A template file of a Debian package; one line when the package is missing."""
+    path = os.path.join(MRICRON_TEMPLATES, fname)
+    if not os.path.isfile(path):
+        raise UserError(f"{fname} is missing: install the Debian package {package} "
+                        "(scripts/setup.sh does: apt-get install mricron-data)")
+    return path
+
+
+def _colin_native() -> np.ndarray:
+    if "colin" not in _mri_cache:
+        import nibabel as nib
+
+        img = nib.as_closest_canonical(nib.load(package_file(_PACKAGE_FILES["colin"][0])))
+        data = np.asarray(img.dataobj, dtype=np.float64)
+        data = (data - data.min()) / (data.max() - data.min())
+        _mri_cache["colin"] = np.ascontiguousarray(data.transpose(2, 1, 0).astype(np.float32))
+    return _mri_cache["colin"]
+
+
+def gen_colin(nx: int, ny: int, nz: int) -> np.ndarray:
+    """The Colin27 T1 head MRI from the Debian package mricron-data (ch2.nii.gz), RAS."""
+    a = _colin_native()
+    for axis, n in ((0, nz), (1, ny), (2, nx)):
+        a = _resample_axis(a, n, axis)
+    return np.ascontiguousarray(a, dtype=np.float32)
+
+
 def _native_dims(name: str) -> Dims:
+    if name == "colin":
+        nz, ny, nx = _colin_native().shape
+        return (nx, ny, nz)
     nz, ny, nx = _mri_native(name).shape
     return (nx, ny, nz)
 
@@ -150,12 +188,14 @@ BUILTINS: dict[str, tuple[Callable[[int, int, int], np.ndarray], str]] = {
     **PHANTOMS,
     "mri": (gen_mri, "real brain MRI shipped with nibabel, native 128x96x24"),
     "mri_t1": (gen_mri_t1, "real T1 MRI crop shipped with nibabel, native 33x41x25"),
+    "colin": (gen_colin, "the Colin27 T1 head MRI of the Debian package mricron-data, native 181x217x181"),
 }
 
 # Built-ins with a size of their own, usable without ":dims".
 NATIVE_DIMS: dict[str, Callable[[], Dims]] = {
     "mri": lambda: _native_dims("mri"),
     "mri_t1": lambda: _native_dims("mri_t1"),
+    "colin": lambda: _native_dims("colin"),
 }
 
 
