@@ -69,11 +69,14 @@ CFB_UNIT_SETS               := P=1,WEIGHT_W=4 P=2,MAX_DIM=2,ADDR_W=1 P=5,MAX_SS_
                                P=16,MAX_DIM=2048,ADDR_W=30,MAX_SS_LOG2=3,WEIGHT_W=12
 $(foreach u,tmpl trav ctl rect box addr mask,$(eval LINT_SETS_cube4_cfb_$(u) := $(CFB_UNIT_SETS)))
 LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0 SLAB=1 \
-                               VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128
-LINT_SETS_cube4_tri_src     := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128
-LINT_SETS_cube4_tri_beam    := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=2,MAX_DIM=2 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128
+                               VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
+                               LABELS=1 P=1,LABELS=1,MAX_SS_LOG2=1 P=5,VOXEL_W=16,LABELS=1
+LINT_SETS_cube4_tri_src     := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
+                               P=5,LABELS=1
+LINT_SETS_cube4_tri_beam    := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=2,MAX_DIM=2 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 P=5,LABELS=1
 LINT_SETS_cube4_tri_meta    := P=1 P=5,MAX_SS_LOG2=2 P=16,WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,MAX_DIM=64
-LINT_SETS_cube4_tri_lane    := VGRAD=1 VOXEL_W=1,WEIGHT_W=4 VOXEL_W=16,WEIGHT_W=12,VGRAD=1
+LINT_SETS_cube4_tri_lane    := VGRAD=1 VOXEL_W=1,WEIGHT_W=4 VOXEL_W=16,WEIGHT_W=12,VGRAD=1 LABELS=1 VOXEL_W=16,WEIGHT_W=12,LABELS=1
+LINT_SETS_cube4_pick        := LATENCY=1 LATENCY=3 DATA_W=1,WEIGHT_W=1,LATENCY=2 DATA_W=16,WEIGHT_W=12,LATENCY=3
 LINT_SETS_cube4_clip        := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 \
                                SLAB=1 P=1,SLAB=1 P=5,MAX_SS_LOG2=2,SLAB=1
 LINT_SETS_cube4_plane       := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) FAR=1 P=1,FAR=1 WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3,FAR=1
@@ -86,7 +89,8 @@ LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096 DATA_W=65
 LINT_SETS_cube4_credit_fifo := DEPTH=4 DATA_W=1 DATA_W=643,DEPTH=32 DATA_W=64,DEPTH=64 IN_REG=1 DATA_W=1,DEPTH=4,IN_REG=1
 LINT_SETS_cube4_prim_copies := N=8 W=64,N=512 N=3,W=2,RESET=0 W=100,RESET=0 W=65,N=2
 LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 \
-                               RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 P=2,RECTS=1,MAX_DIM=2
+                               RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 P=2,RECTS=1,MAX_DIM=2 \
+                               LABELS=1 P=1,LABELS=1 P=5,VOXEL_W=12,LABELS=1,MAX_SS_LOG2=2
 LINT_SETS_cube4_gra_lines   := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
 LINT_SETS_cube4_gra_walk    := P=1 P=5,MAX_DIM=64 P=64,MAX_DIM=64 P=2,MAX_DIM=2 VOXEL_W=12
 LINT_SETS_cube4_gra_window  := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64
@@ -106,7 +110,8 @@ LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12
                                SHADING=0 P=1,SHADING=0,VOXEL_W=12 CARRY_SAMPLE=0 SHADING=0,CARRY_SAMPLE=0 \
                                SLAB=1 P=5,SLAB=1,RMAP_BITS=2 SHADING=0,SLAB=1 P=1,SHADING=0,SLAB=1,CARRY_SAMPLE=0 \
                                SLAB=1,COMPOSITING=0,SHADING=0 GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=5,GMOD=1,SLAB=1,VOXEL_W=12,ALPHA_W=16 \
-                               GMOD=1,RMAP_BITS=6,VOXEL_W=16,ALPHA_W=8
+                               GMOD=1,RMAP_BITS=6,VOXEL_W=16,ALPHA_W=8 LABELS=1 P=1,LABELS=1,SHADING=0,CARRY_SAMPLE=0 \
+                               P=5,LABELS=1,GMOD=1,VOXEL_W=12
 LINT_SETS_cube4_com         := P=1,PLW=0 P=5,MAX_SS_LOG2=2,PLW=0 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3,PLW=0 \
                                P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8,PLW=0 COMPOSITING=0,PLW=0 EXTREMUM=0,PLW=0 \
                                COMPOSITING=0,ACC_W=8,ALPHA_W=16,VOXEL_W=16,PLW=0 P=1,EXTREMUM=0,ACC_W=24,PLW=0 \
@@ -143,7 +148,9 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
                                SLAB=1 P=1,SLAB=1,SHADING=0 P=5,SLAB=1,MAX_SS_LOG2=2 SLAB=1,COMPOSITING=0,SHADING=0,PLW=0 \
                                ZOUT=1 P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2 \
                                ZIN=1 P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 \
-                               GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2
+                               GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 \
+                               LABELS=1,PLW=0 P=1,LABELS=1,PLW=0,SHADING=0,EXTREMUM=0,CLIP=0 \
+                               P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 P=16,LABELS=1,PLW=0,VOXEL_W=12
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

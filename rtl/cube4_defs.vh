@@ -91,14 +91,24 @@
 // A voxel memory word (golden/cube4/vgrad.py pack_words), LSB first: the voxel
 // (VOXEL_W bits); with VGRAD = 1 then the voxel gradient's x, y, z components,
 // VG_W = VOXEL_W + 3 bits each in offset binary (g + 2^(VG_W-1)), which TRI
-// interpolates like the voxel (numerics.md section 5b). Needs VOXEL_W, VGRAD.
+// interpolates like the voxel (numerics.md section 5b); with LABELS = 1 (and
+// VGRAD = 0) the voxel's label above it (golden/cube4/labels.py pack_words),
+// LABEL_W bits, which TRI picks from the nearest corner (numerics.md section 24).
+// Needs VOXEL_W, VGRAD, LABELS.
 //   VG_W     a stored gradient component
-//   WORD_W   a memory word: VOXEL_W, or VOXEL_W + 3 * VG_W
+//   LABEL_W  a label: 0 .. 15
+//   LBL_W    the label bits of a word and of a sample: LABEL_W with LABELS, else 0
+//   WORD_W   a memory word: VOXEL_W, VOXEL_W + 3 * VG_W, or VOXEL_W + LABEL_W
+//   SMP_W    a sample as TRI, GRA and SHA's input carry it: {label, value},
+//            VOXEL_W + LBL_W bits (the gradient channels leave at TRI's output)
 //   NCH      channels TRI interpolates: 1, or 4
 `define CUBE4_WORD_LAYOUT \
-    localparam integer VG_W   = VOXEL_W + 3, \
-    localparam integer WORD_W = (VGRAD != 0) ? VOXEL_W + 3 * VG_W : VOXEL_W, \
-    localparam integer NCH    = (VGRAD != 0) ? 4 : 1
+    localparam integer VG_W    = VOXEL_W + 3, \
+    localparam integer LABEL_W = 4, \
+    localparam integer LBL_W   = (LABELS != 0) ? LABEL_W : 0, \
+    localparam integer WORD_W  = ((VGRAD != 0) ? VOXEL_W + 3 * VG_W : VOXEL_W) + LBL_W, \
+    localparam integer SMP_W   = VOXEL_W + LBL_W, \
+    localparam integer NCH     = (VGRAD != 0) ? 4 : 1
 
 // ---------------------------------------------------------------- view registers
 // The host's view registers (golden/cube4/memory.py frontend_regs, top_regs),
@@ -494,7 +504,7 @@
     parameter integer VGRAD    = 0,  parameter integer PLW         = 1, \
     parameter integer RECTS    = 0,  parameter integer SLAB        = 0, \
     parameter integer ZOUT     = 0,  parameter integer ZIN         = 0, \
-    parameter integer GMOD     = 0, \
+    parameter integer GMOD     = 0,  parameter integer LABELS      = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
 
 `define CUBE4_BUILD_PASS \
@@ -502,7 +512,7 @@
     .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
     .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
     .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB), .ZOUT(ZOUT), \
-    .ZIN(ZIN), .GMOD(GMOD)
+    .ZIN(ZIN), .GMOD(GMOD), .LABELS(LABELS)
 
 `define CUBE4_SLICE_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
@@ -573,7 +583,8 @@
     `CUBE4_RANGE(g_bad_slab, MODULE, "SLAB", SLAB, 0, 1) \
     `CUBE4_RANGE(g_bad_zout, MODULE, "ZOUT", ZOUT, 0, 1) \
     `CUBE4_RANGE(g_bad_zin, MODULE, "ZIN", ZIN, 0, 1) \
-    `CUBE4_RANGE(g_bad_gmod, MODULE, "GMOD", GMOD, 0, 1)
+    `CUBE4_RANGE(g_bad_gmod, MODULE, "GMOD", GMOD, 0, 1) \
+    `CUBE4_RANGE(g_bad_labels, MODULE, "LABELS", LABELS, 0, 1)
 
 // ---------------------------------------------------------------- TRI units
 // cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").
@@ -614,6 +625,7 @@
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
     parameter integer VOXEL_W  = 8, parameter integer MAX_SS_LOG2 = 0, \
     parameter integer WEIGHT_W = 8, parameter integer VGRAD       = 0, \
+    parameter integer LABELS   = 0, \
     `CUBE4_GEOMETRY, `CUBE4_TAG_LAYOUT, `CUBE4_WORD_LAYOUT, `CUBE4_TRI_LAYOUT
 
 // ---------------------------------------------------------------- CFB units

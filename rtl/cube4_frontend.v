@@ -120,7 +120,8 @@ module cube4_frontend #(
         .MAX_SS_LOG2 (MAX_SS_LOG2),
         .CLIP        (CLIP),
         .SLAB        (SLAB),
-        .VGRAD       (VGRAD)
+        .VGRAD       (VGRAD),
+        .LABELS      (LABELS)
     ) u_tri (
         .clk        (clk),
         .rst        (rst),

@@ -34,6 +34,11 @@
 //   MAX_DIM, MAX_SS_LOG2  as cube4_tri (derived widths: cube4_defs.vh).
 //                                                  Defaults 256, 0.
 //   RECTS    1: slice rectangles (cube4_gra_walk). 0..1.      Default 0.
+//   LABELS   1: each sample carries its label (LABEL_W bits above the value,
+//            numerics.md section 24): the source's lines hold whole samples,
+//            the window and the arithmetic read the values, and the centre's
+//            label follows the window's and the arithmetic's registers to
+//            out_sample. Needs RECTS = 0.            0..1.      Default 0.
 //   GRAD_W   gradient width = VOXEL_W + 5 (derived; signed)
 //
 // Latency
@@ -50,8 +55,10 @@
 //   reaches only the step and the FIFO's read pointers.
 //
 // Ports
-//   in_*   the sample stream of cube4_tri (same fields and formats)
-//   out_sample  [P*VOXEL_W]  the sample s[m, j, i] (unsigned, Q0.VOXEL_W)
+//   in_*   the sample stream of cube4_tri (same fields and formats; a lane is
+//          SMP_W bits, {label, value} with LABELS)
+//   out_sample  [P*SMP_W]    the sample s[m, j, i] (unsigned, Q0.VOXEL_W; with
+//                            LABELS its label above it)
 //   out_gi/gj/gk [P*GRAD_W]  gradient per lane, signed integers, 2x the central
 //                            differences in traversal axes (numerics.md 5)
 //   out_hdr                  the sample beat's header, unchanged (cube4_defs.vh)
@@ -63,44 +70,52 @@
 //   exact in GRAD_W = VOXEL_W + 5 bits. No saturation.
 // =============================================================================
 module cube4_gra #(
-    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0,
-    localparam integer GRAD_W = VOXEL_W + 5
+    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0, parameter integer LABELS = 0,
+    localparam integer GRAD_W  = VOXEL_W + 5,
+    localparam integer LBL_W   = (LABELS != 0) ? 4 : 0,    // (CUBE4_WORD_LAYOUT's)
+    localparam integer SMP_W   = VOXEL_W + LBL_W
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
     // sample stream in
     input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
-    input  wire [P*VOXEL_W-1:0] in_sample,
+    input  wire [P*SMP_W-1:0] in_sample,
     // gradient stream out: the sample and its gradient (gi, gj, gk)
     output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
-    output wire [P*VOXEL_W-1:0] out_sample,
+    output wire [P*SMP_W-1:0] out_sample,
     output wire [P*GRAD_W-1:0]  out_gi, output wire [P*GRAD_W-1:0] out_gj, output wire [P*GRAD_W-1:0] out_gk
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_gra", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_gra", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_rects, "cube4_gra", "RECTS", RECTS, 0, 1)
+        `CUBE4_RANGE(g_bad_labels, "cube4_gra", "LABELS", LABELS, 0, 1)
+        if (LABELS != 0 && RECTS != 0) begin : g_labels_rects
+            $error("cube4_gra: LABELS = 1 needs RECTS = 0");
+        end
     endgenerate
 
     localparam integer PV         = P * VOXEL_W;
+    localparam integer PS         = P * SMP_W;
     localparam integer FIFO_DEPTH = 16;   // >= 6 cycles from a step to the FIFO's read (8 with RECTS)
 
     // ------------------------------------------------------------ neighbourhood source
     wire [GRA_STEPS-1:0]  credit;         // copies of the output FIFO's credit
     wire                  step, sop, fend;
-    wire [PV-1:0]         x, b1, p1, c, p1b2, p2b1, p2b2;
+    wire [PS-1:0]         xs, b1s, p1s, cs, p1b2s, p2b1s, p2b2s;   // whole samples
+    wire [PV-1:0]         x, b1, p1, c, p1b2, p2b1, p2b2;          // their values
     wire [GRA_META_W-1:0] c_meta;
     wire [P*GRA_NSEL-1:0] c_sel;
     wire [1:0]            c_edge;
     // the source, by one port map (cube4_gra_source_if.vh): delay lines or the walk
 `define CUBE4_GRA_SOURCE(MODULE) \
             MODULE #( \
-                .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W) \
+                .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(SMP_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W) \
             ) u_src ( \
                 .clk(clk), .rst(rst), .cfg(cfg), \
                 .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr), .in_sample(in_sample), \
                 .credit(credit), .step(step), .sop(sop), .fend(fend), \
-                .x(x), .b1(b1), .p1(p1), .c(c), .p1b2(p1b2), .p2b1(p2b1), .p2b2(p2b2), \
+                .x(xs), .b1(b1s), .p1(p1s), .c(cs), .p1b2(p1b2s), .p2b1(p2b1s), .p2b2(p2b2s), \
                 .c_meta(c_meta), .c_sel(c_sel), .c_edge(c_edge));
     generate
         if (RECTS == 0) begin : g_lines
@@ -110,6 +125,32 @@ module cube4_gra #(
         end
     endgenerate
 `undef CUBE4_GRA_SOURCE
+
+    // the values of the source's samples (the window and the arithmetic read
+    // them), and the centre's labels (LABELS), which follow the centre through
+    // the window's two step registers (h1, h2: its s) and the arithmetic's three
+    genvar q;
+    wire [P*LBL_W+(1-LABELS)-1:0] c_lbl;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_val
+            assign x[q*VOXEL_W +: VOXEL_W]    = xs[q*SMP_W +: VOXEL_W];
+            assign b1[q*VOXEL_W +: VOXEL_W]   = b1s[q*SMP_W +: VOXEL_W];
+            assign p1[q*VOXEL_W +: VOXEL_W]   = p1s[q*SMP_W +: VOXEL_W];
+            assign c[q*VOXEL_W +: VOXEL_W]    = cs[q*SMP_W +: VOXEL_W];
+            assign p1b2[q*VOXEL_W +: VOXEL_W] = p1b2s[q*SMP_W +: VOXEL_W];
+            assign p2b1[q*VOXEL_W +: VOXEL_W] = p2b1s[q*SMP_W +: VOXEL_W];
+            assign p2b2[q*VOXEL_W +: VOXEL_W] = p2b2s[q*SMP_W +: VOXEL_W];
+            if (LABELS != 0) begin : g_lbl
+                assign c_lbl[q*LBL_W +: LBL_W] = cs[q*SMP_W + VOXEL_W +: LBL_W];
+                wire unused_lbl = ^{xs[q*SMP_W + VOXEL_W +: LBL_W], b1s[q*SMP_W + VOXEL_W +: LBL_W],
+                                    p1s[q*SMP_W + VOXEL_W +: LBL_W], p1b2s[q*SMP_W + VOXEL_W +: LBL_W],
+                                    p2b1s[q*SMP_W + VOXEL_W +: LBL_W], p2b2s[q*SMP_W + VOXEL_W +: LBL_W]};
+            end
+        end
+        if (LABELS == 0) begin : g_no_lbl
+            assign c_lbl = 1'b0;
+        end
+    endgenerate
 
     // ------------------------------------------------------------ window
     wire                     take;        // a real centre steps: its FIFO entry is taken
@@ -129,6 +170,7 @@ module cube4_gra #(
     wire                push_v;           // the arithmetic's output holds a beat next cycle
     wire [HDR_W-1:0]    a_hdr;
     wire [PV-1:0]       a_s;
+    wire [PS-1:0]       a_smp;            // a_s with the centre's labels (LABELS)
     wire [P*GRAD_W-1:0] a_gi, a_gj, a_gk;
     cube4_gra_arith #(
         .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W)
@@ -138,13 +180,36 @@ module cube4_gra #(
         .in_gj(w_gj),
         .out_v_d(push_v), .out_hdr(a_hdr), .out_sample(a_s), .out_gi(a_gi), .out_gj(a_gj), .out_gk(a_gk));
 
+    generate
+        if (LABELS != 0) begin : g_label
+            // h1, h2 as the window's centre registers (on step), then g1 .. g3 as
+            // the arithmetic's (every cycle): the labels of the sample in a_s
+            reg [P*LBL_W-1:0] l_h1, l_h2, l_g1, l_g2, l_g3;
+            always @(posedge clk) begin
+                if (step) begin
+                    l_h1 <= c_lbl;
+                    l_h2 <= l_h1;
+                end
+                l_g1 <= l_h2;
+                l_g2 <= l_g1;
+                l_g3 <= l_g2;
+            end
+            for (q = 0; q < P; q = q + 1) begin : g_lane
+                assign a_smp[q*SMP_W +: SMP_W] = {l_g3[q*LBL_W +: LBL_W], a_s[q*VOXEL_W +: VOXEL_W]};
+            end
+        end else begin : g_no_label
+            assign a_smp = a_s;
+            wire unused_c_lbl = c_lbl;
+        end
+    endgenerate
+
     // ------------------------------------------------------------ output
     // the FIFO's input register (IN_REG = 1), then its memory: push_d one
     // cycle before the FIFO stores the item
-    localparam integer OUT_W = HDR_W + PV + 3 * P * GRAD_W;
+    localparam integer OUT_W = HDR_W + PS + 3 * P * GRAD_W;
     localparam integer EOP_BIT = OUT_W - HDR_W + HDR_CTRL + CTRL_EOP;   // the header's EOP in an item
     wire [OUT_W-1:0] fifo_out;
-    wire [OUT_W-1:0] item = {a_hdr, a_s, a_gi, a_gj, a_gk};
+    wire [OUT_W-1:0] item = {a_hdr, a_smp, a_gi, a_gj, a_gk};
     wire unused_credit;                 // (the source's step nets take their own copies)
     wire credit_d;
     wire push_d;

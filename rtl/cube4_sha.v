@@ -28,6 +28,10 @@
 // Parameters
 //   P           pipelines.                          1..64.  Default 8.
 //   VOXEL_W     sample width (LUT has 2^VOXEL_W entries). 1..16. Default 8.
+//   LABELS      1: a sample carries its label above the value (SMP_W =
+//               VOXEL_W + 4 bits) and the LUT has 2^SMP_W entries, a block
+//               of 2^VOXEL_W per label, read at {label, value} (numerics.md
+//               section 24). 0..1. Default 0.
 //   ALPHA_W     LUT opacity width AW.               8..16.  Default 12.
 //   RMAP_BITS   cube-map resolution R = 2^RMAP_BITS. 2..6.  Default 5.
 //   SHADING     1: shading by the reflectance map; 0: classification only. 0..1. Default 1.
@@ -56,15 +60,17 @@
 //   register (an FPGA block RAM's clock-to-output is long).
 //
 // Ports
-//   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)}
+//   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)},
+//                                lut_addr = {label, value} (SMP_W bits)
 //   rmap_we/rmap_addr/rmap_data  reflectance-map write: rmap_data = {D, P} (Q2.8 each)
 //   gm_we/gm_addr/gm_data        modulation table write (GMOD): gm_data = {fa, fs},
 //                                0 .. 256 each (Q0.8), GMF_W bits each
-//   in_*    the gradient stream of cube4_gra (gi, gj, gk signed GRAD_W bits)
+//   in_*    the gradient stream of cube4_gra (gi, gj, gk signed GRAD_W bits;
+//           in_sample SMP_W bits per lane)
 //   out_rgba  [P*(24+ALPHA_W)]  per lane {R', G', B' (Q0.8), A (Q0.ALPHA_W)}
 //   out_idx   [P*RI_W]          reflectance-map entry used (for checking and waves;
 //                               0 when SHADING = 0)
-//   out_sample [P*VOXEL_W]      the beat's samples, unchanged (CARRY_SAMPLE = 1; else 0)
+//   out_sample [P*VOXEL_W]      the beat's sample values, unchanged (CARRY_SAMPLE = 1; else 0)
 //   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
 //   out_fall  [P*FALL_W]        the slab's falloff weight f of each lane, 0 .. 256
 //                               (cube4_sha_slab; FALL = 1, else 256)
@@ -82,18 +88,20 @@
 module cube4_sha #(
     `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
     `CUBE4_GM_LAYOUT,
+    localparam integer LBL_W  = (LABELS != 0) ? 4 : 0,     // (CUBE4_WORD_LAYOUT's)
+    localparam integer SMP_W  = VOXEL_W + LBL_W,           // a sample: {label, value}
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer RI_W   = 2 * RMAP_BITS + 3
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,      // view registers (the slab's falloff, FALL = 1)
     // table load ports (broadcast to every lane's copy)
-    input  wire lut_we,  input wire [VOXEL_W-1:0] lut_addr, input wire [24+ALPHA_W-1:0] lut_data,
+    input  wire lut_we,  input wire [SMP_W-1:0] lut_addr,   input wire [24+ALPHA_W-1:0] lut_data,
     input  wire rmap_we, input wire [RI_W-1:0] rmap_addr,   input wire [19:0] rmap_data,
     input  wire gm_we,   input wire [GMA_W-1:0] gm_addr,    input wire [2*GMF_W-1:0] gm_data,
     // gradient stream in
     input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
-    input  wire [P*VOXEL_W-1:0] in_sample,
+    input  wire [P*SMP_W-1:0]   in_sample,
     input  wire [P*GRAD_W-1:0]  in_gi, input wire [P*GRAD_W-1:0] in_gj, input wire [P*GRAD_W-1:0] in_gk,
     // shaded stream out: RGBA and the reflectance-map entry used
     output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
@@ -149,7 +157,8 @@ module cube4_sha #(
 
     // ---- stage a: input register (loads on every cycle; a_v marks a beat) ----
     reg               a_v;
-    reg [P*VW-1:0]    a_s;
+    reg [P*SMP_W-1:0] a_s;              // {label, value} per lane: the LUT's address
+    wire [P*VW-1:0]   a_val;            // the values (carried to COM)
     reg [P*GW-1:0]    a_gi, a_gj, a_gk;
     reg [META_W-1:0]  a_meta;
     always @(posedge clk) begin
@@ -163,6 +172,13 @@ module cube4_sha #(
         a_gk   <= in_gk;
         a_meta <= in_hdr;
     end
+
+    genvar ql;
+    generate
+        for (ql = 0; ql < P; ql = ql + 1) begin : g_val
+            assign a_val[ql*VW +: VW] = a_s[ql*SMP_W +: VW];
+        end
+    endgenerate
 
     // ---- valid bits and the beat's fields, stages 1 .. NST - 1 ----
     reg [NST-1:1]    st_v;
@@ -182,11 +198,12 @@ module cube4_sha #(
         if (CARRY_SAMPLE != 0) begin : g_carry
             reg [(NST-1)*P*VW-1:0] st_s_q;
             always @(posedge clk) begin
-                st_s_q <= {st_s_q[(NST-2)*P*VW-1:0], a_s};
+                st_s_q <= {st_s_q[(NST-2)*P*VW-1:0], a_val};
             end
             assign e_s = st_s_q[(NST-2)*P*VW +: P*VW];
         end else begin : g_no_carry
             assign e_s = '0;
+            wire unused_val = ^a_val;
         end
     endgenerate
     wire [META_W-1:0]  e_meta = st_meta_q[(NST-2)*META_W +: META_W];   // stage e1
@@ -436,10 +453,10 @@ module cube4_sha #(
         for (q = 0; q < P; q = q + 2) begin : g_pair
             localparam integer Q1 = (q + 1 < P) ? q + 1 : q;   // the second lane (q itself when none)
             wire [LUT_W-1:0] lut_1;
-            cube4_dual_read_ram #(.DATA_W(LUT_W), .DEPTH(1 << VW), .OUT_REG(1)) u_lut (
+            cube4_dual_read_ram #(.DATA_W(LUT_W), .DEPTH(1 << SMP_W), .OUT_REG(1)) u_lut (
                 .clk(clk), .rd_en(1'b1),
-                .rd0_addr(a_s[q*VW +: VW]), .rd0_data(lut_2_all[q*LUT_W +: LUT_W]),
-                .rd1_addr(a_s[Q1*VW +: VW]), .rd1_data(lut_1),
+                .rd0_addr(a_s[q*SMP_W +: SMP_W]), .rd0_data(lut_2_all[q*LUT_W +: LUT_W]),
+                .rd1_addr(a_s[Q1*SMP_W +: SMP_W]), .rd1_data(lut_1),
                 .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
             if (SHADING != 0) begin : g_rmap
                 wire [19:0] dp_1;

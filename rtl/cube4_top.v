@@ -42,7 +42,8 @@
 //   COMPOSITING = 0 (only compositing is shaded); VGRAD = 1 with SHADING = 0;
 //   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
 //   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0;
-//   ZIN = 1 with RECTS = 1; GMOD = 1 with SHADING = 0 or RECTS = 1.
+//   ZIN = 1 with RECTS = 1; GMOD = 1 with SHADING = 0 or RECTS = 1;
+//   LABELS = 1 with VGRAD, PLW or RECTS = 1.
 //   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
 //                slice's entry of the table (rect_*), GRA and COM follow the
 //                rectangles; every frame needs its table (the whole box for the
@@ -61,6 +62,11 @@
 //                stop slice from the host's table (stop_*, cube4_com_stop)
 //                and counts only the samples in front of it; every frame
 //                needs its table (all 2^M_W - 1: no geometry). 0..1. Default 0.
+//   LABELS       1: label volumes (numerics.md section 24): each memory word
+//                holds the voxel's label (LABEL_W = 4 bits) above it, TRI
+//                picks the nearest corner's, GRA carries it with the sample,
+//                and SHA's LUT has a block of 2^VOXEL_W entries per label
+//                (lut_addr = {label, value}).            0..1. Default 0.
 //
 // Latency
 //   A frame: (M*NJ + 1)*NB + 1 memory beats (cube4_cfb), then GRA finishes the
@@ -95,7 +101,8 @@ module cube4_top #(
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT, `CUBE4_GM_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3,
-    localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W   // a LUT entry (lut_data)
+    localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W,  // a LUT entry (lut_data)
+    localparam integer LUT_AW = SMP_W                               // a LUT address: {label, value}
 ) (
     input  wire                      clk,
     input  wire                      rst,
@@ -106,7 +113,7 @@ module cube4_top #(
     input  wire [P*WORD_W-1:0]       ld_data,
     // table load ports
     input  wire                      lut_we,
-    input  wire [VOXEL_W-1:0]        lut_addr,
+    input  wire [LUT_AW-1:0]         lut_addr,
     input  wire [LUT_W-1:0]          lut_data,
     input  wire                      rmap_we,
     input  wire [RI_W-1:0]           rmap_addr,
@@ -148,7 +155,7 @@ module cube4_top #(
     input  wire [4:0]                dbg_hold
 );
     localparam integer PV     = P * VOXEL_W;
-    localparam integer PW     = P * WORD_W;    // a beat of memory words (= PV without VGRAD)
+    localparam integer PW     = P * WORD_W;    // a beat of memory words (= P * SMP_W without VGRAD)
     localparam integer GRAD_W = VOXEL_W + 5;
     generate
         `CUBE4_BUILD_CHECKS("cube4_top")
@@ -169,6 +176,9 @@ module cube4_top #(
         end
         if (GMOD != 0 && (SHADING == 0 || RECTS != 0)) begin : g_gmod_shading
             $error("cube4_top: GMOD = 1 needs SHADING = 1 and RECTS = 0 (the gradient comes with shading; not with rectangles)");
+        end
+        if (LABELS != 0 && (VGRAD != 0 || PLW != 0 || RECTS != 0)) begin : g_labels_alone
+            $error("cube4_top: LABELS = 1 needs VGRAD = 0 and PLW = 0 and RECTS = 0 (labels run without voxel gradients, path weights and rectangles)");
         end
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
@@ -265,7 +275,7 @@ module cube4_top #(
     // VGRAD, TRI's interpolated voxel gradients take GRA's place)
     wire                 gra_valid, gra_ready, sha_in_valid, sha_in_ready;
     wire [HDR_W-1:0]     gra_hdr;
-    wire [PV-1:0]        gra_sample;
+    wire [P*SMP_W-1:0]   gra_sample;      // {label, value} per lane (the label with LABELS)
     wire [P*GRAD_W-1:0]  gra_gi, gra_gj, gra_gk;
 
     generate
@@ -290,7 +300,8 @@ module cube4_top #(
                 .WEIGHT_W    (WEIGHT_W),
                 .MAX_DIM     (MAX_DIM),
                 .MAX_SS_LOG2 (MAX_SS_LOG2),
-                .RECTS       (RECTS)
+                .RECTS       (RECTS),
+                .LABELS      (LABELS)
             ) u_gra (
                 .clk        (clk),
                 .rst        (rst),
@@ -339,7 +350,7 @@ module cube4_top #(
         .cfg       (cfg),
         .lut_we    (lut_we),
         .lut_addr  (lut_addr),
-        .lut_data  (lut_data[0 +: 24 + ALPHA_W]),
+        .lut_data  (lut_data[0 +: 24 + ALPHA_W]),   // (SHA: the label's block)
         .rmap_we   (rmap_we),
         .rmap_addr (rmap_addr),
         .rmap_data (rmap_data),
@@ -374,7 +385,7 @@ module cube4_top #(
         .rst       (rst),
         .cfg       (cfg),
         .lut_we    (lut_we),
-        .lut_addr  (lut_addr),
+        .lut_addr  (lut_addr[VOXEL_W-1:0]),          // (PLW: no labels)
         .lut_data  (lut_data[LUT_W-1 -: PLW * 4 * ALPHA_W + (1 - PLW)]),
         .rect_we   (rect_we),
         .rect_addr (rect_addr),
@@ -413,7 +424,7 @@ module cube4_top #(
         .data ({smp_hdr, smp_sample}));
     generate
         if (SHADING != 0 && VGRAD == 0) begin : g_chk_gra   // (otherwise: the held sample stream)
-            cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + PV + 3 * P * GRAD_W)) u_chk_gra (
+            cube4_stream_check #(.NAME ("top.gradients"), .DATA_W (HDR_W + P * SMP_W + 3 * P * GRAD_W)) u_chk_gra (
                 .clk (clk), .rst (rst), .valid (gra_valid), .ready (gra_ready),
                 .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
         end

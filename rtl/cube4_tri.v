@@ -47,6 +47,9 @@
 //                components (CUBE4_WORD_LAYOUT); every buffer holds whole
 //                words and each of the four channels has its seven lerps
 //                (numerics.md section 5b). 0: the voxel alone. 0..1. Default 0.
+//   LABELS       1: the word carries the voxel's label above it; each lane
+//                picks the nearest corner's (cube4_tri_lane, numerics.md
+//                section 24). Needs VGRAD = 0. 0..1. Default 0.
 //   Derived widths and the layouts of cfg, in_tag and out_hdr: cube4_defs.vh.
 //
 // Latency
@@ -70,7 +73,8 @@
 //           components, signed VG_W bits each; 0 for lanes not read);
 //           in_tag = cube4_cfb's tag.
 //   out_*   sample beats: out_sample lane q (WORD_W bits: the sample, unsigned
-//           VOXEL_W, Q0.VOXEL_W; with VGRAD the interpolated components, signed);
+//           VOXEL_W, Q0.VOXEL_W; with VGRAD the interpolated components, signed;
+//           with LABELS the nearest corner's label above it);
 //           out_hdr the stream header (CUBE4_GEOMETRY): lane valid (position
 //           < NI; with slice rectangles the traversed positions), lane inside
 //           (the sample is inside the volume box, numerics.md section 4, and not
@@ -121,7 +125,8 @@ module cube4_tri #(
     wire [PB_W-1:0]    s1_pb;
     wire [TRI_C_W-1:0] s1_ctl;
     cube4_tri_src #(
-        .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD)
+        .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD),
+        .LABELS(LABELS)
     ) u_src (
         .clk(clk), .rst(rst), .take(take), .in_tag(in_tag), .in_data(in_data), .flip_k(cfg[VIEW_FLIP_K]),
         .s1_v(s1_v), .s1_pair(s1_pair), .s1_ywrap(s1_ywrap), .s1_bbwe(s1_bbwe), .s1_pb(s1_pb), .s1_ctl(s1_ctl));
@@ -132,7 +137,8 @@ module cube4_tri #(
     wire [4*PV-1:0]     s4_vals, s4_nvals;
     wire [HDR_W-1:0]    s4_meta;
     cube4_tri_beam #(
-        .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD)
+        .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD),
+        .LABELS(LABELS)
     ) u_beam (
         .clk(clk), .rst(rst), .flip_j(cfg[VIEW_FLIP_J]), .flip_i(cfg[VIEW_FLIP_I]),
         .s1_v(s1_v), .s1_pair(s1_pair), .s1_ywrap(s1_ywrap), .s1_bbwe(s1_bbwe), .s1_pb(s1_pb), .s1_ctl(s1_ctl),
@@ -171,7 +177,7 @@ module cube4_tri #(
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
-            cube4_tri_lane #(.VOXEL_W(VOXEL_W), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD)) u_lane (
+            cube4_tri_lane #(.VOXEL_W(VOXEL_W), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD), .LABELS(LABELS)) u_lane (
                 .clk(clk), .wx(s3_wx), .wy(l_wy), .wz(l_wz),
                 .vals(s4_vals[q*4*VW +: 4*VW]), .nvals(s4_nvals[q*4*VW +: 4*VW]),
                 .sample(l_sample[q*VW +: VW]));

@@ -18,6 +18,9 @@
 //   VOXEL_W   voxel / sample width.                1..16.  Default 8.
 //   WEIGHT_W  weight width W.                      4..12.  Default 8.
 //   VGRAD     1: four channels per word, 0: one.   0..1.   Default 0.
+//   LABELS    1: the word's label channel (top LBL_W bits) takes the
+//             nearest corner's label: seven cube4_pick in the lerps' places
+//             (numerics.md section 24). Needs VGRAD = 0. 0..1. Default 0.
 //   The lerp latency is CUBE4_TRI_LERP_LAT (cube4_defs.vh).
 //
 // Latency
@@ -33,7 +36,8 @@
 //                     (rows j, j + 1 of the lower and upper slice, position i)
 //   nvals        in   s4: the same at position i + 1
 //   sample       out  the sample word (WORD_W bits: the voxel channel unsigned
-//                     Q0.VOXEL_W, with VGRAD the three components signed VG_W)
+//                     Q0.VOXEL_W, with VGRAD the three components signed VG_W,
+//                     with LABELS the label above the voxel, unsigned LABEL_W)
 //
 // Bit growth and rounding
 //   Each lerp rounds half up once (cube4_lerp); a lerp's result lies between
@@ -44,6 +48,7 @@
 // =============================================================================
 module cube4_tri_lane #(
     parameter integer VOXEL_W = 8, parameter integer WEIGHT_W = 8, parameter integer VGRAD = 0,
+    parameter integer LABELS = 0,
     `CUBE4_WORD_LAYOUT
 ) (
     input  wire clk,
@@ -54,6 +59,10 @@ module cube4_tri_lane #(
     generate
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_tri_lane", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_vgrad, "cube4_tri_lane", "VGRAD", VGRAD, 0, 1)
+        `CUBE4_RANGE(g_bad_labels, "cube4_tri_lane", "LABELS", LABELS, 0, 1)
+        if (LABELS != 0 && VGRAD != 0) begin : g_labels_vgrad
+            $error("cube4_tri_lane: LABELS = 1 needs VGRAD = 0");
+        end
     endgenerate
 
     localparam integer VW       = WORD_W;
@@ -95,6 +104,27 @@ module cube4_tri_lane #(
                     .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
             end
             assign sample[OFF +: CW] = FLIP ^ y[6*CW +: CW];
+        end
+        if (LABELS != 0) begin : g_label
+            // the label channel (the word's top LBL_W bits): seven picks in the
+            // lerps' places, so the nearest corner's label leaves with the sample
+            localparam integer LOFF = WORD_W - LBL_W;
+            wire [7*LBL_W-1:0] y;
+            for (n = 0; n < 7; n = n + 1) begin : g_pick
+                localparam integer IX = (((n % 2) != 0) ? 0 : 2) + n / 2;
+                wire [LBL_W-1:0] a, b;
+                wire [WEIGHT_W-1:0] w = (n < 4) ? wx_l : ((n < 6) ? wy_l : wz_l);
+                if (n < 4) begin : g_x
+                    assign a = vals[IX*VW + LOFF +: LBL_W];
+                    assign b = nvals[IX*VW + LOFF +: LBL_W];
+                end else begin : g_yz
+                    assign a = y[(2*n-8)*LBL_W +: LBL_W];
+                    assign b = y[(2*n-7)*LBL_W +: LBL_W];
+                end
+                cube4_pick #(.DATA_W(LBL_W), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_pick (
+                    .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*LBL_W +: LBL_W]));
+            end
+            assign sample[LOFF +: LBL_W] = y[6*LBL_W +: LBL_W];
         end
     endgenerate
 endmodule

@@ -8,6 +8,7 @@ cube4_prim_copies.v
 cube4_prim_spread.v
 cube4_prim_reg_en.v
 cube4_lerp.v
+cube4_pick.v
 cube4_skid.v
 cube4_credit_fifo.v
 cube4_ring_shift.v

@@ -16,15 +16,18 @@ from .rtl import baseplane_from_pixels
 def assert_frame_matches_golden(vol: np.ndarray, trav: Traversal, cfg: Cube4Config, lut: np.ndarray,
                                 rmap: np.ndarray | None, res: dict, label: str, mode: str = "composite",
                                 clip=None, vgrad: bool = False, rects=None, depth_t: int | None = None,
-                                stop_m: np.ndarray | None = None, gm: np.ndarray | None = None) -> Frame:
+                                stop_m: np.ndarray | None = None, gm: np.ndarray | None = None,
+                                labels: bool = False) -> Frame:
     """The finished rays (m, by, bx, R, G, B, A) as a set and the assembled base plane
     must equal the golden model's (vol: the whole volume, or its memory words with voxel
     gradients when ``vgrad``; trav may traverse a box in it; rmap None: an unshaded
     frame; ``rects``: its slice rectangles; ``depth_t``: depth out's threshold, whose slices
     the rays then carry; ``stop_m``: depth in's stop slices; ``gm``: gradient-magnitude
-    modulation's table); returns the golden frame."""
+    modulation's table; ``labels``: vol holds labelled words and lut a block per label,
+    cube4.labels); returns the golden frame."""
     gold = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, mode=mode, shading=rmap is not None,
-                        clip=clip, vgrad=vgrad, rects=rects, depth_t=depth_t, stop_m=stop_m, gm=gm)
+                        clip=clip, vgrad=vgrad, rects=rects, depth_t=depth_t, stop_m=stop_m, gm=gm,
+                        labels=labels)
     want = np.sort(gold.pixels, order=["m", "by", "bx"])
     got = np.sort(res["pixels"], order=["m", "by", "bx"])
     assert got.size == want.size, f"{label}: {got.size} finished rays, golden {want.size}"

@@ -30,6 +30,7 @@ from cube4.view import Traversal
 
 from cube4.cycles import COM_MIN_SLICE, frame_cycles, has_falloff, has_gmod, rect_frame_cycles, slow_slice_factor
 from cube4.gmod import GMF_BITS, identity_table
+from cube4.labels import MAX_LABELS
 from cube4.slices import SliceRects, whole_box_rects
 from .beats import Geometry
 from .rect_port import rect_width, rect_words
@@ -117,7 +118,8 @@ def check_limits(params: dict[str, int], dims) -> None:
     if params["ADDR_W"] > MAX_ADDR_W:
         raise UserError(f"a {nx}x{ny}x{nz} volume needs {params['DEPTH']:,} words per bank, more than the "
                         f"RTL's 2^{MAX_ADDR_W}: use more pipelines (--pipelines) or a smaller volume")
-    nbytes = words * sim_word_bytes(word_bits(params["VOXEL_W"], bool(params.get("VGRAD", 0))))
+    nbytes = words * sim_word_bytes(word_bits(params["VOXEL_W"], bool(params.get("VGRAD", 0)),
+                                              bool(params.get("LABELS", 0))))
     if nbytes > SIM_MEMORY_BYTES:
         gib = nbytes / 2**30
         raise UserError(f"the RTL engine's simulated voxel memory for a {nx}x{ny}x{nz} volume (size class "
@@ -137,6 +139,18 @@ def identity_rmap(cfg: Cube4Config) -> np.ndarray:
     table = np.zeros((cfg.rmap_entries, 2), dtype=np.int64)
     table[:, 0] = 1 << 8
     return table
+
+
+def build_lut(lut: np.ndarray, cfg: Cube4Config, params: dict) -> np.ndarray:
+    """The LUT a frame loads on this build: a LABELS build's LUT has a block per label
+    (cube4.labels); a frame without labels reads label 0's, its table (the other blocks
+    repeat it). A label LUT on a build without LABELS: one line."""
+    n = 1 << cfg.voxel_bits
+    if lut.shape[0] > n and not params["LABELS"]:
+        raise UserError("a frame with labels needs a build with LABELS = 1")
+    if params["LABELS"] and lut.shape[0] == n:
+        return np.concatenate([lut] * MAX_LABELS, axis=0)
+    return lut
 
 
 def write_tables(lut: np.ndarray, rmap: np.ndarray | None, cfg: Cube4Config, lut_path: Path,
@@ -192,7 +206,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     workdir.mkdir(parents=True, exist_ok=True)
     try:
         banks = pack_volume(vol, cfg.pipelines)
-        write_hex(workdir / "mem.hex", load_image(banks), word_bits(cfg.voxel_bits, vgrad))
+        write_hex(workdir / "mem.hex", load_image(banks), word_bits(cfg.voxel_bits, vgrad, bool(params["LABELS"])))
         job_frames = []
         for n, fr in enumerate(frames):
             lut_p, rmap_p = workdir / f"lut{n}.hex", workdir / f"rmap{n}.hex"
@@ -200,8 +214,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             weighted = path_weighted(fr.lut, fr.mode)
             if weighted and not params["PLW"]:
                 raise UserError("a path-weighted frame needs a build with PLW = 1")
-            write_tables(fr.lut, fr.rmap if fr.mode == "composite" else None, cfg, lut_p, rmap_p,
-                         plw=bool(params["PLW"]))
+            write_tables(build_lut(fr.lut, cfg, params), fr.rmap if fr.mode == "composite" else None, cfg,
+                         lut_p, rmap_p, plw=bool(params["PLW"]))
             M, nj, ni = fr.trav.num_sample_slices, fr.trav.nj, fr.trav.ni
             ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad, has_falloff(params), has_gmod(params)) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))

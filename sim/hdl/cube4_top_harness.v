@@ -57,6 +57,7 @@ module cube4_top_harness #(
     parameter integer ZOUT        = 0,    // 1: depth out (DEPTH_T, pix_z)
     parameter integer ZIN         = 0,    // 1: depth in (the stop table from CUBE4_STOPFILE)
     parameter integer GMOD        = 0,    // 1: gradient-magnitude modulation (its table from CUBE4_GMFILE)
+    parameter integer LABELS      = 0,    // 1: label volumes (labelled words; a LUT block per label)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
@@ -185,7 +186,8 @@ module cube4_top_harness #(
 
     // ------------------------------------------------------------ loaders
     reg [WORD_W-1:0]  img  [0:P*DEPTH-1];
-    reg [LUT_W-1:0]   luti [0:(1 << VOXEL_W)-1];
+    localparam integer LUT_N = 1 << SMP_W;  // 2^VOXEL_W entries, a block per label with LABELS
+    reg [LUT_W-1:0]   luti [0:LUT_N-1];
     reg [19:0]        rmi  [0:RMAP_N-1];
     reg [RECT_W-1:0]  rti  [0:MAX_DIM-1];   // the rectangle table (RECTS = 1)
     localparam integer STOP_IW = (ZIN != 0) ? STOP_AW : 1;
@@ -234,7 +236,7 @@ module cube4_top_harness #(
             end
             la_q <= la_q + 32'd1;
         end else if (tab_busy_q) begin
-            if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= (1 << VOXEL_W)
+            if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= LUT_N
                 && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && (ZIN == 0 || la_q + 32'd1 >= STOP_N) && (GMOD == 0 || la_q + 32'd1 >= GM_N)) begin
                 tab_busy_q <= 1'b0;
                 done_q     <= 1'b1;
@@ -246,7 +248,7 @@ module cube4_top_harness #(
         for (b = 0; b < P; b = b + 1) ld_data[b*WORD_W +: WORD_W] = img[la_q * P + b];
     end
     assign load_done = done_q;
-    wire lut_we  = tab_busy_q && (la_q < (1 << VOXEL_W));
+    wire lut_we  = tab_busy_q && (la_q < LUT_N);
     wire rmap_we = tab_busy_q && (la_q < RMAP_N);
     wire rect_we = (RECTS != 0) && tab_busy_q && (la_q < MAX_DIM);
     wire stop_we = (ZIN != 0) && tab_busy_q && (la_q < STOP_N);
@@ -309,7 +311,8 @@ module cube4_top_harness #(
         .SLAB        (SLAB),
         .ZOUT        (ZOUT),
         .ZIN         (ZIN),
-        .GMOD        (GMOD)
+        .GMOD        (GMOD),
+        .LABELS      (LABELS)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
@@ -318,8 +321,8 @@ module cube4_top_harness #(
         .ld_addr     (la_q[ADDR_W-1:0]),
         .ld_data     (ld_data),
         .lut_we      (lut_we),
-        .lut_addr    (la_q[VOXEL_W-1:0]),
-        .lut_data    (luti[la_q[VOXEL_W-1:0]]),
+        .lut_addr    (la_q[SMP_W-1:0]),
+        .lut_data    (luti[la_q[SMP_W-1:0]]),
         .rmap_we     (rmap_we),
         .rmap_addr   (la_q[RI_W-1:0]),
         .rmap_data   (rmi[la_q[RI_W-1:0]]),

@@ -28,6 +28,7 @@ module cube4_tri_cell_harness #(
     // (the build parameters by name, not CUBE4_TRI_PARAMS: the testbench reads them)
     parameter integer P = 8, parameter integer MAX_DIM = 32, parameter integer VOXEL_W = 8,
     parameter integer MAX_SS_LOG2 = 0, parameter integer WEIGHT_W = 8, parameter integer VGRAD = 0,
+    parameter integer LABELS = 0,   // (the cell tests run without labels; CUBE4_WORD_LAYOUT reads it)
     parameter integer DEPTH = 4096, parameter integer ADDR_W = 12,
     `CUBE4_GEOMETRY, `CUBE4_TAG_LAYOUT, `CUBE4_WORD_LAYOUT, `CUBE4_TRI_LAYOUT,
     `CUBE4_VIEW_LAYOUT, `CUBE4_ADDR_LAYOUT, `CUBE4_RECT_LAYOUT

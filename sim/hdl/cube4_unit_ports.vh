@@ -109,11 +109,12 @@
     DIR wire [P*(VOXEL_W+1)-1:0] PFX``gj,
 
 // A beat of GRA's gradient stream (cube4_gra's output, cube4_gra_arith's, cube4_sha's
-// input): the header, the samples (Q0.VOXEL_W) and the gradient components gi, gj, gk
-// (VOXEL_W + 5 bits signed each, P lanes), the port names prefixed by PFX (in, out).
+// input): the header, the samples (SMP_W bits a lane, which the harness defines: Q0.VOXEL_W,
+// with labels the label above it) and the gradient components gi, gj, gk (VOXEL_W + 5
+// bits signed each, P lanes), the port names prefixed by PFX (in, out).
 `define CUBE4_GRA_BEAT_PORTS(DIR, PFX) \
     DIR wire [HDR_W-1:0]           PFX``_hdr, \
-    DIR wire [P*VOXEL_W-1:0]       PFX``_sample, \
+    DIR wire [P*SMP_W-1:0]         PFX``_sample, \
     DIR wire [P*(VOXEL_W+5)-1:0]   PFX``_gi, \
     DIR wire [P*(VOXEL_W+5)-1:0]   PFX``_gj, \
     DIR wire [P*(VOXEL_W+5)-1:0]   PFX``_gk,

@@ -28,24 +28,26 @@ module cube4_gra_harness #(
     `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8,
     parameter integer RECTS   = 0,
-    localparam integer GRAD_W = VOXEL_W + 5
+    parameter integer LABELS  = 0,
+    localparam integer GRAD_W = VOXEL_W + 5,
+    localparam integer SMP_W  = VOXEL_W + ((LABELS != 0) ? 4 : 0)
 ) (
     `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_BEAT_PORTS(output, out)
     input  wire                  in_valid,
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
-    input  wire [P*VOXEL_W-1:0]  in_sample,
+    input  wire [P*SMP_W-1:0]    in_sample,
     output wire                  out_valid,
     input  wire                  out_ready
 );
     `CUBE4_HARNESS_VIEW
 
-    cube4_gra #(`CUBE4_GRA_PASS, .RECTS (RECTS)) u_gra (.*);
+    cube4_gra #(`CUBE4_GRA_PASS, .RECTS (RECTS), .LABELS (LABELS)) u_gra (.*);
 
     cube4_stream_check #(
         .NAME   ("gra.in (samples)"),
-        .DATA_W (HDR_W + P * VOXEL_W)
+        .DATA_W (HDR_W + P * SMP_W)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),
@@ -56,7 +58,7 @@ module cube4_gra_harness #(
 
     cube4_stream_check #(
         .NAME   ("gra.out (gradients)"),
-        .DATA_W (HDR_W + P * VOXEL_W + 3 * P * GRAD_W)
+        .DATA_W (HDR_W + P * SMP_W + 3 * P * GRAD_W)
     ) u_chk_out (
         .clk   (clk),
         .rst   (rst),

@@ -19,6 +19,9 @@ Views: z-major with j flipped, z-major with i and k flipped, x-major with k
 flipped (at least two with a flipped axis), each with other stalls, in one
 simulation per build (views follow each other without a reset), at P = 1, P = 5
 and P = 8; the P = 8 build (MAX_SS_LOG2 = 1) runs the views supersampled (S = 2).
+With LABELS = 1 (make regress: P = 1 with S = 2, P = 5) each voxel has a random label
+(cube4.labels): the sample beats carry the nearest corner's label above the value, the
+gradients are of the values, and each output sample carries its centre's label.
 
 The test can fail (tried with deliberately corrupted expectations, not kept):
 with the golden gk of lane 0 of beat 40 raised by one, P = 1 fails with
@@ -40,6 +43,7 @@ from cocotb.triggers import FallingEdge, ReadOnly
 from cube4.model import gradient_stream, inside_mask, padded_traversal, rect_slice, sample_stream
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
+from cube4.labels import LABEL_W, MAX_LABELS, pack_words as pack_labels
 from cube4_sim.beats import CTRL_EOP, BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
 from cube4_sim.gra_beats import walk_beats
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id, run_unit
@@ -65,20 +69,24 @@ async def test_gradient_stream(dut):
     await bench.reset({"in_valid": 0, "out_ready": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
+    labelled = bool(int(dut.LABELS.value))
+    sw = vw + (LABEL_W if labelled else 0)      # a sample: {label, value}
+    if labelled:    # a random label per voxel: GRA carries the centre's beside its sample
+        vol = pack_labels(vol, bench.rng.integers(0, MAX_LABELS, size=vol.shape), vw)
     ss = 1 << geo.max_ss_log2
     for direction, gap, stall in VIEWS:
         trav = make_traversal(dims, direction, w, ss)
-        samples, inside = sample_stream(vol, trav)
+        samples, inside = sample_stream(vol, trav, label_bits=vw if labelled else None)
         sched = BeatSchedule(trav, p, inside)
         hdrs = sched.headers(geo)
         smp = sched.lanes(samples)
-        grads = sched.lanes(gradient_stream(samples, trav))  # (beats, 3, P)
-        inputs = [{"in_hdr": hdrs[n], "in_sample": pack_lanes(smp[n], vw)} for n in range(len(sched))]
+        grads = sched.lanes(gradient_stream(samples & ((1 << vw) - 1), trav))  # (beats, 3, P), of the values
+        inputs = [{"in_hdr": hdrs[n], "in_sample": pack_lanes(smp[n], sw)} for n in range(len(sched))]
         bench.set_view(trav, p)
         await bench.cycles(2)
         got = await bench.run_stream(inputs, len(sched), OUTPUTS, gap, stall)
         check_headers([b["out_hdr"] for b in got], hdrs, geo, sched, bench.log, "gradient stream")
-        check_lanes(np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got]), smp, sched.lval, sched,
+        check_lanes(np.stack([unpack_lanes(b["out_sample"], p, sw) for b in got]), smp, sched.lval, sched,
                     bench.log, "sample")
         for c, name in enumerate(("gi", "gj", "gk")):
             rtl = np.stack([unpack_lanes(b["out_" + name], p, gw, signed=True) for b in got])
@@ -88,7 +96,8 @@ async def test_gradient_stream(dut):
 
 
 BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0),
-          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1)]
+          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1), dict(P=1, VOXEL_W=8, MAX_SS_LOG2=1, LABELS=1),
+          dict(P=5, VOXEL_W=12, MAX_SS_LOG2=0, LABELS=1)]
 
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(1,), ids=param_id))

@@ -24,7 +24,8 @@
 // =============================================================================
 module cube4_gra_arith_harness #(
     `CUBE4_UNIT_PARAMS
-    parameter integer VOXEL_W = 8
+    parameter integer VOXEL_W = 8,
+    localparam integer SMP_W  = VOXEL_W     // (the arithmetic's samples carry no label)
 ) (
     `CUBE4_HARNESS_PORTS
     `CUBE4_GRA_BEAT_PORTS(output, out)

@@ -30,6 +30,7 @@ module cube4_sha_harness #(
     `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
     `CUBE4_GM_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5,
+    localparam integer SMP_W  = VOXEL_W + ((LABELS != 0) ? 4 : 0),   // a sample: {label, value}
     localparam integer RI_W   = 2 * RMAP_BITS + 3,
     localparam integer RGBA_W = P * (24 + ALPHA_W)   // out_rgba (a name, for the runner's port scan)
 ) (
@@ -37,7 +38,7 @@ module cube4_sha_harness #(
     input  wire                      rst,
     `CUBE4_VIEW_PORTS
     input  wire                      lut_we,
-    input  wire [VOXEL_W-1:0]        lut_addr,
+    input  wire [SMP_W-1:0]          lut_addr,
     input  wire [24+ALPHA_W-1:0]     lut_data,
     input  wire                      rmap_we,
     input  wire [RI_W-1:0]           rmap_addr,
@@ -67,7 +68,7 @@ module cube4_sha_harness #(
 
     cube4_stream_check #(
         .NAME   ("sha.in (gradients)"),
-        .DATA_W (HDR_W + P * VOXEL_W + 3 * P * GRAD_W)
+        .DATA_W (HDR_W + P * SMP_W + 3 * P * GRAD_W)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),

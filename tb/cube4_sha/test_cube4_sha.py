@@ -20,6 +20,9 @@ COCOTB_RANDOM_SEED). Checked per output beat, in order:
 Views: z-major with j flipped, z-major with i and k flipped, x-major with k
 flipped, each with other stalls and tables, one simulation per build (no reset
 between views), at P = 1, 5 and 8 with different VOXEL_W, ALPHA_W and RMAP_BITS.
+With LABELS = 1 each voxel has a random label (cube4.labels), the samples carry the
+nearest corner's label above the value, the LUT has a block of 2^VOXEL_W entries per
+label, and out_sample carries the value alone.
 
 The test can fail (tried with a deliberately corrupted expectation, not kept):
 with the golden A of lane 0 of beat 40 raised by one, P = 1 fails with
@@ -37,6 +40,7 @@ from cocotb.triggers import FallingEdge
 
 from cube4.clip import FALL_ONE, FALL_W, Clip, slab_coefficients
 from cube4.gmod import GMF_BITS, GM_ONE, table_entries
+from cube4.labels import LABEL_W, MAX_LABELS, pack_words as pack_labels
 from cube4.model import gradient_stream, sample_stream, shade
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
@@ -120,30 +124,35 @@ async def test_shaded_stream(dut):
     bench = UnitBench(dut)
     await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rmap_we": 0, "gm_we": 0})
     gmod = shading and bool(int(dut.GMOD.value))
+    labelled = bool(int(dut.LABELS.value))
+    sw = vw + (LABEL_W if labelled else 0)      # a sample: {label, value}
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
+    if labelled:    # a random label per voxel: the LUT's blocks
+        vol = pack_labels(vol, bench.rng.integers(0, MAX_LABELS, size=vol.shape), vw)
     slab = bool(int(dut.SLAB.value)) and bool(int(dut.COMPOSITING.value))
     ss = 1 << int(dut.MAX_SS_LOG2.value)
     for n_view, (direction, gap, stall) in enumerate(VIEWS):
         trav = make_traversal(dims, direction, 8, ss)
         clip = view_slab(trav, dims, n_view) if slab else None
         bench.set_view(trav, p, clip=clip)
-        lut, rmap = random_tables(bench.rng, vw, aw, rb)
+        lut, rmap = random_tables(bench.rng, sw, aw, rb)     # with labels a block per label
         await load_tables(dut, lut, rmap, aw)
         gm = None
         if gmod:    # random factors over their range, a quarter of them 256 (the identity)
             gm = bench.rng.integers(0, GM_ONE + 1, size=(table_entries(gw), 2))
             gm[bench.rng.random(gm.shape) < 0.25] = GM_ONE
             await load_gm_table(dut, gm)
-        samples, inside = sample_stream(vol, trav)
-        grads = gradient_stream(samples, trav)  # (M, 3, nj, ni)
+        samples, inside = sample_stream(vol, trav, label_bits=vw if labelled else None)
+        values = samples & ((1 << vw) - 1)      # (without labels: the samples)
+        grads = gradient_stream(values, trav)  # (M, 3, nj, ni)
         rgba, idx = shade(samples, np.moveaxis(grads, 1, 0) if shading else None, lut, rmap, rb, gm)
         if idx is None:
             idx = np.zeros_like(samples)     # (M, nj, ni); out_idx is 0 without shading
         sched = BeatSchedule(trav, p, inside)
         hdrs = sched.headers(geo)
         smp, g = sched.lanes(samples), sched.lanes(grads)
-        inputs = [{"in_hdr": hdrs[n], "in_sample": pack_lanes(smp[n], vw), "in_gi": pack_lanes(g[n, 0], gw),
+        inputs = [{"in_hdr": hdrs[n], "in_sample": pack_lanes(smp[n], sw), "in_gi": pack_lanes(g[n, 0], gw),
                    "in_gj": pack_lanes(g[n, 1], gw), "in_gk": pack_lanes(g[n, 2], gw)} for n in range(len(sched))]
         got = await bench.run_stream(inputs, len(sched), OUTPUTS, gap, stall)
         check_headers([b["out_hdr"] for b in got], hdrs, geo, sched, bench.log, "shaded stream")
@@ -154,7 +163,7 @@ async def test_shaded_stream(dut):
         rtl_idx = np.stack([unpack_lanes(b["out_idx"], p, ri_w) for b in got])
         check_lanes(rtl_idx, sched.lanes(idx), sched.lval, sched, bench.log, "reflectance-map index")
         rtl_smp = np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got])
-        carried = smp if int(dut.CARRY_SAMPLE.value) else np.zeros_like(smp)
+        carried = sched.lanes(values) if int(dut.CARRY_SAMPLE.value) else np.zeros_like(smp)
         check_lanes(rtl_smp, carried, sched.lval, sched, bench.log, "sample (passed through, or 0)")
         fall = np.full(samples.shape, FALL_ONE, dtype=np.int64)
         if clip is not None and clip.falloff(trav, 0) is not None:
@@ -169,7 +178,7 @@ async def test_shaded_stream(dut):
 
 # make test: P = 5 unshaded with 12-bit voxels and the slab's falloff (S = 4), and P = 5 shaded with
 # gradient-magnitude modulation (RMAP_BITS = 2: the factors come just in time, S = 2; every view
-# with a random table);
+# with a random table) and labels (a LUT block per label, read at {label, value});
 # make regress all
 BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1),
           dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=3, SHADING=1, CARRY_SAMPLE=0),
@@ -178,9 +187,10 @@ BUILDS = [dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=
           dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0),
           dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=2, SHADING=1, CARRY_SAMPLE=1, SLAB=1, MAX_SS_LOG2=1),
           dict(P=5, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=0, SLAB=1, MAX_SS_LOG2=2),
-          dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=2, SHADING=1, CARRY_SAMPLE=1, GMOD=1, MAX_SS_LOG2=1),
+          dict(P=5, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=2, SHADING=1, CARRY_SAMPLE=1, GMOD=1, MAX_SS_LOG2=1, LABELS=1),
           dict(P=1, VOXEL_W=12, ALPHA_W=16, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=0, GMOD=1, SLAB=1),
-          dict(P=8, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1, GMOD=1)]
+          dict(P=8, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=1, CARRY_SAMPLE=1, GMOD=1),
+          dict(P=1, VOXEL_W=8, ALPHA_W=12, RMAP_BITS=5, SHADING=0, CARRY_SAMPLE=1, LABELS=1)]
 
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(6, 7), ids=param_id))

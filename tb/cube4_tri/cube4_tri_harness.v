@@ -17,7 +17,7 @@
 //   registers and pulses start.
 //
 // Parameters: as cube4_tri (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, CLIP 0..1, VGRAD 0..1), plus DEPTH (words per bank, >= 2)
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, CLIP 0..1, VGRAD 0..1, LABELS 0..1), plus DEPTH (words per bank, >= 2)
 //   and ADDR_W (bank address width, 1..30) of the memory.
 //
 // Latency: TRI's, plus one cycle in each stall generator.
@@ -43,6 +43,7 @@ module cube4_tri_harness #(
     parameter integer ADDR_W      = 12,
     parameter integer CLIP        = 1,
     parameter integer VGRAD       = 0,
+    parameter integer LABELS      = 0,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
@@ -169,7 +170,8 @@ module cube4_tri_harness #(
         .MAX_DIM     (MAX_DIM),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
         .CLIP        (CLIP),
-        .VGRAD       (VGRAD)
+        .VGRAD       (VGRAD),
+        .LABELS      (LABELS)
     ) u_tri (
         .clk        (clk),
         .rst        (rst),

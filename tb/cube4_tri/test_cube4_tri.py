@@ -28,6 +28,9 @@ load, no reset between views), at P = 1, P = 5 and P = 8; the P = 8 build
 With VGRAD = 1 the memory holds the words of golden ``cube4.vgrad`` (each voxel and its
 gradient; the P = 5 build Sobel, the P = 8 build central differences) and every
 lane's whole word is checked: the sample and the three interpolated components.
+With LABELS = 1 the memory holds labelled words (golden ``cube4.labels``, labels in
+blocks with boundaries along every axis) and every lane's word is the sample with the
+nearest corner's label above it.
 
 The test can fail (tried with a deliberately corrupted expectation, not kept):
 with the golden sample of lane 0 of beat 40 raised by one, P = 1 fails with
@@ -47,6 +50,7 @@ from cocotb.triggers import FallingEdge
 
 from cube4.memory import pack_volume
 from cube4.model import sample_stream
+from cube4.labels import MAX_LABELS, pack_words as pack_labels
 from cube4.vgrad import pack_channels, pack_words, word_bits
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
@@ -99,10 +103,14 @@ async def test_sample_stream(dut):
     await bench.reset({"out_ready": 0, "start": 0, "ld_valid": 0, "stall_req": 0, "stall_in": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
-    vgrad = bool(int(dut.VGRAD.value))
+    vgrad, labelled = bool(int(dut.VGRAD.value)), bool(int(dut.LABELS.value))
     if vgrad:       # the voxel-gradient words: Sobel at P = 5, central differences otherwise
         vol = pack_words(vol, "sobel" if p == 5 else "central", vw)
-    ww = word_bits(vw, vgrad)
+    if labelled:    # labels in blocks of 2 x 3 x 1 voxels: boundaries in every axis
+        zz, yy, xx = np.mgrid[0:dims[2], 0:dims[1], 0:dims[0]]
+        blocks = bench.rng.integers(0, MAX_LABELS, size=(dims[2] + 1, dims[1] // 3 + 1, dims[0] // 2 + 1))
+        vol = pack_labels(vol, blocks[zz, yy // 3, xx // 2], vw)
+    ww = word_bits(vw, vgrad, labelled)
     await load_volume(dut, vol, p, ww)
     clip_on = bool(int(dut.CLIP.value))
     for direction, stall_req, stall_in, stall, clip_kind, phase, crop in VIEWS:
@@ -111,7 +119,7 @@ async def test_sample_stream(dut):
         trav = make_traversal(box, direction, w, ss, phase=phase, origin=origin)
         x0, y0, z0 = origin
         samples, inside = sample_stream(vol[z0:z0 + box[2], y0:y0 + box[1], x0:x0 + box[0]], trav,
-                                        vw if vgrad else None)
+                                        vw if vgrad else None, vw if labelled else None)
         if vgrad:   # (M, 4, nj, ni) -> the words TRI emits
             samples = pack_channels(samples[:, 0], np.moveaxis(samples[:, 1:], 1, 0), vw)
         clip = random_clip(trav, clip_kind, bench.rng) if clip_on else None
@@ -138,7 +146,10 @@ async def test_sample_stream(dut):
 BUILDS = [dict(P=1, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0),
           dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=1, VGRAD=0), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=0, VGRAD=0),
           dict(P=1, VOXEL_W=8, MAX_SS_LOG2=1, CLIP=1, VGRAD=1), dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=1),
-          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=0, VGRAD=1)]
+          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=0, VGRAD=1),
+          dict(P=1, VOXEL_W=8, MAX_SS_LOG2=1, CLIP=1, VGRAD=0, LABELS=1),
+          dict(P=5, VOXEL_W=8, MAX_SS_LOG2=0, CLIP=1, VGRAD=0, LABELS=1),
+          dict(P=8, VOXEL_W=12, MAX_SS_LOG2=1, CLIP=0, VGRAD=0, LABELS=1)]
 
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(), ids=param_id))
