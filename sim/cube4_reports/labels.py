@@ -39,7 +39,7 @@ from .markdown import REPO_ROOT, git_describe, md_table
 VOLUME, SCENE, MAP = "colin", "colin_lobes", "aal_lobes"
 P = 8
 #: the crop the pictures magnify: (row, col, size) in the 256² image, at a boundary of lobes
-CROP = (70, 96, 48)
+CROP = (96, 100, 48)
 BIG_DIFF = 1.0 / 32
 
 

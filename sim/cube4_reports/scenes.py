@@ -38,6 +38,9 @@ from cube4.host import config_for, image_metrics, plan_view, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
 from cube4.app.volumes import load_volume
 
+from cube4.app.labelmaps import load_label_map
+from cube4.labels import pack_words
+
 from . import fpga, gates
 from .markdown import fmt_int, git_describe, md_table
 from .synth import BUILD_REPORTS, DOC_REPORTS, cli_main, design_digest, progress, write_report
@@ -49,12 +52,21 @@ DEPTH = 1024
 # the volume each built-in scene is made for
 SCENE_VOLUME = {"default": "sphere:64", "ml": "ml:41", "mri_mip": "mri", "mri_skin": "mri:64,48,24",
                 "mri_t1_tissue": "mri_t1", "mri_needle": "mri",
-                "mri_boundaries": "mri"}
+                "mri_boundaries": "mri", "colin_lobes": "colin"}
 UNIT_COLS = ["CFB", "TRI", "GRA", "SHA", "COM", "RING"]
 
 
 def volume_of(scene: str) -> str:
     return SCENE_VOLUME.get(scene, "head:64")
+
+
+def scene_volume(name: str, scene) -> np.ndarray:
+    """The scene's volume; a scene with labels: the labelled words with its label map."""
+    spec = volume_of(name)
+    vol = load_volume(spec)
+    if scene.labels is None:
+        return vol
+    return pack_words(vol, load_label_map(scene.labels.map, spec, vol.shape), 8)
 
 
 def build_key(build: dict) -> tuple:
@@ -76,7 +88,7 @@ def scene_rows(names: list[str]) -> list[dict]:
     for name in names:
         scene = load_scene(name)
         spec = volume_of(name)
-        vol = load_volume(spec)
+        vol = scene_volume(name, scene)
         cfg = config_for(scene, pipelines=P)
         build = scene_build([scene])
         progress(TAG, f"{name} on {spec}: golden and reference renders (area and point truths) ...")
@@ -122,8 +134,10 @@ def mode_matrix(names: list[str]) -> list[dict]:
     for name in names:
         base = load_scene(name)
         spec = volume_of(name)
-        vol = load_volume(spec)
+        vol = scene_volume(name, base)
         for label, kw in MODE_VARIANTS:
+            if base.labels is not None and kw["mode"] in ("mip", "minip"):
+                continue        # labels classify the blending modes only (numerics.md §24)
             scene = dataclasses.replace(base, **kw)
             cfg = config_for(scene, pipelines=P)
             build = scene_build([scene])
@@ -143,7 +157,10 @@ def matrix_table(cells: list[dict], recs: list[dict]) -> str:
     for name in dict.fromkeys(c["scene"] for c in cells):
         row = [name, next(c["volume"] for c in cells if c["scene"] == name)]
         for lab in labels:
-            c = next(c for c in cells if c["scene"] == name and c["mode"] == lab)
+            c = next((c for c in cells if c["scene"] == name and c["mode"] == lab), None)
+            if c is None:       # a mode the scene refuses (labels: the blending modes only)
+                row.append("— (refused)")
+                continue
             rec = by_key.get(build_key(c["build"]))
             change = pct_change(logic_nand2(rec["gates"]), full) if rec else "—"
             psnr = "∞" if c["psnr_db"] is None else f"{c['psnr_db']:.1f}"
