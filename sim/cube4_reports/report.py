@@ -40,6 +40,8 @@ from typing import Any, TextIO
 
 import numpy as np
 
+from cube4.app.labelmaps import load_label_map
+from cube4.labels import pack_words
 from cube4.app.render import render
 from cube4.app.volumes import load_volume
 from cube4.config import Cube4Config
@@ -62,6 +64,11 @@ STEM = "error_vs_runtime"
 CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"), ("head:64", "head"), ("ml:41", "ml"),
                                       ("mri:64,48,24", "mri_skin"), ("mri_t1", "mri_t1_tissue"))
 QUICK_CASES: tuple[tuple[str, str], ...] = (("sphere:64", "default"),)
+#: the classification features (docs/numerics.md §23, §24) on real content, each on the build
+#: its scene gets: gradient-magnitude modulation on nibabel's MRI, labels on Colin27 with the
+#: AAL lobes (its label map from the scene); the default and the sweeps that change their error
+FEATURE_CASES: tuple[tuple[str, str], ...] = (("mri", "mri_boundaries"), ("colin", "colin_lobes"))
+FEATURE_SWEEPS: dict[str, tuple] = {"supersample": (2, 4), "subpixel": (2,)}
 
 #: Parameter sweeps, one parameter at a time from the scene's default configuration.
 SWEEPS: dict[str, tuple] = {
@@ -198,6 +205,19 @@ def variants(quick: bool) -> list[Variant]:
     sweeps = QUICK_SWEEPS if quick else SWEEPS
     return ([Variant("default", None)] + [Variant(k, v) for k, vals in sweeps.items() for v in vals]
             + [Variant("combo", c) for c in (QUICK_COMBOS if quick else COMBOS)])
+
+
+def feature_variants() -> list[Variant]:
+    """The classification features' configurations: the default, then FEATURE_SWEEPS."""
+    return [Variant("default", None)] + [Variant(k, v) for k, vals in FEATURE_SWEEPS.items() for v in vals]
+
+
+def case_volume(volume: str, scene: Scene, voxel_bits: int) -> np.ndarray:
+    """A case's volume: with labels the labelled words of the scene's label map."""
+    vol = load_volume(volume, voxel_bits=voxel_bits)
+    if scene.labels is None:
+        return vol
+    return pack_words(vol, load_label_map(scene.labels.map, volume, vol.shape), voxel_bits)
 
 
 def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Variant, Cube4Config]]:
@@ -439,7 +459,11 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               "`preview`: the scene rendered from its ½ or ¼ level (docs/numerics.md §20) through the RTL, its error "
               "against the whole volume's truth. `beats τ`: beat skipping and ray termination at transmittance τ "
               "(docs/numerics.md §19), which the golden model specifies and no RTL runs yet: its cycles are the "
-              f"front end's beats in the golden schedule (source `{BEATS_SOURCE}`), with no frame time.\n\n")
+              f"front end's beats in the golden schedule (source `{BEATS_SOURCE}`), with no frame time. "
+              "The classification features on real content, each on the build its scene gets: "
+              "`mri_boundaries` (gradient-magnitude modulation, docs/numerics.md §23; a GMOD build) and "
+              "`colin_lobes` (labels, §24: the Colin27 T1 with the AAL atlas folded into lobes; a LABELS "
+              f"build), with the sweeps {', '.join(FEATURE_SWEEPS)} only.\n\n")
     for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
         rs = [r for r in rows if (r.volume, r.scene) == (vol, scn)]
         out.write(f"## {vol}, scene `{scn}`\n\n")
@@ -821,11 +845,15 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
 
     t0 = time.perf_counter()
     load_fmax()  # fail early on a malformed file; read again at the end (make fpga may finish meanwhile)
-    cases = QUICK_CASES if quick else CASES
+    cases = QUICK_CASES if quick else CASES + FEATURE_CASES
     all_variants = variants(quick)
     scenes = {name: load_scene(name) for _, name in cases}
-    vols = {(v, s): load_volume(v, voxel_bits=config_for(scenes[s]).voxel_bits) for v, s in cases}
+    vols = {(v, s): case_volume(v, scenes[s], config_for(scenes[s]).voxel_bits) for v, s in cases}
     plan = {case: case_variants(scenes[case[1]], all_variants) for case in cases}
+    for case in FEATURE_CASES:
+        if case in plan:
+            plan[case] = case_variants(scenes[case[1]], feature_variants())
+            all_variants += [v for v, _ in plan[case] if v not in all_variants]
     out_dir.mkdir(parents=True, exist_ok=True)
     REPORTS_BUILD.mkdir(parents=True, exist_ok=True)
     log_path = REPORTS_BUILD / f"{STEM}.log"
