@@ -8,7 +8,8 @@ few seconds.
 
 Streams (kept when ``keep_streams=True``), all indexed [m, j, i] in the traversal frame:
 
-* ``samples``   tri-linear samples, unsigned VOXEL_W bits
+* ``samples``   tri-linear samples, unsigned VOXEL_W bits (with labels the word
+  label · 2^V + value, the label the nearest corner's: numerics.md §24)
 * ``inside``    the sample lies inside the volume and is composited (bool)
 * ``gradients`` (gi, gj, gk), twice the central differences, signed, traversal frame
   (GRA, §5); with voxel gradients (§5b) the interpolated (g_x, g_y, g_z), volume frame

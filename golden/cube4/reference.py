@@ -37,7 +37,10 @@ it. Conventions shared with the hardware (docs/numerics.md §9):
   its falloff multiplies the opacity of one hardware sample (a stretch of the ray as long
   as the hardware's sample distance d, 1 / (S max |d_axis|) voxel) by
   w = clamp(inset / F, 0, 1), inset the distance inside the nearer face:
-  alpha_h = 1 - (1 - w (1 - (1 - alpha)^d))^(w_q h / d).
+  alpha_h = 1 - (1 - w (1 - (1 - alpha)^d))^(w_q h / d);
+* a labelled volume (its memory words, cube4.labels) is classified by the scene's
+  [labels] resample rule: nearest (the hardware's), masked or blended (docs/numerics.md
+  §24); the gradient is the values' as ever.
 """
 
 from __future__ import annotations
