@@ -90,7 +90,6 @@ def run(args: argparse.Namespace) -> dict:
     diffs = [_crop(_diff(imgs[r], imgs["nearest"])) for r in RESAMPLINGS]
     write_image(str(pics / "rules_crop.png"), np.concatenate([np.concatenate(crops, axis=1),
                                                                np.concatenate(diffs, axis=1)], axis=0))
-    write_image(str(pics / "golden.png"), gold.image)
     return out
 
 
