@@ -125,6 +125,15 @@ def matrix_names(names: list[str]) -> list[str]:
     return [n for n in names if not n.startswith("head_crop_") or n == "head_crop_inverted_cross"]
 
 
+def refuses(scene, kw: dict) -> bool:
+    """A mode variant the scene's features cannot take (its table cell says so): labels
+    classify the blending modes only (numerics.md §24), the gradient-magnitude modulation
+    needs a shaded composite (§23)."""
+    if scene.labels is not None and kw["mode"] in ("mip", "minip"):
+        return True
+    return scene.gmod is not None and not (kw["mode"] == "composite" and kw.get("shading", False))
+
+
 def mode_matrix(names: list[str]) -> list[dict]:
     """Each built-in scene in every mode: its build, cycles and error against the
     point-sampled reference (the area truth for 5 modes x every scene costs too long)."""
@@ -136,8 +145,8 @@ def mode_matrix(names: list[str]) -> list[dict]:
         spec = volume_of(name)
         vol = scene_volume(name, base)
         for label, kw in MODE_VARIANTS:
-            if base.labels is not None and kw["mode"] in ("mip", "minip"):
-                continue        # labels classify the blending modes only (numerics.md §24)
+            if refuses(base, kw):
+                continue
             scene = dataclasses.replace(base, **kw)
             cfg = config_for(scene, pipelines=P)
             build = scene_build([scene])
@@ -158,7 +167,7 @@ def matrix_table(cells: list[dict], recs: list[dict]) -> str:
         row = [name, next(c["volume"] for c in cells if c["scene"] == name)]
         for lab in labels:
             c = next((c for c in cells if c["scene"] == name and c["mode"] == lab), None)
-            if c is None:       # a mode the scene refuses (labels: the blending modes only)
+            if c is None:       # a mode the scene refuses (refuses)
                 row.append("— (refused)")
                 continue
             rec = by_key.get(build_key(c["build"]))
