@@ -78,14 +78,17 @@ module cube4_tri_lane #(
 
     genvar c, n;
     generate
-        for (c = 0; c < NCH; c = c + 1) begin : g_ch
+        for (c = 0; c < NCH + LABELS; c = c + 1) begin : g_ch
             // channel c of the word: the voxel, then the gradient components
             // (a gradient component is two's complement in the word: its sign
-            // bit flipped makes it offset binary for the unsigned lerps)
-            localparam integer CW  = (c == 0) ? VOXEL_W : VG_W;
-            localparam integer OFF = (c == 0) ? 0 : VOXEL_W + (c - 1) * VG_W;
-            localparam [CW-1:0] FLIP = (c == 0) ? '0 : (CW'(1) << (CW - 1));
-            // lerp n: 0 .. 3 x in row j lower, j + 1 lower, j upper, j + 1 upper
+            // bit flipped makes it offset binary for the unsigned lerps); with
+            // LABELS the last channel is the label (the word's top LBL_W bits),
+            // whose seven steps are picks: the nearest corner's label
+            localparam integer LBL  = (c == NCH) ? 1 : 0;
+            localparam integer CW   = (LBL != 0) ? LBL_W : ((c == 0) ? VOXEL_W : VG_W);
+            localparam integer OFF  = (LBL != 0) ? WORD_W - LBL_W : ((c == 0) ? 0 : VOXEL_W + (c - 1) * VG_W);
+            localparam [CW-1:0] FLIP = (c == 0 || LBL != 0) ? '0 : (CW'(1) << (CW - 1));
+            // step n: 0 .. 3 x in row j lower, j + 1 lower, j upper, j + 1 upper
             // (value index 2, 0, 3, 1 of vals, with nvals at i + 1); 4, 5 y of
             // the lower and the upper slice (x results 0, 1 and 2, 3); 6 z (4, 5)
             wire [7*CW-1:0] y;
@@ -100,31 +103,15 @@ module cube4_tri_lane #(
                     assign a = y[(2*n-8)*CW +: CW];
                     assign b = y[(2*n-7)*CW +: CW];
                 end
-                cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_lerp (
-                    .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
+                if (LBL != 0) begin : g_pick
+                    cube4_pick #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_pick (
+                        .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
+                end else begin : g_mix
+                    cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_lerp (
+                        .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
+                end
             end
             assign sample[OFF +: CW] = FLIP ^ y[6*CW +: CW];
-        end
-        if (LABELS != 0) begin : g_label
-            // the label channel (the word's top LBL_W bits): seven picks in the
-            // lerps' places, so the nearest corner's label leaves with the sample
-            localparam integer LOFF = WORD_W - LBL_W;
-            wire [7*LBL_W-1:0] y;
-            for (n = 0; n < 7; n = n + 1) begin : g_pick
-                localparam integer IX = (((n % 2) != 0) ? 0 : 2) + n / 2;
-                wire [LBL_W-1:0] a, b;
-                wire [WEIGHT_W-1:0] w = (n < 4) ? wx_l : ((n < 6) ? wy_l : wz_l);
-                if (n < 4) begin : g_x
-                    assign a = vals[IX*VW + LOFF +: LBL_W];
-                    assign b = nvals[IX*VW + LOFF +: LBL_W];
-                end else begin : g_yz
-                    assign a = y[(2*n-8)*LBL_W +: LBL_W];
-                    assign b = y[(2*n-7)*LBL_W +: LBL_W];
-                end
-                cube4_pick #(.DATA_W(LBL_W), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_pick (
-                    .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*LBL_W +: LBL_W]));
-            end
-            assign sample[LOFF +: LBL_W] = y[6*LBL_W +: LBL_W];
         end
     endgenerate
 endmodule

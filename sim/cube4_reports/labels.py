@@ -27,11 +27,11 @@ from pathlib import Path
 import numpy as np
 
 from cube4.app.images import write_image
-from cube4.app.labelmaps import load_label_map
+from cube4.app.labelmaps import with_labels
 from cube4.app.render import render, render_views
 from cube4.app.volumes import load_volume
 from cube4.host import config_for, image_metrics
-from cube4.labels import RESAMPLINGS, pack_words
+from cube4.labels import RESAMPLINGS
 from cube4.scene import load_scene
 
 from .markdown import REPO_ROOT, git_describe, md_table
@@ -57,9 +57,8 @@ def _diff(a: np.ndarray, b: np.ndarray, gain: float = 4.0) -> np.ndarray:
 
 
 def run(args: argparse.Namespace) -> dict:
-    vol = load_volume(VOLUME)
-    words = pack_words(vol, load_label_map(MAP, VOLUME, vol.shape), 8)
     base = load_scene(SCENE)
+    words = with_labels(load_volume(VOLUME), VOLUME, base, 8, MAP)
     cfg = config_for(base, P)
     imgs, times = {}, {}
     for rule in RESAMPLINGS:
@@ -69,7 +68,7 @@ def run(args: argparse.Namespace) -> dict:
         times[rule] = time.perf_counter() - t0
         print(f"labels: reference ({rule}) {times[rule]:.1f} s", file=sys.stderr)
     gold = render(words, base, cfg, "golden")
-    out: dict = {"volume": VOLUME, "scene": SCENE, "map": MAP, "p": P, "dims": list(vol.shape[::-1]),
+    out: dict = {"volume": VOLUME, "scene": SCENE, "map": MAP, "p": P, "dims": list(words.shape[::-1]),
                  "reference_s": times, "golden_cycles": gold.stats["predicted_cycles"],
                  "skip_fraction": gold.stats["skip_fraction"], "rules": {}, "golden": {}}
     for a in RESAMPLINGS:

@@ -40,8 +40,7 @@ from typing import Any, TextIO
 
 import numpy as np
 
-from cube4.app.labelmaps import load_label_map
-from cube4.labels import pack_words
+from cube4.app.labelmaps import with_labels
 from cube4.app.render import render
 from cube4.app.volumes import load_volume
 from cube4.config import Cube4Config
@@ -214,10 +213,7 @@ def feature_variants() -> list[Variant]:
 
 def case_volume(volume: str, scene: Scene, voxel_bits: int) -> np.ndarray:
     """A case's volume: with labels the labelled words of the scene's label map."""
-    vol = load_volume(volume, voxel_bits=voxel_bits)
-    if scene.labels is None:
-        return vol
-    return pack_words(vol, load_label_map(scene.labels.map, volume, vol.shape), voxel_bits)
+    return with_labels(load_volume(volume, voxel_bits=voxel_bits), volume, scene, voxel_bits)
 
 
 def case_variants(scene: Scene, all_variants: list[Variant]) -> list[tuple[Variant, Cube4Config]]:

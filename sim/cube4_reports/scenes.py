@@ -38,8 +38,7 @@ from cube4.host import config_for, image_metrics, plan_view, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
 from cube4.app.volumes import load_volume
 
-from cube4.app.labelmaps import load_label_map
-from cube4.labels import pack_words
+from cube4.app.labelmaps import with_labels
 
 from . import fpga, gates
 from .markdown import fmt_int, git_describe, md_table
@@ -63,10 +62,7 @@ def volume_of(scene: str) -> str:
 def scene_volume(name: str, scene) -> np.ndarray:
     """The scene's volume; a scene with labels: the labelled words with its label map."""
     spec = volume_of(name)
-    vol = load_volume(spec)
-    if scene.labels is None:
-        return vol
-    return pack_words(vol, load_label_map(scene.labels.map, spec, vol.shape), 8)
+    return with_labels(load_volume(spec), spec, scene, config_for(scene).voxel_bits)
 
 
 def build_key(build: dict) -> tuple:

@@ -46,8 +46,7 @@ from .images import write_image
 from .outputs import Writer, check_destination, check_destinations, write_all
 from .render import RenderResult, engine_names, render, render_bricked_views, render_views
 from .volumes import BUILTINS, load_volume
-from .labelmaps import load_label_map
-from ..labels import pack_words
+from .labelmaps import with_labels
 
 IMAGE_SUFFIXES = (".png", ".exr", ".tif", ".tiff")
 
@@ -399,12 +398,7 @@ def _load_volume(args: argparse.Namespace, cfg: Cube4Config, scenes: list[Scene]
     scene with labels), the labelled memory words (cube4.labels)."""
     raw_dims = _dims(args.dims) if args.dims else None
     vol = load_volume(args.volume, voxel_bits=cfg.voxel_bits, raw_dims=raw_dims, raw_dtype=args.dtype)
-    labels = (scenes or [None])[0]
-    labels = None if labels is None else labels.labels
-    if labels is None:
-        return vol
-    spec = args.labels or labels.map
-    return pack_words(vol, load_label_map(spec, args.volume, vol.shape), cfg.voxel_bits)
+    return with_labels(vol, args.volume, scenes[0] if scenes else None, cfg.voxel_bits, args.labels)
 
 
 def _render(args: argparse.Namespace, run: RenderRun, vol) -> tuple[list[RenderResult], list[dict]]:

@@ -21,7 +21,7 @@ import os
 import numpy as np
 
 from ..errors import UserError
-from ..labels import MAX_LABELS, check_label_map
+from ..labels import MAX_LABELS, check_label_map, pack_words
 from .libs import quiet_library
 from .volumes import NIFTI_SUFFIXES, NRRD_SUFFIXES, _load_nrrd, _nrrd_ras_affine, _suffix_kind, package_file
 
@@ -150,4 +150,13 @@ def load_label_map(spec: str, volume_spec: str, shape) -> np.ndarray:
     return labels
 
 
-__all__ = ["AAL_LOBES", "BUILTIN_MAPS", "MAX_LABELS", "fold_aal", "load_label_map"]
+def with_labels(vol: np.ndarray, volume_spec: str, scene, voxel_bits: int, map_spec: str | None = None) -> np.ndarray:
+    """What a scene renders of vol: vol itself, or with labels (the scene's [[label]]) the
+    labelled memory words of its label map (``map_spec``, else the scene's [labels] map)."""
+    if scene is None or scene.labels is None:
+        return vol
+    labels = load_label_map(map_spec or scene.labels.map, volume_spec, vol.shape)
+    return pack_words(vol, labels, voxel_bits)
+
+
+__all__ = ["AAL_LOBES", "BUILTIN_MAPS", "MAX_LABELS", "fold_aal", "load_label_map", "with_labels"]
