@@ -84,6 +84,8 @@ LINT_SETS_cube4_plane       := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) FAR=1 P=1,
 LINT_SETS_cube4_sha_slab    := P=1 P=5,MAX_SS_LOG2=2 P=16,WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,MAX_DIM=64 WEIGHT_W=4
 LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4 P=5,VGRAD=1 P=8,RECTS=1 P=1,RECTS=1,VOXEL_W=12
 LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,WORD_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1 P=2,WORD_W=73
+LINT_SETS_cube4_sync_fifo   := DEPTH=2 DATA_W=1,DEPTH=1024 DATA_W=128,DEPTH=32
+LINT_SETS_cube4_dram_fetch  := P=1 P=1,WORD_W=128,ADDR_W=1 P=5,WORD_W=12,ADDR_W=12 P=16,ADDR_W=20,RD_DEPTH=16,DESC_DEPTH=2 P=4,WORD_W=16,TAG_W=1,RD_DEPTH=4,DESC_DEPTH=4 P=2,WORD_W=12,DRAM_AW=32
 LINT_SETS_cube4_ring_shift  := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_beam_ext    := P=1 P=2,DATA_W=1 P=64,DATA_W=256
 LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096 DATA_W=65
@@ -151,7 +153,8 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
                                ZIN=1 P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 \
                                GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 \
                                LABELS=1,PLW=0 P=1,LABELS=1,PLW=0,SHADING=0,EXTREMUM=0,CLIP=0 \
-                               P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 P=16,LABELS=1,PLW=0,VOXEL_W=12
+                               P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 P=16,LABELS=1,PLW=0,VOXEL_W=12 \
+                               DRAM=1 P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=16,DRAM=1,MAX_SS_LOG2=2
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

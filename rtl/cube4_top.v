@@ -25,6 +25,10 @@
 //   MAX_SS_LOG2  log2 of the largest supersampling.     0..3.     Default 0.
 //   DEPTH        voxel words per bank.                  2..2^30.  Default 65536.
 //   ADDR_W       bank address width.                    1..30.    Default 16.
+//   DRAM         0: the voxel memory on chip (cube4_voxel_mem, DEPTH words
+//                per bank); 1: in a DRAM behind the dram_* port
+//                (cube4_dram_fetch; DEPTH unused).       0..1.     Default 0.
+//   DRAM_AW      the DRAM port's address width (128-bit words). 1..32. Default 21.
 //   SHADING      1: GRA, the reflectance map and the shading multipliers;
 //                0: none of them (classification only).  0..1.   Default 1.
 //   COMPOSITING  1: COM's compositing datapath (composite, X-ray). 0..1. Default 1.
@@ -78,6 +82,8 @@
 //
 // Ports
 //   ld_*           voxel load port (cube4_voxel_mem; WORD_W-bit words)
+//   dram_*         a DRAM controller's native port and its reset (DRAM = 1):
+//                  LiteDRAM's, as cube4_dram_fetch describes
 //   lut_*, rmap_*  table load ports: lut_data = {the path-weight columns (PLW = 1:
 //                  A at w = 3/2, 5/4, 3/4, 1/2 from the top, Q0.ALPHA_W each; cube4_com),
 //                  R, G, B (Q0.8), A (Q0.ALPHA_W) (cube4_sha)}
@@ -97,6 +103,7 @@
 // =============================================================================
 module cube4_top #(
     `CUBE4_BUILD_PARAMS, parameter integer DEPTH = 65536,
+    parameter integer DRAM = 0, parameter integer DRAM_AW = 21,
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT, `CUBE4_GM_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
@@ -111,6 +118,20 @@ module cube4_top #(
     output wire                      ld_ready,
     input  wire [ADDR_W-1:0]         ld_addr,
     input  wire [P*WORD_W-1:0]       ld_data,
+    // the DRAM controller's native port (DRAM = 1; unused otherwise):
+    // 128-bit words, one burst each, and the port's reset (cube4_dram_fetch)
+    input  wire                      dram_rst,
+    output wire                      dram_cmd_valid,
+    input  wire                      dram_cmd_ready,
+    output wire                      dram_cmd_we,
+    output wire [DRAM_AW-1:0]        dram_cmd_addr,
+    output wire                      dram_wdata_valid,
+    input  wire                      dram_wdata_ready,
+    output wire [127:0]              dram_wdata_data,
+    output wire [15:0]               dram_wdata_we,
+    input  wire                      dram_rdata_valid,
+    output wire                      dram_rdata_ready,
+    input  wire [127:0]              dram_rdata_data,
     // table load ports
     input  wire                      lut_we,
     input  wire [LUT_AW-1:0]         lut_addr,
@@ -183,6 +204,7 @@ module cube4_top #(
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
         end
+        `CUBE4_RANGE(g_bad_dram, "cube4_top", "DRAM", DRAM, 0, 1)
         if (SHADING != 0 && COMPOSITING == 0) begin : g_shading_alone
             $error("cube4_top: SHADING = 1 needs COMPOSITING = 1 (MIP, MinIP and X-ray are not shaded)");
         end
@@ -238,29 +260,78 @@ module cube4_top #(
         .hold (dbg_hold[4]), .in_valid (fe_req_valid), .in_ready (fe_req_ready),
         .out_valid (mem_req_valid), .out_ready (mem_req_ready));
 
-    cube4_voxel_mem #(
-        .P       (P),
-        .WORD_W  (WORD_W),
-        .DEPTH   (DEPTH),
-        .ADDR_W  (ADDR_W),
-        .TAG_W   (TAG_W)
-    ) u_mem (
-        .clk       (clk),
-        .rst       (rst),
-        .ld_valid  (ld_valid),
-        .ld_ready  (ld_ready),
-        .ld_addr   (ld_addr),
-        .ld_data   (ld_data),
-        .req_valid (mem_req_valid),
-        .req_ready (mem_req_ready),
-        .req_addr  (req_addr),
-        .req_rden  (req_rden),
-        .req_tag   (req_tag),
-        .rsp_valid (mem_rsp_valid),
-        .rsp_ready (mem_rsp_ready),
-        .rsp_data  (rsp_data),
-        .rsp_tag   (rsp_tag)
-    );
+    generate
+        if (DRAM != 0) begin : g_dram
+            cube4_dram_fetch #(
+                .P       (P),
+                .MAX_DIM (MAX_DIM),
+                .WORD_W  (WORD_W),
+                .ADDR_W  (ADDR_W),
+                .TAG_W   (TAG_W),
+                .DRAM_AW (DRAM_AW)
+            ) u_mem (
+                .clk              (clk),
+                .rst              (rst),
+                .dram_rst         (dram_rst),
+                .ld_valid         (ld_valid),
+                .ld_ready         (ld_ready),
+                .ld_addr          (ld_addr),
+                .ld_data          (ld_data),
+                .req_valid        (mem_req_valid),
+                .req_ready        (mem_req_ready),
+                .req_addr         (req_addr),
+                .req_rden         (req_rden),
+                .req_tag          (req_tag),
+                .rsp_valid        (mem_rsp_valid),
+                .rsp_ready        (mem_rsp_ready),
+                .rsp_data         (rsp_data),
+                .rsp_tag          (rsp_tag),
+                .dram_cmd_valid   (dram_cmd_valid),
+                .dram_cmd_ready   (dram_cmd_ready),
+                .dram_cmd_we      (dram_cmd_we),
+                .dram_cmd_addr    (dram_cmd_addr),
+                .dram_wdata_valid (dram_wdata_valid),
+                .dram_wdata_ready (dram_wdata_ready),
+                .dram_wdata_data  (dram_wdata_data),
+                .dram_wdata_we    (dram_wdata_we),
+                .dram_rdata_valid (dram_rdata_valid),
+                .dram_rdata_ready (dram_rdata_ready),
+                .dram_rdata_data  (dram_rdata_data)
+            );
+        end else begin : g_bram
+            cube4_voxel_mem #(
+                .P       (P),
+                .WORD_W  (WORD_W),
+                .DEPTH   (DEPTH),
+                .ADDR_W  (ADDR_W),
+                .TAG_W   (TAG_W)
+            ) u_mem (
+                .clk       (clk),
+                .rst       (rst),
+                .ld_valid  (ld_valid),
+                .ld_ready  (ld_ready),
+                .ld_addr   (ld_addr),
+                .ld_data   (ld_data),
+                .req_valid (mem_req_valid),
+                .req_ready (mem_req_ready),
+                .req_addr  (req_addr),
+                .req_rden  (req_rden),
+                .req_tag   (req_tag),
+                .rsp_valid (mem_rsp_valid),
+                .rsp_ready (mem_rsp_ready),
+                .rsp_data  (rsp_data),
+                .rsp_tag   (rsp_tag)
+            );
+            assign dram_cmd_valid   = 1'b0;
+            assign dram_cmd_we      = 1'b0;
+            assign dram_cmd_addr    = {DRAM_AW{1'b0}};
+            assign dram_wdata_valid = 1'b0;
+            assign dram_wdata_data  = 128'd0;
+            assign dram_wdata_we    = 16'd0;
+            assign dram_rdata_ready = 1'b1;
+            wire unused_dram = &{1'b0, dram_rst, dram_cmd_ready, dram_wdata_ready, dram_rdata_valid, dram_rdata_data};
+        end
+    endgenerate
 
     cube4_stream_hold u_hold_rsp (
         .hold (dbg_hold[3]), .in_valid (mem_rsp_valid), .in_ready (mem_rsp_ready),

@@ -17,6 +17,8 @@ cube4_prim_ebr.v
 cube4_sdp_ram.v
 cube4_dual_read_ram.v
 cube4_voxel_mem.v
+cube4_sync_fifo.v
+cube4_dram_fetch.v
 cube4_beam_ext.v
 cube4_cfb_tmpl.v
 cube4_cfb_trav.v
