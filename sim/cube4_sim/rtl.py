@@ -35,6 +35,7 @@ from cube4.slices import SliceRects, whole_box_rects
 from .beats import Geometry
 from .rect_port import rect_width, rect_words
 from .dump import read_pixel_frames
+from .dram_core import MAX_COLUMNS_PER_BURST, DramRun, columns_per_burst
 from .sources import form_build_args, form_sources
 
 SIM_SOURCES = ["cube4_sim_clock.v", "cube4_top_harness.v"]
@@ -173,7 +174,7 @@ def write_tables(lut: np.ndarray, rmap: np.ndarray | None, cfg: Cube4Config, lut
 def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, max_dim: int | None = None,
                   fit_memory: bool = False, waves: bool | None = None, workdir: Path | None = None,
                   progress: bool = False, quiet: bool = False, rtl_form: str = "generic",
-                  build: dict | None = None) -> list[dict]:
+                  build: dict | None = None, dram: "DramRun | None" = None) -> list[dict]:
     """Render every frame through the RTL; returns per frame
     {"pixels": PIXEL_DTYPE array, "cycles": int, "sim_wall_s": float}.
 
@@ -181,13 +182,21 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     class). ``fit_memory`` sizes the voxel memory to this volume (the next power of two
     of its words per bank) instead of a max_dim^3 cube: a long, thin volume then needs
     no memory for a cube it never fills (a separate build). On a build with slice
-    rectangles (RECTS = 1) each frame runs its FrameJob.rects, or the whole box."""
+    rectangles (RECTS = 1) each frame runs its FrameJob.rects, or the whole box.
+    ``dram``: the voxel memory is the generated DRAM (cube4_sim.dram_core) behind
+    cube4_dram_fetch, on its own clock; each frame's result then also has
+    ``dram_reads`` (bursts read during the frame)."""
     nz, ny, nx = vol.shape
     max_dim = max_dim or build_max_dim((nx, ny, nz))
     depth = None
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
+    if dram is not None:
+        # both images (the transposed one after the other), each whole bursts
+        depth = 2 * dram_image_words(words_per_bank((max_dim + 16 * cfg.pipelines, max_dim, max_dim), cfg.pipelines))
     params = build_params(cfg, max_dim, depth, build)
+    if dram is not None:
+        params.update(dram.harness_params())
     shading, vgrad, rects = bool(params["SHADING"]), bool(params["VGRAD"]), bool(params["RECTS"])
     if rects and vgrad:
         raise UserError("slice rectangles run on a build without voxel gradients (VGRAD = 0)")
@@ -206,6 +215,10 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     workdir.mkdir(parents=True, exist_ok=True)
     try:
         banks = pack_volume(vol, cfg.pipelines)
+        images = []                     # DRAM builds: (first column, padded dims) per image
+        if dram is not None:
+            banks, images = dram_image(vol, cfg, params)
+        load_words = int(banks.shape[1])
         write_hex(workdir / "mem.hex", load_image(banks), word_bits(cfg.voxel_bits, vgrad, bool(params["LABELS"])))
         job_frames = []
         for n, fr in enumerate(frames):
@@ -233,15 +246,18 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                 ideal = (rect_frame_cycles(fr_rects, cfg.pipelines, shading, vgrad) + 100) * COM_MIN_SLICE
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
-                "regs": top_regs(fr.trav, cfg.pipelines, (nx, ny, nz), fr.mode, fr.clip, weighted, fr.depth_t),
+                "regs": top_regs(fr.trav, cfg.pipelines, mode=fr.mode, clip=fr.clip, path_weights=weighted,
+                                 depth_t=fr.depth_t, **frame_image(fr.trav, (nx, ny, nz), images)),
                 "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
                 "stop": str(stop_p) if params["ZIN"] else None,
                 "gm": str(gm_p) if params["GMOD"] else None,
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
-                "budget": int(ideal * slow * 2 + fr.reset_after_cycles + 1000), "expected_cycles": ideal,
+                # a DRAM feeds P = 8 at half the rate or less (its bandwidth per pipeline cycle)
+                "budget": int(ideal * slow * (16 if dram is not None else 2) + fr.reset_after_cycles + 1000),
+                "expected_cycles": ideal,
             })
-        job = {"words": int(banks.shape[1]), "frames": job_frames, "dump": str(workdir / "pixels.bin"),
+        job = {"words": load_words, "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
                "rect": str(workdir / "rects.hex"), "stop": str(workdir / "stop.hex"),
                "gm": str(workdir / "gm.hex"),
@@ -251,7 +267,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         runner.run_test(
             top="cube4_top_harness",
             # rtl_form "ecp5": the vendor layer's forms (rtl/ecp5/), as synthesis reads them
-            sources=[*form_sources(rtl_form), *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
+            sources=[*form_sources(rtl_form), *(dram.sources() if dram is not None else []),
+                     *(runner.SIM_HDL_DIR / s for s in SIM_SOURCES)],
             build_args=form_build_args(rtl_form),
             params=params,
             test_module="cube4_sim.top_job",
@@ -276,6 +293,57 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     finally:
         if own_tmp is not None:
             own_tmp.cleanup()
+
+
+def dram_image_words(words: int) -> int:
+    """An image's columns padded to whole bursts of any build (cube4_dram_fetch writes a
+    burst when its last column arrives; at most MAX_COLUMNS_PER_BURST columns a burst)."""
+    return -(-int(words) // MAX_COLUMNS_PER_BURST) * MAX_COLUMNS_PER_BURST
+
+
+def dram_image(vol: np.ndarray, cfg: Cube4Config, params: dict) -> tuple[np.ndarray, list[tuple[int, tuple]]]:
+    """The DRAM's memory image: the image of eq. 2, then the transposed one (memory.py,
+    ``fast = 1``). Each is the image of the volume padded with zeros along its fast axis
+    to whole bursts per row (a row of NBF columns, NBF a multiple of the columns per
+    burst): a row never shares a burst with the next, which a view whose slices cross
+    those rows would read twice. Returns the banks and per image (first column, the
+    padded dims the frame's registers address). Checked against the DRAM's address space."""
+    bits = word_bits(cfg.voxel_bits, bool(params["VGRAD"]), bool(params["LABELS"]))
+    try:
+        per = columns_per_burst(cfg.pipelines, bits)
+    except ValueError as e:
+        raise UserError(f"the DRAM build cannot hold this memory image: {e}") from None
+    p = cfg.pipelines
+    parts, images, base = [], [], 0
+    for fast in (0, 1):
+        axis = 2 - fast                         # vol[z, y, x]: x is axis 2, y axis 1
+        n = vol.shape[axis]
+        padded = -(-(-(-n // p)) // per) * per * p
+        pad = [(0, 0)] * 3
+        pad[axis] = (0, padded - n)
+        b = pack_volume(np.pad(vol, pad), p, fast)
+        b = np.pad(b, ((0, 0), (0, dram_image_words(b.shape[1]) - b.shape[1])))
+        dims = [int(vol.shape[2]), int(vol.shape[1]), int(vol.shape[0])]
+        dims[fast] = padded
+        parts.append(b)
+        images.append((base, tuple(dims)))
+        base += b.shape[1]
+    banks = np.concatenate(parts, axis=1)
+    if banks.shape[1] // per > 1 << params["DRAM_AW"]:
+        raise UserError(f"the memory images take {banks.shape[1] // per:,} bursts, more than the DRAM's "
+                        f"{1 << params['DRAM_AW']:,}")
+    return banks, images
+
+
+def frame_image(trav: Traversal, dims, images) -> dict:
+    """top_regs' image arguments for a frame: on a DRAM build (``images``) the image whose
+    fast axis is the beam axis i (a beat's voxels then lie in one or two consecutive
+    columns), its first column and padded dims."""
+    if not images:
+        return {"vol_dims": dims}
+    fast = 1 if trav.axis_i == 1 else 0
+    base, pdims = images[fast]
+    return {"vol_dims": pdims, "fast": fast, "base": base}
 
 
 def frame_rects(fr: FrameJob, gra: bool) -> SliceRects:

@@ -127,8 +127,9 @@ async def run_job(dut):
             await drv.cycles(int(fr["reset_after_cycles"]))
             await drv.reset()
         beats = int(fr.get("budget", 10**9))
+        reads0 = int(dut.dram_reads.value)
         cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats,
                                        int(fr.get("expected_cycles", 0)), f"rtl frame {n + 1}/{len(job['frames'])}")
-        results.append({"cycles": cycles, "sim_wall_s": wall})
+        results.append({"cycles": cycles, "sim_wall_s": wall, "dram_reads": int(dut.dram_reads.value) - reads0})
         dut._log.info("frame %d: %d cycles, %.2f s", n, cycles, wall)
     Path(job["result"]).write_text(json.dumps(results, indent=2) + "\n")

@@ -12,6 +12,8 @@
 // Parameters
 //   HALF_PERIOD  half clock period in time units of the runner's timescale
 //                (1 ns). Range >= 1. Default 5 (10 ns period).
+//   HALF_PS      half period in picoseconds (the runner's precision); when
+//                not 0 it replaces HALF_PERIOD. Range >= 0. Default 0.
 //
 // Latency
 //   n/a. clk starts at 0 and rises first at t = HALF_PERIOD.
@@ -20,13 +22,14 @@
 //   clk  out  1 bit  the clock
 // =============================================================================
 module cube4_sim_clock #(
-    parameter integer HALF_PERIOD = 5
+    parameter integer HALF_PERIOD = 5,
+    parameter integer HALF_PS     = 0
 ) (
     output wire clk
 );
 
     generate
-        if (HALF_PERIOD < 1) begin : g_bad_half_period
+        if (HALF_PERIOD < 1 || HALF_PS < 0) begin : g_bad_half_period
             $error("cube4_sim_clock: HALF_PERIOD = %0d must be >= 1", HALF_PERIOD);
         end
     endgenerate
@@ -38,7 +41,8 @@ module cube4_sim_clock #(
     end
 
     always begin
-        #(HALF_PERIOD) clk_q = ~clk_q;
+        if (HALF_PS > 0) #(HALF_PS * 1.0e-3) clk_q = ~clk_q;
+        else #(HALF_PERIOD) clk_q = ~clk_q;
     end
 
     assign clk = clk_q;

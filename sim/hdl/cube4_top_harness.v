@@ -58,6 +58,10 @@ module cube4_top_harness #(
     parameter integer ZIN         = 0,    // 1: depth in (the stop table from CUBE4_STOPFILE)
     parameter integer GMOD        = 0,    // 1: gradient-magnitude modulation (its table from CUBE4_GMFILE)
     parameter integer LABELS      = 0,    // 1: label volumes (labelled words; a LUT block per label)
+    parameter integer DRAM        = 0,    // 1: the voxel memory in the generated DRAM (cube4_litedram)
+    parameter integer DRAM_AW     = 21,   // its port's address width
+    parameter integer CLK_HALF_PS = 5000, // the pipelines' clock: half period in ps (default 100 MHz)
+    parameter integer DRAM_HALF_PS = 6667, // the DRAM controller's clock (75 MHz: the ECP5 PHY's 1:2)
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_WORD_LAYOUT,
@@ -81,9 +85,11 @@ module cube4_top_harness #(
     input  wire                  start,
     output wire                  busy,
     output wire                  done,
-    output wire [31:0]           cycles
+    output wire [31:0]           cycles,
+    output wire [31:0]           dram_reads,   // bursts read from the DRAM since power-on (DRAM = 1)
+    output wire [31:0]           dram_writes   // bursts written
 );
-    cube4_sim_clock u_clock (.clk(clk));
+    cube4_sim_clock #(.HALF_PS(CLK_HALF_PS)) u_clock (.clk(clk));
 
     // ------------------------------------------------------------ input registers
     // Every input Python drives is registered once here, so that no logic of the
@@ -230,11 +236,13 @@ module cube4_top_harness #(
             done_q     <= 1'b0;
             la_q       <= 32'd0;
         end else if (mem_busy_q) begin
-            if (la_q + 32'd1 >= load_words_q) begin
+            if (!ld_ready) begin
+                // the DRAM's load port takes a column when it can
+            end else if (la_q + 32'd1 >= load_words_q) begin
                 mem_busy_q <= 1'b0;
                 done_q     <= 1'b1;
             end
-            la_q <= la_q + 32'd1;
+            if (ld_ready) la_q <= la_q + 32'd1;
         end else if (tab_busy_q) begin
             if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= LUT_N
                 && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && (ZIN == 0 || la_q + 32'd1 >= STOP_N) && (GMOD == 0 || la_q + 32'd1 >= GM_N)) begin
@@ -280,8 +288,63 @@ module cube4_top_harness #(
     endgenerate
     wire pix_ready = (lfsr_q[5][7:0] >= stall_out_q);
 
+    // ------------------------------------------------------------ DRAM
+    // DRAM = 1: the voxel memory is the generated LiteDRAM controller and memory
+    // model (cube4_sim.dram_core) on its own clock. Its resets (and the fetch
+    // unit's dram_rst) are a power-on reset only: rst, which tests raise in
+    // mid-frame, resets the pipelines, never the DRAM.
+    wire                 dram_cmd_valid, dram_cmd_we, dram_wdata_valid, dram_rdata_ready;
+    wire                 dram_cmd_ready, dram_wdata_ready, dram_rdata_valid;
+    wire [DRAM_AW-1:0]   dram_cmd_addr;
+    wire [127:0]         dram_wdata_data, dram_rdata_data;
+    wire [15:0]          dram_wdata_we;
+    // the port's side leaves reset after the controller's (16 of its cycles against 64
+    // of the pipelines' clock, at most twice as fast): nothing enters the port's clock
+    // crossing while the controller's side of it is still in reset
+    reg  [3:0]           por_sys_q = 4'd0;
+    reg  [5:0]           por_user_q = 6'd0;
+    wire                 dram_por_sys  = (por_sys_q != 4'hF);
+    wire                 dram_por_user = (por_user_q != 6'h3F);
+    reg  [31:0]          dram_rd_q = 32'd0, dram_wr_q = 32'd0;
+    generate
+        if (DRAM != 0) begin : g_dram
+            wire sys_clk;
+            cube4_sim_clock #(.HALF_PS(DRAM_HALF_PS)) u_sys_clock (.clk(sys_clk));
+            always @(posedge sys_clk) if (dram_por_sys) por_sys_q <= por_sys_q + 4'd1;
+            cube4_litedram u_dram (
+                .sys_clk          (sys_clk),
+                .sys_rst          (dram_por_sys),
+                .user_clk         (clk),
+                .user_rst         (dram_por_user),
+                .user_cmd_valid   (dram_cmd_valid),
+                .user_cmd_ready   (dram_cmd_ready),
+                .user_cmd_we      (dram_cmd_we),
+                .user_cmd_addr    (dram_cmd_addr),
+                .user_wdata_valid (dram_wdata_valid),
+                .user_wdata_ready (dram_wdata_ready),
+                .user_wdata_we    (dram_wdata_we),
+                .user_wdata_data  (dram_wdata_data),
+                .user_rdata_valid (dram_rdata_valid),
+                .user_rdata_ready (dram_rdata_ready),
+                .user_rdata_data  (dram_rdata_data)
+            );
+        end else begin : g_no_dram
+            assign dram_cmd_ready   = 1'b0;
+            assign dram_wdata_ready = 1'b0;
+            assign dram_rdata_valid = 1'b0;
+            assign dram_rdata_data  = 128'd0;
+        end
+    endgenerate
+    always @(posedge clk) begin
+        if (dram_por_user) por_user_q <= por_user_q + 6'd1;
+        if (dram_cmd_valid && dram_cmd_ready && !dram_cmd_we) dram_rd_q <= dram_rd_q + 32'd1;
+        if (dram_cmd_valid && dram_cmd_ready && dram_cmd_we)  dram_wr_q <= dram_wr_q + 32'd1;
+    end
+    assign dram_reads  = dram_rd_q;
+    assign dram_writes = dram_wr_q;
+
     // ------------------------------------------------------------ DUT
-    wire                      unused_ld_ready;
+    wire                      ld_ready;
     wire                      pix_valid, pix_eop;
     wire [P-1:0]              pix_mask;
     wire [M_W-1:0]            pix_m;
@@ -312,14 +375,28 @@ module cube4_top_harness #(
         .ZOUT        (ZOUT),
         .ZIN         (ZIN),
         .GMOD        (GMOD),
-        .LABELS      (LABELS)
+        .LABELS      (LABELS),
+        .DRAM        (DRAM),
+        .DRAM_AW     (DRAM_AW)
     ) u_top (
         .clk         (clk),
         .rst         (rst_q),
         .ld_valid    (mem_busy_q),
-        .ld_ready    (unused_ld_ready),
+        .ld_ready    (ld_ready),
         .ld_addr     (la_q[ADDR_W-1:0]),
         .ld_data     (ld_data),
+        .dram_rst         (dram_por_user),
+        .dram_cmd_valid   (dram_cmd_valid),
+        .dram_cmd_ready   (dram_cmd_ready),
+        .dram_cmd_we      (dram_cmd_we),
+        .dram_cmd_addr    (dram_cmd_addr),
+        .dram_wdata_valid (dram_wdata_valid),
+        .dram_wdata_ready (dram_wdata_ready),
+        .dram_wdata_data  (dram_wdata_data),
+        .dram_wdata_we    (dram_wdata_we),
+        .dram_rdata_valid (dram_rdata_valid),
+        .dram_rdata_ready (dram_rdata_ready),
+        .dram_rdata_data  (dram_rdata_data),
         .lut_we      (lut_we),
         .lut_addr    (la_q[SMP_W-1:0]),
         .lut_data    (luti[la_q[SMP_W-1:0]]),

@@ -917,3 +917,57 @@ def test_label_frames(p, s):
             t = job.trav
             want = frame_cycles(t.num_sample_slices, t.nj, t.ni, p, True, False, True, True)
             assert res["cycles"] == want, (label, res["cycles"], want)
+
+
+# ---------------------------------------------------------------- the voxel memory in DRAM
+DRAM_VIEWS = [(0.3, -0.45, 1.0), (1.0, 0.4, -0.7), (1.0, 1.0, 1.0), (-1.0, -0.8, 0.2), (1.0, -1.0, 0.0),
+              (-0.2, -1.0, -0.9)]
+
+
+@pytest.mark.parametrize("p", [1, 8])
+def test_dram_frames(p):
+    """The voxel memory in the generated DRAM (LiteDRAM's controller and memory model,
+    MT41K256M16 timings, its timing checker fatal) behind cube4_dram_fetch, on its own
+    75 MHz clock, the pipelines at 137.7 MHz: six views (45° among them, (1, 1, 1), three
+    whose beam axis is y and read the transposed image), composite shaded and not, X-ray,
+    MIP, MinIP, the box schedule on one, random stalls on three, a reset in mid-frame
+    with reads in flight; every frame bit-exact. Every frame lasts more than two
+    refresh intervals, so refreshes fall in mid-frame. The bursts a frame reads stay
+    near its image's (each at most 1.25 times the image): a beat whose banks read
+    several bursts (a view read from the other image) would read many times that; its
+    image's rows are padded to whole bursts (cube4_sim.rtl.dram_image)."""
+    from cube4.skip import plan_skip
+    from cube4_sim.dram_core import DramRun, core_info
+
+    rng = np.random.default_rng(300 + p)
+    cfg = Cube4Config(pipelines=p)
+    dims = (37, 30, 26) if p == 8 else (19, 16, 14)
+    nx, ny, nz = dims
+    vol = rng.integers(0, 256, size=(nz, ny, nx))
+    vol[: nz // 3] //= 3                                  # a faint third: the box schedule skips it
+    dram = DramRun()
+    jobs = []
+    for n, d in enumerate(DRAM_VIEWS):
+        mode = ("composite", "xray", "mip", "minip", "composite", "composite")[n]
+        trav = make_traversal(dims, d, cfg.weight_bits, 1)
+        lut, rmap = random_tables(rng, cfg)
+        clip = None
+        if n == 5:
+            lut[:90] = 0
+            trav, clip = (lambda plan: (plan.trav, plan.clip))(plan_skip(vol, trav, lut, mode, p=p))
+        jobs.append(FrameJob(trav, lut, rmap if n in (0, 5) else None, mode=mode, clip=clip,
+                             stall=(0, 60, 0, 120, 0, 40)[n], stall_out=(0, 0, 90, 60, 0, 0)[n],
+                             reset_after_cycles=300 if n == 3 else 0))
+    results = render_frames(vol, jobs, cfg, max_dim=64, dram=dram)
+    t_refi_ns = core_info(dram.core)["timing_cycles"]["tREFI"] * 1e3 / (dram.core.sys_clk_hz / 1e6)
+    clk_ns = 1e3 / dram.clock_mhz
+    per = 1 << ((128 // (p * cfg.voxel_bits)).bit_length() - 1)
+    for n, (job, res) in enumerate(zip(jobs, results)):
+        label = f"DRAM P={p} view {DRAM_VIEWS[n]} {job.mode}"
+        check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, clip=job.clip)
+        ideal = frame_cycles(job.trav.num_sample_slices, job.trav.nj, job.trav.ni, p)   # the full build
+        print(f"{label}: {res['cycles']} cycles (ideal memory {ideal}), {res['dram_reads']} bursts read")
+        assert res["cycles"] * clk_ns > 2 * t_refi_ns, f"{label}: shorter than two refresh intervals"
+        nf, others = (nx, ny * nz) if job.trav.axis_i == 0 else (ny, nx * nz)
+        image_bursts = -(-(-(-nf // p)) // per) * others     # rows padded to whole bursts
+        assert res["dram_reads"] <= 1.25 * image_bursts, (label, res["dram_reads"], image_bursts)
