@@ -17,8 +17,8 @@ DIMS = [(4, 4, 4), (13, 7, 5), (5, 9, 3), (1, 1, 1), (17, 2, 11)]
 @pytest.mark.parametrize("p", [1, 2, 3, 4, 5, 8, 16])
 @pytest.mark.parametrize("dims", DIMS)
 def test_pack_roundtrip_and_layout(p, dims):
-    """Each voxel in its own (bank, address); the transposed image (fast = 1) is the
-    image of the volume with x and y swapped, the bank of every voxel unchanged."""
+    """Each voxel in its own (bank, address); in another axis order the image is the
+    volume's with its axes permuted, the bank of every voxel unchanged."""
     rng = np.random.default_rng(1)
     nx, ny, nz = dims
     vol = rng.integers(0, 4096, size=(nz, ny, nx))
@@ -31,9 +31,10 @@ def test_pack_roundtrip_and_layout(p, dims):
     assert np.unique(key).size == vol.size
     # padding words (x beyond nx) hold zero
     assert banks.sum() == vol.sum()
-    t = pack_volume(vol, p, fast=1)
-    assert t.shape == (p, words_per_bank(dims, p, fast=1))
-    assert (t[bank_of(x, y, z, p), address_of(x, y, z, dims, p, fast=1)] == vol).all()
+    for order in ((1, 0, 2), (0, 2, 1), (1, 2, 0), (2, 0, 1)):
+        t = pack_volume(vol, p, order)
+        assert t.shape == (p, words_per_bank(dims, p, order))
+        assert (t[bank_of(x, y, z, p), address_of(x, y, z, dims, p, order)] == vol).all()
 
 
 @pytest.mark.parametrize("p", [2, 5, 8])
@@ -120,15 +121,15 @@ def test_write_hex(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["e.hex", "m.hex", "t.hex"]
 
 
-@pytest.mark.parametrize("fast", [0, 1])
+@pytest.mark.parametrize("order", [(0, 1, 2), (0, 2, 1), (1, 2, 0), (2, 1, 0)])
 @pytest.mark.parametrize("p", [1, 3, 4, 5, 8])
-def test_frontend_regs_reach_a_crop_box(p, fast):
+def test_frontend_regs_reach_a_crop_box(p, order):
     """A box (crop or brick) at an origin inside a larger volume is traversed by start
     addresses and lane residues alone: every voxel's address is address_of in the whole
     volume, and the lane that reads it (bank (t + skew) mod p, skew = the CFB's
     J residue + K residue, t its position in the partial beam; flipped i: t from the
-    box's far end) is the bank that holds it. ``fast = 1``: the same in the transposed
-    image (a DRAM build's second image) placed at a base word."""
+    box's far end) is the bank that holds it. In every axis order of the image (a DRAM
+    build holds three), placed at a base word."""
     vol_dims = (13, 9, 10)
     rng = np.random.default_rng(p)
     for major, signs in itertools.product(range(3), range(8)):
@@ -136,8 +137,8 @@ def test_frontend_regs_reach_a_crop_box(p, fast):
         org = tuple(int(rng.integers(0, n - b + 1)) for n, b in zip(vol_dims, box))
         d = [(-1.0 if (signs >> a) & 1 else 1.0) * (1.0 if a == major else 0.5) for a in range(3)]
         trav = make_traversal(box, d, origin=org)
-        base = 1000 * fast
-        r = frontend_regs(trav, p, vol_dims, fast=fast, base=base)
+        base = 0 if order == (0, 1, 2) else 1000
+        r = frontend_regs(trav, p, vol_dims, order=order, base=base)
 
         def walk(a0, lin, blk, r0, steps, down):
             a, rr = a0, r0
@@ -159,7 +160,7 @@ def test_frontend_regs_reach_a_crop_box(p, fast):
             off = pb * r["I_PB"] + t * r["I_LIN"] + (t > r["I_RT"])
             a = aj[j][0] + ak[k][0] + (r["I_A0"] - off if r["FLIP_I"] else off)
             x, y, z = trav.traversal_to_volume_points(i, j, k).round().astype(int)
-            assert a == base + address_of(x, y, z, vol_dims, p, fast), (d, p, org, box, (i, j, k))
+            assert a == base + address_of(x, y, z, vol_dims, p, order), (d, p, org, box, (i, j, k))
             skew = (aj[j][1] + ak[k][1]) % p
             # lane_pos inverted: t = (q - skew) mod p, or (I_R1 + skew - q) mod p flipped
             lane = ((r["I_R1"] + skew - t) if r["FLIP_I"] else (t + skew)) % p

@@ -14,11 +14,12 @@ know where a voxel lives (docs/architecture.md, "Voxel memory"):
   partial beam (eq. 2's order wraps x around inside a partial beam). x is padded to
   ``NBX * p`` with zeros; y and z need no padding, and any nx, ny, nz work with any p.
 
-**The transposed image** (``fast = 1``): the same layout of the volume with x and y
-swapped, ``floor(y / p) + NBY * (x + nx * z)``, the bank unchanged. A DRAM build keeps
-both images (docs/architecture.md, "DRAM"): each view reads the one whose fast axis is
-its beam axis i, so a beat's voxels lie in one or two consecutive columns. ``fast``
-names the image in every function below (0: the image of eq. 2, the default).
+**Other axis orders** (``order``, the volume axes from the image's fastest to its
+slowest; default ``XYZ`` = (0, 1, 2), the layout above): the same layout of the volume
+with its axes permuted, ``floor(c_f / p) + NBF * (c_m + n_m * c_s)``, the bank unchanged
+(the skew is symmetric in x, y, z). A DRAM build keeps three images
+(docs/architecture.md, "Voxel memory in DRAM"): each view reads the one ordered
+(i, j, k), its traversal's axes, so that it reads its slices as one run of columns.
 
 ``frontend_regs`` turns a ``view.Traversal`` into the register values the CFB needs
 (start coordinates, per-axis address strides, partial-beam counts); ``lane_positions``
@@ -37,17 +38,21 @@ from .modes import MODE_CODES
 from .view import Traversal
 
 
-def mem_axes(fast: int = 0) -> tuple[int, int, int]:
-    """The volume axes of an image from the fastest to the slowest (fast = 0: x, y, z;
-    fast = 1, the transposed image: y, x, z)."""
-    if fast not in (0, 1):
-        raise ValueError(f"an image's fast axis is x (0) or y (1), got {fast}")
-    return (0, 1, 2) if fast == 0 else (1, 0, 2)
+XYZ = (0, 1, 2)
 
 
-def words_per_bank(dims, p: int, fast: int = 0) -> int:
+def check_order(order) -> tuple[int, int, int]:
+    """An image's axis order: a permutation of the volume axes 0, 1, 2 (x, y, z), from
+    the fastest to the slowest."""
+    order = tuple(int(a) for a in order)
+    if sorted(order) != [0, 1, 2]:
+        raise ValueError(f"an image's axis order is a permutation of (0, 1, 2), got {order}")
+    return order
+
+
+def words_per_bank(dims, p: int, order=XYZ) -> int:
     """Words each bank needs for a volume of dims (nx, ny, nz)."""
-    f, m, s = (int(dims[a]) for a in mem_axes(fast))
+    f, m, s = (int(dims[a]) for a in check_order(order))
     return -(-f // p) * m * s
 
 
@@ -56,21 +61,24 @@ def bank_of(x, y, z, p: int):
     return (np.asarray(x) + np.asarray(y) + np.asarray(z)) % p
 
 
-def address_of(x, y, z, dims, p: int, fast: int = 0):
-    """Word address of voxel (x, y, z) inside its bank (``fast = 1``: in the transposed image)."""
-    if fast == 1:
-        return address_of(y, x, z, (dims[1], dims[0], dims[2]), p)
-    mem_axes(fast)
+def address_of(x, y, z, dims, p: int, order=XYZ):
+    """Word address of voxel (x, y, z) inside its bank (in the image of axis order ``order``)."""
+    order = check_order(order)
+    if order != XYZ:
+        c = (x, y, z)
+        return address_of(*(c[a] for a in order), tuple(dims[a] for a in order), p)
     nx, ny, _ = (int(n) for n in dims)
     nbx = -(-nx // p)
     return np.asarray(x) // p + nbx * (np.asarray(y) + ny * np.asarray(z))
 
 
-def pack_volume(vol: np.ndarray, p: int, fast: int = 0) -> np.ndarray:
-    """Bank images of vol[z, y, x]: array (p, words_per_bank) of the voxel values
-    (``fast = 1``: the transposed image)."""
-    if fast == 1 and vol.ndim == 3:
-        return pack_volume(np.swapaxes(vol, 1, 2), p)     # vol[z, x, y]: y is the image's x
+def pack_volume(vol: np.ndarray, p: int, order=XYZ) -> np.ndarray:
+    """Bank images of vol[z, y, x]: array (p, words_per_bank) of the voxel values (in the
+    image of axis order ``order``)."""
+    order = check_order(order)
+    if order != XYZ and vol.ndim == 3:
+        # vol's array axis of volume axis a is 2 - a: the image's (slow, mid, fast)
+        return pack_volume(np.transpose(vol, [2 - a for a in order[::-1]]), p)
     if vol.ndim != 3:
         raise UserError(f"a volume must be 3-D, got shape {vol.shape}")
     if not 1 <= p <= 64:
@@ -116,24 +124,24 @@ def write_hex(path: str | Path, words, bits: int) -> Path:
 
 
 # ----------------------------------------------------------------- view registers
-def _axis_addr(axis: int, c: int, dims, p: int, fast: int = 0) -> int:
+def _axis_addr(axis: int, c: int, dims, p: int, order=XYZ) -> int:
     """Address contribution of coordinate c along a volume axis."""
-    f, m, _ = mem_axes(fast)
+    f, m, _ = order
     nbf = -(-int(dims[f]) // p)
-    pos = mem_axes(fast).index(axis)
+    pos = order.index(axis)
     return (c // p, nbf * c, nbf * int(dims[m]) * c)[pos]
 
 
-def _axis_strides(axis: int, dims, p: int, fast: int = 0) -> tuple[int, int]:
+def _axis_strides(axis: int, dims, p: int, order=XYZ) -> tuple[int, int]:
     """(LIN, BLK): address change for a unit step that stays inside / crosses a
     p-block of the coordinate. Linear axes (the image's y, z) have LIN == BLK; its x has (0, 1)."""
-    f, m, _ = mem_axes(fast)
+    f, m, _ = order
     nbf = -(-int(dims[f]) // p)
-    pos = mem_axes(fast).index(axis)
+    pos = order.index(axis)
     return ((0, 1), (nbf, nbf), (nbf * int(dims[m]), nbf * int(dims[m])))[pos]
 
 
-def _row_start(trav: Traversal, p: int, dims, j: int, fast: int = 0) -> tuple[int, int]:
+def _row_start(trav: Traversal, p: int, dims, j: int, order=XYZ) -> tuple[int, int]:
     """(A_j, c_j mod P) of traversal row j as the CFB keeps them (J_A0 and J_R0 at row 0):
     the j axis's address term, with the i axis's start address joined when i is not
     flipped; the residue, with the box's i offset joined when j is not the x axis."""
@@ -141,20 +149,20 @@ def _row_start(trav: Traversal, p: int, dims, j: int, fast: int = 0) -> tuple[in
     ai, aj = trav.axis_i, trav.axis_j
     fi, fj = bool(trav.flip[ai]), bool(trav.flip[aj])
     cj = org[aj] + (trav.nj - 1 - j if fj else j)
-    a_i0 = 0 if fi else _axis_addr(ai, org[ai], dims, p, fast)
-    r = cj % p if aj == fast else (cj % p + org[ai]) % p
-    return _axis_addr(aj, cj, dims, p, fast) + a_i0, r
+    a_i0 = 0 if fi else _axis_addr(ai, org[ai], dims, p, order)
+    r = cj % p if aj == order[0] else (cj % p + org[ai]) % p
+    return _axis_addr(aj, cj, dims, p, order) + a_i0, r
 
 
-def frontend_regs(trav: Traversal, p: int, vol_dims=None, fast: int = 0, base: int = 0) -> dict[str, int]:
+def frontend_regs(trav: Traversal, p: int, vol_dims=None, order=XYZ, base: int = 0) -> dict[str, int]:
     """Register values of cube4_frontend for one view (docs/architecture.md, "CFB").
 
     The host computes them the way it computes VIEW_X / VIEW_Y: a handful of
     additions and multiplications per frame, none per voxel. ``vol_dims`` are the dims
     of the volume in memory (default trav.dims): a crop box or a brick (trav.origin,
     trav.dims) is traversed inside it by start addresses and lane residues alone.
-    ``fast``: the image the frame reads (1: the transposed one), at word ``base`` of
-    every bank (a DRAM build holds both images one after the other).
+    ``order``: the axis order of the image the frame reads, at word ``base`` of every
+    bank (a DRAM build holds three images one after the other).
     """
     box = tuple(int(n) for n in trav.dims)
     dims = box if vol_dims is None else tuple(int(n) for n in vol_dims)
@@ -166,15 +174,16 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None, fast: int = 0, base: i
     fi, fj, fk = (bool(trav.flip[a]) for a in (ai, aj, ak))
     ck0 = org[ak] + (nk - 1 if fk else 0)       # start coordinates in the volume
     ci0 = org[ai] + (ni - 1 if fi else 0)
-    j_lin, j_blk = _axis_strides(aj, dims, p, fast)
-    k_lin, k_blk = _axis_strides(ak, dims, p, fast)
-    i_lin, i_blk = _axis_strides(ai, dims, p, fast)
-    i_block = ai == fast  # the image's x: address is floor(c / p)
+    order = check_order(order)
+    j_lin, j_blk = _axis_strides(aj, dims, p, order)
+    k_lin, k_blk = _axis_strides(ak, dims, p, order)
+    i_lin, i_blk = _axis_strides(ai, dims, p, order)
+    i_block = ai == order[0]  # the image's fastest axis: address is floor(c / p)
     # The skew is (c_i + c_j + c_k) mod p with lane t at c_i = org_i + t (flipped:
     # org_i + ni - 1 - t): the box's i offset joins the residue of an axis that is not x
     # (y and z have LIN == BLK, so their residue only feeds the skew).
-    a_j0, r_j = _row_start(trav, p, dims, 0, fast)
-    r_k = ck0 % p if aj != fast else (ck0 % p + org[ai]) % p
+    a_j0, r_j = _row_start(trav, p, dims, 0, order)
+    r_k = ck0 % p if aj != order[0] else (ck0 % p + org[ai]) % p
     # The i axis's start address: flipped, I_A0 (the CFB counts down from it); not
     # flipped the CFB starts at 0, so it joins J_A0 (_row_start).
     if fi:
@@ -199,11 +208,11 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None, fast: int = 0, base: i
         "J_BLK": j_blk,
         # axis k (slices)
         "K_R0": r_k,
-        "K_A0": _axis_addr(ak, ck0, dims, p, fast) + base,
+        "K_A0": _axis_addr(ak, ck0, dims, p, order) + base,
         "K_LIN": k_lin,
         "K_BLK": k_blk,
         # axis i (along the beam): address = I_A0 +/- (pb * I_PB + t * I_LIN + [t > I_RT])
-        "I_A0": _axis_addr(ai, ci0, dims, p, fast) if fi else 0,
+        "I_A0": _axis_addr(ai, ci0, dims, p, order) if fi else 0,
         "I_PB": i_blk if i_block else i_lin * p,
         "I_LIN": 0 if i_block else i_lin,
         "I_RT": i_rt,
@@ -212,7 +221,7 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None, fast: int = 0, base: i
 
 
 def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None,
-             path_weights: bool = False, depth_t: int | None = None, fast: int = 0,
+             path_weights: bool = False, depth_t: int | None = None, order=XYZ,
              base: int = 0) -> dict[str, int]:
     """Registers of cube4_top: the front end's plus the base-plane offsets
     SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8), the mode, the template's
@@ -220,8 +229,8 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
     FACES: the box's faces that are the volume's when the frame is path-weighted
     (numerics.md section 17), else 0.
     Signed registers (CUT_*) are given as their two's-complement bit patterns.
-    ``fast``, ``base``: the image the frame reads and where (frontend_regs)."""
-    regs = frontend_regs(trav, p, vol_dims, fast, base)
+    ``order``, ``base``: the image the frame reads and where (frontend_regs)."""
+    regs = frontend_regs(trav, p, vol_dims, order, base)
     regs["SX"], regs["SY"] = trav.max_steps
     regs["MODE"] = MODE_CODES[mode]
     regs["PH0_X"], regs["PH0_Y"] = trav.phase_x, trav.phase_y

@@ -28,6 +28,11 @@ What is generated (module ``cube4_litedram``, one file, simulation only):
   we, addr}``, ``user_wdata_{valid, ready, we, data}``, ``user_rdata_{valid, ready,
   data}``. Read data returns in command order and cannot be held back: the reader
   accepts it every cycle (``cube4_dram_fetch`` reserves room before each read).
+* Counters of the commands the controller sends the DRAM (at its DFI, both phases):
+  ``stat_{act, pre, ref, rd, wr}`` (32 bits each, from reset, on the controller's
+  clock; ``STAT_NAMES``). A read or write after an activate found its row closed (a row
+  miss, a precharge before it when another row was open); refreshes are the
+  refresher's own (each tRP + tRFC of the bank's time).
 
 ``core_verilog()`` writes the file once per configuration under ``build/dram/`` and
 returns its path (processes that race write it under the same name; the rename is
@@ -48,7 +53,9 @@ from .sources import REPO_ROOT
 
 DRAM_ROOT = REPO_ROOT / "build" / "dram"
 #: part of every core's cache key: raise it when this file changes what it writes
-GENERATOR_VERSION = 2
+GENERATOR_VERSION = 3
+#: the DFI command counters the core exports (stat_<name>)
+STAT_NAMES = ("act", "pre", "ref", "rd", "wr")
 
 
 @dataclass(frozen=True)
@@ -98,7 +105,7 @@ def _phy_settings(sys_clk_hz: float, databits: int = 16):
 
 
 def _top(cfg: DramConfig):
-    from migen import ClockDomain, Module, Signal
+    from migen import ClockDomain, If, Module, Signal
     from litedram.core import LiteDRAMCore
     from litedram.core.controller import ControllerSettings
     from litedram.phy.model import SDRAMPHYModel
@@ -127,6 +134,19 @@ def _top(cfg: DramConfig):
                 s = Signal(len(sig), name="user_" + name)
                 self.comb += (s.eq(sig) if out else sig.eq(s))
                 self.ios.add(s)
+            dfi = self.phy.dfi
+            for name in STAT_NAMES:
+                cnt = Signal(32, name="stat_" + name)
+                hits = []
+                for ph in dfi.phases:
+                    act = ~ph.cs_n[0] & ~ph.ras_n & ph.cas_n & ph.we_n
+                    pre = ~ph.cs_n[0] & ~ph.ras_n & ph.cas_n & ~ph.we_n
+                    ref = ~ph.cs_n[0] & ~ph.ras_n & ~ph.cas_n & ph.we_n
+                    rd = ~ph.cs_n[0] & ph.ras_n & ~ph.cas_n & ph.we_n
+                    wr = ~ph.cs_n[0] & ph.ras_n & ~ph.cas_n & ~ph.we_n
+                    hits.append({"act": act, "pre": pre, "ref": ref, "rd": rd, "wr": wr}[name])
+                self.sync += cnt.eq(cnt + sum(hits))
+                self.ios.add(cnt)
             self.addr_w = len(port.cmd.addr)
             self.data_w = len(port.wdata.data)
 

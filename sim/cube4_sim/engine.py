@@ -24,14 +24,17 @@ from cube4.host import (assemble_view, build_memory, depth_threshold, pass_rects
                         schedule_stats, setup_view, trav_stats, view_stats)
 from cube4.scene import Scene
 
+from .dram_core import DATA_W, DramRun, core_info
 from .rtl import FrameJob, baseplane_from_pixels, depth_from_pixels, frame_rects, render_frames
 from .errors import SimulationError
 
 NAME = "rtl"
 
 
-def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress: bool = False) -> list[RenderResult]:
-    """Render every scene's view of vol[z, y, x] through the RTL, in one simulation."""
+def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress: bool = False,
+               dram: DramRun | None = None) -> list[RenderResult]:
+    """Render every scene's view of vol[z, y, x] through the RTL, in one simulation;
+    ``dram``: with the voxel memory in the simulated DRAM (the ``rtl-dram`` engine)."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
@@ -56,7 +59,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
-        outs = (render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build)
+        outs = (render_frames(mem, jobs, cfg, progress=progress, quiet=True, build=build, dram=dram)
                 if jobs else [])
     except SimulationError as exc:     # one line, naming the build or simulation log
         raise UserError(f"RTL engine: {exc}") from None
@@ -91,6 +94,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         outs_v = [out for _, out in ran.values()]
         stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
         stats["build"] = dict(build)
+        if dram is not None:
+            stats["dram"] = dram_stats(outs_v, stats.get("predicted_cycles"), dram, cfg)
         sim_s = sum(o["sim_wall_s"] for o in outs_v)
         wall = sim_s + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
         stats["wall_s"] = wall
@@ -116,8 +121,45 @@ def _cycle_stats(outs: list[dict], ideal: float) -> dict:
     }
 
 
+def dram_stats(outs: list[dict], predicted: float | None, dram: DramRun, cfg: Cube4Config) -> dict:
+    """A view's figures with the voxel memory in DRAM, summed over its frames: cycles
+    against the ideal memory's (the golden prediction), the bursts read and the bandwidth
+    that took at the pipelines' clock, and the commands the controller sent (row opens,
+    refreshes) with the share of the controller's time each took (tRCD + tRP per
+    activate, tRP + tRFC per refresh: the time the DRAM could move no data for them)."""
+    cycles = sum(int(o["cycles"]) for o in outs)
+    reads = sum(int(o["dram_reads"]) for o in outs)
+    t = core_info(dram.core)["timing_cycles"]
+    seconds = cycles / (dram.clock_mhz * 1e6)
+    sys_cycles = seconds * dram.core.sys_clk_hz
+    acts = sum(int(o["dram_stat_act"]) for o in outs)
+    refs = sum(int(o["dram_stat_ref"]) for o in outs)
+    return {
+        "part": dram.core.module, "controller_mhz": round(dram.core.sys_clk_hz / 1e6, 3),
+        "pipeline_mhz": dram.clock_mhz,
+        "cycles": cycles,
+        "ideal_memory_cycles": predicted,
+        "ideal_over_dram": (predicted / cycles) if predicted and cycles else None,
+        "bursts_read": reads,
+        "bytes_read": reads * DATA_W // 8,
+        "mb_per_s": reads * DATA_W / 8 / seconds / 1e6 if seconds else None,
+        "peak_mb_per_s": DATA_W / 8 / 2 * dram.core.sys_clk_hz / 1e6,     # a burst per two controller cycles
+        "activates": acts,
+        "refreshes": refs,
+        "row_open_share": acts * (t["tRCD"] + t["tRP"]) / sys_cycles if sys_cycles else None,
+        "refresh_share": refs * (t["tRP"] + t["tRFC"]) / sys_cycles if sys_cycles else None,
+    }
+
+
+def render_rtl_dram(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress: bool = False) -> list[RenderResult]:
+    """The ``rtl-dram`` engine: the RTL with its voxel memory in the simulated DRAM (the
+    ECPIX-5's DDR3 behind LiteDRAM's controller at 75 MHz, the pipelines at 137.7 MHz)."""
+    return render_rtl(vol, scenes, cfg, progress, dram=DramRun())
+
+
 def register() -> None:
-    """Add the ``rtl`` engine to ``cube4.app.render``, and its brick renderer to
-    ``cube4.bricks`` (by import path: a Dask worker imports it there)."""
+    """Add the ``rtl`` and ``rtl-dram`` engines to ``cube4.app.render``, and the RTL's
+    brick renderer to ``cube4.bricks`` (by import path: a Dask worker imports it there)."""
     register_engine(NAME, render_rtl)
+    register_engine("rtl-dram", render_rtl_dram)
     register_brick_renderer(NAME, "cube4_sim.bricks:render_brick_rtl")

@@ -192,8 +192,8 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
     if dram is not None:
-        # both images (the transposed one after the other), each whole bursts
-        depth = 2 * dram_image_words(words_per_bank((max_dim + 16 * cfg.pipelines, max_dim, max_dim), cfg.pipelines))
+        # three images (dram_image), each padded to whole bursts
+        depth = 3 * dram_image_words(words_per_bank((max_dim + 16 * cfg.pipelines, max_dim, max_dim), cfg.pipelines))
     params = build_params(cfg, max_dim, depth, build)
     if dram is not None:
         params.update(dram.harness_params())
@@ -215,7 +215,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     workdir.mkdir(parents=True, exist_ok=True)
     try:
         banks = pack_volume(vol, cfg.pipelines)
-        images = []                     # DRAM builds: (first column, padded dims) per image
+        images = {}                     # DRAM builds: per major axis, the image its views read
         if dram is not None:
             banks, images = dram_image(vol, cfg, params)
         load_words = int(banks.shape[1])
@@ -301,32 +301,39 @@ def dram_image_words(words: int) -> int:
     return -(-int(words) // MAX_COLUMNS_PER_BURST) * MAX_COLUMNS_PER_BURST
 
 
-def dram_image(vol: np.ndarray, cfg: Cube4Config, params: dict) -> tuple[np.ndarray, list[tuple[int, tuple]]]:
-    """The DRAM's memory image: the image of eq. 2, then the transposed one (memory.py,
-    ``fast = 1``). Each is the image of the volume padded with zeros along its fast axis
-    to whole bursts per row (a row of NBF columns, NBF a multiple of the columns per
-    burst): a row never shares a burst with the next, which a view whose slices cross
-    those rows would read twice. Returns the banks and per image (first column, the
-    padded dims the frame's registers address). Checked against the DRAM's address space."""
+#: the images a DRAM build holds, by the major axis k of the views that read them: the
+#: axis order (i, j, k) of those views (memory.py), so that a view reads each of its
+#: slices as one run of columns and its slices one after the other
+DRAM_ORDERS = {2: (0, 1, 2), 1: (0, 2, 1), 0: (1, 2, 0)}
+
+
+def dram_image(vol: np.ndarray, cfg: Cube4Config, params: dict) -> tuple[np.ndarray, dict]:
+    """The DRAM's memory image: the volume three times, in the axis orders of
+    DRAM_ORDERS, one after the other. Each is the image of the volume padded with zeros
+    along its fastest axis to whole bursts per row (a row of NBF columns, NBF a
+    multiple of the columns per burst): a row never shares a burst with the next.
+    Returns the banks and, per major axis, (the image's first column, its order, the
+    padded dims the frame's registers address). Checked against the DRAM's address
+    space."""
     bits = word_bits(cfg.voxel_bits, bool(params["VGRAD"]), bool(params["LABELS"]))
     try:
         per = columns_per_burst(cfg.pipelines, bits)
     except ValueError as e:
         raise UserError(f"the DRAM build cannot hold this memory image: {e}") from None
     p = cfg.pipelines
-    parts, images, base = [], [], 0
-    for fast in (0, 1):
-        axis = 2 - fast                         # vol[z, y, x]: x is axis 2, y axis 1
+    parts, images, base = [], {}, 0
+    for major, order in DRAM_ORDERS.items():
+        axis = 2 - order[0]                     # vol[z, y, x]: volume axis a is array axis 2 - a
         n = vol.shape[axis]
         padded = -(-(-(-n // p)) // per) * per * p
         pad = [(0, 0)] * 3
         pad[axis] = (0, padded - n)
-        b = pack_volume(np.pad(vol, pad), p, fast)
+        b = pack_volume(np.pad(vol, pad), p, order)
         b = np.pad(b, ((0, 0), (0, dram_image_words(b.shape[1]) - b.shape[1])))
         dims = [int(vol.shape[2]), int(vol.shape[1]), int(vol.shape[0])]
-        dims[fast] = padded
+        dims[order[0]] = padded
         parts.append(b)
-        images.append((base, tuple(dims)))
+        images[major] = (base, order, tuple(dims))
         base += b.shape[1]
     banks = np.concatenate(parts, axis=1)
     if banks.shape[1] // per > 1 << params["DRAM_AW"]:
@@ -335,15 +342,14 @@ def dram_image(vol: np.ndarray, cfg: Cube4Config, params: dict) -> tuple[np.ndar
     return banks, images
 
 
-def frame_image(trav: Traversal, dims, images) -> dict:
-    """top_regs' image arguments for a frame: on a DRAM build (``images``) the image whose
-    fast axis is the beam axis i (a beat's voxels then lie in one or two consecutive
-    columns), its first column and padded dims."""
+def frame_image(trav: Traversal, dims, images: dict) -> dict:
+    """top_regs' image arguments for a frame: on a DRAM build (``images``) the image of
+    its major axis (ordered i, j, k), its first column and padded dims."""
     if not images:
         return {"vol_dims": dims}
-    fast = 1 if trav.axis_i == 1 else 0
-    base, pdims = images[fast]
-    return {"vol_dims": pdims, "fast": fast, "base": base}
+    base, order, pdims = images[trav.major]
+    assert order == (trav.axis_i, trav.axis_j, trav.major)
+    return {"vol_dims": pdims, "order": order, "base": base}
 
 
 def frame_rects(fr: FrameJob, gra: bool) -> SliceRects:

@@ -4,7 +4,7 @@ The host side (``cube4_sim.rtl``) writes the job: image files, and per frame the
 register values, the stall probabilities, whether to reload the tables and
 whether to reset in mid-frame first. This module loads the volume once, runs the
 frames back to back without a reset (unless asked), and writes each frame's cycle
-count and simulation seconds to the job's result file. The finished rays go
+count, simulation seconds and (a DRAM build) its DRAM counters to the job's result file. The finished rays go
 straight from the harness into its binary pixel dump, which the host reads
 (``cube4_sim.dump``). Python never touches individual clocks: it waits for
 ``load_done`` and ``done``.
@@ -48,7 +48,8 @@ class TopDriver:
         signal.value = 1
         await RisingEdge(self.dut.clk)
         signal.value = 0
-        await First(RisingEdge(self.dut.load_done), Timer((words + 10000) * CLK_NS, unit="ns"))
+        # a DRAM build writes a burst in several cycles: up to 16 a word is allowed
+        await First(RisingEdge(self.dut.load_done), Timer((16 * words + 10000) * CLK_NS, unit="ns"))
         assert int(self.dut.load_done.value) == 1, "load did not finish"
 
     async def load_volume(self, words: int) -> None:
@@ -95,6 +96,15 @@ class TopDriver:
         return cycles, wall
 
 
+#: the harness's DRAM counters (0 without a DRAM): bursts the fetch unit read, and the
+#: commands the controller sent (cube4_sim.dram_core STAT_NAMES)
+DRAM_COUNTERS = ("dram_reads", "dram_stat_act", "dram_stat_pre", "dram_stat_ref", "dram_stat_rd")
+
+
+def dram_counts(dut) -> dict[str, int]:
+    return {name: int(getattr(dut, name).value) for name in DRAM_COUNTERS}
+
+
 @cocotb.test()
 async def run_job(dut):
     """Run the frames of the job in CUBE4_JOB."""
@@ -127,9 +137,11 @@ async def run_job(dut):
             await drv.cycles(int(fr["reset_after_cycles"]))
             await drv.reset()
         beats = int(fr.get("budget", 10**9))
-        reads0 = int(dut.dram_reads.value)
+        dram0 = dram_counts(dut)
         cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats,
                                        int(fr.get("expected_cycles", 0)), f"rtl frame {n + 1}/{len(job['frames'])}")
-        results.append({"cycles": cycles, "sim_wall_s": wall, "dram_reads": int(dut.dram_reads.value) - reads0})
+        dram1 = dram_counts(dut)
+        results.append({"cycles": cycles, "sim_wall_s": wall,
+                        **{k: (dram1[k] - dram0[k]) % (1 << 32) for k in dram0}})
         dut._log.info("frame %d: %d cycles, %.2f s", n, cycles, wall)
     Path(job["result"]).write_text(json.dumps(results, indent=2) + "\n")

@@ -87,7 +87,13 @@ module cube4_top_harness #(
     output wire                  done,
     output wire [31:0]           cycles,
     output wire [31:0]           dram_reads,   // bursts read from the DRAM since power-on (DRAM = 1)
-    output wire [31:0]           dram_writes   // bursts written
+    output wire [31:0]           dram_writes,  // bursts written
+    // the commands the DRAM controller sent (cube4_sim.dram_core STAT_NAMES), since power-on
+    output wire [31:0]           dram_stat_act,
+    output wire [31:0]           dram_stat_pre,
+    output wire [31:0]           dram_stat_ref,
+    output wire [31:0]           dram_stat_rd,
+    output wire [31:0]           dram_stat_wr
 );
     cube4_sim_clock #(.HALF_PS(CLK_HALF_PS)) u_clock (.clk(clk));
 
@@ -326,9 +332,19 @@ module cube4_top_harness #(
                 .user_wdata_data  (dram_wdata_data),
                 .user_rdata_valid (dram_rdata_valid),
                 .user_rdata_ready (dram_rdata_ready),
-                .user_rdata_data  (dram_rdata_data)
+                .user_rdata_data  (dram_rdata_data),
+                .stat_act         (dram_stat_act),
+                .stat_pre         (dram_stat_pre),
+                .stat_ref         (dram_stat_ref),
+                .stat_rd          (dram_stat_rd),
+                .stat_wr          (dram_stat_wr)
             );
         end else begin : g_no_dram
+            assign dram_stat_act = 32'd0;
+            assign dram_stat_pre = 32'd0;
+            assign dram_stat_ref = 32'd0;
+            assign dram_stat_rd  = 32'd0;
+            assign dram_stat_wr  = 32'd0;
             assign dram_cmd_ready   = 1'b0;
             assign dram_wdata_ready = 1'b0;
             assign dram_rdata_valid = 1'b0;

@@ -472,6 +472,10 @@ def _summary(args: argparse.Namespace, run: RenderRun, results: list[RenderResul
             line += (f" (beats within the box: {100 * b['run_beats'] / box:.0f}% ran, "
                      f"{100 * b['skipped_empty'] / box:.0f}% skipped empty, "
                      f"{100 * b['skipped_terminated'] / box:.0f}% skipped after their rays ended)")
+        if "dram" in stats and stats["dram"].get("ideal_over_dram") is not None:
+            d = stats["dram"]
+            line += (f" (voxels from DRAM: {d['cycles']:,} cycles, ideal memory {d['ideal_over_dram']:.2f} of that; "
+                     f"{d['mb_per_s']:.0f} of {d['peak_mb_per_s']:.0f} MB/s at {d['pipeline_mhz']} MHz)")
         if args.compare_to:
             line += (f"; vs {args.compare_to}: PSNR {stats['psnr']:.2f} dB, RMSE {stats['rmse']:.4f}, "
                      f"max {stats['max_abs']:.3f}")
