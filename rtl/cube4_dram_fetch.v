@@ -59,7 +59,9 @@
 //   DRAM_AW    the native port's address width    1..32.     Default 21.
 //              (128-bit words); ADDR_W - LOG_L <= DRAM_AW.
 //   RD_DEPTH   reads in flight and waiting; power of two >= P. 2..1024. Default 32.
-//   DESC_DEPTH descriptors queued; power of two.            2..1024. Default 32.
+//   DESC_DEPTH descriptors queued; power of two.            2..1024. Default 128.
+//              Requests in flight: enough for the DRAM's latency (about 50
+//              pipeline cycles) when a burst serves L = 16 requests (P = 1).
 //
 // Latency
 //   From an accepted request to rsp_valid: 3 cycles when its bursts are in
@@ -86,7 +88,7 @@ module cube4_dram_fetch #(
     parameter integer TAG_W      = 8,
     parameter integer DRAM_AW    = 21,
     parameter integer RD_DEPTH   = 32,
-    parameter integer DESC_DEPTH = 32,
+    parameter integer DESC_DEPTH = 128,
     localparam integer DATA_W = 128,                 // the native port's word: one BL8 burst of x16
     localparam integer COL_W  = P * WORD_W,
     localparam integer LOG_L  = $clog2(DATA_W / COL_W + 1) - 1,   // floor(log2(128 / COL_W))

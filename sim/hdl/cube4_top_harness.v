@@ -30,10 +30,19 @@
 //   The stop table (ZIN = 1; golden/cube4/memory.py stop_table: one word of
 //   all P banks per line) is loaded with the tables, one line a clock.
 //
+//   DRAM = 1: the voxel memory is the generated DRAM core (cube4_litedram, from
+//   cube4_sim.dram_core: LiteDRAM's controller and memory model) behind the
+//   top's cube4_dram_fetch, on its own clock (DRAM_HALF_PS); the pipelines' clock
+//   is CLK_HALF_PS. The DRAM's resets are a power-on reset only (rst, which tests
+//   raise in mid-frame, never resets it). The loader waits for ld_ready.
+//   dram_reads / dram_writes count the bursts, dram_stat_* the controller's
+//   commands (activate, precharge, refresh, read, write), all since power-on.
+//
 //   Plusargs: +CUBE4_MEMFILE= +CUBE4_LUTFILE= +CUBE4_RMAPFILE= +CUBE4_RECTFILE=
 //   +CUBE4_STOPFILE= +CUBE4_GMFILE= +CUBE4_DUMP=
 //
-// Parameters: as cube4_top.
+// Parameters: as cube4_top; CLK_HALF_PS, DRAM_HALF_PS the two clocks' half
+// periods in picoseconds.
 // =============================================================================
 module cube4_top_harness #(
     parameter integer P           = 8,
