@@ -78,7 +78,9 @@
 //   or VGRAD = 1), plus a
 //   fixed pipeline fill per build (golden/cube4/cycles.py; tb/cube4_top
 //   checks it at P = 1, 4, 5, 8 and for every build).
-//   cycles counts the clock cycles from start to the last pixel beat.
+//   cycles counts the clock cycles from start to the last pixel beat. With
+//   DRAM = 1 the memory stalls the front end as it must: a frame takes at least
+//   those cycles (cube4_sim.engine dram_stats, reports/dram.md).
 //
 // Ports
 //   ld_*           voxel load port (cube4_voxel_mem; WORD_W-bit words)

@@ -96,13 +96,25 @@ def _fmt(v, spec: str) -> str:
     return "–" if v is None else format(v, spec)
 
 
+def _stalls(r: dict, d: dict) -> dict:
+    from cube4_sim.engine import stall_causes
+
+    t = d["timing_cycles"]
+    return stall_causes(r["cycles"], r["ideal_memory_cycles"], r["refreshes"] * (t["tRP"] + t["tRFC"]),
+                        r["activates"] * (t["tRCD"] + t["tRP"]), d["clock_mhz"] * 1e6 / d["core"]["sys_clk_hz"])
+
+
 def render_md(d: dict) -> str:
     core, t = d["core"], d["timing_cycles"]
+    for r in d["rows"]:
+        r.update(_stalls(r, d))
     rows = [[r["volume"], str(r["p"]), r["schedule"], "scene" if r["view"] == "scene" else f"k = {r['major']}",
              f"{r['ideal_memory_cycles']:,}", f"{r['cycles']:,}", f"{r['ideal_over_dram']:.3f}",
              f"{r['needed_mb_per_s']:.0f}", f"{r['mb_per_s']:.0f}", f"{r['bursts_read']:,}",
              f"{r['activates']:,}", f"{100 * r['row_open_share']:.1f} %", f"{r['refreshes']:,}",
-             f"{100 * r['refresh_share']:.1f} %", f"{r['frame_ms']:.2f}", f"{1e3 / r['frame_ms']:.0f}"]
+             f"{100 * r['refresh_share']:.1f} %",
+             f"{r['stall_refresh']:,} / {r['stall_row_open']:,} / {r['stall_bandwidth']:,}",
+             f"{r['frame_ms']:.2f}", f"{1e3 / r['frame_ms']:.0f}"]
             for r in d["rows"]]
     peak = d["rows"][0]["peak_mb_per_s"] if d["rows"] else 0
     fed = [r for r in d["rows"] if r["schedule"] == "box" and r["view"] == "scene" and r["volume"] == "head:128"]
@@ -125,12 +137,14 @@ def render_md(d: dict) -> str:
         "Columns: the ideal memory's cycles (the golden model's prediction, which the on-chip build meets to "
         "the cycle); cycles with the DRAM; their ratio; the bandwidth the ideal frame would need and the "
         "bandwidth the DRAM frame used; bursts read; row opens (activates) and the share of the controller's "
-        "time they took (tRCD + tRP each); refreshes and their share (tRP + tRFC each); the frame's time and "
+        "time they took (tRCD + tRP each); refreshes and their share (tRP + tRFC each); the pipelines' stall "
+        "cycles (DRAM cycles − ideal) by cause, an estimate: each refresh and row open stalls them for its "
+        "controller time, at most the stall there was, the rest is bandwidth and latency; the frame's time and "
         "rate at the pipelines' clock with the DRAM.",
         "",
         md_table(["volume", "P", "schedule", "view", "ideal cycles", "DRAM cycles", "ideal / DRAM",
                   "needed MB/s", "used MB/s", "bursts", "row opens", "their time", "refreshes",
-                  "their time", "ms", "frames/s"], rows, "l" + "r" * 15),
+                  "their time", "stalls: refresh / row / bandwidth", "ms", "frames/s"], rows, "l" + "r" * 16),
         "",
     ]
     if fed:
@@ -143,8 +157,13 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.dram", description=__doc__.splitlines()[0])
     ap.add_argument("--clock", type=float, default=137.7, help="the pipelines' clock in MHz (default 137.7)")
     ap.add_argument("--quick", action="store_true", help="four cases only (P = 1, 2, 4, 8 on head:128, box schedule)")
+    ap.add_argument("--from-json", action="store_true",
+                    help="write the report from build/reports/dram.json (the last run) without simulating")
     args = ap.parse_args(argv)
-    d = run(args)
+    if args.from_json:
+        d = json.loads((REPO_ROOT / "build" / "reports" / "dram.json").read_text())
+    else:
+        d = run(args)
     (REPO_ROOT / "build" / "reports").mkdir(parents=True, exist_ok=True)
     (REPO_ROOT / "build" / "reports" / "dram.json").write_text(json.dumps(d, indent=1))
     md = render_md(d)

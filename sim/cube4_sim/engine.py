@@ -148,7 +148,24 @@ def dram_stats(outs: list[dict], predicted: float | None, dram: DramRun, cfg: Cu
         "refreshes": refs,
         "row_open_share": acts * (t["tRCD"] + t["tRP"]) / sys_cycles if sys_cycles else None,
         "refresh_share": refs * (t["tRP"] + t["tRFC"]) / sys_cycles if sys_cycles else None,
+        **stall_causes(cycles, predicted, refs * (t["tRP"] + t["tRFC"]), acts * (t["tRCD"] + t["tRP"]),
+                       dram.clock_mhz * 1e6 / dram.core.sys_clk_hz),
     }
+
+
+def stall_causes(cycles: int, ideal: float | None, refresh_sys: float, row_sys: float, ratio: float) -> dict:
+    """The pipelines' stall cycles (cycles beyond the ideal memory's) by cause, an
+    estimate from the controller's commands: each refresh and each row open stalls the
+    pipelines for the controller time it takes (in pipeline cycles: ``ratio`` of them per
+    controller cycle), at most the stall there was, refreshes first; the rest is the
+    DRAM's bandwidth (and latency)."""
+    if not ideal:
+        return {}
+    stall = max(0.0, cycles - ideal)
+    refresh = min(stall, refresh_sys * ratio)
+    row = min(stall - refresh, row_sys * ratio)
+    return {"stall_cycles": round(stall), "stall_refresh": round(refresh), "stall_row_open": round(row),
+            "stall_bandwidth": round(stall - refresh - row)}
 
 
 def render_rtl_dram(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress: bool = False) -> list[RenderResult]:

@@ -316,11 +316,17 @@ module cube4_top_harness #(
     // the port's side leaves reset after the controller's (16 of its cycles against 64
     // of the pipelines' clock, at most twice as fast): nothing enters the port's clock
     // crossing while the controller's side of it is still in reset
-    reg  [3:0]           por_sys_q = 4'd0;
-    reg  [5:0]           por_user_q = 6'd0;
+    reg  [3:0]           por_sys_q;
+    reg  [5:0]           por_user_q;
     wire                 dram_por_sys  = (por_sys_q != 4'hF);
     wire                 dram_por_user = (por_user_q != 6'h3F);
-    reg  [31:0]          dram_rd_q = 32'd0, dram_wr_q = 32'd0;
+    reg  [31:0]          dram_rd_q, dram_wr_q;
+    initial begin
+        por_sys_q  = 4'd0;
+        por_user_q = 6'd0;
+        dram_rd_q  = 32'd0;
+        dram_wr_q  = 32'd0;
+    end
     generate
         if (DRAM != 0) begin : g_dram
             wire sys_clk;
@@ -349,6 +355,8 @@ module cube4_top_harness #(
                 .stat_wr          (dram_stat_wr)
             );
         end else begin : g_no_dram
+            wire unused_dram = &{1'b0, dram_por_sys, dram_cmd_addr, dram_wdata_valid, dram_wdata_data,
+                                 dram_wdata_we, dram_rdata_ready};
             assign dram_stat_act = 32'd0;
             assign dram_stat_pre = 32'd0;
             assign dram_stat_ref = 32'd0;

@@ -159,6 +159,29 @@ def test_cli_rtl_baseplane_equals_golden(tmp_path):
     assert st["cycles"] == st["predicted_cycles"] < st["ideal_cycles"] <= st["fixed_schedule_cycles"]
 
 
+def test_cli_rtl_dram(tmp_path):
+    """`cube4 render --engine rtl-dram` (the voxel memory in the simulated DRAM) writes the
+    golden engine's base plane bit for bit, and --stats has the DRAM's figures: more cycles
+    than the ideal memory's prediction (P = 8 wants twice the DRAM's bandwidth), every burst
+    of the frame's box read once at most, bandwidth below the peak."""
+    import json
+    import subprocess
+    import sys
+
+    exe = [sys.executable, "-m", "cube4_sim.cli"]
+    for eng in ("rtl-dram", "golden"):   # the full build at P = 8 that test_dram_frames builds too
+        subprocess.run([*exe, "render", "sphere:48", "--engine", eng, "--pipelines", "8", "--build", "full",
+                        "--quiet", "--baseplane", str(tmp_path / f"{eng}.npy"), "--stats", str(tmp_path / f"{eng}.json"),
+                        "--out", str(tmp_path / f"{eng}.png")], check=True, capture_output=True, text=True)
+    a, b = np.load(tmp_path / "rtl-dram.npy"), np.load(tmp_path / "golden.npy")
+    assert a.shape == b.shape and (a == b).all(), "the DRAM build's base plane differs from the golden engine's"
+    d = json.loads((tmp_path / "rtl-dram.json").read_text())["dram"]
+    assert d["cycles"] > d["ideal_memory_cycles"] > 0
+    assert 0.3 < d["ideal_over_dram"] < 1.0
+    assert 0 < d["mb_per_s"] < d["peak_mb_per_s"]
+    assert d["bursts_read"] * 16 == d["bytes_read"] and d["refreshes"] > 0
+
+
 def test_cli_rtl_failed_build_is_one_line(tmp_path):
     """A Verilator build that fails (here: an option Verilator does not know) ends the
     command with one line naming the build log, exit status 2, no traceback, no output."""
@@ -928,14 +951,14 @@ DRAM_VIEWS = [(0.3, -0.45, 1.0), (1.0, 0.4, -0.7), (1.0, 1.0, 1.0), (-1.0, -0.8,
 def test_dram_frames(p):
     """The voxel memory in the generated DRAM (LiteDRAM's controller and memory model,
     MT41K256M16 timings, its timing checker fatal) behind cube4_dram_fetch, on its own
-    75 MHz clock, the pipelines at 137.7 MHz: six views (45° among them, (1, 1, 1), three
-    whose beam axis is y and read the transposed image), composite shaded and not, X-ray,
-    MIP, MinIP, the box schedule on one, random stalls on three, a reset in mid-frame
-    with reads in flight; every frame bit-exact. Every frame lasts more than two
-    refresh intervals, so refreshes fall in mid-frame. The bursts a frame reads stay
-    near its image's (each at most 1.25 times the image): a beat whose banks read
-    several bursts (a view read from the other image) would read many times that; its
-    image's rows are padded to whole bursts (cube4_sim.rtl.dram_image)."""
+    75 MHz clock, the pipelines at 137.7 MHz: six views (45° among them, (1, 1, 1); each
+    reads the image of its major axis), composite shaded and not, X-ray, MIP, MinIP, the
+    box schedule on one, random stalls on three, a reset in mid-frame with reads in
+    flight; every frame bit-exact. Every frame lasts more than two refresh intervals,
+    and the controller's refresh count rises during each. The bursts a frame reads stay
+    near its image's (at most 1.25 times; rows padded to whole bursts,
+    cube4_sim.rtl.dram_image): a view that read an image of another axis order would
+    read several bursts a beat, many times that."""
     from cube4.skip import plan_skip
     from cube4_sim.dram_core import DramRun, core_info
 
@@ -968,6 +991,7 @@ def test_dram_frames(p):
         ideal = frame_cycles(job.trav.num_sample_slices, job.trav.nj, job.trav.ni, p)   # the full build
         print(f"{label}: {res['cycles']} cycles (ideal memory {ideal}), {res['dram_reads']} bursts read")
         assert res["cycles"] * clk_ns > 2 * t_refi_ns, f"{label}: shorter than two refresh intervals"
+        assert res["dram_stat_ref"] >= 1, f"{label}: no refresh fell in the frame"
         nf, others = (nx, ny * nz) if job.trav.axis_i == 0 else (ny, nx * nz)
         image_bursts = -(-(-(-nf // p)) // per) * others     # rows padded to whole bursts
         assert res["dram_reads"] <= 1.25 * image_bursts, (label, res["dram_reads"], image_bursts)
