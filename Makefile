@@ -17,6 +17,7 @@
 #   make skipping empty-space skipping on real content: box, rectangles, beats and ray termination vs n^3/P (reports/skipping.md; ~5 min)
 #   make labels  label resampling rules on a real segmentation (Colin27 + AAL): pictures and PSNR (reports/labels.md; ~3 min, LABELS_ARGS=--rtl)
 #   make dram    the voxel memory in DRAM (LiteDRAM + DDR3 model): cycles against the ideal memory, bandwidth (reports/dram.md; ~15 min, DRAM_ARGS=--quick)
+#   make board   cube4_top with LiteDRAM's controller and PHY on the ECPIX-5's DDR3, placed and routed (reports/board.md; ~40 min at P = 4, BOARD_ARGS="--p 8 --seeds 1,2,3")
 #   make clean   delete build/ and out/
 #
 # See docs/simulation.md.
@@ -159,7 +160,7 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
-.PHONY: help setup lint sim bench test regress simspeed demo report bricks gates fpga scenes skipping labels dram clean
+.PHONY: help setup lint sim bench test regress simspeed demo report bricks gates fpga scenes skipping labels dram board clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -253,6 +254,10 @@ labels: setup
 # The voxel memory in DRAM (docs/architecture.md "Voxel memory in DRAM"): reports/dram.md.
 dram: setup
 	$(PY) -m cube4_reports.dram $(DRAM_ARGS)
+
+# Cube-4 and its DRAM controller on a board (docs/architecture.md "Voxel memory in DRAM"): reports/board.md.
+board: setup
+	$(PY) -m cube4_reports.board $(BOARD_ARGS)
 
 # Per-scene builds (SCENES_ARGS, e.g. --no-fpga for gates, cycles and error only).
 scenes: setup

@@ -704,4 +704,41 @@
     output wire req_valid, input wire req_ready, \
     output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
 
+// The voxel memory's ports (cube4_voxel_mem on chip, cube4_dram_fetch in front of a
+// DRAM): the load port (one word per bank at the same address), read requests (an
+// address and a read enable per bank, a tag) and responses (the words, 0 where not
+// read, the request's tag). No trailing comma.
+`define CUBE4_VOXEL_MEM_PORTS \
+    input  wire ld_valid, output wire ld_ready, \
+    input  wire [ADDR_W-1:0] ld_addr, input wire [P*WORD_W-1:0] ld_data, \
+    input  wire req_valid, output wire req_ready, input wire [TAG_W-1:0] req_tag, \
+    input  wire [P*ADDR_W-1:0] req_addr, \
+    input  wire [P-1:0] req_rden, \
+    output wire rsp_valid, input wire rsp_ready, output wire [TAG_W-1:0] rsp_tag, \
+    output wire [P*WORD_W-1:0] rsp_data
+
+// A stream block's clock, reset, input and output streams of W-bit items
+// (cube4_skid, cube4_sync_fifo). No trailing comma.
+`define CUBE4_STREAM_PORTS(W) \
+    input  wire clk, input wire rst, \
+    input  wire in_valid, output wire in_ready, input wire [W-1:0] in_data, \
+    output wire out_valid, input wire out_ready, output wire [W-1:0] out_data
+
+// The DRAM controller's native port as the pipelines see it (cube4_top and
+// cube4_dram_fetch; LiteDRAM's: commands, write data and read data as streams,
+// 128-bit words of one BL8 burst, write enables per byte, read data in command
+// order and never held back). No trailing comma.
+`define CUBE4_DRAM_PORTS \
+    output wire                 dram_cmd_valid, \
+    input  wire                 dram_cmd_ready, \
+    output wire                 dram_cmd_we, \
+    output wire [DRAM_AW-1:0]   dram_cmd_addr, \
+    output wire                 dram_wdata_valid, \
+    input  wire                 dram_wdata_ready, \
+    output wire [127:0]         dram_wdata_data, \
+    output wire [15:0]          dram_wdata_we, \
+    input  wire                 dram_rdata_valid, \
+    output wire                 dram_rdata_ready, \
+    input  wire [127:0]         dram_rdata_data
+
 `endif

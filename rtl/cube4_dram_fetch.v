@@ -105,33 +105,10 @@ module cube4_dram_fetch #(
     input  wire                  clk,
     input  wire                  rst,
     input  wire                  dram_rst,
-    // load port: one column (a word per bank) per beat
-    input  wire                  ld_valid,
-    output wire                  ld_ready,
-    input  wire [ADDR_W-1:0]     ld_addr,
-    input  wire [P*WORD_W-1:0]   ld_data,
-    // read requests and responses (cube4_voxel_mem's)
-    input  wire                  req_valid,
-    output wire                  req_ready,
-    input  wire [TAG_W-1:0]      req_tag,
-    input  wire [P*ADDR_W-1:0]   req_addr,
-    input  wire [P-1:0]          req_rden,
-    output wire                  rsp_valid,
-    input  wire                  rsp_ready,
-    output wire [TAG_W-1:0]      rsp_tag,
-    output wire [P*WORD_W-1:0]   rsp_data,
-    // the DRAM controller's native port
-    output wire                  dram_cmd_valid,
-    input  wire                  dram_cmd_ready,
-    output wire                  dram_cmd_we,
-    output wire [DRAM_AW-1:0]    dram_cmd_addr,
-    output wire                  dram_wdata_valid,
-    input  wire                  dram_wdata_ready,
-    output wire [DATA_W-1:0]     dram_wdata_data,
-    output wire [DATA_W/8-1:0]   dram_wdata_we,
-    input  wire                  dram_rdata_valid,
-    output wire                  dram_rdata_ready,
-    input  wire [DATA_W-1:0]     dram_rdata_data
+    // load port (a column: a word per bank), read requests and responses (cube4_voxel_mem's)
+    `CUBE4_VOXEL_MEM_PORTS,
+    // the DRAM controller's native port (DATA_W = 128 bits a word)
+    `CUBE4_DRAM_PORTS
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_dram_fetch", "P", P, 1, 16)

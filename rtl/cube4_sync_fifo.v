@@ -32,14 +32,7 @@ module cube4_sync_fifo #(
     localparam integer PTR_W = (DEPTH > 1) ? $clog2(DEPTH) : 1,
     localparam integer CNT_W = PTR_W + 1
 ) (
-    input  wire              clk,
-    input  wire              rst,
-    input  wire              in_valid,
-    output wire              in_ready,
-    input  wire [DATA_W-1:0] in_data,
-    output wire              out_valid,
-    input  wire              out_ready,
-    output wire [DATA_W-1:0] out_data
+    `CUBE4_STREAM_PORTS(DATA_W)
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_sync_fifo", "DATA_W", DATA_W, 1, 4096)

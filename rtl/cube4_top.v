@@ -123,17 +123,7 @@ module cube4_top #(
     // the DRAM controller's native port (DRAM = 1; unused otherwise):
     // 128-bit words, one burst each, and the port's reset (cube4_dram_fetch)
     input  wire                      dram_rst,
-    output wire                      dram_cmd_valid,
-    input  wire                      dram_cmd_ready,
-    output wire                      dram_cmd_we,
-    output wire [DRAM_AW-1:0]        dram_cmd_addr,
-    output wire                      dram_wdata_valid,
-    input  wire                      dram_wdata_ready,
-    output wire [127:0]              dram_wdata_data,
-    output wire [15:0]               dram_wdata_we,
-    input  wire                      dram_rdata_valid,
-    output wire                      dram_rdata_ready,
-    input  wire [127:0]              dram_rdata_data,
+    `CUBE4_DRAM_PORTS,
     // table load ports
     input  wire                      lut_we,
     input  wire [LUT_AW-1:0]         lut_addr,

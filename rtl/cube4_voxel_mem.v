@@ -53,16 +53,8 @@ module cube4_voxel_mem #(
     parameter integer TAG_W  = 8
 ) (
     input  wire clk, input wire rst,
-    // load port: one word per bank at the same address
-    input  wire ld_valid, output wire ld_ready,
-    input  wire [ADDR_W-1:0] ld_addr, input wire [P*WORD_W-1:0] ld_data,
-    // read requests: an address and a read enable per bank, a tag
-    input  wire req_valid, output wire req_ready, input wire [TAG_W-1:0] req_tag,
-    input  wire [P*ADDR_W-1:0] req_addr,
-    input  wire [P-1:0] req_rden,
-    // read responses: the words, the request's tag
-    output wire rsp_valid, input wire rsp_ready, output wire [TAG_W-1:0] rsp_tag,
-    output wire [P*WORD_W-1:0] rsp_data
+    // load port, read requests, read responses
+    `CUBE4_VOXEL_MEM_PORTS
 );
     generate
         `CUBE4_RANGE(g_bad_p, "cube4_voxel_mem", "P", P, 1, 64)

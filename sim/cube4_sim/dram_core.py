@@ -46,7 +46,7 @@ import hashlib
 import json
 import os
 import tempfile
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 from .sources import REPO_ROOT
@@ -207,6 +207,17 @@ class DramRun:
         return {"DRAM": 1, "DRAM_AW": int(info["addr_w"]),
                 "CLK_HALF_PS": round(1e6 / (2 * self.clock_mhz)),
                 "DRAM_HALF_PS": round(1e12 / (2 * self.core.sys_clk_hz))}
+
+    def holding(self, bursts: int) -> "DramRun":
+        """This run with a model of enough rows for ``bursts`` 128-bit words (a power of
+        two, at least this core's; the part's 32,768 rows at most: 512 MiB)."""
+        per_row = 8 * 1024 // 8                 # 8 banks, 1024 columns of x16, 8 columns a burst
+        rows = self.core.rows
+        while rows * per_row < bursts and rows < 32768:
+            rows *= 2
+        if rows * per_row < bursts:
+            raise ValueError(f"{bursts:,} bursts do not fit the part's {32768 * per_row:,}")
+        return self if rows == self.core.rows else replace(self, core=replace(self.core, rows=rows))
 
     def sources(self) -> list[Path]:
         # the waivers first: a control file applies to the files read after it

@@ -192,8 +192,13 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     if fit_memory:
         depth = 1 << max(1, (words_per_bank((nx, ny, nz), cfg.pipelines) - 1).bit_length())
     if dram is not None:
-        # three images (dram_image), each padded to whole bursts
+        # three images (dram_image), each padded to whole bursts; a model of enough rows
         depth = 3 * dram_image_words(words_per_bank((max_dim + 16 * cfg.pipelines, max_dim, max_dim), cfg.pipelines))
+        bits = word_bits(cfg.voxel_bits, bool((build or {}).get("VGRAD", 0)), bool((build or {}).get("LABELS", 0)))
+        try:
+            dram = dram.holding(depth // columns_per_burst(cfg.pipelines, bits))
+        except ValueError as e:
+            raise UserError(f"the DRAM build cannot hold this volume: {e}") from None
     params = build_params(cfg, max_dim, depth, build)
     if dram is not None:
         params.update(dram.harness_params())
