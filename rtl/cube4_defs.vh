@@ -724,6 +724,26 @@
     input  wire in_valid, output wire in_ready, input wire [W-1:0] in_data, \
     output wire out_valid, input wire out_ready, output wire [W-1:0] out_data
 
+// cube4_top's connections of its voxel memory (either kind): the load port from the
+// top's ports, the front end's requests and the responses to it. No trailing comma.
+`define CUBE4_VOXEL_MEM_CONNECT \
+    .ld_valid  (ld_valid),      .ld_ready  (ld_ready), \
+    .ld_addr   (ld_addr),       .ld_data   (ld_data), \
+    .req_valid (mem_req_valid), .req_ready (mem_req_ready), \
+    .req_addr  (req_addr),      .req_rden  (req_rden),      .req_tag (req_tag), \
+    .rsp_valid (mem_rsp_valid), .rsp_ready (mem_rsp_ready), \
+    .rsp_data  (rsp_data),      .rsp_tag   (rsp_tag)
+
+// The DRAM port connected to signals of its own names (cube4_top to cube4_dram_fetch,
+// the harness to cube4_top). No trailing comma.
+`define CUBE4_DRAM_CONNECT \
+    .dram_cmd_valid   (dram_cmd_valid),   .dram_cmd_ready   (dram_cmd_ready), \
+    .dram_cmd_we      (dram_cmd_we),      .dram_cmd_addr    (dram_cmd_addr), \
+    .dram_wdata_valid (dram_wdata_valid), .dram_wdata_ready (dram_wdata_ready), \
+    .dram_wdata_data  (dram_wdata_data),  .dram_wdata_we    (dram_wdata_we), \
+    .dram_rdata_valid (dram_rdata_valid), .dram_rdata_ready (dram_rdata_ready), \
+    .dram_rdata_data  (dram_rdata_data)
+
 // The DRAM controller's native port as the pipelines see it (cube4_top and
 // cube4_dram_fetch; LiteDRAM's: commands, write data and read data as streams,
 // 128-bit words of one BL8 burst, write enables per byte, read data in command

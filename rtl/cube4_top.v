@@ -265,30 +265,8 @@ module cube4_top #(
                 .clk              (clk),
                 .rst              (rst),
                 .dram_rst         (dram_rst),
-                .ld_valid         (ld_valid),
-                .ld_ready         (ld_ready),
-                .ld_addr          (ld_addr),
-                .ld_data          (ld_data),
-                .req_valid        (mem_req_valid),
-                .req_ready        (mem_req_ready),
-                .req_addr         (req_addr),
-                .req_rden         (req_rden),
-                .req_tag          (req_tag),
-                .rsp_valid        (mem_rsp_valid),
-                .rsp_ready        (mem_rsp_ready),
-                .rsp_data         (rsp_data),
-                .rsp_tag          (rsp_tag),
-                .dram_cmd_valid   (dram_cmd_valid),
-                .dram_cmd_ready   (dram_cmd_ready),
-                .dram_cmd_we      (dram_cmd_we),
-                .dram_cmd_addr    (dram_cmd_addr),
-                .dram_wdata_valid (dram_wdata_valid),
-                .dram_wdata_ready (dram_wdata_ready),
-                .dram_wdata_data  (dram_wdata_data),
-                .dram_wdata_we    (dram_wdata_we),
-                .dram_rdata_valid (dram_rdata_valid),
-                .dram_rdata_ready (dram_rdata_ready),
-                .dram_rdata_data  (dram_rdata_data)
+                `CUBE4_VOXEL_MEM_CONNECT,
+                `CUBE4_DRAM_CONNECT
             );
         end else begin : g_bram
             cube4_voxel_mem #(
@@ -300,19 +278,7 @@ module cube4_top #(
             ) u_mem (
                 .clk       (clk),
                 .rst       (rst),
-                .ld_valid  (ld_valid),
-                .ld_ready  (ld_ready),
-                .ld_addr   (ld_addr),
-                .ld_data   (ld_data),
-                .req_valid (mem_req_valid),
-                .req_ready (mem_req_ready),
-                .req_addr  (req_addr),
-                .req_rden  (req_rden),
-                .req_tag   (req_tag),
-                .rsp_valid (mem_rsp_valid),
-                .rsp_ready (mem_rsp_ready),
-                .rsp_data  (rsp_data),
-                .rsp_tag   (rsp_tag)
+                `CUBE4_VOXEL_MEM_CONNECT
             );
             assign dram_cmd_valid   = 1'b0;
             assign dram_cmd_we      = 1'b0;

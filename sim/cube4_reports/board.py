@@ -40,7 +40,7 @@ import sys
 import time
 from pathlib import Path
 
-from .markdown import REPO_ROOT, git_describe, md_table
+from .markdown import REPO_ROOT, git_describe, md_table, write_report
 from .synth import design_sources
 
 BOARD = "LambdaConcept ECPIX-5 85F"
@@ -347,8 +347,7 @@ def main(argv: list[str] | None = None) -> int:
         d.setdefault("standin_ffs", standin_ffs(wd))
         for r in d["runs"]:
             r.setdefault("critical_path", critical_path(wd / f"seed{r['seed']}" / "nextpnr.log", "ecp5pll1_clkout"))
-        (REPO_ROOT / "reports" / "board.md").write_text(render_md(d))
-        print(render_md(d))
+        write_report("board", d, render_md(d))
         return 0
     t0 = time.perf_counter()
     script = build_design(args.p, args.max_dim, args.clock, wd)
@@ -358,14 +357,10 @@ def main(argv: list[str] | None = None) -> int:
     runs = [run_flow(wd, int(s)) for s in args.seeds.split(",")]
     d = {"board": BOARD, "p": args.p, "clock_mhz": args.clock, "params": top_params(args.p, args.max_dim), "runs": runs,
          "commit": git_describe()}
-    (REPO_ROOT / "build" / "reports").mkdir(parents=True, exist_ok=True)
-    (REPO_ROOT / "build" / "reports" / "board.json").write_text(json.dumps(d, indent=1))
     d["yosys_cells"] = _stat_cells(wd)
     d["top_level_cells"] = top_level_cells(wd)
     d["standin_ffs"] = standin_ffs(wd)
-    (REPO_ROOT / "build" / "reports" / "board.json").write_text(json.dumps(d, indent=1))
-    (REPO_ROOT / "reports" / "board.md").write_text(render_md(d))
-    print(render_md(d))
+    write_report("board", d, render_md(d))
     return 0
 
 

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import sys
 import time
 from pathlib import Path
@@ -34,7 +33,7 @@ from cube4.host import config_for, image_metrics
 from cube4.labels import RESAMPLINGS
 from cube4.scene import load_scene
 
-from .markdown import REPO_ROOT, git_describe, md_table
+from .markdown import REPO_ROOT, git_describe, md_table, write_report
 
 VOLUME, SCENE, MAP = "colin", "colin_lobes", "aal_lobes"
 P = 8
@@ -132,10 +131,7 @@ def main(argv: list[str] | None = None) -> int:
         from cube4_sim.engine import register
         register()
     d = run(args)
-    (REPO_ROOT / "build" / "reports").mkdir(parents=True, exist_ok=True)
-    (REPO_ROOT / "build" / "reports" / "labels.json").write_text(json.dumps(d, indent=1))
-    (REPO_ROOT / "reports" / "labels.md").write_text(render_md(d))
-    print(render_md(d))
+    write_report("labels", d, render_md(d))
     return 0
 
 

@@ -5,6 +5,7 @@ Only read-only git commands are run."""
 from __future__ import annotations
 
 import hashlib
+import json
 import subprocess
 from collections.abc import Iterable
 from pathlib import Path
@@ -75,3 +76,15 @@ def rtl_digest(sources: Iterable[Path]) -> str:
         h.update(src.name.encode())
         h.update(src.read_bytes())
     return h.hexdigest()[:12]
+
+
+def write_report(name: str, data: dict, md: str | None) -> None:
+    """A report's outputs: build/reports/<name>.json (its figures) and, unless ``md`` is
+    None, reports/<name>.md, which is also printed."""
+    out = REPO_ROOT / "build" / "reports"
+    out.mkdir(parents=True, exist_ok=True)
+    (out / f"{name}.json").write_text(json.dumps(data, indent=1))
+    if md is not None:
+        (REPO_ROOT / "reports" / f"{name}.md").write_text(md)
+        print(md)
+
