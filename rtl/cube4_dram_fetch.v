@@ -180,7 +180,7 @@ module cube4_dram_fetch #(
 
     reg [BA_W-1:0]   slot_ba_q [0:NS-1];
     reg [NS-1:0]     slot_vld_q;
-    reg [SL_W-1:0]   rr_q;
+    reg [NS-1:0]     rr_mask_q;       // the rotating pointer as a mask: slots at or above it
     reg [NF_W-1:0]   nfill_q;
     reg [SL_W-1:0]   fill_q [0:P-1];
     reg [RC_W-1:0]   owed_q;          // reads issued whose data the response side has not taken
@@ -194,7 +194,6 @@ module cube4_dram_fetch #(
     reg              any_pend, found, single;
     reg [BA_W-1:0]   want;
     reg [SL_W-1:0]   victim;
-    integer          cand;
     always @(*) begin
         used = {NS{1'b0}};
         for (q = 0; q < P; q = q + 1) begin
@@ -225,16 +224,14 @@ module cube4_dram_fetch #(
         for (q = 0; q < P; q = q + 1) begin
             if (pend[q] && ba[q] != want) single = 1'b0;
         end
-        // the first slot from rr_q that no bank of this request uses
+        // the first slot at or above the pointer that no bank of this request uses, else the
+        // first one below it (two priority encoders, no arithmetic on the pointer)
         victim = {SL_W{1'b0}};
-        found = 1'b0;
-        for (k = 0; k < NS; k = k + 1) begin
-            cand = int'(rr_q) + k;
-            if (cand >= NS) cand = cand - NS;
-            if (!found && !used[cand]) begin
-                victim = SL_W'(cand);
-                found = 1'b1;
-            end
+        for (k = NS - 1; k >= 0; k = k - 1) begin
+            if (!used[k]) victim = SL_W'(k);
+        end
+        for (k = NS - 1; k >= 0; k = k - 1) begin
+            if (!used[k] && rr_mask_q[k]) victim = SL_W'(k);
         end
     end
 
@@ -260,12 +257,15 @@ module cube4_dram_fetch #(
     always @(posedge clk) begin
         if (rst) begin
             slot_vld_q <= {NS{1'b0}};
-            rr_q       <= {SL_W{1'b0}};
+            rr_mask_q  <= {NS{1'b1}};
             nfill_q    <= {NF_W{1'b0}};
         end else begin
             if (ld_cmd_valid && dram_cmd_ready) slot_vld_q <= {NS{1'b0}};
             else if (rd_fire) slot_vld_q[victim] <= 1'b1;
-            if (rd_fire) rr_q <= (int'(victim) + 1 >= NS) ? {SL_W{1'b0}} : victim + 1'b1;
+            if (rd_fire) begin
+                for (k = 0; k < NS; k = k + 1)      // the slots after the victim (all: it was the last)
+                    rr_mask_q[k] <= (k > int'(victim)) || (int'(victim) == NS - 1);
+            end
             if (resolve) nfill_q <= {NF_W{1'b0}};
             else if (rd_fire) nfill_q <= nfill_q + 1'b1;
         end
