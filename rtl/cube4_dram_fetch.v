@@ -64,9 +64,12 @@
 //              pipeline cycles) when a burst serves L = 16 requests (P = 1).
 //
 // Latency
-//   From an accepted request to rsp_valid: 3 cycles when its bursts are in
-//   the slots (input skid, resolve, response register); a read's DRAM latency
-//   more when not. Full rate while each request misses at most one burst, the
+//   From an accepted request to rsp_valid: 4 cycles when its bursts are in
+//   the slots (input skid, compare stage, resolve stage, response register); a
+//   read's DRAM latency more when not. The compare stage registers each bank's
+//   burst against every slot (P * NS compares) and against every other bank's;
+//   the resolve stage keeps those bits up to date as its own misses fill slots,
+//   and a request entering the compare stage sees the slot filled in that cycle. Full rate while each request misses at most one burst, the
 //   DRAM keeps up and rsp_ready is high. req_ready is a register (cube4_skid).
 //
 // Ports
@@ -185,45 +188,69 @@ module cube4_dram_fetch #(
     reg [SL_W-1:0]   fill_q [0:P-1];
     reg [RC_W-1:0]   owed_q;          // reads issued whose data the response side has not taken
 
-    reg [BA_W-1:0]   ba   [0:P-1];
+    // Compare stage: each bank's burst against every slot and against every other bank's,
+    // registered with the request (s_*). A slot written in that cycle (a miss of the
+    // request in the resolve stage) is compared by the burst written.
+    reg [BA_W-1:0]   c_ba [0:P-1];
+    reg [P*NS-1:0]   c_hitv;          // bank q holds its burst in slot s: bit q*NS + s
+    reg [P*P-1:0]    c_eq;            // banks q and r read the same burst: bit q*P + r
+    reg              s_valid_q;
+    reg [TAG_W-1:0]  s_tag_q;
+    reg [P-1:0]      s_rden_q;
+    reg [P*ADDR_W-1:0] s_addr_q;
+    reg [P*NS-1:0]   s_hitv_q;
+    reg [P*P-1:0]    s_eq_q;
+    wire             c_take;
+    wire             rd_fire;
+    wire             inval = ld_cmd_valid && dram_cmd_ready;   // a load invalidates every slot
+    reg [BA_W-1:0]   want;
+    reg [SL_W-1:0]   victim;
+    always @(*) begin
+        for (q = 0; q < P; q = q + 1)
+            c_ba[q] = BA_W'(r_addr[q*ADDR_W +: ADDR_W] >> LOG_L);
+        for (q = 0; q < P; q = q + 1) begin
+            for (s = 0; s < NS; s = s + 1)
+                c_hitv[q*NS + s] = !inval && ((rd_fire && SL_W'(s) == victim) ? (c_ba[q] == want)
+                                                                              : (slot_vld_q[s] && slot_ba_q[s] == c_ba[q]));
+            for (k = 0; k < P; k = k + 1)
+                c_eq[q*P + k] = (c_ba[q] == c_ba[k]);
+        end
+    end
+
+    // Resolve stage: the request in s_*, its hit vectors kept up to date as its misses fill slots
     reg [OFF_W-1:0]  off  [0:P-1];
     reg [P-1:0]      hit;
     reg [SL_W-1:0]   hit_slot [0:P-1];
     reg [NS-1:0]     used;
-    reg [P-1:0]      pend;
+    reg [P-1:0]      pend, first, same;
     reg              any_pend, found, single;
-    reg [BA_W-1:0]   want;
-    reg [SL_W-1:0]   victim;
     always @(*) begin
         used = {NS{1'b0}};
         for (q = 0; q < P; q = q + 1) begin
-            ba[q]  = BA_W'(r_addr[q*ADDR_W +: ADDR_W] >> LOG_L);
-            off[q] = (LOG_L > 0) ? OFF_W'(r_addr[q*ADDR_W +: ADDR_W]) : {OFF_W{1'b0}};
-            hit[q] = 1'b0;
+            off[q] = (LOG_L > 0) ? OFF_W'(s_addr_q[q*ADDR_W +: ADDR_W]) : {OFF_W{1'b0}};
+            hit[q] = |s_hitv_q[q*NS +: NS];
             hit_slot[q] = {SL_W{1'b0}};
-            for (s = 0; s < NS; s = s + 1) begin
-                if (slot_vld_q[s] && slot_ba_q[s] == ba[q]) begin
-                    hit[q] = 1'b1;
-                    hit_slot[q] = SL_W'(s);
-                end
-            end
-            if (r_rden[q] && hit[q]) used[hit_slot[q]] = 1'b1;
+            for (s = 0; s < NS; s = s + 1)
+                if (s_hitv_q[q*NS + s]) hit_slot[q] = SL_W'(s);
+            if (s_rden_q[q]) used = used | s_hitv_q[q*NS +: NS];
         end
-        pend = r_rden & ~hit;
+        pend = s_rden_q & ~hit;
         any_pend = |pend;
         // the first bank that misses names the burst to read
-        want = {BA_W{1'b0}};
+        first = {P{1'b0}};
         found = 1'b0;
+        want = {BA_W{1'b0}};
         for (q = 0; q < P; q = q + 1) begin
             if (pend[q] && !found) begin
-                want = ba[q];
+                first[q] = 1'b1;
+                want = BA_W'(s_addr_q[q*ADDR_W +: ADDR_W] >> LOG_L);
                 found = 1'b1;
             end
         end
-        single = 1'b1;
-        for (q = 0; q < P; q = q + 1) begin
-            if (pend[q] && ba[q] != want) single = 1'b0;
-        end
+        // the banks that read the first missing bank's burst
+        for (q = 0; q < P; q = q + 1)
+            same[q] = |(s_eq_q[q*P +: P] & first);
+        single = ((pend & ~same) == {P{1'b0}});
         // the first slot at or above the pointer that no bank of this request uses, else the
         // first one below it (two priority encoders, no arithmetic on the pointer)
         victim = {SL_W{1'b0}};
@@ -236,10 +263,32 @@ module cube4_dram_fetch #(
     end
 
     wire desc_in_ready;
-    wire rd_cmd_valid = !rst && !dram_rst && r_valid && any_pend && (ld_st_q == LD_IDLE) && (owed_q < RC_W'(RD_DEPTH));
-    wire rd_fire      = rd_cmd_valid && dram_cmd_ready;
-    wire resolve      = r_valid && desc_in_ready && (!any_pend || (rd_fire && single));
-    always @(*) r_ready = resolve;
+    wire rd_cmd_valid = !rst && !dram_rst && s_valid_q && any_pend && (ld_st_q == LD_IDLE) && (owed_q < RC_W'(RD_DEPTH));
+    assign rd_fire    = rd_cmd_valid && dram_cmd_ready;
+    wire resolve      = s_valid_q && desc_in_ready && (!any_pend || (rd_fire && single));
+    assign c_take     = r_valid && (!s_valid_q || resolve);
+    always @(*) r_ready = c_take;
+
+    always @(posedge clk) begin
+        if (rst) s_valid_q <= 1'b0;
+        else if (c_take) s_valid_q <= 1'b1;
+        else if (resolve) s_valid_q <= 1'b0;
+    end
+    always @(posedge clk) begin
+        if (c_take) begin
+            s_tag_q  <= r_tag;
+            s_rden_q <= r_rden;
+            s_addr_q <= r_addr;
+            s_hitv_q <= c_hitv;
+            s_eq_q   <= c_eq;
+        end else if (inval) begin
+            s_hitv_q <= {(P*NS){1'b0}};
+        end else if (rd_fire) begin
+            // the slot just filled holds the burst of the banks that read the first miss's
+            for (q = 0; q < P; q = q + 1)
+                s_hitv_q[q*NS + int'(victim)] <= same[q];
+        end
+    end
 
     // the descriptor: tag, read enables, each bank's slot and column, the fills in order
     reg [P*SL_W-1:0]  d_lane_slot, d_fill;
@@ -289,7 +338,7 @@ module cube4_dram_fetch #(
         .rst       (rst),
         .in_valid  (resolve),
         .in_ready  (desc_in_ready),
-        .in_data   ({r_tag, r_rden, d_lane_slot, d_lane_off, d_nfill, d_fill}),
+        .in_data   ({s_tag_q, s_rden_q, d_lane_slot, d_lane_off, d_nfill, d_fill}),
         .out_valid (d_valid),
         .out_ready (d_ready),
         .out_data  (d_word)
