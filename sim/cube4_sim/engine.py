@@ -95,7 +95,7 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
         stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
         stats["build"] = dict(build)
         if dram is not None:
-            stats["dram"] = dram_stats(outs_v, stats.get("predicted_cycles"), dram, cfg)
+            stats["dram"] = dram_stats(outs_v, stats.get("predicted_cycles"), dram)
         sim_s = sum(o["sim_wall_s"] for o in outs_v)
         wall = sim_s + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
         stats["wall_s"] = wall
@@ -121,7 +121,7 @@ def _cycle_stats(outs: list[dict], ideal: float) -> dict:
     }
 
 
-def dram_stats(outs: list[dict], predicted: float | None, dram: DramRun, cfg: Cube4Config) -> dict:
+def dram_stats(outs: list[dict], predicted: float | None, dram: DramRun) -> dict:
     """A view's figures with the voxel memory in DRAM, summed over its frames: cycles
     against the ideal memory's (the golden prediction), the bursts read and the bandwidth
     that took at the pipelines' clock, and the commands the controller sent (row opens,

@@ -184,8 +184,9 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
     no memory for a cube it never fills (a separate build). On a build with slice
     rectangles (RECTS = 1) each frame runs its FrameJob.rects, or the whole box.
     ``dram``: the voxel memory is the generated DRAM (cube4_sim.dram_core) behind
-    cube4_dram_fetch, on its own clock; each frame's result then also has
-    ``dram_reads`` (bursts read during the frame)."""
+    cube4_dram_fetch, on its own clock; each frame's result then also has the
+    harness's DRAM counters over the frame (cube4_sim.top_job DRAM_COUNTERS: bursts read,
+    the controller's activates, precharges, refreshes, reads)."""
     nz, ny, nx = vol.shape
     max_dim = max_dim or build_max_dim((nx, ny, nz))
     depth = None
@@ -219,10 +220,11 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         workdir = Path(own_tmp.name)
     workdir.mkdir(parents=True, exist_ok=True)
     try:
-        banks = pack_volume(vol, cfg.pipelines)
         images = {}                     # DRAM builds: per major axis, the image its views read
         if dram is not None:
             banks, images = dram_image(vol, cfg, params)
+        else:
+            banks = pack_volume(vol, cfg.pipelines)
         load_words = int(banks.shape[1])
         write_hex(workdir / "mem.hex", load_image(banks), word_bits(cfg.voxel_bits, vgrad, bool(params["LABELS"])))
         job_frames = []
