@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from cube4_reports import fpga, markdown
+from cube4 import cycles
+from cube4_reports import fpga, fpga_memory, markdown
 from cube4_reports.synth import UserError
 
 
@@ -117,6 +118,45 @@ def test_markdown_tables_and_header():
     assert "nextpnr seeds 1, 2 and 3 (one run per `--seed`" in md and "2 at a time" in md
     assert "--seed 1" not in md and "Flatness (aim" in md and "- P = 8 (seed 2, the median):" in md
     assert fpga.seeds_text([7]) == "seed 7"
+
+
+def mem(who: str, n: int, p: int, clock: float, cycles: int, ideal: int) -> dict:
+    return {"who": who, "n": n, "p": p, "clock_mhz": clock, "formula_cycles": ideal, "ideal_cycles": ideal,
+            "cycles": cycles, "ratio": ideal / cycles, "mb_per_s": 550.0, "needed_mb_per_s": 1100.0, "wall_s": 1.0}
+
+
+def test_board_record_takes_the_median_seeds_pipeline_clock(tmp_path):
+    def run(seed, pipe):
+        util = {k: {"used": seed * 10, "available": 1} for k in ("TRELLIS_COMB", "TRELLIS_FF", "MULT18X18D", "DP16KD")}
+        return {"seed": seed, "rc": 0, "synth_s": 60.0, "pnr_s": 600.0, "utilization": util,
+                "fmax": {"$glbnet$crg_ecp5pll1_clkout": {"achieved": pipe}, "$glbnet$sys_clk": {"achieved": 80.0}}}
+    path = tmp_path / "board.json"
+    assert fpga_memory.board_record(path) is None
+    path.write_text(json.dumps({"board": "B", "p": 4, "params": {"MAX_DIM": 128}, "commit": "abc",
+                                "runs": [run(1, 90.0), run(2, 70.0), run(3, 80.0)]}))
+    b = fpga_memory.board_record(path)
+    assert (b["seed"], b["fmax_mhz"], b["luts"], b["sys_mhz"]) == (3, 80.0, 30, 80.0)
+    row = fpga_memory.board_resource_row(b)
+    assert row[0].startswith("4, on the B with LiteDRAM") and row[1] == "80.0" and row[2] == "1: 90.0, 2: 70.0, 3: 80.0"
+
+
+def test_rate_table_with_the_dram():
+    rs = [result(4, 150.0), result(8, 137.7)]
+    n4, n8 = cycles.frame_cycles(128, 128, 128, 4), cycles.frame_cycles(128, 128, 128, 8)
+    memory = [mem("P = 4", 128, 4, 150.0, int(n4 / 0.9), n4), mem("P = 8", 128, 8, 137.7, 2 * n8, n8)]
+    lines = fpga.rate_table(rs, memory).splitlines()
+    assert all(line.count("|") == lines[0].count("|") for line in lines)
+    p8 = next(line for line in lines if line.startswith("| ours, P = 8 |"))
+    assert f"**{137.7e6 / (2 * n8):,.2f}** ({137.7e6 / n8:,.2f}; 0.500)" in p8
+    assert "ideal memory, not measured" in p8                # 256³ and 512³ were not measured here
+    assert "**4**" in fpga_memory.saturation_line(memory) and fpga_memory.ideal_matches(memory)
+    memory[0]["ratio"] = 0.8
+    assert "none measured" in fpga_memory.saturation_line(memory)
+    meta = {"yosys": "Yosys", "nextpnr": "nextpnr", "git": "abc1234", "rtl_commit": "r", "rtl_digest": "d",
+            "freq": 125.0, "seeds": [1], "jobs": 1, "router": "router1", "max_dim": 128, "depth": 1024, "build": ""}
+    md = fpga.render_markdown(rs, [], meta, memory, None)
+    assert "Frames/s with the voxel memory in DRAM" in md and "No board row" in md
+    assert "Every frame with the DRAM:" in md and "Frames/s with the voxel memory" not in fpga.render_markdown(rs, [], meta)
 
 
 # ------------------------------------------------------------------ cache and work order

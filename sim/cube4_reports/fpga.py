@@ -48,7 +48,7 @@ from pathlib import Path
 from cube4 import cycles
 from cube4.builds import build_tag, check_build, complete_build, parse_options
 
-from . import gates
+from . import fpga_memory, gates
 from .markdown import fmt_int, git_describe, md_table, rtl_commit
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError, addr_bits,
                     check_max_dim, chparam_args, cli_main, design_digest, last_error, parse_int_list,
@@ -505,12 +505,14 @@ def seeds_cell(r: dict) -> str:
     return each + (f" ({mhz(r['fmax_min'])} – {mhz(r['fmax_max'])})" if r["fmax_min"] else "")
 
 
-def resource_table(results: list[dict]) -> str:
+def resource_table(results: list[dict], board: dict | None = None) -> str:
     rows = []
     for r in results:
         rows.append([str(r["p"]), mhz(r["fmax_median"]), seeds_cell(r), fmt_int(r["luts"]), fmt_int(r["ffs"]),
                      str(r["dsps"]), str(r["ebrs"]), str(r["dpr16x4"]), "yes" if r["fits"] else "**no**",
                      f"{r['wall_s']:.0f}"])
+    brow = fpga_memory.board_resource_row(board)
+    rows += [brow] if brow else []
     cap = ["85F capacity", "", "", fmt_int(CAPACITY["luts"]), fmt_int(CAPACITY["ffs"]), str(CAPACITY["dsps"]),
            str(CAPACITY["ebrs"]), "", "", ""]
     return md_table(["P", "Fmax median (MHz)", "seeds (min – max)", "LUTs", "FFs", "DSPs (MULT18X18D)",
@@ -565,14 +567,17 @@ def blocks_table(results: list[dict]) -> str:
     return md_table(["unit"] + [f"P = {r['p']}: DSPs / EBRs" for r in results], rows)
 
 
-def rate_table(results: list[dict]) -> str:
-    rows = []
-    for r in results:
-        if not r["fmax_mhz"]:
-            continue
-        rt = rates(r["fmax_mhz"], r["p"])
-        rows.append([f"ours, P = {r['p']}", f"{r['fmax_mhz']:.1f}", f"{rt['samples_per_s'] / 1e6:,.0f}"]
-                    + [f"{rt['fps'][n]:,.2f}" for n in FRAME_SIZES])
+def rate_table(results: list[dict], memory: list[dict] | None = None, board: dict | None = None) -> str:
+    if memory:
+        rows = fpga_memory.rate_rows(results, memory, board, FRAME_SIZES)
+    else:
+        rows = []
+        for r in results:
+            if not r["fmax_mhz"]:
+                continue
+            rt = rates(r["fmax_mhz"], r["p"])
+            rows.append([f"ours, P = {r['p']}", f"{r['fmax_mhz']:.1f}", f"{rt['samples_per_s'] / 1e6:,.0f}"]
+                        + [f"{rt['fps'][n]:,.2f}" for n in FRAME_SIZES])
     goal = rates(GOAL_MHZ, GOAL_P)
     rows.append([f"goal (not measured): P = {GOAL_P} at {GOAL_MHZ:g} MHz", f"{GOAL_MHZ:g}",
                  f"{goal['samples_per_s'] / 1e6:,.0f}"] + [f"{goal['fps'][n]:,.2f}" for n in FRAME_SIZES])
@@ -632,6 +637,46 @@ def offchip_lines(budget: list[dict], results: list[dict], meta: dict) -> list[s
     return lines
 
 
+def board_lines(board: dict | None) -> list[str]:
+    """What the board's row is."""
+    if board is None:
+        return ["No board row: `make board` (reports/board.md) places and routes the design with its DRAM "
+                "controller on the ECPIX-5, and this report takes its results when it finds them.", ""]
+    return [f"The row \"on the {board['board']}\" is `make board` (reports/board.md, at {board['commit']}): "
+            f"cube4_top with `DRAM = 1` (its voxel fetch unit instead of the on-chip stand-in), LiteDRAM's "
+            f"ECP5DDRPHY and controller on the board's DDR3, the clocks and a stand-in for the host link, on the "
+            f"LFE5UM5G-85F (CABGA554, the board's pins); its Fmax is the pipelines' clock (the median over "
+            f"its seeds), the DRAM controller's clock reached {board['sys_mhz']:.1f} MHz (it needs 75); "
+            "its resources are the whole design's.", ""]
+
+
+def rate_lines(results: list[dict], memory: list[dict], board: dict | None, meta: dict) -> list[str]:
+    """The rate table and how it was measured."""
+    formula = (f"(M·NJ+1)·NB + 1 + NJ·NB + NB + 2 + {cycles.FILL_CYCLES} for an axis-aligned n³ view (M = NJ = n, "
+               "NB = ⌈n/P⌉), about n³/P")
+    if not memory:
+        return ["At the median Fmax. Peak samples/s = P · Fmax. Frames/s = Fmax / cycles per frame, with the "
+                f"ideal memory's cycles = {formula}. 256³ and 512³ assume the voxel memory and the slice-sized "
+                f"buffers below are off-chip and keep up; this build (MAX_DIM = {meta['max_dim']}) renders up to "
+                f"{meta['max_dim']}³ only.", "", rate_table(results), ""]
+    same = ("equal to the formula's for every frame" if fpga_memory.ideal_matches(memory)
+            else "**not** the formula's for every frame (see the table below)")
+    return [
+        "At the median Fmax. Peak samples/s = P · Fmax. **Frames/s with the voxel memory in DRAM** (in bold): "
+        "the frame (the head phantom, scene head, viewed along z on the fixed schedule: every voxel read, "
+        "no skipping) run through cube4_top with `DRAM = 1` and the ECPIX-5's DDR3 behind LiteDRAM's "
+        "controller at 75 MHz (the `rtl-dram` engine, reports/dram.md), the pipelines' clock set to that "
+        "build's median Fmax; frames/s = Fmax / the measured cycles. In brackets: frames/s with the ideal "
+        f"memory, cycles = {formula} (the ideal memory's cycles of every measured frame are {same}), and "
+        "ideal / DRAM. 256³ frames are measured on a MAX_DIM 256 build, which the ECP5-85F does not hold "
+        f"(its slice buffers, below); this build (MAX_DIM = {meta['max_dim']}) renders up to "
+        f"{meta['max_dim']}³. Not measured with the DRAM: 256³ at P = 1 and 2 (at 128³ the DRAM already keeps "
+        "up with them) and 512³ (two hours of simulation per frame); those give the ideal memory's figure.", "",
+        rate_table(results, memory, board), "",
+        fpga_memory.saturation_line(memory), "",
+        "Every frame with the DRAM:", "", fpga_memory.memory_table(memory), ""]
+
+
 def seeds_text(seeds: list[int]) -> str:
     """'seeds 1, 2 and 3' / 'seed 7'."""
     if len(seeds) == 1:
@@ -639,7 +684,8 @@ def seeds_text(seeds: list[int]) -> str:
     return f"seeds {', '.join(map(str, seeds[:-1]))} and {seeds[-1]}"
 
 
-def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
+def render_markdown(results: list[dict], budget: list[dict], meta: dict, memory: list[dict] | None = None,
+                    board: dict | None = None) -> str:
     out = ["# FPGA build (`make fpga`)", "",
            f"Generated by `make fpga` (`python -m cube4_reports.fpga`) with {meta['yosys']} and {meta['nextpnr']}.",
            f"RTL: git {meta['git']}, {meta['rtl_commit']}, sources sha256 {meta['rtl_digest']}"
@@ -666,7 +712,7 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
            + (f", or stopped when, from router2's iteration {DIVERGE_ITER} on, its overuse is more than "
               f"{DIVERGE_FACTOR} times the least it reached and more than {DIVERGE_FLOOR} wires"
               if meta["router"] == "router2" else "") + ".", "",
-           resource_table(results), "", goal_line(results), "", flatness_line(results), "",
+           resource_table(results, board), ""] + board_lines(board) + [goal_line(results), "", flatness_line(results), "",
            "DSPs and EBRs per unit (Yosys netlist, by instance name; for every P, also one that does not fit):", "",
            blocks_table(results), "", "## Critical paths", "",
            "The units the path runs through and the signals along it (names of the cells on the path with "
@@ -677,13 +723,7 @@ def render_markdown(results: list[dict], budget: list[dict], meta: dict) -> str:
         cp = r.get("critical_path_detail", {})
         if cp:
             out.append(f"  - from `{cp['from']}` to `{cp['to']}`; full path in `{r['log']}`")
-    out += ["", "## Samples and frames per second at the measured Fmax", "",
-            "At the median Fmax. Peak samples/s = P · Fmax. Frames/s = Fmax / cycles per frame, with cycles = "
-            f"(M·NJ+1)·NB + 1 + NJ·NB + NB + 2 + {cycles.FILL_CYCLES} for an axis-aligned n³ view (M = NJ = n, "
-            "NB = ⌈n/P⌉), about n³/P. 256³ and 512³ assume the voxel memory and the slice-sized buffers "
-            f"below are off-chip and keep up; this build (MAX_DIM = {meta['max_dim']}) renders up to "
-            f"{meta['max_dim']}³ only.", "",
-            rate_table(results), ""]
+    out += ["", "## Samples and frames per second at the measured Fmax", ""] + rate_lines(results, memory or [], board, meta)
     if budget:
         out += ["## On-chip buffers against MAX_DIM", "",
                 "Memory bits of the buffers per unit (Yosys elaboration, voxel memory excluded), "
@@ -718,6 +758,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                     help="reuse a P's earlier netlist and each seed's earlier run when RTL, parameters "
                          "and flow are unchanged")
     ap.add_argument("--no-budget", action="store_true", help="skip the buffer-size table (3 short yosys runs)")
+    ap.add_argument("--no-memory", action="store_true",
+                    help="frames/s with the ideal memory only: no frame through the simulated DRAM (about 15 min)")
     ap.add_argument("--quick", action="store_true",
                     help="P = 1 only, MAX_DIM = 16, DEPTH = 64, no budget; writes build/reports/fpga_quick.*")
     ap.add_argument("--build", default="",
@@ -789,11 +831,15 @@ def run(args: argparse.Namespace) -> None:
                         speed=args.speed, build=build, detailed=args.detailed_timing) for p in ps]
     results = build_all(cfgs, args.timeout, digest, args.reuse, args.jobs)
     budget = [] if (args.no_budget or args.quick) else memory_budget(8, BUDGET_DIMS)
+    board = None if (args.quick or args.build) else fpga_memory.board_record()
+    memory = [] if (args.no_memory or args.quick or args.build) else fpga_memory.measure_all(
+        results, board, digest, args.reuse)
     keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
             "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
     report = {"part": PART, "speed": args.speed, "max_dim": max_dim, "depth": depth, "seeds": list(seeds),
-              "flatness": flatness(results), "results": [{k: r[k] for k in keys} for r in results]}
-    write_report(TAG, report, json_path, render_markdown(results, budget, meta), md_path, t0)
+              "flatness": flatness(results), "results": [{k: r[k] for k in keys} for r in results],
+              "board": board, "memory": memory}
+    write_report(TAG, report, json_path, render_markdown(results, budget, meta, memory, board), md_path, t0)
 
 
 def main(argv: list[str] | None = None) -> int:
