@@ -184,6 +184,52 @@ def rtl_goal_frame(rects: bool = False) -> dict:
             "sim_wall_s": res.stats["sim_wall_s"]}
 
 
+def rtl_dram_frames() -> list[dict]:
+    """The goal case's view through the RTL with its voxel memory in the simulated DRAM
+    (the ``rtl-dram`` engine), with the box schedule and the fixed one: cycles beside the
+    ideal memory's, bursts read, bandwidth, stalls by cause; the base plane against the
+    golden fixed schedule's."""
+    from cube4_sim.engine import register
+
+    register()
+    vol_spec, scene_name = GOAL
+    vol = load_volume(vol_spec)
+    sc = load_scene(scene_name)
+    cfg = config_for(sc, P)
+    gold = render(vol, dataclasses.replace(sc, skip=False), cfg, "golden")
+    out = []
+    for schedule in ("box", "fixed"):
+        res = render(vol, dataclasses.replace(sc, skip=(schedule == "box")), cfg, "rtl-dram",
+                     progress=sys.stderr.isatty())
+        out.append({"schedule": schedule, **res.stats["dram"],
+                    "bit_identical_to_fixed_golden": bool(np.array_equal(res.frame.baseplane, gold.frame.baseplane)),
+                    "sim_wall_s": res.stats["sim_wall_s"]})
+    return out
+
+
+def dram_lines(frames: list[dict], n3p: float | None) -> list[str]:
+    """The goal case with the DRAM: a table, box against fixed."""
+    if not frames:
+        return []
+    rows = [[f["schedule"], fmt_int(f["ideal_memory_cycles"]), fmt_int(f["cycles"]), f"{f['ideal_over_dram']:.3f}",
+             "—" if not n3p else f"{f['cycles'] / n3p:.3f}", fmt_int(f["bursts_read"]), f"{f['mb_per_s']:.0f}",
+             f"{fmt_int(f['stall_refresh'])} / {fmt_int(f['stall_row_open'])} / {fmt_int(f['stall_bandwidth'])}",
+             _image(f["bit_identical_to_fixed_golden"])] for f in frames]
+    f0 = frames[0]
+    return [f"**With the voxel memory in DRAM** (head:128, scene head, P = {P}, `cube4 render head:128 --scene head "
+            f"--engine rtl-dram --pipelines {P} --stats s.json`, add `--no-skip` for the fixed schedule): "
+            f"cube4_top with `DRAM = 1`, the ECPIX-5's {f0['part']} behind LiteDRAM's controller at "
+            f"{f0['controller_mhz']:.0f} MHz, the pipelines at {f0['pipeline_mhz']} MHz (reports/dram.md). The "
+            "ideal memory's cycles are the golden prediction (the on-chip build's, to the cycle); the stalls "
+            "(DRAM cycles − ideal) are split by cause, an estimate from the controller's commands (docs/reports.md). "
+            "Skipping saves DRAM traffic as well as cycles: what the box leaves out is never read (bursts "
+            f"read, below). At P = {P} the DRAM's bandwidth (peak {f0['peak_mb_per_s']:.0f} MB/s) limits both "
+            "schedules.", "",
+            md_table(["schedule", "ideal-memory cycles", "cycles with the DRAM", "ideal / DRAM", "/ (n³/P)",
+                      "bursts read", "MB/s", "stalls: refresh / row open / bandwidth", "image"], rows, "lrrrrrrrl"),
+            ""]
+
+
 def _pct(x: float) -> str:
     return f"{100 * x:.0f}%"
 
@@ -198,7 +244,8 @@ def _rect_cycles(r: dict) -> str:
     return fmt_int(r["rect_cycles"]) + ("" if r["rect_com_waits"] == 0 else f" (+{r['rect_com_waits']} waits)")
 
 
-def write_md(rows: list[dict], rtl: dict | None, meta: dict, rtl_rects: dict | None = None) -> str:
+def write_md(rows: list[dict], rtl: dict | None, meta: dict, rtl_rects: dict | None = None,
+             rtl_dram: list[dict] | None = None) -> str:
     head = ["volume (dims)", "scene (mode)", "view az, el", "box traversed", "voxels", "cycles",
             "fixed schedule", "cycles / (n³/P)", "saved", "host tables", "image",
             "rectangles: samples", "cycles", "cycles / (n³/P)", "tables", "image"]
@@ -262,6 +309,7 @@ def write_md(rows: list[dict], rtl: dict | None, meta: dict, rtl_rects: dict | N
                   "predicted" + (f", {rtl_rects['cycles'] / n3p:.3f} of n³/P" if n3p else "")
                   + f"; base plane {'identical to' if rtl_rects['bit_identical_to_fixed_golden'] else 'DIFFERENT from'}"
                   " the golden fixed schedule's.", ""]
+    lines += dram_lines(rtl_dram or [], goal[0]["n3_over_p"] if goal else None)
     lines += ["No CT volume ships in a PyPI package that I found: pydicom's test files hold one CT slice "
               "(CT_small.dcm) and pydicom-data's enhanced CT two frames (eCT_Supplemental.dcm, 2×512×512), "
               "so the real content here is the two MRI volumes of nibabel.", ""]
@@ -341,6 +389,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
 def parse_args(argv):
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.skipping", description=__doc__.splitlines()[0])
     ap.add_argument("--no-rtl", action="store_true", help="leave out the RTL frames")
+    ap.add_argument("--no-dram", action="store_true", help="leave out the RTL frames with the DRAM (about 4 min)")
     ap.add_argument("--no-images", action="store_true", help="do not render both schedules to compare images")
     ap.add_argument("--no-beats", action="store_true", help="leave out beat skipping and ray termination")
     ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md")
@@ -360,15 +409,17 @@ def main(argv: list[str] | None = None) -> int:
         taus, blocks = tau_rows(*OPAQUE_GOAL), block_rows(*GOAL)
     rtl = None if args.no_rtl else rtl_goal_frame()
     rtl_rects = None if args.no_rtl else rtl_goal_frame(rects=True)
+    rtl_dram = None if (args.no_rtl or args.no_dram) else rtl_dram_frames()
     meta = {"git": git_describe(("rtl", "golden", "sim"))}
     out = REPO_ROOT / "build" / "reports"
     out.mkdir(parents=True, exist_ok=True)
     (out / "skipping.json").write_text(json.dumps({"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects,
+                                                   "rtl_dram": rtl_dram,
                                                    "beats": brows, "taus": taus, "blocks": blocks},
                                                   indent=1) + "\n")
     dest = Path(args.out)
     dest.mkdir(parents=True, exist_ok=True)
-    md = write_md(rows, rtl, meta, rtl_rects)
+    md = write_md(rows, rtl, meta, rtl_rects, rtl_dram)
     if brows:
         md += "\n" + write_beats_md(brows, taus, blocks)
     (dest / "skipping.md").write_text(md)
