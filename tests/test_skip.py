@@ -224,6 +224,14 @@ def test_skipping_report_rows():
         assert r["rect_bit_identical"] and r["rect_beats"] < r["predicted_cycles"]
     text = skipping.write_md(rows, None, {"git": "test"})
     assert "sphere:24" in text and "identical" in text and "DIFFERENT" not in text
+    assert "With the voxel memory in DRAM" not in text
+    frame = {"part": "MT41K256M16", "controller_mhz": 75.0, "pipeline_mhz": 137.7, "peak_mb_per_s": 600.0,
+             "ideal_memory_cycles": 1000, "cycles": 2000, "ideal_over_dram": 0.5, "bursts_read": 30,
+             "mb_per_s": 550.0, "stall_refresh": 10, "stall_row_open": 20, "stall_bandwidth": 970,
+             "bit_identical_to_fixed_golden": False}
+    dram = skipping.write_md(rows, None, {"git": "test"}, None, [dict(frame, schedule="box")])
+    line = next(x for x in dram.splitlines() if x.startswith("| box |"))
+    assert line.startswith("| box | 1,000 | 2,000 | 0.500 |") and "| 10 / 20 / 970 | DIFFERENT |" in line
 
 
 @pytest.mark.parametrize("d", VIEWS)
