@@ -79,13 +79,17 @@ module cube4_clip #(
     wire [1:0] rj = (in_j < cfg_cr_j0) ? 2'd0
                   : ((in_j > cfg_cr_j1) || (in_j == cfg_cr_j1 && in_wy != '0)) ? 2'd2 : 2'd1;
     wire [1:0] rm = (in_m < cfg_cr_m0) ? 2'd0 : (in_m > cfg_cr_m1) ? 2'd2 : 2'd1;
-    wire [4:0] row = 5'(rj) * 5'd3 + 5'(rm) * 5'd9;     // region (0, rj, rm)
+    // CR_HIDE bits 3 rj + 9 rm .. + 2 (regions (0..2, rj, rm)): a 9-bit plane by rm, then
+    // a 3-bit row by rj, each a multiplexer of constant slices (an index computed as
+    // rj * 3 + rm * 9 made synthesis put two multipliers on this path)
+    wire [8:0] plane = (rm == 2'd0) ? cfg_cr_hide[8:0] : (rm == 2'd1) ? cfg_cr_hide[17:9] : cfg_cr_hide[26:18];
+    wire [2:0] row   = (rj == 2'd0) ? plane[2:0] : (rj == 2'd1) ? plane[5:3] : plane[8:6];
     reg [2:0]             c0_hide;                    // CR_HIDE of regions (ri, rj, rm), ri = 0, 1, 2
     reg                   c0_wx_nz;                   // wx > 0: a lane at i = CR_I1 lies past it
     always @(posedge clk) begin
         c0_wjm   <= (in_j >= cfg_win_j0) && (in_j < cfg_win_j1) && (in_m >= cfg_win_m0) && (in_m < cfg_win_m1);
         c0_pbp   <= IW'(in_pb) * IW'(P);
-        c0_hide  <= cfg_cr_hide[row +: 3];
+        c0_hide  <= row;
         c0_wx_nz <= in_wx != '0;
     end
 
