@@ -247,8 +247,16 @@ def critical_path(log: Path, clock: str) -> dict:
         ref = f"rtl/{m.group(1)}:{m.group(2)}"
         if ref not in lines:
             lines.append(ref)
+    from .fpga import signal_stem
+
+    cells = []
+    for m in re.finditer(r"Source (\S+)", part):
+        cell = re.sub(r"\.[A-Z0-9]+$", "", m.group(1))         # the pin
+        stem = signal_stem(cell).removeprefix("u_cube4.")
+        if stem not in cells:
+            cells.append(stem)
     split = re.search(r"([\d.]+) ns logic, ([\d.]+) ns routing", part)
-    return {"rtl": lines, "logic_ns": float(split.group(1)) if split else None,
+    return {"rtl": lines, "cells": cells, "logic_ns": float(split.group(1)) if split else None,
             "routing_ns": float(split.group(2)) if split else None}
 
 
@@ -324,9 +332,12 @@ def _path_lines(d: dict) -> list[str]:
     out = []
     for r in d["runs"]:
         cp = r.get("critical_path") or {}
-        if cp.get("rtl"):
+        if cp.get("rtl") or cp.get("cells"):
             out += [f"The pipelines' critical path (seed {r['seed']}): {cp['logic_ns']:.2f} ns logic, "
-                    f"{cp['routing_ns']:.2f} ns routing, through " + ", ".join(f"`{x}`" for x in cp["rtl"]) + ".", ""]
+                    f"{cp['routing_ns']:.2f} ns routing"
+                    + (", through " + ", ".join(f"`{x}`" for x in cp["rtl"]) if cp.get("rtl") else "")
+                    + (", cells named after " + ", ".join(f"`{x}`" for x in cp["cells"]) if cp.get("cells") else "")
+                    + ".", ""]
     return out
 
 
@@ -346,7 +357,9 @@ def main(argv: list[str] | None = None) -> int:
         d.setdefault("top_level_cells", top_level_cells(wd))
         d.setdefault("standin_ffs", standin_ffs(wd))
         for r in d["runs"]:
-            r.setdefault("critical_path", critical_path(wd / f"seed{r['seed']}" / "nextpnr.log", "ecp5pll1_clkout"))
+            log = wd / f"seed{r['seed']}" / "nextpnr.log"
+            if log.exists() or "critical_path" not in r:
+                r["critical_path"] = critical_path(log, "ecp5pll1_clkout")
         write_report("board", d, render_md(d))
         return 0
     t0 = time.perf_counter()
