@@ -659,8 +659,8 @@ def rate_lines(results: list[dict], memory: list[dict], board: dict | None, meta
                 f"ideal memory's cycles = {formula}. 256³ and 512³ assume the voxel memory and the slice-sized "
                 f"buffers below are off-chip and keep up; this build (MAX_DIM = {meta['max_dim']}) renders up to "
                 f"{meta['max_dim']}³ only.", "", rate_table(results), ""]
-    same = ("equal to the formula's for every frame" if fpga_memory.ideal_matches(memory)
-            else "**not** the formula's for every frame (see the table below)")
+    same = ("the formula's" if fpga_memory.ideal_matches(memory)
+            else "**not** the formula's in every case (see the table below)")
     return [
         "At the median Fmax. Peak samples/s = P · Fmax. **Frames/s with the voxel memory in DRAM** (in bold): "
         "the frame (the head phantom, scene head, viewed along z on the fixed schedule: every voxel read, "
@@ -671,7 +671,8 @@ def rate_lines(results: list[dict], memory: list[dict], board: dict | None, meta
         "ideal / DRAM. 256³ frames are measured on a MAX_DIM 256 build, which the ECP5-85F does not hold "
         f"(its slice buffers, below); this build (MAX_DIM = {meta['max_dim']}) renders up to "
         f"{meta['max_dim']}³. Not measured with the DRAM: 256³ at P = 1 and 2 (at 128³ the DRAM already keeps "
-        "up with them) and 512³ (two hours of simulation per frame); those give the ideal memory's figure.", "",
+        "up with them) and 512³ (eight times the simulation of a 256³ frame); those give the ideal memory's "
+        "figure.", "",
         rate_table(results, memory, board), "",
         fpga_memory.saturation_line(memory), "",
         "Every frame with the DRAM:", "", fpga_memory.memory_table(memory), ""]

@@ -148,7 +148,7 @@ def rate_rows(results: list[dict], memory: list[dict], board: dict | None, frame
 
 def memory_table(memory: list[dict]) -> str:
     """Every frame measured with the DRAM: cycles, bandwidth, ratio."""
-    rows = [[("board" if m["who"] == "board" else "") + f" P = {m['p']}", f"{m['n']}³", f"{m['clock_mhz']:.1f}",
+    rows = [[("board, " if m["who"] == "board" else "") + f"P = {m['p']}", f"{m['n']}³", f"{m['clock_mhz']:.1f}",
              f"{m['ideal_cycles']:,}", f"{m['cycles']:,}", f"{m['ratio']:.3f}", f"{m['needed_mb_per_s']:.0f}",
              f"{m['mb_per_s']:.0f}", _fps(m["clock_mhz"], m["cycles"])]
             for m in memory]
