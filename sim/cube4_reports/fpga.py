@@ -37,7 +37,6 @@ reports/fpga.md.
 from __future__ import annotations
 
 import argparse
-import hashlib
 import json
 import re
 import time
@@ -51,7 +50,7 @@ from cube4.builds import build_tag, check_build, complete_build, parse_options
 from . import fpga_memory, gates
 from .markdown import fmt_int, git_describe, md_table, rtl_commit
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError, addr_bits,
-                    check_max_dim, chparam_args, cli_main, design_digest, last_error, parse_int_list,
+                    check_max_dim, chparam_args, cli_main, design_digest, key_hash, last_error, parse_int_list,
                     progress, read_verilog_cmd, rel, run_tool, short_version, stop_reason, tool,
                     tool_version, words_per_bank, write_report, write_text)
 
@@ -132,16 +131,12 @@ class BuildConfig:
 
     def synth_key(self, digest: str) -> str:
         """Identity of a synthesis: RTL and parameters (for --reuse)."""
-        return _hash([digest, self.params(), PART])
+        return key_hash([digest, self.params(), PART])
 
     def key(self, digest: str, seed: int) -> str:
         """Identity of one seed's result: RTL, parameters, flow options and the seed (for --reuse)."""
         flow = [self.freq, seed, self.router, PART, self.speed] + (["detailed"] if self.detailed else [])
-        return _hash([digest, self.params(), *flow])
-
-
-def _hash(items: list) -> str:
-    return hashlib.sha256(json.dumps(items, sort_keys=True).encode()).hexdigest()[:16]
+        return key_hash([digest, self.params(), *flow])
 
 
 @dataclass

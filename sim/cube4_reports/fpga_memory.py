@@ -12,7 +12,6 @@ core, the frame and the clock; ``--reuse`` takes it from there.
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import json
 import statistics
 from pathlib import Path
@@ -20,7 +19,7 @@ from pathlib import Path
 from cube4 import cycles
 
 from .markdown import md_table
-from .synth import BUILD_REPORTS, SYNTH_DIR, progress
+from .synth import BUILD_REPORTS, SYNTH_DIR, key_hash, progress
 
 TAG = "fpga"
 MEMORY_DIR = SYNTH_DIR / "fpga" / "memory"
@@ -30,10 +29,6 @@ MEMORY_DIR = SYNTH_DIR / "fpga" / "memory"
 MEMORY_FRAMES = {128: (1, 2, 4, 8), 256: (4, 8)}
 DIRECTION = (0.0, 0.0, 1.0)          # the formula's view: along z, every sample slice whole
 BOARD_CLOCK = "ecp5pll1_clkout"      # nextpnr's name of the pipelines' clock on the board
-
-
-def _key(items: list) -> str:
-    return hashlib.sha256(json.dumps(items, sort_keys=True).encode()).hexdigest()[:16]
 
 
 _VOLUMES: dict[str, object] = {}
@@ -49,7 +44,7 @@ def measure(n: int, p: int, clock_mhz: float, digest: str, reuse: bool) -> dict:
 
     clock = round(clock_mhz, 2)
     dram = DramRun(clock_mhz=clock)
-    key = _key([digest, n, p, clock, dataclasses.asdict(dram.core), GENERATOR_VERSION, DIRECTION])
+    key = key_hash([digest, n, p, clock, dataclasses.asdict(dram.core), GENERATOR_VERSION, DIRECTION])
     path = MEMORY_DIR / f"n{n}_p{p}_{key}.json"
     if reuse and path.exists():
         progress(TAG, f"{n}^3 at P={p}, {clock} MHz, with the DRAM: reused {path.name}")

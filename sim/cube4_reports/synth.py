@@ -9,6 +9,7 @@ Nothing here imports cocotb or the golden model.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import re
@@ -65,6 +66,11 @@ def design_sources(vendor: bool = True) -> list[Path]:
     if not any(s.stem == TOP for s in srcs):
         raise UserError(f"rtl/sources.f does not list {TOP}.v")
     return srcs
+
+
+def key_hash(items: list) -> str:
+    """A cache key: 16 hex digits of the SHA-256 of ``items`` as sorted JSON."""
+    return hashlib.sha256(json.dumps(items, sort_keys=True).encode()).hexdigest()[:16]
 
 
 def design_digest(vendor: bool = True) -> str:
