@@ -130,6 +130,54 @@ def test_each_rule_is_needed(monkeypatch):
     assert mismatches(SEEDS, make_opaque=True), "dropping the occupancy window changed no image"
 
 
+def translucent_front(p: int, direction):
+    """Faint content in the front half only, seen from the front: no ray's transmittance
+    runs out, but nothing behind the content counts, so its rays stop there."""
+    vol, trav, cfg, lut, rmap = opaque_slab(p, direction)
+    vol = vol.copy()
+    vol[12:, :, :] = 0
+    lut = lut.copy()
+    lut[60:, 3] = 40                            # about 1 % opacity a sample
+    return vol, trav, cfg, lut, rmap
+
+
+@pytest.mark.parametrize("p", [1, 8])
+def test_stop_ends_translucent_rays(p, monkeypatch):
+    """A ray is done at the slice after the last in which its sample may count (its stop):
+    translucent rays end behind their content, the beats behind it are skipped for that
+    cause, and the image is the fixed schedule's. A stop at the first slice that may count
+    instead of the last changes it (a stop a few slices early does not: a ray reported done
+    still runs the lag's slices, and the block table's margin reaches past the content)."""
+    vol, trav, cfg, lut, rmap = translucent_front(p, (0.2, -0.1, 1.0))
+    full = render_frame(vol, trav, cfg, lut, rmap)
+    sched, rule = schedule(vol, trav, cfg, lut, "composite", True)
+    assert int(full.baseplane[..., 3].max()) < (1 << 16) - 1     # no ray is opaque
+    part = render_frame(vol, trav, cfg, lut, rmap, beats=sched, done=rule)
+    assert np.array_equal(full.baseplane, part.baseplane) and rays_agree(full, part)
+    st = beats.schedule_stats(sched)
+    assert st.skipped_terminated > 0.1 * st.box_beats, st
+    orig = beats.last_counting
+    monkeypatch.setattr(beats, "last_counting", lambda occ: occ.shape[0] - 1 - orig(occ[::-1]))
+    sched, rule = schedule(vol, trav, cfg, lut, "composite", True)
+    early = render_frame(vol, trav, cfg, lut, rmap, beats=sched, done=rule)
+    assert not np.array_equal(full.baseplane, early.baseplane)
+
+
+def test_geometry_stop_ends_rays():
+    """Depth in: a wall through the volume's centre stops every ray there; with beats the
+    image is the fixed schedule's and the beats behind the wall are skipped."""
+    from test_geometry import scene_with, wall
+    vol = load_volume("head:24")
+    sc = scene_with(None)
+    cfg = config_for(sc, 8)
+    cut = scene_with(wall(sc, cfg, (24, 24, 24), 0.0))
+    _, fixed, _ = golden_view(vol, dataclasses.replace(cut, skip=False), cfg)
+    _, ended, st = golden_view(vol, cut, cfg, beat_skip={})
+    _, _, st_free = golden_view(vol, sc, cfg, beat_skip={})
+    assert np.array_equal(fixed.baseplane, ended.baseplane)
+    assert st["beats"]["run_beats"] < 0.9 * st_free["beats"]["run_beats"], (st["beats"], st_free["beats"])
+
+
 def test_tau_bounds_the_change():
     """τ > 0 ends rays whose transmittance is at or below τ: some rays change, none by
     more than τ in any channel (what the ray would still have gathered is at most T)."""

@@ -21,6 +21,11 @@ whether it runs, from two sources that cost the host nothing per view:
   (transmittance at or below τ; X-ray also every colour saturated; MIP and MinIP holding
   the volume's largest or smallest value). The traversal reads the report of slice
   m − lag − 1 when it decides slice m (lag ≥ 2).
+* **The stop** (``BeatSchedule.stop``), per ray of the base plane, per view: the slice
+  after the last in which its sample may count, and with depth in (numerics.md §22) no
+  later than the geometry's stop. A ray reaching its stop is reported done like a ray
+  whose transmittance ran out: nothing behind it can change it. The host writes it into
+  the stop table of depth in (one word per pixel) with the view's registers.
 
 **Runs** (``BeatSchedule.running_rays``). A ray runs slice m when it is not done as of
 that report and either was live then or has a sample that may count in slices
@@ -186,6 +191,7 @@ class BeatSchedule:
     done: np.ndarray = field(init=False)      # (rows, cols): slice the ray was reported done (M: never)
     reported: int = field(init=False, default=-1)
     table_s: float = 0.0
+    stop_s: float = 0.0                        # host time for the occupancy in the frame and the stops
     _live: dict = field(init=False, default_factory=dict)
     _a: dict = field(init=False, default_factory=dict)
     _e: dict = field(init=False, default_factory=dict)
@@ -204,6 +210,11 @@ class BeatSchedule:
         for m in range(self.M):
             r0, c0 = self.window(m)
             self.occ_ray[m, r0:r0 + self.NJ, c0:c0 + self.NI] = self.sample_occ(m)
+        self.stop = last_counting(self.occ_ray) + 1
+
+    def limit_stop(self, stop_m: np.ndarray) -> None:
+        """Depth in: no ray runs past the geometry's stop (rows, cols) either."""
+        self.stop = np.minimum(self.stop, stop_m)
 
     # --- geometry
     def window(self, m: int) -> tuple[int, int]:
@@ -258,12 +269,13 @@ class BeatSchedule:
 
     def report(self, m: int, live: np.ndarray, dead: np.ndarray) -> None:
         """COM's report after slice m, per ray of the base plane: ``live`` holds what a
-        sample added (its partial result is not the fresh one), ``dead`` is done."""
+        sample added (its partial result is not the fresh one), ``dead`` is done (or the
+        ray reached its stop: no later sample of it may count)."""
         if m != self.reported + 1:
             raise RuntimeError(f"reports come slice by slice: got {m} after {self.reported}")
         self._live[m] = live.copy()
         if self.terminate:
-            self.done[dead & (self.done == self.M)] = m
+            self.done[(dead | (self.stop <= m + 1)) & (self.done == self.M)] = m
         self.reported = m
 
     # --- beats
@@ -321,6 +333,13 @@ class BeatSchedule:
         return f
 
 
+def last_counting(occ_ray: np.ndarray) -> np.ndarray:
+    """(rows, cols): per ray the last slice of ``occ_ray`` (M, rows, cols) in which its
+    sample may count, −1 where none may."""
+    m = occ_ray.shape[0]
+    return np.where(occ_ray.any(0), m - 1 - np.argmax(occ_ray[::-1], axis=0), -1)
+
+
 def dilate(b: np.ndarray) -> np.ndarray:
     """(n0, n1, n2) bool grown by one along every axis, diagonals included."""
     out = b.copy()
@@ -344,11 +363,13 @@ class BeatStats:
     skipped_empty: int      # skipped, and would be without termination
     skipped_terminated: int  # skipped because their rays were done
     walk_beats: int         # the front end's beats (reads included)
-    table_s: float = 0.0
+    table_s: float = 0.0    # host: the block table (per volume and transfer function)
+    stop_s: float = 0.0     # host: the rays' stops (per view)
+    ray_samples: int = 0    # samples of running rays (a schedule packing them into full beats: /P beats)
 
     def as_dict(self) -> dict:
-        return {k: getattr(self, k) for k in ("box_beats", "run_beats", "skipped_empty",
-                                              "skipped_terminated", "walk_beats", "table_s")}
+        return {k: getattr(self, k) for k in ("box_beats", "run_beats", "skipped_empty", "skipped_terminated",
+                                              "walk_beats", "table_s", "stop_s", "ray_samples")}
 
 
 def walk_beats(sched: BeatSchedule) -> int:
@@ -377,4 +398,5 @@ def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
         run_free = sum(int(free.run_beats(m).sum()) for m in range(free.M))
     else:
         run_free = run
-    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s)
+    samples = sum(int(sched.running(m).sum()) for m in range(sched.M))
+    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s, sched.stop_s, samples)

@@ -327,10 +327,12 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
         if plan.trav is None:
             out.append(None)
             continue
+        t1 = time.perf_counter()
         occ = frame_occupancy(bits, table.block, plan.trav)
         sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", 2), terminate=terminate,
                              gra=sc.shaded and not sc.voxel_gradients)
         sched.table_s = table_s
+        sched.stop_s = time.perf_counter() - t1      # the host's work per view: the rays' stops
         lv = level_of(vol, sc)
         rule = TerminationRule(sc.mode, int(opts.get("tau", 0)), 1 << cfg.acc_bits, int(lv.min()),
                                int(lv.max()), enabled=terminate, value_bits=cfg.voxel_bits)

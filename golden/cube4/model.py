@@ -407,6 +407,8 @@ def render_frame(
         raise ValueError("slice rectangles and beat skipping are two schedules: give one")
     if beats is not None and done is None:
         raise ValueError("beat skipping needs the termination rule (done)")
+    if beats is not None and stop_m is not None:
+        beats.limit_stop(stop_m)    # depth in: the geometry's stop ends the ray's run too
     if labels and (vgrad or rects is not None or beats is not None or not is_blend(mode)):
         raise ValueError("labels run on the fixed and box schedules, in the blending modes, without voxel gradients")
     if mode not in MODES:

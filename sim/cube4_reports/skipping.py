@@ -322,7 +322,7 @@ def _frac(x: float, n3p: float) -> str:
 
 def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> str:
     head = ["volume (dims)", "scene (mode)", "view az, el", "box", "beats run", "+ termination",
-            "front-end walk", "skipped: empty", "skipped: rays ended", "host table", "image"]
+            "front-end walk", "skipped: empty", "skipped: rays ended", "host table", "host stops", "image"]
     body = []
     for r in rows:
         n3p, f, e = r["n3_over_p"], r["free"], r["ended"]
@@ -331,7 +331,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
                      _frac(f["run_beats"], n3p), _frac(e["run_beats"], n3p), _frac(e["walk_beats"], n3p),
                      _pct(e["skipped_empty"] / max(1, e["box_beats"])),
                      _pct(e["skipped_terminated"] / max(1, e["box_beats"])),
-                     f"{1000 * e['table_s']:.0f} ms", _image(r["identical"])])
+                     f"{1000 * e['table_s']:.0f} ms", f"{1000 * e['stop_s']:.0f} ms", _image(r["identical"])])
     lines = [
         "## Beat skipping and ray termination (golden model)",
         "",
@@ -343,10 +343,12 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
         "walk is the specification's figure for a front end that passes over a skipped beat in no cycle; "
         "**no RTL runs this schedule yet**, so there are no measured cycles and no frame times for it. "
         "'skipped': shares of the box's beats, by cause. 'host table': the block table for the "
-        "transfer function (value ranges and bits), once per volume and LUT, not per view. 'image': the "
+        "transfer function (value ranges and bits), once per volume and LUT, not per view. 'host stops': "
+        "per view, each ray's stop (the slice after the last in which its sample may count, written into "
+        "depth in's stop table; a ray that reaches it is done). 'image': the "
         "base plane with and without termination against the fixed schedule's, bit for bit.",
         "",
-        md_table(head, body, "lllrrrrrrrl"),
+        md_table(head, body, "lllrrrrrrrrl"),
         "",
     ]
     if taus:
@@ -378,11 +380,13 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
                   f"({g['ended']['run_beats'] / g['n3_over_p']:.3f} run; goal 0.40); {OPAQUE_GOAL[0]}, scene "
                   f"{OPAQUE_GOAL[1]} at τ = 0: {o['ended']['walk_beats'] / o['n3_over_p']:.3f} walked "
                   f"({o['ended']['run_beats'] / o['n3_over_p']:.3f} run; goal 0.15). What stops finer: a beat "
-                  "runs when one of its P lanes holds a running ray, and the rays cross the lanes obliquely; "
-                  "a translucent ray runs from the first sample that may count to the box's far face (nothing "
-                  "in a view-independent table says that nothing counts behind it); the block table's "
-                  "margin of two voxels; and the walk's extra row and partial beam per running beat "
-                  "(docs/numerics.md §19).", ""]
+                  "runs when one of its P lanes holds a running ray, and the rays cross the lanes obliquely "
+                  "(the samples of running rays, packed into full beats, would take "
+                  f"{g['ended']['ray_samples'] / P / g['n3_over_p']:.3f} and "
+                  f"{o['ended']['ray_samples'] / P / o['n3_over_p']:.3f} of n³/P); a ray runs every slice "
+                  "from its first sample that may count to its stop, and lag slices beyond it or beyond the "
+                  "slice where its transmittance ran out; the block table's margin of two voxels; and the "
+                  "walk's extra row and partial beam per running beat (docs/numerics.md §19).", ""]
     return "\n".join(lines)
 
 
