@@ -2,7 +2,7 @@
 
 The box of ``cube4.skip`` and the slice rectangles of ``cube4.slices`` are planned per
 view. Here a frame decides per beat (one partial beam of one row of one sample slice)
-whether it runs, from two sources that cost the host nothing per view:
+whether it runs, from three sources:
 
 * **The block table** (``BlockTable``), independent of the view. The volume is cut into
   blocks of B×B×B voxels (the memory image's axes). For each block the host keeps the
@@ -16,41 +16,41 @@ whether it runs, from two sources that cost the host nothing per view:
   neighbours have first voxels within ±1 of c along every axis, so a counting cell lies
   within c' − 2 … c' + 2 of each neighbour's first voxel c' whichever way the axes are
   flipped.
-* **COM's reports**, per ray, after each slice d (``TerminationRule``): *live*, its
-  partial result is not the fresh one; *done*, no later sample may change it
-  (transmittance at or below τ; X-ray also every colour saturated; MIP and MinIP holding
-  the volume's largest or smallest value). The traversal reads the report of slice
-  m − lag − 1 when it decides slice m (lag ≥ 2).
 * **The stop** (``BeatSchedule.stop``), per ray of the base plane, per view: the slice
   after the last in which its sample may count, and with depth in (numerics.md §22) no
-  later than the geometry's stop. A ray reaching its stop is reported done like a ray
-  whose transmittance ran out: nothing behind it can change it. The host writes it into
-  the stop table of depth in (one word per pixel) with the view's registers.
+  later than the geometry's stop. The host computes it from the block table's bits in
+  the frame and writes it with the view's registers.
+* **COM's reports**, per ray, after each slice d (``TerminationRule``): *done*, no later
+  sample may change it (transmittance at or below τ; X-ray also every colour saturated;
+  MIP and MinIP holding the volume's largest or smallest value). A report of slice d
+  brings the ray's end forward to d + lag + 1 (lag ≥ 2): the traversal, which decides
+  slice m while COM is still at most lag slices behind, acts on it from slice
+  d + lag + 1 on, and decides slices before it alike whether the report has arrived.
 
-**Runs** (``BeatSchedule.running_rays``). A ray runs slice m when it is not done as of
-that report and either was live then or has a sample that may count in slices
-m − lag … m (one that may have made it live since). A ray becomes live only at a sample
-that may count, so a live ray runs every slice until it is done or leaves the box: one
-run per live ray, as COM needs (a ray's partial result sits at the position of its
-latest sample; numerics.md §18 for the rectangles' same rule). A ray that is not live
-holds the fresh result, so it loses nothing where it does not run and starts fresh where
-it runs again; a live ray finishes, and leaves on the pixel stream, at the end of its
-run. Only samples of running rays that may count are counted; a done ray counts no
-further sample (with τ = 0 such a sample would add nothing).
+**Runs** (``BeatSchedule.running_rays``). A ray runs slice m when its first sample that
+may count lies in a slice ≤ m and m lies before its end (its stop, or lag + 1 slices
+after the slice COM reported it done). So each ray runs one interval of slices, as COM
+needs (a ray's partial result sits at the position of its latest sample; numerics.md §18
+for the rectangles' same rule): it starts fresh at its first slice that may count, and
+finishes, leaving on the pixel stream, at the last slice of its interval. Only samples
+of running rays that may count are counted; a done ray counts no further sample (with
+τ = 0 such a sample would add nothing). Without termination every interval is known
+when the frame starts (first slice, stop), and so are the frame's beats.
 
-**Beats.** A beat *runs* when one of its lanes holds a running ray (set A), or when it
-may count and lies next to (±1 slice, row and partial beam) a beat of A (the neighbours
-whose samples the gradients of A's counting samples read, where termination ended their
-own rays). Samples of beats that do not run are zero (what GRA reads). Every sample that
-counts, and every sample its gradient reads, runs and is computed from the voxels the
-fixed schedule uses: the base plane is the fixed schedule's, bit for bit, at τ = 0.
+**Beats.** A beat *runs* when one of its lanes holds a running ray (set A), or, with
+termination, when it may count and lies next to (±1 slice, row and partial beam) a beat
+of A (the neighbours whose samples the gradients of A's counting samples read, where
+termination ended their own rays). Samples of beats that do not run are zero (what GRA
+reads). Every sample that counts, and every sample its gradient reads, runs and is
+computed from the voxels the fixed schedule uses: the base plane is the fixed
+schedule's, bit for bit, at τ = 0.
 
 **The walk.** The front end reads, for a running beat, the voxel beats its samples
 interpolate: rows j and j + 1 and partial beams pb and pb + 1 (the beam-extension
 neighbour) of both voxel slices. A pass that reads a voxel slice for the slice buffers
 (S > 1) reads what every pass that uses that slice may run, as far as it knows then (the
-beats that may count and the running rays not yet reported done). The walk's beats are
-those; each takes a cycle and a beat that is not walked takes none (``walk_beats``).
+rays' intervals with the reports so far). The walk's beats are those; each takes a cycle
+and a beat that is not walked takes none (``walk_beats``).
 """
 
 from __future__ import annotations
@@ -192,7 +192,6 @@ class BeatSchedule:
     reported: int = field(init=False, default=-1)
     table_s: float = 0.0
     stop_s: float = 0.0                        # host time for the occupancy in the frame and the stops
-    _live: dict = field(init=False, default_factory=dict)
     _a: dict = field(init=False, default_factory=dict)
     _e: dict = field(init=False, default_factory=dict)
 
@@ -205,16 +204,19 @@ class BeatSchedule:
         self.rows, self.cols = t.baseplane_shape
         self.sxm, self.sym = t.max_steps
         self.done = np.full((self.rows, self.cols), self.M, dtype=np.int64)
-        # per ray: the slices in which its sample may count
+        # per ray: the slices in which its sample may count, the first of them and the stop
         self.occ_ray = np.zeros((self.M, self.rows, self.cols), dtype=bool)
         for m in range(self.M):
             r0, c0 = self.window(m)
             self.occ_ray[m, r0:r0 + self.NJ, c0:c0 + self.NI] = self.sample_occ(m)
+        self.first = first_counting(self.occ_ray)
         self.stop = last_counting(self.occ_ray) + 1
+        self.end = self.stop.copy()
 
     def limit_stop(self, stop_m: np.ndarray) -> None:
         """Depth in: no ray runs past the geometry's stop (rows, cols) either."""
         self.stop = np.minimum(self.stop, stop_m)
+        self.end = np.minimum(self.end, self.stop)
 
     # --- geometry
     def window(self, m: int) -> tuple[int, int]:
@@ -236,30 +238,13 @@ class BeatSchedule:
         return pad.reshape(self.NJ, self.NB, self.p).any(-1)
 
     # --- rays
-    def occ_window(self, m0: int, m1: int) -> np.ndarray:
-        """(rows, cols): rays with a sample that may count in slices m0 … m1."""
-        a, b = max(m0, 0), min(m1, self.M - 1)
-        if a > b:
-            return np.zeros((self.rows, self.cols), dtype=bool)
-        return self.occ_ray[a:b + 1].any(0)
-
-    def live_at(self, d: int) -> np.ndarray:
-        """(rows, cols): rays COM reported live (holding what a sample added) after slice d."""
-        if d < 0:
-            return np.zeros((self.rows, self.cols), dtype=bool)
-        return self._live[d]
-
     def running_rays(self, m: int) -> np.ndarray:
-        """(rows, cols): rays that run slice m: not done as of COM's report of slice
-        m − lag − 1, and either live then or with a sample that may count in slices
-        m − lag … m (one that might have made them live since)."""
+        """(rows, cols): rays that run slice m: first ≤ m < end. The end as of COM's report
+        of slice m − lag − 1 (a later report moves it to m + 1 or beyond: the same answer)."""
         k = m - self.lag - 1
         if k > self.reported:
             raise RuntimeError(f"slice {m} needs COM's report of slice {k} (have {self.reported})")
-        run = self.occ_window(m - self.lag, m) | self.live_at(k)
-        if self.terminate:
-            run &= ~(self.done <= k)
-        return run
+        return (self.first <= m) & (m < self.end)
 
     def running(self, m: int) -> np.ndarray:
         """(nj, ni): samples of slice m whose ray runs (they are the only ones that count)."""
@@ -267,15 +252,15 @@ class BeatSchedule:
             return np.zeros((self.NJ, self.NI), dtype=bool)
         return self._lanes_of(self.running_rays(m), m)
 
-    def report(self, m: int, live: np.ndarray, dead: np.ndarray) -> None:
-        """COM's report after slice m, per ray of the base plane: ``live`` holds what a
-        sample added (its partial result is not the fresh one), ``dead`` is done (or the
-        ray reached its stop: no later sample of it may count)."""
+    def report(self, m: int, dead: np.ndarray) -> None:
+        """COM's report after slice m, per ray of the base plane: ``dead``, no later sample
+        may change it. A running ray's end moves to m + lag + 1."""
         if m != self.reported + 1:
             raise RuntimeError(f"reports come slice by slice: got {m} after {self.reported}")
-        self._live[m] = live.copy()
         if self.terminate:
-            self.done[(dead | (self.stop <= m + 1)) & (self.done == self.M)] = m
+            new = dead & (self.done == self.M) & self.running_rays(m)
+            self.done[new] = m
+            self.end[new] = np.minimum(self.end[new], m + self.lag + 1)
         self.reported = m
 
     # --- beats
@@ -316,6 +301,12 @@ class BeatSchedule:
         f[:, 1:] |= f[:, :-1].copy()
         return f[:, :self.NB]
 
+    def _end_known(self, m: int) -> np.ndarray:
+        """(rows, cols): the rays' ends as the front end knows them when it walks slice m
+        (COM's reports of slices up to m − lag − 1)."""
+        late = (self.done > m - self.lag - 1) & (self.done < self.M)
+        return np.where(late, self.stop, self.end)
+
     def walk(self, m: int) -> np.ndarray:
         """(nj + 1, nb): the front end's beats of slice m (call after the frame)."""
         S = self.trav.supersample
@@ -324,13 +315,18 @@ class BeatSchedule:
             # the pass that reads voxel slice k for the slice buffers reads what the
             # passes that use it may run, as far as it knows now
             k = 0 if m == 0 else m // S + 1
-            known = m - self.lag - 1
             for u in range(max(0, (k - 1) * S + 1), min(self.M, k * S + S)):
-                maybe = self.occ_window(known - self.lag, u) | self.live_at(known)
-                if self.terminate:
-                    maybe &= ~(self.done <= known)
+                maybe = self._end_known(m) > u
+                maybe &= self.first <= u
                 f |= self.footprint(self._beats_of(self._lanes_of(maybe, u)))
         return f
+
+
+def first_counting(occ_ray: np.ndarray) -> np.ndarray:
+    """(rows, cols): per ray the first slice of ``occ_ray`` (M, rows, cols) in which its
+    sample may count, M where none may."""
+    m = occ_ray.shape[0]
+    return np.where(occ_ray.any(0), np.argmax(occ_ray, axis=0), m)
 
 
 def last_counting(occ_ray: np.ndarray) -> np.ndarray:
@@ -393,7 +389,7 @@ def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
     box = sched.M * sched.NJ * sched.NB
     if sched.terminate:
         free = BeatSchedule(sched.trav, sched.p, sched.occ, sched.lag, terminate=False, gra=sched.gra)
-        free._live = sched._live       # the same rays are live; none ends
+        free.limit_stop(sched.stop)    # the same stops (depth in's too); no ray ends before
         free.reported = sched.reported
         run_free = sum(int(free.run_beats(m).sum()) for m in range(free.M))
     else:

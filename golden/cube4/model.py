@@ -523,7 +523,7 @@ def render_frame(
                 live_now, dead_now = done.live(acc, trans, None, None), done.dead(acc, trans, None)
             else:
                 live_now, dead_now = done.live(None, None, value, held), done.dead(None, None, value)
-            beats.report(m, live_now, dead_now)
+            beats.report(m, dead_now)
         # rays whose next sample (slice m + 1, along the ray) is outside finish here
         if m + 1 < M:
             sxf, syf = (int(v) for v in trav.steps(m + 1))
