@@ -384,9 +384,10 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
                   "(the samples of running rays, packed into full beats, would take "
                   f"{g['ended']['ray_samples'] / P / g['n3_over_p']:.3f} and "
                   f"{o['ended']['ray_samples'] / P / o['n3_over_p']:.3f} of n³/P); a ray runs every slice "
-                  "from its first sample that may count to its stop, and lag slices beyond it or beyond the "
-                  "slice where its transmittance ran out; the block table's margin of two voxels; and the "
-                  "walk's extra row and partial beam per running beat (docs/numerics.md §19).", ""]
+                  "from its first sample that may count to its stop, through the empty slices between (one "
+                  "interval per ray, as COM needs), and lag slices beyond the slice where COM found it done; "
+                  "the block table's margin of two voxels; and the walk's extra row and partial beam per "
+                  "running beat (docs/numerics.md §19).", ""]
     return "\n".join(lines)
 
 
