@@ -48,6 +48,7 @@ cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v
 cube4_com_rect.v
+cube4_ray_table.v
 cube4_com_stop.v
 cube4_com_plw.v
 cube4_com_bpb.v

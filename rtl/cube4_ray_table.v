@@ -1,0 +1,191 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_ray_table
+// -----------------------------------------------------------------------------
+// Purpose
+//   One word per ray of the base plane (pixel (by, bx)), in P banks skewed
+//   along bx, so that a beat's P rays, which lie on P consecutive columns of
+//   one base-plane row, are one word of each bank:
+//     bank = bx mod P,   word = {by [ROWS_W], bx div P [COLS_W]}
+//   (golden/cube4/memory.py stop_table). Depth in's stop table (cube4_com_stop)
+//   and the beat schedule's ray table (docs/architecture.md "Beat skipping and
+//   ray termination") are this table: the host writes it between frames, a
+//   beat reads the words of its lanes' rays, and a beat may write the words of
+//   the rays at some of its positions.
+//   For a beat of row j, partial beam pb in a slice whose steps are stx, sty,
+//   the lane at position t holds bx = pb P + t + B with B = SX - stx >= 0 and
+//   by = j - sty + SY. With B = Q P + R (0 <= R < P) bank b holds the word
+//     pb + Q + (b < R ? 1 : 0)          (mod 2^COLS_W)
+//   for position t = (b - R) mod P; the lane at t takes bank (t + R) mod P.
+//   Q = floor(B * RECIP / 2^K), RECIP = ceil(2^K / P), K = DIM_W + clog2(P):
+//   exact for every B < 2^DIM_W (RECIP P - 2^K < P <= 2^(K - DIM_W)). A
+//   position past the slice's last column may address a word that wraps; its
+//   caller ignores what it reads and writes nothing there.
+//
+// Parameters
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
+//           2..2048, 4..12, 0..3).
+//   DATA_W  a ray's word.                          1..64.  Default 8.
+//   ROWS_W, COLS_W, STOP_AW: the layout (derived, CUBE4_STOP_LAYOUT).
+//
+// Latency
+//   Read: stages move on every cycle. The beat's fields (S0) are registered
+//   into S1; S1 -> S2 Q; S2: R and the banks' read addresses (into
+//   cube4_sdp_ram with OUT_REG: the word at S4); S4 -> S5 each lane's word:
+//   rd_data is a register, 5 edges after its fields.
+//   Write: the same arithmetic; the banks take the word at the third edge
+//   after its fields (S3 -> the banks' write ports). A read issued one cycle
+//   or more after a write returns the written word; one issued in the same
+//   cycle returns the old word. (A read issued the cycle after meets the
+//   write at the banks' edge, where block RAM promises neither word: a bypass
+//   gives the new one.)
+//   The host's writes (tab_we) go straight to the banks' write ports and
+//   must not meet a beat's write (between frames only).
+//
+// Ports
+//   sx, sy     SX = stepx(M-1), SY = stepy(M-1) (the view's, [DIM_W])
+//   tab_we, tab_addr, tab_data   the host's write: one word of all P banks
+//             (bank b at [b*DATA_W +: DATA_W]) at address {by, word}
+//   rd_j, rd_pb, rd_tpos, rd_stx, rd_sty   S0: the reading beat's row, partial
+//             beam, its lanes' positions t [LANE_W] and the slice's steps
+//   rd_data   out  S5: lane q's ray's word at [q*DATA_W +: DATA_W]
+//   wr_valid, wr_j, wr_pb, wr_stx, wr_sty   S0: a writing beat's fields
+//   wr_en, wr_data   S0: per position t (not lane) whether to write its ray's
+//             word and the word, at [t*DATA_W +: DATA_W]
+//
+// Bit growth and rounding: B in DIM_W bits (0 .. SX), the product B RECIP in
+//   DIM_W + K + 1 bits; the word sum wraps mod 2^COLS_W (see above); no
+//   rounding.
+// =============================================================================
+module cube4_ray_table #(
+    `CUBE4_SLICE_PARAMS,
+    parameter integer DATA_W = 8,
+    `CUBE4_STOP_LAYOUT
+) (
+    input  wire clk,
+    input  wire [DIM_W-1:0] sx, input wire [DIM_W-1:0] sy,
+    input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*DATA_W-1:0] tab_data,
+    input  wire [DIM_W-1:0] rd_j, input wire [PB_W-1:0] rd_pb, input wire [P*LANE_W-1:0] rd_tpos,
+    input  wire [DIM_W-1:0] rd_stx, input wire [DIM_W-1:0] rd_sty,
+    output wire [P*DATA_W-1:0] rd_data,
+    input  wire wr_valid, input wire [DIM_W-1:0] wr_j, input wire [PB_W-1:0] wr_pb,
+    input  wire [DIM_W-1:0] wr_stx, input wire [DIM_W-1:0] wr_sty,
+    input  wire [P-1:0] wr_en, input wire [P*DATA_W-1:0] wr_data
+);
+    generate
+        `CUBE4_RANGE(g_bad_data_w, "cube4_ray_table", "DATA_W", DATA_W, 1, 64)
+    endgenerate
+    localparam integer LW    = (P > 1) ? $clog2(P) : 0;
+    localparam integer K     = DIM_W + LW;
+    localparam integer PR_W  = DIM_W + K + 1;                // B * RECIP
+    localparam [K:0]   RECIP = (K + 1)'(((64'd1 << K) + 64'(P) - 64'd1) / 64'(P));
+    localparam integer BX_W  = DIM_W + 1;
+    genvar b, q;
+
+    // ==== a beat's place in the table: {by, Q, R} two edges after its fields ====
+    // (the read's and the write's, side by side: index 0 read, 1 write)
+    reg [DIM_W-1:0]  b1 [0:1];
+    reg [BX_W-1:0]   by1 [0:1];
+    reg [PB_W-1:0]   pb1 [0:1];
+    reg [DIM_W-1:0]  b2 [0:1], q2 [0:1];
+    reg [ROWS_W-1:0] by2 [0:1];
+    reg [PB_W-1:0]   pb2 [0:1];
+    wire [DIM_W-1:0] stx0 [0:1], sty0 [0:1], j0 [0:1];
+    wire [PB_W-1:0]  pb0 [0:1];
+    assign {j0[0], pb0[0], stx0[0], sty0[0]} = {rd_j, rd_pb, rd_stx, rd_sty};
+    assign {j0[1], pb0[1], stx0[1], sty0[1]} = {wr_j, wr_pb, wr_stx, wr_sty};
+    wire [LANE_W-1:0] r2 [0:1];
+    wire [COLS_W-1:0] w2 [0:1];
+    generate
+        for (q = 0; q < 2; q = q + 1) begin : g_place
+            wire [PR_W-1:0] prod = PR_W'(b1[q]) * PR_W'(RECIP);
+            always @(posedge clk) begin
+                b1[q]  <= sx - stx0[q];                                 // stx <= SX in every slice
+                by1[q] <= BX_W'(j0[q]) - BX_W'(sty0[q]) + BX_W'(sy);
+                pb1[q] <= pb0[q];
+                q2[q]  <= DIM_W'(prod >> K);
+                b2[q]  <= b1[q];
+                by2[q] <= by1[q][ROWS_W-1:0];
+                pb2[q] <= pb1[q];
+            end
+            wire [DIM_W-1:0] qp = DIM_W'(32'(q2[q]) * P);
+            assign r2[q] = LANE_W'(b2[q] - qp);                            // 0 .. P-1
+            assign w2[q] = COLS_W'(pb2[q]) + COLS_W'(q2[q]);
+            wire unused_place = ^{prod[K-1:0], prod[PR_W-1:K+DIM_W], b2[q], qp};
+            if (ROWS_W < BX_W) begin : g_by_top
+                wire unused_by_top = ^by1[q][BX_W-1:ROWS_W];   // by < 2 MAX_DIM - 1
+            end
+        end
+    endgenerate
+
+    // ==== the write: each bank's position (b - R) mod P, registered into S3 ====
+    reg [P-1:0]        we1, we2;
+    reg                wv1, wv2;
+    reg [P*DATA_W-1:0] wd1, wd2;
+    always @(posedge clk) begin
+        {wv2, wv1} <= {wv1, wr_valid};
+        {we2, we1} <= {we1, wr_en};
+        {wd2, wd1} <= {wd1, wr_data};
+    end
+    reg [P-1:0]        bw3;                 // S3: bank b writes
+    reg [STOP_AW-1:0]  ba3 [0:P-1];
+    reg [DATA_W-1:0]   bd3 [0:P-1];
+    // ==== the read: each bank's address at S2, each lane's bank carried to S4 ====
+    wire [STOP_AW-1:0] ra2 [0:P-1];
+    reg  [P*LANE_W-1:0] t1, t2, sel3, sel4;
+    always @(posedge clk) begin
+        t1 <= rd_tpos;
+        t2 <= t1;
+        sel4 <= sel3;
+    end
+    reg  [P-1:0]       hit3, hit4;         // the read met the write at the same edge
+    reg  [DATA_W-1:0]  hd3 [0:P-1], hd4 [0:P-1];
+    wire [P*DATA_W-1:0] rd4;
+    generate
+        for (b = 0; b < P; b = b + 1) begin : g_bank
+            wire [LANE_W:0]   d  = (LANE_W + 1)'(b + P) - {1'b0, r2[1]};
+            wire [LANE_W-1:0] tw = LANE_W'((32'(d) >= P) ? 32'(d) - P : 32'(d));   // (b - R) mod P
+            wire [COLS_W-1:0] ww = w2[1] + COLS_W'((32'(b) < 32'(r2[1])) ? 1 : 0);
+            wire [COLS_W-1:0] wr = w2[0] + COLS_W'((32'(b) < 32'(r2[0])) ? 1 : 0);
+            always @(posedge clk) begin
+                bw3[b] <= wv2 && we2[tw];
+                ba3[b] <= {by2[1], ww};
+                bd3[b] <= wd2[32'(tw)*DATA_W +: DATA_W];
+            end
+            assign ra2[b] = {by2[0], wr};
+            wire              we = tab_we || bw3[b];
+            wire [STOP_AW-1:0] wa = tab_we ? tab_addr : ba3[b];
+            wire [DATA_W-1:0]  wd = tab_we ? tab_data[b*DATA_W +: DATA_W] : bd3[b];
+            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << STOP_AW), .OUT_REG(1)) u_bank (
+                .clk(clk), .rd_en(1'b1), .rd_addr(ra2[b]), .rd_data(rd4[b*DATA_W +: DATA_W]),
+                .wr_en(we), .wr_addr(wa), .wr_data(wd));
+            // a read at the edge of a beat's write to the same word takes the new word
+            always @(posedge clk) begin
+                hit3[b] <= bw3[b] && (ba3[b] == ra2[b]);
+                hd3[b]  <= bd3[b];
+                hit4[b] <= hit3[b];
+                hd4[b]  <= hd3[b];
+            end
+        end
+        for (q = 0; q < P; q = q + 1) begin : g_sel
+            wire [LANE_W:0] s = {1'b0, t2[q*LANE_W +: LANE_W]} + {1'b0, r2[0]};
+            always @(posedge clk) begin
+                sel3[q*LANE_W +: LANE_W] <= LANE_W'((32'(s) >= P) ? 32'(s) - P : 32'(s));
+            end
+        end
+    endgenerate
+
+    // ==== S4 -> S5: each lane's word ====
+    reg [DATA_W-1:0] word5 [0:P-1];
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_lane
+            wire [LANE_W-1:0] s4 = sel4[q*LANE_W +: LANE_W];
+            always @(posedge clk) begin
+                word5[q] <= hit4[s4] ? hd4[s4] : rd4[32'(s4)*DATA_W +: DATA_W];
+            end
+            assign rd_data[q*DATA_W +: DATA_W] = word5[q];
+        end
+    endgenerate
+endmodule
+`default_nettype wire
