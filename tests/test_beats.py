@@ -180,6 +180,18 @@ def test_geometry_stop_ends_rays():
     assert st["beats"]["run_beats"] < 0.9 * st_free["beats"]["run_beats"], (st["beats"], st_free["beats"])
 
 
+def test_decided_cycles():
+    """A front end deciding r beats a cycle: never fewer cycles than the walk, the walk
+    itself when r covers a slice in a cycle, and fewer cycles the more it decides."""
+    _, _, sched = frames(3)
+    walk = beats.walk_beats(sched)
+    got = [beats.decided_cycles(sched, r) for r in (1, 2, 4, 1 << 20)]
+    assert got[-1] == walk and all(a >= b for a, b in zip(got, got[1:])) and got[0] >= sched.NJ * sched.NB
+    assert got[0] > walk, got
+    with pytest.raises(ValueError, match="rate"):
+        beats.decided_cycles(sched, 0)
+
+
 def test_tau_bounds_the_change():
     """τ > 0 ends rays whose transmittance is at or below τ: some rays change, none by
     more than τ in any channel (what the ray would still have gathered is at most T)."""

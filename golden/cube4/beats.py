@@ -362,24 +362,49 @@ class BeatStats:
     table_s: float = 0.0    # host: the block table (per volume and transfer function)
     stop_s: float = 0.0     # host: the rays' stops (per view)
     ray_samples: int = 0    # samples of running rays (a schedule packing them into full beats: /P beats)
+    decided: dict = field(default_factory=dict)   # rate -> decided_cycles
 
     def as_dict(self) -> dict:
-        return {k: getattr(self, k) for k in ("box_beats", "run_beats", "skipped_empty", "skipped_terminated",
-                                              "walk_beats", "table_s", "stop_s", "ray_samples")}
+        d = {k: getattr(self, k) for k in ("box_beats", "run_beats", "skipped_empty", "skipped_terminated",
+                                           "walk_beats", "table_s", "stop_s", "ray_samples")}
+        d["decided_cycles"] = {str(r): c for r, c in self.decided.items()}
+        return d
 
 
-def walk_beats(sched: BeatSchedule) -> int:
-    """The front end's beats of a frame: each slice's walk, whose row NJ (the read that
-    completes the slice's last row) is the next slice's row 0, as in the fixed schedule
-    (Y-wrap), and after the last slice a flush row."""
-    total = 0
+def slice_walks(sched: BeatSchedule) -> np.ndarray:
+    """(M + 1,): the front end's beats per slice: each slice's walk, whose row NJ (the read
+    that completes the slice's last row) is the next slice's row 0, as in the fixed
+    schedule (Y-wrap), and after the last slice a flush row (the last entry)."""
+    out = np.zeros(sched.M + 1, dtype=np.int64)
     carry = np.zeros(sched.NB, dtype=bool)
     for m in range(sched.M):
         w = sched.walk(m)
         first = w[0] | carry
-        total += int(first.sum()) + int(w[1:sched.NJ].sum())
+        out[m] = int(first.sum()) + int(w[1:sched.NJ].sum())
         carry = w[sched.NJ]
-    return total + int(carry.sum())
+    out[sched.M] = int(carry.sum())
+    return out
+
+
+def walk_beats(sched: BeatSchedule) -> int:
+    """The front end's beats of a frame (``slice_walks`` summed): the figure for a front
+    end that passes over a skipped beat in no cycle."""
+    return int(slice_walks(sched).sum())
+
+
+#: decisions per cycle of the front ends ``decided_cycles`` models in reports/skipping.md
+DECIDE_RATES = (1, 2, 4)
+
+
+def decided_cycles(sched: BeatSchedule, rate: int) -> int:
+    """The front end's cycles when it decides ``rate`` beats a cycle: a slice takes at
+    least its NJ·NB beats / rate cycles to decide and at least its walk to read, and the
+    two overlap (a decision runs ahead of the reads within the slice)."""
+    if rate < 1:
+        raise ValueError(f"rate must be at least 1, got {rate}")
+    w = slice_walks(sched)
+    per = -(-sched.NJ * sched.NB // rate)
+    return int(np.maximum(w[:-1], per).sum() + w[-1])
 
 
 def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
@@ -395,4 +420,5 @@ def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
     else:
         run_free = run
     samples = sum(int(sched.running(m).sum()) for m in range(sched.M))
-    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s, sched.stop_s, samples)
+    decided = {r: decided_cycles(sched, r) for r in DECIDE_RATES}
+    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s, sched.stop_s, samples, decided)

@@ -348,7 +348,10 @@ def beat_view_stats(frames: list) -> dict:
             continue
         st = beat_stats(fr[0], fr[0].table_s).as_dict()
         for k, v in st.items():
-            tot[k] = tot.get(k, 0) + v
+            if isinstance(v, dict):
+                tot[k] = {r: tot.get(k, {}).get(r, 0) + c for r, c in v.items()}
+            else:
+                tot[k] = tot.get(k, 0) + v
         tot["table_s"] = st["table_s"]
     return tot
 

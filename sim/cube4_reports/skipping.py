@@ -29,6 +29,7 @@ import numpy as np
 from tqdm import tqdm
 
 from cube4.app.render import render, render_golden_view
+from cube4.beats import DECIDE_RATES
 from cube4.app.volumes import load_volume
 from cube4.config import resolve_build
 from cube4.cycles import rect_frame_cycles
@@ -321,14 +322,17 @@ def _frac(x: float, n3p: float) -> str:
 
 
 def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> str:
+    rates = [r for r in DECIDE_RATES if r > 1]
     head = ["volume (dims)", "scene (mode)", "view az, el", "box", "beats run", "+ termination",
-            "front-end walk", "skipped: empty", "skipped: rays ended", "host table", "host stops", "image"]
+            "front-end walk", *[f"deciding {r}/cycle" for r in rates], "skipped: empty", "skipped: rays ended",
+            "host table", "host stops", "image"]
     body = []
     for r in rows:
         n3p, f, e = r["n3_over_p"], r["free"], r["ended"]
         body.append([f"{r['volume']} ({'×'.join(map(str, r['dims']))})", f"{r['scene']} ({r['mode']})",
                      f"{r['azimuth']:.0f}, {r['elevation']:.0f}", _frac(r["box_cycles"], n3p),
                      _frac(f["run_beats"], n3p), _frac(e["run_beats"], n3p), _frac(e["walk_beats"], n3p),
+                     *[_frac(e["decided_cycles"][str(r)], n3p) for r in rates],
                      _pct(e["skipped_empty"] / max(1, e["box_beats"])),
                      _pct(e["skipped_terminated"] / max(1, e["box_beats"])),
                      f"{1000 * e['table_s']:.0f} ms", f"{1000 * e['stop_s']:.0f} ms", _image(r["identical"])])
@@ -341,6 +345,8 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
         "without termination; '+ termination' with it; 'front-end walk' the beats the front end walks "
         "with termination (what runs and the voxel beats it reads: rows j + 1, partial beams pb + 1). The "
         "walk is the specification's figure for a front end that passes over a skipped beat in no cycle; "
+        "'deciding r/cycle' the cycles of one that decides r beats a cycle (`beats.decided_cycles`: per "
+        "slice the larger of its walk and its NJ·NB beats / r); "
         "**no RTL runs this schedule yet**, so there are no measured cycles and no frame times for it. "
         "'skipped': shares of the box's beats, by cause. 'host table': the block table for the "
         "transfer function (value ranges and bits), once per volume and LUT, not per view. 'host stops': "
@@ -348,7 +354,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
         "depth in's stop table; a ray that reaches it is done). 'image': the "
         "base plane with and without termination against the fixed schedule's, bit for bit.",
         "",
-        md_table(head, body, "lllrrrrrrrrl"),
+        md_table(head, body, "lll" + "r" * (len(head) - 4) + "l"),
         "",
     ]
     if taus:
@@ -379,7 +385,10 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
                   f"{g['ended']['walk_beats'] / g['n3_over_p']:.3f} of n³/P walked "
                   f"({g['ended']['run_beats'] / g['n3_over_p']:.3f} run; goal 0.40); {OPAQUE_GOAL[0]}, scene "
                   f"{OPAQUE_GOAL[1]} at τ = 0: {o['ended']['walk_beats'] / o['n3_over_p']:.3f} walked "
-                  f"({o['ended']['run_beats'] / o['n3_over_p']:.3f} run; goal 0.15). What stops finer: a beat "
+                  f"({o['ended']['run_beats'] / o['n3_over_p']:.3f} run; goal 0.15); a front end that decides "
+                  + ", ".join(f"{r} beats a cycle takes {g['ended']['decided_cycles'][str(r)] / g['n3_over_p']:.3f} "
+                              f"and {o['ended']['decided_cycles'][str(r)] / o['n3_over_p']:.3f}"
+                              for r in DECIDE_RATES) + ". What stops finer: a beat "
                   "runs when one of its P lanes holds a running ray, and the rays cross the lanes obliquely "
                   "(the samples of running rays, packed into full beats, would take "
                   f"{g['ended']['ray_samples'] / P / g['n3_over_p']:.3f} and "
