@@ -371,18 +371,39 @@ class BeatStats:
         return d
 
 
-def slice_walks(sched: BeatSchedule) -> np.ndarray:
-    """(M + 1,): the front end's beats per slice: each slice's walk, whose row NJ (the read
-    that completes the slice's last row) is the next slice's row 0, as in the fixed
-    schedule (Y-wrap), and after the last slice a flush row (the last entry)."""
-    out = np.zeros(sched.M + 1, dtype=np.int64)
+def walk_rows(sched: BeatSchedule) -> list[tuple[int, int, np.ndarray, np.ndarray]]:
+    """The front end's rows in order, (m, j, reads, leaves): for sample slice m and row j
+    the voxel beats it reads (NB bools: the walk's row j, and in row 0 also the previous
+    slice's row NJ, the read that completes its last row: Y-wrap, as in the fixed
+    schedule) and the running beats of the sample row that leaves with them (the previous
+    row in this order: row j − 1, or the previous slice's row NJ − 1); after the last slice
+    a flush row (m = M, j = 0) that reads nothing new."""
+    rows = []
     carry = np.zeros(sched.NB, dtype=bool)
+    prev = np.zeros(sched.NB, dtype=bool)
     for m in range(sched.M):
-        w = sched.walk(m)
-        first = w[0] | carry
-        out[m] = int(first.sum()) + int(w[1:sched.NJ].sum())
-        carry = w[sched.NJ]
-    out[sched.M] = int(carry.sum())
+        w, e = sched.walk(m), sched.run_beats(m)
+        rows.append((m, 0, w[0] | carry, prev))
+        rows += [(m, j, w[j], e[j - 1]) for j in range(1, sched.NJ)]
+        carry, prev = w[sched.NJ], e[sched.NJ - 1]
+    rows.append((sched.M, 0, carry, prev))
+    return rows
+
+
+def slice_walks(sched: BeatSchedule) -> np.ndarray:
+    """(M + 1,): the front end's beats per slice (``walk_rows``), the flush row last."""
+    out = np.zeros(sched.M + 1, dtype=np.int64)
+    for m, _, reads, _ in walk_rows(sched):
+        out[m] += int(reads.sum())
+    return out
+
+
+def walker_cycles(sched: BeatSchedule) -> np.ndarray:
+    """(M + 1,): cycles per slice of a walk that emits one voxel beat a cycle and spends
+    one on a row that reads nothing (``walk_rows``; the flush row last)."""
+    out = np.zeros(sched.M + 1, dtype=np.int64)
+    for m, _, reads, _ in walk_rows(sched):
+        out[m] += max(1, int(reads.sum()))
     return out
 
 
@@ -397,12 +418,12 @@ DECIDE_RATES = (1, 2, 4)
 
 
 def decided_cycles(sched: BeatSchedule, rate: int) -> int:
-    """The front end's cycles when it decides ``rate`` beats a cycle: a slice takes at
-    least its NJ·NB beats / rate cycles to decide and at least its walk to read, and the
-    two overlap (a decision runs ahead of the reads within the slice)."""
+    """The front end's cycles when it decides ``rate`` beats a cycle a slice ahead of its
+    walk: a slice takes at least its NJ·NB beats / rate cycles to decide and its
+    ``walker_cycles`` to walk, and the two overlap."""
     if rate < 1:
         raise ValueError(f"rate must be at least 1, got {rate}")
-    w = slice_walks(sched)
+    w = walker_cycles(sched)
     per = -(-sched.NJ * sched.NB // rate)
     return int(np.maximum(w[:-1], per).sum() + w[-1])
 
