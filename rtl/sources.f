@@ -27,6 +27,7 @@ cube4_cfb_rect.v
 cube4_cfb_box.v
 cube4_cfb_addr.v
 cube4_cfb_mask.v
+cube4_cfb_beats.v
 cube4_cfb.v
 cube4_plane.v
 cube4_clip.v

@@ -1,0 +1,275 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_cfb_beats
+// -----------------------------------------------------------------------------
+// Purpose
+//   The walk of the beat schedule (docs/numerics.md section 19, "The walk";
+//   docs/architecture.md "The front end's plan"; golden/cube4/beats.py
+//   walk_rows): from each sample slice's bitmaps, one NB-bit word per row of
+//     A    the running beats (a lane holds a running ray)
+//     OCC  the beats that may count
+//   it forms each row's running beats
+//     E(m, j) = A(m, j) | (nbr_en & OCC(m, j) & grow(OR of A(m + dm, j + dj),
+//               dm, dj in -1 .. 1))        grow(x) = x | x << 1 | x >> 1
+//   (nbr_en: termination in a frame shaded by GRA; rows and slices outside the
+//   frame are zero), and walks the voxel beats they read, row by row:
+//     reads(k) = up(E(k - 1) | E(k)),    up(x) = x | x << 1   (pb and pb + 1)
+//   where k runs over the frame's rows (m, j) in order and then one flush row
+//   (m = M, j = 0, E = 0): the previous row in this order is row j - 1, or
+//   the previous slice's last row, whose reads complete it (Y-wrap, as the
+//   fixed schedule). Each set bit of reads(k) is one voxel beat, lowest pb
+//   first, with the bit of E(k - 1) at its pb (the sample beat that leaves
+//   with it runs). A row that reads nothing takes one cycle and emits
+//   nothing, but the flush row always emits: an empty one a beat that reads
+//   nothing. The last beat carries LAST.
+//   S = 1 (every pass reads its own voxel slice): the passes of S > 1 that
+//   read a voxel slice for the slice buffers read more, not here yet.
+//
+// Parameters
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
+//   2..2048, 4..12, 0..3). NBMAX = ceil(MAX_DIM / P) bits per bitmap row.
+//
+// Latency
+//   Bitmaps: a row is taken when bm_valid && bm_ready; slice m's rows may be
+//   written once the walk fetches slice m - 2 (four slots, slice mod 4), and
+//   the walk fetches slice m's rows once slice m + 1 is written whole (or is
+//   past the frame). The walk: a row is fetched (its three slots read at one
+//   address), enters a window of three rows, its E is registered, and its
+//   reads are formed from two registered E words: a row fetched at an edge
+//   is in the emitter four edges later (its first beat offered in the cycle
+//   after), in a pipeline that moves one row per edge while the emitter
+//   takes rows. The emitter takes one cycle per
+//   beat and one per row that reads nothing, so with its rows ready a frame
+//   takes sum over rows of max(1, beats) cycles (beats.walker_cycles).
+//   out_valid does not depend on out_ready; a beat is held while stalled.
+//
+// Ports
+//   start    in   pulse: a frame starts (nj, nb, nm, nbr_en stable until done)
+//   busy     out  a frame is under way (from start to its LAST beat's transfer)
+//   nj, nb, nm    rows NJ [DIM_W] 1..MAX_DIM, partial beams NB [NB_W]
+//             1..NBMAX, sample slices M [M_W] >= 1
+//   nbr_en   in   E with the neighbour term
+//   bm_valid, bm_ready, bm_a, bm_occ   the next row's bitmaps [NBMAX] (bit pb,
+//             zero at pb >= NB), rows j = 0 .. NJ - 1 of slices 0 .. M - 1 in order
+//   out_valid, out_ready   the walk's beats
+//   out_m, out_j, out_pb   the voxel beat: sample slice [M_W] (M: the flush
+//             row), row [DIM_W], partial beam [PB_W]
+//   out_read  the beat reads (0: the empty flush row's beat)
+//   out_leave the sample beat that leaves with it runs
+//   out_last  the frame's last beat
+//
+// Bit growth and rounding: none (bit words and counters).
+// =============================================================================
+module cube4_cfb_beats #(
+    `CUBE4_SLICE_PARAMS
+) (
+    input  wire clk, input wire rst,
+    input  wire start, output wire busy,
+    input  wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm,
+    input  wire nbr_en,
+    input  wire bm_valid, output wire bm_ready,
+    input  wire [NBMAX-1:0] bm_a, input wire [NBMAX-1:0] bm_occ,
+    output wire out_valid, input wire out_ready,
+    output wire [M_W-1:0] out_m, output wire [DIM_W-1:0] out_j, output wire [PB_W-1:0] out_pb,
+    output wire out_read, output wire out_leave, output wire out_last
+);
+    localparam integer NW = NBMAX;
+    localparam integer RW = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;     // a row address
+    // the kinds of a fetched row: none (the pipeline's fill or its tail), a row of
+    // the frame, the flush row
+    localparam [1:0] K_NONE = 2'd0, K_ROW = 2'd1, K_FLUSH = 2'd2;
+
+    reg active;                            // between start and the flush row's last beat
+    assign busy = active;
+
+    // ==== the bitmaps: four slots, slice mod 4, one {A, OCC} word per row ====
+    reg [M_W-1:0]   wm;                    // the slice being written
+    reg [DIM_W-1:0] wj;
+    reg [M_W-1:0]   g;                     // the slice being fetched (nm: past the frame)
+    reg [DIM_W-1:0] gj;
+    wire [M_W:0]    g2 = {1'b0, g} + (M_W + 1)'(2);
+    assign bm_ready = active && (wm < nm) && ({1'b0, wm} <= g2);
+    wire bm_take = bm_valid && bm_ready;
+    always @(posedge clk) begin
+        if (rst || start) begin
+            wm <= '0;
+            wj <= '0;
+        end else if (bm_take) begin
+            wj <= (wj == nj - 1'b1) ? '0 : wj + 1'b1;
+            if (wj == nj - 1'b1) wm <= wm + 1'b1;
+        end
+    end
+    wire [2*NW-1:0] slot_q [0:3];
+    wire            adv;                   // the walk's pipeline moves
+    genvar s;
+    generate
+        for (s = 0; s < 4; s = s + 1) begin : g_slot
+            cube4_sdp_ram #(.DATA_W(2 * NW), .DEPTH(MAX_DIM)) u_slot (
+                .clk(clk), .rd_en(adv), .rd_addr(RW'(gj)), .rd_data(slot_q[s]),
+                .wr_en(bm_take && (wm[1:0] == 2'(s))), .wr_addr(RW'(wj)), .wr_data({bm_occ, bm_a}));
+        end
+    endgenerate
+
+    // ==== the fetch: rows of the frame, then the flush row and the tail ====
+    wire in_frame = g < nm;
+    // slice g's rows need slice g + 1 written whole (the last slice: itself)
+    wire [M_W-1:0] need = (g + 1'b1 < nm) ? g + 1'b1 : g;
+    wire fetch_ok = !in_frame || (wm > need);
+    reg  tail;                             // the flush row is fetched: rows past it are none
+    reg  flushed;                          // the emitter took the flush row: the fetch stops
+    wire take_ok;
+    assign adv = active && !flushed && fetch_ok && take_ok;
+    always @(posedge clk) begin
+        if (rst || start) begin
+            g    <= '0;
+            gj   <= '0;
+            tail <= 1'b0;
+        end else if (adv) begin
+            if (in_frame) begin
+                gj <= (gj == nj - 1'b1) ? '0 : gj + 1'b1;
+                if (gj == nj - 1'b1) g <= g + 1'b1;
+            end else begin
+                tail <= 1'b1;
+            end
+        end
+    end
+    // the fetched row's place, beside the slots' read register
+    reg [1:0]       f_kind;
+    reg [M_W-1:0]   f_m;
+    reg [DIM_W-1:0] f_j;
+    reg             f_first, f_lastm;  // slice 0 (no slice before), the last slice (none after)
+    always @(posedge clk) begin
+        if (rst || start) begin
+            f_kind <= K_NONE;
+        end else if (adv) begin
+            f_kind  <= in_frame ? K_ROW : (tail ? K_NONE : K_FLUSH);
+            f_m     <= g;
+            f_j     <= in_frame ? gj : '0;
+            f_first <= (g == '0);
+            f_lastm <= (g + 1'b1 >= nm);
+        end
+    end
+    // the slots of slices m - 1, m, m + 1 (zero outside the frame)
+    wire [1:0]    fm2 = f_m[1:0];
+    wire [NW-1:0] r_p = (f_kind != K_ROW || f_first) ? '0 : slot_q[fm2 - 2'd1][NW-1:0];
+    wire [NW-1:0] r_c = (f_kind != K_ROW) ? '0 : slot_q[fm2][NW-1:0];
+    wire [NW-1:0] r_n = (f_kind != K_ROW || f_lastm) ? '0 : slot_q[fm2 + 2'd1][NW-1:0];
+    wire [NW-1:0] r_o = (f_kind != K_ROW) ? '0 : slot_q[fm2][2*NW-1:NW];
+
+    // ==== the window: rows k + 1 (0), k (1), k - 1 (2); E of row k ====
+    reg [1:0]       w_kind [0:2];
+    reg [M_W-1:0]   w_m    [0:2];
+    reg [DIM_W-1:0] w_j    [0:2];
+    reg [NW-1:0]    w_any  [0:2];          // A of slices m - 1, m, m + 1, ORed
+    reg [NW-1:0]    w_a    [0:2];          // A of slice m
+    reg [NW-1:0]    w_o    [0:2];          // OCC of slice m
+    integer k;
+    always @(posedge clk) begin
+        if (rst || start) begin
+            for (k = 0; k < 3; k = k + 1) w_kind[k] <= K_NONE;
+        end else if (adv) begin
+            w_kind[0] <= f_kind;
+            for (k = 1; k < 3; k = k + 1) w_kind[k] <= w_kind[k-1];
+        end
+        if (adv) begin
+            w_m[0] <= f_m;  w_j[0] <= f_j;
+            w_any[0] <= r_p | r_c | r_n;  w_a[0] <= r_c;  w_o[0] <= r_o;
+            for (k = 1; k < 3; k = k + 1) begin
+                w_m[k] <= w_m[k-1];  w_j[k] <= w_j[k-1];
+                w_any[k] <= w_any[k-1];  w_a[k] <= w_a[k-1];  w_o[k] <= w_o[k-1];
+            end
+        end
+    end
+    wire [NW-1:0] nbmask;
+    generate
+        for (s = 0; s < NW; s = s + 1) begin : g_nbmask
+            assign nbmask[s] = (NB_W'(s) < nb);
+        end
+    endgenerate
+    // rows j - 1 and j + 1 count only within row k's slice
+    wire same_up = (w_kind[0] == K_ROW) && (w_m[0] == w_m[1]);
+    wire same_dn = (w_kind[2] == K_ROW) && (w_m[2] == w_m[1]);
+    wire [NW-1:0] near_rows = w_any[1] | (same_up ? w_any[0] : '0) | (same_dn ? w_any[2] : '0);
+    wire [NW-1:0] grown = (near_rows | (near_rows << 1) | (near_rows >> 1)) & nbmask;
+    wire [NW-1:0] e_k = w_a[1] | ((nbr_en && (w_kind[1] == K_ROW)) ? (w_o[1] & grown) : '0);
+
+    // ==== E of rows k and k - 1, and the reads of row k ====
+    reg [1:0]       e_kind;
+    reg [M_W-1:0]   e_m;
+    reg [DIM_W-1:0] e_j;
+    reg [NW-1:0]    e1, e2;                // E(k), E(k - 1)
+    always @(posedge clk) begin
+        if (rst || start) begin
+            e_kind <= K_NONE;
+            e1 <= '0;
+            e2 <= '0;
+        end else if (adv) begin
+            e_kind <= w_kind[1];
+            e1 <= e_k;
+            e2 <= e1;
+        end
+        if (adv) begin
+            e_m <= (w_kind[1] == K_FLUSH) ? nm : w_m[1];
+            e_j <= w_j[1];
+        end
+    end
+    wire [NW-1:0] either = e1 | e2;
+    wire [NW-1:0] reads  = (either | (either << 1)) & nbmask;
+
+    // ==== the emitter: one beat a cycle, one cycle for a row without reads ====
+    reg             x_busy;
+    reg [NW-1:0]    x_rem, x_leave;
+    reg [M_W-1:0]   x_m;
+    reg [DIM_W-1:0] x_j;
+    reg             x_flush, x_empty;      // the flush row; a row that reads nothing
+    wire [NW-1:0]   x_low  = x_rem & (~x_rem + 1'b1);            // its lowest set bit
+    wire            x_one  = (x_rem & ~x_low) == '0;             // the last bit of the row
+    reg  [PB_W-1:0] x_pb;
+    integer b;
+    always @(*) begin
+        x_pb = '0;
+        for (b = NW - 1; b >= 0; b = b - 1) begin
+            if (x_rem[b]) x_pb = PB_W'(b);
+        end
+    end
+    // the beat this cycle: a read, or the empty flush row's beat
+    assign out_valid = x_busy && (!x_empty || x_flush);
+    wire   x_fire = out_valid && out_ready;
+    wire   x_done = x_busy && (x_empty ? (!x_flush || out_ready) : (x_one && out_ready));
+    assign take_ok = !x_busy || x_done;
+    wire   x_load = adv && (e_kind != K_NONE);
+    always @(posedge clk) begin
+        if (rst || start) begin
+            x_busy  <= 1'b0;
+            flushed <= 1'b0;
+        end else begin
+            if (x_load) begin
+                x_busy  <= 1'b1;
+                x_rem   <= reads;
+                x_leave <= e2;
+                x_m     <= e_m;
+                x_j     <= e_j;
+                x_flush <= (e_kind == K_FLUSH);
+                x_empty <= (reads == '0);
+                if (e_kind == K_FLUSH) flushed <= 1'b1;
+            end else if (x_done) begin
+                x_busy <= 1'b0;
+            end else if (x_fire) begin
+                x_rem <= x_rem & ~x_low;
+            end
+        end
+    end
+    always @(posedge clk) begin
+        if (rst) active <= 1'b0;
+        else if (start) active <= 1'b1;
+        else if (x_done && x_flush) active <= 1'b0;
+    end
+    assign out_m     = x_m;
+    assign out_j     = x_j;
+    assign out_pb    = x_pb;
+    assign out_read  = !x_empty;
+    assign out_leave = !x_empty && ((x_leave & x_low) != '0);
+    assign out_last  = x_flush && (x_empty || x_one);
+endmodule
+`default_nettype wire
