@@ -27,7 +27,9 @@ cube4_cfb_rect.v
 cube4_cfb_box.v
 cube4_cfb_addr.v
 cube4_cfb_mask.v
+cube4_ray_table.v
 cube4_cfb_beats.v
+cube4_cfb_decide.v
 cube4_cfb.v
 cube4_plane.v
 cube4_clip.v
@@ -49,7 +51,6 @@ cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v
 cube4_com_rect.v
-cube4_ray_table.v
 cube4_com_stop.v
 cube4_com_plw.v
 cube4_com_bpb.v

@@ -26,53 +26,19 @@ P = 4 and 1 in make test, 8 and 5 (MAX_DIM 64) in make regress.
 
 from __future__ import annotations
 
-import dataclasses
-
 import cocotb
 import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 import cube4.beats as beats
-from cube4.model import render_frame
+from cube4_sim.beat_frames import bits_of, slab_frame, sparse_frame
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
-from cube4_testutil import sparse_case
 
 FRAMES = 9
 TAIL = 40
 SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
-
-
-def golden_frame(seed: int, p: int, opaque: bool, terminate: bool):
-    """A sparse S = 1 case rendered with beat skipping: its schedule after the frame."""
-    vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(seed)
-    trav = dataclasses.replace(trav, supersample=1) if trav.supersample != 1 else trav
-    cfg = dataclasses.replace(cfg, pipelines=p, supersample=1)
-    if opaque and mode in ("composite", "xray"):
-        lut = lut.copy()
-        lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
-    table = beats.BlockTable.of(vol, 4)
-    occ = beats.frame_occupancy(table.bits(lut, mode), 4, trav)
-    sched = beats.BeatSchedule(trav, p, occ, terminate=terminate, gra=shading and mode == "composite")
-    rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
-                                 enabled=terminate, value_bits=cfg.voxel_bits)
-    render_frame(vol, trav, cfg, lut, rmap, mode=mode, shading=shading, clip=clip, beats=sched, done=rule)
-    return sched
-
-
-def slab_frame(p: int, direction):
-    """A nearly opaque slab in front of a dense block (tests/test_beats.py opaque_slab),
-    shaded, with termination: many beats run only as GRA's neighbours of running ones."""
-    from test_beats import opaque_slab, schedule
-    vol, trav, cfg, lut, rmap = opaque_slab(p, direction)
-    sched, rule = schedule(vol, trav, cfg, lut, "composite", True)
-    render_frame(vol, trav, cfg, lut, rmap, beats=sched, done=rule)
-    return sched
-
-
-def bits(row) -> int:
-    return sum(1 << int(i) for i in np.flatnonzero(row))
 
 
 def expected_beats(sched) -> list[tuple[int, int, int, int, int, int]]:
@@ -107,7 +73,7 @@ class TB:
     async def frame(self, sched, gap: float, stall: float) -> tuple[list, int]:
         """Run one frame: the beats out and the edges from start to the last beat."""
         d = self.dut
-        rows = [(bits(a), bits(o)) for m in range(sched.M)
+        rows = [(bits_of(a), bits_of(o)) for m in range(sched.M)
                 for a, o in zip(sched.active_beats(m), sched._beats_of(sched.sample_occ(m)))]
         d.nj.value, d.nb.value, d.nm.value = sched.NJ, sched.NB, sched.M
         d.nbr_en.value = int(sched.gra and sched.terminate)
@@ -156,7 +122,7 @@ async def test_walk(dut):
     cases = [("slab", d) for d in SLAB_VIEWS] + [("sparse", s) for s in seeds]
     for n, (kind, seed) in enumerate(cases):
         sched = (slab_frame(tb.p, seed) if kind == "slab"
-                 else golden_frame(seed, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+                 else sparse_frame(seed, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2)).sched
         if sched.NJ > tb.max_dim or sched.NB > -(-tb.max_dim // tb.p):
             continue
         gap, stall = ((0.0, 0.0), (0.3, 0.4), (0.6, 0.2), (0.0, 0.0), (0.1, 0.7))[n % 5]

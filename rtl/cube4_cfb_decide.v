@@ -1,0 +1,272 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_cfb_decide
+// -----------------------------------------------------------------------------
+// Purpose
+//   The decisions of the beat schedule (docs/numerics.md section 19, "Runs";
+//   docs/architecture.md "The front end's plan"), S = 1, one beat a cycle: for
+//   every beat (m, j, pb) of the frame, in order, and each position t of it
+//   (i = pb P + t < NI), the ray (by, bx) = (j - sty(m) + SY, i - stx(m) + SX)
+//     occ    its sample may count: the block table's bit of the sample's
+//            first voxel, in the volume's blocks of 2^BLOCK_LOG2 voxels
+//     run    first <= m < end: (started or occ) and m < end
+//     fresh  run and not started (m is the ray's first slice)
+//     last   run and m + 1 >= stop (the ray's last slice by its stop)
+//     soon   run and m + LAG + 1 >= stop (a report of slice m would not end
+//            the ray before its stop: COM writes none for it); COM reads it
+//            up to the ray's done slice only (after it, it depends on when
+//            the report came)
+//   where the ray table's word {tdone, end} holds {0, stop} from the host or
+//   {1, d + LAG + 1} from COM's report of slice d (written only where the
+//   stop lies beyond it, so end = min(stop, d + LAG + 1)), and started is a
+//   bit per ray this unit sets where occ. last and soon look at host words
+//   only: they do not depend on when a report arrives. Out: each row's
+//   words of A (a position runs) and OCC (a position may count) for
+//   cube4_cfb_beats, and each beat's position bits {soon, last, fresh, run}
+//   for the header.
+//   A beat of slice m is decided only once COM has written its reports of
+//   slices up to m - LAG - 1 (com_m >= m - LAG): a report of a later slice d
+//   moves an end to d + LAG + 1 > m and decides slice m alike.
+//
+// Parameters
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
+//   2..2048, 4..12, 0..3).
+//   BLOCK_LOG2  log2 of the block edge B.        1..4.   Default 2 (B = 4).
+//   LAG         slices from a report to its use. 2..7.   Default 2.
+//   Derived: NBK = ceil(MAX_DIM / B) blocks per axis; BK_W its index width.
+//
+// Latency
+//   A beat issued at an edge (its fields into the tables' reads) has its
+//   decisions at the fifth edge after (cube4_ray_table's read), registered
+//   into both output FIFOs (cube4_credit_fifo, credit-based: a beat is
+//   issued only with an entry reserved in each). One beat a cycle. A ray's
+//   next beat comes a slice (NJ NB beats) or more after its last (the steps
+//   only grow), and its started bit is written six cycles after that beat's
+//   issue; a slice of fewer than 8 beats waits for the pipeline to drain
+//   before its next slice.
+//
+// Ports
+//   start, busy   a frame (its registers stable from start until busy falls)
+//   ni, nj, nb, nm   NI, NJ [DIM_W], NB [NB_W], M [M_W]
+//   sx, sy        SX, SY [DIM_W]
+//   bi_base, bi_flip, bj_base, bj_flip, bk_base, bk_flip   the frame's axes
+//                 i, j, k in the volume: voxel c = base + x (flip 0) or
+//                 base - x (flip 1) [DIM_W]
+//   st_valid, st_ready, st_x, st_y   stepx(m), stepy(m) [DIM_W], a slice each
+//   blk_we, blk_addr, blk_data   the block table: word {kb, jb} holds the bits
+//                 of the blocks along the frame's i axis [NBK] (host, per view)
+//   tab_we, tab_addr, tab_data   the ray table's host word (P stops [M_W],
+//                 cube4_ray_table's layout); clears the started bits alike
+//   rep_*         a report (COM): rep_valid, rep_j, rep_pb, rep_stx, rep_sty,
+//                 rep_en [P] per position, rep_end [P*M_W] per position: the
+//                 end d + LAG + 1 of a ray done after slice d, not soon
+//   com_m         slices whose reports COM has written whole [M_W]
+//   bm_valid, bm_ready, bm_a, bm_occ    rows of A and OCC [NBMAX]
+//   ln_valid, ln_ready, ln_bits   per beat {soon, last, fresh, run} [4*P],
+//                 bit t of each the position t
+//
+// Bit growth and rounding: none (compares, counters, bit words).
+// =============================================================================
+module cube4_cfb_decide #(
+    `CUBE4_SLICE_PARAMS,
+    parameter integer BLOCK_LOG2 = 2,
+    parameter integer LAG        = 2,
+    `CUBE4_STOP_LAYOUT,
+    localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
+    localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1
+) (
+    input  wire clk, input wire rst,
+    input  wire start, output wire busy,
+    input  wire [DIM_W-1:0] ni, input wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm,
+    input  wire [DIM_W-1:0] sx, input wire [DIM_W-1:0] sy,
+    input  wire [DIM_W-1:0] bi_base, input wire bi_flip,
+    input  wire [DIM_W-1:0] bj_base, input wire bj_flip,
+    input  wire [DIM_W-1:0] bk_base, input wire bk_flip,
+    input  wire st_valid, output wire st_ready, input wire [DIM_W-1:0] st_x, input wire [DIM_W-1:0] st_y,
+    input  wire blk_we, input wire [2*BK_W-1:0] blk_addr, input wire [NBK-1:0] blk_data,
+    input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*M_W-1:0] tab_data,
+    input  wire rep_valid, input wire [DIM_W-1:0] rep_j, input wire [PB_W-1:0] rep_pb,
+    input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty,
+    input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end,
+    input  wire [M_W-1:0] com_m,
+    output wire bm_valid, input wire bm_ready, output wire [NBMAX-1:0] bm_a, output wire [NBMAX-1:0] bm_occ,
+    output wire ln_valid, input wire ln_ready, output wire [4*P-1:0] ln_bits
+);
+    generate
+        `CUBE4_RANGE(g_bad_block, "cube4_cfb_decide", "BLOCK_LOG2", BLOCK_LOG2, 1, 4)
+        `CUBE4_RANGE(g_bad_lag, "cube4_cfb_decide", "LAG", LAG, 2, 7)
+    endgenerate
+    localparam integer ND = 5;               // stages from issue to the decisions (the tables' read)
+    localparam integer NW = NBMAX;
+    genvar q;
+    integer k;
+
+    // ==== issue: (m, j, pb) in order, a slice's steps, the reports it needs ====
+    reg              active, issuing;
+    reg [M_W-1:0]    m;
+    reg [DIM_W-1:0]  j;
+    reg [PB_W-1:0]   pb;
+    reg [DIM_W-1:0]  stx, sty;
+    reg              have_st;              // this slice's steps are taken
+    reg [ND:1]       v;                    // the decision pipeline's valid bits
+    reg              tiny;                 // NJ NB < 8: drain between slices
+    wire             credit_ln, credit_bm;
+    wire             first_beat = (j == '0) && (pb == '0);
+    wire             last_pb    = (NB_W'(pb) == nb - 1'b1);
+    wire             last_j     = (j == nj - 1'b1);
+    wire             reports_ok = ({1'b0, m} <= {1'b0, com_m} + (M_W + 1)'(LAG));
+    wire             drained    = !tiny || !first_beat || (v == '0);
+    wire             steps_ok   = !first_beat || have_st;
+    wire             issue = active && issuing && credit_ln && credit_bm && reports_ok && drained && steps_ok;
+    assign st_ready = active && issuing && first_beat && !have_st;
+    always @(posedge clk) begin
+        if (rst) begin
+            active  <= 1'b0;
+            issuing <= 1'b0;
+            have_st <= 1'b0;
+        end else if (start) begin
+            active  <= 1'b1;
+            issuing <= 1'b1;
+            have_st <= 1'b0;
+            m <= '0;
+            j <= '0;
+            pb <= '0;
+        end else begin
+            if (st_valid && st_ready) begin
+                have_st <= 1'b1;
+                stx <= st_x;
+                sty <= st_y;
+            end
+            if (issue) begin
+                pb <= last_pb ? '0 : pb + 1'b1;
+                if (last_pb) j <= last_j ? '0 : j + 1'b1;
+                if (last_pb && last_j) begin
+                    m <= m + 1'b1;
+                    have_st <= 1'b0;
+                    if (m + 1'b1 == nm) issuing <= 1'b0;
+                end
+            end
+            if (!issuing && v == '0 && !bm_valid && !ln_valid) active <= 1'b0;
+        end
+    end
+    assign busy = active;
+    always @(posedge clk) begin
+        tiny <= 32'(nj) * 32'(nb) < 8;
+    end
+
+    // ==== the beat's fields along the pipeline ====
+    reg [M_W-1:0]   m_s   [1:ND];
+    reg [PB_W-1:0]  pb_s  [1:ND];
+    reg [DIM_W-1:0] j_s   [1:ND];
+    reg [DIM_W-1:0] stx_s [1:ND], sty_s [1:ND];
+    reg [ND:1]      row_end;               // the row's last beat
+    always @(posedge clk) begin
+        if (rst || start) v <= '0;
+        else v <= {v[ND-1:1], issue};
+        m_s[1] <= m;  pb_s[1] <= pb;  j_s[1] <= j;  stx_s[1] <= stx;  sty_s[1] <= sty;
+        row_end <= {row_end[ND-1:1], last_pb};
+        for (k = 2; k <= ND; k = k + 1) begin
+            m_s[k] <= m_s[k-1];  pb_s[k] <= pb_s[k-1];  j_s[k] <= j_s[k-1];
+            stx_s[k] <= stx_s[k-1];  sty_s[k] <= sty_s[k-1];
+        end
+    end
+
+    // ==== the ray table (ends) and the started bits, read at each position ====
+    wire [P*LANE_W-1:0] ident;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_ident
+            assign ident[q*LANE_W +: LANE_W] = LANE_W'(q);
+        end
+    endgenerate
+    localparam integer EW = M_W + 1;       // {tdone, end}
+    wire [P*EW-1:0]  tab_word, rep_word, end_d;
+    wire [P-1:0]     started_d;
+    wire [P-1:0]     set_started;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_words
+            assign tab_word[q*EW +: EW] = {1'b0, tab_data[q*M_W +: M_W]};
+            assign rep_word[q*EW +: EW] = {1'b1, rep_end[q*M_W +: M_W]};
+        end
+    endgenerate
+    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(EW)) u_end (
+        .clk(clk), .sx(sx), .sy(sy),
+        .tab_we(tab_we), .tab_addr(tab_addr), .tab_data(tab_word),
+        .rd_j(j), .rd_pb(pb), .rd_tpos(ident), .rd_stx(stx), .rd_sty(sty), .rd_data(end_d),
+        .wr_valid(rep_valid), .wr_j(rep_j), .wr_pb(rep_pb), .wr_stx(rep_stx), .wr_sty(rep_sty),
+        .wr_en(rep_en), .wr_data(rep_word));
+    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(1)) u_started (
+        .clk(clk), .sx(sx), .sy(sy),
+        .tab_we(tab_we), .tab_addr(tab_addr), .tab_data('0),
+        .rd_j(j), .rd_pb(pb), .rd_tpos(ident), .rd_stx(stx), .rd_sty(sty), .rd_data(started_d),
+        .wr_valid(v[ND]), .wr_j(j_s[ND]), .wr_pb(pb_s[ND]), .wr_stx(stx_s[ND]), .wr_sty(sty_s[ND]),
+        .wr_en(set_started), .wr_data('1));
+
+    // ==== the block table: the word of (m, j)'s blocks along i, and each position's block ====
+    function automatic [DIM_W-1:0] vol_coord(input [DIM_W-1:0] base, input flip, input [DIM_W-1:0] x);
+        vol_coord = flip ? base - x : base + x;
+    endfunction
+    wire [DIM_W-1:0] vk = vol_coord(bk_base, bk_flip, DIM_W'(m));
+    wire [DIM_W-1:0] vj = vol_coord(bj_base, bj_flip, j);
+    reg  [2*BK_W-1:0] blk_ra;
+    always @(posedge clk) blk_ra <= {BK_W'(vk >> BLOCK_LOG2), BK_W'(vj >> BLOCK_LOG2)};
+    wire [NBK-1:0] blk_q;                  // S2
+    cube4_sdp_ram #(.DATA_W(NBK), .DEPTH(1 << (2 * BK_W))) u_blk (
+        .clk(clk), .rd_en(1'b1), .rd_addr(blk_ra), .rd_data(blk_q),
+        .wr_en(blk_we), .wr_addr(blk_addr), .wr_data(blk_data));
+    reg [NBK-1:0] blk_s3, blk_s4, blk_s5;
+    always @(posedge clk) {blk_s5, blk_s4, blk_s3} <= {blk_s4, blk_s3, blk_q};
+    wire unused_vk = ^{vk[BLOCK_LOG2-1:0], vj[BLOCK_LOG2-1:0]};
+
+    // ==== S5: each position's decisions ====
+    wire [IW-1:0] pbp5 = IW'(pb_s[ND]) * IW'(P);
+    wire [P-1:0]  occ5, run5, fresh5, last5, soon5;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_pos
+            wire [IW-1:0]    i   = pbp5 + IW'(q);
+            wire             val = i < IW'(ni);
+            wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i));
+            wire [BK_W-1:0]  ib  = BK_W'(vi >> BLOCK_LOG2);
+            wire [M_W-1:0]   e   = end_d[q*EW +: M_W];
+            wire             td  = end_d[q*EW + M_W];
+            assign occ5[q]   = val && blk_s5[ib];
+            assign run5[q]   = val && (started_d[q] || occ5[q]) && (m_s[ND] < e);
+            assign fresh5[q] = run5[q] && !started_d[q];
+            assign last5[q]  = run5[q] && !td && ({1'b0, m_s[ND]} + 1'b1 >= {1'b0, e});
+            assign soon5[q]  = run5[q] && !td && ({1'b0, m_s[ND]} + (M_W + 1)'(LAG + 1) >= {1'b0, e});
+            assign set_started[q] = v[ND] && occ5[q] && !started_d[q];
+            wire unused_vi = ^vi[BLOCK_LOG2-1:0];
+        end
+    endgenerate
+
+    // ==== the outputs: a beat's bits, a row's words (credit FIFOs) ====
+    reg [NW-1:0] row_a, row_o;             // the row so far (S5's beat not yet in)
+    wire [NW-1:0] bit5 = NW'(1) << pb_s[ND];
+    wire [NW-1:0] a_now = row_a | ((run5 != '0) ? bit5 : '0);
+    wire [NW-1:0] o_now = row_o | ((occ5 != '0) ? bit5 : '0);
+    always @(posedge clk) begin
+        if (rst || start || (v[ND] && row_end[ND])) begin
+            row_a <= '0;
+            row_o <= '0;
+        end else if (v[ND]) begin
+            row_a <= a_now;
+            row_o <= o_now;
+        end
+    end
+    reg [NW-1:0]  bm_a6, bm_o6;
+    reg [4*P-1:0] ln6;
+    always @(posedge clk) begin
+        bm_a6 <= a_now;
+        bm_o6 <= o_now;
+        ln6   <= {soon5, last5, fresh5, run5};
+    end
+    wire unused_cr_ln, unused_cr_bm;
+    cube4_credit_fifo #(.DATA_W(4 * P), .DEPTH(16)) u_ln (
+        .clk(clk), .rst(rst || start), .take(issue), .give(1'b0), .credit(credit_ln), .credit_d(unused_cr_ln),
+        .push_d(v[ND]), .in_data(ln6), .out_valid(ln_valid), .out_ready(ln_ready), .out_data(ln_bits));
+    cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
+        .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && !row_end[ND]), .credit(credit_bm),
+        .credit_d(unused_cr_bm), .push_d(v[ND] && row_end[ND]), .in_data({bm_o6, bm_a6}),
+        .out_valid(bm_valid), .out_ready(bm_ready), .out_data({bm_occ, bm_a}));
+endmodule
+`default_nettype wire

@@ -1,0 +1,261 @@
+"""Testbench for rtl/cube4_cfb_decide.v: the beat schedule's decisions, position for position.
+
+Each frame is a golden one (``cube4_sim.beat_frames``): two of a nearly opaque slab in
+front of a dense block (rays end in the slab) and sparse volumes at S = 1 in every mode,
+opaque in every other frame, termination off in every third. The bench plays the host and
+COM around the unit:
+
+* the host writes the block table for the view (the volume's block bits with the frame's
+  k, j, i axes as word, row and bit: ``blk_*``), the ray table with every ray's stop
+  (``cube4.memory.stop_table`` layout, ``tab_*``) and the frame's axes, SX, SY;
+* each slice's steps go in through ``st_*``;
+* COM: the rays the golden frame reported done after slice d whose stop lies beyond
+  d + LAG + 1 (not "soon") get end = d + LAG + 1 through ``rep_*``, one write per beat of
+  slice d holding such rays, at a random time after the unit has decided slice d, and
+  ``com_m`` counts the slices whose reports are written; the unit must wait for them, and
+  decides the same whenever they arrive within that bound (the delays are random).
+
+Expected, for every beat in order: the bits per position of ``run`` (the golden
+``BeatSchedule.running``), ``fresh`` (run and the ray's first slice that may count is
+this one), ``last`` (run and m + 1 reaches the ray's stop) and ``soon`` (run and
+m + LAG + 1 reaches it: checked up to the ray's done slice, after which COM does not read it
+and it depends on when the report came); and for every row its words of A
+(``active_beats``) and OCC (the beats that may count). Both streams are taken with
+random ready, and nothing more comes out (40 cycles after the last).
+
+Without the started bits (tried, not kept: run = occ and m < end), P = 4 fails with "ln
+beat 1085 (m=12, j=1, pb=0): RTL run 0x0, golden 0x1"; without the wait for COM's reports
+(com_m), with "ln beat 1011 (m=11, j=4, pb=1): RTL run 0xf, golden 0x0" in the second slab
+frame, whose reports come up to three slices late. Seeded from COCOTB_RANDOM_SEED; P = 4
+and 1 in make test, 8 and 5 (MAX_DIM 64) in make regress.
+"""
+
+from __future__ import annotations
+
+import cocotb
+import numpy as np
+import pytest
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+
+from cube4.memory import stop_table
+from cube4_sim.beat_frames import BLOCK, bits_of, slab_frame, sparse_frame
+from cube4_sim.beats import Geometry
+from cube4_sim.sweeps import sweep
+from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
+
+LAG = 2
+TAIL = 40
+SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
+
+
+def clog2(n: int) -> int:
+    return max(0, (int(n) - 1).bit_length())
+
+
+def block_words(bf, nbk: int) -> dict[int, int]:
+    """The block table for the view: word {kb, jb} = the bits along the frame's i axis."""
+    t = bf.trav
+    axes = (t.major, t.axis_j, t.axis_i)            # volume axes of the frame's k, j, i
+    arr = np.transpose(bf.bits, [2 - a for a in axes])
+    bk_w = max(1, clog2(nbk))
+    words = {}
+    for kb in range(arr.shape[0]):
+        for jb in range(arr.shape[1]):
+            words[(kb << bk_w) | jb] = bits_of(arr[kb, jb])
+    return words
+
+
+def axis_regs(bf) -> dict[str, int]:
+    """base and flip of the frame's i, j, k axes in the volume."""
+    t = bf.trav
+    regs = {}
+    for name, a in (("bi", t.axis_i), ("bj", t.axis_j), ("bk", t.major)):
+        flip = bool(t.flip[a])
+        regs[f"{name}_flip"] = int(flip)
+        regs[f"{name}_base"] = t.origin[a] + (t.dims[a] - 1 if flip else 0)
+    return regs
+
+
+def reports(bf, p: int) -> dict[int, list[tuple[int, int, int, int, dict[int, int]]]]:
+    """Per slice d, COM's writes: (j, pb, stx, sty, {position: end}) for its rays done then."""
+    s, t = bf.sched, bf.trav
+    sxm, sym = t.max_steps
+    out: dict[int, dict] = {}
+    for by, bx in zip(*np.nonzero(s.done < s.M)):
+        d = int(s.done[by, bx])
+        if s.stop[by, bx] <= d + LAG + 1:     # soon: the stop ends the ray first, COM writes nothing
+            continue
+        stx, sty = (int(v) for v in t.steps(d))
+        j, i = int(by) - sym + sty, int(bx) - sxm + stx
+        beat = out.setdefault(d, {}).setdefault((j, i // p, stx, sty), {})
+        beat[i % p] = d + LAG + 1
+    return {d: [(j, pb, stx, sty, ends) for (j, pb, stx, sty), ends in sorted(b.items())] for d, b in out.items()}
+
+
+def expected(bf, p: int):
+    """Per beat in order: (m, j, pb, run, fresh, last, soon) as position masks; per row (A, OCC)."""
+    s, t = bf.sched, bf.trav
+    sxm, sym = t.max_steps
+    lane, rows = [], []
+    for m in range(s.M):
+        run = s.running(m)
+        stx, sty = (int(v) for v in t.steps(m))
+        r0, c0 = sym - sty, sxm - stx
+        first = s.first[r0:r0 + s.NJ, c0:c0 + s.NI] == m
+        last = s.stop[r0:r0 + s.NJ, c0:c0 + s.NI] <= m + 1
+        soon = s.stop[r0:r0 + s.NJ, c0:c0 + s.NI] <= m + LAG + 1
+        care = s.done[r0:r0 + s.NJ, c0:c0 + s.NI] >= m        # soon counts up to the ray's done slice
+        for j in range(s.NJ):
+            for pb in range(s.NB):
+                cols = slice(pb * p, min((pb + 1) * p, s.NI))
+                lane.append((m, j, pb, bits_of(run[j, cols]), bits_of(run[j, cols] & first[j, cols]),
+                             bits_of(run[j, cols] & last[j, cols]), bits_of(run[j, cols] & soon[j, cols]),
+                             bits_of(care[j, cols])))
+        occ = s._beats_of(s.sample_occ(m))
+        rows += [(bits_of(a), bits_of(o)) for a, o in zip(s.active_beats(m), occ)]
+    return lane, rows
+
+
+class TB:
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        self.log = dut._log
+        self.p, self.max_dim, self.ss = top_params(dut, "P", "MAX_DIM", "MAX_SS_LOG2")
+        self.geo = Geometry(self.p, self.max_dim, self.ss)
+        self.nbk = -(-self.max_dim // BLOCK)
+        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        start_clock(dut)
+
+    def idle(self) -> None:
+        for name in ("start", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m", "bm_ready",
+                     "ln_ready"):
+            getattr(self.dut, name).value = 0
+
+    async def reset(self) -> None:
+        self.idle()
+        self.dut.rst.value = 1
+        for _ in range(3):
+            await RisingEdge(self.dut.clk)
+        await FallingEdge(self.dut.clk)
+        self.dut.rst.value = 0
+
+    async def load(self, bf) -> None:
+        d, s, t = self.dut, bf.sched, bf.trav
+        d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
+        d.sx.value, d.sy.value = t.max_steps
+        for name, val in axis_regs(bf).items():
+            getattr(d, name).value = val
+        for addr, word in block_words(bf, self.nbk).items():
+            d.blk_we.value, d.blk_addr.value, d.blk_data.value = 1, addr, word
+            await FallingEdge(d.clk)
+        d.blk_we.value = 0
+        for addr, word in enumerate(stop_table(s.stop, self.p, self.max_dim, self.geo.m_w)):
+            d.tab_we.value, d.tab_addr.value, d.tab_data.value = 1, addr, word
+            await FallingEdge(d.clk)
+        d.tab_we.value = 0
+
+    async def frame(self, bf, stall: float, delay: int) -> tuple[list, list]:
+        d, s, t = self.dut, bf.sched, bf.trav
+        await self.load(bf)
+        reps = reports(bf, self.p)
+        d.start.value = 1
+        await FallingEdge(d.clk)
+        d.start.value = 0
+        lane, rows = [], []
+        st_n, com_m, queue = 0, 0, []          # queue: (cycle due, slice, its writes)
+        decided = -1                            # the last slice whose first beat came out
+        cycle, idle_after = 0, 0
+        while idle_after < TAIL:
+            # steps of the next slice
+            d.st_valid.value = int(st_n < s.M)
+            if st_n < s.M:
+                d.st_x.value, d.st_y.value = (int(v) for v in t.steps(st_n))
+            # COM: a report of slice dd once the unit is past it, after a random delay
+            while decided - 1 > com_m - 1 + len(queue) and com_m + len(queue) < s.M:
+                dd = com_m + len(queue)
+                queue.append([cycle + int(self.rng.integers(0, delay + 1)), dd, list(reps.get(dd, []))])
+            write = None
+            if queue and cycle >= queue[0][0]:
+                if queue[0][2]:
+                    write = queue[0][2].pop(0)
+                if not queue[0][2]:
+                    queue.pop(0)
+                    com_m += 1
+            d.rep_valid.value = int(write is not None)
+            if write is not None:
+                j, pb, stx, sty, ends = write
+                d.rep_j.value, d.rep_pb.value, d.rep_stx.value, d.rep_sty.value = j, pb, stx, sty
+                d.rep_en.value = sum(1 << q for q in ends)
+                d.rep_end.value = sum(e << (q * self.geo.m_w) for q, e in ends.items())
+            d.com_m.value = com_m
+            ln_ready = self.rng.random() >= stall
+            bm_ready = self.rng.random() >= stall
+            d.ln_ready.value, d.bm_ready.value = int(ln_ready), int(bm_ready)
+            await ReadOnly()
+            if int(d.st_valid.value) and int(d.st_ready.value):
+                st_n += 1
+            out = False
+            if ln_ready and int(d.ln_valid.value):
+                v = int(d.ln_bits.value)
+                mask = (1 << self.p) - 1
+                lane.append(tuple((v >> (c * self.p)) & mask for c in range(4)))
+                out = True
+            if bm_ready and int(d.bm_valid.value):
+                v = int(d.bm_a.value), int(d.bm_occ.value)
+                rows.append(v)
+                out = True
+            n_beats = len(lane)
+            decided = n_beats // (s.NJ * s.NB) if n_beats else -1
+            await RisingEdge(d.clk)
+            await FallingEdge(d.clk)
+            cycle += 1
+            done = len(lane) >= s.M * s.NJ * s.NB and not int(d.busy.value)
+            idle_after = idle_after + 1 if (done and not out) else 0
+            assert cycle < 200000, "the frame did not end"
+        return lane, rows
+
+
+def compare(lane, rows, bf, p) -> None:
+    want_lane, want_rows = expected(bf, p)
+    for n, (g, w) in enumerate(zip(lane, want_lane)):
+        m, j, pb = w[:3]
+        care = (-1, -1, -1, w[7])
+        for name, gv, wv, c in zip(("run", "fresh", "last", "soon"), g, w[3:7], care):
+            assert gv & c == wv & c, f"ln beat {n} (m={m}, j={j}, pb={pb}): RTL {name} {gv:#x}, golden {wv:#x}"
+    assert len(lane) == len(want_lane), f"{len(lane)} beats out, golden {len(want_lane)}"
+    for n, (g, w) in enumerate(zip(rows, want_rows)):
+        assert g == w, f"row {n} (m={n // bf.sched.NJ}, j={n % bf.sched.NJ}): RTL (A, OCC) {g}, golden {w}"
+    assert len(rows) == len(want_rows), f"{len(rows)} rows out, golden {len(want_rows)}"
+
+
+@cocotb.test()
+async def test_decisions(dut):
+    """Golden frames' tables in, COM's reports at random times, every decision checked."""
+    tb = TB(dut)
+    await tb.reset()
+    seeds = [s for s in range(200) if s % 3 == 0][:7]
+    cases = [("slab", v) for v in SLAB_VIEWS] + [("sparse", s) for s in seeds]
+    nbmax = -(-tb.max_dim // tb.p)
+    for n, (kind, arg) in enumerate(cases):
+        bf = (slab_frame(tb.p, arg) if kind == "slab"
+              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+        s = bf.sched
+        if s.NJ > tb.max_dim or s.NB > nbmax:
+            continue
+        # report delays in slices of beats: up to three slices makes the unit wait for them
+        stall, slices = ((0.0, 0.0), (0.1, 3.0), (0.3, 0.5), (0.5, 0.05))[n % 4]
+        delay = int(slices * s.NJ * s.NB)
+        lane, rows = await tb.frame(bf, stall, delay)
+        compare(lane, rows, bf, tb.p)
+        ended = int((s.done < s.M).sum())
+        tb.log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f, report delay <= %d: "
+                    "%d beats and %d rows bit-exact", kind, arg, s.M, s.NJ, s.NB, ended, stall, delay, len(lane),
+                    len(rows))
+
+
+BUILDS = [dict(P=4, MAX_DIM=32), dict(P=1, MAX_DIM=32), dict(P=8, MAX_DIM=32), dict(P=5, MAX_DIM=64)]
+
+
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(0, 1), ids=param_id))
+def test_cube4_cfb_decide(params):
+    run_rtl(__file__, params)
