@@ -18,6 +18,7 @@ cube4_sdp_ram.v
 cube4_dual_read_ram.v
 cube4_voxel_mem.v
 cube4_sync_fifo.v
+cube4_ram_fifo.v
 cube4_dram_fetch.v
 cube4_beam_ext.v
 cube4_cfb_tmpl.v

@@ -1,0 +1,99 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_ram_fifo
+// -----------------------------------------------------------------------------
+// Purpose
+//   A deep first-in first-out queue in block RAM (cube4_sdp_ram), as a stream
+//   (in: valid/ready, out: valid/ready), for queues too deep for distributed
+//   RAM (cube4_sync_fifo): the beat schedule's lane bits, which wait about two
+//   slices between the decisions and the walk (cube4_cfb_skip). The RAM's read
+//   takes a cycle, so items leave through a two-entry register queue that the
+//   RAM keeps filled: a read is issued while the register queue and the read
+//   in flight hold fewer than two items.
+//
+// Parameters
+//   DATA_W   width of an item.              1..4096.     Default 8.
+//   DEPTH    entries in the RAM; a power of two.  4..2^20.  Default 1024.
+//            The queue holds DEPTH + 2 items (the RAM and the register queue).
+//
+// Latency
+//   An item written at an edge is read from the RAM at the next edge at the
+//   earliest and is on out_valid / out_data after the edge after that (two
+//   edges after its write, when the queue was empty).
+//   Full rate: one item in and one out per cycle. in_ready, out_valid and
+//   out_data are registers (out_data a register of the register queue).
+//
+// Ports
+//   clk, rst                     clock, synchronous active-high reset (empties it)
+//   in_valid/in_ready/in_data    items in (any format, DATA_W bits)
+//   out_valid/out_ready/out_data items out, in order
+//
+// Bit growth and rounding: none (storage only).
+// =============================================================================
+module cube4_ram_fifo #(
+    parameter integer DATA_W = 8,
+    parameter integer DEPTH  = 1024,
+    localparam integer PTR_W = (DEPTH > 1) ? $clog2(DEPTH) : 1,
+    localparam integer CNT_W = PTR_W + 1
+) (
+    `CUBE4_STREAM_PORTS(DATA_W)
+);
+    generate
+        `CUBE4_RANGE(g_bad_data_w, "cube4_ram_fifo", "DATA_W", DATA_W, 1, 4096)
+        if (DEPTH < 4 || DEPTH > (1 << 20) || (DEPTH & (DEPTH - 1)) != 0) begin : g_bad_depth
+            $error("cube4_ram_fifo: DEPTH = %0d must be a power of two in 4..2^20", DEPTH);
+        end
+    endgenerate
+
+    // ==== the RAM: items written and not yet read (count), its pointers ====
+    reg  [PTR_W-1:0] wr_q, rd_q;
+    reg  [CNT_W-1:0] cnt_q;                // items in the RAM, written and not read
+    reg              full_q;               // cnt_q = DEPTH, counting this cycle's read
+    wire             push = in_valid && in_ready;
+    assign in_ready = !full_q;
+    // ==== the register queue: q0 (the head), q1; the read in flight ====
+    reg  [DATA_W-1:0] q0, q1;
+    reg  [1:0]        nq;                  // items in q0, q1
+    reg               fly;                 // a read was issued at the last edge
+    wire              pop  = out_valid && out_ready;
+    wire [2:0]        hold = 3'(nq) + 3'(fly) - 3'(pop);   // items in the queue and in flight after this cycle's pop
+    wire              rd   = (cnt_q != '0) && (hold < 3'd2);
+    wire [DATA_W-1:0] rd_data;
+    cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH)) u_ram (
+        .clk(clk), .rd_en(rd), .rd_addr(rd_q), .rd_data(rd_data),
+        .wr_en(push), .wr_addr(wr_q), .wr_data(in_data));
+    wire [CNT_W-1:0] cnt_n = cnt_q + CNT_W'(push) - CNT_W'(rd);
+    always @(posedge clk) begin
+        if (rst) begin
+            wr_q   <= '0;
+            rd_q   <= '0;
+            cnt_q  <= '0;
+            full_q <= 1'b0;
+            fly    <= 1'b0;
+        end else begin
+            if (push) wr_q <= wr_q + 1'b1;
+            if (rd)   rd_q <= rd_q + 1'b1;
+            cnt_q  <= cnt_n;
+            full_q <= (cnt_n == CNT_W'(DEPTH));
+            fly    <= rd;
+        end
+    end
+    // the word read at the last edge joins the queue behind what stays in it
+    wire [1:0] keep = nq - 2'(pop);
+    always @(posedge clk) begin
+        if (rst) begin
+            nq <= '0;
+        end else begin
+            nq <= keep + 2'(fly);
+            if (pop) q0 <= q1;
+            if (fly) begin
+                if (keep == 2'd0) q0 <= rd_data;
+                else              q1 <= rd_data;
+            end
+        end
+    end
+    assign out_valid = (nq != '0);
+    assign out_data  = q0;
+endmodule
+`default_nettype wire
