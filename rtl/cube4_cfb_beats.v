@@ -21,8 +21,10 @@
 //   fixed schedule). Each set bit of reads(k) is one voxel beat, lowest pb
 //   first, with the bit of E(k - 1) at its pb (the sample beat that leaves
 //   with it runs). A row that reads nothing takes one cycle and emits
-//   nothing, but the flush row always emits: an empty one a beat that reads
-//   nothing. The last beat carries LAST.
+//   nothing, except a slice's last row and the flush row, which then emit
+//   one beat that reads nothing (a marker: every slice leaves at least one
+//   beat, so the units behind see each slice end, and COM can report it).
+//   The last beat carries LAST.
 //   S = 1 (every pass reads its own voxel slice): the passes of S > 1 that
 //   read a voxel slice for the slice buffers read more, not here yet.
 //
@@ -57,6 +59,9 @@
 //             row), row [DIM_W], partial beam [PB_W]
 //   out_read  the beat reads (0: the empty flush row's beat)
 //   out_leave the sample beat that leaves with it runs
+//   out_in_a  that beat holds a running ray (A; else it runs as GRA's
+//             neighbour only)
+//   out_eos   the slice's last beat (of its last row, or its marker)
 //   out_last  the frame's last beat
 //
 // Bit growth and rounding: none (bit words and counters).
@@ -72,7 +77,8 @@ module cube4_cfb_beats #(
     input  wire [NBMAX-1:0] bm_a, input wire [NBMAX-1:0] bm_occ,
     output wire out_valid, input wire out_ready,
     output wire [M_W-1:0] out_m, output wire [DIM_W-1:0] out_j, output wire [PB_W-1:0] out_pb,
-    output wire out_read, output wire out_leave, output wire out_last
+    output wire out_read, output wire out_leave, output wire out_in_a, output wire out_eos,
+    output wire out_last
 );
     localparam integer NW = NBMAX;
     localparam integer RW = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;     // a row address
@@ -199,15 +205,20 @@ module cube4_cfb_beats #(
     reg [M_W-1:0]   e_m;
     reg [DIM_W-1:0] e_j;
     reg [NW-1:0]    e1, e2;                // E(k), E(k - 1)
+    reg [NW-1:0]    a1, a2;                // A(k), A(k - 1)
     always @(posedge clk) begin
         if (rst || start) begin
             e_kind <= K_NONE;
             e1 <= '0;
             e2 <= '0;
+            a1 <= '0;
+            a2 <= '0;
         end else if (adv) begin
             e_kind <= w_kind[1];
             e1 <= e_k;
             e2 <= e1;
+            a1 <= w_a[1];
+            a2 <= a1;
         end
         if (adv) begin
             e_m <= (w_kind[1] == K_FLUSH) ? nm : w_m[1];
@@ -219,10 +230,11 @@ module cube4_cfb_beats #(
 
     // ==== the emitter: one beat a cycle, one cycle for a row without reads ====
     reg             x_busy;
-    reg [NW-1:0]    x_rem, x_leave;
+    reg [NW-1:0]    x_rem, x_leave, x_in_a;
     reg [M_W-1:0]   x_m;
     reg [DIM_W-1:0] x_j;
     reg             x_flush, x_empty;      // the flush row; a row that reads nothing
+    reg             x_mark;                // a slice's last row or the flush row: emits when empty
     wire [NW-1:0]   x_low  = x_rem & (~x_rem + 1'b1);            // its lowest set bit
     wire            x_one  = (x_rem & ~x_low) == '0;             // the last bit of the row
     reg  [PB_W-1:0] x_pb;
@@ -234,9 +246,9 @@ module cube4_cfb_beats #(
         end
     end
     // the beat this cycle: a read, or the empty flush row's beat
-    assign out_valid = x_busy && (!x_empty || x_flush);
+    assign out_valid = x_busy && (!x_empty || x_mark);
     wire   x_fire = out_valid && out_ready;
-    wire   x_done = x_busy && (x_empty ? (!x_flush || out_ready) : (x_one && out_ready));
+    wire   x_done = x_busy && (x_empty ? (!x_mark || out_ready) : (x_one && out_ready));
     assign take_ok = !x_busy || x_done;
     wire   x_load = adv && (e_kind != K_NONE);
     always @(posedge clk) begin
@@ -248,9 +260,11 @@ module cube4_cfb_beats #(
                 x_busy  <= 1'b1;
                 x_rem   <= reads;
                 x_leave <= e2;
+                x_in_a  <= a2;
                 x_m     <= e_m;
                 x_j     <= e_j;
                 x_flush <= (e_kind == K_FLUSH);
+                x_mark  <= (e_kind == K_FLUSH) || (e_j == nj - 1'b1);
                 x_empty <= (reads == '0);
                 if (e_kind == K_FLUSH) flushed <= 1'b1;
             end else if (x_done) begin
@@ -270,6 +284,8 @@ module cube4_cfb_beats #(
     assign out_pb    = x_pb;
     assign out_read  = !x_empty;
     assign out_leave = !x_empty && ((x_leave & x_low) != '0);
+    assign out_in_a  = !x_empty && ((x_in_a & x_low) != '0);
     assign out_last  = x_flush && (x_empty || x_one);
+    assign out_eos   = x_mark && !x_flush && (x_empty || x_one);
 endmodule
 `default_nettype wire

@@ -23,8 +23,8 @@
 //   bit per ray this unit sets where occ. last and soon look at host words
 //   only: they do not depend on when a report arrives. Out: each row's
 //   words of A (a position runs) and OCC (a position may count) for
-//   cube4_cfb_beats, and each beat's position bits {soon, last, fresh, run}
-//   for the header.
+//   cube4_cfb_beats, and, for each beat with a running ray (A), its position
+//   bits {soon, last, fresh, run} for the header (the other beats' are zero).
 //   A beat of slice m is decided only once COM has written its reports of
 //   slices up to m - LAG - 1 (com_m >= m - LAG): a report of a later slice d
 //   moves an end to d + LAG + 1 > m and decides slice m alike.
@@ -63,8 +63,8 @@
 //                 end d + LAG + 1 of a ray done after slice d, not soon
 //   com_m         slices whose reports COM has written whole [M_W]
 //   bm_valid, bm_ready, bm_a, bm_occ    rows of A and OCC [NBMAX]
-//   ln_valid, ln_ready, ln_bits   per beat {soon, last, fresh, run} [4*P],
-//                 bit t of each the position t
+//   ln_valid, ln_ready, ln_bits   per beat of A {soon, last, fresh, run}
+//                 [4*P], bit t of each the position t
 //
 // Bit growth and rounding: none (compares, counters, bit words).
 // =============================================================================
@@ -262,8 +262,9 @@ module cube4_cfb_decide #(
     end
     wire unused_cr_ln, unused_cr_bm;
     cube4_credit_fifo #(.DATA_W(4 * P), .DEPTH(16)) u_ln (
-        .clk(clk), .rst(rst || start), .take(issue), .give(1'b0), .credit(credit_ln), .credit_d(unused_cr_ln),
-        .push_d(v[ND]), .in_data(ln6), .out_valid(ln_valid), .out_ready(ln_ready), .out_data(ln_bits));
+        .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && (run5 == '0)), .credit(credit_ln),
+        .credit_d(unused_cr_ln), .push_d(v[ND] && (run5 != '0)), .in_data(ln6), .out_valid(ln_valid),
+        .out_ready(ln_ready), .out_data(ln_bits));
     cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
         .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && !row_end[ND]), .credit(credit_bm),
         .credit_d(unused_cr_bm), .push_d(v[ND] && row_end[ND]), .in_data({bm_o6, bm_a6}),

@@ -371,23 +371,25 @@ class BeatStats:
         return d
 
 
-def walk_rows(sched: BeatSchedule) -> list[tuple[int, int, np.ndarray, np.ndarray]]:
+def walk_rows(sched: BeatSchedule, with_a: bool = False) -> list[tuple]:
     """The front end's rows in order, (m, j, reads, leaves): for sample slice m and row j
     the voxel beats it reads (NB bools: the walk's row j, and in row 0 also the previous
     slice's row NJ, the read that completes its last row: Y-wrap, as in the fixed
     schedule) and the running beats of the sample row that leaves with them (the previous
     row in this order: row j − 1, or the previous slice's row NJ − 1); after the last slice
-    a flush row (m = M, j = 0) that reads nothing new."""
+    a flush row (m = M, j = 0) that reads nothing new. ``with_a``: a fifth entry, the
+    leaving row's beats that hold a running ray (``active_beats``; the others run as
+    GRA's neighbours only)."""
     rows = []
-    carry = np.zeros(sched.NB, dtype=bool)
-    prev = np.zeros(sched.NB, dtype=bool)
+    nothing = np.zeros(sched.NB, dtype=bool)
+    carry, prev, prev_a = nothing, nothing, nothing
     for m in range(sched.M):
-        w, e = sched.walk(m), sched.run_beats(m)
-        rows.append((m, 0, w[0] | carry, prev))
-        rows += [(m, j, w[j], e[j - 1]) for j in range(1, sched.NJ)]
-        carry, prev = w[sched.NJ], e[sched.NJ - 1]
-    rows.append((sched.M, 0, carry, prev))
-    return rows
+        w, e, a = sched.walk(m), sched.run_beats(m), sched.active_beats(m)
+        rows.append((m, 0, w[0] | carry, prev, prev_a))
+        rows += [(m, j, w[j], e[j - 1], a[j - 1]) for j in range(1, sched.NJ)]
+        carry, prev, prev_a = w[sched.NJ], e[sched.NJ - 1], a[sched.NJ - 1]
+    rows.append((sched.M, 0, carry, prev, prev_a))
+    return rows if with_a else [r[:4] for r in rows]
 
 
 def slice_walks(sched: BeatSchedule) -> np.ndarray:

@@ -10,6 +10,9 @@ to the end, so that the schedule holds every slice's decisions and COM's reports
   only as GRA's neighbours of running ones.
 
 Each returns a ``BeatFrame``: the schedule, the traversal and the volume's block bits.
+And what the benches drive and expect: the host's block table for the view
+(``block_words``) and the frame's axes (``axis_regs``), COM's reports (``reports``), the
+decisions (``expected_decisions``) and the walk (``expected_walk``).
 """
 
 from __future__ import annotations
@@ -63,3 +66,89 @@ def slab_frame(p: int, direction) -> BeatFrame:
 def bits_of(row) -> int:
     """A row of bools as an integer, bit n = row[n]."""
     return sum(1 << int(i) for i in np.flatnonzero(row))
+
+
+def clog2(n: int) -> int:
+    return max(0, (int(n) - 1).bit_length())
+
+
+def block_words(bf, nbk: int) -> dict[int, int]:
+    """The block table for the view: word {kb, jb} = the bits along the frame's i axis."""
+    t = bf.trav
+    axes = (t.major, t.axis_j, t.axis_i)            # volume axes of the frame's k, j, i
+    arr = np.transpose(bf.bits, [2 - a for a in axes])
+    bk_w = max(1, clog2(nbk))
+    words = {}
+    for kb in range(arr.shape[0]):
+        for jb in range(arr.shape[1]):
+            words[(kb << bk_w) | jb] = bits_of(arr[kb, jb])
+    return words
+
+
+def axis_regs(bf) -> dict[str, int]:
+    """base and flip of the frame's i, j, k axes in the volume."""
+    t = bf.trav
+    regs = {}
+    for name, a in (("bi", t.axis_i), ("bj", t.axis_j), ("bk", t.major)):
+        flip = bool(t.flip[a])
+        regs[f"{name}_flip"] = int(flip)
+        regs[f"{name}_base"] = t.origin[a] + (t.dims[a] - 1 if flip else 0)
+    return regs
+
+
+def reports(bf, p: int, lag: int) -> dict[int, list[tuple[int, int, int, int, dict[int, int]]]]:
+    """Per slice d, COM's writes: (j, pb, stx, sty, {position: end}) for its rays done then."""
+    s, t = bf.sched, bf.trav
+    sxm, sym = t.max_steps
+    out: dict[int, dict] = {}
+    for by, bx in zip(*np.nonzero(s.done < s.M)):
+        d = int(s.done[by, bx])
+        if s.stop[by, bx] <= d + lag + 1:     # soon: the stop ends the ray first, COM writes nothing
+            continue
+        stx, sty = (int(v) for v in t.steps(d))
+        j, i = int(by) - sym + sty, int(bx) - sxm + stx
+        beat = out.setdefault(d, {}).setdefault((j, i // p, stx, sty), {})
+        beat[i % p] = d + lag + 1
+    return {d: [(j, pb, stx, sty, ends) for (j, pb, stx, sty), ends in sorted(b.items())] for d, b in out.items()}
+
+
+def expected_decisions(bf, p: int, lag: int):
+    """Per beat in order: (m, j, pb, run, fresh, last, soon) as position masks; per row (A, OCC)."""
+    s, t = bf.sched, bf.trav
+    sxm, sym = t.max_steps
+    lane, rows = [], []
+    for m in range(s.M):
+        run = s.running(m)
+        stx, sty = (int(v) for v in t.steps(m))
+        r0, c0 = sym - sty, sxm - stx
+        first = s.first[r0:r0 + s.NJ, c0:c0 + s.NI] == m
+        last = s.stop[r0:r0 + s.NJ, c0:c0 + s.NI] <= m + 1
+        soon = s.stop[r0:r0 + s.NJ, c0:c0 + s.NI] <= m + lag + 1
+        care = s.done[r0:r0 + s.NJ, c0:c0 + s.NI] >= m        # soon counts up to the ray's done slice
+        for j in range(s.NJ):
+            for pb in range(s.NB):
+                cols = slice(pb * p, min((pb + 1) * p, s.NI))
+                if run[j, cols].any():
+                    lane.append((m, j, pb, bits_of(run[j, cols]), bits_of(run[j, cols] & first[j, cols]),
+                                 bits_of(run[j, cols] & last[j, cols]), bits_of(run[j, cols] & soon[j, cols]),
+                                 bits_of(care[j, cols])))
+        occ = s._beats_of(s.sample_occ(m))
+        rows += [(bits_of(a), bits_of(o)) for a, o in zip(s.active_beats(m), occ)]
+    return lane, rows
+
+
+def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int]]:
+    """(m, j, pb, read, leave, in_a, eos, last) of every beat of the walk (beats.walk_rows):
+    a slice's last row and the flush row, when they read nothing, one beat that reads
+    nothing (a marker); eos on a slice's last beat, last on the frame's."""
+    out = []
+    for m, j, reads, leaves, in_a in beats.walk_rows(sched, with_a=True):
+        row = [(m, j, int(pb), 1, int(leaves[pb]), int(in_a[pb]), 0, 0) for pb in np.flatnonzero(reads)]
+        if (m == sched.M or j == sched.NJ - 1) and not row:
+            row = [(m, j, 0, 0, 0, 0, 0, 0)]
+        if row and m == sched.M:
+            row[-1] = row[-1][:7] + (1,)
+        elif row and j == sched.NJ - 1:
+            row[-1] = row[-1][:6] + (1, 0)
+        out += row
+    return out

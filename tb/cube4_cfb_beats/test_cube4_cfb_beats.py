@@ -5,13 +5,15 @@ nearly opaque slab in front of a dense block (tests/test_beats.py ``opaque_slab`
 rays end in the slab, and hundreds of beats run only as GRA's neighbours of running ones),
 then sparse volumes (``cube4_testutil.sparse_case``: a faint background, one dense blob,
 every mode, S = 1, seven views, cut planes), with the LUT made nearly opaque in every
-other frame so that COM's reports end rays, and with termination off in every third. The bench writes each
-slice's bitmaps (``BeatSchedule.active_beats``: A; the beats that may count: OCC) through
-bm_*, rows in order with random gaps, and takes the walk with random ready. Expected: the
-golden front end's rows (``beats.walk_rows``), each set bit of a row one beat in order of
-partial beam with the bit of the running beats that leave with it, the empty flush row one
-beat that reads nothing, LAST on the last beat, and nothing after it (the bench keeps
-ready high for 40 more cycles).
+other frame so that COM's reports end rays, and with termination off in every third. The
+bench writes each slice's bitmaps (``BeatSchedule.active_beats``: A; the beats that may
+count: OCC) through bm_*, rows in order with random gaps, and takes the walk with random
+ready. Expected (``cube4_sim.beat_frames.expected_walk``): the golden front end's rows
+(``beats.walk_rows``), each set bit of a row one beat in order of partial beam with the
+bits of the running beats that leave with it (E, and A: the beats with a running ray); a
+slice's last row and the flush row, when they read nothing, one beat that reads nothing
+(a marker: every slice leaves a beat); EOS on each slice's last beat, LAST on the frame's,
+and nothing after it (the bench keeps ready high for 40 more cycles).
 
 Cycles: every frame without gaps or stalls takes exactly NJ·min(2, M) + 5 + walker_cycles
 edges from start to its last beat's transfer: the rows of two slices written (an edge a row)
@@ -20,7 +22,7 @@ one per row that reads nothing (``beats.walker_cycles``).
 
 The neighbour term matters: with it dropped from E (tried, not kept), P = 4 fails with
 "beat 636: RTL (m, j, pb, read, leave, last) = (7, 1, 1, 1, 0, 0), golden (7, 1, 1, 1, 1,
-0)" in the first slab frame (P = 1 at beat 2541 alike). Seeded from COCOTB_RANDOM_SEED;
+0)" (before the A bit joined the beat) in the first slab frame (P = 1 at beat 2541 alike). Seeded from COCOTB_RANDOM_SEED;
 P = 4 and 1 in make test, 8 and 5 (MAX_DIM 64) in make regress.
 """
 
@@ -32,24 +34,13 @@ import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 import cube4.beats as beats
-from cube4_sim.beat_frames import bits_of, slab_frame, sparse_frame
+from cube4_sim.beat_frames import bits_of, expected_walk, slab_frame, sparse_frame
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
 FRAMES = 9
 TAIL = 40
 SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
-
-
-def expected_beats(sched) -> list[tuple[int, int, int, int, int, int]]:
-    """(m, j, pb, read, leave, last) of every beat of the walk."""
-    out = []
-    for m, j, reads, leaves in beats.walk_rows(sched):
-        out += [(m, j, int(pb), 1, int(leaves[pb]), 0) for pb in np.flatnonzero(reads)]
-        if m == sched.M and not reads.any():
-            out.append((m, 0, 0, 0, 0, 0))
-    out[-1] = out[-1][:5] + (1,)
-    return out
 
 
 class TB:
@@ -94,8 +85,9 @@ class TB:
                 n += 1
             if ready and int(d.out_valid.value):
                 got.append((int(d.out_m.value), int(d.out_j.value), int(d.out_pb.value), int(d.out_read.value),
-                            int(d.out_leave.value), int(d.out_last.value)))
-                if got[-1][5] and last_edge is None:
+                            int(d.out_leave.value), int(d.out_in_a.value), int(d.out_eos.value),
+                            int(d.out_last.value)))
+                if got[-1][7] and last_edge is None:
                     last_edge = edges + 1
             await RisingEdge(d.clk)
             edges += 1
@@ -108,7 +100,7 @@ class TB:
 
 def compare(got: list, want: list, log) -> None:
     for n, (g, w) in enumerate(zip(got, want)):
-        assert g == w, f"beat {n}: RTL (m, j, pb, read, leave, last) = {g}, golden {w}"
+        assert g == w, f"beat {n}: RTL (m, j, pb, read, leave, in_a, eos, last) = {g}, golden {w}"
     assert len(got) == len(want), f"{len(got)} beats out, golden {len(want)}"
 
 
@@ -127,7 +119,7 @@ async def test_walk(dut):
             continue
         gap, stall = ((0.0, 0.0), (0.3, 0.4), (0.6, 0.2), (0.0, 0.0), (0.1, 0.7))[n % 5]
         got, cycles = await tb.frame(sched, gap, stall)
-        want = expected_beats(sched)
+        want = expected_walk(sched)
         compare(got, want, tb.log)
         if gap == 0 and stall == 0:
             walker = int(beats.walker_cycles(sched).sum())

@@ -15,7 +15,7 @@ COM around the unit:
   ``com_m`` counts the slices whose reports are written; the unit must wait for them, and
   decides the same whenever they arrive within that bound (the delays are random).
 
-Expected, for every beat in order: the bits per position of ``run`` (the golden
+Expected, for every beat in order that holds a running ray: the bits per position of ``run`` (the golden
 ``BeatSchedule.running``), ``fresh`` (run and the ray's first slice that may count is
 this one), ``last`` (run and m + 1 reaches the ray's stop) and ``soon`` (run and
 m + LAG + 1 reaches it: checked up to the ray's done slice, after which COM does not read it
@@ -38,82 +38,15 @@ import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4.memory import stop_table
-from cube4_sim.beat_frames import BLOCK, bits_of, slab_frame, sparse_frame
+from cube4_sim.beat_frames import (BLOCK, axis_regs, bits_of, block_words, expected_decisions, reports, slab_frame,
+                                   sparse_frame)
 from cube4_sim.beats import Geometry
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
-LAG = 2
+LAG = 2            # the DUT's (its default)
 TAIL = 40
 SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
-
-
-def clog2(n: int) -> int:
-    return max(0, (int(n) - 1).bit_length())
-
-
-def block_words(bf, nbk: int) -> dict[int, int]:
-    """The block table for the view: word {kb, jb} = the bits along the frame's i axis."""
-    t = bf.trav
-    axes = (t.major, t.axis_j, t.axis_i)            # volume axes of the frame's k, j, i
-    arr = np.transpose(bf.bits, [2 - a for a in axes])
-    bk_w = max(1, clog2(nbk))
-    words = {}
-    for kb in range(arr.shape[0]):
-        for jb in range(arr.shape[1]):
-            words[(kb << bk_w) | jb] = bits_of(arr[kb, jb])
-    return words
-
-
-def axis_regs(bf) -> dict[str, int]:
-    """base and flip of the frame's i, j, k axes in the volume."""
-    t = bf.trav
-    regs = {}
-    for name, a in (("bi", t.axis_i), ("bj", t.axis_j), ("bk", t.major)):
-        flip = bool(t.flip[a])
-        regs[f"{name}_flip"] = int(flip)
-        regs[f"{name}_base"] = t.origin[a] + (t.dims[a] - 1 if flip else 0)
-    return regs
-
-
-def reports(bf, p: int) -> dict[int, list[tuple[int, int, int, int, dict[int, int]]]]:
-    """Per slice d, COM's writes: (j, pb, stx, sty, {position: end}) for its rays done then."""
-    s, t = bf.sched, bf.trav
-    sxm, sym = t.max_steps
-    out: dict[int, dict] = {}
-    for by, bx in zip(*np.nonzero(s.done < s.M)):
-        d = int(s.done[by, bx])
-        if s.stop[by, bx] <= d + LAG + 1:     # soon: the stop ends the ray first, COM writes nothing
-            continue
-        stx, sty = (int(v) for v in t.steps(d))
-        j, i = int(by) - sym + sty, int(bx) - sxm + stx
-        beat = out.setdefault(d, {}).setdefault((j, i // p, stx, sty), {})
-        beat[i % p] = d + LAG + 1
-    return {d: [(j, pb, stx, sty, ends) for (j, pb, stx, sty), ends in sorted(b.items())] for d, b in out.items()}
-
-
-def expected(bf, p: int):
-    """Per beat in order: (m, j, pb, run, fresh, last, soon) as position masks; per row (A, OCC)."""
-    s, t = bf.sched, bf.trav
-    sxm, sym = t.max_steps
-    lane, rows = [], []
-    for m in range(s.M):
-        run = s.running(m)
-        stx, sty = (int(v) for v in t.steps(m))
-        r0, c0 = sym - sty, sxm - stx
-        first = s.first[r0:r0 + s.NJ, c0:c0 + s.NI] == m
-        last = s.stop[r0:r0 + s.NJ, c0:c0 + s.NI] <= m + 1
-        soon = s.stop[r0:r0 + s.NJ, c0:c0 + s.NI] <= m + LAG + 1
-        care = s.done[r0:r0 + s.NJ, c0:c0 + s.NI] >= m        # soon counts up to the ray's done slice
-        for j in range(s.NJ):
-            for pb in range(s.NB):
-                cols = slice(pb * p, min((pb + 1) * p, s.NI))
-                lane.append((m, j, pb, bits_of(run[j, cols]), bits_of(run[j, cols] & first[j, cols]),
-                             bits_of(run[j, cols] & last[j, cols]), bits_of(run[j, cols] & soon[j, cols]),
-                             bits_of(care[j, cols])))
-        occ = s._beats_of(s.sample_occ(m))
-        rows += [(bits_of(a), bits_of(o)) for a, o in zip(s.active_beats(m), occ)]
-    return lane, rows
 
 
 class TB:
@@ -157,13 +90,13 @@ class TB:
     async def frame(self, bf, stall: float, delay: int) -> tuple[list, list]:
         d, s, t = self.dut, bf.sched, bf.trav
         await self.load(bf)
-        reps = reports(bf, self.p)
+        reps = reports(bf, self.p, LAG)
         d.start.value = 1
         await FallingEdge(d.clk)
         d.start.value = 0
         lane, rows = [], []
         st_n, com_m, queue = 0, 0, []          # queue: (cycle due, slice, its writes)
-        decided = -1                            # the last slice whose first beat came out
+        decided = 0                             # slices decided whole (their rows out)
         cycle, idle_after = 0, 0
         while idle_after < TAIL:
             # steps of the next slice
@@ -204,19 +137,18 @@ class TB:
                 v = int(d.bm_a.value), int(d.bm_occ.value)
                 rows.append(v)
                 out = True
-            n_beats = len(lane)
-            decided = n_beats // (s.NJ * s.NB) if n_beats else -1
+            decided = len(rows) // s.NJ             # slices decided whole
             await RisingEdge(d.clk)
             await FallingEdge(d.clk)
             cycle += 1
-            done = len(lane) >= s.M * s.NJ * s.NB and not int(d.busy.value)
+            done = len(rows) >= s.M * s.NJ and not int(d.busy.value)
             idle_after = idle_after + 1 if (done and not out) else 0
             assert cycle < 200000, "the frame did not end"
         return lane, rows
 
 
 def compare(lane, rows, bf, p) -> None:
-    want_lane, want_rows = expected(bf, p)
+    want_lane, want_rows = expected_decisions(bf, p, LAG)
     for n, (g, w) in enumerate(zip(lane, want_lane)):
         m, j, pb = w[:3]
         care = (-1, -1, -1, w[7])

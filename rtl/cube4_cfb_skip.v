@@ -1,0 +1,104 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_cfb_skip
+// -----------------------------------------------------------------------------
+// Purpose
+//   The beat schedule's front end without its reads (docs/architecture.md
+//   "The front end's plan"; S = 1): cube4_cfb_decide decides every beat a
+//   slice or two ahead, cube4_cfb_beats walks the voxel beats of each slice
+//   from the decisions' bitmaps, and the position bits of the beats that
+//   hold a running ray wait between the two in a cube4_ram_fifo. Each walk
+//   beat leaves with the position bits {soon, last, fresh, run} of the
+//   sample beat that leaves with it (zero when none leaves, or when it runs
+//   as GRA's neighbour only).
+//
+// Parameters
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh).
+//   BLOCK_LOG2, LAG: as cube4_cfb_decide.
+//   LN_DEPTH  the position bits' queue, a power of two >= 4 NJ NB of the
+//             largest frame (the decisions run at most a few slices ahead of
+//             the walk: bitmaps of slices up to g + 2 while the walk fetches
+//             slice g). Default: 4 MAX_DIM NBMAX rounded up.
+//
+// Latency
+//   As its units; the walk's beats pass one register-free join (out_valid is
+//   the walk's valid and, where the leaving beat holds a running ray, the
+//   queue's valid).
+//
+// Ports
+//   As cube4_cfb_decide's inputs (the frame, the steps, the tables, COM's
+//   reports), and the walk: out_valid, out_ready, out_m, out_j, out_pb,
+//   out_read, out_leave, out_eos, out_last (cube4_cfb_beats) and out_bits
+//   {soon, last, fresh, run} [4*P] of the leaving beat.
+//   nbr_en   E with GRA's neighbours (termination in a GRA frame)
+//
+// Bit growth and rounding: none.
+// =============================================================================
+module cube4_cfb_skip #(
+    `CUBE4_SLICE_PARAMS,
+    parameter integer BLOCK_LOG2 = 2,
+    parameter integer LAG        = 2,
+    parameter integer LN_DEPTH   = 1 << $clog2(4 * MAX_DIM * ((MAX_DIM + P - 1) / P)),
+    `CUBE4_STOP_LAYOUT,
+    localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
+    localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1
+) (
+    input  wire clk, input wire rst,
+    input  wire start, output wire busy,
+    input  wire [DIM_W-1:0] ni, input wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm,
+    input  wire nbr_en,
+    input  wire [DIM_W-1:0] sx, input wire [DIM_W-1:0] sy,
+    input  wire [DIM_W-1:0] bi_base, input wire bi_flip,
+    input  wire [DIM_W-1:0] bj_base, input wire bj_flip,
+    input  wire [DIM_W-1:0] bk_base, input wire bk_flip,
+    input  wire st_valid, output wire st_ready, input wire [DIM_W-1:0] st_x, input wire [DIM_W-1:0] st_y,
+    input  wire blk_we, input wire [2*BK_W-1:0] blk_addr, input wire [NBK-1:0] blk_data,
+    input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*M_W-1:0] tab_data,
+    input  wire rep_valid, input wire [DIM_W-1:0] rep_j, input wire [PB_W-1:0] rep_pb,
+    input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty,
+    input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end,
+    input  wire [M_W-1:0] com_m,
+    output wire out_valid, input wire out_ready,
+    output wire [M_W-1:0] out_m, output wire [DIM_W-1:0] out_j, output wire [PB_W-1:0] out_pb,
+    output wire out_read, output wire out_leave, output wire out_eos, output wire out_last,
+    output wire [4*P-1:0] out_bits
+);
+    wire            busy_d, busy_w;
+    wire            bm_valid, bm_ready;
+    wire [NBMAX-1:0] bm_a, bm_occ;
+    wire            ln_valid, ln_ready, q_valid, q_ready;
+    wire [4*P-1:0]  ln_bits, q_bits;
+    cube4_cfb_decide #(`CUBE4_SLICE_PASS, .BLOCK_LOG2(BLOCK_LOG2), .LAG(LAG)) u_decide (
+        .clk(clk), .rst(rst), .start(start), .busy(busy_d),
+        .ni(ni), .nj(nj), .nb(nb), .nm(nm), .sx(sx), .sy(sy),
+        .bi_base(bi_base), .bi_flip(bi_flip), .bj_base(bj_base), .bj_flip(bj_flip),
+        .bk_base(bk_base), .bk_flip(bk_flip),
+        .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y),
+        .blk_we(blk_we), .blk_addr(blk_addr), .blk_data(blk_data),
+        .tab_we(tab_we), .tab_addr(tab_addr), .tab_data(tab_data),
+        .rep_valid(rep_valid), .rep_j(rep_j), .rep_pb(rep_pb), .rep_stx(rep_stx), .rep_sty(rep_sty),
+        .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
+        .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
+        .ln_valid(ln_valid), .ln_ready(ln_ready), .ln_bits(ln_bits));
+    cube4_ram_fifo #(.DATA_W(4 * P), .DEPTH(LN_DEPTH)) u_queue (
+        .clk(clk), .rst(rst || start),
+        .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_bits),
+        .out_valid(q_valid), .out_ready(q_ready), .out_data(q_bits));
+    wire w_valid, w_ready, w_leave, w_in_a;
+    cube4_cfb_beats #(`CUBE4_SLICE_PASS) u_walk (
+        .clk(clk), .rst(rst), .start(start), .busy(busy_w),
+        .nj(nj), .nb(nb), .nm(nm), .nbr_en(nbr_en),
+        .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
+        .out_valid(w_valid), .out_ready(w_ready), .out_m(out_m), .out_j(out_j), .out_pb(out_pb),
+        .out_read(out_read), .out_leave(w_leave), .out_in_a(w_in_a), .out_eos(out_eos), .out_last(out_last));
+    // a walk beat whose leaving beat holds a running ray takes that beat's bits
+    wire need = w_leave && w_in_a;
+    assign out_valid = w_valid && (!need || q_valid);
+    assign w_ready   = out_ready && (!need || q_valid);
+    assign q_ready   = out_ready && w_valid && need;
+    assign out_leave = w_leave;
+    assign out_bits  = need ? q_bits : '0;
+    assign busy      = busy_d || busy_w;
+endmodule
+`default_nettype wire

@@ -1,0 +1,173 @@
+"""Testbench for rtl/cube4_cfb_skip.v: the beat schedule's front end without its reads.
+
+cube4_cfb_decide, cube4_ram_fifo and cube4_cfb_beats together, on the golden frames of
+``cube4_sim.beat_frames`` (two nearly opaque slabs, sparse volumes in every mode at S = 1):
+the bench plays the host (block table, ray table, the frame's axes, each slice's steps)
+and COM (the reports of slice d once the walk has given slice d's last beat, EOS, a
+random delay later, ``com_m`` counting them), and takes the walk with random ready. Expected, beat for
+beat: the walk of ``beats.walk_rows`` (slice, row, partial beam, read, leave, EOS, LAST) and,
+on every beat whose leaving sample beat holds a running ray, that beat's position bits
+{soon, last, fresh, run} as the golden schedule has them (soon up to the ray's done slice),
+zero on the others; nothing after LAST. The units' own testbenches cover each alone; here
+the decisions run ahead of the walk through the bitmaps' four slots and the bits' queue,
+and no frame may stall for good. Seeded from COCOTB_RANDOM_SEED.
+"""
+
+from __future__ import annotations
+
+import cocotb
+import numpy as np
+import pytest
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+
+from cube4.memory import stop_table
+from cube4_sim.beat_frames import (BLOCK, axis_regs, block_words, expected_decisions, expected_walk, reports,
+                                   slab_frame, sparse_frame)
+from cube4_sim.beats import Geometry
+from cube4_sim.sweeps import sweep
+from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
+
+LAG = 2
+TAIL = 40
+SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
+
+
+def expected(bf, p: int) -> list[tuple]:
+    """Per walk beat: (m, j, pb, read, leave, eos, last, bits, care) with the leaving beat's
+    position bits {soon, last, fresh, run} and the mask of the bits that are checked."""
+    s = bf.sched
+    lane, _ = expected_decisions(bf, p, LAG)
+    by_beat = {w[:3]: w for w in lane}
+    full = (1 << (4 * p)) - 1
+    out = []
+    for m, j, pb, read, leave, in_a, eos, last in expected_walk(s):
+        src = (m, j - 1, pb) if j > 0 else (m - 1, s.NJ - 1, pb)
+        bits, care = 0, full
+        if leave and in_a:
+            w = by_beat[src]
+            bits = w[3] | w[4] << p | w[5] << (2 * p) | w[6] << (3 * p)
+            care = full >> p | w[7] << (3 * p)
+        out.append((m, j, pb, read, leave, eos, last, bits, care))
+    return out
+
+
+class TB:
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        self.log = dut._log
+        self.p, self.max_dim, self.ss = top_params(dut, "P", "MAX_DIM", "MAX_SS_LOG2")
+        self.geo = Geometry(self.p, self.max_dim, self.ss)
+        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        start_clock(dut)
+
+    async def reset(self) -> None:
+        d = self.dut
+        for name in ("start", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m", "out_ready"):
+            getattr(d, name).value = 0
+        d.rst.value = 1
+        for _ in range(3):
+            await RisingEdge(d.clk)
+        await FallingEdge(d.clk)
+        d.rst.value = 0
+
+    async def load(self, bf) -> None:
+        d, s, t = self.dut, bf.sched, bf.trav
+        d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
+        d.nbr_en.value = int(s.gra and s.terminate)
+        d.sx.value, d.sy.value = t.max_steps
+        for name, val in axis_regs(bf).items():
+            getattr(d, name).value = val
+        for addr, word in block_words(bf, -(-self.max_dim // BLOCK)).items():
+            d.blk_we.value, d.blk_addr.value, d.blk_data.value = 1, addr, word
+            await FallingEdge(d.clk)
+        d.blk_we.value = 0
+        for addr, word in enumerate(stop_table(s.stop, self.p, self.max_dim, self.geo.m_w)):
+            d.tab_we.value, d.tab_addr.value, d.tab_data.value = 1, addr, word
+            await FallingEdge(d.clk)
+        d.tab_we.value = 0
+
+    async def frame(self, bf, stall: float, delay: int) -> list[tuple]:
+        d, s, t = self.dut, bf.sched, bf.trav
+        await self.load(bf)
+        reps = reports(bf, self.p, LAG)
+        d.start.value = 1
+        await FallingEdge(d.clk)
+        d.start.value = 0
+        got, st_n, com_m, queue, walked, cycle, after = [], 0, 0, [], 0, 0, None
+        while after is None or after < TAIL:
+            d.st_valid.value = int(st_n < s.M)
+            if st_n < s.M:
+                d.st_x.value, d.st_y.value = (int(v) for v in t.steps(st_n))
+            while walked > com_m + len(queue) and com_m + len(queue) < s.M:   # COM: behind the walk's slice ends
+                dd = com_m + len(queue)
+                queue.append([cycle + int(self.rng.integers(0, delay + 1)), list(reps.get(dd, []))])
+            write = None
+            if queue and cycle >= queue[0][0]:
+                if queue[0][1]:
+                    write = queue[0][1].pop(0)
+                if not queue[0][1]:
+                    queue.pop(0)
+                    com_m += 1
+            d.rep_valid.value = int(write is not None)
+            if write is not None:
+                j, pb, stx, sty, ends = write
+                d.rep_j.value, d.rep_pb.value, d.rep_stx.value, d.rep_sty.value = j, pb, stx, sty
+                d.rep_en.value = sum(1 << q for q in ends)
+                d.rep_end.value = sum(e << (q * self.geo.m_w) for q, e in ends.items())
+            d.com_m.value = com_m
+            ready = after is not None or self.rng.random() >= stall
+            d.out_ready.value = int(ready)
+            await ReadOnly()
+            if int(d.st_valid.value) and int(d.st_ready.value):
+                st_n += 1
+            if ready and int(d.out_valid.value):
+                beat = (int(d.out_m.value), int(d.out_j.value), int(d.out_pb.value), int(d.out_read.value),
+                        int(d.out_leave.value), int(d.out_eos.value), int(d.out_last.value), int(d.out_bits.value))
+                got.append(beat)
+                if beat[5]:
+                    walked = beat[0] + 1        # slices the walk has finished
+                if beat[6]:
+                    after = 0
+            await RisingEdge(d.clk)
+            await FallingEdge(d.clk)
+            cycle += 1
+            if after is not None:
+                after += 1
+            assert cycle < 300000, f"the frame stalled ({len(got)} beats out)"
+        assert not int(d.busy.value), "busy after the frame's last beat"
+        return got
+
+
+def compare(got: list, want: list) -> None:
+    for n, (g, w) in enumerate(zip(got, want)):
+        assert g[:7] == w[:7], f"beat {n}: RTL (m, j, pb, read, leave, eos, last) = {g[:7]}, golden {w[:7]}"
+        assert g[7] & w[8] == w[7] & w[8], f"beat {n} {w[:3]}: RTL bits {g[7]:#x}, golden {w[7]:#x} (mask {w[8]:#x})"
+    assert len(got) == len(want), f"{len(got)} beats out, golden {len(want)}"
+
+
+@cocotb.test()
+async def test_front_end(dut):
+    tb = TB(dut)
+    await tb.reset()
+    seeds = [s for s in range(200) if s % 3 == 0][:6]
+    cases = [("slab", v) for v in SLAB_VIEWS] + [("sparse", s) for s in seeds]
+    nbmax = -(-tb.max_dim // tb.p)
+    for n, (kind, arg) in enumerate(cases):
+        bf = (slab_frame(tb.p, arg) if kind == "slab"
+              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+        s = bf.sched
+        if s.NJ > tb.max_dim or s.NB > nbmax:
+            continue
+        stall, slices = ((0.0, 0.0), (0.1, 1.0), (0.4, 0.3), (0.2, 0.05))[n % 4]
+        got = await tb.frame(bf, stall, int(slices * s.NJ * s.NB))
+        compare(got, expected(bf, tb.p))
+        tb.log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d walk beats bit-exact",
+                    kind, arg, s.M, s.NJ, s.NB, int((s.done < s.M).sum()), stall, len(got))
+
+
+BUILDS = [dict(P=4, MAX_DIM=32), dict(P=8, MAX_DIM=32), dict(P=1, MAX_DIM=32), dict(P=5, MAX_DIM=64)]
+
+
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))
+def test_cube4_cfb_skip(params):
+    run_rtl(__file__, params)
