@@ -33,7 +33,9 @@
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
 //   2..2048, 4..12, 0..3).
 //   BLOCK_LOG2  log2 of the block edge B.        1..4.   Default 2 (B = 4).
-//   LAG         slices from a report to its use. 2..7.   Default 2.
+//   LAG         slices from a report to its use. 2..7.   Default 3 (the
+//               front end with GRA between it and COM needs 3:
+//               docs/architecture.md "The front end's plan").
 //   Derived: NBK = ceil(MAX_DIM / B) blocks per axis; BK_W its index width.
 //
 // Latency
@@ -71,7 +73,7 @@
 module cube4_cfb_decide #(
     `CUBE4_SLICE_PARAMS,
     parameter integer BLOCK_LOG2 = 2,
-    parameter integer LAG        = 2,
+    parameter integer LAG        = 3,
     `CUBE4_STOP_LAYOUT,
     localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
     localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1

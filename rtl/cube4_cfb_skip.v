@@ -15,7 +15,7 @@
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh).
-//   BLOCK_LOG2, LAG: as cube4_cfb_decide.
+//   BLOCK_LOG2, LAG: as cube4_cfb_decide (LAG default 3).
 //   LN_DEPTH  the position bits' queue, a power of two >= 4 NJ NB of the
 //             largest frame (the decisions run at most a few slices ahead of
 //             the walk: bitmaps of slices up to g + 2 while the walk fetches
@@ -38,7 +38,7 @@
 module cube4_cfb_skip #(
     `CUBE4_SLICE_PARAMS,
     parameter integer BLOCK_LOG2 = 2,
-    parameter integer LAG        = 2,
+    parameter integer LAG        = 3,
     parameter integer LN_DEPTH   = 1 << $clog2(4 * MAX_DIM * ((MAX_DIM + P - 1) / P)),
     `CUBE4_STOP_LAYOUT,
     localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,

@@ -68,7 +68,7 @@ from .view import Traversal
 MARGIN = 2
 #: default block edge B and default lag (slices between COM's report and the traversal's use)
 BLOCK = 4
-LAG = 2
+LAG = 3
 
 
 def _axis_ranges(a: np.ndarray, axis: int, block: int, margin: int) -> tuple[np.ndarray, np.ndarray]:

@@ -340,7 +340,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
         "## Beat skipping and ray termination (golden model)",
         "",
         "The specification of `cube4.beats` (docs/numerics.md §19; `cube4 render --beats --engine golden`), "
-        "within each frame's box, P = 8, blocks of 4³ voxels, lag 2, τ = 0. Every figure is a share of "
+        "within each frame's box, P = 8, blocks of 4³ voxels, lag 3, τ = 0. Every figure is a share of "
         "n³/P beats: 'box' the box schedule's cycles (as above); 'beats run' the sample beats that run "
         "without termination; '+ termination' with it; 'front-end walk' the beats the front end walks "
         "with termination (what runs and the voxel beats it reads: rows j + 1, partial beams pb + 1). The "
