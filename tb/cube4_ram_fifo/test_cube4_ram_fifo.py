@@ -14,7 +14,8 @@ Checked against a Python deque, every cycle:
 
 With the register queue's refill condition one item looser (a read issued while two items
 are held or in flight: tried, not kept), DEPTH = 4 fails with "the queue took 7 items,
-DEPTH + 2 = 6": the queue takes an item it has no register for.
+DEPTH + 2 = 6": the queue takes an item it has no register for. DATA_W 33, DEPTH 64 in
+make test; the others in make regress.
 """
 
 from __future__ import annotations
@@ -118,6 +119,6 @@ async def test_fifo(dut):
 BUILDS = [dict(DATA_W=8, DEPTH=4), dict(DATA_W=33, DEPTH=64), dict(DATA_W=1, DEPTH=1024), dict(DATA_W=100, DEPTH=8)]
 
 
-@pytest.mark.parametrize("params", sweep(BUILDS, quick=(0, 1), ids=param_id))
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))
 def test_cube4_ram_fifo(params):
     run_rtl(__file__, params)

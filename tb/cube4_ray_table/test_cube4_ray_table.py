@@ -18,8 +18,8 @@ RAM does not promise: the unit passes the new word around the banks. Without tha
 (tried, not kept), P = 1 fails with "read 11 lane 0 (by 8, bx 3): RTL 123, model 182" and
 P = 5 with "read 14 lane 0 (by 14, bx 21): RTL 144, model 152".
 
-Seeded from COCOTB_RANDOM_SEED; P = 1, 5 and 8 run in make test, P = 3 and 16 (DATA_W 1
-and 12) in make regress.
+Seeded from COCOTB_RANDOM_SEED; P = 5 runs in make test, P = 1, 8, 3 and 16 (DATA_W 1 and
+12) in make regress.
 """
 
 from __future__ import annotations
@@ -166,6 +166,6 @@ BUILDS = [dict(P=1, MAX_DIM=16, DATA_W=8), dict(P=5, MAX_DIM=16, DATA_W=8), dict
           dict(P=3, MAX_DIM=8, DATA_W=1), dict(P=16, MAX_DIM=32, DATA_W=12)]
 
 
-@pytest.mark.parametrize("params", sweep(BUILDS, quick=(0, 1, 2), ids=param_id))
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))
 def test_cube4_ray_table(params):
     run_rtl(__file__, params)
