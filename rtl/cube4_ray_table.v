@@ -27,6 +27,11 @@
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
 //           2..2048, 4..12, 0..3).
 //   DATA_W  a ray's word.                          1..64.  Default 8.
+//   RATE    beats read (and written) at once: beat pb and, with 2, beat
+//           pb + 1 too, whose word in each bank is the next one. Each bank is
+//           then RATE sub-banks of 1/RATE the depth, word w in sub-bank
+//           w mod RATE: the same bits, any RATE consecutive words in one read.
+//                                                  1..2.   Default 1.
 //   ROWS_W, COLS_W, STOP_AW: the layout (derived, CUBE4_STOP_LAYOUT).
 //
 // Latency
@@ -49,10 +54,11 @@
 //             (bank b at [b*DATA_W +: DATA_W]) at address {by, word}
 //   rd_j, rd_pb, rd_tpos, rd_stx, rd_sty   S0: the reading beat's row, partial
 //             beam, its lanes' positions t [LANE_W] and the slice's steps
-//   rd_data   out  S5: lane q's ray's word at [q*DATA_W +: DATA_W]
+//   rd_data   out  S5: beat r's lane q's ray's word at [(r*P + q)*DATA_W +: DATA_W]
 //   wr_valid, wr_j, wr_pb, wr_stx, wr_sty   S0: a writing beat's fields
-//   wr_en, wr_data   S0: per position t (not lane) whether to write its ray's
-//             word and the word, at [t*DATA_W +: DATA_W]
+//   wr_en, wr_data   S0: per beat r and position t (not lane) whether to write
+//             its ray's word and the word, at bit r*P + t and word
+//             [(r*P + t)*DATA_W +: DATA_W]
 //
 // Bit growth and rounding: B in DIM_W bits (0 .. SX), the product B RECIP in
 //   DIM_W + K + 1 bits; the word sum wraps mod 2^COLS_W (see above); no
@@ -61,6 +67,7 @@
 module cube4_ray_table #(
     `CUBE4_SLICE_PARAMS,
     parameter integer DATA_W = 8,
+    parameter integer RATE   = 1,
     `CUBE4_STOP_LAYOUT
 ) (
     input  wire clk,
@@ -68,19 +75,29 @@ module cube4_ray_table #(
     input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*DATA_W-1:0] tab_data,
     input  wire [DIM_W-1:0] rd_j, input wire [PB_W-1:0] rd_pb, input wire [P*LANE_W-1:0] rd_tpos,
     input  wire [DIM_W-1:0] rd_stx, input wire [DIM_W-1:0] rd_sty,
-    output wire [P*DATA_W-1:0] rd_data,
+    output wire [RATE*P*DATA_W-1:0] rd_data,
     input  wire wr_valid, input wire [DIM_W-1:0] wr_j, input wire [PB_W-1:0] wr_pb,
     input  wire [DIM_W-1:0] wr_stx, input wire [DIM_W-1:0] wr_sty,
-    input  wire [P-1:0] wr_en, input wire [P*DATA_W-1:0] wr_data
+    input  wire [RATE*P-1:0] wr_en, input wire [RATE*P*DATA_W-1:0] wr_data
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_ray_table", "DATA_W", DATA_W, 1, 64)
+        `CUBE4_RANGE(g_bad_rate, "cube4_ray_table", "RATE", RATE, 1, 2)
     endgenerate
     localparam integer LW    = (P > 1) ? $clog2(P) : 0;
     localparam integer K     = DIM_W + LW;
     localparam integer PR_W  = DIM_W + K + 1;                // B * RECIP
     localparam [K:0]   RECIP = (K + 1)'(((64'd1 << K) + 64'(P) - 64'd1) / 64'(P));
     localparam integer BX_W  = DIM_W + 1;
+    localparam integer RL_W  = 1;                            // a beat or sub-bank index (RATE <= 2)
+    localparam integer RL    = (RATE > 1) ? 1 : 0;           // log2 RATE
+    localparam integer CS_W  = (COLS_W > RL) ? COLS_W - RL : 0;   // a sub-bank's column bits
+    localparam integer SA_W  = ROWS_W + CS_W;                // a sub-bank's address
+    localparam integer BI_W  = (RATE * P > 1) ? $clog2(RATE * P) : 1;   // a beat's position bit
+    // a word's address in its sub-bank: {by, w div RATE}
+    function automatic [SA_W-1:0] sub_addr(input [ROWS_W-1:0] by, input [COLS_W-1:0] w);
+        sub_addr = SA_W'({by, w} >> (COLS_W - CS_W));
+    endfunction
     genvar b, q;
 
     // ==== a beat's place in the table: {by, Q, R} two edges after its fields ====
@@ -120,52 +137,73 @@ module cube4_ray_table #(
     endgenerate
 
     // ==== the write: each bank's position (b - R) mod P, registered into S3 ====
-    reg [P-1:0]        we1, we2;
-    reg                wv1, wv2;
-    reg [P*DATA_W-1:0] wd1, wd2;
+    reg [RATE*P-1:0]        we1, we2;
+    reg                     wv1, wv2;
+    reg [RATE*P*DATA_W-1:0] wd1, wd2;
     always @(posedge clk) begin
         {wv2, wv1} <= {wv1, wr_valid};
         {we2, we1} <= {we1, wr_en};
         {wd2, wd1} <= {wd1, wr_data};
     end
-    reg [P-1:0]        bw3;                 // S3: bank b writes
-    reg [STOP_AW-1:0]  ba3 [0:P-1];
-    reg [DATA_W-1:0]   bd3 [0:P-1];
-    // ==== the read: each bank's address at S2, each lane's bank carried to S4 ====
-    wire [STOP_AW-1:0] ra2 [0:P-1];
+    // ==== the read: each lane's bank carried to S4 ====
     reg  [P*LANE_W-1:0] t1, t2, sel3, sel4;
     always @(posedge clk) begin
         t1 <= rd_tpos;
         t2 <= t1;
         sel4 <= sel3;
     end
-    reg  [P-1:0]       hit3, hit4;         // the read met the write at the same edge
-    reg  [DATA_W-1:0]  hd3 [0:P-1], hd4 [0:P-1];
-    wire [P*DATA_W-1:0] rd4;
+    // per bank b and beat r of the read: the word, from sub-bank (its word mod RATE)
+    wire [RATE*P*DATA_W-1:0] rd4;          // beat r, bank b at [(r*P + b)*DATA_W]
+    genvar r, sb;
     generate
         for (b = 0; b < P; b = b + 1) begin : g_bank
             wire [LANE_W:0]   d  = (LANE_W + 1)'(b + P) - {1'b0, r2[1]};
             wire [LANE_W-1:0] tw = LANE_W'((32'(d) >= P) ? 32'(d) - P : 32'(d));   // (b - R) mod P
+            // the first beat's word in this bank; beat r's is r words on
             wire [COLS_W-1:0] ww = w2[1] + COLS_W'((32'(b) < 32'(r2[1])) ? 1 : 0);
             wire [COLS_W-1:0] wr = w2[0] + COLS_W'((32'(b) < 32'(r2[0])) ? 1 : 0);
-            always @(posedge clk) begin
-                bw3[b] <= wv2 && we2[tw];
-                ba3[b] <= {by2[1], ww};
-                bd3[b] <= wd2[32'(tw)*DATA_W +: DATA_W];
+            reg  [RL_W-1:0]   par3, par4;      // the read's first word mod RATE, to S4
+            always @(posedge clk) {par4, par3} <= {par3, RL_W'(32'(wr) & (RATE - 1))};
+            wire [DATA_W-1:0] sub_q [0:RATE-1];
+            for (sb = 0; sb < RATE; sb = sb + 1) begin : g_sub
+                // the beats whose words fall in this sub-bank, and those words
+                wire [RL_W-1:0]   rr  = RL_W'((32'(sb) - 32'(wr)) & (RATE - 1));
+                wire [RL_W-1:0]   rw  = RL_W'((32'(sb) - 32'(ww)) & (RATE - 1));
+                wire [COLS_W-1:0] wrd = wr + COLS_W'(rr);
+                wire [COLS_W-1:0] wwd = ww + COLS_W'(rw);
+                wire [SA_W-1:0]   ra2 = sub_addr(by2[0], wrd);
+                wire [BI_W-1:0]   bit_w = BI_W'(32'(rw) * P + 32'(tw));
+                reg               bw3;
+                reg  [SA_W-1:0]   ba3;
+                reg  [DATA_W-1:0] bd3;
+                always @(posedge clk) begin
+                    bw3 <= wv2 && we2[bit_w];
+                    ba3 <= sub_addr(by2[1], wwd);
+                    bd3 <= wd2[32'(bit_w)*DATA_W +: DATA_W];
+                end
+                wire tab_here = tab_we && ((32'(tab_addr[COLS_W-1:0]) & (RATE - 1)) == sb);
+                wire              we = tab_here || (!tab_we && bw3);
+                wire [SA_W-1:0]   wa = tab_we ? sub_addr(tab_addr[STOP_AW-1:COLS_W], tab_addr[COLS_W-1:0]) : ba3;
+                wire [DATA_W-1:0] wd = tab_we ? tab_data[b*DATA_W +: DATA_W] : bd3;
+                wire [DATA_W-1:0] q4;
+                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << SA_W), .OUT_REG(1)) u_bank (
+                    .clk(clk), .rd_en(1'b1), .rd_addr(ra2), .rd_data(q4),
+                    .wr_en(we), .wr_addr(wa), .wr_data(wd));
+                // a read at the edge of a beat's write to the same word takes the new word
+                reg               hit3, hit4;
+                reg  [DATA_W-1:0] hd3, hd4;
+                always @(posedge clk) begin
+                    hit3 <= bw3 && (ba3 == ra2);
+                    hd3  <= bd3;
+                    hit4 <= hit3;
+                    hd4  <= hd3;
+                end
+                assign sub_q[sb] = hit4 ? hd4 : q4;
             end
-            assign ra2[b] = {by2[0], wr};
-            wire              we = tab_we || bw3[b];
-            wire [STOP_AW-1:0] wa = tab_we ? tab_addr : ba3[b];
-            wire [DATA_W-1:0]  wd = tab_we ? tab_data[b*DATA_W +: DATA_W] : bd3[b];
-            cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << STOP_AW), .OUT_REG(1)) u_bank (
-                .clk(clk), .rd_en(1'b1), .rd_addr(ra2[b]), .rd_data(rd4[b*DATA_W +: DATA_W]),
-                .wr_en(we), .wr_addr(wa), .wr_data(wd));
-            // a read at the edge of a beat's write to the same word takes the new word
-            always @(posedge clk) begin
-                hit3[b] <= bw3[b] && (ba3[b] == ra2[b]);
-                hd3[b]  <= bd3[b];
-                hit4[b] <= hit3[b];
-                hd4[b]  <= hd3[b];
+            // beat r's word is in sub-bank (first word + r) mod RATE
+            for (r = 0; r < RATE; r = r + 1) begin : g_out
+                wire [RL_W-1:0] at = RL_W'((32'(par4) + r) & (RATE - 1));
+                assign rd4[(r*P + b)*DATA_W +: DATA_W] = sub_q[at];
             end
         end
         for (q = 0; q < P; q = q + 1) begin : g_sel
@@ -176,16 +214,18 @@ module cube4_ray_table #(
         end
     endgenerate
 
-    // ==== S4 -> S5: each lane's word ====
-    reg [DATA_W-1:0] word5 [0:P-1];
+    // ==== S4 -> S5: each beat's lanes' words ====
+    reg [RATE*P*DATA_W-1:0] word5;
     generate
-        for (q = 0; q < P; q = q + 1) begin : g_lane
-            wire [LANE_W-1:0] s4 = sel4[q*LANE_W +: LANE_W];
-            always @(posedge clk) begin
-                word5[q] <= hit4[s4] ? hd4[s4] : rd4[32'(s4)*DATA_W +: DATA_W];
+        for (r = 0; r < RATE; r = r + 1) begin : g_beat5
+            for (q = 0; q < P; q = q + 1) begin : g_lane
+                wire [LANE_W-1:0] s4 = sel4[q*LANE_W +: LANE_W];
+                always @(posedge clk) begin
+                    word5[(r*P + q)*DATA_W +: DATA_W] <= rd4[(r*P + 32'(s4))*DATA_W +: DATA_W];
+                end
             end
-            assign rd_data[q*DATA_W +: DATA_W] = word5[q];
         end
     endgenerate
+    assign rd_data = word5;
 endmodule
 `default_nettype wire

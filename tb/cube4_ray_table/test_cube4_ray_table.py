@@ -15,11 +15,12 @@ through the host port between beats, and the reads after it see the new table.
 
 A read that meets a write of the same word at the banks' clock edge is the case block
 RAM does not promise: the unit passes the new word around the banks. Without that pass
-(tried, not kept), P = 1 fails with "read 11 lane 0 (by 8, bx 3): RTL 123, model 182" and
-P = 5 with "read 14 lane 0 (by 14, bx 21): RTL 144, model 152".
+(tried, not kept), P = 5 with RATE = 2 fails with "read 6 beat 0 lane 0 (by 6, bx 18): RTL
+203, model 171" and P = 1 with "read 23 beat 0 lane 0 (by 20, bx 8): RTL 111, model 132".
 
-Seeded from COCOTB_RANDOM_SEED; P = 5 runs in make test, P = 1, 8, 3 and 16 (DATA_W 1 and
-12) in make regress.
+RATE = 2 reads the beats pb and pb + 1 and writes both; every lane of both is checked.
+Seeded from COCOTB_RANDOM_SEED; P = 5 with RATE = 2 runs in make test, the others (P = 1,
+3, 8, 16; DATA_W 1 to 12; RATE 1 and 2) in make regress.
 """
 
 from __future__ import annotations
@@ -48,7 +49,7 @@ class TB:
     def __init__(self, dut) -> None:
         self.dut = dut
         self.log = dut._log
-        self.p, self.max_dim, self.data_w = top_params(dut, "P", "MAX_DIM", "DATA_W")
+        self.p, self.max_dim, self.data_w, self.rate = top_params(dut, "P", "MAX_DIM", "DATA_W", "RATE")
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.rows_w, self.cols_w = stop_layout(self.p, self.max_dim)
         self.rows, self.cols = 1 << self.rows_w, (1 << self.cols_w) * self.p
@@ -84,8 +85,9 @@ class TB:
                 "stx": int(self.rng.integers(0, self.sx + 1)), "sty": int(self.rng.integers(0, self.sy + 1)),
                 "t": self.rng.permutation(self.p)}
 
-    def ray(self, b: dict, t: int) -> tuple[int, int]:
-        return b["j"] - b["sty"] + self.sy, b["pb"] * self.p + t + self.sx - b["stx"]
+    def ray(self, b: dict, t: int, r: int = 0) -> tuple[int, int]:
+        """The ray at position t of beat r (partial beam pb + r) of beat ``b``."""
+        return b["j"] - b["sty"] + self.sy, (b["pb"] + r) * self.p + t + self.sx - b["stx"]
 
     def drive_read(self, b: dict) -> None:
         d = self.dut
@@ -99,27 +101,29 @@ class TB:
         if b is None:
             return []
         d.wr_j.value, d.wr_pb.value, d.wr_stx.value, d.wr_sty.value = b["j"], b["pb"], b["stx"], b["sty"]
-        en = self.rng.random(self.p) < 0.6
-        data = self.rng.integers(0, 1 << self.data_w, size=self.p)
+        n = self.rate * self.p
+        en = self.rng.random(n) < 0.6
+        data = self.rng.integers(0, 1 << self.data_w, size=n)
         writes = []
-        for t in range(self.p):
-            by, bx = self.ray(b, t)
-            en[t] &= bx < self.cols          # a position past the table writes nothing
-            if en[t]:
-                writes.append((by, bx, int(data[t])))
-        d.wr_en.value = sum(1 << t for t in range(self.p) if en[t])
-        d.wr_data.value = sum(int(data[t]) << (t * self.data_w) for t in range(self.p))
+        for k in range(n):
+            by, bx = self.ray(b, k % self.p, k // self.p)
+            en[k] &= bx < self.cols          # a position past the table writes nothing
+            if en[k]:
+                writes.append((by, bx, int(data[k])))
+        d.wr_en.value = sum(1 << k for k in range(n) if en[k])
+        d.wr_data.value = sum(int(data[k]) << (k * self.data_w) for k in range(n))
         return writes
 
     def check(self, n: int, b: dict, want: list) -> None:
         word = int(self.dut.rd_data.value)
         mask = (1 << self.data_w) - 1
-        for q in range(self.p):
-            if want[q] is None:
+        for k, w in enumerate(want):
+            if w is None:
                 continue
-            got = (word >> (q * self.data_w)) & mask
-            by, bx = self.ray(b, int(b["t"][q]))
-            assert got == want[q], f"read {n} lane {q} (by {by}, bx {bx}): RTL {got}, model {want[q]}"
+            r, q = divmod(k, self.p)
+            got = (word >> (k * self.data_w)) & mask
+            by, bx = self.ray(b, int(b["t"][q]), r)
+            assert got == w, f"read {n} beat {r} lane {q} (by {by}, bx {bx}): RTL {got}, model {w}"
             self.checked += 1
 
     async def run_view(self) -> None:
@@ -139,8 +143,8 @@ class TB:
                 rb = dict(prev_read, t=self.rng.permutation(self.p))     # the same rays again
             self.drive_read(rb)
             # what the read returns: every write issued before this cycle
-            want = [None if self.ray(rb, int(t))[1] >= self.cols else int(self.table[self.ray(rb, int(t))])
-                    for t in rb["t"]]
+            want = [None if self.ray(rb, int(t), r)[1] >= self.cols else int(self.table[self.ray(rb, int(t), r)])
+                    for r in range(self.rate) for t in rb["t"]]
             pending.append((n, rb, want))
             kind = self.rng.random()
             wb = (None if kind < 0.2 else dict(rb) if kind < 0.5
@@ -157,13 +161,15 @@ async def test_reads_and_writes(dut):
     tb.idle()
     for _ in range(VIEWS):
         await tb.run_view()
-    tb.log.info("cube4_ray_table P=%d MAX_DIM=%d DATA_W=%d: %d lane reads checked", tb.p, tb.max_dim,
-                tb.data_w, tb.checked)
-    assert tb.checked > VIEWS * BEATS * tb.p // 4
+    tb.log.info("cube4_ray_table P=%d MAX_DIM=%d DATA_W=%d RATE=%d: %d lane reads checked", tb.p, tb.max_dim,
+                tb.data_w, tb.rate, tb.checked)
+    assert tb.checked > VIEWS * BEATS * tb.p * tb.rate // 4
 
 
-BUILDS = [dict(P=1, MAX_DIM=16, DATA_W=8), dict(P=5, MAX_DIM=16, DATA_W=8), dict(P=8, MAX_DIM=32, DATA_W=9),
-          dict(P=3, MAX_DIM=8, DATA_W=1), dict(P=16, MAX_DIM=32, DATA_W=12)]
+BUILDS = [dict(P=1, MAX_DIM=16, DATA_W=8, RATE=1), dict(P=5, MAX_DIM=16, DATA_W=8, RATE=2),
+          dict(P=8, MAX_DIM=32, DATA_W=9, RATE=1), dict(P=3, MAX_DIM=8, DATA_W=1, RATE=2),
+          dict(P=16, MAX_DIM=32, DATA_W=12, RATE=1), dict(P=8, MAX_DIM=32, DATA_W=9, RATE=2),
+          dict(P=1, MAX_DIM=16, DATA_W=8, RATE=2)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))
