@@ -5,7 +5,7 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   The decisions of the beat schedule (docs/numerics.md section 19, "Runs";
-//   docs/architecture.md "The front end's plan"), S = 1, one beat a cycle: for
+//   docs/architecture.md "The front end's plan"), S = 1, RATE beats a cycle: for
 //   every beat (m, j, pb) of the frame, in order, and each position t of it
 //   (i = pb P + t < NI), the ray (by, bx) = (j - sty(m) + SY, i - stx(m) + SX)
 //     occ    its sample may count: the block table's bit of the sample's
@@ -23,8 +23,9 @@
 //   bit per ray this unit sets where occ. last and soon look at host words
 //   only: they do not depend on when a report arrives. Out: each row's
 //   words of A (a position runs) and OCC (a position may count) for
-//   cube4_cfb_beats, and, for each beat with a running ray (A), its position
-//   bits {soon, last, fresh, run} for the header (the other beats' are zero).
+//   cube4_cfb_beats, and, for each group of RATE beats with a running ray
+//   (A), each beat's flag and position bits {a, soon, last, fresh, run} for
+//   the header (a beat without a running ray has a = 0 and zero bits).
 //   A beat of slice m is decided only once COM has written its reports of
 //   slices up to m - LAG - 1 (com_m >= m - LAG): a report of a later slice d
 //   moves an end to d + LAG + 1 > m and decides slice m alike.
@@ -33,6 +34,8 @@
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
 //   2..2048, 4..12, 0..3).
 //   BLOCK_LOG2  log2 of the block edge B.        1..4.   Default 2 (B = 4).
+//   RATE        beats decided a cycle (pb, pb + 1: cube4_ray_table's RATE).
+//                                                1..2.   Default 1.
 //   LAG         slices from a report to its use. 2..7.   Default 3 (the
 //               front end with GRA between it and COM needs 3:
 //               docs/architecture.md "The front end's plan").
@@ -42,11 +45,11 @@
 //   A beat issued at an edge (its fields into the tables' reads) has its
 //   decisions at the fifth edge after (cube4_ray_table's read), registered
 //   into both output FIFOs (cube4_credit_fifo, credit-based: a beat is
-//   issued only with an entry reserved in each). One beat a cycle. A ray's
-//   next beat comes a slice (NJ NB beats) or more after its last (the steps
-//   only grow), and its started bit is written six cycles after that beat's
-//   issue; a slice of fewer than 8 beats waits for the pipeline to drain
-//   before its next slice.
+//   issued only with an entry reserved in each). RATE beats a cycle (a row's
+//   last group may hold one). A ray's next beat comes a slice (NJ NB beats)
+//   or more after its last (the steps only grow), and its started bit is
+//   written six cycles after that beat's issue; a slice of fewer than
+//   8 RATE + 2 beats waits for the pipeline to drain before its next slice.
 //
 // Ports
 //   start, busy   a frame (its registers stable from start until busy falls)
@@ -65,8 +68,9 @@
 //                 end d + LAG + 1 of a ray done after slice d, not soon
 //   com_m         slices whose reports COM has written whole [M_W]
 //   bm_valid, bm_ready, bm_a, bm_occ    rows of A and OCC [NBMAX]
-//   ln_valid, ln_ready, ln_bits   per beat of A {soon, last, fresh, run}
-//                 [4*P], bit t of each the position t
+//   ln_valid, ln_ready, ln_bits   per group of RATE beats with one of A:
+//                 beat r at [r*(4P+1) +: 4P+1] = {a, soon, last, fresh, run},
+//                 bit t of each the position t
 //
 // Bit growth and rounding: none (compares, counters, bit words).
 // =============================================================================
@@ -74,6 +78,7 @@ module cube4_cfb_decide #(
     `CUBE4_SLICE_PARAMS,
     parameter integer BLOCK_LOG2 = 2,
     parameter integer LAG        = 3,
+    parameter integer RATE       = 1,
     `CUBE4_STOP_LAYOUT,
     localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
     localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1
@@ -93,15 +98,17 @@ module cube4_cfb_decide #(
     input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end,
     input  wire [M_W-1:0] com_m,
     output wire bm_valid, input wire bm_ready, output wire [NBMAX-1:0] bm_a, output wire [NBMAX-1:0] bm_occ,
-    output wire ln_valid, input wire ln_ready, output wire [4*P-1:0] ln_bits
+    output wire ln_valid, input wire ln_ready, output wire [RATE*(4*P+1)-1:0] ln_bits
 );
     generate
         `CUBE4_RANGE(g_bad_block, "cube4_cfb_decide", "BLOCK_LOG2", BLOCK_LOG2, 1, 4)
         `CUBE4_RANGE(g_bad_lag, "cube4_cfb_decide", "LAG", LAG, 2, 7)
+        `CUBE4_RANGE(g_bad_rate, "cube4_cfb_decide", "RATE", RATE, 1, 2)
     endgenerate
     localparam integer ND = 5;               // stages from issue to the decisions (the tables' read)
     localparam integer NW = NBMAX;
-    genvar q;
+    localparam integer LN = 4 * P + 1;       // a beat's {a, soon, last, fresh, run}
+    genvar q, r;
     integer k;
 
     // ==== issue: (m, j, pb) in order, a slice's steps, the reports it needs ====
@@ -112,10 +119,10 @@ module cube4_cfb_decide #(
     reg [DIM_W-1:0]  stx, sty;
     reg              have_st;              // this slice's steps are taken
     reg [ND:1]       v;                    // the decision pipeline's valid bits
-    reg              tiny;                 // NJ NB < 8: drain between slices
+    reg              tiny;                 // NJ NB < 8 RATE + 2: drain between slices
     wire             credit_ln, credit_bm;
     wire             first_beat = (j == '0) && (pb == '0);
-    wire             last_pb    = (NB_W'(pb) == nb - 1'b1);
+    wire             last_pb    = ({1'b0, NB_W'(pb)} + (NB_W + 1)'(RATE) >= {1'b0, nb});   // the row's last group
     wire             last_j     = (j == nj - 1'b1);
     wire             reports_ok = ({1'b0, m} <= {1'b0, com_m} + (M_W + 1)'(LAG));
     wire             drained    = !tiny || !first_beat || (v == '0);
@@ -141,7 +148,7 @@ module cube4_cfb_decide #(
                 sty <= st_y;
             end
             if (issue) begin
-                pb <= last_pb ? '0 : pb + 1'b1;
+                pb <= last_pb ? '0 : pb + PB_W'(RATE);
                 if (last_pb) j <= last_j ? '0 : j + 1'b1;
                 if (last_pb && last_j) begin
                     m <= m + 1'b1;
@@ -154,7 +161,7 @@ module cube4_cfb_decide #(
     end
     assign busy = active;
     always @(posedge clk) begin
-        tiny <= 32'(nj) * 32'(nb) < 8;
+        tiny <= 32'(nj) * 32'(nb) < 8 * RATE + 2;
     end
 
     // ==== the beat's fields along the pipeline ====
@@ -182,22 +189,26 @@ module cube4_cfb_decide #(
         end
     endgenerate
     localparam integer EW = M_W + 1;       // {tdone, end}
-    wire [P*EW-1:0]  tab_word, rep_word, end_d;
-    wire [P-1:0]     started_d;
-    wire [P-1:0]     set_started;
+    wire [P*EW-1:0]      tab_word;
+    wire [RATE*P*EW-1:0] rep_word, end_d;
+    wire [RATE*P-1:0]    started_d, set_started, rep_en_r;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_words
             assign tab_word[q*EW +: EW] = {1'b0, tab_data[q*M_W +: M_W]};
-            assign rep_word[q*EW +: EW] = {1'b1, rep_end[q*M_W +: M_W]};
+        end
+        for (q = 0; q < RATE * P; q = q + 1) begin : g_rep
+            // COM's report is one beat: the first of the write port's RATE
+            assign rep_word[q*EW +: EW] = {1'b1, (q < P) ? rep_end[(q % P)*M_W +: M_W] : M_W'(0)};
+            assign rep_en_r[q] = (q < P) && rep_en[q % P];
         end
     endgenerate
-    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(EW)) u_end (
+    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(EW), .RATE(RATE)) u_end (
         .clk(clk), .sx(sx), .sy(sy),
         .tab_we(tab_we), .tab_addr(tab_addr), .tab_data(tab_word),
         .rd_j(j), .rd_pb(pb), .rd_tpos(ident), .rd_stx(stx), .rd_sty(sty), .rd_data(end_d),
         .wr_valid(rep_valid), .wr_j(rep_j), .wr_pb(rep_pb), .wr_stx(rep_stx), .wr_sty(rep_sty),
-        .wr_en(rep_en), .wr_data(rep_word));
-    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(1)) u_started (
+        .wr_en(rep_en_r), .wr_data(rep_word));
+    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(1), .RATE(RATE)) u_started (
         .clk(clk), .sx(sx), .sy(sy),
         .tab_we(tab_we), .tab_addr(tab_addr), .tab_data('0),
         .rd_j(j), .rd_pb(pb), .rd_tpos(ident), .rd_stx(stx), .rd_sty(sty), .rd_data(started_d),
@@ -220,13 +231,14 @@ module cube4_cfb_decide #(
     always @(posedge clk) {blk_s5, blk_s4, blk_s3} <= {blk_s4, blk_s3, blk_q};
     wire unused_vk = ^{vk[BLOCK_LOG2-1:0], vj[BLOCK_LOG2-1:0]};
 
-    // ==== S5: each position's decisions ====
-    wire [IW-1:0] pbp5 = IW'(pb_s[ND]) * IW'(P);
-    wire [P-1:0]  occ5, run5, fresh5, last5, soon5;
+    // ==== S5: each beat's positions' decisions (beat r: partial beam pb + r) ====
+    wire [IW-1:0]      pbp5 = IW'(pb_s[ND]) * IW'(P);
+    wire [RATE*P-1:0]  occ5, run5, fresh5, last5, soon5;
     generate
-        for (q = 0; q < P; q = q + 1) begin : g_pos
+        for (q = 0; q < RATE * P; q = q + 1) begin : g_pos
             wire [IW-1:0]    i   = pbp5 + IW'(q);
-            wire             val = i < IW'(ni);
+            wire             val = (i < IW'(ni)) && ((q / P == 0) || ({1'b0, NB_W'(pb_s[ND])} + (NB_W + 1)'(q / P)
+                                                        < {1'b0, nb}));
             wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i));
             wire [BK_W-1:0]  ib  = BK_W'(vi >> BLOCK_LOG2);
             wire [M_W-1:0]   e   = end_d[q*EW +: M_W];
@@ -242,10 +254,19 @@ module cube4_cfb_decide #(
     endgenerate
 
     // ==== the outputs: a beat's bits, a row's words (credit FIFOs) ====
-    reg [NW-1:0] row_a, row_o;             // the row so far (S5's beat not yet in)
-    wire [NW-1:0] bit5 = NW'(1) << pb_s[ND];
-    wire [NW-1:0] a_now = row_a | ((run5 != '0) ? bit5 : '0);
-    wire [NW-1:0] o_now = row_o | ((occ5 != '0) ? bit5 : '0);
+    reg  [NW-1:0] row_a, row_o;            // the row so far (S5's beats not yet in)
+    wire [RATE-1:0] a5, o5;                // each beat of the group: in A, may count
+    wire [NW-1:0] a_add, o_add;
+    generate
+        for (r = 0; r < RATE; r = r + 1) begin : g_beat
+            assign a5[r] = run5[r*P +: P] != '0;
+            assign o5[r] = occ5[r*P +: P] != '0;
+        end
+    endgenerate
+    assign a_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, a5}) << pb_s[ND];
+    assign o_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, o5}) << pb_s[ND];
+    wire [NW-1:0] a_now = row_a | a_add;
+    wire [NW-1:0] o_now = row_o | o_add;
     always @(posedge clk) begin
         if (rst || start || (v[ND] && row_end[ND])) begin
             row_a <= '0;
@@ -256,16 +277,22 @@ module cube4_cfb_decide #(
         end
     end
     reg [NW-1:0]  bm_a6, bm_o6;
-    reg [4*P-1:0] ln6;
+    wire [RATE*LN-1:0] ln5;
+    reg  [RATE*LN-1:0] ln6;
+    generate
+        for (r = 0; r < RATE; r = r + 1) begin : g_ln
+            assign ln5[r*LN +: LN] = {a5[r], soon5[r*P +: P], last5[r*P +: P], fresh5[r*P +: P], run5[r*P +: P]};
+        end
+    endgenerate
     always @(posedge clk) begin
         bm_a6 <= a_now;
         bm_o6 <= o_now;
-        ln6   <= {soon5, last5, fresh5, run5};
+        ln6   <= ln5;
     end
     wire unused_cr_ln, unused_cr_bm;
-    cube4_credit_fifo #(.DATA_W(4 * P), .DEPTH(16)) u_ln (
-        .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && (run5 == '0)), .credit(credit_ln),
-        .credit_d(unused_cr_ln), .push_d(v[ND] && (run5 != '0)), .in_data(ln6), .out_valid(ln_valid),
+    cube4_credit_fifo #(.DATA_W(RATE * LN), .DEPTH(16)) u_ln (
+        .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && (a5 == '0)), .credit(credit_ln),
+        .credit_d(unused_cr_ln), .push_d(v[ND] && (a5 != '0)), .in_data(ln6), .out_valid(ln_valid),
         .out_ready(ln_ready), .out_data(ln_bits));
     cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
         .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && !row_end[ND]), .credit(credit_bm),

@@ -15,11 +15,12 @@
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh).
-//   BLOCK_LOG2, LAG: as cube4_cfb_decide (LAG default 3).
-//   LN_DEPTH  the position bits' queue, a power of two >= 4 NJ NB of the
-//             largest frame (the decisions run at most a few slices ahead of
-//             the walk: bitmaps of slices up to g + 2 while the walk fetches
-//             slice g). Default: 4 MAX_DIM NBMAX rounded up.
+//   BLOCK_LOG2, LAG, RATE: as cube4_cfb_decide (LAG default 3; RATE beats
+//             decided a cycle, 1..2, default 1).
+//   LN_DEPTH  the position bits' queue (groups of RATE beats), a power of two
+//             >= 4 NJ NB of the largest frame (the decisions run at most a few
+//             slices ahead of the walk: bitmaps of slices up to g + 2 while
+//             the walk fetches slice g). Default: 4 MAX_DIM NBMAX rounded up.
 //
 // Latency
 //   As its units; the walk's beats pass one register-free join (out_valid is
@@ -39,6 +40,7 @@ module cube4_cfb_skip #(
     `CUBE4_SLICE_PARAMS,
     parameter integer BLOCK_LOG2 = 2,
     parameter integer LAG        = 3,
+    parameter integer RATE       = 1,
     parameter integer LN_DEPTH   = 1 << $clog2(4 * MAX_DIM * ((MAX_DIM + P - 1) / P)),
     `CUBE4_STOP_LAYOUT,
     localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
@@ -67,9 +69,10 @@ module cube4_cfb_skip #(
     wire            busy_d, busy_w;
     wire            bm_valid, bm_ready;
     wire [NBMAX-1:0] bm_a, bm_occ;
+    localparam integer LN = 4 * P + 1;     // a beat's {a, soon, last, fresh, run}
     wire            ln_valid, ln_ready, q_valid, q_ready;
-    wire [4*P-1:0]  ln_bits, q_bits;
-    cube4_cfb_decide #(`CUBE4_SLICE_PASS, .BLOCK_LOG2(BLOCK_LOG2), .LAG(LAG)) u_decide (
+    wire [RATE*LN-1:0] ln_bits, q_bits;
+    cube4_cfb_decide #(`CUBE4_SLICE_PASS, .BLOCK_LOG2(BLOCK_LOG2), .LAG(LAG), .RATE(RATE)) u_decide (
         .clk(clk), .rst(rst), .start(start), .busy(busy_d),
         .ni(ni), .nj(nj), .nb(nb), .nm(nm), .sx(sx), .sy(sy),
         .bi_base(bi_base), .bi_flip(bi_flip), .bj_base(bj_base), .bj_flip(bj_flip),
@@ -81,7 +84,7 @@ module cube4_cfb_skip #(
         .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .ln_valid(ln_valid), .ln_ready(ln_ready), .ln_bits(ln_bits));
-    cube4_ram_fifo #(.DATA_W(4 * P), .DEPTH(LN_DEPTH)) u_queue (
+    cube4_ram_fifo #(.DATA_W(RATE * LN), .DEPTH(LN_DEPTH)) u_queue (
         .clk(clk), .rst(rst || start),
         .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_bits),
         .out_valid(q_valid), .out_ready(q_ready), .out_data(q_bits));
@@ -92,13 +95,26 @@ module cube4_cfb_skip #(
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .out_valid(w_valid), .out_ready(w_ready), .out_m(out_m), .out_j(out_j), .out_pb(out_pb),
         .out_read(out_read), .out_leave(w_leave), .out_in_a(w_in_a), .out_eos(out_eos), .out_last(out_last));
-    // a walk beat whose leaving beat holds a running ray takes that beat's bits
+    // a walk beat whose leaving beat holds a running ray takes that beat's bits:
+    // the next beat with a = 1 of the queue's head group (from beat `half` on)
     wire need = w_leave && w_in_a;
+    reg  half;                             // RATE = 2: the head's first beat is taken
+    wire a0   = q_bits[LN-1] && !half;
+    wire [0:0] pick = (RATE > 1 && !a0) ? 1'b1 : 1'b0;
+    wire [LN-1:0] beat = q_bits[32'(pick)*LN +: LN];
+    wire unused_a = beat[LN-1];            // a = 1 here: the queue holds groups with one of A
+    // the group is used up after this beat: its last one, or the first with no a = 1 after it
+    wire more = (RATE > 1) && !pick && q_bits[(RATE - 1)*LN + LN - 1];
+    wire take = out_ready && w_valid && need && q_valid;
     assign out_valid = w_valid && (!need || q_valid);
     assign w_ready   = out_ready && (!need || q_valid);
-    assign q_ready   = out_ready && w_valid && need;
+    assign q_ready   = take && !more;
+    always @(posedge clk) begin
+        if (rst || start) half <= 1'b0;
+        else if (take)    half <= more;
+    end
     assign out_leave = w_leave;
-    assign out_bits  = need ? q_bits : '0;
+    assign out_bits  = need ? beat[4*P-1:0] : '0;
     assign busy      = busy_d || busy_w;
 endmodule
 `default_nettype wire

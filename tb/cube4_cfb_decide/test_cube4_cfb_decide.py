@@ -25,9 +25,11 @@ random ready, and nothing more comes out (40 cycles after the last).
 
 Without the started bits (tried, not kept: run = occ and m < end), P = 4 fails with "ln
 beat 872 (m=15, j=14, pb=0): RTL run 0x3, golden 0x1"; without the wait for COM's reports
-(com_m), with "ln beat 1172 (m=16, j=9, pb=0): RTL fresh 0x0, golden 0x1" in the second
-slab frame, whose reports come up to five slices late. Seeded from COCOTB_RANDOM_SEED;
-P = 4 in make test, 1, 8 and 5 (MAX_DIM 64) in make regress.
+(com_m), with "ln beat 848 (m=10, j=5, pb=1): RTL run 0xf, golden 0x1" in the second slab
+frame, whose reports come up to five slices late (both at RATE = 2; "ln beat" counts the
+beats that hold a running ray). Seeded from COCOTB_RANDOM_SEED;
+P = 4 deciding two beats a cycle (RATE = 2) in make test; P = 1, 4, 8 at RATE 1 and P = 1,
+5 (MAX_DIM 64) at RATE 2 in make regress.
 """
 
 from __future__ import annotations
@@ -53,7 +55,7 @@ class TB:
     def __init__(self, dut) -> None:
         self.dut = dut
         self.log = dut._log
-        self.p, self.max_dim, self.ss = top_params(dut, "P", "MAX_DIM", "MAX_SS_LOG2")
+        self.p, self.max_dim, self.ss, self.rate = top_params(dut, "P", "MAX_DIM", "MAX_SS_LOG2", "RATE")
         self.geo = Geometry(self.p, self.max_dim, self.ss)
         self.nbk = -(-self.max_dim // BLOCK)
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
@@ -130,8 +132,11 @@ class TB:
             out = False
             if ln_ready and int(d.ln_valid.value):
                 v = int(d.ln_bits.value)
-                mask = (1 << self.p) - 1
-                lane.append(tuple((v >> (c * self.p)) & mask for c in range(4)))
+                mask, ln = (1 << self.p) - 1, 4 * self.p + 1
+                for r in range(self.rate):          # a group of RATE beats; those with a = 1
+                    w = v >> (r * ln)
+                    if (w >> (4 * self.p)) & 1:
+                        lane.append(tuple((w >> (c * self.p)) & mask for c in range(4)))
                 out = True
             if bm_ready and int(d.bm_valid.value):
                 v = int(d.bm_a.value), int(d.bm_occ.value)
@@ -185,7 +190,8 @@ async def test_decisions(dut):
                     len(rows))
 
 
-BUILDS = [dict(P=4, MAX_DIM=32), dict(P=1, MAX_DIM=32), dict(P=8, MAX_DIM=32), dict(P=5, MAX_DIM=64)]
+BUILDS = [dict(P=4, MAX_DIM=32, RATE=2), dict(P=1, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=1),
+          dict(P=5, MAX_DIM=64, RATE=2), dict(P=4, MAX_DIM=32, RATE=1), dict(P=1, MAX_DIM=32, RATE=2)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))

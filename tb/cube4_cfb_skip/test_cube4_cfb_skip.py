@@ -10,8 +10,9 @@ on every beat whose leaving sample beat holds a running ray, that beat's positio
 {soon, last, fresh, run} as the golden schedule has them (soon up to the ray's done slice),
 zero on the others; nothing after LAST. The units' own testbenches cover each alone; here
 the decisions run ahead of the walk through the bitmaps' four slots and the bits' queue,
-and no frame may stall for good. Seeded from COCOTB_RANDOM_SEED; P = 8 in make test, 4, 1
-and 5 (MAX_DIM 64) in make regress.
+and no frame may stall for good. Seeded from COCOTB_RANDOM_SEED; P = 8 deciding two beats a
+cycle (RATE = 2) in make test; P = 1, 4, 8 at RATE 1 and P = 1, 5 (MAX_DIM 64) at RATE 2 in
+make regress.
 """
 
 from __future__ import annotations
@@ -166,7 +167,8 @@ async def test_front_end(dut):
                     kind, arg, s.M, s.NJ, s.NB, int((s.done < s.M).sum()), stall, len(got))
 
 
-BUILDS = [dict(P=4, MAX_DIM=32), dict(P=8, MAX_DIM=32), dict(P=1, MAX_DIM=32), dict(P=5, MAX_DIM=64)]
+BUILDS = [dict(P=4, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=2), dict(P=1, MAX_DIM=32, RATE=1),
+          dict(P=5, MAX_DIM=64, RATE=2), dict(P=1, MAX_DIM=32, RATE=2), dict(P=8, MAX_DIM=32, RATE=1)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))
