@@ -296,5 +296,8 @@ def test_skipping_report_beat_rows():
     assert taus[0]["rmse"] == 0 and taus[-1]["beats"]["run_beats"] <= taus[0]["beats"]["run_beats"]
     blocks = skipping.block_rows("head:24", "head")
     assert [b["block"] for b in blocks] == skipping.BLOCKS
-    text = skipping.write_beats_md(rows, taus, blocks)
+    front = [{"volume": "head:128", "scene": "head", "rate": 2, "n3_over_p": 262144.0, "cycles": 130367,
+              "decided_cycles": 129661, "walk_beats": 123419}]
+    text = skipping.write_beats_md(rows, taus, blocks, front)
     assert "mri:32,24,12" in text and "identical" in text and "DIFFERENT" not in text
+    assert "| head:128, scene head | 2 | 130,367 | 0.497 | 129,661 | 0.495 | 0.471 |" in text

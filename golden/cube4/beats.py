@@ -192,6 +192,7 @@ class BeatSchedule:
     reported: int = field(init=False, default=-1)
     table_s: float = 0.0
     stop_s: float = 0.0                        # host time for the occupancy in the frame and the stops
+    block_bits: np.ndarray | None = None       # the volume's block table bits (bz, by, bx) the host used
     _a: dict = field(init=False, default_factory=dict)
     _e: dict = field(init=False, default_factory=dict)
 

@@ -333,6 +333,7 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
                              gra=sc.shaded and not sc.voxel_gradients)
         sched.table_s = table_s
         sched.stop_s = time.perf_counter() - t1      # the host's work per view: the rays' stops
+        sched.block_bits = bits
         lv = level_of(vol, sc)
         rule = TerminationRule(sc.mode, int(opts.get("tau", 0)), 1 << cfg.acc_bits, int(lv.min()),
                                int(lv.max()), enabled=terminate, value_bits=cfg.voxel_bits)
@@ -358,13 +359,14 @@ def beat_view_stats(frames: list) -> dict:
 
 def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: bool = False,
                 progress: Progress | None = None, rects: bool = False,
-                beat_skip: dict | None = None) -> tuple[ViewPlan, Frame, dict]:
+                beat_skip: dict | None = None, schedules: list | None = None) -> tuple[ViewPlan, Frame, dict]:
     """One view through the bit-exact model: its plan, its frame (the passes' base planes
     placed and interleaved) and the stats of what it did; ``rects``: each frame computes
     only its slice rectangles (the specified finer schedule; stats ``rect_beats``);
     ``keep_streams``: the frame keeps the model's intermediate streams; ``beat_skip``:
     each frame skips beats and ends rays (cube4.beats; keys block, lag, tau, terminate;
-    stats ``beats``)."""
+    stats ``beats``); ``schedules``: a list that receives each pass's (BeatSchedule,
+    TerminationRule) after the frame (None for a pass without a frame)."""
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     trav, _ = setup_view(dims, scene, cfg)
@@ -399,6 +401,8 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
             depths[n] = sub.depth_m
         if keep_streams:
             streams = sub.streams
+    if schedules is not None and beat_frames:
+        schedules.extend(beat_frames)
     frame = assemble_view(vp, cfg, results, depths if scene.depth_threshold is not None else None)
     frame.streams = streams
     stats.update(trav_stats(trav))

@@ -208,6 +208,61 @@ def rtl_dram_frames() -> list[dict]:
     return out
 
 
+#: the front end's units measured by make skipping: (volume, scene) and the decision rates
+FRONT_END_CASES = [GOAL, OPAQUE_GOAL]
+FRONT_END_RATES = (1, 2)
+
+
+def rtl_front_end() -> list[dict]:
+    """The beat schedule's front end (``cube4_cfb_skip``: decisions, the walk, S = 1) at
+    P = 8 on the goal cases' own views, deciding 1 and 2 beats a cycle: its cycles from
+    start to the last beat, the golden model's ``decided_cycles`` beside them; each run
+    checks every walk beat and position bit against the golden schedule."""
+    import tempfile
+
+    from cube4.beats import decided_cycles, walk_beats
+    from cube4_sim.beat_frames import view_frame
+    from cube4_sim.runner import run_test
+    from cube4_sim.sources import rtl_sources
+
+    bench = REPO_ROOT / "tb" / "cube4_cfb_skip" / "test_cube4_cfb_skip.py"
+    rows = []
+    for vol_spec, scene_name in FRONT_END_CASES:
+        bf = view_frame(vol_spec, scene_name, P)
+        n3p = load_volume(vol_spec).size / P
+        for rate in FRONT_END_RATES:
+            with tempfile.TemporaryDirectory() as tmp:
+                out = Path(tmp) / "measure.json"
+                spec = {"volume": vol_spec, "scene": scene_name, "out": str(out)}
+                run_test(top="cube4_cfb_skip", sources=rtl_sources(),
+                         params={"P": P, "MAX_DIM": 128, "RATE": rate}, test_module=bench,
+                         testcase="test_measure", extra_env={"CUBE4_SKIP_MEASURE": json.dumps(spec)})
+                got = json.loads(out.read_text())
+            rows.append({"volume": vol_spec, "scene": scene_name, "rate": rate, "n3_over_p": n3p,
+                         "cycles": got["cycles"], "decided_cycles": decided_cycles(bf.sched, rate),
+                         "walk_beats": walk_beats(bf.sched)})
+    return rows
+
+
+def front_end_lines(rows: list[dict]) -> list[str]:
+    if not rows:
+        return []
+    body = [[f"{r['volume']}, scene {r['scene']}", str(r["rate"]), fmt_int(r["cycles"]),
+             f"{r['cycles'] / r['n3_over_p']:.3f}", fmt_int(r["decided_cycles"]),
+             f"{r['decided_cycles'] / r['n3_over_p']:.3f}", f"{r['walk_beats'] / r['n3_over_p']:.3f}"]
+            for r in rows]
+    return ["**The front end's units in RTL** (`cube4_cfb_skip`: `cube4_cfb_decide`, `cube4_ram_fifo`, "
+            "`cube4_cfb_beats`; S = 1, P = 8, MAX_DIM = 128, lag 3; the bench `tb/cube4_cfb_skip` test_measure "
+            "plays the host and COM, COM reporting each slice right after its last beat): a frame's cycles from "
+            "start to its last walk beat, deciding r beats a cycle, beside the golden model's "
+            "`beats.decided_cycles` (which leaves out the two slices decided before the walk starts and the "
+            "pipeline's fill) and the walk's beats. Every walk beat and position bit matched the golden "
+            "schedule. These units are not yet in `cube4_top`: no frame of the whole design runs this "
+            "schedule, so these are the front end's cycles, not a frame's.", "",
+            md_table(["case (its own view)", "r", "cycles", "of n³/P", "golden decided_cycles", "of n³/P",
+                      "walk beats, of n³/P"], body, "lrrrrrr"), ""]
+
+
 def dram_lines(frames: list[dict], n3p: float | None) -> list[str]:
     """The goal case with the DRAM: a table, box against fixed."""
     if not frames:
@@ -321,7 +376,7 @@ def _frac(x: float, n3p: float) -> str:
     return f"{x / n3p:.3f}"
 
 
-def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> str:
+def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front: list[dict] | None = None) -> str:
     rates = [r for r in DECIDE_RATES if r > 1]
     head = ["volume (dims)", "scene (mode)", "view az, el", "box", "beats run", "+ termination",
             "front-end walk", *[f"deciding {r}/cycle" for r in rates], "skipped: empty", "skipped: rays ended",
@@ -377,6 +432,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict]) -> st
                            [[f"{b['block']}³", fmt_int(b["entries"]), _frac(b["beats"]["run_beats"], b["n3_over_p"]),
                              _frac(b["beats"]["walk_beats"], b["n3_over_p"]),
                              f"{1000 * b['beats']['table_s']:.0f} ms"] for b in blocks], "lrrrr"), ""]
+    lines += front_end_lines(front or [])
     goal = [r for r in rows if (r["volume"], r["scene"]) == GOAL]
     opaque = [r for r in rows if (r["volume"], r["scene"]) == OPAQUE_GOAL]
     if goal and opaque:
@@ -424,18 +480,19 @@ def main(argv: list[str] | None = None) -> int:
     rtl = None if args.no_rtl else rtl_goal_frame()
     rtl_rects = None if args.no_rtl else rtl_goal_frame(rects=True)
     rtl_dram = None if (args.no_rtl or args.no_dram) else rtl_dram_frames()
+    front = [] if (args.no_rtl or args.no_beats) else rtl_front_end()
     meta = {"git": git_describe(("rtl", "golden", "sim"))}
     out = REPO_ROOT / "build" / "reports"
     out.mkdir(parents=True, exist_ok=True)
     (out / "skipping.json").write_text(json.dumps({"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects,
-                                                   "rtl_dram": rtl_dram,
+                                                   "rtl_dram": rtl_dram, "front_end": front,
                                                    "beats": brows, "taus": taus, "blocks": blocks},
                                                   indent=1) + "\n")
     dest = Path(args.out)
     dest.mkdir(parents=True, exist_ok=True)
     md = write_md(rows, rtl, meta, rtl_rects, rtl_dram)
     if brows:
-        md += "\n" + write_beats_md(brows, taus, blocks)
+        md += "\n" + write_beats_md(brows, taus, blocks, front)
     (dest / "skipping.md").write_text(md)
     print(f"skipping: {dest / 'skipping.md'}")
     return 0

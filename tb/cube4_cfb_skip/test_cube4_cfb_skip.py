@@ -17,6 +17,9 @@ make regress.
 
 from __future__ import annotations
 
+import json
+import os
+
 import cocotb
 import numpy as np
 import pytest
@@ -24,7 +27,7 @@ from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4.memory import stop_table
 from cube4_sim.beat_frames import (BLOCK, axis_regs, block_words, expected_decisions, expected_walk, reports,
-                                   slab_frame, sparse_frame)
+                                   slab_frame, sparse_frame, view_frame)
 from cube4_sim.beats import Geometry
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
@@ -88,14 +91,15 @@ class TB:
             await FallingEdge(d.clk)
         d.tab_we.value = 0
 
-    async def frame(self, bf, stall: float, delay: int) -> list[tuple]:
+    async def frame(self, bf, stall: float, delay: int) -> tuple[list[tuple], int]:
+        """Run one frame: its beats, and the cycles from start to the LAST beat's transfer."""
         d, s, t = self.dut, bf.sched, bf.trav
         await self.load(bf)
         reps = reports(bf, self.p, LAG)
         d.start.value = 1
         await FallingEdge(d.clk)
         d.start.value = 0
-        got, st_n, com_m, queue, walked, cycle, after = [], 0, 0, [], 0, 0, None
+        got, st_n, com_m, queue, walked, cycle, after, last_cycle = [], 0, 0, [], 0, 0, None, 0
         while after is None or after < TAIL:
             d.st_valid.value = int(st_n < s.M)
             if st_n < s.M:
@@ -130,6 +134,7 @@ class TB:
                     walked = beat[0] + 1        # slices the walk has finished
                 if beat[6]:
                     after = 0
+                    last_cycle = cycle + 1
             await RisingEdge(d.clk)
             await FallingEdge(d.clk)
             cycle += 1
@@ -137,7 +142,7 @@ class TB:
                 after += 1
             assert cycle < 300000, f"the frame stalled ({len(got)} beats out)"
         assert not int(d.busy.value), "busy after the frame's last beat"
-        return got
+        return got, last_cycle
 
 
 def compare(got: list, want: list) -> None:
@@ -161,10 +166,29 @@ async def test_front_end(dut):
         if s.NJ > tb.max_dim or s.NB > nbmax:
             continue
         stall, slices = ((0.0, 0.0), (0.1, 1.0), (0.4, 0.3), (0.2, 0.05))[n % 4]
-        got = await tb.frame(bf, stall, int(slices * s.NJ * s.NB))
+        got, _ = await tb.frame(bf, stall, int(slices * s.NJ * s.NB))
         compare(got, expected(bf, tb.p))
         tb.log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d walk beats bit-exact",
                     kind, arg, s.M, s.NJ, s.NB, int((s.done < s.M).sum()), stall, len(got))
+
+
+MEASURE = os.environ.get("CUBE4_SKIP_MEASURE")
+
+
+@cocotb.test(skip=MEASURE is None)
+async def test_measure(dut):
+    """make skipping's measurement (CUBE4_SKIP_MEASURE: JSON {volume, scene, out}): a
+    built-in scene's own view through the front end's units, without stalls, COM's
+    reports right after each slice's EOS; beat for beat against the golden schedule, and
+    its cycles from start to LAST written to ``out``."""
+    spec = json.loads(MEASURE)
+    tb = TB(dut)
+    await tb.reset()
+    bf = view_frame(spec["volume"], spec["scene"], tb.p)
+    got, cycles = await tb.frame(bf, 0.0, 0)
+    compare(got, expected(bf, tb.p))
+    with open(spec["out"], "w") as f:
+        json.dump({"cycles": cycles, "walk_beats": len(got)}, f)
 
 
 BUILDS = [dict(P=4, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=2), dict(P=1, MAX_DIM=32, RATE=1),
