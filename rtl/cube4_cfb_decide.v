@@ -66,7 +66,9 @@
 //   rep_*         a report (COM): rep_valid, rep_j, rep_pb, rep_stx, rep_sty,
 //                 rep_en [P] per position, rep_end [P*M_W] per position: the
 //                 end d + LAG + 1 of a ray done after slice d, not soon
-//   com_m         slices whose reports COM has written whole [M_W]
+//   com_m         slices whose reports COM has written whole [M_W]; it may count
+//                 a slice in the cycle of its last write (the unit registers it,
+//                 so its reads come at least a cycle after that write)
 //   bm_valid, bm_ready, bm_a, bm_occ    rows of A and OCC [NBMAX]
 //   ln_valid, ln_ready, ln_bits   per group of RATE beats with one of A:
 //                 beat r at [r*(4P+1) +: 4P+1] = {a, soon, last, fresh, run},
@@ -124,7 +126,9 @@ module cube4_cfb_decide #(
     wire             first_beat = (j == '0) && (pb == '0);
     wire             last_pb    = ({1'b0, NB_W'(pb)} + (NB_W + 1)'(RATE) >= {1'b0, nb});   // the row's last group
     wire             last_j     = (j == nj - 1'b1);
-    wire             reports_ok = ({1'b0, m} <= {1'b0, com_m} + (M_W + 1)'(LAG));
+    reg  [M_W-1:0]   com_q;                // com_m a cycle late: a read a cycle after the last write
+    always @(posedge clk) com_q <= (rst || start) ? '0 : com_m;
+    wire             reports_ok = ({1'b0, m} <= {1'b0, com_q} + (M_W + 1)'(LAG));
     wire             drained    = !tiny || !first_beat || (v == '0);
     wire             steps_ok   = !first_beat || have_st;
     wire             issue = active && issuing && credit_ln && credit_bm && reports_ok && drained && steps_ok;

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .beats import BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
+from .beats import LAG, BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
 from .clip import Clip, crop_regions, cut_coefficients, slab_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, has_falloff, has_gmod, rect_frame_cycles
@@ -329,7 +329,7 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
             continue
         t1 = time.perf_counter()
         occ = frame_occupancy(bits, table.block, plan.trav)
-        sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", 2), terminate=terminate,
+        sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", LAG), terminate=terminate,
                              gra=sc.shaded and not sc.voxel_gradients)
         sched.table_s = table_s
         sched.stop_s = time.perf_counter() - t1      # the host's work per view: the rays' stops
