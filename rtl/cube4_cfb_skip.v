@@ -18,9 +18,10 @@
 //   BLOCK_LOG2, LAG, RATE: as cube4_cfb_decide (LAG default 3; RATE beats
 //             decided a cycle, 1..2, default 1).
 //   LN_DEPTH  the position bits' queue (groups of RATE beats), a power of two
-//             >= 4 NJ NB of the largest frame (the decisions run at most a few
-//             slices ahead of the walk: bitmaps of slices up to g + 2 while
-//             the walk fetches slice g). Default: 4 MAX_DIM NBMAX rounded up.
+//             >= 4 NJ NB / RATE of the largest frame: the decisions run less
+//             than four slices ahead of the walk's last beat (bitmaps of slices
+//             up to g + 2 while the walk fetches slice g, whose emitter is at
+//             most a few rows behind). Default: 4 MAX_DIM NBMAX / RATE rounded up.
 //
 // Latency
 //   As its units; the walk's beats pass one register-free join (out_valid is
@@ -41,7 +42,7 @@ module cube4_cfb_skip #(
     parameter integer BLOCK_LOG2 = 2,
     parameter integer LAG        = 3,
     parameter integer RATE       = 1,
-    parameter integer LN_DEPTH   = 1 << $clog2(4 * MAX_DIM * ((MAX_DIM + P - 1) / P)),
+    parameter integer LN_DEPTH   = 1 << $clog2((4 * MAX_DIM * ((MAX_DIM + P - 1) / P) + RATE - 1) / RATE),
     `CUBE4_STOP_LAYOUT,
     localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
     localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1
