@@ -38,10 +38,12 @@
 //   the walk fetches slice m's rows once slice m + 1 is written whole (or is
 //   past the frame). The walk: a row is fetched (its three slots read at one
 //   address), enters a window of three rows, its E is registered, and its
-//   reads are formed from two registered E words: a row fetched at an edge
-//   is in the emitter four edges later (its first beat offered in the cycle
-//   after), in a pipeline that moves one row per edge while the emitter
-//   takes rows. The emitter takes one cycle per
+//   reads are formed from two registered E words, and the row waits in a
+//   queue of two rows for the emitter: a row fetched at an edge is in the
+//   emitter five edges later (its first beat offered in the cycle after).
+//   The pipeline moves one row per edge while the queue has room (its
+//   registered count: the emitter's last bit does not reach the pipeline's
+//   enable). The emitter takes one cycle per
 //   beat and one per row that reads nothing, so with its rows ready a frame
 //   takes sum over rows of max(1, beats) cycles (beats.walker_cycles).
 //   out_valid does not depend on out_ready; a beat is held while stalled.
@@ -228,6 +230,30 @@ module cube4_cfb_beats #(
     wire [NW-1:0] either = e1 | e2;
     wire [NW-1:0] reads  = (either | (either << 1)) & nbmask;
 
+    // ==== a queue of two rows between the pipeline and the emitter (the pipeline's
+    // enable comes from its registered count, not from the emitter's last bit) ====
+    localparam integer RQ_W = 3 * NW + M_W + DIM_W + 3;   // {reads, leave, in_a, m, j, flush, mark, empty}
+    reg  [RQ_W-1:0] rq0, rq1;              // rq0 the head
+    reg  [1:0]      rq_n;
+    assign take_ok = (rq_n != 2'd2);
+    wire            rq_push = adv && (e_kind != K_NONE);
+    wire [RQ_W-1:0] rq_in = {reads, e2, a2, e_m, e_j, (e_kind == K_FLUSH),
+                             (e_kind == K_FLUSH) || (e_j == nj - 1'b1), (reads == '0)};
+    wire            rq_pop;
+    always @(posedge clk) begin
+        if (rst || start) begin
+            rq_n    <= 2'd0;
+            flushed <= 1'b0;
+        end else begin
+            rq_n <= rq_n + 2'(rq_push) - 2'(rq_pop);
+            if (rq_push && e_kind == K_FLUSH) flushed <= 1'b1;
+        end
+        // the head: the next row when popped, else the pushed row into the first free place
+        if (rq_pop) rq0 <= (rq_n == 2'd2) ? rq1 : rq_in;
+        else if (rq_push && rq_n == 2'd0) rq0 <= rq_in;
+        if (rq_push && (rq_n - 2'(rq_pop)) == 2'd1) rq1 <= rq_in;
+    end
+
     // ==== the emitter: one beat a cycle, one cycle for a row without reads ====
     reg             x_busy;
     reg [NW-1:0]    x_rem, x_leave, x_in_a;
@@ -236,7 +262,11 @@ module cube4_cfb_beats #(
     reg             x_flush, x_empty;      // the flush row; a row that reads nothing
     reg             x_mark;                // a slice's last row or the flush row: emits when empty
     wire [NW-1:0]   x_low  = x_rem & (~x_rem + 1'b1);            // its lowest set bit
-    wire            x_one  = (x_rem & ~x_low) == '0;             // the last bit of the row
+    wire [NW-1:0]   x_next = x_rem & ~x_low;                     // the row after this beat
+    reg             x_one;                 // a register: one bit left (the row's last beat)
+    function automatic one_left(input [NW-1:0] w);             // at most one bit set
+        one_left = (w & (w - 1'b1)) == '0;
+    endfunction
     reg  [PB_W-1:0] x_pb;
     integer b;
     always @(*) begin
@@ -249,28 +279,20 @@ module cube4_cfb_beats #(
     assign out_valid = x_busy && (!x_empty || x_mark);
     wire   x_fire = out_valid && out_ready;
     wire   x_done = x_busy && (x_empty ? (!x_mark || out_ready) : (x_one && out_ready));
-    assign take_ok = !x_busy || x_done;
-    wire   x_load = adv && (e_kind != K_NONE);
+    assign rq_pop = (rq_n != 2'd0) && (!x_busy || x_done);
     always @(posedge clk) begin
         if (rst || start) begin
-            x_busy  <= 1'b0;
-            flushed <= 1'b0;
+            x_busy <= 1'b0;
         end else begin
-            if (x_load) begin
-                x_busy  <= 1'b1;
-                x_rem   <= reads;
-                x_leave <= e2;
-                x_in_a  <= a2;
-                x_m     <= e_m;
-                x_j     <= e_j;
-                x_flush <= (e_kind == K_FLUSH);
-                x_mark  <= (e_kind == K_FLUSH) || (e_j == nj - 1'b1);
-                x_empty <= (reads == '0);
-                if (e_kind == K_FLUSH) flushed <= 1'b1;
+            if (rq_pop) begin
+                x_busy <= 1'b1;
+                {x_rem, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_empty} <= rq0;
+                x_one  <= one_left(rq0[RQ_W-1 -: NW]);
             end else if (x_done) begin
                 x_busy <= 1'b0;
             end else if (x_fire) begin
-                x_rem <= x_rem & ~x_low;
+                x_rem <= x_next;
+                x_one <= one_left(x_next);
             end
         end
     end

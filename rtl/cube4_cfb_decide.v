@@ -44,8 +44,9 @@
 // Latency
 //   A beat issued at an edge (its fields into the tables' reads) has its
 //   decisions at the fifth edge after (cube4_ray_table's read), registered
-//   into both output FIFOs (cube4_credit_fifo, credit-based: a beat is
-//   issued only with an entry reserved in each). RATE beats a cycle (a row's
+//   at the sixth (S6), and its group and row words written into the output
+//   FIFOs at the seventh (cube4_credit_fifo, credit-based: a beat is issued
+//   only with an entry reserved in each). RATE beats a cycle (a row's
 //   last group may hold one). A ray's next beat comes a slice (NJ NB beats)
 //   or more after its last (the steps only grow), and its started bit is
 //   written six cycles after that beat's issue; a slice of fewer than
@@ -121,6 +122,7 @@ module cube4_cfb_decide #(
     reg [DIM_W-1:0]  stx, sty;
     reg              have_st;              // this slice's steps are taken
     reg [ND:1]       v;                    // the decision pipeline's valid bits
+    reg              v6;                   // S6's valid bit (the decisions registered)
     reg              tiny;                 // NJ NB < 8 RATE + 2: drain between slices
     wire             credit_ln, credit_bm;
     wire             first_beat = (j == '0) && (pb == '0);
@@ -160,7 +162,7 @@ module cube4_cfb_decide #(
                     if (m + 1'b1 == nm) issuing <= 1'b0;
                 end
             end
-            if (!issuing && v == '0 && !bm_valid && !ln_valid) active <= 1'b0;
+            if (!issuing && v == '0 && !v6 && !bm_valid && !ln_valid) active <= 1'b0;
         end
     end
     assign busy = active;
@@ -257,50 +259,61 @@ module cube4_cfb_decide #(
         end
     endgenerate
 
-    // ==== the outputs: a beat's bits, a row's words (credit FIFOs) ====
-    reg  [NW-1:0] row_a, row_o;            // the row so far (S5's beats not yet in)
-    wire [RATE-1:0] a5, o5;                // each beat of the group: in A, may count
-    wire [NW-1:0] a_add, o_add;
+    // ==== S6: the decisions registered; each beat of the group in A, may count ====
+    reg                row_end6;
+    reg  [PB_W-1:0]    pb6;
+    reg  [RATE*P-1:0]  run6, occ6, fresh6, last6, soon6;
+    always @(posedge clk) begin
+        if (rst || start) v6 <= 1'b0;
+        else              v6 <= v[ND];
+        row_end6 <= row_end[ND];
+        pb6      <= pb_s[ND];
+        {run6, occ6, fresh6, last6, soon6} <= {run5, occ5, fresh5, last5, soon5};
+    end
+    wire [RATE-1:0] a6, o6;
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_beat
-            assign a5[r] = run5[r*P +: P] != '0;
-            assign o5[r] = occ5[r*P +: P] != '0;
+            assign a6[r] = run6[r*P +: P] != '0;
+            assign o6[r] = occ6[r*P +: P] != '0;
         end
     endgenerate
-    assign a_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, a5}) << pb_s[ND];
-    assign o_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, o5}) << pb_s[ND];
+
+    // ==== the outputs: a group's bits, a row's words (credit FIFOs, written at S7) ====
+    reg  [NW-1:0] row_a, row_o;            // the row so far (S6's beats not yet in)
+    wire [NW-1:0] a_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, a6}) << pb6;
+    wire [NW-1:0] o_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, o6}) << pb6;
     wire [NW-1:0] a_now = row_a | a_add;
     wire [NW-1:0] o_now = row_o | o_add;
     always @(posedge clk) begin
-        if (rst || start || (v[ND] && row_end[ND])) begin
+        if (rst || start || (v6 && row_end6)) begin
             row_a <= '0;
             row_o <= '0;
-        end else if (v[ND]) begin
+        end else if (v6) begin
             row_a <= a_now;
             row_o <= o_now;
         end
     end
-    reg [NW-1:0]  bm_a6, bm_o6;
-    wire [RATE*LN-1:0] ln5;
-    reg  [RATE*LN-1:0] ln6;
+    reg  [NW-1:0]      bm_a7, bm_o7;
+    wire [RATE*LN-1:0] ln_w;
+    reg  [RATE*LN-1:0] ln7;
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_ln
-            assign ln5[r*LN +: LN] = {a5[r], soon5[r*P +: P], last5[r*P +: P], fresh5[r*P +: P], run5[r*P +: P]};
+            assign ln_w[r*LN +: LN] = {a6[r], soon6[r*P +: P], last6[r*P +: P], fresh6[r*P +: P], run6[r*P +: P]};
         end
     endgenerate
     always @(posedge clk) begin
-        bm_a6 <= a_now;
-        bm_o6 <= o_now;
-        ln6   <= ln5;
+        bm_a7 <= a_now;
+        bm_o7 <= o_now;
+        ln7   <= ln_w;
     end
     wire unused_cr_ln, unused_cr_bm;
     cube4_credit_fifo #(.DATA_W(RATE * LN), .DEPTH(16)) u_ln (
-        .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && (a5 == '0)), .credit(credit_ln),
-        .credit_d(unused_cr_ln), .push_d(v[ND] && (a5 != '0)), .in_data(ln6), .out_valid(ln_valid),
+        .clk(clk), .rst(rst || start), .take(issue), .give(v6 && (a6 == '0)), .credit(credit_ln),
+        .credit_d(unused_cr_ln), .push_d(v6 && (a6 != '0)), .in_data(ln7), .out_valid(ln_valid),
         .out_ready(ln_ready), .out_data(ln_bits));
     cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
-        .clk(clk), .rst(rst || start), .take(issue), .give(v[ND] && !row_end[ND]), .credit(credit_bm),
-        .credit_d(unused_cr_bm), .push_d(v[ND] && row_end[ND]), .in_data({bm_o6, bm_a6}),
+        .clk(clk), .rst(rst || start), .take(issue), .give(v6 && !row_end6), .credit(credit_bm),
+        .credit_d(unused_cr_bm), .push_d(v6 && row_end6), .in_data({bm_o7, bm_a7}),
         .out_valid(bm_valid), .out_ready(bm_ready), .out_data({bm_occ, bm_a}));
 endmodule
 `default_nettype wire

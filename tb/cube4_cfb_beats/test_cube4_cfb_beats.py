@@ -15,9 +15,9 @@ slice's last row and the flush row, when they read nothing, one beat that reads 
 (a marker: every slice leaves a beat); EOS on each slice's last beat, LAST on the frame's,
 and nothing after it (the bench keeps ready high for 40 more cycles).
 
-Cycles: every frame without gaps or stalls takes exactly NJ·min(2, M) + 5 + walker_cycles
+Cycles: every frame without gaps or stalls takes exactly NJ·min(2, M) + 6 + walker_cycles
 edges from start to its last beat's transfer: the rows of two slices written (an edge a row)
-before the first fetch, an edge to fetch, four to the emitter, then one cycle per beat and
+before the first fetch, an edge to fetch, five to the emitter, then one cycle per beat and
 one per row that reads nothing (``beats.walker_cycles``).
 
 The neighbour term matters: with it dropped from E (tried, not kept), P = 4 fails with
@@ -123,7 +123,7 @@ async def test_walk(dut):
         compare(got, want, tb.log)
         if gap == 0 and stall == 0:
             walker = int(beats.walker_cycles(sched).sum())
-            formula = sched.NJ * min(2, sched.M) + 5 + walker
+            formula = sched.NJ * min(2, sched.M) + 6 + walker
             assert cycles == formula, f"{cycles} edges, formula {formula} (walker {walker})"
         st = beats.schedule_stats(sched)
         near = sum(int((sched.run_beats(m) & ~sched.active_beats(m)).sum()) for m in range(sched.M))
