@@ -186,7 +186,9 @@ $(SETUP_STAMP): scripts/setup.sh requirements.txt pyproject.toml
 # test) lints every module at its default parameters only, and rtl/ in one run: each
 # module that no other instantiates is a top at its defaults, every other one is linted
 # as the design instantiates it (make lint and make regress lint each module on its own,
-# at its defaults and at every parameter set).
+# at its defaults and at every parameter set; Verilator reads the module's own file and
+# finds the modules it instantiates in rtl/ by name, -y rtl: one module per file, named as
+# the file, so a leaf unit's run parses its own file and not the whole list).
 lint_sets = $(if $(LINT_QUICK),default,default $(LINT_SETS_$(1)))
 define NL
 
@@ -196,7 +198,7 @@ LINT_RTL_ONE_RUN := echo "lint rtl    every module in one run [default]" && \
 	$(VERILATOR) $(LINT_FLAGS) -Wno-MULTITOP $(LINT_WAIVERS) $(RTL_SRCS)$(NL)
 LINT_RTL_EACH := $(foreach m,$(RTL_MODULES),$(foreach s,$(call lint_sets,$(m)),\
 	    echo "lint rtl    $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(RTL_SRCS)$(NL)))
+	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) -y rtl rtl/$(m).v$(NL)))
 LINT_CMDS := \
 	$(if $(LINT_QUICK),$(LINT_RTL_ONE_RUN),$(LINT_RTL_EACH)) \
 	$(foreach m,$(ECP5_MODULES),$(foreach s,$(call lint_sets,$(m)),\
