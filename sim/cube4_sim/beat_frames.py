@@ -167,3 +167,70 @@ def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int]]:
             row[-1] = row[-1][:6] + (1, 0)
         out += row
     return out
+
+
+class HostCom:
+    """The host and COM around the front end's units in a bench (tb/cube4_cfb_decide,
+    tb/cube4_cfb_skip), one frame:
+
+    * ``load``: the frame's registers and axes, the block table for the view and the ray
+      table with every ray's stop, through the host's ports;
+    * ``drive`` (each cycle, inputs set after the falling edge): the next slice's steps
+      on st_*, and COM's reports: those of slice d are queued once the unit has finished
+      slice d (``finished`` slices), a random delay (0 .. ``delay`` cycles) later written
+      one beat a cycle on rep_*, and ``com_m`` counts the slices written whole;
+    * ``taken`` (in the read-only phase): whether the steps were taken.
+    """
+
+    def __init__(self, dut, bf: BeatFrame, p: int, max_dim: int, m_w: int, lag: int, rng, delay: int) -> None:
+        self.dut, self.bf, self.p, self.max_dim, self.m_w = dut, bf, p, max_dim, m_w
+        self.rng, self.delay = rng, delay
+        self.reps = reports(bf, p, lag)
+        self.st_n, self.com_m, self.queue = 0, 0, []     # queue: [cycle due, its writes]
+
+    async def load(self) -> None:
+        from cocotb.triggers import FallingEdge
+
+        from cube4.memory import stop_table
+        d, s, t = self.dut, self.bf.sched, self.bf.trav
+        d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
+        if hasattr(d, "nbr_en"):
+            d.nbr_en.value = int(s.gra and s.terminate)
+        d.sx.value, d.sy.value = t.max_steps
+        for name, val in axis_regs(self.bf).items():
+            getattr(d, name).value = val
+        for addr, word in block_words(self.bf, -(-self.max_dim // BLOCK)).items():
+            d.blk_we.value, d.blk_addr.value, d.blk_data.value = 1, addr, word
+            await FallingEdge(d.clk)
+        d.blk_we.value = 0
+        for addr, word in enumerate(stop_table(s.stop, self.p, self.max_dim, self.m_w)):
+            d.tab_we.value, d.tab_addr.value, d.tab_data.value = 1, addr, word
+            await FallingEdge(d.clk)
+        d.tab_we.value = 0
+
+    def drive(self, cycle: int, finished: int) -> None:
+        d, s, t = self.dut, self.bf.sched, self.bf.trav
+        d.st_valid.value = int(self.st_n < s.M)
+        if self.st_n < s.M:
+            d.st_x.value, d.st_y.value = (int(v) for v in t.steps(self.st_n))
+        while finished > self.com_m + len(self.queue) and self.com_m + len(self.queue) < s.M:
+            dd = self.com_m + len(self.queue)
+            self.queue.append([cycle + int(self.rng.integers(0, self.delay + 1)), list(self.reps.get(dd, []))])
+        write = None
+        if self.queue and cycle >= self.queue[0][0]:
+            if self.queue[0][1]:
+                write = self.queue[0][1].pop(0)
+            if not self.queue[0][1]:
+                self.queue.pop(0)
+                self.com_m += 1
+        d.rep_valid.value = int(write is not None)
+        if write is not None:
+            j, pb, stx, sty, ends = write
+            d.rep_j.value, d.rep_pb.value, d.rep_stx.value, d.rep_sty.value = j, pb, stx, sty
+            d.rep_en.value = sum(1 << q for q in ends)
+            d.rep_end.value = sum(e << (q * self.m_w) for q, e in ends.items())
+        d.com_m.value = self.com_m
+
+    def taken(self) -> None:
+        if int(self.dut.st_valid.value) and int(self.dut.st_ready.value):
+            self.st_n += 1

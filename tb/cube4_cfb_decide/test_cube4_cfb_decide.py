@@ -25,7 +25,7 @@ random ready, and nothing more comes out (40 cycles after the last).
 
 Without the started bits (tried, not kept: run = occ and m < end), P = 4 fails with "ln
 beat 872 (m=15, j=14, pb=0): RTL run 0x3, golden 0x1"; without the wait for COM's reports
-(com_m), with "ln beat 848 (m=10, j=5, pb=1): RTL run 0xf, golden 0x1" in the second slab
+(com_m), with "ln beat 746 (m=8, j=5, pb=1): RTL run 0xf, golden 0x1" in the second slab
 frame, whose reports come up to five slices late (both at RATE = 2; "ln beat" counts the
 beats that hold a running ray). Seeded from COCOTB_RANDOM_SEED;
 P = 4 deciding two beats a cycle (RATE = 2) in make test; P = 1, 4, 8 at RATE 1 and P = 1,
@@ -39,9 +39,7 @@ import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
-from cube4.memory import stop_table
-from cube4_sim.beat_frames import (BLOCK, axis_regs, bits_of, block_words, expected_decisions, reports, slab_frame,
-                                   sparse_frame)
+from cube4_sim.beat_frames import HostCom, expected_decisions, slab_frame, sparse_frame
 from cube4_sim.beats import Geometry
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
@@ -57,7 +55,6 @@ class TB:
         self.log = dut._log
         self.p, self.max_dim, self.ss, self.rate = top_params(dut, "P", "MAX_DIM", "MAX_SS_LOG2", "RATE")
         self.geo = Geometry(self.p, self.max_dim, self.ss)
-        self.nbk = -(-self.max_dim // BLOCK)
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         start_clock(dut)
 
@@ -74,61 +71,23 @@ class TB:
         await FallingEdge(self.dut.clk)
         self.dut.rst.value = 0
 
-    async def load(self, bf) -> None:
-        d, s, t = self.dut, bf.sched, bf.trav
-        d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
-        d.sx.value, d.sy.value = t.max_steps
-        for name, val in axis_regs(bf).items():
-            getattr(d, name).value = val
-        for addr, word in block_words(bf, self.nbk).items():
-            d.blk_we.value, d.blk_addr.value, d.blk_data.value = 1, addr, word
-            await FallingEdge(d.clk)
-        d.blk_we.value = 0
-        for addr, word in enumerate(stop_table(s.stop, self.p, self.max_dim, self.geo.m_w)):
-            d.tab_we.value, d.tab_addr.value, d.tab_data.value = 1, addr, word
-            await FallingEdge(d.clk)
-        d.tab_we.value = 0
-
     async def frame(self, bf, stall: float, delay: int) -> tuple[list, list]:
-        d, s, t = self.dut, bf.sched, bf.trav
-        await self.load(bf)
-        reps = reports(bf, self.p, LAG)
+        d, s = self.dut, bf.sched
+        host = HostCom(d, bf, self.p, self.max_dim, self.geo.m_w, LAG, self.rng, delay)
+        await host.load()
         d.start.value = 1
         await FallingEdge(d.clk)
         d.start.value = 0
         lane, rows = [], []
-        st_n, com_m, queue = 0, 0, []          # queue: (cycle due, slice, its writes)
         decided = 0                             # slices decided whole (their rows out)
         cycle, idle_after = 0, 0
         while idle_after < TAIL:
-            # steps of the next slice
-            d.st_valid.value = int(st_n < s.M)
-            if st_n < s.M:
-                d.st_x.value, d.st_y.value = (int(v) for v in t.steps(st_n))
-            # COM: a report of slice dd once the unit is past it, after a random delay
-            while decided - 1 > com_m - 1 + len(queue) and com_m + len(queue) < s.M:
-                dd = com_m + len(queue)
-                queue.append([cycle + int(self.rng.integers(0, delay + 1)), dd, list(reps.get(dd, []))])
-            write = None
-            if queue and cycle >= queue[0][0]:
-                if queue[0][2]:
-                    write = queue[0][2].pop(0)
-                if not queue[0][2]:
-                    queue.pop(0)
-                    com_m += 1
-            d.rep_valid.value = int(write is not None)
-            if write is not None:
-                j, pb, stx, sty, ends = write
-                d.rep_j.value, d.rep_pb.value, d.rep_stx.value, d.rep_sty.value = j, pb, stx, sty
-                d.rep_en.value = sum(1 << q for q in ends)
-                d.rep_end.value = sum(e << (q * self.geo.m_w) for q, e in ends.items())
-            d.com_m.value = com_m
+            host.drive(cycle, decided)          # the steps; COM's reports once a slice is decided
             ln_ready = self.rng.random() >= stall
             bm_ready = self.rng.random() >= stall
             d.ln_ready.value, d.bm_ready.value = int(ln_ready), int(bm_ready)
             await ReadOnly()
-            if int(d.st_valid.value) and int(d.st_ready.value):
-                st_n += 1
+            host.taken()
             out = False
             if ln_ready and int(d.ln_valid.value):
                 v = int(d.ln_bits.value)

@@ -25,9 +25,7 @@ import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
-from cube4.memory import stop_table
-from cube4_sim.beat_frames import (BLOCK, axis_regs, block_words, expected_decisions, expected_walk, reports,
-                                   slab_frame, sparse_frame, view_frame)
+from cube4_sim.beat_frames import HostCom, expected_decisions, expected_walk, slab_frame, sparse_frame, view_frame
 from cube4_sim.beats import Geometry
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
@@ -75,57 +73,21 @@ class TB:
         await FallingEdge(d.clk)
         d.rst.value = 0
 
-    async def load(self, bf) -> None:
-        d, s, t = self.dut, bf.sched, bf.trav
-        d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
-        d.nbr_en.value = int(s.gra and s.terminate)
-        d.sx.value, d.sy.value = t.max_steps
-        for name, val in axis_regs(bf).items():
-            getattr(d, name).value = val
-        for addr, word in block_words(bf, -(-self.max_dim // BLOCK)).items():
-            d.blk_we.value, d.blk_addr.value, d.blk_data.value = 1, addr, word
-            await FallingEdge(d.clk)
-        d.blk_we.value = 0
-        for addr, word in enumerate(stop_table(s.stop, self.p, self.max_dim, self.geo.m_w)):
-            d.tab_we.value, d.tab_addr.value, d.tab_data.value = 1, addr, word
-            await FallingEdge(d.clk)
-        d.tab_we.value = 0
-
     async def frame(self, bf, stall: float, delay: int) -> tuple[list[tuple], int]:
         """Run one frame: its beats, and the cycles from start to the LAST beat's transfer."""
-        d, s, t = self.dut, bf.sched, bf.trav
-        await self.load(bf)
-        reps = reports(bf, self.p, LAG)
+        d = self.dut
+        host = HostCom(d, bf, self.p, self.max_dim, self.geo.m_w, LAG, self.rng, delay)
+        await host.load()
         d.start.value = 1
         await FallingEdge(d.clk)
         d.start.value = 0
-        got, st_n, com_m, queue, walked, cycle, after, last_cycle = [], 0, 0, [], 0, 0, None, 0
+        got, walked, cycle, after, last_cycle = [], 0, 0, None, 0
         while after is None or after < TAIL:
-            d.st_valid.value = int(st_n < s.M)
-            if st_n < s.M:
-                d.st_x.value, d.st_y.value = (int(v) for v in t.steps(st_n))
-            while walked > com_m + len(queue) and com_m + len(queue) < s.M:   # COM: behind the walk's slice ends
-                dd = com_m + len(queue)
-                queue.append([cycle + int(self.rng.integers(0, delay + 1)), list(reps.get(dd, []))])
-            write = None
-            if queue and cycle >= queue[0][0]:
-                if queue[0][1]:
-                    write = queue[0][1].pop(0)
-                if not queue[0][1]:
-                    queue.pop(0)
-                    com_m += 1
-            d.rep_valid.value = int(write is not None)
-            if write is not None:
-                j, pb, stx, sty, ends = write
-                d.rep_j.value, d.rep_pb.value, d.rep_stx.value, d.rep_sty.value = j, pb, stx, sty
-                d.rep_en.value = sum(1 << q for q in ends)
-                d.rep_end.value = sum(e << (q * self.geo.m_w) for q, e in ends.items())
-            d.com_m.value = com_m
+            host.drive(cycle, walked)           # the steps; COM's reports behind the walk's slice ends
             ready = after is not None or self.rng.random() >= stall
             d.out_ready.value = int(ready)
             await ReadOnly()
-            if int(d.st_valid.value) and int(d.st_ready.value):
-                st_n += 1
+            host.taken()
             if ready and int(d.out_valid.value):
                 beat = (int(d.out_m.value), int(d.out_j.value), int(d.out_pb.value), int(d.out_read.value),
                         int(d.out_leave.value), int(d.out_eos.value), int(d.out_last.value), int(d.out_bits.value))
