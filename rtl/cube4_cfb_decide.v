@@ -83,23 +83,10 @@ module cube4_cfb_decide #(
     parameter integer LAG        = 3,
     parameter integer RATE       = 1,
     `CUBE4_STOP_LAYOUT,
-    localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2,
-    localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1
+    `CUBE4_BLOCK_LAYOUT
 ) (
     input  wire clk, input wire rst,
-    input  wire start, output wire busy,
-    input  wire [DIM_W-1:0] ni, input wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm,
-    input  wire [DIM_W-1:0] sx, input wire [DIM_W-1:0] sy,
-    input  wire [DIM_W-1:0] bi_base, input wire bi_flip,
-    input  wire [DIM_W-1:0] bj_base, input wire bj_flip,
-    input  wire [DIM_W-1:0] bk_base, input wire bk_flip,
-    input  wire st_valid, output wire st_ready, input wire [DIM_W-1:0] st_x, input wire [DIM_W-1:0] st_y,
-    input  wire blk_we, input wire [2*BK_W-1:0] blk_addr, input wire [NBK-1:0] blk_data,
-    input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*M_W-1:0] tab_data,
-    input  wire rep_valid, input wire [DIM_W-1:0] rep_j, input wire [PB_W-1:0] rep_pb,
-    input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty,
-    input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end,
-    input  wire [M_W-1:0] com_m,
+    `CUBE4_DECIDE_IN_PORTS,
     output wire bm_valid, input wire bm_ready, output wire [NBMAX-1:0] bm_a, output wire [NBMAX-1:0] bm_occ,
     output wire ln_valid, input wire ln_ready, output wire [RATE*(4*P+1)-1:0] ln_bits
 );

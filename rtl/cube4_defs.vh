@@ -377,6 +377,29 @@
     localparam integer COLS_W  = ((2 * MAX_DIM + P - 1) / P > 1) ? $clog2((2 * MAX_DIM + P - 1) / P) : 1, \
     localparam integer STOP_AW = ROWS_W + COLS_W
 
+// ---------------------------------------------------------------- the beat schedule's front end
+// The decisions' inputs (cube4_cfb_decide; cube4_cfb_skip passes them on): the frame, its
+// axes in the volume, the slices' steps, the block table, the ray table's host port and
+// COM's reports (the ports are described in cube4_cfb_decide's header). Needs the
+// geometry, CUBE4_STOP_LAYOUT and NBK, BK_W (the block table: CUBE4_BLOCK_LAYOUT).
+`define CUBE4_BLOCK_LAYOUT \
+    localparam integer NBK  = (MAX_DIM + (1 << BLOCK_LOG2) - 1) >> BLOCK_LOG2, \
+    localparam integer BK_W = (NBK > 1) ? $clog2(NBK) : 1
+`define CUBE4_DECIDE_IN_PORTS \
+    input  wire start, output wire busy, \
+    input  wire [DIM_W-1:0] ni, input wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm, \
+    input  wire [DIM_W-1:0] sx, input wire [DIM_W-1:0] sy, \
+    input  wire [DIM_W-1:0] bi_base, input wire bi_flip, \
+    input  wire [DIM_W-1:0] bj_base, input wire bj_flip, \
+    input  wire [DIM_W-1:0] bk_base, input wire bk_flip, \
+    input  wire st_valid, output wire st_ready, input wire [DIM_W-1:0] st_x, input wire [DIM_W-1:0] st_y, \
+    input  wire blk_we, input wire [2*BK_W-1:0] blk_addr, input wire [NBK-1:0] blk_data, \
+    input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*M_W-1:0] tab_data, \
+    input  wire rep_valid, input wire [DIM_W-1:0] rep_j, input wire [PB_W-1:0] rep_pb, \
+    input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty, \
+    input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end, \
+    input  wire [M_W-1:0] com_m
+
 // ---------------------------------------------------------------- slice rectangles
 // One entry per sample slice of the rectangle table of cube4_cfb (RECTS = 1;
 // golden/cube4/slices.py, memory.py rect_table; numerics.md section 18), LSB
