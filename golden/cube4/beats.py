@@ -393,19 +393,20 @@ def walk_rows(sched: BeatSchedule, with_a: bool = False) -> list[tuple]:
     return rows if with_a else [r[:4] for r in rows]
 
 
-def slice_walks(sched: BeatSchedule) -> np.ndarray:
-    """(M + 1,): the front end's beats per slice (``walk_rows``), the flush row last."""
+def slice_walks(sched: BeatSchedule, rows: list | None = None) -> np.ndarray:
+    """(M + 1,): the front end's beats per slice (``walk_rows``, or ``rows`` already
+    taken from it), the flush row last."""
     out = np.zeros(sched.M + 1, dtype=np.int64)
-    for m, _, reads, _ in walk_rows(sched):
+    for m, _, reads, *_ in (rows if rows is not None else walk_rows(sched)):
         out[m] += int(reads.sum())
     return out
 
 
-def walker_cycles(sched: BeatSchedule) -> np.ndarray:
+def walker_cycles(sched: BeatSchedule, rows: list | None = None) -> np.ndarray:
     """(M + 1,): cycles per slice of a walk that emits one voxel beat a cycle and spends
-    one on a row that reads nothing (``walk_rows``; the flush row last)."""
+    one on a row that reads nothing (``walk_rows``, or ``rows``; the flush row last)."""
     out = np.zeros(sched.M + 1, dtype=np.int64)
-    for m, _, reads, _ in walk_rows(sched):
+    for m, _, reads, *_ in (rows if rows is not None else walk_rows(sched)):
         out[m] += max(1, int(reads.sum()))
     return out
 
@@ -420,13 +421,13 @@ def walk_beats(sched: BeatSchedule) -> int:
 DECIDE_RATES = (1, 2, 4)
 
 
-def decided_cycles(sched: BeatSchedule, rate: int) -> int:
+def decided_cycles(sched: BeatSchedule, rate: int, walker: np.ndarray | None = None) -> int:
     """The front end's cycles when it decides ``rate`` beats a cycle a slice ahead of its
     walk: a slice takes at least its NJ·NB beats / rate cycles to decide and its
-    ``walker_cycles`` to walk, and the two overlap."""
+    ``walker_cycles`` (or ``walker``, already computed) to walk, and the two overlap."""
     if rate < 1:
         raise ValueError(f"rate must be at least 1, got {rate}")
-    w = walker_cycles(sched)
+    w = walker_cycles(sched) if walker is None else walker
     per = -(-sched.NJ * sched.NB // rate)
     return int(np.maximum(w[:-1], per).sum() + w[-1])
 
@@ -434,7 +435,9 @@ def decided_cycles(sched: BeatSchedule, rate: int) -> int:
 def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
     """The frame's counts, after the frame (every slice reported)."""
     run = sum(int(sched.run_beats(m).sum()) for m in range(sched.M))
-    walk = walk_beats(sched)
+    rows = walk_rows(sched)               # once: the walk, the walker and the decisions' cycles
+    walk = int(slice_walks(sched, rows).sum())
+    walker = walker_cycles(sched, rows)
     box = sched.M * sched.NJ * sched.NB
     if sched.terminate:
         free = BeatSchedule(sched.trav, sched.p, sched.occ, sched.lag, terminate=False, gra=sched.gra)
@@ -444,5 +447,5 @@ def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
     else:
         run_free = run
     samples = sum(int(sched.running(m).sum()) for m in range(sched.M))
-    decided = {r: decided_cycles(sched, r) for r in DECIDE_RATES}
+    decided = {r: decided_cycles(sched, r, walker) for r in DECIDE_RATES}
     return BeatStats(box, run, box - run_free, run_free - run, walk, table_s, sched.stop_s, samples, decided)
