@@ -67,10 +67,12 @@ LINT_SETS_cube4_mul         := A_W=2,B_W=2 A_W=17,B_W=9 A_W=25 A_W=32,B_W=32
 LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
 FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
-LINT_SETS_cube4_cfb         := $(FE_SETS) RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64
+LINT_SETS_cube4_cfb         := $(FE_SETS) RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 \
+                               BEATS=1 P=1,BEATS=1,RATE=1 P=5,BEATS=1,MAX_DIM=64 P=2,MAX_DIM=2,BEATS=1 \
+                               P=8,MAX_DIM=128,BEATS=1 P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3,BEATS=1
 CFB_UNIT_SETS               := P=1,WEIGHT_W=4 P=2,MAX_DIM=2,ADDR_W=1 P=5,MAX_SS_LOG2=2 P=64,MAX_DIM=64 \
                                P=16,MAX_DIM=2048,ADDR_W=30,MAX_SS_LOG2=3,WEIGHT_W=12
-$(foreach u,tmpl trav ctl rect box addr mask,$(eval LINT_SETS_cube4_cfb_$(u) := $(CFB_UNIT_SETS)))
+$(foreach u,tmpl trav ctl rect box addr mask bctl steps,$(eval LINT_SETS_cube4_cfb_$(u) := $(CFB_UNIT_SETS)))
 LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0 SLAB=1 \
                                VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
                                LABELS=1 P=1,LABELS=1,MAX_SS_LOG2=1 P=5,VOXEL_W=16,LABELS=1

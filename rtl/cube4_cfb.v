@@ -93,12 +93,20 @@
 //   every enabled lane; disabled lanes may wrap and are never read). The phase
 //   accumulators are W + log2 S bits and wrap by design (the carry is the step).
 // =============================================================================
-module cube4_cfb #(`CUBE4_CFB_PARAMS) (
+module cube4_cfb #(
+    `CUBE4_CFB_PARAMS,
+    parameter integer BEATS = 0,
+    parameter integer RATE  = 2,
+    localparam integer BLOCK_LOG2 = 2,
+    `CUBE4_STOP_LAYOUT,
+    `CUBE4_BLOCK_LAYOUT
+) (
     input  wire clk, input wire rst,
     input  wire start, output wire busy,
     input  wire [VIEW_W-1:0]    cfg,        // view registers (cube4_defs.vh)
     input  wire [ADR_W_ALL-1:0] cfg_addr,   // address registers (cube4_defs.vh)
     input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
+    `CUBE4_CFB_BEATS_PORTS,
     // memory request stream; the tag travels with the beat to cube4_tri
     output wire req_valid, input wire req_ready, output wire [TAG_W-1:0] req_tag,
     output wire [P*ADDR_W-1:0] req_addr,
@@ -112,73 +120,154 @@ module cube4_cfb #(`CUBE4_CFB_PARAMS) (
         `CUBE4_RANGE(g_bad_weight_w, "cube4_cfb", "WEIGHT_W", WEIGHT_W, 4, 12)
         `CUBE4_RANGE(g_bad_ss, "cube4_cfb", "MAX_SS_LOG2", MAX_SS_LOG2, 0, 3)
         `CUBE4_RANGE(g_bad_rects, "cube4_cfb", "RECTS", RECTS, 0, 1)
+        `CUBE4_RANGE(g_bad_beats, "cube4_cfb", "BEATS", BEATS, 0, 1)
+        if (BEATS != 0 && RECTS != 0) begin : g_beats_rects
+            $error("cube4_cfb: BEATS = 1 needs RECTS = 0 (two schedules)");
+        end
     endgenerate
+    `CUBE4_VIEW_FIELDS(cfg);
 
-    // ==== control ====
-    wire              idle, go, next_pass, pass_done, beat, row, flush_row, issue, advance;
+    // ==== what the control gives the template, the address unit and the lane masks ====
+    wire              idle, next_pass, issue, advance;
     wire [CFB_F1_W-1:0] fields;
     wire              use_prev, rowv, rowin, rd;
-    wire [LANE_W-1:0] skew_out, skew_rd, skew_pas, skew_vrt;
+    wire [LANE_W-1:0] skew_out, skew_rd;
     wire [DIM_W-1:0]  p_ilo, p_iin, p_ihi;
     wire [RECT_W-1:0] rt_cur, rt_nxt;
-    wire [M_W-1:0]    m;
     wire [CFB_R_W-1:0] r;
-    wire [DIM_W-1:0]  j;
-    wire [PB_W-1:0]   pb;
-    wire [SB_W-1:0]   sb;
     wire [IW-1:0]     pbp;
     wire [ADDR_W-1:0] pbx, aj, ak;
-    wire              k0_odd, last_pb, last_j, last_pass, lower_mem, upper_mem;
     wire [WEIGHT_W-1:0] wx, wy, wz;
     wire [3:0]        steps;
-    cube4_cfb_ctl #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
-        .RECTS(RECTS)
-    ) u_ctl (
-        .clk(clk), .rst(rst), .cfg(cfg), .start(start), .busy(busy), .advance(advance),
-        .rt_cur(rt_cur), .rt_nxt(rt_nxt),
-        .m(m), .k0_odd(k0_odd), .r(r), .j(j), .pb(pb), .sb(sb), .last_pb(last_pb), .last_j(last_j),
-        .lower_mem(lower_mem), .upper_mem(upper_mem), .skew_pas(skew_pas), .skew_vrt(skew_vrt),
-        .wx(wx), .wy(wy), .wz(wz), .steps(steps),
-        .idle(idle), .go(go), .next_pass(next_pass), .pass_done(pass_done),
-        .beat(beat), .row(row), .flush_row(flush_row), .issue(issue), .fields(fields),
-        .use_prev(use_prev), .skew_out(skew_out), .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi),
-        .rowv(rowv), .rowin(rowin), .rd(rd));
+    wire              mask_busy;
 
-    // ==== traversal and template ====
-    cube4_cfb_trav #(
-        .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
-        .RECTS(RECTS)
-    ) u_trav (
-        .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr), .rt_cur(rt_cur), .rt_nxt(rt_nxt),
-        .idle(idle), .next_pass(next_pass), .beat(beat), .row(row), .flush_row(flush_row),
-        .m(m), .k0_odd(k0_odd), .r(r), .j(j), .pb(pb), .sb(sb), .pbp(pbp), .pbx(pbx), .aj(aj), .ak(ak),
-        .last_pb(last_pb), .last_j(last_j), .last_pass(last_pass),
-        .lower_mem(lower_mem), .upper_mem(upper_mem),
-        .skew_rd(skew_rd), .skew_pas(skew_pas), .skew_vrt(skew_vrt));
+    generate
+        if (BEATS != 0) begin : g_beats
+            // ==== the beat schedule: steps, decisions and walk, the walk's beats ====
+            wire go, busy_s;
+            wire st_valid, st_ready;
+            wire [DIM_W-1:0] st_x, st_y;
+            cube4_cfb_steps #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+            ) u_steps (
+                .clk(clk), .rst(rst), .cfg(cfg), .start(go),
+                .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y));
+            wire w_valid, w_ready, w_read, w_leave, w_eor, w_eos, w_last;
+            wire [M_W-1:0]   w_m;
+            wire [DIM_W-1:0] w_j;
+            wire [PB_W-1:0]  w_pb;
+            wire [4*P-1:0]   w_bits;
+            cube4_cfb_skip #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
+                .BLOCK_LOG2(BLOCK_LOG2), .RATE(RATE)
+            ) u_skip (
+                .clk(clk), .rst(rst), .start(go), .busy(busy_s),
+                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(M_W'(cfg_nk)), .sx(cfg_sx), .sy(cfg_sy),
+                .bi_base(blk_base[0 +: DIM_W]), .bi_flip(cfg_flip_i),
+                .bj_base(blk_base[DIM_W +: DIM_W]), .bj_flip(cfg_flip_j),
+                .bk_base(blk_base[2*DIM_W +: DIM_W]), .bk_flip(cfg_flip_k),
+                .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y),
+                .blk_we(blk_we), .blk_addr(blk_addr), .blk_data(blk_data),
+                .tab_we(tab_we), .tab_addr(tab_addr), .tab_data(tab_data),
+                .rep_valid(rep_valid), .rep_j(rep_j), .rep_pb(rep_pb), .rep_stx(rep_stx), .rep_sty(rep_sty),
+                .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
+                .nbr_en(nbr_en),
+                .out_valid(w_valid), .out_ready(w_ready), .out_m(w_m), .out_j(w_j), .out_pb(w_pb),
+                .out_read(w_read), .out_leave(w_leave), .out_eor(w_eor), .out_eos(w_eos), .out_last(w_last),
+                .out_bits(w_bits));
+            wire unused_walk = ^{w_m, w_j};   // the control keeps its own slice and row
+            wire [4*P-1:0] x_bits;
+            wire           x_eos;
+            cube4_cfb_bctl #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+            ) u_bctl (
+                .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr),
+                .start(start), .busy(busy), .go(go),
+                .in_valid(w_valid), .in_ready(w_ready), .in_pb(w_pb), .in_read(w_read), .in_leave(w_leave),
+                .in_eor(w_eor), .in_eos(w_eos), .in_last(w_last), .in_bits(w_bits),
+                .advance(advance), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
+                .idle(idle), .next_pass(next_pass),
+                .issue(issue), .fields(fields), .use_prev(use_prev), .skew_out(skew_out),
+                .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi), .rowv(rowv), .rowin(rowin), .rd(rd),
+                .pbp(pbp), .skew_rd(skew_rd), .aj(aj), .ak(ak), .pbx(pbx),
+                .x_bits(x_bits), .x_eos(x_eos));
+            assign r = '0;
+            cube4_cfb_box #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+            ) u_box (
+                .cfg(cfg), .cfg_addr(cfg_addr), .last_pass(1'b0), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
+            wire unused_beats = ^{rt_nxt, rect_we, rect_addr, rect_data};
+            // the beat's bits and EOS pass the mask's three stages beside it
+            reg [4*P:0] x1_q, x2_q, x_q;
+            always @(posedge clk) begin
+                if (advance) begin
+                    x1_q <= {x_eos, x_bits};
+                    x2_q <= x1_q;
+                    x_q  <= x2_q;
+                end
+            end
+            assign {req_eos, req_bits} = x_q;
+            assign busy = mask_busy || busy_s;
+        end else begin : g_fixed
+            // ==== control and traversal of the fixed, box and rectangle schedules ====
+            wire              go, pass_done, beat, row, flush_row;
+            wire [M_W-1:0]    m;
+            wire [DIM_W-1:0]  j;
+            wire [PB_W-1:0]   pb;
+            wire [SB_W-1:0]   sb;
+            wire              k0_odd, last_pb, last_j, last_pass, lower_mem, upper_mem;
+            wire [LANE_W-1:0] skew_pas, skew_vrt;
+            cube4_cfb_ctl #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
+                .RECTS(RECTS)
+            ) u_ctl (
+                .clk(clk), .rst(rst), .cfg(cfg), .start(start), .busy(busy), .advance(advance),
+                .rt_cur(rt_cur), .rt_nxt(rt_nxt),
+                .m(m), .k0_odd(k0_odd), .r(r), .j(j), .pb(pb), .sb(sb), .last_pb(last_pb), .last_j(last_j),
+                .lower_mem(lower_mem), .upper_mem(upper_mem), .skew_pas(skew_pas), .skew_vrt(skew_vrt),
+                .wx(wx), .wy(wy), .wz(wz), .steps(steps),
+                .idle(idle), .go(go), .next_pass(next_pass), .pass_done(pass_done),
+                .beat(beat), .row(row), .flush_row(flush_row), .issue(issue), .fields(fields),
+                .use_prev(use_prev), .skew_out(skew_out), .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi),
+                .rowv(rowv), .rowin(rowin), .rd(rd));
+            cube4_cfb_trav #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
+                .RECTS(RECTS)
+            ) u_trav (
+                .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr), .rt_cur(rt_cur), .rt_nxt(rt_nxt),
+                .idle(idle), .next_pass(next_pass), .beat(beat), .row(row), .flush_row(flush_row),
+                .m(m), .k0_odd(k0_odd), .r(r), .j(j), .pb(pb), .sb(sb), .pbp(pbp), .pbx(pbx), .aj(aj), .ak(ak),
+                .last_pb(last_pb), .last_j(last_j), .last_pass(last_pass),
+                .lower_mem(lower_mem), .upper_mem(upper_mem),
+                .skew_rd(skew_rd), .skew_pas(skew_pas), .skew_vrt(skew_vrt));
+            // ==== the pass's rectangle: the table (RECTS = 1) or the box ====
+            if (RECTS != 0) begin : g_rects
+                cube4_cfb_rect #(
+                    .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+                ) u_rect (
+                    .clk(clk), .rect_we(rect_we), .rect_addr(rect_addr), .rect_data(rect_data),
+                    .idle(idle), .go(go), .pass_done(pass_done), .m(m), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
+                wire unused_rects = last_pass;   // the table's LAST ends the frame
+            end else begin : g_box
+                cube4_cfb_box #(
+                    .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
+                ) u_box (
+                    .cfg(cfg), .cfg_addr(cfg_addr), .last_pass(last_pass), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
+                wire unused_box = ^{rect_we, rect_addr, rect_data, go, pass_done};
+            end
+            assign {req_eos, req_bits} = '0;
+            assign busy = mask_busy;
+            wire unused_fixed = ^{blk_base, nbr_en, blk_we, blk_addr, blk_data, tab_we, tab_addr, tab_data,
+                                  rep_valid, rep_j, rep_pb, rep_stx, rep_sty, rep_en, rep_end, com_m};
+        end
+    endgenerate
+
+    // ==== the template ====
     cube4_cfb_tmpl #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
     ) u_tmpl (
         .clk(clk), .rst(rst), .cfg(cfg), .idle(idle), .next_pass(next_pass), .r(r),
         .wx(wx), .wy(wy), .wz(wz), .steps(steps));
-
-    // ==== the pass's rectangle: the table (RECTS = 1) or the box ====
-    generate
-        if (RECTS != 0) begin : g_rects
-            cube4_cfb_rect #(
-                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
-            ) u_rect (
-                .clk(clk), .rect_we(rect_we), .rect_addr(rect_addr), .rect_data(rect_data),
-                .idle(idle), .go(go), .pass_done(pass_done), .m(m), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
-            wire unused_rects = last_pass;   // the table's LAST ends the frame
-        end else begin : g_box
-            cube4_cfb_box #(
-                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
-            ) u_box (
-                .cfg(cfg), .cfg_addr(cfg_addr), .last_pass(last_pass), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
-            wire unused_box = ^{rect_we, rect_addr, rect_data, go, pass_done};
-        end
-    endgenerate
 
     // ==== addresses, lane masks, the request stream ====
     wire [P*LANE_W-1:0] t1;
@@ -194,7 +283,7 @@ module cube4_cfb #(`CUBE4_CFB_PARAMS) (
         .clk(clk), .rst(rst), .cfg(cfg), .idle(idle), .issue(issue), .fields(fields),
         .use_prev(use_prev), .skew_out(skew_out), .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi),
         .rowv(rowv), .rowin(rowin), .rd(rd), .rt_cur(rt_cur), .pbp(pbp), .t1(t1),
-        .advance(advance), .busy(busy),
+        .advance(advance), .busy(mask_busy),
         .req_valid(req_valid), .req_ready(req_ready), .req_rden(req_rden), .req_tag(req_tag));
 endmodule
 `default_nettype wire

@@ -20,11 +20,12 @@
 //   the previous slice's last row, whose reads complete it (Y-wrap, as the
 //   fixed schedule). Each set bit of reads(k) is one voxel beat, lowest pb
 //   first, with the bit of E(k - 1) at its pb (the sample beat that leaves
-//   with it runs). A row that reads nothing takes one cycle and emits
-//   nothing, except a slice's last row and the flush row, which then emit
-//   one beat that reads nothing (a marker: every slice leaves at least one
-//   beat, so the units behind see each slice end, and COM can report it).
-//   The last beat carries LAST.
+//   with it runs). A row that reads nothing takes one cycle and gives one
+//   beat that reads nothing: a slice's last row and the flush row a marker
+//   (every slice leaves at least one beat, so the units behind see each
+//   slice end, and COM can report it), any other row a token that only
+//   moves the address unit's row on (cube4_cfb_bctl: every row ends with
+//   a beat that carries EOR). The last beat carries LAST.
 //   S = 1 (every pass reads its own voxel slice): the passes of S > 1 that
 //   read a voxel slice for the slice buffers read more, not here yet.
 //
@@ -59,10 +60,12 @@
 //   out_valid, out_ready   the walk's beats
 //   out_m, out_j, out_pb   the voxel beat: sample slice [M_W] (M: the flush
 //             row), row [DIM_W], partial beam [PB_W]
-//   out_read  the beat reads (0: the empty flush row's beat)
+//   out_read  the beat reads (0: the token or marker of a row that reads
+//             nothing; a marker carries EOS or LAST, a token neither)
 //   out_leave the sample beat that leaves with it runs
 //   out_in_a  that beat holds a running ray (A; else it runs as GRA's
 //             neighbour only)
+//   out_eor   the row's last beat (of its reads, or its token or marker)
 //   out_eos   the slice's last beat (of its last row, or its marker)
 //   out_last  the frame's last beat
 //
@@ -79,8 +82,8 @@ module cube4_cfb_beats #(
     input  wire [NBMAX-1:0] bm_a, input wire [NBMAX-1:0] bm_occ,
     output wire out_valid, input wire out_ready,
     output wire [M_W-1:0] out_m, output wire [DIM_W-1:0] out_j, output wire [PB_W-1:0] out_pb,
-    output wire out_read, output wire out_leave, output wire out_in_a, output wire out_eos,
-    output wire out_last
+    output wire out_read, output wire out_leave, output wire out_in_a, output wire out_eor,
+    output wire out_eos, output wire out_last
 );
     localparam integer NW = NBMAX;
     localparam integer RW = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;     // a row address
@@ -275,10 +278,10 @@ module cube4_cfb_beats #(
             if (x_rem[b]) x_pb = PB_W'(b);
         end
     end
-    // the beat this cycle: a read, or the empty flush row's beat
-    assign out_valid = x_busy && (!x_empty || x_mark);
+    // the beat this cycle: a read, or the token or marker of a row that reads nothing
+    assign out_valid = x_busy;
     wire   x_fire = out_valid && out_ready;
-    wire   x_done = x_busy && (x_empty ? (!x_mark || out_ready) : (x_one && out_ready));
+    wire   x_done = x_fire && (x_empty || x_one);
     assign rq_pop = (rq_n != 2'd0) && (!x_busy || x_done);
     always @(posedge clk) begin
         if (rst || start) begin
@@ -307,6 +310,7 @@ module cube4_cfb_beats #(
     assign out_read  = !x_empty;
     assign out_leave = !x_empty && ((x_leave & x_low) != '0);
     assign out_in_a  = !x_empty && ((x_in_a & x_low) != '0);
+    assign out_eor   = x_empty || x_one;
     assign out_last  = x_flush && (x_empty || x_one);
     assign out_eos   = x_mark && !x_flush && (x_empty || x_one);
 endmodule

@@ -400,6 +400,23 @@
     input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end, \
     input  wire [M_W-1:0] com_m
 
+// cube4_cfb's beat-schedule ports (BEATS = 1; unused otherwise): the decisions' inputs
+// past those cube4_cfb derives from the view registers (cube4_cfb_decide's header):
+// the frame's axes' bases in the volume {k, j, i}, the neighbour term, the block
+// table's and the ray table's host ports, COM's reports and its slice count; out, with
+// each request beat, the position bits {soon, last, fresh, run} of the sample beat it
+// emits and its walk beat's EOS. Needs the geometry, CUBE4_STOP_LAYOUT and
+// CUBE4_BLOCK_LAYOUT. No trailing comma.
+`define CUBE4_CFB_BEATS_PORTS \
+    input  wire [3*DIM_W-1:0] blk_base, input wire nbr_en, \
+    input  wire blk_we, input wire [2*BK_W-1:0] blk_addr, input wire [NBK-1:0] blk_data, \
+    input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*M_W-1:0] tab_data, \
+    input  wire rep_valid, input wire [DIM_W-1:0] rep_j, input wire [PB_W-1:0] rep_pb, \
+    input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty, \
+    input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end, \
+    input  wire [M_W-1:0] com_m, \
+    output wire [4*P-1:0] req_bits, output wire req_eos
+
 // ---------------------------------------------------------------- slice rectangles
 // One entry per sample slice of the rectangle table of cube4_cfb (RECTS = 1;
 // golden/cube4/slices.py, memory.py rect_table; numerics.md section 18), LSB

@@ -71,6 +71,8 @@ module cube4_frontend #(
     wire [P*ADDR_W-1:0] c_req_addr;
     wire [P-1:0]        c_req_rden;
     wire [TAG_W-1:0]    c_req_tag;
+    wire [4*P-1:0]      unused_req_bits;
+    wire                unused_req_eos;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
@@ -88,6 +90,25 @@ module cube4_frontend #(
         .rect_we   (rect_we),
         .rect_addr (rect_addr),
         .rect_data (rect_data),
+        // the beat schedule's ports (a BEATS build of cube4_cfb; not one here)
+        .blk_base  ('0),
+        .nbr_en    (1'b0),
+        .blk_we    (1'b0),
+        .blk_addr  ('0),
+        .blk_data  ('0),
+        .tab_we    (1'b0),
+        .tab_addr  ('0),
+        .tab_data  ('0),
+        .rep_valid (1'b0),
+        .rep_j     ('0),
+        .rep_pb    ('0),
+        .rep_stx   ('0),
+        .rep_sty   ('0),
+        .rep_en    ('0),
+        .rep_end   ('0),
+        .com_m     ('0),
+        .req_bits  (unused_req_bits),
+        .req_eos   (unused_req_eos),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req_addr),

@@ -32,6 +32,8 @@ cube4_ray_table.v
 cube4_cfb_beats.v
 cube4_cfb_decide.v
 cube4_cfb_skip.v
+cube4_cfb_steps.v
+cube4_cfb_bctl.v
 cube4_cfb.v
 cube4_plane.v
 cube4_clip.v

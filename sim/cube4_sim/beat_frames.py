@@ -152,20 +152,41 @@ def expected_decisions(bf, p: int, lag: int):
     return lane, rows
 
 
-def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int]]:
-    """(m, j, pb, read, leave, in_a, eos, last) of every beat of the walk (beats.walk_rows):
-    a slice's last row and the flush row, when they read nothing, one beat that reads
-    nothing (a marker); eos on a slice's last beat, last on the frame's."""
+def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int, int]]:
+    """(m, j, pb, read, leave, in_a, eor, eos, last) of every beat of the walk
+    (beats.walk_rows): a row that reads nothing gives one beat that reads nothing, a
+    marker on a slice's last row and the flush row, a token on any other; eor on a row's
+    last beat, eos on a slice's, last on the frame's."""
     out = []
     for m, j, reads, leaves, in_a in beats.walk_rows(sched, with_a=True):
-        row = [(m, j, int(pb), 1, int(leaves[pb]), int(in_a[pb]), 0, 0) for pb in np.flatnonzero(reads)]
-        if (m == sched.M or j == sched.NJ - 1) and not row:
-            row = [(m, j, 0, 0, 0, 0, 0, 0)]
-        if row and m == sched.M:
-            row[-1] = row[-1][:7] + (1,)
-        elif row and j == sched.NJ - 1:
-            row[-1] = row[-1][:6] + (1, 0)
+        row = [(m, j, int(pb), 1, int(leaves[pb]), int(in_a[pb]), 0, 0, 0) for pb in np.flatnonzero(reads)]
+        if not row:
+            row = [(m, j, 0, 0, 0, 0, 0, 0, 0)]
+        end = 1 if m == sched.M else 0
+        eos = 1 if (j == sched.NJ - 1 and not end) else 0
+        row[-1] = row[-1][:6] + (1, eos, end)
         out += row
+    return out
+
+
+def expected_front(bf, p: int, lag: int) -> list[tuple]:
+    """Per walk beat of cube4_cfb_skip: (m, j, pb, read, leave, eor, eos, last, bits, care)
+    with the leaving beat's position bits {soon, last, fresh, run} (zero where none
+    leaves or it runs as GRA's neighbour only) and the mask of the bits that are checked
+    (soon counts up to the ray's done slice)."""
+    s = bf.sched
+    lane, _ = expected_decisions(bf, p, lag)
+    by_beat = {w[:3]: w for w in lane}
+    full = (1 << (4 * p)) - 1
+    out = []
+    for m, j, pb, read, leave, in_a, eor, eos, last in expected_walk(s):
+        src = (m, j - 1, pb) if j > 0 else (m - 1, s.NJ - 1, pb)
+        bits, care = 0, full
+        if leave and in_a:
+            w = by_beat[src]
+            bits = w[3] | w[4] << p | w[5] << (2 * p) | w[6] << (3 * p)
+            care = full >> p | w[7] << (3 * p)
+        out.append((m, j, pb, read, leave, eor, eos, last, bits, care))
     return out
 
 
@@ -193,12 +214,17 @@ class HostCom:
 
         from cube4.memory import stop_table
         d, s, t = self.dut, self.bf.sched, self.bf.trav
-        d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
         if hasattr(d, "nbr_en"):
             d.nbr_en.value = int(s.gra and s.terminate)
-        d.sx.value, d.sy.value = t.max_steps
-        for name, val in axis_regs(self.bf).items():
-            getattr(d, name).value = val
+        axes = axis_regs(self.bf)
+        if hasattr(d, "blk_base"):          # cube4_cfb: the frame and the flips from the view registers
+            dim_w = clog2(self.max_dim + 1)
+            d.blk_base.value = sum(axes[f"{a}_base"] << (n * dim_w) for n, a in enumerate(("bi", "bj", "bk")))
+        else:
+            d.ni.value, d.nj.value, d.nb.value, d.nm.value = s.NI, s.NJ, s.NB, s.M
+            d.sx.value, d.sy.value = t.max_steps
+            for name, val in axes.items():
+                getattr(d, name).value = val
         for addr, word in block_words(self.bf, -(-self.max_dim // BLOCK)).items():
             d.blk_we.value, d.blk_addr.value, d.blk_data.value = 1, addr, word
             await FallingEdge(d.clk)
@@ -210,9 +236,10 @@ class HostCom:
 
     def drive(self, cycle: int, finished: int) -> None:
         d, s, t = self.dut, self.bf.sched, self.bf.trav
-        d.st_valid.value = int(self.st_n < s.M)
-        if self.st_n < s.M:
-            d.st_x.value, d.st_y.value = (int(v) for v in t.steps(self.st_n))
+        if hasattr(d, "st_valid"):          # (cube4_cfb makes the steps itself)
+            d.st_valid.value = int(self.st_n < s.M)
+            if self.st_n < s.M:
+                d.st_x.value, d.st_y.value = (int(v) for v in t.steps(self.st_n))
         while finished > self.com_m + len(self.queue) and self.com_m + len(self.queue) < s.M:
             dd = self.com_m + len(self.queue)
             self.queue.append([cycle + int(self.rng.integers(0, self.delay + 1)), list(self.reps.get(dd, []))])
@@ -232,5 +259,5 @@ class HostCom:
         d.com_m.value = self.com_m
 
     def taken(self) -> None:
-        if int(self.dut.st_valid.value) and int(self.dut.st_ready.value):
+        if hasattr(self.dut, "st_valid") and int(self.dut.st_valid.value) and int(self.dut.st_ready.value):
             self.st_n += 1

@@ -20,11 +20,16 @@ module cube4_cfb_harness #(
     parameter integer WEIGHT_W    = 8,
     parameter integer MAX_SS_LOG2 = 0,
     parameter integer RECTS       = 0,
+    parameter integer BEATS       = 0,
+    parameter integer RATE        = 2,
     `CUBE4_GEOMETRY,
     `CUBE4_VIEW_LAYOUT,
     `CUBE4_ADDR_LAYOUT,
     `CUBE4_TAG_LAYOUT,
-    `CUBE4_RECT_LAYOUT
+    `CUBE4_RECT_LAYOUT,
+    localparam integer BLOCK_LOG2 = 2,
+    `CUBE4_STOP_LAYOUT,
+    `CUBE4_BLOCK_LAYOUT
 ) (
     input  wire                  clk,
     input  wire                  rst,
@@ -42,6 +47,9 @@ module cube4_cfb_harness #(
     output wire [M_W-1:0]        tag_m,
     output wire [PB_W-1:0]       tag_pb,
     output wire                  tag_emit,
+    output wire [DIM_W-1:0]      tag_j,
+    output wire                  tag_eop,
+    `CUBE4_CFB_BEATS_PORTS,
     output wire                  tag_lower_mem,
     output wire                  tag_upper_mem
 );
@@ -53,7 +61,9 @@ module cube4_cfb_harness #(
         .ADDR_W      (ADDR_W),
         .WEIGHT_W    (WEIGHT_W),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS       (RECTS)
+        .RECTS       (RECTS),
+        .BEATS       (BEATS),
+        .RATE        (RATE)
     ) u_cfb (
         .clk       (clk),
         .rst       (rst),
@@ -64,18 +74,38 @@ module cube4_cfb_harness #(
         .rect_we   (rect_we),
         .rect_addr (rect_addr),
         .rect_data (rect_data),
+        .blk_base  (blk_base),
+        .nbr_en    (nbr_en),
+        .blk_we    (blk_we),
+        .blk_addr  (blk_addr),
+        .blk_data  (blk_data),
+        .tab_we    (tab_we),
+        .tab_addr  (tab_addr),
+        .tab_data  (tab_data),
+        .rep_valid (rep_valid),
+        .rep_j     (rep_j),
+        .rep_pb    (rep_pb),
+        .rep_stx   (rep_stx),
+        .rep_sty   (rep_sty),
+        .rep_en    (rep_en),
+        .rep_end   (rep_end),
+        .com_m     (com_m),
+        .req_bits  (req_bits),
+        .req_eos   (req_eos),
         .req_valid (req_valid),
         .req_ready (req_ready),
         .req_addr  (req_addr),
         .req_rden  (req_rden),
         .req_tag   (tag)
     );
-    cube4_stream_check #(.NAME ("cfb.req"), .DATA_W (P * ADDR_W + P + TAG_W)) u_chk_req (
+    cube4_stream_check #(.NAME ("cfb.req"), .DATA_W (P * ADDR_W + P + TAG_W + 4 * P + 1)) u_chk_req (
         .clk (clk), .rst (rst), .valid (req_valid), .ready (req_ready),
-        .data ({req_addr, req_rden, tag}));
+        .data ({req_addr, req_rden, tag, req_bits, req_eos}));
     assign tag_m         = tag[TAG_M +: M_W];
     assign tag_pb        = tag[TAG_PB +: PB_W];
     assign tag_emit      = tag[TAG_EMIT];
+    assign tag_j         = tag[TAG_J +: DIM_W];
+    assign tag_eop       = tag[TAG_EOP];
     assign tag_lower_mem = tag[TAG_LMEM];
     assign tag_upper_mem = tag[TAG_UMEM];
 endmodule

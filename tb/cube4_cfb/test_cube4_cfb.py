@@ -26,10 +26,12 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 import cube4.slices as slices
-from cube4.memory import address_of, bank_of, frontend_regs
+from cube4.memory import address_of, bank_of, frontend_regs, top_regs
 from cube4.view import make_traversal
 from cube4_sim import rtl_sources, run_test
 from cube4_sim.sweeps import sweep
+from cube4_sim.beat_frames import HostCom, expected_front, slab_frame, sparse_frame
+from cube4_sim.beats import Geometry
 from cube4_sim.rect_port import write_rect_table
 
 HERE = Path(__file__).resolve().parent   # the harness sits beside this file
@@ -150,6 +152,8 @@ async def test_addresses(dut):
     views += [((1.0, 1.0, 1.0), 1), ((0.0, 0.0, -1.0), 1), ((-1.0, 0.0, 0.0), 1), ((0.3, 1.0, -0.2), 2)]
     dims_list = [(2 * p + 3, p + 4, 5), (p + 1, 3 * p - 1 if p > 1 else 4, 3)]
     rects_build = bool(int(dut.RECTS.value))
+    if int(dut.BEATS.value):
+        return                          # the beat build: test_beats
     for dims in dims_list:
         for direction, ss in views:
             if rects_build and ss != 1:
@@ -201,6 +205,118 @@ async def test_slice_rectangles(dut):
     dut._log.info("P=%d: %d frames with slice rectangles, every read and beat as specified", p, frames)
 
 
+LAG = 3
+SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
+
+
+def beat_requests(bf, p: int) -> list[tuple]:
+    """The request beats of a BEATS build: one per walk beat but the tokens (rows that
+    read nothing), as (k, j, pb, reads, emit, emitted (m, j), eop, eos, bits, care), and
+    the drain beat; the flush row reads nothing."""
+    s = bf.sched
+    out = []
+    for m, j, pb, read, leave, _eor, eos, last, bits, care in expected_front(bf, p, LAG):
+        if not (read or eos or last):
+            continue
+        row = (m, j - 1) if j > 0 else (m - 1, s.NJ - 1)
+        out.append((m, j, pb, int(read and m < s.M), int(leave or last), row, last, eos, bits, care))
+    out.append((None, None, None, 0, 0, None, 0, 0, 0, 0))     # the drain beat
+    return out
+
+
+@cocotb.test()
+async def test_beats(dut):
+    """BEATS = 1: golden frames of the beat schedule (cube4_sim.beat_frames: two nearly
+    opaque slabs, shaded, rays ending in them; sparse volumes in every mode, their LUT
+    nearly opaque every other frame, termination off every third) through the whole CFB:
+    the bench plays the host (the view's registers, the block table, the ray table's
+    stops) and COM (each slice's reports a random delay after the walk's EOS), and takes
+    the requests with random ready. Every request beat, in order: the walk's beat
+    (cube4_sim.beat_frames.expected_front, tokens issue nothing) with its reads checked
+    lane by lane against the memory layout (``cube4.memory``, as test_addresses), the
+    sample beat it emits (EMIT where the leaving beat runs, and at the frame's last
+    beat with EOP; its slice and row: the row below, or the previous slice's last), its
+    position bits and EOS; then one drain beat, and nothing else."""
+    if not int(dut.BEATS.value):
+        return
+    p, aw, max_dim = int(dut.P.value), int(dut.ADDR_W.value), int(dut.MAX_DIM.value)
+    m_w = Geometry(p, max_dim, int(dut.MAX_SS_LOG2.value)).m_w
+    rng = np.random.default_rng(cocotb.RANDOM_SEED)
+    for name in ("nbr_en", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m", "blk_base"):
+        getattr(dut, name).value = 0
+    await reset(dut)
+    seeds = [sd for sd in range(200) if sd % 3 == 0][:6]
+    cases = [("slab", v) for v in SLAB_VIEWS] + [("sparse", sd) for sd in seeds]
+    frames = 0
+    for n, (kind, arg) in enumerate(cases):
+        bf = (slab_frame(p, arg) if kind == "slab"
+              else sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+        s, trav = bf.sched, bf.trav
+        if max(trav.dims) > max_dim:
+            continue
+        assert tuple(trav.origin) == (0, 0, 0), "the bench reads the whole volume"
+        for key, val in top_regs(trav, p).items():      # the steps' SX, SY and PH0 too
+            getattr(dut, "cfg_" + key.lower()).value = int(val)
+        stall, delay = ((0.0, 0.0), (0.3, 1.0), (0.5, 0.2), (0.1, 0.05))[n % 4]
+        host = HostCom(dut, bf, p, max_dim, m_w, LAG, rng, int(delay * s.NJ * s.NB))
+        await FallingEdge(dut.clk)      # the host's writes start between edges
+        await host.load()
+        await FallingEdge(dut.clk)
+        dut.start.value = 1
+        await FallingEdge(dut.clk)
+        dut.start.value = 0
+        want = beat_requests(bf, p)
+        got, walked, cycle, held = 0, 0, 0, None
+        while True:
+            host.drive(cycle, walked)
+            ready = int(rng.random() >= stall)
+            dut.req_ready.value = ready
+            await RisingEdge(dut.clk)
+            valid = int(dut.req_valid.value)
+            if valid:
+                beat = (int(dut.req_addr.value), int(dut.req_rden.value), int(dut.tag_m.value),
+                        int(dut.tag_j.value), int(dut.tag_pb.value), int(dut.tag_emit.value),
+                        int(dut.tag_eop.value), int(dut.tag_lower_mem.value), int(dut.req_bits.value),
+                        int(dut.req_eos.value))
+                if held is not None:
+                    assert beat == held, "request changed while stalled"
+                held = None if ready else beat
+            if valid and ready:
+                assert got < len(want), f"{kind} {arg}: more than {len(want)} request beats"
+                k, j, pb, reads, emit, row, eop, eos, bits, care = want[got]
+                addr_v, rden, tm, tj, tpb, temit, teop, lmem, rbits, reos = beat
+                where = f"{kind} {arg} view {trav.direction} beat {got} (k={k}, j={j}, pb={pb})"
+                assert (temit, teop, lmem, reos) == (emit, eop, reads, eos), \
+                    f"{where}: (emit, eop, reads, eos) = {(temit, teop, lmem, reos)}, golden {(emit, eop, reads, eos)}"
+                if emit:
+                    assert (tm, tj, tpb) == (*row, pb), f"{where}: emits ({tm}, {tj}, {tpb}), golden {(*row, pb)}"
+                assert rbits & care == bits & care, f"{where}: bits {rbits:#x}, golden {bits:#x} (mask {care:#x})"
+                if reads:
+                    lanes, vox = expected_lanes(trav, p, k, j, pb)
+                    for q in range(p):
+                        en = (rden >> q) & 1
+                        assert en == (lanes[q] is not None), f"{where} lane {q}: rden {en}"
+                        a = (addr_v >> (q * aw)) & ((1 << aw) - 1)
+                        assert not en or a == lanes[q], f"{where} lane {q}: address {a}, voxel {vox[q]} is at {lanes[q]}"
+                else:
+                    assert rden == 0, f"{where}: a beat without a read enables a bank"
+                walked += eos
+                got += 1
+            await FallingEdge(dut.clk)
+            cycle += 1
+            if not int(dut.busy.value) and not valid and got == len(want):
+                break
+            assert cycle < 200000, f"{kind} {arg}: the frame stalled ({got} of {len(want)} beats)"
+        for _ in range(20):
+            await RisingEdge(dut.clk)
+            assert not int(dut.req_valid.value), "a request after the drain beat"
+        frames += 1
+        dut._log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d requests "
+                      "in %d cycles as specified", kind, arg, s.M, s.NJ, s.NB, int((s.done < s.M).sum()),
+                      stall, got, cycle)
+    assert frames >= 4, f"only {frames} frames fit MAX_DIM = {max_dim}"
+
+
 # P = 2, 4 and 8 are covered by the front-end builds (tb/cube4_frontend), which
 # check every sample and therefore every address too.
 @pytest.mark.parametrize("p", sweep([1, 5, 16], quick=(1,)))
@@ -221,5 +337,17 @@ def test_cube4_cfb_rects(p):
         top="cube4_cfb_harness",
         sources=[*rtl_sources(), HERE / "cube4_cfb_harness.v"],
         params={"P": p, "MAX_DIM": 64, "ADDR_W": 16, "MAX_SS_LOG2": 1, "RECTS": 1},
+        test_module=__file__,
+    )
+
+
+@pytest.mark.parametrize("params", sweep([dict(P=8, RATE=2), dict(P=1, RATE=1), dict(P=5, RATE=2)], quick=(0,),
+                                         ids=lambda d: "-".join(f"{k}{v}" for k, v in d.items())))
+def test_cube4_cfb_beats(params):
+    """The beat build (BEATS = 1, S = 1): the walk's beats into requests (test_beats)."""
+    run_test(
+        top="cube4_cfb_harness",
+        sources=[*rtl_sources(), HERE / "cube4_cfb_harness.v"],
+        params={"MAX_DIM": 32, "ADDR_W": 16, "BEATS": 1, **params},
         test_module=__file__,
     )

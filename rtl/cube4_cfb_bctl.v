@@ -1,0 +1,265 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_cfb_bctl
+// -----------------------------------------------------------------------------
+// Purpose
+//   The control and traversal of cube4_cfb on the beat schedule (BEATS = 1;
+//   docs/numerics.md section 19, docs/architecture.md "The front end's
+//   plan"; S = 1): in place of cube4_cfb_ctl and cube4_cfb_trav, it turns the
+//   walk's beats (cube4_cfb_skip: voxel beat (m, j, pb) of sample slice m,
+//   rows and slices in order, partial beams rising within a row, every row
+//   ending with a beat that carries EOR) into the fields of the request beat
+//   (CUBE4_TAG_LAYOUT, as cube4_cfb_ctl describes them) and the address terms
+//   of cube4_cfb_addr. The same three stages follow (cube4_cfb_mask,
+//   cube4_cfb_addr), with the box as the pass's rectangle (cube4_cfb_box).
+//     the row     j and its terms c_j mod P, A_j and j * NB step at each
+//                 row's last beat (EOR); the walk's tokens (rows that read
+//                 nothing) only step them and issue nothing
+//     the slice   m, c_k mod P, A_k and the template (next_pass) step at each
+//                 slice's last beat (EOS); then row 0 again
+//     the beat    pb from the walk; pb * I_PB from cube4_mul (two stages
+//                 before the state, so the product meets its beat)
+//   The emitted row (as cube4_cfb_ctl): the row below, j - 1, or at row 0
+//   the previous slice's last row NJ - 1 (use_prev: its weights, steps and
+//   the skew of its virtual row NJ are kept at its slice's last beat; the
+//   read row is then zero for it, YWRAP). A beat emits a sample beat when
+//   its sample beat runs (LEAVE; its lanes below NI valid) and at the
+//   frame's last beat (EOP, lanes not valid when it does not run). A beat
+//   reads when the walk says so, except in the flush row (m = M), which
+//   reads nothing. Tokens issue nothing; markers (EOS or LAST without reads)
+//   issue a beat that neither reads nor emits, so their bits reach the
+//   stages; after LAST one drain beat pushes TRI's beam-extension delay
+//   empty, as the fixed schedule's.
+//
+// Parameters (CUBE4_CFB_PARAMS; ranges as cube4_cfb)
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (a frame of beats has S = 1), ADDR_W.
+//
+// Latency
+//   Two register stages in front of the state: a (the walk's beat, the
+//   multiplier's operand registers) and b (the state, the product). Both
+//   move under mv = the state is empty or taken (advance, cube4_cfb_mask's
+//   stall enable); in_ready = mv. The state's outputs are combinational
+//   from registers, and the three stages of cube4_cfb_mask follow.
+//
+// Ports
+//   clk, rst     clock, synchronous active-high reset (the state and the
+//                stages' valid bits)
+//   cfg, cfg_addr  in  view and address registers (NJ, NK, NB, NI, the flips,
+//                residues and address terms)
+//   start, busy  in   start a frame (taken while not busy); cube4_cfb's busy
+//   go           out  start && !busy (the walk starts with it)
+//   in_valid/in_ready   the walk's beats: in_pb [PB_W], in_read, in_leave,
+//                in_eor, in_eos, in_last, in_bits [4P] ({soon, last, fresh,
+//                run} of the leaving beat, cube4_cfb_skip)
+//   advance      in   the stages move (cube4_cfb_mask)
+//   wx, wy, wz [W] (Q0.W), steps [4]  in  the template's (cube4_cfb_tmpl)
+//   idle, next_pass  out  the template's controls (and cube4_cfb_mask's idle)
+//   issue, fields [CFB_F1_W], use_prev, skew_out, p_ilo, p_iin, p_ihi,
+//   rowv, rowin, rd   out  the state's beat (CUBE4_CFB_MASK_PORTS)
+//   pbp [IW]     out  pb * P;  skew_rd [LANE_W], aj, ak, pbx [ADDR_W]  out
+//                the read's address terms (cube4_cfb_addr)
+//   x_bits [4P], x_eos  out  the state's beat's position bits and EOS
+//
+// Bit growth and rounding
+//   None: counters and modular address arithmetic in ADDR_W bits; the
+//   product pb * I_PB is exact in PB_W + ADDR_W + 2 bits and taken mod
+//   2^ADDR_W, as the fixed schedule's sum of I_PB steps.
+// =============================================================================
+module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
+    input  wire clk, input wire rst,
+    input  wire [VIEW_W-1:0] cfg, input wire [ADR_W_ALL-1:0] cfg_addr,
+    input  wire start, input wire busy, output wire go,
+    input  wire in_valid, output wire in_ready, input wire [PB_W-1:0] in_pb,
+    input  wire in_read, input wire in_leave, input wire in_eor, input wire in_eos, input wire in_last,
+    input  wire [4*P-1:0] in_bits,
+    input  wire advance,
+    input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz,
+    input  wire [3:0] steps,
+    output wire idle, output wire next_pass,
+    output wire issue, output wire [CFB_F1_W-1:0] fields,
+    output wire use_prev, output wire [LANE_W-1:0] skew_out,
+    output wire [DIM_W-1:0] p_ilo, output wire [DIM_W-1:0] p_iin, output wire [DIM_W-1:0] p_ihi,
+    output wire rowv, output wire rowin, output wire rd,
+    output wire [IW-1:0] pbp, output wire [LANE_W-1:0] skew_rd,
+    output wire [ADDR_W-1:0] aj, output wire [ADDR_W-1:0] ak, output wire [ADDR_W-1:0] pbx,
+    output wire [4*P-1:0] x_bits, output wire x_eos
+);
+    `CUBE4_VIEW_FIELDS(cfg);
+    `CUBE4_ADDR_FIELDS(cfg_addr);
+    `CUBE4_LANE_FUNCTIONS
+    localparam [LANE_W:0] PL = P[LANE_W:0];
+    localparam integer MA_W = PB_W + 1, MB_W = ADDR_W + 1;   // unsigned operands, a zero bit on top
+
+    // step a coordinate by +/-1: (c mod P, address term), as cube4_cfb_trav
+    function automatic [LANE_W-1:0] r_step(input [LANE_W-1:0] rr, input down);
+        begin
+            if (down) r_step = (rr == '0) ? PL[LANE_W-1:0] - 1'b1 : rr - 1'b1;
+            else      r_step = ({1'b0, rr} == PL - 1'b1) ? '0 : rr + 1'b1;
+        end
+    endfunction
+    function automatic [ADDR_W-1:0] a_step(input [ADDR_W-1:0] a, input [LANE_W-1:0] rr,
+                                           input down, input [ADDR_W-1:0] lin,
+                                           input [ADDR_W-1:0] blk);
+        begin
+            if (down) a_step = a - ((rr == '0) ? blk : lin);
+            else      a_step = a + (({1'b0, rr} == PL - 1'b1) ? blk : lin);
+        end
+    endfunction
+    function automatic [LANE_W-1:0] add_p(input [LANE_W-1:0] a, input [LANE_W-1:0] b);
+        add_p = mod_p($signed({3'b000, a}) + $signed({3'b000, b}));
+    endfunction
+
+    // ==== the state: idle, the walk's beats, the drain beat ====
+    localparam [1:0] ST_IDLE = 2'd0, ST_RUN = 2'd1, ST_DRAIN = 2'd2;
+    reg [1:0] state_q;
+    assign idle = (state_q == ST_IDLE);
+    assign go   = start && !busy;
+    wire in_run   = (state_q == ST_RUN);
+    wire in_drain = (state_q == ST_DRAIN);
+
+    // ==== two stages in front of the state ====
+    localparam integer B_W = 4 * P + 6;    // {bits, read, leave, eor, eos, last, token}
+    reg              a_v, b_v;
+    reg [PB_W-1:0]   a_pb, b_pb;
+    reg [B_W-1:0]    a_f, b_f;
+    wire             take = b_v && advance;           // the state's beat moves on
+    wire             mv   = !b_v || take;
+    assign in_ready = mv;
+    wire in_token = !in_read && !in_eos && !in_last;  // a row that reads nothing
+    always @(posedge clk) begin
+        if (rst) begin
+            a_v <= 1'b0;
+            b_v <= 1'b0;
+        end else if (mv) begin
+            a_v <= in_valid;
+            b_v <= a_v;
+        end
+        if (mv) begin
+            a_pb <= in_pb;
+            a_f  <= {in_bits, in_read, in_leave, in_eor, in_eos, in_last, in_token};
+            b_pb <= a_pb;
+            b_f  <= a_f;
+        end
+    end
+    wire [4*P-1:0] b_bits;
+    wire           b_read, b_leave, b_eor, b_eos, b_last, b_token;
+    assign {b_bits, b_read, b_leave, b_eor, b_eos, b_last, b_token} = b_f;
+
+    // pb * I_PB, two stages from in_pb: it meets its beat in the state
+    wire signed [MA_W+MB_W-1:0] prod;
+    cube4_mul #(.A_W(MA_W), .B_W(MB_W)) u_pbx (
+        .clk (clk),
+        .en  (mv),
+        .a   ($signed({1'b0, in_pb})),
+        .b   ($signed({1'b0, cfg_i_pb})),
+        .p   (prod)
+    );
+    wire [ADDR_W-1:0] pb_term = prod[ADDR_W-1:0];
+    wire unused_prod = ^prod[MA_W+MB_W-1:ADDR_W];
+
+    // ==== the counters: slice, row and their terms ====
+    reg [M_W-1:0]    m_q;
+    reg [DIM_W-1:0]  j_q;
+    reg              j0_q;         // j_q = 0: the emitted row is the previous slice's last
+    reg              lsl_q;        // m_q = M - 1
+    reg              fl_q;         // m_q = M: the flush row
+    reg [LANE_W-1:0] rj_q, rk_q;
+    reg [ADDR_W-1:0] aj_q, ak_q;
+    reg [SB_W-1:0]   sbrow_q;      // j * NB
+    reg              sopp_q;       // no sample beat emitted yet
+    // the previous slice, for the row emitted in row 0 and the flush row
+    reg [WEIGHT_W-1:0] pwx_q, pwy_q, pwz_q;
+    reg [3:0]          psteps_q;
+    reg [LANE_W-1:0]   pskew_q;
+
+    wire run_take   = take && in_run;
+    wire emit       = in_run && (b_leave || b_last);
+    wire reads      = in_run && b_read && !fl_q;
+    wire slice_step = run_take && b_eos;
+    wire row_step   = run_take && b_eor && !b_eos;
+    assign next_pass = slice_step;
+    wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk_q);   // S = 1: the read slice is the pass's
+    wire [DIM_W-1:0]  nk_m1    = cfg_nk - 1'b1;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            state_q <= ST_IDLE;
+        end else begin
+            case (state_q)
+                ST_IDLE:  if (go) state_q <= ST_RUN;
+                ST_RUN:   if (run_take && b_last) state_q <= ST_DRAIN;
+                ST_DRAIN: if (advance) state_q <= ST_IDLE;    // one beat
+                default:  state_q <= ST_IDLE;
+            endcase
+        end
+    end
+    always @(posedge clk) begin
+        if (idle) begin
+            m_q     <= '0;
+            j_q     <= '0;
+            j0_q    <= 1'b1;
+            lsl_q   <= (cfg_nk == DIM_W'(1));
+            fl_q    <= 1'b0;
+            rj_q    <= cfg_j_r0;
+            aj_q    <= cfg_j_a0;
+            rk_q    <= cfg_k_r0;
+            ak_q    <= cfg_k_a0;
+            sbrow_q <= '0;
+            sopp_q  <= 1'b1;
+        end else begin
+            if (take && issue && emit) sopp_q <= 1'b0;
+            if (row_step) begin
+                j_q     <= j_q + 1'b1;
+                j0_q    <= 1'b0;
+                rj_q    <= r_step(rj_q, cfg_flip_j);
+                aj_q    <= a_step(aj_q, rj_q, cfg_flip_j, cfg_j_lin, cfg_j_blk);
+                sbrow_q <= sbrow_q + SB_W'(cfg_nb);
+            end
+            if (slice_step) begin
+                // slice m's last beat: keep its last row's fields, go to row 0 of m + 1
+                pwx_q    <= wx;
+                pwy_q    <= wy;
+                pwz_q    <= wz;
+                psteps_q <= steps;
+                pskew_q  <= r_step(skew_pas, cfg_flip_j);   // the virtual row NJ
+                m_q      <= m_q + 1'b1;
+                lsl_q    <= (DIM_W'(m_q) + 1'b1 == nk_m1);
+                fl_q     <= lsl_q;
+                j_q      <= '0;
+                j0_q     <= 1'b1;
+                rj_q     <= cfg_j_r0;
+                aj_q     <= cfg_j_a0;
+                sbrow_q  <= '0;
+                rk_q     <= r_step(rk_q, cfg_flip_k);
+                ak_q     <= a_step(ak_q, rk_q, cfg_flip_k, cfg_k_lin, cfg_k_blk);
+            end
+        end
+    end
+
+    // ==== the state's beat ====
+    assign issue    = (in_run && b_v && !b_token) || in_drain;
+    assign use_prev = j0_q;
+    assign skew_out = j0_q ? pskew_q : skew_pas;
+    wire [M_W-1:0]      mout   = j0_q ? m_q - 1'b1 : m_q;
+    wire [DIM_W-1:0]    jout   = j0_q ? cfg_nj - 1'b1 : j_q - 1'b1;
+    wire [WEIGHT_W-1:0] wy_out = j0_q ? pwy_q : wy;
+    assign rowv  = emit && b_leave;
+    assign rowin = !(j0_q && (wy_out != '0));      // the box's high-face rule on row NJ - 1
+    assign rd    = reads;
+    assign {p_ilo, p_iin, p_ihi} = {{DIM_W{1'b0}}, {DIM_W{1'b0}}, cfg_ni};
+    assign fields = {emit, emit && sopp_q, in_run && b_last, j0_q,
+                     reads, reads, 1'b0, 1'b0,                 // BBWE, LMEM, UMEM, UUSE
+                     m_q[0], sbrow_q + SB_W'(b_pb), b_pb,
+                     j0_q ? pwx_q : wx, wy_out, j0_q ? pwz_q : wz,
+                     mout, jout, skew_out, j0_q,               // YLAST: the emitted row is NJ - 1
+                     j0_q ? psteps_q : steps};
+    assign pbp     = IW'(b_pb) * IW'(P);
+    assign skew_rd = skew_pas;
+    assign aj      = aj_q;
+    assign ak      = ak_q;
+    assign pbx     = cfg_flip_i ? cfg_i_a0 - pb_term : pb_term;
+    assign x_bits  = in_run ? b_bits : '0;
+    assign x_eos   = in_run && b_eos;
+endmodule
+`default_nettype wire
