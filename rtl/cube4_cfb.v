@@ -38,6 +38,16 @@
 //   golden/cube4/slices.py SliceRects.beats.
 //   The table is read one pass ahead (the next entry is always ready).
 //
+//   Beat skipping and ray termination (BEATS = 1, S = 1 only; numerics.md
+//   section 19): cube4_cfb_skip decides every beat (the block table, the ray
+//   table's stops and COM's reports) and walks the voxel beats the running
+//   sample beats read; cube4_cfb_bctl turns its beats into requests in place
+//   of the control and traversal units, with the box as every pass's
+//   rectangle, and cube4_cfb_steps gives the decisions each slice's steps.
+//   Request beats per frame: the walk's beats but its tokens, and the drain
+//   beat; each carries its emitted beat's position bits and EOS (req_bits,
+//   req_eos).
+//
 //   Lane q reads bank q, at the address of the position t of the partial beam
 //   that it holds (eq. 1; cube4_cfb_addr, golden/cube4/memory.py).
 //
@@ -47,6 +57,9 @@
 //     u_trav   cube4_cfb_trav: pass, row and partial-beam counters, the
 //              per-axis address terms and the lanes' skews
 //     u_tmpl   cube4_cfb_tmpl: the template (phases, weights, X/Y steps)
+//     u_steps, u_skip, u_bctl  (BEATS = 1) in place of u_ctl and u_trav: the
+//              slices' steps, the decisions and walk, the walk's beats as
+//              the state
 //     u_rect   cube4_cfb_rect (RECTS = 1): the rectangle table, one pass ahead
 //     u_box    cube4_cfb_box (RECTS = 0): the whole box as the pass's entry
 //     u_addr   cube4_cfb_addr: lane positions t and one address per bank
@@ -59,6 +72,12 @@
 //   WEIGHT_W     resampling weight width W (Q0.W).          4..12.  Default 8.
 //   MAX_SS_LOG2  log2 of the largest supersampling S.       0..3.   Default 0.
 //   RECTS        1: slice rectangles (a frame needs S = 1). 0..1.   Default 0.
+//   BEATS        1: the beat schedule (a frame needs S = 1; RECTS = 0). 0..1.
+//                Default 0.
+//   RATE         BEATS = 1: beats decided a cycle (cube4_cfb_decide). 1..2.
+//                Default 2.
+//   The block table's blocks are 4 voxels on a side (BLOCK_LOG2 = 2,
+//   golden/cube4/beats.py BLOCK).
 //
 // Latency
 //   Three register stages: a beat leaves (req_valid) three cycles after the
@@ -87,6 +106,12 @@
 //   rect_we, rect_addr [M_W], rect_data [RECT_W]
 //                    in   the rectangle table (RECTS = 1): entry rect_addr =
 //                         sample slice; written while idle (unused when RECTS = 0)
+//   blk_*, tab_*, rep_*, com_m, blk_base, nbr_en
+//                    in   BEATS = 1: the decisions' tables, COM's reports and
+//                         the frame's axes (CUBE4_BEATS_IN_PORTS; cube4_cfb_decide)
+//   req_bits [4P], req_eos  out  BEATS = 1: with each request, the position
+//                         bits {soon, last, fresh, run} of the sample beat it
+//                         emits (cube4_cfb_skip) and its walk beat's EOS
 //
 // Bit growth and rounding
 //   None: counters and modular address arithmetic (ADDR_W bits, exact for
@@ -106,7 +131,8 @@ module cube4_cfb #(
     input  wire [VIEW_W-1:0]    cfg,        // view registers (cube4_defs.vh)
     input  wire [ADR_W_ALL-1:0] cfg_addr,   // address registers (cube4_defs.vh)
     input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
-    `CUBE4_CFB_BEATS_PORTS,
+    `CUBE4_BEATS_IN_PORTS,
+    output wire [4*P-1:0] req_bits, output wire req_eos,   // BEATS = 1: with each request
     // memory request stream; the tag travels with the beat to cube4_tri
     output wire req_valid, input wire req_ready, output wire [TAG_W-1:0] req_tag,
     output wire [P*ADDR_W-1:0] req_addr,

@@ -24,13 +24,13 @@
 //   the previous slice's last row NJ - 1 (use_prev: its weights, steps and
 //   the skew of its virtual row NJ are kept at its slice's last beat; the
 //   read row is then zero for it, YWRAP). A beat emits a sample beat when
-//   its sample beat runs (LEAVE; its lanes below NI valid) and at the
-//   frame's last beat (EOP, lanes not valid when it does not run). A beat
+//   its sample beat runs (LEAVE; its lanes below NI valid), and at each
+//   slice's last beat (EOS) and the frame's (EOP), with no lane valid when
+//   it does not run: every slice's end reaches the units behind. A beat
 //   reads when the walk says so, except in the flush row (m = M), which
 //   reads nothing. Tokens issue nothing; markers (EOS or LAST without reads)
-//   issue a beat that neither reads nor emits, so their bits reach the
-//   stages; after LAST one drain beat pushes TRI's beam-extension delay
-//   empty, as the fixed schedule's.
+//   issue a beat that emits only; after LAST one drain beat pushes TRI's
+//   beam-extension delay empty, as the fixed schedule's.
 //
 // Parameters (CUBE4_CFB_PARAMS; ranges as cube4_cfb)
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (a frame of beats has S = 1), ADDR_W.
@@ -174,7 +174,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     reg [LANE_W-1:0]   pskew_q;
 
     wire run_take   = take && in_run;
-    wire emit       = in_run && (b_leave || b_last);
+    wire emit       = in_run && (b_leave || b_eos || b_last);
     wire reads      = in_run && b_read && !fl_q;
     wire slice_step = run_take && b_eos;
     wire row_step   = run_take && b_eor && !b_eos;

@@ -400,22 +400,31 @@
     input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end, \
     input  wire [M_W-1:0] com_m
 
-// cube4_cfb's beat-schedule ports (BEATS = 1; unused otherwise): the decisions' inputs
-// past those cube4_cfb derives from the view registers (cube4_cfb_decide's header):
-// the frame's axes' bases in the volume {k, j, i}, the neighbour term, the block
-// table's and the ray table's host ports, COM's reports and its slice count; out, with
-// each request beat, the position bits {soon, last, fresh, run} of the sample beat it
-// emits and its walk beat's EOS. Needs the geometry, CUBE4_STOP_LAYOUT and
+// The beat schedule's inputs of cube4_cfb and cube4_frontend (BEATS = 1; unused
+// otherwise): the decisions' inputs past those cube4_cfb derives from the view
+// registers (cube4_cfb_decide's header): the frame's axes' bases in the volume {k, j,
+// i}, the neighbour term, the block table's and the ray table's host ports, COM's
+// reports and its slice count. Needs the geometry, CUBE4_STOP_LAYOUT and
 // CUBE4_BLOCK_LAYOUT. No trailing comma.
-`define CUBE4_CFB_BEATS_PORTS \
+`define CUBE4_BEATS_IN_PORTS \
     input  wire [3*DIM_W-1:0] blk_base, input wire nbr_en, \
     input  wire blk_we, input wire [2*BK_W-1:0] blk_addr, input wire [NBK-1:0] blk_data, \
     input  wire tab_we, input wire [STOP_AW-1:0] tab_addr, input wire [P*M_W-1:0] tab_data, \
     input  wire rep_valid, input wire [DIM_W-1:0] rep_j, input wire [PB_W-1:0] rep_pb, \
     input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty, \
     input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end, \
-    input  wire [M_W-1:0] com_m, \
-    output wire [4*P-1:0] req_bits, output wire req_eos
+    input  wire [M_W-1:0] com_m
+// ... tied off where no beat schedule runs
+`define CUBE4_BEATS_IN_NONE \
+    .blk_base('0), .nbr_en(1'b0), .blk_we(1'b0), .blk_addr('0), .blk_data('0), \
+    .tab_we(1'b0), .tab_addr('0), .tab_data('0), .rep_valid(1'b0), .rep_j('0), \
+    .rep_pb('0), .rep_stx('0), .rep_sty('0), .rep_en('0), .rep_end('0), .com_m('0)
+// ... and passed on by name
+`define CUBE4_BEATS_IN_PASS \
+    .blk_base(blk_base), .nbr_en(nbr_en), .blk_we(blk_we), .blk_addr(blk_addr), .blk_data(blk_data), \
+    .tab_we(tab_we), .tab_addr(tab_addr), .tab_data(tab_data), .rep_valid(rep_valid), .rep_j(rep_j), \
+    .rep_pb(rep_pb), .rep_stx(rep_stx), .rep_sty(rep_sty), .rep_en(rep_en), .rep_end(rep_end), \
+    .com_m(com_m)
 
 // ---------------------------------------------------------------- slice rectangles
 // One entry per sample slice of the rectangle table of cube4_cfb (RECTS = 1;

@@ -22,6 +22,11 @@
 //   VGRAD        1: memory words carry voxel gradients, which TRI
 //                interpolates (CUBE4_WORD_LAYOUT).   0..1.    Default 0.
 //   RECTS        1: slice rectangles (cube4_cfb).      0..1.    Default 0.
+//   (after the build's list)
+//   BEATS        1: the beat schedule (cube4_cfb).     0..1.    Default 0.
+//   BITS_DEPTH   BEATS = 1: emitted beats in flight between the CFB and
+//                TRI's output (a power of two, the FIFO of their bits;
+//                the requests wait beyond it).         2..1024. Default 64.
 //   Derived widths and the layouts of cfg, cfg_addr, the memory tag and the
 //   sample header: cube4_defs.vh.
 //
@@ -40,6 +45,10 @@
 //   start / busy / done / cycles   frame control (cycles: 32-bit count)
 //   cfg, cfg_addr                  view and address registers, see cube4_cfb
 //   rect_*                         the rectangle table (RECTS = 1), see cube4_cfb
+//   blk_*, tab_*, rep_*, com_m, blk_base, nbr_en   the beat schedule's tables,
+//                                  COM's reports, the axes (BEATS = 1; cube4_cfb)
+//   smp_bits [4P], smp_eos         BEATS = 1: with each sample beat, its position
+//                                  bits {soon, last, fresh, run} and its EOS
 //   mem_req_* / mem_rsp_*          memory read port (see cube4_voxel_mem);
 //                                  the tag is CUBE4_TAG_LAYOUT, a word WORD_W bits
 //   smp_*                          sample stream, see cube4_tri out_*
@@ -47,14 +56,20 @@
 // Bit growth and rounding: see cube4_tri (one rounding per lerp).
 // =============================================================================
 module cube4_frontend #(
-    `CUBE4_BUILD_PARAMS, `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
-    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT
+    `CUBE4_BUILD_PARAMS,
+    parameter integer BEATS      = 0,
+    parameter integer BITS_DEPTH = 64,
+    `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
+    `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT,
+    localparam integer BLOCK_LOG2 = 2,
+    `CUBE4_STOP_LAYOUT, `CUBE4_BLOCK_LAYOUT
 ) (
     input  wire clk, input wire rst,
     input  wire start, output wire busy, output wire done, output wire [31:0] cycles,
     input  wire [VIEW_W-1:0]    cfg,
     input  wire [ADR_W_ALL-1:0] cfg_addr,
     input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
+    `CUBE4_BEATS_IN_PORTS,
     // memory read port: request, response
     output wire mem_req_valid, input wire mem_req_ready, output wire [TAG_W-1:0] mem_req_tag,
     output wire [P*ADDR_W-1:0] mem_req_addr,
@@ -63,7 +78,8 @@ module cube4_frontend #(
     input  wire [P*WORD_W-1:0]  mem_rsp_data,
     // sample stream
     output wire smp_valid, input wire smp_ready, output wire [HDR_W-1:0] smp_hdr,
-    output wire [P*WORD_W-1:0]  smp_sample
+    output wire [P*WORD_W-1:0]  smp_sample,
+    output wire [4*P-1:0] smp_bits, output wire smp_eos     // BEATS = 1: with each sample beat
 );
     // ---- CFB ----
     wire                unused_cfb_busy;   // the frame ends at the last sample, not the last request
@@ -71,15 +87,16 @@ module cube4_frontend #(
     wire [P*ADDR_W-1:0] c_req_addr;
     wire [P-1:0]        c_req_rden;
     wire [TAG_W-1:0]    c_req_tag;
-    wire [4*P-1:0]      unused_req_bits;
-    wire                unused_req_eos;
+    wire [4*P-1:0]      c_req_bits;
+    wire                c_req_eos;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
         .ADDR_W      (ADDR_W),
         .WEIGHT_W    (WEIGHT_W),
         .MAX_SS_LOG2 (MAX_SS_LOG2),
-        .RECTS       (RECTS)
+        .RECTS       (RECTS),
+        .BEATS       (BEATS)
     ) u_cfb (
         .clk       (clk),
         .rst       (rst),
@@ -90,25 +107,9 @@ module cube4_frontend #(
         .rect_we   (rect_we),
         .rect_addr (rect_addr),
         .rect_data (rect_data),
-        // the beat schedule's ports (a BEATS build of cube4_cfb; not one here)
-        .blk_base  ('0),
-        .nbr_en    (1'b0),
-        .blk_we    (1'b0),
-        .blk_addr  ('0),
-        .blk_data  ('0),
-        .tab_we    (1'b0),
-        .tab_addr  ('0),
-        .tab_data  ('0),
-        .rep_valid (1'b0),
-        .rep_j     ('0),
-        .rep_pb    ('0),
-        .rep_stx   ('0),
-        .rep_sty   ('0),
-        .rep_en    ('0),
-        .rep_end   ('0),
-        .com_m     ('0),
-        .req_bits  (unused_req_bits),
-        .req_eos   (unused_req_eos),
+        `CUBE4_BEATS_IN_PASS,
+        .req_bits  (c_req_bits),
+        .req_eos   (c_req_eos),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req_addr),
@@ -119,13 +120,14 @@ module cube4_frontend #(
     // CFB's requests pass a skid buffer: CFB advances on the skid's registered
     // ready, so the memory's ready (and what feeds it) never reaches CFB's
     // traversal counters in the same cycle. One cycle of latency.
+    wire s_req_valid, s_req_ready;
     cube4_skid #(
         .DATA_W (P * ADDR_W + P + TAG_W)
     ) u_req_skid (
         .clk       (clk),
         .rst       (rst),
-        .in_valid  (c_req_valid),
-        .in_ready  (c_req_ready),
+        .in_valid  (s_req_valid),
+        .in_ready  (s_req_ready),
         .in_data   ({c_req_addr, c_req_rden, c_req_tag}),
         .out_valid (mem_req_valid),
         .out_ready (mem_req_ready),
@@ -156,6 +158,34 @@ module cube4_frontend #(
         .out_hdr    (smp_hdr),
         .out_sample (smp_sample)
     );
+
+    // ---- BEATS = 1: each emitted beat's position bits and EOS wait beside the
+    // memory and TRI in a FIFO (a request that emits waits for its room), and
+    // leave with its sample beat ----
+    generate
+        if (BEATS != 0) begin : g_bits
+            wire emits = c_req_tag[TAG_EMIT];
+            wire b_ready, b_valid;
+            assign s_req_valid = c_req_valid && (!emits || b_ready);
+            assign c_req_ready = s_req_ready && (!emits || b_ready);
+            cube4_sync_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
+                .clk       (clk),
+                .rst       (rst),
+                .in_valid  (c_req_valid && s_req_ready && emits),
+                .in_ready  (b_ready),
+                .in_data   ({c_req_eos, c_req_bits}),
+                .out_valid (b_valid),
+                .out_ready (smp_valid && smp_ready),
+                .out_data  ({smp_eos, smp_bits})
+            );
+            wire unused_bits = b_valid;    // a sample beat always finds its entry
+        end else begin : g_no_bits
+            assign s_req_valid = c_req_valid;
+            assign c_req_ready = s_req_ready;
+            assign {smp_eos, smp_bits} = '0;
+            wire unused_bits = ^{c_req_bits, c_req_eos};
+        end
+    endgenerate
 
     // ---- frame control: busy from start until the last sample beat ----
     cube4_frame_ctl u_frame (

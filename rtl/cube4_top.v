@@ -219,6 +219,8 @@ module cube4_top #(
     wire                 unused_fe_busy, unused_fe_done;
     wire [31:0]          unused_fe_cycles;
 
+    wire [4*P-1:0] unused_smp_bits;
+    wire           unused_smp_eos;
     cube4_frontend #(
         `CUBE4_BUILD_PASS
     ) u_frontend (
@@ -233,6 +235,9 @@ module cube4_top #(
         .rect_we       (rect_we),
         .rect_addr     (rect_addr),
         .rect_data     (rect_data),
+        `CUBE4_BEATS_IN_NONE,       // (the beat schedule: not in this top yet)
+        .smp_bits      (unused_smp_bits),
+        .smp_eos       (unused_smp_eos),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),

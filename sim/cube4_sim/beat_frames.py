@@ -12,7 +12,8 @@ to the end, so that the schedule holds every slice's decisions and COM's reports
 Each returns a ``BeatFrame``: the schedule, the traversal and the volume's block bits.
 And what the benches drive and expect: the host's block table for the view
 (``block_words``) and the frame's axes (``axis_regs``), COM's reports (``reports``), the
-decisions (``expected_decisions``) and the walk (``expected_walk``).
+decisions (``expected_decisions``), the walk (``expected_walk``), the front end's beats
+(``expected_front``: cube4_cfb_skip) and the requests (``expected_requests``: cube4_cfb).
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ class BeatFrame:
     sched: beats.BeatSchedule
     trav: Traversal
     bits: np.ndarray            # (bz, by, bx) the block table's bits of the volume
+    vol: np.ndarray | None = None   # the volume (a frame of the whole volume: its memory image)
 
 
 def _run(vol, trav, cfg, lut, rmap, mode, shading, clip, terminate: bool) -> BeatFrame:
@@ -43,7 +45,7 @@ def _run(vol, trav, cfg, lut, rmap, mode, shading, clip, terminate: bool) -> Bea
     rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                  enabled=terminate, value_bits=cfg.voxel_bits)
     render_frame(vol, trav, cfg, lut, rmap, mode=mode, shading=shading, clip=clip, beats=sched, done=rule)
-    return BeatFrame(sched, trav, bits)
+    return BeatFrame(sched, trav, bits, vol)
 
 
 def sparse_frame(seed: int, p: int, opaque: bool, terminate: bool) -> BeatFrame:
@@ -187,6 +189,22 @@ def expected_front(bf, p: int, lag: int) -> list[tuple]:
             bits = w[3] | w[4] << p | w[5] << (2 * p) | w[6] << (3 * p)
             care = full >> p | w[7] << (3 * p)
         out.append((m, j, pb, read, leave, eor, eos, last, bits, care))
+    return out
+
+
+def expected_requests(bf, p: int, lag: int) -> list[tuple]:
+    """The request beats of cube4_cfb's beat build: one per walk beat but the tokens (rows
+    that read nothing), as (k, j, pb, reads, emit, leave, emitted (m, j), eop, eos, bits,
+    care), and the drain beat. The flush row reads nothing; a beat emits a sample beat
+    when its sample beat runs (leave), at each slice's last beat and at the frame's."""
+    s = bf.sched
+    out = []
+    for m, j, pb, read, leave, _eor, eos, last, bits, care in expected_front(bf, p, lag):
+        if not (read or eos or last):
+            continue
+        row = (m, j - 1) if j > 0 else (m - 1, s.NJ - 1)
+        out.append((m, j, pb, int(read and m < s.M), int(leave or eos or last), leave, row, last, eos, bits, care))
+    out.append((None, None, None, 0, 0, 0, None, 0, 0, 0, 0))     # the drain beat
     return out
 
 

@@ -49,7 +49,9 @@ module cube4_cfb_harness #(
     output wire                  tag_emit,
     output wire [DIM_W-1:0]      tag_j,
     output wire                  tag_eop,
-    `CUBE4_CFB_BEATS_PORTS,
+    `CUBE4_BEATS_IN_PORTS,
+    output wire [4*P-1:0]        req_bits,
+    output wire                  req_eos,
     output wire                  tag_lower_mem,
     output wire                  tag_upper_mem
 );

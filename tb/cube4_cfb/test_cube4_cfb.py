@@ -30,7 +30,7 @@ from cube4.memory import address_of, bank_of, frontend_regs, top_regs
 from cube4.view import make_traversal
 from cube4_sim import rtl_sources, run_test
 from cube4_sim.sweeps import sweep
-from cube4_sim.beat_frames import HostCom, expected_front, slab_frame, sparse_frame
+from cube4_sim.beat_frames import HostCom, expected_requests, slab_frame, sparse_frame
 from cube4_sim.beats import Geometry
 from cube4_sim.rect_port import write_rect_table
 
@@ -209,21 +209,6 @@ LAG = 3
 SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
 
 
-def beat_requests(bf, p: int) -> list[tuple]:
-    """The request beats of a BEATS build: one per walk beat but the tokens (rows that
-    read nothing), as (k, j, pb, reads, emit, emitted (m, j), eop, eos, bits, care), and
-    the drain beat; the flush row reads nothing."""
-    s = bf.sched
-    out = []
-    for m, j, pb, read, leave, _eor, eos, last, bits, care in expected_front(bf, p, LAG):
-        if not (read or eos or last):
-            continue
-        row = (m, j - 1) if j > 0 else (m - 1, s.NJ - 1)
-        out.append((m, j, pb, int(read and m < s.M), int(leave or last), row, last, eos, bits, care))
-    out.append((None, None, None, 0, 0, None, 0, 0, 0, 0))     # the drain beat
-    return out
-
-
 @cocotb.test()
 async def test_beats(dut):
     """BEATS = 1: golden frames of the beat schedule (cube4_sim.beat_frames: two nearly
@@ -232,11 +217,11 @@ async def test_beats(dut):
     the bench plays the host (the view's registers, the block table, the ray table's
     stops) and COM (each slice's reports a random delay after the walk's EOS), and takes
     the requests with random ready. Every request beat, in order: the walk's beat
-    (cube4_sim.beat_frames.expected_front, tokens issue nothing) with its reads checked
+    (cube4_sim.beat_frames.expected_requests, tokens issue nothing) with its reads checked
     lane by lane against the memory layout (``cube4.memory``, as test_addresses), the
-    sample beat it emits (EMIT where the leaving beat runs, and at the frame's last
-    beat with EOP; its slice and row: the row below, or the previous slice's last), its
-    position bits and EOS; then one drain beat, and nothing else."""
+    sample beat it emits (EMIT where the leaving beat runs, and at each slice's last beat
+    and the frame's, with EOP; its slice and row: the row below, or the previous slice's
+    last), its position bits and EOS; then one drain beat, and nothing else."""
     if not int(dut.BEATS.value):
         return
     p, aw, max_dim = int(dut.P.value), int(dut.ADDR_W.value), int(dut.MAX_DIM.value)
@@ -265,7 +250,7 @@ async def test_beats(dut):
         dut.start.value = 1
         await FallingEdge(dut.clk)
         dut.start.value = 0
-        want = beat_requests(bf, p)
+        want = expected_requests(bf, p, LAG)
         got, walked, cycle, held = 0, 0, 0, None
         while True:
             host.drive(cycle, walked)
@@ -283,7 +268,7 @@ async def test_beats(dut):
                 held = None if ready else beat
             if valid and ready:
                 assert got < len(want), f"{kind} {arg}: more than {len(want)} request beats"
-                k, j, pb, reads, emit, row, eop, eos, bits, care = want[got]
+                k, j, pb, reads, emit, _leave, row, eop, eos, bits, care = want[got]
                 addr_v, rden, tm, tj, tpb, temit, teop, lmem, rbits, reos = beat
                 where = f"{kind} {arg} view {trav.direction} beat {got} (k={k}, j={j}, pb={pb})"
                 assert (temit, teop, lmem, reos) == (emit, eop, reads, eos), \

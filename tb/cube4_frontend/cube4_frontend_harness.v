@@ -26,16 +26,22 @@ module cube4_frontend_harness #(
     `CUBE4_BUILD_PARAMS,
     parameter integer DEPTH       = 4096,
     parameter integer OPT_GRA     = 0,    // 1: cube4_gra after the front end, gradients dumped too
+    parameter integer BEATS       = 0,    // 1: the beat schedule (cube4_frontend)
     `CUBE4_ADDR_LAYOUT,
     `CUBE4_TAG_LAYOUT,
     `CUBE4_RECT_LAYOUT,
-    localparam integer GRAD_W = VOXEL_W + 5
+    localparam integer GRAD_W = VOXEL_W + 5,
+    localparam integer BLOCK_LOG2 = 2,
+    `CUBE4_STOP_LAYOUT,
+    `CUBE4_BLOCK_LAYOUT
 ) (
     `CUBE4_VIEW_PORTS
     `CUBE4_ADDR_PORTS
     `CUBE4_RECT_PORTS
     input  wire                  rect_we,     // write the rt_* fields as entry rect_addr
     input  wire [M_W-1:0]        rect_addr,
+    `CUBE4_BEATS_IN_PORTS,                    // BEATS = 1: the decisions' tables, COM's reports
+    output wire [31:0]           eos_count,   // BEATS = 1: sample beats with EOS taken this frame
     output wire                  clk,
     input  wire                  rst,
     // loader
@@ -79,6 +85,8 @@ module cube4_frontend_harness #(
     reg                  rect_we_q;
     reg [M_W-1:0]        rect_addr_q;
     reg [RECT_W-1:0]     rect_data_q;
+    localparam integer BT_W = 3 * DIM_W + 4 + 2 * BK_W + NBK + STOP_AW + 2 * P * M_W + 3 * DIM_W + PB_W + P + M_W;
+    reg [BT_W-1:0]       bt_q;
     always @(posedge clk) begin
         rst_q         <= rst;
         load_q        <= load;
@@ -94,7 +102,21 @@ module cube4_frontend_harness #(
         rect_we_q     <= rect_we;
         rect_addr_q   <= rect_addr;
         rect_data_q   <= `CUBE4_RECT_PACK;
+        bt_q          <= {blk_base, nbr_en, blk_we, blk_addr, blk_data, tab_we, tab_addr, tab_data,
+                          rep_valid, rep_j, rep_pb, rep_stx, rep_sty, rep_en, rep_end, com_m};
     end
+    wire [3*DIM_W-1:0] blk_base_q;
+    wire               nbr_en_q, blk_we_q, tab_we_q, rep_valid_q;
+    wire [2*BK_W-1:0]  blk_addr_q;
+    wire [NBK-1:0]     blk_data_q;
+    wire [STOP_AW-1:0] tab_addr_q;
+    wire [P*M_W-1:0]   tab_data_q, rep_end_q;
+    wire [DIM_W-1:0]   rep_j_q, rep_stx_q, rep_sty_q;
+    wire [PB_W-1:0]    rep_pb_q;
+    wire [P-1:0]       rep_en_q;
+    wire [M_W-1:0]     com_m_q;
+    assign {blk_base_q, nbr_en_q, blk_we_q, blk_addr_q, blk_data_q, tab_we_q, tab_addr_q, tab_data_q,
+            rep_valid_q, rep_j_q, rep_pb_q, rep_stx_q, rep_sty_q, rep_en_q, rep_end_q, com_m_q} = bt_q;
 
     localparam integer PV = P * VOXEL_W;
 
@@ -154,8 +176,11 @@ module cube4_frontend_harness #(
     wire [HDR_W-1:0]  smp_hdr;
     wire [PV-1:0]     smp_sample;
 
+    wire [4*P-1:0]    smp_bits;
+    wire              smp_eos;
     cube4_frontend #(
-        `CUBE4_BUILD_PASS
+        `CUBE4_BUILD_PASS,
+        .BEATS           (BEATS)
     ) u_fe (
         .clk             (clk),
         .rst             (rst_q),
@@ -168,6 +193,24 @@ module cube4_frontend_harness #(
         .rect_we         (rect_we_q),
         .rect_addr       (rect_addr_q),
         .rect_data       (rect_data_q),
+        .blk_base        (blk_base_q),
+        .nbr_en          (nbr_en_q),
+        .blk_we          (blk_we_q),
+        .blk_addr        (blk_addr_q),
+        .blk_data        (blk_data_q),
+        .tab_we          (tab_we_q),
+        .tab_addr        (tab_addr_q),
+        .tab_data        (tab_data_q),
+        .rep_valid       (rep_valid_q),
+        .rep_j           (rep_j_q),
+        .rep_pb          (rep_pb_q),
+        .rep_stx         (rep_stx_q),
+        .rep_sty         (rep_sty_q),
+        .rep_en          (rep_en_q),
+        .rep_end         (rep_end_q),
+        .com_m           (com_m_q),
+        .smp_bits        (smp_bits),
+        .smp_eos         (smp_eos),
         .mem_req_valid   (req_valid),
         .mem_req_ready   (req_ready),
         .mem_req_addr    (req_addr),
@@ -281,6 +324,8 @@ module cube4_frontend_harness #(
             assign snk_grad    = {(3*P*GRAD_W){1'b0}};
         end
     endgenerate
+    // the beat build's bits and EOS go straight to the sink (no GRA behind it yet)
+    wire [4*P:0]      snk_bits = (OPT_GRA != 0) ? '0 : {smp_eos, smp_bits};
     wire [P-1:0]      snk_lins = snk_hdr[HDR_INSIDE +: P];
     wire [P-1:0]      snk_lval = snk_hdr[HDR_LVALID +: P];
     wire [6:0]        snk_ctrl = snk_hdr[HDR_CTRL +: 7];
@@ -306,7 +351,7 @@ module cube4_frontend_harness #(
     // random ready, dump every accepted beat; the frame ends with the eop beat
     reg  [15:0] lfsr_q;
     wire [15:0] snk_mix = seed_q[15:0] ^ seed_q[31:16] ^ 16'h5A5A;   // the sink's stall pattern
-    reg  [31:0] beats_q, cycles_q;
+    reg  [31:0] beats_q, cycles_q, eos_q;
     reg        busy_q;
     always @(posedge clk) begin
         if (rst_q) lfsr_q <= (snk_mix == 16'h0) ? 16'h5A5A : snk_mix;
@@ -319,10 +364,12 @@ module cube4_frontend_harness #(
         if (rst_q) begin
             beats_q  <= 32'd0;
             cycles_q <= 32'd0;
+            eos_q    <= 32'd0;
             busy_q   <= 1'b0;
         end else begin
             if (start_q && !busy_q) begin
                 beats_q  <= 32'd0;
+                eos_q    <= 32'd0;
                 cycles_q <= 32'd1;
                 busy_q   <= 1'b1;
                 $fwrite(dump_fd, "start\n");   // frame marker: the reader takes what follows the last one
@@ -332,13 +379,15 @@ module cube4_frontend_harness #(
             end
             if (snk_valid && snk_ready) begin
                 beats_q <= beats_q + 32'd1;
-                if (dump_en_q) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h %h\n", snk_m, snk_j, snk_pb, snk_skew,
-                        snk_ctrl, snk_lval, snk_lins, snk_sample, snk_grad);
+                if (snk_bits[4*P]) eos_q <= eos_q + 32'd1;
+                if (dump_en_q) $fwrite(dump_fd, "%0d %0d %0d %0d %h %h %h %h %h %h\n", snk_m, snk_j, snk_pb, snk_skew,
+                        snk_ctrl, snk_lval, snk_lins, snk_sample, snk_grad, snk_bits);
                 if (last_beat) $fflush(dump_fd);
             end
         end
     end
     assign beats  = beats_q;
+    assign eos_count = eos_q;
     assign busy   = busy_q;
     assign done   = busy_q && last_beat;
     assign cycles = cycles_q;

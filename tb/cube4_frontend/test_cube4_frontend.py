@@ -33,13 +33,15 @@ from pathlib import Path
 import cocotb
 import numpy as np
 import pytest
-from cocotb.triggers import First, ReadOnly, RisingEdge, Timer
+from cocotb.triggers import FallingEdge, First, ReadOnly, RisingEdge, Timer
 
-from cube4.memory import frontend_regs, lane_positions, load_image, pack_volume, write_hex
+from cube4.memory import frontend_regs, lane_positions, load_image, pack_volume, top_regs, write_hex
 import cube4.slices as slices
 from cube4.model import gradient_stream, inside_mask, padded_traversal, rect_slice, sample_stream
 from cube4.view import make_traversal
 from cube4_sim import BUILD_ROOT, SIM_HDL_DIR, rtl_sources, run_test
+from cube4_sim.beat_frames import HostCom, expected_requests, slab_frame, sparse_frame
+from cube4_sim.beats import Geometry
 from cube4_sim.dump import BEAT, LAST, START, frame_bounds
 from cube4_sim.rect_port import write_rect_table
 from cube4_sim.sweeps import regress, sweep
@@ -49,6 +51,7 @@ HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
 CLK_NS = 10
 MAX_MISMATCH_LOGS = 8
+BEAT_LAG = 3        # the beat schedule's lag (cube4_cfb_decide's default)
 #: How far each sample dump has been read, across the cocotb tests of one simulation
 #: (the harness opens the file once; each test reads on from where the last one stopped).
 _DUMP_POS: dict[Path, int] = {}
@@ -77,6 +80,7 @@ def parse_beats(lines: list[str], p: int, vw: int) -> dict[str, np.ndarray]:
     lins = np.zeros((n, p), dtype=bool)
     smp = np.zeros((n, p), dtype=np.int64)
     grad = np.zeros((n, 3, p), dtype=np.int64)
+    bts = np.zeros(n, dtype=object)      # {eos, bits}: the beat build's (0 otherwise)
     mask = (1 << vw) - 1
     gw = vw + 5
     gmask = (1 << gw) - 1
@@ -88,13 +92,14 @@ def parse_beats(lines: list[str], p: int, vw: int) -> dict[str, np.ndarray]:
         lval[r] = (lv >> bits) & 1
         lins[r] = (li >> bits) & 1
         smp[r] = [(s >> (q * vw)) & mask for q in range(p)]
+        bts[r] = int(f[9], 16) if len(f) > 9 else 0
         g = int(f[8], 16)
         for c in range(3):  # {gi, gj, gk}: gi in the top bits
             gc = g >> ((2 - c) * p * gw)
             grad[r, c] = [(gc >> (q * gw)) & gmask for q in range(p)]
     grad = np.where(grad >= (1 << (gw - 1)), grad - (1 << gw), grad)
     return {"m": head[:, 0], "j": head[:, 1], "pb": head[:, 2], "skew": head[:, 3],
-            "ctrl": head[:, 4], "lval": lval, "lins": lins, "smp": smp, "grad": grad}
+            "ctrl": head[:, 4], "lval": lval, "lins": lins, "smp": smp, "grad": grad, "bits": bts}
 
 
 def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log, gra: bool = False) -> None:
@@ -163,6 +168,48 @@ def check_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, p: int, log
             | ((idx == 0) << 4) | ((idx == n - 1) << 5) | ((exp["j"] == nj - 1) << 6))
     bad = np.nonzero(ctrl != want)[0]
     assert bad.size == 0, f"beat {bad[0]}: control bits {ctrl[bad[0]]:07b}, expected {want[bad[0]]:07b}"
+
+
+def check_beat_frame(beats: dict[str, np.ndarray], bf, p: int, log) -> None:
+    """Compare one beat-schedule frame's sample beats with the golden model: one per
+    request that emits (``beat_frames.expected_requests``), in order, its slice, row and
+    partial beam the emitted row's; where its sample beat runs, every lane below NI valid
+    with the fixed schedule's sample and inside bit (the walk read what it interpolates),
+    else no lane valid; the control bits of its slice and row, SOP on the first and EOP on
+    the last; its position bits and EOS."""
+    trav, s = bf.trav, bf.sched
+    gold, gin = sample_stream(bf.vol, trav)
+    ni, nj, nk = trav.ni, trav.nj, trav.nk
+    want = [w for w in expected_requests(bf, p, BEAT_LAG) if w[4]]
+    n = len(beats["m"])
+    assert n == len(want), f"{n} sample beats, golden {len(want)}"
+    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    for r, (_k, _j, pb, _reads, _emit, leave, (m, j), _eop, eos, bits, care) in enumerate(want):
+        where = f"sample beat {r} (m={m}, j={j}, pb={pb})"
+        got = (int(beats["m"][r]), int(beats["j"][r]), int(beats["pb"][r]))
+        assert got == (m, j, pb), f"{where}: RTL (m, j, pb) = {got}"
+        cj = nj - 1 - (j + 1) if fj else j + 1
+        ck = nk - 1 - m if fk else m
+        assert int(beats["skew"][r]) == (cj + ck) % p, f"{where}: skew {beats['skew'][r]}"
+        pos = lane_positions(int(beats["skew"][r]), pb, p, ni, fi)
+        valid = (pos < ni) & bool(leave)
+        ii = np.minimum(pos, ni - 1)
+        assert (beats["lval"][r] == valid).all(), f"{where}: lane_valid {beats['lval'][r]}, golden {valid}"
+        g = np.where(valid, gold[m, j, ii], 0)
+        gi = valid & gin[m, j, ii]
+        smp = np.where(valid, beats["smp"][r], 0)
+        if (smp != g).any() or (beats["lins"][r] != gi).any():
+            log.error("%s: RTL samples %s inside %s, golden %s inside %s", where, smp, beats["lins"][r], g, gi)
+            raise AssertionError(f"{where}: samples or inside bits differ from the golden model")
+        sx, sy = (int(v) for v in trav.steps(m))
+        sx1, sy1 = (int(v) for v in trav.steps(m + 1))
+        sxb, syb = (int(v) for v in trav.steps(m - 1))
+        ctrl = ((sx1 - sx) | ((sy1 - sy) << 1) | ((sx - sxb) << 2) | ((sy - syb) << 3)
+                | ((r == 0) << 4) | ((r == n - 1) << 5) | ((j == nj - 1) << 6))
+        assert int(beats["ctrl"][r]) == ctrl, f"{where}: control bits {int(beats['ctrl'][r]):07b}, golden {ctrl:07b}"
+        got_bits = int(beats["bits"][r])
+        assert got_bits >> (4 * p) == eos, f"{where}: EOS {got_bits >> (4 * p)}, golden {eos}"
+        assert got_bits & care == bits & care, f"{where}: bits {got_bits & ((1 << 4 * p) - 1):#x}, golden {bits:#x}"
 
 
 def check_rect_frame(beats: dict[str, np.ndarray], vol: np.ndarray, trav, rects, p: int, log,
@@ -279,6 +326,7 @@ class TB:
         self.max_ss_log2 = int(dut.MAX_SS_LOG2.value)
         self.gra = bool(int(dut.OPT_GRA.value))
         self.rects = bool(int(dut.RECTS.value))
+        self.beats = bool(int(dut.BEATS.value))
         self.memfile = Path(os.environ["CUBE4_FE_MEMFILE"])
         self.dumpfile = Path(os.environ["CUBE4_FE_DUMP"])
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
@@ -301,6 +349,8 @@ class TB:
         d.stall_out.value = 0
         d.dump_en.value = 1
         d.rect_we.value = 0
+        for name in ("blk_base", "nbr_en", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m"):
+            getattr(d, name).value = 0
         d.seed.value = cocotb.RANDOM_SEED & 0xFFFFFFFF   # the Verilog stall generators' seed
         await self.cycles(4)
         d.rst.value = 0
@@ -363,6 +413,45 @@ class TB:
         a, b = frame_bounds(line_kinds(lines), unfinished, "sample dump")[-1]
         assert dumped or a == b, f"sample dump: {b - a} beats of a frame run with dump_en = 0"
         return parse_beats(lines[a:b], self.p, self.vw), cycles, wall
+
+    async def beat_frame(self, bf, stalls=(0, 0, 0), delay: int = 0) -> tuple[dict, int]:
+        """Render one frame of the beat schedule (a BEATS build): the volume loaded, the
+        view's registers, the host's tables and COM's reports (``beat_frames.HostCom``:
+        slice d's reports once d's EOS has reached the sink, a random delay of up to
+        ``delay`` cycles later); returns (beats, cycles)."""
+        d, trav = self.dut, bf.trav
+        assert tuple(trav.origin) == (0, 0, 0) and bf.vol is not None, "a frame of the whole volume"
+        await self.load(bf.vol)
+        for key, val in top_regs(trav, self.p).items():    # the steps' SX, SY and PH0 too
+            if hasattr(d, "cfg_" + key.lower()):
+                getattr(d, "cfg_" + key.lower()).value = int(val)
+        host = HostCom(d, bf, self.p, self.max_dim, Geometry(self.p, self.max_dim, self.max_ss_log2).m_w,
+                       BEAT_LAG, self.rng, delay)
+        await FallingEdge(d.clk)
+        await host.load()
+        d.stall_req.value, d.stall_rsp.value, d.stall_out.value = stalls
+        d.start.value = 1
+        await FallingEdge(d.clk)
+        d.start.value = 0
+        cycle, started = 0, False
+        while True:
+            host.drive(cycle, int(d.eos_count.value) if started else 0)
+            await FallingEdge(d.clk)
+            cycle += 1
+            busy = int(d.busy.value)
+            started = started or bool(busy)
+            if started and not busy:
+                break
+            assert cycle < 400000, "the frame did not finish"
+        cycles = int(d.cycles.value)
+        await self.cycles(3)
+        with self.dumpfile.open() as fh:
+            fh.seek(_DUMP_POS.get(self.dumpfile, 0))
+            text = fh.read()
+            _DUMP_POS[self.dumpfile] = fh.tell()
+        lines = text.splitlines()
+        a, b = frame_bounds(line_kinds(lines), [False], "sample dump")[-1]
+        return parse_beats(lines[a:b], self.p, self.vw), cycles
 
     async def render_and_check(self, vol, direction, supersample, stalls, after_reset: bool = False) -> int:
         trav = make_traversal(vol.shape[::-1], direction, self.w, supersample)
@@ -580,12 +669,12 @@ BUILDS = [
 
 
 def _params(P: int, VOXEL_W: int, MAX_DIM: int, MAX_SS_LOG2: int, OPT_GRA: int = 0,  # noqa: N803
-            RECTS: int = 0) -> dict[str, int]:
+            RECTS: int = 0, BEATS: int = 0) -> dict[str, int]:
     """The harness's parameters: a voxel memory that holds a MAX_DIM^3 volume."""
     words = -(-MAX_DIM // P) * MAX_DIM * MAX_DIM
     addr_w = max(1, (words - 1).bit_length())
     return {"P": P, "VOXEL_W": VOXEL_W, "MAX_DIM": MAX_DIM, "MAX_SS_LOG2": MAX_SS_LOG2,
-            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": OPT_GRA, "RECTS": RECTS}
+            "DEPTH": words, "ADDR_W": addr_w, "OPT_GRA": OPT_GRA, "RECTS": RECTS, "BEATS": BEATS}
 
 
 def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
@@ -605,6 +694,34 @@ def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
         extra_env=env,
         plusargs=[f"+CUBE4_MEMFILE={env['CUBE4_FE_MEMFILE']}", f"+CUBE4_DUMP={env['CUBE4_FE_DUMP']}"],
     )
+
+
+@cocotb.test()
+async def test_beat_views(dut):
+    """A beat build (BEATS = 1): golden frames of the beat schedule (beat_frames: two
+    nearly opaque slabs, shaded, rays ending in them; sparse volumes in every mode, their
+    LUT nearly opaque every other frame, termination off every third) through CFB, the
+    memory and TRI with stalls on every port: every sample beat as check_beat_frame."""
+    tb = TB(dut)
+    if not tb.beats:
+        return
+    await tb.reset()
+    seeds = [sd for sd in range(200) if sd % 3 == 0][:6]
+    cases = [("slab", v) for v in ((0.2, -0.1, 1.0), (1.0, 1.0, 1.0))] + [("sparse", sd) for sd in seeds]
+    stall_sets = [(0, 0, 0), (70, 70, 70), (0, 0, 200), (200, 0, 0), (0, 200, 30)]
+    frames = 0
+    for n, (kind, arg) in enumerate(cases):
+        bf = (slab_frame(tb.p, arg) if kind == "slab"
+              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+        if max(bf.trav.dims) > tb.max_dim:
+            continue
+        stalls = stall_sets[n % len(stall_sets)]
+        beats, cycles = await tb.beat_frame(bf, stalls, delay=(0, 40, 400)[n % 3])
+        check_beat_frame(beats, bf, tb.p, tb.log)
+        frames += 1
+        tb.log.info("%s %s: %d slices of %dx%d beats, stalls %s: %d sample beats in %d cycles bit-exact",
+                    kind, arg, bf.sched.M, bf.sched.NJ, bf.sched.NB, stalls, len(beats["m"]), cycles)
+    assert frames >= 4, f"only {frames} frames fit MAX_DIM = {tb.max_dim}"
 
 
 @pytest.mark.parametrize("build", sweep(BUILDS, quick=(), ids=param_id))
@@ -659,3 +776,16 @@ def test_cube4_frontend_cycles_128():
     for r in json.loads(report.read_text()):
         print(f"front end 128^3 P=8 view {r['direction']}: {r['cycles']} cycles, ideal {r['ideal_cycles']:.0f}, "
               f"efficiency {r['efficiency']:.5f}, {r['sim_cycles_per_s'] / 1e6:.2f} M cycles/s simulated")
+
+
+#: beat builds (BEATS = 1, S = 1, no GRA behind the front end yet): P = 8 in make test,
+#: P = 1 and 5 in make regress
+BEAT_BUILDS = [dict(P=8, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, BEATS=1),
+               dict(P=1, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, BEATS=1),
+               dict(P=5, VOXEL_W=12, MAX_DIM=32, MAX_SS_LOG2=0, BEATS=1)]
+
+
+@pytest.mark.parametrize("build", sweep(BEAT_BUILDS, quick=(0,), ids=param_id))
+def test_cube4_frontend_beats(build):
+    """The beat build: golden frames of the beat schedule, sample for sample."""
+    _run(_params(**build), ["test_beat_views"])

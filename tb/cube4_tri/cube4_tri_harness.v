@@ -80,6 +80,8 @@ module cube4_tri_harness #(
     wire               unused_cfb_busy;
     wire               c_req_valid, c_req_ready, req_valid, req_ready;
     wire [REQ_W-1:0]   c_req, req;
+    wire [4*P-1:0] unused_bits;   // the beat schedule's (not this build's)
+    wire           unused_eos;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
@@ -96,6 +98,9 @@ module cube4_tri_harness #(
         .rect_we   (1'b0),               // the fixed schedule (RECTS = 0)
         .rect_addr ({M_W{1'b0}}),
         .rect_data ({RECT_W{1'b0}}),
+        `CUBE4_BEATS_IN_NONE,
+        .req_bits  (unused_bits),
+        .req_eos   (unused_eos),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req[TAG_W + P +: P * ADDR_W]),
