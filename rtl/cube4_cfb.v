@@ -178,7 +178,7 @@ module cube4_cfb #(
             ) u_steps (
                 .clk(clk), .rst(rst), .cfg(cfg), .start(go),
                 .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y));
-            wire w_valid, w_ready, w_read, w_leave, w_eor, w_eos, w_last;
+            wire w_valid, w_ready, w_read, w_leave, w_tok, w_eor, w_eos, w_last;
             wire [M_W-1:0]   w_m;
             wire [DIM_W-1:0] w_j;
             wire [PB_W-1:0]  w_pb;
@@ -199,7 +199,8 @@ module cube4_cfb #(
                 .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
                 .nbr_en(nbr_en),
                 .out_valid(w_valid), .out_ready(w_ready), .out_m(w_m), .out_j(w_j), .out_pb(w_pb),
-                .out_read(w_read), .out_leave(w_leave), .out_eor(w_eor), .out_eos(w_eos), .out_last(w_last),
+                .out_read(w_read), .out_leave(w_leave), .out_tok(w_tok), .out_eor(w_eor), .out_eos(w_eos),
+                .out_last(w_last),
                 .out_bits(w_bits));
             wire unused_walk = ^{w_m, w_j};   // the control keeps its own slice and row
             wire [4*P-1:0] x_bits;
@@ -210,6 +211,7 @@ module cube4_cfb #(
                 .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr),
                 .start(start), .busy(busy), .go(go),
                 .in_valid(w_valid), .in_ready(w_ready), .in_pb(w_pb), .in_read(w_read), .in_leave(w_leave),
+                .in_tok(w_tok),
                 .in_eor(w_eor), .in_eos(w_eos), .in_last(w_last), .in_bits(w_bits),
                 .advance(advance), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
                 .idle(idle), .next_pass(next_pass),

@@ -23,14 +23,15 @@
 //   The emitted row (as cube4_cfb_ctl): the row below, j - 1, or at row 0
 //   the previous slice's last row NJ - 1 (use_prev: its weights, steps and
 //   the skew of its virtual row NJ are kept at its slice's last beat; the
-//   read row is then zero for it, YWRAP). A beat emits a sample beat when
-//   its sample beat runs (LEAVE; its lanes below NI valid), and at each
-//   slice's last beat (EOS) and the frame's (EOP), with no lane valid when
-//   it does not run: every slice's end reaches the units behind. A beat
-//   reads when the walk says so, except in the flush row (m = M), which
-//   reads nothing. Tokens issue nothing; markers (EOS or LAST without reads)
-//   issue a beat that emits only; after LAST one drain beat pushes TRI's
-//   beam-extension delay empty, as the fixed schedule's.
+//   read row is then zero for it, YWRAP). Every beat but a token emits the
+//   sample beat of its row below, its lanes below NI valid where that beat
+//   runs (LEAVE), none elsewhere: COM's buffers move the partial results
+//   through the beats of the cover and of the row above, and every slice
+//   reaches the units behind (its marker). A beat of row 0 of slice 0,
+//   which would emit slice -1, emits nothing. The last beat carries EOP.
+//   A beat reads when the walk says so, except in the flush row (m = M),
+//   which reads nothing. Tokens issue nothing; after LAST one drain beat
+//   pushes TRI's beam-extension delay empty, as the fixed schedule's.
 //
 // Parameters (CUBE4_CFB_PARAMS; ranges as cube4_cfb)
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (a frame of beats has S = 1), ADDR_W.
@@ -50,8 +51,8 @@
 //   start, busy  in   start a frame (taken while not busy); cube4_cfb's busy
 //   go           out  start && !busy (the walk starts with it)
 //   in_valid/in_ready   the walk's beats: in_pb [PB_W], in_read, in_leave,
-//                in_eor, in_eos, in_last, in_bits [4P] ({soon, last, fresh,
-//                run} of the leaving beat, cube4_cfb_skip)
+//                in_tok, in_eor, in_eos, in_last, in_bits [4P] ({soon, last,
+//                fresh, run} of the leaving beat, cube4_cfb_skip)
 //   advance      in   the stages move (cube4_cfb_mask)
 //   wx, wy, wz [W] (Q0.W), steps [4]  in  the template's (cube4_cfb_tmpl)
 //   idle, next_pass  out  the template's controls (and cube4_cfb_mask's idle)
@@ -71,7 +72,8 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     input  wire [VIEW_W-1:0] cfg, input wire [ADR_W_ALL-1:0] cfg_addr,
     input  wire start, input wire busy, output wire go,
     input  wire in_valid, output wire in_ready, input wire [PB_W-1:0] in_pb,
-    input  wire in_read, input wire in_leave, input wire in_eor, input wire in_eos, input wire in_last,
+    input  wire in_read, input wire in_leave, input wire in_tok, input wire in_eor, input wire in_eos,
+    input  wire in_last,
     input  wire [4*P-1:0] in_bits,
     input  wire advance,
     input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz,
@@ -126,7 +128,6 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     wire             take = b_v && advance;           // the state's beat moves on
     wire             mv   = !b_v || take;
     assign in_ready = mv;
-    wire in_token = !in_read && !in_eos && !in_last;  // a row that reads nothing
     always @(posedge clk) begin
         if (rst) begin
             a_v <= 1'b0;
@@ -137,7 +138,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
         end
         if (mv) begin
             a_pb <= in_pb;
-            a_f  <= {in_bits, in_read, in_leave, in_eor, in_eos, in_last, in_token};
+            a_f  <= {in_bits, in_read, in_leave, in_eor, in_eos, in_last, in_tok};
             b_pb <= a_pb;
             b_f  <= a_f;
         end
@@ -174,7 +175,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     reg [LANE_W-1:0]   pskew_q;
 
     wire run_take   = take && in_run;
-    wire emit       = in_run && (b_leave || b_eos || b_last);
+    wire emit       = in_run && !(j0_q && m_q == '0);   // (tokens do not issue; no slice -1)
     wire reads      = in_run && b_read && !fl_q;
     wire slice_step = run_take && b_eos;
     wire row_step   = run_take && b_eor && !b_eos;

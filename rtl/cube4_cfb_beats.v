@@ -13,15 +13,19 @@
 //     E(m, j) = A(m, j) | (nbr_en & OCC(m, j) & grow(OR of A(m + dm, j + dj),
 //               dm, dj in -1 .. 1))        grow(x) = x | x << 1 | x >> 1
 //   (nbr_en: termination in a frame shaded by GRA; rows and slices outside the
-//   frame are zero), and walks the voxel beats they read, row by row:
+//   frame are zero), and walks the voxel beats they read, row by row, with
+//   the cover COM's X-step hop needs (the partial beam before a running
+//   beat, walked without reads where the row reads nothing there):
 //     reads(k) = up(E(k - 1) | E(k)),    up(x) = x | x << 1   (pb and pb + 1)
+//     walks(k) = reads(k) | ((E(k - 1) | E(k)) >> 1)
 //   where k runs over the frame's rows (m, j) in order and then one flush row
 //   (m = M, j = 0, E = 0): the previous row in this order is row j - 1, or
 //   the previous slice's last row, whose reads complete it (Y-wrap, as the
-//   fixed schedule). Each set bit of reads(k) is one voxel beat, lowest pb
-//   first, with the bit of E(k - 1) at its pb (the sample beat that leaves
-//   with it runs). A row that reads nothing takes one cycle and gives one
-//   beat that reads nothing: a slice's last row and the flush row a marker
+//   fixed schedule). Each set bit of walks(k) is one voxel beat, lowest pb
+//   first, with its bit of reads(k) and the bit of E(k - 1) at its pb (the
+//   sample beat that leaves with it runs). A row that walks nothing takes
+//   one cycle and gives one beat that reads nothing: a slice's last row and
+//   the flush row a marker
 //   (every slice leaves at least one beat, so the units behind see each
 //   slice end, and COM can report it), any other row a token that only
 //   moves the address unit's row on (cube4_cfb_bctl: every row ends with
@@ -45,7 +49,7 @@
 //   The pipeline moves one row per edge while the queue has room (its
 //   registered count: the emitter's last bit does not reach the pipeline's
 //   enable). The emitter takes one cycle per
-//   beat and one per row that reads nothing, so with its rows ready a frame
+//   beat and one per row that walks nothing, so with its rows ready a frame
 //   takes sum over rows of max(1, beats) cycles (beats.walker_cycles).
 //   out_valid does not depend on out_ready; a beat is held while stalled.
 //
@@ -60,8 +64,10 @@
 //   out_valid, out_ready   the walk's beats
 //   out_m, out_j, out_pb   the voxel beat: sample slice [M_W] (M: the flush
 //             row), row [DIM_W], partial beam [PB_W]
-//   out_read  the beat reads (0: the token or marker of a row that reads
-//             nothing; a marker carries EOS or LAST, a token neither)
+//   out_read  the beat reads (0: a beat of the cover, or the token or
+//             marker of a row that walks nothing; a marker carries EOS or
+//             LAST)
+//   out_tok   the beat is a token (a row that walks nothing, not a marker)
 //   out_leave the sample beat that leaves with it runs
 //   out_in_a  that beat holds a running ray (A; else it runs as GRA's
 //             neighbour only)
@@ -82,8 +88,8 @@ module cube4_cfb_beats #(
     input  wire [NBMAX-1:0] bm_a, input wire [NBMAX-1:0] bm_occ,
     output wire out_valid, input wire out_ready,
     output wire [M_W-1:0] out_m, output wire [DIM_W-1:0] out_j, output wire [PB_W-1:0] out_pb,
-    output wire out_read, output wire out_leave, output wire out_in_a, output wire out_eor,
-    output wire out_eos, output wire out_last
+    output wire out_read, output wire out_leave, output wire out_in_a, output wire out_tok,
+    output wire out_eor, output wire out_eos, output wire out_last
 );
     localparam integer NW = NBMAX;
     localparam integer RW = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;     // a row address
@@ -232,16 +238,17 @@ module cube4_cfb_beats #(
     end
     wire [NW-1:0] either = e1 | e2;
     wire [NW-1:0] reads  = (either | (either << 1)) & nbmask;
+    wire [NW-1:0] walks  = reads | ((either >> 1) & nbmask);   // and the cover (pb - 1), no reads
 
     // ==== a queue of two rows between the pipeline and the emitter (the pipeline's
     // enable comes from its registered count, not from the emitter's last bit) ====
-    localparam integer RQ_W = 3 * NW + M_W + DIM_W + 3;   // {reads, leave, in_a, m, j, flush, mark, empty}
+    localparam integer RQ_W = 4 * NW + M_W + DIM_W + 3;   // {walks, reads, leave, in_a, m, j, flush, mark, empty}
     reg  [RQ_W-1:0] rq0, rq1;              // rq0 the head
     reg  [1:0]      rq_n;
     assign take_ok = (rq_n != 2'd2);
     wire            rq_push = adv && (e_kind != K_NONE);
-    wire [RQ_W-1:0] rq_in = {reads, e2, a2, e_m, e_j, (e_kind == K_FLUSH),
-                             (e_kind == K_FLUSH) || (e_j == nj - 1'b1), (reads == '0)};
+    wire [RQ_W-1:0] rq_in = {walks, reads, e2, a2, e_m, e_j, (e_kind == K_FLUSH),
+                             (e_kind == K_FLUSH) || (e_j == nj - 1'b1), (walks == '0)};
     wire            rq_pop;
     always @(posedge clk) begin
         if (rst || start) begin
@@ -259,10 +266,10 @@ module cube4_cfb_beats #(
 
     // ==== the emitter: one beat a cycle, one cycle for a row without reads ====
     reg             x_busy;
-    reg [NW-1:0]    x_rem, x_leave, x_in_a;
+    reg [NW-1:0]    x_rem, x_rd, x_leave, x_in_a;
     reg [M_W-1:0]   x_m;
     reg [DIM_W-1:0] x_j;
-    reg             x_flush, x_empty;      // the flush row; a row that reads nothing
+    reg             x_flush, x_empty;      // the flush row; a row that walks nothing
     reg             x_mark;                // a slice's last row or the flush row: emits when empty
     wire [NW-1:0]   x_low  = x_rem & (~x_rem + 1'b1);            // its lowest set bit
     wire [NW-1:0]   x_next = x_rem & ~x_low;                     // the row after this beat
@@ -278,7 +285,7 @@ module cube4_cfb_beats #(
             if (x_rem[b]) x_pb = PB_W'(b);
         end
     end
-    // the beat this cycle: a read, or the token or marker of a row that reads nothing
+    // the beat this cycle: a walked beat, or the token or marker of a row that walks nothing
     assign out_valid = x_busy;
     wire   x_fire = out_valid && out_ready;
     wire   x_done = x_fire && (x_empty || x_one);
@@ -289,7 +296,7 @@ module cube4_cfb_beats #(
         end else begin
             if (rq_pop) begin
                 x_busy <= 1'b1;
-                {x_rem, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_empty} <= rq0;
+                {x_rem, x_rd, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_empty} <= rq0;
                 x_one  <= one_left(rq0[RQ_W-1 -: NW]);
             end else if (x_done) begin
                 x_busy <= 1'b0;
@@ -307,7 +314,8 @@ module cube4_cfb_beats #(
     assign out_m     = x_m;
     assign out_j     = x_j;
     assign out_pb    = x_pb;
-    assign out_read  = !x_empty;
+    assign out_read  = !x_empty && ((x_rd & x_low) != '0);
+    assign out_tok   = x_empty && !x_mark;
     assign out_leave = !x_empty && ((x_leave & x_low) != '0);
     assign out_in_a  = !x_empty && ((x_in_a & x_low) != '0);
     assign out_eor   = x_empty || x_one;

@@ -31,7 +31,7 @@
 // Ports
 //   As cube4_cfb_decide's inputs (the frame, the steps, the tables, COM's
 //   reports), and the walk: out_valid, out_ready, out_m, out_j, out_pb,
-//   out_read, out_leave, out_eor, out_eos, out_last (cube4_cfb_beats) and out_bits
+//   out_read, out_leave, out_tok, out_eor, out_eos, out_last (cube4_cfb_beats) and out_bits
 //   {soon, last, fresh, run} [4*P] of the leaving beat.
 //   nbr_en   E with GRA's neighbours (termination in a GRA frame)
 //
@@ -51,8 +51,8 @@ module cube4_cfb_skip #(
     input  wire nbr_en,
     output wire out_valid, input wire out_ready,
     output wire [M_W-1:0] out_m, output wire [DIM_W-1:0] out_j, output wire [PB_W-1:0] out_pb,
-    output wire out_read, output wire out_leave, output wire out_eor, output wire out_eos,
-    output wire out_last,
+    output wire out_read, output wire out_leave, output wire out_tok, output wire out_eor,
+    output wire out_eos, output wire out_last,
     output wire [4*P-1:0] out_bits
 );
     wire            busy_d, busy_w;
@@ -83,7 +83,7 @@ module cube4_cfb_skip #(
         .nj(nj), .nb(nb), .nm(nm), .nbr_en(nbr_en),
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .out_valid(w_valid), .out_ready(w_ready), .out_m(out_m), .out_j(out_j), .out_pb(out_pb),
-        .out_read(out_read), .out_leave(w_leave), .out_in_a(w_in_a), .out_eor(out_eor), .out_eos(out_eos),
+        .out_read(out_read), .out_leave(w_leave), .out_in_a(w_in_a), .out_tok(out_tok), .out_eor(out_eor), .out_eos(out_eos),
         .out_last(out_last));
     // a walk beat whose leaving beat holds a running ray takes that beat's bits:
     // the next beat with a = 1 of the queue's head group (from beat `half` on)

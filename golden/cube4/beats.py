@@ -49,8 +49,14 @@ schedule's, bit for bit, at τ = 0.
 interpolate: rows j and j + 1 and partial beams pb and pb + 1 (the beam-extension
 neighbour) of both voxel slices. A pass that reads a voxel slice for the slice buffers
 (S > 1) reads what every pass that uses that slice may run, as far as it knows then (the
-rays' intervals with the reports so far). The walk's beats are those; each takes a cycle
-and a beat that is not walked takes none (``walk_beats``).
+rays' intervals with the reports so far). Each walked voxel beat emits the sample beat of
+the row below (its lanes valid where that beat runs), so COM sees, before each running
+sample beat, the row above at its partial beam (through which its beam buffer brings the
+partial results of a Y-step). COM's X-step hop takes the lane at t = 0's partial result
+from the beat just before (the same row, the partial beam before): the walk also visits,
+in each row, the partial beam before each beat that runs in the emitted row or the row
+after, without reads where it reads nothing (``walk_rows``: the cover). The walk's beats
+are those; each takes a cycle and a beat that is not walked takes none (``walk_beats``).
 """
 
 from __future__ import annotations
@@ -373,41 +379,51 @@ class BeatStats:
 
 
 def walk_rows(sched: BeatSchedule, with_a: bool = False) -> list[tuple]:
-    """The front end's rows in order, (m, j, reads, leaves): for sample slice m and row j
-    the voxel beats it reads (NB bools: the walk's row j, and in row 0 also the previous
-    slice's row NJ, the read that completes its last row: Y-wrap, as in the fixed
-    schedule) and the running beats of the sample row that leaves with them (the previous
-    row in this order: row j − 1, or the previous slice's row NJ − 1); after the last slice
-    a flush row (m = M, j = 0) that reads nothing new. ``with_a``: a fifth entry, the
-    leaving row's beats that hold a running ray (``active_beats``; the others run as
-    GRA's neighbours only)."""
+    """The front end's rows in order, (m, j, reads, leaves, cover): for sample slice m and
+    row j the voxel beats it reads (NB bools: the walk's row j, and in row 0 also the
+    previous slice's row NJ, the read that completes its last row: Y-wrap, as in the fixed
+    schedule), the running beats of the sample row that leaves with them (the previous row
+    in this order: row j − 1, or the previous slice's row NJ − 1), and the beats it walks
+    without reads for COM (the cover: the partial beam before each running beat of the
+    leaving row and of the row after it in this order, where the row reads nothing); after
+    the last slice a flush row (m = M, j = 0) that reads nothing new. The walk's beats of a
+    row are reads | cover. ``with_a``: a sixth entry, the leaving row's beats that hold a
+    running ray (``active_beats``; the others run as GRA's neighbours only)."""
     rows = []
     nothing = np.zeros(sched.NB, dtype=bool)
+
+    def cover(reads, leaves, after):
+        either = leaves | after
+        before = np.zeros_like(either)
+        before[:-1] = either[1:]         # pb − 1 of a running beat
+        return before & ~reads
+
     carry, prev, prev_a = nothing, nothing, nothing
     for m in range(sched.M):
         w, e, a = sched.walk(m), sched.run_beats(m), sched.active_beats(m)
-        rows.append((m, 0, w[0] | carry, prev, prev_a))
-        rows += [(m, j, w[j], e[j - 1], a[j - 1]) for j in range(1, sched.NJ)]
+        reads = w[0] | carry
+        rows.append((m, 0, reads, prev, cover(reads, prev, e[0]), prev_a))
+        rows += [(m, j, w[j], e[j - 1], cover(w[j], e[j - 1], e[j]), a[j - 1]) for j in range(1, sched.NJ)]
         carry, prev, prev_a = w[sched.NJ], e[sched.NJ - 1], a[sched.NJ - 1]
-    rows.append((sched.M, 0, carry, prev, prev_a))
-    return rows if with_a else [r[:4] for r in rows]
+    rows.append((sched.M, 0, carry, prev, cover(carry, prev, nothing), prev_a))
+    return rows if with_a else [r[:5] for r in rows]
 
 
 def slice_walks(sched: BeatSchedule, rows: list | None = None) -> np.ndarray:
     """(M + 1,): the front end's beats per slice (``walk_rows``, or ``rows`` already
     taken from it), the flush row last."""
     out = np.zeros(sched.M + 1, dtype=np.int64)
-    for m, _, reads, *_ in (rows if rows is not None else walk_rows(sched)):
-        out[m] += int(reads.sum())
+    for m, _, reads, _, cover, *_ in (rows if rows is not None else walk_rows(sched)):
+        out[m] += int((reads | cover).sum())
     return out
 
 
 def walker_cycles(sched: BeatSchedule, rows: list | None = None) -> np.ndarray:
     """(M + 1,): cycles per slice of a walk that emits one voxel beat a cycle and spends
-    one on a row that reads nothing (``walk_rows``, or ``rows``; the flush row last)."""
+    one on a row that walks nothing (``walk_rows``, or ``rows``; the flush row last)."""
     out = np.zeros(sched.M + 1, dtype=np.int64)
-    for m, _, reads, *_ in (rows if rows is not None else walk_rows(sched)):
-        out[m] += max(1, int(reads.sum()))
+    for m, _, reads, _, cover, *_ in (rows if rows is not None else walk_rows(sched)):
+        out[m] += max(1, int((reads | cover).sum()))
     return out
 
 

@@ -154,25 +154,27 @@ def expected_decisions(bf, p: int, lag: int):
     return lane, rows
 
 
-def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int, int]]:
-    """(m, j, pb, read, leave, in_a, eor, eos, last) of every beat of the walk
-    (beats.walk_rows): a row that reads nothing gives one beat that reads nothing, a
-    marker on a slice's last row and the flush row, a token on any other; eor on a row's
-    last beat, eos on a slice's, last on the frame's."""
+def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int, int, int]]:
+    """(m, j, pb, read, leave, in_a, tok, eor, eos, last) of every beat of the walk
+    (beats.walk_rows): each beat of a row's reads | cover in order of partial beam (read:
+    it is one of the reads; the cover's beats read nothing); a row that walks nothing gives
+    one beat that reads nothing, a marker on a slice's last row and the flush row, a token
+    (tok) on any other; eor on a row's last beat, eos on a slice's, last on the frame's."""
     out = []
-    for m, j, reads, leaves, in_a in beats.walk_rows(sched, with_a=True):
-        row = [(m, j, int(pb), 1, int(leaves[pb]), int(in_a[pb]), 0, 0, 0) for pb in np.flatnonzero(reads)]
-        if not row:
-            row = [(m, j, 0, 0, 0, 0, 0, 0, 0)]
+    for m, j, reads, leaves, cover, in_a in beats.walk_rows(sched, with_a=True):
+        row = [(m, j, int(pb), int(reads[pb]), int(leaves[pb]), int(in_a[pb]), 0, 0, 0, 0)
+               for pb in np.flatnonzero(reads | cover)]
         end = 1 if m == sched.M else 0
         eos = 1 if (j == sched.NJ - 1 and not end) else 0
-        row[-1] = row[-1][:6] + (1, eos, end)
+        if not row:
+            row = [(m, j, 0, 0, 0, 0, int(not (eos or end)), 0, 0, 0)]
+        row[-1] = row[-1][:7] + (1, eos, end)
         out += row
     return out
 
 
 def expected_front(bf, p: int, lag: int) -> list[tuple]:
-    """Per walk beat of cube4_cfb_skip: (m, j, pb, read, leave, eor, eos, last, bits, care)
+    """Per walk beat of cube4_cfb_skip: (m, j, pb, read, leave, tok, eor, eos, last, bits, care)
     with the leaving beat's position bits {soon, last, fresh, run} (zero where none
     leaves or it runs as GRA's neighbour only) and the mask of the bits that are checked
     (soon counts up to the ray's done slice)."""
@@ -181,29 +183,30 @@ def expected_front(bf, p: int, lag: int) -> list[tuple]:
     by_beat = {w[:3]: w for w in lane}
     full = (1 << (4 * p)) - 1
     out = []
-    for m, j, pb, read, leave, in_a, eor, eos, last in expected_walk(s):
+    for m, j, pb, read, leave, in_a, tok, eor, eos, last in expected_walk(s):
         src = (m, j - 1, pb) if j > 0 else (m - 1, s.NJ - 1, pb)
         bits, care = 0, full
         if leave and in_a:
             w = by_beat[src]
             bits = w[3] | w[4] << p | w[5] << (2 * p) | w[6] << (3 * p)
             care = full >> p | w[7] << (3 * p)
-        out.append((m, j, pb, read, leave, eor, eos, last, bits, care))
+        out.append((m, j, pb, read, leave, tok, eor, eos, last, bits, care))
     return out
 
 
 def expected_requests(bf, p: int, lag: int) -> list[tuple]:
     """The request beats of cube4_cfb's beat build: one per walk beat but the tokens (rows
-    that read nothing), as (k, j, pb, reads, emit, leave, emitted (m, j), eop, eos, bits,
-    care), and the drain beat. The flush row reads nothing; a beat emits a sample beat
-    when its sample beat runs (leave), at each slice's last beat and at the frame's."""
+    that walk nothing), as (k, j, pb, reads, emit, leave, emitted (m, j), eop, eos, bits,
+    care), and the drain beat. The flush row reads nothing; every request emits the sample
+    beat of the row below (its lanes valid where it runs, ``leave``), but never a beat of
+    slice -1 (row 0 of slice 0)."""
     s = bf.sched
     out = []
-    for m, j, pb, read, leave, _eor, eos, last, bits, care in expected_front(bf, p, lag):
-        if not (read or eos or last):
+    for m, j, pb, read, leave, tok, _eor, eos, last, bits, care in expected_front(bf, p, lag):
+        if tok:
             continue
         row = (m, j - 1) if j > 0 else (m - 1, s.NJ - 1)
-        out.append((m, j, pb, int(read and m < s.M), int(leave or eos or last), leave, row, last, eos, bits, care))
+        out.append((m, j, pb, int(read and m < s.M), int(row[0] >= 0), leave, row, last, eos, bits, care))
     out.append((None, None, None, 0, 0, 0, None, 0, 0, 0, 0))     # the drain beat
     return out
 

@@ -9,11 +9,12 @@ other frame so that COM's reports end rays, and with termination off in every th
 bench writes each slice's bitmaps (``BeatSchedule.active_beats``: A; the beats that may
 count: OCC) through bm_*, rows in order with random gaps, and takes the walk with random
 ready. Expected (``cube4_sim.beat_frames.expected_walk``): the golden front end's rows
-(``beats.walk_rows``), each set bit of a row one beat in order of partial beam with the
-bits of the running beats that leave with it (E, and A: the beats with a running ray); a
-row that reads nothing, one beat that reads nothing (on a slice's last row and the flush
-row a marker: every slice leaves a beat; on the others a token for the address unit's row
-counter); EOR on each row's last beat, EOS on each slice's, LAST on the frame's, and
+(``beats.walk_rows``), each set bit of a row's reads and cover one beat in order of
+partial beam, with its read bit and the bits of the running beats that leave with it (E,
+and A: the beats with a running ray); a row that walks nothing, one beat that reads
+nothing (on a slice's last row and the flush row a marker: every slice leaves a beat; on
+the others a token for the address unit's row counter); EOR on each row's last beat, EOS
+on each slice's, LAST on the frame's, and
 nothing after it (the bench keeps ready high for 40 more cycles).
 
 Cycles: every frame without gaps or stalls takes exactly NJ·min(2, M) + 6 + walker_cycles
@@ -86,9 +87,9 @@ class TB:
                 n += 1
             if ready and int(d.out_valid.value):
                 got.append((int(d.out_m.value), int(d.out_j.value), int(d.out_pb.value), int(d.out_read.value),
-                            int(d.out_leave.value), int(d.out_in_a.value), int(d.out_eor.value),
-                            int(d.out_eos.value), int(d.out_last.value)))
-                if got[-1][8] and last_edge is None:
+                            int(d.out_leave.value), int(d.out_in_a.value), int(d.out_tok.value),
+                            int(d.out_eor.value), int(d.out_eos.value), int(d.out_last.value)))
+                if got[-1][9] and last_edge is None:
                     last_edge = edges + 1
             await RisingEdge(d.clk)
             edges += 1
@@ -101,7 +102,7 @@ class TB:
 
 def compare(got: list, want: list, log) -> None:
     for n, (g, w) in enumerate(zip(got, want)):
-        assert g == w, f"beat {n}: RTL (m, j, pb, read, leave, in_a, eor, eos, last) = {g}, golden {w}"
+        assert g == w, f"beat {n}: RTL (m, j, pb, read, leave, in_a, tok, eor, eos, last) = {g}, golden {w}"
     assert len(got) == len(want), f"{len(got)} beats out, golden {len(want)}"
 
 

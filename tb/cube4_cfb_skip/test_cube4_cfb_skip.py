@@ -5,7 +5,7 @@ cube4_cfb_decide, cube4_ram_fifo and cube4_cfb_beats together, on the golden fra
 the bench plays the host (block table, ray table, the frame's axes, each slice's steps)
 and COM (the reports of slice d once the walk has given slice d's last beat, EOS, a
 random delay later, ``com_m`` counting them), and takes the walk with random ready. Expected, beat for
-beat: the walk of ``beats.walk_rows`` (slice, row, partial beam, read, leave, EOR, EOS, LAST) and,
+beat: the walk of ``beats.walk_rows`` (slice, row, partial beam, read, leave, token, EOR, EOS, LAST) and,
 on every beat whose leaving sample beat holds a running ray, that beat's position bits
 {soon, last, fresh, run} as the golden schedule has them (soon up to the ray's done slice),
 zero on the others; nothing after LAST. The units' own testbenches cover each alone; here
@@ -71,12 +71,12 @@ class TB:
             host.taken()
             if ready and int(d.out_valid.value):
                 beat = (int(d.out_m.value), int(d.out_j.value), int(d.out_pb.value), int(d.out_read.value),
-                        int(d.out_leave.value), int(d.out_eor.value), int(d.out_eos.value), int(d.out_last.value),
-                        int(d.out_bits.value))
+                        int(d.out_leave.value), int(d.out_tok.value), int(d.out_eor.value), int(d.out_eos.value),
+                        int(d.out_last.value), int(d.out_bits.value))
                 got.append(beat)
-                if beat[6]:
-                    walked = beat[0] + 1        # slices the walk has finished
                 if beat[7]:
+                    walked = beat[0] + 1        # slices the walk has finished
+                if beat[8]:
                     after = 0
                     last_cycle = cycle + 1
             await RisingEdge(d.clk)
@@ -91,8 +91,8 @@ class TB:
 
 def compare(got: list, want: list) -> None:
     for n, (g, w) in enumerate(zip(got, want)):
-        assert g[:8] == w[:8], f"beat {n}: RTL (m, j, pb, read, leave, eor, eos, last) = {g[:8]}, golden {w[:8]}"
-        assert g[8] & w[9] == w[8] & w[9], f"beat {n} {w[:3]}: RTL bits {g[8]:#x}, golden {w[8]:#x} (mask {w[9]:#x})"
+        assert g[:9] == w[:9], f"beat {n}: RTL (m, j, pb, read, leave, tok, eor, eos, last) = {g[:9]}, golden {w[:9]}"
+        assert g[9] & w[10] == w[9] & w[10], f"beat {n} {w[:3]}: RTL bits {g[9]:#x}, golden {w[9]:#x} (mask {w[10]:#x})"
     assert len(got) == len(want), f"{len(got)} beats out, golden {len(want)}"
 
 
@@ -132,7 +132,7 @@ async def test_measure(dut):
     got, cycles = await tb.frame(bf, 0.0, 0)
     compare(got, expected_front(bf, tb.p, LAG))
     with open(spec["out"], "w") as f:
-        json.dump({"cycles": cycles, "walk_beats": sum(1 for b in got if b[3] or b[6] or b[7])}, f)   # no tokens
+        json.dump({"cycles": cycles, "walk_beats": sum(1 for b in got if not b[5])}, f)   # no tokens
 
 
 BUILDS = [dict(P=4, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=2), dict(P=1, MAX_DIM=32, RATE=1),
