@@ -93,7 +93,9 @@
 //   saturates C at 2^F and T at 0 (section 13).
 // =============================================================================
 module cube4_com #(
-    `CUBE4_BUILD_PARAMS, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
+    `CUBE4_BUILD_PARAMS,
+    parameter integer BEATS = 0,
+    `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
 ) (
@@ -111,6 +113,7 @@ module cube4_com #(
     input  wire [P*(24+ALPHA_W)-1:0] in_rgba,
     input  wire [P*VOXEL_W-1:0] in_sample,
     input  wire [P*FALL_W-1:0] in_fall,
+    input  wire [4*P-1:0] in_bits,      // BEATS = 1: the beat's {soon, last, fresh, run}
     // finished rays out: lane mask, slice, base-plane row and columns, RGBA, last beat
     output wire pix_valid, input wire pix_ready,
     output wire [P-1:0] pix_mask, output wire [M_W-1:0] pix_m, output wire pix_eop,
@@ -126,12 +129,16 @@ module cube4_com #(
         if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
             $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
         end
+        if (BEATS != 0 && (RECTS != 0 || PLW != 0 || ZIN != 0 || ZOUT != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
+            $error("cube4_com: BEATS = 1 needs RECTS = 0, PLW = 0, ZIN = 0, ZOUT = 0 and MAX_SS_LOG2 = 0 (not built)");
+        end
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_com: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
         end
     endgenerate
 
     `CUBE4_VIEW_FIELDS(cfg);
+    `CUBE4_LANE_FUNCTIONS
     localparam integer CW     = ACC_W + 1;          // one accumulator channel
     generate
         if (CW < 25) begin : g_depth_t_top
@@ -149,14 +156,32 @@ module cube4_com #(
     localparam integer PA     = P * AC_W;
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW     = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
-    localparam integer SP_W   = (RECTS != 0) ? RW + PB_W : ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1);
-    localparam integer SB_DEPTH = (RECTS != 0) ? (1 << SP_W) : MAX_DIM * NBMAX;
+    localparam integer BYPOS  = (RECTS != 0 || BEATS != 0) ? 1 : 0;   // slots by position {j, pb}
+    localparam integer SP_W   = (BYPOS != 0) ? RW + PB_W : ((MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1);
+    localparam integer SB_DEPTH = (BYPOS != 0) ? (1 << SP_W) : MAX_DIM * NBMAX;
     localparam integer NS     = 10;                 // stages S1 .. S10 (cube4_com_seq)
     localparam integer NQ     = 4;                  // control copies per lane word
     localparam integer FIFO_DEPTH = 16;             // >= 14 cycles from acceptance to the FIFO's read
     localparam integer PH_W   = PHASE_W;
 
-    // ==== the sequencer ====
+    // ==== the sequencer (BEATS = 1: a lane is inside only where its ray runs) ====
+    wire [HDR_W-1:0] seq_hdr;
+    generate
+        if (BEATS != 0) begin : g_run
+            // the bits come by position t in the partial beam; lane q holds t = lane_pos(q)
+            wire [LANE_W-1:0] in_skew = in_hdr[HDR_SKEW +: LANE_W];
+            wire [P-1:0] run_lane;
+            genvar qr;
+            for (qr = 0; qr < P; qr = qr + 1) begin : g_lane_run
+                assign run_lane[qr] = in_bits[32'(lane_pos(qr, in_skew, cfg_flip_i, cfg_i_r1))];
+            end
+            wire [P-1:0] not_run = ~run_lane;
+            assign seq_hdr = in_hdr & ~({{(HDR_W - P){1'b0}}, not_run} << HDR_INSIDE);
+        end else begin : g_no_run
+            assign seq_hdr = in_hdr;
+            wire unused_bits = ^in_bits;
+        end
+    endgenerate
     wire              take, credit, hazard, step, sop, first, dxb, dyb;
     wire [1:0]        step_c;
     wire [M_W-1:0]    r0_m;
@@ -187,7 +212,7 @@ module cube4_com #(
         .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM)
     ) u_seq (
         .clk(clk), .rst(rst), .cfg(cfg),
-        .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr),
+        .in_valid(in_valid), .in_ready(in_ready), .in_hdr(seq_hdr),
         .take(take), .credit(credit), .hazard(hazard), .step(step), .step_c(step_c),
         .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb), .sop(sop), .first(first), .dxb(dxb), .dyb(dyb),
         .ipos(ipos), .tpos(tpos), .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
@@ -203,7 +228,21 @@ module cube4_com #(
     wire [PH_W-1:0] ph_x, ph_y, phn_x, phn_y;
     wire            f1_last, f1_wxn, f1_wyn;
     generate
-        if (RECTS == 0) begin : g_walk
+        if (BEATS != 0) begin : g_beats
+            wire [P-1:0] unused_soon;
+            cube4_com_beats #(
+                .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
+            ) u_beats (
+                .clk(clk), .rst(rst), .cfg(cfg), .in_bits(in_bits), .tpos(tpos),
+                .take(take), .in_hdr(in_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
+                .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
+                .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
+                .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),
+                .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(unused_soon));
+            assign {ph_x, ph_y, phn_x, phn_y} = '0;
+            assign {f1_last, f1_wxn, f1_wyn} = 3'b000;
+            wire unused_beats = ^{rect_we, rect_addr, rect_data, step_c, sop, first, v_s[NS], dxb, dyb, ipos};
+        end else if (RECTS == 0) begin : g_walk
             cube4_com_walk #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
             ) u_walk (
@@ -256,6 +295,7 @@ module cube4_com #(
     wire [PA-1:0]        s5_back, back_sh, prevb_sh, acc_q;
     wire [P*CMP_W-1:0]   pix_d;
     wire [P*ZW-1:0]      pix_zd;
+    wire [P-1:0]         live;           // S11: the ray holds more than the fresh word (BEATS)
     generate
         if (PLW != 0) begin : g_plw
             cube4_com_plw #(
@@ -278,7 +318,7 @@ module cube4_com #(
 
     cube4_com_bpb #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .AC_W(AC_W),
-        .SP_W(SP_W), .SB_DEPTH(SB_DEPTH), .RECTS(RECTS), .COPIES(NQ)
+        .SP_W(SP_W), .SB_DEPTH(SB_DEPTH), .RECTS(BYPOS), .COPIES(NQ)
     ) u_bpb (
         .clk(clk), .rst(rst), .cfg(cfg),
         .rd_sp(pos_sp), .pb_rd(pb_rd), .pb_wr(pb_wr), .v2(v_s[2]), .wr_en(v_s[NS]), .wr_sp(sp_wr),
@@ -292,7 +332,7 @@ module cube4_com #(
                 .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W),
                 .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), .AC_W(AC_W),
                 .SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0), .COPIES(NQ),
-                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0), .ZOUT(ZOUT), .ZM_W(M_W)
+                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0), .ZOUT(ZOUT), .ZM_W(M_W), .LIVE(BEATS)
             ) u_lane (
                 .clk(clk),
                 .in_rgba(in_rgba[q*LUT_W +: LUT_W]), .in_sample(in_sample[q*VOXEL_W +: VOXEL_W]),
@@ -305,13 +345,17 @@ module cube4_com #(
                 .mode_xray(mode_xray), .mode_ext(mode_ext), .mode_min(mode_min),
                 .cnt_6(cnt_6[q]), .cnt_7(cnt_7[q]),
                 .depth_t(cfg_depth_t[CW-1:0]), .m11(m_o),
-                .acc_q(acc_q[q*AC_W +: AC_W]), .pix(pix_d[q*CMP_W +: CMP_W]), .pix_z(pix_zd[q*ZW +: ZW]));
+                .acc_q(acc_q[q*AC_W +: AC_W]), .pix(pix_d[q*CMP_W +: CMP_W]), .pix_z(pix_zd[q*ZW +: ZW]),
+                .live(live[q]));
         end
     endgenerate
 
     // ==== the output FIFO: the S11 beat's fields beside its pixels ====
     localparam integer OUT_W = P * CMP_W + P + M_W + BX_W + P * BX_W + 1;
     localparam integer OZ_W  = (ZOUT != 0) ? P * ZW : 0;   // depth out beside the pixels
+    // BEATS = 1: a finished ray leaves a pixel only when it holds something (a ray
+    // that ran through samples that added nothing leaves the base plane's zero)
+    wire [P-1:0] fin_q = (BEATS != 0) ? (fin_o & live) : fin_o;
     wire [OUT_W+OZ_W-1:0] fifo_out;
     wire unused_credit_d;
     generate
@@ -319,14 +363,14 @@ module cube4_com #(
             cube4_credit_fifo #(.DATA_W(OUT_W + OZ_W), .DEPTH(FIFO_DEPTH)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(give),
                 .credit(credit), .credit_d(unused_credit_d),
-                .push_d(push_d), .in_data({pix_zd, fin_o, m_o, by_o, bx_o, eop_o, pix_d}),
+                .push_d(push_d), .in_data({pix_zd, fin_q, m_o, by_o, bx_o, eop_o, pix_d}),
                 .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
             assign {pix_z, pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
         end else begin : g_fifo
             cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(give),
                 .credit(credit), .credit_d(unused_credit_d),
-                .push_d(push_d), .in_data({fin_o, m_o, by_o, bx_o, eop_o, pix_d}),
+                .push_d(push_d), .in_data({fin_q, m_o, by_o, bx_o, eop_o, pix_d}),
                 .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
             assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
             assign pix_z = '0;

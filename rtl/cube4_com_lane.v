@@ -28,6 +28,7 @@
 //   ZM_W     the slice number's width (COM's M_W).            1..16. Default 14.
 //   FALL     1: the slab's falloff: the blending datapath's A is
 //            round_shift(A * f, 8) (numerics.md section 12).  0..1.  Default 0.
+//   LIVE     1: live out (the beat schedule).                0..1.  Default 0.
 //
 // Latency
 //   R0 registers in_rgba and in_sample; the sample's word is carried R0 ->
@@ -51,6 +52,8 @@
 //   pix_z      out  S11: {passed, first}, each {valid, m} (ZOUT = 1; else 0)
 //   acc_q      out  S11: the word for the slice buffer [AC_W]
 //   pix        out  S11: {R, G, B, A}, ACC_W + 1 bits each, Q0.ACC_W
+//   live       out  S11: the mode's word is not the fresh one (LIVE = 1;
+//              else 1): a finished ray leaves a pixel only then
 //
 // Bit growth and rounding: none here (see cube4_com_blend, cube4_com_ext).
 // =============================================================================
@@ -60,6 +63,7 @@ module cube4_com_lane #(
     parameter integer AC_W   = 68, parameter integer SAMPLE = 1, parameter integer COPIES = 4,
     parameter integer FALL   = 0,
     parameter integer ZOUT   = 0, parameter integer ZM_W = 14,
+    parameter integer LIVE   = 0,
     localparam integer FALL_W = 9,
     localparam integer ZF_W  = ZM_W + 1,            // a depth field {valid, m}
     localparam integer ZW    = 2 * ZF_W,            // {passed, first}
@@ -78,7 +82,8 @@ module cube4_com_lane #(
     input  wire mode_xray, input wire mode_ext, input wire mode_min,
     input  wire cnt_6, input wire cnt_7,
     input  wire [CW-1:0] depth_t, input wire [ZM_W-1:0] m11,
-    output wire [AC_W-1:0] acc_q, output wire [CMP_W-1:0] pix, output wire [ZW-1:0] pix_z
+    output wire [AC_W-1:0] acc_q, output wire [CMP_W-1:0] pix, output wire [ZW-1:0] pix_z,
+    output wire live
 );
     generate
         if (AC_W < ((COMPOSITING != 0) ? CMP_W : 1) || AC_W < ((EXTREMUM != 0) ? EXT_W : 1)) begin : g_bad_ac_w
@@ -193,6 +198,14 @@ module cube4_com_lane #(
     // the slice buffer's write word: the mode's, chosen with the ext copies
     // (on the route to its block RAMs, which are spread over the die)
     wire [AC_W-1:0] acc_m = (ext_v & acc_e) | (~ext_v & acc_c);
+    // LIVE = 1: S11's word is not the fresh one (a sample added to the ray)
+    generate
+        if (LIVE != 0) begin : g_live
+            assign live = (acc_m != fresh_w);
+        end else begin : g_no_live
+            assign live = 1'b1;
+        end
+    endgenerate
     // ---- depth out (ZOUT = 1; numerics.md section 21): the ray's two slice
     // numbers {valid, m} ride above the mode's word, S5 -> S11, and are set at
     // S11 with the beat's slice m11 when not yet valid: passed when the blending

@@ -433,6 +433,7 @@ module cube4_top #(
         .in_rgba   (sha_rgba),
         .in_sample (sha_sample),
         .in_fall   (sha_fall),
+        .in_bits   ('0),           // (the beat schedule: not in this top yet)
         .pix_valid (pix_valid),
         .pix_ready (pix_ready),
         .pix_mask  (pix_mask),

@@ -55,6 +55,7 @@ cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v
 cube4_com_rect.v
+cube4_com_beats.v
 cube4_com_stop.v
 cube4_com_plw.v
 cube4_com_bpb.v

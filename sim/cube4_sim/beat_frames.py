@@ -36,16 +36,24 @@ class BeatFrame:
     trav: Traversal
     bits: np.ndarray            # (bz, by, bx) the block table's bits of the volume
     vol: np.ndarray | None = None   # the volume (a frame of the whole volume: its memory image)
+    frame: object = None            # the golden frame, its streams kept (``beat_frame``)
 
 
-def _run(vol, trav, cfg, lut, rmap, mode, shading, clip, terminate: bool) -> BeatFrame:
+def _run(vol, trav, cfg, lut, rmap, mode, shading, clip, terminate: bool, keep: bool = False) -> BeatFrame:
     bits = beats.BlockTable.of(vol, BLOCK).bits(lut, mode)
     occ = beats.frame_occupancy(bits, BLOCK, trav)
     sched = beats.BeatSchedule(trav, cfg.pipelines, occ, terminate=terminate, gra=shading and mode == "composite")
     rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                  enabled=terminate, value_bits=cfg.voxel_bits)
-    render_frame(vol, trav, cfg, lut, rmap, mode=mode, shading=shading, clip=clip, beats=sched, done=rule)
-    return BeatFrame(sched, trav, bits, vol)
+    frame = render_frame(vol, trav, cfg, lut, rmap, mode=mode, shading=shading, clip=clip, beats=sched, done=rule,
+                         keep_streams=keep)
+    return BeatFrame(sched, trav, bits, vol, frame if keep else None)
+
+
+def beat_frame(vol, trav, cfg, lut, rmap, mode: str, clip=None, terminate: bool = False) -> BeatFrame:
+    """A golden frame of the beat schedule with its streams kept (unshaded: COM's benches
+    take its shaded stream)."""
+    return _run(vol, trav, cfg, lut, rmap, mode, False, clip, terminate, keep=True)
 
 
 def sparse_frame(seed: int, p: int, opaque: bool, terminate: bool) -> BeatFrame:

@@ -131,15 +131,22 @@ class BeatSchedule:
     """The sample stream's beats of one view, in the order the hardware emits them."""
 
     def __init__(self, trav: Traversal, p: int, inside: np.ndarray, keep: np.ndarray | None = None,
-                 rects=None) -> None:
+                 rects=None, order=None) -> None:
         """inside: golden ``sample_stream`` inside flags, [m, j, i]; keep: the samples
         that count (golden ``Clip.keep`` per slice, [m, j, i]; None: all); rects: slice
         rectangles (cube4.slices.SliceRects): the beats of each slice's traversed
-        rectangle (what GRA forwards), its positions valid (None: the whole box)."""
+        rectangle (what GRA forwards), its positions valid (None: the whole box). order:
+        the beats as (m, j, pb, runs) lists (the beat schedule's sample beats,
+        beat_frames.expected_requests): positions valid only in the beats that run."""
         self.trav, self.p = trav, p
         M, nj, ni, nk = trav.num_sample_slices, trav.nj, trav.ni, trav.nk
         self.nb = nb = -(-ni // p)
-        if rects is None:
+        runs = None
+        if order is not None:
+            self.m, self.j, self.pb, runs = (np.array([o[c] for o in order], dtype=np.int64) for c in range(4))
+            n = len(order)
+            idx = np.arange(n)
+        elif rects is None:
             n = M * nj * nb
             idx = np.arange(n)
             self.m, self.j, self.pb = idx // (nj * nb), (idx // nb) % nj, idx % nb
@@ -159,6 +166,8 @@ class BeatSchedule:
         self.skew = (cj + ck + sum(trav.origin)) % p
         self.pos = np.stack([lane_positions(int(s), int(b), p, ni, fi) for s, b in zip(self.skew, self.pb)])
         self.lval = self.pos < ni
+        if runs is not None:
+            self.lval &= runs[:, None].astype(bool)
         if rects is not None:   # the traversed rectangle's columns
             lo = np.array([rects.traversed(int(m))[2] for m in self.m])
             hi = np.array([rects.traversed(int(m))[3] for m in self.m])

@@ -28,6 +28,7 @@
 // =============================================================================
 module cube4_com_harness #(
     `CUBE4_BUILD_PARAMS,
+    parameter integer BEATS = 0,
     `CUBE4_RECT_LAYOUT,
     `CUBE4_STOP_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
@@ -54,6 +55,7 @@ module cube4_com_harness #(
     input  wire [IN_W-1:0]       in_rgba,
     input  wire [P*VOXEL_W-1:0]  in_sample,
     input  wire [P*FALL_W-1:0]   in_fall,
+    input  wire [4*P-1:0]        in_bits,     // BEATS = 1: {soon, last, fresh, run}
     output wire                  out_valid,
     input  wire                  out_ready,
     output wire [P-1:0]          out_mask,
@@ -70,7 +72,8 @@ module cube4_com_harness #(
     wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
 
     cube4_com #(
-        `CUBE4_BUILD_PASS
+        `CUBE4_BUILD_PASS,
+        .BEATS     (BEATS)
     ) u_com (
         .clk       (clk),
         .rst       (rst),
@@ -90,6 +93,7 @@ module cube4_com_harness #(
         .in_rgba   (in_rgba),
         .in_sample (in_sample),
         .in_fall   (in_fall),
+        .in_bits   (in_bits),
         .pix_valid (out_valid),
         .pix_ready (out_ready),
         .pix_mask  (out_mask),
@@ -103,13 +107,13 @@ module cube4_com_harness #(
 
     cube4_stream_check #(
         .NAME   ("com.in (shaded)"),
-        .DATA_W (HDR_W + IN_W + P * VOXEL_W + P * FALL_W)
+        .DATA_W (HDR_W + IN_W + P * VOXEL_W + P * FALL_W + 4 * P)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),
         .valid (in_valid),
         .ready (in_ready),
-        .data  ({in_hdr, in_rgba, in_sample, in_fall})
+        .data  ({in_hdr, in_rgba, in_sample, in_fall, in_bits})
     );
 
     cube4_stream_check #(

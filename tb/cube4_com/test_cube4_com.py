@@ -60,11 +60,12 @@ from dataclasses import replace
 import cube4.slices as slices
 from cube4.config import Cube4Config
 from cube4.memory import stop_table
-from cube4.model import render_frame
+from cube4.model import inside_mask, render_frame
 from cube4.pathlen import ALL_FACES
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
+from cube4_sim.beat_frames import beat_frame, expected_requests
 from cube4_sim.rect_port import write_rect_table
 from cube4_sim.unit_bench import UnitBench, check_lanes, param_id, random_clip, run_unit
 
@@ -77,6 +78,7 @@ VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0, "composite", None, (0, 0)),
          ((-0.2, -1.0, -0.9), 0.1, 0.1, "composite", "window+cut", (128, 128))]
 BLEND = ("composite", "xray")
 OUTPUTS = ["out_mask", "out_m", "out_by", "out_bx", "out_rgba", "out_eop"]
+BEAT_LAG = 3        # the beat schedule's lag (cube4_cfb_decide's default)
 CHANNELS = ("R", "G", "B", "A")
 
 
@@ -113,14 +115,19 @@ def finished_rays(frame) -> tuple[np.ndarray, np.ndarray]:
     return fin, rgba
 
 
-def expected_pixel_beats(frame, sched: BeatSchedule) -> dict[str, np.ndarray]:
+def expected_pixel_beats(frame, sched: BeatSchedule, ends=None) -> dict[str, np.ndarray]:
     """Per expected pixel beat: the schedule's beat, mask (beats, P), m, by, eop, and per
-    lane bx and R, G, B, A."""
+    lane bx and R, G, B, A. ``ends`` (beats, P): the lanes whose rays end there (the beat
+    schedule: a beat with one leaves a pixel beat, its mask the rays that hold something);
+    None: the lanes of finished rays."""
     trav = frame.trav
     fin, rgba = finished_rays(frame)
     lanes_fin = sched.lanes(fin).astype(bool) & sched.lval
+    if ends is None:
+        ends = lanes_fin
+    assert not (lanes_fin & ~ends).any(), "a golden ray finishes where the bits do not end it"
     last = len(sched) - 1
-    beat = np.array([n for n in range(len(sched)) if lanes_fin[n].any() or n == last])
+    beat = np.array([n for n in range(len(sched)) if ends[n].any() or n == last])
     sxm, sym = trav.max_steps
     stx, sty = trav.steps(sched.m[beat])
     return {"beat": beat, "mask": lanes_fin[beat], "m": sched.m[beat], "by": sched.j[beat] - sty + sym,
@@ -294,6 +301,80 @@ async def test_stop_pixel_stream(dut):
                        len(frame.pixels))
 
 
+def sparse_volume(rng, dims, vw: int) -> np.ndarray:
+    """A faint background (values below 64) with one dense blob (64 and up): a LUT that is
+    zero below 64 leaves most blocks empty."""
+    nx, ny, nz = dims
+    vol = rng.integers(0, 64, size=(nz, ny, nx), dtype=np.int64) << max(0, vw - 8)
+    c = [int(rng.integers(n // 4, n - n // 4)) for n in (nz, ny, nx)]
+    r = [max(2, n // 6) for n in (nz, ny, nx)]
+    sl = tuple(slice(max(0, a - b), a + b) for a, b in zip(c, r))
+    vol[sl] = rng.integers(64, 256, size=vol[sl].shape) << max(0, vw - 8)
+    return vol
+
+
+@cocotb.test()
+async def test_beat_pixel_stream(dut):
+    """BEATS = 1: golden frames of the beat schedule (sparse volumes, a LUT that is zero
+    below the blob's values; every mode of the build, the views with their windows and
+    cut planes, S = 1, termination off): COM takes the sample beats the front end emits
+    (beat_frames.expected_requests: the running beats with their lanes valid, the cover,
+    the row above and each slice's marker with none), with each beat's position bits
+    {soon, last, fresh, run} on in_bits; out, bit for bit, a pixel beat for every beat in
+    which a running ray ends (bit last), its mask the rays that hold something (the golden
+    frame's pixels), and the frame's last beat."""
+    if not int(dut.BEATS.value):
+        return
+    p, aw, acc_w, geo, cfg, vw, modes = build_of(dut)
+    bench = UnitBench(dut)
+    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rect_we": 0, "stop_we": 0, "in_bits": 0})
+    dims = (max(24, 2 * p + 3), 20, 16)     # larger than volume_dims: blocks of 4 that skip
+    frames = 0
+    for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS * 2):
+        mode = modes[n % len(modes)]
+        trav = make_traversal(dims, direction, cfg.weight_bits, 1, phase=phase)
+        vol = sparse_volume(bench.rng, dims, cfg.voxel_bits)
+        lut, rmap = random_tables(bench.rng, cfg)
+        lut[: (64 << max(0, cfg.voxel_bits - 8))] = 0
+        clip = random_clip(trav, clip_kind, bench.rng)
+        bf = beat_frame(vol, trav, cfg, lut, rmap, mode, clip)
+        reqs = [w for w in expected_requests(bf, p, BEAT_LAG) if w[4]]
+        order = [(w[6][0], w[6][1], w[2], w[5]) for w in reqs]
+        frame = bf.frame
+        sched = BeatSchedule(trav, p, frame.streams["inside"], frame.streams["keep"], order=order)
+        inputs = shaded_beats(frame, sched, geo, aw, vw)
+        for k, w in enumerate(reqs):
+            inputs[k]["in_bits"] = w[9]
+        # the lanes whose ray ends at the beat: running (inside), bit last at its position
+        t = np.where(sched.lval, sched.pos - sched.pb[:, None] * p, 0)
+        last = np.array([[(w[9] >> (2 * p + int(t[k, q]))) & 1 for q in range(p)] for k, w in enumerate(reqs)],
+                        dtype=bool)
+        # ... or its next sample (m + 1, j + dyf, i + dxf) is outside the box
+        M = trav.num_sample_slices
+        nxt_in = np.zeros_like(last)
+        for k in range(len(reqs)):
+            m, j = int(sched.m[k]), int(sched.j[k])
+            if m + 1 >= M:
+                continue
+            dxf, dyf = (int(a) - int(b) for a, b in zip(trav.steps(m + 1), trav.steps(m)))
+            ins = inside_mask(trav, m + 1)
+            for q in range(p):
+                i = int(sched.pos[k, q]) + dxf
+                nxt_in[k, q] = j + dyf < trav.nj and i < trav.ni and bool(ins[j + dyf, i])
+        ends = (last | ~nxt_in) & sched.lval & sched.lins
+        exp = expected_pixel_beats(frame, sched, ends)
+        bench.set_view(trav, p, mode, clip)
+        await bench.cycles(2)
+        got = await bench.run_stream(inputs, len(exp["beat"]), OUTPUTS, gap, stall)
+        check_pixel_beats(got, exp, sched, p, geo.dim_w + 1, acc_w, bench.log)
+        frames += 1
+        box = trav.num_sample_slices * trav.nj * -(-trav.ni // p)
+        bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f: %d of %d beats in (%d run), %d pixel "
+                       "beats, %d finished rays bit-exact", dims, direction, mode, clip_kind, gap, stall,
+                       len(reqs), box, sum(w[5] for w in reqs), len(got), len(frame.pixels))
+    assert frames >= 8
+
+
 async def write_columns(bench, dut, cols: np.ndarray, aw: int) -> None:
     """Write the path-weight columns (2^V, 4) through the lut_* port, one entry per cycle."""
     for a in range(cols.shape[0]):
@@ -322,6 +403,19 @@ RECT_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
                dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
                dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1),
                dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1)]
+
+
+# beat-schedule builds (BEATS = 1, S = 1, PLW = 0): P = 8 in make test; 1, 5 and the
+# extremum alone in make regress
+BEAT_BUILDS = [dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1),
+               dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
+               dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
+               dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1)]
+
+
+@pytest.mark.parametrize("build", sweep(BEAT_BUILDS, quick=(0,), ids=param_id))
+def test_cube4_com_beats(build):
+    run_unit(__file__, {**build, "MAX_DIM": 32, "BEATS": 1, "PLW": 0}, "test_beat_pixel_stream")
 
 
 @pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(), ids=param_id))

@@ -1,0 +1,175 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_com_beats
+// -----------------------------------------------------------------------------
+// Purpose
+//   COM's slice geometry on the beat schedule (BEATS = 1; numerics.md section
+//   19, docs/architecture.md "COM"): the beats of a slice are those of its
+//   running sample beats (and its markers), so the beat's slot is {j, pb}
+//   from its header, as cube4_com_rect's; the rays' intervals come with each
+//   beat from the front end's decisions (in_bits, cube4_cfb_skip's position
+//   bits {soon, last, fresh, run}, P bits each). Per lane:
+//     fresh   the ray's first slice is this one (bit fresh)
+//     nx_in   the ray runs the next slice too (not bit last) and its next
+//             sample (m+1, j+dyf, i+dxf) is inside the box (cube4_com_walk's
+//             rule: the last column / row is outside when wx / wy > 0)
+//   The running lanes' INSIDE is the caller's (cube4_com ANDs bit run into
+//   the header). The steps of the beat's slice m: a phase accumulator per
+//   axis that adds VIEW each time the beats' slice moves on (slices arrive
+//   in order, each with at least one beat: its marker), from PH0 at a
+//   frame's first beat (SOP), as cube4_cfb_steps. The read-after-write rule
+//   by position and "the previous beat is the row above" as cube4_com_rect.
+//
+// Parameters
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (the beat schedule runs with S = 1).
+//   SP_W   the slot's width, clog2(MAX_DIM) + PB_W (cube4_com).  2..22.
+//
+// Latency
+//   The bits and the steps: registered as the header enters R0 (fresh, stx,
+//   sty: combinational from R0 registers at S0); nx_in from an S1 register.
+//   hazard: combinational from in_hdr and the slots of R0 .. S9 (in_ready
+//   then depends on in_hdr, as with rectangles). col1_4: S4.
+//
+// Ports
+//   in_bits   in   [4P] the offered beat's {soon, last, fresh, run}, P bits
+//                  each by position t in the partial beam
+//   tpos      in   [P*LANE_W] S0: lane q's position t (cube4_com_seq)
+//   take, in_hdr   a beat enters R0; the offered beat's header
+//   step, v_fly, sp_fly   R0, S1 .. S9 hold a beat; S1 .. S9's slots
+//   r0_m, r0_j, r0_pb   R0's fields (cube4_com_seq)
+//   pos_sp, pos_pb, hazard, fresh, nx_in, stx, sty, col1_4: as cube4_com_rect
+//   soon_0    out  S0: the lanes' soon bits (the ray's stop comes within the
+//                  lag: COM reports nothing for it)
+//
+// Bit growth and rounding: none (compares, counters; the phases wrap by
+//   design, their carry is the step).
+// =============================================================================
+module cube4_com_beats #(
+    `CUBE4_SLICE_PARAMS,
+    parameter integer SP_W = 13
+) (
+    input  wire clk, input wire rst,
+    input  wire [VIEW_W-1:0] cfg,
+    input  wire [4*P-1:0] in_bits, input wire [P*LANE_W-1:0] tpos,
+    input  wire take, input wire [HDR_W-1:0] in_hdr,
+    input  wire step, input wire [9:1] v_fly, input wire [9*SP_W-1:0] sp_fly,
+    input  wire [M_W-1:0] r0_m, input wire [DIM_W-1:0] r0_j, input wire [PB_W-1:0] r0_pb,
+    input  wire [P*IW-1:0] f1_ipos, input wire [IW-1:0] f1_j, input wire f1_dxf, input wire f1_dyf,
+    output wire [SP_W-1:0] pos_sp, output wire [PB_W-1:0] pos_pb, output wire hazard,
+    output wire [P-1:0] fresh, output wire [P-1:0] nx_in,
+    output wire [DIM_W-1:0] stx, output wire [DIM_W-1:0] sty,
+    output wire col1_4, output wire [P-1:0] soon_0
+);
+    `CUBE4_VIEW_FIELDS(cfg);
+    localparam integer RW   = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
+    localparam integer PH_W = PHASE_W;
+
+    // ---- the bits, registered with R0's header (loaded on every cycle); they
+    // come by position t in the partial beam, lane q holds t = tpos[q] (S0) ----
+    reg [P-1:0] r0_fresh, r0_last, r0_soon, s1_last;
+    always @(posedge clk) begin
+        r0_soon  <= in_bits[3*P +: P];
+        r0_last  <= in_bits[2*P +: P];
+        r0_fresh <= in_bits[P +: P];
+    end
+    wire [P-1:0] last_0;
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_lane
+            wire [LANE_W-1:0] t = tpos[q*LANE_W +: LANE_W];
+            assign fresh[q]  = r0_fresh[32'(t)];
+            assign last_0[q] = r0_last[32'(t)];
+            assign soon_0[q] = r0_soon[32'(t)];
+        end
+    endgenerate
+    always @(posedge clk) s1_last <= last_0;
+    wire unused_run = ^in_bits[0 +: P];   // (ANDed into the header's INSIDE by cube4_com)
+
+    // ---- the steps of the offered beat's slice: they move with the slice ----
+    wire [M_W-1:0] in_m   = in_hdr[HDR_M +: M_W];
+    wire           in_sop = in_hdr[HDR_CTRL + CTRL_SOP];
+    reg  [M_W-1:0]  cur_m;
+    reg  [PH_W-1:0] phx_q, phy_q;
+    reg  [DIM_W-1:0] sx_q, sy_q;
+    wire [2:0]      g      = {1'b0, cfg_ss_log2};
+    wire [PH_W:0]   ph_one = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g});
+    wire [PH_W:0]   phx_sum = {1'b0, phx_q} + {{(PH_W - WEIGHT_W){1'b0}}, cfg_view_x};
+    wire [PH_W:0]   phy_sum = {1'b0, phy_q} + {{(PH_W - WEIGHT_W){1'b0}}, cfg_view_y};
+    wire            cx = (phx_sum >= ph_one), cy = (phy_sum >= ph_one);
+    always @(posedge clk) begin
+        if (take) begin
+            if (in_sop) begin
+                // the frame's first beat is of slice 0 (steps 0, phase PH0)
+                cur_m <= in_m;
+                phx_q <= cfg_ph0_x;
+                phy_q <= cfg_ph0_y;
+                sx_q  <= '0;
+                sy_q  <= '0;
+            end else if (in_m != cur_m) begin
+                // the next slice (m + 1: every slice has a beat)
+                cur_m <= in_m;
+                phx_q <= cx ? phx_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phx_sum[PH_W-1:0];
+                phy_q <= cy ? phy_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phy_sum[PH_W-1:0];
+                sx_q  <= sx_q + DIM_W'(cx);
+                sy_q  <= sy_q + DIM_W'(cy);
+            end
+        end
+    end
+    assign stx = sx_q;
+    assign sty = sy_q;
+    // the next slice's weights (S1): its last column / row is outside when wx / wy > 0
+    wire [PH_W-1:0] phn_x = cx ? phx_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phx_sum[PH_W-1:0];
+    wire [PH_W-1:0] phn_y = cy ? phy_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phy_sum[PH_W-1:0];
+    reg f1_wxn, f1_wyn;
+    always @(posedge clk) begin
+        f1_wxn <= ((phn_x >> cfg_ss_log2) != '0);
+        f1_wyn <= ((phn_y >> cfg_ss_log2) != '0);
+    end
+
+    // ---- per lane: the ray runs the next slice and its next sample is inside
+    // the box (as cube4_com_walk, numerics.md 4), S1 ----
+    wire [IW-1:0] ni_ext = IW'(cfg_ni), nj_ext = IW'(cfg_nj);
+    wire [IW-1:0] j_nx   = f1_j + IW'(f1_dyf);
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_next
+            wire [IW-1:0] i_nx = f1_ipos[q*IW +: IW] + IW'(f1_dxf);
+            assign nx_in[q] = !s1_last[q] && (i_nx < ni_ext) && (j_nx < nj_ext)
+                            && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
+        end
+    endgenerate
+    wire unused_rst = rst;
+
+    // ---- the slot {j, pb}; read after write by position (as cube4_com_rect) ----
+    assign pos_pb = r0_pb;
+    assign pos_sp = SP_W'({r0_j[RW-1:0], r0_pb});
+    wire [SP_W-1:0] in_sp = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
+    reg hz;
+    integer kz;
+    always @* begin
+        hz = step && (pos_sp == in_sp);
+        for (kz = 1; kz <= 9; kz = kz + 1) hz = hz || (v_fly[kz] && (sp_fly[(kz-1)*SP_W +: SP_W] == in_sp));
+    end
+    assign hazard = hz;
+
+    // ---- the last beat that left R0: is R0's the row below it, same pb? ----
+    reg             lb_v;
+    reg [M_W-1:0]   lb_m;
+    reg [DIM_W-1:0] lb_j;
+    reg [PB_W-1:0]  lb_pb;
+    always @(posedge clk) begin
+        if (rst) lb_v <= 1'b0;
+        else if (step) lb_v <= 1'b1;
+        if (step) begin
+            lb_m  <= r0_m;
+            lb_j  <= r0_j;
+            lb_pb <= r0_pb;
+        end
+    end
+    reg [4:1] col1_s;
+    always @(posedge clk) begin
+        col1_s <= {col1_s[3:1], lb_v && (lb_m == r0_m) && (lb_pb == r0_pb) && (lb_j + 1'b1 == r0_j)};
+    end
+    assign col1_4 = col1_s[4];
+endmodule
+`default_nettype wire
