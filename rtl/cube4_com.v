@@ -95,6 +95,7 @@
 module cube4_com #(
     `CUBE4_BUILD_PARAMS,
     parameter integer BEATS = 0,
+    parameter integer LAG   = 3,
     `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
@@ -114,6 +115,14 @@ module cube4_com #(
     input  wire [P*VOXEL_W-1:0] in_sample,
     input  wire [P*FALL_W-1:0] in_fall,
     input  wire [4*P-1:0] in_bits,      // BEATS = 1: the beat's {soon, last, fresh, run}
+    // BEATS = 1: ray termination's rule (static in a frame), the frame's start, and
+    // the reports into the front end's ray table (cube4_cfb_decide's rep_*, com_m)
+    input  wire frame_start,
+    input  wire term_en, input wire [ACC_W:0] term_tau,
+    input  wire [VOXEL_W-1:0] term_vmin, input wire [VOXEL_W-1:0] term_vmax,
+    output wire rep_valid, output wire [DIM_W-1:0] rep_j, output wire [PB_W-1:0] rep_pb,
+    output wire [DIM_W-1:0] rep_stx, output wire [DIM_W-1:0] rep_sty,
+    output wire [P-1:0] rep_en, output wire [P*M_W-1:0] rep_end, output wire [M_W-1:0] com_m,
     // finished rays out: lane mask, slice, base-plane row and columns, RGBA, last beat
     output wire pix_valid, input wire pix_ready,
     output wire [P-1:0] pix_mask, output wire [M_W-1:0] pix_m, output wire pix_eop,
@@ -152,7 +161,7 @@ module cube4_com #(
     localparam integer AM_W   = (COMPOSITING != 0 && (EXTREMUM == 0 || CMP_W >= EXT_W)) ? CMP_W : EXT_W;
     // depth out (ZOUT = 1): the ray's two slice numbers {valid, m} above the mode's word
     localparam integer ZW     = 2 * (M_W + 1);
-    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0);
+    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0) + ((BEATS != 0) ? 2 : 0);   // (BEATS: the countdown)
     localparam integer PA     = P * AC_W;
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW     = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
@@ -166,11 +175,11 @@ module cube4_com #(
 
     // ==== the sequencer (BEATS = 1: a lane is inside only where its ray runs) ====
     wire [HDR_W-1:0] seq_hdr;
+    wire [P-1:0]     run_lane;            // the lanes whose rays run (BEATS; all otherwise)
     generate
         if (BEATS != 0) begin : g_run
             // the bits come by position t in the partial beam; lane q holds t = lane_pos(q)
             wire [LANE_W-1:0] in_skew = in_hdr[HDR_SKEW +: LANE_W];
-            wire [P-1:0] run_lane;
             genvar qr;
             for (qr = 0; qr < P; qr = qr + 1) begin : g_lane_run
                 assign run_lane[qr] = in_bits[32'(lane_pos(qr, in_skew, cfg_flip_i, cfg_i_r1))];
@@ -179,7 +188,8 @@ module cube4_com #(
             assign seq_hdr = in_hdr & ~({{(HDR_W - P){1'b0}}, not_run} << HDR_INSIDE);
         end else begin : g_no_run
             assign seq_hdr = in_hdr;
-            wire unused_bits = ^in_bits;
+            assign run_lane = '1;
+            wire unused_bits = ^{in_bits, frame_start, term_en, term_tau, term_vmin, term_vmax};
         end
     endgenerate
     wire              take, credit, hazard, step, sop, first, dxb, dyb;
@@ -219,7 +229,7 @@ module cube4_com #(
         .pos_sp(pos_sp), .pos_pb(pos_pb), .fresh(fresh), .stx(stx), .sty(sty), .nx_in(nx_in),
         .v_s(v_s), .sp_fly(sp_fly), .sp_wr(sp_wr), .pb_rd(pb_rd), .pb_wr(pb_wr),
         .dxb4(dxb4), .dyb4(dyb4), .dkb4(dkb4), .t0_4(t0_4), .fresh_4(fresh_4),
-        .keep_5(keep_5), .cnt_6(cnt_6), .cnt_7(cnt_7),
+        .keep_5(keep_5), .fin_5(fin_t5), .cnt_6(cnt_6), .cnt_7(cnt_7),
         .mode_xray(mode_xray), .mode_ext(mode_ext), .mode_min(mode_min),
         .push_d(push_d), .give(give),
         .fin_o(fin_o), .m_o(m_o), .by_o(by_o), .bx_o(bx_o), .eop_o(eop_o));
@@ -229,7 +239,7 @@ module cube4_com #(
     wire            f1_last, f1_wxn, f1_wyn;
     generate
         if (BEATS != 0) begin : g_beats
-            wire [P-1:0] unused_soon;
+            wire [P-1:0] soon_0;
             cube4_com_beats #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
             ) u_beats (
@@ -238,7 +248,53 @@ module cube4_com #(
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
                 .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),
-                .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(unused_soon));
+                .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(soon_0));
+            // ---- the reports (S11 -> registers): a lane whose ray COM found done
+            // writes m + LAG + 1 at its position of the ray table; com_m counts
+            // the slices whose beats have all passed ----
+            reg  [P-1:0] r0_run;
+            always @(posedge clk) r0_run <= run_lane;
+            localparam integer RX_W = P + P * LANE_W + 2 * DIM_W;   // {rok, tpos, stx, sty} S1 .. S11
+            reg  [RX_W-1:0] rx_s [1:11];
+            reg  [SP_W-1:0] sp11;
+            reg             v11;
+            integer kx;
+            always @(posedge clk) begin
+                rx_s[1] <= {r0_run & ~soon_0, tpos, stx, sty};
+                for (kx = 2; kx <= 11; kx = kx + 1) rx_s[kx] <= rx_s[kx-1];
+                sp11 <= sp_wr;
+                v11  <= rst ? 1'b0 : v_s[NS];
+            end
+            wire [P*LANE_W-1:0] t11;
+            wire [DIM_W-1:0]    stx11, sty11;
+            assign {rok11, t11, stx11, sty11} = rx_s[11];
+            reg  [P-1:0] at_pos;
+            integer qt, tt;
+            always @* begin
+                at_pos = '0;
+                for (tt = 0; tt < P; tt = tt + 1)
+                    for (qt = 0; qt < P; qt = qt + 1)
+                        if (rep[qt] && (32'(t11[qt*LANE_W +: LANE_W]) == tt)) at_pos[tt] = 1'b1;
+            end
+            reg              rv_q;
+            reg [P-1:0]      ren_q;
+            reg [DIM_W-1:0]  rj_q, rsx_q, rsy_q;
+            reg [PB_W-1:0]   rpb_q;
+            reg [M_W-1:0]    rend_q, com_q;
+            always @(posedge clk) begin
+                rv_q   <= !rst && v11 && (rep != '0);
+                ren_q  <= at_pos;
+                rj_q   <= DIM_W'(sp11[PB_W +: RW]);
+                rpb_q  <= sp11[0 +: PB_W];
+                rsx_q  <= stx11;
+                rsy_q  <= sty11;
+                rend_q <= m_o + M_W'(LAG + 1);
+                if (rst || frame_start) com_q <= '0;
+                else if (v11)           com_q <= eop_o ? m_o + 1'b1 : m_o;
+            end
+            assign {rep_valid, rep_en, rep_j, rep_pb, rep_stx, rep_sty} = {rv_q, ren_q, rj_q, rpb_q, rsx_q, rsy_q};
+            assign rep_end = {P{rend_q}};
+            assign com_m = com_q;
             assign {ph_x, ph_y, phn_x, phn_y} = '0;
             assign {f1_last, f1_wxn, f1_wyn} = 3'b000;
             wire unused_beats = ^{rect_we, rect_addr, rect_data, step_c, sop, first, v_s[NS], dxb, dyb, ipos};
@@ -273,6 +329,16 @@ module cube4_com #(
         end
     endgenerate
 
+    generate
+        if (BEATS == 0) begin : g_no_rep
+            assign {rep_valid, rep_en, rep_j, rep_pb, rep_stx, rep_sty} = '0;
+            assign rep_end = '0;
+            assign com_m   = '0;
+            assign rok11   = '0;
+            wire unused_rep = ^{fin_t5, rep, run_lane};
+        end
+    endgenerate
+
     // ==== depth in: the lanes' samples in front of the geometry (S5) ====
     generate
         if (ZIN != 0) begin : g_stop
@@ -296,6 +362,8 @@ module cube4_com #(
     wire [P*CMP_W-1:0]   pix_d;
     wire [P*ZW-1:0]      pix_zd;
     wire [P-1:0]         live;           // S11: the ray holds more than the fresh word (BEATS)
+    wire [P-1:0]         fin_t5, rep;    // S5: a ray ends by its countdown; S11: reports done (BEATS)
+    wire [P-1:0]         rok11;          // S11: the lane's ray runs and its stop is not soon
     generate
         if (PLW != 0) begin : g_plw
             cube4_com_plw #(
@@ -332,7 +400,8 @@ module cube4_com #(
                 .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W),
                 .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), .AC_W(AC_W),
                 .SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0), .COPIES(NQ),
-                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0), .ZOUT(ZOUT), .ZM_W(M_W), .LIVE(BEATS)
+                .FALL((SLAB != 0 && COMPOSITING != 0) ? 1 : 0), .ZOUT(ZOUT), .ZM_W(M_W), .LIVE(BEATS),
+                .TERM(BEATS), .LAG(LAG)
             ) u_lane (
                 .clk(clk),
                 .in_rgba(in_rgba[q*LUT_W +: LUT_W]), .in_sample(in_sample[q*VOXEL_W +: VOXEL_W]),
@@ -346,7 +415,9 @@ module cube4_com #(
                 .cnt_6(cnt_6[q]), .cnt_7(cnt_7[q]),
                 .depth_t(cfg_depth_t[CW-1:0]), .m11(m_o),
                 .acc_q(acc_q[q*AC_W +: AC_W]), .pix(pix_d[q*CMP_W +: CMP_W]), .pix_z(pix_zd[q*ZW +: ZW]),
-                .live(live[q]));
+                .live(live[q]),
+                .term_en(term_en), .term_tau(term_tau), .term_vmin(term_vmin), .term_vmax(term_vmax),
+                .rok11(rok11[q]), .fin_t5(fin_t5[q]), .rep(rep[q]));
         end
     endgenerate
 

@@ -64,6 +64,8 @@ module cube4_com_lane #(
     parameter integer FALL   = 0,
     parameter integer ZOUT   = 0, parameter integer ZM_W = 14,
     parameter integer LIVE   = 0,
+    parameter integer TERM   = 0, parameter integer LAG = 3,
+    localparam integer CNT_W = 2,                   // the countdown 0 .. LAG (TERM = 1; LAG <= 3)
     localparam integer FALL_W = 9,
     localparam integer ZF_W  = ZM_W + 1,            // a depth field {valid, m}
     localparam integer ZW    = 2 * ZF_W,            // {passed, first}
@@ -83,7 +85,13 @@ module cube4_com_lane #(
     input  wire cnt_6, input wire cnt_7,
     input  wire [CW-1:0] depth_t, input wire [ZM_W-1:0] m11,
     output wire [AC_W-1:0] acc_q, output wire [CMP_W-1:0] pix, output wire [ZW-1:0] pix_z,
-    output wire live
+    output wire live,
+    // termination (TERM = 1; numerics.md section 19): the rule's registers (static),
+    // S11: the lane may report (its ray runs, its stop is not soon); S5: the ray
+    // ends here (its countdown); S11: it reports the ray done
+    input  wire term_en, input wire [CW-1:0] term_tau,
+    input  wire [VOXEL_W-1:0] term_vmin, input wire [VOXEL_W-1:0] term_vmax,
+    input  wire rok11, output wire fin_t5, output wire rep
 );
     generate
         if (AC_W < ((COMPOSITING != 0) ? CMP_W : 1) || AC_W < ((EXTREMUM != 0) ? EXT_W : 1)) begin : g_bad_ac_w
@@ -155,6 +163,7 @@ module cube4_com_lane #(
     wire [AC_W-1:0] acc_in  = (fresh_v & fresh_w) | (~fresh_v & prev);
 
     // ---- S6 .. S11: the datapaths (their S11 registers) ----
+    wire cnt6_t, cnt7_t;                // the counts, without a ray done before (TERM)
     wire added_c, passed_c, take_e;     // S11: the datapaths' depth-out flags
     wire [AC_W-1:0]  acc_c, acc_e;       // S11: the blending, the extremum word
     wire [CMP_W-1:0] pix_c, pix_e;
@@ -163,11 +172,11 @@ module cube4_com_lane #(
             wire [CMP_W-1:0] acc_c_q;
             cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
                 .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend),
-                .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt_7), .mode_xray(mode_xray), .depth_t(depth_t),
+                .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt7_t), .mode_xray(mode_xray), .depth_t(depth_t),
                 .acc_q(acc_c_q), .pix(pix_c), .added_q(added_c), .passed_q(passed_c));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
-            wire unused_blend = ^{mode_xray, cnt_7, a5_blend, depth_t};
+            wire unused_blend = ^{mode_xray, cnt7_t, a5_blend, depth_t};
             assign acc_c = '0;
             assign pix_c = '0;
             assign {added_c, passed_c} = 2'b00;
@@ -175,11 +184,11 @@ module cube4_com_lane #(
         if (EXTREMUM != 0) begin : g_ext
             wire [EXT_W-1:0] acc_e_q;
             cube4_com_ext #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W)) u_ext (
-                .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba7(s7_rgba), .cnt6(cnt_6),
+                .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba7(s7_rgba), .cnt6(cnt6_t),
                 .mode_min(mode_min), .acc_q(acc_e_q), .pix(pix_e), .take_q(take_e));
             assign acc_e = AC_W'(acc_e_q);
         end else begin : g_no_ext
-            wire unused_ext = ^{cnt_6, s7_rgba[0 +: ALPHA_W]};
+            wire unused_ext = ^{cnt6_t, s7_rgba[0 +: ALPHA_W]};
             assign acc_e = '0;
             assign pix_e = '0;
             assign take_e = 1'b0;
@@ -206,6 +215,54 @@ module cube4_com_lane #(
             assign live = 1'b1;
         end
     endgenerate
+
+    // ---- termination (TERM = 1): a ray is done when no later sample may
+    // change it (golden/cube4/beats.py TerminationRule.dead): composite T <= tau;
+    // X-ray T = 0 and every colour at 1; MIP / MinIP its v at the volume's
+    // largest / smallest value. Done before its sample (S5), the sample does not
+    // count; done after it (S11) and not before (or fresh), it reports, and its
+    // countdown starts at LAG: the ray ends LAG slices later (fin_t5 where the
+    // count it brings is 1). The count rides in the buffer word above the mode's. ----
+    localparam integer DW = (AC_W > CMP_W) ? ((AC_W > EXT_W) ? AC_W : EXT_W) : ((CMP_W > EXT_W) ? CMP_W : EXT_W);
+    function automatic is_dead(input [DW-1:0] w, input ext, input mn, input xr);
+        begin
+            if (ext) is_dead = w[EXT_W-1 -: VOXEL_W] == (mn ? term_vmin : term_vmax);
+            else if (xr) is_dead = (w[0 +: CW] == '0) && (w[CW +: CW] == ONE) && (w[2*CW +: CW] == ONE)
+                                   && (w[3*CW +: CW] == ONE);
+            else is_dead = (w[0 +: CW] <= term_tau);
+        end
+    endfunction
+    wire [AC_W-1:0] acc_n;                // the word the slice buffer takes (with the count)
+    generate
+        if (TERM != 0) begin : g_term
+            localparam integer AM_W = AC_W - CNT_W;
+            wire ext = ext_v[AC_W-1], mn = min_v[AC_W-1], fr = fresh_v[AC_W-1];
+            wire [CNT_W-1:0] cnt5 = acc_in[AM_W +: CNT_W];
+            wire dead5 = term_en && is_dead(DW'(acc_in), ext, mn, mode_xray);
+            assign fin_t5 = term_en && !fr && (cnt5 == CNT_W'(1));
+            reg  [5:0] dead_s, fresh_s;      // S6 .. S11
+            reg  [CNT_W-1:0] c6, c7, c8, c9, c10, c11;
+            always @(posedge clk) begin
+                dead_s  <= {dead_s[4:0], dead5};
+                fresh_s <= {fresh_s[4:0], fr};
+                {c11, c10, c9, c8, c7, c6} <= {c10, c9, c8, c7, c6, cnt5};
+            end
+            assign cnt6_t = cnt_6 && !dead_s[0];
+            assign cnt7_t = cnt_7 && !dead_s[1];
+            wire dead11 = term_en && is_dead(DW'(acc_m), ext, mn, mode_xray);
+            assign rep = rok11 && dead11 && (fresh_s[5] || !dead_s[5]);
+            wire [CNT_W-1:0] c_n = rep ? CNT_W'(LAG) : ((c11 != '0) ? c11 - 1'b1 : '0);
+            assign acc_n = {c_n, acc_m[AM_W-1:0]};
+            wire unused_top = ^acc_m[AC_W-1:AM_W];
+        end else begin : g_no_term
+            assign fin_t5 = 1'b0;
+            assign rep = 1'b0;
+            assign cnt6_t = cnt_6;
+            assign cnt7_t = cnt_7;
+            assign acc_n = acc_m;
+            wire unused_term = ^{term_en, term_tau, term_vmin, term_vmax, rok11};
+        end
+    endgenerate
     // ---- depth out (ZOUT = 1; numerics.md section 21): the ray's two slice
     // numbers {valid, m} ride above the mode's word, S5 -> S11, and are set at
     // S11 with the beat's slice m11 when not yet valid: passed when the blending
@@ -224,10 +281,10 @@ module cube4_com_lane #(
             wire [ZF_W-1:0] zf_n = (!zf[ZM_W] && added) ? now : zf;
             assign pix_z = {zp_n, zf_n};
             assign acc_q = {zp_n, zf_n, acc_m[AM_W-1:0]};
-            wire unused_top = ^acc_m[AC_W-1:AM_W];
+            wire unused_top = ^{acc_m[AC_W-1:AM_W], acc_n};   // (depth out runs without termination)
         end else begin : g_no_depth
             assign pix_z = '0;
-            assign acc_q = acc_m;
+            assign acc_q = acc_n;
             wire unused_depth = ^{added_c, passed_c, take_e, m11, depth_t};
         end
     endgenerate

@@ -52,6 +52,8 @@
 //             changed), lane at t = 0 and fresh ray per lane
 //   keep_5    in   S5: the lane's sample may count (depth in, cube4_com_stop;
 //             all ones without), ANDed into S6's counts
+//   fin_5     in   S5: the lane's ray ends here (the beat schedule's countdown
+//             after COM reported it done; zero otherwise), ANDed with inside
 //   cnt_6, cnt_7   S6, S7: the lane's sample counts (inside, KEEP, keep_5)
 //   mode_xray, mode_ext, mode_min   the mode, registered
 //   push_d, give   S10: pushes at S11; returns its FIFO entry
@@ -83,7 +85,7 @@ module cube4_com_seq #(
     output wire [(NS-1)*SP_W-1:0] sp_fly, output wire [SP_W-1:0] sp_wr,
     output wire [PB_W-1:0] pb_rd, output wire [PB_W-1:0] pb_wr,
     output wire dxb4, output wire dyb4, output wire dkb4, output wire [P-1:0] t0_4, output wire [P-1:0] fresh_4,
-    input  wire [P-1:0] keep_5,
+    input  wire [P-1:0] keep_5, input wire [P-1:0] fin_5,
     output wire [P-1:0] cnt_6, output wire [P-1:0] cnt_7,
     output reg  mode_xray, output reg mode_ext, output reg mode_min,
     output reg  push_d, output reg give,
@@ -150,6 +152,7 @@ module cube4_com_seq #(
         f1_sty  <= sty;
     end
     reg  [P-1:0]      ins_s1;            // inside (S1)
+    reg  [P-1:0]      ins_s2, ins_s3, ins_s4, ins_s5;   // ... carried to S5 (fin_5)
     wire [P-1:0]      fin_1 = ins_s1 & ~nx_in;
     wire [P*BX_W-1:0] bx_1;
     wire [BX_W-1:0]   by_1 = BX_W'(f1_j) - BX_W'(f1_sty) + BX_W'(cfg_sy);   // by = j - stepy(m) + SY
@@ -193,6 +196,8 @@ module cube4_com_seq #(
         for (k = 3; k <= NS; k = k + 1) begin
             fin_s[k] <= fin_s[k-1];  bx_s[k] <= bx_s[k-1];  by_s[k] <= by_s[k-1];
         end
+        {ins_s5, ins_s4, ins_s3, ins_s2} <= {ins_s4, ins_s3, ins_s2, ins_s1};
+        fin_s[6] <= fin_s[5] | (fin_5 & ins_s5);   // a ray that ends by its countdown (BEATS)
         pb_s[2] <= pb_s[1];
         for (k = 2; k <= 7; k = k + 1) cnt_s[k] <= cnt_s[k-1];
         cnt_s[6] <= cnt_s[5] & keep_5;       // depth in: in front of the geometry (all ones without)

@@ -412,6 +412,12 @@ module cube4_top #(
         .out_valid (com_in_valid), .out_ready (com_in_ready));
 
     // ---------------------------------------------------------------- COM
+    wire             unused_rep_valid;        // the beat schedule's reports (not in this top yet)
+    wire [DIM_W-1:0] unused_rep_j, unused_rep_stx, unused_rep_sty;
+    wire [PB_W-1:0]  unused_rep_pb;
+    wire [P-1:0]     unused_rep_en;
+    wire [P*M_W-1:0] unused_rep_end;
+    wire [M_W-1:0]   unused_com_m;
     cube4_com #(
         `CUBE4_BUILD_PASS
     ) u_com (
@@ -434,6 +440,19 @@ module cube4_top #(
         .in_sample (sha_sample),
         .in_fall   (sha_fall),
         .in_bits   ('0),           // (the beat schedule: not in this top yet)
+        .frame_start (1'b0),
+        .term_en   (1'b0),
+        .term_tau  ('0),
+        .term_vmin ('0),
+        .term_vmax ('0),
+        .rep_valid (unused_rep_valid),
+        .rep_j     (unused_rep_j),
+        .rep_pb    (unused_rep_pb),
+        .rep_stx   (unused_rep_stx),
+        .rep_sty   (unused_rep_sty),
+        .rep_en    (unused_rep_en),
+        .rep_end   (unused_rep_end),
+        .com_m     (unused_com_m),
         .pix_valid (pix_valid),
         .pix_ready (pix_ready),
         .pix_mask  (pix_mask),

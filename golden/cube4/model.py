@@ -531,7 +531,7 @@ def render_frame(
             nxt_in[:nj, :ni] = inside_of(m + 1)
             fin = inside & ~nxt_in[jj + (syf - sty), ii + (sxf - stx)]
         else:
-            fin = inside
+            fin = inside.copy()     # (not the same array: the streams keep inside as it was)
         if beats is not None:       # a ray that holds nothing leaves no pixel (the base plane's zero)
             fin &= live_now[win]
         if fin.any():

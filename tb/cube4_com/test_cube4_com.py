@@ -65,7 +65,9 @@ from cube4.pathlen import ALL_FACES
 from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
 from cube4_sim.beats import BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
-from cube4_sim.beat_frames import beat_frame, expected_requests
+from cocotb.triggers import ReadOnly, RisingEdge
+
+from cube4_sim.beat_frames import beat_frame, expected_requests, reports
 from cube4_sim.rect_port import write_rect_table
 from cube4_sim.unit_bench import UnitBench, check_lanes, param_id, random_clip, run_unit
 
@@ -301,6 +303,21 @@ async def test_stop_pixel_stream(dut):
                        len(frame.pixels))
 
 
+async def collect_reports(dut, p: int, m_w: int, out: list) -> None:
+    """Every cycle: COM's report (rep_*) as (d, j, pb, stx, sty, position, end) per
+    position it writes, d = end - LAG - 1."""
+    while True:
+        await RisingEdge(dut.clk)
+        await ReadOnly()
+        if int(dut.rep_valid.value):
+            en, ends = int(dut.rep_en.value), int(dut.rep_end.value)
+            j, pb, stx, sty = (int(getattr(dut, n).value) for n in ("rep_j", "rep_pb", "rep_stx", "rep_sty"))
+            for t in range(p):
+                if (en >> t) & 1:
+                    end = (ends >> (t * m_w)) & ((1 << m_w) - 1)
+                    out.append((end - BEAT_LAG - 1, j, pb, stx, sty, t, end))
+
+
 def sparse_volume(rng, dims, vw: int) -> np.ndarray:
     """A faint background (values below 64) with one dense blob (64 and up): a LUT that is
     zero below 64 leaves most blocks empty."""
@@ -327,7 +344,8 @@ async def test_beat_pixel_stream(dut):
         return
     p, aw, acc_w, geo, cfg, vw, modes = build_of(dut)
     bench = UnitBench(dut)
-    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rect_we": 0, "stop_we": 0, "in_bits": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rect_we": 0, "stop_we": 0, "in_bits": 0,
+                       "frame_start": 0, "term_en": 0, "term_tau": 0, "term_vmin": 0, "term_vmax": 0})
     dims = (max(24, 2 * p + 3), 20, 16)     # larger than volume_dims: blocks of 4 that skip
     frames = 0
     for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS * 2):
@@ -336,8 +354,11 @@ async def test_beat_pixel_stream(dut):
         vol = sparse_volume(bench.rng, dims, cfg.voxel_bits)
         lut, rmap = random_tables(bench.rng, cfg)
         lut[: (64 << max(0, cfg.voxel_bits - 8))] = 0
+        terminate = n % 2 == 1
+        if terminate:       # opaque where it counts: rays end (COM reports them done)
+            lut[lut[:, 3] > 0, 3] = (1 << aw) - 1
         clip = random_clip(trav, clip_kind, bench.rng)
-        bf = beat_frame(vol, trav, cfg, lut, rmap, mode, clip)
+        bf = beat_frame(vol, trav, cfg, lut, rmap, mode, clip, terminate=terminate)
         reqs = [w for w in expected_requests(bf, p, BEAT_LAG) if w[4]]
         order = [(w[6][0], w[6][1], w[2], w[5]) for w in reqs]
         frame = bf.frame
@@ -345,33 +366,45 @@ async def test_beat_pixel_stream(dut):
         inputs = shaded_beats(frame, sched, geo, aw, vw)
         for k, w in enumerate(reqs):
             inputs[k]["in_bits"] = w[9]
-        # the lanes whose ray ends at the beat: running (inside), bit last at its position
-        t = np.where(sched.lval, sched.pos - sched.pb[:, None] * p, 0)
-        last = np.array([[(w[9] >> (2 * p + int(t[k, q]))) & 1 for q in range(p)] for k, w in enumerate(reqs)],
-                        dtype=bool)
-        # ... or its next sample (m + 1, j + dyf, i + dxf) is outside the box
-        M = trav.num_sample_slices
-        nxt_in = np.zeros_like(last)
+        # the lanes whose ray ends at the beat (before the pixel's "holds something"
+        # rule): inside and running, and its next sample (m + 1, j + dyf, i + dxf) not
+        # (the golden frame's inside stream: the box, and the ray's run, its end moved
+        # by COM's reports)
+        M, ins_s = trav.num_sample_slices, frame.streams["inside"]
+        nxt_in = np.zeros_like(sched.lval)
         for k in range(len(reqs)):
             m, j = int(sched.m[k]), int(sched.j[k])
             if m + 1 >= M:
                 continue
             dxf, dyf = (int(a) - int(b) for a, b in zip(trav.steps(m + 1), trav.steps(m)))
-            ins = inside_mask(trav, m + 1)
             for q in range(p):
                 i = int(sched.pos[k, q]) + dxf
-                nxt_in[k, q] = j + dyf < trav.nj and i < trav.ni and bool(ins[j + dyf, i])
-        ends = (last | ~nxt_in) & sched.lval & sched.lins
+                nxt_in[k, q] = j + dyf < trav.nj and i < trav.ni and bool(ins_s[m + 1, j + dyf, i])
+        ends = ~nxt_in & sched.lval & sched.lins
         exp = expected_pixel_beats(frame, sched, ends)
         bench.set_view(trav, p, mode, clip)
-        await bench.cycles(2)
+        dut.term_en.value, dut.term_tau.value = int(terminate), 0
+        dut.term_vmin.value, dut.term_vmax.value = int(vol.min()), int(vol.max())
+        dut.frame_start.value = 1
+        await bench.cycles(1)
+        dut.frame_start.value = 0
+        await bench.cycles(1)
+        reps = []
+        mon = cocotb.start_soon(collect_reports(dut, p, geo.m_w, reps))
         got = await bench.run_stream(inputs, len(exp["beat"]), OUTPUTS, gap, stall)
+        mon.cancel()
         check_pixel_beats(got, exp, sched, p, geo.dim_w + 1, acc_w, bench.log)
+        want = {(d, j, pb, stx, sty, pos, end) for d, beats_d in reports(bf, p, BEAT_LAG).items()
+                for j, pb, stx, sty, ends in beats_d for pos, end in ends.items()}
+        assert set(reps) == want, (f"view {direction} {mode}: reports RTL - golden {sorted(set(reps) - want)[:4]}, "
+                                   f"golden - RTL {sorted(want - set(reps))[:4]}")
+        assert len(reps) == len(set(reps)), "a ray reported twice"
+        assert int(dut.com_m.value) == trav.num_sample_slices, f"com_m {int(dut.com_m.value)} after the frame"
         frames += 1
         box = trav.num_sample_slices * trav.nj * -(-trav.ni // p)
         bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f: %d of %d beats in (%d run), %d pixel "
-                       "beats, %d finished rays bit-exact", dims, direction, mode, clip_kind, gap, stall,
-                       len(reqs), box, sum(w[5] for w in reqs), len(got), len(frame.pixels))
+                       "beats, %d finished rays bit-exact, %d rays reported done", dims, direction, mode, clip_kind,
+                       gap, stall, len(reqs), box, sum(w[5] for w in reqs), len(got), len(frame.pixels), len(reps))
     assert frames >= 8
 
 
