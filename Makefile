@@ -174,7 +174,10 @@ LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,AL
                                GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 \
                                LABELS=1,PLW=0 P=1,LABELS=1,PLW=0,SHADING=0,EXTREMUM=0,CLIP=0 \
                                P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 P=16,LABELS=1,PLW=0,VOXEL_W=12 \
-                               DRAM=1 P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=16,DRAM=1,MAX_SS_LOG2=2
+                               DRAM=1 P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=16,DRAM=1,MAX_SS_LOG2=2 \
+                               BEATS=1,SHADING=0,PLW=0 P=1,BEATS=1,SHADING=0,PLW=0,COMPOSITING=0 \
+                               P=5,BEATS=1,SHADING=0,PLW=0,EXTREMUM=0,CLIP=0,VOXEL_W=12 P=16,BEATS=1,SHADING=0,PLW=0,MAX_DIM=2048,DEPTH=2,ADDR_W=1 \
+                               P=8,BEATS=1,SHADING=0,PLW=0,DRAM=1
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

@@ -31,7 +31,11 @@
 //   which would emit slice -1, emits nothing. The last beat carries EOP.
 //   A beat reads when the walk says so, except in the flush row (m = M),
 //   which reads nothing. Tokens issue nothing; after LAST one drain beat
-//   pushes TRI's beam-extension delay empty, as the fixed schedule's.
+//   pushes TRI's beam-extension delay empty, as the fixed schedule's, and
+//   after each slice's last beat (EOS) one such beat pushes it too: TRI
+//   gives a sample beat when the next beat comes, and the next may wait for
+//   the decisions, which wait for COM's reports of the slices before (the
+//   loop the push beat opens; numerics.md section 19, lag).
 //
 // Parameters (CUBE4_CFB_PARAMS; ranges as cube4_cfb)
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (a frame of beats has S = 1), ADDR_W.
@@ -113,19 +117,19 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     endfunction
 
     // ==== the state: idle, the walk's beats, the drain beat ====
-    localparam [1:0] ST_IDLE = 2'd0, ST_RUN = 2'd1, ST_DRAIN = 2'd2;
+    localparam [1:0] ST_IDLE = 2'd0, ST_RUN = 2'd1, ST_DRAIN = 2'd2, ST_PUSH = 2'd3;
     reg [1:0] state_q;
     assign idle = (state_q == ST_IDLE);
     assign go   = start && !busy;
     wire in_run   = (state_q == ST_RUN);
-    wire in_drain = (state_q == ST_DRAIN);
+    wire in_drain = (state_q == ST_DRAIN) || (state_q == ST_PUSH);
 
     // ==== two stages in front of the state ====
     localparam integer B_W = 4 * P + 6;    // {bits, read, leave, eor, eos, last, token}
     reg              a_v, b_v;
     reg [PB_W-1:0]   a_pb, b_pb;
     reg [B_W-1:0]    a_f, b_f;
-    wire             take = b_v && advance;           // the state's beat moves on
+    wire             take = b_v && advance && in_run; // the state's beat moves on (not in a push)
     wire             mv   = !b_v || take;
     assign in_ready = mv;
     always @(posedge clk) begin
@@ -190,7 +194,9 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
             case (state_q)
                 ST_IDLE:  if (go) state_q <= ST_RUN;
                 ST_RUN:   if (run_take && b_last) state_q <= ST_DRAIN;
+                          else if (run_take && b_eos) state_q <= ST_PUSH;
                 ST_DRAIN: if (advance) state_q <= ST_IDLE;    // one beat
+                ST_PUSH:  if (advance) state_q <= ST_RUN;     // one beat
                 default:  state_q <= ST_IDLE;
             endcase
         end

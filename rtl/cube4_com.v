@@ -45,6 +45,14 @@
 //   ZIN         1: depth in: cube4_com_stop reads each lane's stop slice from
 //               the host's table (stop_*) and the sample counts only when
 //               m < stop (S5 -> S6).  0..1.  Default 0.
+//   BEATS       1: the beat schedule (numerics.md section 19; cube4_com_beats):
+//               the slot {j, pb} from the header, the rays' intervals from the
+//               front end's position bits (in_bits), a pixel only for a ray
+//               that holds something, ray termination (term_*), its countdown
+//               in the buffer word (2 bits) and the reports (rep_*, com_m).
+//               Needs RECTS, PLW, ZIN, ZOUT = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
+//   LAG         (after the build's list) BEATS: slices between a report and
+//               the decisions' use of it (cube4_cfb_decide's LAG).  2..3. Default 3.
 //   The defaults are cube4_top's.
 //
 // Latency
@@ -80,6 +88,13 @@
 //   rect_*    the rectangle table (RECTS = 1; cube4_cfb's, written alike)
 //   stop_*    the stop table (ZIN = 1; cube4_com_stop, CUBE4_STOP_LAYOUT),
 //             written between frames
+//   in_bits   BEATS: each beat's {soon, last, fresh, run}, P bits each by
+//             position t in the partial beam (cube4_cfb_skip)
+//   frame_start, term_en, term_tau [ACC_W+1] (Q0.ACC_W), term_vmin, term_vmax
+//             [VOXEL_W]   BEATS: the frame's start; termination's rule (static)
+//   rep_valid, rep_j, rep_pb, rep_stx, rep_sty, rep_en [P] (by position),
+//   rep_end [P*M_W], com_m [M_W]   BEATS: the reports into the ray table and
+//             the slices whose beats have all passed (cube4_cfb_decide's rep_*)
 //   pix_*     finished rays: pix_mask (lane holds a finished ray), pix_m, pix_by,
 //             pix_bx lane q, pix_rgba lane q = {R, G, B, A} each ACC_W + 1 bits
 //             (Q0.ACC_W, 0 .. 2^ACC_W), pix_eop (last beat of the frame), pix_z
@@ -94,7 +109,6 @@
 // =============================================================================
 module cube4_com #(
     `CUBE4_BUILD_PARAMS,
-    parameter integer BEATS = 0,
     parameter integer LAG   = 3,
     `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
@@ -138,6 +152,7 @@ module cube4_com #(
         if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
             $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
         end
+        `CUBE4_RANGE(g_bad_lag, "cube4_com", "LAG", LAG, 2, 3)
         if (BEATS != 0 && (RECTS != 0 || PLW != 0 || ZIN != 0 || ZOUT != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
             $error("cube4_com: BEATS = 1 needs RECTS = 0, PLW = 0, ZIN = 0, ZOUT = 0 and MAX_SS_LOG2 = 0 (not built)");
         end

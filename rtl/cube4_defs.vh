@@ -144,6 +144,13 @@
 //                        rays' first and last samples are path-weighted (bits I0, I1,
 //                        J0, J1, K0, K1 from bit 0; 0: no weighting; numerics.md
 //                        section 17, golden/cube4/pathlen.py)
+//   BB_I, BB_J, BB_K [DIM_W]  the beat schedule (BEATS = 1): the frame's i, j, k
+//                        axes' bases in the volume, as the block table reads them
+//                        (golden/cube4/memory.py beat_regs)
+//   NBR [1]              the beat schedule's neighbour term (termination in a GRA frame)
+//   TERM [1], TAU [25], VMIN, VMAX [16]   ray termination (BEATS = 1): on; the
+//                        composite threshold on T (Q0.ACC_W); the volume's smallest
+//                        and largest value (MIP, MinIP; numerics.md section 19)
 `define CUBE4_VIEW_LAYOUT \
     localparam integer VIEW_NI      = 0, \
     localparam integer VIEW_NJ      = VIEW_NI + DIM_W, \
@@ -190,10 +197,19 @@
     localparam integer FALL_W       = 9, \
     localparam integer VIEW_DEPTH_T = VIEW_FALL_ON + 1, \
     localparam integer VIEW_FACES   = VIEW_DEPTH_T + 25, \
-    localparam integer VIEW_W       = VIEW_FACES + 6
+    localparam integer VIEW_BB_I    = VIEW_FACES + 6, \
+    localparam integer VIEW_BB_J    = VIEW_BB_I + DIM_W, \
+    localparam integer VIEW_BB_K    = VIEW_BB_J + DIM_W, \
+    localparam integer VIEW_NBR     = VIEW_BB_K + DIM_W, \
+    localparam integer VIEW_TERM    = VIEW_NBR + 1, \
+    localparam integer VIEW_TAU     = VIEW_TERM + 1, \
+    localparam integer VIEW_VMIN    = VIEW_TAU + 25, \
+    localparam integer VIEW_VMAX    = VIEW_VMIN + 16, \
+    localparam integer VIEW_W       = VIEW_VMAX + 16
 
 // The view bus from the individual register ports (cube4_top and the harnesses).
-`define CUBE4_VIEW_PACK {cfg_faces, cfg_depth_t, cfg_fall_on, cfg_fall_sh, cfg_cut_t, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
+`define CUBE4_VIEW_PACK {cfg_vmax, cfg_vmin, cfg_tau, cfg_term, cfg_nbr, cfg_bb_k, cfg_bb_j, cfg_bb_i, \
+    cfg_faces, cfg_depth_t, cfg_fall_on, cfg_fall_sh, cfg_cut_t, cfg_cut_d, cfg_cut_c, cfg_cut_b, cfg_cut_a, \
     cfg_cr_hide, cfg_cr_m1, cfg_cr_m0, cfg_cr_j1, cfg_cr_j0, cfg_cr_i1, cfg_cr_i0, \
     cfg_win_m1, cfg_win_m0, cfg_win_j1, cfg_win_j0, cfg_win_i1, cfg_win_i0, \
     cfg_ph0_y, cfg_ph0_x, cfg_mode, cfg_sy, cfg_sx, cfg_i_rt, cfg_i_r1, cfg_k_r0, cfg_j_r0, \
@@ -244,7 +260,15 @@
     input  wire [5:0]         cfg_fall_sh, \
     input  wire               cfg_fall_on, \
     input  wire [24:0]        cfg_depth_t, \
-    input  wire [5:0]         cfg_faces,
+    input  wire [5:0]         cfg_faces, \
+    input  wire [DIM_W-1:0]   cfg_bb_i, \
+    input  wire [DIM_W-1:0]   cfg_bb_j, \
+    input  wire [DIM_W-1:0]   cfg_bb_k, \
+    input  wire               cfg_nbr, \
+    input  wire               cfg_term, \
+    input  wire [24:0]        cfg_tau, \
+    input  wire [15:0]        cfg_vmin, \
+    input  wire [15:0]        cfg_vmax,
 
 // One wire per view register, read from a view bus (module body).
 `define CUBE4_VIEW_FIELDS(bus) \
@@ -288,7 +312,15 @@
     wire [5:0]          cfg_fall_sh = bus[VIEW_FALL_SH +: 6]; \
     wire                cfg_fall_on = bus[VIEW_FALL_ON]; \
     wire [24:0]         cfg_depth_t = bus[VIEW_DEPTH_T +: 25]; \
-    wire [5:0]          cfg_faces   = bus[VIEW_FACES +: 6]
+    wire [5:0]          cfg_faces   = bus[VIEW_FACES +: 6]; \
+    wire [DIM_W-1:0]    cfg_bb_i    = bus[VIEW_BB_I +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_bb_j    = bus[VIEW_BB_J +: DIM_W]; \
+    wire [DIM_W-1:0]    cfg_bb_k    = bus[VIEW_BB_K +: DIM_W]; \
+    wire                cfg_nbr     = bus[VIEW_NBR]; \
+    wire                cfg_term    = bus[VIEW_TERM]; \
+    wire [24:0]         cfg_tau     = bus[VIEW_TAU +: 25]; \
+    wire [15:0]         cfg_vmin    = bus[VIEW_VMIN +: 16]; \
+    wire [15:0]         cfg_vmax    = bus[VIEW_VMAX +: 16]
 
 // ---------------------------------------------------------------- address registers
 // The address unit's start values and strides (golden/cube4/memory.py), ADDR_W
@@ -414,6 +446,11 @@
     input  wire [DIM_W-1:0] rep_stx, input wire [DIM_W-1:0] rep_sty, \
     input  wire [P-1:0] rep_en, input wire [P*M_W-1:0] rep_end, \
     input  wire [M_W-1:0] com_m
+// COM's reports into the front end's ray table, connected by name to the wires
+// com_rep_* of cube4_top (the same bus on cube4_com's outputs and cube4_cfb's inputs)
+`define CUBE4_REPORT_CONN \
+    .rep_valid(com_rep_valid), .rep_j(com_rep_j), .rep_pb(com_rep_pb), .rep_stx(com_rep_stx), \
+    .rep_sty(com_rep_sty), .rep_en(com_rep_en), .rep_end(com_rep_end)
 // ... tied off where no beat schedule runs
 `define CUBE4_BEATS_IN_NONE \
     .blk_base('0), .nbr_en(1'b0), .blk_we(1'b0), .blk_addr('0), .blk_data('0), \
@@ -554,6 +591,7 @@
     parameter integer RECTS    = 0,  parameter integer SLAB        = 0, \
     parameter integer ZOUT     = 0,  parameter integer ZIN         = 0, \
     parameter integer GMOD     = 0,  parameter integer LABELS      = 0, \
+    parameter integer BEATS    = 0, \
     `CUBE4_GEOMETRY, `CUBE4_VIEW_LAYOUT
 
 `define CUBE4_BUILD_PASS \
@@ -561,7 +599,7 @@
     .WEIGHT_W(WEIGHT_W), .RMAP_BITS(RMAP_BITS), .ALPHA_W(ALPHA_W), .ACC_W(ACC_W), \
     .ADDR_W(ADDR_W), .SHADING(SHADING), .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), \
     .CLIP(CLIP), .VGRAD(VGRAD), .PLW(PLW), .RECTS(RECTS), .SLAB(SLAB), .ZOUT(ZOUT), \
-    .ZIN(ZIN), .GMOD(GMOD), .LABELS(LABELS)
+    .ZIN(ZIN), .GMOD(GMOD), .LABELS(LABELS), .BEATS(BEATS)
 
 `define CUBE4_SLICE_PARAMS \
     parameter integer P        = 8, parameter integer MAX_DIM     = 256, \
@@ -633,7 +671,8 @@
     `CUBE4_RANGE(g_bad_zout, MODULE, "ZOUT", ZOUT, 0, 1) \
     `CUBE4_RANGE(g_bad_zin, MODULE, "ZIN", ZIN, 0, 1) \
     `CUBE4_RANGE(g_bad_gmod, MODULE, "GMOD", GMOD, 0, 1) \
-    `CUBE4_RANGE(g_bad_labels, MODULE, "LABELS", LABELS, 0, 1)
+    `CUBE4_RANGE(g_bad_labels, MODULE, "LABELS", LABELS, 0, 1) \
+    `CUBE4_RANGE(g_bad_beats, MODULE, "BEATS", BEATS, 0, 1)
 
 // ---------------------------------------------------------------- TRI units
 // cube4_tri and its units (cube4_tri_src, _beam, _meta, _lane; docs/architecture.md "TRI").

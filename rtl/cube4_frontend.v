@@ -22,8 +22,8 @@
 //   VGRAD        1: memory words carry voxel gradients, which TRI
 //                interpolates (CUBE4_WORD_LAYOUT).   0..1.    Default 0.
 //   RECTS        1: slice rectangles (cube4_cfb).      0..1.    Default 0.
-//   (after the build's list)
 //   BEATS        1: the beat schedule (cube4_cfb).     0..1.    Default 0.
+//   (after the build's list)
 //   BITS_DEPTH   BEATS = 1: emitted beats in flight between the CFB and
 //                TRI's output (a power of two, the FIFO of their bits;
 //                the requests wait beyond it).         2..1024. Default 64.
@@ -57,7 +57,6 @@
 // =============================================================================
 module cube4_frontend #(
     `CUBE4_BUILD_PARAMS,
-    parameter integer BEATS      = 0,
     parameter integer BITS_DEPTH = 64,
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT,

@@ -47,7 +47,8 @@
 //   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
 //   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0;
 //   ZIN = 1 with RECTS = 1; GMOD = 1 with SHADING = 0 or RECTS = 1;
-//   LABELS = 1 with VGRAD, PLW or RECTS = 1.
+//   LABELS = 1 with VGRAD, PLW or RECTS = 1; BEATS = 1 with SHADING, PLW,
+//   RECTS, ZIN, ZOUT, SLAB, LABELS = 1 or MAX_SS_LOG2 > 0.
 //   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
 //                slice's entry of the table (rect_*), GRA and COM follow the
 //                rectangles; every frame needs its table (the whole box for the
@@ -66,6 +67,13 @@
 //                stop slice from the host's table (stop_*, cube4_com_stop)
 //                and counts only the samples in front of it; every frame
 //                needs its table (all 2^M_W - 1: no geometry). 0..1. Default 0.
+//   BEATS        1: beat skipping and ray termination (numerics.md section 19):
+//                CFB decides every beat from the block table (blk_*) and the
+//                ray table (the stops, written through stop_*) and walks the
+//                voxel beats the running ones read; COM takes each beat's
+//                position bits (a FIFO beside SHA), ends the rays and reports
+//                the done ones back (view registers BB_*, NBR, TERM, TAU,
+//                VMIN, VMAX). Every frame needs both tables.   0..1. Default 0.
 //   LABELS       1: label volumes (numerics.md section 24): each memory word
 //                holds the voxel's label (LABEL_W = 4 bits) above it, TRI
 //                picks the nearest corner's, GRA carries it with the sample,
@@ -89,8 +97,9 @@
 //   lut_*, rmap_*  table load ports: lut_data = {the path-weight columns (PLW = 1:
 //                  A at w = 3/2, 5/4, 3/4, 1/2 from the top, Q0.ALPHA_W each; cube4_com),
 //                  R, G, B (Q0.8), A (Q0.ALPHA_W) (cube4_sha)}
-//   rect_*, stop_*, gm_*   the slice-rectangle (RECTS), stop-slice (ZIN) and
-//                  modulation (GMOD) tables, written between frames (layouts
+//   rect_*, stop_*, gm_*, blk_*   the slice-rectangle (RECTS), stop-slice (ZIN,
+//                  and the ray table's stops with BEATS), modulation (GMOD)
+//                  and block (BEATS) tables, written between frames (layouts
 //                  at the ports below)
 //   cfg_*          view registers, stable from start to done
 //   start, busy, done, cycles   frame control
@@ -108,6 +117,7 @@ module cube4_top #(
     parameter integer DRAM = 0, parameter integer DRAM_AW = 21,
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT,
     `CUBE4_WORD_LAYOUT, `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT, `CUBE4_GM_LAYOUT,
+    localparam integer BLOCK_LOG2 = 2, `CUBE4_BLOCK_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer RI_W = 2 * RMAP_BITS + 3,
     localparam integer LUT_W = 24 + ALPHA_W + PLW * 4 * ALPHA_W,  // a LUT entry (lut_data)
@@ -143,6 +153,12 @@ module cube4_top #(
     input  wire [RECT_W-1:0]         rect_data,
     // the stop table (ZIN = 1; unused otherwise): address {by, bx div P}, bank b
     // of the word at [b*M_W] (golden/cube4/memory.py stop_table, CUBE4_STOP_LAYOUT)
+    // the block table (BEATS = 1; unused otherwise): word {kb, jb} = the bits of the
+    // blocks along the frame's i axis (sim/cube4_sim/beat_frames.py block_words,
+    // CUBE4_BLOCK_LAYOUT); with BEATS the stop_* port writes the ray table's stops
+    input  wire                      blk_we,
+    input  wire [2*BK_W-1:0]         blk_addr,
+    input  wire [NBK-1:0]            blk_data,
     input  wire                      stop_we,
     input  wire [STOP_AW-1:0]        stop_addr,
     input  wire [P*M_W-1:0]          stop_data,
@@ -193,6 +209,10 @@ module cube4_top #(
         if (LABELS != 0 && (VGRAD != 0 || PLW != 0 || RECTS != 0)) begin : g_labels_alone
             $error("cube4_top: LABELS = 1 needs VGRAD = 0 and PLW = 0 and RECTS = 0 (labels run without voxel gradients, path weights and rectangles)");
         end
+        if (BEATS != 0 && (SHADING != 0 || PLW != 0 || RECTS != 0 || ZIN != 0 || ZOUT != 0 || SLAB != 0
+                           || LABELS != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
+            $error("cube4_top: BEATS = 1 needs SHADING = 0 and PLW = 0 and RECTS = 0 and ZIN = 0 and ZOUT = 0 and SLAB = 0 and LABELS = 0 and MAX_SS_LOG2 = 0 (the beat schedule runs unshaded, with S = 1, without path weights, rectangles, depth, the slab and labels: the rest is not built yet)");
+        end
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
         end
@@ -219,8 +239,16 @@ module cube4_top #(
     wire                 unused_fe_busy, unused_fe_done;
     wire [31:0]          unused_fe_cycles;
 
-    wire [4*P-1:0] unused_smp_bits;
-    wire           unused_smp_eos;
+    // the beat schedule (BEATS = 1): the position bits of each sample beat wait for it
+    // at COM's input, COM's reports go back to the front end
+    wire [4*P-1:0]   smp_bits;
+    wire             smp_eos, fe_smp_valid, fe_smp_ready;
+    wire             com_rep_valid;
+    wire [DIM_W-1:0] com_rep_j, com_rep_stx, com_rep_sty;
+    wire [PB_W-1:0]  com_rep_pb;
+    wire [P-1:0]     com_rep_en;
+    wire [P*M_W-1:0] com_rep_end;
+    wire [M_W-1:0]   com_m;
     cube4_frontend #(
         `CUBE4_BUILD_PASS
     ) u_frontend (
@@ -235,9 +263,18 @@ module cube4_top #(
         .rect_we       (rect_we),
         .rect_addr     (rect_addr),
         .rect_data     (rect_data),
-        `CUBE4_BEATS_IN_NONE,       // (the beat schedule: not in this top yet)
-        .smp_bits      (unused_smp_bits),
-        .smp_eos       (unused_smp_eos),
+        .blk_base      ({cfg_bb_k, cfg_bb_j, cfg_bb_i}),
+        .nbr_en        (cfg_nbr),
+        .blk_we        (blk_we),
+        .blk_addr      (blk_addr),
+        .blk_data      (blk_data),
+        .tab_we        (stop_we && BEATS != 0),
+        .tab_addr      (stop_addr),
+        .tab_data      (stop_data),
+        `CUBE4_REPORT_CONN,
+        .com_m         (cfg_term ? com_m : {M_W{1'b1}}),   // no termination: no wait
+        .smp_bits      (smp_bits),
+        .smp_eos       (smp_eos),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),
@@ -247,8 +284,8 @@ module cube4_top #(
         .mem_rsp_ready (fe_rsp_ready),
         .mem_rsp_data  (rsp_data),
         .mem_rsp_tag   (rsp_tag),
-        .smp_valid     (smp_valid),
-        .smp_ready     (smp_ready),
+        .smp_valid     (fe_smp_valid),
+        .smp_ready     (fe_smp_ready),
         .smp_hdr       (smp_hdr),
         .smp_sample    (smp_sample)
     );
@@ -299,6 +336,36 @@ module cube4_top #(
     cube4_stream_hold u_hold_rsp (
         .hold (dbg_hold[3]), .in_valid (mem_rsp_valid), .in_ready (mem_rsp_ready),
         .out_valid (fe_rsp_valid), .out_ready (fe_rsp_ready));
+
+    // BEATS = 1: each sample beat's bits into a FIFO as it leaves the front end
+    // (it waits for room), out as the beat enters COM (SHA keeps the order and count)
+    wire [4*P-1:0] com_bits;
+    wire           com_in_take;
+    generate
+        if (BEATS != 0) begin : g_bits
+            wire b_ready, b_valid;
+            assign smp_valid    = fe_smp_valid && b_ready;
+            assign fe_smp_ready = smp_ready && b_ready;
+            cube4_sync_fifo #(.DATA_W (4 * P), .DEPTH (64)) u_bits (
+                .clk       (clk),
+                .rst       (rst),
+                .in_valid  (fe_smp_valid && smp_ready),
+                .in_ready  (b_ready),
+                .in_data   (smp_bits),
+                .out_valid (b_valid),
+                .out_ready (com_in_take),
+                .out_data  (com_bits)
+            );
+            wire unused_bits = ^{b_valid, smp_eos};   // (a beat at COM always finds its entry)
+        end else begin : g_no_bits
+            assign smp_valid    = fe_smp_valid;
+            assign fe_smp_ready = smp_ready;
+            assign com_bits     = '0;
+            wire unused_bits = ^{smp_bits, smp_eos, com_in_take, blk_we, blk_addr, blk_data, com_m,
+                                 com_rep_valid, com_rep_j, com_rep_pb, com_rep_stx, com_rep_sty,
+                                 com_rep_en, com_rep_end};
+        end
+    endgenerate
 
     cube4_stream_hold u_hold_smp (
         .hold (dbg_hold[2]), .in_valid (smp_valid), .in_ready (smp_ready),
@@ -412,12 +479,7 @@ module cube4_top #(
         .out_valid (com_in_valid), .out_ready (com_in_ready));
 
     // ---------------------------------------------------------------- COM
-    wire             unused_rep_valid;        // the beat schedule's reports (not in this top yet)
-    wire [DIM_W-1:0] unused_rep_j, unused_rep_stx, unused_rep_sty;
-    wire [PB_W-1:0]  unused_rep_pb;
-    wire [P-1:0]     unused_rep_en;
-    wire [P*M_W-1:0] unused_rep_end;
-    wire [M_W-1:0]   unused_com_m;
+    assign com_in_take = com_in_valid && com_in_ready;
     cube4_com #(
         `CUBE4_BUILD_PASS
     ) u_com (
@@ -439,20 +501,14 @@ module cube4_top #(
         .in_rgba   (sha_rgba),
         .in_sample (sha_sample),
         .in_fall   (sha_fall),
-        .in_bits   ('0),           // (the beat schedule: not in this top yet)
-        .frame_start (1'b0),
-        .term_en   (1'b0),
-        .term_tau  ('0),
-        .term_vmin ('0),
-        .term_vmax ('0),
-        .rep_valid (unused_rep_valid),
-        .rep_j     (unused_rep_j),
-        .rep_pb    (unused_rep_pb),
-        .rep_stx   (unused_rep_stx),
-        .rep_sty   (unused_rep_sty),
-        .rep_en    (unused_rep_en),
-        .rep_end   (unused_rep_end),
-        .com_m     (unused_com_m),
+        .in_bits   (com_bits),
+        .frame_start (start && !busy_q),
+        .term_en   (cfg_term),
+        .term_tau  (cfg_tau[ACC_W:0]),
+        .term_vmin (cfg_vmin[VOXEL_W-1:0]),
+        .term_vmax (cfg_vmax[VOXEL_W-1:0]),
+        `CUBE4_REPORT_CONN,
+        .com_m     (com_m),
         .pix_valid (pix_valid),
         .pix_ready (pix_ready),
         .pix_mask  (pix_mask),

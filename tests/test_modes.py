@@ -172,15 +172,15 @@ def test_window_counts_only_its_samples():
 def test_scene_builds_and_build_errors():
     head = load_scene("head")
     assert scene_build([head]) == {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0,
-                                   "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0}
+                                   "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0, "BEATS": 0}
     assert scene_build([load_scene("mri_mip")]) == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0,
-                                                    "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0}
+                                                    "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0, "BEATS": 0}
     assert scene_build([load_scene("ml")])["PLW"] == 1               # path-weighted
     assert scene_build([replace(load_scene("ml"), mode="mip")])["PLW"] == 0
     assert scene_build([load_scene("head_cut")])["CLIP"] == 1
     assert parse_build("full") == FULL_BUILD and parse_build("scene") is None
     assert parse_build("shading=0,compositing=0") == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 1,
-                                                      "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0}
+                                                      "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0, "BEATS": 0}
     for bad, msg in [("SHADING=2", "NAME=0/1"), ("FOO=1", "NAME=0/1"),
                      ("COMPOSITING=0,EXTREMUM=0", "no rendering mode"), ("COMPOSITING=0", "only compositing"),
                      ("SHADING=0,VGRAD=1", "VGRAD = 1 needs SHADING"),

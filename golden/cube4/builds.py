@@ -61,6 +61,9 @@ OPTIONS: tuple[Option, ...] = (
            ("cube4_tri_lane label pick", "cube4_gra label carry", "cube4_sha label LUT")),
     Option("RECTS", 0, "r", "slice rectangles (the rectangle table in CFB, GRA's walk, COM)",
            ("cube4_cfb rectangle walk", "cube4_gra position walk", "cube4_com rectangle reader")),
+    Option("BEATS", 0, "b", "beat skipping and ray termination (the block and ray tables and the walk "
+           "in CFB, COM's reports)",
+           ("cube4_cfb_skip", "cube4_cfb_bctl", "cube4_com_beats", "cube4_com_lane termination")),
 )
 
 BY_NAME = {o.name: o for o in OPTIONS}
@@ -111,6 +114,10 @@ RULES: tuple[Rule, ...] = (
     Rule({"GMOD": 1}, {"SHADING": (1,), "RECTS": (0,)}, "the gradient comes with shading; not with rectangles"),
     Rule({"LABELS": 1}, {"VGRAD": (0,), "PLW": (0,), "RECTS": (0,)},
          "labels run without voxel gradients, path weights and rectangles"),
+    Rule({"BEATS": 1}, {"SHADING": (0,), "PLW": (0,), "RECTS": (0,), "ZIN": (0,), "ZOUT": (0,), "SLAB": (0,),
+                        "LABELS": (0,), "MAX_SS_LOG2": (0,)},
+         "the beat schedule runs unshaded, with S = 1, without path weights, rectangles, depth, the slab "
+         "and labels: the rest is not built yet"),
 )
 
 

@@ -222,14 +222,15 @@ def frontend_regs(trav: Traversal, p: int, vol_dims=None, order=XYZ, base: int =
 
 def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", clip=None,
              path_weights: bool = False, depth_t: int | None = None, order=XYZ,
-             base: int = 0) -> dict[str, int]:
+             base: int = 0, beats=None) -> dict[str, int]:
     """Registers of cube4_top: the front end's plus the base-plane offsets
     SX, SY = stepx(M-1), stepy(M-1) (numerics.md section 8), the mode, the template's
     starting phase, the window and cut plane (clip.Clip; None: every sample counts), and
     FACES: the box's faces that are the volume's when the frame is path-weighted
     (numerics.md section 17), else 0.
     Signed registers (CUT_*) are given as their two's-complement bit patterns.
-    ``order``, ``base``: the image the frame reads and where (frontend_regs)."""
+    ``order``, ``base``: the image the frame reads and where (frontend_regs); ``beats``:
+    the beat schedule's (BeatSchedule, TerminationRule) (beat_regs)."""
     regs = frontend_regs(trav, p, vol_dims, order, base)
     regs["SX"], regs["SY"] = trav.max_steps
     regs["MODE"] = MODE_CODES[mode]
@@ -251,6 +252,25 @@ def top_regs(trav: Traversal, p: int, vol_dims=None, mode: str = "composite", cl
         regs[name] = int(v)
     regs["DEPTH_T"] = 0 if depth_t is None else int(depth_t)     # depth out's threshold on T (ZOUT)
     regs["FACES"] = int(trav.faces) if path_weights else 0
+    regs.update(beat_regs(trav, beats))
+    return regs
+
+
+def beat_regs(trav: Traversal, beats=None) -> dict[str, int]:
+    """The beat schedule's view registers (BEATS = 1; cube4_defs.vh): BB_I, BB_J, BB_K the
+    frame's i, j, k axes' bases in the volume (the coordinate of traversal index 0, the
+    block table's reads count from it up, or down where the axis is flipped), NBR the
+    neighbour term, TERM, TAU, VMIN, VMAX ray termination's rule. ``beats``: the frame's
+    (BeatSchedule, TerminationRule); None: all 0."""
+    regs = dict.fromkeys(("BB_I", "BB_J", "BB_K", "NBR", "TERM", "TAU", "VMIN", "VMAX"), 0)
+    if beats is None:
+        return regs
+    sched, rule = beats
+    for name, a in (("BB_I", trav.axis_i), ("BB_J", trav.axis_j), ("BB_K", trav.major)):
+        regs[name] = int(trav.origin[a] + (trav.dims[a] - 1 if trav.flip[a] else 0))
+    regs["NBR"] = int(sched.gra and sched.terminate)
+    regs["TERM"] = int(rule.enabled)
+    regs["TAU"], regs["VMIN"], regs["VMAX"] = int(rule.tau), int(rule.vmin), int(rule.vmax)
     return regs
 
 

@@ -205,7 +205,8 @@ def expected_front(bf, p: int, lag: int) -> list[tuple]:
 def expected_requests(bf, p: int, lag: int) -> list[tuple]:
     """The request beats of cube4_cfb's beat build: one per walk beat but the tokens (rows
     that walk nothing), as (k, j, pb, reads, emit, leave, emitted (m, j), eop, eos, bits,
-    care), and the drain beat. The flush row reads nothing; every request emits the sample
+    care), a push beat after each slice's last beat and the drain beat after the frame's
+    (neither reads nor emits). The flush row reads nothing; every request emits the sample
     beat of the row below (its lanes valid where it runs, ``leave``), but never a beat of
     slice -1 (row 0 of slice 0)."""
     s = bf.sched
@@ -215,6 +216,8 @@ def expected_requests(bf, p: int, lag: int) -> list[tuple]:
             continue
         row = (m, j - 1) if j > 0 else (m - 1, s.NJ - 1)
         out.append((m, j, pb, int(read and m < s.M), int(row[0] >= 0), leave, row, last, eos, bits, care))
+        if eos:
+            out.append((None, None, None, 0, 0, 0, None, 0, 0, 0, 0))     # the push beat
     out.append((None, None, None, 0, 0, 0, None, 0, 0, 0, 0))     # the drain beat
     return out
 

@@ -17,17 +17,20 @@ def assert_frame_matches_golden(vol: np.ndarray, trav: Traversal, cfg: Cube4Conf
                                 rmap: np.ndarray | None, res: dict, label: str, mode: str = "composite",
                                 clip=None, vgrad: bool = False, rects=None, depth_t: int | None = None,
                                 stop_m: np.ndarray | None = None, gm: np.ndarray | None = None,
-                                labels: bool = False) -> Frame:
+                                labels: bool = False, beats=None) -> Frame:
     """The finished rays (m, by, bx, R, G, B, A) as a set and the assembled base plane
     must equal the golden model's (vol: the whole volume, or its memory words with voxel
     gradients when ``vgrad``; trav may traverse a box in it; rmap None: an unshaded
     frame; ``rects``: its slice rectangles; ``depth_t``: depth out's threshold, whose slices
     the rays then carry; ``stop_m``: depth in's stop slices; ``gm``: gradient-magnitude
     modulation's table; ``labels``: vol holds labelled words and lut a block per label,
-    cube4.labels); returns the golden frame."""
+    cube4.labels; ``beats``: the beat schedule's (BeatSchedule before the frame, TerminationRule),
+    a copy of the schedule runs); returns the golden frame."""
+    import copy
+    sched, rule = (None, None) if beats is None else (copy.deepcopy(beats[0]), beats[1])
     gold = render_frame(crop_volume(vol, trav), trav, cfg, lut, rmap, mode=mode, shading=rmap is not None,
                         clip=clip, vgrad=vgrad, rects=rects, depth_t=depth_t, stop_m=stop_m, gm=gm,
-                        labels=labels)
+                        labels=labels, beats=sched, done=rule)
     want = np.sort(gold.pixels, order=["m", "by", "bx"])
     got = np.sort(res["pixels"], order=["m", "by", "bx"])
     assert got.size == want.size, f"{label}: {got.size} finished rays, golden {want.size}"

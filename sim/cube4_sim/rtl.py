@@ -57,6 +57,9 @@ class FrameJob:
     depth_t: int | None = None  # depth out's threshold on T (a ZOUT build; None: not tracked)
     stop_m: np.ndarray | None = None  # depth in: (rows, cols) stop slices of the base plane (a ZIN build)
     gm: np.ndarray | None = None  # gradient-magnitude modulation's table (cube4.gmod; a GMOD build)
+    # the beat schedule (a BEATS build): (cube4.beats.BeatSchedule before the frame, its
+    # TerminationRule, the volume's block-table bits (bz, by, bx))
+    beats: tuple | None = None
     extra: dict = field(default_factory=dict)
 
 
@@ -77,6 +80,10 @@ def check_frame_fits(fr: FrameJob, params: dict) -> None:
         raise UserError("a frame with depth out needs a build with ZOUT = 1")
     if fr.gm is not None and not params["GMOD"]:
         raise UserError("a frame with gradient-magnitude modulation needs a build with GMOD = 1")
+    if params.get("BEATS") and fr.beats is None:
+        raise UserError("a build with BEATS = 1 runs frames of the beat schedule (their block and ray tables)")
+    if fr.beats is not None and not params.get("BEATS"):
+        raise UserError("a frame of the beat schedule needs a build with BEATS = 1")
     if fr.stop_m is not None and not params["ZIN"]:
         raise UserError("a frame with depth in needs a build with ZIN = 1")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
@@ -240,6 +247,11 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             ideal = ((frame_cycles(M, nj, ni, cfg.pipelines, shading, vgrad, has_falloff(params), has_gmod(params)) + 100)
                      * slow_slice_factor(nj, ni, cfg.pipelines))
             rect_p, stop_p, gm_p = workdir / f"rects{n}.hex", workdir / f"stop{n}.hex", workdir / f"gm{n}.hex"
+            blk_p = workdir / f"blk{n}.hex"
+            if params["BEATS"]:     # the ray table's stops and the block table for the view
+                m_w = Geometry(cfg.pipelines, max_dim, params["MAX_SS_LOG2"]).m_w
+                write_hex(stop_p, stop_table(fr.beats[0].stop, cfg.pipelines, max_dim, m_w), cfg.pipelines * m_w)
+                write_hex(blk_p, beat_block_words(fr, max_dim), -(-max_dim // 4))
             if params["GMOD"]:      # every frame loads its table (no modulation: the identity)
                 gm = fr.gm if fr.gm is not None else identity_table(cfg.voxel_bits)
                 write_hex(gm_p, [(int(a) << GMF_BITS) | int(s) for a, s in gm], 2 * GMF_BITS)
@@ -254,9 +266,11 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             slow = 1.0 / max(1e-3, 1.0 - max(fr.stall, fr.stall_out) / 256.0) ** 5
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines, mode=fr.mode, clip=fr.clip, path_weights=weighted,
-                                 depth_t=fr.depth_t, **frame_image(fr.trav, (nx, ny, nz), images)),
+                                 depth_t=fr.depth_t, **frame_image(fr.trav, (nx, ny, nz), images),
+                                 beats=fr.beats[:2] if fr.beats is not None else None),
                 "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
-                "stop": str(stop_p) if params["ZIN"] else None,
+                "stop": str(stop_p) if params["ZIN"] or params["BEATS"] else None,
+                "blk": str(blk_p) if params["BEATS"] else None,
                 "gm": str(gm_p) if params["GMOD"] else None,
                 "tables_reload": True, "stall": fr.stall, "stall_out": fr.stall_out,
                 "reset_after_cycles": fr.reset_after_cycles,
@@ -267,7 +281,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
         job = {"words": load_words, "frames": job_frames, "dump": str(workdir / "pixels.bin"),
                "lut": str(workdir / "lut.hex"), "rmap": str(workdir / "rmap.hex"),
                "rect": str(workdir / "rects.hex"), "stop": str(workdir / "stop.hex"),
-               "gm": str(workdir / "gm.hex"),
+               "gm": str(workdir / "gm.hex"), "blk": str(workdir / "blk.hex"),
                "result": str(workdir / "result.json")}
         job_path = workdir / "job.json"
         job_path.write_text(json.dumps(job, indent=1))
@@ -287,6 +301,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             plusargs=[f"+CUBE4_MEMFILE={workdir / 'mem.hex'}", f"+CUBE4_LUTFILE={job['lut']}",
                       f"+CUBE4_RMAPFILE={job['rmap']}", f"+CUBE4_RECTFILE={job['rect']}",
                       f"+CUBE4_STOPFILE={job['stop']}", f"+CUBE4_GMFILE={job['gm']}",
+                      f"+CUBE4_BLKFILE={job['blk']}",
                       f"+CUBE4_DUMP={job['dump']}"],
             quiet_logs=quiet,
             private_results=True,   # bricks on several workers may run this build at once
@@ -384,3 +399,15 @@ def baseplane_from_pixels(pixels: np.ndarray, shape: tuple[int, int]) -> np.ndar
     base[pixels["by"], pixels["bx"], 2] = pixels["b"]
     base[pixels["by"], pixels["bx"], 3] = pixels["a"]
     return base
+
+
+def beat_block_words(fr: FrameJob, max_dim: int) -> list[int]:
+    """The block table a BEATS build reads for the frame's view (beat_frames.block_words),
+    every word of the table's address space (missing ones zero)."""
+    from types import SimpleNamespace
+
+    from .beat_frames import block_words, clog2
+    nbk = -(-max_dim // 4)
+    words = block_words(SimpleNamespace(trav=fr.trav, bits=fr.beats[2]), nbk)
+    n = 1 << (2 * max(1, clog2(nbk)))
+    return [words.get(a, 0) for a in range(n)]

@@ -127,6 +127,9 @@ async def run_job(dut):
             if fr.get("stop"):
                 Path(job["stop"]).write_text(Path(fr["stop"]).read_text())
                 words = max(words, len(Path(fr["stop"]).read_text().split()))
+            if fr.get("blk"):
+                Path(job["blk"]).write_text(Path(fr["blk"]).read_text())
+                words = max(words, len(Path(fr["blk"]).read_text().split()))
             await drv.load_tables(words)
         if fr.get("reset_after_cycles"):
             # start a frame, reset it part way, then render cleanly
@@ -136,6 +139,10 @@ async def run_job(dut):
             dut.start.value = 0
             await drv.cycles(int(fr["reset_after_cycles"]))
             await drv.reset()
+            if fr.get("blk"):
+                # the beat schedule's ray table holds the stopped frame's started bits and
+                # reports: every frame starts from the host's tables
+                await drv.load_tables(words)
         beats = int(fr.get("budget", 10**9))
         dram0 = dram_counts(dut)
         cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats,

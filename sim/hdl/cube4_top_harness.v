@@ -28,7 +28,10 @@
 //   last beat and after any beat outside a frame, so stray beats are seen.
 //
 //   The stop table (ZIN = 1; golden/cube4/memory.py stop_table: one word of
-//   all P banks per line) is loaded with the tables, one line a clock.
+//   all P banks per line) is loaded with the tables, one line a clock; with
+//   BEATS = 1 the same file holds the ray table's stops, and the block table
+//   (sim/cube4_sim/beat_frames.py block_words: one word per line, address
+//   {kb, jb}) comes from CUBE4_BLKFILE alike.
 //
 //   DRAM = 1: the voxel memory is the generated DRAM core (cube4_litedram, from
 //   cube4_sim.dram_core: LiteDRAM's controller and memory model) behind the
@@ -67,6 +70,7 @@ module cube4_top_harness #(
     parameter integer ZIN         = 0,    // 1: depth in (the stop table from CUBE4_STOPFILE)
     parameter integer GMOD        = 0,    // 1: gradient-magnitude modulation (its table from CUBE4_GMFILE)
     parameter integer LABELS      = 0,    // 1: label volumes (labelled words; a LUT block per label)
+    parameter integer BEATS       = 0,    // 1: the beat schedule (the block table from CUBE4_BLKFILE, the stops from CUBE4_STOPFILE)
     parameter integer DRAM        = 0,    // 1: the voxel memory in the generated DRAM (cube4_litedram)
     parameter integer DRAM_AW     = 21,   // its port's address width
     parameter integer CLK_HALF_PS = 5000, // the pipelines' clock: half period in ps (default 100 MHz)
@@ -77,6 +81,8 @@ module cube4_top_harness #(
     `CUBE4_RECT_LAYOUT,
     `CUBE4_STOP_LAYOUT,
     `CUBE4_GM_LAYOUT,
+    localparam integer BLOCK_LOG2 = 2,
+    `CUBE4_BLOCK_LAYOUT,
     localparam integer RI_W = 2 * RMAP_BITS + 3
 ) (
     `CUBE4_VIEW_PORTS
@@ -138,6 +144,10 @@ module cube4_top_harness #(
     reg                  cfg_fall_on_q;
     reg [24:0]           cfg_depth_t_q;
     reg [5:0]            cfg_faces_q;
+    reg [DIM_W-1:0]      cfg_bb_i_q, cfg_bb_j_q, cfg_bb_k_q;
+    reg                  cfg_nbr_q, cfg_term_q;
+    reg [24:0]           cfg_tau_q;
+    reg [15:0]           cfg_vmin_q, cfg_vmax_q;
     always @(posedge clk) begin
         rst_q         <= rst;
         load_mem_q    <= load_mem;
@@ -198,6 +208,14 @@ module cube4_top_harness #(
         cfg_fall_on_q   <= cfg_fall_on;
         cfg_depth_t_q   <= cfg_depth_t;
         cfg_faces_q     <= cfg_faces;
+        cfg_bb_i_q      <= cfg_bb_i;
+        cfg_bb_j_q      <= cfg_bb_j;
+        cfg_bb_k_q      <= cfg_bb_k;
+        cfg_nbr_q       <= cfg_nbr;
+        cfg_term_q      <= cfg_term;
+        cfg_tau_q       <= cfg_tau;
+        cfg_vmin_q      <= cfg_vmin;
+        cfg_vmax_q      <= cfg_vmax;
     end
 
     localparam integer PW     = P * WORD_W;
@@ -211,11 +229,13 @@ module cube4_top_harness #(
     reg [LUT_W-1:0]   luti [0:LUT_N-1];
     reg [19:0]        rmi  [0:RMAP_N-1];
     reg [RECT_W-1:0]  rti  [0:MAX_DIM-1];   // the rectangle table (RECTS = 1)
-    localparam integer STOP_IW = (ZIN != 0) ? STOP_AW : 1;
+    localparam integer STOP_IW = (ZIN != 0 || BEATS != 0) ? STOP_AW : 1;
+    localparam integer BK_N    = (BEATS != 0) ? (1 << (2 * BK_W)) : 2;
+    reg [NBK-1:0]     bki  [0:BK_N-1];      // the block table (BEATS = 1)
     localparam integer STOP_N  = 1 << STOP_IW;
-    reg [P*M_W-1:0]   sti  [0:STOP_N-1];    // the stop table (ZIN = 1)
+    reg [P*M_W-1:0]   sti  [0:STOP_N-1];    // the stop table (ZIN = 1; the ray table's stops with BEATS)
     reg [2*GMF_W-1:0] gmi  [0:GM_N-1];      // the modulation table (GMOD = 1)
-    string memfile, lutfile, rmapfile, rectfile, stopfile, gmfile, dumpfile;
+    string memfile, lutfile, rmapfile, rectfile, stopfile, gmfile, blkfile, dumpfile;
     integer dump_fd, b;
     initial begin
         if (!$value$plusargs("CUBE4_MEMFILE=%s", memfile))   memfile  = "cube4_mem.hex";
@@ -224,6 +244,7 @@ module cube4_top_harness #(
         if (!$value$plusargs("CUBE4_RECTFILE=%s", rectfile)) rectfile = "cube4_rects.hex";
         if (!$value$plusargs("CUBE4_STOPFILE=%s", stopfile)) stopfile = "cube4_stop.hex";
         if (!$value$plusargs("CUBE4_GMFILE=%s", gmfile))     gmfile   = "cube4_gm.hex";
+        if (!$value$plusargs("CUBE4_BLKFILE=%s", blkfile))   blkfile  = "cube4_blk.hex";
         if (!$value$plusargs("CUBE4_DUMP=%s", dumpfile))     dumpfile = "cube4_pixels.bin";
         dump_fd = $fopen(dumpfile, "wb");
     end
@@ -245,7 +266,8 @@ module cube4_top_harness #(
             $readmemh(lutfile, luti);
             $readmemh(rmapfile, rmi);
             if (RECTS != 0) $readmemh(rectfile, rti);
-            if (ZIN != 0) $readmemh(stopfile, sti);
+            if (ZIN != 0 || BEATS != 0) $readmemh(stopfile, sti);
+            if (BEATS != 0) $readmemh(blkfile, bki);
             if (GMOD != 0) $readmemh(gmfile, gmi);
             tab_busy_q <= 1'b1;
             done_q     <= 1'b0;
@@ -260,7 +282,8 @@ module cube4_top_harness #(
             if (ld_ready) la_q <= la_q + 32'd1;
         end else if (tab_busy_q) begin
             if (la_q + 32'd1 >= RMAP_N && la_q + 32'd1 >= LUT_N
-                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && (ZIN == 0 || la_q + 32'd1 >= STOP_N) && (GMOD == 0 || la_q + 32'd1 >= GM_N)) begin
+                && (RECTS == 0 || la_q + 32'd1 >= MAX_DIM) && ((ZIN == 0 && BEATS == 0) || la_q + 32'd1 >= STOP_N) && (GMOD == 0 || la_q + 32'd1 >= GM_N)
+                && (BEATS == 0 || la_q + 32'd1 >= BK_N)) begin
                 tab_busy_q <= 1'b0;
                 done_q     <= 1'b1;
             end
@@ -274,7 +297,8 @@ module cube4_top_harness #(
     wire lut_we  = tab_busy_q && (la_q < LUT_N);
     wire rmap_we = tab_busy_q && (la_q < RMAP_N);
     wire rect_we = (RECTS != 0) && tab_busy_q && (la_q < MAX_DIM);
-    wire stop_we = (ZIN != 0) && tab_busy_q && (la_q < STOP_N);
+    wire stop_we = (ZIN != 0 || BEATS != 0) && tab_busy_q && (la_q < STOP_N);
+    wire blk_we  = (BEATS != 0) && tab_busy_q && (la_q < BK_N);
     wire gm_we   = (GMOD != 0) && tab_busy_q && (la_q < GM_N);   // STOP_N: 2 without ZIN (unused)
 
     // ------------------------------------------------------------ random holds
@@ -409,6 +433,7 @@ module cube4_top_harness #(
         .ZIN         (ZIN),
         .GMOD        (GMOD),
         .LABELS      (LABELS),
+        .BEATS       (BEATS),
         .DRAM        (DRAM),
         .DRAM_AW     (DRAM_AW)
     ) u_top (
@@ -432,6 +457,9 @@ module cube4_top_harness #(
         .gm_we       (gm_we),
         .gm_addr     (la_q[GMA_W-1:0]),
         .gm_data     (gmi[la_q[GMA_W-1:0]]),
+        .blk_we      (blk_we),
+        .blk_addr    (la_q[2*BK_W-1:0]),
+        .blk_data    (bki[la_q[$clog2(BK_N)-1:0]]),
         .stop_we     (stop_we),
         .stop_addr   (la_q[STOP_AW-1:0]),
         .stop_data   (sti[la_q[STOP_IW-1:0]]),
@@ -485,6 +513,14 @@ module cube4_top_harness #(
         .cfg_fall_on  (cfg_fall_on_q),
         .cfg_depth_t  (cfg_depth_t_q),
         .cfg_faces    (cfg_faces_q),
+        .cfg_bb_i     (cfg_bb_i_q),
+        .cfg_bb_j     (cfg_bb_j_q),
+        .cfg_bb_k     (cfg_bb_k_q),
+        .cfg_nbr      (cfg_nbr_q),
+        .cfg_term     (cfg_term_q),
+        .cfg_tau      (cfg_tau_q),
+        .cfg_vmin     (cfg_vmin_q),
+        .cfg_vmax     (cfg_vmax_q),
         .start       (start_q),
         .busy        (busy),
         .done        (done),

@@ -28,7 +28,6 @@
 // =============================================================================
 module cube4_com_harness #(
     `CUBE4_BUILD_PARAMS,
-    parameter integer BEATS = 0,
     `CUBE4_RECT_LAYOUT,
     `CUBE4_STOP_LAYOUT,
     // port widths by name (the runner's port scan takes no parentheses)
@@ -85,8 +84,7 @@ module cube4_com_harness #(
     wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
 
     cube4_com #(
-        `CUBE4_BUILD_PASS,
-        .BEATS     (BEATS)
+        `CUBE4_BUILD_PASS
     ) u_com (
         .clk       (clk),
         .rst       (rst),

@@ -26,7 +26,6 @@ module cube4_frontend_harness #(
     `CUBE4_BUILD_PARAMS,
     parameter integer DEPTH       = 4096,
     parameter integer OPT_GRA     = 0,    // 1: cube4_gra after the front end, gradients dumped too
-    parameter integer BEATS       = 0,    // 1: the beat schedule (cube4_frontend)
     `CUBE4_ADDR_LAYOUT,
     `CUBE4_TAG_LAYOUT,
     `CUBE4_RECT_LAYOUT,
@@ -179,8 +178,7 @@ module cube4_frontend_harness #(
     wire [4*P-1:0]    smp_bits;
     wire              smp_eos;
     cube4_frontend #(
-        `CUBE4_BUILD_PASS,
-        .BEATS           (BEATS)
+        `CUBE4_BUILD_PASS
     ) u_fe (
         .clk             (clk),
         .rst             (rst_q),

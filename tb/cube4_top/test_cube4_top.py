@@ -995,3 +995,52 @@ def test_dram_frames(p):
         nf, others = (nx, ny * nz) if job.trav.axis_i == 0 else (ny, nx * nz)
         image_bursts = -(-(-(-nf // p)) // per) * others     # rows padded to whole bursts
         assert res["dram_reads"] <= 1.25 * image_bursts, (label, res["dram_reads"], image_bursts)
+
+
+# ---------------------------------------------------------------- beat skipping
+@pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
+def test_beat_frames(p):
+    """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
+    (a faint background, a dense blob; a LUT that is zero below the blob's values), views
+    of every class and every mode, with ray termination in every other frame (its LUT
+    opaque where it counts); the host writes each frame's block table and its rays' stops.
+    Each frame's rays are the golden beat-schedule frame's bit for bit, and its base plane
+    the fixed schedule's, with random stalls on every stream and a reset in mid-frame."""
+    import copy
+
+    import cube4.beats as beats
+    from cube4.model import render_frame
+
+    rng = np.random.default_rng(800 + p)
+    cfg = Cube4Config(pipelines=p)
+    nx, ny, nz = 24, 20, 16
+    vol = rng.integers(0, 64, size=(nz, ny, nx))
+    vol[5:11, 6:14, 8:17] = rng.integers(64, 256, size=(6, 8, 9))
+    modes = ["composite", "xray", "mip", "minip"]
+    jobs, gold = [], []
+    for n, direction in enumerate(VIEWS[:8]):
+        mode, terminate = modes[n % 4], n % 2 == 1
+        trav = make_traversal((nx, ny, nz), direction, cfg.weight_bits, 1, phase=(n * 37 % 256, n * 91 % 256))
+        lut, _ = random_tables(rng, cfg)
+        lut[:64] = 0
+        if terminate:
+            lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
+        bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, mode)
+        sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
+                                   gra=False)
+        rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
+                                     enabled=terminate, value_bits=cfg.voxel_bits)
+        job = FrameJob(trav, lut, None, mode=mode, beats=(copy.deepcopy(sched), rule, bits),
+                       stall=(0, 40, 0, 90)[n % 4], stall_out=(0, 0, 60, 30)[n % 4],
+                       reset_after_cycles=500 if n == 2 else 0)
+        jobs.append(job)
+        gold.append((sched, rule))
+    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": 0})
+    for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
+        label = f"beats P={p} view {n} {job.mode}{' terminated' if rule.enabled else ''}"
+        frame = check(vol, job.trav, cfg, job.lut, None, res, label, mode=job.mode, beats=(sched, rule))
+        fixed = render_frame(vol, job.trav, cfg, job.lut, None, mode=job.mode, shading=False)
+        if not rule.enabled:
+            assert (frame.baseplane == fixed.baseplane).all(), f"{label}: differs from the fixed schedule"
+        box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)
+        print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}")
