@@ -109,6 +109,7 @@ def scene_build(scenes) -> dict:
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
         b["RECTS"] |= int(sc.skip == "rects")
+        b["BEATS"] |= int(sc.skip == "beats")
     _one_gradient_source(scenes)
     return b
 

@@ -20,8 +20,8 @@ from cube4.config import Cube4Config, resolve_build
 from cube4.cycles import has_falloff, rect_frame_cycles
 from cube4.errors import UserError
 from cube4.geometry import composite_over, stop_slices
-from cube4.host import (assemble_view, build_memory, depth_threshold, pass_rects, plan_view, scene_geometry,
-                        schedule_stats, setup_view, trav_stats, view_stats)
+from cube4.host import (assemble_view, beat_schedules, build_memory, depth_threshold, pass_rects, plan_view,
+                        scene_geometry, schedule_stats, setup_view, tau_fixed, trav_stats, view_stats)
 from cube4.scene import Scene
 
 from .dram_core import DATA_W, DramRun, core_info
@@ -38,10 +38,10 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
-    if any(sc.skip == "beats" for sc in scenes):
-        raise UserError("beat skipping and ray termination (--beats) run in the golden model only; "
-                        "use --engine golden, or the box (default) or --rects on the RTL")
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
+    if build.get("BEATS") and any(sc.skip != "beats" for sc in scenes):
+        raise UserError("a build with BEATS = 1 runs the beat schedule only: render the other scenes "
+                        "separately, or give them --beats")
     scenes = [resolve_geometry(sc, setup_view(dims, sc, cfg)[1]) for sc in scenes]   # depth in: its image
     vps = [plan_view(vol, sc, cfg) for sc in scenes]
     use_rects = bool(build["RECTS"])   # one build: a RECTS build runs every view with rectangles
@@ -49,13 +49,17 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     geos = [scene_geometry(vp.scene, vp.cam) for vp in vps]
     for nv, vp in enumerate(vps):
         rects = pass_rects(vol, vp) if vp.scene.skip == "rects" else [None] * len(vp.plans)
+        # the beat schedule: each pass's block table bits and stops, and termination's rule
+        beat_frames = (beat_schedules(vol, vp, cfg, {"tau": tau_fixed(vp.scene.tau, cfg)})
+                       if vp.scene.skip == "beats" else [None] * len(vp.plans))
         geo = geos[nv]
         for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
                 stop = None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z))
+                bf = beat_frames[n]
                 jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip,
                                      rects=rects[n], depth_t=depth_threshold(vp.scene, cfg), stop_m=stop,
-                                     gm=vp.gm))
+                                     gm=vp.gm, beats=None if bf is None else (bf[0], bf[1], bf[0].block_bits)))
                 owners.append((nv, n))
     try:
         mem = build_memory(vol, scenes, cfg, build)    # the volume, or its words with voxel gradients
