@@ -221,7 +221,8 @@ async def test_beats(dut):
     lane by lane against the memory layout (``cube4.memory``, as test_addresses), the
     sample beat it emits (EMIT where the leaving beat runs, and at each slice's last beat
     and the frame's, with EOP; its slice and row: the row below, or the previous slice's
-    last), its position bits and EOS; then one drain beat, and nothing else."""
+    last), its position bits and EOS; a push beat after each slice's last beat, one drain
+    beat after the frame's, and nothing else."""
     if not int(dut.BEATS.value):
         return
     p, aw, max_dim = int(dut.P.value), int(dut.ADDR_W.value), int(dut.MAX_DIM.value)
