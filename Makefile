@@ -68,11 +68,12 @@ LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
 FE_SETS                     := P=1 P=2,MAX_DIM=2 P=5,MAX_SS_LOG2=2 P=3,MAX_DIM=3,MAX_SS_LOG2=1 \
                                P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3 P=64,MAX_DIM=64
 LINT_SETS_cube4_cfb         := $(FE_SETS) RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 \
-                               BEATS=1 P=1,BEATS=1,RATE=1 P=5,BEATS=1,MAX_DIM=64 P=2,MAX_DIM=2,BEATS=1 \
-                               P=8,MAX_DIM=128,BEATS=1 P=16,MAX_DIM=2048,ADDR_W=24,MAX_SS_LOG2=3,BEATS=1
+                               P=5,BEATS=1,RATE=1 P=2,MAX_DIM=2,BEATS=1
 CFB_UNIT_SETS               := P=1,WEIGHT_W=4 P=2,MAX_DIM=2,ADDR_W=1 P=5,MAX_SS_LOG2=2 P=64,MAX_DIM=64 \
                                P=16,MAX_DIM=2048,ADDR_W=30,MAX_SS_LOG2=3,WEIGHT_W=12
-$(foreach u,tmpl trav ctl rect box addr mask bctl steps,$(eval LINT_SETS_cube4_cfb_$(u) := $(CFB_UNIT_SETS)))
+$(foreach u,tmpl trav ctl rect box addr mask,$(eval LINT_SETS_cube4_cfb_$(u) := $(CFB_UNIT_SETS)))
+LINT_SETS_cube4_cfb_bctl    := P=2,MAX_DIM=2,ADDR_W=1 P=16,MAX_DIM=2048,ADDR_W=30,MAX_SS_LOG2=3,WEIGHT_W=12
+LINT_SETS_cube4_cfb_steps   := P=1,WEIGHT_W=4 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,WEIGHT_W=12
 LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0 SLAB=1 \
                                VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
                                LABELS=1 P=1,LABELS=1,MAX_SS_LOG2=1 P=5,VOXEL_W=16,LABELS=1
@@ -87,7 +88,7 @@ LINT_SETS_cube4_clip        := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) WEIGHT_W=1
 LINT_SETS_cube4_plane       := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) FAR=1 P=1,FAR=1 WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3,FAR=1
 LINT_SETS_cube4_sha_slab    := P=1 P=5,MAX_SS_LOG2=2 P=16,WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,MAX_DIM=64 WEIGHT_W=4
 LINT_SETS_cube4_frontend    := $(FE_SETS) VOXEL_W=12,WEIGHT_W=4 P=5,VGRAD=1 P=8,RECTS=1 P=1,RECTS=1,VOXEL_W=12 \
-                               BEATS=1 P=1,BEATS=1,MAX_DIM=32 P=5,BEATS=1,VOXEL_W=12,MAX_DIM=64
+                               P=5,BEATS=1,VOXEL_W=12,MAX_DIM=64
 LINT_SETS_cube4_voxel_mem   := P=1,DEPTH=2,ADDR_W=1 P=16,WORD_W=12,DEPTH=1000,ADDR_W=10 P=64,TAG_W=1 P=2,WORD_W=73
 LINT_SETS_cube4_sync_fifo   := DEPTH=2 DATA_W=1,DEPTH=1024 DATA_W=128,DEPTH=32
 LINT_SETS_cube4_dram_fetch  := P=1 P=1,WORD_W=128,ADDR_W=1 P=5,WORD_W=12,ADDR_W=12 P=16,ADDR_W=20,RD_DEPTH=16,DESC_DEPTH=2 P=4,WORD_W=16,TAG_W=1,RD_DEPTH=4,DESC_DEPTH=4 P=2,WORD_W=12,DRAM_AW=32
@@ -128,8 +129,7 @@ LINT_SETS_cube4_com         := P=1,PLW=0 P=5,MAX_SS_LOG2=2,PLW=0 P=16,ALPHA_W=16
                                P=2,RECTS=1,MAX_DIM=2,COMPOSITING=0,PLW=0 SLAB=1 P=1,SLAB=1,PLW=0 SLAB=1,COMPOSITING=0,PLW=0 \
                                ZOUT=1 P=1,ZOUT=1,EXTREMUM=0,PLW=0 ZOUT=1,COMPOSITING=0,PLW=0 P=5,ZOUT=1,ACC_W=24,ALPHA_W=16,MAX_SS_LOG2=3 \
                                ZIN=1 P=1,ZIN=1,EXTREMUM=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 P=3,MAX_DIM=3,ZIN=1,PLW=0 \
-                               BEATS=1,PLW=0 P=1,BEATS=1,PLW=0 P=5,BEATS=1,EXTREMUM=0,MAX_DIM=64,PLW=0 \
-                               P=3,BEATS=1,COMPOSITING=0,ACC_W=8,ALPHA_W=16,PLW=0 P=16,BEATS=1,MAX_DIM=2048,PLW=0
+                               P=5,BEATS=1,EXTREMUM=0,MAX_DIM=64,PLW=0 P=3,BEATS=1,COMPOSITING=0,ACC_W=8,ALPHA_W=16,PLW=0
 LINT_SETS_cube4_com_stop    := P=1 P=5,MAX_SS_LOG2=2 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=2,MAX_DIM=2 P=64,MAX_DIM=64 P=3,MAX_DIM=3 \
                                P=8,MAX_DIM=128
 LINT_SETS_cube4_ram_fifo    := DEPTH=4,DATA_W=1 DEPTH=8192,DATA_W=32 DEPTH=1048576,DATA_W=4096
@@ -148,8 +148,8 @@ LINT_SETS_cube4_com_walk    := P=1,SP_W=16 P=5,MAX_SS_LOG2=2,SP_W=14 P=16,MAX_DI
                                P=2,MAX_DIM=2,SP_W=1 WEIGHT_W=4 WEIGHT_W=12,MAX_SS_LOG2=3 P=64,MAX_DIM=64,SP_W=6
 LINT_SETS_cube4_com_rect    := P=1,SP_W=16 P=5,MAX_DIM=64,SP_W=10 P=16,MAX_DIM=2048,SP_W=18 P=2,MAX_DIM=2,SP_W=2 \
                                P=64,MAX_DIM=64,SP_W=7
-LINT_SETS_cube4_com_beats   := P=1,SP_W=16 P=5,MAX_DIM=64,SP_W=10 P=16,MAX_DIM=2048,SP_W=18 P=2,MAX_DIM=2,SP_W=2 \
-                               P=64,MAX_DIM=64,SP_W=7 WEIGHT_W=12
+LINT_SETS_cube4_com_slot    := P=16,MAX_DIM=2048,SP_W=18 P=2,MAX_DIM=2,SP_W=2
+LINT_SETS_cube4_com_beats   := P=16,MAX_DIM=2048,SP_W=18 P=2,MAX_DIM=2,SP_W=2,WEIGHT_W=12
 LINT_SETS_cube4_com_plw     := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ALPHA_W=16,MAX_DIM=2048,MAX_SS_LOG2=3 VOXEL_W=1 \
                                P=64,MAX_DIM=64 WEIGHT_W=4 WEIGHT_W=12,MAX_SS_LOG2=3
 LINT_SETS_cube4_com_bpb     := P=1,SP_W=16,SB_DEPTH=65536 P=5,AC_W=41,SP_W=14,SB_DEPTH=13312 RECTS=1 P=1,RECTS=1 \
@@ -159,25 +159,24 @@ LINT_SETS_cube4_com_ext     := ALPHA_W=16,ACC_W=8 VOXEL_W=1 VOXEL_W=16,ALPHA_W=8
 LINT_SETS_cube4_com_lane    := COMPOSITING=0,AC_W=44 EXTREMUM=0 SAMPLE=0,EXTREMUM=0 ACC_W=8,ALPHA_W=16,AC_W=48 \
                                ACC_W=24,ALPHA_W=16,VOXEL_W=16,AC_W=100,COPIES=1 COPIES=64 FALL=1 ALPHA_W=16,ACC_W=24,FALL=1,AC_W=100 \
                                ZOUT=1,AC_W=98 ZOUT=1,COMPOSITING=0,AC_W=74 ZOUT=1,EXTREMUM=0,AC_W=88,ZM_W=9 \
-                               LIVE=1 LIVE=1,COMPOSITING=0,AC_W=44 LIVE=1,EXTREMUM=0
+                               LIVE=1,TERM=1,AC_W=70 LIVE=1,TERM=1,COMPOSITING=0,AC_W=46
 LINT_SETS_cube4_prim_spread := W=5,D=68 W=1,D=3 D=4096,COPIES=512 W=64,D=1,COPIES=1 RESET=1
 LINT_SETS_cube4_prim_reg_en := W=68 W=3 W=4096,COPIES=512 RESET=0 COPIES=1
 LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
-LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 \
-                               SHADING=0,EXTREMUM=0,CLIP=0 SHADING=0,COMPOSITING=0,CLIP=0,PLW=0 P=1,SHADING=0,COMPOSITING=0,PLW=0 \
+# cube4_top: widths per build option (every option combination is elaborated with -Wall by
+# tests/test_build_definition.py: the named builds in make test, all of them in make regress)
+LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
+                               P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 P=1,SHADING=0,COMPOSITING=0,PLW=0 \
                                P=5,SHADING=1,EXTREMUM=0,CLIP=1 P=8,VGRAD=1,MAX_SS_LOG2=2 P=1,VGRAD=1,EXTREMUM=0,CLIP=0 \
-                               PLW=0 P=1,PLW=0,EXTREMUM=0 SHADING=0,COMPOSITING=0,CLIP=0,PLW=0 \
-                               RECTS=1,PLW=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 P=8,RECTS=1,PLW=0,VGRAD=1 \
-                               SLAB=1 P=1,SLAB=1,SHADING=0 P=5,SLAB=1,MAX_SS_LOG2=2 SLAB=1,COMPOSITING=0,SHADING=0,PLW=0 \
-                               ZOUT=1 P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2 \
-                               ZIN=1 P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 \
-                               GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 \
-                               LABELS=1,PLW=0 P=1,LABELS=1,PLW=0,SHADING=0,EXTREMUM=0,CLIP=0 \
+                               P=1,PLW=0,EXTREMUM=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 \
+                               P=8,RECTS=1,PLW=0,VGRAD=1 P=1,SLAB=1,SHADING=0 P=5,SLAB=1,MAX_SS_LOG2=2 \
+                               P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2 \
+                               P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 P=1,GMOD=1,RMAP_BITS=2 \
+                               P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 P=1,LABELS=1,PLW=0,SHADING=0,EXTREMUM=0,CLIP=0 \
                                P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 P=16,LABELS=1,PLW=0,VOXEL_W=12 \
-                               DRAM=1 P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=16,DRAM=1,MAX_SS_LOG2=2 \
-                               BEATS=1,SHADING=0,PLW=0 P=1,BEATS=1,SHADING=0,PLW=0,COMPOSITING=0 \
-                               P=5,BEATS=1,SHADING=0,PLW=0,EXTREMUM=0,CLIP=0,VOXEL_W=12 P=16,BEATS=1,SHADING=0,PLW=0,MAX_DIM=2048,DEPTH=2,ADDR_W=1 \
-                               P=8,BEATS=1,SHADING=0,PLW=0,DRAM=1
+                               P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 \
+                               P=16,DRAM=1,MAX_SS_LOG2=2 P=1,BEATS=1,SHADING=0,PLW=0,COMPOSITING=0 \
+                               P=5,BEATS=1,SHADING=0,PLW=0,EXTREMUM=0,CLIP=0,DRAM=1
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 

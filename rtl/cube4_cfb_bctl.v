@@ -94,27 +94,9 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_ADDR_FIELDS(cfg_addr);
     `CUBE4_LANE_FUNCTIONS
-    localparam [LANE_W:0] PL = P[LANE_W:0];
     localparam integer MA_W = PB_W + 1, MB_W = ADDR_W + 1;   // unsigned operands, a zero bit on top
 
-    // step a coordinate by +/-1: (c mod P, address term), as cube4_cfb_trav
-    function automatic [LANE_W-1:0] r_step(input [LANE_W-1:0] rr, input down);
-        begin
-            if (down) r_step = (rr == '0) ? PL[LANE_W-1:0] - 1'b1 : rr - 1'b1;
-            else      r_step = ({1'b0, rr} == PL - 1'b1) ? '0 : rr + 1'b1;
-        end
-    endfunction
-    function automatic [ADDR_W-1:0] a_step(input [ADDR_W-1:0] a, input [LANE_W-1:0] rr,
-                                           input down, input [ADDR_W-1:0] lin,
-                                           input [ADDR_W-1:0] blk);
-        begin
-            if (down) a_step = a - ((rr == '0) ? blk : lin);
-            else      a_step = a + (({1'b0, rr} == PL - 1'b1) ? blk : lin);
-        end
-    endfunction
-    function automatic [LANE_W-1:0] add_p(input [LANE_W-1:0] a, input [LANE_W-1:0] b);
-        add_p = mod_p($signed({3'b000, a}) + $signed({3'b000, b}));
-    endfunction
+    `CUBE4_STEP_FUNCTIONS
 
     // ==== the state: idle, the walk's beats, the drain beat ====
     localparam [1:0] ST_IDLE = 2'd0, ST_RUN = 2'd1, ST_DRAIN = 2'd2, ST_PUSH = 2'd3;

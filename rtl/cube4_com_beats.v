@@ -18,8 +18,9 @@
 //   the header). The steps of the beat's slice m: a phase accumulator per
 //   axis that adds VIEW each time the beats' slice moves on (slices arrive
 //   in order, each with at least one beat: its marker), from PH0 at a
-//   frame's first beat (SOP), as cube4_cfb_steps. The read-after-write rule
-//   by position and "the previous beat is the row above" as cube4_com_rect.
+//   frame's first beat (SOP), as cube4_cfb_steps. The slot, the
+//   read-after-write rule by position and "the previous beat is the row
+//   above": cube4_com_slot, as cube4_com_rect's.
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (the beat schedule runs with S = 1).
@@ -62,7 +63,6 @@ module cube4_com_beats #(
     output wire col1_4, output wire [P-1:0] soon_0
 );
     `CUBE4_VIEW_FIELDS(cfg);
-    localparam integer RW   = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
     localparam integer PH_W = PHASE_W;
 
     // ---- the bits, registered with R0's header (loaded on every cycle); they
@@ -138,38 +138,11 @@ module cube4_com_beats #(
                             && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
         end
     endgenerate
-    wire unused_rst = rst;
 
-    // ---- the slot {j, pb}; read after write by position (as cube4_com_rect) ----
-    assign pos_pb = r0_pb;
-    assign pos_sp = SP_W'({r0_j[RW-1:0], r0_pb});
-    wire [SP_W-1:0] in_sp = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
-    reg hz;
-    integer kz;
-    always @* begin
-        hz = step && (pos_sp == in_sp);
-        for (kz = 1; kz <= 9; kz = kz + 1) hz = hz || (v_fly[kz] && (sp_fly[(kz-1)*SP_W +: SP_W] == in_sp));
-    end
-    assign hazard = hz;
-
-    // ---- the last beat that left R0: is R0's the row below it, same pb? ----
-    reg             lb_v;
-    reg [M_W-1:0]   lb_m;
-    reg [DIM_W-1:0] lb_j;
-    reg [PB_W-1:0]  lb_pb;
-    always @(posedge clk) begin
-        if (rst) lb_v <= 1'b0;
-        else if (step) lb_v <= 1'b1;
-        if (step) begin
-            lb_m  <= r0_m;
-            lb_j  <= r0_j;
-            lb_pb <= r0_pb;
-        end
-    end
-    reg [4:1] col1_s;
-    always @(posedge clk) begin
-        col1_s <= {col1_s[3:1], lb_v && (lb_m == r0_m) && (lb_pb == r0_pb) && (lb_j + 1'b1 == r0_j)};
-    end
-    assign col1_4 = col1_s[4];
+    // ---- the slot {j, pb}, the read-after-write rule by position, "the row above" ----
+    cube4_com_slot #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_slot (
+        .clk(clk), .rst(rst), .in_hdr(in_hdr), .step(step), .v_fly(v_fly), .sp_fly(sp_fly),
+        .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
+        .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .col1_4(col1_4));
 endmodule
 `default_nettype wire

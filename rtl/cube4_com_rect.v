@@ -13,8 +13,8 @@
 //     fresh   the previous sample (m-1, j-dyb, i-dxb) is not in slice m-1's
 //             inside rectangle (or m = 0)
 //     nx_in   the next sample (m+1, j+dyf, i+dxf) is in slice m+1's (m+1 < M)
-//   The read-after-write rule by position: a beat waits while the beat of the
-//   same slot is in R0 .. S9. col1_4: the previous beat is the row above at
+//   The read-after-write rule by position (cube4_com_slot): a beat waits while
+//   the beat of the same slot is in R0 .. S9. col1_4: the previous beat is the row above at
 //   the same partial beam (its beam-buffer write comes too late).
 //
 // Parameters
@@ -98,38 +98,11 @@ module cube4_com_rect #(
     assign sty = e_c[RT_STY +: DIM_W];
     wire unused_tab = ^{e_p, e_c, e_n, rect_addr, m_pv};
 
-    // ---- the slot {j, pb}; read after write by position: the offered
-    // beat's slot against R0 .. S9 ----
-    assign pos_pb = r0_pb;
-    assign pos_sp = SP_W'({r0_j[RW-1:0], r0_pb});
-    wire [SP_W-1:0] in_sp = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
-    reg hz;
-    integer kz;
-    always @* begin
-        hz = step && (pos_sp == in_sp);
-        for (kz = 1; kz <= 9; kz = kz + 1) hz = hz || (v_fly[kz] && (sp_fly[(kz-1)*SP_W +: SP_W] == in_sp));
-    end
-    assign hazard = hz;
-
-    // ---- the last beat that left R0: is R0's the row below it, same pb? ----
-    reg             lb_v;
-    reg [M_W-1:0]   lb_m;
-    reg [DIM_W-1:0] lb_j;
-    reg [PB_W-1:0]  lb_pb;
-    always @(posedge clk) begin
-        if (rst) lb_v <= 1'b0;
-        else if (step) lb_v <= 1'b1;
-        if (step) begin
-            lb_m  <= r0_m;
-            lb_j  <= r0_j;
-            lb_pb <= r0_pb;
-        end
-    end
-    reg [4:1] col1_s;
-    always @(posedge clk) begin
-        col1_s <= {col1_s[3:1], lb_v && (lb_m == r0_m) && (lb_pb == r0_pb) && (lb_j + 1'b1 == r0_j)};
-    end
-    assign col1_4 = col1_s[4];
+    // ---- the slot {j, pb}, the read-after-write rule by position, "the row above" ----
+    cube4_com_slot #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_slot (
+        .clk(clk), .rst(rst), .in_hdr(in_hdr), .step(step), .v_fly(v_fly), .sp_fly(sp_fly),
+        .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
+        .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .col1_4(col1_4));
 
     // ---- per lane: fresh ray (S0) and next sample inside (S1) ----
     reg             f1_nv;              // slice m + 1's inside rectangle (S1)

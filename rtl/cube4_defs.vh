@@ -639,6 +639,33 @@
         end \
     endfunction
 
+// The traversal's steps along an axis (cube4_cfb_trav, cube4_cfb_bctl; needs
+// CUBE4_LANE_FUNCTIONS and ADDR_W): r_step moves c mod P by +/-1 (down: -1);
+// a_step moves the axis's address term A(c) with it (+/- LIN within a P-block,
+// BLK across one: golden/cube4/memory.py); add_p = (a + b) mod P.
+`define CUBE4_STEP_FUNCTIONS \
+    function automatic [LANE_W-1:0] r_step(input [LANE_W-1:0] rr, input down); \
+        reg [LANE_W:0] pl; \
+        begin \
+            pl = P[LANE_W:0]; \
+            if (down) r_step = (rr == '0) ? pl[LANE_W-1:0] - 1'b1 : rr - 1'b1; \
+            else      r_step = ({1'b0, rr} == pl - 1'b1) ? '0 : rr + 1'b1; \
+        end \
+    endfunction \
+    function automatic [ADDR_W-1:0] a_step(input [ADDR_W-1:0] a, input [LANE_W-1:0] rr, \
+                                           input down, input [ADDR_W-1:0] lin, \
+                                           input [ADDR_W-1:0] blk); \
+        reg [LANE_W:0] pl; \
+        begin \
+            pl = P[LANE_W:0]; \
+            if (down) a_step = a - ((rr == '0) ? blk : lin); \
+            else      a_step = a + (({1'b0, rr} == pl - 1'b1) ? blk : lin); \
+        end \
+    endfunction \
+    function automatic [LANE_W-1:0] add_p(input [LANE_W-1:0] a, input [LANE_W-1:0] b); \
+        add_p = mod_p($signed({3'b000, a}) + $signed({3'b000, b})); \
+    endfunction
+
 // ---------------------------------------------------------------- parameter checks
 // A parameter outside its range stops elaboration (in a generate region):
 //   "<module>: NAME = value is out of range LO..HI"

@@ -54,6 +54,7 @@ cube4_sha_gm.v
 cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v
+cube4_com_slot.v
 cube4_com_rect.v
 cube4_com_beats.v
 cube4_com_stop.v
