@@ -18,7 +18,9 @@
 //               c' = (m, j): cube4_gra_lines (delay lines of the fixed
 //               schedule, and the flush steps after a frame), or with
 //               RECTS = 1 cube4_gra_walk (position buffers of the slice
-//               rectangles' walk); one interface, chosen by RECTS
+//               rectangles' walk), or with BEATS = 1 cube4_gra_beats (position
+//               buffers of the beat schedule, with the steps its centres
+//               need); one interface, chosen by RECTS and BEATS
 //     u_window  cube4_gra_window: alignment, zero rows and slices, the
 //               three-beat window, i +/- 1 and the ray's rows: the operands
 //     u_arith   cube4_gra_arith: the differences, the products and gk
@@ -34,6 +36,9 @@
 //   MAX_DIM, MAX_SS_LOG2  as cube4_tri (derived widths: cube4_defs.vh).
 //                                                  Defaults 256, 0.
 //   RECTS    1: slice rectangles (cube4_gra_walk). 0..1.      Default 0.
+//   BEATS    1: the beat schedule (cube4_gra_beats; every input beat leaves
+//            as a centre, in order, with its header). Needs RECTS = 0,
+//            MAX_SS_LOG2 = 0.                      0..1.      Default 0.
 //   LABELS   1: each sample carries its label (LABEL_W bits above the value,
 //            numerics.md section 24): the source's lines hold whole samples,
 //            the window and the arithmetic read the values, and the centre's
@@ -70,7 +75,7 @@
 //   exact in GRAD_W = VOXEL_W + 5 bits. No saturation.
 // =============================================================================
 module cube4_gra #(
-    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0, parameter integer LABELS = 0,
+    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0, parameter integer BEATS = 0, parameter integer LABELS = 0,
     localparam integer GRAD_W  = VOXEL_W + 5,
     localparam integer LBL_W   = (LABELS != 0) ? 4 : 0,    // (CUBE4_WORD_LAYOUT's)
     localparam integer SMP_W   = VOXEL_W + LBL_W
@@ -90,8 +95,12 @@ module cube4_gra #(
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_gra", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_rects, "cube4_gra", "RECTS", RECTS, 0, 1)
         `CUBE4_RANGE(g_bad_labels, "cube4_gra", "LABELS", LABELS, 0, 1)
-        if (LABELS != 0 && RECTS != 0) begin : g_labels_rects
-            $error("cube4_gra: LABELS = 1 needs RECTS = 0");
+        `CUBE4_RANGE(g_bad_beats, "cube4_gra", "BEATS", BEATS, 0, 1)
+        if (LABELS != 0 && (RECTS != 0 || BEATS != 0)) begin : g_labels_rects
+            $error("cube4_gra: LABELS = 1 needs RECTS = 0 and BEATS = 0");
+        end
+        if (BEATS != 0 && (RECTS != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
+            $error("cube4_gra: BEATS = 1 needs RECTS = 0 and MAX_SS_LOG2 = 0");
         end
     endgenerate
 
@@ -118,7 +127,9 @@ module cube4_gra #(
                 .x(xs), .b1(b1s), .p1(p1s), .c(cs), .p1b2(p1b2s), .p2b1(p2b1s), .p2b2(p2b2s), \
                 .c_meta(c_meta), .c_sel(c_sel), .c_edge(c_edge));
     generate
-        if (RECTS == 0) begin : g_lines
+        if (BEATS != 0) begin : g_beats
+            `CUBE4_GRA_SOURCE(cube4_gra_beats)
+        end else if (RECTS == 0) begin : g_lines
             `CUBE4_GRA_SOURCE(cube4_gra_lines)
         end else begin : g_walk
             `CUBE4_GRA_SOURCE(cube4_gra_walk)
@@ -159,7 +170,7 @@ module cube4_gra #(
     wire [P*(VOXEL_W+1)-1:0] w_gj;
     cube4_gra_window #(
         .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W),
-        .RECTS(RECTS)
+        .RECTS(RECTS), .BEATS(BEATS)
     ) u_window (
         .clk(clk), .rst(rst), .cfg(cfg), .step(step), .sop(sop),
         .x(x), .b1(b1), .p1(p1), .c(c), .p1b2(p1b2), .p2b1(p2b1), .p2b2(p2b2),
@@ -218,7 +229,7 @@ module cube4_gra #(
         if (RECTS == 0) begin : g_push
             assign push_d  = push_v;
             assign fifo_in = item;
-            wire unused_g = fend;   // (the lines never end a frame early)
+            wire unused_g = fend;   // (the lines never end a frame early; the beats' last centre carries EOP)
         end else begin : g_hold
             // The frame's last beat is known only when GRA's walk ends (the input's
             // last beat may be one outside the rectangles): each beat waits in

@@ -33,6 +33,10 @@
 //           brings is of the current frame); 0: cube4_gra_lines (centres
 //           count from the frame's first beat on: after a reset the lines
 //           still hold words of an interrupted frame).  0..1.  Default 0.
+//   BEATS   1: the source is cube4_gra_beats (as RECTS, but c_edge is
+//           {gap, gap}: the incoming beat is not the partial beam after the
+//           last one in its row, so the beat before it has no neighbour
+//           there, nor has it one before it).  0..1.  Default 0.
 //
 // Latency
 //   A centre's operands appear two steps after the step that brought it as
@@ -52,7 +56,7 @@
 //   samples, VOXEL_W + 1 bits signed, exact.
 // =============================================================================
 module cube4_gra_window #(
-    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0
+    `CUBE4_GRA_PARAMS, parameter integer RECTS = 0, parameter integer BEATS = 0
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
@@ -74,6 +78,7 @@ module cube4_gra_window #(
         `CUBE4_RANGE(g_bad_p, "cube4_gra_window", "P", P, 1, 64)
         `CUBE4_RANGE(g_bad_voxel_w, "cube4_gra_window", "VOXEL_W", VOXEL_W, 1, 16)
         `CUBE4_RANGE(g_bad_rects, "cube4_gra_window", "RECTS", RECTS, 0, 1)
+        `CUBE4_RANGE(g_bad_beats, "cube4_gra_window", "BEATS", BEATS, 0, 1)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -137,8 +142,8 @@ module cube4_gra_window #(
     reg               h1_live, h2_live;   // a beat of the current frame (not a stale RAM word)
     reg               live_q;    // the current frame's first beat has reached the centre
     wire              c_sop  = c_meta[HDR_CTRL + CTRL_SOP];
-    wire              c_live = (RECTS != 0) || c_sop || live_q;   // (RECTS: the walk gates stale words)
-    wire [1:0]        edge_in = (RECTS != 0) ? c_edge : 2'b00;    // (lines: i +/- 1 lie in the frame's beams)
+    wire              c_live = (RECTS != 0 || BEATS != 0) || c_sop || live_q;   // (the walks gate stale words)
+    wire [1:0]        edge_in = (RECTS != 0 || BEATS != 0) ? c_edge : 2'b00;  // (lines: i +/- 1 lie in the frame's beams)
     wire              unused_edge = ^c_edge;                       // (lines: constant zero)
     reg [META_W-1:0]  h1_meta, h2_meta;
     reg [PV-1:0]      h1_c, h2_c, h3_c, h1_f, h2_f, h1_b, h2_b, h3_b;
@@ -227,7 +232,9 @@ module cube4_gra_window #(
     localparam integer RSEL_W = 6 * P;    // {b_self, b_same, b_old, f_self, f_same, f_new} per lane
     wire              h1_dxf = h1_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m (h1's)
     wire              h1_dxb = h1_meta[HDR_CTRL + CTRL_OSX];   // old X-step
-    wire [P-1:0]      hi_okx = hi_ok_d & ~(hi_new_d & {P{h1_edge[1]}});
+    // h1's last partial beam: its own flag (RECTS), or a gap before the incoming beat (BEATS)
+    wire              h1_last = (BEATS != 0) ? edge_in[1] : h1_edge[1];
+    wire [P-1:0]      hi_okx = hi_ok_d & ~(hi_new_d & {P{h1_last}});
     wire [P-1:0]      lo_okx = lo_ok_d & ~(lo_old_d & {P{h1_edge[0]}});
     wire [P-1:0]      hi_n = hi_okx & hi_new_d, hi_s = hi_okx & ~hi_new_d;
     wire [P-1:0]      lo_o = lo_okx & lo_old_d, lo_s = lo_okx & ~lo_old_d;

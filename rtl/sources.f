@@ -46,6 +46,7 @@ cube4_frontend.v
 cube4_delay_line.v
 cube4_gra_lines.v
 cube4_gra_walk.v
+cube4_gra_beats.v
 cube4_gra_window.v
 cube4_gra_arith.v
 cube4_gra.v

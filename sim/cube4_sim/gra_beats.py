@@ -184,3 +184,30 @@ def walk_steps(beats: list[dict], nj: int, p: int, hdr_w: int, ss: int) -> list[
         steps.append(step(wk["m"] + 1, last, wk["pb0"], 0, 0, wk["sy"], wk["osy"], edge, wk, False, dead=True,
                           fend=int(t == 2)))
     return steps
+
+
+def beat_schedule_beats(bf, p: int, lag: int) -> list[WalkBeat]:
+    """The sample beats of a beat-schedule frame (``beat_frames.BeatFrame``, after the
+    golden frame) in the order the front end emits them (``beat_frames.expected_requests``:
+    every walked beat but row 0 of slice 0 emits the sample beat of its row below), each
+    with its skew, lane positions, valid lanes (below NI where the beat runs, none
+    elsewhere) and control bits, as tb/cube4_gra feeds them to GRA's beat build."""
+    from .beat_frames import expected_requests
+    trav = bf.trav
+    nj, ni, nk = trav.nj, trav.ni, trav.nk
+    fi, fj, fk = (bool(trav.flip[a]) for a in (trav.axis_i, trav.axis_j, trav.major))
+    order = [(row[0], row[1], pb, leave) for _k, _j, pb, _r, emit, leave, row, *_ in expected_requests(bf, p, lag)
+             if emit]
+    out = []
+    for n, (m, j, pb, leave) in enumerate(order):
+        cj = nj - 1 - (j + 1) if fj else j + 1
+        ck = nk - 1 - m if fk else m
+        skew = (cj + ck + sum(int(o) for o in trav.origin)) % p
+        pos = lane_positions(skew, pb, p, ni, fi)
+        valid = (pos < ni) & bool(leave)
+        (sx, sy), (sx1, sy1), (sxb, syb) = (trav.steps(k) for k in (m, m + 1, m - 1))
+        ysf, ysb = int(sy1 - sy), int(sy - syb)
+        ctrl = ((int(sx1 - sx) << CTRL_SX) | (ysf << CTRL_SY) | (int(sx - sxb) << CTRL_OSX) | (ysb << CTRL_OSY)
+                | (int(n == 0) << CTRL_SOP) | (int(n == len(order) - 1) << CTRL_EOP) | (int(j == nj - 1) << CTRL_YLAST))
+        out.append(WalkBeat(m, j, pb, skew, pos, valid, ctrl, ysf, ysb))
+    return out

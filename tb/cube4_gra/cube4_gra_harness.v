@@ -13,7 +13,8 @@
 //   the two streams.
 //
 // Parameters: as cube4_gra (P 1..64, VOXEL_W 1..16, WEIGHT_W 4..12,
-//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1; CUBE4_UNIT_PARAMS).
+//   MAX_DIM 2..2048, MAX_SS_LOG2 0..3, RECTS 0..1, BEATS 0..1, LABELS 0..1;
+//   CUBE4_UNIT_PARAMS).
 //
 // Latency: that of cube4_gra (the ports connect straight to it).
 //
@@ -28,6 +29,7 @@ module cube4_gra_harness #(
     `CUBE4_UNIT_PARAMS
     parameter integer VOXEL_W = 8,
     parameter integer RECTS   = 0,
+    parameter integer BEATS   = 0,
     parameter integer LABELS  = 0,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer SMP_W  = VOXEL_W + ((LABELS != 0) ? 4 : 0)
@@ -43,7 +45,7 @@ module cube4_gra_harness #(
 );
     `CUBE4_HARNESS_VIEW
 
-    cube4_gra #(`CUBE4_GRA_PASS, .RECTS (RECTS), .LABELS (LABELS)) u_gra (.*);
+    cube4_gra #(`CUBE4_GRA_PASS, .RECTS (RECTS), .BEATS (BEATS), .LABELS (LABELS)) u_gra (.*);
 
     cube4_stream_check #(
         .NAME   ("gra.in (samples)"),

@@ -45,7 +45,7 @@ from cube4.view import make_traversal
 from cube4_sim.sweeps import sweep
 from cube4.labels import LABEL_W, MAX_LABELS, pack_words as pack_labels
 from cube4_sim.beats import CTRL_EOP, BeatSchedule, Geometry, mask_bits, pack_lanes, unpack_lanes
-from cube4_sim.gra_beats import walk_beats
+from cube4_sim.gra_beats import beat_schedule_beats, walk_beats
 from cube4_sim.unit_bench import UnitBench, check_headers, check_lanes, param_id, run_unit
 
 
@@ -218,3 +218,76 @@ RECT_BUILDS = [dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=8), dict(P=8, VOXEL_W=12)
 @pytest.mark.parametrize("build", sweep(RECT_BUILDS, quick=(), ids=param_id))
 def test_cube4_gra_rects(build):
     run_unit(__file__, {**build, "MAX_DIM": 32, "RECTS": 1}, "test_rect_walks")
+
+
+# --------------------------------------------------------------------------- the beat schedule
+def beat_walk_frame(bf, p: int, geo: Geometry, vw: int):
+    """A beat-schedule frame (numerics.md §19) as GRA's input: the front end's sample beats
+    (``beat_schedule_beats``: lanes valid where the beat runs, fixed-schedule samples there,
+    zero elsewhere), and the output expected: every input beat, in order, with its header,
+    and the golden gradient of the slices with every sample outside the running beats zero
+    (what GRA reads for them) on its valid lanes."""
+    trav, s = bf.trav, bf.sched
+    gold, gin = sample_stream(bf.vol, trav)
+    run = np.stack([s.run_samples(m) for m in range(s.M)])
+    grads = gradient_stream(np.where(run, gold, 0), trav)
+    inputs, outputs = [], []
+    for b in beat_schedule_beats(bf, p, beats_lag()):
+        ii = np.minimum(b.pos, trav.ni - 1)
+        smp = np.where(b.valid, gold[b.m, b.j, ii], 0)
+        lins = b.valid & gin[b.m, b.j, ii]
+        fields = {"inside": mask_bits(lins), "lval": mask_bits(b.valid), "keep": mask_bits(b.valid), "ctrl": b.ctrl,
+                  "skew": b.skew, "pb": b.pb, "j": b.j, "m": b.m}
+        inputs.append({"in_hdr": geo.pack_header(fields), "in_sample": pack_lanes(smp, vw)})
+        outputs.append((fields, b.valid, smp, np.where(b.valid[None, :], grads[b.m][:, b.j, ii], 0),
+                        (b.m, b.j, b.pb), b.pos))
+    return inputs, outputs
+
+
+def beats_lag() -> int:
+    from cube4.beats import LAG
+    return LAG
+
+
+@cocotb.test()
+async def test_beat_walks(dut):
+    """Beat-schedule frames (BEATS = 1): the front end's sample beats in (golden frames:
+    opaque slabs whose rays end, so beats run as GRA's neighbours only; sparse shaded
+    volumes with and without termination), every beat out in order with its header, the
+    gradients bit for bit against the golden gradient of the zero-filled slices, random
+    gaps and stalls, frames back to back, a reset in mid-frame, nothing extra."""
+    from cube4_sim.beat_frames import slab_frame, sparse_frame
+    from cube4_testutil import sparse_case
+    p, vw = int(dut.P.value), int(dut.VOXEL_W.value)
+    geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
+    bench = UnitBench(dut)
+    await bench.reset({"in_valid": 0, "out_ready": 0})
+    seeds = [sd for sd in range(60) if sparse_case(sd)[6] and sparse_case(sd)[5] == "composite"][:6]
+    cases = [("slab", (0.2, -0.1, 1.0)), ("slab", (1.0, 1.0, 1.0)), ("slab", (-1.0, 0.3, 0.5))]
+    cases += [("sparse", sd) for sd in seeds]
+    frames = 0
+    for n, (kind, arg) in enumerate(cases):
+        bf = slab_frame(p, arg) if kind == "slab" else sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2)
+        if max(bf.trav.dims) > int(dut.MAX_DIM.value):
+            continue
+        inputs, outputs = beat_walk_frame(bf, p, geo, vw)
+        bench.set_view(bf.trav, p)
+        await bench.cycles(2)
+        if n == 4:   # a frame cut off by a reset: the next one must not see its words
+            await interrupted_frame(bench, inputs, len(inputs) // 2)
+        gap, stall = (0.0, 0.0) if n % 2 == 0 else (0.3, 0.4)
+        got = await bench.run_stream(inputs, len(outputs), OUTPUTS, gap, stall)
+        check_walk_outputs(got, outputs, geo, p, vw, bench.log)
+        frames += 1
+        running = sum(int(b.any()) for _, b, *_ in outputs)
+        bench.log.info("%s %s: %d beats in and out (%d running) of %d in the box, bit-exact",
+                       kind, arg, len(outputs), running, bf.sched.M * bf.sched.NJ * bf.sched.NB)
+    assert frames >= 6, f"only {frames} frames fit"
+
+
+BEAT_BUILDS = [dict(P=8, VOXEL_W=8), dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=12)]
+
+
+@pytest.mark.parametrize("build", sweep(BEAT_BUILDS, quick=(0,), ids=param_id))
+def test_cube4_gra_beats(build):
+    run_unit(__file__, {**build, "MAX_DIM": 32, "BEATS": 1}, "test_beat_walks")

@@ -1,0 +1,367 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_gra_beats
+// -----------------------------------------------------------------------------
+// Purpose
+//   GRA's neighbourhood source on the beat schedule (BEATS = 1; numerics.md
+//   section 19, docs/architecture.md "Beat skipping and ray termination"),
+//   with the interface of cube4_gra_lines. The input is the front end's
+//   sample beats: every beat it emits, in order of slice, row and partial
+//   beam (lanes valid where the beat runs, none elsewhere), each of them a
+//   centre that leaves GRA once, in the same order, with its header. Samples
+//   of beats that do not come, or come with no lane valid, are zero.
+//
+//   A step at position (w, r, pb) brings X = (w, r, pb) and the centre
+//   C = (w - 1, r - 1, pb) with the six neighbours of cube4_gra_lines, from
+//   position buffers: plane A {r, pb} holds X of the step at (w - 1, r, pb)
+//   (P1 = (w - 1, r)), plane B {r - 1, pb} its C (P2b1 = (w - 2, r - 1)),
+//   the beam buffer {pb} X, P1, C, P2b1 of the step at (w, r - 1, pb) (B1,
+//   C, P1b2, P2b2). The steps of slice w, row by row (r = 0 .. NJ) and rising
+//   partial beams within a row, are the input beats of (w, r) merged with
+//   the steps that the centres of slice w - 1 need:
+//     G(w, r) = grow(C(w - 1, r - 1) | C(w - 1, r)),  grow(x) = x | x << 1 | x >> 1
+//   (C(w, r): the input beats of row r of slice w; a centre's X-step, the
+//   step of its row that fills the beam buffer, and both for the partial
+//   beams beside it, whose beats the window reads for i +/- 1). Every
+//   sample that is not zero came in, and is a centre, so each word a centre
+//   reads was written by a step of this frame: a plane word counts where
+//   the step at (w - 1, r, pb) ran (S(w - 1, r), the stepped bits), a beam
+//   word where the step at (w, r - 1, pb) ran, otherwise it is zero.
+//   C and S of each row are written, one word per row, into a table of two
+//   slices (slice mod 2) as the row ends, and read one row ahead (row NJ,
+//   which has no input and whose S does not fit the table, in a register
+//   per slice). A row
+//   ends when its steps are loaded and the input has passed it (or the
+//   frame's last beat has come). After the frame's last beat the source
+//   steps the rest: the rows of the last slice and of slice M, then two
+//   steps that only move the window.
+//
+// Parameters
+//   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_gra (derived widths:
+//   cube4_defs.vh CUBE4_GEOMETRY, CUBE4_GRA_LAYOUT). S = 1 (the beat
+//   schedule's frames).
+//
+// Latency
+//   The input register i0 holds the next step's position with its sample
+//   beat (an input beat) or none (a step the centres need, or a trailing
+//   step); the interface shows it as X, combinationally, with the buffers'
+//   words read for it. A step happens when i0 holds a position and the
+//   output FIFO's credit (copy GRA_STEPS-1) is there. A row takes one cycle
+//   to end (its table word written, the next row's taken), besides a cycle
+//   per step; a row's steps load one a cycle while the credit lasts.
+//   A centre leaves at its X-step: one slice and one row after it came.
+//
+// Ports (as cube4_gra_lines; samples unsigned Q0.VOXEL_W, lanes in the
+// alignment of their own beat)
+//   in_*      the beat schedule's sample stream (cube4_tri's format)
+//   credit    [GRA_STEPS]   copies of the output FIFO's credit
+//   step      out  the source and the window move this cycle
+//   sop       out  0 (the source gates stale words itself)
+//   fend      out  the step is the frame's last (a trailing step)
+//   x, b1, p1, c, p1b2, p2b1, p2b2  [P*VOXEL_W]  X and its six neighbours;
+//             zero where their step did not run
+//   c_meta    [GRA_META_W]  {real, header} of C (real: an input beat)
+//   c_sel     [P*GRA_NSEL]  C's select flags (GSEL_*), the same for every lane
+//   c_edge    [2]  {gap, gap}: the step is not the one after the step of
+//             the partial beam before in its row (cube4_gra_window BEATS:
+//             beyond a gap the neighbour beat is zero)
+//
+// Bit growth and rounding: none (samples are passed, not computed).
+// =============================================================================
+module cube4_gra_beats
+`include "cube4_gra_source_if.vh"
+
+    localparam integer VW     = VOXEL_W;
+    localparam integer PV     = P * VW;
+    localparam integer META_W = GRA_META_W;
+    localparam integer NBX    = NBMAX;                                 // bits of a row word
+    localparam integer RW  = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;     // row bits of a plane address
+    localparam integer PAW = RW + PB_W;                                // plane address {row, pb}
+    localparam integer AWD = META_W + PV;                              // plane A: X with its meta
+    localparam integer BMW = 4 * PV + META_W;                          // beam: X, P1 (meta), C, P2b1
+    localparam integer PBN = 1 << PB_W;                                // beam buffer entries
+
+    `CUBE4_VIEW_FIELDS(cfg);
+    genvar q;
+
+    // ------------------------------------------------------------ the frame
+    reg               act;           // a frame is under way
+    reg               ended;         // its last input beat (EOP) is loaded
+    reg               tail;          // the trailing steps
+    reg               tail_n;        // trailing steps loaded: 0, 1
+    reg [M_W-1:0]     w;             // the slice being stepped
+    reg [M_W-1:0]     w_last;        // the last input beat's slice (with ended)
+    reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
+    reg [NBX-1:0]     gm;            // G(w, r) not yet passed
+    reg [NBX-1:0]     c_cur;         // C(w - 1, r)
+    reg [NBX-1:0]     s_cur;         // S(w - 1, r): the plane words of this row count
+    reg [NBX-1:0]     acc_c, acc_s;  // C(w, r), S(w, r) so far
+    reg [NBX-1:0]     prev_s;        // S(w, r - 1): the beam words count
+    reg               row_any;       // a step of this row is loaded
+    reg [PB_W-1:0]    row_pb;        // its partial beam (the last)
+    reg               sy_q [0:1], osy_q [0:1];   // SY, OSY of slice w by w's parity
+    reg [NBX-1:0]     s_nj [0:1];    // S(w, NJ) by w's parity
+    reg [NBX-1:0]     nb_mask;       // bits below NB
+
+    wire [M_W-1:0]    in_m   = in_hdr[HDR_M +: M_W];
+    wire [DIM_W-1:0]  in_j   = in_hdr[HDR_J +: DIM_W];
+    wire [PB_W-1:0]   in_pb  = in_hdr[HDR_PB +: PB_W];
+    wire              in_eop = in_hdr[HDR_CTRL + CTRL_EOP];
+    wire              in_sy  = in_hdr[HDR_CTRL + CTRL_SY];
+    wire              in_osy = in_hdr[HDR_CTRL + CTRL_OSY];
+
+    // i0: the next step
+    reg               i0_v, i0_in, i0_dead, i0_fend, i0_gap;
+    reg [PV-1:0]      i0_sample;
+    reg [HDR_W-1:0]   i0_hdr;
+    reg [DIM_W-1:0]   i0_r;
+    reg [PB_W-1:0]    i0_pb;
+    reg               i0_pg, i0_bg;  // the plane / beam words read for it count
+    reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
+    reg               i0_ylast, i0_dyf, i0_dyb;
+    wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
+    assign step = i0_v && credit[GRA_STEPS-1];
+    assign sop  = 1'b0;
+    assign fend = i0_fend;
+    wire i0_take = !i0_v || step;
+
+    // ------------------------------------------------------------ the next step
+    // the input's beat is in this row, or beyond it
+    wire in_row   = in_valid && act && !ended && !tail && (in_m == w) && (in_j == r);
+    wire in_after = in_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r));
+    // the lowest partial beam of gm
+    reg [PB_W-1:0]    g_pb;
+    integer b;
+    always @(*) begin
+        g_pb = '0;
+        for (b = NBX - 1; b >= 0; b = b - 1) begin
+            if (gm[b]) g_pb = PB_W'(b);
+        end
+    end
+    wire g_any   = act && !tail && |gm;
+    wire g_first = g_any && (!in_row || g_pb < in_pb);       // a generated step comes first
+    wire start   = !act && in_valid;                         // a frame's first beat waits
+    wire pass    = act && !tail && (in_after || ended);      // the input has passed this row
+    wire ld_in   = i0_take && in_row && !g_first;
+    wire ld_gen  = i0_take && g_first && (in_row || pass);
+    wire ld_tail = i0_take && tail;
+    wire row_end = pass && !g_any;                           // the row ends (no step this cycle)
+    wire last_row = (w == w_last + 1'b1) && (r == cfg_nj);
+    wire ld      = ld_in || ld_gen || ld_tail;
+    assign in_ready = ld_in;
+
+    // the step being loaded: slice ld_w, row ld_r, partial beam ld_pb
+    wire [M_W-1:0]   ld_w  = w;
+    wire [DIM_W-1:0] ld_r  = r;
+    wire [PB_W-1:0]  ld_pb = ld_in ? in_pb : g_pb;
+    wire             w_pos = (ld_w != '0);
+    wire [NBX-1:0]   ld_bit = NBX'(1) << ld_pb;
+    wire ld_pg = !tail && w_pos && |(s_cur & ld_bit);
+    wire ld_bg = !tail && (ld_r != '0) && |(prev_s & ld_bit);
+    wire ld_gap = tail || !row_any || (ld_pb != row_pb + 1'b1);
+    wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
+                           ld_r == DIM_W'(1),              // j_first (centre row 0)
+                           ld_w == M_W'(1)};               // m_first (centre slice 0)
+    wire           wm1_odd = ~ld_w[0];                // (w - 1) mod 2
+
+    // ------------------------------------------------------------ the row table
+    // word {S, C} of row r of slice w at {w mod 2, r}; read one row ahead
+    localparam integer TW = 2 * NBX;
+    wire [RW:0]     t_ra;            // {parity, row} read
+    wire [TW-1:0]   t_rd;
+    wire            t_re;
+    wire            t_we = row_end && act && (r < cfg_nj);
+    wire [RW:0]     t_wa = {w[0], r[RW-1:0]};
+    wire [TW-1:0]   t_wd = {acc_s, acc_c};
+    cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW)) u_rows (
+        .clk (clk), .rd_en (t_re), .rd_addr (t_ra), .rd_data (t_rd),
+        .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
+    // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
+    // rows; the word of row NJ and of slice -1 is zero (n_zero)
+    wire [DIM_W-1:0] nx_r = (r == cfg_nj) ? '0 : r + 1'b1;      // the next row
+    wire [M_W-1:0]   nx_w = (r == cfg_nj) ? w + 1'b1 : w;       // and its slice
+    wire [DIM_W-1:0] nn_r = (nx_r == cfg_nj) ? '0 : nx_r + 1'b1;
+    wire [M_W-1:0]   nn_w = (nx_r == cfg_nj) ? nx_w + 1'b1 : nx_w;
+    // a frame starts at row 0 of slice 0, and reads row 1's (zero: slice -1)
+    assign t_re = row_end || start;
+    wire [DIM_W-1:0] rd_row = start ? DIM_W'(1) : nn_r;
+    wire [M_W-1:0]   rd_w   = start ? '0 : nn_w;
+    assign t_ra = {~rd_w[0], rd_row[RW-1:0]};                 // slice rd_w - 1's parity
+    reg             t_zero;          // the word read is zero (slice -1)
+    reg             t_by;            // it is t_bd: the word written in that cycle, or row NJ's
+    reg [TW-1:0]    t_bd;
+    wire            rd_nj = (rd_row == cfg_nj);
+    always @(posedge clk) begin
+        if (t_re) begin
+            t_zero <= (rd_w == '0);
+            t_by   <= rd_nj || (t_we && (t_wa == t_ra));
+            t_bd   <= rd_nj ? {s_nj[~rd_w[0]], {NBX{1'b0}}} : t_wd;
+        end
+        if (row_end && act && r == cfg_nj) s_nj[w[0]] <= acc_s;
+    end
+    wire [TW-1:0]  t_word = t_zero ? '0 : (t_by ? t_bd : t_rd);
+    wire [NBX-1:0] n_c = t_word[0 +: NBX];                     // C(w', r' + 1) of the row after
+    wire [NBX-1:0] n_s = t_word[NBX +: NBX];
+    generate
+        for (q = 0; q < NBX; q = q + 1) begin : g_nb
+            always @(posedge clk) nb_mask[q] <= (NB_W'(q) < cfg_nb);
+        end
+    endgenerate
+    function automatic [NBX-1:0] grow(input [NBX-1:0] v);
+        grow = v | (v << 1) | (v >> 1);
+    endfunction
+
+    always @(posedge clk) begin
+        if (rst) begin
+            act    <= 1'b0;
+            ended  <= 1'b0;
+            tail   <= 1'b0;
+            i0_v   <= 1'b0;
+        end else begin
+            if (ld)        i0_v <= 1'b1;
+            else if (step) i0_v <= 1'b0;
+            if (start) begin
+                // slice 0, row 0 (slice -1 gives nothing); its beat loads as the row's
+                act     <= 1'b1;
+                ended   <= 1'b0;
+                tail    <= 1'b0;
+                w       <= '0;
+                r       <= '0;
+                gm      <= '0;
+                c_cur   <= '0;
+                s_cur   <= '0;
+                prev_s  <= '0;
+                acc_c   <= '0;
+                acc_s   <= '0;
+                row_any <= 1'b0;
+            end
+            if (ld_in || ld_gen) begin
+                row_any <= 1'b1;
+                row_pb  <= ld_pb;
+                acc_s   <= acc_s | ld_bit;
+                if (ld_in) acc_c <= acc_c | ld_bit;
+                // the steps of this row up to ld_pb are passed
+                gm <= gm & ~((ld_bit << 1) - 1'b1);
+            end
+            if (ld_in) begin
+                if (in_eop) begin
+                    ended  <= 1'b1;
+                    w_last <= in_m;
+                end
+            end
+            if (row_end) begin
+                row_any <= 1'b0;
+                acc_c   <= '0;
+                acc_s   <= '0;
+                if (ended && last_row) begin
+                    tail   <= 1'b1;
+                    tail_n <= 1'b0;
+                    gm     <= '0;
+                end else begin
+                    r       <= nx_r;
+                    w       <= nx_w;
+                    prev_s  <= (r == cfg_nj) ? '0 : acc_s;
+                    c_cur   <= n_c;
+                    s_cur   <= n_s;
+                    gm      <= grow(((r == cfg_nj) ? '0 : c_cur) | n_c) & nb_mask;
+                end
+            end
+            if (ld_tail) begin
+                tail_n <= 1'b1;
+                if (tail_n) begin
+                    tail <= 1'b0;
+                    act  <= 1'b0;    // the frame is over
+                end
+            end
+        end
+    end
+    always @(posedge clk) begin
+        if (ld_in) begin
+            sy_q[in_m[0]]  <= in_sy;
+            osy_q[in_m[0]] <= in_osy;
+        end
+        if (ld) begin
+            i0_sample <= ld_in ? in_sample : {PV{1'b0}};
+            i0_hdr    <= ld_in ? in_hdr : {HDR_W{1'b0}};
+            i0_in     <= ld_in;
+            i0_dead   <= ld_tail;
+            i0_fend   <= ld_tail && tail_n;
+            i0_gap    <= ld_gap;
+            i0_r      <= ld_r;
+            i0_pb     <= ld_pb;
+            i0_pg     <= ld_pg;
+            i0_bg     <= ld_bg;
+            i0_flags  <= ld_flags;
+            i0_ylast  <= (ld_r == cfg_nj);
+            i0_dyf    <= sy_q[wm1_odd];                          // SY(w - 1): the centre's slice
+            i0_dyb    <= osy_q[wm1_odd];                         // OSY(w - 1)
+        end
+    end
+
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_mask
+            assign x[q*VW +: VW] = (i0_in && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
+        end
+    endgenerate
+    wire [META_W-1:0] x_meta = {i0_in, i0_hdr};
+
+    // ---- position buffers: read when a step's position loads into i0, written
+    // when it steps; a read of the word written in that cycle takes the new word
+    wire [RW-1:0]    ld_r1 = ld_r[RW-1:0] - 1'b1;   // the centre's row (plane B)
+    wire [RW-1:0]    i0_r1 = i0_r[RW-1:0] - 1'b1;
+    wire [PAW-1:0]   ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
+    wire [PAW-1:0]   ra_b = {ld_r1, ld_pb},        wa_b = {i0_r1, i0_pb};
+    wire we_a = step && !i0_dead && (i0_r < cfg_nj);   // plane A: X at its own position
+    wire we_b = step && !i0_dead && (i0_r != '0);      // plane B: C at the centre's position
+    wire we_m = step && !i0_dead;                      // the beam buffer
+    wire [META_W-1:0] p1_meta;
+    wire [AWD-1:0]  wd_a = {x_meta, x};
+    wire [PV-1:0]   wd_b = c;
+    wire [BMW-1:0]  wd_m = {x, p1_meta, p1, c, p2b1};
+    wire [AWD-1:0]  rd_a;
+    wire [PV-1:0]   rd_b;
+    wire [BMW-1:0]  rd_m;
+    cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW)) u_plane_a (
+        .clk (clk), .rd_en (ld), .rd_addr (ra_a), .rd_data (rd_a),
+        .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
+    cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW)) u_plane_b (
+        .clk (clk), .rd_en (ld), .rd_addr (ra_b), .rd_data (rd_b),
+        .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
+    cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
+        .clk (clk), .rd_en (ld), .rd_addr (ld_pb), .rd_data (rd_m),
+        .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
+    reg             by_a, by_b, by_m;
+    reg [AWD-1:0]   bd_a;
+    reg [PV-1:0]    bd_b;
+    reg [BMW-1:0]   bd_m;
+    reg             i0_pgb;          // plane B's word counts (the centre's row is a row)
+    always @(posedge clk) begin
+        if (ld) begin
+            by_a   <= we_a && (wa_a == ra_a);
+            by_b   <= we_b && (wa_b == ra_b);
+            by_m   <= we_m && (i0_pb == ld_pb);
+            bd_a   <= wd_a;
+            bd_b   <= wd_b;
+            bd_m   <= wd_m;
+            i0_pgb <= ld_pg && (ld_r != '0);
+        end
+    end
+    wire [AWD-1:0]  a_w = by_a ? bd_a : rd_a;
+    wire [PV-1:0]   b_w = by_b ? bd_b : rd_b;
+    wire [BMW-1:0]  m_w = by_m ? bd_m : rd_m;
+    assign p1_meta = i0_pg ? a_w[PV +: META_W] : {META_W{1'b0}};
+    assign p1      = i0_pg ? a_w[PV-1:0] : {PV{1'b0}};
+    assign p2b1    = i0_pgb ? b_w : {PV{1'b0}};
+    assign b1      = i0_bg ? m_w[3*PV + META_W +: PV] : {PV{1'b0}};
+    assign c_meta  = i0_bg ? m_w[3*PV +: META_W] : {META_W{1'b0}};
+    assign c       = i0_bg ? m_w[2*PV +: PV] : {PV{1'b0}};
+    assign p1b2    = i0_bg ? m_w[PV +: PV] : {PV{1'b0}};
+    assign p2b2    = i0_bg ? m_w[0 +: PV] : {PV{1'b0}};
+    assign c_sel   = {P{i0_flags, i0_ylast, i0_dyf, i0_dyb}};   // bits GSEL_DKF .. GSEL_DYB
+    assign c_edge  = {i0_gap, i0_gap};
+    wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
+    wire unused_cfg    = ^{cfg_ss_log2, in_hdr[HDR_CTRL + CTRL_SOP]};
+
+endmodule
+`default_nettype wire
