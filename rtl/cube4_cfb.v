@@ -45,8 +45,9 @@
 //   of the control and traversal units, with the box as every pass's
 //   rectangle, and cube4_cfb_steps gives the decisions each slice's steps.
 //   Request beats per frame: the walk's beats but its tokens, and the drain
-//   beat; each carries its emitted beat's position bits and EOS (req_bits,
-//   req_eos).
+//   beat, a push beat after each slice's last beat and after each sample
+//   slice's last; each carries its emitted beat's position bits, EOS and
+//   EOSS (req_bits, req_eos, req_eoss).
 //
 //   Lane q reads bank q, at the address of the position t of the partial beam
 //   that it holds (eq. 1; cube4_cfb_addr, golden/cube4/memory.py).
@@ -109,9 +110,10 @@
 //   blk_*, tab_*, rep_*, com_m, blk_base, nbr_en
 //                    in   BEATS = 1: the decisions' tables, COM's reports and
 //                         the frame's axes (CUBE4_BEATS_IN_PORTS; cube4_cfb_decide)
-//   req_bits [4P], req_eos  out  BEATS = 1: with each request, the position
-//                         bits {soon, last, fresh, run} of the sample beat it
-//                         emits (cube4_cfb_skip) and its walk beat's EOS
+//   req_bits [4P], req_eos, req_eoss  out  BEATS = 1: with each request, the
+//                         position bits {soon, last, fresh, run} of the sample
+//                         beat it emits (cube4_cfb_skip), its walk beat's EOS,
+//                         and EOSS: that sample beat is its slice's last
 //
 // Bit growth and rounding
 //   None: counters and modular address arithmetic (ADDR_W bits, exact for
@@ -132,7 +134,7 @@ module cube4_cfb #(
     input  wire [ADR_W_ALL-1:0] cfg_addr,   // address registers (cube4_defs.vh)
     input  wire rect_we, input wire [M_W-1:0] rect_addr, input wire [RECT_W-1:0] rect_data,
     `CUBE4_BEATS_IN_PORTS,
-    output wire [4*P-1:0] req_bits, output wire req_eos,   // BEATS = 1: with each request
+    output wire [4*P-1:0] req_bits, output wire req_eos, output wire req_eoss,   // BEATS = 1: with each request
     // memory request stream; the tag travels with the beat to cube4_tri
     output wire req_valid, input wire req_ready, output wire [TAG_W-1:0] req_tag,
     output wire [P*ADDR_W-1:0] req_addr,
@@ -204,7 +206,7 @@ module cube4_cfb #(
                 .out_bits(w_bits));
             wire unused_walk = ^{w_m, w_j};   // the control keeps its own slice and row
             wire [4*P-1:0] x_bits;
-            wire           x_eos;
+            wire           x_eos, x_eoss;
             cube4_cfb_bctl #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
             ) u_bctl (
@@ -218,23 +220,23 @@ module cube4_cfb #(
                 .issue(issue), .fields(fields), .use_prev(use_prev), .skew_out(skew_out),
                 .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi), .rowv(rowv), .rowin(rowin), .rd(rd),
                 .pbp(pbp), .skew_rd(skew_rd), .aj(aj), .ak(ak), .pbx(pbx),
-                .x_bits(x_bits), .x_eos(x_eos));
+                .x_bits(x_bits), .x_eos(x_eos), .x_eoss(x_eoss));
             assign r = '0;
             cube4_cfb_box #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
             ) u_box (
                 .cfg(cfg), .cfg_addr(cfg_addr), .last_pass(1'b0), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
             wire unused_beats = ^{rt_nxt, rect_we, rect_addr, rect_data};
-            // the beat's bits and EOS pass the mask's three stages beside it
-            reg [4*P:0] x1_q, x2_q, x_q;
+            // the beat's bits, EOS and EOSS pass the mask's three stages beside it
+            reg [4*P+1:0] x1_q, x2_q, x_q;
             always @(posedge clk) begin
                 if (advance) begin
-                    x1_q <= {x_eos, x_bits};
+                    x1_q <= {x_eoss, x_eos, x_bits};
                     x2_q <= x1_q;
                     x_q  <= x2_q;
                 end
             end
-            assign {req_eos, req_bits} = x_q;
+            assign {req_eoss, req_eos, req_bits} = x_q;
             assign busy = mask_busy || busy_s;
         end else begin : g_fixed
             // ==== control and traversal of the fixed, box and rectangle schedules ====
@@ -283,7 +285,7 @@ module cube4_cfb #(
                     .cfg(cfg), .cfg_addr(cfg_addr), .last_pass(last_pass), .rt_cur(rt_cur), .rt_nxt(rt_nxt));
                 wire unused_box = ^{rect_we, rect_addr, rect_data, go, pass_done};
             end
-            assign {req_eos, req_bits} = '0;
+            assign {req_eoss, req_eos, req_bits} = '0;
             assign busy = mask_busy;
             wire unused_fixed = ^{blk_base, nbr_en, blk_we, blk_addr, blk_data, tab_we, tab_addr, tab_data,
                                   rep_valid, rep_j, rep_pb, rep_stx, rep_sty, rep_en, rep_end, com_m};

@@ -29,6 +29,11 @@
 //   through the beats of the cover and of the row above, and every slice
 //   reaches the units behind (its marker). A beat of row 0 of slice 0,
 //   which would emit slice -1, emits nothing. The last beat carries EOP.
+//   The last beat of row 0 of a slice m > 0 (the walk makes it a marker
+//   when it walks nothing) and of the flush row emits the last beat of
+//   sample slice m - 1: it carries EOSS (x_eoss), and a push beat follows
+//   it, so that GRA and COM see each sample slice end without waiting for
+//   the next beat (numerics.md section 19, lag).
 //   A beat reads when the walk says so, except in the flush row (m = M),
 //   which reads nothing. Tokens issue nothing; after LAST one drain beat
 //   pushes TRI's beam-extension delay empty, as the fixed schedule's, and
@@ -64,7 +69,8 @@
 //   rowv, rowin, rd   out  the state's beat (CUBE4_CFB_MASK_PORTS)
 //   pbp [IW]     out  pb * P;  skew_rd [LANE_W], aj, ak, pbx [ADDR_W]  out
 //                the read's address terms (cube4_cfb_addr)
-//   x_bits [4P], x_eos  out  the state's beat's position bits and EOS
+//   x_bits [4P], x_eos, x_eoss  out  the state's beat's position bits, EOS
+//                and EOSS (it emits its sample slice's last beat)
 //
 // Bit growth and rounding
 //   None: counters and modular address arithmetic in ADDR_W bits; the
@@ -89,7 +95,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     output wire rowv, output wire rowin, output wire rd,
     output wire [IW-1:0] pbp, output wire [LANE_W-1:0] skew_rd,
     output wire [ADDR_W-1:0] aj, output wire [ADDR_W-1:0] ak, output wire [ADDR_W-1:0] pbx,
-    output wire [4*P-1:0] x_bits, output wire x_eos
+    output wire [4*P-1:0] x_bits, output wire x_eos, output wire x_eoss
 );
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_ADDR_FIELDS(cfg_addr);
@@ -164,6 +170,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     wire emit       = in_run && !(j0_q && m_q == '0);   // (tokens do not issue; no slice -1)
     wire reads      = in_run && b_read && !fl_q;
     wire slice_step = run_take && b_eos;
+    wire b_eoss     = b_eor && ((j0_q && m_q != '0) || fl_q);   // the row emits its sample slice's last beat
     wire row_step   = run_take && b_eor && !b_eos;
     assign next_pass = slice_step;
     wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk_q);   // S = 1: the read slice is the pass's
@@ -176,7 +183,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
             case (state_q)
                 ST_IDLE:  if (go) state_q <= ST_RUN;
                 ST_RUN:   if (run_take && b_last) state_q <= ST_DRAIN;
-                          else if (run_take && b_eos) state_q <= ST_PUSH;
+                          else if (run_take && (b_eos || b_eoss)) state_q <= ST_PUSH;
                 ST_DRAIN: if (advance) state_q <= ST_IDLE;    // one beat
                 ST_PUSH:  if (advance) state_q <= ST_RUN;     // one beat
                 default:  state_q <= ST_IDLE;
@@ -250,5 +257,6 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     assign pbx     = cfg_flip_i ? cfg_i_a0 - pb_term : pb_term;
     assign x_bits  = in_run ? b_bits : '0;
     assign x_eos   = in_run && b_eos;
+    assign x_eoss  = in_run && b_eoss;
 endmodule
 `default_nettype wire

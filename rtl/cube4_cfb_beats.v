@@ -24,12 +24,14 @@
 //   fixed schedule). Each set bit of walks(k) is one voxel beat, lowest pb
 //   first, with its bit of reads(k) and the bit of E(k - 1) at its pb (the
 //   sample beat that leaves with it runs). A row that walks nothing takes
-//   one cycle and gives one beat that reads nothing: a slice's last row and
-//   the flush row a marker
-//   (every slice leaves at least one beat, so the units behind see each
-//   slice end, and COM can report it), any other row a token that only
-//   moves the address unit's row on (cube4_cfb_bctl: every row ends with
-//   a beat that carries EOR). The last beat carries LAST.
+//   one cycle and gives one beat that reads nothing: a slice's last row,
+//   row 0 of every slice but the first and the flush row a marker (every
+//   slice leaves at least one beat, and so does every sample slice's last
+//   row, which leaves with row 0 of the slice after it: the units behind
+//   see each slice end without waiting for the next beat, and COM can
+//   report it), any other row a token that only moves the address unit's
+//   row on (cube4_cfb_bctl: every row ends with a beat that carries EOR).
+//   The last beat carries LAST.
 //   S = 1 (every pass reads its own voxel slice): the passes of S > 1 that
 //   read a voxel slice for the slice buffers read more, not here yet.
 //
@@ -242,13 +244,14 @@ module cube4_cfb_beats #(
 
     // ==== a queue of two rows between the pipeline and the emitter (the pipeline's
     // enable comes from its registered count, not from the emitter's last bit) ====
-    localparam integer RQ_W = 4 * NW + M_W + DIM_W + 3;   // {walks, reads, leave, in_a, m, j, flush, mark, empty}
+    localparam integer RQ_W = 4 * NW + M_W + DIM_W + 4;   // {walks, reads, leave, in_a, m, j, flush, mark, row0, empty}
     reg  [RQ_W-1:0] rq0, rq1;              // rq0 the head
     reg  [1:0]      rq_n;
     assign take_ok = (rq_n != 2'd2);
     wire            rq_push = adv && (e_kind != K_NONE);
     wire [RQ_W-1:0] rq_in = {walks, reads, e2, a2, e_m, e_j, (e_kind == K_FLUSH),
-                             (e_kind == K_FLUSH) || (e_j == nj - 1'b1), (walks == '0)};
+                             (e_kind == K_FLUSH) || (e_j == nj - 1'b1),
+                             (e_kind == K_ROW) && (e_j == '0) && (e_m != '0), (walks == '0)};
     wire            rq_pop;
     always @(posedge clk) begin
         if (rst || start) begin
@@ -271,6 +274,7 @@ module cube4_cfb_beats #(
     reg [DIM_W-1:0] x_j;
     reg             x_flush, x_empty;      // the flush row; a row that walks nothing
     reg             x_mark;                // a slice's last row or the flush row: emits when empty
+    reg             x_row0;                // row 0 of a slice but the first: emits when empty
     wire [NW-1:0]   x_low  = x_rem & (~x_rem + 1'b1);            // its lowest set bit
     wire [NW-1:0]   x_next = x_rem & ~x_low;                     // the row after this beat
     reg             x_one;                 // a register: one bit left (the row's last beat)
@@ -296,7 +300,7 @@ module cube4_cfb_beats #(
         end else begin
             if (rq_pop) begin
                 x_busy <= 1'b1;
-                {x_rem, x_rd, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_empty} <= rq0;
+                {x_rem, x_rd, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_row0, x_empty} <= rq0;
                 x_one  <= one_left(rq0[RQ_W-1 -: NW]);
             end else if (x_done) begin
                 x_busy <= 1'b0;
@@ -315,7 +319,7 @@ module cube4_cfb_beats #(
     assign out_j     = x_j;
     assign out_pb    = x_pb;
     assign out_read  = !x_empty && ((x_rd & x_low) != '0);
-    assign out_tok   = x_empty && !x_mark;
+    assign out_tok   = x_empty && !x_mark && !x_row0;
     assign out_leave = !x_empty && ((x_leave & x_low) != '0);
     assign out_in_a  = !x_empty && ((x_in_a & x_low) != '0);
     assign out_eor   = x_empty || x_one;

@@ -36,9 +36,9 @@
 //   BLOCK_LOG2  log2 of the block edge B.        1..4.   Default 2 (B = 4).
 //   RATE        beats decided a cycle (pb, pb + 1: cube4_ray_table's RATE).
 //                                                1..2.   Default 1.
-//   LAG         slices from a report to its use. 2..7.   Default 3 (the
-//               front end with GRA between it and COM needs 3:
-//               docs/architecture.md "The front end's plan").
+//   LAG         slices from a report to its use. 2..7.   Default
+//               CUBE4_BEAT_LAG (4: the front end with GRA between it and COM
+//               needs 4, cube4_defs.vh).
 //   Derived: NBK = ceil(MAX_DIM / B) blocks per axis; BK_W its index width.
 //
 // Latency
@@ -80,7 +80,7 @@
 module cube4_cfb_decide #(
     `CUBE4_SLICE_PARAMS,
     parameter integer BLOCK_LOG2 = 2,
-    parameter integer LAG        = 3,
+    parameter integer LAG        = `CUBE4_BEAT_LAG,
     parameter integer RATE       = 1,
     `CUBE4_STOP_LAYOUT,
     `CUBE4_BLOCK_LAYOUT

@@ -40,7 +40,7 @@
 module cube4_cfb_skip #(
     `CUBE4_SLICE_PARAMS,
     parameter integer BLOCK_LOG2 = 2,
-    parameter integer LAG        = 3,
+    parameter integer LAG        = `CUBE4_BEAT_LAG,
     parameter integer RATE       = 1,
     parameter integer LN_DEPTH   = 1 << $clog2((4 * MAX_DIM * ((MAX_DIM + P - 1) / P) + RATE - 1) / RATE),
     `CUBE4_STOP_LAYOUT,

@@ -49,10 +49,12 @@
 //               the slot {j, pb} from the header, the rays' intervals from the
 //               front end's position bits (in_bits), a pixel only for a ray
 //               that holds something, ray termination (term_*), its countdown
-//               in the buffer word (2 bits) and the reports (rep_*, com_m).
+//               in the buffer word (clog2(LAG + 1) bits) and the reports
+//               (rep_*, com_m).
 //               Needs RECTS, PLW, ZIN, ZOUT = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
 //   LAG         (after the build's list) BEATS: slices between a report and
-//               the decisions' use of it (cube4_cfb_decide's LAG).  2..3. Default 3.
+//               the decisions' use of it (cube4_cfb_decide's LAG).  2..7.
+//               Default CUBE4_BEAT_LAG (4).
 //   The defaults are cube4_top's.
 //
 // Latency
@@ -90,6 +92,8 @@
 //             written between frames
 //   in_bits   BEATS: each beat's {soon, last, fresh, run}, P bits each by
 //             position t in the partial beam (cube4_cfb_skip)
+//   in_eoss   BEATS: the beat is the last of its slice (cube4_frontend's
+//             smp_eoss): com_m counts the slice once the beat has passed
 //   frame_start, term_en, term_tau [ACC_W+1] (Q0.ACC_W), term_vmin, term_vmax
 //             [VOXEL_W]   BEATS: the frame's start; termination's rule (static)
 //   rep_valid, rep_j, rep_pb, rep_stx, rep_sty, rep_en [P] (by position),
@@ -109,7 +113,7 @@
 // =============================================================================
 module cube4_com #(
     `CUBE4_BUILD_PARAMS,
-    parameter integer LAG   = 3,
+    parameter integer LAG   = `CUBE4_BEAT_LAG,
     `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
@@ -129,6 +133,7 @@ module cube4_com #(
     input  wire [P*VOXEL_W-1:0] in_sample,
     input  wire [P*FALL_W-1:0] in_fall,
     input  wire [4*P-1:0] in_bits,      // BEATS = 1: the beat's {soon, last, fresh, run}
+    input  wire           in_eoss,      // BEATS = 1: the beat is the last of its slice
     // BEATS = 1: ray termination's rule (static in a frame), the frame's start, and
     // the reports into the front end's ray table (cube4_cfb_decide's rep_*, com_m)
     input  wire frame_start,
@@ -152,7 +157,7 @@ module cube4_com #(
         if (PLW != 0 && COMPOSITING == 0) begin : g_plw_alone
             $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
         end
-        `CUBE4_RANGE(g_bad_lag, "cube4_com", "LAG", LAG, 2, 3)
+        `CUBE4_RANGE(g_bad_lag, "cube4_com", "LAG", LAG, 2, 7)
         if (BEATS != 0 && (RECTS != 0 || PLW != 0 || ZIN != 0 || ZOUT != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
             $error("cube4_com: BEATS = 1 needs RECTS = 0, PLW = 0, ZIN = 0, ZOUT = 0 and MAX_SS_LOG2 = 0 (not built)");
         end
@@ -176,7 +181,7 @@ module cube4_com #(
     localparam integer AM_W   = (COMPOSITING != 0 && (EXTREMUM == 0 || CMP_W >= EXT_W)) ? CMP_W : EXT_W;
     // depth out (ZOUT = 1): the ray's two slice numbers {valid, m} above the mode's word
     localparam integer ZW     = 2 * (M_W + 1);
-    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0) + ((BEATS != 0) ? 2 : 0);   // (BEATS: the countdown)
+    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0) + ((BEATS != 0) ? $clog2(LAG + 1) : 0);   // (BEATS: the countdown)
     localparam integer PA     = P * AC_W;
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW     = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;
@@ -204,7 +209,7 @@ module cube4_com #(
         end else begin : g_no_run
             assign seq_hdr = in_hdr;
             assign run_lane = '1;
-            wire unused_bits = ^{in_bits, frame_start, term_en, term_tau, term_vmin, term_vmax};
+            wire unused_bits = ^{in_bits, in_eoss, frame_start, term_en, term_tau, term_vmin, term_vmax};
         end
     endgenerate
     wire              take, credit, hazard, step, sop, first, dxb, dyb;
@@ -266,7 +271,15 @@ module cube4_com #(
                 .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(soon_0));
             // ---- the reports (S11 -> registers): a lane whose ray COM found done
             // writes m + LAG + 1 at its position of the ray table; com_m counts
-            // the slices whose beats have all passed ----
+            // the slices whose beats have all passed: a beat of a later slice,
+            // or the slice's last beat (EOSS, with R0 .. S11 beside it), has ----
+            reg          r0_eoss, eoss11;
+            reg [NS:1]   eoss_s;
+            always @(posedge clk) begin
+                r0_eoss <= in_eoss;                  // (R0 loads on every cycle)
+                eoss_s  <= {eoss_s[NS-1:1], r0_eoss};
+                eoss11  <= eoss_s[NS];
+            end
             reg  [P-1:0] r0_run;
             always @(posedge clk) r0_run <= run_lane;
             localparam integer RX_W = P + P * LANE_W + 2 * DIM_W;   // {rok, tpos, stx, sty} S1 .. S11
@@ -305,7 +318,7 @@ module cube4_com #(
                 rsy_q  <= sty11;
                 rend_q <= m_o + M_W'(LAG + 1);
                 if (rst || frame_start) com_q <= '0;
-                else if (v11)           com_q <= eop_o ? m_o + 1'b1 : m_o;
+                else if (v11)           com_q <= (eop_o || eoss11) ? m_o + 1'b1 : m_o;
             end
             assign {rep_valid, rep_en, rep_j, rep_pb, rep_stx, rep_sty} = {rv_q, ren_q, rj_q, rpb_q, rsx_q, rsy_q};
             assign rep_end = {P{rend_q}};

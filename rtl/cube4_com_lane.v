@@ -64,8 +64,8 @@ module cube4_com_lane #(
     parameter integer FALL   = 0,
     parameter integer ZOUT   = 0, parameter integer ZM_W = 14,
     parameter integer LIVE   = 0,
-    parameter integer TERM   = 0, parameter integer LAG = 3,
-    localparam integer CNT_W = 2,                   // the countdown 0 .. LAG (TERM = 1; LAG <= 3)
+    parameter integer TERM   = 0, parameter integer LAG = `CUBE4_BEAT_LAG,
+    localparam integer CNT_W = $clog2(LAG + 1),     // the countdown 0 .. LAG (TERM = 1)
     localparam integer FALL_W = 9,
     localparam integer ZF_W  = ZM_W + 1,            // a depth field {valid, m}
     localparam integer ZW    = 2 * ZF_W,            // {passed, first}

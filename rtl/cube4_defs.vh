@@ -715,6 +715,14 @@
 // cube4_sha_slab's latency from a beat's fields to its falloff weights (cube4_sha
 // carries the beat that long at least when it builds the unit)
 `define CUBE4_SLAB_LAT 9
+// The beat schedule's lag (BEATS = 1; golden/cube4/beats.py LAG, numerics.md section 19):
+// the decisions of slice m use COM's reports of slices up to m - LAG - 1. With GRA between
+// the front end and COM it must be 4: COM finishes slice d once GRA has stepped slice
+// d + 1 to its end, which it knows from a beat of slice d + 2; the walk may have to
+// reach the end of slice d + 2 for that beat, fetching slice d + 3's rows, which needs
+// the decisions of slice d + 4 (docs/architecture.md "Beat skipping and ray termination").
+// COM counts a done ray's last LAG slices down in clog2(LAG + 1) bits of its buffer word.
+`define CUBE4_BEAT_LAG 4
 // Gradient-magnitude modulation (GMOD = 1; cube4_sha_gm, golden/cube4/gmod.py): the
 // table's entries and address width for gradients of GW = VOXEL_W + 5 bits (s = |g|^2
 // in 2 GW bits, 2^3 mantissa steps per bit position, entry 0 for s = 0), and the

@@ -47,8 +47,9 @@
 //   rect_*                         the rectangle table (RECTS = 1), see cube4_cfb
 //   blk_*, tab_*, rep_*, com_m, blk_base, nbr_en   the beat schedule's tables,
 //                                  COM's reports, the axes (BEATS = 1; cube4_cfb)
-//   smp_bits [4P], smp_eos         BEATS = 1: with each sample beat, its position
-//                                  bits {soon, last, fresh, run} and its EOS
+//   smp_bits [4P], smp_eos, smp_eoss  BEATS = 1: with each sample beat, its
+//                                  position bits {soon, last, fresh, run}, its
+//                                  EOS and EOSS (the last beat of its slice)
 //   mem_req_* / mem_rsp_*          memory read port (see cube4_voxel_mem);
 //                                  the tag is CUBE4_TAG_LAYOUT, a word WORD_W bits
 //   smp_*                          sample stream, see cube4_tri out_*
@@ -78,7 +79,7 @@ module cube4_frontend #(
     // sample stream
     output wire smp_valid, input wire smp_ready, output wire [HDR_W-1:0] smp_hdr,
     output wire [P*WORD_W-1:0]  smp_sample,
-    output wire [4*P-1:0] smp_bits, output wire smp_eos     // BEATS = 1: with each sample beat
+    output wire [4*P-1:0] smp_bits, output wire smp_eos, output wire smp_eoss   // BEATS = 1: with each sample beat
 );
     // ---- CFB ----
     wire                unused_cfb_busy;   // the frame ends at the last sample, not the last request
@@ -87,7 +88,7 @@ module cube4_frontend #(
     wire [P-1:0]        c_req_rden;
     wire [TAG_W-1:0]    c_req_tag;
     wire [4*P-1:0]      c_req_bits;
-    wire                c_req_eos;
+    wire                c_req_eos, c_req_eoss;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
@@ -109,6 +110,7 @@ module cube4_frontend #(
         `CUBE4_BEATS_IN_PASS,
         .req_bits  (c_req_bits),
         .req_eos   (c_req_eos),
+        .req_eoss  (c_req_eoss),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req_addr),
@@ -167,22 +169,22 @@ module cube4_frontend #(
             wire b_ready, b_valid;
             assign s_req_valid = c_req_valid && (!emits || b_ready);
             assign c_req_ready = s_req_ready && (!emits || b_ready);
-            cube4_sync_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
+            cube4_sync_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH)) u_bits (
                 .clk       (clk),
                 .rst       (rst),
                 .in_valid  (c_req_valid && s_req_ready && emits),
                 .in_ready  (b_ready),
-                .in_data   ({c_req_eos, c_req_bits}),
+                .in_data   ({c_req_eoss, c_req_eos, c_req_bits}),
                 .out_valid (b_valid),
                 .out_ready (smp_valid && smp_ready),
-                .out_data  ({smp_eos, smp_bits})
+                .out_data  ({smp_eoss, smp_eos, smp_bits})
             );
             wire unused_bits = b_valid;    // a sample beat always finds its entry
         end else begin : g_no_bits
             assign s_req_valid = c_req_valid;
             assign c_req_ready = s_req_ready;
-            assign {smp_eos, smp_bits} = '0;
-            wire unused_bits = ^{c_req_bits, c_req_eos};
+            assign {smp_eoss, smp_eos, smp_bits} = '0;
+            wire unused_bits = ^{c_req_bits, c_req_eos, c_req_eoss};
         end
     endgenerate
 

@@ -61,7 +61,8 @@
 //
 // Ports
 //   in_*   the sample stream of cube4_tri (same fields and formats; a lane is
-//          SMP_W bits, {label, value} with LABELS)
+//          SMP_W bits, {label, value} with LABELS); in_eoss with BEATS = 1:
+//          the beat is the last of its slice (cube4_frontend smp_eoss)
 //   out_sample  [P*SMP_W]    the sample s[m, j, i] (unsigned, Q0.VOXEL_W; with
 //                            LABELS its label above it)
 //   out_gi/gj/gk [P*GRAD_W]  gradient per lane, signed integers, 2x the central
@@ -85,6 +86,7 @@ module cube4_gra #(
     // sample stream in
     input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
     input  wire [P*SMP_W-1:0] in_sample,
+    input  wire in_eoss,          // BEATS = 1: the input beat is the last of its slice (0 otherwise)
     // gradient stream out: the sample and its gradient (gi, gj, gk)
     output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
     output wire [P*SMP_W-1:0] out_sample,
@@ -122,7 +124,7 @@ module cube4_gra #(
                 .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(SMP_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W) \
             ) u_src ( \
                 .clk(clk), .rst(rst), .cfg(cfg), \
-                .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr), .in_sample(in_sample), \
+                .in_valid(in_valid), .in_ready(in_ready), .in_hdr(in_hdr), .in_sample(in_sample), .in_eoss(in_eoss), \
                 .credit(credit), .step(step), .sop(sop), .fend(fend), \
                 .x(xs), .b1(b1s), .p1(p1s), .c(cs), .p1b2(p1b2s), .p2b1(p2b1s), .p2b2(p2b2s), \
                 .c_meta(c_meta), .c_sel(c_sel), .c_edge(c_edge));

@@ -31,11 +31,14 @@
 //   C and S of each row are written, one word per row, into a table of two
 //   slices (slice mod 2) as the row ends, and read one row ahead (row NJ,
 //   which has no input and whose S does not fit the table, in a register
-//   per slice). A row
-//   ends when its steps are loaded and the input has passed it (or the
-//   frame's last beat has come). After the frame's last beat the source
-//   steps the rest: the rows of the last slice and of slice M, then two
-//   steps that only move the window.
+//   per slice). A row ends when its steps are loaded and the input has
+//   passed it: a beat of a later row has come, or the last beat of its
+//   slice (in_eoss) or of the frame (EOP) has been loaded. Each slice's
+//   rows end with two steps that only move the window, so that the slice's
+//   last centres leave without waiting for the next slice's beats (the
+//   decisions wait for COM's reports of them: numerics.md section 19, lag).
+//   After the frame's last beat the source steps the rest: the rows of the
+//   last slice and of slice M, each with its two window steps.
 //
 // Parameters
 //   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_gra (derived widths:
@@ -54,11 +57,12 @@
 //
 // Ports (as cube4_gra_lines; samples unsigned Q0.VOXEL_W, lanes in the
 // alignment of their own beat)
-//   in_*      the beat schedule's sample stream (cube4_tri's format)
+//   in_*      the beat schedule's sample stream (cube4_tri's format); in_eoss
+//             the beat is the last of its slice
 //   credit    [GRA_STEPS]   copies of the output FIFO's credit
 //   step      out  the source and the window move this cycle
 //   sop       out  0 (the source gates stale words itself)
-//   fend      out  the step is the frame's last (a trailing step)
+//   fend      out  the step is the frame's last (a window step)
 //   x, b1, p1, c, p1b2, p2b1, p2b2  [P*VOXEL_W]  X and its six neighbours;
 //             zero where their step did not run
 //   c_meta    [GRA_META_W]  {real, header} of C (real: an input beat)
@@ -88,8 +92,10 @@ module cube4_gra_beats
     // ------------------------------------------------------------ the frame
     reg               act;           // a frame is under way
     reg               ended;         // its last input beat (EOP) is loaded
-    reg               tail;          // the trailing steps
-    reg               tail_n;        // trailing steps loaded: 0, 1
+    reg               tail;          // the window steps after a slice's last row
+    reg               tail_n;        // window steps loaded: 0, 1
+    reg               fin;           // the frame is over after them
+    reg [M_W-1:0]     cmp_m;         // the input of slices below cmp_m is in (in_eoss)
     reg [M_W-1:0]     w;             // the slice being stepped
     reg [M_W-1:0]     w_last;        // the last input beat's slice (with ended)
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
@@ -142,7 +148,7 @@ module cube4_gra_beats
     wire g_any   = act && !tail && |gm;
     wire g_first = g_any && (!in_row || g_pb < in_pb);       // a generated step comes first
     wire start   = !act && in_valid;                         // a frame's first beat waits
-    wire pass    = act && !tail && (in_after || ended);      // the input has passed this row
+    wire pass    = act && !tail && (in_after || ended || (w < cmp_m));   // the input has passed this row
     wire ld_in   = i0_take && in_row && !g_first;
     wire ld_gen  = i0_take && g_first && (in_row || pass);
     wire ld_tail = i0_take && tail;
@@ -226,6 +232,7 @@ module cube4_gra_beats
                 act     <= 1'b1;
                 ended   <= 1'b0;
                 tail    <= 1'b0;
+                cmp_m   <= '0;
                 w       <= '0;
                 r       <= '0;
                 gm      <= '0;
@@ -245,6 +252,7 @@ module cube4_gra_beats
                 gm <= gm & ~((ld_bit << 1) - 1'b1);
             end
             if (ld_in) begin
+                if (in_eoss) cmp_m <= in_m + 1'b1;
                 if (in_eop) begin
                     ended  <= 1'b1;
                     w_last <= in_m;
@@ -254,9 +262,12 @@ module cube4_gra_beats
                 row_any <= 1'b0;
                 acc_c   <= '0;
                 acc_s   <= '0;
-                if (ended && last_row) begin
+                if (r == cfg_nj) begin
                     tail   <= 1'b1;
                     tail_n <= 1'b0;
+                    fin    <= ended && last_row;
+                end
+                if (ended && last_row) begin
                     gm     <= '0;
                 end else begin
                     r       <= nx_r;
@@ -271,7 +282,7 @@ module cube4_gra_beats
                 tail_n <= 1'b1;
                 if (tail_n) begin
                     tail <= 1'b0;
-                    act  <= 1'b0;    // the frame is over
+                    if (fin) act <= 1'b0;    // the frame is over
                 end
             end
         end
@@ -286,7 +297,7 @@ module cube4_gra_beats
             i0_hdr    <= ld_in ? in_hdr : {HDR_W{1'b0}};
             i0_in     <= ld_in;
             i0_dead   <= ld_tail;
-            i0_fend   <= ld_tail && tail_n;
+            i0_fend   <= ld_tail && tail_n && fin;
             i0_gap    <= ld_gap;
             i0_r      <= ld_r;
             i0_pb     <= ld_pb;

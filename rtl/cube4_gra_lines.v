@@ -219,5 +219,7 @@ module cube4_gra_lines
     assign c_edge = 2'b00;                      // i - 1 and i + 1 lie in the frame's beams
     assign fend   = 1'b0;
 
+    wire unused_eoss = in_eoss;   // (the beat schedule's: cube4_gra_beats)
+
 endmodule
 `default_nettype wire

@@ -1,7 +1,8 @@
 // cube4_gra_source_if.vh: the interface of GRA's neighbourhood source (its parameters, ports and
 // parameter checks), included right after "module cube4_gra_lines" (delay lines, RECTS = 0, which
-// documents the ports) and "module cube4_gra_walk" (position walk, RECTS = 1): cube4_gra
-// instantiates one or the other, by the same ports.
+// documents the ports), "module cube4_gra_walk" (position walk, RECTS = 1) and "module
+// cube4_gra_beats" (the beat schedule, BEATS = 1; in_eoss, the input beat is the last of its
+// slice, is its only user): cube4_gra instantiates one of them, by the same ports.
 #(
     `CUBE4_GRA_PARAMS
 ) (
@@ -9,6 +10,7 @@
     input  wire [VIEW_W-1:0] cfg,
     input  wire in_valid,  output wire in_ready,  input  wire [HDR_W-1:0] in_hdr,
     input  wire [P*VOXEL_W-1:0] in_sample,
+    input  wire in_eoss,
     input  wire [GRA_STEPS-1:0] credit,
     output wire step, output wire sop, output wire fend,
     output wire [P*VOXEL_W-1:0] x, output wire [P*VOXEL_W-1:0] b1, output wire [P*VOXEL_W-1:0] p1,

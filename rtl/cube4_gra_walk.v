@@ -275,5 +275,7 @@ module cube4_gra_walk
     assign c_edge = i0_edge;
     wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
 
+    wire unused_eoss = in_eoss;   // (the beat schedule's: cube4_gra_beats)
+
 endmodule
 `default_nettype wire

@@ -70,8 +70,10 @@
 //   BEATS        1: beat skipping and ray termination (numerics.md section 19):
 //                CFB decides every beat from the block table (blk_*) and the
 //                ray table (the stops, written through stop_*) and walks the
-//                voxel beats the running ones read; COM takes each beat's
-//                position bits (a FIFO beside SHA), ends the rays and reports
+//                voxel beats the running ones read (GRA: cube4_gra_beats);
+//                COM takes each beat's position bits (a FIFO beside GRA and
+//                SHA: in block RAM, a slice and two rows of beats deep, with
+//                shading), ends the rays and reports
 //                the done ones back (view registers BB_*, NBR, TERM, TAU,
 //                VMIN, VMAX). Every frame needs both tables.   0..1. Default 0.
 //   LABELS       1: label volumes (numerics.md section 24): each memory word
@@ -209,9 +211,9 @@ module cube4_top #(
         if (LABELS != 0 && (VGRAD != 0 || PLW != 0 || RECTS != 0)) begin : g_labels_alone
             $error("cube4_top: LABELS = 1 needs VGRAD = 0 and PLW = 0 and RECTS = 0 (labels run without voxel gradients, path weights and rectangles)");
         end
-        if (BEATS != 0 && (SHADING != 0 || PLW != 0 || RECTS != 0 || ZIN != 0 || ZOUT != 0 || SLAB != 0
+        if (BEATS != 0 && (VGRAD != 0 || GMOD != 0 || PLW != 0 || RECTS != 0 || ZIN != 0 || ZOUT != 0 || SLAB != 0
                            || LABELS != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
-            $error("cube4_top: BEATS = 1 needs SHADING = 0 and PLW = 0 and RECTS = 0 and ZIN = 0 and ZOUT = 0 and SLAB = 0 and LABELS = 0 and MAX_SS_LOG2 = 0 (the beat schedule runs unshaded, with S = 1, without path weights, rectangles, depth, the slab and labels: the rest is not built yet)");
+            $error("cube4_top: BEATS = 1 needs VGRAD = 0 and GMOD = 0 and PLW = 0 and RECTS = 0 and ZIN = 0 and ZOUT = 0 and SLAB = 0 and LABELS = 0 and MAX_SS_LOG2 = 0 (the beat schedule runs with S = 1, GRA's gradients, without path weights, rectangles, depth, the slab, gradient modulation and labels: the rest is not built yet)");
         end
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
@@ -242,7 +244,7 @@ module cube4_top #(
     // the beat schedule (BEATS = 1): the position bits of each sample beat wait for it
     // at COM's input, COM's reports go back to the front end
     wire [4*P-1:0]   smp_bits;
-    wire             smp_eos, fe_smp_valid, fe_smp_ready;
+    wire             smp_eos, smp_eoss, fe_smp_valid, fe_smp_ready;
     wire             com_rep_valid;
     wire [DIM_W-1:0] com_rep_j, com_rep_stx, com_rep_sty;
     wire [PB_W-1:0]  com_rep_pb;
@@ -275,6 +277,7 @@ module cube4_top #(
         .com_m         (cfg_term ? com_m : {M_W{1'b1}}),   // no termination: no wait
         .smp_bits      (smp_bits),
         .smp_eos       (smp_eos),
+        .smp_eoss      (smp_eoss),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),
@@ -338,30 +341,50 @@ module cube4_top #(
         .out_valid (fe_rsp_valid), .out_ready (fe_rsp_ready));
 
     // BEATS = 1: each sample beat's bits into a FIFO as it leaves the front end
-    // (it waits for room), out as the beat enters COM (SHA keeps the order and count)
+    // (it waits for room), out as the beat enters COM (GRA and SHA keep the order
+    // and count). GRA holds a slice and two rows of beats (cube4_gra_beats: a
+    // centre leaves at its X-step), so with shading the FIFO is in block RAM,
+    // (MAX_DIM + 2) * NBMAX beats and 128 for the pipelines, rounded up to a
+    // power of two; never full while a beat waits in GRA for the next ones.
+    localparam integer BITS_DEPTH = (SHADING != 0) ? (1 << $clog2((MAX_DIM + 2) * NBMAX + 128)) : 64;
     wire [4*P-1:0] com_bits;
+    wire           com_eoss;       // the beat is the last of its sample slice
     wire           com_in_take;
     generate
         if (BEATS != 0) begin : g_bits
             wire b_ready, b_valid;
             assign smp_valid    = fe_smp_valid && b_ready;
             assign fe_smp_ready = smp_ready && b_ready;
-            cube4_sync_fifo #(.DATA_W (4 * P), .DEPTH (64)) u_bits (
-                .clk       (clk),
-                .rst       (rst),
-                .in_valid  (fe_smp_valid && smp_ready),
-                .in_ready  (b_ready),
-                .in_data   (smp_bits),
-                .out_valid (b_valid),
-                .out_ready (com_in_take),
-                .out_data  (com_bits)
-            );
+            if (SHADING != 0) begin : g_ram
+                cube4_ram_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
+                    .clk       (clk),
+                    .rst       (rst),
+                    .in_valid  (fe_smp_valid && smp_ready),
+                    .in_ready  (b_ready),
+                    .in_data   ({smp_eoss, smp_bits}),
+                    .out_valid (b_valid),
+                    .out_ready (com_in_take),
+                    .out_data  ({com_eoss, com_bits})
+                );
+            end else begin : g_regs
+                cube4_sync_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
+                    .clk       (clk),
+                    .rst       (rst),
+                    .in_valid  (fe_smp_valid && smp_ready),
+                    .in_ready  (b_ready),
+                    .in_data   ({smp_eoss, smp_bits}),
+                    .out_valid (b_valid),
+                    .out_ready (com_in_take),
+                    .out_data  ({com_eoss, com_bits})
+                );
+            end
             wire unused_bits = ^{b_valid, smp_eos};   // (a beat at COM always finds its entry)
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;
             assign fe_smp_ready = smp_ready;
             assign com_bits     = '0;
-            wire unused_bits = ^{smp_bits, smp_eos, com_in_take, blk_we, blk_addr, blk_data, com_m,
+            assign com_eoss     = 1'b0;
+            wire unused_bits = ^{smp_bits, smp_eos, smp_eoss, com_in_take, blk_we, blk_addr, blk_data, com_m,
                                  com_rep_valid, com_rep_j, com_rep_pb, com_rep_stx, com_rep_sty,
                                  com_rep_en, com_rep_end};
         end
@@ -402,6 +425,7 @@ module cube4_top #(
                 .MAX_DIM     (MAX_DIM),
                 .MAX_SS_LOG2 (MAX_SS_LOG2),
                 .RECTS       (RECTS),
+                .BEATS       (BEATS),
                 .LABELS      (LABELS)
             ) u_gra (
                 .clk        (clk),
@@ -411,6 +435,7 @@ module cube4_top #(
                 .in_ready   (gra_in_ready),
                 .in_hdr     (smp_hdr),
                 .in_sample  (smp_sample),
+                .in_eoss    (smp_eoss),
                 .out_valid  (gra_valid),
                 .out_ready  (gra_ready),
                 .out_hdr    (gra_hdr),
@@ -502,6 +527,7 @@ module cube4_top #(
         .in_sample (sha_sample),
         .in_fall   (sha_fall),
         .in_bits   (com_bits),
+        .in_eoss   (com_eoss),
         .frame_start (start && !busy_q),
         .term_en   (cfg_term),
         .term_tau  (cfg_tau[ACC_W:0]),

@@ -74,7 +74,13 @@ from .view import Traversal
 MARGIN = 2
 #: default block edge B and default lag (slices between COM's report and the traversal's use)
 BLOCK = 4
-LAG = 3
+LAG = 4
+#: the fewest rows NJ of a frame whose rays the host lets end early: the RTL's decisions
+#: wait for COM's reports, and with LAG = 4 that loop is free of deadlock only when the
+#: front end's walk, five rows ahead of its emitter, stays within two slices
+#: (docs/architecture.md "Beat skipping and ray termination"); thinner frames run their
+#: rays to their stops (exact either way)
+TERM_MIN_ROWS = 3
 
 
 def _axis_ranges(a: np.ndarray, axis: int, block: int, margin: int) -> tuple[np.ndarray, np.ndarray]:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .beats import LAG, BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
+from .beats import LAG, TERM_MIN_ROWS, BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
 from .clip import Clip, crop_regions, cut_coefficients, slab_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, has_falloff, has_gmod, rect_frame_cycles
@@ -329,14 +329,15 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
             continue
         t1 = time.perf_counter()
         occ = frame_occupancy(bits, table.block, plan.trav)
-        sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", LAG), terminate=terminate,
+        term = terminate and plan.trav.nj >= TERM_MIN_ROWS
+        sched = BeatSchedule(plan.trav, cfg.pipelines, occ, opts.get("lag", LAG), terminate=term,
                              gra=sc.shaded and not sc.voxel_gradients)
         sched.table_s = table_s
         sched.stop_s = time.perf_counter() - t1      # the host's work per view: the rays' stops
         sched.block_bits = bits
         lv = level_of(vol, sc)
         rule = TerminationRule(sc.mode, int(opts.get("tau", 0)), 1 << cfg.acc_bits, int(lv.min()),
-                               int(lv.max()), enabled=terminate, value_bits=cfg.voxel_bits)
+                               int(lv.max()), enabled=term, value_bits=cfg.voxel_bits)
         out.append((sched, rule))
     return out
 

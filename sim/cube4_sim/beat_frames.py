@@ -166,7 +166,8 @@ def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int, i
     """(m, j, pb, read, leave, in_a, tok, eor, eos, last) of every beat of the walk
     (beats.walk_rows): each beat of a row's reads | cover in order of partial beam (read:
     it is one of the reads; the cover's beats read nothing); a row that walks nothing gives
-    one beat that reads nothing, a marker on a slice's last row and the flush row, a token
+    one beat that reads nothing, a marker on a slice's last row, on row 0 of every slice but
+    the first (it completes the previous slice's last row) and on the flush row, a token
     (tok) on any other; eor on a row's last beat, eos on a slice's, last on the frame's."""
     out = []
     for m, j, reads, leaves, cover, in_a in beats.walk_rows(sched, with_a=True):
@@ -175,7 +176,7 @@ def expected_walk(sched) -> list[tuple[int, int, int, int, int, int, int, int, i
         end = 1 if m == sched.M else 0
         eos = 1 if (j == sched.NJ - 1 and not end) else 0
         if not row:
-            row = [(m, j, 0, 0, 0, 0, int(not (eos or end)), 0, 0, 0)]
+            row = [(m, j, 0, 0, 0, 0, int(not (eos or end or (j == 0 and m > 0))), 0, 0, 0)]
         row[-1] = row[-1][:7] + (1, eos, end)
         out += row
     return out
@@ -206,17 +207,18 @@ def expected_requests(bf, p: int, lag: int) -> list[tuple]:
     """The request beats of cube4_cfb's beat build: one per walk beat but the tokens (rows
     that walk nothing), as (k, j, pb, reads, emit, leave, emitted (m, j), eop, eos, bits,
     care), a push beat after each slice's last beat and the drain beat after the frame's
-    (neither reads nor emits). The flush row reads nothing; every request emits the sample
-    beat of the row below (its lanes valid where it runs, ``leave``), but never a beat of
-    slice -1 (row 0 of slice 0)."""
+    (neither reads nor emits), and a push beat after each sample slice's last beat too (the
+    last beat of row 0 of a slice but the first). The flush row reads nothing; every request
+    emits the sample beat of the row below (its lanes valid where it runs, ``leave``), but
+    never a beat of slice -1 (row 0 of slice 0)."""
     s = bf.sched
     out = []
-    for m, j, pb, read, leave, tok, _eor, eos, last, bits, care in expected_front(bf, p, lag):
+    for m, j, pb, read, leave, tok, eor, eos, last, bits, care in expected_front(bf, p, lag):
         if tok:
             continue
         row = (m, j - 1) if j > 0 else (m - 1, s.NJ - 1)
         out.append((m, j, pb, int(read and m < s.M), int(row[0] >= 0), leave, row, last, eos, bits, care))
-        if eos:
+        if (eos or (eor and j == 0 and 0 < m < s.M)) and not last:
             out.append((None, None, None, 0, 0, 0, None, 0, 0, 0, 0))     # the push beat
     out.append((None, None, None, 0, 0, 0, None, 0, 0, 0, 0))     # the drain beat
     return out

@@ -42,6 +42,7 @@ class WalkBeat(NamedTuple):
     ctrl: int           # the header's control bits (CTRL_*), EOP on the frame's last beat
     sy: int             # stepy(m + 1) - stepy(m): the Y-step forward ...
     osy: int            # ... and stepy(m) - stepy(m - 1), back
+    eoss: int = 0       # the beat schedule's: the last beat of its slice (beat_schedule_beats)
 
 
 def walk_beats(rects, trav, p: int) -> list[WalkBeat]:
@@ -191,7 +192,8 @@ def beat_schedule_beats(bf, p: int, lag: int) -> list[WalkBeat]:
     golden frame) in the order the front end emits them (``beat_frames.expected_requests``:
     every walked beat but row 0 of slice 0 emits the sample beat of its row below), each
     with its skew, lane positions, valid lanes (below NI where the beat runs, none
-    elsewhere) and control bits, as tb/cube4_gra feeds them to GRA's beat build."""
+    elsewhere), control bits and EOSS (the last beat of its sample slice), as tb/cube4_gra
+    feeds them to GRA's beat build."""
     from .beat_frames import expected_requests
     trav = bf.trav
     nj, ni, nk = trav.nj, trav.ni, trav.nk
@@ -209,5 +211,6 @@ def beat_schedule_beats(bf, p: int, lag: int) -> list[WalkBeat]:
         ysf, ysb = int(sy1 - sy), int(sy - syb)
         ctrl = ((int(sx1 - sx) << CTRL_SX) | (ysf << CTRL_SY) | (int(sx - sxb) << CTRL_OSX) | (ysb << CTRL_OSY)
                 | (int(n == 0) << CTRL_SOP) | (int(n == len(order) - 1) << CTRL_EOP) | (int(j == nj - 1) << CTRL_YLAST))
-        out.append(WalkBeat(m, j, pb, skew, pos, valid, ctrl, ysf, ysb))
+        eoss = int(n == len(order) - 1 or order[n + 1][0] != m)
+        out.append(WalkBeat(m, j, pb, skew, pos, valid, ctrl, ysf, ysb, eoss))
     return out

@@ -47,9 +47,9 @@ module cube4_gra_source_harness #(
     generate
         `CUBE4_RANGE(g_bad_walk, "cube4_gra_source_harness", "WALK", WALK, 0, 1)
         if (WALK != 0) begin : g_walk
-            cube4_gra_walk #(`CUBE4_GRA_PASS) u_src (.credit ({GRA_STEPS{credit}}), .*);
+            cube4_gra_walk #(`CUBE4_GRA_PASS) u_src (.credit ({GRA_STEPS{credit}}), .in_eoss (1'b0), .*);
         end else begin : g_lines
-            cube4_gra_lines #(`CUBE4_GRA_PASS) u_src (.credit ({GRA_STEPS{credit}}), .*);
+            cube4_gra_lines #(`CUBE4_GRA_PASS) u_src (.credit ({GRA_STEPS{credit}}), .in_eoss (1'b0), .*);
         end
     endgenerate
 

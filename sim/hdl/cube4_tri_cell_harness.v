@@ -58,11 +58,11 @@ module cube4_tri_cell_harness #(
     wire [PV-1:0]    m_data, in_data;
     wire [TAG_W-1:0] m_tag, in_tag;
     wire [4*P-1:0] unused_bits;   // the beat schedule's (not this build's)
-    wire           unused_eos;
+    wire           unused_eos, unused_eoss;
     cube4_cfb #(.P(P), .MAX_DIM(MAX_DIM), .ADDR_W(ADDR_W), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2)) u_cfb (
         .clk(clk), .rst(rst), .start(start), .busy(unused_busy), .cfg(cfg), .cfg_addr(`CUBE4_ADDR_PACK),
         .rect_we(1'b0), .rect_addr({M_W{1'b0}}), .rect_data({RECT_W{1'b0}}),   // the fixed schedule
-        `CUBE4_BEATS_IN_NONE, .req_bits(unused_bits), .req_eos(unused_eos),
+        `CUBE4_BEATS_IN_NONE, .req_bits(unused_bits), .req_eos(unused_eos), .req_eoss(unused_eoss),
         .req_valid(c_valid), .req_ready(c_ready), .req_addr(c_req[TAG_W + P +: P * ADDR_W]),
         .req_rden(c_req[TAG_W +: P]), .req_tag(c_req[0 +: TAG_W]));
     cube4_sim_stall #(.DATA_W(REQ_W), .STREAM(0)) u_stall_req (

@@ -52,6 +52,7 @@ module cube4_cfb_harness #(
     `CUBE4_BEATS_IN_PORTS,
     output wire [4*P-1:0]        req_bits,
     output wire                  req_eos,
+    output wire                  req_eoss,
     output wire                  tag_lower_mem,
     output wire                  tag_upper_mem
 );
@@ -94,15 +95,16 @@ module cube4_cfb_harness #(
         .com_m     (com_m),
         .req_bits  (req_bits),
         .req_eos   (req_eos),
+        .req_eoss  (req_eoss),
         .req_valid (req_valid),
         .req_ready (req_ready),
         .req_addr  (req_addr),
         .req_rden  (req_rden),
         .req_tag   (tag)
     );
-    cube4_stream_check #(.NAME ("cfb.req"), .DATA_W (P * ADDR_W + P + TAG_W + 4 * P + 1)) u_chk_req (
+    cube4_stream_check #(.NAME ("cfb.req"), .DATA_W (P * ADDR_W + P + TAG_W + 4 * P + 2)) u_chk_req (
         .clk (clk), .rst (rst), .valid (req_valid), .ready (req_ready),
-        .data ({req_addr, req_rden, tag, req_bits, req_eos}));
+        .data ({req_addr, req_rden, tag, req_bits, req_eos, req_eoss}));
     assign tag_m         = tag[TAG_M +: M_W];
     assign tag_pb        = tag[TAG_PB +: PB_W];
     assign tag_emit      = tag[TAG_EMIT];

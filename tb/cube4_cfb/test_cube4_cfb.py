@@ -205,7 +205,7 @@ async def test_slice_rectangles(dut):
     dut._log.info("P=%d: %d frames with slice rectangles, every read and beat as specified", p, frames)
 
 
-LAG = 3
+from cube4.beats import LAG  # noqa: E402  (the DUT's default, CUBE4_BEAT_LAG)
 SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
 
 

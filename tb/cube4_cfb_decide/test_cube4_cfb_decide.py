@@ -44,7 +44,7 @@ from cube4_sim.beats import Geometry
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
-LAG = 3            # the DUT's (its default)
+from cube4.beats import LAG  # noqa: E402  (the DUT's default, CUBE4_BEAT_LAG)
 TAIL = 40
 SLAB_VIEWS = [(0.2, -0.1, 1.0), (1.0, 1.0, 1.0)]
 

@@ -55,6 +55,7 @@ module cube4_com_harness #(
     input  wire [P*VOXEL_W-1:0]  in_sample,
     input  wire [P*FALL_W-1:0]   in_fall,
     input  wire [4*P-1:0]        in_bits,     // BEATS = 1: {soon, last, fresh, run}
+    input  wire                  in_eoss,     // BEATS = 1: the last beat of its slice
     input  wire                  frame_start, // BEATS = 1: termination and the reports
     input  wire                  term_en,
     input  wire [ACC_W:0]        term_tau,
@@ -105,6 +106,7 @@ module cube4_com_harness #(
         .in_sample (in_sample),
         .in_fall   (in_fall),
         .in_bits   (in_bits),
+        .in_eoss   (in_eoss),
         .frame_start (frame_start),
         .term_en   (term_en),
         .term_tau  (term_tau),
@@ -131,13 +133,13 @@ module cube4_com_harness #(
 
     cube4_stream_check #(
         .NAME   ("com.in (shaded)"),
-        .DATA_W (HDR_W + IN_W + P * VOXEL_W + P * FALL_W + 4 * P)
+        .DATA_W (HDR_W + IN_W + P * VOXEL_W + P * FALL_W + 4 * P + 1)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),
         .valid (in_valid),
         .ready (in_ready),
-        .data  ({in_hdr, in_rgba, in_sample, in_fall, in_bits})
+        .data  ({in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss})
     );
 
     cube4_stream_check #(

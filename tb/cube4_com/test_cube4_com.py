@@ -80,7 +80,7 @@ VIEWS = [((0.3, -0.45, 1.0), 0.0, 0.0, "composite", None, (0, 0)),
          ((-0.2, -1.0, -0.9), 0.1, 0.1, "composite", "window+cut", (128, 128))]
 BLEND = ("composite", "xray")
 OUTPUTS = ["out_mask", "out_m", "out_by", "out_bx", "out_rgba", "out_eop"]
-BEAT_LAG = 3        # the beat schedule's lag (cube4_cfb_decide's default)
+from cube4.beats import LAG as BEAT_LAG  # noqa: E402  (the beat schedule's lag, CUBE4_BEAT_LAG)
 CHANNELS = ("R", "G", "B", "A")
 
 
@@ -337,15 +337,15 @@ async def test_beat_pixel_stream(dut):
     cut planes, S = 1, termination off): COM takes the sample beats the front end emits
     (beat_frames.expected_requests: the running beats with their lanes valid, the cover,
     the row above and each slice's marker with none), with each beat's position bits
-    {soon, last, fresh, run} on in_bits; out, bit for bit, a pixel beat for every beat in
-    which a running ray ends (bit last), its mask the rays that hold something (the golden
+    {soon, last, fresh, run} on in_bits and EOSS (its slice's last) on in_eoss; out, bit
+    for bit, a pixel beat for every beat in which a running ray ends (bit last), its mask the rays that hold something (the golden
     frame's pixels), and the frame's last beat."""
     if not int(dut.BEATS.value):
         return
     p, aw, acc_w, geo, cfg, vw, modes = build_of(dut)
     bench = UnitBench(dut)
     await bench.reset({"in_valid": 0, "out_ready": 0, "lut_we": 0, "rect_we": 0, "stop_we": 0, "in_bits": 0,
-                       "frame_start": 0, "term_en": 0, "term_tau": 0, "term_vmin": 0, "term_vmax": 0})
+                       "in_eoss": 0, "frame_start": 0, "term_en": 0, "term_tau": 0, "term_vmin": 0, "term_vmax": 0})
     dims = (max(24, 2 * p + 3), 20, 16)     # larger than volume_dims: blocks of 4 that skip
     frames = 0
     for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS * 2):
@@ -366,6 +366,7 @@ async def test_beat_pixel_stream(dut):
         inputs = shaded_beats(frame, sched, geo, aw, vw)
         for k, w in enumerate(reqs):
             inputs[k]["in_bits"] = w[9]
+            inputs[k]["in_eoss"] = int(k == len(reqs) - 1 or reqs[k + 1][6][0] != w[6][0])   # its slice's last
         # the lanes whose ray ends at the beat (before the pixel's "holds something"
         # rule): inside and running, and its next sample (m + 1, j + dyf, i + dxf) not
         # (the golden frame's inside stream: the box, and the ray's run, its end moved

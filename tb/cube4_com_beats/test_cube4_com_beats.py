@@ -35,7 +35,7 @@ from cube4_sim.beats import BeatSchedule, Geometry, clog2, mask_bits, pack_lanes
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import UnitBench, param_id, run_unit
 
-LAG = 3
+from cube4.beats import LAG  # noqa: E402  (the DUT's default, CUBE4_BEAT_LAG)
 VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (0.5, 1.0, 0.5), (-0.2, -1.0, -0.9),
          (1.0, 1.0, 1.0), (0.0, 0.0, -1.0)]
 

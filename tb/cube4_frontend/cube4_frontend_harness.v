@@ -176,7 +176,7 @@ module cube4_frontend_harness #(
     wire [PV-1:0]     smp_sample;
 
     wire [4*P-1:0]    smp_bits;
-    wire              smp_eos;
+    wire              smp_eos, smp_eoss;
     cube4_frontend #(
         `CUBE4_BUILD_PASS
     ) u_fe (
@@ -209,6 +209,7 @@ module cube4_frontend_harness #(
         .com_m           (com_m_q),
         .smp_bits        (smp_bits),
         .smp_eos         (smp_eos),
+        .smp_eoss        (smp_eoss),
         .mem_req_valid   (req_valid),
         .mem_req_ready   (req_ready),
         .mem_req_addr    (req_addr),
@@ -306,6 +307,7 @@ module cube4_frontend_harness #(
                 .in_ready   (smp_ready_f),
                 .in_hdr     (smp_hdr),
                 .in_sample  (smp_sample),
+                .in_eoss    (1'b0),                // (GRA's beat build runs in cube4_top)
                 .out_valid  (snk_valid),
                 .out_ready  (snk_ready),
                 .out_hdr    (snk_hdr),
@@ -322,8 +324,8 @@ module cube4_frontend_harness #(
             assign snk_grad    = {(3*P*GRAD_W){1'b0}};
         end
     endgenerate
-    // the beat build's bits and EOS go straight to the sink (no GRA behind it yet)
-    wire [4*P:0]      snk_bits = (OPT_GRA != 0) ? '0 : {smp_eos, smp_bits};
+    // the beat build's bits, EOS and EOSS go straight to the sink (not with GRA behind it)
+    wire [4*P+1:0]    snk_bits = (OPT_GRA != 0) ? '0 : {smp_eoss, smp_eos, smp_bits};
     wire [P-1:0]      snk_lins = snk_hdr[HDR_INSIDE +: P];
     wire [P-1:0]      snk_lval = snk_hdr[HDR_LVALID +: P];
     wire [6:0]        snk_ctrl = snk_hdr[HDR_CTRL +: 7];

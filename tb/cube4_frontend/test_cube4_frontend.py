@@ -51,7 +51,7 @@ HERE = Path(__file__).resolve().parent   # the harness sits beside this file
 
 CLK_NS = 10
 MAX_MISMATCH_LOGS = 8
-BEAT_LAG = 3        # the beat schedule's lag (cube4_cfb_decide's default)
+from cube4.beats import LAG as BEAT_LAG  # noqa: E402  (the beat schedule's lag, CUBE4_BEAT_LAG)
 #: How far each sample dump has been read, across the cocotb tests of one simulation
 #: (the harness opens the file once; each test reads on from where the last one stopped).
 _DUMP_POS: dict[Path, int] = {}
@@ -176,7 +176,7 @@ def check_beat_frame(beats: dict[str, np.ndarray], bf, p: int, log) -> None:
     partial beam the emitted row's; where its sample beat runs, every lane below NI valid
     with the fixed schedule's sample and inside bit (the walk read what it interpolates),
     else no lane valid; the control bits of its slice and row, SOP on the first and EOP on
-    the last; its position bits and EOS."""
+    the last; its position bits, EOS and EOSS (the last beat of its sample slice)."""
     trav, s = bf.trav, bf.sched
     gold, gin = sample_stream(bf.vol, trav)
     ni, nj, nk = trav.ni, trav.nj, trav.nk
@@ -208,7 +208,9 @@ def check_beat_frame(beats: dict[str, np.ndarray], bf, p: int, log) -> None:
                 | ((r == 0) << 4) | ((r == n - 1) << 5) | ((j == nj - 1) << 6))
         assert int(beats["ctrl"][r]) == ctrl, f"{where}: control bits {int(beats['ctrl'][r]):07b}, golden {ctrl:07b}"
         got_bits = int(beats["bits"][r])
-        assert got_bits >> (4 * p) == eos, f"{where}: EOS {got_bits >> (4 * p)}, golden {eos}"
+        assert (got_bits >> (4 * p)) & 1 == eos, f"{where}: EOS {(got_bits >> (4 * p)) & 1}, golden {eos}"
+        eoss = int(r == n - 1 or want[r + 1][6][0] != m)    # the last beat of its sample slice
+        assert got_bits >> (4 * p + 1) == eoss, f"{where}: EOSS {got_bits >> (4 * p + 1)}, golden {eoss}"
         assert got_bits & care == bits & care, f"{where}: bits {got_bits & ((1 << 4 * p) - 1):#x}, golden {bits:#x}"
 
 

@@ -40,6 +40,7 @@ module cube4_gra_harness #(
     output wire                  in_ready,
     input  wire [HDR_W-1:0]      in_hdr,
     input  wire [P*SMP_W-1:0]    in_sample,
+    input  wire                  in_eoss,
     output wire                  out_valid,
     input  wire                  out_ready
 );
@@ -49,13 +50,13 @@ module cube4_gra_harness #(
 
     cube4_stream_check #(
         .NAME   ("gra.in (samples)"),
-        .DATA_W (HDR_W + P * SMP_W)
+        .DATA_W (HDR_W + P * SMP_W + 1)
     ) u_chk_in (
         .clk   (clk),
         .rst   (rst),
         .valid (in_valid),
         .ready (in_ready),
-        .data  ({in_hdr, in_sample})
+        .data  ({in_hdr, in_sample, in_eoss})
     );
 
     cube4_stream_check #(

@@ -66,7 +66,7 @@ async def test_gradient_stream(dut):
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
     gw = vw + 5
     bench = UnitBench(dut)
-    await bench.reset({"in_valid": 0, "out_ready": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "in_eoss": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     labelled = bool(int(dut.LABELS.value))
@@ -173,7 +173,7 @@ async def interrupted_frame(bench, inputs, n: int) -> None:
         if int(d.in_ready.value):
             k += 1
     await FallingEdge(d.clk)
-    await bench.reset({"in_valid": 0, "out_ready": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "in_eoss": 0})
 
 
 @cocotb.test()
@@ -185,7 +185,7 @@ async def test_rect_walks(dut):
     p, vw, w = int(dut.P.value), int(dut.VOXEL_W.value), int(dut.WEIGHT_W.value)
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
     bench = UnitBench(dut)
-    await bench.reset({"in_valid": 0, "out_ready": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "in_eoss": 0})
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
     views = [v for v, _, _ in VIEWS] + [(1.0, 1.0, 1.0), (-1.0, 1.0, 0.0)]
@@ -238,7 +238,7 @@ def beat_walk_frame(bf, p: int, geo: Geometry, vw: int):
         lins = b.valid & gin[b.m, b.j, ii]
         fields = {"inside": mask_bits(lins), "lval": mask_bits(b.valid), "keep": mask_bits(b.valid), "ctrl": b.ctrl,
                   "skew": b.skew, "pb": b.pb, "j": b.j, "m": b.m}
-        inputs.append({"in_hdr": geo.pack_header(fields), "in_sample": pack_lanes(smp, vw)})
+        inputs.append({"in_hdr": geo.pack_header(fields), "in_sample": pack_lanes(smp, vw), "in_eoss": b.eoss})
         outputs.append((fields, b.valid, smp, np.where(b.valid[None, :], grads[b.m][:, b.j, ii], 0),
                         (b.m, b.j, b.pb), b.pos))
     return inputs, outputs
@@ -261,7 +261,7 @@ async def test_beat_walks(dut):
     p, vw = int(dut.P.value), int(dut.VOXEL_W.value)
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
     bench = UnitBench(dut)
-    await bench.reset({"in_valid": 0, "out_ready": 0})
+    await bench.reset({"in_valid": 0, "out_ready": 0, "in_eoss": 0})
     seeds = [sd for sd in range(60) if sparse_case(sd)[6] and sparse_case(sd)[5] == "composite"][:6]
     cases = [("slab", (0.2, -0.1, 1.0)), ("slab", (1.0, 1.0, 1.0)), ("slab", (-1.0, 0.3, 0.5))]
     cases += [("sparse", sd) for sd in seeds]

@@ -1000,6 +1000,18 @@ def test_dram_frames(p):
 # ---------------------------------------------------------------- beat skipping
 @pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
 def test_beat_frames(p):
+    beat_frames(p, shaded=False)
+
+
+@pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
+def test_beat_frames_shaded(p):
+    """As test_beat_frames, in a shaded build (GRA on the beat schedule): composite frames
+    with the reflectance map, and termination in every other frame, where beats run as
+    GRA's neighbours only; the unshaded modes in the same build."""
+    beat_frames(p, shaded=True)
+
+
+def beat_frames(p: int, shaded: bool) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
@@ -1017,29 +1029,33 @@ def test_beat_frames(p):
     vol = rng.integers(0, 64, size=(nz, ny, nx))
     vol[5:11, 6:14, 8:17] = rng.integers(64, 256, size=(6, 8, 9))
     modes = ["composite", "xray", "mip", "minip"]
+    if shaded:   # composite shaded, with and without termination, and each unshaded mode once
+        modes = ["composite", "composite", "composite", "xray", "composite", "mip", "composite", "minip"]
     jobs, gold = [], []
     for n, direction in enumerate(VIEWS[:8]):
-        mode, terminate = modes[n % 4], n % 2 == 1
+        mode, terminate = modes[n % len(modes)], n % 2 == 1 or (shaded and n % 4 == 0)
         trav = make_traversal((nx, ny, nz), direction, cfg.weight_bits, 1, phase=(n * 37 % 256, n * 91 % 256))
-        lut, _ = random_tables(rng, cfg)
+        lut, rmap = random_tables(rng, cfg)
+        rmap = rmap if shaded and mode == "composite" else None
         lut[:64] = 0
         if terminate:
             lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
         bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, mode)
         sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
-                                   gra=False)
+                                   gra=rmap is not None)
         rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                      enabled=terminate, value_bits=cfg.voxel_bits)
-        job = FrameJob(trav, lut, None, mode=mode, beats=(copy.deepcopy(sched), rule, bits),
+        job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits),
                        stall=(0, 40, 0, 90)[n % 4], stall_out=(0, 0, 60, 30)[n % 4],
                        reset_after_cycles=500 if n == 2 else 0)
         jobs.append(job)
         gold.append((sched, rule))
-    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": 0})
+    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": int(shaded)})
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
-        label = f"beats P={p} view {n} {job.mode}{' terminated' if rule.enabled else ''}"
-        frame = check(vol, job.trav, cfg, job.lut, None, res, label, mode=job.mode, beats=(sched, rule))
-        fixed = render_frame(vol, job.trav, cfg, job.lut, None, mode=job.mode, shading=False)
+        label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
+                 f"{' terminated' if rule.enabled else ''}")
+        frame = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule))
+        fixed = render_frame(vol, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None)
         if not rule.enabled:
             assert (frame.baseplane == fixed.baseplane).all(), f"{label}: differs from the fixed schedule"
         box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)

@@ -81,7 +81,7 @@ module cube4_tri_harness #(
     wire               c_req_valid, c_req_ready, req_valid, req_ready;
     wire [REQ_W-1:0]   c_req, req;
     wire [4*P-1:0] unused_bits;   // the beat schedule's (not this build's)
-    wire           unused_eos;
+    wire           unused_eos, unused_eoss;
     cube4_cfb #(
         .P           (P),
         .MAX_DIM     (MAX_DIM),
@@ -101,6 +101,7 @@ module cube4_tri_harness #(
         `CUBE4_BEATS_IN_NONE,
         .req_bits  (unused_bits),
         .req_eos   (unused_eos),
+        .req_eoss  (unused_eoss),
         .req_valid (c_req_valid),
         .req_ready (c_req_ready),
         .req_addr  (c_req[TAG_W + P +: P * ADDR_W]),
