@@ -20,10 +20,13 @@
 //   C, P1b2, P2b2). The steps of slice w, row by row (r = 0 .. NJ) and rising
 //   partial beams within a row, are the input beats of (w, r) merged with
 //   the steps that the centres of slice w - 1 need:
-//     G(w, r) = grow(C(w - 1, r - 1) | C(w - 1, r)),  grow(x) = x | x << 1 | x >> 1
-//   (C(w, r): the input beats of row r of slice w; a centre's X-step, the
-//   step of its row that fills the beam buffer, and both for the partial
-//   beams beside it, whose beats the window reads for i +/- 1). Every
+//     G(w, r) = C(w - 1, r - 1) | C(w - 1, r)
+//   (C(w, r): the input beats of row r of slice w; a centre's X-step and the
+//   step of its row that fills the beam buffer). The window reads the beats
+//   beside a centre for i +/- 1: the walk emits the partial beams beside
+//   every running beat (numerics.md section 19: the footprint's pb + 1, the
+//   cover's pb - 1), so they are centres too, and beyond a gap in a row's
+//   steps the window takes zero (c_edge). Every
 //   sample that is not zero came in, and is a centre, so each word a centre
 //   reads was written by a step of this frame: a plane word counts where
 //   the step at (w - 1, r, pb) ran (S(w - 1, r), the stepped bits), a beam
@@ -50,10 +53,13 @@
 //   beat (an input beat) or none (a step the centres need, or a trailing
 //   step); the interface shows it as X, combinationally, with the buffers'
 //   words read for it. A step happens when i0 holds a position and the
-//   output FIFO's credit (copy GRA_STEPS-1) is there. A row takes one cycle
-//   to end (its table word written, the next row's taken), besides a cycle
-//   per step; a row's steps load one a cycle while the credit lasts.
-//   A centre leaves at its X-step: one slice and one row after it came.
+//   output FIFO's credit (copy GRA_STEPS-1) is there. A row's steps load one
+//   a cycle while the credit lasts; a row ends in a cycle of its own (its
+//   table word written, the next row's taken), which loads the next row's
+//   first step (or a slice's first window step) when the row has lasted two
+//   cycles (the next row's steps, registered, nx_*): a row of n >= 2 steps
+//   takes n cycles, a row of one step or none two and one. A centre leaves
+//   at its X-step: one slice and one row after it came.
 //
 // Ports (as cube4_gra_lines; samples unsigned Q0.VOXEL_W, lanes in the
 // alignment of their own beat)
@@ -109,6 +115,8 @@ module cube4_gra_beats
     reg               sy_q [0:1], osy_q [0:1];   // SY, OSY of slice w by w's parity
     reg [NBX-1:0]     s_nj [0:1];    // S(w, NJ) by w's parity
     reg [NBX-1:0]     nb_mask;       // bits below NB
+    reg               nx_ok;         // nx_gm, nx_s hold the next row's (its second cycle on)
+    reg [NBX-1:0]     nx_gm, nx_s;   // G(w, r + 1), S(w - 1, r + 1)
 
     wire [M_W-1:0]    in_m   = in_hdr[HDR_M +: M_W];
     wire [DIM_W-1:0]  in_j   = in_hdr[HDR_J +: DIM_W];
@@ -136,36 +144,51 @@ module cube4_gra_beats
     // the input's beat is in this row, or beyond it
     wire in_row   = in_valid && act && !ended && !tail && (in_m == w) && (in_j == r);
     wire in_after = in_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r));
-    // the lowest partial beam of gm
-    reg [PB_W-1:0]    g_pb;
-    integer b;
-    always @(*) begin
-        g_pb = '0;
+    // the next row's beat of the input, or beyond it (for a row end that loads)
+    wire [DIM_W-1:0] r1 = r + 1'b1;
+    wire in_nx    = in_valid && act && !ended && !tail && (in_m == w) && (in_j == r1);
+    wire in_aft1  = in_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r1));
+    // the lowest partial beam of a word
+    function automatic [PB_W-1:0] lowest(input [NBX-1:0] v);
+        integer b;
+        lowest = '0;
         for (b = NBX - 1; b >= 0; b = b - 1) begin
-            if (gm[b]) g_pb = PB_W'(b);
+            if (v[b]) lowest = PB_W'(b);
         end
-    end
+    endfunction
+    wire [PB_W-1:0] g_pb = lowest(gm);
+    wire [PB_W-1:0] x_pb = lowest(nx_gm);
     wire g_any   = act && !tail && |gm;
     wire g_first = g_any && (!in_row || g_pb < in_pb);       // a generated step comes first
     wire start   = !act && in_valid;                         // a frame's first beat waits
     wire pass    = act && !tail && (in_after || ended || (w < cmp_m));   // the input has passed this row
     wire ld_in   = i0_take && in_row && !g_first;
     wire ld_gen  = i0_take && g_first && (in_row || pass);
-    wire ld_tail = i0_take && tail;
-    wire row_end = pass && !g_any;                           // the row ends (no step this cycle)
+    wire ld_tl   = i0_take && tail;
+    wire row_end = pass && !g_any;                           // the row ends (no step of it this cycle)
+    // a row end that loads: the next row's first step, or a slice's first window step
+    wire mg      = row_end && i0_take && nx_ok && (r != cfg_nj);
+    wire x_first = (nx_gm != '0) && (!in_nx || x_pb < in_pb);
+    wire ld_in_x  = mg && in_nx && !x_first;
+    wire ld_gen_x = mg && x_first && (in_nx || in_aft1 || ended || (w < cmp_m));
+    wire ld_tl_x  = row_end && i0_take && (r == cfg_nj);
+    wire ld_nx   = ld_in_x || ld_gen_x;                      // a step of the next row
+    wire ld_i    = ld_in || ld_in_x;                         // an input beat
+    wire ld_s    = ld_i || ld_gen || ld_gen_x;               // a step of a row
+    wire ld_tail = ld_tl || ld_tl_x;                         // a window step
     wire last_row = (w == w_last + 1'b1) && (r == cfg_nj);
-    wire ld      = ld_in || ld_gen || ld_tail;
-    assign in_ready = ld_in;
+    wire ld      = ld_s || ld_tail;
+    assign in_ready = ld_i;
 
     // the step being loaded: slice ld_w, row ld_r, partial beam ld_pb
     wire [M_W-1:0]   ld_w  = w;
-    wire [DIM_W-1:0] ld_r  = r;
-    wire [PB_W-1:0]  ld_pb = ld_in ? in_pb : g_pb;
+    wire [DIM_W-1:0] ld_r  = ld_nx ? r1 : r;
+    wire [PB_W-1:0]  ld_pb = ld_i ? in_pb : (ld_nx ? x_pb : g_pb);
     wire             w_pos = (ld_w != '0);
     wire [NBX-1:0]   ld_bit = NBX'(1) << ld_pb;
-    wire ld_pg = !tail && w_pos && |(s_cur & ld_bit);
-    wire ld_bg = !tail && (ld_r != '0) && |(prev_s & ld_bit);
-    wire ld_gap = tail || !row_any || (ld_pb != row_pb + 1'b1);
+    wire ld_pg = !ld_tail && w_pos && |((ld_nx ? nx_s : s_cur) & ld_bit);
+    wire ld_bg = !ld_tail && (ld_r != '0) && |((ld_nx ? acc_s : prev_s) & ld_bit);
+    wire ld_gap = ld_tail || ld_nx || !row_any || (ld_pb != row_pb + 1'b1);
     wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
                            ld_r == DIM_W'(1),              // j_first (centre row 0)
                            ld_w == M_W'(1)};               // m_first (centre slice 0)
@@ -214,9 +237,6 @@ module cube4_gra_beats
             always @(posedge clk) nb_mask[q] <= (NB_W'(q) < cfg_nb);
         end
     endgenerate
-    function automatic [NBX-1:0] grow(input [NBX-1:0] v);
-        grow = v | (v << 1) | (v >> 1);
-    endfunction
 
     always @(posedge clk) begin
         if (rst) begin
@@ -251,7 +271,8 @@ module cube4_gra_beats
                 // the steps of this row up to ld_pb are passed
                 gm <= gm & ~((ld_bit << 1) - 1'b1);
             end
-            if (ld_in) begin
+            nx_ok <= !(start || row_end);
+            if (ld_i) begin
                 if (in_eoss) cmp_m <= in_m + 1'b1;
                 if (in_eop) begin
                     ended  <= 1'b1;
@@ -259,12 +280,14 @@ module cube4_gra_beats
                 end
             end
             if (row_end) begin
-                row_any <= 1'b0;
-                acc_c   <= '0;
-                acc_s   <= '0;
+                // the next row, with its first step when one loads (ld_nx)
+                row_any <= ld_nx;
+                row_pb  <= ld_pb;
+                acc_c   <= ld_in_x ? ld_bit : '0;
+                acc_s   <= ld_nx ? ld_bit : '0;
                 if (r == cfg_nj) begin
                     tail   <= 1'b1;
-                    tail_n <= 1'b0;
+                    tail_n <= ld_tl_x;
                     fin    <= ended && last_row;
                 end
                 if (ended && last_row) begin
@@ -275,10 +298,11 @@ module cube4_gra_beats
                     prev_s  <= (r == cfg_nj) ? '0 : acc_s;
                     c_cur   <= n_c;
                     s_cur   <= n_s;
-                    gm      <= grow(((r == cfg_nj) ? '0 : c_cur) | n_c) & nb_mask;
+                    gm      <= ((((r == cfg_nj) ? '0 : c_cur) | n_c) & nb_mask)
+                               & ~(ld_nx ? ((ld_bit << 1) - 1'b1) : '0);
                 end
             end
-            if (ld_tail) begin
+            if (ld_tl) begin
                 tail_n <= 1'b1;
                 if (tail_n) begin
                     tail <= 1'b0;
@@ -288,16 +312,19 @@ module cube4_gra_beats
         end
     end
     always @(posedge clk) begin
-        if (ld_in) begin
+        // the next row's steps, for a row end that loads (valid in a row's second cycle on)
+        nx_gm <= (c_cur | n_c) & nb_mask;
+        nx_s  <= n_s;
+        if (ld_i) begin
             sy_q[in_m[0]]  <= in_sy;
             osy_q[in_m[0]] <= in_osy;
         end
         if (ld) begin
-            i0_sample <= ld_in ? in_sample : {PV{1'b0}};
-            i0_hdr    <= ld_in ? in_hdr : {HDR_W{1'b0}};
-            i0_in     <= ld_in;
+            i0_sample <= ld_i ? in_sample : {PV{1'b0}};
+            i0_hdr    <= ld_i ? in_hdr : {HDR_W{1'b0}};
+            i0_in     <= ld_i;
             i0_dead   <= ld_tail;
-            i0_fend   <= ld_tail && tail_n && fin;
+            i0_fend   <= ld_tl && tail_n && fin;
             i0_gap    <= ld_gap;
             i0_r      <= ld_r;
             i0_pb     <= ld_pb;
