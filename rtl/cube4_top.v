@@ -88,7 +88,9 @@
 //   or VGRAD = 1), plus a
 //   fixed pipeline fill per build (golden/cube4/cycles.py; tb/cube4_top
 //   checks it at P = 1, 4, 5, 8 and for every build).
-//   cycles counts the clock cycles from start to the last pixel beat. With
+//   cycles counts the clock cycles from start to the last pixel beat;
+//   beats_run (BEATS = 1; 0 otherwise) the frame's sample beats that ran, a
+//   lane valid, into COM (numerics.md section 19, run_beats). With
 //   DRAM = 1 the memory stalls the front end as it must: a frame takes at least
 //   those cycles (cube4_sim.engine dram_stats, reports/dram.md).
 //
@@ -172,6 +174,7 @@ module cube4_top #(
     output wire                      busy,
     output wire                      done,
     output wire [31:0]               cycles,
+    output wire [31:0]               beats_run,
     // finished rays
     output wire                      pix_valid,
     input  wire                      pix_ready,
@@ -585,6 +588,20 @@ module cube4_top #(
         .cycles    (cycles)
     );
     assign busy = busy_q;
+
+    // BEATS = 1: the frame's running sample beats (a lane valid) into COM
+    generate
+        if (BEATS != 0) begin : g_beats_run
+            reg [31:0] run_q;
+            always @(posedge clk) begin
+                if (rst || (start && !busy_q)) run_q <= 32'd0;
+                else if (com_in_take && (sha_hdr[HDR_LVALID +: P] != '0)) run_q <= run_q + 32'd1;
+            end
+            assign beats_run = run_q;
+        end else begin : g_no_beats_run
+            assign beats_run = 32'd0;
+        end
+    endgenerate
 
 endmodule
 `default_nettype wire

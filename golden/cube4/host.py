@@ -383,7 +383,7 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     results, streams, depths = {}, {}, {}
     rects = rects or scene.skip == "rects"
     if beat_skip is None and scene.skip == "beats":
-        beat_skip = {"tau": tau_fixed(scene.tau, cfg)}
+        beat_skip = {"tau": tau_fixed(scene.tau, cfg), "terminate": scene.terminate}
     frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
     geo = scene_geometry(scene, vp.cam)
     beat_frames = beat_schedules(vol, vp, cfg, beat_skip) if beat_skip is not None else None

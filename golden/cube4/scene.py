@@ -64,6 +64,7 @@ class Scene:
     #                          and within it each slice's rectangle (cube4.slices; S = 1); "beats":
     #                          within it only the beats that can change a ray, and rays end (cube4.beats)
     tau: float = 0.0  # [render] tau: with skip = "beats", a ray ends at transmittance <= tau (0: exact)
+    terminate: bool = True  # [render] terminate: with skip = "beats", rays that can change no more end
     preview: int = 1  # [render] preview: render the volume at 1/preview of its resolution (cube4.levels)
     subpixel: int = 1  # [render] subpixel: q, q×q rays per base-plane pixel (cube4.subpixel)
     gradient: str = "gra"  # [render] gradient: gra (the paper's), central or sobel (cube4.vgrad)
@@ -156,8 +157,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
             raise UserError("scene: output.depth_threshold must be in (0, 1]")
 
     rnd = data.get("render", {})
-    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights", "tau", "preview"),
-                "render")
+    _check_keys(rnd, ("mode", "supersample", "skip", "subpixel", "gradient", "path_weights", "tau", "terminate",
+                      "preview"), "render")
     gradient = check_gradient(rnd.get("gradient", "gra"))
     mode = rnd.get("mode", "composite")
     if mode not in MODES:
@@ -172,6 +173,9 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if not isinstance(skip, bool) and skip not in ("rects", "beats"):
         raise UserError(f"scene: render.skip must be true, false, \"rects\" or \"beats\", got {shown(skip)}")
     tau = _num(rnd, "tau", 0.0, 0.0, 0.5, "render.")
+    terminate = rnd.get("terminate", True)
+    if not isinstance(terminate, bool):
+        raise UserError(f"scene: render.terminate must be true or false, got {shown(terminate)}")
     preview = rnd.get("preview", 1)
     if not isinstance(preview, int) or isinstance(preview, bool) or preview not in LEVELS:
         raise UserError(f"scene: render.preview must be one of {', '.join(map(str, LEVELS))}, got {shown(preview)}")
@@ -251,7 +255,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         direction=direction, up=up, width=width, height=height, mode=mode,
         supersample=supersample, ambient=float(ka), diffuse=float(kd), specular=float(ks),
         shininess=float(shin), lights=lights, tf_points=arr, precision=precision, name=name,
-        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, geometry=geometry, skip=skip, tau=tau, preview=preview,
+        shading=shading, crop=crop, crop_regions=crop_regions, cut=cut, slab=slab, geometry=geometry, skip=skip, tau=tau, terminate=terminate,
+        preview=preview,
         subpixel=subpixel, filter=warp_filter,
         footprint=footprint, depth_threshold=depth, gradient=gradient, path_weights=path_weights, gmod=gmod,
         labels=labels,

@@ -16,6 +16,7 @@ import numpy as np
 from cube4.app.mesh import resolve_geometry
 from cube4.app.render import RenderResult, depth_image, depth_stats, register_engine, view_image
 from cube4.bricks import register_brick_renderer
+from cube4.beats import BeatSchedule
 from cube4.config import Cube4Config, resolve_build
 from cube4.cycles import has_falloff, rect_frame_cycles
 from cube4.errors import UserError
@@ -50,7 +51,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     for nv, vp in enumerate(vps):
         rects = pass_rects(vol, vp) if vp.scene.skip == "rects" else [None] * len(vp.plans)
         # the beat schedule: each pass's block table bits and stops, and termination's rule
-        beat_frames = (beat_schedules(vol, vp, cfg, {"tau": tau_fixed(vp.scene.tau, cfg)})
+        beat_frames = (beat_schedules(vol, vp, cfg, {"tau": tau_fixed(vp.scene.tau, cfg),
+                                                     "terminate": vp.scene.terminate})
                        if vp.scene.skip == "beats" else [None] * len(vp.plans))
         geo = geos[nv]
         for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
@@ -97,6 +99,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
             stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in rs)
         outs_v = [out for _, out in ran.values()]
         stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
+        if vp.scene.skip == "beats":
+            stats["beats"] = rtl_beat_stats([(job.beats[0], out) for job, out in ran.values()])
         stats["build"] = dict(build)
         if dram is not None:
             stats["dram"] = dram_stats(outs_v, stats.get("predicted_cycles"), dram)
@@ -109,6 +113,25 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
             res.stats["depth"] = depth_stats(res.depth, vp.scene.depth_threshold)
         results.append(res)
     return results
+
+
+def rtl_beat_stats(frames: list) -> dict:
+    """The beats a view's frames ran on the RTL and skipped, by cause: ``run_beats`` as
+    cube4_top counted them (its sample beats into COM with a lane valid), ``box_beats`` the
+    fixed schedule's in the frames' boxes, ``skipped_empty`` those no ray could run (the
+    host's stops and the block table: the schedule without termination), and
+    ``skipped_terminated`` the rest (COM found their rays done). ``frames``: each frame's
+    (BeatSchedule as the host gave it, the RTL's result)."""
+    box = run = free_run = 0
+    for sched, out in frames:
+        free = BeatSchedule(sched.trav, sched.p, sched.occ, sched.lag, terminate=False, gra=sched.gra)
+        free.limit_stop(sched.stop)
+        free.reported = free.M          # no report moves an end: every slice may be asked
+        box += free.M * free.NJ * free.NB
+        free_run += sum(int(free.run_beats(m).sum()) for m in range(free.M))
+        run += int(out["beats_run"])
+    return {"box_beats": box, "run_beats": run, "skipped_empty": box - free_run,
+            "skipped_terminated": free_run - run, "counted_by": "rtl"}
 
 
 def _cycle_stats(outs: list[dict], ideal: float) -> dict:

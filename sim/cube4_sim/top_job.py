@@ -148,7 +148,7 @@ async def run_job(dut):
         cycles, wall = await drv.frame(fr["regs"], fr.get("stall", 0), fr.get("stall_out", 0), beats,
                                        int(fr.get("expected_cycles", 0)), f"rtl frame {n + 1}/{len(job['frames'])}")
         dram1 = dram_counts(dut)
-        results.append({"cycles": cycles, "sim_wall_s": wall,
+        results.append({"cycles": cycles, "sim_wall_s": wall, "beats_run": int(dut.beats_run.value),
                         **{k: (dram1[k] - dram0[k]) % (1 << 32) for k in dram0}})
         dut._log.info("frame %d: %d cycles, %.2f s", n, cycles, wall)
     Path(job["result"]).write_text(json.dumps(results, indent=2) + "\n")

@@ -101,6 +101,7 @@ module cube4_top_harness #(
     output wire                  busy,
     output wire                  done,
     output wire [31:0]           cycles,
+    output wire [31:0]           beats_run,    // BEATS = 1: the frame's running sample beats into COM
     output wire [31:0]           dram_reads,   // bursts read from the DRAM since power-on (DRAM = 1)
     output wire [31:0]           dram_writes,  // bursts written
     // the commands the DRAM controller sent (cube4_sim.dram_core STAT_NAMES), since power-on
@@ -525,6 +526,7 @@ module cube4_top_harness #(
         .busy        (busy),
         .done        (done),
         .cycles      (cycles),
+        .beats_run   (beats_run),
         .pix_valid   (pix_valid),
         .pix_ready   (pix_ready),
         .pix_mask    (pix_mask),

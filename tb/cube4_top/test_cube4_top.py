@@ -1017,7 +1017,8 @@ def beat_frames(p: int, shaded: bool) -> None:
     of every class and every mode, with ray termination in every other frame (its LUT
     opaque where it counts); the host writes each frame's block table and its rays' stops.
     Each frame's rays are the golden beat-schedule frame's bit for bit, and its base plane
-    the fixed schedule's, with random stalls on every stream and a reset in mid-frame."""
+    the fixed schedule's, with random stalls on every stream and a reset in mid-frame; the
+    beats that ran (cube4_top's count) are the golden frame's."""
     import copy
 
     import cube4.beats as beats
@@ -1056,6 +1057,11 @@ def beat_frames(p: int, shaded: bool) -> None:
                  f"{' terminated' if rule.enabled else ''}")
         frame = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule))
         fixed = render_frame(vol, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None)
+        ran = copy.deepcopy(sched)     # the golden frame's beats that ran: the RTL's count agrees
+        render_frame(vol, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
+                     beats=ran, done=rule)
+        run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
+        assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
             assert (frame.baseplane == fixed.baseplane).all(), f"{label}: differs from the fixed schedule"
         box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)

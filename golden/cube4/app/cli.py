@@ -5,7 +5,7 @@
                  [--compare-to reference|reference-point] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
                  [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
-                 [--no-skip | --rects | --beats [--tau T]] [--preview F] [--preset default|quality] [--gradient gra|central|sobel]
+                 [--no-skip | --rects | --beats [--tau T | --no-terminate]] [--preview F] [--preset default|quality] [--gradient gra|central|sobel]
                  [--path-weights | --no-path-weights]
     cube4 volumes | cube4 scenes      list the built-ins
 
@@ -161,6 +161,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--tau", type=float, metavar="T",
                    help="with --beats: end a ray once its transmittance is at most T (0 <= T <= 0.5; "
                         "default 0, exact): error against run time")
+    r.add_argument("--no-terminate", action="store_true",
+                   help="with --beats: no ray ends early (beat skipping alone; [render] terminate = false), "
+                        "for comparison")
     r.add_argument("--preview", type=_int_arg, metavar="F",
                    help="render the volume at 1/F of its resolution (F = 2 or 4; [render] preview): about F³ "
                         "times fewer cycles, the same picture framing; --compare-to measures it against the "
@@ -350,6 +353,10 @@ def _resolve_scenes(args: argparse.Namespace) -> list[Scene]:
         raise UserError("--no-skip, --rects and --beats exclude each other")
     if args.tau is not None and not args.beats:
         raise UserError("--tau needs --beats (ray termination)")
+    if args.no_terminate and not args.beats:
+        raise UserError("--no-terminate needs --beats")
+    if args.no_terminate and args.tau is not None:
+        raise UserError("--no-terminate and --tau exclude each other")
     if args.tau is not None and not 0.0 <= args.tau <= 0.5:
         raise UserError(f"--tau must be in 0..0.5, got {args.tau}")
     if args.preview is not None and args.preview not in (1, 2, 4):
@@ -374,6 +381,8 @@ def _changed(scene: Scene, args: argparse.Namespace) -> Scene:
         scene = replace(scene, skip="rects" if args.rects else "beats" if args.beats else False)
     if args.tau is not None:
         scene = replace(scene, tau=args.tau)
+    if args.no_terminate:
+        scene = replace(scene, terminate=False)
     if args.preview is not None:
         scene = replace(scene, preview=args.preview)
     if args.preset:
