@@ -302,3 +302,18 @@ def test_skipping_report_beat_rows():
     text = skipping.write_beats_md(rows, taus, blocks, front)
     assert "mri:32,24,12" in text and "identical" in text and "DIFFERENT" not in text
     assert "| head:128, scene head | 2 | 130,367 | 0.497 | 129,661 | 0.495 | 0.471 |" in text
+
+
+def test_skipping_report_rtl_beat_lines():
+    """The beat section's RTL table: a frame time only where the build's Fmax was measured,
+    and --fmax as one clear line when malformed."""
+    from cube4_reports import skipping
+
+    frames = [{"volume": "mri:128", "scene": "mri_skin", "schedule": s, "cycles": c, "n3_over_p": 262144.0,
+               "beats": None if s == "box" else {"run_beats": 70000}, "build": {"SHADING": 1, "BEATS": int(s != "box")},
+               "identical": True} for s, c in (("box", 140000), ("beats + termination", 97000))]
+    text = "\n".join(skipping.rtl_beat_lines(frames, {"box": 140.0}))
+    assert "1.00 ms" in text and "not measured" in text and "0.267" in text
+    assert skipping.parse_fmax("box=140,beats=61.5") == {"box": 140.0, "beats": 61.5}
+    with pytest.raises(SystemExit, match="--fmax wants"):
+        skipping.parse_fmax("beats=fast")

@@ -29,7 +29,7 @@ import numpy as np
 from tqdm import tqdm
 
 from cube4.app.render import render, render_golden_view
-from cube4.beats import DECIDE_RATES
+from cube4.beats import DECIDE_RATES, LAG
 from cube4.app.volumes import load_volume
 from cube4.config import resolve_build
 from cube4.cycles import rect_frame_cycles
@@ -183,6 +183,64 @@ def rtl_goal_frame(rects: bool = False) -> dict:
             "fixed_schedule_cycles": res.stats["fixed_schedule_cycles"],
             "bit_identical_to_fixed_golden": bool(np.array_equal(res.frame.baseplane, gold.frame.baseplane)),
             "sim_wall_s": res.stats["sim_wall_s"]}
+
+
+#: the schedules of the beat section's RTL frames: (label, scene changes)
+RTL_SCHEDULES = [("box", {"skip": True}), ("beats", {"skip": "beats", "terminate": False}),
+                 ("beats + termination", {"skip": "beats"})]
+
+
+def rtl_beat_frames() -> list[dict]:
+    """The goal cases' own views (head:128 translucent, the MRI's opaque surface) through the
+    RTL, P = 8, with the box schedule, beat skipping alone and beat skipping with ray
+    termination (each on the smallest build the scene needs): cycles, the beats that ran
+    as cube4_top counted them, and the base plane against the golden fixed schedule's."""
+    from cube4_sim.engine import register
+
+    register()
+    out = []
+    for vol_spec, scene_name in (GOAL, OPAQUE_GOAL):
+        vol = load_volume(vol_spec)
+        sc = load_scene(scene_name)
+        cfg = config_for(sc, P)
+        gold = render(vol, dataclasses.replace(sc, skip=False), cfg, "golden")
+        for label, change in RTL_SCHEDULES:
+            res = render(vol, dataclasses.replace(sc, **change), cfg, "rtl", progress=sys.stderr.isatty())
+            st = res.stats
+            out.append({"volume": vol_spec, "scene": scene_name, "schedule": label, "cycles": st["cycles"],
+                        "n3_over_p": vol.size / P, "beats": st.get("beats"),
+                        "build": {k: v for k, v in st["build"].items() if v},
+                        "identical": bool(np.array_equal(res.frame.baseplane, gold.frame.baseplane))})
+    return out
+
+
+def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
+    """The beat section's RTL table: cycles and frame times side by side."""
+    if not frames:
+        return []
+    body = []
+    for f in frames:
+        key = "box" if f["schedule"] == "box" else "beats"
+        mhz = fmax.get(key)
+        b = f["beats"] or {}
+        body.append([f"{f['volume']}", f["scene"], f["schedule"], fmt_int(f["cycles"]),
+                     _frac(f["cycles"], f["n3_over_p"]),
+                     _frac(b["run_beats"], f["n3_over_p"]) if b else "",
+                     f"{mhz:.1f} MHz" if mhz else "not measured",
+                     f"{f['cycles'] / mhz / 1000:.2f} ms" if mhz else "",
+                     _image(f["identical"])])
+    builds = sorted({", ".join(f"{k}={v}" for k, v in f["build"].items()) for f in frames})
+    return [
+        "**Through the RTL** (P = 8, each case's own view; `cube4 render <volume> --scene <scene> --engine rtl "
+        "--stats s.json` with `--beats`, and `--beats --no-terminate` for beat skipping alone): cycles "
+        "measured; 'beats run' as `cube4_top` counted them (the golden frame's count: `tb/cube4_top` holds "
+        "them equal); frame time = cycles / the Fmax of the build that ran it, placed and routed out of "
+        "context on the ECP5-85F at P = 8 (`python -m cube4_reports.fpga --p 8 --seed 1 --build "
+        "<options>`, seed 1 only: the median of three seeds is issue work still open), given to this "
+        "report as `--fmax box=…,beats=…`; blank where not measured. Builds: " + "; ".join(builds)
+        + ". 'image': the base plane against the golden fixed schedule's, bit for bit.", "",
+        md_table(["volume", "scene", "schedule", "cycles", "cycles / (n³/P)", "beats run", "Fmax", "frame time",
+                  "image"], body, "lllrrrrrl"), ""]
 
 
 def rtl_dram_frames() -> list[dict]:
@@ -376,7 +434,8 @@ def _frac(x: float, n3p: float) -> str:
     return f"{x / n3p:.3f}"
 
 
-def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front: list[dict] | None = None) -> str:
+def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front: list[dict] | None = None,
+                   rtl: list[dict] | None = None, fmax: dict[str, float] | None = None) -> str:
     rates = [r for r in DECIDE_RATES if r > 1]
     head = ["volume (dims)", "scene (mode)", "view az, el", "box", "beats run", "+ termination",
             "front-end walk", *[f"deciding {r}/cycle" for r in rates], "skipped: empty", "skipped: rays ended",
@@ -395,14 +454,14 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front
         "## Beat skipping and ray termination (golden model)",
         "",
         "The specification of `cube4.beats` (docs/numerics.md §19; `cube4 render --beats --engine golden`), "
-        "within each frame's box, P = 8, blocks of 4³ voxels, lag 3, τ = 0. Every figure is a share of "
+        f"within each frame's box, P = 8, blocks of 4³ voxels, lag {LAG}, τ = 0. Every figure is a share of "
         "n³/P beats: 'box' the box schedule's cycles (as above); 'beats run' the sample beats that run "
         "without termination; '+ termination' with it; 'front-end walk' the beats the front end walks "
         "with termination (what runs and the voxel beats it reads: rows j + 1, partial beams pb + 1). The "
         "walk is the specification's figure for a front end that passes over a skipped beat in no cycle; "
         "'deciding r/cycle' the cycles of one that decides r beats a cycle (`beats.decided_cycles`: per "
         "slice the larger of its walk and its NJ·NB beats / r); "
-        "**no RTL runs this schedule yet**, so there are no measured cycles and no frame times for it. "
+        "the RTL's measured cycles follow the table. "
         "'skipped': shares of the box's beats, by cause. 'host table': the block table for the "
         "transfer function (value ranges and bits), once per volume and LUT, not per view. 'host stops': "
         "per view, each ray's stop (the slice after the last in which its sample may count, written into "
@@ -432,6 +491,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front
                            [[f"{b['block']}³", fmt_int(b["entries"]), _frac(b["beats"]["run_beats"], b["n3_over_p"]),
                              _frac(b["beats"]["walk_beats"], b["n3_over_p"]),
                              f"{1000 * b['beats']['table_s']:.0f} ms"] for b in blocks], "lrrrr"), ""]
+    lines += rtl_beat_lines(rtl or [], fmax or {})
     lines += front_end_lines(front or [])
     goal = [r for r in rows if (r["volume"], r["scene"]) == GOAL]
     opaque = [r for r in rows if (r["volume"], r["scene"]) == OPAQUE_GOAL]
@@ -462,8 +522,26 @@ def parse_args(argv):
     ap.add_argument("--no-dram", action="store_true", help="leave out the RTL frames with the DRAM (about 4 min)")
     ap.add_argument("--no-images", action="store_true", help="do not render both schedules to compare images")
     ap.add_argument("--no-beats", action="store_true", help="leave out beat skipping and ray termination")
+    ap.add_argument("--fmax", default="", metavar="box=MHZ,beats=MHZ",
+                    help="the measured Fmax of the box and beat builds (python -m cube4_reports.fpga), for "
+                         "the beat section's frame times; blank without")
     ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md")
     return ap.parse_args(argv)
+
+
+def parse_fmax(text: str) -> dict[str, float]:
+    """--fmax box=MHZ,beats=MHZ -> {name: MHz}; an error for users as one line."""
+    out: dict[str, float] = {}
+    for part in filter(None, text.split(",")):
+        name, _, val = part.partition("=")
+        try:
+            mhz = float(val)
+        except ValueError:
+            mhz = 0.0
+        if name not in ("box", "beats") or mhz <= 0:
+            raise SystemExit(f"skipping: --fmax wants box=MHZ,beats=MHZ, got {part!r}")
+        out[name] = mhz
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -481,18 +559,21 @@ def main(argv: list[str] | None = None) -> int:
     rtl_rects = None if args.no_rtl else rtl_goal_frame(rects=True)
     rtl_dram = None if (args.no_rtl or args.no_dram) else rtl_dram_frames()
     front = [] if (args.no_rtl or args.no_beats) else rtl_front_end()
+    rtl_beats = [] if (args.no_rtl or args.no_beats) else rtl_beat_frames()
+    fmax = parse_fmax(args.fmax)
     meta = {"git": git_describe(("rtl", "golden", "sim"))}
     out = REPO_ROOT / "build" / "reports"
     out.mkdir(parents=True, exist_ok=True)
     (out / "skipping.json").write_text(json.dumps({"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects,
                                                    "rtl_dram": rtl_dram, "front_end": front,
-                                                   "beats": brows, "taus": taus, "blocks": blocks},
+                                                   "beats": brows, "taus": taus, "blocks": blocks,
+                                                   "rtl_beats": rtl_beats, "fmax": fmax},
                                                   indent=1) + "\n")
     dest = Path(args.out)
     dest.mkdir(parents=True, exist_ok=True)
     md = write_md(rows, rtl, meta, rtl_rects, rtl_dram)
     if brows:
-        md += "\n" + write_beats_md(brows, taus, blocks, front)
+        md += "\n" + write_beats_md(brows, taus, blocks, front, rtl_beats, fmax)
     (dest / "skipping.md").write_text(md)
     print(f"skipping: {dest / 'skipping.md'}")
     return 0
