@@ -214,9 +214,9 @@ module cube4_top #(
         if (LABELS != 0 && (VGRAD != 0 || PLW != 0 || RECTS != 0)) begin : g_labels_alone
             $error("cube4_top: LABELS = 1 needs VGRAD = 0 and PLW = 0 and RECTS = 0 (labels run without voxel gradients, path weights and rectangles)");
         end
-        if (BEATS != 0 && (VGRAD != 0 || GMOD != 0 || PLW != 0 || RECTS != 0 || ZIN != 0 || ZOUT != 0 || SLAB != 0
+        if (BEATS != 0 && (GMOD != 0 || PLW != 0 || RECTS != 0 || ZIN != 0 || ZOUT != 0 || SLAB != 0
                            || LABELS != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
-            $error("cube4_top: BEATS = 1 needs VGRAD = 0 and GMOD = 0 and PLW = 0 and RECTS = 0 and ZIN = 0 and ZOUT = 0 and SLAB = 0 and LABELS = 0 and MAX_SS_LOG2 = 0 (the beat schedule runs with S = 1, GRA's gradients, without path weights, rectangles, depth, the slab, gradient modulation and labels: the rest is not built yet)");
+            $error("cube4_top: BEATS = 1 needs GMOD = 0 and PLW = 0 and RECTS = 0 and ZIN = 0 and ZOUT = 0 and SLAB = 0 and LABELS = 0 and MAX_SS_LOG2 = 0 (the beat schedule runs with S = 1, without path weights, rectangles, depth, the slab, gradient modulation and labels: the rest is not built yet)");
         end
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");
@@ -346,10 +346,10 @@ module cube4_top #(
     // BEATS = 1: each sample beat's bits into a FIFO as it leaves the front end
     // (it waits for room), out as the beat enters COM (GRA and SHA keep the order
     // and count). GRA holds a slice and two rows of beats (cube4_gra_beats: a
-    // centre leaves at its X-step), so with shading the FIFO is in block RAM,
+    // centre leaves at its X-step), so with GRA (shading, not VGRAD) the FIFO is in block RAM,
     // (MAX_DIM + 2) * NBMAX beats and 128 for the pipelines, rounded up to a
     // power of two; never full while a beat waits in GRA for the next ones.
-    localparam integer BITS_DEPTH = (SHADING != 0) ? (1 << $clog2((MAX_DIM + 2) * NBMAX + 128)) : 64;
+    localparam integer BITS_DEPTH = (SHADING != 0 && VGRAD == 0) ? (1 << $clog2((MAX_DIM + 2) * NBMAX + 128)) : 64;
     wire [4*P-1:0] com_bits;
     wire           com_eoss;       // the beat is the last of its sample slice
     wire           com_in_take;
@@ -358,7 +358,7 @@ module cube4_top #(
             wire b_ready, b_valid;
             assign smp_valid    = fe_smp_valid && b_ready;
             assign fe_smp_ready = smp_ready && b_ready;
-            if (SHADING != 0) begin : g_ram
+            if (SHADING != 0 && VGRAD == 0) begin : g_ram
                 cube4_ram_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
                     .clk       (clk),
                     .rst       (rst),

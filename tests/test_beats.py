@@ -278,7 +278,7 @@ def test_cli_beats_and_stats(tmp_path):
     _, b_tau = run("--beats", "--tau", "0.05")
     assert 0 < np.abs(b_tau - b_off).max() <= int(0.05 * (1 << 16)) + 1
     for extra, msg in ((("--tau", "0.1"), "--tau needs --beats"),
-                       (("--beats", "--engine", "rtl", "--path-weights"), "BEATS = 1 needs VGRAD = 0 and GMOD = 0 and PLW = 0"),
+                       (("--beats", "--engine", "rtl", "--path-weights"), "BEATS = 1 needs GMOD = 0 and PLW = 0"),
                        (("--beats", "--bricks", "2,1,1"), "does not run in bricks"),
                        (("--beats", "--tau", "0.7"), "--tau must be in 0..0.5")):
         r = run(*extra, check=False)

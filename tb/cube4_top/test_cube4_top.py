@@ -1011,7 +1011,14 @@ def test_beat_frames_shaded(p):
     beat_frames(p, shaded=True)
 
 
-def beat_frames(p: int, shaded: bool) -> None:
+@pytest.mark.parametrize("p", sweep([5, 1], quick=(0,)))
+def test_beat_frames_vgrad(p):
+    """As test_beat_frames_shaded, in a build with voxel gradients (VGRAD = 1: TRI
+    interpolates the memory words' gradients, no GRA)."""
+    beat_frames(p, shaded=True, vgrad=True)
+
+
+def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
@@ -1043,7 +1050,7 @@ def beat_frames(p: int, shaded: bool) -> None:
             lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
         bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, mode)
         sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
-                                   gra=rmap is not None)
+                                   gra=rmap is not None and not vgrad)
         rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                      enabled=terminate, value_bits=cfg.voxel_bits)
         job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits),
@@ -1051,15 +1058,21 @@ def beat_frames(p: int, shaded: bool) -> None:
                        reset_after_cycles=500 if n == 2 else 0)
         jobs.append(job)
         gold.append((sched, rule))
-    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": int(shaded)})
+    mem = vol
+    if vgrad:       # the memory words hold each voxel's gradient too (the block table: its value)
+        from cube4.vgrad import pack_words
+        mem = pack_words(vol, "central", cfg.voxel_bits)
+    results = render_frames(mem, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad)})
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
-                 f"{' terminated' if rule.enabled else ''}")
-        frame = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule))
-        fixed = render_frame(vol, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None)
+                 f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}")
+        frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
+                      vgrad=vgrad)
+        fixed = render_frame(mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
+                             vgrad=vgrad)
         ran = copy.deepcopy(sched)     # the golden frame's beats that ran: the RTL's count agrees
-        render_frame(vol, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                     beats=ran, done=rule)
+        render_frame(mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
+                     beats=ran, done=rule, vgrad=vgrad)
         run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
         assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
