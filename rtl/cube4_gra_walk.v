@@ -55,11 +55,6 @@ module cube4_gra_walk
     localparam integer VW     = VOXEL_W;
     localparam integer PV     = P * VW;
     localparam integer META_W = GRA_META_W;
-    localparam integer RW  = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;   // row bits of a plane address
-    localparam integer PAW = RW + PB_W;                            // plane address {row, pb}
-    localparam integer AWD = META_W + PV;                          // plane A: X with its meta
-    localparam integer BMW = 4 * PV + META_W;                      // beam: X, P1 (meta), C, P2b1
-    localparam integer PBN = 1 << PB_W;                            // beam buffer entries
 
     `CUBE4_VIEW_FIELDS(cfg);
     genvar q;
@@ -78,7 +73,6 @@ module cube4_gra_walk
     reg               i0_ylast;
     reg               i0_dyf, i0_dyb;
     wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
-    wire [META_W-1:0] p1_meta;       // P1's {real, header} (gated)
     assign step = i0_v && credit[GRA_STEPS-1];
     assign sop  = 1'b0;
     assign fend = i0_fend;
@@ -221,56 +215,14 @@ module cube4_gra_walk
     endgenerate
     wire [META_W-1:0] x_meta = {i0_in && (|i0_lane_valid), i0_hdr};
 
-    // ---- position buffers: read when a step's position loads into i0
-    // (a block RAM's registered read), written when it steps; a read of
-    // the word written in the same cycle takes the new word (bypass) ----
-    wire [RW-1:0]    ld_r1 = ld_r[RW-1:0] - 1'b1;   // the centre's row (plane B)
-    wire [RW-1:0]    i0_r1 = i0_r[RW-1:0] - 1'b1;
-    wire [PAW-1:0]   ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
-    wire [PAW-1:0]   ra_b = {ld_r1, ld_pb},        wa_b = {i0_r1, i0_pb};
-    wire we_a = step && !i0_dead && (i0_r < cfg_nj);   // plane A: X at its own position
-    wire we_b = step && !i0_dead && (i0_r != '0);      // plane B: C at the centre's position
-    wire we_m = step && !i0_dead;                      // beam buffer
-    wire [AWD-1:0] wd_a = {x_meta, x};
-    wire [PV-1:0]  wd_b = c;
-    wire [BMW-1:0] wd_m = {x, p1_meta, p1, c, p2b1};
-    wire [AWD-1:0] rd_a;
-    wire [PV-1:0]  rd_b;
-    wire [BMW-1:0] rd_m;
-    cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW)) u_plane_a (
-        .clk (clk), .rd_en (ld), .rd_addr (ra_a), .rd_data (rd_a),
-        .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
-    cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW)) u_plane_b (
-        .clk (clk), .rd_en (ld), .rd_addr (ra_b), .rd_data (rd_b),
-        .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
-    cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
-        .clk (clk), .rd_en (ld), .rd_addr (ld_pb), .rd_data (rd_m),
-        .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
-    reg            by_a, by_b, by_m;
-    reg [AWD-1:0]  bd_a;
-    reg [PV-1:0]   bd_b;
-    reg [BMW-1:0]  bd_m;
-    always @(posedge clk) begin
-        if (ld) begin
-            by_a <= we_a && (wa_a == ra_a);
-            by_b <= we_b && (wa_b == ra_b);
-            by_m <= we_m && (i0_pb == ld_pb);
-            bd_a <= wd_a;
-            bd_b <= wd_b;
-            bd_m <= wd_m;
-        end
-    end
-    wire [AWD-1:0] a_w = by_a ? bd_a : rd_a;
-    wire [PV-1:0]  b_w = by_b ? bd_b : rd_b;
-    wire [BMW-1:0] m_w = by_m ? bd_m : rd_m;
-    assign p1_meta = i0_pg ? a_w[PV +: META_W] : {META_W{1'b0}};
-    assign p1   = i0_pg ? a_w[PV-1:0] : {PV{1'b0}};
-    assign p2b1 = i0_pgb ? b_w : {PV{1'b0}};
-    assign b1     = i0_bg ? m_w[3*PV + META_W +: PV] : {PV{1'b0}};
-    assign c_meta = i0_bg ? m_w[3*PV +: META_W] : {META_W{1'b0}};
-    assign c    = i0_bg ? m_w[2*PV +: PV] : {PV{1'b0}};
-    assign p1b2   = i0_bg ? m_w[PV +: PV] : {PV{1'b0}};
-    assign p2b2   = i0_bg ? m_w[0 +: PV] : {PV{1'b0}};
+    // ---- position buffers (cube4_gra_pos): read when a step's position loads
+    // into i0, written when it steps ----
+    cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
+        .clk (clk), .ld (ld), .ld_r (ld_r), .ld_pb (ld_pb),
+        .step (step), .dead (i0_dead), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
+        .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
+        .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
+        .p1b2 (p1b2), .p2b2 (p2b2));
     assign c_sel  = {P{i0_flags, i0_ylast, i0_dyf, i0_dyb}};   // bits GSEL_DKF .. GSEL_DYB
     assign c_edge = i0_edge;
     wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)

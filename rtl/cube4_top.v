@@ -358,29 +358,18 @@ module cube4_top #(
             wire b_ready, b_valid;
             assign smp_valid    = fe_smp_valid && b_ready;
             assign fe_smp_ready = smp_ready && b_ready;
+            // one port map, two queues: block RAM behind GRA, registers otherwise
+`define CUBE4_BITS_FIFO(MODULE) \
+                MODULE #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
+                    .clk (clk), .rst (rst), \
+                    .in_valid (fe_smp_valid && smp_ready), .in_ready (b_ready), .in_data ({smp_eoss, smp_bits}), \
+                    .out_valid (b_valid), .out_ready (com_in_take), .out_data ({com_eoss, com_bits}));
             if (SHADING != 0 && VGRAD == 0) begin : g_ram
-                cube4_ram_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
-                    .clk       (clk),
-                    .rst       (rst),
-                    .in_valid  (fe_smp_valid && smp_ready),
-                    .in_ready  (b_ready),
-                    .in_data   ({smp_eoss, smp_bits}),
-                    .out_valid (b_valid),
-                    .out_ready (com_in_take),
-                    .out_data  ({com_eoss, com_bits})
-                );
+                `CUBE4_BITS_FIFO(cube4_ram_fifo)
             end else begin : g_regs
-                cube4_sync_fifo #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits (
-                    .clk       (clk),
-                    .rst       (rst),
-                    .in_valid  (fe_smp_valid && smp_ready),
-                    .in_ready  (b_ready),
-                    .in_data   ({smp_eoss, smp_bits}),
-                    .out_valid (b_valid),
-                    .out_ready (com_in_take),
-                    .out_data  ({com_eoss, com_bits})
-                );
+                `CUBE4_BITS_FIFO(cube4_sync_fifo)
             end
+`undef CUBE4_BITS_FIFO
             wire unused_bits = ^{b_valid, smp_eos};   // (a beat at COM always finds its entry)
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;

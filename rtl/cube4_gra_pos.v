@@ -1,0 +1,121 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_gra_pos
+// -----------------------------------------------------------------------------
+// Purpose
+//   GRA's position buffers, shared by the walks that step by position
+//   (cube4_gra_walk: slice rectangles; cube4_gra_beats: the beat schedule).
+//   A step at walk position (w, r, pb) brings X = (w, r, pb) and the centre
+//   C = (w - 1, r - 1, pb) with the six neighbours of cube4_gra_lines:
+//     plane A {r, pb}      X of the step at (w - 1, r, pb): P1 = (w - 1, r)
+//     plane B {r - 1, pb}  C of that step: P2b1 = (w - 2, r - 1)
+//     beam {pb}            X, P1, C, P2b1 of the step at (w, r - 1, pb):
+//                          B1, C, P1b2, P2b2
+//   Each is read in the cycle the step's position loads (ld: a block RAM's
+//   registered read) and written when it steps; a read of the word written
+//   in that cycle takes the new word (bypass). The caller says, registered
+//   with its step, which words are this frame's neighbours (pg, pgb, bg);
+//   the others read as zero. Plane A holds rows 0 .. NJ - 1 (row NJ is
+//   outside the volume), plane B rows 0 .. NJ - 1 (the centre's row), a
+//   dead step (one that only moves the window) writes nothing.
+//
+// Parameters
+//   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_gra (derived widths:
+//   cube4_defs.vh CUBE4_GEOMETRY, CUBE4_GRA_LAYOUT)
+//
+// Latency
+//   The words for a position loaded at an edge (ld) are on the outputs
+//   after it, until the next load; a step's write lands at its edge.
+//
+// Ports (samples unsigned Q0.VOXEL_W, P lanes of VOXEL_W bits)
+//   ld, ld_r [DIM_W], ld_pb [PB_W]   the next step's position loads (read)
+//   step, dead, i0_r, i0_pb, nj      the loaded step steps (write), its
+//                                    position, whether it writes (!dead), NJ
+//   x, x_meta [GRA_META_W]           the step's X (zero outside its beat's
+//                                    valid lanes) and its {real, header}
+//   pg, pgb, bg                      the plane A, plane B and beam words read
+//                                    for the step are this frame's neighbours
+//   p1, p2b1, b1, c_meta, c, p1b2, p2b2   the neighbours (zero where their
+//                                    word does not count), C with its {real,
+//                                    header} (P1's, kept in the beam buffer)
+//
+// Bit growth and rounding: none (storage only).
+// =============================================================================
+module cube4_gra_pos #(
+    `CUBE4_GRA_PARAMS
+) (
+    input  wire clk,
+    input  wire ld, input wire [DIM_W-1:0] ld_r, input wire [PB_W-1:0] ld_pb,
+    input  wire step, input wire dead, input wire [DIM_W-1:0] i0_r, input wire [PB_W-1:0] i0_pb,
+    input  wire [DIM_W-1:0] nj,
+    input  wire [P*VOXEL_W-1:0] x, input wire [GRA_META_W-1:0] x_meta,
+    input  wire pg, input wire pgb, input wire bg,
+    output wire [P*VOXEL_W-1:0] p1, output wire [P*VOXEL_W-1:0] p2b1,
+    output wire [P*VOXEL_W-1:0] b1, output wire [GRA_META_W-1:0] c_meta, output wire [P*VOXEL_W-1:0] c,
+    output wire [P*VOXEL_W-1:0] p1b2, output wire [P*VOXEL_W-1:0] p2b2
+);
+    localparam integer PV     = P * VOXEL_W;
+    localparam integer META_W = GRA_META_W;
+    localparam integer RW  = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;   // row bits of a plane address
+    localparam integer PAW = RW + PB_W;                            // plane address {row, pb}
+    localparam integer AWD = META_W + PV;                          // plane A: X with its meta
+    localparam integer BMW = 4 * PV + META_W;                      // beam: X, P1 (meta), C, P2b1
+    localparam integer PBN = 1 << PB_W;                            // beam buffer entries
+
+    wire [META_W-1:0] p1_meta;                     // P1's {real, header} (into the beam buffer)
+    wire [RW-1:0]   ld_r1 = ld_r[RW-1:0] - 1'b1;   // the centre's row (plane B)
+    wire [RW-1:0]   i0_r1 = i0_r[RW-1:0] - 1'b1;
+    wire [PAW-1:0]  ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
+    wire [PAW-1:0]  ra_b = {ld_r1, ld_pb},        wa_b = {i0_r1, i0_pb};
+    wire we_a = step && !dead && (i0_r < nj);     // plane A: X at its own position
+    wire we_b = step && !dead && (i0_r != '0);    // plane B: C at the centre's position
+    wire we_m = step && !dead;                    // the beam buffer
+    wire [AWD-1:0] wd_a = {x_meta, x};
+    wire [PV-1:0]  wd_b = c;
+    wire [BMW-1:0] wd_m = {x, p1_meta, p1, c, p2b1};
+    wire [AWD-1:0] rd_a;
+    wire [PV-1:0]  rd_b;
+    wire [BMW-1:0] rd_m;
+    cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW)) u_plane_a (
+        .clk (clk), .rd_en (ld), .rd_addr (ra_a), .rd_data (rd_a),
+        .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
+    cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW)) u_plane_b (
+        .clk (clk), .rd_en (ld), .rd_addr (ra_b), .rd_data (rd_b),
+        .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
+    cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
+        .clk (clk), .rd_en (ld), .rd_addr (ld_pb), .rd_data (rd_m),
+        .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
+    reg            by_a, by_b, by_m;
+    reg [AWD-1:0]  bd_a;
+    reg [PV-1:0]   bd_b;
+    reg [BMW-1:0]  bd_m;
+    always @(posedge clk) begin
+        if (ld) begin
+            by_a <= we_a && (wa_a == ra_a);
+            by_b <= we_b && (wa_b == ra_b);
+            by_m <= we_m && (i0_pb == ld_pb);
+            bd_a <= wd_a;
+            bd_b <= wd_b;
+            bd_m <= wd_m;
+        end
+    end
+    wire [AWD-1:0] a_w = by_a ? bd_a : rd_a;
+    wire [PV-1:0]  b_w = by_b ? bd_b : rd_b;
+    wire [BMW-1:0] m_w = by_m ? bd_m : rd_m;
+    assign p1_meta = pg  ? a_w[PV +: META_W] : {META_W{1'b0}};
+    assign p1      = pg  ? a_w[PV-1:0] : {PV{1'b0}};
+    assign p2b1    = pgb ? b_w : {PV{1'b0}};
+    assign b1      = bg  ? m_w[3*PV + META_W +: PV] : {PV{1'b0}};
+    assign c_meta  = bg  ? m_w[3*PV +: META_W] : {META_W{1'b0}};
+    assign c       = bg  ? m_w[2*PV +: PV] : {PV{1'b0}};
+    assign p1b2    = bg  ? m_w[PV +: PV] : {PV{1'b0}};
+    assign p2b2    = bg  ? m_w[0 +: PV] : {PV{1'b0}};
+    generate
+        if (DIM_W > RW) begin : g_row_top
+            wire unused_r = ^{ld_r[DIM_W-1:RW], i0_r[DIM_W-1:RW]};   // (rows below MAX_DIM address the planes)
+        end
+    endgenerate
+
+endmodule
+`default_nettype wire
