@@ -222,11 +222,13 @@ def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
     for f in frames:
         key = "box" if f["schedule"] == "box" else "beats"
         mhz = fmax.get(key)
+        nofit = mhz == NOFIT
+        mhz = None if nofit else mhz
         b = f["beats"] or {}
         body.append([f"{f['volume']}", f["scene"], f["schedule"], fmt_int(f["cycles"]),
                      _frac(f["cycles"], f["n3_over_p"]),
                      _frac(b["run_beats"], f["n3_over_p"]) if b else "",
-                     f"{mhz:.1f} MHz" if mhz else "not measured",
+                     f"{mhz:.1f} MHz" if mhz else ("does not fit" if nofit else "not measured"),
                      f"{f['cycles'] / mhz / 1000:.2f} ms" if mhz else "",
                      _image(f["identical"])])
     builds = sorted({", ".join(f"{k}={v}" for k, v in f["build"].items()) for f in frames})
@@ -237,7 +239,8 @@ def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
         "them equal); frame time = cycles / the Fmax of the build that ran it, placed and routed out of "
         "context on the ECP5-85F at P = 8 (`python -m cube4_reports.fpga --p 8 --seed 1 --build "
         "<options>`, seed 1 only: the median of three seeds is issue work still open), given to this "
-        "report as `--fmax box=…,beats=…`; blank where not measured. Builds: " + "; ".join(builds)
+        "report as `--fmax box=…,beats=…` ('does not fit': the build does not fit the ECP5-85F at P = 8; "
+        "docs/architecture.md gives its block RAMs); blank where not measured. Builds: " + "; ".join(builds)
         + ". 'image': the base plane against the golden fixed schedule's, bit for bit.", "",
         md_table(["volume", "scene", "schedule", "cycles", "cycles / (n³/P)", "beats run", "Fmax", "frame time",
                   "image"], body, "lllrrrrrl"), ""]
@@ -310,13 +313,13 @@ def front_end_lines(rows: list[dict]) -> list[str]:
              f"{r['decided_cycles'] / r['n3_over_p']:.3f}", f"{r['walk_beats'] / r['n3_over_p']:.3f}"]
             for r in rows]
     return ["**The front end's units in RTL** (`cube4_cfb_skip`: `cube4_cfb_decide`, `cube4_ram_fifo`, "
-            "`cube4_cfb_beats`; S = 1, P = 8, MAX_DIM = 128, lag 3; the bench `tb/cube4_cfb_skip` test_measure "
+            f"`cube4_cfb_beats`; S = 1, P = 8, MAX_DIM = 128, lag {LAG}; the bench `tb/cube4_cfb_skip` test_measure "
             "plays the host and COM, COM reporting each slice right after its last beat): a frame's cycles from "
             "start to its last walk beat, deciding r beats a cycle, beside the golden model's "
             "`beats.decided_cycles` (which leaves out the two slices decided before the walk starts and the "
             "pipeline's fill) and the walk's beats. Every walk beat and position bit matched the golden "
-            "schedule. These units are not yet in `cube4_top`: no frame of the whole design runs this "
-            "schedule, so these are the front end's cycles, not a frame's.", "",
+            "schedule. These are the front end's cycles alone; the frames through the whole design are in "
+            "the table above.", "",
             md_table(["case (its own view)", "r", "cycles", "of n³/P", "golden decided_cycles", "of n³/P",
                       "walk beats, of n³/P"], body, "lrrrrrr"), ""]
 
@@ -523,29 +526,55 @@ def parse_args(argv):
     ap.add_argument("--no-images", action="store_true", help="do not render both schedules to compare images")
     ap.add_argument("--no-beats", action="store_true", help="leave out beat skipping and ray termination")
     ap.add_argument("--fmax", default="", metavar="box=MHZ,beats=MHZ",
-                    help="the measured Fmax of the box and beat builds (python -m cube4_reports.fpga), for "
-                         "the beat section's frame times; blank without")
+                    help="the measured Fmax of the box and beat builds (python -m cube4_reports.fpga; nofit: "
+                         "the build does not fit), for the beat section's frame times; blank without")
+    ap.add_argument("--md-only", action="store_true",
+                    help="rewrite skipping.md from the last run's build/reports/skipping.json (e.g. with --fmax)")
     ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md")
     return ap.parse_args(argv)
 
 
+#: --fmax's value for a build that does not fit the part at P = 8
+NOFIT = -1.0
+
+
 def parse_fmax(text: str) -> dict[str, float]:
-    """--fmax box=MHZ,beats=MHZ -> {name: MHz}; an error for users as one line."""
+    """--fmax box=MHZ,beats=MHZ -> {name: MHz} (nofit: NOFIT); an error for users as one line."""
     out: dict[str, float] = {}
     for part in filter(None, text.split(",")):
         name, _, val = part.partition("=")
         try:
-            mhz = float(val)
+            mhz = NOFIT if val == "nofit" else float(val)
         except ValueError:
             mhz = 0.0
-        if name not in ("box", "beats") or mhz <= 0:
-            raise SystemExit(f"skipping: --fmax wants box=MHZ,beats=MHZ, got {part!r}")
+        if name not in ("box", "beats") or not (mhz > 0 or mhz == NOFIT):
+            raise SystemExit(f"skipping: --fmax wants box=MHZ,beats=MHZ (or nofit), got {part!r}")
         out[name] = mhz
     return out
 
 
+def write_reports(dest: Path, data: dict) -> None:
+    """skipping.md from a run's figures (``data``: what build/reports/skipping.json holds)."""
+    dest.mkdir(parents=True, exist_ok=True)
+    md = write_md(data["rows"], data["rtl"], data["meta"], data["rtl_rects"], data["rtl_dram"])
+    if data["beats"]:
+        md += "\n" + write_beats_md(data["beats"], data["taus"], data["blocks"], data["front_end"],
+                                    data.get("rtl_beats"), data.get("fmax"))
+    (dest / "skipping.md").write_text(md)
+    print(f"skipping: {dest / 'skipping.md'}")
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
+    saved = REPO_ROOT / "build" / "reports" / "skipping.json"
+    if args.md_only:
+        if not saved.exists():
+            raise SystemExit(f"skipping: --md-only needs {saved} (run make skipping first)")
+        data = json.loads(saved.read_text())
+        data["fmax"] = parse_fmax(args.fmax) or data.get("fmax") or {}
+        saved.write_text(json.dumps(data, indent=1) + "\n")
+        write_reports(Path(args.out), data)
+        return 0
     rows = []
     for vol_spec, scene_name, _ in tqdm(CASES, desc="skipping", unit="volume", disable=not sys.stderr.isatty()):
         rows.extend(measure(vol_spec, scene_name, not args.no_images))
@@ -562,20 +591,12 @@ def main(argv: list[str] | None = None) -> int:
     rtl_beats = [] if (args.no_rtl or args.no_beats) else rtl_beat_frames()
     fmax = parse_fmax(args.fmax)
     meta = {"git": git_describe(("rtl", "golden", "sim"))}
-    out = REPO_ROOT / "build" / "reports"
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "skipping.json").write_text(json.dumps({"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects,
-                                                   "rtl_dram": rtl_dram, "front_end": front,
-                                                   "beats": brows, "taus": taus, "blocks": blocks,
-                                                   "rtl_beats": rtl_beats, "fmax": fmax},
-                                                  indent=1) + "\n")
-    dest = Path(args.out)
-    dest.mkdir(parents=True, exist_ok=True)
-    md = write_md(rows, rtl, meta, rtl_rects, rtl_dram)
-    if brows:
-        md += "\n" + write_beats_md(brows, taus, blocks, front, rtl_beats, fmax)
-    (dest / "skipping.md").write_text(md)
-    print(f"skipping: {dest / 'skipping.md'}")
+    data = {"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects, "rtl_dram": rtl_dram,
+            "front_end": front, "beats": brows, "taus": taus, "blocks": blocks, "rtl_beats": rtl_beats,
+            "fmax": fmax}
+    saved.parent.mkdir(parents=True, exist_ok=True)
+    saved.write_text(json.dumps(data, indent=1) + "\n")
+    write_reports(Path(args.out), data)
     return 0
 
 
