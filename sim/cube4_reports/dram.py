@@ -11,9 +11,12 @@ and refreshes the controller issued and the share of its time each took; the ban
 the ideal memory's frame would need, and from it the largest P the DRAM can feed.
 
 Cases: the head phantom at 128³ (scene ``head``) at P = 1, 2, 4 and 8 with the box
-schedule (the default), at P = 8 on the fixed schedule too; at P = 4 the three axis
-classes of view (major axis z, y, x) on the fixed schedule; and head:256 at P = 8 and
-P = 4 for the frame rates at 256³.
+schedule (the default), at P = 8 on the fixed schedule and on the beat schedule with ray
+termination (``--beats``) too; at P = 4 the three axis classes of view (major axis z, y, x)
+on the fixed schedule; and head:256 at P = 8 and P = 4 for the frame rates at 256³. The
+golden model does not predict a beat frame's cycles (they depend on when rays end): its
+ideal memory's cycles are measured, the same frame through cube4_top with the on-chip
+memory. ``--only beats`` runs those cases alone and puts them into the last run's figures.
 """
 
 from __future__ import annotations
@@ -40,6 +43,7 @@ CASES = [
     ("head:128", 4, "box", None),
     ("head:128", 8, "box", None),
     ("head:128", 8, "fixed", None),
+    ("head:128", 8, "beats", None),
     ("head:128", 4, "fixed", (0.3, 0.2, 1.0)),
     ("head:128", 4, "fixed", (0.2, 1.0, 0.3)),
     ("head:128", 4, "fixed", (1.0, 0.3, 0.2)),
@@ -55,15 +59,19 @@ def run_case(vol: np.ndarray, name: str, p: int, schedule: str, direction, dram)
     scene = load_scene(SCENE)
     if direction is not None:
         scene = dataclasses.replace(scene, direction=np.asarray(direction, float) / np.linalg.norm(direction))
-    scene = dataclasses.replace(scene, skip=(schedule == "box"))
+    scene = dataclasses.replace(scene, skip="beats" if schedule == "beats" else (schedule == "box"))
     cfg = config_for(scene, p)
     t0 = time.perf_counter()
     res = render_rtl(vol, [scene], cfg, dram=dram)[0]
     st = res.stats
     d = dict(st["dram"])
     f = dram.clock_mhz * 1e6
+    if schedule == "beats":     # no prediction: the same frame on the on-chip memory, measured
+        ideal = render_rtl(vol, [scene], cfg)[0].stats["cycles"]
+        d.update({"ideal_memory_cycles": ideal, "ideal_over_dram": ideal / d["cycles"], "ideal_measured": True})
     ideal = d["ideal_memory_cycles"]
     d.update({
+        "commit": git_describe(("rtl", "golden", "sim")),
         "volume": name, "p": p, "schedule": schedule,
         "view": "scene" if direction is None else list(direction),
         "major": "xyz"[int(np.argmax(np.abs(scene.direction)))],
@@ -81,6 +89,8 @@ def run(args: argparse.Namespace) -> dict:
 
     dram = DramRun(clock_mhz=args.clock)
     cases = [CASES[n] for n in QUICK] if args.quick else CASES
+    if args.only:
+        cases = [c for c in CASES if c[2] == args.only]
     vols: dict[str, np.ndarray] = {}
     rows = []
     for name, p, schedule, direction in cases:
@@ -88,8 +98,20 @@ def run(args: argparse.Namespace) -> dict:
             vols[name] = load_volume(name)
         rows.append(run_case(vols[name], name, p, schedule, direction, dram))
     info = core_info(dram.core)
-    return {"clock_mhz": dram.clock_mhz, "core": dataclasses.asdict(dram.core), "timing_cycles": info["timing_cycles"],
-            "rows": rows, "commit": git_describe()}
+    out = {"clock_mhz": dram.clock_mhz, "core": dataclasses.asdict(dram.core), "timing_cycles": info["timing_cycles"],
+           "rows": rows, "commit": git_describe()}
+    if args.only:               # into the last run's figures, in CASES order
+        last = REPO_ROOT / "build" / "reports" / "dram.json"
+        if not last.exists():
+            raise SystemExit(f"dram: --only needs the last run's {last} (run make dram first)")
+        old = json.loads(last.read_text())
+        if old["clock_mhz"] != out["clock_mhz"] or old["core"] != out["core"]:
+            raise SystemExit("dram: --only needs the last run at the same clock and DRAM")
+        kept = [r for r in old["rows"] if r["schedule"] != args.only]
+        key = {(c[0], c[1], c[2], "scene" if c[3] is None else list(c[3])): n for n, c in enumerate(CASES)}
+        old["rows"] = sorted(kept + rows, key=lambda r: key.get((r["volume"], r["p"], r["schedule"], r["view"]), 99))
+        out = old
+    return out
 
 
 def _fmt(v, spec: str) -> str:
@@ -108,8 +130,11 @@ def render_md(d: dict) -> str:
     core, t = d["core"], d["timing_cycles"]
     for r in d["rows"]:
         r.update(_stalls(r, d))
-    rows = [[r["volume"], str(r["p"]), r["schedule"], "scene" if r["view"] == "scene" else f"k = {r['major']}",
-             f"{r['ideal_memory_cycles']:,}", f"{r['cycles']:,}", f"{r['ideal_over_dram']:.3f}",
+    base = d.get("commit")
+    rows = [[r["volume"], str(r["p"]), r["schedule"] + (f" (at {r['commit']})" if r.get("commit", base) != base else ""),
+             "scene" if r["view"] == "scene" else f"k = {r['major']}",
+             f"{r['ideal_memory_cycles']:,}" + (" (measured)" if r.get("ideal_measured") else ""),
+             f"{r['cycles']:,}", f"{r['ideal_over_dram']:.3f}",
              f"{r['needed_mb_per_s']:.0f}", f"{r['mb_per_s']:.0f}", f"{r['bursts_read']:,}",
              f"{r['activates']:,}", f"{100 * r['row_open_share']:.1f} %", f"{r['refreshes']:,}",
              f"{100 * r['refresh_share']:.1f} %",
@@ -135,7 +160,8 @@ def render_md(d: dict) -> str:
         "reads its slices as runs of bursts, each burst once.",
         "",
         "Columns: the ideal memory's cycles (the golden model's prediction, which the on-chip build meets to "
-        "the cycle); cycles with the DRAM; their ratio; the bandwidth the ideal frame would need and the "
+        "the cycle; for the beat schedule, measured: the same frame through cube4_top with the on-chip memory); "
+        "cycles with the DRAM; their ratio; the bandwidth the ideal frame would need and the "
         "bandwidth the DRAM frame used; bursts read; row opens (activates) and the share of the controller's "
         "time they took (tRCD + tRP each); refreshes and their share (tRP + tRFC each); the pipelines' stall "
         "cycles (DRAM cycles − ideal) by cause, an estimate: each refresh and row open stalls them for its "
@@ -157,6 +183,8 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.dram", description=__doc__.splitlines()[0])
     ap.add_argument("--clock", type=float, default=137.7, help="the pipelines' clock in MHz (default 137.7)")
     ap.add_argument("--quick", action="store_true", help="four cases only (P = 1, 2, 4, 8 on head:128, box schedule)")
+    ap.add_argument("--only", choices=sorted({c[2] for c in CASES}),
+                    help="run the cases of one schedule alone and put them into the last run's figures")
     ap.add_argument("--from-json", action="store_true",
                     help="write the report from build/reports/dram.json (the last run) without simulating")
     args = ap.parse_args(argv)
