@@ -108,8 +108,9 @@ def run(args: argparse.Namespace) -> dict:
         if old["clock_mhz"] != out["clock_mhz"] or old["core"] != out["core"]:
             raise SystemExit("dram: --only needs the last run at the same clock and DRAM")
         kept = [r for r in old["rows"] if r["schedule"] != args.only]
-        key = {(c[0], c[1], c[2], "scene" if c[3] is None else list(c[3])): n for n, c in enumerate(CASES)}
-        old["rows"] = sorted(kept + rows, key=lambda r: key.get((r["volume"], r["p"], r["schedule"], r["view"]), 99))
+        key = {(c[0], c[1], c[2], "scene" if c[3] is None else str(list(c[3]))): n for n, c in enumerate(CASES)}
+        old["rows"] = sorted(kept + rows, key=lambda r: key.get((r["volume"], r["p"], r["schedule"],
+                                                                 r["view"] if r["view"] == "scene" else str(r["view"])), 99))
         out = old
     return out
 
