@@ -176,6 +176,20 @@ async def interrupted_frame(bench, inputs, n: int) -> None:
     await bench.reset({"in_valid": 0, "out_ready": 0, "in_eoss": 0})
 
 
+async def play_walk(bench, trav, p: int, inputs, outputs, n: int, cut: bool, geo, vw: int) -> list:
+    """One walk frame through GRA: the view's registers, with ``cut`` first the frame cut
+    off by a reset half-way (the next one must not see its words), then the frame with
+    gaps and stalls on every other n, its outputs checked (check_walk_outputs)."""
+    bench.set_view(trav, p)
+    await bench.cycles(2)
+    if cut:
+        await interrupted_frame(bench, inputs, len(inputs) // 2)
+    gap, stall = (0.0, 0.0) if n % 2 == 0 else (0.3, 0.4)
+    got = await bench.run_stream(inputs, len(outputs), OUTPUTS, gap, stall)
+    check_walk_outputs(got, outputs, geo, p, vw, bench.log)
+    return got
+
+
 @cocotb.test()
 async def test_rect_walks(dut):
     """Slice-rectangle frames (RECTS = 1): GRA's walk in (the traversed rectangles and the
@@ -199,13 +213,7 @@ async def test_rect_walks(dut):
         if rects.last() < 0:
             continue
         inputs, outputs = walk_frame(rects, trav, p, geo, vw)
-        bench.set_view(trav, p)
-        await bench.cycles(2)
-        if n == 3:   # a frame cut off by a reset: the next one must not see its words
-            await interrupted_frame(bench, inputs, len(inputs) // 2)
-        gap, stall = (0.0, 0.0) if n % 2 == 0 else (0.3, 0.4)
-        got = await bench.run_stream(inputs, len(outputs), OUTPUTS, gap, stall)
-        check_walk_outputs(got, outputs, geo, p, vw, bench.log)
+        got = await play_walk(bench, trav, p, inputs, outputs, n, n == 3, geo, vw)
         frames += 1
         bench.log.info("view %s: %d walk beats in, %d rectangle beats out, bit-exact (%.0f%% of the samples)",
                        direction, len(inputs), len(got), 100 * rects.fraction())
@@ -271,13 +279,7 @@ async def test_beat_walks(dut):
         if max(bf.trav.dims) > int(dut.MAX_DIM.value):
             continue
         inputs, outputs = beat_walk_frame(bf, p, geo, vw)
-        bench.set_view(bf.trav, p)
-        await bench.cycles(2)
-        if n == 4:   # a frame cut off by a reset: the next one must not see its words
-            await interrupted_frame(bench, inputs, len(inputs) // 2)
-        gap, stall = (0.0, 0.0) if n % 2 == 0 else (0.3, 0.4)
-        got = await bench.run_stream(inputs, len(outputs), OUTPUTS, gap, stall)
-        check_walk_outputs(got, outputs, geo, p, vw, bench.log)
+        await play_walk(bench, bf.trav, p, inputs, outputs, n, n == 4, geo, vw)
         frames += 1
         running = sum(int(b.any()) for _, b, *_ in outputs)
         bench.log.info("%s %s: %d beats in and out (%d running) of %d in the box, bit-exact",
