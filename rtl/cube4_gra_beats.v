@@ -335,11 +335,6 @@ module cube4_gra_beats
         end
     end
 
-    generate
-        for (q = 0; q < P; q = q + 1) begin : g_mask
-            assign x[q*VW +: VW] = (i0_in && i0_lane_valid[q]) ? i0_sample[q*VW +: VW] : {VW{1'b0}};
-        end
-    endgenerate
     wire [META_W-1:0] x_meta = {i0_in, i0_hdr};
 
     // ---- position buffers (cube4_gra_pos): read when a step's position loads
@@ -347,7 +342,7 @@ module cube4_gra_beats
     cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
         .clk (clk), .ld (ld), .ld_r (ld_r), .ld_pb (ld_pb),
         .step (step), .dead (i0_dead), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
-        .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
+        .in_beat (i0_in), .sample (i0_sample), .lane_valid (i0_lane_valid), .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
     assign c_sel   = {P{i0_flags, i0_ylast, i0_dyf, i0_dyb}};   // bits GSEL_DKF .. GSEL_DYB

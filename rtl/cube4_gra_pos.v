@@ -32,8 +32,11 @@
 //   ld, ld_r [DIM_W], ld_pb [PB_W]   the next step's position loads (read)
 //   step, dead, i0_r, i0_pb, nj      the loaded step steps (write), its
 //                                    position, whether it writes (!dead), NJ
-//   x, x_meta [GRA_META_W]           the step's X (zero outside its beat's
-//                                    valid lanes) and its {real, header}
+//   in_beat, sample, lane_valid [P]  the step brings an input beat, its
+//                                    samples and valid lanes
+//   x                          out   X: the samples of the valid lanes of an
+//                                    input beat, zero elsewhere
+//   x_meta [GRA_META_W]              X's {real, header}
 //   pg, pgb, bg                      the plane A, plane B and beam words read
 //                                    for the step are this frame's neighbours
 //   p1, p2b1, b1, c_meta, c, p1b2, p2b2   the neighbours (zero where their
@@ -49,7 +52,8 @@ module cube4_gra_pos #(
     input  wire ld, input wire [DIM_W-1:0] ld_r, input wire [PB_W-1:0] ld_pb,
     input  wire step, input wire dead, input wire [DIM_W-1:0] i0_r, input wire [PB_W-1:0] i0_pb,
     input  wire [DIM_W-1:0] nj,
-    input  wire [P*VOXEL_W-1:0] x, input wire [GRA_META_W-1:0] x_meta,
+    input  wire in_beat, input wire [P*VOXEL_W-1:0] sample, input wire [P-1:0] lane_valid,
+    output wire [P*VOXEL_W-1:0] x, input wire [GRA_META_W-1:0] x_meta,
     input  wire pg, input wire pgb, input wire bg,
     output wire [P*VOXEL_W-1:0] p1, output wire [P*VOXEL_W-1:0] p2b1,
     output wire [P*VOXEL_W-1:0] b1, output wire [GRA_META_W-1:0] c_meta, output wire [P*VOXEL_W-1:0] c,
@@ -64,6 +68,13 @@ module cube4_gra_pos #(
     localparam integer PBN = 1 << PB_W;                            // beam buffer entries
 
     wire [META_W-1:0] p1_meta;                     // P1's {real, header} (into the beam buffer)
+    genvar q;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_mask
+            assign x[q*VOXEL_W +: VOXEL_W] = (in_beat && lane_valid[q]) ? sample[q*VOXEL_W +: VOXEL_W]
+                                                                         : {VOXEL_W{1'b0}};
+        end
+    endgenerate
     wire [RW-1:0]   ld_r1 = ld_r[RW-1:0] - 1'b1;   // the centre's row (plane B)
     wire [RW-1:0]   i0_r1 = i0_r[RW-1:0] - 1'b1;
     wire [PAW-1:0]  ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
