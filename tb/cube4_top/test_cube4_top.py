@@ -1040,7 +1040,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     if shaded:   # composite shaded, with and without termination, and each unshaded mode once
         modes = ["composite", "composite", "composite", "xray", "composite", "mip", "composite", "minip"]
     jobs, gold = [], []
-    for n, direction in enumerate(VIEWS[:8]):
+    for n, direction in enumerate(VIEWS):         # (1, 1, 1) and the 45° (1, -1, 0) among them
         mode, terminate = modes[n % len(modes)], n % 2 == 1 or (shaded and n % 4 == 0)
         trav = make_traversal((nx, ny, nz), direction, cfg.weight_bits, 1, phase=(n * 37 % 256, n * 91 % 256))
         lut, rmap = random_tables(rng, cfg)
