@@ -125,6 +125,7 @@ module cube4_gra_beats
     reg               i0_v, i0_in, i0_dead, i0_fend, i0_gap;
     reg [PV-1:0]      i0_sample;
     reg [HDR_W-1:0]   i0_hdr;
+    reg [M_W-1:0]     i0_w;
     reg [DIM_W-1:0]   i0_r;
     reg [PB_W-1:0]    i0_pb;
     reg               i0_pg, i0_bg;  // the plane / beam words read for it count
@@ -323,6 +324,7 @@ module cube4_gra_beats
             i0_dead   <= ld_tail;
             i0_fend   <= ld_tl && tail_n && fin;
             i0_gap    <= ld_gap;
+            i0_w      <= ld_w;
             i0_r      <= ld_r;
             i0_pb     <= ld_pb;
             i0_pg     <= ld_pg;
@@ -341,7 +343,7 @@ module cube4_gra_beats
     // into i0, written when it steps ----
     cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
         .clk (clk), .ld (ld), .ld_r (ld_r), .ld_pb (ld_pb),
-        .step (step), .dead (i0_dead), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
+        .step (step), .dead (i0_dead), .i0_w (i0_w), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
         .in_beat (i0_in), .sample (i0_sample), .lane_valid (i0_lane_valid), .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));

@@ -18,7 +18,10 @@
 //   with its step, which words are this frame's neighbours (pg, pgb, bg);
 //   the others read as zero. Plane A holds rows 0 .. NJ - 1 (row NJ is
 //   outside the volume), plane B rows 0 .. NJ - 1 (the centre's row), a
-//   dead step (one that only moves the window) writes nothing.
+//   dead step (one that only moves the window) writes nothing. The buffers
+//   keep a beat's header without its position (PB, J, M: the top fields),
+//   which C's header takes from the step's own, (w - 1, r - 1, pb), where a
+//   beat came in (a bit kept with it; elsewhere the header is zero).
 //
 // Parameters
 //   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_gra (derived widths:
@@ -30,8 +33,9 @@
 //
 // Ports (samples unsigned Q0.VOXEL_W, P lanes of VOXEL_W bits)
 //   ld, ld_r [DIM_W], ld_pb [PB_W]   the next step's position loads (read)
-//   step, dead, i0_r, i0_pb, nj      the loaded step steps (write), its
-//                                    position, whether it writes (!dead), NJ
+//   step, dead, i0_w, i0_r, i0_pb, nj   the loaded step steps (write), its
+//                                    position (slice [M_W], row, partial
+//                                    beam), whether it writes (!dead), NJ
 //   in_beat, sample, lane_valid [P]  the step brings an input beat, its
 //                                    samples and valid lanes
 //   x                          out   X: the samples of the valid lanes of an
@@ -50,7 +54,8 @@ module cube4_gra_pos #(
 ) (
     input  wire clk,
     input  wire ld, input wire [DIM_W-1:0] ld_r, input wire [PB_W-1:0] ld_pb,
-    input  wire step, input wire dead, input wire [DIM_W-1:0] i0_r, input wire [PB_W-1:0] i0_pb,
+    input  wire step, input wire dead, input wire [M_W-1:0] i0_w, input wire [DIM_W-1:0] i0_r,
+    input  wire [PB_W-1:0] i0_pb,
     input  wire [DIM_W-1:0] nj,
     input  wire in_beat, input wire [P*VOXEL_W-1:0] sample, input wire [P-1:0] lane_valid,
     output wire [P*VOXEL_W-1:0] x, input wire [GRA_META_W-1:0] x_meta,
@@ -63,11 +68,14 @@ module cube4_gra_pos #(
     localparam integer META_W = GRA_META_W;
     localparam integer RW  = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;   // row bits of a plane address
     localparam integer PAW = RW + PB_W;                            // plane address {row, pb}
-    localparam integer AWD = META_W + PV;                          // plane A: X with its meta
-    localparam integer BMW = 4 * PV + META_W;                      // beam: X, P1 (meta), C, P2b1
+    localparam integer SM_W = 2 + HDR_PB;                          // a meta kept: {beat, real, header below PB}
+    localparam integer AWD = SM_W + PV;                            // plane A: X with its meta
+    localparam integer BMW = 4 * PV + SM_W;                        // beam: X, P1 (meta), C, P2b1
     localparam integer PBN = 1 << PB_W;                            // beam buffer entries
 
-    wire [META_W-1:0] p1_meta;                     // P1's {real, header} (into the beam buffer)
+    wire [SM_W-1:0] p1_meta;                       // P1's kept meta (into the beam buffer)
+    wire [SM_W-1:0] x_sm = {in_beat, x_meta[META_W-1], x_meta[HDR_PB-1:0]};   // (beat: it came in)
+    wire unused_pos = ^x_meta[META_W-2:HDR_PB];    // (a beat's position: the step's)
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_mask
@@ -82,7 +90,7 @@ module cube4_gra_pos #(
     wire we_a = step && !dead && (i0_r < nj);     // plane A: X at its own position
     wire we_b = step && !dead && (i0_r != '0);    // plane B: C at the centre's position
     wire we_m = step && !dead;                    // the beam buffer
-    wire [AWD-1:0] wd_a = {x_meta, x};
+    wire [AWD-1:0] wd_a = {x_sm, x};
     wire [PV-1:0]  wd_b = c;
     wire [BMW-1:0] wd_m = {x, p1_meta, p1, c, p2b1};
     wire [AWD-1:0] rd_a;
@@ -114,11 +122,17 @@ module cube4_gra_pos #(
     wire [AWD-1:0] a_w = by_a ? bd_a : rd_a;
     wire [PV-1:0]  b_w = by_b ? bd_b : rd_b;
     wire [BMW-1:0] m_w = by_m ? bd_m : rd_m;
-    assign p1_meta = pg  ? a_w[PV +: META_W] : {META_W{1'b0}};
+    assign p1_meta = pg  ? a_w[PV +: SM_W] : {SM_W{1'b0}};
     assign p1      = pg  ? a_w[PV-1:0] : {PV{1'b0}};
     assign p2b1    = pgb ? b_w : {PV{1'b0}};
-    assign b1      = bg  ? m_w[3*PV + META_W +: PV] : {PV{1'b0}};
-    assign c_meta  = bg  ? m_w[3*PV +: META_W] : {META_W{1'b0}};
+    // C's {real, header}: its kept fields and its position (w - 1, r - 1, pb)
+    wire [SM_W-1:0] c_sm = m_w[3*PV +: SM_W];
+    wire [M_W-1:0]   c_m = i0_w - 1'b1;
+    wire [DIM_W-1:0] c_j = i0_r - 1'b1;
+    assign b1      = bg  ? m_w[3*PV + SM_W +: PV] : {PV{1'b0}};
+    wire c_beat = c_sm[SM_W-1];                    // a beat came in there: its header has its position
+    assign c_meta  = bg  ? {c_sm[SM_W-2], c_beat ? {c_m, c_j, i0_pb} : {(M_W + DIM_W + PB_W){1'b0}},
+                            c_sm[HDR_PB-1:0]} : {META_W{1'b0}};
     assign c       = bg  ? m_w[2*PV +: PV] : {PV{1'b0}};
     assign p1b2    = bg  ? m_w[PV +: PV] : {PV{1'b0}};
     assign p2b2    = bg  ? m_w[0 +: PV] : {PV{1'b0}};

@@ -63,6 +63,7 @@ module cube4_gra_walk
     reg               i0_v, i0_in, i0_dead, i0_fend;
     reg [PV-1:0]      i0_sample;
     reg [HDR_W-1:0]   i0_hdr;
+    reg [M_W-1:0]     i0_w;          // walk slice w = the centre's slice + 1
     reg [DIM_W-1:0]   i0_r;          // walk row r = the centre's row + 1
     reg [PB_W-1:0]    i0_pb;
     reg               i0_pg, i0_bg;  // the plane / beam words read for it are this walk's neighbours
@@ -194,6 +195,7 @@ module cube4_gra_walk
             i0_in     <= !gen_q;
             i0_dead   <= gen_q && g_dead;
             i0_fend   <= gen_q && g_dead && (g_tail == 2'd2);
+            i0_w      <= ld_w;
             i0_r      <= ld_r;
             i0_pb     <= ld_pb;
             i0_pg     <= ld_pg;
@@ -213,7 +215,7 @@ module cube4_gra_walk
     // into i0, written when it steps ----
     cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
         .clk (clk), .ld (ld), .ld_r (ld_r), .ld_pb (ld_pb),
-        .step (step), .dead (i0_dead), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
+        .step (step), .dead (i0_dead), .i0_w (i0_w), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
         .in_beat (i0_in), .sample (i0_sample), .lane_valid (i0_lane_valid), .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
