@@ -74,9 +74,9 @@ CFB_UNIT_SETS               := P=1,WEIGHT_W=4 P=2,MAX_DIM=2,ADDR_W=1 P=5,MAX_SS_
 $(foreach u,tmpl trav ctl rect box addr mask,$(eval LINT_SETS_cube4_cfb_$(u) := $(CFB_UNIT_SETS)))
 LINT_SETS_cube4_cfb_bctl    := P=2,MAX_DIM=2,ADDR_W=1 P=16,MAX_DIM=2048,ADDR_W=30,MAX_SS_LOG2=3,WEIGHT_W=12
 LINT_SETS_cube4_cfb_steps   := P=1,WEIGHT_W=4 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,WEIGHT_W=12
-LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 CLIP=0 P=1,CLIP=0 SLAB=1 \
-                               VGRAD=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
-                               LABELS=1 P=1,LABELS=1,MAX_SS_LOG2=1 P=5,VOXEL_W=16,LABELS=1
+LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12  P=1,CLIP=0  \
+                                P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
+                                P=1,LABELS=1,MAX_SS_LOG2=1 P=5,VOXEL_W=16,LABELS=1
 LINT_SETS_cube4_tri_src     := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
                                P=5,LABELS=1
 LINT_SETS_cube4_tri_beam    := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=2,MAX_DIM=2 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 P=5,LABELS=1
@@ -98,8 +98,8 @@ LINT_SETS_cube4_skid        := DATA_W=1 DATA_W=4096 DATA_W=65
 LINT_SETS_cube4_credit_fifo := DEPTH=4 DATA_W=1 DATA_W=643,DEPTH=32 DATA_W=64,DEPTH=64 IN_REG=1 DATA_W=1,DEPTH=4,IN_REG=1
 LINT_SETS_cube4_prim_copies := N=8 W=64,N=512 N=3,W=2,RESET=0 W=100,RESET=0 W=65,N=2
 LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 \
-                               RECTS=1 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 P=2,RECTS=1,MAX_DIM=2 \
-                               LABELS=1 P=1,LABELS=1 P=5,VOXEL_W=12,LABELS=1,MAX_SS_LOG2=2 BEATS=1 P=1,BEATS=1,MAX_DIM=32
+                                P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 P=2,RECTS=1,MAX_DIM=2 \
+                                P=1,LABELS=1 P=5,VOXEL_W=12,LABELS=1,MAX_SS_LOG2=2  P=1,BEATS=1,MAX_DIM=32
 LINT_SETS_cube4_gra_lines   := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
 LINT_SETS_cube4_gra_walk    := P=1 P=5,MAX_DIM=64 P=64,MAX_DIM=64 P=2,MAX_DIM=2 VOXEL_W=12
 LINT_SETS_cube4_gra_beats   := P=1 P=5,MAX_DIM=64 P=64,MAX_DIM=64 P=2,MAX_DIM=2 VOXEL_W=12
@@ -118,20 +118,19 @@ LINT_SETS_cube4_prim_ebr    := READ_A=1 SHAPE_W=9,W=5,AW=11,READ_A=1 SHAPE_W=4,W
                                SHAPE_W=1,W=1,AW=14,READ_A=1 SHAPE_W=18,W=1,AW=1
 LINT_SETS_cube4_sha_gm      := P=1 P=5 VOXEL_W=16 P=3,VOXEL_W=1 P=64,VOXEL_W=12
 LINT_SETS_cube4_sha         := P=1 P=5,MAX_SS_LOG2=2,RMAP_BITS=2 P=16,VOXEL_W=12,ALPHA_W=16,RMAP_BITS=6 VOXEL_W=16,ALPHA_W=8 \
-                               SHADING=0 P=1,SHADING=0,VOXEL_W=12 CARRY_SAMPLE=0 SHADING=0,CARRY_SAMPLE=0 \
-                               SLAB=1 P=5,SLAB=1,RMAP_BITS=2 SHADING=0,SLAB=1 P=1,SHADING=0,SLAB=1,CARRY_SAMPLE=0 \
-                               SLAB=1,COMPOSITING=0,SHADING=0 GMOD=1 P=1,GMOD=1,RMAP_BITS=2 P=5,GMOD=1,SLAB=1,VOXEL_W=12,ALPHA_W=16 \
+                                P=1,SHADING=0,VOXEL_W=12  SHADING=0,CARRY_SAMPLE=0 \
+                                P=5,SLAB=1,RMAP_BITS=2  P=1,SHADING=0,SLAB=1,CARRY_SAMPLE=0 \
+                               SLAB=1,COMPOSITING=0,SHADING=0  P=1,GMOD=1,RMAP_BITS=2 P=5,GMOD=1,SLAB=1,VOXEL_W=12,ALPHA_W=16 \
                                GMOD=1,RMAP_BITS=6,VOXEL_W=16,ALPHA_W=8 LABELS=1 P=1,LABELS=1,SHADING=0,CARRY_SAMPLE=0 \
                                P=5,LABELS=1,GMOD=1,VOXEL_W=12
-LINT_SETS_cube4_com         := P=1,PLW=0 P=5,MAX_SS_LOG2=2,PLW=0 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3,PLW=0 \
-                               P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8,PLW=0 COMPOSITING=0,PLW=0 EXTREMUM=0,PLW=0 \
-                               COMPOSITING=0,ACC_W=8,ALPHA_W=16,VOXEL_W=16,PLW=0 P=1,EXTREMUM=0,ACC_W=24,PLW=0 \
-                               PLW=0 P=1,EXTREMUM=0 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,VOXEL_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 \
-                               RECTS=1,PLW=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,MAX_DIM=64,PLW=0 P=16,RECTS=1,EXTREMUM=0,MAX_DIM=2048,PLW=0 \
-                               P=2,RECTS=1,MAX_DIM=2,COMPOSITING=0,PLW=0 SLAB=1 P=1,SLAB=1,PLW=0 SLAB=1,COMPOSITING=0,PLW=0 \
-                               ZOUT=1 P=1,ZOUT=1,EXTREMUM=0,PLW=0 ZOUT=1,COMPOSITING=0,PLW=0 P=5,ZOUT=1,ACC_W=24,ALPHA_W=16,MAX_SS_LOG2=3 \
-                               ZIN=1 P=1,ZIN=1,EXTREMUM=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 P=3,MAX_DIM=3,ZIN=1,PLW=0 \
-                               P=5,BEATS=1,EXTREMUM=0,MAX_DIM=64,PLW=0 P=3,BEATS=1,COMPOSITING=0,ACC_W=8,ALPHA_W=16,PLW=0
+LINT_SETS_cube4_com         := P=1,PLW=0 P=16,ALPHA_W=16,ACC_W=24,MAX_DIM=2048,MAX_SS_LOG2=3,PLW=0 \
+                               P=3,MAX_DIM=3,ACC_W=8,ALPHA_W=8,PLW=0 COMPOSITING=0,ACC_W=8,ALPHA_W=16,VOXEL_W=16,PLW=0 \
+                               P=1,EXTREMUM=0,ACC_W=24,PLW=0 P=5,MAX_SS_LOG2=2 P=16,ALPHA_W=16,VOXEL_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 \
+                               P=1,RECTS=1,PLW=0 P=16,RECTS=1,EXTREMUM=0,MAX_DIM=2048,PLW=0 P=2,RECTS=1,MAX_DIM=2,COMPOSITING=0,PLW=0 \
+                               P=1,SLAB=1,PLW=0 SLAB=1,COMPOSITING=0,PLW=0 P=1,ZOUT=1,EXTREMUM=0,PLW=0 \
+                               P=5,ZOUT=1,ACC_W=24,ALPHA_W=16,MAX_SS_LOG2=3 P=1,ZIN=1,EXTREMUM=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 \
+                               P=3,MAX_DIM=3,ZIN=1,PLW=0 P=5,BEATS=1,EXTREMUM=0,MAX_DIM=64,PLW=0 \
+                               P=3,BEATS=1,COMPOSITING=0,ACC_W=8,ALPHA_W=16,PLW=0
 LINT_SETS_cube4_com_stop    := P=1 P=5,MAX_SS_LOG2=2 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=2,MAX_DIM=2 P=64,MAX_DIM=64 P=3,MAX_DIM=3 \
                                P=8,MAX_DIM=128
 LINT_SETS_cube4_ram_fifo    := DEPTH=4,DATA_W=1 DEPTH=8192,DATA_W=32 DEPTH=1048576,DATA_W=4096
@@ -169,16 +168,12 @@ LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
 # tests/test_build_definition.py: the named builds in make test, all of them in make regress)
 LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
                                P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 P=1,SHADING=0,COMPOSITING=0,PLW=0 \
-                               P=5,SHADING=1,EXTREMUM=0,CLIP=1 P=8,VGRAD=1,MAX_SS_LOG2=2 P=1,VGRAD=1,EXTREMUM=0,CLIP=0 \
-                               P=1,PLW=0,EXTREMUM=0 P=1,RECTS=1,PLW=0 P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 \
-                               P=8,RECTS=1,PLW=0,VGRAD=1 P=1,SLAB=1,SHADING=0 P=5,SLAB=1,MAX_SS_LOG2=2 \
-                               P=1,ZOUT=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZOUT=1,SLAB=1,MAX_SS_LOG2=2 \
-                               P=1,ZIN=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,ZIN=1,ZOUT=1,MAX_SS_LOG2=2 P=1,GMOD=1,RMAP_BITS=2 \
-                               P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 P=1,LABELS=1,PLW=0,SHADING=0,EXTREMUM=0,CLIP=0 \
-                               P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 P=16,LABELS=1,PLW=0,VOXEL_W=12 \
-                               P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 \
-                               P=16,DRAM=1,MAX_SS_LOG2=2 P=1,BEATS=1,SHADING=0,PLW=0,COMPOSITING=0 \
-                               P=5,BEATS=1,SHADING=0,PLW=0,EXTREMUM=0,CLIP=0,DRAM=1
+                               P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 P=1,GMOD=1,RMAP_BITS=2 P=1,RECTS=1,PLW=0 \
+                               P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 \
+                               P=16,LABELS=1,PLW=0,VOXEL_W=12 P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 \
+                               P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=16,DRAM=1,MAX_SS_LOG2=2 P=1,BEATS=1,SHADING=0,PLW=0,COMPOSITING=0 \
+                               P=5,BEATS=1,SHADING=0,PLW=0,EXTREMUM=0,CLIP=0,DRAM=1 P=5,BEATS=1,PLW=0,EXTREMUM=0 \
+                               P=1,BEATS=1,VGRAD=1,PLW=0
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
