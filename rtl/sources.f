@@ -14,6 +14,7 @@ cube4_credit_fifo.v
 cube4_ring_shift.v
 cube4_mul.v
 cube4_prim_ebr.v
+cube4_prim_ebr_column.v
 cube4_sdp_ram.v
 cube4_dual_read_ram.v
 cube4_voxel_mem.v

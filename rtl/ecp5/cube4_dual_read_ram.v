@@ -7,8 +7,9 @@
 //   The two-lane table of rtl/cube4_dual_read_ram.v (same ports, parameters
 //   and timing) on the ECP5's DP16KD block RAMs. With OUT_REG = 1 and an
 //   address of 7 to 14 bits (DEPTH 65 .. 16384), the word is sliced as rtl/ecp5/cube4_sdp_ram.v slices it
-//   (1024 x 18 up to 1024 words, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1),
-//   each slice one block (rtl/ecp5/cube4_prim_ebr.v) in true dual-port use:
+//   (rtl/ecp5/cube4_ebr_plan.vh: the block's shape for the depth, or deeper
+//   shapes stacked up to 4 deep where they take fewer blocks), each slice a
+//   column of blocks (cube4_prim_ebr_column) in true dual-port use:
 //   port A writes, or reads for port 0 (its address is the write's in a
 //   write cycle, port 0's otherwise), port B reads for port 1, both through
 //   the block's output register. Other sizes (or OUT_REG = 0) are one
@@ -22,18 +23,21 @@ module cube4_dual_read_ram
 `include "cube4_dual_read_ram_if.vh"
 
     localparam integer USE_EBR = (OUT_REG == 1 && AW >= 7 && AW <= 14) ? 1 : 0;
-    // the block's shape for the depth (as rtl/ecp5/cube4_sdp_ram.v with OUT_REG = 1)
-    localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : ((AW == 11) ? 9 : 18)));
-    localparam integer N_SL = (DATA_W + SL_W - 1) / SL_W;
+    // the blocks' shapes (as rtl/ecp5/cube4_sdp_ram.v with OUT_REG = 1)
+    `include "ecp5/cube4_ebr_plan.vh"
+    localparam integer PLAN = ebr_plan(DATA_W, DEPTH);
+    localparam integer N_SL = ebr_n_main(DATA_W, PLAN / 8, PLAN % 8) + ebr_n_rest(DATA_W, PLAN / 8, PLAN % 8);
 
     generate
         if (USE_EBR == 1) begin : g_ebr
             wire [AW-1:0] a_addr = wr_en ? wr_addr : rd0_addr;
             genvar sl;
             for (sl = 0; sl < N_SL; sl = sl + 1) begin : g_slice
-                localparam integer LO = sl * SL_W;
-                localparam integer W  = (DATA_W - LO < SL_W) ? DATA_W - LO : SL_W;
-                cube4_prim_ebr #(.SHAPE_W(SL_W), .W(W), .AW(AW), .READ_A(1)) u_ebr (
+                localparam integer LO = ebr_sl_lo(DATA_W, PLAN, sl);
+                localparam integer W  = ebr_sl_w(DATA_W, PLAN, sl);
+                localparam integer SH = ebr_sl_shape(DATA_W, PLAN, sl);
+                cube4_prim_ebr_column #(.SHAPE_W(ebr_w(SH)), .W(W), .AW(AW), .BLK_AW(10 + SH),
+                                        .BANKS(ebr_banks(SH, DEPTH)), .READ_A(1)) u_ebr (
                     .clk(clk), .a_en(rd_en), .a_we(wr_en), .a_addr(a_addr), .a_wd(wr_data[LO +: W]),
                     .a_rd(rd0_data[LO +: W]),
                     .b_en(rd_en), .b_addr(rd1_addr), .b_rd(rd1_data[LO +: W]));

@@ -13,8 +13,10 @@
 //     8192, 16384+ words), one memory each: each slice maps to block RAMs in
 //     their 4K x 4, 8K x 2 or 16K x 1 shape, so that up to 16384 words the
 //     read data needs no multiplexer between the block RAMs and the next
-//     register (about as many block RAMs as the 2048 x 9 shape plus a
-//     multiplexer).
+//     register; with OUT_REG = 1 the slices take deeper shapes stacked in
+//     depth where that takes fewer block RAMs (rtl/ecp5/cube4_ebr_plan.vh:
+//     4096 x 9 in two 2048 x 9 blocks, not three 4096 x 4), a multiplexer
+//     of up to 4 words behind the output registers (cube4_prim_ebr_column).
 //   * With IN_REG = 1 every two slices get their own copies of the address
 //     and enable registers (cube4_prim_copies; RAMs up to 2048 words deep are
 //     then sliced into 18-bit words, two 2048 x 9 block RAMs), so no single
@@ -53,8 +55,12 @@ module cube4_sdp_ram
     localparam integer SL_SHALLOW = (USE_EBR == 1) ? ((AW <= 10) ? 18 : 9)
                                   : (((IN_REG == 1 || WR_REG == 1) && DATA_W > 18) ? 18 : DATA_W);
     localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : SL_SHALLOW));
+    `include "ecp5/cube4_ebr_plan.vh"
+    localparam integer PLAN = ebr_plan(DATA_W, DEPTH);  // the block RAMs' shapes (USE_EBR)
     localparam integer SPC  = 2;                        // slices per register copy
-    localparam integer N_SL = (DATA_W + SL_W - 1) / SL_W;
+    localparam integer N_SL = (USE_EBR == 1)
+                            ? ebr_n_main(DATA_W, PLAN / 8, PLAN % 8) + ebr_n_rest(DATA_W, PLAN / 8, PLAN % 8)
+                            : (DATA_W + SL_W - 1) / SL_W;
     localparam integer N_CP = (N_SL + SPC - 1) / SPC;   // register copies (IN_REG = 1)
     localparam integer CW   = 2 * AW + 2;               // a copy: {re, we, ra, wa}
 
@@ -86,8 +92,9 @@ module cube4_sdp_ram
     genvar sl;
     generate
         for (sl = 0; sl < N_SL; sl = sl + 1) begin : g_slice
-            localparam integer LO = sl * SL_W;
-            localparam integer W  = (DATA_W - LO < SL_W) ? DATA_W - LO : SL_W;
+            localparam integer LO = (USE_EBR == 1) ? ebr_sl_lo(DATA_W, PLAN, sl) : sl * SL_W;
+            localparam integer W  = (USE_EBR == 1) ? ebr_sl_w(DATA_W, PLAN, sl)
+                                  : ((DATA_W - LO < SL_W) ? DATA_W - LO : SL_W);
             wire [CW-1:0] cp = in_cp[(sl / SPC) * CW +: CW];
             wire          re = cp[CW-1];
             wire          we = cp[CW-2];
@@ -95,8 +102,10 @@ module cube4_sdp_ram
             wire [AW-1:0] wa = cp[0 +: AW];
             if (USE_EBR == 1) begin : g_ebr
                 // port A writes, port B reads through its output register
+                localparam integer SH = ebr_sl_shape(DATA_W, PLAN, sl);
                 wire [W-1:0] unused_a_rd;
-                cube4_prim_ebr #(.SHAPE_W(SL_W), .W(W), .AW(AW), .READ_A(0)) u_ebr (
+                cube4_prim_ebr_column #(.SHAPE_W(ebr_w(SH)), .W(W), .AW(AW), .BLK_AW(10 + SH),
+                                        .BANKS(ebr_banks(SH, DEPTH)), .READ_A(0)) u_ebr (
                     .clk(clk), .a_en(1'b0), .a_we(we), .a_addr(wa), .a_wd(wd[LO +: W]), .a_rd(unused_a_rd),
                     .b_en(re), .b_addr(ra), .b_rd(rd_data[LO +: W]));
                 wire unused_a = ^unused_a_rd;

@@ -4,7 +4,8 @@ Both forms run the same cocotb tests against a Python model of the RAM (the modu
 header, 'Latency'): two read ports of latency 1 + OUT_REG whose registers advance with
 rd_en, a write seen one edge later, port 1 reading the word written at the same edge
 returning the old word, and port 0 not reading in a cycle with wr_en (both its registers
-keep their words). The ECP5 form puts each slice in one DP16KD (rtl/ecp5/cube4_prim_ebr.v,
+keep their words). The ECP5 form puts each slice in a column of one to four DP16KD
+(cube4_prim_ebr_column, rtl/ecp5/cube4_prim_ebr.v,
 simulated with sim/hdl/ecp5/DP16KD.v) in true dual-port use, port A's address the
 write's or port 0's; the parameter sets cover every block shape and the fall-back to
 inferred RAM. A wrong address or data mapping of a block, a port 0 read that a write
@@ -135,11 +136,12 @@ PARAM_SETS = [
     {"DATA_W": 36, "DEPTH": 256},                   # 1024 x 18, two slices (SHA's LUT)
     {"DATA_W": 10, "DEPTH": 2048},                  # 2048 x 9
     {"DATA_W": 5, "DEPTH": 4096},                   # 4096 x 4
-    {"DATA_W": 20, "DEPTH": 6145},                  # 8192 x 2 (SHA's map)
+    {"DATA_W": 20, "DEPTH": 6145},                  # 2 x (4 deep 2048 x 9) + 8192 x 2 (SHA's map)
     {"DATA_W": 3, "DEPTH": 16384},                  # 16384 x 1
     {"DATA_W": 9, "DEPTH": 16},                     # shallow: inferred
     {"DATA_W": 7, "DEPTH": 20000},                  # deeper: inferred
     {"DATA_W": 12, "DEPTH": 300, "OUT_REG": 0},     # no output register: inferred
+    {"DATA_W": 9, "DEPTH": 4096},                   # 2 deep 2048 x 9
 ]
 
 

@@ -5,8 +5,10 @@ Both forms run the same cocotb tests against a Python model of the RAM: read lat
 (registered, with IN_REG) read enable, a write one edge after its inputs with WR_REG, a
 read of the word written at the same edge returning the old word. The ECP5 form instantiates DP16KD block RAMs with their output
 register (simulated with sim/hdl/ecp5/DP16KD.v) for 128 to 16384 words and OUT_REG = 1,
-in the block's shape for the depth (1024 x 18, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1),
-so the parameter sets cover every shape, the fall-back to inferred RAM on either side,
+in the block's shape for the depth (1024 x 18, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1)
+or in deeper shapes stacked 2 to 4 blocks deep where that takes fewer blocks (a multiplexer
+behind the output registers), so the parameter sets cover every shape, stacks of 2, 3
+and 4 with their bank choice, the fall-back to inferred RAM on either side,
 and IN_REG's and WR_REG's register copies. A wrong address or data mapping of a block fails here.
 
 Cycle discipline: the TB drives the inputs on each falling edge and reads rd_data on the
@@ -125,7 +127,7 @@ PARAM_SETS = [
     {"DATA_W": 20, "DEPTH": 100, "OUT_REG": 1},                 # 1024 x 18, two slices
     {"DATA_W": 27, "DEPTH": 2048, "IN_REG": 1, "OUT_REG": 1},   # 2048 x 9, copies
     {"DATA_W": 5, "DEPTH": 4096, "OUT_REG": 1},                 # 4096 x 4
-    {"DATA_W": 20, "DEPTH": 6145, "OUT_REG": 1},                # 8192 x 2 (SHA's map)
+    {"DATA_W": 20, "DEPTH": 6145, "OUT_REG": 1},                # 2 x (4 deep 2048 x 9) + 8192 x 2
     {"DATA_W": 3, "DEPTH": 16384, "IN_REG": 1, "OUT_REG": 1},   # 16384 x 1
     {"DATA_W": 9, "DEPTH": 16, "OUT_REG": 1},                   # distributed RAM
     {"DATA_W": 6, "DEPTH": 20000, "OUT_REG": 1},                # deeper: inferred
@@ -133,6 +135,9 @@ PARAM_SETS = [
     {"DATA_W": 41, "DEPTH": 2048, "WR_REG": 1, "OUT_REG": 1},   # 2048 x 9, write copies
     {"DATA_W": 5, "DEPTH": 16384, "WR_REG": 1, "OUT_REG": 1},   # 16384 x 1, write copies
     {"DATA_W": 9, "DEPTH": 16, "WR_REG": 1},                    # distributed RAM
+    {"DATA_W": 9, "DEPTH": 4096, "OUT_REG": 1},                 # 2 deep 2048 x 9 (the ray table)
+    {"DATA_W": 34, "DEPTH": 3000, "IN_REG": 1, "OUT_REG": 1},   # 4 x (2 deep 2048 x 9), copies
+    {"DATA_W": 9, "DEPTH": 5000, "WR_REG": 1, "OUT_REG": 1},    # 3 deep 2048 x 9, write copies
 ]
 
 
@@ -141,7 +146,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8), ids=_param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11), ids=_param_id))
 def test_cube4_sdp_ram(params, form):
     run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))
