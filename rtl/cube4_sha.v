@@ -62,7 +62,11 @@
 // Ports
 //   lut_we/lut_addr/lut_data     LUT write: lut_data = {R, G, B (Q0.8), A (Q0.ALPHA_W)},
 //                                lut_addr = {label, value} (SMP_W bits)
-//   rmap_we/rmap_addr/rmap_data  reflectance-map write: rmap_data = {D, P} (Q2.8 each)
+//   rmap_we/rmap_addr/rmap_data  reflectance-map write: rmap_data = {D, P} (Q2.8 each);
+//                               entry 6 R^2 (the zero gradient's) is a register
+//                               beside the tables (so each table is 6 R^2 words:
+//                               6144 at RMAP_BITS = 5, 7 block RAMs on the ECP5
+//                               where 6145 took 9)
 //   gm_we/gm_addr/gm_data        modulation table write (GMOD): gm_data = {fa, fs},
 //                                0 .. 256 each (Q0.8), GMF_W bits each
 //   in_*    the gradient stream of cube4_gra (gi, gj, gk signed GRAD_W bits;
@@ -121,7 +125,8 @@ module cube4_sha #(
     localparam integer LUT_W  = 24 + ALPHA_W;
     localparam integer NUM_W  = GW + 1 + RB;     // (g_b + A) * R
     localparam integer META_W = HDR_W;
-    localparam integer RMAP_N = 6 * (1 << (2 * RB)) + 1;
+    localparam integer RMAP_N = 6 * (1 << (2 * RB));   // the tables' words: every entry but the zero gradient's
+    localparam [RI_W-1:0] RMAP_ZERO = RI_W'(RMAP_N);    // the zero gradient's entry (a register, rmap_zero)
 
     // ---- pipeline ----
     //   a      input register
@@ -215,6 +220,10 @@ module cube4_sha #(
     wire [P*LUT_W-1:0] lut_2_all;
     wire [P*RI_W-1:0]  idx_all;
     wire [P*20-1:0]    dp_all;
+    reg  [19:0]        rmap_zero;          // the map's entry of the zero gradient (SHADING)
+    always @(posedge clk) begin
+        if (rmap_we && rmap_addr == RMAP_ZERO) rmap_zero <= rmap_data;
+    end
 
     // gradient-magnitude modulation's factors of each lane (GM = 1): fs at d2 (the
     // modulation's operands at m1), fa at m2 (A's operand at d3)
@@ -326,16 +335,20 @@ module cube4_sha #(
                 wire unused_div = ^{rb_n, rc_n, den_n};
                 wire [RB-1:0] ub = qb[RB] ? {RB{1'b1}} : qb[RB-1:0];   // min(R - 1, q)
                 wire [RB-1:0] uc = qc[RB] ? {RB{1'b1}} : qc[RB-1:0];
-                wire [RI_W-1:0] idx = zero_n ? RI_W'(6 << (2 * RB)) : {face_n, uc, ub};
+                wire [RI_W-1:0] idx = zero_n ? RMAP_ZERO : {face_n, uc, ub};
 
-                // d: reflectance-map read (g_pair); d2: the RAM's output register
-                assign idx_all[q*RI_W +: RI_W] = idx;
+                // d: reflectance-map read (g_pair); d2: the RAM's output register,
+                // or the zero gradient's entry (rmap_zero)
+                assign idx_all[q*RI_W +: RI_W] = {face_n, uc, ub};
                 reg [RI_W-1:0]  d_idx;
-                wire [19:0]     d2_dp = dp_all[q*20 +: 20];
+                reg             d_zero, d2_zero;
+                wire [19:0]     d2_dp = d2_zero ? rmap_zero : dp_all[q*20 +: 20];
                 reg [RI_W-1:0]  d2_idx;
                 always @(posedge clk) begin
-                    d_idx  <= idx;
-                    d2_idx <= d_idx;
+                    d_idx   <= idx;
+                    d2_idx  <= d_idx;
+                    d_zero  <= zero_n;
+                    d2_zero <= d_zero;
                 end
                 // GM = 1: m1, m2 modulate D and P by the lane's fs (cube4_sha_gm):
                 //   D' = 256 + round_shift((D - 256) fs, 8),  P' = round_shift(P fs, 8)
@@ -442,7 +455,7 @@ module cube4_sha #(
         end
         if (SHADING == 0) begin : g_no_rmap
             assign dp_all = '0;
-            wire unused_rmap = ^{rmap_we, rmap_addr, rmap_data, idx_all, dp_all};
+            wire unused_rmap = ^{rmap_we, rmap_addr, rmap_data, idx_all, dp_all, rmap_zero};
         end
         // The tables, one copy per two lanes (cube4_dual_read_ram: lane 2k
         // reads through the write's port, lane 2k + 1 through the other;
@@ -464,7 +477,7 @@ module cube4_sha #(
                     .clk(clk), .rd_en(1'b1),
                     .rd0_addr(idx_all[q*RI_W +: RI_W]), .rd0_data(dp_all[q*20 +: 20]),
                     .rd1_addr(idx_all[Q1*RI_W +: RI_W]), .rd1_data(dp_1),
-                    .wr_en(rmap_we), .wr_addr(rmap_addr), .wr_data(rmap_data));
+                    .wr_en(rmap_we && (rmap_addr != RMAP_ZERO)), .wr_addr(rmap_addr), .wr_data(rmap_data));
                 if (Q1 != q) begin : g_second
                     assign dp_all[Q1*20 +: 20] = dp_1;
                 end else begin : g_none

@@ -128,6 +128,7 @@ async def test_shaded_stream(dut):
     sw = vw + (LABEL_W if labelled else 0)      # a sample: {label, value}
     dims = volume_dims(p)
     vol = bench.rng.integers(0, 1 << vw, size=dims[::-1], dtype=np.int64)
+    vol[:, :, : dims[0] // 2] = vol[0, 0, 0]    # a flat half: gradient zero (the map's last entry)
     if labelled:    # a random label per voxel: the LUT's blocks
         vol = pack_labels(vol, bench.rng.integers(0, MAX_LABELS, size=vol.shape), vw)
     slab = bool(int(dut.SLAB.value)) and bool(int(dut.COMPOSITING.value))
@@ -160,6 +161,8 @@ async def test_shaded_stream(dut):
         rtl = split_rgba([b["out_rgba"] for b in got], p, aw)
         for c, name in enumerate(CHANNELS):
             check_lanes(rtl[:, c], want[:, c], sched.lval, sched, bench.log, name)
+        if shading:
+            bench.log.info("%d samples read the zero gradient's entry", int((idx == len(rmap) - 1).sum()))
         rtl_idx = np.stack([unpack_lanes(b["out_idx"], p, ri_w) for b in got])
         check_lanes(rtl_idx, sched.lanes(idx), sched.lval, sched, bench.log, "reflectance-map index")
         rtl_smp = np.stack([unpack_lanes(b["out_sample"], p, vw) for b in got])
