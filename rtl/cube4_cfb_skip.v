@@ -8,7 +8,8 @@
 //   "The front end's plan"; S = 1): cube4_cfb_decide decides every beat a
 //   slice or two ahead, cube4_cfb_beats walks the voxel beats of each slice
 //   from the decisions' bitmaps, and the position bits of the beats that
-//   hold a running ray wait between the two in a cube4_ram_fifo. Each walk
+//   hold a running ray wait between the two in a cube4_ram_fifo (3P bits a
+//   beat, CUBE4_RAY_BITS_FUNCTIONS; a = run != 0). Each walk
 //   beat leaves with the position bits {soon, last, fresh, run} of the
 //   sample beat that leaves with it (zero when none leaves, or when it runs
 //   as GRA's neighbour only).
@@ -59,8 +60,20 @@ module cube4_cfb_skip #(
     wire            bm_valid, bm_ready;
     wire [NBMAX-1:0] bm_a, bm_occ;
     localparam integer LN = 4 * P + 1;     // a beat's {a, soon, last, fresh, run}
+    localparam integer QN = 3 * P;         // a beat in the queue: its packed bits (a = run != 0)
+    `CUBE4_RAY_BITS_FUNCTIONS
     wire            ln_valid, ln_ready, q_valid, q_ready;
     wire [RATE*LN-1:0] ln_bits, q_bits;
+    wire [RATE*QN-1:0] ln_packed, q_packed;
+    genvar r;
+    generate
+        for (r = 0; r < RATE; r = r + 1) begin : g_pack
+            wire [4*P-1:0] q_b = ray_bits_unpack(q_packed[r*QN +: QN]);
+            assign ln_packed[r*QN +: QN] = ray_bits_pack(ln_bits[r*LN +: 4*P]);
+            assign q_bits[r*LN +: LN]    = {q_b[0 +: P] != '0, q_b};
+            wire unused_ln_a = ln_bits[r*LN + 4*P];     // (a = run != 0)
+        end
+    endgenerate
     cube4_cfb_decide #(`CUBE4_SLICE_PASS, .BLOCK_LOG2(BLOCK_LOG2), .LAG(LAG), .RATE(RATE)) u_decide (
         .clk(clk), .rst(rst), .start(start), .busy(busy_d),
         .ni(ni), .nj(nj), .nb(nb), .nm(nm), .sx(sx), .sy(sy),
@@ -73,10 +86,10 @@ module cube4_cfb_skip #(
         .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .ln_valid(ln_valid), .ln_ready(ln_ready), .ln_bits(ln_bits));
-    cube4_ram_fifo #(.DATA_W(RATE * LN), .DEPTH(LN_DEPTH)) u_queue (
+    cube4_ram_fifo #(.DATA_W(RATE * QN), .DEPTH(LN_DEPTH)) u_queue (
         .clk(clk), .rst(rst || start),
-        .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_bits),
-        .out_valid(q_valid), .out_ready(q_ready), .out_data(q_bits));
+        .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_packed),
+        .out_valid(q_valid), .out_ready(q_ready), .out_data(q_packed));
     wire w_valid, w_ready, w_leave, w_in_a;
     cube4_cfb_beats #(`CUBE4_SLICE_PASS) u_walk (
         .clk(clk), .rst(rst), .start(start), .busy(busy_w),

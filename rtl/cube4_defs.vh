@@ -723,6 +723,18 @@
 // the decisions of slice d + 4 (docs/architecture.md "Beat skipping and ray termination").
 // COM counts a done ray's last LAG slices down in clog2(LAG + 1) bits of its buffer word.
 `define CUBE4_BEAT_LAG 4
+// A beat's position bits {soon, last, fresh, run} [4P] (cube4_cfb_decide, the front end,
+// COM), kept in 3P bits where they wait in block RAM (cube4_cfb_skip's queue, cube4_top's
+// bits FIFO): last implies soon and fresh implies run, so per position {hi, lo} = 00 no
+// run, 01 run, 10 run and soon, 11 run, soon and last, beside fresh; packed {hi, lo, fresh}
+// (each [P]). Needs P.
+`define CUBE4_RAY_BITS_FUNCTIONS \
+    function automatic [3*P-1:0] ray_bits_pack(input [4*P-1:0] b); \
+        ray_bits_pack = {b[3*P +: P], b[0 +: P] & (~b[3*P +: P] | b[2*P +: P]), b[P +: P]}; \
+    endfunction \
+    function automatic [4*P-1:0] ray_bits_unpack(input [3*P-1:0] k); \
+        ray_bits_unpack = {k[2*P +: P], k[2*P +: P] & k[P +: P], k[0 +: P], k[2*P +: P] | k[P +: P]}; \
+    endfunction
 // Gradient-magnitude modulation (GMOD = 1; cube4_sha_gm, golden/cube4/gmod.py): the
 // table's entries and address width for gradients of GW = VOXEL_W + 5 bits (s = |g|^2
 // in 2 GW bits, 2^3 mantissa steps per bit position, entry 0 for s = 0), and the

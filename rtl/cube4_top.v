@@ -348,7 +348,9 @@ module cube4_top #(
     // and count). GRA holds a slice and two rows of beats (cube4_gra_beats: a
     // centre leaves at its X-step), so with GRA (shading, not VGRAD) the FIFO is in block RAM,
     // (MAX_DIM + 2) * NBMAX beats and 128 for the pipelines, rounded up to a
-    // power of two; never full while a beat waits in GRA for the next ones.
+    // power of two; never full while a beat waits in GRA for the next ones. The
+    // bits wait packed (3P bits a beat, CUBE4_RAY_BITS_FUNCTIONS).
+    `CUBE4_RAY_BITS_FUNCTIONS
     localparam integer BITS_DEPTH = (SHADING != 0 && VGRAD == 0) ? (1 << $clog2((MAX_DIM + 2) * NBMAX + 128)) : 64;
     wire [4*P-1:0] com_bits;
     wire           com_eoss;       // the beat is the last of its sample slice
@@ -356,14 +358,17 @@ module cube4_top #(
     generate
         if (BEATS != 0) begin : g_bits
             wire b_ready, b_valid;
+            wire [3*P-1:0] com_packed;
+            assign com_bits     = ray_bits_unpack(com_packed);
             assign smp_valid    = fe_smp_valid && b_ready;
             assign fe_smp_ready = smp_ready && b_ready;
             // one port map, two queues: block RAM behind GRA, registers otherwise
 `define CUBE4_BITS_FIFO(MODULE) \
-                MODULE #(.DATA_W (4 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
+                MODULE #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
                     .clk (clk), .rst (rst), \
-                    .in_valid (fe_smp_valid && smp_ready), .in_ready (b_ready), .in_data ({smp_eoss, smp_bits}), \
-                    .out_valid (b_valid), .out_ready (com_in_take), .out_data ({com_eoss, com_bits}));
+                    .in_valid (fe_smp_valid && smp_ready), .in_ready (b_ready), \
+                    .in_data ({smp_eoss, ray_bits_pack(smp_bits)}), \
+                    .out_valid (b_valid), .out_ready (com_in_take), .out_data ({com_eoss, com_packed}));
             if (SHADING != 0 && VGRAD == 0) begin : g_ram
                 `CUBE4_BITS_FIFO(cube4_ram_fifo)
             end else begin : g_regs

@@ -13,7 +13,7 @@
 //     8192, 16384+ words), one memory each: each slice maps to block RAMs in
 //     their 4K x 4, 8K x 2 or 16K x 1 shape, so that up to 16384 words the
 //     read data needs no multiplexer between the block RAMs and the next
-//     register; with OUT_REG = 1 the slices take deeper shapes stacked in
+//     register; with OUT_REG = 1 (and IN_REG = 0) the slices take deeper shapes stacked in
 //     depth where that takes fewer block RAMs (rtl/ecp5/cube4_ebr_plan.vh:
 //     4096 x 9 in two 2048 x 9 blocks, not three 4096 x 4), a multiplexer
 //     of up to 4 words behind the output registers (cube4_prim_ebr_column).
@@ -56,7 +56,9 @@ module cube4_sdp_ram
                                   : (((IN_REG == 1 || WR_REG == 1) && DATA_W > 18) ? 18 : DATA_W);
     localparam integer SL_W = (AW >= 14) ? 1 : ((AW == 13) ? 2 : ((AW == 12) ? 4 : SL_SHALLOW));
     `include "ecp5/cube4_ebr_plan.vh"
-    localparam integer PLAN = ebr_plan(DATA_W, DEPTH);  // the block RAMs' shapes (USE_EBR)
+    // the block RAMs' shapes (USE_EBR); with IN_REG one block deep (COM's slice and
+    // beam buffers: a multiplexer behind their output registers would sit on COM's path)
+    localparam integer PLAN = (IN_REG == 1) ? ebr_natural(DEPTH) * 9 : ebr_plan(DATA_W, DEPTH);
     localparam integer SPC  = 2;                        // slices per register copy
     localparam integer N_SL = (USE_EBR == 1)
                             ? ebr_n_main(DATA_W, PLAN / 8, PLAN % 8) + ebr_n_rest(DATA_W, PLAN / 8, PLAN % 8)

@@ -136,7 +136,7 @@ PARAM_SETS = [
     {"DATA_W": 5, "DEPTH": 16384, "WR_REG": 1, "OUT_REG": 1},   # 16384 x 1, write copies
     {"DATA_W": 9, "DEPTH": 16, "WR_REG": 1},                    # distributed RAM
     {"DATA_W": 9, "DEPTH": 4096, "OUT_REG": 1},                 # 2 deep 2048 x 9 (the ray table)
-    {"DATA_W": 34, "DEPTH": 3000, "IN_REG": 1, "OUT_REG": 1},   # 4 x (2 deep 2048 x 9), copies
+    {"DATA_W": 34, "DEPTH": 3000, "OUT_REG": 1},                # 4 x (2 deep 2048 x 9)
     {"DATA_W": 9, "DEPTH": 5000, "WR_REG": 1, "OUT_REG": 1},    # 3 deep 2048 x 9, write copies
 ]
 
