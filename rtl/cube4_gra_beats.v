@@ -49,6 +49,10 @@
 //   schedule's frames).
 //
 // Latency
+//   An input beat passes a skid buffer (cube4_skid: one cycle; in_ready is
+//   its register), so the choice of the next step starts at registers; the
+//   choice computes what each candidate position decides (its plane and beam
+//   words' bits, its gap, the row bits it passes) beside the choice itself.
 //   The input register i0 holds the next step's position with its sample
 //   beat (an input beat) or none (a step the centres need, or a trailing
 //   step); the interface shows it as X, combinationally, with the buffers'
@@ -114,12 +118,21 @@ module cube4_gra_beats
     reg               nx_ok;         // nx_gm, nx_s hold the next row's (its second cycle on)
     reg [NBX-1:0]     nx_gm, nx_s;   // G(w, r + 1), S(w - 1, r + 1)
 
-    wire [M_W-1:0]    in_m   = in_hdr[HDR_M +: M_W];
-    wire [DIM_W-1:0]  in_j   = in_hdr[HDR_J +: DIM_W];
-    wire [PB_W-1:0]   in_pb  = in_hdr[HDR_PB +: PB_W];
-    wire              in_eop = in_hdr[HDR_CTRL + CTRL_EOP];
-    wire              in_sy  = in_hdr[HDR_CTRL + CTRL_SY];
-    wire              in_osy = in_hdr[HDR_CTRL + CTRL_OSY];
+    // the input passes a skid buffer first: the choice of the next step starts at
+    // registers, and in_ready is a register (not the choice's result)
+    wire              s_valid, s_ready, s_eoss;
+    wire [HDR_W-1:0]  s_hdr;
+    wire [PV-1:0]     s_sample;
+    cube4_skid #(.DATA_W (1 + HDR_W + PV)) u_in (
+        .clk (clk), .rst (rst),
+        .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_eoss, in_hdr, in_sample}),
+        .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_eoss, s_hdr, s_sample}));
+    wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
+    wire [DIM_W-1:0]  in_j   = s_hdr[HDR_J +: DIM_W];
+    wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
+    wire              in_eop = s_hdr[HDR_CTRL + CTRL_EOP];
+    wire              in_sy  = s_hdr[HDR_CTRL + CTRL_SY];
+    wire              in_osy = s_hdr[HDR_CTRL + CTRL_OSY];
 
     // i0: the next step
     reg               i0_v, i0_in, i0_dead, i0_fend, i0_gap;
@@ -140,12 +153,12 @@ module cube4_gra_beats
 
     // ------------------------------------------------------------ the next step
     // the input's beat is in this row, or beyond it
-    wire in_row   = in_valid && act && !ended && !tail && (in_m == w) && (in_j == r);
-    wire in_after = in_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r));
+    wire in_row   = s_valid && act && !ended && !tail && (in_m == w) && (in_j == r);
+    wire in_after = s_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r));
     // the next row's beat of the input, or beyond it (for a row end that loads)
     wire [DIM_W-1:0] r1 = r + 1'b1;
-    wire in_nx    = in_valid && act && !ended && !tail && (in_m == w) && (in_j == r1);
-    wire in_aft1  = in_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r1));
+    wire in_nx    = s_valid && act && !ended && !tail && (in_m == w) && (in_j == r1);
+    wire in_aft1  = s_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r1));
     // the lowest partial beam of a word
     function automatic [PB_W-1:0] lowest(input [NBX-1:0] v);
         integer b;
@@ -158,7 +171,7 @@ module cube4_gra_beats
     wire [PB_W-1:0] x_pb = lowest(nx_gm);
     wire g_any   = act && !tail && |gm;
     wire g_first = g_any && (!in_row || g_pb < in_pb);       // a generated step comes first
-    wire start   = !act && in_valid;                         // a frame's first beat waits
+    wire start   = !act && s_valid;                         // a frame's first beat waits
     wire pass    = act && !tail && (in_after || ended || (w < cmp_m));   // the input has passed this row
     wire ld_in   = i0_take && in_row && !g_first;
     wire ld_gen  = i0_take && g_first && (in_row || pass);
@@ -176,7 +189,7 @@ module cube4_gra_beats
     wire ld_tail = ld_tl || ld_tl_x;                         // a window step
     wire last_row = (w == w_last + 1'b1) && (r == cfg_nj);
     wire ld      = ld_s || ld_tail;
-    assign in_ready = ld_i;
+    assign s_ready = ld_i;
 
     // the step being loaded: slice ld_w, row ld_r, partial beam ld_pb
     wire [M_W-1:0]   ld_w  = w;
@@ -184,9 +197,23 @@ module cube4_gra_beats
     wire [PB_W-1:0]  ld_pb = ld_i ? in_pb : (ld_nx ? x_pb : g_pb);
     wire             w_pos = (ld_w != '0);
     wire [NBX-1:0]   ld_bit = NBX'(1) << ld_pb;
-    wire ld_pg = !ld_tail && w_pos && |((ld_nx ? nx_s : s_cur) & ld_bit);
-    wire ld_bg = !ld_tail && (ld_r != '0) && |((ld_nx ? acc_s : prev_s) & ld_bit);
-    wire ld_gap = ld_tail || ld_nx || !row_any || (ld_pb != row_pb + 1'b1);
+    // what the step's partial beam decides, for each place it may come from (the
+    // input's beat, the row's generated step, the next row's input or generated step),
+    // side by side with the choice, which then picks one
+    wire [PB_W-1:0]  row_pb1 = row_pb + 1'b1;
+    wire pg_in  = s_cur[in_pb],  pg_gen = s_cur[g_pb],  pg_inx = nx_s[in_pb],  pg_genx = nx_s[x_pb];
+    wire bg_in  = prev_s[in_pb], bg_gen = prev_s[g_pb], bg_inx = acc_s[in_pb], bg_genx = acc_s[x_pb];
+    wire ld_pg = !ld_tail && w_pos && ((ld_in && pg_in) || (ld_gen && pg_gen) || (ld_in_x && pg_inx)
+                                       || (ld_gen_x && pg_genx));
+    wire ld_bg = !ld_tail && (ld_nx ? (r1 != '0) && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))
+                                    : (r != '0) && ((ld_in && bg_in) || (ld_gen && bg_gen)));
+    wire ld_gap = ld_tail || ld_nx || !row_any || (ld_i ? (in_pb != row_pb1) : (g_pb != row_pb1));
+    // the bits up to a partial beam (the steps of a row it passes)
+    function automatic [NBX-1:0] upto(input [PB_W-1:0] pb);
+        integer b;
+        for (b = 0; b < NBX; b = b + 1) upto[b] = (PB_W'(b) <= pb);
+    endfunction
+    wire [NBX-1:0] ld_upto = ld_i ? upto(in_pb) : (ld_nx ? upto(x_pb) : upto(g_pb));
     wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
                            ld_r == DIM_W'(1),              // j_first (centre row 0)
                            ld_w == M_W'(1)};               // m_first (centre slice 0)
@@ -267,11 +294,11 @@ module cube4_gra_beats
                 acc_s   <= acc_s | ld_bit;
                 if (ld_in) acc_c <= acc_c | ld_bit;
                 // the steps of this row up to ld_pb are passed
-                gm <= gm & ~((ld_bit << 1) - 1'b1);
+                gm <= gm & ~ld_upto;
             end
             nx_ok <= !(start || row_end);
             if (ld_i) begin
-                if (in_eoss) cmp_m <= in_m + 1'b1;
+                if (s_eoss) cmp_m <= in_m + 1'b1;
                 if (in_eop) begin
                     ended  <= 1'b1;
                     w_last <= in_m;
@@ -297,7 +324,7 @@ module cube4_gra_beats
                     c_cur   <= n_c;
                     s_cur   <= n_s;
                     gm      <= ((((r == cfg_nj) ? '0 : c_cur) | n_c) & nb_mask)
-                               & ~(ld_nx ? ((ld_bit << 1) - 1'b1) : '0);
+                               & ~(ld_nx ? ld_upto : '0);
                 end
             end
             if (ld_tl) begin
@@ -318,8 +345,8 @@ module cube4_gra_beats
             osy_q[in_m[0]] <= in_osy;
         end
         if (ld) begin
-            i0_sample <= ld_i ? in_sample : {PV{1'b0}};
-            i0_hdr    <= ld_i ? in_hdr : {HDR_W{1'b0}};
+            i0_sample <= ld_i ? s_sample : {PV{1'b0}};
+            i0_hdr    <= ld_i ? s_hdr : {HDR_W{1'b0}};
             i0_in     <= ld_i;
             i0_dead   <= ld_tail;
             i0_fend   <= ld_tl && tail_n && fin;
@@ -350,7 +377,7 @@ module cube4_gra_beats
     assign c_sel   = {P{i0_flags, i0_ylast, i0_dyf, i0_dyb}};   // bits GSEL_DKF .. GSEL_DYB
     assign c_edge  = {i0_gap, i0_gap};
     wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
-    wire unused_cfg    = ^{cfg_ss_log2, in_hdr[HDR_CTRL + CTRL_SOP]};
+    wire unused_cfg    = ^{cfg_ss_log2, s_hdr[HDR_CTRL + CTRL_SOP]};
 
 endmodule
 `default_nettype wire
