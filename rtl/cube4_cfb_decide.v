@@ -220,29 +220,45 @@ module cube4_cfb_decide #(
     cube4_sdp_ram #(.DATA_W(NBK), .DEPTH(1 << (2 * BK_W))) u_blk (
         .clk(clk), .rd_en(1'b1), .rd_addr(blk_ra), .rd_data(blk_q),
         .wr_en(blk_we), .wr_addr(blk_addr), .wr_data(blk_data));
-    reg [NBK-1:0] blk_s3, blk_s4, blk_s5;
-    always @(posedge clk) {blk_s5, blk_s4, blk_s3} <= {blk_s4, blk_s3, blk_q};
+    reg [NBK-1:0] blk_s3, blk_s4;
+    always @(posedge clk) {blk_s4, blk_s3} <= {blk_s3, blk_q};
     wire unused_vk = ^{vk[BLOCK_LOG2-1:0], vj[BLOCK_LOG2-1:0]};
 
-    // ==== S5: each beat's positions' decisions (beat r: partial beam pb + r) ====
-    wire [IW-1:0]      pbp5 = IW'(pb_s[ND]) * IW'(P);
-    wire [RATE*P-1:0]  occ5, run5, fresh5, last5, soon5;
+    // ==== S4 -> S5: what does not need the ray table: each position's column,
+    // whether its sample may count (the block table's bit), and m + 1, m + LAG + 1 ====
+    wire [IW-1:0]      pbp4 = IW'(pb_s[ND-1]) * IW'(P);
+    reg  [RATE*P-1:0]  val5, occ5;
+    reg  [M_W:0]       m1_5, ml_5;         // m + 1, m + LAG + 1 of S5's beat
+    always @(posedge clk) begin
+        m1_5 <= {1'b0, m_s[ND-1]} + 1'b1;
+        ml_5 <= {1'b0, m_s[ND-1]} + (M_W + 1)'(LAG + 1);
+    end
     generate
-        for (q = 0; q < RATE * P; q = q + 1) begin : g_pos
-            wire [IW-1:0]    i   = pbp5 + IW'(q);
-            wire             val = (i < IW'(ni)) && ((q / P == 0) || ({1'b0, NB_W'(pb_s[ND])} + (NB_W + 1)'(q / P)
+        for (q = 0; q < RATE * P; q = q + 1) begin : g_col
+            wire [IW-1:0]    i   = pbp4 + IW'(q);
+            wire             val = (i < IW'(ni)) && ((q / P == 0) || ({1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P)
                                                         < {1'b0, nb}));
             wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i));
             wire [BK_W-1:0]  ib  = BK_W'(vi >> BLOCK_LOG2);
+            always @(posedge clk) begin
+                val5[q] <= val;
+                occ5[q] <= val && blk_s4[ib];
+            end
+            wire unused_vi = ^vi[BLOCK_LOG2-1:0];
+        end
+    endgenerate
+
+    // ==== S5: each beat's positions' decisions (beat r: partial beam pb + r) ====
+    wire [RATE*P-1:0]  run5, fresh5, last5, soon5;
+    generate
+        for (q = 0; q < RATE * P; q = q + 1) begin : g_pos
             wire [M_W-1:0]   e   = end_d[q*EW +: M_W];
             wire             td  = end_d[q*EW + M_W];
-            assign occ5[q]   = val && blk_s5[ib];
-            assign run5[q]   = val && (started_d[q] || occ5[q]) && (m_s[ND] < e);
+            assign run5[q]   = val5[q] && (started_d[q] || occ5[q]) && (m_s[ND] < e);
             assign fresh5[q] = run5[q] && !started_d[q];
-            assign last5[q]  = run5[q] && !td && ({1'b0, m_s[ND]} + 1'b1 >= {1'b0, e});
-            assign soon5[q]  = run5[q] && !td && ({1'b0, m_s[ND]} + (M_W + 1)'(LAG + 1) >= {1'b0, e});
+            assign last5[q]  = run5[q] && !td && (m1_5 >= {1'b0, e});
+            assign soon5[q]  = run5[q] && !td && (ml_5 >= {1'b0, e});
             assign set_started[q] = v[ND] && occ5[q] && !started_d[q];
-            wire unused_vi = ^vi[BLOCK_LOG2-1:0];
         end
     endgenerate
 
