@@ -44,7 +44,9 @@
 // Latency
 //   A beat issued at an edge (its fields into the tables' reads) has its
 //   decisions at the fifth edge after (cube4_ray_table's read), registered
-//   at the sixth (S6), and its group and row words written into the output
+//   at the sixth (S6; what needs no ray table word, each position's column
+//   and block bit, m + 1 and m + LAG + 1, is registered at S5 beside the
+//   word), and its group and row words written into the output
 //   FIFOs at the seventh (cube4_credit_fifo, credit-based: a beat is issued
 //   only with an entry reserved in each). RATE beats a cycle (a row's
 //   last group may hold one). A ray's next beat comes a slice (NJ NB beats)
