@@ -275,11 +275,11 @@ module cube4_cfb_beats #(
     reg             x_flush, x_empty;      // the flush row; a row that walks nothing
     reg             x_mark;                // a slice's last row or the flush row: emits when empty
     reg             x_row0;                // row 0 of a slice but the first: emits when empty
-    wire [NW-1:0]   x_low  = x_rem & (~x_rem + 1'b1);            // its lowest set bit
-    wire [NW-1:0]   x_next = x_rem & ~x_low;                     // the row after this beat
-    reg             x_one;                 // a register: one bit left (the row's last beat)
-    function automatic one_left(input [NW-1:0] w);             // at most one bit set
-        one_left = (w & (w - 1'b1)) == '0;
+    reg [NW-1:0]    x_nx;                  // x_rem without its lowest bit: the row after this beat
+    wire            x_one = (x_nx == '0);  // one bit left (the row's last beat)
+    wire [NW-1:0]   x_low = x_rem & ~x_nx; // its lowest set bit: this beat
+    function automatic [NW-1:0] strip(input [NW-1:0] w);      // w without its lowest set bit
+        strip = w & (w - 1'b1);
     endfunction
     reg  [PB_W-1:0] x_pb;
     integer b;
@@ -301,12 +301,12 @@ module cube4_cfb_beats #(
             if (rq_pop) begin
                 x_busy <= 1'b1;
                 {x_rem, x_rd, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_row0, x_empty} <= rq0;
-                x_one  <= one_left(rq0[RQ_W-1 -: NW]);
+                x_nx   <= strip(rq0[RQ_W-1 -: NW]);
             end else if (x_done) begin
                 x_busy <= 1'b0;
             end else if (x_fire) begin
-                x_rem <= x_next;
-                x_one <= one_left(x_next);
+                x_rem <= x_nx;
+                x_nx  <= strip(x_nx);
             end
         end
     end
