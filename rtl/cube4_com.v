@@ -74,8 +74,11 @@
 //   smaller slice runs at NJ*NB beats per 11 cycles (the read-after-write
 //   hazard on the slice buffer: a beat's slot is read at S1 and written at
 //   the end of S11, so a beat waits while the beat L = NJ*NB steps earlier
-//   is in R0 .. S9). RECTS = 1: a beat waits while the beat that wrote its
-//   slot is in R0 .. S9; in_ready then also depends on in_hdr (the slot compare).
+//   is in R0 .. S9). RECTS = 1 or BEATS = 1 (slots by position): a beat
+//   waits while the beat that wrote its slot is in R0 .. S9. With RECTS,
+//   in_ready then also depends on in_hdr (the slot compare); with BEATS the
+//   input passes a skid buffer first (cube4_skid, one cycle): in_ready is
+//   its register, and the slot compare starts at its registers.
 //
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
@@ -193,23 +196,49 @@ module cube4_com #(
     localparam integer FIFO_DEPTH = 16;             // >= 14 cycles from acceptance to the FIFO's read
     localparam integer PH_W   = PHASE_W;
 
+    // ==== the input: on the beat schedule through a skid buffer (cube4_skid), so
+    // the slot compare (hazard) and R0 start at its registers and in_ready is a
+    // register; otherwise straight in (the fixed, box and rectangle schedules,
+    // whose cycles the golden model predicts) ====
+    localparam integer IN_W = HDR_W + P * (24 + ALPHA_W) + P * VOXEL_W + P * FALL_W + 4 * P + 1;
+    wire                      c_valid, c_ready, c_eoss;
+    wire [HDR_W-1:0]          c_hdr;
+    wire [P*(24+ALPHA_W)-1:0] c_rgba;
+    wire [P*VOXEL_W-1:0]      c_sample;
+    wire [P*FALL_W-1:0]       c_fall;
+    wire [4*P-1:0]            c_bits;
+    generate
+        if (BEATS != 0) begin : g_in_skid
+            cube4_skid #(.DATA_W(IN_W)) u_in (
+                .clk(clk), .rst(rst),
+                .in_valid(in_valid), .in_ready(in_ready),
+                .in_data({in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
+                .out_valid(c_valid), .out_ready(c_ready),
+                .out_data({c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+        end else begin : g_in_direct
+            assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
+                 = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};
+            assign in_ready = c_ready;
+        end
+    endgenerate
+
     // ==== the sequencer (BEATS = 1: a lane is inside only where its ray runs) ====
     wire [HDR_W-1:0] seq_hdr;
     wire [P-1:0]     run_lane;            // the lanes whose rays run (BEATS; all otherwise)
     generate
         if (BEATS != 0) begin : g_run
             // the bits come by position t in the partial beam; lane q holds t = lane_pos(q)
-            wire [LANE_W-1:0] in_skew = in_hdr[HDR_SKEW +: LANE_W];
+            wire [LANE_W-1:0] in_skew = c_hdr[HDR_SKEW +: LANE_W];
             genvar qr;
             for (qr = 0; qr < P; qr = qr + 1) begin : g_lane_run
-                assign run_lane[qr] = in_bits[32'(lane_pos(qr, in_skew, cfg_flip_i, cfg_i_r1))];
+                assign run_lane[qr] = c_bits[32'(lane_pos(qr, in_skew, cfg_flip_i, cfg_i_r1))];
             end
             wire [P-1:0] not_run = ~run_lane;
-            assign seq_hdr = in_hdr & ~({{(HDR_W - P){1'b0}}, not_run} << HDR_INSIDE);
+            assign seq_hdr = c_hdr & ~({{(HDR_W - P){1'b0}}, not_run} << HDR_INSIDE);
         end else begin : g_no_run
-            assign seq_hdr = in_hdr;
+            assign seq_hdr = c_hdr;
             assign run_lane = '1;
-            wire unused_bits = ^{in_bits, in_eoss, frame_start, term_en, term_tau, term_vmin, term_vmax};
+            wire unused_bits = ^{c_bits, c_eoss, frame_start, term_en, term_tau, term_vmin, term_vmax};
         end
     endgenerate
     wire              take, credit, hazard, step, sop, first, dxb, dyb;
@@ -242,7 +271,7 @@ module cube4_com #(
         .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM)
     ) u_seq (
         .clk(clk), .rst(rst), .cfg(cfg),
-        .in_valid(in_valid), .in_ready(in_ready), .in_hdr(seq_hdr),
+        .in_valid(c_valid), .in_ready(c_ready), .in_hdr(seq_hdr),
         .take(take), .credit(credit), .hazard(hazard), .step(step), .step_c(step_c),
         .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb), .sop(sop), .first(first), .dxb(dxb), .dyb(dyb),
         .ipos(ipos), .tpos(tpos), .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
@@ -263,8 +292,8 @@ module cube4_com #(
             cube4_com_beats #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
             ) u_beats (
-                .clk(clk), .rst(rst), .cfg(cfg), .in_bits(in_bits), .tpos(tpos),
-                .take(take), .in_hdr(in_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
+                .clk(clk), .rst(rst), .cfg(cfg), .in_bits(c_bits), .tpos(tpos),
+                .take(take), .in_hdr(c_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
                 .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),
@@ -276,7 +305,7 @@ module cube4_com #(
             reg          r0_eoss, eoss11;
             reg [NS:1]   eoss_s;
             always @(posedge clk) begin
-                r0_eoss <= in_eoss;                  // (R0 loads on every cycle)
+                r0_eoss <= c_eoss;                  // (R0 loads on every cycle)
                 eoss_s  <= {eoss_s[NS-1:1], r0_eoss};
                 eoss11  <= eoss_s[NS];
             end
@@ -346,7 +375,7 @@ module cube4_com #(
             ) u_rect (
                 .clk(clk), .rst(rst), .cfg(cfg),
                 .rect_we(rect_we), .rect_addr(rect_addr), .rect_data(rect_data),
-                .take(take), .in_hdr(in_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
+                .take(take), .in_hdr(c_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb), .dxb(dxb), .dyb(dyb), .ipos(ipos),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
                 .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),
@@ -432,8 +461,8 @@ module cube4_com #(
                 .TERM(BEATS), .LAG(LAG)
             ) u_lane (
                 .clk(clk),
-                .in_rgba(in_rgba[q*LUT_W +: LUT_W]), .in_sample(in_sample[q*VOXEL_W +: VOXEL_W]),
-                .in_fall(in_fall[q*FALL_W +: FALL_W]),
+                .in_rgba(c_rgba[q*LUT_W +: LUT_W]), .in_sample(c_sample[q*VOXEL_W +: VOXEL_W]),
+                .in_fall(c_fall[q*FALL_W +: FALL_W]),
                 .smp0(smp0[q*VOXEL_W +: VOXEL_W]),
                 .a3(a3[q*ALPHA_W +: ALPHA_W]), .a3_w(a3_w[q*ALPHA_W +: ALPHA_W]),
                 .back5(s5_back[q*AC_W +: AC_W]), .back_sh(back_sh[q*AC_W +: AC_W]),
