@@ -82,14 +82,14 @@ module cube4_prim_ebr_column #(
                 if (b_en) b_sel1 <= b_top;
                 if (b_en) b_sel2 <= b_sel1;
             end
-            assign b_rd = b_q[32'(b_sel2)*W +: W];
+            cube4_mux #(.N(BANKS), .W(W)) u_b (.words(b_q), .sel(b_sel2), .word(b_rd));
             if (READ_A == 1) begin : g_read_a
                 reg [SEL_W-1:0] a_sel1, a_sel2;
                 always @(posedge clk) begin
                     if (a_rd_en) a_sel1 <= a_top;
                     if (a_rd_en) a_sel2 <= a_sel1;
                 end
-                assign a_rd = a_q[32'(a_sel2)*W +: W];
+                cube4_mux #(.N(BANKS), .W(W)) u_a (.words(a_q), .sel(a_sel2), .word(a_rd));
             end else begin : g_write_a
                 wire unused_a = ^a_q;
                 assign a_rd = '0;

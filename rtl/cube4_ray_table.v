@@ -176,10 +176,12 @@ module cube4_ray_table #(
                 reg               bw3;
                 reg  [SA_W-1:0]   ba3;
                 reg  [DATA_W-1:0] bd3;
+                wire [DATA_W-1:0] wd_pick;
+                cube4_mux #(.N(RATE * P), .W(DATA_W)) u_wd (.words(wd2), .sel(bit_w), .word(wd_pick));
                 always @(posedge clk) begin
                     bw3 <= wv2 && we2[bit_w];
                     ba3 <= sub_addr(by2[1], wwd);
-                    bd3 <= wd2[32'(bit_w)*DATA_W +: DATA_W];
+                    bd3 <= wd_pick;
                 end
                 wire tab_here = tab_we && ((32'(tab_addr[COLS_W-1:0]) & (RATE - 1)) == sb);
                 wire              we = tab_here || (!tab_we && bw3);
@@ -219,9 +221,11 @@ module cube4_ray_table #(
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_beat5
             for (q = 0; q < P; q = q + 1) begin : g_lane
-                wire [LANE_W-1:0] s4 = sel4[q*LANE_W +: LANE_W];
+                wire [DATA_W-1:0] pick;
+                cube4_mux #(.N(P), .W(DATA_W)) u_pick (
+                    .words(rd4[r*P*DATA_W +: P*DATA_W]), .sel(sel4[q*LANE_W +: LANE_W]), .word(pick));
                 always @(posedge clk) begin
-                    word5[(r*P + q)*DATA_W +: DATA_W] <= rd4[(r*P + 32'(s4))*DATA_W +: DATA_W];
+                    word5[(r*P + q)*DATA_W +: DATA_W] <= pick;
                 end
             end
         end

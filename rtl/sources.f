@@ -13,6 +13,7 @@ cube4_skid.v
 cube4_credit_fifo.v
 cube4_ring_shift.v
 cube4_mul.v
+cube4_mux.v
 cube4_prim_ebr.v
 cube4_prim_ebr_column.v
 cube4_sdp_ram.v
