@@ -75,6 +75,14 @@ module cube4_cfb_addr #(`CUBE4_CFB_PARAMS) (
     reg [ADDR_W-1:0]   base2_q;           // A_j + A_k + pbx
     reg                flip1_q, flip2_q;
     reg [P*ADDR_W-1:0] addr_q;
+    // each lane's table entry at its t (cube4_mux: no index arithmetic in front of it)
+    wire [P*ADDR_W-1:0] lin2;
+    generate
+        for (q = 0; q < P; q = q + 1) begin : g_lin
+            cube4_mux #(.N(P), .W(ADDR_W)) u_lin (
+                .words(lin_tab_q), .sel(t2_q[q*LANE_W +: LANE_W]), .word(lin2[q*ADDR_W +: ADDR_W]));
+        end
+    endgenerate
     integer ql;
     always @(posedge clk) begin
         if (advance) begin
@@ -89,9 +97,8 @@ module cube4_cfb_addr #(`CUBE4_CFB_PARAMS) (
             flip2_q <= flip1_q;
             // output register
             for (ql = 0; ql < P; ql = ql + 1) begin
-                addr_q[ql*ADDR_W +: ADDR_W] <= flip2_q
-                    ? base2_q - lin_tab_q[32'(t2_q[ql*LANE_W +: LANE_W]) * ADDR_W +: ADDR_W]
-                    : base2_q + lin_tab_q[32'(t2_q[ql*LANE_W +: LANE_W]) * ADDR_W +: ADDR_W];
+                addr_q[ql*ADDR_W +: ADDR_W] <= flip2_q ? base2_q - lin2[ql*ADDR_W +: ADDR_W]
+                                                      : base2_q + lin2[ql*ADDR_W +: ADDR_W];
             end
         end
     end
