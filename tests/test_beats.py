@@ -315,6 +315,11 @@ def test_skipping_report_rtl_beat_lines():
     text = "\n".join(skipping.rtl_beat_lines(frames, {"box": 140.0}))
     assert "1.00 ms" in text and "not measured" in text and "0.267" in text
     assert skipping.parse_fmax("box=140,beats=61.5") == {"box": 140.0, "beats": 61.5}
+    fmax = skipping.parse_fmax("box=140@abc1234")
+    assert fmax == {"box": 140.0, "box@rtl": "abc1234"}
+    assert "140.0 MHz (RTL abc1234)" in "\n".join(skipping.rtl_beat_lines(frames, fmax))
+    with pytest.raises(SystemExit, match="--fmax wants"):
+        skipping.parse_fmax("box=140@")
     assert "does not fit" in "\n".join(skipping.rtl_beat_lines(frames, skipping.parse_fmax("beats=nofit")))
     with pytest.raises(SystemExit, match="--fmax wants"):
         skipping.parse_fmax("beats=fast")
