@@ -158,7 +158,8 @@ module cube4_com_plw #(
                 .clk(clk), .rd_en(1'b1), .rd_addr(smp[q*VOXEL_W +: VOXEL_W]), .rd_data(w2_cols),
                 .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
             always @(posedge clk) w3_cols <= w2_cols;
-            wire [ALPHA_W-1:0] a_col = w3_cols[col_q * ALPHA_W +: ALPHA_W];
+            wire [ALPHA_W-1:0] a_col;
+            cube4_mux #(.N(4), .W(ALPHA_W)) u_col (.words(w3_cols), .sel(col_q), .word(a_col));
             assign a_w[q*ALPHA_W +: ALPHA_W] = (use_q && !mode_ext) ? a_col : a3[q*ALPHA_W +: ALPHA_W];
         end
     endgenerate
