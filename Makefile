@@ -147,7 +147,7 @@ LINT_SETS_cube4_cfb_skip    := P=1 P=5,MAX_DIM=64 P=2,MAX_DIM=2 P=8,MAX_DIM=128 
                                RATE=2 P=1,RATE=2 P=2,MAX_DIM=2,RATE=2 P=8,MAX_DIM=128,RATE=2
 LINT_SETS_cube4_ray_table   := P=1 P=5,MAX_SS_LOG2=2,DATA_W=10 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,DATA_W=12 P=2,MAX_DIM=2,DATA_W=1 \
                                P=64,MAX_DIM=64,DATA_W=64 P=3,MAX_DIM=3 P=8,MAX_DIM=128 RATE=2 P=1,RATE=2 \
-                               P=5,RATE=2,DATA_W=9 P=2,MAX_DIM=2,RATE=2,DATA_W=1 P=64,MAX_DIM=64,RATE=2
+                               P=5,RATE=2,DATA_W=9 P=2,MAX_DIM=2,RATE=2,DATA_W=1 P=16,MAX_DIM=64,RATE=2
 LINT_SETS_cube4_com_seq     := P=1,SP_W=9 P=5,MAX_SS_LOG2=2,SP_W=14 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,SP_W=18 \
                                P=2,MAX_DIM=2,SP_W=1 COMPOSITING=0 EXTREMUM=0 P=64,MAX_DIM=64,SP_W=6
 LINT_SETS_cube4_com_walk    := P=1,SP_W=16 P=5,MAX_SS_LOG2=2,SP_W=14 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,SP_W=18 \
@@ -172,13 +172,8 @@ LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
 # cube4_top: widths per build option (every option combination is elaborated with -Wall by
 # tests/test_build_definition.py: the named builds in make test, all of them in make regress)
 LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
-                               P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 P=1,SHADING=0,COMPOSITING=0,PLW=0 \
-                               P=8,GMOD=1,VGRAD=1,MAX_SS_LOG2=2 P=1,GMOD=1,RMAP_BITS=2 P=1,RECTS=1,PLW=0 \
-                               P=5,RECTS=1,PLW=0,SHADING=0,EXTREMUM=0 P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 \
-                               P=16,LABELS=1,PLW=0,VOXEL_W=12 P=1,DRAM=1,SHADING=0,COMPOSITING=0,PLW=0 \
-                               P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=16,DRAM=1,MAX_SS_LOG2=2 P=1,BEATS=1,SHADING=0,PLW=0,COMPOSITING=0 \
-                               P=5,BEATS=1,SHADING=0,PLW=0,EXTREMUM=0,CLIP=0,DRAM=1 P=5,BEATS=1,PLW=0,EXTREMUM=0 \
-                               P=1,BEATS=1,VGRAD=1,PLW=0
+                               P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 \
+                               P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=5,BEATS=1,PLW=0,EXTREMUM=0
 
 lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
