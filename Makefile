@@ -47,12 +47,11 @@ SETUP_STAMP := $(VENV)/.make-setup-stamp
 RTL_SRCS     := $(addprefix rtl/,$(shell sed -e 's/\#.*//' rtl/sources.f))   # the one list, dependencies first
 RTL_MODULES  := $(basename $(notdir $(RTL_SRCS)))   # one module per file, named as the file
 SIM_HDL_SRCS := $(sort $(wildcard sim/hdl/*.v) $(wildcard tb/*/*.v))   # shared simulation blocks, harnesses beside their testbenches
-SIM_MODULES  := $(basename $(notdir $(SIM_HDL_SRCS)))
-# the vendor layer: each file replaces the generic module of the same name
+# the vendor layer: each file replaces the generic module of the same name (its lint runs
+# search rtl/ecp5 and the primitives' models in sim/hdl/ecp5 before rtl/: -y and -I
+# directories are searched in the order given)
 ECP5_SRCS    := $(sort $(wildcard rtl/ecp5/*.v))
 ECP5_MODULES := $(basename $(notdir $(ECP5_SRCS)))
-ECP5_BASE    := $(filter-out $(addprefix rtl/,$(notdir $(ECP5_SRCS))),$(RTL_SRCS))
-ECP5_MODELS  := $(sort $(wildcard sim/hdl/ecp5/*.v))   # behavioural models of the primitives it instantiates
 LINT_WAIVERS := rtl/lint_waivers.vlt
 LINT_FLAGS   := --lint-only -Wall --quiet -Irtl -Isim/hdl
 
@@ -75,7 +74,7 @@ $(foreach u,tmpl trav ctl rect box addr mask,$(eval LINT_SETS_cube4_cfb_$(u) := 
 LINT_SETS_cube4_cfb_bctl    := P=2,MAX_DIM=2,ADDR_W=1 P=16,MAX_DIM=2048,ADDR_W=30,MAX_SS_LOG2=3,WEIGHT_W=12
 LINT_SETS_cube4_cfb_steps   := P=1,WEIGHT_W=4 P=16,MAX_DIM=2048,MAX_SS_LOG2=3,WEIGHT_W=12
 LINT_SETS_cube4_tri         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12  P=1,CLIP=0  \
-                                P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
+                                P=5,MAX_SS_LOG2=2,VGRAD=1 P=1,VOXEL_W=16,VGRAD=1 P=16,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
                                 P=1,LABELS=1,MAX_SS_LOG2=1 P=5,VOXEL_W=16,LABELS=1
 LINT_SETS_cube4_tri_src     := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=16,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 \
                                P=5,LABELS=1
@@ -170,12 +169,11 @@ LINT_SETS_cube4_prim_spread := W=5,D=68 W=1,D=3 D=4096,COPIES=512 W=64,D=1,COPIE
 LINT_SETS_cube4_prim_reg_en := W=68 W=3 W=4096,COPIES=512 RESET=0 COPIES=1
 LINT_SETS_cube4_stream_check := DATA_W=64 DATA_W=4096
 # cube4_top: widths per build option (every option combination is elaborated with -Wall by
-# tests/test_build_definition.py: the named builds in make test, all of them in make regress)
-LINT_SETS_cube4_top         := P=1 P=5,MAX_SS_LOG2=2 P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
+# tests/test_build_definition.py: the named builds in make test, all of them in make regress, at P = 1)
+LINT_SETS_cube4_top         := P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
                                P=2,MAX_DIM=2,DEPTH=2,ADDR_W=1 P=5,LABELS=1,PLW=0,GMOD=1,ZOUT=1,ZIN=1,SLAB=1,MAX_SS_LOG2=2 \
-                               P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32 P=5,BEATS=1,PLW=0,EXTREMUM=0
+                               P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32,MAX_SS_LOG2=2 P=5,BEATS=1,PLW=0,EXTREMUM=0
 
-lint_gflags = $(if $(filter default,$(1)),,$(addprefix -G,$(subst $(comma), ,$(1))))
 
 .PHONY: help setup lint sim bench test regress simspeed demo report bricks gates fpga scenes skipping labels dram board clean
 
@@ -188,35 +186,58 @@ $(SETUP_STAMP): scripts/setup.sh requirements.txt pyproject.toml
 	bash scripts/setup.sh
 	touch $@
 
-# One Verilator run per module and parameter set, TEST_JOBS at a time (build/lint.cmds
-# lists them); any failure fails the target after the others finish. LINT_QUICK=1 (make
-# test) lints every module at its default parameters only, and rtl/ in one run: each
-# module that no other instantiates is a top at its defaults, every other one is linted
-# as the design instantiates it (make lint and make regress lint each module on its own,
-# at its defaults and at every parameter set; Verilator reads the module's own file and
-# finds the modules it instantiates in rtl/ by name, -y rtl: one module per file, named as
-# the file, so a leaf unit's run parses its own file and not the whole list).
-lint_sets = $(if $(LINT_QUICK),default,default $(LINT_SETS_$(1)))
+# Verilator runs, TEST_JOBS at a time (build/lint.cmds lists them, the largest modules
+# first); any failure fails the target after the others finish. Each module is linted as
+# the top at its defaults, and its parameter sets (LINT_SETS_<module>) together in a second
+# run: build/lint/<module>_sets.v instantiates it once per set, the instance named after
+# the set, ports left open (a lint run costs about as much to start as a small module
+# takes to check; one run per set took twice as long). Verilator reads the module's own
+# file and finds the modules it instantiates by name in the -y/-I directories, in the
+# order given: one module per file, named as the file, so a leaf unit's run parses its
+# own file and not the whole list. LINT_QUICK=1 (make test) lints rtl/ at its defaults
+# in one run (each module that no other instantiates is a top, every other one is linted
+# as the design instantiates it) and no parameter sets.
+lint_sets = $(if $(LINT_QUICK),,$(LINT_SETS_$(1)))
 define NL
 
 
 endef
+empty :=
+space := $(empty) $(empty)
+lint_kv = .$(word 1,$(subst =, ,$(1)))($(word 2,$(subst =, ,$(1))))
+lint_params = $(subst $(space),$(comma)$(space),$(strip $(foreach kv,$(subst $(comma), ,$(1)),$(call lint_kv,$(kv)))))
+lint_inst = $(subst =,_,$(subst $(comma),__,$(1)))
+define lint_wrapper
+// Generated by make lint: every parameter set of $(1) (LINT_SETS_$(1) in the Makefile)
+// in one Verilator run. Ports are left open: only the module's own body is checked.
+/* verilator lint_off PINMISSING */
+/* verilator lint_off DECLFILENAME */
+`default_nettype none
+module lint_sets_$(1);
+$(foreach s,$(LINT_SETS_$(1)),    $(1) #($(call lint_params,$(s))) u_$(call lint_inst,$(s)) ();$(NL))endmodule
+endef
+# $(1) module, $(2) label, $(3) search directories before rtl/, $(4) its file
+lint_module = \
+	echo "lint $(2) $(1) [default]" && \
+	$(VERILATOR) $(3) $(LINT_FLAGS) --top-module $(1) $(LINT_WAIVERS) -y rtl $(4)$(NL) \
+	$(if $(call lint_sets,$(1)),\
+	    echo "lint $(2) $(1) [$(words $(LINT_SETS_$(1))) sets: build/lint/$(1)_sets.v]" && \
+	    $(VERILATOR) $(3) $(LINT_FLAGS) --top-module lint_sets_$(1) $(LINT_WAIVERS) -y rtl \
+	        build/lint/$(1)_sets.v$(NL))
+reverse = $(if $(1),$(call reverse,$(wordlist 2,$(words $(1)),$(1))) $(firstword $(1)))
 LINT_RTL_ONE_RUN := echo "lint rtl    every module in one run [default]" && \
 	$(VERILATOR) $(LINT_FLAGS) -Wno-MULTITOP $(LINT_WAIVERS) $(RTL_SRCS)$(NL)
-LINT_RTL_EACH := $(foreach m,$(RTL_MODULES),$(foreach s,$(call lint_sets,$(m)),\
-	    echo "lint rtl    $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) -y rtl rtl/$(m).v$(NL)))
+LINT_RTL_EACH := $(foreach m,$(call reverse,$(RTL_MODULES)),$(call lint_module,$(m),rtl   ,,rtl/$(m).v))
 LINT_CMDS := \
 	$(if $(LINT_QUICK),$(LINT_RTL_ONE_RUN),$(LINT_RTL_EACH)) \
-	$(foreach m,$(ECP5_MODULES),$(foreach s,$(call lint_sets,$(m)),\
-	    echo "lint ecp5   $(m) [$(s)]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --top-module $(m) $(call lint_gflags,$(s)) $(LINT_WAIVERS) $(ECP5_BASE) $(ECP5_SRCS) $(ECP5_MODELS)$(NL))) \
-	$(foreach m,$(SIM_MODULES),\
-	    echo "lint sim    $(m) [default, --timing]" && \
-	    $(VERILATOR) $(LINT_FLAGS) --timing --top-module $(m) $(LINT_WAIVERS) $(RTL_SRCS) $(SIM_HDL_SRCS)$(NL))
+	$(foreach m,$(ECP5_MODULES),$(call lint_module,$(m),ecp5  ,-y rtl/ecp5 -y sim/hdl/ecp5,rtl/ecp5/$(m).v)) \
+	$(foreach f,$(SIM_HDL_SRCS),\
+	    echo "lint sim    $(basename $(notdir $(f))) [default, --timing]" && \
+	    $(VERILATOR) -y $(patsubst %/,%,$(dir $(f))) $(LINT_FLAGS) --timing --top-module $(basename $(notdir $(f))) \
+	        $(LINT_WAIVERS) -y sim/hdl -y rtl $(f)$(NL))
 
 lint: setup
-	@mkdir -p build
+	$(shell mkdir -p build/lint)$(foreach m,$(RTL_MODULES) $(ECP5_MODULES),$(if $(call lint_sets,$(m)),$(file >build/lint/$(m)_sets.v,$(call lint_wrapper,$(m)))))
 	$(file >build/lint.cmds,$(LINT_CMDS))
 	@xargs -d '\n' -P $(TEST_JOBS) -I{} sh -c '{}' < build/lint.cmds
 	@echo "lint: clean"
