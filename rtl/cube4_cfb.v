@@ -60,7 +60,7 @@
 //     u_tmpl   cube4_cfb_tmpl: the template (phases, weights, X/Y steps)
 //     u_steps, u_skip, u_bctl  (BEATS = 1) in place of u_ctl and u_trav: the
 //              slices' steps, the decisions and walk, the walk's beats as
-//              the state
+//              the state (through u_wskid, a cube4_skid: one cycle)
 //     u_rect   cube4_cfb_rect (RECTS = 1): the rectangle table, one pass ahead
 //     u_box    cube4_cfb_box (RECTS = 0): the whole box as the pass's entry
 //     u_addr   cube4_cfb_addr: lane positions t and one address per bank
@@ -205,6 +205,19 @@ module cube4_cfb #(
                 .out_last(w_last),
                 .out_bits(w_bits));
             wire unused_walk = ^{w_m, w_j};   // the control keeps its own slice and row
+            // the walk's beats reach the control through a skid buffer: its ready (the
+            // state's stall enable) and the walk's valid (the decisions' queue) meet
+            // at registers, not in one path across both units
+            localparam integer WB_W = PB_W + 6 + 4 * P;
+            wire b_valid, b_ready, b_read, b_leave, b_tok, b_eor, b_eos, b_last;
+            wire [PB_W-1:0] b_pb;
+            wire [4*P-1:0]  b_bits;
+            cube4_skid #(.DATA_W(WB_W)) u_wskid (
+                .clk(clk), .rst(rst),
+                .in_valid(w_valid), .in_ready(w_ready),
+                .in_data({w_pb, w_read, w_leave, w_tok, w_eor, w_eos, w_last, w_bits}),
+                .out_valid(b_valid), .out_ready(b_ready),
+                .out_data({b_pb, b_read, b_leave, b_tok, b_eor, b_eos, b_last, b_bits}));
             wire [4*P-1:0] x_bits;
             wire           x_eos, x_eoss;
             cube4_cfb_bctl #(
@@ -212,9 +225,9 @@ module cube4_cfb #(
             ) u_bctl (
                 .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr),
                 .start(start), .busy(busy), .go(go),
-                .in_valid(w_valid), .in_ready(w_ready), .in_pb(w_pb), .in_read(w_read), .in_leave(w_leave),
-                .in_tok(w_tok),
-                .in_eor(w_eor), .in_eos(w_eos), .in_last(w_last), .in_bits(w_bits),
+                .in_valid(b_valid), .in_ready(b_ready), .in_pb(b_pb), .in_read(b_read), .in_leave(b_leave),
+                .in_tok(b_tok),
+                .in_eor(b_eor), .in_eos(b_eos), .in_last(b_last), .in_bits(b_bits),
                 .advance(advance), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
                 .idle(idle), .next_pass(next_pass),
                 .issue(issue), .fields(fields), .use_prev(use_prev), .skew_out(skew_out),
@@ -237,7 +250,7 @@ module cube4_cfb #(
                 end
             end
             assign {req_eoss, req_eos, req_bits} = x_q;
-            assign busy = mask_busy || busy_s;
+            assign busy = mask_busy || busy_s || b_valid;
         end else begin : g_fixed
             // ==== control and traversal of the fixed, box and rectangle schedules ====
             wire              go, pass_done, beat, row, flush_row;
