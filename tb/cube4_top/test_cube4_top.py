@@ -528,6 +528,59 @@ def test_subpixel_passes(p, q):
     assert (frame.baseplane == gold.baseplane).all(), "interleaved plane differs from the golden engine's"
 
 
+@pytest.mark.parametrize(("p", "q"), sweep([(8, 2), (5, 3)], quick=(0,)))
+def test_subpixel_beats(p, q):
+    """The q×q passes of a view on the beat schedule (BEATS = 1): each pass its own beat
+    frame (its box's block occupancy and rays' stops), the head phantom's shaded scene
+    with its LUT made opaque where it counts, so rays end (τ = 0); random stalls on some
+    passes and a reset in mid-frame on one. Every pass is the golden beat frame bit for
+    bit, the beats that ran are the golden frame's, some ray ended early, and the
+    interleaved plane equals the fixed schedule's."""
+    import copy
+
+    from cube4.host import assemble_view, beat_schedules, crop_volume, plan_view
+    from cube4.model import render_frame
+    from cube4.scene import load_scene
+
+    cfg = Cube4Config(pipelines=p)
+    vol = load_volume("head:24", voxel_bits=cfg.voxel_bits)
+    vp = plan_view(vol, dataclasses.replace(load_scene("head"), subpixel=q, skip="beats"), cfg)
+    lut = vp.lut.copy()
+    lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
+    vp = dataclasses.replace(vp, lut=lut)
+    jobs, gold, index = [], [], []
+    for n, (plan, bf) in enumerate(zip(vp.plans, beat_schedules(vol, vp, cfg, {"tau": 0, "terminate": True}))):
+        if plan.trav is None:
+            continue
+        sched, rule = bf
+        assert rule.enabled, "the head's passes are tall enough to end rays"
+        jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, clip=plan.clip, beats=(copy.deepcopy(sched), rule, sched.block_bits),
+                             stall=(0, 60, 0, 120)[n % 4], stall_out=(0, 0, 90, 0)[n % 4],
+                             reset_after_cycles=400 if n == 1 else 0))
+        gold.append((sched, rule))
+        index.append(n)
+    assert len(jobs) == q * q
+    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": 1, "VGRAD": 0})
+    ended = 0
+    for job, (sched, rule), res in zip(jobs, gold, results):
+        label = f"beats P={p} q={q} phase {job.trav.phase_x, job.trav.phase_y}"
+        check(vol, job.trav, cfg, job.lut, job.rmap, res, label, clip=job.clip, beats=(sched, rule))
+        ran = copy.deepcopy(sched)
+        render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, clip=job.clip, beats=ran, done=rule)
+        run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
+        assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
+        ended += int((ran.done < ran.M).sum())
+    assert ended > 0, "no ray ended early: the test would not see termination"
+    runs = {n: (baseplane_from_pixels(res["pixels"], job.trav.baseplane_shape), res["pixels"])
+            for n, job, res in zip(index, jobs, results)}
+    fixed = {}
+    for n, job in zip(index, jobs):
+        f = render_frame(crop_volume(vol, job.trav), job.trav, cfg, vp.lut, vp.rmap, clip=job.clip)
+        fixed[n] = (f.baseplane, f.pixels)
+    a, b = assemble_view(vp, cfg, runs), assemble_view(vp, cfg, fixed)
+    assert (a.baseplane == b.baseplane).all(), "the beat schedule's interleaved plane differs from the fixed schedule's"
+
+
 # ---------------------------------------------------------------- path-length weights
 @pytest.mark.parametrize(("p", "s"), sweep([(1, 1), (5, 1), (8, 1), (5, 2)], quick=(0, 1)))
 def test_path_weights(p, s):
