@@ -8,14 +8,17 @@
 //   (in: valid/ready, out: valid/ready), for queues too deep for distributed
 //   RAM (cube4_sync_fifo): the beat schedule's lane bits, which wait about two
 //   slices between the decisions and the walk (cube4_cfb_skip). The RAM's read
-//   takes a cycle, so items leave through a two-entry register queue that the
-//   RAM keeps filled: a read is issued while the register queue and the read
-//   in flight hold fewer than two items.
+//   takes a cycle, so items leave through a three-entry register queue that
+//   the RAM keeps filled: a read is issued while the register queue and the
+//   read in flight hold fewer than three items, counted before this cycle's
+//   pop, so out_ready reaches only the register queue (not the RAM's read
+//   enable, its pointer or the count behind in_ready); three entries keep
+//   the full rate with a read decided a cycle before the pop it refills.
 //
 // Parameters
 //   DATA_W   width of an item.              1..4096.     Default 8.
 //   DEPTH    entries in the RAM; a power of two.  4..2^20.  Default 1024.
-//            The queue holds DEPTH + 2 items (the RAM and the register queue).
+//            The queue holds DEPTH + 3 items (the RAM and the register queue).
 //
 // Latency
 //   An item written at an edge is read from the RAM at the next edge at the
@@ -52,13 +55,12 @@ module cube4_ram_fifo #(
     reg              full_q;               // cnt_q = DEPTH, counting this cycle's read
     wire             push = in_valid && in_ready;
     assign in_ready = !full_q;
-    // ==== the register queue: q0 (the head), q1; the read in flight ====
-    reg  [DATA_W-1:0] q0, q1;
-    reg  [1:0]        nq;                  // items in q0, q1
+    // ==== the register queue: q0 (the head), q1, q2; the read in flight ====
+    reg  [DATA_W-1:0] q0, q1, q2;
+    reg  [1:0]        nq;                  // items in q0, q1, q2
     reg               fly;                 // a read was issued at the last edge
     wire              pop  = out_valid && out_ready;
-    wire [2:0]        hold = 3'(nq) + 3'(fly) - 3'(pop);   // items in the queue and in flight after this cycle's pop
-    wire              rd   = (cnt_q != '0) && (hold < 3'd2);
+    wire              rd   = (cnt_q != '0) && (3'(nq) + 3'(fly) < 3'd3);   // before this cycle's pop
     wire [DATA_W-1:0] rd_data;
     cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH)) u_ram (
         .clk(clk), .rd_en(rd), .rd_addr(rd_q), .rd_data(rd_data),
@@ -86,10 +88,16 @@ module cube4_ram_fifo #(
             nq <= '0;
         end else begin
             nq <= keep + 2'(fly);
-            if (pop) q0 <= q1;
+            if (pop) begin
+                q0 <= q1;
+                q1 <= q2;
+            end
             if (fly) begin
-                if (keep == 2'd0) q0 <= rd_data;
-                else              q1 <= rd_data;
+                case (keep)
+                    2'd0:    q0 <= rd_data;
+                    2'd1:    q1 <= rd_data;
+                    default: q2 <= rd_data;
+                endcase
             end
         end
     end
