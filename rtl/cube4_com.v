@@ -51,7 +51,7 @@
 //               that holds something, ray termination (term_*), its countdown
 //               in the buffer word (clog2(LAG + 1) bits) and the reports
 //               (rep_*, com_m).
-//               Needs RECTS, PLW, ZIN, ZOUT = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
+//               Needs RECTS, ZIN, ZOUT = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
 //   LAG         (after the build's list) BEATS: slices between a report and
 //               the decisions' use of it (cube4_cfb_decide's LAG).  2..7.
 //               Default CUBE4_BEAT_LAG (4).
@@ -161,8 +161,8 @@ module cube4_com #(
             $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
         end
         `CUBE4_RANGE(g_bad_lag, "cube4_com", "LAG", LAG, 2, 7)
-        if (BEATS != 0 && (RECTS != 0 || PLW != 0 || ZIN != 0 || ZOUT != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
-            $error("cube4_com: BEATS = 1 needs RECTS = 0, PLW = 0, ZIN = 0, ZOUT = 0 and MAX_SS_LOG2 = 0 (not built)");
+        if (BEATS != 0 && (RECTS != 0 || ZIN != 0 || ZOUT != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
+            $error("cube4_com: BEATS = 1 needs RECTS = 0, ZIN = 0, ZOUT = 0 and MAX_SS_LOG2 = 0 (not built)");
         end
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_com: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");
@@ -297,7 +297,9 @@ module cube4_com #(
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
                 .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),
-                .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(soon_0));
+                .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(soon_0),
+                .ph_x(ph_x), .ph_y(ph_y), .phn_x(phn_x), .phn_y(phn_y),
+                .f1_klast(f1_last), .f1_wxn(f1_wxn), .f1_wyn(f1_wyn));
             // ---- the reports (S11 -> registers): a lane whose ray COM found done
             // writes m + LAG + 1 at its position of the ray table; com_m counts
             // the slices whose beats have all passed: a beat of a later slice,
@@ -352,8 +354,6 @@ module cube4_com #(
             assign {rep_valid, rep_en, rep_j, rep_pb, rep_stx, rep_sty} = {rv_q, ren_q, rj_q, rpb_q, rsx_q, rsy_q};
             assign rep_end = {P{rend_q}};
             assign com_m = com_q;
-            assign {ph_x, ph_y, phn_x, phn_y} = '0;
-            assign {f1_last, f1_wxn, f1_wyn} = 3'b000;
             wire unused_beats = ^{rect_we, rect_addr, rect_data, step_c, sop, first, v_s[NS], dxb, dyb, ipos};
         end else if (RECTS == 0) begin : g_walk
             cube4_com_walk #(
@@ -427,7 +427,7 @@ module cube4_com #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
                 .VOXEL_W(VOXEL_W), .ALPHA_W(ALPHA_W)
             ) u_plw (
-                .clk(clk), .cfg(cfg), .step(step), .first(first),
+                .clk(clk), .cfg(cfg), .step(step), .first(first || BEATS != 0),   // (BEATS: ph_x, ph_y R0's own)
                 .ph_x(ph_x), .ph_y(ph_y), .phn_x(phn_x), .phn_y(phn_y),
                 .r0_m(r0_m), .r0_j(r0_j), .dxb(dxb), .dyb(dyb), .ipos(ipos),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),

@@ -42,6 +42,9 @@
 //   pos_sp, pos_pb, hazard, fresh, nx_in, stx, sty, col1_4: as cube4_com_rect
 //   soon_0    out  S0: the lanes' soon bits (the ray's stop comes within the
 //                  lag: COM reports nothing for it)
+//   ph_x, ph_y, phn_x, phn_y   out  S0: the phases of R0's slice m and of
+//                  slice m + 1 [PHASE_W] (the path weights, cube4_com_plw)
+//   f1_klast, f1_wxn, f1_wyn   out  S1: m = M - 1; wx(m+1) > 0; wy(m+1) > 0
 //
 // Bit growth and rounding: none (compares, counters; the phases wrap by
 //   design, their carry is the step).
@@ -60,7 +63,10 @@ module cube4_com_beats #(
     output wire [SP_W-1:0] pos_sp, output wire [PB_W-1:0] pos_pb, output wire hazard,
     output wire [P-1:0] fresh, output wire [P-1:0] nx_in,
     output wire [DIM_W-1:0] stx, output wire [DIM_W-1:0] sty,
-    output wire col1_4, output wire [P-1:0] soon_0
+    output wire col1_4, output wire [P-1:0] soon_0,
+    output wire [PHASE_W-1:0] ph_x, output wire [PHASE_W-1:0] ph_y,
+    output wire [PHASE_W-1:0] phn_x, output wire [PHASE_W-1:0] phn_y,
+    output reg  f1_klast, output reg f1_wxn, output reg f1_wyn
 );
     `CUBE4_VIEW_FIELDS(cfg);
     localparam integer PH_W = PHASE_W;
@@ -119,12 +125,15 @@ module cube4_com_beats #(
     assign stx = sx_q;
     assign sty = sy_q;
     // the next slice's weights (S1): its last column / row is outside when wx / wy > 0
-    wire [PH_W-1:0] phn_x = cx ? phx_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phx_sum[PH_W-1:0];
-    wire [PH_W-1:0] phn_y = cy ? phy_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phy_sum[PH_W-1:0];
-    reg f1_wxn, f1_wyn;
+    assign ph_x  = phx_q;
+    assign ph_y  = phy_q;
+    assign phn_x = cx ? phx_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phx_sum[PH_W-1:0];
+    assign phn_y = cy ? phy_sum[PH_W-1:0] - ph_one[PH_W-1:0] : phy_sum[PH_W-1:0];
+    wire [M_W-1:0] m_last = M_W'(cfg_nk - 1'b1);    // (S = 1)
     always @(posedge clk) begin
-        f1_wxn <= ((phn_x >> cfg_ss_log2) != '0);
-        f1_wyn <= ((phn_y >> cfg_ss_log2) != '0);
+        f1_klast <= (r0_m == m_last);
+        f1_wxn   <= ((phn_x >> cfg_ss_log2) != '0);
+        f1_wyn   <= ((phn_y >> cfg_ss_log2) != '0);
     end
 
     // ---- per lane: the ray runs the next slice and its next sample is inside

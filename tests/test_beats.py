@@ -257,8 +257,8 @@ def test_scenes_are_bit_exact(spec, scene, extra):
 
 def test_cli_beats_and_stats(tmp_path):
     """--beats gives the same base plane as --no-skip and --stats the beats by cause;
-    --tau without --beats, --beats with path weights on the RTL (its build is not built
-    yet) or in bricks are one line each."""
+    --tau without --beats, --beats with the quality preset on the RTL (S = 4: its build is not
+    built yet), a τ out of range or in bricks are one line each."""
     import json
     import subprocess
     import sys
@@ -278,7 +278,7 @@ def test_cli_beats_and_stats(tmp_path):
     _, b_tau = run("--beats", "--tau", "0.05")
     assert 0 < np.abs(b_tau - b_off).max() <= int(0.05 * (1 << 16)) + 1
     for extra, msg in ((("--tau", "0.1"), "--tau needs --beats"),
-                       (("--beats", "--engine", "rtl", "--path-weights"), "BEATS = 1 needs GMOD = 0 and PLW = 0"),
+                       (("--beats", "--engine", "rtl", "--preset", "quality"), "and MAX_SS_LOG2 = 0 (the beat schedule"),
                        (("--beats", "--bricks", "2,1,1"), "does not run in bricks"),
                        (("--beats", "--tau", "0.7"), "--tau must be in 0..0.5")):
         r = run(*extra, check=False)

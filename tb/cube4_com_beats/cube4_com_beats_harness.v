@@ -25,7 +25,14 @@ module cube4_com_beats_harness #(
     input  wire                f1_dxf,
     input  wire                f1_dyf,
     output wire                col1_4,
-    output wire [P-1:0]        soon_0
+    output wire [P-1:0]        soon_0,
+    output wire [PHASE_W-1:0]  ph_x,
+    output wire [PHASE_W-1:0]  ph_y,
+    output wire [PHASE_W-1:0]  phn_x,
+    output wire [PHASE_W-1:0]  phn_y,
+    output wire                f1_klast,
+    output wire                f1_wxn,
+    output wire                f1_wyn
 );
     `CUBE4_HARNESS_VIEW
     cube4_com_beats #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_beats (.*);

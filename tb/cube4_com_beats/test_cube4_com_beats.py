@@ -9,10 +9,12 @@ beat of the same slot {j, pb} in R0 .. S9), and played through R0 and S1 as
 cube4_com_seq gives them. Checked on every beat against the golden model:
 
 * offered: hazard = a beat of the offered beat's slot is in R0 .. S9;
-* R0: the slot {j, pb}, pb; stepx(m), stepy(m) (``Traversal.steps``); per lane (its
-  position t by ``tpos``) the bits fresh and soon of its ray;
+* R0: the slot {j, pb}, pb; stepx(m), stepy(m) (``Traversal.steps``); the template's
+  phases of slices m and m + 1 (the path weights'); per lane (its position t by
+  ``tpos``) the bits fresh and soon of its ray;
 * S1: per lane whose ray runs, "next": its ray runs the next slice (not bit last) and the
-  next sample (m + 1, j + dyf, i + dxf) is inside the box (``model.inside_mask``);
+  next sample (m + 1, j + dyf, i + dxf) is inside the box (``model.inside_mask``); the
+  path weights' m = M - 1, wx(m + 1) > 0, wy(m + 1) > 0 (``Traversal.weights``);
 * S4: col1 = the beat before it is the row above at the same partial beam.
 
 Every beat offered must be taken and checked (the count is compared). With the steps
@@ -77,6 +79,11 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             for q in range(p):
                 i, jj = int(pos[b, q] + dxf[b]), int(j[b] + dyf[b])
                 nxt[b, q] = not last[b, q] and i < trav.ni and jj < trav.nj and bool(ins[jj, i])
+    one = 1 << trav.phase_bits
+    phases = [((trav.phase_x + k * trav.view_x) % one, (trav.phase_y + k * trav.view_y) % one,
+               (trav.phase_x + (k + 1) * trav.view_x) % one, (trav.phase_y + (k + 1) * trav.view_y) % one)
+              for k in (int(x) for x in m)]
+    s1_geo = [(int(k == M - 1), *(int(w > 0) for w in trav.weights(k + 1)[:2])) for k in (int(x) for x in m)]
     slot = (j << geo.pb_w) | pb
     col1 = np.zeros(n, dtype=bool)
     col1[1:] = (m[1:] == m[:-1]) & (pb[1:] == pb[:-1]) & (j[1:] == j[:-1] + 1)
@@ -112,6 +119,8 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             got = (int(dut.pos_sp.value), int(dut.pos_pb.value), int(dut.stx.value), int(dut.sty.value))
             want = (int(slot[b0]), int(pb[b0]), int(sx[b0]), int(sy[b0]))
             assert got == want, f"{sched.describe(b0)} R0 (slot, pb, stx, sty): RTL {got}, golden {want}"
+            got = tuple(int(x.value) for x in (dut.ph_x, dut.ph_y, dut.phn_x, dut.phn_y))
+            assert got == phases[b0], f"{sched.describe(b0)} R0 phases (m, m + 1): RTL {got}, golden {phases[b0]}"
             for name, sig, gold in (("fresh", dut.fresh, fresh), ("soon", dut.soon_0, soon)):
                 lanes = unpack_lanes(int(sig.value), p, 1).astype(bool)
                 bad = np.flatnonzero(sched.lval[b0] & (lanes != gold[b0]))
@@ -121,6 +130,8 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             nx = unpack_lanes(int(dut.nx_in.value), p, 1).astype(bool)
             bad = np.flatnonzero(sched.lval[b1] & run[b1] & (nx != nxt[b1]))   # (COM reads it where a ray runs)
             assert bad.size == 0, f"{sched.describe(b1, bad[0])}: next {nx[bad[0]]}, golden {nxt[b1][bad[0]]}"
+            got = tuple(int(x.value) for x in (dut.f1_klast, dut.f1_wxn, dut.f1_wyn))
+            assert got == s1_geo[b1], f"{sched.describe(b1)} S1 (last, wxn, wyn): RTL {got}, golden {s1_geo[b1]}"
         if b4 is not None:
             assert int(dut.col1_4.value) == col1[b4], f"{sched.describe(b4)}: col1 {int(dut.col1_4.value)}"
         if take:

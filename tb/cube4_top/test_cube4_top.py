@@ -1076,13 +1076,18 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
     opaque where it counts); the host writes each frame's block table and its rays' stops.
-    Each frame's rays are the golden beat-schedule frame's bit for bit, and its base plane
-    the fixed schedule's, with random stalls on every stream and a reset in mid-frame; the
-    beats that ran (cube4_top's count) are the golden frame's."""
+    Path weights on two frames in three (the build has PLW = 1: the LUT's weighted columns
+    beside it) and a crop box whose faces cut the blob on every third (the first frame's
+    weights change its plane). Each frame's rays are the
+    golden beat-schedule frame's bit for bit, and its base plane the fixed schedule's, with
+    random stalls on every stream and a reset in mid-frame; the beats that ran
+    (cube4_top's count) are the golden frame's."""
     import copy
 
     import cube4.beats as beats
     from cube4.model import render_frame
+    from cube4.host import crop_volume
+    from cube4.pathlen import path_weighted, weighted_columns
 
     rng = np.random.default_rng(800 + p)
     cfg = Cube4Config(pipelines=p)
@@ -1095,12 +1100,16 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     jobs, gold = [], []
     for n, direction in enumerate(VIEWS):         # (1, 1, 1) and the 45° (1, -1, 0) among them
         mode, terminate = modes[n % len(modes)], n % 2 == 1 or (shaded and n % 4 == 0)
-        trav = make_traversal((nx, ny, nz), direction, cfg.weight_bits, 1, phase=(n * 37 % 256, n * 91 % 256))
+        box = n % 3 == 0      # a crop box whose faces cut the blob (the weights' faces through it)
+        trav = make_traversal((10, 10, 8) if box else (nx, ny, nz), direction, cfg.weight_bits, 1,
+                              phase=(n * 37 % 256, n * 91 % 256), origin=(10, 8, 7) if box else (0, 0, 0))
         lut, rmap = random_tables(rng, cfg)
         rmap = rmap if shaded and mode == "composite" else None
         lut[:64] = 0
         if terminate:
             lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
+        if n % 3 != 2:    # path weights on two frames in three (the weighted columns beside the LUT)
+            lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
         bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, mode)
         sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
                                    gra=rmap is not None and not vgrad)
@@ -1118,17 +1127,24 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     results = render_frames(mem, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad)})
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
-                 f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}")
+                 f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
+                 f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}")
         frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
                       vgrad=vgrad)
-        fixed = render_frame(mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
+        box_mem = crop_volume(mem, job.trav)
+        fixed = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
                              vgrad=vgrad)
         ran = copy.deepcopy(sched)     # the golden frame's beats that ran: the RTL's count agrees
-        render_frame(mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
+        render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
                      beats=ran, done=rule, vgrad=vgrad)
         run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
         assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
             assert (frame.baseplane == fixed.baseplane).all(), f"{label}: differs from the fixed schedule"
+        if n == 0:   # a weighted frame whose weights change its plane: the test sees them
+            assert path_weighted(job.lut, job.mode)
+            plain = render_frame(box_mem, job.trav, cfg, job.lut[:, :4], job.rmap, mode=job.mode,
+                                 shading=job.rmap is not None, vgrad=vgrad)
+            assert (plain.baseplane != fixed.baseplane).any(), f"{label}: the path weights changed nothing"
         box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)
         print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}")
