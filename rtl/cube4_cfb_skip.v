@@ -25,9 +25,10 @@
 //             most a few rows behind). Default: 4 MAX_DIM NBMAX / RATE rounded up.
 //
 // Latency
-//   As its units; the walk's beats pass one register-free join (out_valid is
-//   the walk's valid and, where the leaving beat holds a running ray, the
-//   queue's valid).
+//   As its units, and one cycle: the walk's beats pass a skid buffer (u_eskid,
+//   a cube4_skid), then one register-free join (out_valid is the skid's valid
+//   and, where the leaving beat holds a running ray, the queue's valid: both
+//   registers).
 //
 // Ports
 //   As cube4_cfb_decide's inputs (the frame, the steps, the tables, COM's
@@ -90,17 +91,30 @@ module cube4_cfb_skip #(
         .clk(clk), .rst(rst || start),
         .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_packed),
         .out_valid(q_valid), .out_ready(q_ready), .out_data(q_packed));
-    wire w_valid, w_ready, w_leave, w_in_a;
+    wire e_valid, e_ready, e_leave, e_in_a, e_read, e_tok, e_eor, e_eos, e_last;
+    wire [M_W-1:0]   e_m;
+    wire [DIM_W-1:0] e_j;
+    wire [PB_W-1:0]  e_pb;
     cube4_cfb_beats #(`CUBE4_SLICE_PASS) u_walk (
         .clk(clk), .rst(rst), .start(start), .busy(busy_w),
         .nj(nj), .nb(nb), .nm(nm), .nbr_en(nbr_en),
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
-        .out_valid(w_valid), .out_ready(w_ready), .out_m(out_m), .out_j(out_j), .out_pb(out_pb),
-        .out_read(out_read), .out_leave(w_leave), .out_in_a(w_in_a), .out_tok(out_tok), .out_eor(out_eor), .out_eos(out_eos),
-        .out_last(out_last));
-    // a walk beat whose leaving beat holds a running ray takes that beat's bits:
-    // the next beat with a = 1 of the queue's head group (from beat `half` on)
-    wire need = w_leave && w_in_a;
+        .out_valid(e_valid), .out_ready(e_ready), .out_m(e_m), .out_j(e_j), .out_pb(e_pb),
+        .out_read(e_read), .out_leave(e_leave), .out_in_a(e_in_a), .out_tok(e_tok), .out_eor(e_eor), .out_eos(e_eos),
+        .out_last(e_last));
+    // the walk's beats pass a skid buffer before they meet the queue: the
+    // emitter's ready is a register, and whether a beat takes the queue's bits
+    // (need) is a register bit beside it, not logic of the emitter's state
+    localparam integer WK_W = M_W + DIM_W + PB_W + 7;
+    wire w_valid, w_ready, w_leave, need;
+    cube4_skid #(.DATA_W(WK_W)) u_eskid (
+        .clk(clk), .rst(rst || start),
+        .in_valid(e_valid), .in_ready(e_ready),
+        .in_data({e_m, e_j, e_pb, e_read, e_leave, e_leave && e_in_a, e_tok, e_eor, e_eos, e_last}),
+        .out_valid(w_valid), .out_ready(w_ready),
+        .out_data({out_m, out_j, out_pb, out_read, w_leave, need, out_tok, out_eor, out_eos, out_last}));
+    // a walk beat whose leaving beat holds a running ray (need) takes that beat's
+    // bits: the next beat with a = 1 of the queue's head group (from beat `half` on)
     reg  half;                             // RATE = 2: the head's first beat is taken
     wire a0   = q_bits[LN-1] && !half;
     wire [0:0] pick = (RATE > 1 && !a0) ? 1'b1 : 1'b0;
@@ -118,6 +132,6 @@ module cube4_cfb_skip #(
     end
     assign out_leave = w_leave;
     assign out_bits  = need ? beat[4*P-1:0] : '0;
-    assign busy      = busy_d || busy_w;
+    assign busy      = busy_d || busy_w || w_valid;
 endmodule
 `default_nettype wire
