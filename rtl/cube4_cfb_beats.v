@@ -276,11 +276,13 @@ module cube4_cfb_beats #(
     reg             x_mark;                // a slice's last row or the flush row: emits when empty
     reg             x_row0;                // row 0 of a slice but the first: emits when empty
     reg [NW-1:0]    x_nx;                  // x_rem without its lowest bit: the row after this beat
-    wire            x_one = (x_nx == '0);  // one bit left (the row's last beat)
+    reg             x_one;                 // x_nx = 0: one bit left (the row's last beat), a register
     wire [NW-1:0]   x_low = x_rem & ~x_nx; // its lowest set bit: this beat
     function automatic [NW-1:0] strip(input [NW-1:0] w);      // w without its lowest set bit
         strip = w & (w - 1'b1);
     endfunction
+    wire [NW-1:0]   rq_nx  = strip(rq0[RQ_W-1 -: NW]);
+    wire [NW-1:0]   x_nx2  = strip(x_nx);
     reg  [PB_W-1:0] x_pb;
     integer b;
     always @(*) begin
@@ -301,12 +303,14 @@ module cube4_cfb_beats #(
             if (rq_pop) begin
                 x_busy <= 1'b1;
                 {x_rem, x_rd, x_leave, x_in_a, x_m, x_j, x_flush, x_mark, x_row0, x_empty} <= rq0;
-                x_nx   <= strip(rq0[RQ_W-1 -: NW]);
+                x_nx   <= rq_nx;
+                x_one  <= (rq_nx == '0);
             end else if (x_done) begin
                 x_busy <= 1'b0;
             end else if (x_fire) begin
                 x_rem <= x_nx;
-                x_nx  <= strip(x_nx);
+                x_nx  <= x_nx2;
+                x_one <= (x_nx2 == '0);
             end
         end
     end
