@@ -71,6 +71,7 @@
 //                CFB decides every beat from the block table (blk_*) and the
 //                ray table (the stops, written through stop_*) and walks the
 //                voxel beats the running ones read (GRA: cube4_gra_beats);
+//                the front end's sample beats pass a skid buffer (one cycle);
 //                COM takes each beat's position bits (a FIFO beside GRA and
 //                SHA: in block RAM, a slice and two rows of beats deep, with
 //                shading), ends the rays and reports
@@ -246,8 +247,10 @@ module cube4_top #(
 
     // the beat schedule (BEATS = 1): the position bits of each sample beat wait for it
     // at COM's input, COM's reports go back to the front end
-    wire [4*P-1:0]   smp_bits;
-    wire             smp_eos, smp_eoss, fe_smp_valid, fe_smp_ready;
+    wire [4*P-1:0]   smp_bits, fe_smp_bits;
+    wire             smp_eos, smp_eoss, fe_smp_eos, fe_smp_eoss, fe_smp_valid, fe_smp_ready;
+    wire [HDR_W-1:0] fe_smp_hdr;
+    wire [PW-1:0]    fe_smp_sample;
     wire             com_rep_valid;
     wire [DIM_W-1:0] com_rep_j, com_rep_stx, com_rep_sty;
     wire [PB_W-1:0]  com_rep_pb;
@@ -278,9 +281,9 @@ module cube4_top #(
         .tab_data      (stop_data),
         `CUBE4_REPORT_CONN,
         .com_m         (cfg_term ? com_m : {M_W{1'b1}}),   // no termination: no wait
-        .smp_bits      (smp_bits),
-        .smp_eos       (smp_eos),
-        .smp_eoss      (smp_eoss),
+        .smp_bits      (fe_smp_bits),
+        .smp_eos       (fe_smp_eos),
+        .smp_eoss      (fe_smp_eoss),
         .mem_req_valid (fe_req_valid),
         .mem_req_ready (fe_req_ready),
         .mem_req_addr  (req_addr),
@@ -292,8 +295,8 @@ module cube4_top #(
         .mem_rsp_tag   (rsp_tag),
         .smp_valid     (fe_smp_valid),
         .smp_ready     (fe_smp_ready),
-        .smp_hdr       (smp_hdr),
-        .smp_sample    (smp_sample)
+        .smp_hdr       (fe_smp_hdr),
+        .smp_sample    (fe_smp_sample)
     );
 
     cube4_stream_hold u_hold_req (
@@ -357,16 +360,27 @@ module cube4_top #(
     wire           com_in_take;
     generate
         if (BEATS != 0) begin : g_bits
+            // the front end's sample beats pass a skid buffer: its ready (TRI's FIFO
+            // and the front end's bits FIFO pop on it) is a register, not the AND of
+            // GRA's ready and the bits FIFO's room across the die (cycles are measured
+            // on this schedule: the cycle it adds changes no prediction)
+            wire s_valid, s_ready;
+            cube4_skid #(.DATA_W (HDR_W + PW + 4 * P + 2)) u_smp_skid (
+                .clk (clk), .rst (rst),
+                .in_valid (fe_smp_valid), .in_ready (fe_smp_ready),
+                .in_data ({fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss}),
+                .out_valid (s_valid), .out_ready (s_ready),
+                .out_data ({smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss}));
             wire b_ready, b_valid;
             wire [3*P-1:0] com_packed;
             assign com_bits     = ray_bits_unpack(com_packed);
-            assign smp_valid    = fe_smp_valid && b_ready;
-            assign fe_smp_ready = smp_ready && b_ready;
+            assign smp_valid    = s_valid && b_ready;
+            assign s_ready      = smp_ready && b_ready;
             // one port map, two queues: block RAM behind GRA, registers otherwise
 `define CUBE4_BITS_FIFO(MODULE) \
                 MODULE #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
                     .clk (clk), .rst (rst), \
-                    .in_valid (fe_smp_valid && smp_ready), .in_ready (b_ready), \
+                    .in_valid (s_valid && smp_ready), .in_ready (b_ready), \
                     .in_data ({smp_eoss, ray_bits_pack(smp_bits)}), \
                     .out_valid (b_valid), .out_ready (com_in_take), .out_data ({com_eoss, com_packed}));
             if (SHADING != 0 && VGRAD == 0) begin : g_ram
@@ -379,6 +393,8 @@ module cube4_top #(
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;
             assign fe_smp_ready = smp_ready;
+            assign {smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss} =
+                   {fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss};
             assign com_bits     = '0;
             assign com_eoss     = 1'b0;
             wire unused_bits = ^{smp_bits, smp_eos, smp_eoss, com_in_take, blk_we, blk_addr, blk_data, com_m,
