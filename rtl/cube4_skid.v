@@ -17,8 +17,9 @@
 //   cycle it loads the pushed item. out_ready moves only the read pointer
 //   and the state bits, so a late out_ready (e.g. a downstream hazard check)
 //   does not fan out to every data flip-flop's clock enable.
-//   The free flags are register copies (cube4_prim_copies), one per 64 data
-//   bits.
+//   The free flags and the read pointer are register copies
+//   (cube4_prim_copies), one per 64 data bits, so the multiplexer's select,
+//   where a consumer's decisions start, drives 64 loads, not DATA_W.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
@@ -26,7 +27,8 @@
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
 //   lost or duplicated under any pattern of out_ready. out_data is a 2:1
-//   multiplexer after the entry registers, selected by a register.
+//   multiplexer after the entry registers, selected by a register (a copy
+//   of the read pointer per 64 bits).
 //
 // Ports
 //   clk, rst                 clock, synchronous active-high reset (empties it)
@@ -47,8 +49,9 @@ module cube4_skid #(
 
     reg              nonempty_q;     // at least one entry holds an item
     reg              full_q;         // both entries hold items
-    reg              wp_q, rp_q;     // write / read pointer
-    wire [DATA_W-1:0] e0_q, e1_q;    // the entries (registers per group, g_grp)
+    reg              wp_q;           // write pointer
+    wire             rp_q;           // read pointer (copy 0 of g_grp's copies)
+    // the entries: registers per group of 64 bits (g_grp)
 
     wire push = in_valid && !full_q;
     wire pop  = nonempty_q && out_ready;
@@ -58,10 +61,8 @@ module cube4_skid #(
             nonempty_q <= 1'b0;
             full_q     <= 1'b0;
             wp_q       <= 1'b0;
-            rp_q       <= 1'b0;
         end else begin
             if (push) wp_q <= !wp_q;
-            if (pop)  rp_q <= !rp_q;
             if (push && !pop) begin
                 nonempty_q <= 1'b1;
                 full_q     <= nonempty_q;
@@ -80,10 +81,11 @@ module cube4_skid #(
     wire free1_d = !(push &&  wp_q) && (free1_now || (pop &&  rp_q));
     localparam integer GRP_W = 64;                           // data bits per flag copy
     localparam integer NGRP  = (DATA_W + GRP_W - 1) / GRP_W;
-    wire [2*NGRP-1:0] free_q;           // copy g: {free1, free0}
-    cube4_prim_copies #(.N(NGRP), .W(2), .RST_VAL(64'd3)) u_free (
-        .clk(clk), .rst(rst), .d({free1_d, free0_d}), .q(free_q));
-    assign {free1_now, free0_now} = free_q[1:0];
+    wire rp_d = rp_q ^ pop;
+    wire [3*NGRP-1:0] free_q;           // copy g: {rp, free1, free0}
+    cube4_prim_copies #(.N(NGRP), .W(3), .RST_VAL(64'd3)) u_free (
+        .clk(clk), .rst(rst), .d({rp_d, free1_d, free0_d}), .q(free_q));
+    assign {rp_q, free1_now, free0_now} = free_q[2:0];
     genvar g;
     generate
         for (g = 0; g < NGRP; g = g + 1) begin : g_grp
@@ -91,11 +93,10 @@ module cube4_skid #(
             localparam integer W  = (DATA_W - LO < GRP_W) ? DATA_W - LO : GRP_W;
             reg [W-1:0] d0_q, d1_q;     // this group's bits of the two entries
             always @(posedge clk) begin
-                if (free_q[2*g])     d0_q <= in_data[LO +: W];
-                if (free_q[2*g + 1]) d1_q <= in_data[LO +: W];
+                if (free_q[3*g])     d0_q <= in_data[LO +: W];
+                if (free_q[3*g + 1]) d1_q <= in_data[LO +: W];
             end
-            assign e0_q[LO +: W] = d0_q;
-            assign e1_q[LO +: W] = d1_q;
+            assign out_data[LO +: W] = free_q[3*g + 2] ? d1_q : d0_q;
         end
     endgenerate
 
@@ -108,7 +109,6 @@ module cube4_skid #(
     end
     assign in_ready = ready_q;
     assign out_valid = nonempty_q;
-    assign out_data  = rp_q ? e1_q : e0_q;
 
 endmodule
 `default_nettype wire
