@@ -159,18 +159,34 @@ module cube4_gra_beats
     wire [DIM_W-1:0] r1 = r + 1'b1;
     wire in_nx    = s_valid && act && !ended && !tail && (in_m == w) && (in_j == r1);
     wire in_aft1  = s_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r1));
-    // the lowest partial beam of a word
-    function automatic [PB_W-1:0] lowest(input [NBX-1:0] v);
+    // partial beams as bit words: the choice works on them (a carry chain and
+    // AND-OR terms), the binary partial beam is encoded beside it for the buffers
+    function automatic [PB_W-1:0] lowest(input [NBX-1:0] v);     // the lowest set bit
         integer b;
         lowest = '0;
         for (b = NBX - 1; b >= 0; b = b - 1) begin
             if (v[b]) lowest = PB_W'(b);
         end
     endfunction
+    function automatic [NBX-1:0] upto(input [PB_W-1:0] pb);       // bits 0 .. pb
+        integer b;
+        for (b = 0; b < NBX; b = b + 1) upto[b] = (PB_W'(b) <= pb);
+    endfunction
+    function automatic [NBX-1:0] below(input [PB_W-1:0] pb);      // bits 0 .. pb - 1
+        integer b;
+        for (b = 0; b < NBX; b = b + 1) below[b] = (PB_W'(b) < pb);
+    endfunction
     wire [PB_W-1:0] g_pb = lowest(gm);
     wire [PB_W-1:0] x_pb = lowest(nx_gm);
+    wire [NBX-1:0]  g_thru = gm ^ (gm - 1'b1);                   // bits up to gm's lowest (gm != 0)
+    wire [NBX-1:0]  x_thru = nx_gm ^ (nx_gm - 1'b1);
+    wire [NBX-1:0]  g_oh = gm & g_thru;                          // gm's lowest bit
+    wire [NBX-1:0]  x_oh = nx_gm & x_thru;
+    wire [NBX-1:0]  in_upto = upto(in_pb);
+    wire [NBX-1:0]  in_below = below(in_pb);
+    wire [NBX-1:0]  in_oh = in_upto & ~in_below;
     wire g_any   = act && !tail && |gm;
-    wire g_first = g_any && (!in_row || g_pb < in_pb);       // a generated step comes first
+    wire g_first = g_any && (!in_row || |(gm & in_below));  // a generated step comes first (g_pb < in_pb)
     wire start   = !act && s_valid;                         // a frame's first beat waits
     wire pass    = act && !tail && (in_after || ended || (w < cmp_m));   // the input has passed this row
     wire ld_in   = i0_take && in_row && !g_first;
@@ -179,7 +195,7 @@ module cube4_gra_beats
     wire row_end = pass && !g_any;                           // the row ends (no step of it this cycle)
     // a row end that loads: the next row's first step, or a slice's first window step
     wire mg      = row_end && i0_take && nx_ok && (r != cfg_nj);
-    wire x_first = (nx_gm != '0) && (!in_nx || x_pb < in_pb);
+    wire x_first = (nx_gm != '0) && (!in_nx || |(nx_gm & in_below));
     wire ld_in_x  = mg && in_nx && !x_first;
     wire ld_gen_x = mg && x_first && (in_nx || in_aft1 || ended || (w < cmp_m));
     wire ld_tl_x  = row_end && i0_take && (r == cfg_nj);
@@ -196,24 +212,20 @@ module cube4_gra_beats
     wire [DIM_W-1:0] ld_r  = ld_nx ? r1 : r;
     wire [PB_W-1:0]  ld_pb = ld_i ? in_pb : (ld_nx ? x_pb : g_pb);
     wire             w_pos = (ld_w != '0);
-    wire [NBX-1:0]   ld_bit = NBX'(1) << ld_pb;
+    wire [NBX-1:0]   ld_bit = ld_i ? in_oh : (ld_nx ? x_oh : g_oh);     // 1 << ld_pb
     // what the step's partial beam decides, for each place it may come from (the
     // input's beat, the row's generated step, the next row's input or generated step),
     // side by side with the choice, which then picks one
     wire [PB_W-1:0]  row_pb1 = row_pb + 1'b1;
-    wire pg_in  = s_cur[in_pb],  pg_gen = s_cur[g_pb],  pg_inx = nx_s[in_pb],  pg_genx = nx_s[x_pb];
-    wire bg_in  = prev_s[in_pb], bg_gen = prev_s[g_pb], bg_inx = acc_s[in_pb], bg_genx = acc_s[x_pb];
+    wire pg_in  = s_cur[in_pb],  pg_gen = |(s_cur & g_oh),  pg_inx = nx_s[in_pb],  pg_genx = |(nx_s & x_oh);
+    wire bg_in  = prev_s[in_pb], bg_gen = |(prev_s & g_oh), bg_inx = acc_s[in_pb], bg_genx = |(acc_s & x_oh);
     wire ld_pg = !ld_tail && w_pos && ((ld_in && pg_in) || (ld_gen && pg_gen) || (ld_in_x && pg_inx)
                                        || (ld_gen_x && pg_genx));
     wire ld_bg = !ld_tail && (ld_nx ? (r1 != '0) && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))
                                     : (r != '0) && ((ld_in && bg_in) || (ld_gen && bg_gen)));
     wire ld_gap = ld_tail || ld_nx || !row_any || (ld_i ? (in_pb != row_pb1) : (g_pb != row_pb1));
-    // the bits up to a partial beam (the steps of a row it passes)
-    function automatic [NBX-1:0] upto(input [PB_W-1:0] pb);
-        integer b;
-        for (b = 0; b < NBX; b = b + 1) upto[b] = (PB_W'(b) <= pb);
-    endfunction
-    wire [NBX-1:0] ld_upto = ld_i ? upto(in_pb) : (ld_nx ? upto(x_pb) : upto(g_pb));
+    // the bits up to the step's partial beam (the steps of a row it passes)
+    wire [NBX-1:0] ld_upto = ld_i ? in_upto : (ld_nx ? x_thru : g_thru);
     wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
                            ld_r == DIM_W'(1),              // j_first (centre row 0)
                            ld_w == M_W'(1)};               // m_first (centre slice 0)
