@@ -201,24 +201,29 @@ module cube4_com #(
     // register; otherwise straight in (the fixed, box and rectangle schedules,
     // whose cycles the golden model predicts) ====
     localparam integer IN_W = HDR_W + P * (24 + ALPHA_W) + P * VOXEL_W + P * FALL_W + 4 * P + 1;
+    localparam integer GEO_W = (BEATS != 0) ? 2 * DIM_W + 2 * PHASE_W : 1;   // cube4_com_beats' q_geo
     wire                      c_valid, c_ready, c_eoss;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;
     wire [P*VOXEL_W-1:0]      c_sample;
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
+    wire [GEO_W-1:0]          q_geo, c_geo;   // BEATS: the beat's steps and phases, with it
     generate
         if (BEATS != 0) begin : g_in_skid
-            cube4_skid #(.DATA_W(IN_W)) u_in (
+            cube4_skid #(.DATA_W(IN_W + GEO_W)) u_in (
                 .clk(clk), .rst(rst),
                 .in_valid(in_valid), .in_ready(in_ready),
-                .in_data({in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
+                .in_data({q_geo, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
                 .out_valid(c_valid), .out_ready(c_ready),
-                .out_data({c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+                .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};
             assign in_ready = c_ready;
+            assign q_geo = '0;
+            assign c_geo = '0;
+            wire unused_geo = ^{q_geo, c_geo};
         end
     endgenerate
 
@@ -293,7 +298,8 @@ module cube4_com #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
             ) u_beats (
                 .clk(clk), .rst(rst), .cfg(cfg), .in_bits(c_bits), .tpos(tpos),
-                .take(take), .in_hdr(c_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
+                .q_push(in_valid && in_ready), .q_hdr(in_hdr), .q_geo(q_geo), .c_geo(c_geo),
+                .in_hdr(c_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
                 .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),

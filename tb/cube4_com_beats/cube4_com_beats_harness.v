@@ -12,7 +12,10 @@ module cube4_com_beats_harness #(
     `CUBE4_COM_SLOT_PORTS(output)
     input  wire [4*P-1:0]      in_bits,
     input  wire [P*LANE_W-1:0] tpos,
-    input  wire                take,
+    input  wire                q_push,
+    input  wire [HDR_W-1:0]    q_hdr,
+    output wire [2*DIM_W+2*PHASE_W-1:0] q_geo,
+    input  wire [2*DIM_W+2*PHASE_W-1:0] c_geo,
     input  wire [HDR_W-1:0]    in_hdr,
     input  wire                step,
     input  wire [9:1]          v_fly,

@@ -6,7 +6,10 @@ other frame) the sample beats the front end emits (``expected_requests``: the ru
 beats, the cover, the row above and each slice's marker) are offered with their position
 bits, with seeded random gaps, taken only when the golden read-after-write rule allows (no
 beat of the same slot {j, pb} in R0 .. S9), and played through R0 and S1 as
-cube4_com_seq gives them. Checked on every beat against the golden model:
+cube4_com_seq gives them. Each beat enters the input queue (q_push, q_hdr) one to two
+beats ahead of its offer, at seeded random times, and its q_geo comes back with the
+offer as c_geo, as cube4_com's skid buffer gives it. Checked on every beat against the
+golden model:
 
 * offered: hazard = a beat of the offered beat's slot is in R0 .. S9;
 * R0: the slot {j, pb}, pb; stepx(m), stepy(m) (``Traversal.steps``); the template's
@@ -88,8 +91,10 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
     col1 = np.zeros(n, dtype=bool)
     col1[1:] = (m[1:] == m[:-1]) & (pb[1:] == pb[:-1]) & (j[1:] == j[:-1] + 1)
     sp_w = clog2(int(dut.MAX_DIM.value)) + geo.pb_w
+    geo_w = len(dut.q_geo)
     r0, k, c, offering = {}, 0, 0, False
     checked = 0
+    geos, pushed = {}, 0      # the queue: each beat's q_geo, pushed a cycle or more before it is offered
     while k < n or any(x >= c - 5 for x in r0):
         await FallingEdge(dut.clk)
         b0, b1, b4 = r0.get(c), r0.get(c - 1), r0.get(c - 4)
@@ -104,14 +109,20 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             dut.f1_ipos.value = pack_lanes(pos[b1], iw)
             dut.f1_j.value = int(j[b1])
             dut.f1_dxf.value, dut.f1_dyf.value = int(dxf[b1]), int(dyf[b1])
-        if not offering and k < n and bench.rng.random() >= gap:
+        push = pushed < min(n, k + 2) and bench.rng.random() >= gap / 2
+        dut.q_push.value = int(push)
+        dut.q_hdr.value = hdrs[pushed] if push else int(bench.rng.integers(0, 1 << geo.hdr_w))
+        if not offering and k < pushed and bench.rng.random() >= gap:
             offering = True
         hz = offering and any(b is not None and slot[b] == slot[k] for b in [b0] + fly)
         take = offering and not hz
         dut.in_hdr.value = hdrs[k] if offering else int(bench.rng.integers(0, 1 << geo.hdr_w))
         dut.in_bits.value = int(bits[k]) if offering else int(bench.rng.integers(0, 1 << (4 * p)))
-        dut.take.value = int(take)
+        dut.c_geo.value = geos[k] if offering else int(bench.rng.integers(0, 1 << geo_w))
         await ReadOnly()
+        if push:
+            geos[pushed] = int(dut.q_geo.value)
+            pushed += 1
         if offering:
             assert int(dut.hazard.value) == int(hz), (f"{sched.describe(k)} offered: hazard {int(dut.hazard.value)}, "
                                                       f"golden {int(hz)}")
@@ -139,7 +150,7 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             k, offering = k + 1, False
         c += 1
     await FallingEdge(dut.clk)
-    dut.take.value = 0
+    dut.q_push.value = 0
     assert checked == n, f"{checked} of {n} beats checked"
     return n
 
@@ -150,7 +161,7 @@ async def test_beats(dut):
     geo = Geometry(p, max_dim, 0)
     iw = clog2(max_dim + 2 * p + 1)   # cube4_defs.vh IW
     bench = UnitBench(dut)
-    await bench.reset({"take": 0, "step": 0, "v_fly": 0})
+    await bench.reset({"q_push": 0, "step": 0, "v_fly": 0})
     dims = (max(20, 2 * p + 3), 16, 12)
     frames = 0
     for n, direction in enumerate(VIEWS * 2):
