@@ -118,17 +118,24 @@ module cube4_gra_beats
     reg               nx_ok;         // nx_gm, nx_s hold the next row's (its second cycle on)
     reg [NBX-1:0]     nx_gm, nx_s;   // G(w, r + 1), S(w - 1, r + 1)
 
-    // the input passes a skid buffer first: the choice of the next step starts at
-    // registers, and in_ready is a register (not the choice's result)
+    // the input passes a skid buffer first (cube4_gra_beats_in): the choice of the
+    // next step starts at registers (the head beat's place against the row, decided
+    // a cycle ahead), and in_ready is a register (not the choice's result)
     wire              s_valid, s_ready, s_eoss;
     wire [HDR_W-1:0]  s_hdr;
     wire [PV-1:0]     s_sample;
-    cube4_skid #(.DATA_W (1 + HDR_W + PV)) u_in (
+    wire              s_eq0, s_gt0, s_eq1, s_gt1;    // the head against {w, r}, {w, r + 1}
+    wire              row_mv;                        // the row moves on to {nx_w, nx_r}
+    wire [M_W-1:0]    nx_w;
+    wire [DIM_W-1:0]  nx_r;
+    cube4_gra_beats_in #(.DATA_W (1 + HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W)) u_in (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_eoss, in_hdr, in_sample}),
-        .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_eoss, s_hdr, s_sample}));
+        .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_eoss, s_hdr, s_sample}),
+        .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
+        .w (w), .r (r), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .home (start),
+        .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1));
     wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
-    wire [DIM_W-1:0]  in_j   = s_hdr[HDR_J +: DIM_W];
     wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
     wire              in_eop = s_hdr[HDR_CTRL + CTRL_EOP];
     wire              in_sy  = s_hdr[HDR_CTRL + CTRL_SY];
@@ -153,12 +160,13 @@ module cube4_gra_beats
 
     // ------------------------------------------------------------ the next step
     // the input's beat is in this row, or beyond it
-    wire in_row   = s_valid && act && !ended && !tail && (in_m == w) && (in_j == r);
-    wire in_after = s_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r));
+    wire in_v     = s_valid && act && !ended && !tail;
+    wire in_row   = in_v && s_eq0;
+    wire in_after = in_v && s_gt0;
     // the next row's beat of the input, or beyond it (for a row end that loads)
     wire [DIM_W-1:0] r1 = r + 1'b1;
-    wire in_nx    = s_valid && act && !ended && !tail && (in_m == w) && (in_j == r1);
-    wire in_aft1  = s_valid && act && !ended && !tail && ((in_m > w) || (in_m == w && in_j > r1));
+    wire in_nx    = in_v && s_eq1;
+    wire in_aft1  = in_v && s_gt1;
     // partial beams as bit words: the choice works on them (a carry chain and
     // AND-OR terms), the binary partial beam is encoded beside it for the buffers
     function automatic [PB_W-1:0] lowest(input [NBX-1:0] v);     // the lowest set bit
@@ -245,8 +253,9 @@ module cube4_gra_beats
         .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
     // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
     // rows; the word of row NJ and of slice -1 is zero (n_zero)
-    wire [DIM_W-1:0] nx_r = (r == cfg_nj) ? '0 : r + 1'b1;      // the next row
-    wire [M_W-1:0]   nx_w = (r == cfg_nj) ? w + 1'b1 : w;       // and its slice
+    assign nx_r = (r == cfg_nj) ? '0 : r1;                     // the next row
+    assign nx_w = (r == cfg_nj) ? w + 1'b1 : w;                // and its slice
+    assign row_mv = row_end && !(ended && last_row);         // (as the row end below)
     wire [DIM_W-1:0] nn_r = (nx_r == cfg_nj) ? '0 : nx_r + 1'b1;
     wire [M_W-1:0]   nn_w = (nx_r == cfg_nj) ? nx_w + 1'b1 : nx_w;
     // a frame starts at row 0 of slice 0, and reads row 1's (zero: slice -1)

@@ -1,0 +1,113 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_gra_beats_in
+// -----------------------------------------------------------------------------
+// Purpose
+//   The input of GRA's beat source (cube4_gra_beats): a skid buffer
+//   (cube4_skid) whose head beat comes with its place against the row the
+//   source steps, decided a cycle ahead, so that the source's choice of the
+//   next step starts at flip-flops, not at a compare of the head's slice and
+//   row with the source's. A beat's key is {m, j} (its slice and row), the
+//   row's {w, r}; keys compare in order of slice, then row:
+//     eq0  key == {w, r}        gt0  key >  {w, r}
+//     eq1  key == {w, r + 1}    gt1  key >  {w, r + 1}
+//   (r + 1 in DIM_W bits, as the source computes it). Each of the two
+//   entries keeps its key and its flags; the flags follow the row: when it
+//   moves on (mv: to {nx_w, nx_r}, the source's next row) or a frame starts
+//   (home: to {0, 0}) they are compared again against the new row, and a
+//   beat that enters takes its flags against the row of the next cycle.
+//   The entries' pointers shadow the skid's (both move on its push and pop).
+//
+// Parameters
+//   DATA_W   the payload (any format).                1..4096.
+//   M_W      bits of a slice.                         1..16.
+//   DIM_W    bits of a row.                           1..16.
+//
+// Latency: as cube4_skid (one cycle; in_ready is a register). The flags of
+//   the head are registers selected by a register (the read pointer).
+//
+// Ports
+//   in_*, out_*   the stream (cube4_skid); in_m, in_j the key of in_data
+//   w, r          the row being stepped (the source's registers)
+//   mv, nx_w, nx_r  it moves on to {nx_w, nx_r} this cycle
+//   home          it is set to {0, 0} this cycle (a frame's start)
+//   eq0, gt0, eq1, gt1   out  the head's place (valid with out_valid)
+//
+// Bit growth and rounding: none (compares only).
+// =============================================================================
+module cube4_gra_beats_in #(
+    parameter integer DATA_W = 8,
+    parameter integer M_W    = 8,
+    parameter integer DIM_W  = 8
+) (
+    `CUBE4_STREAM_PORTS(DATA_W),
+    input  wire [M_W-1:0]   in_m,
+    input  wire [DIM_W-1:0] in_j,
+    input  wire [M_W-1:0]   w,
+    input  wire [DIM_W-1:0] r,
+    input  wire             mv,
+    input  wire [M_W-1:0]   nx_w,
+    input  wire [DIM_W-1:0] nx_r,
+    input  wire             home,
+    output wire             eq0, output wire gt0, output wire eq1, output wire gt1
+);
+    generate
+        `CUBE4_RANGE(g_bad_data_w, "cube4_gra_beats_in", "DATA_W", DATA_W, 1, 4096)
+        `CUBE4_RANGE(g_bad_m_w, "cube4_gra_beats_in", "M_W", M_W, 1, 16)
+        `CUBE4_RANGE(g_bad_dim_w, "cube4_gra_beats_in", "DIM_W", DIM_W, 1, 16)
+    endgenerate
+    localparam integer KW = M_W + DIM_W;
+
+    cube4_skid #(.DATA_W(DATA_W)) u_skid (
+        .clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data(in_data),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(out_data));
+    wire push = in_valid && in_ready;
+    wire pop  = out_valid && out_ready;
+
+    // {eq0, gt0, eq1, gt1} of a key against the row {rw, rr}
+    function automatic [3:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr);
+        reg [KW-1:0] k0, k1;
+        begin
+            k0 = {rw, rr};
+            k1 = {rw, rr + 1'b1};
+            place = {key == k0, key > k0, key == k1, key > k1};
+        end
+    endfunction
+    // a key's place in the next cycle, from its place now (kept while the row stays)
+    function automatic [3:0] next_place(input [KW-1:0] key, input [3:0] now, input h, input m,
+                                        input [M_W-1:0] mw, input [DIM_W-1:0] mr);
+        next_place = h ? place(key, '0, '0) : (m ? place(key, mw, mr) : now);
+    endfunction
+
+    reg            wp, rp;                 // the skid's pointers, shadowed
+    reg  [KW-1:0]  key [0:1];
+    reg  [3:0]     pl  [0:1];
+    wire [KW-1:0]  in_key = {in_m, in_j};
+    wire [3:0]     in_pl  = next_place(in_key, place(in_key, w, r), home, mv, nx_w, nx_r);
+    always @(posedge clk) begin
+        if (rst) begin
+            wp <= 1'b0;
+            rp <= 1'b0;
+        end else begin
+            if (push) wp <= !wp;
+            if (pop)  rp <= !rp;
+        end
+    end
+    genvar e;
+    generate
+        for (e = 0; e < 2; e = e + 1) begin : g_entry
+            always @(posedge clk) begin
+                if (push && wp == (e == 1)) begin
+                    key[e] <= in_key;
+                    pl[e]  <= in_pl;
+                end else begin
+                    pl[e]  <= next_place(key[e], pl[e], home, mv, nx_w, nx_r);
+                end
+            end
+        end
+    endgenerate
+    assign {eq0, gt0, eq1, gt1} = pl[rp];
+endmodule
+`default_nettype wire
