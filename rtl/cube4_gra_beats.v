@@ -103,8 +103,9 @@ module cube4_gra_beats
     reg               fin;           // the frame is over after them
     reg [M_W-1:0]     cmp_m;         // the input of slices below cmp_m is in (in_eoss)
     reg [M_W-1:0]     w;             // the slice being stepped
-    reg [M_W-1:0]     w_last;        // the last input beat's slice (with ended)
+    reg [M_W-1:0]     w_last1;       // the last input beat's slice + 1 (with ended)
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
+    reg               r_nj;          // r == NJ (a register: r moves at start and at row_mv)
     reg [NBX-1:0]     gm;            // G(w, r) not yet passed
     reg [NBX-1:0]     c_cur;         // C(w - 1, r)
     reg [NBX-1:0]     s_cur;         // S(w - 1, r): the plane words of this row count
@@ -202,16 +203,16 @@ module cube4_gra_beats
     wire ld_tl   = i0_take && tail;
     wire row_end = pass && !g_any;                           // the row ends (no step of it this cycle)
     // a row end that loads: the next row's first step, or a slice's first window step
-    wire mg      = row_end && i0_take && nx_ok && (r != cfg_nj);
+    wire mg      = row_end && i0_take && nx_ok && !r_nj;
     wire x_first = (nx_gm != '0) && (!in_nx || |(nx_gm & in_below));
     wire ld_in_x  = mg && in_nx && !x_first;
     wire ld_gen_x = mg && x_first && (in_nx || in_aft1 || ended || (w < cmp_m));
-    wire ld_tl_x  = row_end && i0_take && (r == cfg_nj);
+    wire ld_tl_x  = row_end && i0_take && r_nj;
     wire ld_nx   = ld_in_x || ld_gen_x;                      // a step of the next row
     wire ld_i    = ld_in || ld_in_x;                         // an input beat
     wire ld_s    = ld_i || ld_gen || ld_gen_x;               // a step of a row
     wire ld_tail = ld_tl || ld_tl_x;                         // a window step
-    wire last_row = (w == w_last + 1'b1) && (r == cfg_nj);
+    wire last_row = (w == w_last1) && r_nj;
     wire ld      = ld_s || ld_tail;
     assign s_ready = ld_i;
 
@@ -245,7 +246,7 @@ module cube4_gra_beats
     wire [RW:0]     t_ra;            // {parity, row} read
     wire [TW-1:0]   t_rd;
     wire            t_re;
-    wire            t_we = row_end && act && (r < cfg_nj);
+    wire            t_we = row_end && act && !r_nj;
     wire [RW:0]     t_wa = {w[0], r[RW-1:0]};
     wire [TW-1:0]   t_wd = {acc_s, acc_c};
     cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW)) u_rows (
@@ -253,11 +254,12 @@ module cube4_gra_beats
         .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
     // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
     // rows; the word of row NJ and of slice -1 is zero (n_zero)
-    assign nx_r = (r == cfg_nj) ? '0 : r1;                     // the next row
-    assign nx_w = (r == cfg_nj) ? w + 1'b1 : w;                // and its slice
+    assign nx_r = r_nj ? '0 : r1;                              // the next row
+    assign nx_w = r_nj ? w + 1'b1 : w;                         // and its slice
+    wire   nx_nj = r_nj ? (cfg_nj == '0) : (r1 == cfg_nj);     // nx_r == NJ
     assign row_mv = row_end && !(ended && last_row);         // (as the row end below)
-    wire [DIM_W-1:0] nn_r = (nx_r == cfg_nj) ? '0 : nx_r + 1'b1;
-    wire [M_W-1:0]   nn_w = (nx_r == cfg_nj) ? nx_w + 1'b1 : nx_w;
+    wire [DIM_W-1:0] nn_r = nx_nj ? '0 : nx_r + 1'b1;
+    wire [M_W-1:0]   nn_w = nx_nj ? nx_w + 1'b1 : nx_w;
     // a frame starts at row 0 of slice 0, and reads row 1's (zero: slice -1)
     assign t_re = row_end || start;
     wire [DIM_W-1:0] rd_row = start ? DIM_W'(1) : nn_r;
@@ -273,7 +275,7 @@ module cube4_gra_beats
             t_by   <= rd_nj || (t_we && (t_wa == t_ra));
             t_bd   <= rd_nj ? {s_nj[~rd_w[0]], {NBX{1'b0}}} : t_wd;
         end
-        if (row_end && act && r == cfg_nj) s_nj[w[0]] <= acc_s;
+        if (row_end && act && r_nj) s_nj[w[0]] <= acc_s;
     end
     wire [TW-1:0]  t_word = t_zero ? '0 : (t_by ? t_bd : t_rd);
     wire [NBX-1:0] n_c = t_word[0 +: NBX];                     // C(w', r' + 1) of the row after
@@ -301,6 +303,7 @@ module cube4_gra_beats
                 cmp_m   <= '0;
                 w       <= '0;
                 r       <= '0;
+                r_nj    <= (cfg_nj == '0);
                 gm      <= '0;
                 c_cur   <= '0;
                 s_cur   <= '0;
@@ -322,7 +325,7 @@ module cube4_gra_beats
                 if (s_eoss) cmp_m <= in_m + 1'b1;
                 if (in_eop) begin
                     ended  <= 1'b1;
-                    w_last <= in_m;
+                    w_last1 <= in_m + 1'b1;
                 end
             end
             if (row_end) begin
@@ -331,7 +334,7 @@ module cube4_gra_beats
                 row_pb  <= ld_pb;
                 acc_c   <= ld_in_x ? ld_bit : '0;
                 acc_s   <= ld_nx ? ld_bit : '0;
-                if (r == cfg_nj) begin
+                if (r_nj) begin
                     tail   <= 1'b1;
                     tail_n <= ld_tl_x;
                     fin    <= ended && last_row;
@@ -340,11 +343,12 @@ module cube4_gra_beats
                     gm     <= '0;
                 end else begin
                     r       <= nx_r;
+                    r_nj    <= nx_nj;
                     w       <= nx_w;
-                    prev_s  <= (r == cfg_nj) ? '0 : acc_s;
+                    prev_s  <= r_nj ? '0 : acc_s;
                     c_cur   <= n_c;
                     s_cur   <= n_s;
-                    gm      <= ((((r == cfg_nj) ? '0 : c_cur) | n_c) & nb_mask)
+                    gm      <= (((r_nj ? '0 : c_cur) | n_c) & nb_mask)
                                & ~(ld_nx ? ld_upto : '0);
                 end
             end
