@@ -323,3 +323,8 @@ def test_skipping_report_rtl_beat_lines():
     assert "does not fit" in "\n".join(skipping.rtl_beat_lines(frames, skipping.parse_fmax("beats=nofit")))
     with pytest.raises(SystemExit, match="--fmax wants"):
         skipping.parse_fmax("beats=fast")
+    fmax = skipping.parse_fmax("box=140@abc1234:1,beats=97.5@def5678:1+2+3")
+    text = "\n".join(skipping.rtl_beat_lines(frames, fmax))
+    assert "140.0 MHz (RTL abc1234; seed 1)" in text and "97.5 MHz (RTL def5678; median of seeds 1, 2, 3)" in text
+    with pytest.raises(SystemExit, match="--fmax wants"):
+        skipping.parse_fmax("beats=97.5@def5678:one")

@@ -214,6 +214,16 @@ def rtl_beat_frames() -> list[dict]:
     return out
 
 
+def _fmax_source(fmax: dict, key: str) -> str:
+    """' (RTL <commit>, seeds …)' for a build's Fmax, from --fmax's @RTL:SEEDS."""
+    parts = [f"RTL {fmax[key + '@rtl']}"] if key + "@rtl" in fmax else []
+    seeds = fmax.get(key + "@seeds")
+    if seeds:
+        n = len(seeds.split("+"))
+        parts.append(f"seed {seeds}" if n == 1 else f"median of seeds {seeds.replace('+', ', ')}")
+    return f" ({'; '.join(parts)})" if parts else ""
+
+
 def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
     """The beat section's RTL table: cycles and frame times side by side."""
     if not frames:
@@ -228,7 +238,7 @@ def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
         body.append([f"{f['volume']}", f["scene"], f["schedule"], fmt_int(f["cycles"]),
                      _frac(f["cycles"], f["n3_over_p"]),
                      _frac(b["run_beats"], f["n3_over_p"]) if b else "",
-                     (f"{mhz:.1f} MHz" + (f" (RTL {fmax[key + '@rtl']})" if key + "@rtl" in fmax else ""))
+                     (f"{mhz:.1f} MHz" + _fmax_source(fmax, key))
                      if mhz else ("does not fit" if nofit else "not measured"),
                      f"{f['cycles'] / mhz / 1000:.2f} ms" if mhz else "",
                      _image(f["identical"])])
@@ -238,10 +248,10 @@ def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
         "--stats s.json` with `--beats`, and `--beats --no-terminate` for beat skipping alone): cycles "
         "measured; 'beats run' as `cube4_top` counted them (the golden frame's count: `tb/cube4_top` holds "
         "them equal); frame time = cycles / the Fmax of the build that ran it, placed and routed out of "
-        "context on the ECP5-85F at P = 8 (`python -m cube4_reports.fpga --p 8 --seed 1 --build "
-        "<options>`, seed 1 only: the median of three seeds is issue work still open), given to this "
-        "report as `--fmax box=…@<RTL>,beats=…@<RTL>` with the RTL commit each was measured on ('does not "
-        "fit': the build does not fit the ECP5-85F at P = 8; "
+        "context on the ECP5-85F at P = 8 (`python -m cube4_reports.fpga --p 8 --seeds 1,2,3 --build "
+        "<options>`: the median of the seeds, each figure names its seeds), given to this "
+        "report as `--fmax box=…@<RTL>:<seeds>,beats=…@<RTL>:<seeds>` with the RTL commit each was measured "
+        "on ('does not fit': the build does not fit the ECP5-85F at P = 8; "
         "docs/architecture.md gives its block RAMs); blank where not measured. Builds: " + "; ".join(builds)
         + ". 'image': the base plane against the golden fixed schedule's, bit for bit.", "",
         md_table(["volume", "scene", "schedule", "cycles", "cycles / (n³/P)", "beats run", "Fmax", "frame time",
@@ -527,10 +537,10 @@ def parse_args(argv):
     ap.add_argument("--no-dram", action="store_true", help="leave out the RTL frames with the DRAM (about 4 min)")
     ap.add_argument("--no-images", action="store_true", help="do not render both schedules to compare images")
     ap.add_argument("--no-beats", action="store_true", help="leave out beat skipping and ray termination")
-    ap.add_argument("--fmax", default="", metavar="box=MHZ[@RTL],beats=MHZ[@RTL]",
+    ap.add_argument("--fmax", default="", metavar="box=MHZ[@RTL[:SEEDS]],beats=MHZ[@RTL[:SEEDS]]",
                     help="the measured Fmax of the box and beat builds (python -m cube4_reports.fpga; nofit: "
-                         "the build does not fit) and the RTL commit each was measured on, for the beat "
-                         "section's frame times; blank without")
+                         "the build does not fit), the RTL commit each was measured on and its nextpnr seeds "
+                         "(1+2+3: the median of three), for the beat section's frame times; blank without")
     ap.add_argument("--md-only", action="store_true",
                     help="rewrite skipping.md from the last run's build/reports/skipping.json (e.g. with --fmax)")
     ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md")
@@ -542,21 +552,27 @@ NOFIT = -1.0
 
 
 def parse_fmax(text: str) -> dict[str, float | str]:
-    """--fmax box=MHZ[@RTL],beats=MHZ[@RTL] -> {name: MHz} (nofit: NOFIT), and {name@rtl: the RTL
-    commit it was measured on} where given; an error for users as one line."""
+    """--fmax box=MHZ[@RTL[:SEEDS]],beats=MHZ[@RTL[:SEEDS]] -> {name: MHz} (nofit: NOFIT), {name@rtl:
+    the RTL commit it was measured on} and {name@seeds: '1+2+3'} where given; an error for users as
+    one line."""
     out: dict[str, float | str] = {}
     for part in filter(None, text.split(",")):
         name, _, val = part.partition("=")
-        val, _, rtl = val.partition("@")
+        val, at, rtl = val.partition("@")
+        rtl, colon, seeds = rtl.partition(":")
         try:
             mhz = NOFIT if val == "nofit" else float(val)
         except ValueError:
             mhz = 0.0
-        if name not in ("box", "beats") or not (mhz > 0 or mhz == NOFIT) or (_ and not rtl):
-            raise SystemExit(f"skipping: --fmax wants box=MHZ[@RTL],beats=MHZ[@RTL] (or nofit), got {part!r}")
+        if (name not in ("box", "beats") or not (mhz > 0 or mhz == NOFIT) or (at and not rtl)
+                or (colon and not all(x.isdigit() for x in seeds.split("+")))):
+            raise SystemExit("skipping: --fmax wants box=MHZ[@RTL[:SEEDS]],beats=MHZ[@RTL[:SEEDS]] (or nofit; "
+                             f"SEEDS as 1+2+3), got {part!r}")
         out[name] = mhz
         if rtl:
             out[f"{name}@rtl"] = rtl
+        if seeds:
+            out[f"{name}@seeds"] = seeds
     return out
 
 
