@@ -306,7 +306,7 @@ module cube4_com #(
                 .stx(stx), .sty(sty), .col1_4(col1_4), .soon_0(soon_0),
                 .ph_x(ph_x), .ph_y(ph_y), .phn_x(phn_x), .phn_y(phn_y),
                 .f1_klast(f1_last), .f1_wxn(f1_wxn), .f1_wyn(f1_wyn));
-            // ---- the reports (S11 -> registers): a lane whose ray COM found done
+            // ---- the reports (S11 -> S12 -> registers): a lane whose ray COM found done
             // writes m + LAG + 1 at its position of the ray table; com_m counts
             // the slices whose beats have all passed: a beat of a later slice,
             // or the slice's last beat (EOSS, with R0 .. S11 beside it), has ----
@@ -333,13 +333,33 @@ module cube4_com #(
             wire [P*LANE_W-1:0] t11;
             wire [DIM_W-1:0]    stx11, sty11;
             assign {rok11, t11, stx11, sty11} = rx_s[11];
+            // S12: the lanes' reports and the beat's fields registered, so the lanes'
+            // "done" tests end at flip-flops; the reports and com_m leave a cycle
+            // later together (their order, which the decisions rely on, is kept)
+            reg  [P-1:0]        rep12;
+            reg  [P*LANE_W-1:0] t12;
+            reg  [SP_W-1:0]     sp12;
+            reg  [DIM_W-1:0]    stx12, sty12;
+            reg  [M_W-1:0]      m12;
+            reg                 v12, c12, end12;   // c12: v11 outside a frame's start (com_m's)
+            always @(posedge clk) begin
+                rep12 <= rep;
+                t12   <= t11;
+                sp12  <= sp11;
+                stx12 <= stx11;
+                sty12 <= sty11;
+                m12   <= m_o;
+                end12 <= eop_o || eoss11;
+                v12   <= !rst && v11;
+                c12   <= !rst && !frame_start && v11;
+            end
             reg  [P-1:0] at_pos;
             integer qt, tt;
             always @* begin
                 at_pos = '0;
                 for (tt = 0; tt < P; tt = tt + 1)
                     for (qt = 0; qt < P; qt = qt + 1)
-                        if (rep[qt] && (32'(t11[qt*LANE_W +: LANE_W]) == tt)) at_pos[tt] = 1'b1;
+                        if (rep12[qt] && (32'(t12[qt*LANE_W +: LANE_W]) == tt)) at_pos[tt] = 1'b1;
             end
             reg              rv_q;
             reg [P-1:0]      ren_q;
@@ -347,15 +367,15 @@ module cube4_com #(
             reg [PB_W-1:0]   rpb_q;
             reg [M_W-1:0]    rend_q, com_q;
             always @(posedge clk) begin
-                rv_q   <= !rst && v11 && (rep != '0);
+                rv_q   <= !rst && v12 && (rep12 != '0);
                 ren_q  <= at_pos;
-                rj_q   <= DIM_W'(sp11[PB_W +: RW]);
-                rpb_q  <= sp11[0 +: PB_W];
-                rsx_q  <= stx11;
-                rsy_q  <= sty11;
-                rend_q <= m_o + M_W'(LAG + 1);
+                rj_q   <= DIM_W'(sp12[PB_W +: RW]);
+                rpb_q  <= sp12[0 +: PB_W];
+                rsx_q  <= stx12;
+                rsy_q  <= sty12;
+                rend_q <= m12 + M_W'(LAG + 1);
                 if (rst || frame_start) com_q <= '0;
-                else if (v11)           com_q <= (eop_o || eoss11) ? m_o + 1'b1 : m_o;
+                else if (c12)           com_q <= end12 ? m12 + 1'b1 : m12;
             end
             assign {rep_valid, rep_en, rep_j, rep_pb, rep_stx, rep_sty} = {rv_q, ren_q, rj_q, rpb_q, rsx_q, rsy_q};
             assign rep_end = {P{rend_q}};
