@@ -107,7 +107,13 @@ module cube4_cfb_beats #(
     reg [DIM_W-1:0] wj;
     reg [M_W-1:0]   g;                     // the slice being fetched (nm: past the frame)
     reg [DIM_W-1:0] gj;
-    wire [M_W:0]    g2 = {1'b0, g} + (M_W + 1)'(2);
+    // beside g, registers of what the fetch and the writes compare with it (loaded as
+    // g moves on), so no adder of g lies before a compare
+    reg [M_W:0]     g2;                    // g + 2
+    reg             g_in;                  // g < nm: a slice of the frame
+    reg             g_last;                // g + 1 >= nm: no slice after it
+    reg [M_W-1:0]   need;                  // slice g's rows need slice need written whole:
+                                           // g + 1, the last slice itself
     assign bm_ready = active && (wm < nm) && ({1'b0, wm} <= g2);
     wire bm_take = bm_valid && bm_ready;
     always @(posedge clk) begin
@@ -131,9 +137,7 @@ module cube4_cfb_beats #(
     endgenerate
 
     // ==== the fetch: rows of the frame, then the flush row and the tail ====
-    wire in_frame = g < nm;
-    // slice g's rows need slice g + 1 written whole (the last slice: itself)
-    wire [M_W-1:0] need = (g + 1'b1 < nm) ? g + 1'b1 : g;
+    wire in_frame = g_in;
     wire fetch_ok = !in_frame || (wm > need);
     reg  tail;                             // the flush row is fetched: rows past it are none
     reg  flushed;                          // the emitter took the flush row: the fetch stops
@@ -141,13 +145,24 @@ module cube4_cfb_beats #(
     assign adv = active && !flushed && fetch_ok && take_ok;
     always @(posedge clk) begin
         if (rst || start) begin
-            g    <= '0;
-            gj   <= '0;
-            tail <= 1'b0;
+            g      <= '0;
+            g2     <= (M_W + 1)'(2);
+            g_in   <= (nm != '0);
+            g_last <= (nm <= M_W'(1));
+            need   <= (nm > M_W'(1)) ? M_W'(1) : '0;
+            gj     <= '0;
+            tail   <= 1'b0;
         end else if (adv) begin
             if (in_frame) begin
                 gj <= (gj == nj - 1'b1) ? '0 : gj + 1'b1;
-                if (gj == nj - 1'b1) g <= g + 1'b1;
+                if (gj == nj - 1'b1) begin
+                    // g moves on to g + 1
+                    g      <= g + 1'b1;
+                    g2     <= g2 + 1'b1;
+                    g_in   <= !g_last;
+                    g_last <= ({1'b0, g} + (M_W + 1)'(2) >= {1'b0, nm});
+                    need   <= ({1'b0, g} + (M_W + 1)'(2) < {1'b0, nm}) ? M_W'(g + 2'd2) : M_W'(g + 1'b1);
+                end
             end else begin
                 tail <= 1'b1;
             end
@@ -166,7 +181,7 @@ module cube4_cfb_beats #(
             f_m     <= g;
             f_j     <= in_frame ? gj : '0;
             f_first <= (g == '0);
-            f_lastm <= (g + 1'b1 >= nm);
+            f_lastm <= g_last;
         end
     end
     // the slots of slices m - 1, m, m + 1 (zero outside the frame)
