@@ -55,9 +55,12 @@
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
 //   The input register i0 holds the next step's position with its sample
 //   beat (an input beat) or none (a step the centres need, or a trailing
-//   step); the interface shows it as X, combinationally, with the buffers'
-//   words read for it. A step happens when i0 holds a position and the
-//   output FIFO's credit (copy GRA_STEPS-1) is there. A row's steps load one
+//   step); it moves on to i1 when i1 is free or steps, and that move reads
+//   the position buffers at i0's position (from registers). The interface
+//   shows i1 as X, combinationally, with the buffers' words read for it. A
+//   step happens when i1 holds a position and the output FIFO's credit (copy
+//   GRA_STEPS-1) is there; a read meets at most the write of the step that
+//   leaves i1 in the same cycle (the buffers' bypass). A row's steps load one
 //   a cycle while the credit lasts; a row ends in a cycle of its own (its
 //   table word written, the next row's taken), which loads the next row's
 //   first step (or a slice's first window step) when the row has lasted two
@@ -153,11 +156,24 @@ module cube4_gra_beats
     reg               i0_pgb;        // plane B's (the centre's row is a row)
     reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
     reg               i0_ylast, i0_dyf, i0_dyb;
-    wire [P-1:0]      i0_lane_valid = i0_hdr[HDR_LVALID +: P];
-    assign step = i0_v && credit[GRA_STEPS-1];
+    // i1: the step, one register stage after i0, whose position reads the position
+    // buffers as it moves on (from registers: neither the choice nor its fan-out
+    // reaches the block RAMs' addresses and the bypass registers' enables)
+    reg               i1_v, i1_in, i1_dead, i1_fend, i1_gap;
+    reg [PV-1:0]      i1_sample;
+    reg [HDR_W-1:0]   i1_hdr;
+    reg [M_W-1:0]     i1_w;
+    reg [DIM_W-1:0]   i1_r;
+    reg [PB_W-1:0]    i1_pb;
+    reg               i1_pg, i1_bg, i1_pgb;
+    reg [3:0]         i1_flags;
+    reg               i1_ylast, i1_dyf, i1_dyb;
+    wire [P-1:0]      i1_lane_valid = i1_hdr[HDR_LVALID +: P];
+    assign step = i1_v && credit[GRA_STEPS-1];
     assign sop  = 1'b0;
-    assign fend = i0_fend;
-    wire i0_take = !i0_v || step;
+    assign fend = i1_fend;
+    wire i0_mv   = i0_v && (!i1_v || step);               // i0 moves on to i1 (its buffers' read)
+    wire i0_take = !i0_v || i0_mv;
 
     // ------------------------------------------------------------ the next step
     // the input's beat is in this row, or beyond it
@@ -292,9 +308,12 @@ module cube4_gra_beats
             ended  <= 1'b0;
             tail   <= 1'b0;
             i0_v   <= 1'b0;
+            i1_v   <= 1'b0;
         end else begin
-            if (ld)        i0_v <= 1'b1;
-            else if (step) i0_v <= 1'b0;
+            if (ld)         i0_v <= 1'b1;
+            else if (i0_mv) i0_v <= 1'b0;
+            if (i0_mv)      i1_v <= 1'b1;
+            else if (step)  i1_v <= 1'b0;
             if (start) begin
                 // slice 0, row 0 (slice -1 gives nothing); its beat loads as the row's
                 act     <= 1'b1;
@@ -389,18 +408,26 @@ module cube4_gra_beats
         end
     end
 
-    wire [META_W-1:0] x_meta = {i0_in, i0_hdr};
+    always @(posedge clk) begin
+        if (i0_mv) begin
+            {i1_in, i1_dead, i1_fend, i1_gap} <= {i0_in, i0_dead, i0_fend, i0_gap};
+            {i1_sample, i1_hdr, i1_w, i1_r, i1_pb} <= {i0_sample, i0_hdr, i0_w, i0_r, i0_pb};
+            {i1_pg, i1_bg, i1_pgb, i1_flags} <= {i0_pg, i0_bg, i0_pgb, i0_flags};
+            {i1_ylast, i1_dyf, i1_dyb} <= {i0_ylast, i0_dyf, i0_dyb};
+        end
+    end
+    wire [META_W-1:0] x_meta = {i1_in, i1_hdr};
 
-    // ---- position buffers (cube4_gra_pos): read when a step's position loads
-    // into i0, written when it steps ----
+    // ---- position buffers (cube4_gra_pos): read as a step's position moves on
+    // from i0 to i1, written when it steps from i1 ----
     cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
-        .clk (clk), .ld (ld), .ld_r (ld_r), .ld_pb (ld_pb),
-        .step (step), .dead (i0_dead), .i0_w (i0_w), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
-        .in_beat (i0_in), .sample (i0_sample), .lane_valid (i0_lane_valid), .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
+        .clk (clk), .ld (i0_mv), .ld_r (i0_r), .ld_pb (i0_pb),
+        .step (step), .dead (i1_dead), .i0_w (i1_w), .i0_r (i1_r), .i0_pb (i1_pb), .nj (cfg_nj),
+        .in_beat (i1_in), .sample (i1_sample), .lane_valid (i1_lane_valid), .x (x), .x_meta (x_meta), .pg (i1_pg), .pgb (i1_pgb), .bg (i1_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
-    assign c_sel   = {P{i0_flags, i0_ylast, i0_dyf, i0_dyb}};   // bits GSEL_DKF .. GSEL_DYB
-    assign c_edge  = {i0_gap, i0_gap};
+    assign c_sel   = {P{i1_flags, i1_ylast, i1_dyf, i1_dyb}};   // bits GSEL_DKF .. GSEL_DYB
+    assign c_edge  = {i1_gap, i1_gap};
     wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
     wire unused_cfg    = ^{cfg_ss_log2, s_hdr[HDR_CTRL + CTRL_SOP]};
 
