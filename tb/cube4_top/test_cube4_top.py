@@ -1051,7 +1051,7 @@ def test_dram_frames(p):
 
 
 # ---------------------------------------------------------------- beat skipping
-@pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
+@pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0, 1)))
 def test_beat_frames(p):
     beat_frames(p, shaded=False)
 
