@@ -49,8 +49,9 @@
 //   schedule's frames).
 //
 // Latency
-//   An input beat passes a skid buffer (cube4_skid: one cycle; in_ready is
-//   its register), so the choice of the next step starts at registers; the
+//   An input beat passes a skid buffer (cube4_gra_beats_in: one cycle;
+//   in_ready is its register; the head's place against the row comes with
+//   it), so the choice of the next step starts at registers; the
 //   choice computes what each candidate position decides (its plane and beam
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
 //   The input register i0 holds the next step's position with its sample
