@@ -110,6 +110,10 @@ module cube4_gra_beats
     reg [M_W-1:0]     w_last1;       // the last input beat's slice + 1 (with ended)
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
     reg               r_nj;          // r == NJ (a register: r moves at start and at row_mv)
+    reg               r1_nj;         // r + 1 == NJ
+    reg               r_zero, r_one; // r == 0, r == 1
+    reg               w_zero, w_one; // w == 0, w == 1
+    wire              r_ones = (r == {DIM_W{1'b1}});   // r + 1 == 0 (the row after wraps)
     reg [NBX-1:0]     gm;            // G(w, r) not yet passed
     reg [NBX-1:0]     c_cur;         // C(w - 1, r)
     reg [NBX-1:0]     s_cur;         // S(w - 1, r): the plane words of this row count
@@ -247,14 +251,14 @@ module cube4_gra_beats
     wire bg_in  = prev_s[in_pb], bg_gen = |(prev_s & g_oh), bg_inx = acc_s[in_pb], bg_genx = |(acc_s & x_oh);
     wire ld_pg = !ld_tail && w_pos && ((ld_in && pg_in) || (ld_gen && pg_gen) || (ld_in_x && pg_inx)
                                        || (ld_gen_x && pg_genx));
-    wire ld_bg = !ld_tail && (ld_nx ? (r1 != '0) && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))
-                                    : (r != '0) && ((ld_in && bg_in) || (ld_gen && bg_gen)));
+    wire ld_bg = !ld_tail && (ld_nx ? !r_ones && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))
+                                    : !r_zero && ((ld_in && bg_in) || (ld_gen && bg_gen)));
     wire ld_gap = ld_tail || ld_nx || !row_any || (ld_i ? (in_pb != row_pb1) : (g_pb != row_pb1));
     // the bits up to the step's partial beam (the steps of a row it passes)
     wire [NBX-1:0] ld_upto = ld_i ? in_upto : (ld_nx ? x_thru : g_thru);
     wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
-                           ld_r == DIM_W'(1),              // j_first (centre row 0)
-                           ld_w == M_W'(1)};               // m_first (centre slice 0)
+                           ld_nx ? r_zero : r_one,         // j_first (centre row 0): ld_r == 1
+                           w_one};                         // m_first (centre slice 0): ld_w == 1
     wire           wm1_odd = ~ld_w[0];                // (w - 1) mod 2
 
     // ------------------------------------------------------------ the row table
@@ -324,6 +328,11 @@ module cube4_gra_beats
                 w       <= '0;
                 r       <= '0;
                 r_nj    <= (cfg_nj == '0);
+                r1_nj   <= (cfg_nj == DIM_W'(1));
+                r_zero  <= 1'b1;
+                r_one   <= 1'b0;
+                w_zero  <= 1'b1;
+                w_one   <= 1'b0;
                 gm      <= '0;
                 c_cur   <= '0;
                 s_cur   <= '0;
@@ -364,6 +373,11 @@ module cube4_gra_beats
                 end else begin
                     r       <= nx_r;
                     r_nj    <= nx_nj;
+                    r1_nj   <= r_nj ? (cfg_nj == DIM_W'(1)) : (r + DIM_W'(2) == cfg_nj);   // nx_r + 1 == NJ
+                    r_zero  <= r_nj || r_ones;                                         // nx_r == 0
+                    r_one   <= !r_nj && r_zero;                                        // nx_r == 1
+                    w_zero  <= r_nj ? (w == {M_W{1'b1}}) : w_zero;                      // nx_w == 0
+                    w_one   <= r_nj ? w_zero : w_one;                                  // nx_w == 1
                     w       <= nx_w;
                     prev_s  <= r_nj ? '0 : acc_s;
                     c_cur   <= n_c;
@@ -401,9 +415,9 @@ module cube4_gra_beats
             i0_pb     <= ld_pb;
             i0_pg     <= ld_pg;
             i0_bg     <= ld_bg;
-            i0_pgb    <= ld_pg && (ld_r != '0);
+            i0_pgb    <= ld_pg && (ld_nx ? !r_ones : !r_zero);   // ld_r != 0
             i0_flags  <= ld_flags;
-            i0_ylast  <= (ld_r == cfg_nj);
+            i0_ylast  <= ld_nx ? r1_nj : r_nj;                    // ld_r == NJ
             i0_dyf    <= sy_q[wm1_odd];                          // SY(w - 1): the centre's slice
             i0_dyb    <= osy_q[wm1_odd];                         // OSY(w - 1)
         end
