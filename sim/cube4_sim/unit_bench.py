@@ -23,6 +23,7 @@ transfer it records is exactly one that the next rising edge performs.
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -83,6 +84,44 @@ def start_clock(dut) -> None:
     """Start the cocotb clock of a top without a Verilog clock: 10 ns, low first (the
     first rising edge at 5 ns)."""
     Clock(dut.clk, 10, unit="ns").start(start_high=False)
+
+
+class QueueCheck:
+    """A queue's stream (in_valid/in_ready/in_data, out_valid/out_ready/out_data) against a
+    Python deque, one cycle at a time: call ``observe`` in ReadOnly after driving the
+    cycle's inputs. The head must be the oldest item not yet taken and stay put while not
+    taken; with ``empty_only_when_low`` out_valid may be low only with nothing held (a
+    queue of latency one)."""
+
+    def __init__(self, dut, empty_only_when_low: bool = False) -> None:
+        self.dut = dut
+        self.model: deque[int] = deque()
+        self.sent = self.got = 0
+        self.held: int | None = None          # out_data seen while not taken
+        self.empty_only_when_low = empty_only_when_low
+
+    def observe(self, valid: bool, ready: bool, data: int) -> tuple[bool, bool]:
+        """The transfers of the coming edge, checked and recorded: (pushed, popped)."""
+        d = self.dut
+        pushed = valid and bool(int(d.in_ready.value))
+        ov = int(d.out_valid.value)
+        popped = ready and bool(ov)
+        if ov:
+            od = int(d.out_data.value)
+            assert self.model, f"out_valid with nothing in the model (item {self.got})"
+            assert od == self.model[0], f"item {self.got}: RTL {od:#x}, model {self.model[0]:#x}"
+            if self.held is not None:
+                assert self.held == od, "out_data changed while out_ready was low"
+            self.held = None if popped else od
+        elif self.empty_only_when_low:
+            assert not self.model, f"{len(self.model)} items held and out_valid low (item {self.got})"
+        if popped:
+            self.model.popleft()
+            self.got += 1
+        if pushed:
+            self.model.append(data)
+            self.sent += 1
+        return pushed, popped
 
 
 class UnitBench:

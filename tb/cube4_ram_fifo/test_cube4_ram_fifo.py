@@ -24,15 +24,13 @@ make test; the others in make regress.
 
 from __future__ import annotations
 
-from collections import deque
-
 import cocotb
 import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4_sim.sweeps import sweep
-from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
+from cube4_sim.unit_bench import QueueCheck, param_id, run_rtl, start_clock, top_params
 
 
 class TB:
@@ -40,9 +38,7 @@ class TB:
         self.dut = dut
         self.data_w, self.depth = top_params(dut, "DATA_W", "DEPTH")
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        self.model: deque[int] = deque()
-        self.sent = self.got = 0
-        self.held: tuple[int, int] | None = None     # (valid, data) seen while not taken
+        self.q = QueueCheck(dut)
         start_clock(dut)
 
     async def reset(self) -> None:
@@ -55,7 +51,7 @@ class TB:
         d.rst.value = 0
 
     def word(self) -> int:
-        return int(self.rng.integers(0, 1 << min(self.data_w, 62))) ^ (self.sent << max(0, self.data_w - 16))
+        return int(self.rng.integers(0, 1 << min(self.data_w, 62))) ^ (self.q.sent << max(0, self.data_w - 16))
 
     async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
         """One cycle: drive, record the transfers of the coming edge; (pushed, popped)."""
@@ -63,25 +59,10 @@ class TB:
         data = self.word() & ((1 << self.data_w) - 1)
         d.in_valid.value, d.in_data.value, d.out_ready.value = int(valid), data, int(ready)
         await ReadOnly()
-        pushed = valid and bool(int(d.in_ready.value))
-        ov = int(d.out_valid.value)
-        popped = ready and bool(ov)
-        if ov:
-            od = int(d.out_data.value)
-            assert self.model, f"out_valid with nothing in the model (item {self.got})"
-            assert od == self.model[0], f"item {self.got}: RTL {od:#x}, model {self.model[0]:#x}"
-            if self.held is not None:
-                assert self.held == (1, od), "out_data changed while out_ready was low"
-            self.held = None if popped else (1, od)
-        if popped:
-            self.model.popleft()
-            self.got += 1
-        if pushed:
-            self.model.append(data)
-            self.sent += 1
+        flow = self.q.observe(valid, ready, data)
         await RisingEdge(d.clk)
         await FallingEdge(d.clk)
-        return pushed, popped
+        return flow
 
 
 @cocotb.test()
@@ -95,19 +76,19 @@ async def test_fifo(dut):
         await tb.cycle(False, False)
         edges += 1
     assert edges == 2, f"an item into an empty queue is out {edges} edges after the edge that wrote it"
-    while tb.model:
+    while tb.q.model:
         await tb.cycle(False, True)
     # capacity
     for _ in range(tb.depth + 10):
         await tb.cycle(True, False)
-    assert len(tb.model) == tb.depth + 3, f"the queue took {len(tb.model)} items, DEPTH + 3 = {tb.depth + 3}"
+    assert len(tb.q.model) == tb.depth + 3, f"the queue took {len(tb.q.model)} items, DEPTH + 3 = {tb.depth + 3}"
     # full rate from full (in_ready is a register, and the read that makes room in the RAM
     # waits for room in the register queue: the first two cycles only take items out)
     for n in range(3 * tb.depth):
         pushed, popped = await tb.cycle(True, True)
         assert popped, f"no item out in cycle {n} at full rate"
         assert pushed or n <= 1, f"no item in in cycle {n} at full rate"
-    while tb.model:
+    while tb.q.model:
         await tb.cycle(False, True)
     # full rate from empty (after the first two edges)
     flow = [await tb.cycle(True, True) for _ in range(3 * tb.depth)]
@@ -117,8 +98,8 @@ async def test_fifo(dut):
         await tb.cycle(bool(tb.rng.random() < 0.6), bool(tb.rng.random() < 0.55))
     for _ in range(tb.depth + 40):
         await tb.cycle(False, True)
-    assert not tb.model and not int(dut.out_valid.value), f"{len(tb.model)} items never came out"
-    dut._log.info("cube4_ram_fifo DATA_W=%d DEPTH=%d: %d items in order", tb.data_w, tb.depth, tb.got)
+    assert not tb.q.model and not int(dut.out_valid.value), f"{len(tb.q.model)} items never came out"
+    dut._log.info("cube4_ram_fifo DATA_W=%d DEPTH=%d: %d items in order", tb.data_w, tb.depth, tb.q.got)
 
 
 BUILDS = [dict(DATA_W=8, DEPTH=4), dict(DATA_W=33, DEPTH=64), dict(DATA_W=1, DEPTH=1024), dict(DATA_W=100, DEPTH=8)]

@@ -18,15 +18,13 @@ DATA_W 130 in make test; 1 and 64 in make regress.
 
 from __future__ import annotations
 
-from collections import deque
-
 import cocotb
 import numpy as np
 import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 
 from cube4_sim.sweeps import sweep
-from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
+from cube4_sim.unit_bench import QueueCheck, param_id, run_rtl, start_clock, top_params
 
 
 class TB:
@@ -34,9 +32,7 @@ class TB:
         self.dut = dut
         (self.data_w,) = top_params(dut, "DATA_W")
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        self.model: deque[int] = deque()
-        self.sent = self.got = 0
-        self.held: int | None = None       # out_data seen while not taken
+        self.q = QueueCheck(dut, empty_only_when_low=True)
         start_clock(dut)
 
     async def reset(self) -> None:
@@ -53,7 +49,7 @@ class TB:
         w = 0
         for lo in range(0, self.data_w, 62):
             w |= int(self.rng.integers(0, 1 << 62)) << lo
-        w ^= self.sent << max(0, self.data_w - 16)
+        w ^= self.q.sent << max(0, self.data_w - 16)
         return w & ((1 << self.data_w) - 1)
 
     async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
@@ -66,27 +62,10 @@ class TB:
         d.out_ready.value = int(ready)
         await ReadOnly()
         assert int(d.in_ready.value) == ready_other, "in_ready follows out_ready within a cycle"
-        pushed = valid and bool(int(d.in_ready.value))
-        ov = int(d.out_valid.value)
-        popped = ready and bool(ov)
-        if ov:
-            od = int(d.out_data.value)
-            assert self.model, f"out_valid with nothing in the model (item {self.got})"
-            assert od == self.model[0], f"item {self.got}: RTL {od:#x}, model {self.model[0]:#x}"
-            if self.held is not None:
-                assert self.held == od, "out_data changed while out_ready was low"
-            self.held = None if popped else od
-        else:
-            assert not self.model, f"{len(self.model)} items held and out_valid low (item {self.got})"
-        if popped:
-            self.model.popleft()
-            self.got += 1
-        if pushed:
-            self.model.append(data)
-            self.sent += 1
+        flow = self.q.observe(valid, ready, data)
         await RisingEdge(d.clk)
         await FallingEdge(d.clk)
-        return pushed, popped
+        return flow
 
 
 @cocotb.test()
@@ -100,21 +79,21 @@ async def test_skid(dut):
     # capacity: two items, then in_ready low
     for _ in range(6):
         await tb.cycle(True, False)
-    assert len(tb.model) == 2, f"the buffer took {len(tb.model)} items, not 2"
+    assert len(tb.q.model) == 2, f"the buffer took {len(tb.q.model)} items, not 2"
     assert not int(dut.in_ready.value), "in_ready high with two items held"
     # full rate, from full and then on
     flow = [await tb.cycle(True, True) for _ in range(64)]
     assert all(q for _, q in flow), "not one item out a cycle at full rate"
     assert all(p for p, _ in flow[1:]), "not one item in a cycle at full rate"
-    while tb.model:
+    while tb.q.model:
         await tb.cycle(False, True)
     # random
     for _ in range(3000):
         await tb.cycle(bool(tb.rng.random() < 0.6), bool(tb.rng.random() < 0.55))
     for _ in range(8):
         await tb.cycle(False, True)
-    assert not tb.model and not int(dut.out_valid.value), f"{len(tb.model)} items never came out"
-    dut._log.info("cube4_skid DATA_W=%d: %d items in order", tb.data_w, tb.got)
+    assert not tb.q.model and not int(dut.out_valid.value), f"{len(tb.q.model)} items never came out"
+    dut._log.info("cube4_skid DATA_W=%d: %d items in order", tb.data_w, tb.q.got)
 
 
 BUILDS = [dict(DATA_W=130), dict(DATA_W=1), dict(DATA_W=64)]
