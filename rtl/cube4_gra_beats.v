@@ -277,7 +277,7 @@ module cube4_gra_beats
     // rows; the word of row NJ and of slice -1 is zero (n_zero)
     assign nx_r = r_nj ? '0 : r1;                              // the next row
     assign nx_w = r_nj ? w + 1'b1 : w;                         // and its slice
-    wire   nx_nj = r_nj ? (cfg_nj == '0) : (r1 == cfg_nj);     // nx_r == NJ
+    wire   nx_nj = r_nj ? (cfg_nj == '0) : r1_nj;              // nx_r == NJ
     assign row_mv = row_end && !(ended && last_row);         // (as the row end below)
     wire [DIM_W-1:0] nn_r = nx_nj ? '0 : nx_r + 1'b1;
     wire [M_W-1:0]   nn_w = nx_nj ? nx_w + 1'b1 : nx_w;
