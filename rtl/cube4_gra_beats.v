@@ -56,12 +56,15 @@
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
 //   The input register i0 holds the next step's position with its sample
 //   beat (an input beat) or none (a step the centres need, or a trailing
-//   step); it moves on to i1 when i1 is free or steps, and that move reads
-//   the position buffers at i0's position (from registers). The interface
-//   shows i1 as X, combinationally, with the buffers' words read for it. A
-//   step happens when i1 holds a position and the output FIFO's credit (copy
-//   GRA_STEPS-1) is there; a read meets at most the write of the step that
-//   leaves i1 in the same cycle (the buffers' bypass). A row's steps load one
+//   step); it moves on to i1 when i1 is free or moves on, and that move
+//   reads the position buffers at i0's position (from registers). i1 moves
+//   on to i2 when i2 is free or steps, and the words read for it load into
+//   registers with it (cube4_gra_pos OUT_STAGE = 1: the block RAMs'
+//   clock-to-data ends at a flip-flop). The interface shows i2 as X,
+//   combinationally, with its words. A step happens when i2 holds a position
+//   and the output FIFO's credit (copy GRA_STEPS-1) is there; a read meets
+//   the writes of the two steps before it, in the cycle of the read or
+//   while it waits in i1 (the buffers' bypasses). A row's steps load one
 //   a cycle while the credit lasts; a row ends in a cycle of its own (its
 //   table word written, the next row's taken), which loads the next row's
 //   first step (or a slice's first window step) when the row has lasted two
@@ -161,9 +164,9 @@ module cube4_gra_beats
     reg               i0_pgb;        // plane B's (the centre's row is a row)
     reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
     reg               i0_ylast, i0_dyf, i0_dyb;
-    // i1: the step, one register stage after i0, whose position reads the position
-    // buffers as it moves on (from registers: neither the choice nor its fan-out
-    // reaches the block RAMs' addresses and the bypass registers' enables)
+    // i1: one register stage after i0, whose position reads the position buffers
+    // as it moves on (from registers: neither the choice nor its fan-out reaches
+    // the block RAMs' addresses and the bypass registers' enables)
     reg               i1_v, i1_in, i1_dead, i1_fend, i1_gap;
     reg [PV-1:0]      i1_sample;
     reg [HDR_W-1:0]   i1_hdr;
@@ -173,11 +176,23 @@ module cube4_gra_beats
     reg               i1_pg, i1_bg, i1_pgb;
     reg [3:0]         i1_flags;
     reg               i1_ylast, i1_dyf, i1_dyb;
-    wire [P-1:0]      i1_lane_valid = i1_hdr[HDR_LVALID +: P];
-    assign step = i1_v && credit[GRA_STEPS-1];
+    // i2: the step, one register stage after i1, with the words i1 read (their
+    // block RAMs' clock-to-data ends at a register: cube4_gra_pos OUT_STAGE)
+    reg               i2_v, i2_in, i2_dead, i2_fend, i2_gap;
+    reg [PV-1:0]      i2_sample;
+    reg [HDR_W-1:0]   i2_hdr;
+    reg [M_W-1:0]     i2_w;
+    reg [DIM_W-1:0]   i2_r;
+    reg [PB_W-1:0]    i2_pb;
+    reg               i2_pg, i2_bg, i2_pgb;
+    reg [3:0]         i2_flags;
+    reg               i2_ylast, i2_dyf, i2_dyb;
+    wire [P-1:0]      i2_lane_valid = i2_hdr[HDR_LVALID +: P];
+    assign step = i2_v && credit[GRA_STEPS-1];
     assign sop  = 1'b0;
-    assign fend = i1_fend;
-    wire i0_mv   = i0_v && (!i1_v || step);               // i0 moves on to i1 (its buffers' read)
+    assign fend = i2_fend;
+    wire i1_mv   = i1_v && (!i2_v || step);               // i1 moves on to i2 (its words load)
+    wire i0_mv   = i0_v && (!i1_v || i1_mv);              // i0 moves on to i1 (its buffers' read)
     wire i0_take = !i0_v || i0_mv;
 
     // ------------------------------------------------------------ the next step
@@ -314,11 +329,14 @@ module cube4_gra_beats
             tail   <= 1'b0;
             i0_v   <= 1'b0;
             i1_v   <= 1'b0;
+            i2_v   <= 1'b0;
         end else begin
             if (ld)         i0_v <= 1'b1;
             else if (i0_mv) i0_v <= 1'b0;
             if (i0_mv)      i1_v <= 1'b1;
-            else if (step)  i1_v <= 1'b0;
+            else if (i1_mv) i1_v <= 1'b0;
+            if (i1_mv)      i2_v <= 1'b1;
+            else if (step)  i2_v <= 1'b0;
             if (start) begin
                 // slice 0, row 0 (slice -1 gives nothing); its beat loads as the row's
                 act     <= 1'b1;
@@ -430,19 +448,26 @@ module cube4_gra_beats
             {i1_pg, i1_bg, i1_pgb, i1_flags} <= {i0_pg, i0_bg, i0_pgb, i0_flags};
             {i1_ylast, i1_dyf, i1_dyb} <= {i0_ylast, i0_dyf, i0_dyb};
         end
+        if (i1_mv) begin
+            {i2_in, i2_dead, i2_fend, i2_gap} <= {i1_in, i1_dead, i1_fend, i1_gap};
+            {i2_sample, i2_hdr, i2_w, i2_r, i2_pb} <= {i1_sample, i1_hdr, i1_w, i1_r, i1_pb};
+            {i2_pg, i2_bg, i2_pgb, i2_flags} <= {i1_pg, i1_bg, i1_pgb, i1_flags};
+            {i2_ylast, i2_dyf, i2_dyb} <= {i1_ylast, i1_dyf, i1_dyb};
+        end
     end
-    wire [META_W-1:0] x_meta = {i1_in, i1_hdr};
+    wire [META_W-1:0] x_meta = {i2_in, i2_hdr};
 
     // ---- position buffers (cube4_gra_pos): read as a step's position moves on
-    // from i0 to i1, written when it steps from i1 ----
-    cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
-        .clk (clk), .ld (i0_mv), .ld_r (i0_r), .ld_pb (i0_pb),
-        .step (step), .dead (i1_dead), .i0_w (i1_w), .i0_r (i1_r), .i0_pb (i1_pb), .nj (cfg_nj),
-        .in_beat (i1_in), .sample (i1_sample), .lane_valid (i1_lane_valid), .x (x), .x_meta (x_meta), .pg (i1_pg), .pgb (i1_pgb), .bg (i1_bg),
+    // from i0 to i1, their words registered as it moves on to i2, written when
+    // it steps from i2 ----
+    cube4_gra_pos #(.OUT_STAGE (1), `CUBE4_GRA_PASS) u_pos (
+        .clk (clk), .ld (i0_mv), .ld_r (i0_r), .ld_pb (i0_pb), .mv (i1_mv),
+        .step (step), .dead (i2_dead), .i0_w (i2_w), .i0_r (i2_r), .i0_pb (i2_pb), .nj (cfg_nj),
+        .in_beat (i2_in), .sample (i2_sample), .lane_valid (i2_lane_valid), .x (x), .x_meta (x_meta), .pg (i2_pg), .pgb (i2_pgb), .bg (i2_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
-    assign c_sel   = {P{i1_flags, i1_ylast, i1_dyf, i1_dyb}};   // bits GSEL_DKF .. GSEL_DYB
-    assign c_edge  = {i1_gap, i1_gap};
+    assign c_sel   = {P{i2_flags, i2_ylast, i2_dyf, i2_dyb}};   // bits GSEL_DKF .. GSEL_DYB
+    assign c_edge  = {i2_gap, i2_gap};
     wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
     wire unused_cfg    = ^{cfg_ss_log2, s_hdr[HDR_CTRL + CTRL_SOP]};
 

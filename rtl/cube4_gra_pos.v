@@ -14,7 +14,12 @@
 //                          B1, C, P1b2, P2b2
 //   Each is read in the cycle the step's position loads (ld: a block RAM's
 //   registered read) and written when it steps; a read of the word written
-//   in that cycle takes the new word (bypass). The caller says, registered
+//   in that cycle takes the new word (bypass). With OUT_STAGE = 1 the words
+//   read pass one more register, loaded as the step's position moves on
+//   from the read to the step (mv), which also takes the write of the step
+//   before it if that write came after the read (a second bypass): the
+//   block RAMs' clock-to-data ends at a flip-flop, not in the caller's
+//   arithmetic. The caller says, registered
 //   with its step, which words are this frame's neighbours (pg, pgb, bg);
 //   the others read as zero. Plane A holds rows 0 .. NJ - 1 (row NJ is
 //   outside the volume), plane B rows 0 .. NJ - 1 (the centre's row), a
@@ -24,15 +29,25 @@
 //   beat came in (a bit kept with it; elsewhere the header is zero).
 //
 // Parameters
+//   OUT_STAGE  0: the words read are the outputs from the edge after ld
+//              (cube4_gra_walk); 1: from the edge after mv (cube4_gra_beats,
+//              whose step register follows its read register).  0..1.
+//              Default 0.
 //   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_gra (derived widths:
 //   cube4_defs.vh CUBE4_GEOMETRY, CUBE4_GRA_LAYOUT)
 //
 // Latency
-//   The words for a position loaded at an edge (ld) are on the outputs
-//   after it, until the next load; a step's write lands at its edge.
+//   OUT_STAGE = 0: the words for a position loaded at an edge (ld) are on
+//   the outputs after it, until the next load. OUT_STAGE = 1: they are on
+//   the outputs after the next edge with mv (at which or before which the
+//   step before it has stepped; the caller moves a read on at mv, and loads
+//   the next read at the same edge or later), until the next mv. A step's
+//   write lands at its edge.
 //
 // Ports (samples unsigned Q0.VOXEL_W, P lanes of VOXEL_W bits)
 //   ld, ld_r [DIM_W], ld_pb [PB_W]   the next step's position loads (read)
+//   mv                               (OUT_STAGE = 1) the position read moves
+//                                    on to the step: its words load
 //   step, dead, i0_w, i0_r, i0_pb, nj   the loaded step steps (write), its
 //                                    position (slice [M_W], row, partial
 //                                    beam), whether it writes (!dead), NJ
@@ -50,10 +65,12 @@
 // Bit growth and rounding: none (storage only).
 // =============================================================================
 module cube4_gra_pos #(
+    parameter integer OUT_STAGE = 0,
     `CUBE4_GRA_PARAMS
 ) (
     input  wire clk,
     input  wire ld, input wire [DIM_W-1:0] ld_r, input wire [PB_W-1:0] ld_pb,
+    input  wire mv,
     input  wire step, input wire dead, input wire [M_W-1:0] i0_w, input wire [DIM_W-1:0] i0_r,
     input  wire [PB_W-1:0] i0_pb,
     input  wire [DIM_W-1:0] nj,
@@ -105,23 +122,68 @@ module cube4_gra_pos #(
     cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
         .clk (clk), .rd_en (ld), .rd_addr (ld_pb), .rd_data (rd_m),
         .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
+    // the word read for a position, with the writes since its read (bypass: the
+    // RAM returns the old word for a read in the cycle of the write)
     reg            by_a, by_b, by_m;
     reg [AWD-1:0]  bd_a;
     reg [PV-1:0]   bd_b;
     reg [BMW-1:0]  bd_m;
-    always @(posedge clk) begin
-        if (ld) begin
-            by_a <= we_a && (wa_a == ra_a);
-            by_b <= we_b && (wa_b == ra_b);
-            by_m <= we_m && (i0_pb == ld_pb);
-            bd_a <= wd_a;
-            bd_b <= wd_b;
-            bd_m <= wd_m;
+    wire [AWD-1:0] a_w;
+    wire [PV-1:0]  b_w;
+    wire [BMW-1:0] m_w;
+    generate
+        if (OUT_STAGE == 0) begin : g_direct
+            always @(posedge clk) begin
+                if (ld) begin
+                    by_a <= we_a && (wa_a == ra_a);
+                    by_b <= we_b && (wa_b == ra_b);
+                    by_m <= we_m && (i0_pb == ld_pb);
+                    bd_a <= wd_a;
+                    bd_b <= wd_b;
+                    bd_m <= wd_m;
+                end
+            end
+            assign a_w = by_a ? bd_a : rd_a;
+            assign b_w = by_b ? bd_b : rd_b;
+            assign m_w = by_m ? bd_m : rd_m;
+            wire unused_mv = mv;   // (the words are read for the step itself)
+        end else begin : g_stage
+            // the read waiting for mv: its addresses, and a write to them since
+            reg [PAW-1:0]  ra_a1, ra_b1;
+            reg [PB_W-1:0] ra_m1;
+            wire hit_a = we_a && (wa_a == ra_a1);
+            wire hit_b = we_b && (wa_b == ra_b1);
+            wire hit_m = we_m && (i0_pb == ra_m1);
+            reg [AWD-1:0]  q_a;
+            reg [PV-1:0]   q_b;
+            reg [BMW-1:0]  q_m;
+            always @(posedge clk) begin
+                if (mv) begin
+                    q_a <= hit_a ? wd_a : (by_a ? bd_a : rd_a);
+                    q_b <= hit_b ? wd_b : (by_b ? bd_b : rd_b);
+                    q_m <= hit_m ? wd_m : (by_m ? bd_m : rd_m);
+                end
+                if (ld) begin
+                    ra_a1 <= ra_a;
+                    ra_b1 <= ra_b;
+                    ra_m1 <= ld_pb;
+                    by_a  <= we_a && (wa_a == ra_a);
+                    by_b  <= we_b && (wa_b == ra_b);
+                    by_m  <= we_m && (i0_pb == ld_pb);
+                    bd_a  <= wd_a;
+                    bd_b  <= wd_b;
+                    bd_m  <= wd_m;
+                end else begin
+                    if (hit_a) {by_a, bd_a} <= {1'b1, wd_a};
+                    if (hit_b) {by_b, bd_b} <= {1'b1, wd_b};
+                    if (hit_m) {by_m, bd_m} <= {1'b1, wd_m};
+                end
+            end
+            assign a_w = q_a;
+            assign b_w = q_b;
+            assign m_w = q_m;
         end
-    end
-    wire [AWD-1:0] a_w = by_a ? bd_a : rd_a;
-    wire [PV-1:0]  b_w = by_b ? bd_b : rd_b;
-    wire [BMW-1:0] m_w = by_m ? bd_m : rd_m;
+    endgenerate
     assign p1_meta = pg  ? a_w[PV +: SM_W] : {SM_W{1'b0}};
     assign p1      = pg  ? a_w[PV-1:0] : {PV{1'b0}};
     assign p2b1    = pgb ? b_w : {PV{1'b0}};
