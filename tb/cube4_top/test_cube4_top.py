@@ -1058,20 +1058,21 @@ def test_beat_frames(p):
 
 @pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
 def test_beat_frames_shaded(p):
-    """As test_beat_frames, in a shaded build (GRA on the beat schedule): composite frames
-    with the reflectance map, and termination in every other frame, where beats run as
-    GRA's neighbours only; the unshaded modes in the same build."""
-    beat_frames(p, shaded=True)
+    """As test_beat_frames, in a shaded build (GRA on the beat schedule) with gradient
+    modulation (GMOD = 1): composite frames with the reflectance map, and termination in
+    every other frame, where beats run as GRA's neighbours only; their modulation tables
+    random, a step and the identity in turn; the unshaded modes in the same build."""
+    beat_frames(p, shaded=True, gmod=True)
 
 
 @pytest.mark.parametrize("p", sweep([5, 1], quick=(0,)))
 def test_beat_frames_vgrad(p):
     """As test_beat_frames_shaded, in a build with voxel gradients (VGRAD = 1: TRI
-    interpolates the memory words' gradients, no GRA)."""
-    beat_frames(p, shaded=True, vgrad=True)
+    interpolates the memory words' gradients, no GRA) and gradient modulation."""
+    beat_frames(p, shaded=True, vgrad=True, gmod=True)
 
 
-def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
+def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
@@ -1081,8 +1082,13 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     weights change its plane). Each frame's rays are the
     golden beat-schedule frame's bit for bit, and its base plane the fixed schedule's, with
     random stalls on every stream and a reset in mid-frame; the beats that ran
-    (cube4_top's count) are the golden frame's."""
+    (cube4_top's count) are the golden frame's. ``gmod``: the build modulates by the
+    gradient's magnitude (GMOD = 1), each shaded frame with its own table (the factors are
+    at most 1, so the block table from the LUT still covers every sample that counts), and
+    the modulation changes some frame's plane."""
     import copy
+
+    from cube4.gmod import GM_ONE, gm_table, table_entries
 
     import cube4.beats as beats
     from cube4.model import render_frame
@@ -1097,6 +1103,10 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     modes = ["composite", "xray", "mip", "minip"]
     if shaded:   # composite shaded, with and without termination, and each unshaded mode once
         modes = ["composite", "composite", "composite", "xray", "composite", "mip", "composite", "minip"]
+    gm_tables = [rng.integers(0, GM_ONE + 1, size=(table_entries(cfg.voxel_bits + 5), 2)),
+                 gm_table(np.array([[0.0, 0.0], [0.02, 0.0], [0.021, 1.0]]), np.array([[0.0, 0.0], [0.05, 1.0]]),
+                          cfg.voxel_bits, "central" if vgrad else "gra"),
+                 None]        # the identity
     jobs, gold = [], []
     for n, direction in enumerate(VIEWS):         # (1, 1, 1) and the 45° (1, -1, 0) among them
         mode, terminate = modes[n % len(modes)], n % 2 == 1 or (shaded and n % 4 == 0)
@@ -1115,7 +1125,8 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
                                    gra=rmap is not None and not vgrad)
         rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                      enabled=terminate, value_bits=cfg.voxel_bits)
-        job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits),
+        gm = gm_tables[n % 3] if gmod and rmap is not None else None
+        job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits), gm=gm,
                        stall=(0, 40, 0, 90)[n % 4], stall_out=(0, 0, 60, 30)[n % 4],
                        reset_after_cycles=500 if n == 2 else 0)
         jobs.append(job)
@@ -1124,19 +1135,25 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
     if vgrad:       # the memory words hold each voxel's gradient too (the block table: its value)
         from cube4.vgrad import pack_words
         mem = pack_words(vol, "central", cfg.voxel_bits)
-    results = render_frames(mem, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad)})
+    build = {"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad), **({"GMOD": 1} if gmod else {})}
+    results = render_frames(mem, jobs, cfg, max_dim=32, build=build)
+    modulated = 0
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
                  f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
-                 f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}")
+                 f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}"
+                 f"{' modulated' if job.gm is not None else ''}")
         frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
-                      vgrad=vgrad)
+                      vgrad=vgrad, gm=job.gm)
         box_mem = crop_volume(mem, job.trav)
         fixed = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                             vgrad=vgrad)
+                             vgrad=vgrad, gm=job.gm)
+        if job.gm is not None:
+            plain = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=True, vgrad=vgrad)
+            modulated += int((plain.baseplane != fixed.baseplane).any())
         ran = copy.deepcopy(sched)     # the golden frame's beats that ran: the RTL's count agrees
         render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                     beats=ran, done=rule, vgrad=vgrad)
+                     beats=ran, done=rule, vgrad=vgrad, gm=job.gm)
         run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
         assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
@@ -1148,3 +1165,4 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False) -> None:
             assert (plain.baseplane != fixed.baseplane).any(), f"{label}: the path weights changed nothing"
         box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)
         print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}")
+    assert not gmod or modulated, "the modulation changed no frame: the test would not see it"
