@@ -38,9 +38,10 @@ of running rays that may count are counted; a done ray counts no further sample 
 when the frame starts (first slice, stop), and so are the frame's beats.
 
 **Beats.** A beat *runs* when one of its lanes holds a running ray (set A), or, with
-termination, when it may count and lies next to (±1 slice, row and partial beam) a beat
-of A (the neighbours whose samples the gradients of A's counting samples read, where
-termination ended their own rays). Samples of beats that do not run are zero (what GRA
+termination or depth in's stops (``limit_stop``) in a shaded frame, when it may count and
+lies next to (±1 slice, row and partial beam) a beat of A (the neighbours whose samples
+the gradients of A's counting samples read, where termination or the geometry ended
+their own rays). Samples of beats that do not run are zero (what GRA
 reads). Every sample that counts, and every sample its gradient reads, runs and is
 computed from the voxels the fixed schedule uses: the base plane is the fixed
 schedule's, bit for bit, at τ = 0.
@@ -200,6 +201,7 @@ class BeatSchedule:
     lag: int = LAG
     terminate: bool = True
     gra: bool = True
+    cut: bool = False                          # depth in cut some ray's stop (limit_stop)
     done: np.ndarray = field(init=False)      # (rows, cols): slice the ray was reported done (M: never)
     reported: int = field(init=False, default=-1)
     table_s: float = 0.0
@@ -227,9 +229,21 @@ class BeatSchedule:
         self.end = self.stop.copy()
 
     def limit_stop(self, stop_m: np.ndarray) -> None:
-        """Depth in: no ray runs past the geometry's stop (rows, cols) either."""
+        """Depth in: no ray runs past the geometry's stop (rows, cols) either. A ray that
+        stops there before its last slice that may count leaves samples that its
+        neighbours' gradients read: the beats beside A run for them (``neighbours``)."""
+        if (np.asarray(stop_m) < self.stop).any():
+            self.cut = True
         self.stop = np.minimum(self.stop, stop_m)
         self.end = np.minimum(self.end, self.stop)
+
+    @property
+    def neighbours(self) -> bool:
+        """The beats that may count next to a beat of A run too (the view register NBR):
+        in a frame with GRA where a ray may end before its last slice that may count, by
+        termination or at depth in's stop, whose later samples its neighbours' gradients
+        still read."""
+        return self.gra and (self.terminate or self.cut)
 
     # --- geometry
     def window(self, m: int) -> tuple[int, int]:
@@ -293,7 +307,7 @@ class BeatSchedule:
         if m not in self._e:
             a = self.active_beats(m)
             e = a
-            if self.gra and self.terminate:
+            if self.neighbours:
                 near = dilate(np.stack([self.active_beats(m - 1), a, self.active_beats(m + 1)]))[1]
                 e = a | (near & self._beats_of(self.sample_occ(m)))
             self._e[m] = e

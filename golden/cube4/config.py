@@ -103,7 +103,9 @@ def scene_build(scenes) -> dict:
         b["CLIP"] |= int(sc.cut is not None or sc.slab is not None or sc.crop_regions is not None)
         b["SLAB"] |= int(sc.slab is not None)
         b["ZOUT"] |= int(sc.depth_threshold is not None)
-        b["ZIN"] |= int(sc.geometry is not None)
+        # depth in: COM's stop table; the beat schedule ends each ray at the geometry's stop
+        # through the ray table instead (BeatSchedule.limit_stop), with no unit of its own
+        b["ZIN"] |= int(sc.geometry is not None and sc.skip != "beats")
         b["GMOD"] |= int(sc.gmod is not None)
         b["LABELS"] |= int(sc.labels is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)

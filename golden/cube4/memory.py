@@ -268,7 +268,7 @@ def beat_regs(trav: Traversal, beats=None) -> dict[str, int]:
     sched, rule = beats
     for name, a in (("BB_I", trav.axis_i), ("BB_J", trav.axis_j), ("BB_K", trav.major)):
         regs[name] = int(trav.origin[a] + (trav.dims[a] - 1 if trav.flip[a] else 0))
-    regs["NBR"] = int(sched.gra and sched.terminate)
+    regs["NBR"] = int(sched.neighbours)
     regs["TERM"] = int(rule.enabled)
     regs["TAU"], regs["VMIN"], regs["VMAX"] = int(rule.tau), int(rule.vmin), int(rule.vmax)
     return regs

@@ -249,7 +249,7 @@ class HostCom:
         from cube4.memory import stop_table
         d, s, t = self.dut, self.bf.sched, self.bf.trav
         if hasattr(d, "nbr_en"):
-            d.nbr_en.value = int(s.gra and s.terminate)
+            d.nbr_en.value = int(s.neighbours)
         axes = axis_regs(self.bf)
         if hasattr(d, "blk_base"):          # cube4_cfb: the frame and the flips from the view registers
             dim_w = clog2(self.max_dim + 1)

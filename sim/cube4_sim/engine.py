@@ -59,6 +59,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
                 stop = None if geo is None else plan.box_stop(stop_slices(plan.whole, vp.cam, geo.z))
                 bf = beat_frames[n]
+                if bf is not None and stop is not None:
+                    bf[0].limit_stop(stop)      # depth in on the beat schedule: the rays' stops
                 jobs.append(FrameJob(plan.trav, vp.lut, vp.rmap, mode=vp.scene.mode, clip=plan.clip,
                                      rects=rects[n], depth_t=depth_threshold(vp.scene, cfg), stop_m=stop,
                                      gm=vp.gm, beats=None if bf is None else (bf[0], bf[1], bf[0].block_bits)))

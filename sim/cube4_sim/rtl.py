@@ -11,6 +11,7 @@ base-plane image from them.
 
 from __future__ import annotations
 
+import copy
 import json
 import tempfile
 from dataclasses import dataclass, field, replace
@@ -55,7 +56,7 @@ class FrameJob:
     reset_after_cycles: int = 0  # start, reset after this many cycles, then render
     rects: SliceRects | None = None  # slice rectangles (a RECTS build; None there: the whole box)
     depth_t: int | None = None  # depth out's threshold on T (a ZOUT build; None: not tracked)
-    stop_m: np.ndarray | None = None  # depth in: (rows, cols) stop slices of the base plane (a ZIN build)
+    stop_m: np.ndarray | None = None  # depth in: (rows, cols) stop slices of the base plane (a ZIN or BEATS build)
     gm: np.ndarray | None = None  # gradient-magnitude modulation's table (cube4.gmod; a GMOD build)
     # the beat schedule (a BEATS build): (cube4.beats.BeatSchedule before the frame, its
     # TerminationRule, the volume's block-table bits (bz, by, bx))
@@ -84,8 +85,8 @@ def check_frame_fits(fr: FrameJob, params: dict) -> None:
         raise UserError("a build with BEATS = 1 runs frames of the beat schedule (their block and ray tables)")
     if fr.beats is not None and not params.get("BEATS"):
         raise UserError("a frame of the beat schedule needs a build with BEATS = 1")
-    if fr.stop_m is not None and not params["ZIN"]:
-        raise UserError("a frame with depth in needs a build with ZIN = 1")
+    if fr.stop_m is not None and not (params["ZIN"] or params.get("BEATS")):
+        raise UserError("a frame with depth in needs a build with ZIN = 1, or BEATS = 1 (the ray table's stops)")
     if fr.rmap is not None and fr.mode == "composite" and not params["SHADING"]:
         raise UserError("a shaded frame needs a build with SHADING = 1")
 
@@ -248,9 +249,16 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
                      * slow_slice_factor(nj, ni, cfg.pipelines))
             rect_p, stop_p, gm_p = workdir / f"rects{n}.hex", workdir / f"stop{n}.hex", workdir / f"gm{n}.hex"
             blk_p = workdir / f"blk{n}.hex"
+            beats = fr.beats
+            if beats is not None and fr.stop_m is not None:
+                # depth in: no ray runs past the geometry's stop either (BeatSchedule.limit_stop:
+                # the stops, and the neighbour term NBR where a stop was cut)
+                cut = copy.deepcopy(beats[0])
+                cut.limit_stop(fr.stop_m)
+                beats = (cut, *beats[1:])
             if params["BEATS"]:     # the ray table's stops and the block table for the view
                 m_w = Geometry(cfg.pipelines, max_dim, params["MAX_SS_LOG2"]).m_w
-                write_hex(stop_p, stop_table(fr.beats[0].stop, cfg.pipelines, max_dim, m_w), cfg.pipelines * m_w)
+                write_hex(stop_p, stop_table(beats[0].stop, cfg.pipelines, max_dim, m_w), cfg.pipelines * m_w)
                 write_hex(blk_p, beat_block_words(fr, max_dim), -(-max_dim // 4))
             if params["GMOD"]:      # every frame loads its table (no modulation: the identity)
                 gm = fr.gm if fr.gm is not None else identity_table(cfg.voxel_bits)
@@ -267,7 +275,7 @@ def render_frames(vol: np.ndarray, frames: list[FrameJob], cfg: Cube4Config, *, 
             job_frames.append({
                 "regs": top_regs(fr.trav, cfg.pipelines, mode=fr.mode, clip=fr.clip, path_weights=weighted,
                                  depth_t=fr.depth_t, **frame_image(fr.trav, (nx, ny, nz), images),
-                                 beats=fr.beats[:2] if fr.beats is not None else None),
+                                 beats=beats[:2] if beats is not None else None),
                 "lut": str(lut_p), "rmap": str(rmap_p), "rect": str(rect_p) if rects else None,
                 "stop": str(stop_p) if params["ZIN"] or params["BEATS"] else None,
                 "blk": str(blk_p) if params["BEATS"] else None,

@@ -69,7 +69,7 @@ class TB:
         rows = [(bits_of(a), bits_of(o)) for m in range(sched.M)
                 for a, o in zip(sched.active_beats(m), sched._beats_of(sched.sample_occ(m)))]
         d.nj.value, d.nb.value, d.nm.value = sched.NJ, sched.NB, sched.M
-        d.nbr_en.value = int(sched.gra and sched.terminate)
+        d.nbr_en.value = int(sched.neighbours)
         await FallingEdge(d.clk)
         d.start.value = 1
         await FallingEdge(d.clk)          # the start edge has passed

@@ -1082,7 +1082,9 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
     weights change its plane). Each frame's rays are the
     golden beat-schedule frame's bit for bit, and its base plane the fixed schedule's, with
     random stalls on every stream and a reset in mid-frame; the beats that ran
-    (cube4_top's count) are the golden frame's. ``gmod``: the build modulates by the
+    (cube4_top's count) are the golden frame's. Depth in on every third frame (a surface's
+    stop slices: the ray table's stops, no stop table in COM), which changes some frame's
+    plane. ``gmod``: the build modulates by the
     gradient's magnitude (GMOD = 1), each shaded frame with its own table (the factors are
     at most 1, so the block table from the LUT still covers every sample that counts), and
     the modulation changes some frame's plane."""
@@ -1126,7 +1128,8 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
         rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                      enabled=terminate, value_bits=cfg.voxel_bits)
         gm = gm_tables[n % 3] if gmod and rmap is not None else None
-        job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits), gm=gm,
+        stop = surface_stops(trav, rng) if n % 3 == 2 else None     # depth in (a geometry's stops)
+        job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits), gm=gm, stop_m=stop,
                        stall=(0, 40, 0, 90)[n % 4], stall_out=(0, 0, 60, 30)[n % 4],
                        reset_after_cycles=500 if n == 2 else 0)
         jobs.append(job)
@@ -1137,23 +1140,27 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
         mem = pack_words(vol, "central", cfg.voxel_bits)
     build = {"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad), **({"GMOD": 1} if gmod else {})}
     results = render_frames(mem, jobs, cfg, max_dim=32, build=build)
-    modulated = 0
+    modulated = stopped = 0
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
                  f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
                  f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}"
-                 f"{' modulated' if job.gm is not None else ''}")
+                 f"{' modulated' if job.gm is not None else ''}{' depth in' if job.stop_m is not None else ''}")
         frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
-                      vgrad=vgrad, gm=job.gm)
+                      vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
         box_mem = crop_volume(mem, job.trav)
         fixed = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                             vgrad=vgrad, gm=job.gm)
+                             vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
+        if job.stop_m is not None:
+            free = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode,
+                                shading=job.rmap is not None, vgrad=vgrad, gm=job.gm)
+            stopped += int((free.baseplane != fixed.baseplane).any())
         if job.gm is not None:
             plain = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=True, vgrad=vgrad)
             modulated += int((plain.baseplane != fixed.baseplane).any())
         ran = copy.deepcopy(sched)     # the golden frame's beats that ran: the RTL's count agrees
         render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                     beats=ran, done=rule, vgrad=vgrad, gm=job.gm)
+                     beats=ran, done=rule, vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
         run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
         assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
@@ -1166,3 +1173,4 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
         box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)
         print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}")
     assert not gmod or modulated, "the modulation changed no frame: the test would not see it"
+    assert stopped, "the stop slices changed no frame: the test would not see depth in"
