@@ -167,17 +167,20 @@ def test_stop_ends_translucent_rays(p, monkeypatch):
 
 def test_geometry_stop_ends_rays():
     """Depth in: a wall through the volume's centre stops every ray there; with beats the
-    image is the fixed schedule's and the beats behind the wall are skipped."""
+    image is the fixed schedule's, with termination and without (then the beats beside
+    the running ones run for the gradients: the neighbour term, as with termination), and
+    the beats behind the wall are skipped."""
     from test_geometry import scene_with, wall
     vol = load_volume("head:24")
     sc = scene_with(None)
     cfg = config_for(sc, 8)
     cut = scene_with(wall(sc, cfg, (24, 24, 24), 0.0))
     _, fixed, _ = golden_view(vol, dataclasses.replace(cut, skip=False), cfg)
-    _, ended, st = golden_view(vol, cut, cfg, beat_skip={})
-    _, _, st_free = golden_view(vol, sc, cfg, beat_skip={})
-    assert np.array_equal(fixed.baseplane, ended.baseplane)
-    assert st["beats"]["run_beats"] < 0.9 * st_free["beats"]["run_beats"], (st["beats"], st_free["beats"])
+    for opts in ({}, {"terminate": False}):
+        _, ended, st = golden_view(vol, cut, cfg, beat_skip=opts)
+        _, _, st_free = golden_view(vol, sc, cfg, beat_skip=opts)
+        assert np.array_equal(fixed.baseplane, ended.baseplane), opts
+        assert st["beats"]["run_beats"] < 0.9 * st_free["beats"]["run_beats"], (opts, st["beats"], st_free["beats"])
 
 
 def test_decided_cycles():
