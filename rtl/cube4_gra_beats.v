@@ -109,6 +109,7 @@ module cube4_gra_beats
     reg               tail_n;        // window steps loaded: 0, 1
     reg               fin;           // the frame is over after them
     reg [M_W-1:0]     cmp_m;         // the input of slices below cmp_m is in (in_eoss)
+    reg               w_in;          // w < cmp_m (a register: loaded with w and cmp_m's next values)
     reg [M_W-1:0]     w;             // the slice being stepped
     reg [M_W-1:0]     w_last1;       // the last input beat's slice + 1 (with ended)
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
@@ -233,7 +234,7 @@ module cube4_gra_beats
     wire g_any   = act && !tail && |gm;
     wire g_first = g_any && (!in_row || |(gm & in_below));  // a generated step comes first (g_pb < in_pb)
     wire start   = !act && s_valid;                         // a frame's first beat waits
-    wire pass    = act && !tail && (in_after || ended || (w < cmp_m));   // the input has passed this row
+    wire pass    = act && !tail && (in_after || ended || w_in);   // the input has passed this row
     wire ld_in   = i0_take && in_row && !g_first;
     wire ld_gen  = i0_take && g_first && (in_row || pass);
     wire ld_tl   = i0_take && tail;
@@ -242,7 +243,7 @@ module cube4_gra_beats
     wire mg      = row_end && i0_take && nx_ok && !r_nj;
     wire x_first = (nx_gm != '0) && (!in_nx || |(nx_gm & in_below));
     wire ld_in_x  = mg && in_nx && !x_first;
-    wire ld_gen_x = mg && x_first && (in_nx || in_aft1 || ended || (w < cmp_m));
+    wire ld_gen_x = mg && x_first && (in_nx || in_aft1 || ended || w_in);
     wire ld_tl_x  = row_end && i0_take && r_nj;
     wire ld_nx   = ld_in_x || ld_gen_x;                      // a step of the next row
     wire ld_i    = ld_in || ld_in_x;                         // an input beat
@@ -285,7 +286,8 @@ module cube4_gra_beats
     wire            t_we = row_end && act && !r_nj;
     wire [RW:0]     t_wa = {w[0], r[RW-1:0]};
     wire [TW-1:0]   t_wd = {acc_s, acc_c};
-    cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW)) u_rows (
+    // (distributed RAM: the word read goes into the row's next steps, gm, in the cycle after)
+    cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW), .DIST (1)) u_rows (
         .clk (clk), .rd_en (t_re), .rd_addr (t_ra), .rd_data (t_rd),
         .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
     // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
@@ -294,17 +296,31 @@ module cube4_gra_beats
     assign nx_w = r_nj ? w + 1'b1 : w;                         // and its slice
     wire   nx_nj = r_nj ? (cfg_nj == '0) : r1_nj;              // nx_r == NJ
     assign row_mv = row_end && !(ended && last_row);         // (as the row end below)
-    wire [DIM_W-1:0] nn_r = nx_nj ? '0 : nx_r + 1'b1;
-    wire [M_W-1:0]   nn_w = nx_nj ? nx_w + 1'b1 : nx_w;
+    // the row after the next one, (nn_w, nn_r), in registers that move with the row (so
+    // the table's read address is a register: the distributed RAM reads in the cycle)
+    reg [DIM_W-1:0]  nn_r;
+    reg [M_W-1:0]    nn_w;
+    reg              nn_nj;          // nn_r == NJ
+    always @(posedge clk) begin
+        if (start) begin             // after row 0: row 1 (NJ >= 1), after it row 2 or slice 1's 0
+            nn_r  <= (cfg_nj <= DIM_W'(1)) ? '0 : DIM_W'(2);
+            nn_w  <= (cfg_nj == '0) ? M_W'(2) : ((cfg_nj == DIM_W'(1)) ? M_W'(1) : '0);
+            nn_nj <= (cfg_nj == '0) || (cfg_nj == DIM_W'(2));
+        end else if (row_mv) begin
+            nn_r  <= nn_nj ? '0 : nn_r + 1'b1;
+            nn_w  <= nn_nj ? nn_w + 1'b1 : nn_w;
+            nn_nj <= nn_nj ? (cfg_nj == '0) : (nn_r + 1'b1 == cfg_nj);
+        end
+    end
     // a frame starts at row 0 of slice 0, and reads row 1's (zero: slice -1)
     assign t_re = row_end || start;
-    wire [DIM_W-1:0] rd_row = start ? DIM_W'(1) : nn_r;
+    wire [RW-1:0]    rd_row = start ? RW'(1) : nn_r[RW-1:0];   // (rows below MAX_DIM)
     wire [M_W-1:0]   rd_w   = start ? '0 : nn_w;
-    assign t_ra = {~rd_w[0], rd_row[RW-1:0]};                 // slice rd_w - 1's parity
+    assign t_ra = {~rd_w[0], rd_row};                         // slice rd_w - 1's parity
     reg             t_zero;          // the word read is zero (slice -1)
     reg             t_by;            // it is t_bd: the word written in that cycle, or row NJ's
     reg [TW-1:0]    t_bd;
-    wire            rd_nj = (rd_row == cfg_nj);
+    wire            rd_nj = start ? (cfg_nj == DIM_W'(1)) : nn_nj;
     always @(posedge clk) begin
         if (t_re) begin
             t_zero <= (rd_w == '0);
@@ -412,6 +428,17 @@ module cube4_gra_beats
                 end
             end
         end
+    end
+    // w < cmp_m for the next cycle: the four compares of w or w + 1 (the row moves on to
+    // the next slice) with cmp_m or in_m + 1 (the slice's EOSS beat loads), from registers,
+    // and the two choices select one
+    wire [M_W:0] w_x = {1'b0, w}, w1_x = w_x + 1'b1, cm_x = {1'b0, cmp_m}, im1_x = {1'b0, in_m} + 1'b1;
+    wire         w_mv  = row_mv && r_nj;                     // w moves on to w + 1
+    wire         cm_ld = ld_i && s_eoss;                     // cmp_m loads in_m + 1
+    always @(posedge clk) begin
+        if (start) w_in <= 1'b0;
+        else       w_in <= w_mv ? (cm_ld ? (w1_x < im1_x) : (w1_x < cm_x))
+                                : (cm_ld ? (w_x < im1_x) : (w_x < cm_x));
     end
     always @(posedge clk) begin
         // the next row's steps, for a row end that loads (valid in a row's second cycle on)

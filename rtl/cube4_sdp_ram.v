@@ -33,6 +33,11 @@
 //           of a block RAM (ECP5 DP16KD REGMODE "OUTREG"), which takes the
 //           block's clock-to-out off the path into the caller's logic.
 //           0..1.  Default 0.
+//   DIST    1: a small RAM whose read word feeds logic within the cycle:
+//           distributed RAM (LUTs) where the technology has it, so the read
+//           register is a flip-flop of the fabric (ECP5: 0.5 ns from clock
+//           to data, not a DP16KD's 4.1 ns). Not with IN_REG or OUT_REG = 1.
+//           Behaviour as DIST = 0.  0..1.  Default 0.
 //   AW      address width (derived; not to be set).
 //
 // Latency

@@ -7,6 +7,7 @@
     parameter  integer IN_REG = 0,
     parameter  integer WR_REG = 0,
     parameter  integer OUT_REG = 0,
+    parameter  integer DIST   = 0,
     localparam integer AW     = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
     input  wire              clk,
@@ -25,6 +26,10 @@
         `CUBE4_RANGE(g_bad_in_reg, "cube4_sdp_ram", "IN_REG", IN_REG, 0, 1)
         `CUBE4_RANGE(g_bad_wr_reg, "cube4_sdp_ram", "WR_REG", WR_REG, 0, 1)
         `CUBE4_RANGE(g_bad_out_reg, "cube4_sdp_ram", "OUT_REG", OUT_REG, 0, 1)
+        `CUBE4_RANGE(g_bad_dist, "cube4_sdp_ram", "DIST", DIST, 0, 1)
+        if (DIST == 1 && (IN_REG == 1 || OUT_REG == 1)) begin : g_bad_dist_regs
+            $error("cube4_sdp_ram: DIST = 1 with IN_REG or OUT_REG = 1 (a distributed RAM's read register is already in the fabric)");
+        end
         if (IN_REG == 1 && WR_REG == 1) begin : g_bad_regs
             $error("cube4_sdp_ram: IN_REG = 1 with WR_REG = 1 (IN_REG registers the write's enable and address already)");
         end

@@ -38,6 +38,10 @@
 //     sim/hdl/ecp5/DP16KD.v models the primitive for simulation. A read
 //     of the word written at the same edge is undefined on the device (the
 //     model returns the old word); cube4_sdp_ram's callers make none.
+//   * With DIST = 1 the RAM is distributed RAM (ram_style "distributed":
+//     TRELLIS_DPR16X4, read asynchronously into the read register, a
+//     flip-flop of the fabric), for a small RAM whose word feeds logic in
+//     the cycle after the read.
 //   tb/cube4_top test_synthesis_form simulates this form, and
 //   tb/cube4_sdp_ram runs both forms against a model of the RAM.
 //
@@ -49,6 +53,7 @@ module cube4_sdp_ram
     localparam integer EBR_MIN_AW = 7;                  // block RAM from 128 words (OUT_REG = 1) ...
     localparam integer EBR_MAX_AW = 14;                 // ... to 16384 (one DP16KD deep)
     localparam integer USE_EBR = (OUT_REG == 1 && AW >= EBR_MIN_AW && AW <= EBR_MAX_AW) ? 1 : 0;
+    // DIST = 1: distributed RAM (TRELLIS_DPR16X4, asynchronous read), its read register in the fabric
     // slice width: 4, 2, 1 bits from 4096, 8192, 16384 words on; else the
     // word (18 bits with IN_REG, so that the register copies have slices;
     // with OUT_REG the block's own shape: 18 bits to 1024 words, 9 to 2048)
@@ -111,6 +116,14 @@ module cube4_sdp_ram
                     .clk(clk), .a_en(1'b0), .a_we(we), .a_addr(wa), .a_wd(wd[LO +: W]), .a_rd(unused_a_rd),
                     .b_en(re), .b_addr(ra), .b_rd(rd_data[LO +: W]));
                 wire unused_a = ^unused_a_rd;
+            end else if (DIST == 1) begin : g_dist
+                (* ram_style = "distributed" *) reg [W-1:0] mem [0:(1 << AW)-1];
+                reg [W-1:0] rd_q;
+                always @(posedge clk) begin
+                    if (we) mem[wa] <= wd[LO +: W];
+                    if (re) rd_q <= mem[ra];
+                end
+                assign rd_data[LO +: W] = rd_q;
             end else begin : g_infer
                 reg [W-1:0] mem [0:(1 << AW)-1];
                 reg [W-1:0] rd_q;

@@ -122,7 +122,7 @@ from cube4_sim.sweeps import sweep
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (block RAM 1024 x 18 .. 16384 x 1, distributed RAM below
-# 128 words, inferred beyond 16384), with and without IN_REG's copies and OUT_REG
+# 128 words or with DIST = 1, inferred beyond 16384), with and without IN_REG's copies and OUT_REG
 PARAM_SETS = [
     {"DATA_W": 20, "DEPTH": 100, "OUT_REG": 1},                 # 1024 x 18, two slices
     {"DATA_W": 27, "DEPTH": 2048, "IN_REG": 1, "OUT_REG": 1},   # 2048 x 9, copies
@@ -138,6 +138,7 @@ PARAM_SETS = [
     {"DATA_W": 9, "DEPTH": 4096, "OUT_REG": 1},                 # 2 deep 2048 x 9 (the ray table)
     {"DATA_W": 34, "DEPTH": 3000, "OUT_REG": 1},                # 4 x (2 deep 2048 x 9)
     {"DATA_W": 9, "DEPTH": 5000, "WR_REG": 1, "OUT_REG": 1},    # 3 deep 2048 x 9, write copies
+    {"DATA_W": 32, "DEPTH": 256, "DIST": 1},                    # distributed RAM by choice (GRA's row table)
 ]
 
 
@@ -146,7 +147,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11), ids=_param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11, 14), ids=_param_id))
 def test_cube4_sdp_ram(params, form):
     run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))
