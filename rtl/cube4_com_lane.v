@@ -22,9 +22,10 @@
 //            (blending 4 * (ACC_W + 1), extremum VOXEL_W + 24 + ALPHA_W).
 //   SAMPLE   1: R0 registers the sample v (extremum, path weights).  0..1.
 //   COPIES   control copies over the word.                 1..64.  Default 4.
-//   ZOUT     1: depth out: the buffer word's top 2 (ZM_W + 1) bits hold the
-//            ray's slice numbers {passed, first}, each {valid, m} (AC_W
-//            includes them).                                 0..1.  Default 0.
+//   ZOUT     1: depth out: the buffer word's top 2 (ZM_W + 1) bits (below
+//            the countdown with TERM = 1) hold the ray's slice numbers
+//            {passed, first}, each {valid, m} (AC_W includes them).
+//                                                            0..1.  Default 0.
 //   ZM_W     the slice number's width (COM's M_W).            1..16. Default 14.
 //   FALL     1: the slab's falloff: the blending datapath's A is
 //            round_shift(A * f, 8) (numerics.md section 12).  0..1.  Default 0.
@@ -270,7 +271,9 @@ module cube4_com_lane #(
     // sample added something (the extremum lane: was taken) ----
     generate
         if (ZOUT != 0) begin : g_depth
-            localparam integer AM_W = AC_W - ZW;        // the mode's word
+            // the fields sit below the countdown (TERM = 1: {count, passed, first, mode's word})
+            localparam integer ZT   = AC_W - ((TERM != 0) ? CNT_W : 0);
+            localparam integer AM_W = ZT - ZW;          // the mode's word
             reg [ZW-1:0] z6, z7, z8, z9, z10, z11;
             always @(posedge clk) {z11, z10, z9, z8, z7, z6} <= {z10, z9, z8, z7, z6, acc_in[AM_W +: ZW]};
             wire ext = ext_v[AC_W-1];
@@ -280,8 +283,13 @@ module cube4_com_lane #(
             wire [ZF_W-1:0] zp_n = ext ? (take_e ? now : zp) : ((!zp[ZM_W] && passed_c) ? now : zp);
             wire [ZF_W-1:0] zf_n = (!zf[ZM_W] && added) ? now : zf;
             assign pix_z = {zp_n, zf_n};
-            assign acc_q = {zp_n, zf_n, acc_m[AM_W-1:0]};
-            wire unused_top = ^{acc_m[AC_W-1:AM_W], acc_n};   // (depth out runs without termination)
+            if (TERM != 0) begin : g_with_count
+                assign acc_q = {acc_n[AC_W-1:ZT], zp_n, zf_n, acc_m[AM_W-1:0]};
+                wire unused_top = ^{acc_m[AC_W-1:AM_W], acc_n[ZT-1:0]};
+            end else begin : g_no_count
+                assign acc_q = {zp_n, zf_n, acc_m[AM_W-1:0]};
+                wire unused_top = ^{acc_m[AC_W-1:AM_W], acc_n};
+            end
         end else begin : g_no_depth
             assign pix_z = '0;
             assign acc_q = acc_n;

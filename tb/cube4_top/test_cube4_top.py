@@ -1053,7 +1053,7 @@ def test_dram_frames(p):
 # ---------------------------------------------------------------- beat skipping
 @pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0, 1)))
 def test_beat_frames(p):
-    beat_frames(p, shaded=False)
+    beat_frames(p, shaded=False, zout=True)
 
 
 @pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
@@ -1072,7 +1072,7 @@ def test_beat_frames_vgrad(p):
     beat_frames(p, shaded=True, vgrad=True, gmod=True)
 
 
-def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -> None:
+def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, zout: bool = False) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
@@ -1087,7 +1087,9 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
     plane. ``gmod``: the build modulates by the
     gradient's magnitude (GMOD = 1), each shaded frame with its own table (the factors are
     at most 1, so the block table from the LUT still covers every sample that counts), and
-    the modulation changes some frame's plane."""
+    the modulation changes some frame's plane. ``zout``: depth out (ZOUT = 1) on every
+    frame, its threshold varied (the extremum modes': 0), the rays' two slices bit for bit
+    (with the countdown above them in the buffer word), not all equal."""
     import copy
 
     from cube4.gmod import GM_ONE, gm_table, table_entries
@@ -1129,7 +1131,9 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
                                      enabled=terminate, value_bits=cfg.voxel_bits)
         gm = gm_tables[n % 3] if gmod and rmap is not None else None
         stop = surface_stops(trav, rng) if n % 3 == 2 else None     # depth in (a geometry's stops)
+        depth_t = ((1 << cfg.acc_bits) * (n % 4 + 1) // 6 if mode in ("composite", "xray") else 0) if zout else None
         job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits), gm=gm, stop_m=stop,
+                       depth_t=depth_t,
                        stall=(0, 40, 0, 90)[n % 4], stall_out=(0, 0, 60, 30)[n % 4],
                        reset_after_cycles=500 if n == 2 else 0)
         jobs.append(job)
@@ -1138,16 +1142,21 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
     if vgrad:       # the memory words hold each voxel's gradient too (the block table: its value)
         from cube4.vgrad import pack_words
         mem = pack_words(vol, "central", cfg.voxel_bits)
-    build = {"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad), **({"GMOD": 1} if gmod else {})}
+    build = {"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad), **({"GMOD": 1} if gmod else {}),
+             **({"ZOUT": 1} if zout else {})}
     results = render_frames(mem, jobs, cfg, max_dim=32, build=build)
     modulated = stopped = 0
+    zs: set[int] = set()
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
                  f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
                  f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}"
                  f"{' modulated' if job.gm is not None else ''}{' depth in' if job.stop_m is not None else ''}")
         frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
-                      vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
+                      vgrad=vgrad, gm=job.gm, stop_m=job.stop_m, depth_t=job.depth_t)
+        if zout:
+            px = res["pixels"]
+            zs.update(int(z) for z in px["zf"][px["zf"] >= 0])
         box_mem = crop_volume(mem, job.trav)
         fixed = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
                              vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
@@ -1174,3 +1183,4 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False) -
         print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}")
     assert not gmod or modulated, "the modulation changed no frame: the test would not see it"
     assert stopped, "the stop slices changed no frame: the test would not see depth in"
+    assert not zout or len(zs) > 1, "depth out: the rays' first slices are all equal"
