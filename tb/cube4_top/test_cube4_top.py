@@ -1062,7 +1062,7 @@ def test_beat_frames_shaded(p):
     modulation (GMOD = 1): composite frames with the reflectance map, and termination in
     every other frame, where beats run as GRA's neighbours only; their modulation tables
     random, a step and the identity in turn; the unshaded modes in the same build."""
-    beat_frames(p, shaded=True, gmod=True)
+    beat_frames(p, shaded=True, gmod=True, slab=True)
 
 
 @pytest.mark.parametrize("p", sweep([5, 1], quick=(0,)))
@@ -1072,7 +1072,8 @@ def test_beat_frames_vgrad(p):
     beat_frames(p, shaded=True, vgrad=True, gmod=True)
 
 
-def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, zout: bool = False) -> None:
+def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, zout: bool = False,
+                slab: bool = False) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
@@ -1089,7 +1090,10 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     at most 1, so the block table from the LUT still covers every sample that counts), and
     the modulation changes some frame's plane. ``zout``: depth out (ZOUT = 1) on every
     frame, its threshold varied (the extremum modes': 0), the rays' two slices bit for bit
-    (with the countdown above them in the buffer word), not all equal."""
+    (with the countdown above them in the buffer word), not all equal. ``slab``: the cut
+    slab (SLAB = 1) with its falloff on every third frame (the block table from the LUT
+    covers it: the slab only takes samples away), which changes some frame's plane."""
+    from cube4.clip import Clip, slab_coefficients
     import copy
 
     from cube4.gmod import GM_ONE, gm_table, table_entries
@@ -1132,8 +1136,13 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
         gm = gm_tables[n % 3] if gmod and rmap is not None else None
         stop = surface_stops(trav, rng) if n % 3 == 2 else None     # depth in (a geometry's stops)
         depth_t = ((1 << cfg.acc_bits) * (n % 4 + 1) // 6 if mode in ("composite", "xray") else 0) if zout else None
+        clip = None
+        if slab and n % 3 == 1:     # a slab through the blob, soft faces (whole-volume frames)
+            plane, sl = slab_coefficients(trav, ((0.5, -0.8, 0.3), (0.1, 0.0, 1.0), (1.0, 0.2, -0.4))[n // 3 % 3],
+                                          (12.0, 10.0, 8.0), 3.0, 1.5)
+            clip = Clip(plane=plane, slab=sl)
         job = FrameJob(trav, lut, rmap, mode=mode, beats=(copy.deepcopy(sched), rule, bits), gm=gm, stop_m=stop,
-                       depth_t=depth_t,
+                       depth_t=depth_t, clip=clip,
                        stall=(0, 40, 0, 90)[n % 4], stall_out=(0, 0, 60, 30)[n % 4],
                        reset_after_cycles=500 if n == 2 else 0)
         jobs.append(job)
@@ -1143,23 +1152,28 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
         from cube4.vgrad import pack_words
         mem = pack_words(vol, "central", cfg.voxel_bits)
     build = {"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad), **({"GMOD": 1} if gmod else {}),
-             **({"ZOUT": 1} if zout else {})}
+             **({"ZOUT": 1} if zout else {}), **({"SLAB": 1} if slab else {})}
     results = render_frames(mem, jobs, cfg, max_dim=32, build=build)
-    modulated = stopped = 0
+    modulated = stopped = falloff = 0
     zs: set[int] = set()
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
                  f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
                  f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}"
-                 f"{' modulated' if job.gm is not None else ''}{' depth in' if job.stop_m is not None else ''}")
+                 f"{' modulated' if job.gm is not None else ''}{' depth in' if job.stop_m is not None else ''}{' slab' if job.clip is not None else ''}")
         frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
-                      vgrad=vgrad, gm=job.gm, stop_m=job.stop_m, depth_t=job.depth_t)
+                      vgrad=vgrad, gm=job.gm, stop_m=job.stop_m, depth_t=job.depth_t, clip=job.clip)
         if zout:
             px = res["pixels"]
             zs.update(int(z) for z in px["zf"][px["zf"] >= 0])
         box_mem = crop_volume(mem, job.trav)
         fixed = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                             vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
+                             vgrad=vgrad, gm=job.gm, stop_m=job.stop_m, clip=job.clip)
+        if job.clip is not None:
+            hard = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode,
+                                shading=job.rmap is not None, vgrad=vgrad, gm=job.gm,
+                                clip=Clip(plane=job.clip.plane, slab=(job.clip.slab[0], 0, 0)))
+            falloff += int((hard.baseplane != fixed.baseplane).any())
         if job.stop_m is not None:
             free = render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode,
                                 shading=job.rmap is not None, vgrad=vgrad, gm=job.gm)
@@ -1169,7 +1183,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
             modulated += int((plain.baseplane != fixed.baseplane).any())
         ran = copy.deepcopy(sched)     # the golden frame's beats that ran: the RTL's count agrees
         render_frame(box_mem, job.trav, cfg, job.lut, job.rmap, mode=job.mode, shading=job.rmap is not None,
-                     beats=ran, done=rule, vgrad=vgrad, gm=job.gm, stop_m=job.stop_m)
+                     beats=ran, done=rule, vgrad=vgrad, gm=job.gm, stop_m=job.stop_m, clip=job.clip)
         run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
         assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
@@ -1184,3 +1198,4 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     assert not gmod or modulated, "the modulation changed no frame: the test would not see it"
     assert stopped, "the stop slices changed no frame: the test would not see depth in"
     assert not zout or len(zs) > 1, "depth out: the rays' first slices are all equal"
+    assert not slab or falloff, "the slab's falloff changed no frame: the test would not see it"
