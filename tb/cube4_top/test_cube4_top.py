@@ -560,7 +560,8 @@ def test_subpixel_beats(p, q):
         gold.append((sched, rule))
         index.append(n)
     assert len(jobs) == q * q
-    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": 1, "VGRAD": 0})
+    # the build of test_beat_frames_shaded (modulation and slab in it, off in these frames): one build for both
+    results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": 1, "VGRAD": 0, "GMOD": 1, "SLAB": 1})
     ended = 0
     for job, (sched, rule), res in zip(jobs, gold, results):
         label = f"beats P={p} q={q} phase {job.trav.phase_x, job.trav.phase_y}"
