@@ -38,6 +38,9 @@
 //   depth_t    in   the depth-out threshold on T (DEPTH_T), static
 //   added_q    out  S11: the sample added something (w > 0)
 //   passed_q   out  S11: the new T <= depth_t
+//   tau        in   termination's threshold on T (static)
+//   done_q     out  S11: the new T <= tau (composite termination)
+//   done_x_q   out  S11: the new T = 0 and every channel ONE (X-ray's)
 //
 // Bit growth and rounding
 //   T * A: (F+1) x AW bits; round_shift by AW (half up) gives w <= T (F+1 bits).
@@ -53,9 +56,10 @@ module cube4_com_blend #(
 ) (
     input  wire clk,
     input  wire [CMP_W-1:0] acc5, input wire [ALPHA_W-1:0] a5, input wire [23:0] c7,
-    input  wire cnt7, input wire mode_xray, input wire [CW-1:0] depth_t,
+    input  wire cnt7, input wire mode_xray, input wire [CW-1:0] depth_t, input wire [CW-1:0] tau,
     output reg  [CMP_W-1:0] acc_q, output wire [CMP_W-1:0] pix,
-    output reg  added_q, output reg passed_q
+    output reg  added_q, output reg passed_q,
+    output reg  done_q, output reg done_x_q
 );
     generate
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_com_blend", "ALPHA_W", ALPHA_W, 8, 16)
@@ -137,18 +141,21 @@ module cube4_com_blend #(
             always @(posedge clk) begin
                 s10_cin[ch*WC_W +: WC_W] <= {s9_cc[ch*CW +: CW], 8'h80};
                 s10_dsat[ch*(WC_W+1) +: WC_W+1] <= (WC_W+1)'({1'b0, s9_cc[ch*CW +: CW], 8'h80})
-                                                 - (WC_W+1)'({1'b0, ONE} + 1'b1) * (WC_W+1)'(256);
+                                                 - (WC_W+1)'({1'b0, ONE}) * (WC_W+1)'(256);
             end
         end
     endgenerate
 
     // S10: C += round_shift(w * C', 8) (X-ray: at most 2^F), in one add:
     // C + floor((wc + 2^7) / 2^8) = floor((C * 2^8 + 2^7 + wc) / 2^8) (the sum
-    // needs CW + 1 bits). The X-ray's sum > ONE, i.e. C * 2^8 + 2^7 + wc >=
-    // (ONE + 1) * 2^8, is the sign of a second add beside the first,
-    // s10_dsat + wc, with s10_dsat in [-2^WC_W, 0) and wc in [0, 2^WC_W): it
-    // fits WC_W + 2 signed bits and nothing wraps (no compare after the add)
+    // needs CW + 1 bits). The X-ray's sum >= ONE, i.e. C * 2^8 + 2^7 + wc >=
+    // ONE * 2^8, is the sign of a second add beside the first, s10_dsat + wc,
+    // with s10_dsat in [-2^WC_W, 2^7] (C <= ONE) and wc in [0, 2^WC_W): it
+    // fits WC_W + 2 signed bits and nothing wraps (no compare after the add).
+    // The X-ray's channel is then ONE (a sum of exactly ONE is ONE either way),
+    // and "the channel is ONE" is that sign, for termination (done_x_q)
     wire [3*CW-1:0] c_out;
+    wire [2:0]      c_one;          // X-ray: the channel is ONE
     generate
         for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
             wire [WC_W:0] sum_x = {1'b0, s10_cin[ch*WC_W +: WC_W]} + {1'b0, s10_wc[ch*WC_W +: WC_W]};
@@ -156,15 +163,23 @@ module cube4_com_blend #(
             wire unused_frac = ^sum_x[7:0];
             wire signed [WC_W+1:0] sat_x = $signed({s10_dsat[ch*(WC_W+1) + WC_W], s10_dsat[ch*(WC_W+1) +: WC_W+1]})
                                          + $signed({2'b00, s10_wc[ch*WC_W +: WC_W]});
-            wire over = !sat_x[WC_W+1];    // sum > ONE
+            wire over = !sat_x[WC_W+1];    // sum >= ONE
             wire unused_sat = ^{sat_x[WC_W:0], sum[CW]};
             assign c_out[ch*CW +: CW] = (mode_xray && over) ? ONE : sum[CW-1:0];
+            assign c_one[ch] = over;
         end
     endgenerate
 
     // S11: the new partial result (the slice buffer's write word, beside the
     // sums), and the pixel {R, G, B, A = 1 - T} from it
     always @(posedge clk) acc_q <= {c_out, s10_t};
+    // termination's rule on the S11 word, registered with it (the word's compares
+    // would sit between acc_q and the slice buffer's write otherwise):
+    // composite T <= tau; X-ray T = 0 and every channel ONE
+    always @(posedge clk) begin
+        done_q   <= s10_t <= tau;
+        done_x_q <= (s10_t == '0) && (&c_one);
+    end
     assign pix = {acc_q[CW +: 3*CW], ONE - acc_q[0 +: CW]};
 endmodule
 `default_nettype wire

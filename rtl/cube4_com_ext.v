@@ -36,6 +36,8 @@
 //   acc_q     out  S11: the new {v, R, G, B, A}, as acc5
 //   pix       out  S11: {R, G, B, A}, ACC_W + 1 bits each, Q0.ACC_W
 //   take_q    out  S11: the sample was taken (depth out)
+//   vmin, vmax in  termination's values (static)
+//   done_q    out  S11: acc_q's v is vmin (MinIP) or vmax (MIP)
 //
 // Bit growth and rounding: no arithmetic but the comparison; the pixel's
 //   shifts lose nothing, A's round_shift rounds half up and stays <= 2^ACC_W.
@@ -49,8 +51,9 @@ module cube4_com_ext #(
     input  wire clk,
     input  wire [VOXEL_W-1:0] v0, input wire [EXT_W-1:0] acc5, input wire [LUT_W-1:0] rgba7,
     input  wire cnt6, input wire mode_min,
+    input  wire [VOXEL_W-1:0] vmin, input wire [VOXEL_W-1:0] vmax,
     output reg  [EXT_W-1:0] acc_q, output wire [4*CW-1:0] pix,
-    output reg  take_q
+    output reg  take_q, output reg done_q
 );
     generate
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_com_ext", "ALPHA_W", ALPHA_W, 8, 16)
@@ -88,6 +91,9 @@ module cube4_com_ext #(
         s9_e    <= s8_e;
         s10_e   <= s9_e;
         acc_q   <= s10_e;               // S11
+        // termination's rule on the S11 word, registered with it: its v is the
+        // volume's largest (MIP) or smallest (MinIP) value
+        done_q  <= s10_e[LUT_W +: VOXEL_W] == (mode_min ? vmin : vmax);
     end
     // depth out: the sample was taken, carried S7 -> S11 beside the word
     reg s8_take, s9_take, s10_take;

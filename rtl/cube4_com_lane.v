@@ -166,6 +166,7 @@ module cube4_com_lane #(
     // ---- S6 .. S11: the datapaths (their S11 registers) ----
     wire cnt6_t, cnt7_t;                // the counts, without a ray done before (TERM)
     wire added_c, passed_c, take_e;     // S11: the datapaths' depth-out flags
+    wire done_c, done_x, done_e;        // S11: termination's rule on their words
     wire [AC_W-1:0]  acc_c, acc_e;       // S11: the blending, the extremum word
     wire [CMP_W-1:0] pix_c, pix_e;
     generate
@@ -174,25 +175,28 @@ module cube4_com_lane #(
             cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
                 .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend),
                 .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt7_t), .mode_xray(mode_xray), .depth_t(depth_t),
-                .acc_q(acc_c_q), .pix(pix_c), .added_q(added_c), .passed_q(passed_c));
+                .tau(term_tau), .acc_q(acc_c_q), .pix(pix_c), .added_q(added_c), .passed_q(passed_c),
+                .done_q(done_c), .done_x_q(done_x));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
             wire unused_blend = ^{mode_xray, cnt7_t, a5_blend, depth_t};
             assign acc_c = '0;
             assign pix_c = '0;
-            assign {added_c, passed_c} = 2'b00;
+            assign {added_c, passed_c, done_c, done_x} = 4'b0000;
         end
         if (EXTREMUM != 0) begin : g_ext
             wire [EXT_W-1:0] acc_e_q;
             cube4_com_ext #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W), .VOXEL_W(VOXEL_W)) u_ext (
                 .clk(clk), .v0(smp0), .acc5(acc_in[EXT_W-1:0]), .rgba7(s7_rgba), .cnt6(cnt6_t),
-                .mode_min(mode_min), .acc_q(acc_e_q), .pix(pix_e), .take_q(take_e));
+                .mode_min(mode_min), .vmin(term_vmin), .vmax(term_vmax),
+                .acc_q(acc_e_q), .pix(pix_e), .take_q(take_e), .done_q(done_e));
             assign acc_e = AC_W'(acc_e_q);
         end else begin : g_no_ext
             wire unused_ext = ^{cnt6_t, s7_rgba[0 +: ALPHA_W]};
             assign acc_e = '0;
             assign pix_e = '0;
             assign take_e = 1'b0;
+            assign done_e = 1'b0;
         end
         // the pixel for the FIFO: the mode's
         if (COMPOSITING != 0 && EXTREMUM != 0) begin : g_pix_both
@@ -250,7 +254,8 @@ module cube4_com_lane #(
             end
             assign cnt6_t = cnt_6 && !dead_s[0];
             assign cnt7_t = cnt_7 && !dead_s[1];
-            wire dead11 = term_en && is_dead(DW'(acc_m), ext, mn, mode_xray);
+            // is_dead of the S11 word, from the datapaths' registered flags
+            wire dead11 = term_en && (ext ? done_e : (mode_xray ? done_x : done_c));
             assign rep = rok11 && dead11 && (fresh_s[5] || !dead_s[5]);
             wire [CNT_W-1:0] c_n = rep ? CNT_W'(LAG) : ((c11 != '0) ? c11 - 1'b1 : '0);
             assign acc_n = {c_n, acc_m[AM_W-1:0]};
@@ -261,7 +266,7 @@ module cube4_com_lane #(
             assign cnt6_t = cnt_6;
             assign cnt7_t = cnt_7;
             assign acc_n = acc_m;
-            wire unused_term = ^{term_en, term_tau, term_vmin, term_vmax, rok11};
+            wire unused_term = ^{term_en, term_tau, term_vmin, term_vmax, rok11, done_c, done_x, done_e};
         end
     endgenerate
     // ---- depth out (ZOUT = 1; numerics.md section 21): the ray's two slice

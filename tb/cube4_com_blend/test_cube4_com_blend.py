@@ -3,7 +3,9 @@
 Every cycle a new sample enters at S5 (acc5 = the ray's {C_R, C_G, C_B, T}, a5 = its A),
 with its colour and its "counts" flag two cycles later (c7, cnt7: S7); six edges later acc_q and pix must equal the golden step (``cube4.model.composite``
 or ``cube4.model.xray`` on the same values: w, the rounding, X-ray's saturation) and
-the pixel {C_R, C_G, C_B, 2^ACC_W - T}. The partial results are random but legal
+the pixel {C_R, C_G, C_B, 2^ACC_W - T}, and termination's flags on the new word
+(done_q, done_x_q: ``cube4.beats.TerminationRule.dead`` of composite with a random τ,
+and of X-ray). The partial results are random but legal
 (composite: C <= 2^ACC_W - T per channel, as numerics.md section 7 guarantees; X-ray:
 anything up to 2^ACC_W, with many values at 0 and 2^ACC_W), A and the colours random
 with their extremes, about one sample in five does not count. The unit has no stream
@@ -20,6 +22,7 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
+from cube4.beats import TerminationRule
 from cube4.config import Cube4Config
 from cube4.model import composite, xray
 from cube4_sim import rtl_sources, run_test
@@ -53,12 +56,16 @@ async def test_blend(dut):
     cfg = Cube4Config(alpha_bits=aw, acc_bits=acc_w)
     rng = np.random.default_rng(cocotb.RANDOM_SEED)
     Clock(dut.clk, 10, unit="ns").start(start_high=False)
-    checked = 0
+    checked = dones = 0
     for mode in ("composite", "xray"):
         acc, trans, rgba, count = random_states(rng, N, acc_w, aw, mode)
         exp_acc, exp_t = acc.copy(), trans.copy()
         (composite if mode == "composite" else xray)(exp_acc, exp_t, rgba, count, cfg)
         dut.mode_xray.value = int(mode == "xray")
+        tau = int(rng.integers(0, 1 << acc_w))
+        dut.tau.value = tau
+        rule = TerminationRule(mode, tau, 1 << acc_w)
+        exp_done = rule.dead(exp_acc, exp_t, None)
         for t in range(N + LATENCY):
             await FallingEdge(dut.clk)
             if t < N:
@@ -76,8 +83,12 @@ async def test_blend(dut):
                 assert got == want, (f"{mode} sample {k}: acc_q {got:#x}, golden {want:#x} (C {acc[:, k]}, "
                                      f"T {trans[k]}, RGBA {rgba[:, k]}, counts {count[k]})")
                 assert pix == want_pix, f"{mode} sample {k}: pix {pix:#x}, golden {want_pix:#x}"
+                done = int((dut.done_x_q if mode == "xray" else dut.done_q).value)
+                assert done == int(exp_done[k]), f"{mode} sample {k}: done {done}, golden {int(exp_done[k])} (tau {tau})"
+                dones += done
                 checked += 1
     assert checked == 2 * N, f"{checked} outputs compared, expected {2 * N}"
+    assert 0 < dones < checked, f"done on {dones} of {checked} steps: the flags would not be seen"
     dut._log.info("ALPHA_W=%d ACC_W=%d: %d steps bit-exact", aw, acc_w, checked)
 
 

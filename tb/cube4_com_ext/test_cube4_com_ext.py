@@ -5,7 +5,8 @@ Every cycle a new sample enters: its v at R0 (v0), the ray's kept {v, R, G, B, A
 at S7 (rgba7); six edges after S5, acc_q and pix must equal the golden step
 (``cube4.model.extremum``: take when v >= (MinIP: <=) the kept v and the sample counts)
 and ``cube4.model.extremum_pixel`` of the result (colour << (ACC_W - 8), A shifted or
-round_shift'ed to ACC_W bits). v and the kept v are drawn from a few values so that
+round_shift'ed to ACC_W bits), and termination's flag on the new word (done_q:
+``cube4.beats.TerminationRule.dead``, vmin and vmax two of the drawn values). v and the kept v are drawn from a few values so that
 ties (v = kept v) are frequent; about one sample in five does not count. The unit has
 no stream interface (it moves on every cycle); the check counts the compared outputs.
 
@@ -20,6 +21,7 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
+from cube4.beats import TerminationRule
 from cube4.config import Cube4Config
 from cube4.model import extremum, extremum_pixel
 from cube4_sim import rtl_sources, run_test
@@ -42,7 +44,7 @@ async def test_extremum(dut):
     rng = np.random.default_rng(cocotb.RANDOM_SEED)
     Clock(dut.clk, 10, unit="ns").start(start_high=False)
     widths = [vw, 8, 8, 8, aw]
-    checked = 0
+    checked = dones = 0
     for minimum in (False, True):
         vals = rng.integers(0, 1 << vw, size=4)                  # few values: many ties
         s = rng.choice(vals, size=N)
@@ -55,6 +57,10 @@ async def test_extremum(dut):
         extremum(exp_v, exp_h, s, rgba, count, minimum)
         exp_pix = extremum_pixel(exp_h, cfg)
         dut.mode_min.value = int(minimum)
+        vmin, vmax = int(vals.min()), int(vals.max())
+        dut.vmin.value, dut.vmax.value = vmin, vmax
+        rule = TerminationRule("minip" if minimum else "mip", 0, 1 << acc_w, vmin, vmax, value_bits=vw)
+        exp_done = rule.dead(None, None, exp_v)
         for t in range(N + 11):
             await FallingEdge(dut.clk)
             if t < N:
@@ -74,8 +80,12 @@ async def test_extremum(dut):
                 assert got == want, (f"{what} sample {k}: acc_q {got:#x}, golden {want:#x} (v {s[k]}, kept "
                                      f"{value[k]}, counts {count[k]})")
                 assert pix == want_pix, f"{what} sample {k}: pix {pix:#x}, golden {want_pix:#x}"
+                done = int(dut.done_q.value)
+                assert done == int(exp_done[k]), f"{what} sample {k}: done {done}, golden {int(exp_done[k])}"
+                dones += done
                 checked += 1
     assert checked == 2 * N, f"{checked} outputs compared, expected {2 * N}"
+    assert 0 < dones < checked, f"done on {dones} of {checked} steps: the flag would not be seen"
     dut._log.info("VOXEL_W=%d ALPHA_W=%d ACC_W=%d: %d steps bit-exact", vw, aw, acc_w, checked)
 
 
