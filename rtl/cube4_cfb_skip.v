@@ -87,7 +87,8 @@ module cube4_cfb_skip #(
         .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .ln_valid(ln_valid), .ln_ready(ln_ready), .ln_bits(ln_bits));
-    cube4_ram_fifo #(.DATA_W(RATE * QN), .DEPTH(LN_DEPTH)) u_queue (
+    // (the block RAMs' word through their output registers: OUT_REG)
+    cube4_ram_fifo #(.DATA_W(RATE * QN), .DEPTH(LN_DEPTH), .OUT_REG(1)) u_queue (
         .clk(clk), .rst(rst || start),
         .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_packed),
         .out_valid(q_valid), .out_ready(q_ready), .out_data(q_packed));
