@@ -100,7 +100,7 @@ LINT_SETS_cube4_credit_fifo := DEPTH=4 DATA_W=1 DATA_W=643,DEPTH=32 DATA_W=64,DE
 LINT_SETS_cube4_prim_copies := N=8 W=64,N=512 N=3,W=2,RESET=0 W=100,RESET=0 W=65,N=2
 LINT_SETS_cube4_gra         := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12 \
                                 P=1,RECTS=1 P=5,RECTS=1,MAX_DIM=64 P=64,RECTS=1,MAX_DIM=64 P=2,RECTS=1,MAX_DIM=2 \
-                                P=1,LABELS=1 P=5,VOXEL_W=12,LABELS=1,MAX_SS_LOG2=2  P=1,BEATS=1,MAX_DIM=32
+                                P=1,LABELS=1 P=5,VOXEL_W=12,LABELS=1,MAX_SS_LOG2=2  P=1,BEATS=1,MAX_DIM=32 P=5,BEATS=1,LABELS=1,MAX_DIM=32
 LINT_SETS_cube4_gra_lines   := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) VOXEL_W=12 VOXEL_W=16,WEIGHT_W=12
 LINT_SETS_cube4_gra_walk    := P=1 P=5,MAX_DIM=64 P=64,MAX_DIM=64 P=2,MAX_DIM=2 VOXEL_W=12
 LINT_SETS_cube4_gra_beats   := P=1 P=5,MAX_DIM=64 P=64,MAX_DIM=64 P=2,MAX_DIM=2 VOXEL_W=12

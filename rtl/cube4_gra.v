@@ -98,8 +98,8 @@ module cube4_gra #(
         `CUBE4_RANGE(g_bad_rects, "cube4_gra", "RECTS", RECTS, 0, 1)
         `CUBE4_RANGE(g_bad_labels, "cube4_gra", "LABELS", LABELS, 0, 1)
         `CUBE4_RANGE(g_bad_beats, "cube4_gra", "BEATS", BEATS, 0, 1)
-        if (LABELS != 0 && (RECTS != 0 || BEATS != 0)) begin : g_labels_rects
-            $error("cube4_gra: LABELS = 1 needs RECTS = 0 and BEATS = 0");
+        if (LABELS != 0 && RECTS != 0) begin : g_labels_rects
+            $error("cube4_gra: LABELS = 1 needs RECTS = 0");
         end
         if (BEATS != 0 && (RECTS != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
             $error("cube4_gra: BEATS = 1 needs RECTS = 0 and MAX_SS_LOG2 = 0");

@@ -124,6 +124,38 @@ def test_hidden_label_is_empty_space(head_words):
     assert busy.any() and not (busy & (cell_ranges(labs)[1] == 0)).any()   # no busy cell all hidden
 
 
+def test_beat_schedule_with_labels(head_words):
+    """Beat skipping and ray termination with labels: the block table keeps, per label,
+    the blocks that hold it, so a hidden label's blocks are empty; the image is the fixed
+    schedule's bit for bit, with fewer beats than with the hidden label shown, and than a
+    table of the words' ranges would need (a label's blocks test its own LUT block)."""
+    from cube4.beats import BlockTable
+    sc = parse_scene(label_scene(render={"skip": "beats"}))
+    cfg = config_for(sc, 4)
+    assert scene_build([sc])["LABELS"] and scene_build([sc])["BEATS"]
+    _, beats, st = golden_view(head_words, sc, cfg)
+    _, fixed, _ = golden_view(head_words, dataclasses.replace(sc, skip=False), cfg)
+    assert (beats.baseplane == fixed.baseplane).all()
+    entries = label_scene()["label"]
+    shown = parse_scene(label_scene(render={"skip": "beats"},
+                                    label=[{"index": 0, "points": [[0, 1, 1, 1, 0.02], [1, 1, 1, 1, 0.02]]},
+                                           *entries[1:]]))
+    _, _, st_all = golden_view(head_words, shown, cfg)
+    assert st["beats"]["run_beats"] < st_all["beats"]["run_beats"], (st["beats"], st_all["beats"])
+    lut = golden_view(head_words, sc, cfg)[0].lut
+    by_label = BlockTable.of(head_words, 4, value_bits=8).bits(lut, "composite")
+    held = BlockTable.of(head_words, 4, value_bits=8).labels
+    assert set(held) == {0, 1, 2, 3} and by_label.any() and not by_label[~(held[1] | held[2] | held[3])].any()
+    # a block of label 1 at 200 beside label 2 at 10: a label-1 sample between them (100)
+    # counts; the words' range (1·256 + 200 .. 2·256 + 10) does not hold its word
+    words = pack_words(np.full((4, 4, 4), 200), np.ones((4, 4, 4), dtype=np.int64), 8)
+    words[2:] = pack_words(np.full((2, 4, 4), 10), np.full((2, 4, 4), 2), 8)
+    lut1 = np.zeros((16 * 256, 4), dtype=np.int64)
+    lut1[256 + 100, 3] = 1
+    assert BlockTable.of(words, 4, value_bits=8).bits(lut1, "composite").all()
+    assert not BlockTable.of(words, 4).bits(lut1, "composite").any()
+
+
 def test_golden_near_the_reference(head_words):
     """The golden model against the point-sampled reference (the hardware's rule, nearest)
     is within 3 dB of its distance on the unlabelled scene; the labels change the picture."""
@@ -158,7 +190,7 @@ def test_scene_keys_and_errors(head_words):
                      ({"label": [{"index": 1, "colour": 1}]}, "unknown key"),
                      ({"labels": {"resample": "cubic"}}, "resample must be one of"),
                      ({"label": [{"index": 1}], "render": {"mode": "mip"}}, "blending modes"),
-                     ({"label": [{"index": 1}], "render": {"skip": "beats"}}, "fixed and box schedules"),
+                     ({"label": [{"index": 1}], "render": {"skip": "rects"}}, "fixed, box and beat schedules"),
                      ({"label": [{"index": 1}], "render": {"path_weights": True}}, "path weights"),
                      ({"label": [{"index": 1}], "render": {"preview": 2}}, "preview level")):
         with pytest.raises(UserError, match=msg):

@@ -107,29 +107,57 @@ def _axis_ranges(a: np.ndarray, axis: int, block: int, margin: int) -> tuple[np.
 @dataclass
 class BlockTable:
     """The view-independent occupancy table of one volume: per block of B³ voxels, the
-    value range over the block grown by MARGIN voxels; ``bits`` for one LUT."""
+    value range over the block grown by MARGIN voxels; ``bits`` for one LUT. A labelled
+    volume (cube4.labels: words label · 2^V + value) keeps the ranges of the values and,
+    per label, the blocks whose grown region holds it (``labels``): a sample takes the
+    label of one of its cell's corners and a value within the cell's range, so a block
+    may count when, for a label it holds, a value in its range counts in that label's
+    LUT block (numerics.md §24; a hidden label is empty space)."""
 
     block: int
     dims: tuple[int, int, int]          # (nx, ny, nz) of the volume
     lo: np.ndarray                      # (bz, by, bx)
     hi: np.ndarray
     build_s: float = 0.0                # host time for the ranges (once per volume)
+    labels: dict | None = None          # label -> (bz, by, bx) bool: the grown block holds it
 
     @classmethod
-    def of(cls, vol: np.ndarray, block: int = BLOCK) -> "BlockTable":
+    def of(cls, vol: np.ndarray, block: int = BLOCK, value_bits: int | None = None) -> "BlockTable":
+        """``value_bits``: vol holds labelled words with values of that many bits."""
         if block < 1:
             raise ValueError(f"block must be at least 1, got {block}")
         t0 = time.perf_counter()
+        labels = None
+        if value_bits is not None:
+            from .labels import split_words
+            vals, labs = split_words(vol, value_bits)
+            labels = {}
+            for lb in np.unique(labs):
+                m = (labs == lb).astype(np.int32)
+                for axis in range(3):
+                    _, m = _axis_ranges(m, axis, block, MARGIN)
+                labels[int(lb)] = m > 0
+            vol = vals
         v = vol.astype(np.int32)
         lo, hi = v, v
         for axis in range(3):
             lo, _ = _axis_ranges(lo, axis, block, MARGIN)
             _, hi = _axis_ranges(hi, axis, block, MARGIN)
         nz, ny, nx = vol.shape
-        return cls(block, (nx, ny, nz), lo, hi, time.perf_counter() - t0)
+        return cls(block, (nx, ny, nz), lo, hi, time.perf_counter() - t0, labels)
 
     def bits(self, lut: np.ndarray, mode: str) -> np.ndarray:
         """(bz, by, bx) bool: may a sample whose first voxel lies in the block count."""
+        if self.labels is None:
+            return self._range_bits(lut, mode)
+        from .labels import lut_value_bits
+        n = 1 << lut_value_bits(lut)
+        out = np.zeros(self.lo.shape, dtype=bool)
+        for lb, held in self.labels.items():
+            out |= held & self._range_bits(lut[lb * n:(lb + 1) * n], mode)
+        return out
+
+    def _range_bits(self, lut: np.ndarray, mode: str) -> np.ndarray:
         flags = counting_values(lut, mode).astype(np.int64)
         prefix = np.concatenate([[0], np.cumsum(flags)])
         return prefix[self.hi + 1] - prefix[self.lo] > 0

@@ -318,7 +318,8 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
         raise ValueError(f"beat_skip: unknown keys {sorted(unknown)}")
     sc = vp.scene
     t0 = time.perf_counter()
-    table = BlockTable.of(level_of(vol, sc), opts.get("block", 4))
+    table = BlockTable.of(level_of(vol, sc), opts.get("block", 4),     # labelled words: by label
+                          value_bits=cfg.voxel_bits if sc.labels is not None else None)
     bits = table.bits(vp.lut, sc.mode)
     table_s = time.perf_counter() - t0
     terminate = bool(opts.get("terminate", True))

@@ -396,7 +396,7 @@ def render_frame(
     gm: gradient-magnitude modulation's table (cube4.gmod, numerics.md §23; shaded frames).
     labels: vol holds labelled words (cube4.labels.pack_words) and lut has 16 · 2^V rows:
     each sample is classified by the entry label · 2^V + value, its label the nearest
-    corner's (numerics.md §24; the fixed and box schedules only).
+    corner's (numerics.md §24; not with slice rectangles).
     rects: slice rectangles (cube4.slices, numerics.md §18): each slice computes only its
     rectangle, and only its samples count; None: every slice is the whole box.
     beats: beat skipping (cube4.beats, numerics.md §19): samples outside the slice's
@@ -409,8 +409,9 @@ def render_frame(
         raise ValueError("beat skipping needs the termination rule (done)")
     if beats is not None and stop_m is not None:
         beats.limit_stop(stop_m)    # depth in: the geometry's stop ends the ray's run too
-    if labels and (vgrad or rects is not None or beats is not None or not is_blend(mode)):
-        raise ValueError("labels run on the fixed and box schedules, in the blending modes, without voxel gradients")
+    if labels and (vgrad or rects is not None or not is_blend(mode)):
+        raise ValueError("labels run on the fixed, box and beat schedules, in the blending modes, without voxel "
+                         "gradients")
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
     shading = shading and mode == "composite"

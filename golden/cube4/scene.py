@@ -268,9 +268,9 @@ def label_scene_checks(mode: str, skip, path_weights: bool, preview: int) -> Non
     if not is_blend(mode):
         raise UserError(f"scene: labels classify the blending modes (composite, xray), not {mode}: "
                         "MIP and MinIP pick a value, not a material")
-    if skip in ("rects", "beats"):
-        raise UserError(f"scene: labels run on the fixed and box schedules: render.skip must be true or false, "
-                        f"got {shown(skip)}")
+    if skip == "rects":
+        raise UserError(f"scene: labels run on the fixed, box and beat schedules: render.skip must be true, false "
+                        f"or \"beats\", got {shown(skip)}")
     if path_weights:
         raise UserError("scene: labels do not combine with path weights (one table of weighted opacities): "
                         "set [render] path_weights = false")

@@ -1054,7 +1054,7 @@ def test_dram_frames(p):
 # ---------------------------------------------------------------- beat skipping
 @pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0, 1)))
 def test_beat_frames(p):
-    beat_frames(p, shaded=False, zout=True)
+    beat_frames(p, shaded=False, zout=True, labels=True)
 
 
 @pytest.mark.parametrize("p", sweep([8, 1, 5], quick=(0,)))
@@ -1074,7 +1074,7 @@ def test_beat_frames_vgrad(p):
 
 
 def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, zout: bool = False,
-                slab: bool = False) -> None:
+                slab: bool = False, labels: bool = False) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
@@ -1093,7 +1093,9 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     frame, its threshold varied (the extremum modes': 0), the rays' two slices bit for bit
     (with the countdown above them in the buffer word), not all equal. ``slab``: the cut
     slab (SLAB = 1) with its falloff on every third frame (the block table from the LUT
-    covers it: the slab only takes samples away), which changes some frame's plane."""
+    covers it: the slab only takes samples away), which changes some frame's plane.
+    ``labels``: the build has label volumes (LABELS = 1, so PLW = 0: no path weights) and
+    runs label_beat_frames after these frames."""
     from cube4.clip import Clip, slab_coefficients
     import copy
 
@@ -1127,7 +1129,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
         lut[:64] = 0
         if terminate:
             lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
-        if n % 3 != 2:    # path weights on two frames in three (the weighted columns beside the LUT)
+        if n % 3 != 2 and not labels:    # path weights on two frames in three (the weighted columns beside the LUT)
             lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
         bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, mode)
         sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
@@ -1153,7 +1155,8 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
         from cube4.vgrad import pack_words
         mem = pack_words(vol, "central", cfg.voxel_bits)
     build = {"BEATS": 1, "SHADING": int(shaded), "VGRAD": int(vgrad), **({"GMOD": 1} if gmod else {}),
-             **({"ZOUT": 1} if zout else {}), **({"SLAB": 1} if slab else {})}
+             **({"ZOUT": 1} if zout else {}), **({"SLAB": 1} if slab else {}),
+             **({"LABELS": 1, "PLW": 0} if labels else {})}
     results = render_frames(mem, jobs, cfg, max_dim=32, build=build)
     modulated = stopped = falloff = 0
     zs: set[int] = set()
@@ -1189,7 +1192,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
         assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
         if not rule.enabled:
             assert (frame.baseplane == fixed.baseplane).all(), f"{label}: differs from the fixed schedule"
-        if n == 0:   # a weighted frame whose weights change its plane: the test sees them
+        if n == 0 and not labels:   # a weighted frame whose weights change its plane: the test sees them
             assert path_weighted(job.lut, job.mode)
             plain = render_frame(box_mem, job.trav, cfg, job.lut[:, :4], job.rmap, mode=job.mode,
                                  shading=job.rmap is not None, vgrad=vgrad)
@@ -1200,3 +1203,65 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     assert stopped, "the stop slices changed no frame: the test would not see depth in"
     assert not zout or len(zs) > 1, "depth out: the rays' first slices are all equal"
     assert not slab or falloff, "the slab's falloff changed no frame: the test would not see it"
+    if labels:
+        label_beat_frames(p, cfg, rng, build)
+
+
+def label_beat_frames(p: int, cfg: Cube4Config, rng, build: dict) -> None:
+    """Labelled words (label_volume: blocks of random labels, label 0 in a shell) on the
+    beat schedule in ``build`` (BEATS = 1, LABELS = 1): the host's block table keeps the
+    blocks of each label (``BlockTable.of(..., value_bits)``), labels 0 and 7 hidden;
+    composite and X-ray, termination on two frames of three, random stalls: every ray is
+    the golden beat frame's, the beats that ran are its, some beats were skipped, the
+    frame without termination is the fixed schedule's, and the labels change a picture."""
+    import copy
+
+    import cube4.beats as beats
+    from cube4.host import crop_volume
+    from cube4.labels import MAX_LABELS, split_words
+    from cube4.model import render_frame
+
+    dims = (24, 20, 16)
+    words = label_volume(rng, dims, cfg.voxel_bits)
+    values = split_words(words, cfg.voxel_bits)[0]
+    n = 1 << cfg.voxel_bits
+    table = beats.BlockTable.of(words, beats.BLOCK, value_bits=cfg.voxel_bits)
+    cases = [(VIEWS[6], "composite", False), (VIEWS[8], "xray", True), (VIEWS[0], "composite", True)]
+    jobs, gold = [], []
+    for k, (direction, mode, terminate) in enumerate(cases):
+        trav = make_traversal(dims, direction, cfg.weight_bits, 1)
+        lut = np.concatenate([random_tables(rng, cfg)[0] for _ in range(MAX_LABELS)], axis=0)
+        lut[0:n] = 0                                    # label 0 hidden
+        lut[7 * n:8 * n] = 0                            # and label 7
+        if terminate:
+            lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
+        bits = table.bits(lut, mode)
+        sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
+                                   gra=False)
+        rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(values.min()), int(values.max()),
+                                     enabled=terminate, value_bits=cfg.voxel_bits)
+        jobs.append(FrameJob(trav, lut, None, mode=mode, beats=(copy.deepcopy(sched), rule, bits),
+                             depth_t=(1 << cfg.acc_bits) // 3 if build.get("ZOUT") else None,
+                             stall=(0, 50, 0)[k], stall_out=(0, 0, 70)[k]))
+        gold.append((sched, rule))
+    results = render_frames(words, jobs, cfg, max_dim=32, build=build)
+    skipped = changed = 0
+    for k, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
+        label = f"beats P={p} labels view {k} {job.mode}{' terminated' if rule.enabled else ''}"
+        check(words, job.trav, cfg, job.lut, None, res, label, mode=job.mode, beats=(sched, rule), labels=True,
+              depth_t=job.depth_t)
+        box = crop_volume(words, job.trav)
+        ran = copy.deepcopy(sched)
+        render_frame(box, job.trav, cfg, job.lut, None, mode=job.mode, shading=False, beats=ran, done=rule,
+                     labels=True)
+        run = sum(int(ran.run_beats(m).sum()) for m in range(ran.M))
+        assert res["beats_run"] == run, f"{label}: {res['beats_run']} beats ran on the RTL, golden {run}"
+        skipped += int(run < ran.M * ran.NJ * ran.NB)
+        fixed = render_frame(box, job.trav, cfg, job.lut, None, mode=job.mode, shading=False, labels=True)
+        if not rule.enabled:
+            assert (baseplane_from_pixels(res["pixels"], job.trav.baseplane_shape) == fixed.baseplane).all(), \
+                f"{label}: differs from the fixed schedule"
+        plain = render_frame(crop_volume(values, job.trav), job.trav, cfg, job.lut[n:2 * n], None, mode=job.mode,
+                             shading=False)
+        changed += int((plain.baseplane != fixed.baseplane).any())
+    assert skipped and changed, (skipped, changed)
