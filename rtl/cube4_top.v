@@ -357,6 +357,7 @@ module cube4_top #(
     wire [4*P-1:0] com_bits;
     wire           com_eoss;       // the beat is the last of its sample slice
     wire           com_in_take;
+    wire           sha_take;       // SHA's beat leaves (its bits leave their FIFO with it)
     generate
         if (BEATS != 0) begin : g_bits
             // the front end's sample beats pass a skid buffer: its ready (TRI's FIFO
@@ -381,7 +382,7 @@ module cube4_top #(
                     .clk (clk), .rst (rst), \
                     .in_valid (s_valid && smp_ready), .in_ready (b_ready), \
                     .in_data ({smp_eoss, ray_bits_pack(smp_bits)}), \
-                    .out_valid (b_valid), .out_ready (com_in_take), .out_data ({com_eoss, com_packed}));
+                    .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
             if (SHADING != 0 && VGRAD == 0) begin : g_ram
                 `CUBE4_BITS_FIFO(cube4_ram_fifo)
             end else begin : g_regs
@@ -396,7 +397,7 @@ module cube4_top #(
                    {fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss};
             assign com_bits     = '0;
             assign com_eoss     = 1'b0;
-            wire unused_bits = ^{smp_bits, smp_eos, smp_eoss, com_in_take, blk_we, blk_addr, blk_data, com_m,
+            wire unused_bits = ^{smp_bits, smp_eos, smp_eoss, com_in_take, sha_take, blk_we, blk_addr, blk_data, com_m,
                                  com_rep_valid, com_rep_j, com_rep_pb, com_rep_stx, com_rep_sty,
                                  com_rep_en, com_rep_end};
         end
@@ -511,9 +512,39 @@ module cube4_top #(
         .out_fall  (sha_fall)
     );
 
+    wire x_valid, x_ready;          // SHA's stream after the debug hold
     cube4_stream_hold u_hold_sha (
         .hold (dbg_hold[0]), .in_valid (sha_valid), .in_ready (sha_ready),
-        .out_valid (com_in_valid), .out_ready (com_in_ready));
+        .out_valid (x_valid), .out_ready (x_ready));
+    assign sha_take = x_valid && x_ready;
+
+    // BEATS = 1: SHA's beat and its bits pass a skid buffer into COM, whose beat
+    // geometry starts at its own input's push (cube4_com_beats): the route from
+    // SHA's output FIFO across the die to that logic gets a register stage (the
+    // beat schedule's cycles are measured, so a cycle of latency changes no
+    // prediction)
+    localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1;
+    wire [HDR_W-1:0]          c_hdr;
+    wire [P*(24+ALPHA_W)-1:0] c_rgba;
+    wire [PV-1:0]             c_sample;
+    wire [P*FALL_W-1:0]       c_fall;
+    wire [4*P-1:0]            c_bits;
+    wire                      c_eoss;
+    generate
+        if (BEATS != 0) begin : g_com_skid
+            cube4_skid #(.DATA_W (XC_W)) u_com_skid (
+                .clk (clk), .rst (rst),
+                .in_valid (x_valid), .in_ready (x_ready),
+                .in_data ({sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
+                .out_valid (com_in_valid), .out_ready (com_in_ready),
+                .out_data ({c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+        end else begin : g_com_direct
+            assign com_in_valid = x_valid;
+            assign x_ready      = com_in_ready;
+            assign {c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss} =
+                   {sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss};
+        end
+    endgenerate
 
     // ---------------------------------------------------------------- COM
     assign com_in_take = com_in_valid && com_in_ready;
@@ -534,12 +565,12 @@ module cube4_top #(
         .stop_data (stop_data),
         .in_valid  (com_in_valid),
         .in_ready  (com_in_ready),
-        .in_hdr    (sha_hdr),
-        .in_rgba   (sha_rgba),
-        .in_sample (sha_sample),
-        .in_fall   (sha_fall),
-        .in_bits   (com_bits),
-        .in_eoss   (com_eoss),
+        .in_hdr    (c_hdr),
+        .in_rgba   (c_rgba),
+        .in_sample (c_sample),
+        .in_fall   (c_fall),
+        .in_bits   (c_bits),
+        .in_eoss   (c_eoss),
         .frame_start (start && !busy_q),
         .term_en   (cfg_term),
         .term_tau  (cfg_tau[ACC_W:0]),
@@ -604,7 +635,7 @@ module cube4_top #(
             reg [31:0] run_q;
             always @(posedge clk) begin
                 if (rst || (start && !busy_q)) run_q <= 32'd0;
-                else if (com_in_take && (sha_hdr[HDR_LVALID +: P] != '0)) run_q <= run_q + 32'd1;
+                else if (com_in_take && (c_hdr[HDR_LVALID +: P] != '0)) run_q <= run_q + 32'd1;
             end
             assign beats_run = run_q;
         end else begin : g_no_beats_run
