@@ -165,29 +165,30 @@ module cube4_gra_beats
     reg               i0_pgb;        // plane B's (the centre's row is a row)
     reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
     reg               i0_ylast, i0_dyf, i0_dyb;
+    // the step's fields as one word, which moves on i0 -> i1 -> i2
+    localparam integer SW = 14 + PV + HDR_W + M_W + DIM_W + PB_W;
+    wire [SW-1:0] i0_word = {i0_in, i0_dead, i0_fend, i0_gap, i0_sample, i0_hdr, i0_w, i0_r, i0_pb,
+                             i0_pg, i0_bg, i0_pgb, i0_flags, i0_ylast, i0_dyf, i0_dyb};
     // i1: one register stage after i0, whose position reads the position buffers
     // as it moves on (from registers: neither the choice nor its fan-out reaches
     // the block RAMs' addresses and the bypass registers' enables)
-    reg               i1_v, i1_in, i1_dead, i1_fend, i1_gap;
-    reg [PV-1:0]      i1_sample;
-    reg [HDR_W-1:0]   i1_hdr;
-    reg [M_W-1:0]     i1_w;
-    reg [DIM_W-1:0]   i1_r;
-    reg [PB_W-1:0]    i1_pb;
-    reg               i1_pg, i1_bg, i1_pgb;
-    reg [3:0]         i1_flags;
-    reg               i1_ylast, i1_dyf, i1_dyb;
+    reg               i1_v;
+    reg [SW-1:0]      i1_word;
     // i2: the step, one register stage after i1, with the words i1 read (their
     // block RAMs' clock-to-data ends at a register: cube4_gra_pos OUT_STAGE)
-    reg               i2_v, i2_in, i2_dead, i2_fend, i2_gap;
-    reg [PV-1:0]      i2_sample;
-    reg [HDR_W-1:0]   i2_hdr;
-    reg [M_W-1:0]     i2_w;
-    reg [DIM_W-1:0]   i2_r;
-    reg [PB_W-1:0]    i2_pb;
-    reg               i2_pg, i2_bg, i2_pgb;
-    reg [3:0]         i2_flags;
-    reg               i2_ylast, i2_dyf, i2_dyb;
+    reg               i2_v;
+    reg [SW-1:0]      i2_word;
+    wire              i2_in, i2_dead, i2_fend, i2_gap;
+    wire [PV-1:0]     i2_sample;
+    wire [HDR_W-1:0]  i2_hdr;
+    wire [M_W-1:0]    i2_w;
+    wire [DIM_W-1:0]  i2_r;
+    wire [PB_W-1:0]   i2_pb;
+    wire              i2_pg, i2_bg, i2_pgb;
+    wire [3:0]        i2_flags;
+    wire              i2_ylast, i2_dyf, i2_dyb;
+    assign {i2_in, i2_dead, i2_fend, i2_gap, i2_sample, i2_hdr, i2_w, i2_r, i2_pb,
+            i2_pg, i2_bg, i2_pgb, i2_flags, i2_ylast, i2_dyf, i2_dyb} = i2_word;
     wire [P-1:0]      i2_lane_valid = i2_hdr[HDR_LVALID +: P];
     assign step = i2_v && credit[GRA_STEPS-1];
     assign sop  = 1'b0;
@@ -469,18 +470,8 @@ module cube4_gra_beats
     end
 
     always @(posedge clk) begin
-        if (i0_mv) begin
-            {i1_in, i1_dead, i1_fend, i1_gap} <= {i0_in, i0_dead, i0_fend, i0_gap};
-            {i1_sample, i1_hdr, i1_w, i1_r, i1_pb} <= {i0_sample, i0_hdr, i0_w, i0_r, i0_pb};
-            {i1_pg, i1_bg, i1_pgb, i1_flags} <= {i0_pg, i0_bg, i0_pgb, i0_flags};
-            {i1_ylast, i1_dyf, i1_dyb} <= {i0_ylast, i0_dyf, i0_dyb};
-        end
-        if (i1_mv) begin
-            {i2_in, i2_dead, i2_fend, i2_gap} <= {i1_in, i1_dead, i1_fend, i1_gap};
-            {i2_sample, i2_hdr, i2_w, i2_r, i2_pb} <= {i1_sample, i1_hdr, i1_w, i1_r, i1_pb};
-            {i2_pg, i2_bg, i2_pgb, i2_flags} <= {i1_pg, i1_bg, i1_pgb, i1_flags};
-            {i2_ylast, i2_dyf, i2_dyb} <= {i1_ylast, i1_dyf, i1_dyb};
-        end
+        if (i0_mv) i1_word <= i0_word;
+        if (i1_mv) i2_word <= i1_word;
     end
     wire [META_W-1:0] x_meta = {i2_in, i2_hdr};
 

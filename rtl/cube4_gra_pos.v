@@ -131,52 +131,47 @@ module cube4_gra_pos #(
     wire [AWD-1:0] a_w;
     wire [PV-1:0]  b_w;
     wire [BMW-1:0] m_w;
+    // the read's addresses, kept for a write that lands while it waits for mv
+    reg [PAW-1:0]  ra_a1, ra_b1;
+    reg [PB_W-1:0] ra_m1;
+    wire hit_a = (OUT_STAGE != 0) && we_a && (wa_a == ra_a1);
+    wire hit_b = (OUT_STAGE != 0) && we_b && (wa_b == ra_b1);
+    wire hit_m = (OUT_STAGE != 0) && we_m && (i0_pb == ra_m1);
+    always @(posedge clk) begin
+        if (ld) begin                                // a write in the read's own cycle
+            ra_a1 <= ra_a;
+            ra_b1 <= ra_b;
+            ra_m1 <= ld_pb;
+            by_a  <= we_a && (wa_a == ra_a);
+            by_b  <= we_b && (wa_b == ra_b);
+            by_m  <= we_m && (i0_pb == ld_pb);
+            bd_a  <= wd_a;
+            bd_b  <= wd_b;
+            bd_m  <= wd_m;
+        end else begin                               // OUT_STAGE = 1: one while it waits
+            if (hit_a) {by_a, bd_a} <= {1'b1, wd_a};
+            if (hit_b) {by_b, bd_b} <= {1'b1, wd_b};
+            if (hit_m) {by_m, bd_m} <= {1'b1, wd_m};
+        end
+    end
+    wire [AWD-1:0] n_a = hit_a ? wd_a : (by_a ? bd_a : rd_a);   // the word with every write since
+    wire [PV-1:0]  n_b = hit_b ? wd_b : (by_b ? bd_b : rd_b);
+    wire [BMW-1:0] n_m = hit_m ? wd_m : (by_m ? bd_m : rd_m);
     generate
         if (OUT_STAGE == 0) begin : g_direct
-            always @(posedge clk) begin
-                if (ld) begin
-                    by_a <= we_a && (wa_a == ra_a);
-                    by_b <= we_b && (wa_b == ra_b);
-                    by_m <= we_m && (i0_pb == ld_pb);
-                    bd_a <= wd_a;
-                    bd_b <= wd_b;
-                    bd_m <= wd_m;
-                end
-            end
-            assign a_w = by_a ? bd_a : rd_a;
-            assign b_w = by_b ? bd_b : rd_b;
-            assign m_w = by_m ? bd_m : rd_m;
-            wire unused_mv = mv;   // (the words are read for the step itself)
+            assign a_w = n_a;
+            assign b_w = n_b;
+            assign m_w = n_m;
+            wire unused_mv = ^{mv, ra_a1, ra_b1, ra_m1};   // (the words are read for the step itself)
         end else begin : g_stage
-            // the read waiting for mv: its addresses, and a write to them since
-            reg [PAW-1:0]  ra_a1, ra_b1;
-            reg [PB_W-1:0] ra_m1;
-            wire hit_a = we_a && (wa_a == ra_a1);
-            wire hit_b = we_b && (wa_b == ra_b1);
-            wire hit_m = we_m && (i0_pb == ra_m1);
             reg [AWD-1:0]  q_a;
             reg [PV-1:0]   q_b;
             reg [BMW-1:0]  q_m;
             always @(posedge clk) begin
                 if (mv) begin
-                    q_a <= hit_a ? wd_a : (by_a ? bd_a : rd_a);
-                    q_b <= hit_b ? wd_b : (by_b ? bd_b : rd_b);
-                    q_m <= hit_m ? wd_m : (by_m ? bd_m : rd_m);
-                end
-                if (ld) begin
-                    ra_a1 <= ra_a;
-                    ra_b1 <= ra_b;
-                    ra_m1 <= ld_pb;
-                    by_a  <= we_a && (wa_a == ra_a);
-                    by_b  <= we_b && (wa_b == ra_b);
-                    by_m  <= we_m && (i0_pb == ld_pb);
-                    bd_a  <= wd_a;
-                    bd_b  <= wd_b;
-                    bd_m  <= wd_m;
-                end else begin
-                    if (hit_a) {by_a, bd_a} <= {1'b1, wd_a};
-                    if (hit_b) {by_b, bd_b} <= {1'b1, wd_b};
-                    if (hit_m) {by_m, bd_m} <= {1'b1, wd_m};
+                    q_a <= n_a;
+                    q_b <= n_b;
+                    q_m <= n_m;
                 end
             end
             assign a_w = q_a;
