@@ -97,6 +97,8 @@
 //             position t in the partial beam (cube4_cfb_skip)
 //   in_eoss   BEATS: the beat is the last of its slice (cube4_frontend's
 //             smp_eoss): com_m counts the slice once the beat has passed
+//   in_geo    BEATS: {stepx, stepy [DIM_W], ph_x, ph_y [PHASE_W]} of the beat's
+//             slice (cube4_com_steps, where the beats leave SHA); else unused
 //   frame_start, term_en, term_tau [ACC_W+1] (Q0.ACC_W), term_vmin, term_vmax
 //             [VOXEL_W]   BEATS: the frame's start; termination's rule (static)
 //   rep_valid, rep_j, rep_pb, rep_stx, rep_sty, rep_en [P] (by position),
@@ -119,7 +121,8 @@ module cube4_com #(
     parameter integer LAG   = `CUBE4_BEAT_LAG,
     `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
-    localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1   // the path-weight columns
+    localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1,  // the path-weight columns
+    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W         // cube4_com_steps' q_geo
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
@@ -137,6 +140,7 @@ module cube4_com #(
     input  wire [P*FALL_W-1:0] in_fall,
     input  wire [4*P-1:0] in_bits,      // BEATS = 1: the beat's {soon, last, fresh, run}
     input  wire           in_eoss,      // BEATS = 1: the beat is the last of its slice
+    input  wire [GEO_W-1:0] in_geo,     // BEATS = 1: the steps and phases of its slice
     // BEATS = 1: ray termination's rule (static in a frame), the frame's start, and
     // the reports into the front end's ray table (cube4_cfb_decide's rep_*, com_m)
     input  wire frame_start,
@@ -201,29 +205,27 @@ module cube4_com #(
     // register; otherwise straight in (the fixed, box and rectangle schedules,
     // whose cycles the golden model predicts) ====
     localparam integer IN_W = HDR_W + P * (24 + ALPHA_W) + P * VOXEL_W + P * FALL_W + 4 * P + 1;
-    localparam integer GEO_W = (BEATS != 0) ? 2 * DIM_W + 2 * PHASE_W : 1;   // cube4_com_beats' q_geo
     wire                      c_valid, c_ready, c_eoss;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;
     wire [P*VOXEL_W-1:0]      c_sample;
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
-    wire [GEO_W-1:0]          q_geo, c_geo;   // BEATS: the beat's steps and phases, with it
+    wire [GEO_W-1:0]          c_geo;          // BEATS: the beat's steps and phases, with it
     generate
         if (BEATS != 0) begin : g_in_skid
             cube4_skid #(.DATA_W(IN_W + GEO_W)) u_in (
                 .clk(clk), .rst(rst),
                 .in_valid(in_valid), .in_ready(in_ready),
-                .in_data({q_geo, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
+                .in_data({in_geo, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
                 .out_valid(c_valid), .out_ready(c_ready),
                 .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};
             assign in_ready = c_ready;
-            assign q_geo = '0;
             assign c_geo = '0;
-            wire unused_geo = ^{q_geo, c_geo};
+            wire unused_geo = ^{in_geo, c_geo};
         end
     endgenerate
 
@@ -298,7 +300,7 @@ module cube4_com #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W)
             ) u_beats (
                 .clk(clk), .rst(rst), .cfg(cfg), .in_bits(c_bits), .tpos(tpos),
-                .q_push(in_valid && in_ready), .q_hdr(in_hdr), .q_geo(q_geo), .c_geo(c_geo),
+                .c_geo(c_geo),
                 .in_hdr(c_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),

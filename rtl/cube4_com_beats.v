@@ -18,11 +18,11 @@
 //   the header). The steps of the beat's slice m: a phase accumulator per
 //   axis that adds VIEW each time the beats' slice moves on (slices arrive
 //   in order, each with at least one beat: its marker), from PH0 at a
-//   frame's first beat (SOP), as cube4_cfb_steps; it runs where the beats
-//   enter COM's input queue (cube4_com's skid buffer: q_push, a register's
-//   ready and the upstream valid), so the beat's steps and phases go
-//   through the queue with it and R0 registers them (c_geo) on every cycle:
-//   neither the take nor the hazard reaches them. The slot, the
+//   frame's first beat (SOP): cube4_com_steps, where the beats leave SHA
+//   (cube4_top), so the beat's steps and phases come with it through the
+//   skid buffers and R0 registers them (c_geo) on every cycle: neither the
+//   take nor the hazard reaches them, and no logic of them lies on the route
+//   from SHA to COM. The slot, the
 //   read-after-write rule by position and "the previous beat is the row
 //   above": cube4_com_slot, as cube4_com_rect's.
 //
@@ -33,7 +33,7 @@
 // Latency
 //   The bits and the steps: registered as the header enters R0 (fresh, stx,
 //   sty: combinational from R0 registers at S0; R0 loads on every cycle);
-//   q_geo combinational from q_hdr and the accumulators; nx_in from an S1
+//   nx_in from an S1
 //   register.
 //   hazard: combinational from in_hdr and the slots of R0 .. S9 (in_ready
 //   then depends on in_hdr, as with rectangles). col1_4: S4.
@@ -42,10 +42,8 @@
 //   in_bits   in   [4P] the offered beat's {soon, last, fresh, run}, P bits
 //                  each by position t in the partial beam
 //   tpos      in   [P*LANE_W] S0: lane q's position t (cube4_com_seq)
-//   q_push, q_hdr  a beat enters COM's input queue (in the order R0 takes
-//                  the beats); its header
-//   q_geo     out  [GEO_W] that beat's {stx, sty, ph_x, ph_y} (combinational)
-//   c_geo     in   [GEO_W] the offered beat's q_geo (from the queue, with it)
+//   c_geo     in   [GEO_W] the offered beat's {stx, sty, ph_x, ph_y}
+//                  (cube4_com_steps' q_geo, come with the beat)
 //   in_hdr    in   the offered beat's header
 //   step, v_fly, sp_fly   R0, S1 .. S9 hold a beat; S1 .. S9's slots
 //   r0_m, r0_j, r0_pb   R0's fields (cube4_com_seq)
@@ -67,7 +65,6 @@ module cube4_com_beats #(
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
     input  wire [4*P-1:0] in_bits, input wire [P*LANE_W-1:0] tpos,
-    input  wire q_push, input wire [HDR_W-1:0] q_hdr, output wire [GEO_W-1:0] q_geo,
     input  wire [GEO_W-1:0] c_geo, input wire [HDR_W-1:0] in_hdr,
     input  wire step, input wire [9:1] v_fly, input wire [9*SP_W-1:0] sp_fly,
     input  wire [M_W-1:0] r0_m, input wire [DIM_W-1:0] r0_j, input wire [PB_W-1:0] r0_pb,
@@ -104,45 +101,15 @@ module cube4_com_beats #(
     always @(posedge clk) s1_last <= last_0;
     wire unused_run = ^in_bits[0 +: P];   // (ANDed into the header's INSIDE by cube4_com)
 
-    // ---- the steps of each beat's slice, decided as the beat enters COM's input
-    // queue (q_push, in the order the beats are taken): they move with the slice;
-    // the beat's {stx, sty, ph_x, ph_y} go through the queue with it (q_geo) and
-    // come back as c_geo, which R0 registers on every cycle ----
-    wire [M_W-1:0] q_m   = q_hdr[HDR_M +: M_W];
-    wire           q_sop = q_hdr[HDR_CTRL + CTRL_SOP];
-    reg  [M_W-1:0]  cur_m;
-    reg  [PH_W-1:0] phx_q, phy_q;
-    reg  [DIM_W-1:0] sx_q, sy_q;
-    wire [2:0]      g      = {1'b0, cfg_ss_log2};
-    wire [PH_W:0]   ph_one = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g});
-    // the phase after ph (the next slice's) and its carry, the step
-    function automatic [PH_W:0] advance(input [PH_W-1:0] ph, input [WEIGHT_W:0] view);
-        reg [PH_W:0] sum;
-        begin
-            sum = {1'b0, ph} + {{(PH_W - WEIGHT_W){1'b0}}, view};
-            advance = (sum >= ph_one) ? {1'b1, sum[PH_W-1:0] - ph_one[PH_W-1:0]} : {1'b0, sum[PH_W-1:0]};
-        end
-    endfunction
-    wire [PH_W:0]   ax = advance(phx_q, cfg_view_x), ay = advance(phy_q, cfg_view_y);
-    wire            q_new = !q_sop && (q_m != cur_m);     // the next slice (m + 1: every slice has a beat)
-    wire [PH_W-1:0] q_phx = q_sop ? cfg_ph0_x : (q_new ? ax[PH_W-1:0] : phx_q);
-    wire [PH_W-1:0] q_phy = q_sop ? cfg_ph0_y : (q_new ? ay[PH_W-1:0] : phy_q);
-    wire [DIM_W-1:0] q_sx = q_sop ? '0 : sx_q + DIM_W'(q_new && ax[PH_W]);
-    wire [DIM_W-1:0] q_sy = q_sop ? '0 : sy_q + DIM_W'(q_new && ay[PH_W]);
-    always @(posedge clk) begin
-        if (q_push) begin
-            // the frame's first beat (SOP) is of slice 0 (steps 0, phase PH0)
-            cur_m <= q_m;
-            phx_q <= q_phx;
-            phy_q <= q_phy;
-            sx_q  <= q_sx;
-            sy_q  <= q_sy;
-        end
-    end
-    assign q_geo = {q_sx, q_sy, q_phx, q_phy};
+    // ---- the steps and phases of the beat's slice: decided where the beat left
+    // SHA (cube4_com_steps), they come with it through the skid buffers (c_geo);
+    // R0 registers them on every cycle ----
+    `CUBE4_PHASE_FUNCTIONS
+    wire [2:0]       g      = {1'b0, cfg_ss_log2};
+    wire [PH_W:0]    ph_one = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g});
     reg  [GEO_W-1:0] r0_geo;
     always @(posedge clk) r0_geo <= c_geo;
-    wire [PH_W:0]   nx = advance(ph_x, cfg_view_x), ny = advance(ph_y, cfg_view_y);
+    wire [PH_W:0]    nx = phase_advance(ph_x, cfg_view_x, ph_one), ny = phase_advance(ph_y, cfg_view_y, ph_one);
     assign {stx, sty, ph_x, ph_y} = r0_geo;
     // the next slice's weights (S1): its last column / row is outside when wx / wy > 0
     assign phn_x = nx[PH_W-1:0];

@@ -614,6 +614,22 @@
 `define CUBE4_SLICE_PASS .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2)
 `define CUBE4_GRA_PASS `CUBE4_SLICE_PASS, .VOXEL_W(VOXEL_W)
 
+// ---------------------------------------------------------------- phases
+// A template phase is PHASE_W = W + MAX_SS_LOG2 bits (Q.W+g of a voxel); one
+// slice on it adds VIEW (Q1.W, 0 .. 2^W) and wraps at one = 2^(W + g):
+//   phase_advance(ph, view, one) = {carry, (ph + view) mod one}, the carry
+//   being the slice's step. Needs PHASE_W and WEIGHT_W (CUBE4_GEOMETRY).
+`define CUBE4_PHASE_FUNCTIONS \
+    function automatic [PHASE_W:0] phase_advance(input [PHASE_W-1:0] ph, input [WEIGHT_W:0] view, \
+                                                 input [PHASE_W:0] one); \
+        reg [PHASE_W:0] sum; \
+        begin \
+            sum = {1'b0, ph} + {{(PHASE_W - WEIGHT_W){1'b0}}, view}; \
+            phase_advance = (sum >= one) ? {1'b1, sum[PHASE_W-1:0] - one[PHASE_W-1:0]} \
+                                         : {1'b0, sum[PHASE_W-1:0]}; \
+        end \
+    endfunction
+
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with
 // (c_i + c_j + c_k) mod P = q (Teramac paper, eq. 1), skew = (c_j + c_k) mod P:

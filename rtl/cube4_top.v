@@ -518,31 +518,40 @@ module cube4_top #(
         .out_valid (x_valid), .out_ready (x_ready));
     assign sha_take = x_valid && x_ready;
 
-    // BEATS = 1: SHA's beat and its bits pass a skid buffer into COM, whose beat
-    // geometry starts at its own input's push (cube4_com_beats): the route from
-    // SHA's output FIFO across the die to that logic gets a register stage (the
-    // beat schedule's cycles are measured, so a cycle of latency changes no
-    // prediction)
-    localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1;
+    // BEATS = 1: SHA's beat and its bits pass a skid buffer into COM (which takes
+    // them through its own: two register stages on the route across the die).
+    // The steps and phases of the beat's slice (cube4_com_steps) are decided
+    // here, where the beat leaves SHA, and go with it, so no logic of them lies
+    // on that route (the beat schedule's cycles are measured, so the cycle of
+    // latency changes no prediction)
+    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W;     // cube4_com_steps' q_geo
+    localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;
     wire [PV-1:0]             c_sample;
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
     wire                      c_eoss;
+    wire [GEO_W-1:0]          x_geo, c_geo;
     generate
         if (BEATS != 0) begin : g_com_skid
+            cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
+                .clk (clk), .cfg (cfg),
+                .q_push (x_valid && x_ready), .q_hdr (sha_hdr), .q_geo (x_geo));
             cube4_skid #(.DATA_W (XC_W)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid), .in_ready (x_ready),
-                .in_data ({sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
+                .in_data ({x_geo, sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
-                .out_data ({c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+                .out_data ({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
         end else begin : g_com_direct
             assign com_in_valid = x_valid;
             assign x_ready      = com_in_ready;
             assign {c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss} =
                    {sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss};
+            assign x_geo = '0;
+            assign c_geo = '0;
+            wire unused_geo = ^x_geo;
         end
     endgenerate
 
@@ -571,6 +580,7 @@ module cube4_top #(
         .in_fall   (c_fall),
         .in_bits   (c_bits),
         .in_eoss   (c_eoss),
+        .in_geo    (c_geo),
         .frame_start (start && !busy_q),
         .term_en   (cfg_term),
         .term_tau  (cfg_tau[ACC_W:0]),

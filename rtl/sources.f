@@ -61,6 +61,7 @@ cube4_com_seq.v
 cube4_com_walk.v
 cube4_com_slot.v
 cube4_com_rect.v
+cube4_com_steps.v
 cube4_com_beats.v
 cube4_com_stop.v
 cube4_com_plw.v

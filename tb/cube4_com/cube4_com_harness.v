@@ -9,7 +9,8 @@
 //   (CUBE4_VIEW_PACK), COM's shaded input and its finished-ray output as
 //   top-level ports, which the testbench drives and reads every cycle (golden
 //   shaded beats in with random gaps in valid; random ready out), and a
-//   cube4_stream_check on each of the two streams.
+//   cube4_stream_check on each of the two streams. With BEATS = 1 the beats'
+//   steps and phases come from cube4_com_steps at COM's input, as in cube4_top.
 //
 // Parameters: as cube4_com (P 1..64, WEIGHT_W 4..12, ALPHA_W 8..16,
 //   ACC_W 8..24, VOXEL_W 1..16, COMPOSITING, EXTREMUM 0..1, MAX_DIM 2..2048,
@@ -84,6 +85,12 @@ module cube4_com_harness #(
     wire [VIEW_W-1:0] cfg = `CUBE4_VIEW_PACK;
     wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
 
+    // BEATS = 1: the steps and phases of each beat's slice, decided as it enters
+    // (as cube4_top does where the beats leave SHA)
+    wire [2*DIM_W+2*PHASE_W-1:0] in_geo;
+    cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
+        .clk (clk), .cfg (cfg), .q_push (in_valid && in_ready), .q_hdr (in_hdr), .q_geo (in_geo));
+
     cube4_com #(
         `CUBE4_BUILD_PASS
     ) u_com (
@@ -107,6 +114,7 @@ module cube4_com_harness #(
         .in_fall   (in_fall),
         .in_bits   (in_bits),
         .in_eoss   (in_eoss),
+        .in_geo    (in_geo),
         .frame_start (frame_start),
         .term_en   (term_en),
         .term_tau  (term_tau),

@@ -1,7 +1,8 @@
 `default_nettype none
 `include "cube4_defs.vh"
 `include "cube4_unit_ports.vh"
-// cube4_com_beats_harness (simulation only): cube4_com_beats with the host's view
+// cube4_com_beats_harness (simulation only): cube4_com_beats (and, at the input
+// queue's push, cube4_com_steps, which gives the beats' q_geo) with the host's view
 // registers one port each (CUBE4_HARNESS_PORTS) and the sequencer's fields as ports
 // (the groups shared with cube4_com_rect: cube4_unit_ports.vh).
 module cube4_com_beats_harness #(
@@ -38,6 +39,7 @@ module cube4_com_beats_harness #(
     output wire                f1_wyn
 );
     `CUBE4_HARNESS_VIEW
+    cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (.clk(clk), .cfg(cfg), .q_push(q_push), .q_hdr(q_hdr), .q_geo(q_geo));
     cube4_com_beats #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_beats (.*);
 endmodule
 `default_nettype wire
