@@ -25,8 +25,9 @@
 //   BEATS        1: the beat schedule (cube4_cfb).     0..1.    Default 0.
 //   (after the build's list)
 //   BITS_DEPTH   BEATS = 1: emitted beats in flight between the CFB and
-//                TRI's output (a power of two, the FIFO of their bits;
-//                the requests wait beyond it).         2..1024. Default 64.
+//                TRI's output (a power of two, the RAM of their bits' FIFO,
+//                which holds 4 more; the requests wait beyond it).
+//                                                      4..1024. Default 64.
 //   Derived widths and the layouts of cfg, cfg_addr, the memory tag and the
 //   sample header: cube4_defs.vh.
 //
@@ -162,14 +163,17 @@ module cube4_frontend #(
 
     // ---- BEATS = 1: each emitted beat's position bits and EOS wait beside the
     // memory and TRI in a FIFO (a request that emits waits for its room), and
-    // leave with its sample beat ----
+    // leave with its sample beat. The FIFO is cube4_ram_fifo (OUT_REG): the
+    // sample stream's ready, a register at the far end of the die (cube4_top's
+    // skid buffer), reaches only its register queue, not the RAM's read
+    // address (the memory's and TRI's latency hide its three cycles) ----
     generate
         if (BEATS != 0) begin : g_bits
             wire emits = c_req_tag[TAG_EMIT];
             wire b_ready, b_valid;
             assign s_req_valid = c_req_valid && (!emits || b_ready);
             assign c_req_ready = s_req_ready && (!emits || b_ready);
-            cube4_sync_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH)) u_bits (
+            cube4_ram_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .OUT_REG (1)) u_bits (
                 .clk       (clk),
                 .rst       (rst),
                 .in_valid  (c_req_valid && s_req_ready && emits),
