@@ -48,10 +48,10 @@
 //   BEATS       1: the beat schedule (numerics.md section 19; cube4_com_beats):
 //               the slot {j, pb} from the header, the rays' intervals from the
 //               front end's position bits (in_bits), a pixel only for a ray
-//               that holds something, ray termination (term_*), its countdown
-//               in the buffer word (clog2(LAG + 1) bits) and the reports
-//               (rep_*, com_m).
-//               Needs RECTS, ZIN, ZOUT = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
+//               that holds something, ray termination (term_*), its state
+//               in the buffer word (CUBE4_TERM_CNT_W bits: live, a countdown,
+//               done) and the reports (rep_*, com_m).
+//               Needs RECTS, ZIN = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
 //   LAG         (after the build's list) BEATS: slices between a report and
 //               the decisions' use of it (cube4_cfb_decide's LAG).  2..7.
 //               Default CUBE4_BEAT_LAG (4).
@@ -188,7 +188,7 @@ module cube4_com #(
     localparam integer AM_W   = (COMPOSITING != 0 && (EXTREMUM == 0 || CMP_W >= EXT_W)) ? CMP_W : EXT_W;
     // depth out (ZOUT = 1): the ray's two slice numbers {valid, m} above the mode's word
     localparam integer ZW     = 2 * (M_W + 1);
-    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0) + ((BEATS != 0) ? $clog2(LAG + 1) : 0);   // (BEATS: the countdown)
+    localparam integer AC_W   = AM_W + ((ZOUT != 0) ? ZW : 0) + ((BEATS != 0) ? `CUBE4_TERM_CNT_W(LAG) : 0);   // (BEATS: the termination state)
     localparam integer PA     = P * AC_W;
     // slice-buffer slot: j * NB + pb counted; with rectangles {j, pb} from the header
     localparam integer RW     = (MAX_DIM > 1) ? $clog2(MAX_DIM) : 1;

@@ -66,7 +66,7 @@ module cube4_com_lane #(
     parameter integer ZOUT   = 0, parameter integer ZM_W = 14,
     parameter integer LIVE   = 0,
     parameter integer TERM   = 0, parameter integer LAG = `CUBE4_BEAT_LAG,
-    localparam integer CNT_W = $clog2(LAG + 1),     // the countdown 0 .. LAG (TERM = 1)
+    localparam integer CNT_W = `CUBE4_TERM_CNT_W(LAG),  // the termination state (TERM = 1)
     localparam integer FALL_W = 9,
     localparam integer ZF_W  = ZM_W + 1,            // a depth field {valid, m}
     localparam integer ZW    = 2 * ZF_W,            // {passed, first}
@@ -227,7 +227,13 @@ module cube4_com_lane #(
     // largest / smallest value. Done before its sample (S5), the sample does not
     // count; done after it (S11) and not before (or fresh), it reports, and its
     // countdown starts at LAG: the ray ends LAG slices later (fin_t5 where the
-    // count it brings is 1). The count rides in the buffer word above the mode's. ----
+    // count it brings is 1). The state rides in the buffer word above the mode's
+    // (CUBE4_TERM_CNT_W): 0 live, LAG .. 1 the countdown, LAG + 1 done without
+    // one (not reported: its stop was near). So a word is done exactly when its
+    // state is not 0 (a done ray stays done: its samples no longer count), and
+    // "done before the sample" at S5 is that, or for a fresh ray the rule on
+    // the fresh word (static in a frame, a register): no compare of the word at
+    // S5. At S11 the rule is the datapaths' registered flags. ----
     localparam integer DW = (AC_W > CMP_W) ? ((AC_W > EXT_W) ? AC_W : EXT_W) : ((CMP_W > EXT_W) ? CMP_W : EXT_W);
     function automatic is_dead(input [DW-1:0] w, input ext, input mn, input xr);
         begin
@@ -237,13 +243,17 @@ module cube4_com_lane #(
             else is_dead = (w[0 +: CW] <= term_tau);
         end
     endfunction
-    wire [AC_W-1:0] acc_n;                // the word the slice buffer takes (with the count)
+    wire [AC_W-1:0] acc_n;                // the word the slice buffer takes (with the state)
     generate
         if (TERM != 0) begin : g_term
             localparam integer AM_W = AC_W - CNT_W;
+            localparam [CNT_W-1:0] DONE = CNT_W'(LAG + 1);   // done without a countdown
             wire ext = ext_v[AC_W-1], mn = min_v[AC_W-1], fr = fresh_v[AC_W-1];
             wire [CNT_W-1:0] cnt5 = acc_in[AM_W +: CNT_W];
-            wire dead5 = term_en && is_dead(DW'(acc_in), ext, mn, mode_xray);
+            // the rule on the fresh word: the mode and the rule's registers are static
+            reg fresh_dead_q;
+            always @(posedge clk) fresh_dead_q <= is_dead(DW'(fresh_w), ext, mn, mode_xray);
+            wire dead5 = term_en && (fr ? fresh_dead_q : (cnt5 != '0));
             assign fin_t5 = term_en && !fr && (cnt5 == CNT_W'(1));
             reg  [5:0] dead_s, fresh_s;      // S6 .. S11
             reg  [CNT_W-1:0] c6, c7, c8, c9, c10, c11;
@@ -254,10 +264,12 @@ module cube4_com_lane #(
             end
             assign cnt6_t = cnt_6 && !dead_s[0];
             assign cnt7_t = cnt_7 && !dead_s[1];
-            // is_dead of the S11 word, from the datapaths' registered flags
+            // the rule on the S11 word, from the datapaths' registered flags
             wire dead11 = term_en && (ext ? done_e : (mode_xray ? done_x : done_c));
             assign rep = rok11 && dead11 && (fresh_s[5] || !dead_s[5]);
-            wire [CNT_W-1:0] c_n = rep ? CNT_W'(LAG) : ((c11 != '0) ? c11 - 1'b1 : '0);
+            // (a fresh word's state is 0; c11 = 1 ends the ray here)
+            wire counting = (c11 > CNT_W'(1)) && (c11 <= CNT_W'(LAG));
+            wire [CNT_W-1:0] c_n = rep ? CNT_W'(LAG) : (counting ? c11 - 1'b1 : (dead11 ? DONE : '0));
             assign acc_n = {c_n, acc_m[AM_W-1:0]};
             wire unused_top = ^acc_m[AC_W-1:AM_W];
         end else begin : g_no_term

@@ -737,8 +737,12 @@
 // d + 1 to its end, which it knows from a beat of slice d + 2; the walk may have to
 // reach the end of slice d + 2 for that beat, fetching slice d + 3's rows, which needs
 // the decisions of slice d + 4 (docs/architecture.md "Beat skipping and ray termination").
-// COM counts a done ray's last LAG slices down in clog2(LAG + 1) bits of its buffer word.
+// COM counts a done ray's last LAG slices down in its buffer word (CUBE4_TERM_CNT_W).
 `define CUBE4_BEAT_LAG 4
+// CUBE4_TERM_CNT_W(LAG): the bits of a ray's termination state in COM's buffer
+// word (cube4_com_lane): 0 live, LAG .. 1 the countdown after COM reported it
+// done, LAG + 1 done without a countdown (it ends at its own stop)
+`define CUBE4_TERM_CNT_W(LAG) $clog2((LAG) + 2)
 // A beat's position bits {soon, last, fresh, run} [4P] (cube4_cfb_decide, the front end,
 // COM), kept in 3P bits where they wait in block RAM (cube4_cfb_skip's queue, cube4_top's
 // bits FIFO): last implies soon and fresh implies run, so per position {hi, lo} = 00 no

@@ -39,21 +39,23 @@ class BeatFrame:
     frame: object = None            # the golden frame, its streams kept (``beat_frame``)
 
 
-def _run(vol, trav, cfg, lut, rmap, mode, shading, clip, terminate: bool, keep: bool = False) -> BeatFrame:
+def _run(vol, trav, cfg, lut, rmap, mode, shading, clip, terminate: bool, keep: bool = False,
+         tau: int = 0) -> BeatFrame:
     bits = beats.BlockTable.of(vol, BLOCK).bits(lut, mode)
     occ = beats.frame_occupancy(bits, BLOCK, trav)
     sched = beats.BeatSchedule(trav, cfg.pipelines, occ, terminate=terminate, gra=shading and mode == "composite")
-    rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
+    rule = beats.TerminationRule(mode, tau, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                  enabled=terminate, value_bits=cfg.voxel_bits)
     frame = render_frame(vol, trav, cfg, lut, rmap, mode=mode, shading=shading, clip=clip, beats=sched, done=rule,
                          keep_streams=keep)
     return BeatFrame(sched, trav, bits, vol, frame if keep else None)
 
 
-def beat_frame(vol, trav, cfg, lut, rmap, mode: str, clip=None, terminate: bool = False) -> BeatFrame:
+def beat_frame(vol, trav, cfg, lut, rmap, mode: str, clip=None, terminate: bool = False,
+               tau: int = 0) -> BeatFrame:
     """A golden frame of the beat schedule with its streams kept (unshaded: COM's benches
-    take its shaded stream)."""
-    return _run(vol, trav, cfg, lut, rmap, mode, False, clip, terminate, keep=True)
+    take its shaded stream); ``tau`` termination's threshold (Q0.ACC_W)."""
+    return _run(vol, trav, cfg, lut, rmap, mode, False, clip, terminate, keep=True, tau=tau)
 
 
 def sparse_frame(seed: int, p: int, opaque: bool, terminate: bool) -> BeatFrame:

@@ -318,13 +318,13 @@ async def collect_reports(dut, p: int, m_w: int, out: list) -> None:
                     out.append((end - BEAT_LAG - 1, j, pb, stx, sty, t, end))
 
 
-def sparse_volume(rng, dims, vw: int) -> np.ndarray:
+def sparse_volume(rng, dims, vw: int, thick: bool = False) -> np.ndarray:
     """A faint background (values below 64) with one dense blob (64 and up): a LUT that is
-    zero below 64 leaves most blocks empty."""
+    zero below 64 leaves most blocks empty. ``thick``: the blob is two thirds of each axis."""
     nx, ny, nz = dims
     vol = rng.integers(0, 64, size=(nz, ny, nx), dtype=np.int64) << max(0, vw - 8)
     c = [int(rng.integers(n // 4, n - n // 4)) for n in (nz, ny, nx)]
-    r = [max(2, n // 6) for n in (nz, ny, nx)]
+    r = [max(2, n // (3 if thick else 6)) for n in (nz, ny, nx)]
     sl = tuple(slice(max(0, a - b), a + b) for a, b in zip(c, r))
     vol[sl] = rng.integers(64, 256, size=vol[sl].shape) << max(0, vw - 8)
     return vol
@@ -334,7 +334,8 @@ def sparse_volume(rng, dims, vw: int) -> np.ndarray:
 async def test_beat_pixel_stream(dut):
     """BEATS = 1: golden frames of the beat schedule (sparse volumes, a LUT that is zero
     below the blob's values; every mode of the build, the views with their windows and
-    cut planes, S = 1, termination off): COM takes the sample beats the front end emits
+    cut planes, S = 1; termination in every other frame, at tau = 0 with an opaque LUT or
+    at a random tau > 0): COM takes the sample beats the front end emits
     (beat_frames.expected_requests: the running beats with their lanes valid, the cover,
     the row above and each slice's marker with none), with each beat's position bits
     {soon, last, fresh, run} on in_bits and EOSS (its slice's last) on in_eoss; out, bit
@@ -348,17 +349,27 @@ async def test_beat_pixel_stream(dut):
                        "in_eoss": 0, "frame_start": 0, "term_en": 0, "term_tau": 0, "term_vmin": 0, "term_vmax": 0})
     dims = (max(24, 2 * p + 3), 20, 16)     # larger than volume_dims: blocks of 4 that skip
     frames = 0
+    blend_ends = 0          # composite frames that terminated so far
     for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS * 2):
-        mode = modes[n % len(modes)]
+        mode = modes[(n // 2) % len(modes)]   # each mode with termination off and on
         trav = make_traversal(dims, direction, cfg.weight_bits, 1, phase=phase)
-        vol = sparse_volume(bench.rng, dims, cfg.voxel_bits)
+        terminate = n % 2 == 1
+        # every other composite frame that terminates: a threshold tau > 0 (half of T or
+        # more) on the random LUT and a thick blob, so rays end at their first samples
+        # anywhere in it: COM reports most, and those near their stops it does not (the
+        # done state alone keeps their later samples out); else tau = 0, opaque where it
+        # counts
+        tau = 0
+        if terminate and mode == "composite":
+            tau = int(bench.rng.integers(1 << (acc_w - 1), 1 << acc_w)) if blend_ends % 2 else 0
+            blend_ends += 1
+        vol = sparse_volume(bench.rng, dims, cfg.voxel_bits, thick=tau > 0)
         lut, rmap = random_tables(bench.rng, cfg)
         lut[: (64 << max(0, cfg.voxel_bits - 8))] = 0
-        terminate = n % 2 == 1
-        if terminate:       # opaque where it counts: rays end (COM reports them done)
+        if terminate and not tau:       # rays end (COM reports them done)
             lut[lut[:, 3] > 0, 3] = (1 << aw) - 1
         clip = random_clip(trav, clip_kind, bench.rng)
-        bf = beat_frame(vol, trav, cfg, lut, rmap, mode, clip, terminate=terminate)
+        bf = beat_frame(vol, trav, cfg, lut, rmap, mode, clip, terminate=terminate, tau=tau)
         reqs = [w for w in expected_requests(bf, p, BEAT_LAG) if w[4]]
         order = [(w[6][0], w[6][1], w[2], w[5]) for w in reqs]
         frame = bf.frame
@@ -384,7 +395,7 @@ async def test_beat_pixel_stream(dut):
         ends = ~nxt_in & sched.lval & sched.lins
         exp = expected_pixel_beats(frame, sched, ends)
         bench.set_view(trav, p, mode, clip)
-        dut.term_en.value, dut.term_tau.value = int(terminate), 0
+        dut.term_en.value, dut.term_tau.value = int(terminate), tau
         dut.term_vmin.value, dut.term_vmax.value = int(vol.min()), int(vol.max())
         dut.frame_start.value = 1
         await bench.cycles(1)
@@ -403,9 +414,9 @@ async def test_beat_pixel_stream(dut):
         assert int(dut.com_m.value) == trav.num_sample_slices, f"com_m {int(dut.com_m.value)} after the frame"
         frames += 1
         box = trav.num_sample_slices * trav.nj * -(-trav.ni // p)
-        bench.log.info("dims %s view %s %s clip %s gap %.1f stall %.1f: %d of %d beats in (%d run), %d pixel "
+        bench.log.info("dims %s view %s %s clip %s tau %d gap %.1f stall %.1f: %d of %d beats in (%d run), %d pixel "
                        "beats, %d finished rays bit-exact, %d rays reported done", dims, direction, mode, clip_kind,
-                       gap, stall, len(reqs), box, sum(w[5] for w in reqs), len(got), len(frame.pixels), len(reps))
+                       tau if terminate else -1, gap, stall, len(reqs), box, sum(w[5] for w in reqs), len(got), len(frame.pixels), len(reps))
     assert frames >= 8
 
 
