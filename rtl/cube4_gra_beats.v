@@ -165,9 +165,14 @@ module cube4_gra_beats
     reg               i0_pgb;        // plane B's (the centre's row is a row)
     reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
     reg               i0_ylast, i0_dyf, i0_dyb;
-    // the step's fields as one word, which moves on i0 -> i1 -> i2
+    // the step's fields as one word, which moves on i0 -> i1 -> i2; a generated
+    // step's sample and header are zero (the samples of beats that do not run),
+    // formed here from the register i0_in, not as i0 loads (where the choice of
+    // step would reach every bit's reset)
     localparam integer SW = 14 + PV + HDR_W + M_W + DIM_W + PB_W;
-    wire [SW-1:0] i0_word = {i0_in, i0_dead, i0_fend, i0_gap, i0_sample, i0_hdr, i0_w, i0_r, i0_pb,
+    wire [PV-1:0]    i0_smp_in = {PV{i0_in}} & i0_sample;
+    wire [HDR_W-1:0] i0_hdr_in = {HDR_W{i0_in}} & i0_hdr;
+    wire [SW-1:0] i0_word = {i0_in, i0_dead, i0_fend, i0_gap, i0_smp_in, i0_hdr_in, i0_w, i0_r, i0_pb,
                              i0_pg, i0_bg, i0_pgb, i0_flags, i0_ylast, i0_dyf, i0_dyb};
     // i1: one register stage after i0, whose position reads the position buffers
     // as it moves on (from registers: neither the choice nor its fan-out reaches
@@ -450,8 +455,8 @@ module cube4_gra_beats
             osy_q[in_m[0]] <= in_osy;
         end
         if (ld) begin
-            i0_sample <= ld_i ? s_sample : {PV{1'b0}};
-            i0_hdr    <= ld_i ? s_hdr : {HDR_W{1'b0}};
+            i0_sample <= s_sample;                // (zero unless i0_in: i0_word)
+            i0_hdr    <= s_hdr;
             i0_in     <= ld_i;
             i0_dead   <= ld_tail;
             i0_fend   <= ld_tl && tail_n && fin;
