@@ -15,14 +15,11 @@
 //             sample (m+1, j+dyf, i+dxf) is inside the box (cube4_com_walk's
 //             rule: the last column / row is outside when wx / wy > 0)
 //   The running lanes' INSIDE is the caller's (cube4_com ANDs bit run into
-//   the header). The steps of the beat's slice m: a phase accumulator per
-//   axis that adds VIEW each time the beats' slice moves on (slices arrive
-//   in order, each with at least one beat: its marker), from PH0 at a
-//   frame's first beat (SOP): cube4_com_steps, where the beats leave SHA
-//   (cube4_top), so the beat's steps and phases come with it through the
-//   skid buffers and R0 registers them (c_geo) on every cycle: neither the
-//   take nor the hazard reaches them, and no logic of them lies on the route
-//   from SHA to COM. The slot, the
+//   the header). The steps and phases of the beat's slice m come with it
+//   (c_geo: cube4_com_steps, where the beats leave SHA in cube4_top) through
+//   the skid buffers, and R0 registers them on every cycle: neither the take
+//   nor the hazard reaches them, and no logic of them lies on the route from
+//   SHA to COM. The slot, the
 //   read-after-write rule by position and "the previous beat is the row
 //   above": cube4_com_slot, as cube4_com_rect's.
 //

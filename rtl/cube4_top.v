@@ -536,8 +536,8 @@ module cube4_top #(
     generate
         if (BEATS != 0) begin : g_com_skid
             cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
-                .clk (clk), .cfg (cfg),
-                .q_push (x_valid && x_ready), .q_hdr (sha_hdr), .q_geo (x_geo));
+                .clk (clk), .rst (rst), .cfg (cfg),
+                .q_push (x_valid && x_ready), .q_hdr (sha_hdr), .q_eoss (com_eoss), .q_geo (x_geo));
             cube4_skid #(.DATA_W (XC_W)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid), .in_ready (x_ready),

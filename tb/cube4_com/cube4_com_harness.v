@@ -89,7 +89,8 @@ module cube4_com_harness #(
     // (as cube4_top does where the beats leave SHA)
     wire [2*DIM_W+2*PHASE_W-1:0] in_geo;
     cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
-        .clk (clk), .cfg (cfg), .q_push (in_valid && in_ready), .q_hdr (in_hdr), .q_geo (in_geo));
+        .clk (clk), .rst (rst), .cfg (cfg), .q_push (in_valid && in_ready), .q_hdr (in_hdr), .q_eoss (in_eoss),
+        .q_geo (in_geo));
 
     cube4_com #(
         `CUBE4_BUILD_PASS

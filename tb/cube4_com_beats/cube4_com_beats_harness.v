@@ -15,6 +15,7 @@ module cube4_com_beats_harness #(
     input  wire [P*LANE_W-1:0] tpos,
     input  wire                q_push,
     input  wire [HDR_W-1:0]    q_hdr,
+    input  wire                q_eoss,
     output wire [2*DIM_W+2*PHASE_W-1:0] q_geo,
     input  wire [2*DIM_W+2*PHASE_W-1:0] c_geo,
     input  wire [HDR_W-1:0]    in_hdr,
@@ -39,7 +40,8 @@ module cube4_com_beats_harness #(
     output wire                f1_wyn
 );
     `CUBE4_HARNESS_VIEW
-    cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (.clk(clk), .cfg(cfg), .q_push(q_push), .q_hdr(q_hdr), .q_geo(q_geo));
+    cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (.clk(clk), .rst(rst), .cfg(cfg), .q_push(q_push), .q_hdr(q_hdr),
+                                                  .q_eoss(q_eoss), .q_geo(q_geo));
     cube4_com_beats #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_beats (.*);
 endmodule
 `default_nettype wire

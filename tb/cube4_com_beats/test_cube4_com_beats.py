@@ -6,7 +6,7 @@ other frame) the sample beats the front end emits (``expected_requests``: the ru
 beats, the cover, the row above and each slice's marker) are offered with their position
 bits, with seeded random gaps, taken only when the golden read-after-write rule allows (no
 beat of the same slot {j, pb} in R0 .. S9), and played through R0 and S1 as
-cube4_com_seq gives them. Each beat enters the input queue (q_push, q_hdr) one to two
+cube4_com_seq gives them. Each beat enters the input queue (q_push, q_hdr, q_eoss) one to two
 beats ahead of its offer, at seeded random times, and its q_geo comes back with the
 offer as c_geo, as cube4_com's skid buffer gives it. Checked on every beat against the
 golden model:
@@ -88,6 +88,7 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
               for k in (int(x) for x in m)]
     s1_geo = [(int(k == M - 1), *(int(w > 0) for w in trav.weights(k + 1)[:2])) for k in (int(x) for x in m)]
     slot = (j << geo.pb_w) | pb
+    eoss = np.append(m[1:] != m[:-1], True)       # each beat: the last of its slice
     col1 = np.zeros(n, dtype=bool)
     col1[1:] = (m[1:] == m[:-1]) & (pb[1:] == pb[:-1]) & (j[1:] == j[:-1] + 1)
     sp_w = clog2(int(dut.MAX_DIM.value)) + geo.pb_w
@@ -112,6 +113,7 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
         push = pushed < min(n, k + 2) and bench.rng.random() >= gap / 2
         dut.q_push.value = int(push)
         dut.q_hdr.value = hdrs[pushed] if push else int(bench.rng.integers(0, 1 << geo.hdr_w))
+        dut.q_eoss.value = int(eoss[pushed]) if push else int(bench.rng.integers(0, 2))
         if not offering and k < pushed and bench.rng.random() >= gap:
             offering = True
         hz = offering and any(b is not None and slot[b] == slot[k] for b in [b0] + fly)
