@@ -19,7 +19,8 @@
 //     pb + Q + (b < R ? 1 : 0)          (mod 2^COLS_W)
 //   for position t = (b - R) mod P; the lane at t takes bank (t + R) mod P.
 //   Q = floor(B * RECIP / 2^K), RECIP = ceil(2^K / P), K = DIM_W + clog2(P):
-//   exact for every B < 2^DIM_W (RECIP P - 2^K < P <= 2^(K - DIM_W)). A
+//   exact for every B < 2^DIM_W (RECIP P - 2^K < P <= 2^(K - DIM_W)); for P
+//   a power of two Q and R are B's bits (no multiplier, no subtraction). A
 //   position past the slice's last column may address a word that wraps; its
 //   caller ignores what it reads and writes nothing there.
 //
@@ -116,20 +117,31 @@ module cube4_ray_table #(
     wire [COLS_W-1:0] w2 [0:1];
     generate
         for (q = 0; q < 2; q = q + 1) begin : g_place
-            wire [PR_W-1:0] prod = PR_W'(b1[q]) * PR_W'(RECIP);
             always @(posedge clk) begin
                 b1[q]  <= sx - stx0[q];                                 // stx <= SX in every slice
                 by1[q] <= BX_W'(j0[q]) - BX_W'(sty0[q]) + BX_W'(sy);
                 pb1[q] <= pb0[q];
-                q2[q]  <= DIM_W'(prod >> K);
                 b2[q]  <= b1[q];
                 by2[q] <= by1[q][ROWS_W-1:0];
                 pb2[q] <= pb1[q];
             end
-            wire [DIM_W-1:0] qp = DIM_W'(32'(q2[q]) * P);
-            assign r2[q] = LANE_W'(b2[q] - qp);                            // 0 .. P-1
+            if ((P & (P - 1)) == 0) begin : g_pow2
+                // Q and R are B's bits: R the low LW, Q the rest
+                always @(posedge clk) q2[q] <= b1[q] >> LW;
+                if (P > 1) begin : g_r
+                    assign r2[q] = b2[q][LANE_W-1:0];
+                end else begin : g_r0
+                    assign r2[q] = '0;
+                end
+                wire unused_place = ^b2[q];
+            end else begin : g_div
+                wire [PR_W-1:0] prod = PR_W'(b1[q]) * PR_W'(RECIP);
+                always @(posedge clk) q2[q] <= DIM_W'(prod >> K);
+                wire [DIM_W-1:0] qp = DIM_W'(32'(q2[q]) * P);
+                assign r2[q] = LANE_W'(b2[q] - qp);                        // 0 .. P-1
+                wire unused_place = ^{prod[K-1:0], prod[PR_W-1:K+DIM_W], b2[q], qp};
+            end
             assign w2[q] = COLS_W'(pb2[q]) + COLS_W'(q2[q]);
-            wire unused_place = ^{prod[K-1:0], prod[PR_W-1:K+DIM_W], b2[q], qp};
             if (ROWS_W < BX_W) begin : g_by_top
                 wire unused_by_top = ^by1[q][BX_W-1:ROWS_W];   // by < 2 MAX_DIM - 1
             end

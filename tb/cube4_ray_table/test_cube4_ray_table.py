@@ -172,6 +172,6 @@ BUILDS = [dict(P=1, MAX_DIM=16, DATA_W=8, RATE=1), dict(P=5, MAX_DIM=16, DATA_W=
           dict(P=1, MAX_DIM=16, DATA_W=8, RATE=2)]
 
 
-@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))
+@pytest.mark.parametrize("params", sweep(BUILDS, quick=(1, 5), ids=param_id))
 def test_cube4_ray_table(params):
     run_rtl(__file__, params)
