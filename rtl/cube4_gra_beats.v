@@ -113,6 +113,9 @@ module cube4_gra_beats
     reg [M_W-1:0]     w;             // the slice being stepped
     reg [M_W-1:0]     w_last1;       // the last input beat's slice + 1 (with ended)
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
+    reg [DIM_W-1:0]   r1_q, r2_q;    // r + 1, r + 2 (DIM_W bits; registers, loaded with r)
+    reg [M_W-1:0]     w1_q;          // w + 1 (loaded with w)
+    wire [DIM_W-1:0]  r1 = r1_q;     // r + 1
     reg               r_nj;          // r == NJ (a register: r moves at start and at row_mv)
     reg               r1_nj;         // r + 1 == NJ
     reg               r_zero, r_one; // r == 0, r == 1
@@ -140,13 +143,13 @@ module cube4_gra_beats
     wire              s_eq0, s_gt0, s_eq1, s_gt1;    // the head against {w, r}, {w, r + 1}
     wire              row_mv;                        // the row moves on to {nx_w, nx_r}
     wire [M_W-1:0]    nx_w;
-    wire [DIM_W-1:0]  nx_r;
+    wire [DIM_W-1:0]  nx_r, nx_r1;
     cube4_gra_beats_in #(.DATA_W (1 + HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W)) u_in (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_eoss, in_hdr, in_sample}),
         .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_eoss, s_hdr, s_sample}),
         .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
-        .w (w), .r (r), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .home (start),
+        .w (w), .r (r), .r1 (r1), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1), .home (start),
         .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1));
     wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
     wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
@@ -208,7 +211,6 @@ module cube4_gra_beats
     wire in_row   = in_v && s_eq0;
     wire in_after = in_v && s_gt0;
     // the next row's beat of the input, or beyond it (for a row end that loads)
-    wire [DIM_W-1:0] r1 = r + 1'b1;
     wire in_nx    = in_v && s_eq1;
     wire in_aft1  = in_v && s_gt1;
     // partial beams as bit words: the choice works on them (a carry chain and
@@ -298,8 +300,9 @@ module cube4_gra_beats
         .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
     // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
     // rows; the word of row NJ and of slice -1 is zero (n_zero)
-    assign nx_r = r_nj ? '0 : r1;                              // the next row
-    assign nx_w = r_nj ? w + 1'b1 : w;                         // and its slice
+    assign nx_r  = r_nj ? '0 : r1;                             // the next row
+    assign nx_r1 = r_nj ? DIM_W'(1) : r2_q;                    // nx_r + 1
+    assign nx_w  = r_nj ? w1_q : w;                            // and its slice
     wire   nx_nj = r_nj ? (cfg_nj == '0) : r1_nj;              // nx_r == NJ
     assign row_mv = row_end && !(ended && last_row);         // (as the row end below)
     // the row after the next one, (nn_w, nn_r), in registers that move with the row (so
@@ -366,7 +369,10 @@ module cube4_gra_beats
                 tail    <= 1'b0;
                 cmp_m   <= '0;
                 w       <= '0;
+                w1_q    <= M_W'(1);
                 r       <= '0;
+                r1_q    <= DIM_W'(1);
+                r2_q    <= DIM_W'(2);
                 r_nj    <= (cfg_nj == '0);
                 r1_nj   <= (cfg_nj == DIM_W'(1));
                 r_zero  <= 1'b1;
@@ -412,6 +418,9 @@ module cube4_gra_beats
                     gm     <= '0;
                 end else begin
                     r       <= nx_r;
+                    r1_q    <= nx_r1;
+                    r2_q    <= r_nj ? DIM_W'(2) : r2_q + 1'b1;
+                    w1_q    <= r_nj ? w1_q + 1'b1 : w1_q;
                     r_nj    <= nx_nj;
                     r1_nj   <= r_nj ? (cfg_nj == DIM_W'(1)) : (r + DIM_W'(2) == cfg_nj);   // nx_r + 1 == NJ
                     r_zero  <= r_nj || r_ones;                                         // nx_r == 0

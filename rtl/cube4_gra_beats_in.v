@@ -12,7 +12,9 @@
 //   row's {w, r}; keys compare in order of slice, then row:
 //     eq0  key == {w, r}        gt0  key >  {w, r}
 //     eq1  key == {w, r + 1}    gt1  key >  {w, r + 1}
-//   (r + 1 in DIM_W bits, as the source computes it). Each of the two
+//   (r + 1 in DIM_W bits, as the source computes it, which gives it: r1 and
+//   nx_r1 come from its registers, so no adder lies before the compares).
+//   Each of the two
 //   entries keeps its key and its flags; the flags follow the row: when it
 //   moves on (mv: to {nx_w, nx_r}, the source's next row) or a frame starts
 //   (home: to {0, 0}) they are compared again against the new row, and a
@@ -29,8 +31,9 @@
 //
 // Ports
 //   in_*, out_*   the stream (cube4_skid); in_m, in_j the key of in_data
-//   w, r          the row being stepped (the source's registers)
-//   mv, nx_w, nx_r  it moves on to {nx_w, nx_r} this cycle
+//   w, r, r1      the row being stepped and r + 1 (the source's registers)
+//   mv, nx_w, nx_r, nx_r1  it moves on to {nx_w, nx_r} this cycle (nx_r1 =
+//                 nx_r + 1)
 //   home          it is set to {0, 0} this cycle (a frame's start)
 //   eq0, gt0, eq1, gt1   out  the head's place (valid with out_valid)
 //
@@ -46,9 +49,11 @@ module cube4_gra_beats_in #(
     input  wire [DIM_W-1:0] in_j,
     input  wire [M_W-1:0]   w,
     input  wire [DIM_W-1:0] r,
+    input  wire [DIM_W-1:0] r1,
     input  wire             mv,
     input  wire [M_W-1:0]   nx_w,
     input  wire [DIM_W-1:0] nx_r,
+    input  wire [DIM_W-1:0] nx_r1,
     input  wire             home,
     output wire             eq0, output wire gt0, output wire eq1, output wire gt1
 );
@@ -66,26 +71,27 @@ module cube4_gra_beats_in #(
     wire push = in_valid && in_ready;
     wire pop  = out_valid && out_ready;
 
-    // {eq0, gt0, eq1, gt1} of a key against the row {rw, rr}
-    function automatic [3:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr);
+    // {eq0, gt0, eq1, gt1} of a key against the row {rw, rr} (rr1 = rr + 1)
+    function automatic [3:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr,
+                                   input [DIM_W-1:0] rr1);
         reg [KW-1:0] k0, k1;
         begin
             k0 = {rw, rr};
-            k1 = {rw, rr + 1'b1};
+            k1 = {rw, rr1};
             place = {key == k0, key > k0, key == k1, key > k1};
         end
     endfunction
     // a key's place in the next cycle, from its place now (kept while the row stays)
     function automatic [3:0] next_place(input [KW-1:0] key, input [3:0] now, input h, input m,
-                                        input [M_W-1:0] mw, input [DIM_W-1:0] mr);
-        next_place = h ? place(key, '0, '0) : (m ? place(key, mw, mr) : now);
+                                        input [M_W-1:0] mw, input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1);
+        next_place = h ? place(key, '0, '0, DIM_W'(1)) : (m ? place(key, mw, mr, mr1) : now);
     endfunction
 
     reg            wp, rp;                 // the skid's pointers, shadowed
     reg  [KW-1:0]  key [0:1];
     reg  [3:0]     pl  [0:1];
     wire [KW-1:0]  in_key = {in_m, in_j};
-    wire [3:0]     in_pl  = next_place(in_key, place(in_key, w, r), home, mv, nx_w, nx_r);
+    wire [3:0]     in_pl  = next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1);
     always @(posedge clk) begin
         if (rst) begin
             wp <= 1'b0;
@@ -103,7 +109,7 @@ module cube4_gra_beats_in #(
                     key[e] <= in_key;
                     pl[e]  <= in_pl;
                 end else begin
-                    pl[e]  <= next_place(key[e], pl[e], home, mv, nx_w, nx_r);
+                    pl[e]  <= next_place(key[e], pl[e], home, mv, nx_w, nx_r, nx_r1);
                 end
             end
         end

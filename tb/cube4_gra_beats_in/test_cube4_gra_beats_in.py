@@ -3,7 +3,8 @@ comes with its place against the row the source steps.
 
 Random beats (a random key {m, j} in the payload with a serial number) through random
 valid and ready (seeded from COCOTB_RANDOM_SEED), while the row {w, r} stays, moves on
-to a random {nx_w, nx_r} (mv) or goes home to {0, 0} (home) at random. Checked every
+to a random {nx_w, nx_r} (mv) or goes home to {0, 0} (home) at random; r + 1 and
+nx_r + 1 come in as the source gives them (r1, nx_r1). Checked every
 cycle: the beats come out in order, none lost or extra, data held while not taken;
 with out_valid, the head's flags are its key against the row of that cycle: eq0 =
 key == {w, r}, gt0 = key > {w, r}, eq1 and gt1 against {w, r + 1} (r + 1 in DIM_W bits,
@@ -38,6 +39,7 @@ async def test_places(dut):
     d = dut
     d.in_valid.value, d.out_ready.value, d.mv.value, d.home.value = 0, 0, 0, 0
     d.w.value, d.r.value, d.nx_w.value, d.nx_r.value, d.in_data.value, d.in_m.value, d.in_j.value = 0, 0, 0, 0, 0, 0, 0
+    d.r1.value, d.nx_r1.value = 1, 1
     d.rst.value = 1
     for _ in range(3):
         await RisingEdge(d.clk)
@@ -63,7 +65,9 @@ async def test_places(dut):
         d.in_valid.value, d.out_ready.value = int(valid), int(ready)
         d.in_data.value, d.in_m.value, d.in_j.value = data & ((1 << data_w) - 1), key[0], key[1]
         d.w.value, d.r.value, d.mv.value, d.home.value = w, r, int(mv), int(home)
+        d.r1.value = (r + 1) % (1 << dim_w)                       # (the source's registers)
         d.nx_w.value, d.nx_r.value = nx
+        d.nx_r1.value = (nx[1] + 1) % (1 << dim_w)
         await ReadOnly()
         pushed = valid and bool(int(d.in_ready.value))
         ov = bool(int(d.out_valid.value))
