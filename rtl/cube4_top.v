@@ -374,14 +374,23 @@ module cube4_top #(
             wire b_ready, b_valid;
             wire [3*P-1:0] com_packed;
             assign com_bits     = ray_bits_unpack(com_packed);
-            assign smp_valid    = s_valid && b_ready;
-            assign s_ready      = smp_ready && b_ready;
+            // the beat forks to GRA and, its bits, to a skid buffer beside it (k_*)
+            // before the FIFO: the FIFO's ready and GRA's, registers at either end
+            // of the die, each reach only the logic beside them
+            wire k_valid, k_ready;
+            wire [3*P:0] k_data;
+            assign smp_valid    = s_valid && k_ready;
+            assign s_ready      = smp_ready && k_ready;
+            cube4_skid #(.DATA_W (3 * P + 1)) u_bits_skid (
+                .clk (clk), .rst (rst),
+                .in_valid (s_valid && smp_ready), .in_ready (k_ready),
+                .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
+                .out_valid (k_valid), .out_ready (b_ready), .out_data (k_data));
             // one port map, two queues: block RAM behind GRA, registers otherwise
 `define CUBE4_BITS_FIFO(MODULE) \
                 MODULE #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
                     .clk (clk), .rst (rst), \
-                    .in_valid (s_valid && smp_ready), .in_ready (b_ready), \
-                    .in_data ({smp_eoss, ray_bits_pack(smp_bits)}), \
+                    .in_valid (k_valid), .in_ready (b_ready), .in_data (k_data), \
                     .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
             if (SHADING != 0 && VGRAD == 0) begin : g_ram
                 `CUBE4_BITS_FIFO(cube4_ram_fifo)
@@ -389,7 +398,18 @@ module cube4_top #(
                 `CUBE4_BITS_FIFO(cube4_sync_fifo)
             end
 `undef CUBE4_BITS_FIFO
-            wire unused_bits = ^{b_valid, smp_eos};   // (a beat at COM always finds its entry)
+            wire unused_bits = ^{b_valid, smp_eos};
+`ifndef SYNTHESIS
+            // a beat leaving SHA always finds its bits: they left the front end with
+            // it and wait at most a few cycles (the skid, the FIFO's read), while the
+            // beat passes GRA and SHA
+            always @(posedge clk) begin
+                if (!rst && sha_take && !b_valid) begin
+                    $error("cube4_top: a beat left SHA before its position bits reached their FIFO");
+                    $fatal(1, "cube4_top: beat bits out of step");
+                end
+            end
+`endif
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;
             assign fe_smp_ready = smp_ready;
