@@ -171,19 +171,38 @@ module cube4_frontend #(
         if (BEATS != 0) begin : g_bits
             wire emits = c_req_tag[TAG_EMIT];
             wire b_ready, b_valid;
-            assign s_req_valid = c_req_valid && (!emits || b_ready);
-            assign c_req_ready = s_req_ready && (!emits || b_ready);
+            // the request forks to the memory's skid buffer and, its bits, to one
+            // beside it (k_*) before the FIFO, whose block RAM lies elsewhere: CFB
+            // advances on registers beside it
+            wire k_valid, k_ready;
+            wire [4*P+1:0] k_data;
+            assign s_req_valid = c_req_valid && (!emits || k_ready);
+            assign c_req_ready = s_req_ready && (!emits || k_ready);
+            cube4_skid #(.DATA_W (4 * P + 2)) u_bits_skid (
+                .clk (clk), .rst (rst),
+                .in_valid (c_req_valid && s_req_ready && emits), .in_ready (k_ready),
+                .in_data ({c_req_eoss, c_req_eos, c_req_bits}),
+                .out_valid (k_valid), .out_ready (b_ready), .out_data (k_data));
             cube4_ram_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .OUT_REG (1)) u_bits (
                 .clk       (clk),
                 .rst       (rst),
-                .in_valid  (c_req_valid && s_req_ready && emits),
+                .in_valid  (k_valid),
                 .in_ready  (b_ready),
-                .in_data   ({c_req_eoss, c_req_eos, c_req_bits}),
+                .in_data   (k_data),
                 .out_valid (b_valid),
                 .out_ready (smp_valid && smp_ready),
                 .out_data  ({smp_eoss, smp_eos, smp_bits})
             );
-            wire unused_bits = b_valid;    // a sample beat always finds its entry
+            wire unused_bits = b_valid;
+`ifndef SYNTHESIS
+            // a sample beat always finds its bits: they wait beside the memory and TRI
+            always @(posedge clk) begin
+                if (!rst && smp_valid && smp_ready && !b_valid) begin
+                    $error("cube4_frontend: a sample beat left before its position bits reached their FIFO");
+                    $fatal(1, "cube4_frontend: beat bits out of step");
+                end
+            end
+`endif
         end else begin : g_no_bits
             assign s_req_valid = c_req_valid;
             assign c_req_ready = s_req_ready;

@@ -379,6 +379,14 @@ module cube4_top #(
             // of the die, each reach only the logic beside them
             wire k_valid, k_ready;
             wire [3*P:0] k_data;
+            // and out of the FIFO through a skid buffer beside SHA's output, which
+            // the beat's departure (sha_take) pops: it reaches no RAM queue
+            wire f_valid, f_ready;
+            wire [3*P:0] f_data;
+            cube4_skid #(.DATA_W (3 * P + 1)) u_bits_out (
+                .clk (clk), .rst (rst),
+                .in_valid (f_valid), .in_ready (f_ready), .in_data (f_data),
+                .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
             assign smp_valid    = s_valid && k_ready;
             assign s_ready      = smp_ready && k_ready;
             cube4_skid #(.DATA_W (3 * P + 1)) u_bits_skid (
@@ -391,7 +399,7 @@ module cube4_top #(
                 MODULE #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
                     .clk (clk), .rst (rst), \
                     .in_valid (k_valid), .in_ready (b_ready), .in_data (k_data), \
-                    .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
+                    .out_valid (f_valid), .out_ready (f_ready), .out_data (f_data));
             if (SHADING != 0 && VGRAD == 0) begin : g_ram
                 `CUBE4_BITS_FIFO(cube4_ram_fifo)
             end else begin : g_regs
