@@ -116,13 +116,14 @@ module cube4_cfb_beats #(
                                            // g + 1, the last slice itself
     assign bm_ready = active && (wm < nm) && ({1'b0, wm} <= g2);
     wire bm_take = bm_valid && bm_ready;
+    wire wm_mv = bm_take && (wj == nj - 1'b1);   // slice wm is written whole
     always @(posedge clk) begin
         if (rst || start) begin
             wm <= '0;
             wj <= '0;
         end else if (bm_take) begin
             wj <= (wj == nj - 1'b1) ? '0 : wj + 1'b1;
-            if (wj == nj - 1'b1) wm <= wm + 1'b1;
+            if (wm_mv) wm <= wm + 1'b1;
         end
     end
     wire [2*NW-1:0] slot_q [0:3];
@@ -139,36 +140,45 @@ module cube4_cfb_beats #(
 
     // ==== the fetch: rows of the frame, then the flush row and the tail ====
     wire in_frame = g_in;
-    wire fetch_ok = !in_frame || (wm > need);
+    // wm > need as a register (wm_gt), from both next values: the walk's advance
+    // (adv, fanned out to every register of the fetch) starts at flip-flops
+    reg  wm_gt;
+    wire fetch_ok = !in_frame || wm_gt;
     reg  tail;                             // the flush row is fetched: rows past it are none
     reg  flushed;                          // the emitter took the flush row: the fetch stops
     wire take_ok;
     assign adv = active && !flushed && fetch_ok && take_ok;
+    wire           g_mv   = adv && in_frame && (gj == nj - 1'b1);   // g moves on to g + 1
+    wire [M_W-1:0] need_g = ({1'b0, g} + (M_W + 1)'(2) < {1'b0, nm}) ? M_W'(g + 2'd2) : M_W'(g + 1'b1);
+    wire [M_W-1:0] need0  = (nm > M_W'(1)) ? M_W'(1) : '0;
     always @(posedge clk) begin
         if (rst || start) begin
             g      <= '0;
             g2     <= (M_W + 1)'(2);
             g_in   <= (nm != '0);
             g_last <= (nm <= M_W'(1));
-            need   <= (nm > M_W'(1)) ? M_W'(1) : '0;
+            need   <= need0;
             gj     <= '0;
             tail   <= 1'b0;
         end else if (adv) begin
             if (in_frame) begin
                 gj <= (gj == nj - 1'b1) ? '0 : gj + 1'b1;
-                if (gj == nj - 1'b1) begin
-                    // g moves on to g + 1
+                if (g_mv) begin
                     g      <= g + 1'b1;
                     g2     <= g2 + 1'b1;
                     g_in   <= !g_last;
                     g_last <= ({1'b0, g} + (M_W + 1)'(2) >= {1'b0, nm});
-                    need   <= ({1'b0, g} + (M_W + 1)'(2) < {1'b0, nm}) ? M_W'(g + 2'd2) : M_W'(g + 1'b1);
+                    need   <= need_g;
                 end
             end else begin
                 tail <= 1'b1;
             end
         end
     end
+    // wm_gt: the next wm against the next need
+    wire [M_W-1:0] wm_d   = (rst || start) ? '0 : (wm_mv ? wm + 1'b1 : wm);
+    wire [M_W-1:0] need_d = (rst || start) ? need0 : (g_mv ? need_g : need);
+    always @(posedge clk) wm_gt <= (wm_d > need_d);
     // the fetched row's place, beside the slots' read register
     reg [1:0]       f_kind;
     reg [M_W-1:0]   f_m;
