@@ -1078,7 +1078,8 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
-    opaque where it counts); the host writes each frame's block table and its rays' stops.
+    opaque where it counts at tau = 0; on some composite frames a random tau > 0 with the
+    LUT as drawn); the host writes each frame's block table and its rays' stops.
     Path weights on two frames in three (the build has PLW = 1: the LUT's weighted columns
     beside it) and a crop box whose faces cut the blob on every third (the first frame's
     weights change its plane). Each frame's rays are the
@@ -1120,21 +1121,28 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
                  None]        # the identity
     jobs, gold = [], []
     for n, direction in enumerate(VIEWS):         # (1, 1, 1) and the 45° (1, -1, 0) among them
-        mode, terminate = modes[n % len(modes)], n % 2 == 1 or (shaded and n % 4 == 0)
+        # (unshaded: each mode on two frames in a row, without and with termination)
+        mode = modes[n % len(modes)] if shaded else modes[(n // 2) % len(modes)]
+        terminate = n % 2 == 1 or (shaded and n % 4 == 0)
+        # a threshold tau > 0 (half of T or more) on some composite frames that terminate,
+        # their LUT as drawn (rays end at various depths; those near their stops are not
+        # reported); tau = 0 with an opaque LUT on the others
+        tau = int(rng.integers(1 << (cfg.acc_bits - 1), 1 << cfg.acc_bits)) \
+            if terminate and mode == "composite" and n % 3 == 1 else 0
         box = n % 3 == 0      # a crop box whose faces cut the blob (the weights' faces through it)
         trav = make_traversal((10, 10, 8) if box else (nx, ny, nz), direction, cfg.weight_bits, 1,
                               phase=(n * 37 % 256, n * 91 % 256), origin=(10, 8, 7) if box else (0, 0, 0))
         lut, rmap = random_tables(rng, cfg)
         rmap = rmap if shaded and mode == "composite" else None
         lut[:64] = 0
-        if terminate:
+        if terminate and not tau:
             lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
         if n % 3 != 2 and not labels:    # path weights on two frames in three (the weighted columns beside the LUT)
             lut = np.concatenate([lut, weighted_columns(lut[:, 3], cfg.alpha_bits)], axis=1)
         bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, mode)
         sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
                                    gra=rmap is not None and not vgrad)
-        rule = beats.TerminationRule(mode, 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
+        rule = beats.TerminationRule(mode, tau, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
                                      enabled=terminate, value_bits=cfg.voxel_bits)
         gm = gm_tables[n % 3] if gmod and rmap is not None else None
         stop = surface_stops(trav, rng) if n % 3 == 2 else None     # depth in (a geometry's stops)
@@ -1163,6 +1171,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
         label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
                  f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
+                 f"{f' at tau {rule.tau}' if rule.tau else ''}"
                  f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}"
                  f"{' modulated' if job.gm is not None else ''}{' depth in' if job.stop_m is not None else ''}{' slab' if job.clip is not None else ''}")
         frame = check(mem, job.trav, cfg, job.lut, job.rmap, res, label, mode=job.mode, beats=(sched, rule),
