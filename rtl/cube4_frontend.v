@@ -174,8 +174,8 @@ module cube4_frontend #(
             // the request forks to the memory's skid buffer and, its bits, to one
             // beside it (k_*) before the FIFO, whose block RAM lies elsewhere: CFB
             // advances on registers beside it
-            wire k_valid, k_ready;
-            wire [4*P+1:0] k_data;
+            wire k_valid, k_ready, f_valid, f_ready;
+            wire [4*P+1:0] k_data, f_data;
             assign s_req_valid = c_req_valid && (!emits || k_ready);
             assign c_req_ready = s_req_ready && (!emits || k_ready);
             cube4_skid #(.DATA_W (4 * P + 2)) u_bits_skid (
@@ -189,10 +189,17 @@ module cube4_frontend #(
                 .in_valid  (k_valid),
                 .in_ready  (b_ready),
                 .in_data   (k_data),
-                .out_valid (b_valid),
-                .out_ready (smp_valid && smp_ready),
-                .out_data  ({smp_eoss, smp_eos, smp_bits})
+                .out_valid (f_valid),
+                .out_ready (f_ready),
+                .out_data  (f_data)
             );
+            // and out of it through a skid beside TRI's output, which the sample
+            // beat's departure pops: it reaches no RAM queue
+            cube4_skid #(.DATA_W (4 * P + 2)) u_bits_out (
+                .clk (clk), .rst (rst),
+                .in_valid (f_valid), .in_ready (f_ready), .in_data (f_data),
+                .out_valid (b_valid), .out_ready (smp_valid && smp_ready),
+                .out_data ({smp_eoss, smp_eos, smp_bits}));
             wire unused_bits = b_valid;
 `ifndef SYNTHESIS
             // a sample beat always finds its bits: they wait beside the memory and TRI
