@@ -149,8 +149,15 @@ module cube4_cfb_beats #(
     wire take_ok;
     assign adv = active && !flushed && fetch_ok && take_ok;
     wire           g_mv   = adv && in_frame && (gj == nj - 1'b1);   // g moves on to g + 1
-    wire [M_W-1:0] need_g = ({1'b0, g} + (M_W + 1)'(2) < {1'b0, nm}) ? M_W'(g + 2'd2) : M_W'(g + 1'b1);
+    // need_n: what need becomes when g moves on (g + 2, the last slice g + 1), a
+    // register kept one move ahead, so no adder of g lies before wm_gt's compare
+    reg  [M_W-1:0] need_n;
+    wire [M_W-1:0] need_g = need_n;
     wire [M_W-1:0] need0  = (nm > M_W'(1)) ? M_W'(1) : '0;
+    always @(posedge clk) begin
+        if (rst || start) need_n <= ((M_W + 1)'(2) < {1'b0, nm}) ? M_W'(2) : M_W'(1);
+        else if (g_mv)    need_n <= ({1'b0, g} + (M_W + 1)'(3) < {1'b0, nm}) ? M_W'(g + 2'd3) : M_W'(g + 2'd2);
+    end
     always @(posedge clk) begin
         if (rst || start) begin
             g      <= '0;
