@@ -73,8 +73,10 @@
 //                voxel beats the running ones read (GRA: cube4_gra_beats);
 //                the front end's sample beats pass a skid buffer (one cycle);
 //                COM takes each beat's position bits (a FIFO beside GRA and
-//                SHA: in block RAM, a slice and two rows of beats deep, with
-//                shading), ends the rays and reports
+//                SHA, between two skid buffers: in block RAM, a slice and two
+//                rows of beats deep, with shading) and each beat's slice steps
+//                (cube4_com_steps, where the beat leaves SHA, through two skid
+//                buffers), ends the rays and reports
 //                the done ones back (view registers BB_*, NBR, TERM, TAU,
 //                VMIN, VMAX). Every frame needs both tables.   0..1. Default 0.
 //   LABELS       1: label volumes (numerics.md section 24): each memory word
