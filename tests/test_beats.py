@@ -307,27 +307,29 @@ def test_skipping_report_beat_rows():
     assert "| head:128, scene head | 2 | 130,367 | 0.497 | 129,661 | 0.495 | 0.471 |" in text
 
 
-def test_skipping_report_rtl_beat_lines():
-    """The beat section's RTL table: a frame time only where the build's Fmax was measured,
-    and --fmax as one clear line when malformed."""
-    from cube4_reports import skipping
+def test_skipping_report_rtl_beat_lines(tmp_path):
+    """The beat section's RTL table: a frame time only where the build that ran the frame
+    (its options and widths, P = 8) was placed and routed; no other build's clock."""
+    import json
 
+    from cube4.builds import complete_build
+    from cube4.config import Cube4Config
+    from cube4_reports import fmax, skipping
+
+    box = {"SHADING": 1, "COMPOSITING": 1}
     frames = [{"volume": "mri:128", "scene": "mri_skin", "schedule": s, "cycles": c, "n3_over_p": 262144.0,
-               "beats": None if s == "box" else {"run_beats": 70000}, "build": {"SHADING": 1, "BEATS": int(s != "box")},
+               "beats": None if s == "box" else {"run_beats": 70000}, "build": {**box, "BEATS": int(s != "box")},
                "identical": True} for s, c in (("box", 140000), ("beats + termination", 97000))]
-    text = "\n".join(skipping.rtl_beat_lines(frames, {"box": 140.0}))
-    assert "1.00 ms" in text and "not measured" in text and "0.267" in text
-    assert skipping.parse_fmax("box=140,beats=61.5") == {"box": 140.0, "beats": 61.5}
-    fmax = skipping.parse_fmax("box=140@abc1234")
-    assert fmax == {"box": 140.0, "box@rtl": "abc1234"}
-    assert "140.0 MHz (RTL abc1234)" in "\n".join(skipping.rtl_beat_lines(frames, fmax))
-    with pytest.raises(SystemExit, match="--fmax wants"):
-        skipping.parse_fmax("box=140@")
-    assert "does not fit" in "\n".join(skipping.rtl_beat_lines(frames, skipping.parse_fmax("beats=nofit")))
-    with pytest.raises(SystemExit, match="--fmax wants"):
-        skipping.parse_fmax("beats=fast")
-    fmax = skipping.parse_fmax("box=140@abc1234:1,beats=97.5@def5678:1+2+3")
-    text = "\n".join(skipping.rtl_beat_lines(frames, fmax))
-    assert "140.0 MHz (RTL abc1234; seed 1)" in text and "97.5 MHz (RTL def5678; median of seeds 1, 2, 3)" in text
-    with pytest.raises(SystemExit, match="--fmax wants"):
-        skipping.parse_fmax("beats=97.5@def5678:one")
+    widths = Cube4Config().widths()
+    off = {"EXTREMUM": 0, "CLIP": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "VGRAD": 0,
+           "RECTS": 0}
+    f = tmp_path / "fpga_x.json"
+    f.write_text(json.dumps({"seeds": [1, 2, 3], "rtl_commit": "abc1234", "max_dim": 128, "results": [
+        {"p": 8, "fmax_median": 140.0, "fits": True, "build": complete_build({**box, **off, "BEATS": 0}),
+         "widths": widths},
+        {"p": 8, "fmax_median": 99.0, "fits": True, "build": complete_build({**box, **off, "BEATS": 1}),
+         "widths": {**widths, "ACC_W": 24}}]}))      # another width: not the frame's build
+    text = "\n".join(skipping.rtl_beat_lines(frames, fmax.load([f])))
+    assert "140.0 MHz [1]" in text and "1.00 ms" in text and "not measured" in text and "0.267" in text
+    assert "99.0" not in text and "- [1] 140.0 MHz: " in text and "median of 3 seeds, RTL abc1234" in text
+    assert "not measured" in "\n".join(skipping.rtl_beat_lines(frames, []))

@@ -8,12 +8,13 @@ from pathlib import Path
 
 import pytest
 
+from cube4.builds import build_name, complete_build
 from cube4.config import Cube4Config
 from cube4.cycles import frame_cycles
 from cube4.errors import UserError
 from cube4.host import config_for, setup_view
 from cube4.scene import PRESETS, load_scene
-from cube4_reports import report
+from cube4_reports import fmax, report
 
 
 def test_variants_one_parameter_at_a_time() -> None:
@@ -60,51 +61,82 @@ def test_cycle_formula_matches_docs() -> None:
         assert frame_cycles(trav.num_sample_slices, trav.nj, trav.ni, p) == (m * nj + 1) * nb + 1 + nj * nb + nb + 2 + fill
 
 
+def _fpga_json(path: Path, results: list[dict], **top) -> Path:
+    """A result file of python -m cube4_reports.fpga (the fields cube4_reports.fmax reads)."""
+    path.write_text(json.dumps({"part": "LFE5U-85F", "max_dim": 128, "seeds": [1, 2, 3], "rtl_commit": "abc1234",
+                                "finished": "2026-11-30 12:00", **top, "results": results}))
+    return path
+
+
+def _result(p: int, fmax: float | None, build: dict | None = None, fits: bool = True, **widths) -> dict:
+    return {"p": p, "fmax_median": fmax, "fmax_seeds": [fmax] * 3, "fits": fits,
+            "build": complete_build(build), "widths": {**Cube4Config().widths(), **widths}}
+
+
 def test_fmax_lookup(tmp_path: Path) -> None:
-    assert report.load_fmax(tmp_path / "missing.json") is None
-    f = tmp_path / "fpga.json"
-    f.write_text(json.dumps({"results": [
-        {"p": 8, "fmax_mhz": 97.3},
-        {"p": 4, "fmax_mhz": 80.0, "config": {"acc_bits": 24}},
-        {"p": 2, "fmax_mhz": None},
-    ]}))
-    res = report.load_fmax(f)
-    assert report.fmax_for(res, Cube4Config()) == 97.3
-    assert report.fmax_for(res, Cube4Config(pipelines=4)) is None  # entry states acc_bits 24
-    assert report.fmax_for(res, Cube4Config(pipelines=4, acc_bits=24)) == 80.0
-    assert report.fmax_for(res, Cube4Config(pipelines=2)) is None  # no Fmax measured
-    assert report.fmax_for(None, Cube4Config()) is None
-    f.write_text("{not json")
-    with pytest.raises(UserError, match="make fpga"):
-        report.load_fmax(f)
+    """A frame time comes only from the build that runs it: its options, widths and P."""
+    beats = {"BEATS": 1, "EXTREMUM": 0, "CLIP": 0, "PLW": 0}
+    f = _fpga_json(tmp_path / "fpga_a.json", [_result(8, 113.1, beats), _result(4, 120.0, beats, fits=False)])
+    g = _fpga_json(tmp_path / "fpga_b.json", [_result(8, 130.0), _result(8, 90.0, beats, MAX_SS_LOG2=2),
+                                               {"p": 1, "fmax_median": 99.0, "fits": True}],   # names no build
+                   finished="2026-11-29 12:00")
+    m = fmax.load([f, g])
+    assert len(m) == 3
+    w = Cube4Config().widths()
+    hit = fmax.lookup(m, 8, beats, w)
+    assert hit.fmax_mhz == 113.1 and "P = 8" in hit.note() and "abc1234" in hit.note() and "fpga_a.json" in hit.note()
+    assert fmax.lookup(m, 8, {}, w).fmax_mhz == 130.0                          # the full build
+    assert fmax.lookup(m, 8, {"PLW": 0}, w) is None                           # another build: never borrowed
+    assert fmax.lookup(m, 4, beats, w) is None                                # does not fit
+    assert fmax.lookup(m, 8, beats, {**w, "MAX_SS_LOG2": 2}).fmax_mhz == 90.0  # widths are part of the build
+    assert fmax.lookup(m, 8, beats, {**w, "ACC_W": 24}) is None
+    assert fmax.lookup(m, 1, {}, w) is None
+    # the latest finished of two results of the same build counts
+    h = _fpga_json(tmp_path / "fpga_c.json", [_result(8, 115.0, beats)], finished="2026-12-01 08:00")
+    assert fmax.lookup(fmax.load([f, g, h]), 8, beats, w).fmax_mhz == 115.0
+    assert fmax.build_from_name(build_name(complete_build(beats))) == complete_build(beats)
+    assert fmax.build_from_name("full") == complete_build({})
+    (tmp_path / "bad.json").write_text("{not json")
+    with pytest.raises(UserError, match="bad.json is not a result of python -m cube4_reports.fpga"):
+        fmax.load([tmp_path / "bad.json"])
 
 
-def _row(varied: str, label: str, psnr: float, cycles: int, **cfg) -> report.Row:
+def _row(varied: str, label: str, psnr: float, cycles: int, build: str = "EXTREMUM=0, CLIP=0, PLW=0",
+         **cfg) -> report.Row:
     c = Cube4Config(**cfg).as_dict()
     return report.Row(volume="sphere:64", scene="default", varied=varied, label=label,
                       pipelines=c["pipelines"], weight_bits=c["weight_bits"], acc_bits=c["acc_bits"],
                       supersample=c["supersample"], voxel_bits=c["voxel_bits"], alpha_bits=c["alpha_bits"],
                       rmap_bits=c["rmap_bits"], rmse=10 ** (-psnr / 20), max_abs=0.5, psnr=psnr, rmse_rgb=0.0,
-                      rmse_alpha=0.0, golden_wall_s=0.1, formula_cycles=cycles, cycles=cycles)
+                      rmse_alpha=0.0, golden_wall_s=0.1, formula_cycles=cycles, cycles=cycles, build=build,
+                      cycles_source="rtl")
 
 
-def test_table_frame_time_and_failures() -> None:
-    rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1)]
+def test_table_frame_time_and_failures(tmp_path: Path) -> None:
+    rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1),
+            _row("weight_bits", "W=4", 30.0, 1000, weight_bits=4)]
     rows[1].rtl_error, rows[1].cycles_source = "build failed", "formula (RTL failed)"
-    report.finish_rows(rows, [{"p": 8, "fmax_mhz": 100.0}])
-    assert rows[0].frame_time_ms == pytest.approx(0.01)
+    measured = fmax.read_results(_fpga_json(tmp_path / "fpga_t.json", [
+        _result(8, 100.0, {"EXTREMUM": 0, "CLIP": 0, "PLW": 0}), _result(1, 50.0, {}),  # p = 1: another build
+        _result(8, 90.0, {"EXTREMUM": 0, "CLIP": 0, "PLW": 0}, WEIGHT_W=6)]))          # another width
+    report.finish_rows(rows, measured)
+    assert rows[0].frame_time_ms == pytest.approx(0.01) and "100.0 MHz" in rows[0].fmax_source
     assert rows[1].frame_time_ms is None and rows[1].cycles_ratio == 8.0
+    assert rows[2].frame_time_ms is None and "not placed and routed" in rows[2].fmax_source
     table = report.markdown_table(rows)
     lines = table.splitlines()
     assert all(line.count("|") - line.count("\\|") == lines[0].count("|") - lines[0].count("\\|") for line in lines)
-    assert "0.0100 @ 100.0 MHz" in lines[2] and report.NA_FMAX in lines[3]
+    assert "0.0100 @ 100.0 MHz" in lines[2] and report.NA_FMAX in lines[3] and report.NA_FMAX in lines[4]
     assert "RTL failed: build failed" in lines[3] and "**1**" in lines[3]
+    assert "| EXTREMUM=0, CLIP=0, PLW=0 |" in lines[2]
+    note = report.fmax_note(rows, measured)
+    assert "2 of 3 rows run on a build that was never placed and routed" in note and "100.0 MHz" in note
 
 
 def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """A finished run's JSON gets frame times once fpga.json (make fpga's schema) exists."""
     monkeypatch.setattr(report, "REPORTS_BUILD", tmp_path)
-    monkeypatch.setattr(report, "FPGA_JSON", tmp_path / "fpga.json")
+    monkeypatch.setattr(fmax, "REPORTS", tmp_path)
     with pytest.raises(UserError, match="run make report first"):
         report.rewrite_tables(tmp_path / "out")
     rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1)]
@@ -118,12 +150,12 @@ def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
                      {"volume": "head:24", "scene": "head", "axis": "-x", "axis_area": 30.0, "tilted_area": 31.0,
                       "axis_point": 28.0, "tilted_point": 31.0}]}
     report.write_json(report.json_path(tmp_path / "out"), rows, meta)
-    (tmp_path / "fpga.json").write_text(json.dumps({"part": "LFE5U-85F", "max_dim": 128, "results": [
-        {"p": 1, "fmax_mhz": 50.0, "fits": True}, {"p": 8, "fmax_mhz": 99.0, "fits": False}]}))
+    build = {"EXTREMUM": 0, "CLIP": 0, "PLW": 0}
+    _fpga_json(tmp_path / "fpga_x.json", [_result(1, 50.0, build), _result(8, 99.0, build, fits=False)])
     new_rows, new_meta = report.rewrite_tables(tmp_path / "out")
     assert new_rows[1].frame_time_ms == pytest.approx(8000 / 50e6 * 1e3)
     assert new_rows[0].frame_time_ms is None  # p = 8 does not fit: no Fmax
-    assert "p = 1: 50.0 MHz" in new_meta["fmax_note"] and new_meta["tables_rewritten"]
+    assert "50.0 MHz: EXTREMUM=0, CLIP=0, PLW=0 at P = 1" in new_meta["fmax_note"] and new_meta["tables_rewritten"]
     paths = report.write_outputs(new_rows, new_meta, tmp_path / "out")
     assert all(p.exists() for p in paths)
     text = (tmp_path / "out" / f"{report.STEM}.md").read_text()

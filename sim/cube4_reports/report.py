@@ -10,8 +10,9 @@ S, weight bits W, accumulator bits F, pipelines p) and every volume/scene pair i
 * renders through the Verilated ``cube4_top`` (one build per parameter set, cached under
   build/sim) for the measured cycles and simulation seconds, and checks that its base
   plane equals the golden one bit for bit (``bit_exact``),
-* converts cycles to a frame time at the Fmax measured by ``make fpga``
-  (build/reports/fpga.json, per p), or writes "n/a (run make fpga)".
+* converts cycles to a frame time at the measured Fmax of the build that runs the frame
+  (its options, word widths and P; cube4_reports.fmax reads the place-and-route results
+  committed under reports/), or says the build was not measured: no Fmax is borrowed.
 
 Outputs: ``<out>/error_vs_runtime.{md,csv,png}`` and build/reports/error_vs_runtime.json;
 the Verilator/cocotb output goes to build/reports/error_vs_runtime.log.
@@ -43,18 +44,19 @@ import numpy as np
 from cube4.app.labelmaps import with_labels
 from cube4.app.render import render
 from cube4.app.volumes import load_volume
-from cube4.config import Cube4Config
+from cube4.builds import build_name, check_build
+from cube4.config import Cube4Config, resolve_build
 from cube4.errors import UserError
 from cube4.host import config_for, image_metrics
 from cube4.scene import PRESETS, Scene, load_scene
 
 from cube4_sim.engine import register as register_rtl_engine
 
+from . import fmax as fmax_store
 from .markdown import REPO_ROOT, git_state, md_table
 
 REPORTS_BUILD = REPO_ROOT / "build" / "reports"
 DEFAULT_OUT = REPO_ROOT / "reports"
-FPGA_JSON = REPORTS_BUILD / "fpga.json"
 STEM = "error_vs_runtime"
 
 #: (volume, scene) pairs. 64³ (and 41³, same build size class) keeps the RTL runs short. The
@@ -113,13 +115,12 @@ SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "
          "filter": "warp", "gradient": "grad", "path_weights": "pw", "preview": "preview", "tau": "beats τ"}
 #: sweeps of a scene key (the render's, not the hardware's configuration); "tau" renders
 #: with beat skipping and ray termination at that threshold (skip = "beats", cube4.beats),
-#: which the golden model specifies and no RTL runs yet: its cycles are the front end's
-#: beats of the golden schedule (walk_beats), not simulated
+#: on the beat build (BEATS = 1) where one exists for the configuration (S = 1)
 SCENE_SWEEPS = ("subpixel", "filter", "gradient", "path_weights", "preview", "tau")
-#: the cycles source of a "tau" row
-BEATS_SOURCE = "golden beat walk (not built)"
-CONFIG_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits", "supersample")
-NA_FMAX = "n/a (run make fpga)"
+#: the cycles source of a "tau" row with no beat build (its cycles: the golden schedule's beats)
+BEATS_SOURCE = "golden beat walk (no build)"
+#: the frame-time cell of a row whose build has no measured Fmax
+NA_FMAX = "not measured"
 
 
 @dataclass(frozen=True)
@@ -184,7 +185,9 @@ class Row:
     bit_exact: bool | None = None  # RTL base plane == golden base plane
     rtl_psnr: float | None = None
     rtl_error: str | None = None
-    fmax_mhz: float | None = None
+    build: str = ""  # the build that runs the frame (cube4.builds.build_name; "" in a run from before)
+    fmax_mhz: float | None = None  # that build's measured Fmax at these widths and p (cube4_reports.fmax)
+    fmax_source: str | None = None  # where it was measured (fmax.Measured.note), or why there is none
     frame_time_ms: float | None = None
     d_psnr_db: float | None = None  # PSNR - PSNR of the default configuration
     cycles_ratio: float | None = None  # cycles / cycles of the default configuration
@@ -233,59 +236,28 @@ def _rel(path: Path) -> Path:
     return path.relative_to(REPO_ROOT) if path.is_relative_to(REPO_ROOT) else path
 
 
-def read_fpga(path: Path | None = None) -> dict | None:
-    """build/reports/fpga.json of `make fpga`, or None if it has not been run."""
-    path = path or FPGA_JSON
-    if not path.exists():
-        return None
-    try:
-        data = json.loads(path.read_text())
-        if not isinstance(data["results"], list):
-            raise TypeError
-        return data
-    except (OSError, ValueError, KeyError, TypeError):
-        raise UserError(f"{path} is not a `make fpga` result (expected {{\"results\": [{{\"p\": .., "
-                        f"\"fmax_mhz\": ..}}]}}); rerun make fpga or delete it") from None
+def row_widths(r: Row) -> dict[str, int]:
+    """The row's word widths as cube4_top's parameters."""
+    return Cube4Config(pipelines=r.pipelines, voxel_bits=r.voxel_bits, weight_bits=r.weight_bits,
+                       alpha_bits=r.alpha_bits, acc_bits=r.acc_bits, rmap_bits=r.rmap_bits,
+                       supersample=r.supersample).widths()
 
 
-def load_fmax(path: Path | None = None) -> list[dict] | None:
-    """The results of `make fpga` that have an Fmax (placed and routed, fitting the part),
-    or None if it has not been run."""
-    data = read_fpga(path)
-    if data is None:
-        return None
-    return [r for r in data["results"] if isinstance(r, dict) and "p" in r
-            and r.get("fmax_mhz") is not None and r.get("fits", True) is not False]
-
-
-def fmax_note(path: Path | None = None) -> str:
-    """Where the Fmax comes from, for the Markdown report."""
-    path = path or FPGA_JSON
-    data = read_fpga(path)
-    fmax = load_fmax(path)
-    rel = _rel(path)
-    if not fmax:
-        return f"no Fmax: {rel} is missing or has no routed result, run `make fpga`"
-    ps = ", ".join(f"p = {r['p']}: {float(r['fmax_mhz']):.1f} MHz" for r in fmax)
-    where = ", ".join(f"{k} {data[k]}" for k in ("part", "speed", "max_dim") if k in data)
-    return (f"`make fpga` ({rel}{'; ' + where if where else ''}): {ps}. The Fmax is that of the p's build with "
-            "the default word widths, also used for the W, F and S variants of the same p")
-
-
-def fmax_for(results: list[dict] | None, cfg: Cube4Config) -> float | None:
-    """Fmax (MHz) measured for this p. An entry that states other parameters (directly or
-    under "config") must agree with cfg; parameters it does not state are not checked."""
-    if not results:
-        return None
-    want = cfg.as_dict()
-    for r in results:
-        stated = {**r.get("config", {}), **r} if isinstance(r.get("config"), dict) else r
-        if int(stated["p"]) != cfg.pipelines:
-            continue
-        if any(k in stated and stated[k] != want[k] for k in CONFIG_KEYS):
-            continue
-        return float(stated["fmax_mhz"])
-    return None
+def fmax_note(rows: list[Row], measured: list[fmax_store.Measured]) -> str:
+    """Which measured builds the frame times use, for the Markdown report."""
+    used = sorted({r.fmax_source for r in rows if r.fmax_mhz is not None})
+    missing = len([r for r in rows if r.fmax_mhz is None])
+    if not measured:
+        head = ("no build has a measured Fmax (no place-and-route result under reports/: "
+                "`python -m cube4_reports.fpga --build ... --md reports/fpga_<name>.md` writes one)")
+    else:
+        head = ("the Fmax of the build that runs the row, at its word widths and p, median of the seeds "
+                "placed and routed (`python -m cube4_reports.fpga`; its JSON beside its report in reports/)")
+    text = head + (": " + "; ".join(used) if used else "")
+    if missing:
+        text += (f". {missing} of {len(rows)} rows run on a build that was never placed and routed: no "
+                 "frame time (\"not measured\"), none borrowed from another build")
+    return text
 
 
 # ---------------------------------------------------------------------------- running
@@ -328,10 +300,20 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
               baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter,
               gradient=scene.gradient, path_weights=scene.path_weighted, preview=scene.preview,
-              tau=scene.tau if scene.skip == "beats" else None)
-    if row.tau is not None:     # no RTL runs the beat schedule: its cycles are the golden walk's beats
+              tau=scene.tau if scene.skip == "beats" else None, build=build_name(resolve_build(cfg, [scene])))
+    if row.tau is not None:     # the beat schedule: its cycles are measured, the golden walk's beats stand in
         row.formula_cycles = int(res.stats["beats"]["walk_beats"])
     return row, res.frame.baseplane
+
+
+def has_build(scene: Scene, cfg: Cube4Config) -> bool:
+    """Whether the RTL has a build for this scene at these widths (the beat schedule runs
+    with S = 1 only: cube4.builds.RULES)."""
+    try:
+        check_build(resolve_build(cfg, [scene]), cfg.widths())
+    except UserError:
+        return False
+    return True
 
 
 def add_rtl(row: Row, vol: np.ndarray, scene: Scene, cfg: Cube4Config, golden_base: np.ndarray,
@@ -354,14 +336,21 @@ def add_rtl(row: Row, vol: np.ndarray, scene: Scene, cfg: Cube4Config, golden_ba
     row.rtl_psnr = image_metrics(res.image, ref_img)["psnr"]
 
 
-def finish_rows(rows: list[Row], fmax: list[dict] | None) -> None:
-    """Frame time at Fmax, and PSNR / cycles relative to each case's default."""
+def finish_rows(rows: list[Row], measured: list[fmax_store.Measured]) -> None:
+    """Frame time at the measured Fmax of each row's own build, and PSNR / cycles relative
+    to each case's default."""
     defaults = {(r.volume, r.scene): r for r in rows if r.varied == "default"}
     for r in rows:
-        cfg = Cube4Config(pipelines=r.pipelines, voxel_bits=r.voxel_bits, weight_bits=r.weight_bits,
-                          alpha_bits=r.alpha_bits, acc_bits=r.acc_bits, rmap_bits=r.rmap_bits,
-                          supersample=r.supersample)
-        r.fmax_mhz = None if r.tau is not None else fmax_for(fmax, cfg)   # the beat schedule has no build
+        r.fmax_mhz, r.frame_time_ms = None, None
+        if not r.build:
+            r.fmax_source = "the run named no build"
+        elif r.cycles_source == BEATS_SOURCE:
+            r.fmax_source = "no build runs it"
+        else:
+            build = fmax_store.build_from_name(r.build)
+            m = fmax_store.lookup(measured, r.pipelines, build, row_widths(r))
+            r.fmax_mhz, r.fmax_source = ((m.fmax_mhz, m.note()) if m else
+                                         (None, fmax_store.unmeasured_note(r.pipelines, build)))
         if r.fmax_mhz and r.cycles is not None:
             r.frame_time_ms = r.cycles / (r.fmax_mhz * 1e6) * 1e3
         base = defaults.get((r.volume, r.scene))
@@ -401,18 +390,23 @@ def _param_cells(r: Row) -> list[str]:
 
 COMBOS_BY_LABEL = {Variant("combo", c).label: c for c in COMBOS}
 TABLE_HEADERS = ["config", "S", "W", "F", "p", "q", "warp", "gradient", "path weights", "preview", "τ", "RMSE", "max \\|err\\|", "PSNR (dB)", "ΔPSNR (dB)", "cycles",
-                 "× cycles", "source", "frame time at Fmax (ms)", "sim (s)", "sim cycles/s", "bit_exact"]
+                 "× cycles", "source", "build", "frame time (ms) at its Fmax", "sim (s)", "sim cycles/s", "bit_exact"]
+
+
+def frame_text(r: Row, fmt: str = ".4f") -> str:
+    """'0.1234 @ 113.1 MHz', or why there is no frame time."""
+    if r.frame_time_ms is not None:
+        return f"{r.frame_time_ms:{fmt}} @ {r.fmax_mhz:.1f} MHz"
+    return "no build" if r.cycles_source == BEATS_SOURCE else NA_FMAX
 
 
 def markdown_table(rows: list[Row]) -> str:
     cells = []
     for r in rows:
-        frame = _f(r.frame_time_ms, ".4f", NA_FMAX)
-        if r.frame_time_ms is not None:
-            frame += f" @ {r.fmax_mhz:.1f} MHz"
         cells.append([
             r.label, *_param_cells(r), _f(r.rmse, ".5f"), _f(r.max_abs, ".3f"), _f(r.psnr, ".2f"),
-            _f(r.d_psnr_db, "+.2f"), _f(r.cycles, ","), _f(r.cycles_ratio, ".2f"), r.cycles_source, frame,
+            _f(r.d_psnr_db, "+.2f"), _f(r.cycles, ","), _f(r.cycles_ratio, ".2f"), r.cycles_source,
+            r.build or "n/a", frame_text(r),
             _f(r.sim_wall_s, ".2f"), _f(r.sim_cycles_per_s, ",.0f"), _bit_exact_text(r),
         ])
     return md_table(TABLE_HEADERS, cells, "l" * len(TABLE_HEADERS))
@@ -440,7 +434,7 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               f"(commit {meta['git']['commit']}{', uncommitted changes in rtl/ or sim/hdl/' if meta['git']['rtl_dirty'] else ''}). "
               f"{'Tables and plot rewritten from that run (`--tables-only`, current Fmax) on ' + meta['tables_rewritten'] + '. ' if meta.get('tables_rewritten') else ''}"
               "Do not edit: rerun `make report`. Explained in [docs/reports.md](../docs/reports.md#error-against-run-time).\n\n")
-    out.write(f"![PSNR against cycles]({STEM}.png)\n\n")
+    out.write(f"![PSNR against cycles and against milliseconds per frame]({STEM}.png)\n\n")
     out.write(budget_section(rows))
     d = next((r for r in rows if r.varied == "default"), rows[0])
     out.write(f"Each configuration is the default (`S = {d.supersample}, W = {d.weight_bits}, F = {d.acc_bits}, "
@@ -454,8 +448,9 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               "bit_exact: the RTL base plane equals the golden one. "
               "`preview`: the scene rendered from its ½ or ¼ level (docs/numerics.md §20) through the RTL, its error "
               "against the whole volume's truth. `beats τ`: beat skipping and ray termination at transmittance τ "
-              "(docs/numerics.md §19), which the golden model specifies and no RTL runs yet: its cycles are the "
-              f"front end's beats in the golden schedule (source `{BEATS_SOURCE}`), with no frame time. "
+              "(docs/numerics.md §19) on the beat build (BEATS = 1, S = 1); where a configuration has no such "
+              f"build its cycles are the front end's beats in the golden schedule (source `{BEATS_SOURCE}`), "
+              "with no frame time. build: the build that runs the row (cube4.builds; the scene's smallest). "
               "The classification features on real content, each on the build its scene gets: "
               "`mri_boundaries` (gradient-magnitude modulation, docs/numerics.md §23; a GMOD build) and "
               "`colin_lobes` (labels, §24: the Colin27 T1 with the AAL atlas folded into lobes; a LABELS "
@@ -565,16 +560,25 @@ def budget_section(rows: list[Row]) -> str:
     (the non-dominated front: the best error that fits each budget)."""
     lines = ["## Which configuration for a budget", "",
              "For each volume, the non-dominated configurations in order of cycles per frame: with a budget of "
-             "at least that many cycles, that one gives the best error of all configurations measured "
-             "(frame time = cycles / Fmax of the build that runs it, in the tables below).", ""]
+             "at least that many cycles, that one gives the best error of all configurations measured; then the "
+             "same in milliseconds per frame (cycles / the measured Fmax of the build that runs it) among the "
+             "configurations whose build was placed and routed.", ""]
     for (vol, scn) in dict.fromkeys((r.volume, r.scene) for r in rows):
-        front = pareto([r for r in rows if (r.volume, r.scene) == (vol, scn) and r.cycles is not None])
+        rs = [r for r in rows if (r.volume, r.scene) == (vol, scn)]
+        front = pareto([r for r in rs if r.cycles is not None])
         if not front:
             continue
         steps = "; ".join(f"≥ {r.cycles:,} cycles: {r.label} ({r.psnr:.2f} dB)" for r in front)
         best = max(r.psnr for r in front)
         lines.append(f"- **{vol}, `{scn}`** (best {best:.2f} dB{'' if best >= GOAL_PSNR else ', below the 40 dB goal'}): "
                      + steps)
+        timed = [r for r in rs if r.frame_time_ms is not None]
+        if timed:
+            ms = "; ".join(f"≥ {r.frame_time_ms:.3f} ms: {r.label} ({r.psnr:.2f} dB, {r.fmax_mhz:.1f} MHz)"
+                           for r in pareto_ms(timed))
+            lines.append(f"  - in time ({len(timed)} of {len(rs)} configurations on a measured build): {ms}")
+        else:
+            lines.append(f"  - in time: none of its {len(rs)} configurations runs on a build with a measured Fmax")
     return "\n".join(lines) + "\n\n"
 
 
@@ -621,10 +625,8 @@ def presets_section(rows: list[Row]) -> str:
             r = next((r for r in rows if (r.volume, r.scene, r.label) == (vol, scn, label)), None)
             if r is None:
                 continue
-            frame = _f(r.frame_time_ms, ".3f", NA_FMAX)
-            if r.frame_time_ms is not None:
-                frame += f" @ {r.fmax_mhz:.1f} MHz"
-            cells.append([f"{vol}, `{scn}`", name, _f(r.psnr, ".2f"), _f(r.cycles, ","), frame])
+            cells.append([f"{vol}, `{scn}`", name, _f(r.psnr, ".2f"), _f(r.cycles, ","), r.build or "n/a",
+                          frame_text(r, ".3f")])
             if name == "quality":
                 reached.append(r.psnr >= GOAL_PSNR)
     if not cells:
@@ -634,9 +636,9 @@ def presets_section(rows: list[Row]) -> str:
             "`supersample = 4`, `subpixel = 2` and `path_weights = true` (docs/numerics.md §17; the built-in "
             "scene `head_quality` is the head with it). The scene `ml` has path weights on by default: "
             "Marschner–Lobb reaches the volume's faces. "
-            "Frame time at the Fmax that `make fpga` measured for the full build at this p (the voxel-gradient "
-            "build's own Fmax at P = 4 is in reports/scenes.md).\n\n")
-    text += md_table(["case", "preset", "PSNR (dB)", "cycles", "frame time (ms)"], cells, "llrrl") + "\n\n"
+            "Frame time: cycles / the measured Fmax of the build that runs it (\"not measured\": that build "
+            "was never placed and routed).\n\n")
+    text += md_table(["case", "preset", "PSNR (dB)", "cycles", "build", "frame time (ms)"], cells, "llrrll") + "\n\n"
     if reached:
         text += (f"The quality preset reaches {GOAL_PSNR:.0f} dB on {sum(reached)} of {len(reached)} cases"
                  + (" (all)" if all(reached) else "") + ".\n\n")
@@ -720,6 +722,44 @@ def pareto(rs: list[Row]) -> list[Row]:
     return front
 
 
+def pareto_ms(rs: list[Row]) -> list[Row]:
+    """The non-dominated rows in (milliseconds per frame, PSNR), among rows with a frame time."""
+    front: list[Row] = []
+    for r in sorted((r for r in rs if r.frame_time_ms is not None), key=lambda r: (r.frame_time_ms, -r.psnr)):
+        if not front or r.psnr > front[-1].psnr:
+            front.append(r)
+    return front
+
+
+def _plot_time(ax: Any, rs: list[Row]) -> None:
+    """PSNR against milliseconds per frame, for the rows whose build has a measured Fmax
+    (each point labelled), the non-dominated ones joined; the others are counted, not drawn."""
+    timed = [r for r in rs if r.frame_time_ms is not None]
+    ax.set_ylabel("PSNR vs float64 reference (dB)")
+    ax.set_xlabel("milliseconds per frame (cycles / the measured Fmax of the row's build)")
+    ax.grid(True, which="both", alpha=0.3)
+    if not timed:
+        ax.text(0.5, 0.5, f"none of the {len(rs)} configurations\nruns on a build with a measured Fmax",
+                ha="center", va="center", transform=ax.transAxes, fontsize=9)
+        return
+    for key, (marker, colour) in SERIES_STYLE.items():
+        pts = [r for r in timed if r.varied == key or (key == "gradient" and r.varied == "combo")]
+        if pts:
+            ax.plot([r.frame_time_ms for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker,
+                    color=colour, alpha=0.8, label=SHORT[key])
+    for r in timed:
+        if r.varied == "default":
+            ax.plot([r.frame_time_ms], [r.psnr], marker="*", color="black", markersize=14, zorder=5, label="default")
+        ax.annotate(f"{r.label} ({r.fmax_mhz:.0f} MHz)", (r.frame_time_ms, r.psnr), textcoords="offset points",
+                    xytext=(4, 4), fontsize=6)
+    front = pareto_ms(timed)
+    ax.plot([r.frame_time_ms for r in front], [r.psnr for r in front], linestyle="--", color="black", linewidth=1.2,
+            alpha=0.7, label="non-dominated (least time for the PSNR)")
+    ax.set_xscale("log", base=2)
+    ax.set_title(f"{len(timed)} of {len(rs)} configurations on a measured build", fontsize=8)
+    ax.legend(fontsize=6, loc="lower right", framealpha=0.6)
+
+
 def _series(rs: list[Row], key: str) -> list[Row]:
     """The rows varying `key`, with the default, in order of the parameter."""
     return sorted([r for r in rs if r.varied in ("default", key)], key=lambda r: getattr(r, key))
@@ -749,7 +789,7 @@ def _plot_runtime(ax: Any, rs: list[Row]) -> None:
         ax.annotate(r.label.replace("grad=", "").replace("quality: ", "quality "), (r.cycles, r.psnr),
                     textcoords="offset points", xytext=(-6, 5), fontsize=6, color=colour, ha="right")
     for key, what in (("preview", "preview levels (½, ¼ resolution)"),
-                      ("tau", "beats and ray termination, τ (golden walk, not built)")):
+                      ("tau", "beats and ray termination, τ")):
         marker, colour = SERIES_STYLE[key]
         pts = [r for r in rs if r.varied == key]
         ax.plot([r.cycles for r in pts], [r.psnr for r in pts], linestyle="none", marker=marker, color=colour,
@@ -798,7 +838,8 @@ def _plot_widths(ax: Any, rs: list[Row]) -> None:
 
 
 def write_plot(path: Path, rows: list[Row], title_note: str) -> None:
-    """One column per volume/scene: PSNR against cycles (top) and against the word widths
+    """One column per volume/scene: PSNR against cycles (top), against milliseconds per
+    frame where the row's build has a measured Fmax (middle), and against the word widths
     W and F, which cost no cycles (bottom)."""
     import matplotlib
 
@@ -806,13 +847,14 @@ def write_plot(path: Path, rows: list[Row], title_note: str) -> None:
     import matplotlib.pyplot as plt
 
     cases = list(dict.fromkeys((r.volume, r.scene) for r in rows))
-    fig, axes = plt.subplots(2, len(cases), figsize=(6.0 * len(cases), 9.0), squeeze=False,
-                             gridspec_kw={"height_ratios": [3, 2]})
+    fig, axes = plt.subplots(3, len(cases), figsize=(6.0 * len(cases), 14.0), squeeze=False,
+                             gridspec_kw={"height_ratios": [3, 3, 2]})
     for col, case in enumerate(cases):
         rs = [r for r in rows if (r.volume, r.scene) == case and r.cycles is not None]
         _plot_runtime(axes[0][col], rs)
         axes[0][col].set_title(f"{case[0]}, scene {case[1]}")
-        _plot_widths(axes[1][col], rs)
+        _plot_time(axes[1][col], rs)
+        _plot_widths(axes[2][col], rs)
     fig.suptitle(f"Cube-4: image error against run time ({title_note})")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -840,7 +882,7 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
     from tqdm import tqdm
 
     t0 = time.perf_counter()
-    load_fmax()  # fail early on a malformed file; read again at the end (make fpga may finish meanwhile)
+    fmax_store.load()  # fail early on a malformed file; read again at the end
     cases = QUICK_CASES if quick else CASES + FEATURE_CASES
     all_variants = variants(quick)
     scenes = {name: load_scene(name) for _, name in cases}
@@ -880,18 +922,19 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
                 scene, vol = variant.scene(scenes[case[1]]), vols[case]
                 bar.set_postfix_str(f"{case[0]} {variant.label}" + (" (RTL build/sim)" if use_rtl else ""))
                 row, golden_base = golden_row(vol, case[0], scene, variant, match[0], refs[case])
-                if use_rtl and row.tau is None:
+                if use_rtl and has_build(scene, match[0]):
                     add_rtl(row, vol, scene, match[0], golden_base, refs[case], log)
                 else:
                     row.cycles = row.formula_cycles
                     if row.tau is not None:
-                        row.cycles_source = BEATS_SOURCE
+                        row.cycles_source = "golden beat walk" if has_build(scene, match[0]) else BEATS_SOURCE
                 rows.append(row)
                 bar.write(_progress_line(row), file=term)
                 bar.update()
     if not quick:
         meta["axis"] = axis_rows()
-    finish_rows(rows, load_fmax())
+    measured = fmax_store.load()
+    finish_rows(rows, measured)
     meta.update({
         "loadavg_end": _loadavg(),
         "wall_s": time.perf_counter() - t0,
@@ -899,7 +942,7 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
         "command": "make report" + (" (--quick)" if quick else "") + (" (--no-rtl)" if not use_rtl else ""),
         "cycles_note": ("measured by simulating cube4_top in Verilator (source `rtl`)" if use_rtl else
                         "from the formula of docs/architecture.md with the empty-space box's dims, not simulated (source `formula`)"),
-        "fmax_note": fmax_note(),
+        "fmax_note": fmax_note(rows, measured),
     })
     return rows, meta
 
@@ -924,7 +967,7 @@ def write_outputs(rows: list[Row], meta: dict, out_dir: Path) -> list[Path]:
 
 def rewrite_tables(out_dir: Path) -> tuple[list[Row], dict]:
     """The rows and metadata of the last run into out_dir (see `json_path`), with the
-    frame times recomputed from the current fpga.json."""
+    frame times recomputed from the builds' Fmax as measured now (cube4_reports.fmax)."""
     path = json_path(out_dir)
     try:
         data = json.loads(path.read_text())
@@ -937,8 +980,9 @@ def rewrite_tables(out_dir: Path) -> tuple[list[Row], dict]:
         raise UserError(f"{_rel(path)} is not a report of this version: rerun make report") from None
     if not rows:
         raise UserError(f"{_rel(path)} has no rows: rerun make report")
-    finish_rows(rows, load_fmax())
-    meta["fmax_note"] = fmax_note()
+    measured = fmax_store.load()
+    finish_rows(rows, measured)
+    meta["fmax_note"] = fmax_note(rows, measured)
     meta["tables_rewritten"] = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     return rows, meta
 
@@ -954,7 +998,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="no Verilator: cycles from the formula of docs/architecture.md with the empty-space box's dims (marked 'formula')")
     ap.add_argument("--tables-only", action="store_true",
                     help="render nothing: rewrite the tables and plot from the last run into --out "
-                         "(build/reports/error_vs_runtime.json) with the current Fmax of make fpga")
+                         "(build/reports/error_vs_runtime.json) with the builds' Fmax as measured now (reports/fpga*.json)")
     ap.add_argument("--out", default=str(DEFAULT_OUT),
                     help="folder for error_vs_runtime.{md,csv,png} (default: reports/ of the repository, "
                          "with the data in build/reports/error_vs_runtime.json; elsewhere the JSON goes "

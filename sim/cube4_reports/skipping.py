@@ -31,12 +31,14 @@ from tqdm import tqdm
 from cube4.app.render import render, render_golden_view
 from cube4.beats import DECIDE_RATES, LAG
 from cube4.app.volumes import load_volume
+from cube4.builds import BUILD_PARAMS
 from cube4.config import resolve_build
 from cube4.cycles import rect_frame_cycles
 from cube4.host import config_for, golden_view, pass_rects, plan_view, schedule_stats
 from cube4.scene import load_scene, with_view
 from cube4.view import angles_from_direction, direction_from_angles
 
+from . import fmax as fmax_store
 from .markdown import REPO_ROOT, fmt_int, git_describe, md_table
 
 P = 8
@@ -209,53 +211,51 @@ def rtl_beat_frames() -> list[dict]:
             st = res.stats
             out.append({"volume": vol_spec, "scene": scene_name, "schedule": label, "cycles": st["cycles"],
                         "n3_over_p": vol.size / P, "beats": st.get("beats"),
-                        "build": {k: v for k, v in st["build"].items() if v},
+                        "build": {k: v for k, v in st["build"].items() if v}, "widths": cfg.widths(),
                         "identical": bool(np.array_equal(res.frame.baseplane, gold.frame.baseplane))})
     return out
 
 
-def _fmax_source(fmax: dict, key: str) -> str:
-    """' (RTL <commit>, seeds …)' for a build's Fmax, from --fmax's @RTL:SEEDS."""
-    parts = [f"RTL {fmax[key + '@rtl']}"] if key + "@rtl" in fmax else []
-    seeds = fmax.get(key + "@seeds")
-    if seeds:
-        n = len(seeds.split("+"))
-        parts.append(f"seed {seeds}" if n == 1 else f"median of seeds {seeds.replace('+', ', ')}")
-    return f" ({'; '.join(parts)})" if parts else ""
+def frame_build(f: dict) -> tuple[dict, dict]:
+    """A beat-section frame's build (every option: the frame lists those that are on) and
+    word widths (a run from before they were kept: the scene's default configuration's)."""
+    build = {k: int(f["build"].get(k, 0)) for k in BUILD_PARAMS}
+    widths = f.get("widths") or config_for(load_scene(f["scene"]), P).widths()
+    return build, widths
 
 
-def rtl_beat_lines(frames: list[dict], fmax: dict[str, float]) -> list[str]:
-    """The beat section's RTL table: cycles and frame times side by side."""
+def rtl_beat_lines(frames: list[dict], measured: list[fmax_store.Measured]) -> list[str]:
+    """The beat section's RTL table: cycles and frame times side by side, each frame's time
+    at the measured Fmax of the build that ran it (cube4_reports.fmax), blank where that
+    build was never placed and routed."""
     if not frames:
         return []
-    body = []
+    body, sources = [], {}
     for f in frames:
-        key = "box" if f["schedule"] == "box" else "beats"
-        mhz = fmax.get(key)
-        nofit = mhz == NOFIT
-        mhz = None if nofit else mhz
+        m = fmax_store.lookup(measured, P, *frame_build(f))
+        if m:
+            sources.setdefault(m.note(), len(sources) + 1)
         b = f["beats"] or {}
         body.append([f"{f['volume']}", f["scene"], f["schedule"], fmt_int(f["cycles"]),
                      _frac(f["cycles"], f["n3_over_p"]),
                      _frac(b["run_beats"], f["n3_over_p"]) if b else "",
-                     (f"{mhz:.1f} MHz" + _fmax_source(fmax, key))
-                     if mhz else ("does not fit" if nofit else "not measured"),
-                     f"{f['cycles'] / mhz / 1000:.2f} ms" if mhz else "",
+                     f"{m.fmax_mhz:.1f} MHz [{sources[m.note()]}]" if m else "not measured",
+                     f"{f['cycles'] / m.fmax_mhz / 1000:.2f} ms" if m else "",
                      _image(f["identical"])])
     builds = sorted({", ".join(f"{k}={v}" for k, v in f["build"].items()) for f in frames})
+    notes = [f"- [{i}] {note}" for note, i in sources.items()]
     return [
         "**Through the RTL** (P = 8, each case's own view; `cube4 render <volume> --scene <scene> --engine rtl "
         "--stats s.json` with `--beats`, and `--beats --no-terminate` for beat skipping alone): cycles "
         "measured; 'beats run' as `cube4_top` counted them (the golden frame's count: `tb/cube4_top` holds "
-        "them equal); frame time = cycles / the Fmax of the build that ran it, placed and routed out of "
-        "context on the ECP5-85F at P = 8 (`python -m cube4_reports.fpga --p 8 --seeds 1,2,3 --build "
-        "<options>`: the median of the seeds, each figure names its seeds), given to this "
-        "report as `--fmax box=…@<RTL>:<seeds>,beats=…@<RTL>:<seeds>` with the RTL commit each was measured "
-        "on ('does not fit': the build does not fit the ECP5-85F at P = 8; "
-        "docs/architecture.md gives its block RAMs); blank where not measured. Builds: " + "; ".join(builds)
+        "them equal); frame time = cycles / the Fmax of the build that ran it (its options, word widths and "
+        "P = 8), placed and routed out of context on the ECP5-85F (`python -m cube4_reports.fpga --p 8 "
+        "--build <options> --md reports/fpga_<name>.md`, whose results beside it in reports/ this report "
+        "reads: the median of the seeds); 'not measured' where that build was never placed and routed (no "
+        "other build's clock is borrowed). Builds: " + "; ".join(builds)
         + ". 'image': the base plane against the golden fixed schedule's, bit for bit.", "",
         md_table(["volume", "scene", "schedule", "cycles", "cycles / (n³/P)", "beats run", "Fmax", "frame time",
-                  "image"], body, "lllrrrrrl"), ""]
+                  "image"], body, "lllrrrrrl"), ""] + (["Fmax measured:", ""] + notes + [""] if notes else [])
 
 
 def rtl_dram_frames() -> list[dict]:
@@ -450,7 +450,7 @@ def _frac(x: float, n3p: float) -> str:
 
 
 def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front: list[dict] | None = None,
-                   rtl: list[dict] | None = None, fmax: dict[str, float] | None = None) -> str:
+                   rtl: list[dict] | None = None, measured: list | None = None) -> str:
     rates = [r for r in DECIDE_RATES if r > 1]
     head = ["volume (dims)", "scene (mode)", "view az, el", "box", "beats run", "+ termination",
             "front-end walk", *[f"deciding {r}/cycle" for r in rates], "skipped: empty", "skipped: rays ended",
@@ -506,7 +506,7 @@ def write_beats_md(rows: list[dict], taus: list[dict], blocks: list[dict], front
                            [[f"{b['block']}³", fmt_int(b["entries"]), _frac(b["beats"]["run_beats"], b["n3_over_p"]),
                              _frac(b["beats"]["walk_beats"], b["n3_over_p"]),
                              f"{1000 * b['beats']['table_s']:.0f} ms"] for b in blocks], "lrrrr"), ""]
-    lines += rtl_beat_lines(rtl or [], fmax or {})
+    lines += rtl_beat_lines(rtl or [], measured or [])
     lines += front_end_lines(front or [])
     goal = [r for r in rows if (r["volume"], r["scene"]) == GOAL]
     opaque = [r for r in rows if (r["volume"], r["scene"]) == OPAQUE_GOAL]
@@ -537,43 +537,11 @@ def parse_args(argv):
     ap.add_argument("--no-dram", action="store_true", help="leave out the RTL frames with the DRAM (about 4 min)")
     ap.add_argument("--no-images", action="store_true", help="do not render both schedules to compare images")
     ap.add_argument("--no-beats", action="store_true", help="leave out beat skipping and ray termination")
-    ap.add_argument("--fmax", default="", metavar="box=MHZ[@RTL[:SEEDS]],beats=MHZ[@RTL[:SEEDS]]",
-                    help="the measured Fmax of the box and beat builds (python -m cube4_reports.fpga; nofit: "
-                         "the build does not fit), the RTL commit each was measured on and its nextpnr seeds "
-                         "(1+2+3: the median of three), for the beat section's frame times; blank without")
     ap.add_argument("--md-only", action="store_true",
-                    help="rewrite skipping.md from the last run's build/reports/skipping.json (e.g. with --fmax)")
+                    help="rewrite skipping.md from the last run's build/reports/skipping.json (e.g. after a "
+                         "build's Fmax was measured: reports/fpga*.json)")
     ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md")
     return ap.parse_args(argv)
-
-
-#: --fmax's value for a build that does not fit the part at P = 8
-NOFIT = -1.0
-
-
-def parse_fmax(text: str) -> dict[str, float | str]:
-    """--fmax box=MHZ[@RTL[:SEEDS]],beats=MHZ[@RTL[:SEEDS]] -> {name: MHz} (nofit: NOFIT), {name@rtl:
-    the RTL commit it was measured on} and {name@seeds: '1+2+3'} where given; an error for users as
-    one line."""
-    out: dict[str, float | str] = {}
-    for part in filter(None, text.split(",")):
-        name, _, val = part.partition("=")
-        val, at, rtl = val.partition("@")
-        rtl, colon, seeds = rtl.partition(":")
-        try:
-            mhz = NOFIT if val == "nofit" else float(val)
-        except ValueError:
-            mhz = 0.0
-        if (name not in ("box", "beats") or not (mhz > 0 or mhz == NOFIT) or (at and not rtl)
-                or (colon and not all(x.isdigit() for x in seeds.split("+")))):
-            raise SystemExit("skipping: --fmax wants box=MHZ[@RTL[:SEEDS]],beats=MHZ[@RTL[:SEEDS]] (or nofit; "
-                             f"SEEDS as 1+2+3), got {part!r}")
-        out[name] = mhz
-        if rtl:
-            out[f"{name}@rtl"] = rtl
-        if seeds:
-            out[f"{name}@seeds"] = seeds
-    return out
 
 
 def write_reports(dest: Path, data: dict) -> None:
@@ -582,7 +550,7 @@ def write_reports(dest: Path, data: dict) -> None:
     md = write_md(data["rows"], data["rtl"], data["meta"], data["rtl_rects"], data["rtl_dram"])
     if data["beats"]:
         md += "\n" + write_beats_md(data["beats"], data["taus"], data["blocks"], data["front_end"],
-                                    data.get("rtl_beats"), data.get("fmax"))
+                                    data.get("rtl_beats"), fmax_store.load())
     (dest / "skipping.md").write_text(md)
     print(f"skipping: {dest / 'skipping.md'}")
 
@@ -594,8 +562,6 @@ def main(argv: list[str] | None = None) -> int:
         if not saved.exists():
             raise SystemExit(f"skipping: --md-only needs {saved} (run make skipping first)")
         data = json.loads(saved.read_text())
-        data["fmax"] = parse_fmax(args.fmax) or data.get("fmax") or {}
-        saved.write_text(json.dumps(data, indent=1) + "\n")
         write_reports(Path(args.out), data)
         return 0
     rows = []
@@ -612,11 +578,9 @@ def main(argv: list[str] | None = None) -> int:
     rtl_dram = None if (args.no_rtl or args.no_dram) else rtl_dram_frames()
     front = [] if (args.no_rtl or args.no_beats) else rtl_front_end()
     rtl_beats = [] if (args.no_rtl or args.no_beats) else rtl_beat_frames()
-    fmax = parse_fmax(args.fmax)
     meta = {"git": git_describe(("rtl", "golden", "sim"))}
     data = {"meta": meta, "rows": rows, "rtl": rtl, "rtl_rects": rtl_rects, "rtl_dram": rtl_dram,
-            "front_end": front, "beats": brows, "taus": taus, "blocks": blocks, "rtl_beats": rtl_beats,
-            "fmax": fmax}
+            "front_end": front, "beats": brows, "taus": taus, "blocks": blocks, "rtl_beats": rtl_beats}
     saved.parent.mkdir(parents=True, exist_ok=True)
     saved.write_text(json.dumps(data, indent=1) + "\n")
     write_reports(Path(args.out), data)

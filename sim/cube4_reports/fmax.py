@@ -1,0 +1,112 @@
+"""The measured Fmax of each build: what turns a frame's cycles into milliseconds.
+
+Every place-and-route run that writes its Markdown into reports/ (``python -m
+cube4_reports.fpga``, ``make fpga``) writes its figures beside it as JSON
+(reports/fpga.json beside reports/fpga.md, reports/fpga_beats.json beside
+reports/fpga_beats.md), and each of its results names its build whole: the build options
+(cube4.builds, every one), the word widths (VOXEL_W .. MAX_SS_LOG2, cube4.config), P, and
+the run's MAX_DIM, RTL commit, seeds and their median.
+
+A report that gives a frame time looks up the build that runs the frame: the same options,
+the same widths and the same P. Nothing else is borrowed: a build with no such result has
+no frame time, and the report says it was not measured. MAX_DIM is not matched (a frame's
+cycles do not depend on it; the chip is built for the largest volume it renders): the
+result states its own. Where several results match, the one finished last counts.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from cube4.builds import NAMED, build_name, complete_build, parse_options
+from cube4.errors import UserError
+
+from .markdown import REPO_ROOT
+
+#: the committed results: reports/fpga.json, reports/fpga_beats.json, ...
+RESULT_GLOB = "fpga*.json"
+REPORTS = REPO_ROOT / "reports"
+
+
+@dataclass(frozen=True)
+class Measured:
+    """One build's measured Fmax: the median of its seeds."""
+
+    fmax_mhz: float
+    p: int
+    build: dict
+    widths: dict
+    seeds: tuple[int, ...]
+    fmax_seeds: tuple[float, ...]
+    max_dim: int
+    rtl: str            # the RTL commit the run placed and routed
+    source: str         # the JSON it came from, relative to the repository
+    finished: str = ""  # UTC, "YYYY-MM-DD HH:MM" ("" in a run from before the field)
+
+    def note(self) -> str:
+        """'113.1 MHz: BEATS=1, .. at P = 8, median of 3 seeds, RTL 605bf4b (reports/fpga_beats.json)'."""
+        return (f"{self.fmax_mhz:.1f} MHz: {build_name(self.build)} at P = {self.p}, "
+                f"median of {len(self.seeds)} seed{'s' if len(self.seeds) != 1 else ''}, RTL {self.rtl} "
+                f"({self.source})")
+
+
+def _rel(path: Path) -> str:
+    return str(path.relative_to(REPO_ROOT)) if path.is_relative_to(REPO_ROOT) else str(path)
+
+
+def read_results(path: Path) -> list[Measured]:
+    """The routed, fitting results of one fpga JSON that name their build whole; a result
+    from before builds were named (no "build" or "widths") is left out: it cannot be
+    matched to a build. UserError (one line) on a file that is not an fpga result."""
+    try:
+        data = json.loads(path.read_text())
+        results = data["results"]
+        if not isinstance(results, list):
+            raise TypeError
+    except (OSError, ValueError, KeyError, TypeError):
+        raise UserError(f"{_rel(path)} is not a result of python -m cube4_reports.fpga "
+                        "(expected {\"results\": [...]}): rerun it or delete the file") from None
+    out = []
+    for r in results:
+        if not isinstance(r, dict) or r.get("fmax_median") is None or not r.get("fits", False):
+            continue
+        if not isinstance(r.get("build"), dict) or not isinstance(r.get("widths"), dict):
+            continue
+        out.append(Measured(
+            fmax_mhz=float(r["fmax_median"]), p=int(r["p"]), build=complete_build(r["build"]),
+            widths={k: int(v) for k, v in r["widths"].items()},
+            seeds=tuple(int(s) for s in data.get("seeds", ())),
+            fmax_seeds=tuple(float(f) for f in r.get("fmax_seeds", ()) if f is not None),
+            max_dim=int(data.get("max_dim", 0)),
+            rtl=str(data.get("rtl_commit", "unknown")) + (" with uncommitted changes" if data.get("rtl_modified") else ""),
+            source=_rel(path), finished=str(data.get("finished", ""))))
+    return out
+
+
+def load(paths: list[Path] | None = None) -> list[Measured]:
+    """Every measured build in ``paths`` (default: the committed reports/fpga*.json)."""
+    paths = sorted(REPORTS.glob(RESULT_GLOB)) if paths is None else paths
+    return [m for p in paths for m in read_results(p)]
+
+
+def lookup(measured: list[Measured], p: int, build: dict, widths: dict) -> Measured | None:
+    """The Fmax of exactly this build (options, widths, P), the latest finished; None if
+    it was never placed and routed."""
+    want = complete_build(build)
+    hits = [m for m in measured if m.p == p and m.build == want and m.widths == dict(widths)]
+    return max(hits, key=lambda m: m.finished) if hits else None
+
+
+def build_from_name(name: str) -> dict:
+    """The build a build_name() gives back: 'full', another named build, or 'K=V, ..'."""
+    if name in NAMED:
+        return dict(NAMED[name])
+    return complete_build(parse_options(name.replace(" ", ""), "a build's name"))
+
+
+def unmeasured_note(p: int, build: dict) -> str:
+    """What a table says where a build has no measured Fmax."""
+    return f"not measured ({build_name(build)} at P = {p} was not placed and routed)"
+
