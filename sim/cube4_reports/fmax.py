@@ -21,12 +21,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from cube4.builds import NAMED, build_name, complete_build, parse_options
+from cube4.config import Cube4Config
 from cube4.errors import UserError
 
 from .markdown import REPO_ROOT
 
-#: the committed results: reports/fpga.json, reports/fpga_beats.json, ...
-RESULT_GLOB = "fpga*.json"
+#: the committed results: reports/fpga.json, reports/fpga_beats.json, ..., and one per build
+#: of make scenes in reports/fpga/ (python -m cube4_reports.scenes --place)
+RESULT_GLOBS = ("fpga*.json", "fpga/*.json")
 REPORTS = REPO_ROOT / "reports"
 
 
@@ -44,6 +46,10 @@ class Measured:
     rtl: str            # the RTL commit the run placed and routed
     source: str         # the JSON it came from, relative to the repository
     finished: str = ""  # UTC, "YYYY-MM-DD HH:MM" ("" in a run from before the field)
+    luts: int | None = None  # the median seed's resources (cube4_reports.fpga)
+    ffs: int | None = None
+    dsps: int | None = None
+    ebrs: int | None = None
 
     def note(self) -> str:
         """'113.1 MHz: BEATS=1, .. at P = 8, median of 3 seeds, RTL 605bf4b (reports/fpga_beats.json)'."""
@@ -81,13 +87,15 @@ def read_results(path: Path) -> list[Measured]:
             fmax_seeds=tuple(float(f) for f in r.get("fmax_seeds", ()) if f is not None),
             max_dim=int(data.get("max_dim", 0)),
             rtl=str(data.get("rtl_commit", "unknown")) + (" with uncommitted changes" if data.get("rtl_modified") else ""),
-            source=_rel(path), finished=str(data.get("finished", ""))))
+            source=_rel(path), finished=str(data.get("finished", "")),
+            **{k: int(r[k]) for k in ("luts", "ffs", "dsps", "ebrs") if r.get(k) is not None}))
     return out
 
 
 def load(paths: list[Path] | None = None) -> list[Measured]:
-    """Every measured build in ``paths`` (default: the committed reports/fpga*.json)."""
-    paths = sorted(REPORTS.glob(RESULT_GLOB)) if paths is None else paths
+    """Every measured build in ``paths`` (default: the committed reports/fpga*.json and
+    reports/fpga/*.json)."""
+    paths = sorted(p for g in RESULT_GLOBS for p in REPORTS.glob(g)) if paths is None else paths
     return [m for p in paths for m in read_results(p)]
 
 
@@ -104,6 +112,12 @@ def build_from_name(name: str) -> dict:
     if name in NAMED:
         return dict(NAMED[name])
     return complete_build(parse_options(name.replace(" ", ""), "a build's name"))
+
+
+def widths_text(widths: dict) -> str:
+    """The word widths that differ from cube4_top's defaults, 'MAX_SS_LOG2=2' ('' for none)."""
+    default = Cube4Config().widths()
+    return ", ".join(f"{k}={v}" for k, v in widths.items() if default.get(k) != v)
 
 
 def unmeasured_note(p: int, build: dict) -> str:

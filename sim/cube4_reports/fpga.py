@@ -810,10 +810,11 @@ def parse_widths_arg(text: str, build: dict[str, int]) -> tuple[tuple[str, int],
 
 
 def json_beside(md_path: Path) -> Path | None:
-    """The JSON of a report written into reports/ (reports/fpga_beats.json beside
-    reports/fpga_beats.md: cube4_reports.fmax reads it); None elsewhere."""
+    """The JSON of a report written into reports/ or reports/fpga/ (reports/fpga_beats.json
+    beside reports/fpga_beats.md: cube4_reports.fmax reads it); None elsewhere."""
     md_path = md_path.resolve()
-    return md_path.with_suffix(".json") if md_path.parent == DOC_REPORTS.resolve() else None
+    inside = md_path.parent in (DOC_REPORTS.resolve(), (DOC_REPORTS / "fpga").resolve())
+    return md_path.with_suffix(".json") if inside else None
 
 
 def nextpnr_version() -> str:

@@ -137,13 +137,15 @@ def base_name(module: str) -> str:
     return name
 
 
-def build_params(p: int, max_dim: int, build: dict | None = None) -> dict[str, int]:
+def build_params(p: int, max_dim: int, build: dict | None = None, widths: dict | None = None) -> dict[str, int]:
     """cube4_top parameters of a gate count: a voxel memory that holds a whole MAX_DIM^3 volume;
-    ``build``: the build options it names (cube4.builds.complete_build; default: the full build)."""
+    ``build``: the build options it names (cube4.builds.complete_build; default: the full build);
+    ``widths``: word widths other than cube4_top's defaults (e.g. MAX_SS_LOG2)."""
     depth = words_per_bank(max_dim, p)
     full = complete_build(build)
-    check_build(full, TOP_DEFAULTS)
-    return {"P": p, **TOP_DEFAULTS, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth), **full}
+    w = {**TOP_DEFAULTS, **(widths or {})}
+    check_build(full, w)
+    return {"P": p, **w, "MAX_DIM": max_dim, "DEPTH": depth, "ADDR_W": addr_bits(depth), **full}
 
 
 def yosys_script(params: dict[str, int], workdir: Path) -> str:
@@ -243,10 +245,11 @@ def attribute(stat: dict[str, Counter], mems: dict[str, list[Memory]]) -> dict[s
     return totals
 
 
-def gates_for_p(p: int, max_dim: int, build: dict | None = None) -> dict:
+def gates_for_p(p: int, max_dim: int, build: dict | None = None, widths: dict | None = None) -> dict:
     """Synthesize one parameter set and return its result record (the gates.json entry)."""
-    params = build_params(p, max_dim, build)
-    workdir = SYNTH_DIR / "gates" / f"p{p}_d{max_dim}{build_tag(build)}"
+    params = build_params(p, max_dim, build, widths)
+    wtag = "".join(f"_{k.lower()}{v}" for k, v in (widths or {}).items() if TOP_DEFAULTS.get(k) != v)
+    workdir = SYNTH_DIR / "gates" / f"p{p}_d{max_dim}{build_tag(build)}{wtag}"
     progress(TAG, f"P={p} MAX_DIM={max_dim}: yosys generic-gate synthesis in {rel(workdir)} ...")
     wall = run_yosys(params, workdir)
     stat = load_stat(workdir / "stat.json")

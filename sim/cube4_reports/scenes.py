@@ -4,23 +4,27 @@ For each built-in scene (its mode, shading, crop box and cut plane) the build th
 ``cube4 render --engine rtl`` chooses by default (``cube4.config.scene_build``): which of
 SHADING (GRA, reflectance map, shading multipliers), COMPOSITING (COM's multipliers),
 EXTREMUM (COM's comparators) and CLIP (window and cut plane) it keeps, and whether its
-gradient comes from GRA or from the voxels (VGRAD). For every distinct
-build and the full one:
+gradient comes from GRA or from the voxels (VGRAD), and its word widths (the
+supersampling's MAX_SS_LOG2). For every distinct build and the full one:
 
 * NAND2 equivalents per unit, flip-flops and memory bits (the generic-gate synthesis of
-  ``make gates``, cube4_top at P = 4, MAX_DIM = 128);
-* on the ECP5-85F (the flow of ``make fpga``, P = 4, MAX_DIM = 128, DEPTH = 1024, one
-  nextpnr seed): LUTs, FFs, DSPs, EBRs and Fmax;
+  ``make gates``, cube4_top at P = 8, MAX_DIM = 128);
+* on the ECP5-85F: LUTs, DSPs, EBRs and Fmax, the median of three nextpnr seeds at P = 8,
+  as measured by ``python -m cube4_reports.fpga`` (its results committed under reports/;
+  cube4_reports.fmax finds each build's), "not measured" for a build never placed and
+  routed, with the command that measures it;
 
 and for every scene: cycles per frame on its build and on the full build (the cycle
 formula of ``cube4.cycles``, which tb/cube4_top holds every build to), the frame
-time at the build's Fmax, and the golden engine's image error against the float64
-reference (PSNR over premultiplied RGBA), with what the smaller build saves in percent.
+time at the build's measured Fmax, and the golden engine's image error against the
+float64 reference (PSNR over premultiplied RGBA), with what the smaller build saves.
 
-    python -m cube4_reports.scenes               # everything (about an hour: 5 place-and-routes)
-    python -m cube4_reports.scenes --no-fpga     # gates, cycles and error only (minutes)
+    python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (minutes)
+    python -m cube4_reports.scenes --place       # and place and route every build not measured yet
+                                                 # (3 seeds each, about 40 min a build), then the report
 
-Results: build/reports/scenes.json and reports/scenes.md.
+Results: build/reports/scenes.json and reports/scenes.md; --place writes each build's
+place and route to reports/fpga/<build>.{md,json}.
 """
 
 from __future__ import annotations
@@ -31,8 +35,8 @@ import time
 
 import numpy as np
 
-from cube4.builds import BUILD_PARAMS, FULL_BUILD, build_name, named
-from cube4.config import scene_build
+from cube4.builds import BUILD_PARAMS, FULL_BUILD, build_name, build_tag, named
+from cube4.config import Cube4Config, scene_build
 from cube4.app.render import render
 from cube4.host import config_for, image_metrics, plan_view, schedule_stats
 from cube4.scene import builtin_scene_names, load_scene
@@ -40,14 +44,17 @@ from cube4.app.volumes import load_volume
 
 from cube4.app.labelmaps import with_labels
 
+from . import fmax as fmax_store
 from . import fpga, gates
-from .markdown import fmt_int, git_describe, md_table
+from .markdown import fmt_int, git_describe, last_commit, md_table
 from .synth import BUILD_REPORTS, DOC_REPORTS, cli_main, design_digest, progress, write_report
 
 TAG = "scenes"
-P = 4
+P = 8
 MAX_DIM = 128
 DEPTH = 1024
+#: the seeds of a build's place and route (--place): the median of three
+SEEDS = "1,2,3"
 # the volume each built-in scene is made for
 SCENE_VOLUME = {"default": "sphere:64", "ml": "ml:41", "mri_mip": "mri", "mri_skin": "mri:64,48,24",
                 "mri_t1_tissue": "mri_t1", "mri_needle": "mri",
@@ -65,8 +72,19 @@ def scene_volume(name: str, scene) -> np.ndarray:
     return with_labels(load_volume(spec), spec, scene, config_for(scene).voxel_bits)
 
 
-def build_key(build: dict) -> tuple:
-    return tuple(build[k] for k in BUILD_PARAMS)
+DEFAULT_WIDTHS = Cube4Config().widths()
+
+
+def build_key(build: dict, widths: dict | None = None) -> tuple:
+    """A hardware build: its options and its word widths (default: cube4_top's)."""
+    w = {**DEFAULT_WIDTHS, **(widths or {})}
+    return tuple(build[k] for k in BUILD_PARAMS) + tuple(w[k] for k in DEFAULT_WIDTHS)
+
+
+def full_name(build: dict, widths: dict | None = None) -> str:
+    """A build's name with its word widths where they differ: 'EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2)'."""
+    w = fmax_store.widths_text({**DEFAULT_WIDTHS, **(widths or {})})
+    return build_name(build) + (f" ({w})" if w else "")
 
 
 def image_digest(image: np.ndarray) -> str:
@@ -98,7 +116,7 @@ def scene_rows(names: list[str]) -> list[dict]:
         full = None if build["VGRAD"] else schedule_stats(plans, cfg, FULL_BUILD)
         rows.append({"scene": name, "volume": spec, "mode": scene.mode, "shaded": scene.shaded,
                      "crop": None if scene.crop is None else [list(c) for c in scene.crop],
-                     "cut": scene.cut is not None, "build": build, "gradient": scene.gradient,
+                     "cut": scene.cut is not None, "build": build, "widths": cfg.widths(), "gradient": scene.gradient,
                      "cycles": own["predicted_cycles"], "cycles_full": None if full is None else full["predicted_cycles"],
                      "cycles_fixed": own["fixed_schedule_cycles"],
                      "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None, "rmse": m["rmse"],
@@ -148,14 +166,14 @@ def mode_matrix(names: list[str]) -> list[dict]:
             build = scene_build([scene])
             progress(TAG, f"{name} as {label} ...")
             m = image_metrics(render(vol, scene, cfg, "golden").image, render(vol, scene, cfg, "reference-point").image)
-            out.append({"scene": name, "volume": spec, "mode": label, "build": build,
+            out.append({"scene": name, "volume": spec, "mode": label, "build": build, "widths": cfg.widths(),
                         "cycles": schedule_stats(plan_view(vol, scene, cfg).plans, cfg, build)["predicted_cycles"],
                         "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None})
     return out
 
 
 def matrix_table(cells: list[dict], recs: list[dict]) -> str:
-    by_key = {build_key(r["build"]): r for r in recs}
+    by_key = {build_key(r["build"], r["widths"]): r for r in recs}
     full = logic_nand2(by_key[build_key(FULL_BUILD)]["gates"])
     labels = [lab for lab, _ in MODE_VARIANTS]
     rows = []
@@ -166,7 +184,7 @@ def matrix_table(cells: list[dict], recs: list[dict]) -> str:
             if c is None:       # a mode the scene refuses (refuses)
                 row.append("— (refused)")
                 continue
-            rec = by_key.get(build_key(c["build"]))
+            rec = by_key.get(build_key(c["build"], c.get("widths")))
             change = pct_change(logic_nand2(rec["gates"]), full) if rec else "—"
             psnr = "∞" if c["psnr_db"] is None else f"{c['psnr_db']:.1f}"
             row.append(f"{psnr} dB, {fmt_int(c['cycles'])} cyc, {change}")
@@ -179,19 +197,30 @@ def logic_nand2(g: dict) -> float:
     return g["total"]["nand2_total"]
 
 
-def run_builds(builds: list[dict], fpga_builds: list[dict], seed: int, reuse: bool) -> list[dict]:
-    """Gates for every build; place and route for those in ``fpga_builds``."""
-    digest = design_digest()
+def place_args(build: dict, widths: dict) -> list[str]:
+    """The fpga command line that measures one build at P = 8 (three seeds), its report and
+    JSON in reports/fpga/ (where cube4_reports.fmax finds them)."""
+    opts = ",".join(f"{k}={v}" for k, v in build.items() if v != FULL_BUILD[k])
+    wtext = fmax_store.widths_text({**DEFAULT_WIDTHS, **widths}).replace(" ", "")
+    wtag = "".join(f"_{t.lower().replace('=', '')}" for t in wtext.split(",") if t)
+    name = "full" if not opts and not wtext else (build_tag(build).lstrip("_") or "full") + wtag
+    return (["--p", str(P), "--seeds", SEEDS, "--max-dim", str(MAX_DIM), "--depth", str(DEPTH), "--no-budget",
+             "--no-memory"] + (["--build", opts] if opts else []) + (["--widths", wtext] if wtext else [])
+            + ["--md", f"reports/fpga/{name}.md"])
+
+
+def place_command(build: dict, widths: dict) -> str:
+    return "python -m cube4_reports.fpga " + " ".join(place_args(build, widths))
+
+
+def run_builds(builds: list[tuple[dict, dict]], measured: list[fmax_store.Measured]) -> list[dict]:
+    """Gates for every build (options, widths); its place and route as measured (or None)."""
     out = []
-    for b in builds:
-        progress(TAG, f"build {build_name(b)}: generic gates at P = {P} ...")
-        g = gates.gates_for_p(P, MAX_DIM, b)
-        rec = {"build": b, "name": build_name(b), "gates": g, "fpga": None}
-        if b in fpga_builds:
-            cfg = fpga.BuildConfig(p=P, max_dim=MAX_DIM, depth=DEPTH, freq=fpga.DEFAULT_FREQ, seeds=(seed,),
-                                   build=tuple(b.items()))
-            rec["fpga"] = fpga.build_one(cfg, fpga.DEFAULT_TIMEOUT, digest, reuse)
-        out.append(rec)
+    for b, w in builds:
+        progress(TAG, f"build {full_name(b, w)}: generic gates at P = {P} ...")
+        g = gates.gates_for_p(P, MAX_DIM, b, w)
+        out.append({"build": b, "widths": w, "name": full_name(b, w), "gates": g,
+                    "fpga": fmax_store.lookup(measured, P, b, w)})
     return out
 
 
@@ -215,27 +244,27 @@ def builds_table(recs: list[dict]) -> str:
     for r in recs:
         g = r["gates"]
         units = [fmt_int(g["units"][u]["nand2_total"]) for u in UNIT_COLS]
-        f = r["fpga"] or {}
-        fmax = f.get("fmax_mhz")
+        f = r["fpga"]
         rows.append([r["name"], *units, fmt_int(logic_nand2(g)), pct_change(logic_nand2(g), logic_nand2(fg)),
                      fmt_int(g["total"]["ffs"]), fmt_int(buffer_bits(g)), pct_change(buffer_bits(g), buffer_bits(fg)),
-                     fmt_int(f["luts"]) if f else "—", str(f["dsps"]) if f else "—", str(f["ebrs"]) if f else "—",
-                     f"{fmax:.1f}" if fmax else "—"])
+                     fmt_int(f.luts) if f and f.luts else "—", str(f.dsps) if f and f.dsps is not None else "—",
+                     str(f.ebrs) if f and f.ebrs is not None else "—",
+                     f"{f.fmax_mhz:.1f}" if f else "not measured"])
     head = ["build", *[gates.UNIT_LABEL[u] for u in UNIT_COLS], "NAND2 eq. (logic)", "vs full",
             "FFs", "buffer bits", "vs full", "LUTs", "DSPs", "EBRs", "Fmax MHz"]
     return md_table(head, rows)
 
 
 def scenes_table(rows: list[dict], recs: list[dict]) -> str:
-    by_key = {build_key(r["build"]): r for r in recs}
+    by_key = {build_key(r["build"], r["widths"]): r for r in recs}
     full = by_key[build_key(FULL_BUILD)]
     out = []
     for s in rows:
-        rec = by_key[build_key(s["build"])]
-        fm = (rec["fpga"] or {}).get("fmax_mhz")
-        fm_full = (full["fpga"] or {}).get("fmax_mhz")
-        t = f"{s['cycles'] / (fm * 1e3):.3f}" if fm else "—"
-        t_full = f"{s['cycles_full'] / (fm_full * 1e3):.3f}" if fm_full and s["cycles_full"] else "—"
+        rec = by_key[build_key(s["build"], s.get("widths"))]
+        fm = rec["fpga"].fmax_mhz if rec["fpga"] else None
+        fm_full = full["fpga"].fmax_mhz if full["fpga"] else None
+        t = f"{s['cycles'] / (fm * 1e3):.3f}" if fm else "not measured"
+        t_full = (f"{s['cycles_full'] / (fm_full * 1e3):.3f}" if fm_full else "not measured") if s["cycles_full"] else "—"
         what = s["mode"] + ("" if s["shaded"] or s["mode"] != "composite" else ", unshaded")
         what += ", crop" if s["crop"] else ""
         what += ", cut plane" if s["cut"] else ""
@@ -246,7 +275,7 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
                     _db(s["psnr_db"]), _db(s.get("psnr_point_db")),
                     "—" if s.get("truth_k") is None else f"{s['truth_k']}", f"`{s.get('image_sha', '—')}`"])
     head = ["scene", "volume", "mode", "smallest build", "cycles / frame", "on the full build",
-            "fixed schedule", "ms / frame at Fmax", "full build", "NAND2 vs full", "PSNR dB vs area truth",
+            "fixed schedule", "ms / frame at its Fmax", "on the full build", "NAND2 vs full", "PSNR dB vs area truth",
             "PSNR dB vs point truth", "truth k", "image"]
     return md_table(head, out, "llll" + "r" * 9 + "l")
 
@@ -265,11 +294,12 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
         f"Generated by `make scenes` (`python -m cube4_reports.scenes`) on RTL {meta['git']} "
         f"(digest {meta['rtl_digest']}); do not edit. Builds: cube4_top at P = {P}, MAX_DIM = {MAX_DIM}. "
         "Gates: the generic-gate synthesis of `make gates` (NAND2 equivalents of the logic; memories "
-        + (f"in bits). ECP5-85F: the flow of `make fpga` (DEPTH = {DEPTH}, `--freq {fpga.DEFAULT_FREQ:g}`, "
-           f"seed {meta['seed']}; one seed varies Fmax by about ±10 %). " if not meta.get("no_fpga") else
-           "in bits). ECP5-85F: **not run for this report** (`--no-fpga`: the LUT, DSP, EBR, Fmax and frame-time "
-           "columns are empty). ")
-        + "Cycles: the formula of "
+        "in bits). ECP5-85F (LUTs, DSPs, EBRs, Fmax): each build placed and routed at P = 8 by "
+        f"`python -m cube4_reports.fpga` (DEPTH = {DEPTH}, `--freq {fpga.DEFAULT_FREQ:g}`, seeds {SEEDS}: "
+        "the median seed's figures), read from its results committed under reports/ (the section "
+        "\"Place and route\" names each run and its RTL commit); \"not measured\" where a build was never placed "
+        "and routed, and its frame times are blank: no build borrows another's clock. "
+        "Cycles: the formula of "
         "docs/architecture.md for the build with the empty-space box's dims (docs/numerics.md §15; "
         "tb/cube4_top checks it for every build), and the fixed schedule's on the smallest build. Error: the golden "
         "engine (bit-identical to the RTL) against the float64 reference, 256² image: against the area truth "
@@ -297,6 +327,7 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
                   f"**{ratio:.2f}×** the full build's {fmt_int(logic_nand2(full['gates']))} "
                   f"(the goal: at most 0.5×), and {fmt_int(buffer_bits(mip['gates']))} bits of buffers "
                   f"against {fmt_int(buffer_bits(full['gates']))}.", ""]
+    lines += place_lines(recs, meta)
     lines += ["## Scenes", "", scenes_table(rows, recs), "",
               "A frame traverses only the box that can change a ray (within a crop box, if the scene has one): "
               "its cycles follow that box's dims. A build without GRA "
@@ -314,11 +345,40 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
     return "\n".join(lines)
 
 
+def place_lines(recs: list[dict], meta: dict) -> list[str]:
+    """Which place-and-route run each build's ECP5 figures come from, and the command for
+    each build not measured yet."""
+    done = [r for r in recs if r["fpga"]]
+    todo = [r for r in recs if not r["fpga"]]
+    lines = ["## Place and route", "",
+             f"{len(done)} of {len(recs)} builds placed and routed at P = {P} (RTL of this report: "
+             f"{meta.get('rtl_commit', 'unknown')}; a run on an older RTL says so)."]
+    if done:
+        lines += [""] + [f"- {r['name']}: {r['fpga'].note()}" for r in done]
+    if todo:
+        lines += ["", "Not measured yet (`python -m cube4_reports.scenes --place` runs them all, about "
+                  "40 min each here; or one at a time):", ""]
+        lines += [f"- {r['name']}: `{place_command(r['build'], r['widths'])}`" for r in todo]
+    return lines + [""]
+
+
+def place_missing(recs: list[dict]) -> None:
+    """--place: place and route every build without a measured result, one after the other."""
+    for r in [r for r in recs if not r["fpga"]]:
+        progress(TAG, f"place and route {r['name']}: {place_command(r['build'], r['widths'])}")
+        args = place_args(r["build"], r["widths"])
+        args[-1] = str(DOC_REPORTS.parent / args[-1])      # --md: the repository's reports/fpga/, from anywhere
+        rc = fpga.main(args)
+        if rc != 0:
+            raise fpga.UserError(f"place and route of {r['name']} failed (exit {rc}); the builds before it are "
+                                 "in reports/fpga/")
+
+
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.scenes", description=__doc__.splitlines()[0])
-    ap.add_argument("--no-fpga", action="store_true", help="skip the ECP5 place-and-route runs")
-    ap.add_argument("--seed", type=int, default=fpga.DEFAULT_SEED, help="nextpnr seed")
-    ap.add_argument("--reuse", action="store_true", help="reuse earlier place-and-route results of the same RTL")
+    ap.add_argument("--place", action="store_true",
+                    help="place and route each build not measured yet (P = 8, seeds 1, 2, 3; about 40 min a "
+                         "build here) into reports/fpga/, then write the report")
     return ap.parse_args(argv)
 
 
@@ -327,23 +387,24 @@ def run(args: argparse.Namespace) -> None:
     names = builtin_scene_names()
     rows = scene_rows(names)
     matrix = mode_matrix(matrix_names(names))
-    builds = [dict(FULL_BUILD)]
-    for r in rows:
-        if r["build"] not in builds:
-            builds.append(r["build"])
-    fpga_builds = [] if args.no_fpga else list(builds)     # the scenes' own builds go through place and route
-    for r in matrix:
-        if r["build"] not in builds:
-            builds.append(r["build"])
-    recs = run_builds(builds, fpga_builds, args.seed, args.reuse)
-    meta = {"git": git_describe(), "rtl_digest": design_digest(), "seed": args.seed, "no_fpga": args.no_fpga}
+    builds: dict[tuple, tuple[dict, dict]] = {build_key(FULL_BUILD): (dict(FULL_BUILD), dict(DEFAULT_WIDTHS))}
+    for r in rows + matrix:
+        builds.setdefault(build_key(r["build"], r["widths"]), (r["build"], r["widths"]))
+    recs = run_builds(list(builds.values()), fmax_store.load())
+    if args.place:
+        place_missing(recs)
+        measured = fmax_store.load()
+        for r in recs:
+            r["fpga"] = fmax_store.lookup(measured, P, r["build"], r["widths"])
+    meta = {"git": git_describe(), "rtl_digest": design_digest(), "rtl_commit": last_commit()}
     report = {"p": P, "max_dim": MAX_DIM, "scenes": rows, "modes": matrix,
-              "builds": [{"build": r["build"], "nand2": logic_nand2(r["gates"]),
+              "builds": [{"build": r["build"], "widths": r["widths"], "nand2": logic_nand2(r["gates"]),
                           "ffs": r["gates"]["total"]["ffs"], "memory_bits": r["gates"]["total"]["memory_bits"],
                           "buffer_bits": buffer_bits(r["gates"]),
                           "units": {u: r["gates"]["units"][u]["nand2_total"] for u in gates.UNITS},
                           "fpga": None if r["fpga"] is None else
-                          {k: r["fpga"][k] for k in ("fmax_mhz", "luts", "ffs", "dsps", "ebrs", "fits")}}
+                          {"fmax_mhz": r["fpga"].fmax_mhz, "luts": r["fpga"].luts, "ffs": r["fpga"].ffs,
+                           "dsps": r["fpga"].dsps, "ebrs": r["fpga"].ebrs, "source": r["fpga"].note()}}
                          for r in recs], **meta}
     write_report(TAG, report, BUILD_REPORTS / "scenes.json", render_markdown(rows, recs, meta, matrix),
                  DOC_REPORTS / "scenes.md", t0)

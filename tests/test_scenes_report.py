@@ -1,0 +1,66 @@
+"""`make scenes` (sim/cube4_reports/scenes.py) without synthesis: each build named with its
+word widths, its ECP5 figures only from its own place and route, and the command that
+measures a build not measured yet."""
+
+from __future__ import annotations
+
+import json
+import shlex
+from pathlib import Path
+
+from cube4.builds import FULL_BUILD, complete_build
+from cube4_reports import fmax, fpga, gates, scenes
+
+VGRAD = complete_build({"EXTREMUM": 0, "CLIP": 0, "VGRAD": 1})
+SS4 = {**scenes.DEFAULT_WIDTHS, "MAX_SS_LOG2": 2}
+
+
+def _gates(nand2: int) -> dict:
+    units = {u: {"nand2_total": nand2 // 8, "memory_bits": 100} for u in gates.UNITS}
+    return {"units": units, "total": {"nand2_total": nand2, "ffs": nand2 // 10, "memory_bits": 1000}}
+
+
+def test_builds_are_options_and_widths():
+    assert scenes.build_key(VGRAD) != scenes.build_key(VGRAD, SS4)
+    assert scenes.build_key(FULL_BUILD) == scenes.build_key(FULL_BUILD, dict(scenes.DEFAULT_WIDTHS))
+    assert scenes.full_name(VGRAD, SS4) == "EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2)"
+    assert scenes.full_name(FULL_BUILD) == "full"
+
+
+def test_place_command_measures_that_build_where_the_report_reads_it():
+    """The command a build's row gives runs the fpga tool on exactly that build, and its JSON
+    lands where cube4_reports.fmax looks (reports/fpga/)."""
+    args = fpga.parse_args(scenes.place_args(VGRAD, SS4))
+    assert (args.p, args.seeds, args.max_dim, args.no_budget, args.no_memory) == ("8", "1,2,3", 128, True, True)
+    assert fpga.parse_build_arg(args.build) == (("EXTREMUM", 0), ("CLIP", 0), ("VGRAD", 1))
+    assert fpga.parse_widths_arg(args.widths, VGRAD) == (("MAX_SS_LOG2", 2),)
+    md = Path(args.md)
+    assert md.parent == Path("reports/fpga") and fpga.json_beside(fpga.DOC_REPORTS / "fpga" / md.name) is not None
+    full = fpga.parse_args(scenes.place_args(dict(FULL_BUILD), dict(scenes.DEFAULT_WIDTHS)))
+    assert full.build == "" and full.widths == "" and full.md == Path("reports/fpga/full.md")
+    assert shlex.split(scenes.place_command(VGRAD, SS4))[3:] == scenes.place_args(VGRAD, SS4)
+
+
+def test_ecp5_columns_only_from_the_builds_own_run(tmp_path):
+    f = tmp_path / "fpga_x.json"
+    f.write_text(json.dumps({"seeds": [1, 2, 3], "rtl_commit": "abc1234", "max_dim": 128, "results": [
+        {"p": 8, "fmax_median": 137.7, "fits": True, "luts": 50000, "ffs": 40000, "dsps": 130, "ebrs": 190,
+         "build": dict(FULL_BUILD), "widths": dict(scenes.DEFAULT_WIDTHS)}]}))
+    measured = fmax.load([f])
+    recs = [{"build": dict(FULL_BUILD), "widths": dict(scenes.DEFAULT_WIDTHS), "name": "full", "gates": _gates(800000),
+             "fpga": fmax.lookup(measured, 8, FULL_BUILD, scenes.DEFAULT_WIDTHS)},
+            {"build": VGRAD, "widths": SS4, "name": scenes.full_name(VGRAD, SS4), "gates": _gates(900000),
+             "fpga": fmax.lookup(measured, 8, VGRAD, SS4)}]
+    table = scenes.builds_table(recs).splitlines()
+    assert "| 50,000 | 130 | 190 | 137.7 |" in table[2] and table[3].endswith("| — | — | — | not measured |")
+    rows = [{"scene": "head_quality", "volume": "head:64", "mode": "composite", "shaded": True, "crop": None,
+             "cut": False, "build": VGRAD, "widths": SS4, "gradient": "central", "cycles": 137700,
+             "cycles_full": None, "cycles_fixed": 200000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3},
+            {"scene": "head", "volume": "head:64", "mode": "composite", "shaded": True, "crop": None, "cut": False,
+             "build": dict(FULL_BUILD), "widths": dict(scenes.DEFAULT_WIDTHS), "gradient": "gra", "cycles": 137700,
+             "cycles_full": 137700, "cycles_fixed": 200000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3}]
+    text = scenes.scenes_table(rows, recs).splitlines()
+    assert "| not measured | — |" in text[2] and "| 1.000 | 1.000 |" in text[3]
+    lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
+    assert "1 of 2 builds placed and routed" in lines and "- full: 137.7 MHz: full at P = 8" in lines
+    assert "--widths MAX_SS_LOG2=2 --md reports/fpga/" in lines
