@@ -81,19 +81,28 @@ def test_fmax_lookup(tmp_path: Path) -> None:
                                                {"p": 1, "fmax_median": 99.0, "fits": True}],   # names no build
                    finished="2026-11-29 12:00")
     m = fmax.load([f, g])
-    assert len(m) == 3
+    assert len(m) == 4                                                        # the one naming no build left out
     w = Cube4Config().widths()
     hit = fmax.lookup(m, 8, beats, w)
     assert hit.fmax_mhz == 113.1 and "P = 8" in hit.note() and "abc1234" in hit.note() and "fpga_a.json" in hit.note()
     assert fmax.lookup(m, 8, {}, w).fmax_mhz == 130.0                          # the full build
     assert fmax.lookup(m, 8, {"PLW": 0}, w) is None                           # another build: never borrowed
-    assert fmax.lookup(m, 4, beats, w) is None                                # does not fit
-    assert fmax.lookup(m, 8, beats, {**w, "MAX_SS_LOG2": 2}).fmax_mhz == 90.0  # widths are part of the build
+    nofit = fmax.lookup(m, 4, beats, w)                                       # placed and routed, does not fit
+    assert not nofit.fits and nofit.fmax_mhz is None and "does not fit" in nofit.note()
+    ss = fmax.lookup(m, 8, beats, {**w, "MAX_SS_LOG2": 2})                      # widths are part of the build
+    assert ss.fmax_mhz == 90.0 and "(MAX_SS_LOG2=2) at P = 8" in ss.note()
     assert fmax.lookup(m, 8, beats, {**w, "ACC_W": 24}) is None
     assert fmax.lookup(m, 1, {}, w) is None
     # the latest finished of two results of the same build counts
     h = _fpga_json(tmp_path / "fpga_c.json", [_result(8, 115.0, beats)], finished="2026-12-01 08:00")
     assert fmax.lookup(fmax.load([f, g, h]), 8, beats, w).fmax_mhz == 115.0
+    # another speed grade is another chip: not the reports' clock
+    s6 = _fpga_json(tmp_path / "fpga_s6.json", [_result(8, 150.0, beats)], speed=6, finished="2026-12-02 08:00")
+    assert fmax.lookup(fmax.load([f, s6]), 8, beats, w).fmax_mhz == 113.1
+    # a result that cannot be read as a build is left out, not a traceback
+    odd = _fpga_json(tmp_path / "fpga_odd.json", [{**_result(8, 1.0, beats), "build": {"NOPE": 1}},
+                                                   {**_result(8, 1.0, beats), "p": None}])
+    assert fmax.load([odd]) == []
     assert fmax.build_from_name(build_name(complete_build(beats))) == complete_build(beats)
     assert fmax.build_from_name("full") == complete_build({})
     (tmp_path / "bad.json").write_text("{not json")
@@ -114,23 +123,26 @@ def _row(varied: str, label: str, psnr: float, cycles: int, build: str = "EXTREM
 
 def test_table_frame_time_and_failures(tmp_path: Path) -> None:
     rows = [_row("default", "default", 34.0, 1000), _row("pipelines", "p=1", 34.0, 8000, pipelines=1),
-            _row("weight_bits", "W=4", 30.0, 1000, weight_bits=4)]
+            _row("weight_bits", "W=4", 30.0, 1000, weight_bits=4), _row("acc_bits", "F=8", 33.0, 1000, acc_bits=8)]
     rows[1].rtl_error, rows[1].cycles_source = "build failed", "formula (RTL failed)"
     measured = fmax.read_results(_fpga_json(tmp_path / "fpga_t.json", [
         _result(8, 100.0, {"EXTREMUM": 0, "CLIP": 0, "PLW": 0}), _result(1, 50.0, {}),  # p = 1: another build
-        _result(8, 90.0, {"EXTREMUM": 0, "CLIP": 0, "PLW": 0}, WEIGHT_W=6)]))          # another width
+        _result(8, 90.0, {"EXTREMUM": 0, "CLIP": 0, "PLW": 0}, WEIGHT_W=6),           # another width
+        _result(1, 60.0, {"EXTREMUM": 0, "CLIP": 0, "PLW": 0})]))                     # p = 1's own: RTL failed
     report.finish_rows(rows, measured)
     assert rows[0].frame_time_ms == pytest.approx(0.01) and "100.0 MHz" in rows[0].fmax_source
     assert rows[1].frame_time_ms is None and rows[1].cycles_ratio == 8.0
     assert rows[2].frame_time_ms is None and "not placed and routed" in rows[2].fmax_source
+    assert "(WEIGHT_W=4) at P = 8" in rows[2].fmax_source
     table = report.markdown_table(rows)
     lines = table.splitlines()
     assert all(line.count("|") - line.count("\\|") == lines[0].count("|") - lines[0].count("\\|") for line in lines)
-    assert "0.0100 @ 100.0 MHz" in lines[2] and report.NA_FMAX in lines[3] and report.NA_FMAX in lines[4]
+    assert "0.0100 @ 100.0 MHz" in lines[2] and "none (formula (RTL failed) cycles)" in lines[3]
+    assert report.NA_FMAX in lines[4] and report.NA_FMAX in lines[5]
     assert "RTL failed: build failed" in lines[3] and "**1**" in lines[3]
     assert "| EXTREMUM=0, CLIP=0, PLW=0 |" in lines[2]
     note = report.fmax_note(rows, measured)
-    assert "2 of 3 rows run on a build that was never placed and routed" in note and "100.0 MHz" in note
+    assert "2 of 4 rows run on a build that was never placed and routed" in note and "100.0 MHz" in note
 
 
 def test_tables_only_roundtrip(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

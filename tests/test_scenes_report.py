@@ -64,3 +64,22 @@ def test_ecp5_columns_only_from_the_builds_own_run(tmp_path):
     lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
     assert "1 of 2 builds placed and routed" in lines and "- full: 137.7 MHz: full at P = 8" in lines
     assert "--widths MAX_SS_LOG2=2 --md reports/fpga/" in lines
+
+
+def test_a_build_that_does_not_fit_says_so_and_is_not_placed_again(tmp_path):
+    f = tmp_path / "fpga_y.json"
+    f.write_text(json.dumps({"seeds": [1, 2, 3], "rtl_commit": "abc1234", "max_dim": 128, "results": [
+        {"p": 8, "fmax_median": None, "fits": False, "build": VGRAD, "widths": SS4}]}))
+    m = fmax.lookup(fmax.load([f]), 8, VGRAD, SS4)
+    recs = [{"build": dict(FULL_BUILD), "widths": dict(scenes.DEFAULT_WIDTHS), "name": "full", "gates": _gates(800000),
+             "fpga": None},
+            {"build": VGRAD, "widths": SS4, "name": scenes.full_name(VGRAD, SS4), "gates": _gates(900000), "fpga": m}]
+    assert scenes.builds_table(recs).splitlines()[3].endswith("| does not fit |")
+    lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
+    assert "does not fit the ECP5-85F: EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2) at P = 8" in lines
+    assert lines.count("python -m cube4_reports.fpga") == 1          # only the full build is left to measure
+
+
+def test_another_build_needs_its_own_report(capsys):
+    assert fpga.main(["--p", "8", "--build", "BEATS=1,EXTREMUM=0,CLIP=0,PLW=0"]) == 2
+    assert "name its report with --md" in capsys.readouterr().err

@@ -8,10 +8,11 @@ reports/fpga_beats.md), and each of its results names its build whole: the build
 the run's MAX_DIM, RTL commit, seeds and their median.
 
 A report that gives a frame time looks up the build that runs the frame: the same options,
-the same widths and the same P. Nothing else is borrowed: a build with no such result has
-no frame time, and the report says it was not measured. MAX_DIM is not matched (a frame's
-cycles do not depend on it; the chip is built for the largest volume it renders): the
-result states its own. Where several results match, the one finished last counts.
+the same widths, the same P and the speed grade the reports use. Nothing else is borrowed:
+a build with no such result has no frame time, and the report says it was not measured (or
+that it was placed and routed and does not fit the part). MAX_DIM is not matched (a
+frame's cycles do not depend on it; the chip is built for the largest volume it renders):
+the result states its own. Where several results match, the one finished last counts.
 """
 
 from __future__ import annotations
@@ -32,11 +33,16 @@ RESULT_GLOBS = ("fpga*.json", "fpga/*.json")
 REPORTS = REPO_ROOT / "reports"
 
 
+#: the speed grade every report's frame times are at (cube4_reports.fpga's default)
+SPEED = 8
+
+
 @dataclass(frozen=True)
 class Measured:
-    """One build's measured Fmax: the median of its seeds."""
+    """One build's place and route: its Fmax, the median of its seeds (None: it does not
+    fit the part, ``fits`` False)."""
 
-    fmax_mhz: float
+    fmax_mhz: float | None
     p: int
     build: dict
     widths: dict
@@ -50,10 +56,13 @@ class Measured:
     ffs: int | None = None
     dsps: int | None = None
     ebrs: int | None = None
+    fits: bool = True
+    speed: int = SPEED
 
     def note(self) -> str:
         """'113.1 MHz: BEATS=1, .. at P = 8, median of 3 seeds, RTL 605bf4b (reports/fpga_beats.json)'."""
-        return (f"{self.fmax_mhz:.1f} MHz: {build_name(self.build)} at P = {self.p}, "
+        what = f"{self.fmax_mhz:.1f} MHz" if self.fits else "does not fit the ECP5-85F"
+        return (f"{what}: {build_label(self.build, self.widths)} at P = {self.p}, MAX_DIM = {self.max_dim}, "
                 f"median of {len(self.seeds)} seed{'s' if len(self.seeds) != 1 else ''}, RTL {self.rtl} "
                 f"({self.source})")
 
@@ -76,12 +85,18 @@ def read_results(path: Path) -> list[Measured]:
                         "(expected {\"results\": [...]}): rerun it or delete the file") from None
     out = []
     for r in results:
-        if not isinstance(r, dict) or r.get("fmax_median") is None or not r.get("fits", False):
-            continue
-        if not isinstance(r.get("build"), dict) or not isinstance(r.get("widths"), dict):
-            continue
+        if not isinstance(r, dict) or not isinstance(r.get("build"), dict) or not isinstance(r.get("widths"), dict):
+            continue        # a result from before builds were named: it matches no build
+        fits = bool(r.get("fits", False))
+        if fits and r.get("fmax_median") is None:
+            continue        # a failed run: nothing measured
+        try:
+            build, p = complete_build(r["build"]), int(r["p"])
+        except (UserError, KeyError, TypeError, ValueError):
+            continue        # an option this version does not know: not a build it can run
         out.append(Measured(
-            fmax_mhz=float(r["fmax_median"]), p=int(r["p"]), build=complete_build(r["build"]),
+            fmax_mhz=float(r["fmax_median"]) if fits else None, p=p, build=build, fits=fits,
+            speed=int(data.get("speed", SPEED)),
             widths={k: int(v) for k, v in r["widths"].items()},
             seeds=tuple(int(s) for s in data.get("seeds", ())),
             fmax_seeds=tuple(float(f) for f in r.get("fmax_seeds", ()) if f is not None),
@@ -100,10 +115,11 @@ def load(paths: list[Path] | None = None) -> list[Measured]:
 
 
 def lookup(measured: list[Measured], p: int, build: dict, widths: dict) -> Measured | None:
-    """The Fmax of exactly this build (options, widths, P), the latest finished; None if
-    it was never placed and routed."""
+    """The place and route of exactly this build (options, widths, P, at speed grade
+    SPEED), the latest finished (``fits`` False: it does not fit); None if it was never
+    placed and routed."""
     want = complete_build(build)
-    hits = [m for m in measured if m.p == p and m.build == want and m.widths == dict(widths)]
+    hits = [m for m in measured if m.p == p and m.build == want and m.widths == dict(widths) and m.speed == SPEED]
     return max(hits, key=lambda m: m.finished) if hits else None
 
 
@@ -120,7 +136,14 @@ def widths_text(widths: dict) -> str:
     return ", ".join(f"{k}={v}" for k, v in widths.items() if default.get(k) != v)
 
 
-def unmeasured_note(p: int, build: dict) -> str:
+def build_label(build: dict, widths: dict | None = None) -> str:
+    """A build's name with its word widths where they differ from the defaults:
+    'EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2)'."""
+    w = widths_text({**Cube4Config().widths(), **(widths or {})})
+    return build_name(build) + (f" ({w})" if w else "")
+
+
+def unmeasured_note(p: int, build: dict, widths: dict | None = None) -> str:
     """What a table says where a build has no measured Fmax."""
-    return f"not measured ({build_name(build)} at P = {p} was not placed and routed)"
+    return f"not measured ({build_label(build, widths)} at P = {p} was not placed and routed)"
 

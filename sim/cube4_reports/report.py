@@ -245,8 +245,8 @@ def row_widths(r: Row) -> dict[str, int]:
 
 def fmax_note(rows: list[Row], measured: list[fmax_store.Measured]) -> str:
     """Which measured builds the frame times use, for the Markdown report."""
-    used = sorted({r.fmax_source for r in rows if r.fmax_mhz is not None})
-    missing = len([r for r in rows if r.fmax_mhz is None])
+    used = sorted({r.fmax_source for r in rows if r.fmax_mhz is not None or "does not fit" in (r.fmax_source or "")})
+    missing = len([r for r in rows if r.fmax_mhz is None and "does not fit" not in (r.fmax_source or "")])
     if not measured:
         head = ("no build has a measured Fmax (no place-and-route result under reports/: "
                 "`python -m cube4_reports.fpga --build ... --md reports/fpga_<name>.md` writes one)")
@@ -301,6 +301,7 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter,
               gradient=scene.gradient, path_weights=scene.path_weighted, preview=scene.preview,
               tau=scene.tau if scene.skip == "beats" else None, build=build_name(resolve_build(cfg, [scene])))
+    # (the build's options; its word widths are the row's S, W, F .. columns)
     if row.tau is not None:     # the beat schedule: its cycles are measured, the golden walk's beats stand in
         row.formula_cycles = int(res.stats["beats"]["walk_beats"])
     return row, res.frame.baseplane
@@ -350,8 +351,10 @@ def finish_rows(rows: list[Row], measured: list[fmax_store.Measured]) -> None:
             build = fmax_store.build_from_name(r.build)
             m = fmax_store.lookup(measured, r.pipelines, build, row_widths(r))
             r.fmax_mhz, r.fmax_source = ((m.fmax_mhz, m.note()) if m else
-                                         (None, fmax_store.unmeasured_note(r.pipelines, build)))
-        if r.fmax_mhz and r.cycles is not None:
+                                         (None, fmax_store.unmeasured_note(r.pipelines, build, row_widths(r))))
+        # a frame time for cycles the build runs: measured, or the formula of a --no-rtl run
+        # (not the formula standing in for a failed RTL run, nor the beat walk's beats)
+        if r.fmax_mhz and r.cycles is not None and r.cycles_source in ("rtl", "formula"):
             r.frame_time_ms = r.cycles / (r.fmax_mhz * 1e6) * 1e3
         base = defaults.get((r.volume, r.scene))
         if base is not None:
@@ -397,7 +400,11 @@ def frame_text(r: Row, fmt: str = ".4f") -> str:
     """'0.1234 @ 113.1 MHz', or why there is no frame time."""
     if r.frame_time_ms is not None:
         return f"{r.frame_time_ms:{fmt}} @ {r.fmax_mhz:.1f} MHz"
-    return "no build" if r.cycles_source == BEATS_SOURCE else NA_FMAX
+    if r.cycles_source == BEATS_SOURCE:
+        return "no build"
+    if r.fmax_mhz is not None:
+        return f"none ({r.cycles_source} cycles)"
+    return "does not fit" if r.fmax_source and "does not fit" in r.fmax_source else NA_FMAX
 
 
 def markdown_table(rows: list[Row]) -> str:

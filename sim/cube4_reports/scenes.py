@@ -81,10 +81,7 @@ def build_key(build: dict, widths: dict | None = None) -> tuple:
     return tuple(build[k] for k in BUILD_PARAMS) + tuple(w[k] for k in DEFAULT_WIDTHS)
 
 
-def full_name(build: dict, widths: dict | None = None) -> str:
-    """A build's name with its word widths where they differ: 'EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2)'."""
-    w = fmax_store.widths_text({**DEFAULT_WIDTHS, **(widths or {})})
-    return build_name(build) + (f" ({w})" if w else "")
+full_name = fmax_store.build_label
 
 
 def image_digest(image: np.ndarray) -> str:
@@ -249,7 +246,7 @@ def builds_table(recs: list[dict]) -> str:
                      fmt_int(g["total"]["ffs"]), fmt_int(buffer_bits(g)), pct_change(buffer_bits(g), buffer_bits(fg)),
                      fmt_int(f.luts) if f and f.luts else "—", str(f.dsps) if f and f.dsps is not None else "—",
                      str(f.ebrs) if f and f.ebrs is not None else "—",
-                     f"{f.fmax_mhz:.1f}" if f else "not measured"])
+                     ("does not fit" if not f.fits else f"{f.fmax_mhz:.1f}") if f else "not measured"])
     head = ["build", *[gates.UNIT_LABEL[u] for u in UNIT_COLS], "NAND2 eq. (logic)", "vs full",
             "FFs", "buffer bits", "vs full", "LUTs", "DSPs", "EBRs", "Fmax MHz"]
     return md_table(head, rows)
@@ -262,8 +259,10 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
     for s in rows:
         rec = by_key[build_key(s["build"], s.get("widths"))]
         fm = rec["fpga"].fmax_mhz if rec["fpga"] else None
-        fm_full = full["fpga"].fmax_mhz if full["fpga"] else None
-        t = f"{s['cycles'] / (fm * 1e3):.3f}" if fm else "not measured"
+        # the full build at the scene's widths (the only full build that runs it)
+        full_w = by_key.get(build_key(FULL_BUILD, s.get("widths")))
+        fm_full = full_w["fpga"].fmax_mhz if full_w and full_w["fpga"] else None
+        t = f"{s['cycles'] / (fm * 1e3):.3f}" if fm else ("does not fit" if rec["fpga"] else "not measured")
         t_full = (f"{s['cycles_full'] / (fm_full * 1e3):.3f}" if fm_full else "not measured") if s["cycles_full"] else "—"
         what = s["mode"] + ("" if s["shaded"] or s["mode"] != "composite" else ", unshaded")
         what += ", crop" if s["crop"] else ""
@@ -348,7 +347,7 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
 def place_lines(recs: list[dict], meta: dict) -> list[str]:
     """Which place-and-route run each build's ECP5 figures come from, and the command for
     each build not measured yet."""
-    done = [r for r in recs if r["fpga"]]
+    done = [r for r in recs if r["fpga"]]      # measured: an Fmax, or does not fit
     todo = [r for r in recs if not r["fpga"]]
     lines = ["## Place and route", "",
              f"{len(done)} of {len(recs)} builds placed and routed at P = {P} (RTL of this report: "

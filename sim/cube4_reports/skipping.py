@@ -233,13 +233,15 @@ def rtl_beat_lines(frames: list[dict], measured: list[fmax_store.Measured]) -> l
     body, sources = [], {}
     for f in frames:
         m = fmax_store.lookup(measured, P, *frame_build(f))
+        nofit = m is not None and not m.fits
+        m = None if nofit else m
         if m:
             sources.setdefault(m.note(), len(sources) + 1)
         b = f["beats"] or {}
         body.append([f"{f['volume']}", f["scene"], f["schedule"], fmt_int(f["cycles"]),
                      _frac(f["cycles"], f["n3_over_p"]),
                      _frac(b["run_beats"], f["n3_over_p"]) if b else "",
-                     f"{m.fmax_mhz:.1f} MHz [{sources[m.note()]}]" if m else "not measured",
+                     f"{m.fmax_mhz:.1f} MHz [{sources[m.note()]}]" if m else ("does not fit" if nofit else "not measured"),
                      f"{f['cycles'] / m.fmax_mhz / 1000:.2f} ms" if m else "",
                      _image(f["identical"])])
     builds = sorted({", ".join(f"{k}={v}" for k, v in f["build"].items()) for f in frames})
