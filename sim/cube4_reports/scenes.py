@@ -200,7 +200,8 @@ def place_args(build: dict, widths: dict) -> list[str]:
     opts = ",".join(f"{k}={v}" for k, v in build.items() if v != FULL_BUILD[k])
     wtext = fmax_store.widths_text({**DEFAULT_WIDTHS, **widths}).replace(" ", "")
     wtag = "".join(f"_{t.lower().replace('=', '')}" for t in wtext.split(",") if t)
-    name = "full" if not opts and not wtext else (build_tag(build).lstrip("_") or "full") + wtag
+    diff = {k: v for k, v in build.items() if v != FULL_BUILD[k]}
+    name = "full" if not opts and not wtext else (build_tag(diff).lstrip("_") or "full") + wtag
     return (["--p", str(P), "--seeds", SEEDS, "--max-dim", str(MAX_DIM), "--depth", str(DEPTH), "--no-budget",
              "--no-memory"] + (["--build", opts] if opts else []) + (["--widths", wtext] if wtext else [])
             + ["--md", f"reports/fpga/{name}.md"])
