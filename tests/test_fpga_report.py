@@ -400,3 +400,21 @@ def test_json_beside_a_report_in_reports():
     """A report written into reports/ keeps its JSON beside it (cube4_reports.fmax reads it)."""
     assert fpga.json_beside(fpga.DOC_REPORTS / "fpga_beats.md") == fpga.DOC_REPORTS / "fpga_beats.json"
     assert fpga.json_beside(fpga.BUILD_REPORTS / "fpga_quick.md") is None
+
+
+def test_results_as_written_are_what_the_frame_times_read(tmp_path, monkeypatch):
+    """The JSON fpga writes (combine's records, named whole) is what cube4_reports.fmax reads:
+    the same build, widths, P, median and every seed's Fmax."""
+    import json
+
+    from cube4.builds import complete_build
+    from cube4_reports import fmax
+    monkeypatch.setattr(fpga, "SYNTH_DIR", tmp_path)
+    build = (("BEATS", 1), ("EXTREMUM", 0), ("CLIP", 0), ("PLW", 0))
+    cfg = fpga.BuildConfig(p=8, max_dim=16, depth=64, freq=125.0, seeds=(1, 2, 3), build=build)
+    runs = [run_of(2, 90.0, tmp_path), run_of(3, 70.0, tmp_path), run_of(1, 80.0, tmp_path)]
+    recs = fpga.result_records([fpga.combine(cfg, {"LUT4": 5}, 1.0, runs)], cfg)
+    f = tmp_path / "fpga_t.json"
+    f.write_text(json.dumps({"seeds": [1, 2, 3], "speed": 8, "max_dim": 16, "rtl_commit": "abc1234", "results": recs}))
+    m = fmax.lookup(fmax.load([f]), 8, complete_build(dict(build)), fpga.TOP_DEFAULTS)
+    assert m.fmax_mhz == 80.0 and sorted(m.fmax_seeds) == [70.0, 80.0, 90.0] and m.luts == recs[0]["luts"]

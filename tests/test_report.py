@@ -69,7 +69,8 @@ def _fpga_json(path: Path, results: list[dict], **top) -> Path:
 
 
 def _result(p: int, fmax: float | None, build: dict | None = None, fits: bool = True, **widths) -> dict:
-    return {"p": p, "fmax_median": fmax, "fmax_seeds": [fmax] * 3, "fits": fits,
+    return {"p": p, "fmax_median": fmax, "fits": fits,
+            "fmax_seeds": [{"seed": s, "fmax_mhz": fmax, "critical_path": "x"} for s in (1, 2, 3)],
             "build": complete_build(build), "widths": {**Cube4Config().widths(), **widths}}
 
 

@@ -71,6 +71,16 @@ def _rel(path: Path) -> str:
     return str(path.relative_to(REPO_ROOT)) if path.is_relative_to(REPO_ROOT) else str(path)
 
 
+def _seed_fmax(seeds) -> tuple[float, ...]:
+    """Each routed seed's Fmax, from cube4_reports.fpga's [{"seed", "fmax_mhz", ..}, ..]."""
+    out = []
+    for s in seeds:
+        f = s.get("fmax_mhz") if isinstance(s, dict) else s
+        if isinstance(f, (int, float)):
+            out.append(float(f))
+    return tuple(out)
+
+
 def read_results(path: Path) -> list[Measured]:
     """The routed, fitting results of one fpga JSON that name their build whole; a result
     from before builds were named (no "build" or "widths") is left out: it cannot be
@@ -99,7 +109,7 @@ def read_results(path: Path) -> list[Measured]:
             speed=int(data.get("speed", SPEED)),
             widths={k: int(v) for k, v in r["widths"].items()},
             seeds=tuple(int(s) for s in data.get("seeds", ())),
-            fmax_seeds=tuple(float(f) for f in r.get("fmax_seeds", ()) if f is not None),
+            fmax_seeds=_seed_fmax(r.get("fmax_seeds") or ()),
             max_dim=int(data.get("max_dim", 0)),
             rtl=str(data.get("rtl_commit", "unknown")) + (" with uncommitted changes" if data.get("rtl_modified") else ""),
             source=_rel(path), finished=str(data.get("finished", "")),

