@@ -83,3 +83,28 @@ def test_a_build_that_does_not_fit_says_so_and_is_not_placed_again(tmp_path):
 def test_another_build_needs_its_own_report(capsys):
     assert fpga.main(["--p", "8", "--build", "BEATS=1,EXTREMUM=0,CLIP=0,PLW=0"]) == 2
     assert "name its report with --md" in capsys.readouterr().err
+
+
+def test_md_only_rewrites_from_the_last_run_with_the_fpga_results_of_now(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(scenes, "BUILD_REPORTS", tmp_path)
+    monkeypatch.setattr(scenes, "DOC_REPORTS", tmp_path / "docs")
+    monkeypatch.setattr(fmax, "REPORTS", tmp_path / "store")
+    assert scenes.main(["--md-only"]) == 2 and "run make scenes first" in capsys.readouterr().err
+    full = dict(FULL_BUILD)
+    recs = [{"build": full, "widths": dict(scenes.DEFAULT_WIDTHS), "name": "full", "gates": _gates(800000),
+             "fpga": None}]
+    row = {"scene": "head", "volume": "head:64", "mode": "composite", "shaded": True, "crop": None, "cut": False,
+           "build": full, "widths": dict(scenes.DEFAULT_WIDTHS), "gradient": "gra", "cycles": 137700,
+           "cycles_full": 137700, "cycles_fixed": 200000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3}
+    (tmp_path / "scenes.json").write_text(json.dumps({"p": 8, "max_dim": 128, "scenes": [row], "modes": [],
+                                                      "builds": scenes.build_records(recs), "git": "abc",
+                                                      "rtl_digest": "d", "rtl_commit": "abc1234"}))
+    assert scenes.main(["--md-only"]) == 0
+    assert "| not measured | not measured |" in (tmp_path / "docs" / "scenes.md").read_text()
+    (tmp_path / "store").mkdir()
+    (tmp_path / "store" / "fpga.json").write_text(json.dumps({"seeds": [1, 2, 3], "rtl_commit": "abc1234", "results": [
+        {"p": 8, "fmax_median": 137.7, "fits": True, "luts": 1, "dsps": 2, "ebrs": 3, "build": full,
+         "widths": dict(scenes.DEFAULT_WIDTHS)}]}))
+    assert scenes.main(["--md-only"]) == 0
+    text = (tmp_path / "docs" / "scenes.md").read_text()
+    assert "| 1.000 | 1.000 |" in text and "- full: 137.7 MHz" in text

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import hashlib
+import json
 import time
 
 import numpy as np
@@ -376,14 +377,52 @@ def place_missing(recs: list[dict]) -> None:
 
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.scenes", description=__doc__.splitlines()[0])
+    ap.add_argument("--md-only", action="store_true",
+                    help="render nothing: rewrite scenes.md from the last run (build/reports/scenes.json) with "
+                         "each build's place and route as measured now")
     ap.add_argument("--place", action="store_true",
                     help="place and route each build not measured yet (P = 8, seeds 1, 2, 3; about 40 min a "
                          "build here) into reports/fpga/, then write the report")
     return ap.parse_args(argv)
 
 
+def rewrite(t0: float) -> None:
+    """--md-only: scenes.md from the last run's build/reports/scenes.json, each build's ECP5
+    figures and frame times as measured now (cube4_reports.fmax)."""
+    path = BUILD_REPORTS / "scenes.json"
+    try:
+        data = json.loads(path.read_text())
+        rows, matrix, builds = data["scenes"], data["modes"], data["builds"]
+        meta = {k: data[k] for k in ("git", "rtl_digest", "rtl_commit")}
+        if any("gates" not in b for b in builds):
+            raise KeyError("gates")
+    except FileNotFoundError:
+        raise fpga.UserError(f"--md-only needs {path}: run make scenes first") from None
+    except (OSError, ValueError, KeyError, TypeError):
+        raise fpga.UserError(f"{path} is not a run of this version: rerun make scenes") from None
+    measured = fmax_store.load()
+    recs = [{"build": b["build"], "widths": b["widths"], "name": full_name(b["build"], b["widths"]),
+             "gates": b["gates"], "fpga": fmax_store.lookup(measured, P, b["build"], b["widths"])} for b in builds]
+    write_report(TAG, {**data, "builds": build_records(recs)}, path, render_markdown(rows, recs, meta, matrix),
+                 DOC_REPORTS / "scenes.md", t0)
+
+
+def build_records(recs: list[dict]) -> list[dict]:
+    """The JSON's builds: gates (whole, for --md-only) and the ECP5 figures used."""
+    return [{"build": r["build"], "widths": r["widths"], "nand2": logic_nand2(r["gates"]),
+             "ffs": r["gates"]["total"]["ffs"], "memory_bits": r["gates"]["total"]["memory_bits"],
+             "buffer_bits": buffer_bits(r["gates"]), "gates": r["gates"],
+             "units": {u: r["gates"]["units"][u]["nand2_total"] for u in gates.UNITS},
+             "fpga": None if r["fpga"] is None else
+             {"fmax_mhz": r["fpga"].fmax_mhz, "luts": r["fpga"].luts, "ffs": r["fpga"].ffs,
+              "dsps": r["fpga"].dsps, "ebrs": r["fpga"].ebrs, "source": r["fpga"].note()}}
+            for r in recs]
+
+
 def run(args: argparse.Namespace) -> None:
     t0 = time.monotonic()
+    if args.md_only:
+        return rewrite(t0)
     names = builtin_scene_names()
     rows = scene_rows(names)
     matrix = mode_matrix(matrix_names(names))
@@ -397,15 +436,7 @@ def run(args: argparse.Namespace) -> None:
         for r in recs:
             r["fpga"] = fmax_store.lookup(measured, P, r["build"], r["widths"])
     meta = {"git": git_describe(), "rtl_digest": design_digest(), "rtl_commit": last_commit()}
-    report = {"p": P, "max_dim": MAX_DIM, "scenes": rows, "modes": matrix,
-              "builds": [{"build": r["build"], "widths": r["widths"], "nand2": logic_nand2(r["gates"]),
-                          "ffs": r["gates"]["total"]["ffs"], "memory_bits": r["gates"]["total"]["memory_bits"],
-                          "buffer_bits": buffer_bits(r["gates"]),
-                          "units": {u: r["gates"]["units"][u]["nand2_total"] for u in gates.UNITS},
-                          "fpga": None if r["fpga"] is None else
-                          {"fmax_mhz": r["fpga"].fmax_mhz, "luts": r["fpga"].luts, "ffs": r["fpga"].ffs,
-                           "dsps": r["fpga"].dsps, "ebrs": r["fpga"].ebrs, "source": r["fpga"].note()}}
-                         for r in recs], **meta}
+    report = {"p": P, "max_dim": MAX_DIM, "scenes": rows, "modes": matrix, "builds": build_records(recs), **meta}
     write_report(TAG, report, BUILD_REPORTS / "scenes.json", render_markdown(rows, recs, meta, matrix),
                  DOC_REPORTS / "scenes.md", t0)
 
