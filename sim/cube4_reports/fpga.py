@@ -895,7 +895,10 @@ def run(args: argparse.Namespace) -> None:
               "finished": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M"),
               "flatness": flatness(results), "results": named,
               "board": board, "memory": memory}
-    write_report(TAG, report, json_path, render_markdown(results, budget, meta, memory, board), md_path, t0)
+    md = render_markdown(results, budget, meta, memory, board)
+    if md_path.resolve().parent == (DOC_REPORTS / "fpga").resolve():
+        md = md.replace("](../docs/", "](../../docs/")      # a build's report in reports/fpga/
+    write_report(TAG, report, json_path, md, md_path, t0)
 
 
 def main(argv: list[str] | None = None) -> int:
