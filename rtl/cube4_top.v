@@ -534,7 +534,7 @@ module cube4_top #(
     // here, where the beat leaves SHA, and go with it, so no logic of them lies
     // on that route (the beat schedule's cycles are measured, so the cycle of
     // latency changes no prediction)
-    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W;     // cube4_com_steps' q_geo
+    localparam integer GEO_W = `CUBE4_GEO_W;     // cube4_com_steps' q_geo
     localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;
