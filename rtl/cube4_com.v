@@ -122,7 +122,7 @@ module cube4_com #(
     `CUBE4_RECT_LAYOUT, `CUBE4_STOP_LAYOUT,
     localparam integer BX_W = DIM_W + 1,
     localparam integer PWC_W = (PLW != 0) ? 4 * ALPHA_W : 1,  // the path-weight columns
-    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W         // cube4_com_steps' q_geo
+    localparam integer GEO_W = `CUBE4_GEO_W         // cube4_com_steps' q_geo
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,

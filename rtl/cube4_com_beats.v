@@ -57,7 +57,7 @@
 module cube4_com_beats #(
     `CUBE4_SLICE_PARAMS,
     parameter integer SP_W = 13,
-    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W    // a beat's {stx, sty, ph_x, ph_y}
+    localparam integer GEO_W = `CUBE4_GEO_W    // a beat's {stx, sty, ph_x, ph_y}
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
@@ -103,7 +103,7 @@ module cube4_com_beats #(
     // R0 registers them on every cycle ----
     `CUBE4_PHASE_FUNCTIONS
     wire [2:0]       g      = {1'b0, cfg_ss_log2};
-    wire [PH_W:0]    ph_one = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g});
+    wire [PH_W:0]    ph_one = phase_one(g);
     reg  [GEO_W-1:0] r0_geo;
     always @(posedge clk) r0_geo <= c_geo;
     wire [PH_W:0]    nx = phase_advance(ph_x, cfg_view_x, ph_one), ny = phase_advance(ph_y, cfg_view_y, ph_one);

@@ -43,7 +43,7 @@
 // =============================================================================
 module cube4_com_steps #(
     `CUBE4_SLICE_PARAMS,
-    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W
+    localparam integer GEO_W = `CUBE4_GEO_W
 ) (
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
@@ -54,7 +54,7 @@ module cube4_com_steps #(
     `CUBE4_PHASE_FUNCTIONS
     localparam integer PH_W = PHASE_W;
     wire [2:0]    g      = {1'b0, cfg_ss_log2};
-    wire [PH_W:0] ph_one = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g});
+    wire [PH_W:0] ph_one = phase_one(g);
     // {stepx, stepy, ph_x, ph_y} one slice on
     function automatic [GEO_W-1:0] advance(input [GEO_W-1:0] geo);
         reg [DIM_W-1:0] sx, sy;

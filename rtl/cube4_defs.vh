@@ -617,9 +617,16 @@
 // ---------------------------------------------------------------- phases
 // A template phase is PHASE_W = W + MAX_SS_LOG2 bits (Q.W+g of a voxel); one
 // slice on it adds VIEW (Q1.W, 0 .. 2^W) and wraps at one = 2^(W + g):
+//   phase_one(g)                 = 2^(W + g), g = log2(S) (cfg_ss_log2)
 //   phase_advance(ph, view, one) = {carry, (ph + view) mod one}, the carry
 //   being the slice's step. Needs PHASE_W and WEIGHT_W (CUBE4_GEOMETRY).
+// A beat's slice geometry on the beat schedule, {stepx, stepy [DIM_W], ph_x,
+// ph_y [PHASE_W]} (cube4_com_steps to cube4_com_beats), is CUBE4_GEO_W bits.
+`define CUBE4_GEO_W (2 * DIM_W + 2 * PHASE_W)
 `define CUBE4_PHASE_FUNCTIONS \
+    function automatic [PHASE_W:0] phase_one(input [2:0] g); \
+        phase_one = {{PHASE_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {1'b0, g}); \
+    endfunction \
     function automatic [PHASE_W:0] phase_advance(input [PHASE_W-1:0] ph, input [WEIGHT_W:0] view, \
                                                  input [PHASE_W:0] one); \
         reg [PHASE_W:0] sum; \

@@ -171,34 +171,17 @@ module cube4_frontend #(
     generate
         if (BEATS != 0) begin : g_bits
             wire emits = c_req_tag[TAG_EMIT];
-            wire b_ready, b_valid;
-            // the request forks to the memory's skid buffer and, its bits, to one
-            // beside it (k_*) before the FIFO, whose block RAM lies elsewhere: CFB
-            // advances on registers beside it
-            wire k_valid, k_ready, f_valid, f_ready;
-            wire [4*P+1:0] k_data, f_data;
+            wire k_ready, b_valid;
+            // the request forks to the memory's skid buffer and, its bits, to the
+            // FIFO's skid beside it (CFB advances on registers beside it), and they
+            // leave through its skid beside TRI's output, which the sample beat's
+            // departure pops (cube4_skid_fifo: its block RAM lies elsewhere)
             assign s_req_valid = c_req_valid && (!emits || k_ready);
             assign c_req_ready = s_req_ready && (!emits || k_ready);
-            cube4_skid #(.DATA_W (4 * P + 2)) u_bits_skid (
+            cube4_skid_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (c_req_valid && s_req_ready && emits), .in_ready (k_ready),
                 .in_data ({c_req_eoss, c_req_eos, c_req_bits}),
-                .out_valid (k_valid), .out_ready (b_ready), .out_data (k_data));
-            cube4_ram_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .OUT_REG (1)) u_bits (
-                .clk       (clk),
-                .rst       (rst),
-                .in_valid  (k_valid),
-                .in_ready  (b_ready),
-                .in_data   (k_data),
-                .out_valid (f_valid),
-                .out_ready (f_ready),
-                .out_data  (f_data)
-            );
-            // and out of it through a skid beside TRI's output, which the sample
-            // beat's departure pops: it reaches no RAM queue
-            cube4_skid #(.DATA_W (4 * P + 2)) u_bits_out (
-                .clk (clk), .rst (rst),
-                .in_valid (f_valid), .in_ready (f_ready), .in_data (f_data),
                 .out_valid (b_valid), .out_ready (smp_valid && smp_ready),
                 .out_data ({smp_eoss, smp_eos, smp_bits}));
             wire unused_bits = b_valid;

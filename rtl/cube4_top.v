@@ -373,41 +373,21 @@ module cube4_top #(
                 .in_data ({fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss}),
                 .out_valid (s_valid), .out_ready (s_ready),
                 .out_data ({smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss}));
-            wire b_ready, b_valid;
+            wire k_ready, b_valid;
             wire [3*P-1:0] com_packed;
             assign com_bits     = ray_bits_unpack(com_packed);
-            // the beat forks to GRA and, its bits, to a skid buffer beside it (k_*)
-            // before the FIFO: the FIFO's ready and GRA's, registers at either end
-            // of the die, each reach only the logic beside them
-            wire k_valid, k_ready;
-            wire [3*P:0] k_data;
-            // and out of the FIFO through a skid buffer beside SHA's output, which
-            // the beat's departure (sha_take) pops: it reaches no RAM queue
-            wire f_valid, f_ready;
-            wire [3*P:0] f_data;
-            cube4_skid #(.DATA_W (3 * P + 1)) u_bits_out (
-                .clk (clk), .rst (rst),
-                .in_valid (f_valid), .in_ready (f_ready), .in_data (f_data),
-                .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
+            // the beat forks to GRA and, its bits, to the FIFO's skid beside it, and
+            // they leave through its skid beside SHA's output, which the beat's
+            // departure (sha_take) pops: the FIFO's ready and GRA's, registers at
+            // either end of the die, each reach only the logic beside them
+            // (cube4_skid_fifo; block RAM behind GRA, registers otherwise)
             assign smp_valid    = s_valid && k_ready;
             assign s_ready      = smp_ready && k_ready;
-            cube4_skid #(.DATA_W (3 * P + 1)) u_bits_skid (
+            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM ((SHADING != 0 && VGRAD == 0) ? 1 : 0)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
-                .out_valid (k_valid), .out_ready (b_ready), .out_data (k_data));
-            // one port map, two queues: block RAM behind GRA, registers otherwise
-`define CUBE4_BITS_FIFO(MODULE) \
-                MODULE #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH)) u_bits ( \
-                    .clk (clk), .rst (rst), \
-                    .in_valid (k_valid), .in_ready (b_ready), .in_data (k_data), \
-                    .out_valid (f_valid), .out_ready (f_ready), .out_data (f_data));
-            if (SHADING != 0 && VGRAD == 0) begin : g_ram
-                `CUBE4_BITS_FIFO(cube4_ram_fifo)
-            end else begin : g_regs
-                `CUBE4_BITS_FIFO(cube4_sync_fifo)
-            end
-`undef CUBE4_BITS_FIFO
+                .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
             wire unused_bits = ^{b_valid, smp_eos};
 `ifndef SYNTHESIS
             // a beat leaving SHA always finds its bits: they left the front end with
@@ -554,7 +534,7 @@ module cube4_top #(
     // here, where the beat leaves SHA, and go with it, so no logic of them lies
     // on that route (the beat schedule's cycles are measured, so the cycle of
     // latency changes no prediction)
-    localparam integer GEO_W = 2 * DIM_W + 2 * PHASE_W;     // cube4_com_steps' q_geo
+    localparam integer GEO_W = `CUBE4_GEO_W;     // cube4_com_steps' q_geo
     localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;

@@ -21,6 +21,7 @@ cube4_dual_read_ram.v
 cube4_voxel_mem.v
 cube4_sync_fifo.v
 cube4_ram_fifo.v
+cube4_skid_fifo.v
 cube4_dram_fetch.v
 cube4_beam_ext.v
 cube4_cfb_tmpl.v

@@ -87,7 +87,7 @@ module cube4_com_harness #(
 
     // BEATS = 1: the steps and phases of each beat's slice, decided as it enters
     // (as cube4_top does where the beats leave SHA)
-    wire [2*DIM_W+2*PHASE_W-1:0] in_geo;
+    wire [`CUBE4_GEO_W-1:0] in_geo;
     cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
         .clk (clk), .rst (rst), .cfg (cfg), .q_push (in_valid && in_ready), .q_hdr (in_hdr), .q_eoss (in_eoss),
         .q_geo (in_geo));
