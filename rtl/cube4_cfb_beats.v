@@ -114,12 +114,7 @@ module cube4_cfb_beats #(
     reg             g_last;                // g + 1 >= nm: no slice after it
     reg [M_W-1:0]   need;                  // slice g's rows need slice need written whole:
                                            // g + 1, the last slice itself
-    // bm_ready = active && wm < nm && wm <= g + 2, as a register (bm_rdy_q) from
-    // the next values: the slots' write enable, which fans out to every cell of
-    // the four slots, starts at flip-flops (bm_valid, bm_rdy_q), not at the
-    // compares of the counters
-    reg  bm_rdy_q;
-    assign bm_ready = bm_rdy_q;
+    assign bm_ready = active && (wm < nm) && ({1'b0, wm} <= g2);
     wire bm_take = bm_valid && bm_ready;
     wire wm_mv = bm_take && (wj == nj - 1'b1);   // slice wm is written whole
     always @(posedge clk) begin
@@ -191,15 +186,6 @@ module cube4_cfb_beats #(
     wire [M_W-1:0] wm_d   = (rst || start) ? '0 : (wm_mv ? wm + 1'b1 : wm);
     wire [M_W-1:0] need_d = (rst || start) ? need0 : (g_mv ? need_g : need);
     always @(posedge clk) wm_gt <= (wm_d > need_d);
-    // bm_rdy_q: the next (wm < nm && wm <= g2), chosen by the two late moves (wm_mv,
-    // g_mv) among compares of the registers alone (wm moves by one, g2 by one)
-    wire wm_lt  = (wm < nm);
-    wire wm1_lt = ({1'b0, wm} + (M_W + 1)'(1) < {1'b0, nm});
-    wire le_0   = ({1'b0, wm} <= g2);                       // wm <= g2
-    wire le_m   = ({1'b0, wm} < g2);                        // wm + 1 <= g2
-    wire le_g   = ({1'b0, wm} <= g2 + 1'b1);                // wm <= g2 + 1
-    wire rdy_mv = wm_mv ? (wm1_lt && (g_mv ? le_0 : le_m)) : (wm_lt && (g_mv ? le_g : le_0));
-
     // the fetched row's place, beside the slots' read register
     reg [1:0]       f_kind;
     reg [M_W-1:0]   f_m;
@@ -366,22 +352,6 @@ module cube4_cfb_beats #(
         else if (start) active <= 1'b1;
         else if (x_done && x_flush) active <= 1'b0;
     end
-    always @(posedge clk) begin
-        if (rst)                    bm_rdy_q <= 1'b0;
-        else if (start)             bm_rdy_q <= (nm != '0);     // wm = 0, g2 = 2
-        else if (x_done && x_flush) bm_rdy_q <= 1'b0;           // the frame is done
-        else                        bm_rdy_q <= active && rdy_mv;
-    end
-`ifndef SYNTHESIS
-    // bm_rdy_q is the compare of the counters, a cycle early: the same value each cycle
-    always @(posedge clk) begin
-        if (!rst && !start && bm_rdy_q != (active && (wm < nm) && ({1'b0, wm} <= g2))) begin
-            $error("cube4_cfb_beats: bm_ready register %0d, counters say %0d (wm %0d, g2 %0d, nm %0d)",
-                   bm_rdy_q, active && (wm < nm) && ({1'b0, wm} <= g2), wm, g2, nm);
-            $fatal(1, "cube4_cfb_beats: bm_ready out of step");
-        end
-    end
-`endif
     assign out_m     = x_m;
     assign out_j     = x_j;
     assign out_pb    = x_pb;
