@@ -124,6 +124,51 @@ class QueueCheck:
         return pushed, popped
 
 
+class QueueTB:
+    """The bench of a queue with one stream in and one out (cube4_skid, cube4_ram_fifo,
+    cube4_skid_fifo): a seeded generator, a QueueCheck, the clock; reset, random words
+    and one cycle of driven valid and ready with its transfers checked."""
+
+    def __init__(self, dut, empty_only_when_low: bool = False) -> None:
+        self.dut = dut
+        (self.data_w,) = top_params(dut, "DATA_W")
+        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        self.q = QueueCheck(dut, empty_only_when_low=empty_only_when_low)
+        start_clock(dut)
+
+    async def reset(self) -> None:
+        d = self.dut
+        d.in_valid.value, d.in_data.value, d.out_ready.value = 0, 0, 0
+        d.rst.value = 1
+        for _ in range(3):
+            await RisingEdge(d.clk)
+        await FallingEdge(d.clk)
+        d.rst.value = 0
+
+    def word(self) -> int:
+        """Random bits in every 64-bit group, the sent count in the top bits."""
+        w = 0
+        for lo in range(0, self.data_w, 62):
+            w |= int(self.rng.integers(0, 1 << 62)) << lo
+        w ^= self.q.sent << max(0, self.data_w - 16)
+        return w & ((1 << self.data_w) - 1)
+
+    async def drive(self, valid: bool, ready: bool, data: int) -> None:
+        """The cycle's inputs (a bench may check between them, as cube4_skid's)."""
+        d = self.dut
+        d.in_valid.value, d.in_data.value, d.out_ready.value = int(valid), data, int(ready)
+
+    async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
+        """One cycle: drive, record the transfers of the coming edge; (pushed, popped)."""
+        data = self.word()
+        await self.drive(valid, ready, data)
+        await ReadOnly()
+        flow = self.q.observe(valid, ready, data)
+        await RisingEdge(self.dut.clk)
+        await FallingEdge(self.dut.clk)
+        return flow
+
+
 class UnitBench:
     """Python source and sink around one unit harness."""
 

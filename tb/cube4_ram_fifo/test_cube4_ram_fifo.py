@@ -27,45 +27,17 @@ queue's shape in make test; the others in make regress.
 from __future__ import annotations
 
 import cocotb
-import numpy as np
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from cube4_sim.sweeps import sweep
-from cube4_sim.unit_bench import QueueCheck, param_id, run_rtl, start_clock, top_params
+from cube4_sim.unit_bench import QueueTB, param_id, run_rtl, top_params
 
 
-class TB:
+class TB(QueueTB):
     def __init__(self, dut) -> None:
-        self.dut = dut
-        self.data_w, self.depth, out_reg = top_params(dut, "DATA_W", "DEPTH", "OUT_REG")
+        super().__init__(dut)
+        self.depth, out_reg = top_params(dut, "DEPTH", "OUT_REG")
         self.lat = 1 + out_reg
-        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        self.q = QueueCheck(dut)
-        start_clock(dut)
-
-    async def reset(self) -> None:
-        d = self.dut
-        d.in_valid.value, d.in_data.value, d.out_ready.value = 0, 0, 0
-        d.rst.value = 1
-        for _ in range(3):
-            await RisingEdge(d.clk)
-        await FallingEdge(d.clk)
-        d.rst.value = 0
-
-    def word(self) -> int:
-        return int(self.rng.integers(0, 1 << min(self.data_w, 62))) ^ (self.q.sent << max(0, self.data_w - 16))
-
-    async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
-        """One cycle: drive, record the transfers of the coming edge; (pushed, popped)."""
-        d = self.dut
-        data = self.word() & ((1 << self.data_w) - 1)
-        d.in_valid.value, d.in_data.value, d.out_ready.value = int(valid), data, int(ready)
-        await ReadOnly()
-        flow = self.q.observe(valid, ready, data)
-        await RisingEdge(d.clk)
-        await FallingEdge(d.clk)
-        return flow
 
 
 @cocotb.test()
