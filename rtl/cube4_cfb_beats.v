@@ -133,7 +133,7 @@ module cube4_cfb_beats #(
         for (s = 0; s < 4; s = s + 1) begin : g_slot
             // (distributed RAM: the word read goes into the walk's row words in the cycle after)
             cube4_sdp_ram #(.DATA_W(2 * NW), .DEPTH(MAX_DIM), .DIST(1)) u_slot (
-                .clk(clk), .rd_en(adv), .rd_addr(RW'(gj)), .rd_data(slot_q[s]),
+                .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr(RW'(gj)), .rd_data(slot_q[s]),
                 .wr_en(bm_take && (wm[1:0] == 2'(s))), .wr_addr(RW'(wj)), .wr_data({bm_occ, bm_a}));
         end
     endgenerate

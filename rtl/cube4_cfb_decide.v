@@ -220,7 +220,7 @@ module cube4_cfb_decide #(
     always @(posedge clk) blk_ra <= {BK_W'(vk >> BLOCK_LOG2), BK_W'(vj >> BLOCK_LOG2)};
     wire [NBK-1:0] blk_q;                  // S2
     cube4_sdp_ram #(.DATA_W(NBK), .DEPTH(1 << (2 * BK_W))) u_blk (
-        .clk(clk), .rd_en(1'b1), .rd_addr(blk_ra), .rd_data(blk_q),
+        .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(blk_ra), .rd_data(blk_q),
         .wr_en(blk_we), .wr_addr(blk_addr), .wr_data(blk_data));
     reg [NBK-1:0] blk_s3, blk_s4;
     always @(posedge clk) {blk_s4, blk_s3} <= {blk_s3, blk_q};

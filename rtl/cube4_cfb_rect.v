@@ -43,7 +43,7 @@ module cube4_cfb_rect #(`CUBE4_CFB_PARAMS) (
     wire [M_W-1:0] rd_addr = (idle && !go) ? '0 : m_after + 1'b1;
     cube4_sdp_ram #(.DATA_W (RECT_W), .DEPTH (MAX_DIM)) u_table (
         .clk     (clk),
-        .rd_en   (1'b1),
+        .rd_en   (1'b1), .out_en (1'b0),
         .rd_addr (TAW'(rd_addr)),
         .rd_data (rt_nxt),
         .wr_en   (rect_we),

@@ -76,10 +76,10 @@ module cube4_com_bpb #(
     // its write comes first.
     wire [PA-1:0] a1_ram, a2_ram;       // S3, S4
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(SB_DEPTH), .IN_REG(1), .OUT_REG(1)) u_slice (
-        .clk(clk), .rd_en(1'b1), .rd_addr(rd_sp), .rd_data(a1_ram),
+        .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(rd_sp), .rd_data(a1_ram),
         .wr_en(wr_en), .wr_addr(wr_sp), .wr_data(acc_q));
     cube4_sdp_ram #(.DATA_W(PA), .DEPTH(NBMAX), .IN_REG(1), .OUT_REG(1)) u_beam (
-        .clk(clk), .rd_en(1'b1), .rd_addr(pb_rd), .rd_data(a2_ram),
+        .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(pb_rd), .rd_data(a2_ram),
         .wr_en(v2), .wr_addr(pb_wr), .wr_data(a1_ram));
 
     // ---- S4: a1, the previous beat's a1, and a2, per lane ----

@@ -155,7 +155,7 @@ module cube4_com_plw #(
             wire [4*ALPHA_W-1:0] w2_cols;
             reg  [4*ALPHA_W-1:0] w3_cols;
             cube4_sdp_ram #(.DATA_W(4 * ALPHA_W), .DEPTH(1 << VOXEL_W), .OUT_REG(1)) u_wtab (
-                .clk(clk), .rd_en(1'b1), .rd_addr(smp[q*VOXEL_W +: VOXEL_W]), .rd_data(w2_cols),
+                .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(smp[q*VOXEL_W +: VOXEL_W]), .rd_data(w2_cols),
                 .wr_en(lut_we), .wr_addr(lut_addr), .wr_data(lut_data));
             always @(posedge clk) w3_cols <= w2_cols;
             wire [ALPHA_W-1:0] a_col;

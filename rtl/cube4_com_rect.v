@@ -75,13 +75,13 @@ module cube4_com_rect #(
     wire [M_W-1:0]    m_nx = in_m + 1'b1;
     wire [RECT_W-1:0] e_p, e_c, e_n;
     cube4_sdp_ram #(.DATA_W(RECT_W), .DEPTH(MAX_DIM)) u_tab_p (
-        .clk(clk), .rd_en(rd), .rd_addr(RW'(m_pv)), .rd_data(e_p),
+        .clk(clk), .rd_en(rd), .out_en(1'b0), .rd_addr(RW'(m_pv)), .rd_data(e_p),
         .wr_en(rect_we), .wr_addr(RW'(rect_addr)), .wr_data(rect_data));
     cube4_sdp_ram #(.DATA_W(RECT_W), .DEPTH(MAX_DIM)) u_tab_c (
-        .clk(clk), .rd_en(rd), .rd_addr(RW'(in_m)), .rd_data(e_c),
+        .clk(clk), .rd_en(rd), .out_en(1'b0), .rd_addr(RW'(in_m)), .rd_data(e_c),
         .wr_en(rect_we), .wr_addr(RW'(rect_addr)), .wr_data(rect_data));
     cube4_sdp_ram #(.DATA_W(RECT_W), .DEPTH(MAX_DIM)) u_tab_n (
-        .clk(clk), .rd_en(rd), .rd_addr(RW'(m_nx)), .rd_data(e_n),
+        .clk(clk), .rd_en(rd), .out_en(1'b0), .rd_addr(RW'(m_nx)), .rd_data(e_n),
         .wr_en(rect_we), .wr_addr(RW'(rect_addr)), .wr_data(rect_data));
     reg p_ok, n_ok;                  // slices m - 1 >= 0, m + 1 < M (= NK: S = 1)
     always @(posedge clk) begin

@@ -146,7 +146,7 @@ module cube4_delay_line #(
             // the RAM's read register, then its output register (rd2_q):
             // no logic after the RAM
             cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << AW), .WR_REG(1), .OUT_REG(1)) u_ram (
-                .clk(clk), .rd_en(step), .rd_addr(ra_q), .rd_data(rd_word),
+                .clk(clk), .rd_en(step), .out_en(1'b0), .rd_addr(ra_q), .rd_data(rd_word),
                 .wr_en(step), .wr_addr(pos), .wr_data(din));
         end else begin : g_banks
             wire [DATA_W-1:0] rd2_w [0:NBANK-1];
@@ -155,7 +155,7 @@ module cube4_delay_line #(
             genvar b;
             for (b = 0; b < NBANK; b = b + 1) begin : g_bank
                 cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << BW), .WR_REG(1), .OUT_REG(1)) u_ram (
-                    .clk(clk), .rd_en(step), .rd_addr(ra_q[BW-1:0]), .rd_data(rd2_w[b]),
+                    .clk(clk), .rd_en(step), .out_en(1'b0), .rd_addr(ra_q[BW-1:0]), .rd_data(rd2_w[b]),
                     .wr_en(step && pos[AW-1:BW] == SW'(b)), .wr_addr(pos[BW-1:0]), .wr_data(din));
             end
             always @(posedge clk) begin

@@ -296,7 +296,7 @@ module cube4_gra_beats
     wire [TW-1:0]   t_wd = {acc_s, acc_c};
     // (distributed RAM: the word read goes into the row's next steps, gm, in the cycle after)
     cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW), .DIST (1)) u_rows (
-        .clk (clk), .rd_en (t_re), .rd_addr (t_ra), .rd_data (t_rd),
+        .clk (clk), .rd_en (t_re), .out_en (1'b0), .rd_addr (t_ra), .rd_data (t_rd),
         .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
     // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
     // rows; the word of row NJ and of slice -1 is zero (n_zero)

@@ -114,13 +114,13 @@ module cube4_gra_pos #(
     wire [PV-1:0]  rd_b;
     wire [BMW-1:0] rd_m;
     cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW)) u_plane_a (
-        .clk (clk), .rd_en (ld), .rd_addr (ra_a), .rd_data (rd_a),
+        .clk (clk), .rd_en (ld), .out_en (1'b0), .rd_addr (ra_a), .rd_data (rd_a),
         .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
     cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW)) u_plane_b (
-        .clk (clk), .rd_en (ld), .rd_addr (ra_b), .rd_data (rd_b),
+        .clk (clk), .rd_en (ld), .out_en (1'b0), .rd_addr (ra_b), .rd_data (rd_b),
         .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
     cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
-        .clk (clk), .rd_en (ld), .rd_addr (ld_pb), .rd_data (rd_m),
+        .clk (clk), .rd_en (ld), .out_en (1'b0), .rd_addr (ld_pb), .rd_data (rd_m),
         .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
     // the word read for a position, with the writes since its read (bypass: the
     // RAM returns the old word for a read in the cycle of the write)

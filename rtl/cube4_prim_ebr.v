@@ -24,7 +24,9 @@
 // Latency
 //   A read is 2 cycles on either port: a read register (the block's latch,
 //   loaded on an edge with the port's enable) and the output register
-//   (loaded with the enable too), so both hold while the enable is 0. A
+//   (port A: loaded with the enable too; port B: with its own enable b_oe,
+//   which a caller that reads on every step ties to b_en), so both hold
+//   while the enables are 0. A
 //   write is seen by a read one edge after it. Port A in a cycle with a_we
 //   does not read: both its registers keep their words (the latch by the
 //   block's NORMAL write mode, the output register by its enable).
@@ -37,7 +39,8 @@
 //   a_addr, b_addr  in  [AW]
 //   a_wd  in   [W] the word written
 //   a_rd, b_rd  out  [W] the words read (any format)
-//   b_en  in   port B's read enable
+//   b_en  in   port B's read enable (its read register, the block's latch)
+//   b_oe  in   port B's output register's enable (ECP5: OCEB)
 //
 // Bit growth and rounding: none. No reset: the contents are data.
 // =============================================================================
@@ -49,7 +52,7 @@ module cube4_prim_ebr
     always @(posedge clk) begin
         if (a_we) mem[a_addr] <= a_wd;
         if (b_en) b_lat_q <= mem[b_addr];
-        if (b_en) b_out_q <= b_lat_q;
+        if (b_oe) b_out_q <= b_lat_q;
     end
     assign b_rd = b_out_q;
     generate

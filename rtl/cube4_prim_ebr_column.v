@@ -27,7 +27,8 @@
 //
 // Latency
 //   As cube4_prim_ebr: a read is 2 cycles on either port (both registers
-//   and the bank choice advance with the port's enable); a write is seen by
+//   and the bank choice advance with the port's enables: port B's output
+//   register and the choice beside it with b_oe); a write is seen by
 //   a read one edge after it; port A in a cycle with a_we reads in no block
 //   (every block's registers, and the choice, keep their words).
 //
@@ -50,6 +51,7 @@ module cube4_prim_ebr_column #(
     input  wire [W-1:0]  a_wd,
     output wire [W-1:0]  a_rd,
     input  wire          b_en,
+    input  wire          b_oe,
     input  wire [AW-1:0] b_addr,
     output wire [W-1:0]  b_rd
 );
@@ -62,7 +64,7 @@ module cube4_prim_ebr_column #(
         if (BANKS == 1) begin : g_one
             cube4_prim_ebr #(.SHAPE_W(SHAPE_W), .W(W), .AW(BAW), .READ_A(READ_A)) u_ebr (
                 .clk(clk), .a_en(a_en), .a_we(a_we), .a_addr(a_addr[BAW-1:0]), .a_wd(a_wd), .a_rd(a_rd),
-                .b_en(b_en), .b_addr(b_addr[BAW-1:0]), .b_rd(b_rd));
+                .b_en(b_en), .b_oe(b_oe), .b_addr(b_addr[BAW-1:0]), .b_rd(b_rd));
         end else begin : g_stack
             localparam integer SEL_W = AW - BLK_AW;
             wire [SEL_W-1:0] a_top = a_addr[AW-1:BLK_AW];
@@ -74,13 +76,13 @@ module cube4_prim_ebr_column #(
                 cube4_prim_ebr #(.SHAPE_W(SHAPE_W), .W(W), .AW(BAW), .READ_A(READ_A)) u_ebr (
                     .clk(clk), .a_en(a_rd_en), .a_we(a_we && (a_top == SEL_W'(d))),
                     .a_addr(a_addr[BAW-1:0]), .a_wd(a_wd), .a_rd(a_q[d*W +: W]),
-                    .b_en(b_en), .b_addr(b_addr[BAW-1:0]), .b_rd(b_q[d*W +: W]));
+                    .b_en(b_en), .b_oe(b_oe), .b_addr(b_addr[BAW-1:0]), .b_rd(b_q[d*W +: W]));
             end
             // the bank of each port's read, beside the block's latch and output register
             reg [SEL_W-1:0] b_sel1, b_sel2;
             always @(posedge clk) begin
                 if (b_en) b_sel1 <= b_top;
-                if (b_en) b_sel2 <= b_sel1;
+                if (b_oe) b_sel2 <= b_sel1;
             end
             cube4_mux #(.N(BANKS), .W(W)) u_b (.words(b_q), .sel(b_sel2), .word(b_rd));
             if (READ_A == 1) begin : g_read_a

@@ -14,6 +14,7 @@
     input  wire [W-1:0]  a_wd,
     output wire [W-1:0]  a_rd,
     input  wire          b_en,
+    input  wire          b_oe,
     input  wire [AW-1:0] b_addr,
     output wire [W-1:0]  b_rd
 );

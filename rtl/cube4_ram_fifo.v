@@ -74,7 +74,7 @@ module cube4_ram_fifo #(
     wire              rd   = (cnt_q != '0) && (nq + in_fly < 3'(QN));   // before this cycle's pop
     wire [DATA_W-1:0] rd_data;
     cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) u_ram (
-        .clk(clk), .rd_en((OUT_REG != 0) ? (rd || fly[0]) : rd), .rd_addr(rd_q), .rd_data(rd_data),
+        .clk(clk), .rd_en((OUT_REG != 0) ? (rd || fly[0]) : rd), .out_en(1'b0), .rd_addr(rd_q), .rd_data(rd_data),
         .wr_en(push), .wr_addr(wr_q), .wr_data(in_data));
     wire [CNT_W-1:0] cnt_n = cnt_q + CNT_W'(push) - CNT_W'(rd);
     always @(posedge clk) begin

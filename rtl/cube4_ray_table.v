@@ -201,7 +201,7 @@ module cube4_ray_table #(
                 wire [DATA_W-1:0] wd = tab_we ? tab_data[b*DATA_W +: DATA_W] : bd3;
                 wire [DATA_W-1:0] q4;
                 cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << SA_W), .OUT_REG(1)) u_bank (
-                    .clk(clk), .rd_en(1'b1), .rd_addr(ra2), .rd_data(q4),
+                    .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(ra2), .rd_data(q4),
                     .wr_en(we), .wr_addr(wa), .wr_data(wd));
                 // a read at the edge of a beat's write to the same word takes the new word
                 reg               hit3, hit4;

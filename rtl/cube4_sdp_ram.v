@@ -32,7 +32,11 @@
 //           (registered, with IN_REG) read enable is 1: the output register
 //           of a block RAM (ECP5 DP16KD REGMODE "OUTREG"), which takes the
 //           block's clock-to-out off the path into the caller's logic.
-//           0..1.  Default 0.
+//           2: as 1, but the output register loads when out_en is 1, not
+//           with the read enable: a caller whose word moves on from the
+//           read to its use at a step of its own (the block RAM's output
+//           register enable, ECP5 OCEB). Not with IN_REG = 1.
+//           0..2.  Default 0.
 //   DIST    1: a small RAM whose read word feeds logic within the cycle:
 //           distributed RAM (LUTs) where the technology has it, so the read
 //           register is a flip-flop of the fabric (ECP5: 0.5 ns from clock
@@ -53,10 +57,14 @@
 //   one with rd_en = 1 (both registers advance with the read enable, so a
 //   caller that reads on every cycle sees a latency of 2, one that reads on
 //   its pipeline's step sees the word two steps later). Total read latency
-//   1 + IN_REG + OUT_REG.
+//   1 + IN_REG + (OUT_REG > 0). OUT_REG = 2: rd_data is the word the read
+//   register held at the last edge with out_en = 1 (the read of the last
+//   edge with rd_en before it), and holds while out_en is 0.
 //
 // Ports
 //   rd_en, rd_addr  in   read enable, address  [AW]
+//   out_en          in   the output register's load enable (OUT_REG = 2;
+//                        ignored otherwise: tie it to 0)
 //   rd_data         out  [DATA_W] any format
 //   wr_en, wr_addr  in   write enable, address [AW] (IN_REG = 1: one cycle early)
 //   wr_data         in   [DATA_W] the word, in the cycle of wr_en (IN_REG = 1:
@@ -106,14 +114,18 @@ module cube4_sdp_ram
         if (re) rd_q <= mem[ra];
     end
     generate
-        if (OUT_REG == 1) begin : g_out_reg
+        if (OUT_REG != 0) begin : g_out_reg
+            wire oe = (OUT_REG == 2) ? out_en : re;
             reg [DATA_W-1:0] out_q;
             always @(posedge clk) begin
-                if (re) out_q <= rd_q;
+                if (oe) out_q <= rd_q;
             end
             assign rd_data = out_q;
         end else begin : g_no_out_reg
             assign rd_data = rd_q;
+        end
+        if (OUT_REG != 2) begin : g_no_out_en
+            wire unused_out_en = out_en;   // (the output register, if any, loads with the read)
         end
     endgenerate
 

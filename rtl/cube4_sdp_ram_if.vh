@@ -12,6 +12,7 @@
 ) (
     input  wire              clk,
     input  wire              rd_en,
+    input  wire              out_en,
     input  wire [AW-1:0]     rd_addr,
     output wire [DATA_W-1:0] rd_data,
     input  wire              wr_en,
@@ -25,10 +26,13 @@
         end
         `CUBE4_RANGE(g_bad_in_reg, "cube4_sdp_ram", "IN_REG", IN_REG, 0, 1)
         `CUBE4_RANGE(g_bad_wr_reg, "cube4_sdp_ram", "WR_REG", WR_REG, 0, 1)
-        `CUBE4_RANGE(g_bad_out_reg, "cube4_sdp_ram", "OUT_REG", OUT_REG, 0, 1)
+        `CUBE4_RANGE(g_bad_out_reg, "cube4_sdp_ram", "OUT_REG", OUT_REG, 0, 2)
         `CUBE4_RANGE(g_bad_dist, "cube4_sdp_ram", "DIST", DIST, 0, 1)
-        if (DIST == 1 && (IN_REG == 1 || OUT_REG == 1)) begin : g_bad_dist_regs
-            $error("cube4_sdp_ram: DIST = 1 with IN_REG or OUT_REG = 1 (a distributed RAM's read register is already in the fabric)");
+        if (DIST == 1 && (IN_REG == 1 || OUT_REG != 0)) begin : g_bad_dist_regs
+            $error("cube4_sdp_ram: DIST = 1 with IN_REG = 1 or OUT_REG > 0 (a distributed RAM's read register is already in the fabric)");
+        end
+        if (OUT_REG == 2 && IN_REG == 1) begin : g_bad_out_en
+            $error("cube4_sdp_ram: OUT_REG = 2 with IN_REG = 1 (out_en acts in its own cycle, the read a cycle after its inputs)");
         end
         if (IN_REG == 1 && WR_REG == 1) begin : g_bad_regs
             $error("cube4_sdp_ram: IN_REG = 1 with WR_REG = 1 (IN_REG registers the write's enable and address already)");

@@ -104,7 +104,7 @@ module cube4_voxel_mem #(
             // advance; rden marks the words that count).
             wire [WORD_W-1:0] rd_word;
             cube4_sdp_ram #(.DATA_W(WORD_W), .DEPTH(DEPTH), .OUT_REG(1)) u_ram (
-                .clk(clk), .rd_en(adv), .rd_addr(req_addr[q*ADDR_W +: AW]), .rd_data(rd_word),
+                .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr(req_addr[q*ADDR_W +: AW]), .rd_data(rd_word),
                 .wr_en(ld_valid), .wr_addr(ld_addr[AW-1:0]), .wr_data(ld_data[q*WORD_W +: WORD_W]));
             assign rsp_data[q*WORD_W +: WORD_W] = rden2_q[q] ? rd_word : {WORD_W{1'b0}};
             if (AW < ADDR_W) begin : g_unused_addr

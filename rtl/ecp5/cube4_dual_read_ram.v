@@ -40,15 +40,15 @@ module cube4_dual_read_ram
                                         .BANKS(ebr_banks(SH, DEPTH)), .READ_A(1)) u_ebr (
                     .clk(clk), .a_en(rd_en), .a_we(wr_en), .a_addr(a_addr), .a_wd(wr_data[LO +: W]),
                     .a_rd(rd0_data[LO +: W]),
-                    .b_en(rd_en), .b_addr(rd1_addr), .b_rd(rd1_data[LO +: W]));
+                    .b_en(rd_en), .b_oe(rd_en), .b_addr(rd1_addr), .b_rd(rd1_data[LO +: W]));
             end
         end else begin : g_two
             // one RAM per read port, both written (Yosys infers each)
             cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) u_rd0 (
-                .clk(clk), .rd_en(rd_en && !wr_en), .rd_addr(rd0_addr), .rd_data(rd0_data),
+                .clk(clk), .rd_en(rd_en && !wr_en), .out_en(1'b0), .rd_addr(rd0_addr), .rd_data(rd0_data),
                 .wr_en(wr_en), .wr_addr(wr_addr), .wr_data(wr_data));
             cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) u_rd1 (
-                .clk(clk), .rd_en(rd_en), .rd_addr(rd1_addr), .rd_data(rd1_data),
+                .clk(clk), .rd_en(rd_en), .out_en(1'b0), .rd_addr(rd1_addr), .rd_data(rd1_data),
                 .wr_en(wr_en), .wr_addr(wr_addr), .wr_data(wr_data));
         end
     endgenerate

@@ -5,7 +5,7 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   One DP16KD block RAM with the output registers of the ports that read
-//   (REGMODE "OUTREG", loaded with the port's read enable): nextpnr times
+//   (REGMODE "OUTREG", loaded with port A's read enable, port B's b_oe): nextpnr times
 //   the block from clock to data in 0.7 ns instead of 4.1 ns (speed grade
 //   8), and Yosys infers no block RAM with that register. Port A writes
 //   (WRITEMODE "NORMAL": its latch keeps its word in a write cycle) and,
@@ -55,7 +55,7 @@ module cube4_prim_ebr
         .ADB13(adb[13]), .ADB12(adb[12]), .ADB11(adb[11]), .ADB10(adb[10]), .ADB9(adb[9]),
         .ADB8(adb[8]), .ADB7(adb[7]), .ADB6(adb[6]), .ADB5(adb[5]), .ADB4(adb[4]),
         .ADB3(adb[3]), .ADB2(adb[2]), .ADB1(adb[1]), .ADB0(adb[0]),
-        .CEB(b_en), .OCEB(b_en), .CLKB(clk), .WEB(1'b0), .RSTB(1'b0),
+        .CEB(b_en), .OCEB(b_oe), .CLKB(clk), .WEB(1'b0), .RSTB(1'b0),
         .CSB2(1'b0), .CSB1(1'b0), .CSB0(1'b0),
         .DOB17(dob[17]), .DOB16(dob[16]), .DOB15(dob[15]), .DOB14(dob[14]), .DOB13(dob[13]),
         .DOB12(dob[12]), .DOB11(dob[11]), .DOB10(dob[10]), .DOB9(dob[9]), .DOB8(dob[8]),

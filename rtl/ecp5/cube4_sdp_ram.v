@@ -13,7 +13,7 @@
 //     8192, 16384+ words), one memory each: each slice maps to block RAMs in
 //     their 4K x 4, 8K x 2 or 16K x 1 shape, so that up to 16384 words the
 //     read data needs no multiplexer between the block RAMs and the next
-//     register; with OUT_REG = 1 (and IN_REG = 0) the slices take deeper shapes stacked in
+//     register; with OUT_REG > 0 (and IN_REG = 0) the slices take deeper shapes stacked in
 //     depth where that takes fewer block RAMs (rtl/ecp5/cube4_ebr_plan.vh:
 //     4096 x 9 in two 2048 x 9 blocks, not three 4096 x 4), a multiplexer
 //     of up to 4 words behind the output registers (cube4_prim_ebr_column).
@@ -26,8 +26,9 @@
 //   * With WR_REG = 1 the same copies hold the write's enable and address
 //     (the read's are not registered), and the word written passes a
 //     register of its own (each bit goes to one block RAM).
-//   * With OUT_REG = 1 and at least 128 words (EBR_MIN_AW), each slice is a
-//     DP16KD (rtl/ecp5/cube4_prim_ebr.v) with its output register (REGMODE_B = "OUTREG", loaded with the read enable):
+//   * With OUT_REG = 1 or 2 and at least 128 words (EBR_MIN_AW), each slice is a
+//     DP16KD (rtl/ecp5/cube4_prim_ebr.v) with its output register (REGMODE_B = "OUTREG", loaded with the read enable,
+//     or with out_en for OUT_REG = 2):
 //     nextpnr times the block from clock to data in 0.7 ns instead of 4.1 ns
 //     (speed grade 8), and Yosys infers no block RAM with that register. The
 //     slice is the block's shape for the depth: 1024 x 18 up to 1024 words,
@@ -50,9 +51,9 @@
 module cube4_sdp_ram
 `include "cube4_sdp_ram_if.vh"
 
-    localparam integer EBR_MIN_AW = 7;                  // block RAM from 128 words (OUT_REG = 1) ...
+    localparam integer EBR_MIN_AW = 7;                  // block RAM from 128 words (OUT_REG > 0) ...
     localparam integer EBR_MAX_AW = 14;                 // ... to 16384 (one DP16KD deep)
-    localparam integer USE_EBR = (OUT_REG == 1 && AW >= EBR_MIN_AW && AW <= EBR_MAX_AW) ? 1 : 0;
+    localparam integer USE_EBR = (OUT_REG != 0 && AW >= EBR_MIN_AW && AW <= EBR_MAX_AW) ? 1 : 0;
     // DIST = 1: distributed RAM (TRELLIS_DPR16X4, asynchronous read), its read register in the fabric
     // slice width: 4, 2, 1 bits from 4096, 8192, 16384 words on; else the
     // word (18 bits with IN_REG, so that the register copies have slices;
@@ -110,11 +111,12 @@ module cube4_sdp_ram
             if (USE_EBR == 1) begin : g_ebr
                 // port A writes, port B reads through its output register
                 localparam integer SH = ebr_sl_shape(DATA_W, PLAN, sl);
+                wire oe = (OUT_REG == 2) ? out_en : re;    // the output register's enable
                 wire [W-1:0] unused_a_rd;
                 cube4_prim_ebr_column #(.SHAPE_W(ebr_w(SH)), .W(W), .AW(AW), .BLK_AW(10 + SH),
                                         .BANKS(ebr_banks(SH, DEPTH)), .READ_A(0)) u_ebr (
                     .clk(clk), .a_en(1'b0), .a_we(we), .a_addr(wa), .a_wd(wd[LO +: W]), .a_rd(unused_a_rd),
-                    .b_en(re), .b_addr(ra), .b_rd(rd_data[LO +: W]));
+                    .b_en(re), .b_oe(oe), .b_addr(ra), .b_rd(rd_data[LO +: W]));
                 wire unused_a = ^unused_a_rd;
             end else if (DIST == 1) begin : g_dist
                 (* ram_style = "distributed" *) reg [W-1:0] mem [0:(1 << AW)-1];
@@ -131,16 +133,20 @@ module cube4_sdp_ram
                     if (we) mem[wa] <= wd[LO +: W];
                     if (re) rd_q <= mem[ra];
                 end
-                if (OUT_REG == 1) begin : g_out_reg
+                if (OUT_REG != 0) begin : g_out_reg
+                    wire oe = (OUT_REG == 2) ? out_en : re;
                     reg [W-1:0] out_q;
                     always @(posedge clk) begin
-                        if (re) out_q <= rd_q;
+                        if (oe) out_q <= rd_q;
                     end
                     assign rd_data[LO +: W] = out_q;
                 end else begin : g_no_out_reg
                     assign rd_data[LO +: W] = rd_q;
                 end
             end
+        end
+        if (OUT_REG != 2) begin : g_no_out_en
+            wire unused_out_en = out_en;   // (the output register, if any, loads with the read)
         end
     endgenerate
 

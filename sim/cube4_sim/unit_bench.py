@@ -37,7 +37,7 @@ from cube4.view import Traversal
 
 from .beats import Geometry
 from .runner import SIM_HDL_DIR, run_test
-from .sources import rtl_sources
+from .sources import form_build_args, form_sources, rtl_sources
 
 
 def param_id(params: dict) -> str:
@@ -45,26 +45,28 @@ def param_id(params: dict) -> str:
     return ",".join(f"{k}={v}" for k, v in params.items())
 
 
-def harness_sources(*files) -> list:
-    """rtl/sources.f (the one list of RTL sources, dependency order), the Verilog clock,
-    then the simulation files named: a Path as it is (a harness beside its testbench),
-    a bare name from sim/hdl/ (the shared simulation blocks, e.g. cube4_sim_stall.v)."""
+def harness_sources(*files, form: str = "generic") -> list:
+    """rtl/sources.f (the one list of RTL sources, dependency order; ``form`` "ecp5": with
+    the vendor layer's forms and the primitives' models), the Verilog clock, then the
+    simulation files named: a Path as it is (a harness beside its testbench), a bare name
+    from sim/hdl/ (the shared simulation blocks, e.g. cube4_sim_stall.v)."""
     extra = [f if isinstance(f, Path) else SIM_HDL_DIR / f for f in files]
-    return [*rtl_sources(), SIM_HDL_DIR / "cube4_sim_clock.v", *extra]
+    return [*form_sources(form), SIM_HDL_DIR / "cube4_sim_clock.v", *extra]
 
 
 def run_unit(test_file: str, params: dict, testcase: str | None = None, harness: str | None = None,
-             blocks: tuple[str, ...] = ()) -> None:
+             blocks: tuple[str, ...] = (), form: str = "generic") -> None:
     """Build the harness of the unit testbench ``test_file`` (tb/<unit>/test_<unit>.py, its
     ``__file__``) with ``params`` and run the testbench's cocotb tests (or ``testcase``) on it.
     The harness is <unit>_harness.v beside the testbench, or ``harness``, the name of a
     shared one in sim/hdl/; ``blocks``: the sim/hdl/ blocks it instantiates besides the
-    Verilog clock (which needs Verilator's --timing)."""
+    Verilog clock (which needs Verilator's --timing); ``form``: the RTL form
+    (cube4_sim.sources.RTL_FORMS; "ecp5" simulates the vendor layer)."""
     here = Path(test_file).resolve().parent
     top = harness or f"{here.name}_harness"
     src = SIM_HDL_DIR / f"{top}.v" if harness else here / f"{top}.v"
-    run_test(top=top, sources=harness_sources(*blocks, src), params=params, test_module=test_file,
-             testcase=testcase, timing=True)
+    run_test(top=top, sources=harness_sources(*blocks, src, form=form), params=params, test_module=test_file,
+             testcase=testcase, timing=True, build_args=form_build_args(form))
 
 
 def run_rtl(test_file: str, params: dict) -> None:

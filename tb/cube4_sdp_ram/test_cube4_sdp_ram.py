@@ -1,8 +1,10 @@
 """Testbench for rtl/cube4_sdp_ram.v and its ECP5 form rtl/ecp5/cube4_sdp_ram.v.
 
 Both forms run the same cocotb tests against a Python model of the RAM: read latency
-1 + IN_REG + OUT_REG, the read register and the output register advancing with the
-(registered, with IN_REG) read enable, a write one edge after its inputs with WR_REG, a
+1 + IN_REG + (OUT_REG > 0), the read register and the output register advancing with the
+(registered, with IN_REG) read enable (OUT_REG = 2: the output register with out_en, driven
+at random in every set, so a form that loads it with the read enable fails there and one
+that uses out_en elsewhere fails in the others), a write one edge after its inputs with WR_REG, a
 read of the word written at the same edge returning the old word. The ECP5 form instantiates DP16KD block RAMs with their output
 register (simulated with sim/hdl/ecp5/DP16KD.v) for 128 to 16384 words and OUT_REG = 1,
 in the block's shape for the depth (1024 x 18, 2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1)
@@ -42,14 +44,14 @@ class RamModel:
         self.rd_q: int | None = None    # None: not read yet
         self.out_q: int | None = None
 
-    def edge(self, re: int, ra: int, we: int, wa: int, wd: int) -> None:
+    def edge(self, re: int, oe: int, ra: int, we: int, wa: int, wd: int) -> None:
         if self.in_reg:
             (re, ra, we, wa), self.acc_q = self.acc_q, (re, ra, we, wa)
         if self.wr_reg:
             (we, wa, wd), self.wr_q = self.wr_q, (we, wa, wd)
+        if (oe if self.out_reg == 2 else re) and self.out_reg:
+            self.out_q = self.rd_q
         if re:
-            if self.out_reg:
-                self.out_q = self.rd_q
             self.rd_q = self.mem.get(ra)     # the old word on a same-edge write
         if we:
             self.mem[wa] = wd
@@ -87,14 +89,15 @@ class TB:
             else:
                 ra = int(rng.integers(0, self.depth))
             re = int(rng.random() < re_prob)
+            oe = int(rng.random() < 0.6)
             we = int(rng.random() < 0.5)
             wd = self.word()
             if we:
                 written.append(wa)
-            dut.rd_en.value, dut.rd_addr.value = re, ra
+            dut.rd_en.value, dut.out_en.value, dut.rd_addr.value = re, oe, ra
             dut.wr_en.value, dut.wr_addr.value, dut.wr_data.value = we, wa, wd
             await FallingEdge(dut.clk)
-            m.edge(re, ra, we, wa, wd)
+            m.edge(re, oe, ra, we, wa, wd)
             want = m.rd_data()
             if want is not None:
                 got = int(dut.rd_data.value)
@@ -139,6 +142,9 @@ PARAM_SETS = [
     {"DATA_W": 34, "DEPTH": 3000, "OUT_REG": 1},                # 4 x (2 deep 2048 x 9)
     {"DATA_W": 9, "DEPTH": 5000, "WR_REG": 1, "OUT_REG": 1},    # 3 deep 2048 x 9, write copies
     {"DATA_W": 32, "DEPTH": 256, "DIST": 1},                    # distributed RAM by choice (GRA's row table)
+    {"DATA_W": 74, "DEPTH": 2048, "OUT_REG": 2},                # 2048 x 9, out_en (GRA's plane A)
+    {"DATA_W": 20, "DEPTH": 6145, "WR_REG": 1, "OUT_REG": 2},   # stacks: the bank choice with out_en
+    {"DATA_W": 30, "DEPTH": 16, "OUT_REG": 2},                  # distributed RAM, out_en (GRA's beam)
 ]
 
 
@@ -147,7 +153,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11, 14), ids=_param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11, 14, 15, 16), ids=_param_id))
 def test_cube4_sdp_ram(params, form):
     run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))
