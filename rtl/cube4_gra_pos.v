@@ -15,11 +15,12 @@
 //   Each is read in the cycle the step's position loads (ld: a block RAM's
 //   registered read) and written when it steps; a read of the word written
 //   in that cycle takes the new word (bypass). With OUT_STAGE = 1 the words
-//   read pass one more register, loaded as the step's position moves on
-//   from the read to the step (mv), which also takes the write of the step
-//   before it if that write came after the read (a second bypass): the
-//   block RAMs' clock-to-data ends at a flip-flop, not in the caller's
-//   arithmetic. The caller says, registered
+//   read pass one more register, the RAMs' output registers (cube4_sdp_ram
+//   OUT_REG = 2, the block RAMs' own), loaded as the step's position moves
+//   on from the read to the step (mv); the write of the step before it, if
+//   it came after the read (a second bypass), is kept in a register beside
+//   them and chosen after them: the block RAMs' clock-to-data ends at their
+//   output register (0.7 ns on the ECP5), not in the caller's arithmetic. The caller says, registered
 //   with its step, which words are this frame's neighbours (pg, pgb, bg);
 //   the others read as zero. Plane A holds rows 0 .. NJ - 1 (row NJ is
 //   outside the volume), plane B rows 0 .. NJ - 1 (the centre's row), a
@@ -113,14 +114,17 @@ module cube4_gra_pos #(
     wire [AWD-1:0] rd_a;
     wire [PV-1:0]  rd_b;
     wire [BMW-1:0] rd_m;
-    cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW)) u_plane_a (
-        .clk (clk), .rd_en (ld), .out_en (1'b0), .rd_addr (ra_a), .rd_data (rd_a),
+    // OUT_STAGE = 1: the RAMs' output registers (OUT_REG = 2, loaded at mv) are the stage
+    localparam integer ORG = (OUT_STAGE != 0) ? 2 : 0;
+    wire oe = (OUT_STAGE != 0) && mv;
+    cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW), .OUT_REG (ORG)) u_plane_a (
+        .clk (clk), .rd_en (ld), .out_en (oe), .rd_addr (ra_a), .rd_data (rd_a),
         .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
-    cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW)) u_plane_b (
-        .clk (clk), .rd_en (ld), .out_en (1'b0), .rd_addr (ra_b), .rd_data (rd_b),
+    cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW), .OUT_REG (ORG)) u_plane_b (
+        .clk (clk), .rd_en (ld), .out_en (oe), .rd_addr (ra_b), .rd_data (rd_b),
         .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
-    cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN)) u_beam (
-        .clk (clk), .rd_en (ld), .out_en (1'b0), .rd_addr (ld_pb), .rd_data (rd_m),
+    cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN), .OUT_REG (ORG)) u_beam (
+        .clk (clk), .rd_en (ld), .out_en (oe), .rd_addr (ld_pb), .rd_data (rd_m),
         .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
     // the word read for a position, with the writes since its read (bypass: the
     // RAM returns the old word for a read in the cycle of the write)
@@ -154,29 +158,33 @@ module cube4_gra_pos #(
             if (hit_m) {by_m, bd_m} <= {1'b1, wd_m};
         end
     end
-    wire [AWD-1:0] n_a = hit_a ? wd_a : (by_a ? bd_a : rd_a);   // the word with every write since
-    wire [PV-1:0]  n_b = hit_b ? wd_b : (by_b ? bd_b : rd_b);
-    wire [BMW-1:0] n_m = hit_m ? wd_m : (by_m ? bd_m : rd_m);
     generate
         if (OUT_STAGE == 0) begin : g_direct
-            assign a_w = n_a;
-            assign b_w = n_b;
-            assign m_w = n_m;
-            wire unused_mv = ^{mv, ra_a1, ra_b1, ra_m1};   // (the words are read for the step itself)
+            assign a_w = by_a ? bd_a : rd_a;         // the word with every write since
+            assign b_w = by_b ? bd_b : rd_b;
+            assign m_w = by_m ? bd_m : rd_m;
+            wire unused_mv = ^{mv, ra_a1, ra_b1, ra_m1, hit_a, hit_b, hit_m};   // (read for the step itself)
         end else begin : g_stage
-            reg [AWD-1:0]  q_a;
-            reg [PV-1:0]   q_b;
-            reg [BMW-1:0]  q_m;
+            // the RAMs' words pass their output registers at mv; the bypass's
+            // choice and word (with a write at mv's own edge) beside them, the
+            // choice applied after the registers
+            reg            s_a, s_b, s_m;
+            reg [AWD-1:0]  sd_a;
+            reg [PV-1:0]   sd_b;
+            reg [BMW-1:0]  sd_m;
             always @(posedge clk) begin
                 if (mv) begin
-                    q_a <= n_a;
-                    q_b <= n_b;
-                    q_m <= n_m;
+                    s_a  <= hit_a || by_a;
+                    s_b  <= hit_b || by_b;
+                    s_m  <= hit_m || by_m;
+                    sd_a <= hit_a ? wd_a : bd_a;
+                    sd_b <= hit_b ? wd_b : bd_b;
+                    sd_m <= hit_m ? wd_m : bd_m;
                 end
             end
-            assign a_w = q_a;
-            assign b_w = q_b;
-            assign m_w = q_m;
+            assign a_w = s_a ? sd_a : rd_a;
+            assign b_w = s_b ? sd_b : rd_b;
+            assign m_w = s_m ? sd_m : rd_m;
         end
     endgenerate
     assign p1_meta = pg  ? a_w[PV +: SM_W] : {SM_W{1'b0}};

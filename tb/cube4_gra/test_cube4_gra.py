@@ -293,3 +293,10 @@ BEAT_BUILDS = [dict(P=8, VOXEL_W=8), dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=12)
 @pytest.mark.parametrize("build", sweep(BEAT_BUILDS, quick=(0,), ids=param_id))
 def test_cube4_gra_beats(build):
     run_unit(__file__, {**build, "MAX_DIM": 32, "BEATS": 1}, "test_beat_walks")
+
+
+def test_cube4_gra_beats_ecp5():
+    """The beat walk on the vendor layer's forms: the position buffers' planes (128 words
+    at P = 8, MAX_DIM = 32) are DP16KD block RAMs whose output registers load as a step's
+    words move on (cube4_sdp_ram OUT_REG = 2), the beam buffer a RAM of the fabric."""
+    run_unit(__file__, {"P": 8, "VOXEL_W": 8, "MAX_DIM": 32, "BEATS": 1}, "test_beat_walks", form="ecp5")
