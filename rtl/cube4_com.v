@@ -77,8 +77,9 @@
 //   is in R0 .. S9). RECTS = 1 or BEATS = 1 (slots by position): a beat
 //   waits while the beat that wrote its slot is in R0 .. S9. With RECTS,
 //   in_ready then also depends on in_hdr (the slot compare); with BEATS the
-//   input passes a skid buffer first (cube4_skid, one cycle): in_ready is
-//   its register, and the slot compare starts at its registers.
+//   input passes a skid buffer first (cube4_skid_peek, one cycle): in_ready
+//   is its register, and the slot compare is a register decided a cycle
+//   ahead from its entries (cube4_com_ahead).
 //
 // Ports
 //   in_*      the shaded stream of cube4_sha: in_rgba lane q = {R, G, B (Q0.8),
@@ -200,9 +201,9 @@ module cube4_com #(
     localparam integer FIFO_DEPTH = 16;             // >= 14 cycles from acceptance to the FIFO's read
     localparam integer PH_W   = PHASE_W;
 
-    // ==== the input: on the beat schedule through a skid buffer (cube4_skid), so
-    // the slot compare (hazard) and R0 start at its registers and in_ready is a
-    // register; otherwise straight in (the fixed, box and rectangle schedules,
+    // ==== the input: on the beat schedule through a skid buffer (cube4_skid_peek),
+    // so R0 starts at its registers, in_ready is a register, and the slot compare
+    // (hazard) is a register decided a cycle ahead from its entries (cube4_com_ahead); otherwise straight in (the fixed, box and rectangle schedules,
     // whose cycles the golden model predicts) ====
     localparam integer IN_W = HDR_W + P * (24 + ALPHA_W) + P * VOXEL_W + P * FALL_W + 4 * P + 1;
     wire                      c_valid, c_ready, c_eoss;
@@ -212,20 +213,27 @@ module cube4_com #(
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
     wire [GEO_W-1:0]          c_geo;          // BEATS: the beat's steps and phases, with it
+    wire                      c_nx_valid;     // BEATS: the skid holds a second beat; its header
+    wire [HDR_W-1:0]          c_nx_hdr;
     generate
         if (BEATS != 0) begin : g_in_skid
-            cube4_skid #(.DATA_W(IN_W + GEO_W)) u_in (
+            cube4_skid_peek #(.DATA_W(IN_W + GEO_W)) u_in (
                 .clk(clk), .rst(rst),
                 .in_valid(in_valid), .in_ready(in_ready),
                 .in_data({in_geo, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
                 .out_valid(c_valid), .out_ready(c_ready),
-                .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+                .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}),
+                .nx_valid(c_nx_valid), .nx_data(c_nx));
+            wire [IN_W+GEO_W-1:0] c_nx;
+            assign c_nx_hdr = c_nx[IN_W - HDR_W +: HDR_W];
+            wire unused_nx = ^{c_nx[IN_W+GEO_W-1:IN_W], c_nx[IN_W-HDR_W-1:0]};
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};
             assign in_ready = c_ready;
             assign c_geo = '0;
-            wire unused_geo = ^{in_geo, c_geo};
+            assign {c_nx_valid, c_nx_hdr} = '0;
+            wire unused_geo = ^{in_geo, c_geo, c_nx_valid, c_nx_hdr};
         end
     endgenerate
 
@@ -301,7 +309,8 @@ module cube4_com #(
             ) u_beats (
                 .clk(clk), .rst(rst), .cfg(cfg), .in_bits(c_bits), .tpos(tpos),
                 .c_geo(c_geo),
-                .in_hdr(c_hdr), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
+                .in_valid(c_valid), .in_hdr(c_hdr), .nx_valid(c_nx_valid), .nx_hdr(c_nx_hdr),
+                .sk_hdr(in_hdr), .take(take), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
                 .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .fresh(fresh), .nx_in(nx_in),

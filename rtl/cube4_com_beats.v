@@ -19,9 +19,10 @@
 //   (c_geo: cube4_com_steps, where the beats leave SHA in cube4_top) through
 //   the skid buffers, and R0 registers them on every cycle: neither the take
 //   nor the hazard reaches them, and no logic of them lies on the route from
-//   SHA to COM. The slot, the
-//   read-after-write rule by position and "the previous beat is the row
-//   above": cube4_com_slot, as cube4_com_rect's.
+//   SHA to COM. The slot and "the previous beat is the row above":
+//   cube4_com_slot, as cube4_com_rect's; the read-after-write rule by
+//   position as a register decided a cycle ahead from COM's input skid
+//   (cube4_com_ahead), held equal to cube4_com_slot's compare in simulation.
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (the beat schedule runs with S = 1).
@@ -32,8 +33,8 @@
 //   sty: combinational from R0 registers at S0; R0 loads on every cycle);
 //   nx_in from an S1
 //   register.
-//   hazard: combinational from in_hdr and the slots of R0 .. S9 (in_ready
-//   then depends on in_hdr, as with rectangles). col1_4: S4.
+//   hazard: a register (cube4_com_ahead), the rule for the beat offered in
+//   its cycle. col1_4: S4.
 //
 // Ports
 //   in_bits   in   [4P] the offered beat's {soon, last, fresh, run}, P bits
@@ -41,7 +42,10 @@
 //   tpos      in   [P*LANE_W] S0: lane q's position t (cube4_com_seq)
 //   c_geo     in   [GEO_W] the offered beat's {stx, sty, ph_x, ph_y}
 //                  (cube4_com_steps' q_geo, come with the beat)
-//   in_hdr    in   the offered beat's header
+//   in_valid, in_hdr   in   COM's input skid offers a beat; its header
+//   nx_valid, nx_hdr   in   the skid holds a second beat; its header
+//   sk_hdr    in   the header at the skid's input
+//   take      in   the offered beat enters R0 at this edge
 //   step, v_fly, sp_fly   R0, S1 .. S9 hold a beat; S1 .. S9's slots
 //   r0_m, r0_j, r0_pb   R0's fields (cube4_com_seq)
 //   pos_sp, pos_pb, hazard, fresh, nx_in, stx, sty, col1_4: as cube4_com_rect
@@ -62,7 +66,8 @@ module cube4_com_beats #(
     input  wire clk, input wire rst,
     input  wire [VIEW_W-1:0] cfg,
     input  wire [4*P-1:0] in_bits, input wire [P*LANE_W-1:0] tpos,
-    input  wire [GEO_W-1:0] c_geo, input wire [HDR_W-1:0] in_hdr,
+    input  wire [GEO_W-1:0] c_geo, input wire in_valid, input wire [HDR_W-1:0] in_hdr,
+    input  wire nx_valid, input wire [HDR_W-1:0] nx_hdr, input wire [HDR_W-1:0] sk_hdr, input wire take,
     input  wire step, input wire [9:1] v_fly, input wire [9*SP_W-1:0] sp_fly,
     input  wire [M_W-1:0] r0_m, input wire [DIM_W-1:0] r0_j, input wire [PB_W-1:0] r0_pb,
     input  wire [P*IW-1:0] f1_ipos, input wire [IW-1:0] f1_j, input wire f1_dxf, input wire f1_dyf,
@@ -139,10 +144,24 @@ module cube4_com_beats #(
         end
     endgenerate
 
-    // ---- the slot {j, pb}, the read-after-write rule by position, "the row above" ----
+    // ---- the slot {j, pb}, "the row above"; the read-after-write rule a cycle ahead ----
+    wire hz_now;                         // cube4_com_slot's compare of the offered beat
     cube4_com_slot #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_slot (
         .clk(clk), .rst(rst), .in_hdr(in_hdr), .step(step), .v_fly(v_fly), .sp_fly(sp_fly),
         .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
-        .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hazard), .col1_4(col1_4));
+        .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hz_now), .col1_4(col1_4));
+    cube4_com_ahead #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_ahead (
+        .clk(clk), .rst(rst), .hd_valid(in_valid), .hd_hdr(in_hdr), .nx_valid(nx_valid), .nx_hdr(nx_hdr),
+        .in_hdr(sk_hdr), .take(take), .step(step), .pos_sp(pos_sp),
+        .v_fly(v_fly[8:1]), .sp_fly(sp_fly[0 +: 8*SP_W]), .hazard(hazard));
+    wire unused_hz = hz_now;             // (synthesis: the check's only)
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && in_valid && hazard != hz_now) begin
+            $error("cube4_com_beats: the registered hazard %0d differs from the slot compare %0d", hazard, hz_now);
+            $fatal(1, "cube4_com_beats: hazard out of step");
+        end
+    end
+`endif
 endmodule
 `default_nettype wire

@@ -4,36 +4,21 @@
 // cube4_skid
 // -----------------------------------------------------------------------------
 // Purpose
-//   Two-entry skid buffer for a valid/ready stream. in_ready is a register
-//   (no combinational path from out_ready to in_ready), so it ends a pipeline
-//   that advances under one stall enable: the pipeline's enable is in_ready,
-//   and an item already on its way when out_ready drops lands in the second
-//   entry. Full throughput: one item per cycle when out_ready stays high.
-//   Built as a two-entry FIFO (entries written at a write pointer, read
-//   through a multiplexer at a read pointer). An entry's data registers load
-//   in_data on every cycle while the entry is free, so their clock enable is
-//   a register (the entry's "free" flag, one flip-flop copy per 64 data bits),
-//   never logic of in_valid or out_ready: a push marks the entry used in the
-//   cycle it loads the pushed item. out_ready moves only the read pointer
-//   and the state bits, so a late out_ready (e.g. a downstream hazard check)
-//   does not fan out to every data flip-flop's clock enable.
-//   The free flags and the read pointer are register copies
-//   (cube4_prim_copies), one per 64 data bits, so the multiplexer's select,
-//   where a consumer's decisions start, drives 64 loads, not DATA_W.
+//   Two-entry skid buffer for a valid/ready stream whose in_ready is a
+//   register: cube4_skid_peek (which documents the buffer: its entries, the
+//   free flags and read-pointer copies per 64 data bits, full throughput)
+//   without the ports that show the entry behind the head.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
 //
 // Latency
-//   1 cycle from an accepted input to out_valid. Order is kept; nothing is
-//   lost or duplicated under any pattern of out_ready. out_data is a 2:1
-//   multiplexer after the entry registers, selected by a register (a copy
-//   of the read pointer per 64 bits).
+//   1 cycle from an accepted input to out_valid (cube4_skid_peek).
 //
 // Ports
 //   clk, rst                 clock, synchronous active-high reset (empties it)
-//   in_valid/in_ready/in_data   input stream  (in_data: any format, DATA_W bits);
-//                            in_ready is a register
+//   in_valid/in_ready/in_data   input stream (in_data: any format, DATA_W
+//                            bits); in_ready is a register
 //   out_valid/out_ready/out_data output stream (same format)
 //
 // Bit growth and rounding: none (storage only).
@@ -43,72 +28,13 @@ module cube4_skid #(
 ) (
     `CUBE4_STREAM_PORTS(DATA_W)
 );
-    generate
-        `CUBE4_RANGE(g_bad_data_w, "cube4_skid", "DATA_W", DATA_W, 1, 4096)
-    endgenerate
-
-    reg              nonempty_q;     // at least one entry holds an item
-    reg              full_q;         // both entries hold items
-    reg              wp_q;           // write pointer
-    wire             rp_q;           // read pointer (copy 0 of g_grp's copies)
-    // the entries: registers per group of 64 bits (g_grp)
-
-    wire push = in_valid && !full_q;
-    wire pop  = nonempty_q && out_ready;
-
-    always @(posedge clk) begin
-        if (rst) begin
-            nonempty_q <= 1'b0;
-            full_q     <= 1'b0;
-            wp_q       <= 1'b0;
-        end else begin
-            if (push) wp_q <= !wp_q;
-            if (push && !pop) begin
-                nonempty_q <= 1'b1;
-                full_q     <= nonempty_q;
-            end else if (pop && !push) begin
-                full_q     <= 1'b0;
-                nonempty_q <= full_q;
-            end
-        end
-    end
-
-    // Entry e is free when it holds no unread item. A push writes entry wp_q,
-    // which is free (a push needs !full_q). A pop and a push never hit the
-    // same entry in one cycle (that would need both entries full).
-    wire free0_now, free1_now;          // the flags (copy 0)
-    wire free0_d = !(push && !wp_q) && (free0_now || (pop && !rp_q));
-    wire free1_d = !(push &&  wp_q) && (free1_now || (pop &&  rp_q));
-    localparam integer GRP_W = 64;                           // data bits per flag copy
-    localparam integer NGRP  = (DATA_W + GRP_W - 1) / GRP_W;
-    wire rp_d = rp_q ^ pop;
-    wire [3*NGRP-1:0] free_q;           // copy g: {rp, free1, free0}
-    cube4_prim_copies #(.N(NGRP), .W(3), .RST_VAL(64'd3)) u_free (
-        .clk(clk), .rst(rst), .d({rp_d, free1_d, free0_d}), .q(free_q));
-    assign {rp_q, free1_now, free0_now} = free_q[2:0];
-    genvar g;
-    generate
-        for (g = 0; g < NGRP; g = g + 1) begin : g_grp
-            localparam integer LO = g * GRP_W;
-            localparam integer W  = (DATA_W - LO < GRP_W) ? DATA_W - LO : GRP_W;
-            reg [W-1:0] d0_q, d1_q;     // this group's bits of the two entries
-            always @(posedge clk) begin
-                if (free_q[3*g])     d0_q <= in_data[LO +: W];
-                if (free_q[3*g + 1]) d1_q <= in_data[LO +: W];
-            end
-            assign out_data[LO +: W] = free_q[3*g + 2] ? d1_q : d0_q;
-        end
-    endgenerate
-
-    // in_ready: a register holding !full_q
-    wire full_d = (push && !pop) ? nonempty_q : ((pop && !push) ? 1'b0 : full_q);
-    reg  ready_q;
-    always @(posedge clk) begin
-        if (rst) ready_q <= 1'b1;
-        else     ready_q <= !full_d;
-    end
-    assign in_ready = ready_q;
-    assign out_valid = nonempty_q;
-
+    wire              unused_nx_valid;
+    wire [DATA_W-1:0] unused_nx_data;
+    cube4_skid_peek #(.DATA_W (DATA_W)) u_skid (
+        .clk (clk), .rst (rst),
+        .in_valid (in_valid), .in_ready (in_ready), .in_data (in_data),
+        .out_valid (out_valid), .out_ready (out_ready), .out_data (out_data),
+        .nx_valid (unused_nx_valid), .nx_data (unused_nx_data));
+    wire unused_nx = ^{unused_nx_valid, unused_nx_data};
 endmodule
 `default_nettype wire

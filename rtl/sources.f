@@ -9,6 +9,7 @@ cube4_prim_spread.v
 cube4_prim_reg_en.v
 cube4_lerp.v
 cube4_pick.v
+cube4_skid_peek.v
 cube4_skid.v
 cube4_credit_fifo.v
 cube4_ring_shift.v
@@ -61,6 +62,7 @@ cube4_sha.v
 cube4_com_seq.v
 cube4_com_walk.v
 cube4_com_slot.v
+cube4_com_ahead.v
 cube4_com_rect.v
 cube4_com_steps.v
 cube4_com_beats.v

@@ -4,14 +4,18 @@ For golden frames of the beat schedule (``cube4_sim.beat_frames.beat_frame``: sp
 volumes, a LUT zero below the blob's values, views of every class, termination in every
 other frame) the sample beats the front end emits (``expected_requests``: the running
 beats, the cover, the row above and each slice's marker) are offered with their position
-bits, with seeded random gaps, taken only when the golden read-after-write rule allows (no
-beat of the same slot {j, pb} in R0 .. S9), and played through R0 and S1 as
-cube4_com_seq gives them. Each beat enters the input queue (q_push, q_hdr, q_eoss) one to two
-beats ahead of its offer, at seeded random times, and its q_geo comes back with the
-offer as c_geo, as cube4_com's skid buffer gives it. Checked on every beat against the
-golden model:
+bits through a model of COM's input skid (two entries: the head offered, in_valid and
+in_hdr; the second, nx_valid and nx_hdr; the header at its input, sk_hdr, random when no
+beat enters), beats entering it with seeded random gaps, taken (take) only when the golden
+read-after-write rule allows (no beat of the same slot {j, pb} in R0 .. S9), and played
+through R0 and S1 as cube4_com_seq gives them. Each beat enters the input queue (q_push,
+q_hdr, q_eoss) one to three beats ahead of its offer, at seeded random times, and its
+q_geo comes back with the offer as c_geo, as cube4_com's skid buffer gives it. Checked on
+every beat against the golden model:
 
-* offered: hazard = a beat of the offered beat's slot is in R0 .. S9;
+* offered: hazard (a register decided a cycle ahead, cube4_com_ahead) = a beat of the
+  offered beat's slot is in R0 .. S9 (with the second item's compare against the head
+  left out, P = 5 fails here and at the RTL's own check against cube4_com_slot's);
 * R0: the slot {j, pb}, pb; stepx(m), stepy(m) (``Traversal.steps``); the template's
   phases of slices m and m + 1 (the path weights'); per lane (its position t by
   ``tpos``) the bits fresh and soon of its ray;
@@ -96,6 +100,7 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
     r0, k, c, offering = {}, 0, 0, False
     checked = 0
     geos, pushed = {}, 0      # the queue: each beat's q_geo, pushed a cycle or more before it is offered
+    ins = 0                   # beats that entered the input skid (it holds beats k .. ins - 1)
     while k < n or any(x >= c - 5 for x in r0):
         await FallingEdge(dut.clk)
         b0, b1, b4 = r0.get(c), r0.get(c - 1), r0.get(c - 4)
@@ -110,15 +115,21 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             dut.f1_ipos.value = pack_lanes(pos[b1], iw)
             dut.f1_j.value = int(j[b1])
             dut.f1_dxf.value, dut.f1_dyf.value = int(dxf[b1]), int(dyf[b1])
-        push = pushed < min(n, k + 2) and bench.rng.random() >= gap / 2
+        push = pushed < min(n, k + 3) and bench.rng.random() >= gap / 2
         dut.q_push.value = int(push)
         dut.q_hdr.value = hdrs[pushed] if push else int(bench.rng.integers(0, 1 << geo.hdr_w))
         dut.q_eoss.value = int(eoss[pushed]) if push else int(bench.rng.integers(0, 2))
-        if not offering and k < pushed and bench.rng.random() >= gap:
-            offering = True
+        held = ins - k
+        enter = ins < pushed and held < 2 and bench.rng.random() >= gap   # beat ins enters the skid
+        offering = held > 0
         hz = offering and any(b is not None and slot[b] == slot[k] for b in [b0] + fly)
         take = offering and not hz
-        dut.in_hdr.value = hdrs[k] if offering else int(bench.rng.integers(0, 1 << geo.hdr_w))
+        rnd = lambda: int(bench.rng.integers(0, 1 << geo.hdr_w))   # noqa: E731
+        dut.in_valid.value, dut.take.value = int(offering), int(take)
+        dut.nx_valid.value = int(held == 2)
+        dut.nx_hdr.value = hdrs[k + 1] if held == 2 else rnd()
+        dut.sk_hdr.value = hdrs[ins] if enter else rnd()
+        dut.in_hdr.value = hdrs[k] if offering else rnd()
         dut.in_bits.value = int(bits[k]) if offering else int(bench.rng.integers(0, 1 << (4 * p)))
         dut.c_geo.value = geos[k] if offering else int(bench.rng.integers(0, 1 << geo_w))
         await ReadOnly()
@@ -149,7 +160,8 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
             assert int(dut.col1_4.value) == col1[b4], f"{sched.describe(b4)}: col1 {int(dut.col1_4.value)}"
         if take:
             r0[c + 1] = k
-            k, offering = k + 1, False
+            k += 1
+        ins += int(enter)
         c += 1
     await FallingEdge(dut.clk)
     dut.q_push.value = 0
@@ -163,10 +175,12 @@ async def test_beats(dut):
     geo = Geometry(p, max_dim, 0)
     iw = clog2(max_dim + 2 * p + 1)   # cube4_defs.vh IW
     bench = UnitBench(dut)
-    await bench.reset({"q_push": 0, "step": 0, "v_fly": 0})
-    dims = (max(20, 2 * p + 3), 16, 12)
+    await bench.reset({"q_push": 0, "step": 0, "v_fly": 0, "in_valid": 0, "nx_valid": 0, "take": 0})
     frames = 0
-    for n, direction in enumerate(VIEWS * 2):
+    # the frames of each view, then tiny ones (a slice of one or two slots: a beat's slot
+    # is often the one of the beat before it, the skid's second item's hazard)
+    for n, direction in enumerate(VIEWS * 2 + VIEWS[:4]):
+        dims = (max(20, 2 * p + 3), 16, 12) if n < 2 * len(VIEWS) else (3, 2, 9)
         trav = make_traversal(dims, direction, int(dut.WEIGHT_W.value), 1, phase=(n * 37 % 256, n * 91 % 256))
         sched, bits = frame_beats(bench, trav, p, terminate=n % 2 == 1)
         bench.set_view(trav, p)
@@ -175,7 +189,7 @@ async def test_beats(dut):
         beats = await play(dut, bench, trav, sched, bits, p, geo, iw, gap)
         frames += 1
         dut._log.info("view %s gap %.1f: %d beats right", direction, gap, beats)
-    assert frames == 2 * len(VIEWS)
+    assert frames == 2 * len(VIEWS) + 4
 
 
 BUILDS = [{"P": 5}, {"P": 1}, {"P": 8}]

@@ -1,4 +1,5 @@
-"""Testbench for rtl/cube4_skid.v: a two-entry skid buffer whose in_ready is a register.
+"""Testbench for rtl/cube4_skid_peek.v (and so cube4_skid, the same buffer without the
+ports nx_valid and nx_data): a two-entry skid buffer whose in_ready is a register.
 
 Checked against a Python deque, every cycle:
 
@@ -7,7 +8,9 @@ Checked against a Python deque, every cycle:
 * capacity: with out_ready low the buffer takes exactly two items, then in_ready is low;
 * in_ready is a register: within a cycle it does not follow out_ready;
 * full rate: with in_valid and out_ready high, one item in and one out on every cycle;
-* random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra.
+* random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
+* the entry behind the head: nx_valid exactly when two items are held, nx_data the second
+  (the one out_data offers after the head), after every edge.
 
 The data registers and the read pointer's copies are kept per group of 64 bits: DATA_W =
 130 has three groups, each of whose bits the words below set (the sent count in the top
@@ -23,12 +26,15 @@ import pytest
 from cocotb.triggers import Timer
 
 from cube4_sim.sweeps import sweep
-from cube4_sim.unit_bench import QueueTB, param_id, run_rtl
+from cube4_sim.runner import run_test
+from cube4_sim.sources import rtl_sources
+from cube4_sim.unit_bench import QueueTB, param_id
 
 
 class TB(QueueTB):
     def __init__(self, dut) -> None:
         super().__init__(dut, empty_only_when_low=True)
+        self.peeks = 0      # cycles with a second item held (nx_data checked)
 
     async def drive(self, valid: bool, ready: bool, data: int) -> None:
         """The cycle's inputs, with the other out_ready first: in_ready must not follow it."""
@@ -39,6 +45,17 @@ class TB(QueueTB):
         d.out_ready.value = int(ready)
         await Timer(1, "ns")
         assert int(d.in_ready.value) == ready_other, "in_ready follows out_ready within a cycle"
+
+    async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
+        flow = await super().cycle(valid, ready)
+        d, held = self.dut, list(self.q.model)
+        assert int(d.nx_valid.value) == (len(held) >= 2), \
+            f"nx_valid = {int(d.nx_valid.value)} with {len(held)} items held"
+        if len(held) >= 2:
+            assert int(d.nx_data.value) == held[1], \
+                f"nx_data = {int(d.nx_data.value):#x}, the second item is {held[1]:#x}"
+        self.peeks += len(held) >= 2
+        return flow
 
 
 @cocotb.test()
@@ -66,7 +83,9 @@ async def test_skid(dut):
     for _ in range(8):
         await tb.cycle(False, True)
     assert not tb.q.model and not int(dut.out_valid.value), f"{len(tb.q.model)} items never came out"
-    dut._log.info("cube4_skid DATA_W=%d: %d items in order", tb.data_w, tb.q.got)
+    assert tb.peeks > 300, f"only {tb.peeks} cycles with a second item"
+    dut._log.info("cube4_skid_peek DATA_W=%d: %d items in order, the second item checked in %d cycles",
+                  tb.data_w, tb.q.got, tb.peeks)
 
 
 BUILDS = [dict(DATA_W=130), dict(DATA_W=1), dict(DATA_W=64)]
@@ -74,4 +93,4 @@ BUILDS = [dict(DATA_W=130), dict(DATA_W=1), dict(DATA_W=64)]
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))
 def test_cube4_skid(params):
-    run_rtl(__file__, params)
+    run_test(top="cube4_skid_peek", sources=rtl_sources(), params=params, test_module=__file__)
