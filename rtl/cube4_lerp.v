@@ -46,12 +46,16 @@
 //   b - a              : sQ, DATA_W + 1 bits (exact).
 //   (b - a) * w        : sQ, DATA_W + 1 + WEIGHT_W bits (exact: magnitude
 //                        < 2^(DATA_W + WEIGHT_W)).
-//   round_shift(., W)  : rounds half up (ties towards +infinity), sQ with
-//                        DATA_W + 2 bits out of cube4_round_shift; the loss is
-//                        at most 1/2 LSB of y, the only loss of the lerp.
+//   round_shift(., W)  : rounds half up (ties towards +infinity), as
+//                        cube4_round_shift; the loss is at most 1/2 LSB of y,
+//                        the only loss of the lerp.
 //   a + rounded        : the result always lies between a and b inclusive
 //                        (|rounded| <= |b - a|), so it is taken modulo
 //                        2^DATA_W without loss: NO bit growth, no saturation.
+//   The two adds are one: a + round_shift(p, W) = floor((p + a * 2^W +
+//   2^(W-1)) / 2^W), formed as p + {a, 1, 0 ... 0} in DATA_W + WEIGHT_W bits
+//   (exact modulo 2^(DATA_W + WEIGHT_W): the true sum lies in [0, that)), y
+//   its bits from WEIGHT_W up: one carry chain after the product.
 // =============================================================================
 module cube4_lerp #(
     parameter integer DATA_W   = 8,
@@ -75,7 +79,6 @@ module cube4_lerp #(
 
     localparam integer DIFF_W = DATA_W + 1;             // b - a, signed
     localparam integer PROD_W = DIFF_W + WEIGHT_W;      // (b - a) * w, signed
-    localparam integer RND_W  = PROD_W - WEIGHT_W + 1;  // round_shift output = DATA_W + 2
 
     // ---- difference and product ----
     // LATENCY 3: the product is a cube4_mul (b - a and w into its operand
@@ -125,21 +128,20 @@ module cube4_lerp #(
         end
     endgenerate
 
-    // ---- rounding and final add ----
-    wire signed [RND_W-1:0] rnd;
-
-    cube4_round_shift #(
-        .IN_W  (PROD_W),
-        .SHIFT (WEIGHT_W)
-    ) u_round_shift (
-        .x (prod_s1),
-        .y (rnd)
-    );
-
-    // a + rnd lies in [0, 2^DATA_W - 1], so the top two bits of sum are always
-    // zero and y is its low DATA_W bits.
-    wire [RND_W-1:0]  sum    = {2'b00, a_s1} + rnd;
-    wire [DATA_W-1:0] y_comb = sum[DATA_W-1:0];
+    // ---- rounding and final add: one adder ----
+    // a + round_shift(p, W) = round_shift(a * 2^W + p, W) (a * 2^W is a
+    // multiple of 2^W), and a * 2^W plus round_shift's half, 2^(W-1), is a's
+    // bits beside a one: so the add of the half and the add of a are one
+    // adder, p + {a, 1, 0 ... 0}, whose bits from W up are y (the floor of
+    // cube4_round_shift's shift). One carry chain after the product, not two
+    // (the rounding's, then a's) in series. a + rnd lies in [0, 2^DATA_W - 1]
+    // (see the header), so the sum's true value lies in [0, 2^(DATA_W + W))
+    // and its low DATA_W + W bits, taken modulo, are exact.
+    localparam integer SUM_W = DATA_W + WEIGHT_W;
+    wire [SUM_W-1:0]  a_half = (SUM_W'(a_s1) << WEIGHT_W) | (SUM_W'(1) << (WEIGHT_W - 1));
+    wire [SUM_W-1:0]  sum    = prod_s1[SUM_W-1:0] + a_half;
+    wire unused_sign = prod_s1[PROD_W-1];   // (PROD_W = SUM_W + 1: the sum is exact modulo 2^SUM_W)
+    wire [DATA_W-1:0] y_comb = sum[WEIGHT_W +: DATA_W];
 
     // ---- optional output register (LATENCY >= 1) ----
     generate

@@ -33,7 +33,8 @@
 //   (e.g. IN_W = 4, SHIFT = 1: x = 7 -> y = 4 needs 4 signed bits, not 3).
 //   With SHIFT = 0 the output is x sign-extended by one bit, so that the
 //   output width formula holds for every SHIFT. Callers that know a tighter
-//   range (e.g. cube4_lerp) drop the surplus high bits themselves. Nothing is
+//   range drop the surplus high bits themselves (cube4_lerp folds the rounding
+//   into its own add: its header). Nothing is
 //   saturated.
 // =============================================================================
 module cube4_round_shift #(
