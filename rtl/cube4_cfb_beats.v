@@ -40,10 +40,10 @@
 //   2..2048, 4..12, 0..3). NBMAX = ceil(MAX_DIM / P) bits per bitmap row.
 //
 // Latency
-//   Bitmaps: a row is taken when bm_valid && bm_ready; slice m's rows may be
-//   written once the walk fetches slice m - 2 (four slots, slice mod 4), and
-//   the walk fetches slice m's rows once slice m + 1 is written whole (or is
-//   past the frame). The walk: a row is fetched (its three slots read at one
+//   Bitmaps: a row is taken when bm_valid && bm_ready and written into its
+//   slot at the edge after; slice m's rows may be taken once the walk
+//   fetches slice m - 2 (four slots, slice mod 4), and the walk fetches slice
+//   m's rows once slice m + 1 is written whole (or is past the frame). The walk: a row is fetched (its three slots read at one
 //   address), enters a window of three rows, its E is registered, and its
 //   reads are formed from two registered E words, and the row waits in a
 //   queue of two rows for the emitter: a row fetched at an edge is in the
@@ -102,7 +102,10 @@ module cube4_cfb_beats #(
     reg active;                            // between start and the flush row's last beat
     assign busy = active;
 
-    // ==== the bitmaps: four slots, slice mod 4, one {A, OCC} word per row ====
+    // ==== the bitmaps: four slots, slice mod 4, one {A, OCC} word per row; a row's
+    // write lands one edge after its take (cube4_sdp_ram WR_REG: the write enable,
+    // address and word pass registers, copies of them per 36 bits, so the take's
+    // compares reach a few flip-flops, not every cell of the four slots) ====
     reg [M_W-1:0]   wm;                    // the slice being written
     reg [DIM_W-1:0] wj;
     reg [M_W-1:0]   g;                     // the slice being fetched (nm: past the frame)
@@ -132,7 +135,7 @@ module cube4_cfb_beats #(
     generate
         for (s = 0; s < 4; s = s + 1) begin : g_slot
             // (distributed RAM: the word read goes into the walk's row words in the cycle after)
-            cube4_sdp_ram #(.DATA_W(2 * NW), .DEPTH(MAX_DIM), .DIST(1)) u_slot (
+            cube4_sdp_ram #(.DATA_W(2 * NW), .DEPTH(MAX_DIM), .WR_REG(1), .DIST(1)) u_slot (
                 .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr(RW'(gj)), .rd_data(slot_q[s]),
                 .wr_en(bm_take && (wm[1:0] == 2'(s))), .wr_addr(RW'(wj)), .wr_data({bm_occ, bm_a}));
         end
@@ -182,10 +185,34 @@ module cube4_cfb_beats #(
             end
         end
     end
-    // wm_gt: the next wm against the next need
-    wire [M_W-1:0] wm_d   = (rst || start) ? '0 : (wm_mv ? wm + 1'b1 : wm);
+    // wm_gt: the next wm against the next need. A slice's last row lands in its
+    // slot an edge after wm counts it, at the edge of the walk's first read of
+    // the slice before it: that read is of row 0, and the row landing is row
+    // NJ - 1, written, with every row before it, before any read of it, unless
+    // NJ = 1; then the slices counted are those landed (wm of now), so the
+    // read never meets the write of its own word
+    reg            nj_one;
+    always @(posedge clk) nj_one <= (nj == DIM_W'(1));
+    wire [M_W-1:0] wm_d   = (rst || start) ? '0 : ((wm_mv && !nj_one) ? wm + 1'b1 : wm);
     wire [M_W-1:0] need_d = (rst || start) ? need0 : (g_mv ? need_g : need);
     always @(posedge clk) wm_gt <= (wm_d > need_d);
+`ifndef SYNTHESIS
+    // no fetch (of slice g: the slots of g - 1, g, g + 1) reads a row in the edge
+    // that row's bitmaps land in its slot
+    reg             land_we;
+    reg [M_W-1:0]   land_m;
+    reg [DIM_W-1:0] land_j;
+    always @(posedge clk) begin
+        land_we <= bm_take && !rst && !start;
+        land_m  <= wm;
+        land_j  <= wj;
+        if (!rst && adv && in_frame && land_we && land_j == gj
+                && {1'b0, land_m} + 1'b1 >= {1'b0, g} && land_m <= g + 1'b1) begin
+            $error("cube4_cfb_beats: slice %0d row %0d fetched in the edge slice %0d's row lands", g, gj, land_m);
+            $fatal(1, "cube4_cfb_beats: a slot read meets its write");
+        end
+    end
+`endif
     // the fetched row's place, beside the slots' read register
     reg [1:0]       f_kind;
     reg [M_W-1:0]   f_m;
