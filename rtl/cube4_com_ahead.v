@@ -24,9 +24,7 @@
 //   Exact: the register equals cube4_com_slot's hazard of the head in every
 //   cycle the skid offers one (cube4_com_beats checks that in simulation).
 //
-// Parameters
-//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh).
-//   SP_W   the slot's width, clog2(MAX_DIM) + PB_W (cube4_com).  2..22.
+// Parameters: as cube4_com_slot (the geometry; SP_W the slot's width).
 //
 // Latency
 //   hazard: a register, the rule for the beat offered in its cycle.
