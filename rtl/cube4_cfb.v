@@ -173,12 +173,18 @@ module cube4_cfb #(
         if (BEATS != 0) begin : g_beats
             // ==== the beat schedule: steps, decisions and walk, the walk's beats ====
             wire go, busy_s;
+            // the steps and the skipping unit start an edge after the control takes the
+            // frame (go, logic of every unit's busy): their start resets the decisions,
+            // the position bits' queue, the walk and its skid, so it reaches them from
+            // flip-flops (a copy each), not through the busy logic across the units
+            wire [1:0] go_q;
+            cube4_prim_copies #(.N(2), .W(1)) u_go (.clk(clk), .rst(rst), .d(go), .q(go_q));
             wire st_valid, st_ready;
             wire [DIM_W-1:0] st_x, st_y;
             cube4_cfb_steps #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
             ) u_steps (
-                .clk(clk), .rst(rst), .cfg(cfg), .start(go),
+                .clk(clk), .rst(rst), .cfg(cfg), .start(go_q[0]),
                 .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y));
             wire w_valid, w_ready, w_read, w_leave, w_tok, w_eor, w_eos, w_last;
             wire [M_W-1:0]   w_m;
@@ -189,7 +195,7 @@ module cube4_cfb #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
                 .BLOCK_LOG2(BLOCK_LOG2), .RATE(RATE)
             ) u_skip (
-                .clk(clk), .rst(rst), .start(go), .busy(busy_s),
+                .clk(clk), .rst(rst), .start(go_q[1]), .busy(busy_s),
                 .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(M_W'(cfg_nk)), .sx(cfg_sx), .sy(cfg_sy),
                 .bi_base(blk_base[0 +: DIM_W]), .bi_flip(cfg_flip_i),
                 .bj_base(blk_base[DIM_W +: DIM_W]), .bj_flip(cfg_flip_j),
