@@ -383,7 +383,9 @@ module cube4_top #(
             // (cube4_skid_fifo; block RAM behind GRA, registers otherwise)
             assign smp_valid    = s_valid && k_ready;
             assign s_ready      = smp_ready && k_ready;
-            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM ((SHADING != 0 && VGRAD == 0) ? 1 : 0)) u_bits (
+            // (with block RAM its output register: OUT_REG, as the front end's bits FIFO)
+            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM ((SHADING != 0 && VGRAD == 0) ? 1 : 0),
+                              .OUT_REG ((SHADING != 0 && VGRAD == 0) ? 1 : 0)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
