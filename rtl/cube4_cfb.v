@@ -60,7 +60,9 @@
 //     u_tmpl   cube4_cfb_tmpl: the template (phases, weights, X/Y steps)
 //     u_steps, u_skip, u_bctl  (BEATS = 1) in place of u_ctl and u_trav: the
 //              slices' steps, the decisions and walk, the walk's beats as
-//              the state (through u_wskid, a cube4_skid: one cycle)
+//              the state (through u_wskid, a cube4_skid: one cycle); u_steps
+//              and u_skip start an edge after u_bctl takes the frame (two
+//              register copies of go)
 //     u_rect   cube4_cfb_rect (RECTS = 1): the rectangle table, one pass ahead
 //     u_box    cube4_cfb_box (RECTS = 0): the whole box as the pass's entry
 //     u_addr   cube4_cfb_addr: lane positions t and one address per bank

@@ -170,6 +170,37 @@ class QueueTB:
         await FallingEdge(self.dut.clk)
         return flow
 
+    async def edges_to_out(self) -> int:
+        """Into an empty queue: one item in, then the edges after the one that took it
+        until it is on out_valid (out_ready low); the item stays held."""
+        await self.cycle(True, False)
+        edges = 0
+        while not int(self.dut.out_valid.value):
+            await self.cycle(False, False)
+            edges += 1
+        return edges
+
+    async def fill(self, cycles: int) -> int:
+        """Offer an item every cycle with out_ready low; the items held after."""
+        for _ in range(cycles):
+            await self.cycle(True, False)
+        return len(self.q.model)
+
+    async def drain(self, cycles: int | None = None) -> None:
+        """out_ready high, nothing offered: until the model is empty, or ``cycles`` cycles."""
+        n = 0
+        while (self.q.model if cycles is None else n < cycles):
+            await self.cycle(False, True)
+            n += 1
+
+    async def random_traffic(self, cycles: int, tail: int) -> None:
+        """Random valid (0.6) and ready (0.55) for ``cycles``, then ``tail`` cycles of
+        draining; nothing may be left in the model or on out_valid."""
+        for _ in range(cycles):
+            await self.cycle(bool(self.rng.random() < 0.6), bool(self.rng.random() < 0.55))
+        await self.drain(tail)
+        assert not self.q.model and not int(self.dut.out_valid.value), f"{len(self.q.model)} items never came out"
+
 
 class UnitBench:
     """Python source and sink around one unit harness."""

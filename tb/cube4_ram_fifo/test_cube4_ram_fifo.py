@@ -44,37 +44,23 @@ class TB(QueueTB):
 async def test_fifo(dut):
     tb = TB(dut)
     await tb.reset()
-    # latency into an empty queue
-    await tb.cycle(True, False)                      # the edge that writes it
-    edges = 0
-    while not int(dut.out_valid.value):
-        await tb.cycle(False, False)
-        edges += 1
+    edges = await tb.edges_to_out()
     assert edges == tb.lat + 1, f"an item into an empty queue is out {edges} edges after the edge that wrote it"
-    while tb.q.model:
-        await tb.cycle(False, True)
-    # capacity
-    for _ in range(tb.depth + 10):
-        await tb.cycle(True, False)
+    await tb.drain()
     cap = tb.depth + tb.lat + 2
-    assert len(tb.q.model) == cap, f"the queue took {len(tb.q.model)} items, DEPTH + L + 2 = {cap}"
+    held = await tb.fill(tb.depth + 10)
+    assert held == cap, f"the queue took {held} items, DEPTH + L + 2 = {cap}"
     # full rate from full (in_ready is a register, and the read that makes room in the RAM
     # waits for room in the register queue: the first two cycles only take items out)
     for n in range(3 * tb.depth):
         pushed, popped = await tb.cycle(True, True)
         assert popped, f"no item out in cycle {n} at full rate"
         assert pushed or n <= tb.lat, f"no item in in cycle {n} at full rate"
-    while tb.q.model:
-        await tb.cycle(False, True)
+    await tb.drain()
     # full rate from empty (after the first two edges)
     flow = [await tb.cycle(True, True) for _ in range(3 * tb.depth)]
     assert all(p for p, _ in flow) and all(q for _, q in flow[tb.lat + 2:]), "not one item a cycle from empty"
-    # random
-    for _ in range(20 * tb.depth + 500):
-        await tb.cycle(bool(tb.rng.random() < 0.6), bool(tb.rng.random() < 0.55))
-    for _ in range(tb.depth + 40):
-        await tb.cycle(False, True)
-    assert not tb.q.model and not int(dut.out_valid.value), f"{len(tb.q.model)} items never came out"
+    await tb.random_traffic(20 * tb.depth + 500, tb.depth + 40)
     dut._log.info("cube4_ram_fifo DATA_W=%d DEPTH=%d: %d items in order", tb.data_w, tb.depth, tb.q.got)
 
 

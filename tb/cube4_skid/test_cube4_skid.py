@@ -67,22 +67,15 @@ async def test_skid(dut):
     assert int(dut.out_valid.value), "an item is not on out_valid one edge after the edge that took it"
     await tb.cycle(False, True)
     # capacity: two items, then in_ready low
-    for _ in range(6):
-        await tb.cycle(True, False)
-    assert len(tb.q.model) == 2, f"the buffer took {len(tb.q.model)} items, not 2"
+    held = await tb.fill(6)
+    assert held == 2, f"the buffer took {held} items, not 2"
     assert not int(dut.in_ready.value), "in_ready high with two items held"
     # full rate, from full and then on
     flow = [await tb.cycle(True, True) for _ in range(64)]
     assert all(q for _, q in flow), "not one item out a cycle at full rate"
     assert all(p for p, _ in flow[1:]), "not one item in a cycle at full rate"
-    while tb.q.model:
-        await tb.cycle(False, True)
-    # random
-    for _ in range(3000):
-        await tb.cycle(bool(tb.rng.random() < 0.6), bool(tb.rng.random() < 0.55))
-    for _ in range(8):
-        await tb.cycle(False, True)
-    assert not tb.q.model and not int(dut.out_valid.value), f"{len(tb.q.model)} items never came out"
+    await tb.drain()
+    await tb.random_traffic(3000, 8)
     assert tb.peeks > 300, f"only {tb.peeks} cycles with a second item"
     dut._log.info("cube4_skid_peek DATA_W=%d: %d items in order, the second item checked in %d cycles",
                   tb.data_w, tb.q.got, tb.peeks)

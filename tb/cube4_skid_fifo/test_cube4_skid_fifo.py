@@ -45,19 +45,11 @@ class TB(QueueTB):
 async def test_fifo(dut):
     tb = TB(dut)
     await tb.reset()
-    # latency into an empty queue
-    await tb.cycle(True, False)                      # the edge that takes it
-    edges = 0
-    while not int(dut.out_valid.value):
-        await tb.cycle(False, False)
-        edges += 1
+    edges = await tb.edges_to_out()
     assert edges == tb.q_lat + 2, f"an item into an empty queue is out after {edges} edges, Q + 2 = {tb.q_lat + 2}"
-    while tb.q.model:
-        await tb.cycle(False, True)
-    # capacity
-    for _ in range(tb.cap + 10):
-        await tb.cycle(True, False)
-    assert len(tb.q.model) == tb.cap, f"the queue took {len(tb.q.model)} items, expected {tb.cap}"
+    await tb.drain()
+    held = await tb.fill(tb.cap + 10)
+    assert held == tb.cap, f"the queue took {held} items, expected {tb.cap}"
     # in_ready is a register: out_ready does not reach it within the cycle
     before = int(dut.in_ready.value)
     dut.out_ready.value = 1
@@ -69,17 +61,11 @@ async def test_fifo(dut):
     first_in = next(n for n, (p, _) in enumerate(flow) if p)
     assert all(p for p, _ in flow[first_in:]), f"not one item in per cycle from full after cycle {first_in}"
     assert first_in == tb.from_full, f"the first item in after {first_in} cycles from full, expected {tb.from_full}"
-    while tb.q.model:
-        await tb.cycle(False, True)
+    await tb.drain()
     # full rate from empty (after the first Q + 3 cycles: the first item's Q + 2 edges)
     flow = [await tb.cycle(True, True) for _ in range(3 * tb.cap)]
     assert all(p for p, _ in flow) and all(q for _, q in flow[tb.q_lat + 3:]), "not one item a cycle from empty"
-    # random
-    for _ in range(20 * tb.depth + 500):
-        await tb.cycle(bool(tb.rng.random() < 0.6), bool(tb.rng.random() < 0.55))
-    for _ in range(tb.cap + 40):
-        await tb.cycle(False, True)
-    assert not tb.q.model and not int(dut.out_valid.value), f"{len(tb.q.model)} items never came out"
+    await tb.random_traffic(20 * tb.depth + 500, tb.cap + 40)
     dut._log.info("cube4_skid_fifo DATA_W=%d DEPTH=%d: %d items in order, first in from full at %d",
                   tb.data_w, tb.depth, tb.q.got, first_in)
 
