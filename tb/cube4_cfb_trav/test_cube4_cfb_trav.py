@@ -113,9 +113,12 @@ async def play(dut, bench, trav, p: int, aw: int, words: list[int], rects, gap: 
     dut.rt_cur.value = dut.rt_nxt.value = entry(0)
     await bench.cycles(2)
     await ReadOnly()
-    first = next(s for s in states if s.kind == "run")
+    # Pass 0's table entry: its first row and partial beam (0, 0 for the box, and for an
+    # empty pass 0 of slice rectangles, whose entry's fields are zero; its first run state
+    # is then in a later pass).
+    walk0 = (0, trav.nj, 0, 0) if rects is None else (rects.walk(0, p) or (0, 0, 0, 0))
     got = (int(dut.m.value), int(dut.j.value), int(dut.pb.value))
-    assert got == (0, first.j, first.pb), f"after the frame: (m, j, pb) = {got}, pass 0 starts at {first}"
+    assert got == (0, walk0[0], walk0[2]), f"after the frame: (m, j, pb) = {got}, pass 0's entry starts at {walk0}"
     await FallingEdge(dut.clk)
     return len(states)
 
