@@ -117,9 +117,14 @@ module cube4_cfb_decide #(
     wire             first_beat = (j == '0) && (pb == '0);
     wire             last_pb    = ({1'b0, NB_W'(pb)} + (NB_W + 1)'(RATE) >= {1'b0, nb});   // the row's last group
     wire             last_j     = (j == nj - 1'b1);
-    reg  [M_W-1:0]   com_q;                // com_m a cycle late: a read a cycle after the last write
-    always @(posedge clk) com_q <= (rst || start) ? '0 : com_m;
-    wire             reports_ok = ({1'b0, m} <= {1'b0, com_q} + (M_W + 1)'(LAG));
+    // reports_ok: m <= com_q + LAG, com_q being com_m a cycle late (a read a cycle
+    // after the last write). Its compares are made a cycle ahead, from com_m, for
+    // m as it stands and for m + 1 (m moves on by one at a slice's last issue:
+    // m_adv), so the issue starts at registers, not at a carry chain
+    reg              ok_m, ok_m1;          // m <= com_q + LAG, m + 1 <= com_q + LAG
+    reg              m_adv;                // m moved on at the last edge
+    wire [M_W:0]     com_lag = {1'b0, com_m} + (M_W + 1)'(LAG);
+    wire             reports_ok = m_adv ? ok_m1 : ok_m;
     wire             drained    = !tiny || !first_beat || (v == '0);
     wire             steps_ok   = !first_beat || have_st;
     wire             issue = active && issuing && credit_ln && credit_bm && reports_ok && drained && steps_ok;
@@ -155,6 +160,20 @@ module cube4_cfb_decide #(
         end
     end
     assign busy = active;
+    always @(posedge clk) begin
+        m_adv <= !(rst || start) && issue && last_pb && last_j;
+        ok_m  <= (rst || start) || ({1'b0, m} <= com_lag);          // (at start: m = 0, com_q = 0)
+        ok_m1 <= {1'b0, M_W'(m + 1'b1)} <= com_lag;
+    end
+`ifndef SYNTHESIS
+    reg [M_W-1:0] com_q;                   // the compare the registers stand for
+    always @(posedge clk) com_q <= (rst || start) ? '0 : com_m;
+    always @(posedge clk) begin
+        if (!rst && active && reports_ok != ({1'b0, m} <= {1'b0, com_q} + (M_W + 1)'(LAG)))
+            $fatal(1, "cube4_cfb_decide: reports_ok %0d differs from m <= com_q + LAG (m %0d, com_q %0d)",
+                   reports_ok, m, com_q);
+    end
+`endif
     always @(posedge clk) begin
         tiny <= 32'(nj) * 32'(nb) < 8 * RATE + 2;
     end

@@ -463,9 +463,13 @@ module cube4_gra_beats
             sy_q[in_m[0]]  <= in_sy;
             osy_q[in_m[0]] <= in_osy;
         end
-        if (ld) begin
-            i0_sample <= s_sample;                // (zero unless i0_in: i0_word)
+        // the input's head beat loads whenever i0 takes a step (a load enable of
+        // i0's registers, not the choice of step: i0_word keeps it only with i0_in)
+        if (i0_take) begin
+            i0_sample <= s_sample;
             i0_hdr    <= s_hdr;
+        end
+        if (ld) begin
             i0_in     <= ld_i;
             i0_dead   <= ld_tail;
             i0_fend   <= ld_tl && tail_n && fin;

@@ -42,8 +42,10 @@
 //   the outputs after it, until the next load. OUT_STAGE = 1: they are on
 //   the outputs after the next edge with mv (at which or before which the
 //   step before it has stepped; the caller moves a read on at mv, and loads
-//   the next read at the same edge or later), until the next mv. A step's
-//   write lands at its edge.
+//   the next read at the same edge or later), until the next mv; a step
+//   after a read comes at the read's mv edge, not between (cube4_gra_beats:
+//   a step moves its read register on; a simulation check). A step's write
+//   lands at its edge.
 //
 // Ports (samples unsigned Q0.VOXEL_W, P lanes of VOXEL_W bits)
 //   ld, ld_r [DIM_W], ld_pb [PB_W]   the next step's position loads (read)
@@ -141,6 +143,8 @@ module cube4_gra_pos #(
     wire hit_a = (OUT_STAGE != 0) && we_a && (wa_a == ra_a1);
     wire hit_b = (OUT_STAGE != 0) && we_b && (wa_b == ra_b1);
     wire hit_m = (OUT_STAGE != 0) && we_m && (i0_pb == ra_m1);
+    // (loaded at ld only: with OUT_STAGE = 1 a write after the read comes at mv's
+    // edge, where the stage below takes it; checked in simulation)
     always @(posedge clk) begin
         if (ld) begin                                // a write in the read's own cycle
             ra_a1 <= ra_a;
@@ -152,10 +156,6 @@ module cube4_gra_pos #(
             bd_a  <= wd_a;
             bd_b  <= wd_b;
             bd_m  <= wd_m;
-        end else begin                               // OUT_STAGE = 1: one while it waits
-            if (hit_a) {by_a, bd_a} <= {1'b1, wd_a};
-            if (hit_b) {by_b, bd_b} <= {1'b1, wd_b};
-            if (hit_m) {by_m, bd_m} <= {1'b1, wd_m};
         end
     end
     generate
@@ -185,6 +185,16 @@ module cube4_gra_pos #(
             assign a_w = s_a ? sd_a : rd_a;
             assign b_w = s_b ? sd_b : rd_b;
             assign m_w = s_m ? sd_m : rd_m;
+`ifndef SYNTHESIS
+            // the caller's order: a step after a read and before its mv comes at mv
+            reg pend;                                // a read waits for its mv (set before any step)
+            always @(posedge clk) begin
+                if (pend && step && !dead && !mv)
+                    $fatal(1, "cube4_gra_pos: a step between a read and its mv (OUT_STAGE = 1 takes writes at mv only)");
+                if (ld) pend <= 1'b1;
+                else if (mv) pend <= 1'b0;
+            end
+`endif
         end
     endgenerate
     assign p1_meta = pg  ? a_w[PV +: SM_W] : {SM_W{1'b0}};
