@@ -126,21 +126,18 @@ module cube4_com_beats #(
 
     // ---- per lane: the ray runs the next slice and its next sample is inside
     // the box (as cube4_com_walk, numerics.md 4), S1 ----
-    // x + d < n and x + d + 1 = n (d the X- or Y-step, 0 or 1) as compares of x with n,
-    // n - 1 and n - 2 (registers of the frame's NI, NJ), chosen by d: no adder before
-    // them (positions stay below 2^IW - 1, so x + 1 does not wrap)
+    // (CUBE4_NEXT_FUNCTIONS: compares with NI, NJ and their n - 1, n - 2 registers)
+    `CUBE4_NEXT_FUNCTIONS
     reg [IW-1:0] ni_0, ni_1, ni_2, nj_0, nj_1, nj_2;
     always @(posedge clk) begin
         ni_0 <= IW'(cfg_ni);  ni_1 <= IW'(cfg_ni) - IW'(1);  ni_2 <= IW'(cfg_ni) - IW'(2);
         nj_0 <= IW'(cfg_nj);  nj_1 <= IW'(cfg_nj) - IW'(1);  nj_2 <= IW'(cfg_nj) - IW'(2);
     end
-    wire j_ok = (f1_dyf ? (f1_j < nj_1) : (f1_j < nj_0))
-             && !(f1_wyn && (f1_dyf ? (f1_j == nj_2) : (f1_j == nj_1)));
+    wire j_ok = next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2);
     generate
         for (q = 0; q < P; q = q + 1) begin : g_next
-            wire [IW-1:0] i = f1_ipos[q*IW +: IW];
-            assign nx_in[q] = !s1_last[q] && j_ok && (f1_dxf ? (i < ni_1) : (i < ni_0))
-                            && !(f1_wxn && (f1_dxf ? (i == ni_2) : (i == ni_1)));
+            assign nx_in[q] = !s1_last[q] && j_ok
+                            && next_inside(f1_ipos[q*IW +: IW], f1_dxf, f1_wxn, ni_0, ni_1, ni_2);
         end
     endgenerate
 

@@ -142,22 +142,26 @@ module cube4_com_walk #(
     end
 
     // ---- per lane: fresh ray (S0) and next sample inside (S1) ----
-    wire [IW-1:0] ni_ext = IW'(cfg_ni);
-    wire [IW-1:0] nj_ext = IW'(cfg_nj);
+    // (CUBE4_NEXT_FUNCTIONS: compares with NI, NJ and their n - 1, n - 2 registers,
+    // no adder before them)
+    `CUBE4_NEXT_FUNCTIONS
+    reg [IW-1:0] ni_0, ni_1, ni_2, nj_0, nj_1, nj_2;
+    always @(posedge clk) begin
+        ni_0 <= IW'(cfg_ni);  ni_1 <= IW'(cfg_ni) - IW'(1);  ni_2 <= IW'(cfg_ni) - IW'(2);
+        nj_0 <= IW'(cfg_nj);  nj_1 <= IW'(cfg_nj) - IW'(1);  nj_2 <= IW'(cfg_nj) - IW'(2);
+    end
     always @(posedge clk) begin
         f1_last <= (r0_m == m_last);
         f1_wxn  <= wxn_nz;
         f1_wyn  <= wyn_nz;
     end
+    wire j_ok = !f1_last && next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2);
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
             wire [IW-1:0] i_pos = ipos[q*IW +: IW];
             assign fresh[q] = (r0_m == '0) || (dyb && r0_j == '0) || (dxb && i_pos == '0);
-            wire [IW-1:0] i_nx = f1_ipos[q*IW +: IW] + IW'(f1_dxf);
-            wire [IW-1:0] j_nx = f1_j + IW'(f1_dyf);
-            assign nx_in[q] = !f1_last && (i_nx < ni_ext) && (j_nx < nj_ext)
-                            && !(i_nx + 1'b1 == ni_ext && f1_wxn) && !(j_nx + 1'b1 == nj_ext && f1_wyn);
+            assign nx_in[q] = j_ok && next_inside(f1_ipos[q*IW +: IW], f1_dxf, f1_wxn, ni_0, ni_1, ni_2);
         end
     endgenerate
 

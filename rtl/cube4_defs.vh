@@ -637,6 +637,21 @@
         end \
     endfunction
 
+// ---------------------------------------------------------------- the next sample inside
+// A ray's next sample along an axis, x + d (d its X- or Y-step, 0 or 1), lies
+// inside: x + d < n, and not the last column (row) n - 1 of a template whose
+// weight w (wx(m+1) > 0, wy(m+1) > 0) reads one beyond it: x + d + 1 != n
+// (numerics.md section 8; cube4_com_walk, cube4_com_beats). As compares of x
+// with n, n - 1 and n - 2 (registers of the frame's NI or NJ: n0, n1, n2),
+// chosen by d, so no adder lies before them (x < 2^IW - 1: x + 1 does not
+// wrap; n - 1 and n - 2 may wrap where n < 2, and the compares still agree).
+// Needs IW (CUBE4_GEOMETRY).
+`define CUBE4_NEXT_FUNCTIONS \
+    function automatic next_inside(input [IW-1:0] x, input d, input w, input [IW-1:0] n0, \
+                                   input [IW-1:0] n1, input [IW-1:0] n2); \
+        next_inside = (d ? (x < n1) : (x < n0)) && !(w && (d ? (x == n2) : (x == n1))); \
+    endfunction
+
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with
 // (c_i + c_j + c_k) mod P = q (Teramac paper, eq. 1), skew = (c_j + c_k) mod P:
