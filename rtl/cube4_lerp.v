@@ -21,6 +21,11 @@
 //                  y: the multiplier is a cube4_mul (a DSP with its own
 //                  registers on an FPGA), a register on each side and no
 //                  other logic in series.
+//   DIFF_IN   1: the caller gives b - a (d), formed before the register a
+//             comes from (so with LATENCY 3 the multiplier's operand
+//             register loads from a register, no subtractor in between);
+//             b is not used. 0: b - a is formed here, d is not used.
+//                                                    Range 0..1.   Default 0.
 //
 // Latency
 //   LATENCY cycles. Registers advance only on a rising clk edge with en = 1
@@ -36,7 +41,9 @@
 //   a    in   [DATA_W-1:0]          sample at w = 0: Q0.DATA_W (e.g. Q0.8; the same
 //                                   bits read as integers 0..2^DATA_W-1 work alike,
 //                                   the lerp is linear)
-//   b    in   [DATA_W-1:0]          sample at w -> 1: same format as a
+//   b    in   [DATA_W-1:0]          sample at w -> 1: same format as a (DIFF_IN = 0)
+//   d    in   [DATA_W:0]            b - a, sQ DATA_W + 1 bits, in the cycle of a
+//                                   (DIFF_IN = 1)
 //   w    in   [WEIGHT_W-1:0]        weight Q0.WEIGHT_W in [0, 1 - 2^-WEIGHT_W]
 //                                   (e.g. Q0.8); 1.0 is not representable, and
 //                                   y = a exactly when w = 0
@@ -60,12 +67,14 @@
 module cube4_lerp #(
     parameter integer DATA_W   = 8,
     parameter integer WEIGHT_W = 8,
-    parameter integer LATENCY  = 0
+    parameter integer LATENCY  = 0,
+    parameter integer DIFF_IN  = 0
 ) (
     input  wire                clk,
     input  wire                en,
     input  wire [DATA_W-1:0]   a,
     input  wire [DATA_W-1:0]   b,
+    input  wire [DATA_W:0]     d,
     input  wire [WEIGHT_W-1:0] w,
     output wire [DATA_W-1:0]   y
 );
@@ -75,6 +84,7 @@ module cube4_lerp #(
         `CUBE4_RANGE(g_bad_data_w, "cube4_lerp", "DATA_W", DATA_W, 1, 19)
         `CUBE4_RANGE(g_bad_weight_w, "cube4_lerp", "WEIGHT_W", WEIGHT_W, 1, 12)
         `CUBE4_RANGE(g_bad_latency, "cube4_lerp", "LATENCY", LATENCY, 0, 3)
+        `CUBE4_RANGE(g_bad_diff_in, "cube4_lerp", "DIFF_IN", DIFF_IN, 0, 1)
     endgenerate
 
     localparam integer DIFF_W = DATA_W + 1;             // b - a, signed
@@ -87,7 +97,16 @@ module cube4_lerp #(
     // with the product register for LATENCY 2. Both operands are extended to
     // PROD_W bits so the product is formed at the width it needs; the true
     // product fits PROD_W signed bits, so the modulo-2^PROD_W multiply is exact.
-    wire signed [DIFF_W-1:0] diff_c = $signed({1'b0, b}) - $signed({1'b0, a});
+    wire signed [DIFF_W-1:0] diff_c;
+    generate
+        if (DIFF_IN != 0) begin : g_diff_in
+            assign diff_c = $signed(d);
+            wire unused_b = ^b;
+        end else begin : g_diff
+            assign diff_c = $signed({1'b0, b}) - $signed({1'b0, a});
+            wire unused_d = ^d;
+        end
+    endgenerate
     wire        [DATA_W-1:0] a_s1;
     wire signed [PROD_W-1:0] prod_s1;
 

@@ -134,7 +134,7 @@ module cube4_tri #(
     // ==== s2 .. s4: the beam buffers, beam extension, the cell ====
     wire                give, s4_v;
     wire [WEIGHT_W-1:0] s3_wx, s4_wx, s4_wy, s4_wz;
-    wire [4*PV-1:0]     s4_vals, s4_nvals;
+    wire [4*PV-1:0]     s4_vals, s4_nvals, s3_cell, s3_ncell;
     wire [HDR_W-1:0]    s4_meta;
     cube4_tri_beam #(
         .P(P), .MAX_DIM(MAX_DIM), .VOXEL_W(VOXEL_W), .MAX_SS_LOG2(MAX_SS_LOG2), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD),
@@ -143,7 +143,7 @@ module cube4_tri #(
         .clk(clk), .rst(rst), .flip_j(cfg[VIEW_FLIP_J]), .flip_i(cfg[VIEW_FLIP_I]),
         .s1_v(s1_v), .s1_pair(s1_pair), .s1_ywrap(s1_ywrap), .s1_bbwe(s1_bbwe), .s1_pb(s1_pb), .s1_ctl(s1_ctl),
         .s3_wx(s3_wx), .give(give), .s4_v(s4_v), .s4_vals(s4_vals), .s4_nvals(s4_nvals),
-        .s4_wx(s4_wx), .s4_wy(s4_wy), .s4_wz(s4_wz), .s4_meta(s4_meta));
+        .s3_cell(s3_cell), .s3_ncell(s3_ncell), .s4_wx(s4_wx), .s4_wy(s4_wy), .s4_wz(s4_wz), .s4_meta(s4_meta));
 
     // ==== which samples count (window, cut plane): TRI_CLIP_LAT cycles from s4 ====
     wire [P-1:0] clip_keep;
@@ -180,6 +180,7 @@ module cube4_tri #(
             cube4_tri_lane #(.VOXEL_W(VOXEL_W), .WEIGHT_W(WEIGHT_W), .VGRAD(VGRAD), .LABELS(LABELS)) u_lane (
                 .clk(clk), .wx(s3_wx), .wy(l_wy), .wz(l_wz),
                 .vals(s4_vals[q*4*VW +: 4*VW]), .nvals(s4_nvals[q*4*VW +: 4*VW]),
+                .pre_vals(s3_cell[q*4*VW +: 4*VW]), .pre_nvals(s3_ncell[q*4*VW +: 4*VW]),
                 .sample(l_sample[q*VW +: VW]));
         end
     endgenerate

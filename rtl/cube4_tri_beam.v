@@ -35,6 +35,9 @@
 //   s4_vals    out  lane q = 4 words {prev upper, prev lower, cur upper, cur lower}
 //                   (row j = prev, j + 1 = cur), raw WORD_W bits each
 //   s4_nvals   out  the same at position i + 1
+//   s3_cell, s3_ncell  out  s4_vals and s4_nvals one cycle early (the s3
+//                   register and the beam extension's choice): the lanes form
+//                   their x-lerps' differences from them (cube4_tri_lane)
 //   s4_wx, s4_wy, s4_wz  out  the beat's weights (unsigned WEIGHT_W, Q0.WEIGHT_W)
 //   s4_meta    out  the beat's header (CUBE4_GEOMETRY; KEEP = LVALID)
 //
@@ -50,6 +53,7 @@ module cube4_tri_beam #(
     input  wire [TRI_C_W-1:0] s1_ctl,
     output wire [WEIGHT_W-1:0] s3_wx, output reg give,
     output reg  s4_v, output reg [4*P*WORD_W-1:0] s4_vals, output reg [4*P*WORD_W-1:0] s4_nvals,
+    output wire [4*P*WORD_W-1:0] s3_cell, output wire [4*P*WORD_W-1:0] s3_ncell,
     output reg  [WEIGHT_W-1:0] s4_wx, output reg [WEIGHT_W-1:0] s4_wy, output reg [WEIGHT_W-1:0] s4_wz,
     output reg  [HDR_W-1:0] s4_meta
 );
@@ -143,6 +147,9 @@ module cube4_tri_beam #(
         .nbr_ok (s3_ctl[TRI_C_NBR +: P]),
         .nbr    (s3_nvals)
     );
+
+    assign s3_cell  = s3_vals;
+    assign s3_ncell = s3_nvals;
 
     // ------------------------------------------------ s4: the 2x2x2 cell
     always @(posedge clk) begin

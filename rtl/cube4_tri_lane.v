@@ -12,7 +12,11 @@
 //   CUBE4_WORD_LAYOUT) has its own seven lerps (numerics.md section 5b).
 //   The lane keeps its own copies of the weights (wx at s4, wy / wz when the
 //   y / z lerps start): one shared register would drive the multipliers of
-//   every lane and every channel.
+//   every lane and every channel. Likewise the x-lerps' differences b - a:
+//   the lane forms them from the cell one cycle before s4 (pre_vals,
+//   pre_nvals) and registers them with s4 (cube4_lerp DIFF_IN), so each
+//   x-lerp's multiplier loads its operand from a register of its own lane,
+//   not through a subtractor from the beam buffer's registers.
 //
 // Parameters
 //   VOXEL_W   voxel / sample width.                1..16.  Default 8.
@@ -35,6 +39,7 @@
 //   vals         in   s4: 4 words {prev upper, prev lower, cur upper, cur lower}
 //                     (rows j, j + 1 of the lower and upper slice, position i)
 //   nvals        in   s4: the same at position i + 1
+//   pre_vals, pre_nvals   in   vals and nvals one cycle before s4 (s3)
 //   sample       out  the sample word (WORD_W bits: the voxel channel unsigned
 //                     Q0.VOXEL_W, with VGRAD the three components signed VG_W,
 //                     with LABELS the label above the voxel, unsigned LABEL_W)
@@ -54,6 +59,7 @@ module cube4_tri_lane #(
     input  wire clk,
     input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz,
     input  wire [4*WORD_W-1:0] vals, input wire [4*WORD_W-1:0] nvals,
+    input  wire [4*WORD_W-1:0] pre_vals, input wire [4*WORD_W-1:0] pre_nvals,
     output wire [WORD_W-1:0] sample
 );
     generate
@@ -95,20 +101,29 @@ module cube4_tri_lane #(
             for (n = 0; n < 7; n = n + 1) begin : g_lerp
                 localparam integer IX = (((n % 2) != 0) ? 0 : 2) + n / 2;
                 wire [CW-1:0] a, b;
+                wire [CW:0]   d;             // b - a, sQ CW + 1 (x-lerps: registered with s4)
                 wire [WEIGHT_W-1:0] w = (n < 4) ? wx_l : ((n < 6) ? wy_l : wz_l);
                 if (n < 4) begin : g_x
                     assign a = FLIP ^ vals[IX*VW + OFF +: CW];
                     assign b = FLIP ^ nvals[IX*VW + OFF +: CW];
+                    wire [CW-1:0] pa = FLIP ^ pre_vals[IX*VW + OFF +: CW];
+                    wire [CW-1:0] pb = FLIP ^ pre_nvals[IX*VW + OFF +: CW];
+                    reg  [CW:0]   d_q;
+                    always @(posedge clk) d_q <= {1'b0, pb} - {1'b0, pa};
+                    assign d = d_q;
                 end else begin : g_yz
                     assign a = y[(2*n-8)*CW +: CW];
                     assign b = y[(2*n-7)*CW +: CW];
+                    assign d = '0;
                 end
                 if (LBL != 0) begin : g_pick
                     cube4_pick #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_pick (
                         .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
+                    wire unused_d = ^d;
                 end else begin : g_mix
-                    cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_lerp (
-                        .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
+                    cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT),
+                                 .DIFF_IN((n < 4) ? 1 : 0)) u_lerp (
+                        .clk(clk), .en(1'b1), .a(a), .b(b), .d(d), .w(w), .y(y[n*CW +: CW]));
                 end
             end
             assign sample[OFF +: CW] = FLIP ^ y[6*CW +: CW];

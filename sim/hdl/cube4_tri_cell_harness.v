@@ -43,6 +43,7 @@ module cube4_tri_cell_harness #(
     output wire s1_v, output wire [2*P*WORD_W-1:0] s1_pair, output wire [TRI_C_W-1:0] s1_ctl,
     output wire [WEIGHT_W-1:0] s3_wx, output wire give,
     output wire s4_v, output wire [4*P*WORD_W-1:0] s4_vals, output wire [4*P*WORD_W-1:0] s4_nvals,
+    output wire [4*P*WORD_W-1:0] s3_cell, output wire [4*P*WORD_W-1:0] s3_ncell,
     output wire [WEIGHT_W-1:0] s4_wx, output wire [WEIGHT_W-1:0] s4_wy, output wire [WEIGHT_W-1:0] s4_wz,
     output wire [HDR_W-1:0] s4_meta
 );
@@ -92,6 +93,7 @@ module cube4_tri_cell_harness #(
         .clk(clk), .rst(rst), .flip_j(cfg_flip_j), .flip_i(cfg_flip_i),
         .s1_v(s1_v), .s1_pair(s1_pair), .s1_ywrap(s1_ywrap), .s1_bbwe(s1_bbwe), .s1_pb(s1_pb), .s1_ctl(s1_ctl),
         .s3_wx(s3_wx), .give(give), .s4_v(s4_v), .s4_vals(s4_vals), .s4_nvals(s4_nvals),
+        .s3_cell(s3_cell), .s3_ncell(s3_ncell),
         .s4_wx(s4_wx), .s4_wy(s4_wy), .s4_wz(s4_wz), .s4_meta(s4_meta));
 endmodule
 `default_nettype wire

@@ -43,6 +43,7 @@ module cube4_lerp_vclk #(
         .en  (en),
         .a   (a),
         .b   (b),
+        .d   ({(DATA_W + 1){1'b0}}),   // (DIFF_IN = 0: b - a formed inside)
         .w   (w),
         .y   (y)
     );

@@ -50,6 +50,9 @@ class TB:
         self.data_w = int(dut.DATA_W.value)
         self.weight_w = int(dut.WEIGHT_W.value)
         self.latency = int(dut.LATENCY.value)
+        # DIFF_IN = 1: the lerp takes b - a on d and must not read b (driven with noise);
+        # DIFF_IN = 0: it forms b - a itself and must not read d (noise there)
+        self.diff_in = int(dut.DIFF_IN.value) if hasattr(dut, "DIFF_IN") else 0
         self.data_max = (1 << self.data_w) - 1
         self.weight_max = (1 << self.weight_w) - 1
         self.verilog_clock = os.environ.get("CUBE4_TB_VERILOG_CLOCK") == "1"
@@ -79,9 +82,16 @@ class TB:
 
     def _drive(self, a: int, b: int, w: int, en: int) -> None:
         self.dut.a.value = a
-        self.dut.b.value = b
         self.dut.w.value = w
         self.dut.en.value = en
+        noise = int(self.rng.integers(0, 1 << (self.data_w + 1)))
+        if self.diff_in:
+            self.dut.d.value = (b - a) % (1 << (self.data_w + 1))   # sQ DATA_W + 1 bits
+            self.dut.b.value = noise & self.data_max
+        else:
+            self.dut.b.value = b
+            if hasattr(self.dut, "d"):
+                self.dut.d.value = noise
 
     async def run_vectors(self, a, b, w, en_prob: float = 1.0) -> None:
         """Stream the vectors through the DUT and check every result.
@@ -235,10 +245,13 @@ PARAM_SETS = [
     {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3},    # the TRI configuration
     {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 3},
     {"DATA_W": 16, "WEIGHT_W": 12, "LATENCY": 3},
+    {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3, "DIFF_IN": 1},   # TRI's x-lerps
+    {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 3, "DIFF_IN": 1},   # (exhaustive)
+    {"DATA_W": 12, "WEIGHT_W": 4, "LATENCY": 0, "DIFF_IN": 1},
 ]
 
 
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10), ids=param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10, 15), ids=param_id))
 def test_cube4_lerp(params):
     run_rtl(__file__, params)
 
@@ -261,7 +274,7 @@ def test_cube4_lerp_verilog_clock():
 
 @pytest.mark.parametrize(
     "params",
-    [{"DATA_W": 0}, {"DATA_W": 20}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 4}],
+    [{"DATA_W": 0}, {"DATA_W": 20}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 4}, {"DIFF_IN": 2}],
     ids=param_id,
 )
 def test_cube4_lerp_illegal_params(params):

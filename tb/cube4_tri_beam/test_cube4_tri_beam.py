@@ -13,6 +13,8 @@ s4 beat, in order, against the golden beats (``cube4_sim.beats.BeatSchedule``):
   s4_nvals the same at i + 1 (beam extension: from the neighbour lane or the next beat),
   against the traversal-frame volume zero-padded at the high end of each axis, in every
   lane that holds a position and every word its sample reads (weight > 0);
+* s3_cell, s3_ncell (what the lanes form their x-lerps' differences from) in every
+  cycle equal to s4_vals, s4_nvals in the next;
 * exactly as many s4 beats as the view has, none in the 60 cycles after the last, and
   every other s3 beat gives its FIFO entry back: s4 beats + gives = s1 beats - 1 (the
   frame's last beat, the drain beat, stays held in s3).
@@ -30,6 +32,7 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 import pytest
+from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4_sim.tri_cells import CELL_BUILDS, VIEWS, CellBench, run_cells
 from cube4_sim.unit_bench import check_headers, check_lanes
@@ -39,10 +42,25 @@ SIGNALS = ["s4_meta", "s4_wx", "s4_wy", "s4_wz", "s4_vals", "s4_nvals"]
 WORDS = [(1, 0, "cur lower"), (1, 1, "cur upper"), (0, 0, "prev lower"), (0, 1, "prev upper")]
 
 
+async def watch_pre(dut, seen: list[int]) -> None:
+    """s3_cell, s3_ncell are s4_vals, s4_nvals one cycle early, every cycle."""
+    pre = None
+    while True:
+        await FallingEdge(dut.clk)
+        await ReadOnly()
+        now = (int(dut.s4_vals.value), int(dut.s4_nvals.value))
+        if pre is not None:
+            assert now == pre, f"cycle {seen[0]}: s4_vals / s4_nvals are not the last cycle's s3_cell / s3_ncell"
+        pre = (int(dut.s3_cell.value), int(dut.s3_ncell.value))
+        seen[0] += 1
+
+
 @cocotb.test()
 async def test_cells(dut):
     bench = CellBench(dut)
     await bench.start()
+    seen = [0]
+    watch = cocotb.start_soon(watch_pre(dut, seen))
     geo = bench.geo
     held = 0
     for direction, supersampled, stall_req, stall_in, phase in VIEWS:
@@ -60,6 +78,7 @@ async def test_cells(dut):
         # the previous frame's drain beat leaves s3 (a give) with this frame's first beat
         assert counts["s4"] + counts["give"] == counts["s1"] - 1 + held, f"beats in and out: {counts}"
         held = 1
+        assert not watch.done() or watch.exception() is None, "the s3_cell watch stopped"
         bench.log.info("view %s S=%d stalls req %d in %d: %d cells bit-exact (%s)", direction,
                        cv.trav.supersample, stall_req, stall_in, len(got), counts)
 

@@ -2,6 +2,9 @@
 
 Every cycle a new 2 x 2 x 2 cell enters (vals, nvals: rows j and j + 1 of the lower and
 upper slice at i and i + 1) with its weights, each at the cycle the unit's header gives:
+the cell also one cycle before on pre_vals, pre_nvals (the x-lerps' differences are
+formed from those; vals and nvals then carry the cell's a values and, on nvals, noise
+where a word is only a b of the x-lerps, so that a lane reading b from nvals fails),
 wx one cycle before the cell, wy TRI_LERP_LAT - 1 and wz 2 * TRI_LERP_LAT - 1 cycles
 after it. 3 * TRI_LERP_LAT cycles after the cell the sample must equal the golden
 ``cube4.model.interpolate_pair`` of the cell's two slices (x, y, z lerps in the golden
@@ -93,7 +96,12 @@ async def test_lerps(dut):
         await FallingEdge(dut.clk)
         if 0 <= t < N:
             dut.vals.value = lane_words(cells[t], 0, ww)
-            dut.nvals.value = lane_words(cells[t], 1, ww)
+            # (nvals: the x-lerps' b; their differences come from pre_nvals, so nvals
+            # carries noise; it is read as it is only by the label picks, not built here)
+            dut.nvals.value = int.from_bytes(rng.bytes(ww), "little") % (1 << (4 * ww))
+        if 0 <= t + 1 < N:
+            dut.pre_vals.value = lane_words(cells[t + 1], 0, ww)
+            dut.pre_nvals.value = lane_words(cells[t + 1], 1, ww)
         if 0 <= t + WX_LEAD < N:
             dut.wx.value = int(weights[t + WX_LEAD, 0])
         if 0 <= t - WY_DELAY < N:
