@@ -58,7 +58,8 @@
 //   buffer, s3 beam-extension hold (a beat waits there for the next beat, so
 //   the drain beat pushes out the last one), s4, then x-lerps, y-lerps and
 //   the z-lerp, TRI_LERP_LAT = 3 stages each (b - a, the multiply (b - a) * w,
-//   then the rounding add). The results are written into the output FIFO
+//   then the rounding add; the x-lerps' b - a is formed in the lanes from
+//   s3's cell and registered with s4: cube4_tri_lane). The results are written into the output FIFO
 //   (cube4_credit_fifo, 32 entries), which is on out_* one cycle after the
 //   z-lerp's register. A beat enters s0 only when the FIFO has an entry
 //   reserved for it (in_ready = the FIFO's credit), so out_ready reaches
