@@ -215,11 +215,14 @@ module cube4_gra_beats
     wire in_aft1  = in_v && s_gt1;
     // partial beams as bit words: the choice works on them (a carry chain and
     // AND-OR terms), the binary partial beam is encoded beside it for the buffers
-    function automatic [PB_W-1:0] lowest(input [NBX-1:0] v);     // the lowest set bit
+    function automatic [NBX-1:0] low_oh(input [NBX-1:0] v);       // v's lowest set bit (0: none)
+        low_oh = v & ~(v - 1'b1);
+    endfunction
+    function automatic [PB_W-1:0] enc(input [NBX-1:0] oh);        // a one-hot word's bit index
         integer b;
-        lowest = '0;
-        for (b = NBX - 1; b >= 0; b = b - 1) begin
-            if (v[b]) lowest = PB_W'(b);
+        enc = '0;
+        for (b = 0; b < NBX; b = b + 1) begin
+            if (oh[b]) enc = enc | PB_W'(b);
         end
     endfunction
     function automatic [NBX-1:0] upto(input [PB_W-1:0] pb);       // bits 0 .. pb
@@ -230,12 +233,16 @@ module cube4_gra_beats
         integer b;
         for (b = 0; b < NBX; b = b + 1) below[b] = (PB_W'(b) < pb);
     endfunction
-    wire [PB_W-1:0] g_pb = lowest(gm);
-    wire [PB_W-1:0] x_pb = lowest(nx_gm);
-    wire [NBX-1:0]  g_thru = gm ^ (gm - 1'b1);                   // bits up to gm's lowest (gm != 0)
-    wire [NBX-1:0]  x_thru = nx_gm ^ (nx_gm - 1'b1);
-    wire [NBX-1:0]  g_oh = gm & g_thru;                          // gm's lowest bit
-    wire [NBX-1:0]  x_oh = nx_gm & x_thru;
+    // gm's and nx_gm's lowest bits are registers kept with them (g_oh, x_oh), so
+    // the choice and what it decides start at flip-flops, not at a carry chain
+    // over gm; the second lowest bits (g2_oh, x2_oh) are what g_oh takes when a
+    // step passes the lowest (formed from registers, chosen at g_oh's input)
+    reg  [NBX-1:0]  g_oh;                                        // low_oh(gm)
+    reg  [NBX-1:0]  x_oh;                                        // low_oh(nx_gm)
+    wire [NBX-1:0]  g2_oh = low_oh(gm & ~g_oh);
+    wire [NBX-1:0]  x2_oh = low_oh(nx_gm & ~x_oh);
+    wire [PB_W-1:0] g_pb = enc(g_oh);
+    wire [PB_W-1:0] x_pb = enc(x_oh);
     wire [NBX-1:0]  in_upto = upto(in_pb);
     wire [NBX-1:0]  in_below = below(in_pb);
     wire [NBX-1:0]  in_oh = in_upto & ~in_below;
@@ -278,8 +285,13 @@ module cube4_gra_beats
     wire ld_bg = !ld_tail && (ld_nx ? !r_ones && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))
                                     : !r_zero && ((ld_in && bg_in) || (ld_gen && bg_gen)));
     wire ld_gap = ld_tail || ld_nx || !row_any || (ld_i ? (in_pb != row_pb1) : (g_pb != row_pb1));
-    // the bits up to the step's partial beam (the steps of a row it passes)
-    wire [NBX-1:0] ld_upto = ld_i ? in_upto : (ld_nx ? x_thru : g_thru);
+    // the steps of a row the step passes: the bits up to its partial beam (an
+    // input beat: none of gm / nx_gm lie below it), or its own bit (a generated
+    // step: the lowest)
+    wire [NBX-1:0] ld_upto = ld_i ? in_upto : (ld_nx ? x_oh : g_oh);
+    // gm's lowest bit after the step: the second lowest where the step passed the lowest
+    wire [NBX-1:0] g_oh_ld = (ld_gen || (g_oh & in_oh) != '0) ? g2_oh : g_oh;
+    wire [NBX-1:0] x_oh_ld = (ld_gen_x || (x_oh & in_oh) != '0) ? x2_oh : x_oh;
     wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
                            ld_nx ? r_zero : r_one,         // j_first (centre row 0): ld_r == 1
                            w_one};                         // m_first (centre slice 0): ld_w == 1
@@ -341,6 +353,7 @@ module cube4_gra_beats
     wire [TW-1:0]  t_word = t_zero ? '0 : (t_by ? t_bd : t_rd);
     wire [NBX-1:0] n_c = t_word[0 +: NBX];                     // C(w', r' + 1) of the row after
     wire [NBX-1:0] n_s = t_word[NBX +: NBX];
+    wire [NBX-1:0] row_gm = ((r_nj ? '0 : c_cur) | n_c) & nb_mask;   // G of the next row, as it ends
     generate
         for (q = 0; q < NBX; q = q + 1) begin : g_nb
             always @(posedge clk) nb_mask[q] <= (NB_W'(q) < cfg_nb);
@@ -380,6 +393,7 @@ module cube4_gra_beats
                 w_zero  <= 1'b1;
                 w_one   <= 1'b0;
                 gm      <= '0;
+                g_oh    <= '0;
                 c_cur   <= '0;
                 s_cur   <= '0;
                 prev_s  <= '0;
@@ -393,7 +407,8 @@ module cube4_gra_beats
                 acc_s   <= acc_s | ld_bit;
                 if (ld_in) acc_c <= acc_c | ld_bit;
                 // the steps of this row up to ld_pb are passed
-                gm <= gm & ~ld_upto;
+                gm   <= gm & ~ld_upto;
+                g_oh <= g_oh_ld;
             end
             nx_ok <= !(start || row_end);
             if (ld_i) begin
@@ -416,6 +431,7 @@ module cube4_gra_beats
                 end
                 if (ended && last_row) begin
                     gm     <= '0;
+                    g_oh   <= '0;
                 end else begin
                     r       <= nx_r;
                     r1_q    <= nx_r1;
@@ -431,8 +447,8 @@ module cube4_gra_beats
                     prev_s  <= r_nj ? '0 : acc_s;
                     c_cur   <= n_c;
                     s_cur   <= n_s;
-                    gm      <= (((r_nj ? '0 : c_cur) | n_c) & nb_mask)
-                               & ~(ld_nx ? ld_upto : '0);
+                    gm      <= row_gm & ~(ld_nx ? ld_upto : '0);
+                    g_oh    <= ld_nx ? x_oh_ld : low_oh(row_gm);   // (ld_nx: row_gm = nx_gm)
                 end
             end
             if (ld_tl) begin
@@ -458,6 +474,7 @@ module cube4_gra_beats
     always @(posedge clk) begin
         // the next row's steps, for a row end that loads (valid in a row's second cycle on)
         nx_gm <= (c_cur | n_c) & nb_mask;
+        x_oh  <= low_oh((c_cur | n_c) & nb_mask);
         nx_s  <= n_s;
         if (ld_i) begin
             sy_q[in_m[0]]  <= in_sy;
@@ -504,6 +521,14 @@ module cube4_gra_beats
         .p1b2 (p1b2), .p2b2 (p2b2));
     assign c_sel   = {P{i2_flags, i2_ylast, i2_dyf, i2_dyb}};   // bits GSEL_DKF .. GSEL_DYB
     assign c_edge  = {i2_gap, i2_gap};
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && act && g_oh != low_oh(gm))
+            $fatal(1, "cube4_gra_beats: g_oh %0h is not gm's lowest bit (gm %0h)", g_oh, gm);
+        if (!rst && act && nx_ok && x_oh != low_oh(nx_gm))
+            $fatal(1, "cube4_gra_beats: x_oh %0h is not nx_gm's lowest bit (nx_gm %0h)", x_oh, nx_gm);
+    end
+`endif
     wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
     wire unused_cfg    = ^{cfg_ss_log2, s_hdr[HDR_CTRL + CTRL_SOP]};
 
