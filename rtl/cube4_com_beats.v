@@ -126,13 +126,8 @@ module cube4_com_beats #(
 
     // ---- per lane: the ray runs the next slice and its next sample is inside
     // the box (as cube4_com_walk, numerics.md 4), S1 ----
-    // (CUBE4_NEXT_FUNCTIONS: compares with NI, NJ and their n - 1, n - 2 registers)
-    `CUBE4_NEXT_FUNCTIONS
-    reg [IW-1:0] ni_0, ni_1, ni_2, nj_0, nj_1, nj_2;
-    always @(posedge clk) begin
-        ni_0 <= IW'(cfg_ni);  ni_1 <= IW'(cfg_ni) - IW'(1);  ni_2 <= IW'(cfg_ni) - IW'(2);
-        nj_0 <= IW'(cfg_nj);  nj_1 <= IW'(cfg_nj) - IW'(1);  nj_2 <= IW'(cfg_nj) - IW'(2);
-    end
+    // (CUBE4_NEXT_INSIDE: compares with NI, NJ and their n - 1, n - 2 registers)
+    `CUBE4_NEXT_INSIDE
     wire j_ok = next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2);
     generate
         for (q = 0; q < P; q = q + 1) begin : g_next

@@ -142,14 +142,9 @@ module cube4_com_walk #(
     end
 
     // ---- per lane: fresh ray (S0) and next sample inside (S1) ----
-    // (CUBE4_NEXT_FUNCTIONS: compares with NI, NJ and their n - 1, n - 2 registers,
+    // (CUBE4_NEXT_INSIDE: compares with NI, NJ and their n - 1, n - 2 registers,
     // no adder before them)
-    `CUBE4_NEXT_FUNCTIONS
-    reg [IW-1:0] ni_0, ni_1, ni_2, nj_0, nj_1, nj_2;
-    always @(posedge clk) begin
-        ni_0 <= IW'(cfg_ni);  ni_1 <= IW'(cfg_ni) - IW'(1);  ni_2 <= IW'(cfg_ni) - IW'(2);
-        nj_0 <= IW'(cfg_nj);  nj_1 <= IW'(cfg_nj) - IW'(1);  nj_2 <= IW'(cfg_nj) - IW'(2);
-    end
+    `CUBE4_NEXT_INSIDE
     always @(posedge clk) begin
         f1_last <= (r0_m == m_last);
         f1_wxn  <= wxn_nz;

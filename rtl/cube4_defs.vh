@@ -645,12 +645,19 @@
 // with n, n - 1 and n - 2 (registers of the frame's NI or NJ: n0, n1, n2),
 // chosen by d, so no adder lies before them (x < 2^IW - 1: x + 1 does not
 // wrap; n - 1 and n - 2 may wrap where n < 2, and the compares still agree).
-// Needs IW (CUBE4_GEOMETRY).
-`define CUBE4_NEXT_FUNCTIONS \
+// CUBE4_NEXT_INSIDE declares the function and the registers ni_0 .. ni_2,
+// nj_0 .. nj_2 (NI, NJ and their n - 1, n - 2, loaded every clk edge). Needs
+// IW (CUBE4_GEOMETRY), clk, and cfg_ni, cfg_nj (CUBE4_VIEW_FIELDS).
+`define CUBE4_NEXT_INSIDE \
     function automatic next_inside(input [IW-1:0] x, input d, input w, input [IW-1:0] n0, \
                                    input [IW-1:0] n1, input [IW-1:0] n2); \
         next_inside = (d ? (x < n1) : (x < n0)) && !(w && (d ? (x == n2) : (x == n1))); \
-    endfunction
+    endfunction \
+    reg [IW-1:0] ni_0, ni_1, ni_2, nj_0, nj_1, nj_2; \
+    always @(posedge clk) begin \
+        ni_0 <= IW'(cfg_ni);  ni_1 <= IW'(cfg_ni) - IW'(1);  ni_2 <= IW'(cfg_ni) - IW'(2); \
+        nj_0 <= IW'(cfg_nj);  nj_1 <= IW'(cfg_nj) - IW'(1);  nj_2 <= IW'(cfg_nj) - IW'(2); \
+    end
 
 // ---------------------------------------------------------------- lane arithmetic
 // Lane q reads bank q and holds the position t of the partial beam with
