@@ -643,8 +643,10 @@
 // weight w (wx(m+1) > 0, wy(m+1) > 0) reads one beyond it: x + d + 1 != n
 // (numerics.md section 8; cube4_com_walk, cube4_com_beats). As compares of x
 // with n, n - 1 and n - 2 (registers of the frame's NI or NJ: n0, n1, n2),
-// chosen by d, so no adder lies before them (x < 2^IW - 1: x + 1 does not
-// wrap; n - 1 and n - 2 may wrap where n < 2, and the compares still agree).
+// chosen by d, so no adder lies before them. Equal to the sums' test in IW
+// bits for n >= 1 and x < 2^IW - 1 (n - 2 wraps where n = 1, and still
+// agrees); positions stay below MAX_DIM + P - 1 < 2^IW - 2, and a frame with
+// NI or NJ = 0 has no beats.
 // CUBE4_NEXT_INSIDE declares the function and the registers ni_0 .. ni_2,
 // nj_0 .. nj_2 (NI, NJ and their n - 1, n - 2, loaded every clk edge). Needs
 // IW (CUBE4_GEOMETRY), clk, and cfg_ni, cfg_nj (CUBE4_VIEW_FIELDS).

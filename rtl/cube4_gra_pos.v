@@ -137,7 +137,7 @@ module cube4_gra_pos #(
     wire [AWD-1:0] a_w;
     wire [PV-1:0]  b_w;
     wire [BMW-1:0] m_w;
-    // the read's addresses, kept for a write that lands while it waits for mv
+    // the read's addresses, kept for a write that lands at its mv
     reg [PAW-1:0]  ra_a1, ra_b1;
     reg [PB_W-1:0] ra_m1;
     wire hit_a = (OUT_STAGE != 0) && we_a && (wa_a == ra_a1);
@@ -187,6 +187,8 @@ module cube4_gra_pos #(
             assign m_w = s_m ? sd_m : rd_m;
 `ifndef SYNTHESIS
             // the caller's order: a step after a read and before its mv comes at mv
+            // (no reset here: a reset in mid-frame may leave pend set, and a read
+            // after it replaces one that never moved on; no step comes before an mv)
             reg pend;                                // a read waits for its mv (set before any step)
             always @(posedge clk) begin
                 if (pend && step && !dead && !mv)
