@@ -549,6 +549,10 @@
 // slice rectangles) and its window (cube4_gra_window). Needs CUBE4_GEOMETRY.
 //   GRA_STEPS    copies of the output FIFO's credit, one per group of step
 //                registers (the six delay lines; the window and counters)
+//   GRA_POS_G    groups of cube4_gra_pos's registers, each with its own copy
+//                of the read, load and step enables (plane A; plane B; the
+//                beam buffer's X, P1 with its meta, C, P2b1); the beat walk
+//                forms them from the credit copies the lines leave unused
 //   GRA_META_W   a beat's {real, header}: real = a sample beat of the frame
 //   GRA_NSEL     the centre's select flags per lane, bits GSEL_*: the voxel
 //                slice changes m -> m+1 (DKF) / m-1 -> m (DKB), the centre is
@@ -556,6 +560,7 @@
 //                the Y-step (DYF) and old Y-step (DYB) of its slice
 `define CUBE4_GRA_LAYOUT \
     localparam integer GRA_STEPS   = 7, \
+    localparam integer GRA_POS_G   = 6, \
     localparam integer GRA_META_W  = 1 + HDR_W, \
     localparam integer GRA_NSEL    = 7, \
     localparam integer GSEL_DYB    = 0, \

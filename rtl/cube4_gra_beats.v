@@ -76,7 +76,9 @@
 // alignment of their own beat)
 //   in_*      the beat schedule's sample stream (cube4_tri's format); in_eoss
 //             the beat is the last of its slice
-//   credit    [GRA_STEPS]   copies of the output FIFO's credit
+//   credit    [GRA_STEPS]   copies of the output FIFO's credit (GRA_STEPS-1:
+//                           the step; 0 .. GRA_POS_G-1: the position
+//                           buffers' groups, the same step)
 //   step      out  the source and the window move this cycle
 //   sop       out  0 (the source gates stale words itself)
 //   fend      out  the step is the frame's last (a window step)
@@ -514,9 +516,16 @@ module cube4_gra_beats
     // ---- position buffers (cube4_gra_pos): read as a step's position moves on
     // from i0 to i1, their words registered as it moves on to i2, written when
     // it steps from i2 ----
+    // Each group of its registers takes its read, load and step from a credit
+    // copy of its own (the copies the lines use; not step's), so no one net
+    // reaches the hundreds of enables and bypass choices (as i0_mv, i1_mv, step)
+    wire [GRA_POS_G-1:0] pos_cr = credit[GRA_POS_G-1:0];
+    wire [GRA_POS_G-1:0] pos_step = {GRA_POS_G{i2_v}} & pos_cr;
+    wire [GRA_POS_G-1:0] pos_mv   = {GRA_POS_G{i1_v}} & ({GRA_POS_G{!i2_v}} | pos_cr);
+    wire [GRA_POS_G-1:0] pos_ld   = {GRA_POS_G{i0_v}} & ({GRA_POS_G{!i1_v || !i2_v}} | pos_cr);
     cube4_gra_pos #(.OUT_STAGE (1), `CUBE4_GRA_PASS) u_pos (
-        .clk (clk), .ld (i0_mv), .ld_r (i0_r), .ld_pb (i0_pb), .mv (i1_mv),
-        .step (step), .dead (i2_dead), .i0_w (i2_w), .i0_r (i2_r), .i0_pb (i2_pb), .nj (cfg_nj),
+        .clk (clk), .ld (pos_ld), .ld_r (i0_r), .ld_pb (i0_pb), .mv (pos_mv),
+        .step (pos_step), .dead (i2_dead), .i0_w (i2_w), .i0_r (i2_r), .i0_pb (i2_pb), .nj (cfg_nj),
         .in_beat (i2_in), .sample (i2_sample), .lane_valid (i2_lane_valid), .x (x), .x_meta (x_meta), .pg (i2_pg), .pgb (i2_pgb), .bg (i2_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
@@ -526,11 +535,21 @@ module cube4_gra_beats
     always @(posedge clk) begin
         if (!rst && act && g_oh != low_oh(gm))
             $fatal(1, "cube4_gra_beats: g_oh %0h is not gm's lowest bit (gm %0h)", g_oh, gm);
+        if (pos_ld[0] != i0_mv || pos_mv[0] != i1_mv || pos_step[0] != step)
+            $fatal(1, "cube4_gra_beats: the position buffers' read/load/step (%b%b%b) are not i0_mv, i1_mv, step (%b%b%b)",
+                   pos_ld[0], pos_mv[0], pos_step[0], i0_mv, i1_mv, step);
         if (!rst && mg && row_gm != nx_gm)   // (what g_oh's load from x_oh at a row end relies on)
             $fatal(1, "cube4_gra_beats: the next row's steps %0h at a loading row end are not nx_gm %0h", row_gm, nx_gm);
     end
 `endif
-    wire unused_credit = ^credit[GRA_STEPS-2:0];   // (the lines' step nets)
+    generate
+        if (GRA_POS_G > GRA_STEPS - 1) begin : g_bad_pos_g
+            $error("cube4_gra_beats: GRA_POS_G = %0d groups need as many credit copies besides step's (GRA_STEPS = %0d)",
+                   GRA_POS_G, GRA_STEPS);
+        end else if (GRA_POS_G < GRA_STEPS - 1) begin : g_spare_credit
+            wire unused_credit = ^credit[GRA_STEPS-2:GRA_POS_G];   // (more copies than groups)
+        end
+    endgenerate
     wire unused_cfg    = ^{cfg_ss_log2, s_hdr[HDR_CTRL + CTRL_SOP]};
 
 endmodule

@@ -48,12 +48,20 @@
 //   lands at its edge.
 //
 // Ports (samples unsigned Q0.VOXEL_W, P lanes of VOXEL_W bits)
-//   ld, ld_r [DIM_W], ld_pb [PB_W]   the next step's position loads (read)
-//   mv                               (OUT_STAGE = 1) the position read moves
+//   ld [GRA_POS_G], ld_r [DIM_W], ld_pb [PB_W]   the next step's position
+//                                    loads (read)
+//   mv [GRA_POS_G]                   (OUT_STAGE = 1) the position read moves
 //                                    on to the step: its words load
-//   step, dead, i0_w, i0_r, i0_pb, nj   the loaded step steps (write), its
-//                                    position (slice [M_W], row, partial
-//                                    beam), whether it writes (!dead), NJ
+//   step [GRA_POS_G], dead, i0_w, i0_r, i0_pb, nj   the loaded step steps
+//                                    (write), its position (slice [M_W],
+//                                    row, partial beam), whether it writes
+//                                    (!dead), NJ
+//     ld, mv and step come as GRA_POS_G equal copies, one per group of
+//     registers (cube4_defs.vh CUBE4_GRA_LAYOUT: plane A; plane B; the beam
+//     buffer's X, P1 with its meta, C, P2b1): each copy's load enables and
+//     bypass choice reach its group's words only (the caller forms each
+//     from its own register copy, or gives one signal GRA_POS_G times; a
+//     simulation check compares them)
 //   in_beat, sample, lane_valid [P]  the step brings an input beat, its
 //                                    samples and valid lanes
 //   x                          out   X: the samples of the valid lanes of an
@@ -72,9 +80,9 @@ module cube4_gra_pos #(
     `CUBE4_GRA_PARAMS
 ) (
     input  wire clk,
-    input  wire ld, input wire [DIM_W-1:0] ld_r, input wire [PB_W-1:0] ld_pb,
-    input  wire mv,
-    input  wire step, input wire dead, input wire [M_W-1:0] i0_w, input wire [DIM_W-1:0] i0_r,
+    input  wire [GRA_POS_G-1:0] ld, input wire [DIM_W-1:0] ld_r, input wire [PB_W-1:0] ld_pb,
+    input  wire [GRA_POS_G-1:0] mv,
+    input  wire [GRA_POS_G-1:0] step, input wire dead, input wire [M_W-1:0] i0_w, input wire [DIM_W-1:0] i0_r,
     input  wire [PB_W-1:0] i0_pb,
     input  wire [DIM_W-1:0] nj,
     input  wire in_beat, input wire [P*VOXEL_W-1:0] sample, input wire [P-1:0] lane_valid,
@@ -91,7 +99,6 @@ module cube4_gra_pos #(
     localparam integer SM_W = 2 + HDR_PB;                          // a meta kept: {beat, real, header below PB}
     localparam integer AWD = SM_W + PV;                            // plane A: X with its meta
     localparam integer BMW = 4 * PV + SM_W;                        // beam: X, P1 (meta), C, P2b1
-    localparam integer PBN = 1 << PB_W;                            // beam buffer entries
 
     wire [SM_W-1:0] p1_meta;                       // P1's kept meta (into the beam buffer)
     wire [SM_W-1:0] x_sm = {in_beat, x_meta[META_W-1], x_meta[HDR_PB-1:0]};   // (beat: it came in)
@@ -107,96 +114,53 @@ module cube4_gra_pos #(
     wire [RW-1:0]   i0_r1 = i0_r[RW-1:0] - 1'b1;
     wire [PAW-1:0]  ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
     wire [PAW-1:0]  ra_b = {ld_r1, ld_pb},        wa_b = {i0_r1, i0_pb};
-    wire we_a = step && !dead && (i0_r < nj);     // plane A: X at its own position
-    wire we_b = step && !dead && (i0_r != '0);    // plane B: C at the centre's position
-    wire we_m = step && !dead;                    // the beam buffer
-    wire [AWD-1:0] wd_a = {x_sm, x};
-    wire [PV-1:0]  wd_b = c;
-    wire [BMW-1:0] wd_m = {x, p1_meta, p1, c, p2b1};
-    wire [AWD-1:0] rd_a;
-    wire [PV-1:0]  rd_b;
-    wire [BMW-1:0] rd_m;
-    // OUT_STAGE = 1: the RAMs' output registers (OUT_REG = 2, loaded at mv) are the stage
-    localparam integer ORG = (OUT_STAGE != 0) ? 2 : 0;
-    wire oe = (OUT_STAGE != 0) && mv;
-    cube4_sdp_ram #(.DATA_W (AWD), .DEPTH (1 << PAW), .OUT_REG (ORG)) u_plane_a (
-        .clk (clk), .rd_en (ld), .out_en (oe), .rd_addr (ra_a), .rd_data (rd_a),
-        .wr_en (we_a), .wr_addr (wa_a), .wr_data (wd_a));
-    cube4_sdp_ram #(.DATA_W (PV), .DEPTH (1 << PAW), .OUT_REG (ORG)) u_plane_b (
-        .clk (clk), .rd_en (ld), .out_en (oe), .rd_addr (ra_b), .rd_data (rd_b),
-        .wr_en (we_b), .wr_addr (wa_b), .wr_data (wd_b));
-    cube4_sdp_ram #(.DATA_W (BMW), .DEPTH (PBN), .OUT_REG (ORG)) u_beam (
-        .clk (clk), .rd_en (ld), .out_en (oe), .rd_addr (ld_pb), .rd_data (rd_m),
-        .wr_en (we_m), .wr_addr (i0_pb), .wr_data (wd_m));
-    // the word read for a position, with the writes since its read (bypass: the
-    // RAM returns the old word for a read in the cycle of the write)
-    reg            by_a, by_b, by_m;
-    reg [AWD-1:0]  bd_a;
-    reg [PV-1:0]   bd_b;
-    reg [BMW-1:0]  bd_m;
-    wire [AWD-1:0] a_w;
+    // the groups' writes: plane A (X at its own position), plane B (C at the
+    // centre's position), the beam buffer's four fields; a dead step writes nothing
+    wire wa_ok = !dead && (i0_r < nj);            // (registers: each copy of step ANDs them)
+    wire wb_ok = !dead && (i0_r != '0);
+    wire [GRA_POS_G-1:0] we = step & {{(GRA_POS_G - 2){!dead}}, wb_ok, wa_ok};
+    wire [AWD-1:0] a_w;                           // the words read, with the writes since
     wire [PV-1:0]  b_w;
     wire [BMW-1:0] m_w;
-    // the read's addresses, kept for a write that lands at its mv
-    reg [PAW-1:0]  ra_a1, ra_b1;
-    reg [PB_W-1:0] ra_m1;
-    wire hit_a = (OUT_STAGE != 0) && we_a && (wa_a == ra_a1);
-    wire hit_b = (OUT_STAGE != 0) && we_b && (wa_b == ra_b1);
-    wire hit_m = (OUT_STAGE != 0) && we_m && (i0_pb == ra_m1);
-    // (loaded at ld only: with OUT_STAGE = 1 a write after the read comes at mv's
-    // edge, where the stage below takes it; checked in simulation)
-    always @(posedge clk) begin
-        if (ld) begin                                // a write in the read's own cycle
-            ra_a1 <= ra_a;
-            ra_b1 <= ra_b;
-            ra_m1 <= ld_pb;
-            by_a  <= we_a && (wa_a == ra_a);
-            by_b  <= we_b && (wa_b == ra_b);
-            by_m  <= we_m && (i0_pb == ld_pb);
-            bd_a  <= wd_a;
-            bd_b  <= wd_b;
-            bd_m  <= wd_m;
-        end
-    end
+    cube4_gra_pos_buf #(.DATA_W (AWD), .AW (PAW), .OUT_STAGE (OUT_STAGE)) u_plane_a (
+        .clk (clk), .ld (ld[0]), .rd_addr (ra_a), .mv (mv[0]),
+        .we (we[0]), .wr_addr (wa_a), .wr_data ({x_sm, x}), .rd_word (a_w));
+    cube4_gra_pos_buf #(.DATA_W (PV), .AW (PAW), .OUT_STAGE (OUT_STAGE)) u_plane_b (
+        .clk (clk), .ld (ld[1]), .rd_addr (ra_b), .mv (mv[1]),
+        .we (we[1]), .wr_addr (wa_b), .wr_data (c), .rd_word (b_w));
+    // the beam buffer {pb}: X, P1 with its meta, C, P2b1, a buffer each
+    localparam integer BMF = GRA_POS_G - 2;      // its fields
+    localparam integer MLO0 = 3 * PV + SM_W, MLO1 = 2 * PV, MLO2 = PV, MLO3 = 0;
+    localparam integer MW0 = PV, MW1 = PV + SM_W, MW2 = PV, MW3 = PV;
+    wire [BMW-1:0] wd_m = {x, p1_meta, p1, c, p2b1};
+    genvar f;
     generate
-        if (OUT_STAGE == 0) begin : g_direct
-            assign a_w = by_a ? bd_a : rd_a;         // the word with every write since
-            assign b_w = by_b ? bd_b : rd_b;
-            assign m_w = by_m ? bd_m : rd_m;
-            wire unused_mv = ^{mv, ra_a1, ra_b1, ra_m1, hit_a, hit_b, hit_m};   // (read for the step itself)
-        end else begin : g_stage
-            // the RAMs' words pass their output registers at mv; the bypass's
-            // choice and word (with a write at mv's own edge) beside them, the
-            // choice applied after the registers
-            reg            s_a, s_b, s_m;
-            reg [AWD-1:0]  sd_a;
-            reg [PV-1:0]   sd_b;
-            reg [BMW-1:0]  sd_m;
-            always @(posedge clk) begin
-                if (mv) begin
-                    s_a  <= hit_a || by_a;
-                    s_b  <= hit_b || by_b;
-                    s_m  <= hit_m || by_m;
-                    sd_a <= hit_a ? wd_a : bd_a;
-                    sd_b <= hit_b ? wd_b : bd_b;
-                    sd_m <= hit_m ? wd_m : bd_m;
-                end
-            end
-            assign a_w = s_a ? sd_a : rd_a;
-            assign b_w = s_b ? sd_b : rd_b;
-            assign m_w = s_m ? sd_m : rd_m;
+        for (f = 0; f < BMF; f = f + 1) begin : g_beam
+            localparam integer LO = (f == 0) ? MLO0 : (f == 1) ? MLO1 : (f == 2) ? MLO2 : MLO3;
+            localparam integer FW = (f == 0) ? MW0 : (f == 1) ? MW1 : (f == 2) ? MW2 : MW3;
+            cube4_gra_pos_buf #(.DATA_W (FW), .AW (PB_W), .OUT_STAGE (OUT_STAGE)) u_field (
+                .clk (clk), .ld (ld[2 + f]), .rd_addr (ld_pb), .mv (mv[2 + f]),
+                .we (we[2 + f]), .wr_addr (i0_pb), .wr_data (wd_m[LO +: FW]), .rd_word (m_w[LO +: FW]));
+        end
+    endgenerate
 `ifndef SYNTHESIS
-            // the caller's order: a step after a read and before its mv comes at mv
-            // (no reset here: a reset in mid-frame may leave pend set, and a read
-            // after it replaces one that never moved on; no step comes before an mv)
-            reg pend;                                // a read waits for its mv (set before any step)
-            always @(posedge clk) begin
-                if (pend && step && !dead && !mv)
-                    $fatal(1, "cube4_gra_pos: a step between a read and its mv (OUT_STAGE = 1 takes writes at mv only)");
-                if (ld) pend <= 1'b1;
-                else if (mv) pend <= 1'b0;
-            end
+    // the copies are equal, and (OUT_STAGE = 1) the caller's order holds: a step
+    // after a read and before its mv comes at mv (no reset here: a reset in
+    // mid-frame may leave pend set, and a read after it replaces one that never
+    // moved on; no step comes before an mv)
+    reg pend;                                     // a read waits for its mv (set before any step)
+    always @(posedge clk) begin
+        if (ld != {GRA_POS_G{ld[0]}} || mv != {GRA_POS_G{mv[0]}} || step != {GRA_POS_G{step[0]}})
+            $fatal(1, "cube4_gra_pos: the copies of ld (%b), mv (%b) or step (%b) differ", ld, mv, step);
+        if (OUT_STAGE != 0 && pend && step[0] && !dead && !mv[0])
+            $fatal(1, "cube4_gra_pos: a step between a read and its mv (OUT_STAGE = 1 takes writes at mv only)");
+        if (ld[0]) pend <= 1'b1;
+        else if (mv[0]) pend <= 1'b0;
+    end
 `endif
+    generate
+        if (OUT_STAGE == 0) begin : g_no_mv
+            wire unused_mv = ^mv;                     // (the words are read for the step itself)
         end
     endgenerate
     assign p1_meta = pg  ? a_w[PV +: SM_W] : {SM_W{1'b0}};

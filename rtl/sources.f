@@ -49,6 +49,7 @@ cube4_tri.v
 cube4_frontend.v
 cube4_delay_line.v
 cube4_gra_lines.v
+cube4_gra_pos_buf.v
 cube4_gra_pos.v
 cube4_gra_walk.v
 cube4_gra_beats_in.v
