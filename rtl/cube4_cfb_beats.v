@@ -117,9 +117,32 @@ module cube4_cfb_beats #(
     reg             g_last;                // g + 1 >= nm: no slice after it
     reg [M_W-1:0]   need;                  // slice g's rows need slice need written whole:
                                            // g + 1, the last slice itself
-    assign bm_ready = active && (wm < nm) && ({1'b0, wm} <= g2);
+    // bm_ready = active && wm < nm && wm <= g2, a register (the FIFO in front
+    // takes it into its read pointers and reservations): loaded with its next
+    // value, the moves of wm, g2 and active choosing among compares of the
+    // registers (wm + 1 <= g2 + 1 is wm <= g2)
+    reg  rdy_q;
+    assign bm_ready = rdy_q;
     wire bm_take = bm_valid && bm_ready;
     wire wm_mv = bm_take && (wj == nj - 1'b1);   // slice wm is written whole
+    wire g_mv;                                   // g (and g2) move on
+    wire act_off;                                // the flush row's last beat leaves
+    wire [M_W:0] wm_x = {1'b0, wm};
+    wire lt0  = (wm_x < {1'b0, nm}),  lt1  = (wm_x + 1'b1 < {1'b0, nm});
+    wire le00 = (wm_x <= g2), le10 = (wm_x + 1'b1 <= g2), le01 = (wm_x <= g2 + 1'b1);
+    always @(posedge clk) begin
+        if (rst)        rdy_q <= 1'b0;
+        else if (start) rdy_q <= (nm != '0);
+        else            rdy_q <= active && !act_off && (wm_mv ? lt1 : lt0)
+                                 && (wm_mv ? (g_mv ? le00 : le10) : (g_mv ? le01 : le00));
+    end
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && !start && rdy_q != (active && (wm < nm) && ({1'b0, wm} <= g2)))
+            $fatal(1, "cube4_cfb_beats: bm_ready %b is not active && wm < nm && wm <= g2 (wm %0d, nm %0d, g2 %0d)",
+                   rdy_q, wm, nm, g2);
+    end
+`endif
     always @(posedge clk) begin
         if (rst || start) begin
             wm <= '0;
@@ -151,7 +174,7 @@ module cube4_cfb_beats #(
     reg  flushed;                          // the emitter took the flush row: the fetch stops
     wire take_ok;
     assign adv = active && !flushed && fetch_ok && take_ok;
-    wire           g_mv   = adv && in_frame && (gj == nj - 1'b1);   // g moves on to g + 1
+    assign g_mv = adv && in_frame && (gj == nj - 1'b1);   // g moves on to g + 1
     // need_n: what need becomes when g moves on (g + 2, the last slice g + 1), a
     // register kept one move ahead, so no adder of g lies before wm_gt's compare
     reg  [M_W-1:0] need_n;
@@ -377,8 +400,9 @@ module cube4_cfb_beats #(
     always @(posedge clk) begin
         if (rst) active <= 1'b0;
         else if (start) active <= 1'b1;
-        else if (x_done && x_flush) active <= 1'b0;
+        else if (act_off) active <= 1'b0;
     end
+    assign act_off = x_done && x_flush;
     assign out_m     = x_m;
     assign out_j     = x_j;
     assign out_pb    = x_pb;
