@@ -39,15 +39,19 @@
 //   Read: stages move on every cycle. The beat's fields (S0) are registered
 //   into S1; S1 -> S2 Q; S2: R and the banks' read addresses (into
 //   cube4_sdp_ram with OUT_REG: the word at S4); S4 -> S5 each lane's word:
-//   rd_data is a register, 5 edges after its fields.
+//   rd_data is a register, 5 edges after its fields. With P a power of two
+//   (Q and R are bits of B) the addresses are formed at S1 and the banks
+//   register them (IN_REG = 1): the same access at S2, its address from
+//   flip-flops beside the block RAMs.
 //   Write: the same arithmetic; the banks take the word at the third edge
 //   after its fields (S3 -> the banks' write ports). A read issued one cycle
 //   or more after a write returns the written word; one issued in the same
 //   cycle returns the old word. (A read issued the cycle after meets the
 //   write at the banks' edge, where block RAM promises neither word: a bypass
 //   gives the new one.)
-//   The host's writes (tab_we) go straight to the banks' write ports and
-//   must not meet a beat's write (between frames only).
+//   The host's writes (tab_we) go straight to the banks' write ports (P a
+//   power of two: their registers; the word lands an edge later) and must
+//   not meet a beat's write (between frames only).
 //
 // Ports
 //   sx, sy     SX = stepx(M-1), SY = stepy(M-1) (the view's, [DIM_W])
@@ -115,6 +119,13 @@ module cube4_ray_table #(
     assign {j0[1], pb0[1], stx0[1], sty0[1]} = {wr_j, wr_pb, wr_stx, wr_sty};
     wire [LANE_W-1:0] r2 [0:1];
     wire [COLS_W-1:0] w2 [0:1];
+    // P a power of two (EARLY): the read's R and first word one stage sooner, from
+    // S1's registers, so the banks register its address themselves (cube4_sdp_ram
+    // IN_REG = 1, copies beside the block RAMs) and no sum reaches a block RAM's
+    // address pins; otherwise (Q from a product at S1 -> S2) the address is S2's sum
+    localparam integer EARLY = ((P & (P - 1)) == 0) ? 1 : 0;
+    wire [LANE_W-1:0] r1r;                 // the read's R and first word at S1 (EARLY)
+    wire [COLS_W-1:0] w1r;
     generate
         for (q = 0; q < 2; q = q + 1) begin : g_place
             always @(posedge clk) begin
@@ -133,6 +144,14 @@ module cube4_ray_table #(
                 end else begin : g_r0
                     assign r2[q] = '0;
                 end
+                if (q == 0) begin : g_early
+                    if (P > 1) begin : g_r
+                        assign r1r = b1[q][LANE_W-1:0];
+                    end else begin : g_r0
+                        assign r1r = '0;
+                    end
+                    assign w1r = COLS_W'(pb1[q]) + COLS_W'(b1[q] >> LW);
+                end
                 wire unused_place = ^b2[q];
             end else begin : g_div
                 wire [PR_W-1:0] prod = PR_W'(b1[q]) * PR_W'(RECIP);
@@ -140,6 +159,10 @@ module cube4_ray_table #(
                 wire [DIM_W-1:0] qp = DIM_W'(32'(q2[q]) * P);
                 assign r2[q] = LANE_W'(b2[q] - qp);                        // 0 .. P-1
                 wire unused_place = ^{prod[K-1:0], prod[PR_W-1:K+DIM_W], b2[q], qp};
+                if (q == 0) begin : g_late
+                    assign {r1r, w1r} = '0;        // (EARLY = 0: the address is S2's sum)
+                    wire unused_early = ^{r1r, w1r};
+                end
             end
             assign w2[q] = COLS_W'(pb2[q]) + COLS_W'(q2[q]);
             if (ROWS_W < BX_W) begin : g_by_top
@@ -190,24 +213,56 @@ module cube4_ray_table #(
                 reg  [DATA_W-1:0] bd3;
                 wire [DATA_W-1:0] wd_pick;
                 cube4_mux #(.N(RATE * P), .W(DATA_W)) u_wd (.words(wd2), .sel(bit_w), .word(wd_pick));
+                wire              bw2 = wv2 && we2[bit_w];          // S2: the write, into S3
+                wire [SA_W-1:0]   ba2 = sub_addr(by2[1], wwd);
                 always @(posedge clk) begin
-                    bw3 <= wv2 && we2[bit_w];
-                    ba3 <= sub_addr(by2[1], wwd);
+                    bw3 <= bw2;
+                    ba3 <= ba2;
                     bd3 <= wd_pick;
                 end
+                // the banks' ports: the read's address at S2 and the write's at S3, or
+                // (EARLY) each a stage sooner into the banks' own registers, the word
+                // (the beat's, or the host's of the cycle before) with the registered enable
+                wire [SA_W-1:0]   ra_in, ra_s2;    // the read's address at the port; at S2
+                wire              bw_in, wd_tab;   // the beat's write at the port; the host's word
+                wire [SA_W-1:0]   ba_in;
+                wire [DATA_W-1:0] tab_d;
+                if (EARLY != 0) begin : g_early
+                    wire [COLS_W-1:0] wr1 = w1r + COLS_W'((32'(b) < 32'(r1r)) ? 1 : 0);
+                    wire [RL_W-1:0]   rr1 = RL_W'((32'(sb) - 32'(wr1)) & (RATE - 1));
+                    reg  [SA_W-1:0]   ra2_q;       // the banks' own register's value, for the bypass
+                    reg               tab_we_q;    // the host's write of the cycle before
+                    reg  [DATA_W-1:0] tab_d_q;
+                    assign ra_in = sub_addr(by1[0][ROWS_W-1:0], wr1 + COLS_W'(rr1));
+                    always @(posedge clk) begin
+                        ra2_q    <= ra_in;
+                        tab_we_q <= tab_we;
+                        tab_d_q  <= tab_data[b*DATA_W +: DATA_W];
+                    end
+                    assign ra_s2  = ra2_q;
+                    assign {bw_in, ba_in} = {bw2, ba2};
+                    assign wd_tab = tab_we_q;
+                    assign tab_d  = tab_d_q;
+                    wire unused_ra2 = ^ra2;        // (the same address, a stage later)
+                end else begin : g_late
+                    assign {ra_in, ra_s2} = {ra2, ra2};
+                    assign {bw_in, ba_in} = {bw3, ba3};
+                    assign wd_tab = tab_we;
+                    assign tab_d  = tab_data[b*DATA_W +: DATA_W];
+                end
                 wire tab_here = tab_we && ((32'(tab_addr[COLS_W-1:0]) & (RATE - 1)) == sb);
-                wire              we = tab_here || (!tab_we && bw3);
-                wire [SA_W-1:0]   wa = tab_we ? sub_addr(tab_addr[STOP_AW-1:COLS_W], tab_addr[COLS_W-1:0]) : ba3;
-                wire [DATA_W-1:0] wd = tab_we ? tab_data[b*DATA_W +: DATA_W] : bd3;
+                wire              we = tab_here || (!tab_we && bw_in);
+                wire [SA_W-1:0]   wa = tab_we ? sub_addr(tab_addr[STOP_AW-1:COLS_W], tab_addr[COLS_W-1:0]) : ba_in;
+                wire [DATA_W-1:0] wd = wd_tab ? tab_d : bd3;
                 wire [DATA_W-1:0] q4;
-                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << SA_W), .OUT_REG(1)) u_bank (
-                    .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(ra2), .rd_data(q4),
+                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << SA_W), .IN_REG(EARLY), .OUT_REG(1)) u_bank (
+                    .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(ra_in), .rd_data(q4),
                     .wr_en(we), .wr_addr(wa), .wr_data(wd));
                 // a read at the edge of a beat's write to the same word takes the new word
                 reg               hit3, hit4;
                 reg  [DATA_W-1:0] hd3, hd4;
                 always @(posedge clk) begin
-                    hit3 <= bw3 && (ba3 == ra2);
+                    hit3 <= bw3 && (ba3 == ra_s2);
                     hd3  <= bd3;
                     hit4 <= hit3;
                     hd4  <= hd3;
