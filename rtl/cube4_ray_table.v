@@ -40,18 +40,17 @@
 //   into S1; S1 -> S2 Q; S2: R and the banks' read addresses (into
 //   cube4_sdp_ram with OUT_REG: the word at S4); S4 -> S5 each lane's word:
 //   rd_data is a register, 5 edges after its fields. With P a power of two
-//   (Q and R are bits of B) the addresses are formed at S1 and the banks
-//   register them (IN_REG = 1): the same access at S2, its address from
-//   flip-flops beside the block RAMs.
+//   (Q and R are bits of B) each sub-bank's address is formed at S1 and
+//   registered: the same access at S2, its address from a flip-flop, not
+//   from a sum.
 //   Write: the same arithmetic; the banks take the word at the third edge
 //   after its fields (S3 -> the banks' write ports). A read issued one cycle
 //   or more after a write returns the written word; one issued in the same
 //   cycle returns the old word. (A read issued the cycle after meets the
 //   write at the banks' edge, where block RAM promises neither word: a bypass
 //   gives the new one.)
-//   The host's writes (tab_we) go straight to the banks' write ports (P a
-//   power of two: their registers; the word lands an edge later) and must
-//   not meet a beat's write (between frames only).
+//   The host's writes (tab_we) go straight to the banks' write ports and
+//   must not meet a beat's write (between frames only).
 //
 // Ports
 //   sx, sy     SX = stepx(M-1), SY = stepy(M-1) (the view's, [DIM_W])
@@ -120,9 +119,9 @@ module cube4_ray_table #(
     wire [LANE_W-1:0] r2 [0:1];
     wire [COLS_W-1:0] w2 [0:1];
     // P a power of two (EARLY): the read's R and first word one stage sooner, from
-    // S1's registers, so the banks register its address themselves (cube4_sdp_ram
-    // IN_REG = 1, copies beside the block RAMs) and no sum reaches a block RAM's
-    // address pins; otherwise (Q from a product at S1 -> S2) the address is S2's sum
+    // S1's registers, so each sub-bank's address is a register and no sum reaches
+    // a block RAM's address pins; otherwise (Q from a product at S1 -> S2) the
+    // address is S2's sum
     localparam integer EARLY = ((P & (P - 1)) == 0) ? 1 : 0;
     wire [LANE_W-1:0] r1r;                 // the read's R and first word at S1 (EARLY)
     wire [COLS_W-1:0] w1r;
@@ -213,50 +212,31 @@ module cube4_ray_table #(
                 reg  [DATA_W-1:0] bd3;
                 wire [DATA_W-1:0] wd_pick;
                 cube4_mux #(.N(RATE * P), .W(DATA_W)) u_wd (.words(wd2), .sel(bit_w), .word(wd_pick));
-                wire              bw2 = wv2 && we2[bit_w];          // S2: the write, into S3
-                wire [SA_W-1:0]   ba2 = sub_addr(by2[1], wwd);
                 always @(posedge clk) begin
-                    bw3 <= bw2;
-                    ba3 <= ba2;
+                    bw3 <= wv2 && we2[bit_w];
+                    ba3 <= sub_addr(by2[1], wwd);
                     bd3 <= wd_pick;
                 end
-                // the banks' ports: the read's address at S2 and the write's at S3, or
-                // (EARLY) each a stage sooner into the banks' own registers, the word
-                // (the beat's, or the host's of the cycle before) with the registered enable
-                wire [SA_W-1:0]   ra_in, ra_s2;    // the read's address at the port; at S2
-                wire              bw_in, wd_tab;   // the beat's write at the port; the host's word
-                wire [SA_W-1:0]   ba_in;
-                wire [DATA_W-1:0] tab_d;
+                // the read's address at S2: the sum of S2 (ra2), or (EARLY) a register
+                // loaded with the same sum formed from S1's registers
+                wire [SA_W-1:0] ra_s2;
                 if (EARLY != 0) begin : g_early
                     wire [COLS_W-1:0] wr1 = w1r + COLS_W'((32'(b) < 32'(r1r)) ? 1 : 0);
                     wire [RL_W-1:0]   rr1 = RL_W'((32'(sb) - 32'(wr1)) & (RATE - 1));
-                    reg  [SA_W-1:0]   ra2_q;       // the banks' own register's value, for the bypass
-                    reg               tab_we_q;    // the host's write of the cycle before
-                    reg  [DATA_W-1:0] tab_d_q;
-                    assign ra_in = sub_addr(by1[0][ROWS_W-1:0], wr1 + COLS_W'(rr1));
-                    always @(posedge clk) begin
-                        ra2_q    <= ra_in;
-                        tab_we_q <= tab_we;
-                        tab_d_q  <= tab_data[b*DATA_W +: DATA_W];
-                    end
-                    assign ra_s2  = ra2_q;
-                    assign {bw_in, ba_in} = {bw2, ba2};
-                    assign wd_tab = tab_we_q;
-                    assign tab_d  = tab_d_q;
-                    wire unused_ra2 = ^ra2;        // (the same address, a stage later)
+                    reg  [SA_W-1:0]   ra2_q;
+                    always @(posedge clk) ra2_q <= sub_addr(by1[0][ROWS_W-1:0], wr1 + COLS_W'(rr1));
+                    assign ra_s2 = ra2_q;
+                    wire unused_ra2 = ^ra2;        // (the same address, from S2's sum)
                 end else begin : g_late
-                    assign {ra_in, ra_s2} = {ra2, ra2};
-                    assign {bw_in, ba_in} = {bw3, ba3};
-                    assign wd_tab = tab_we;
-                    assign tab_d  = tab_data[b*DATA_W +: DATA_W];
+                    assign ra_s2 = ra2;
                 end
                 wire tab_here = tab_we && ((32'(tab_addr[COLS_W-1:0]) & (RATE - 1)) == sb);
-                wire              we = tab_here || (!tab_we && bw_in);
-                wire [SA_W-1:0]   wa = tab_we ? sub_addr(tab_addr[STOP_AW-1:COLS_W], tab_addr[COLS_W-1:0]) : ba_in;
-                wire [DATA_W-1:0] wd = wd_tab ? tab_d : bd3;
+                wire              we = tab_here || (!tab_we && bw3);
+                wire [SA_W-1:0]   wa = tab_we ? sub_addr(tab_addr[STOP_AW-1:COLS_W], tab_addr[COLS_W-1:0]) : ba3;
+                wire [DATA_W-1:0] wd = tab_we ? tab_data[b*DATA_W +: DATA_W] : bd3;
                 wire [DATA_W-1:0] q4;
-                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << SA_W), .IN_REG(EARLY), .OUT_REG(1)) u_bank (
-                    .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(ra_in), .rd_data(q4),
+                cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(1 << SA_W), .OUT_REG(1)) u_bank (
+                    .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(ra_s2), .rd_data(q4),
                     .wr_en(we), .wr_addr(wa), .wr_data(wd));
                 // a read at the edge of a beat's write to the same word takes the new word
                 reg               hit3, hit4;
