@@ -548,11 +548,14 @@
 // Between GRA's neighbourhood source (cube4_gra_lines, or cube4_gra_walk with
 // slice rectangles) and its window (cube4_gra_window). Needs CUBE4_GEOMETRY.
 //   GRA_STEPS    copies of the output FIFO's credit, one per group of step
-//                registers (the six delay lines; the window and counters)
+//                registers: copy GRA_STEPS-1 the window and counters (every
+//                source's step); copies 0 .. 5 the six delay lines
+//                (cube4_gra_lines), or the beat walk's GRA_POS_G groups
 //   GRA_POS_G    groups of cube4_gra_pos's registers, each with its own copy
 //                of the read, load and step enables (plane A; plane B; the
-//                beam buffer's X, P1 with its meta, C, P2b1); the beat walk
-//                forms them from the credit copies the lines leave unused
+//                beam buffer's X, P1 with its meta, C, P2b1: 6); the beat
+//                walk forms them from credit copies 0 .. GRA_POS_G-1, which
+//                only the delay lines use otherwise
 //   GRA_META_W   a beat's {real, header}: real = a sample beat of the frame
 //   GRA_NSEL     the centre's select flags per lane, bits GSEL_*: the voxel
 //                slice changes m -> m+1 (DKF) / m-1 -> m (DKB), the centre is

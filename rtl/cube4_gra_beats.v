@@ -517,7 +517,8 @@ module cube4_gra_beats
     // from i0 to i1, their words registered as it moves on to i2, written when
     // it steps from i2 ----
     // Each group of its registers takes its read, load and step from a credit
-    // copy of its own (the copies the lines use; not step's), so no one net
+    // copy of its own (copies 0 .. GRA_POS_G-1: the delay lines' in the other
+    // builds, unused by this source otherwise; not step's), so no one net
     // reaches the hundreds of enables and bypass choices (as i0_mv, i1_mv, step)
     wire [GRA_POS_G-1:0] pos_cr = credit[GRA_POS_G-1:0];
     wire [GRA_POS_G-1:0] pos_step = {GRA_POS_G{i2_v}} & pos_cr;

@@ -159,9 +159,7 @@ module cube4_gra_pos #(
     end
 `endif
     generate
-        if (OUT_STAGE == 0) begin : g_no_mv
-            wire unused_mv = ^mv;                     // (the words are read for the step itself)
-        end
+        `CUBE4_RANGE(g_bad_groups, "cube4_gra_pos", "GRA_POS_G", GRA_POS_G, 6, 6)   // (the six buffers above)
     endgenerate
     assign p1_meta = pg  ? a_w[PV +: SM_W] : {SM_W{1'b0}};
     assign p1      = pg  ? a_w[PV-1:0] : {PV{1'b0}};

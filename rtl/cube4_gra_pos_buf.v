@@ -9,10 +9,11 @@
 //   steps (we), whose word for a read takes the writes made since the read
 //   (bypass: the RAM returns the old word for a read in the cycle of the
 //   write). With OUT_STAGE = 1 the word read passes one more register, the
-//   RAM's output register (cube4_sdp_ram OUT_REG = 2, a block RAM's own),
+//   RAM's output register (cube4_sdp_ram OUT_REG = 2: a block RAM's own
+//   where the RAM is one, a flip-flop of the fabric for a shallow RAM),
 //   loaded as the position moves on from the read to the step (mv); the
 //   write at mv's own edge, if it hits the read (a second bypass), is kept in
-//   a register beside it and chosen after it: the block RAM's clock-to-data
+//   a register beside it and chosen after it: a block RAM's clock-to-data
 //   ends at its output register (0.7 ns on the ECP5), not in the caller's
 //   arithmetic. ld, mv and we reach this buffer's words only (cube4_gra_pos
 //   gives each buffer its own copies).

@@ -123,8 +123,8 @@ module cube4_ray_table #(
     // a block RAM's address pins; otherwise (Q from a product at S1 -> S2) the
     // address is S2's sum
     localparam integer EARLY = ((P & (P - 1)) == 0) ? 1 : 0;
-    wire [LANE_W-1:0] r1r;                 // the read's R and first word at S1 (EARLY)
-    wire [COLS_W-1:0] w1r;
+    wire [LANE_W-1:0] r1r;                 // the read's R at S1 (EARLY)
+    wire [COLS_W-1:0] w1r;                 // pb + Q at S1 (a bank's first word: + (b < R))
     generate
         for (q = 0; q < 2; q = q + 1) begin : g_place
             always @(posedge clk) begin
@@ -201,11 +201,8 @@ module cube4_ray_table #(
             wire [DATA_W-1:0] sub_q [0:RATE-1];
             for (sb = 0; sb < RATE; sb = sb + 1) begin : g_sub
                 // the beats whose words fall in this sub-bank, and those words
-                wire [RL_W-1:0]   rr  = RL_W'((32'(sb) - 32'(wr)) & (RATE - 1));
                 wire [RL_W-1:0]   rw  = RL_W'((32'(sb) - 32'(ww)) & (RATE - 1));
-                wire [COLS_W-1:0] wrd = wr + COLS_W'(rr);
                 wire [COLS_W-1:0] wwd = ww + COLS_W'(rw);
-                wire [SA_W-1:0]   ra2 = sub_addr(by2[0], wrd);
                 wire [BI_W-1:0]   bit_w = BI_W'(32'(rw) * P + 32'(tw));
                 reg               bw3;
                 reg  [SA_W-1:0]   ba3;
@@ -217,8 +214,8 @@ module cube4_ray_table #(
                     ba3 <= sub_addr(by2[1], wwd);
                     bd3 <= wd_pick;
                 end
-                // the read's address at S2: the sum of S2 (ra2), or (EARLY) a register
-                // loaded with the same sum formed from S1's registers
+                // the read's address at S2: a sum of S2's fields, or (EARLY) a register
+                // loaded with the same sum formed from S1's
                 wire [SA_W-1:0] ra_s2;
                 if (EARLY != 0) begin : g_early
                     wire [COLS_W-1:0] wr1 = w1r + COLS_W'((32'(b) < 32'(r1r)) ? 1 : 0);
@@ -226,9 +223,10 @@ module cube4_ray_table #(
                     reg  [SA_W-1:0]   ra2_q;
                     always @(posedge clk) ra2_q <= sub_addr(by1[0][ROWS_W-1:0], wr1 + COLS_W'(rr1));
                     assign ra_s2 = ra2_q;
-                    wire unused_ra2 = ^ra2;        // (the same address, from S2's sum)
                 end else begin : g_late
-                    assign ra_s2 = ra2;
+                    wire [RL_W-1:0]   rr  = RL_W'((32'(sb) - 32'(wr)) & (RATE - 1));
+                    wire [COLS_W-1:0] wrd = wr + COLS_W'(rr);
+                    assign ra_s2 = sub_addr(by2[0], wrd);
                 end
                 wire tab_here = tab_we && ((32'(tab_addr[COLS_W-1:0]) & (RATE - 1)) == sb);
                 wire              we = tab_here || (!tab_we && bw3);
