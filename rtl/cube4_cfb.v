@@ -158,7 +158,8 @@ module cube4_cfb #(
     `CUBE4_VIEW_FIELDS(cfg);
 
     // ==== what the control gives the template, the address unit and the lane masks ====
-    wire              idle, next_pass, issue, advance;
+    wire              idle, next_pass, issue;
+    wire [CFB_ADV_N-1:0] advance;       // copies: CFB_ADV_CTL, _BITS, _ADDR (CUBE4_CFB_LAYOUT)
     wire [CFB_F1_W-1:0] fields;
     wire              use_prev, rowv, rowin, rd;
     wire [LANE_W-1:0] skew_out, skew_rd;
@@ -236,7 +237,7 @@ module cube4_cfb #(
                 .in_valid(b_valid), .in_ready(b_ready), .in_pb(b_pb), .in_read(b_read), .in_leave(b_leave),
                 .in_tok(b_tok),
                 .in_eor(b_eor), .in_eos(b_eos), .in_last(b_last), .in_bits(b_bits),
-                .advance(advance), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
+                .advance(advance[CFB_ADV_CTL]), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
                 .idle(idle), .next_pass(next_pass),
                 .issue(issue), .fields(fields), .use_prev(use_prev), .skew_out(skew_out),
                 .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi), .rowv(rowv), .rowin(rowin), .rd(rd),
@@ -251,7 +252,7 @@ module cube4_cfb #(
             // the beat's bits, EOS and EOSS pass the mask's three stages beside it
             reg [4*P+1:0] x1_q, x2_q, x_q;
             always @(posedge clk) begin
-                if (advance) begin
+                if (advance[CFB_ADV_BITS]) begin
                     x1_q <= {x_eoss, x_eos, x_bits};
                     x2_q <= x1_q;
                     x_q  <= x2_q;
@@ -260,6 +261,7 @@ module cube4_cfb #(
             assign {req_eoss, req_eos, req_bits} = x_q;
             assign busy = mask_busy || busy_s || b_valid;
         end else begin : g_fixed
+            wire unused_adv_bits = advance[CFB_ADV_BITS];   // (the beat's bits: BEATS = 1 only)
             // ==== control and traversal of the fixed, box and rectangle schedules ====
             wire              go, pass_done, beat, row, flush_row;
             wire [M_W-1:0]    m;
@@ -272,7 +274,7 @@ module cube4_cfb #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),
                 .RECTS(RECTS)
             ) u_ctl (
-                .clk(clk), .rst(rst), .cfg(cfg), .start(start), .busy(busy), .advance(advance),
+                .clk(clk), .rst(rst), .cfg(cfg), .start(start), .busy(busy), .advance(advance[CFB_ADV_CTL]),
                 .rt_cur(rt_cur), .rt_nxt(rt_nxt),
                 .m(m), .k0_odd(k0_odd), .r(r), .j(j), .pb(pb), .sb(sb), .last_pb(last_pb), .last_j(last_j),
                 .lower_mem(lower_mem), .upper_mem(upper_mem), .skew_pas(skew_pas), .skew_vrt(skew_vrt),
@@ -325,7 +327,7 @@ module cube4_cfb #(
     cube4_cfb_addr #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
     ) u_addr (
-        .clk(clk), .cfg(cfg), .cfg_addr(cfg_addr), .advance(advance), .skew_rd(skew_rd),
+        .clk(clk), .cfg(cfg), .cfg_addr(cfg_addr), .advance(advance[CFB_ADV_ADDR]), .skew_rd(skew_rd),
         .aj(aj), .ak(ak), .pbx(pbx), .t1(t1), .addr(req_addr));
     cube4_cfb_mask #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W),

@@ -25,6 +25,10 @@
 //   Three register stages; a beat is on req_* three edges after the state
 //   that describes it. All stages move under advance = the output register
 //   is free or taken by req_ready; req_valid never depends on req_ready.
+//   advance comes as CFB_ADV_N equal copies, each from its own copy of the
+//   output register's valid bit (cube4_prim_reg_copies), one per group of
+//   its loads (CUBE4_CFB_LAYOUT), so no one net reaches the stages, the
+//   address unit and the control's counters.
 //
 // Ports (past clk, rst and the register buses: CUBE4_CFB_MASK_PORTS)
 //   clk, rst     clock, synchronous active-high reset (the valid bits only)
@@ -36,7 +40,8 @@
 //   rt_cur       in   [RECT_W] pass m's rectangle (I_LO, I_IN, I_HI)
 //   pbp          in   [IW] pb * P (cube4_cfb_trav)
 //   t1           in   [P*LANE_W] s1: the read row's lane positions (cube4_cfb_addr)
-//   advance      out  the stages move;  busy  out  idle is low or s1, s2 hold a beat
+//   advance      out  [CFB_ADV_N] the stages move (copies);  busy  out  idle is
+//                low or s1, s2 hold a beat
 //   req_valid / req_ready   the request handshake
 //   req_rden     out  [P] bank q reads;  req_tag  out  [TAG_W] the tag
 //
@@ -91,22 +96,24 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
         end
     endgenerate
 
-    reg           v1_q, v2_q, v_q;
+    reg           v1_q, v2_q;
+    wire [CFB_ADV_N-1:0] v_cp;            // the output register's valid bit, a copy per advance
     reg [F_W-1:0] f2_q, f_q;
-    assign advance = !v_q || req_ready;
+    assign advance = ~v_cp | {CFB_ADV_N{req_ready}};
+    wire   adv     = advance[CFB_ADV_MASK];
+    cube4_prim_reg_copies #(.COPIES(CFB_ADV_N), .W(1), .RESET(1)) u_v (
+        .clk(clk), .rst(rst), .en(advance), .d({CFB_ADV_N{v2_q}}), .q(v_cp));
     always @(posedge clk) begin
         if (rst) begin
             v1_q <= 1'b0;
             v2_q <= 1'b0;
-            v_q  <= 1'b0;
-        end else if (advance) begin
+        end else if (adv) begin
             v1_q <= issue;
             v2_q <= v1_q;
-            v_q  <= v2_q;
         end
     end
     always @(posedge clk) begin
-        if (advance) begin
+        if (adv) begin
             // s1
             f1_q      <= fields;
             tout1_q   <= tout_d;
@@ -126,7 +133,7 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     end
 
     assign busy      = !idle || v1_q || v2_q;
-    assign req_valid = v_q;
+    assign req_valid = v_cp[CFB_ADV_MASK];
     assign {req_rden, req_tag} = f_q;   // f2: {rden, LINL, LVAL, LNBR, LWRAP, f1}
 endmodule
 `default_nettype wire

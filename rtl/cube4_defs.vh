@@ -827,7 +827,10 @@
 // docs/architecture.md "Front end"): the build parameters (ranges as
 // cube4_cfb's) and CUBE4_CFB_LAYOUT: the layouts past the geometry and the
 // view registers', CFB_R_W (bits of m mod S), CFB_F1_W (the tag without its
-// lane masks), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
+// lane masks), CFB_ADV_N copies of the beat pipeline's advance (cube4_cfb_mask:
+// one per group of its loads, CFB_ADV_CTL the control and traversal,
+// CFB_ADV_BITS the beat's bits beside the stages (BEATS), CFB_ADV_ADDR the
+// address unit, CFB_ADV_MASK the mask's own stages), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
 // fields it holds at a constant, CFB_BOX_CONST (SBROW = 1, the rest 0).
 // CUBE4_CFB_PASS passes the build parameters on to a unit by name.
 // CUBE4_CFB_ENTRY(e): a table entry as a unit reads it; without rectangles
@@ -839,6 +842,8 @@
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_RECT_LAYOUT, \
     localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
     localparam integer CFB_F1_W = TAG_W - 4 * P, \
+    localparam integer CFB_ADV_N = 4, localparam integer CFB_ADV_CTL = 0, localparam integer CFB_ADV_BITS = 1, \
+    localparam integer CFB_ADV_ADDR = 2, localparam integer CFB_ADV_MASK = 3, \
     localparam [RECT_W-1:0] CFB_BOX_CONST = (RECT_W)'(1) << RT_SBROW, \
     localparam [RECT_W-1:0] CFB_BOX_FIXED = `CUBE4_CFB_BITS(1, RT_EMPTY) | `CUBE4_CFB_BITS(DIM_W, RT_J0) \
         | `CUBE4_CFB_BITS(DIM_W, RT_JIN) | `CUBE4_CFB_BITS(PB_W, RT_PB0) | `CUBE4_CFB_BITS(2 * DIM_W, RT_ILO) \
@@ -894,7 +899,7 @@
     input  wire [DIM_W-1:0] p_ilo, input wire [DIM_W-1:0] p_iin, input wire [DIM_W-1:0] p_ihi, \
     input  wire rowv, input wire rowin, input wire rd, \
     input  wire [RECT_W-1:0] rt_cur, input wire [IW-1:0] pbp, input wire [P*LANE_W-1:0] t1, \
-    output wire advance, output wire busy, \
+    output wire [CFB_ADV_N-1:0] advance, output wire busy, \
     output wire req_valid, input wire req_ready, \
     output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
 

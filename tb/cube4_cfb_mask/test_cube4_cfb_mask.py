@@ -94,7 +94,9 @@ async def play(dut, bench, trav, p: int, aw: int, table: list[dict], rects, off:
             assert n < len(want), f"beat {n}: more than the {len(want)} issued beats"
             assert got[n] == want[n], (f"beat {n} (rden, tag): RTL ({got[n][0]:#x}, {got[n][1]:#x}), "
                                        f"golden ({want[n][0]:#x}, {want[n][1]:#x})")
-        if int(dut.advance.value) and b is not None:
+        adv = int(dut.advance.value)         # CFB_ADV_N copies, all equal
+        assert adv in (0, (1 << len(dut.advance)) - 1), f"advance's copies differ: {adv:#b}"
+        if adv and b is not None:
             s1, k = b, k + 1
         quiet = quiet + 1 if b is None else 0
     assert len(got) == len(want), f"{len(got)} beats out, {len(want)} issued"
