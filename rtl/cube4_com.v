@@ -238,21 +238,22 @@ module cube4_com #(
     endgenerate
 
     // ==== the sequencer (BEATS = 1: a lane is inside only where its ray runs) ====
-    wire [HDR_W-1:0] seq_hdr;
-    wire [P-1:0]     run_lane;            // the lanes whose rays run (BEATS; all otherwise)
+    wire [P-1:0]     run0;                // S0: the lanes whose rays run (BEATS; all otherwise)
+    wire [P*LANE_W-1:0] tpos;
     generate
         if (BEATS != 0) begin : g_run
-            // the bits come by position t in the partial beam; lane q holds t = lane_pos(q)
-            wire [LANE_W-1:0] in_skew = c_hdr[HDR_SKEW +: LANE_W];
+            // the bits come by position t in the partial beam; lane q holds t = tpos[q]
+            // (S0): R0 registers them as they come, S0 takes each lane's, so neither the
+            // skew's lane positions nor the bits' multiplexer lies between COM's input
+            // skid and R0
+            reg [P-1:0] r0_runp;
+            always @(posedge clk) r0_runp <= c_bits[0 +: P];
             genvar qr;
             for (qr = 0; qr < P; qr = qr + 1) begin : g_lane_run
-                assign run_lane[qr] = c_bits[32'(lane_pos(qr, in_skew, cfg_flip_i, cfg_i_r1))];
+                assign run0[qr] = r0_runp[tpos[qr*LANE_W +: LANE_W]];
             end
-            wire [P-1:0] not_run = ~run_lane;
-            assign seq_hdr = c_hdr & ~({{(HDR_W - P){1'b0}}, not_run} << HDR_INSIDE);
         end else begin : g_no_run
-            assign seq_hdr = c_hdr;
-            assign run_lane = '1;
+            assign run0 = '1;
             wire unused_bits = ^{c_bits, c_eoss, frame_start, term_en, term_tau, term_vmin, term_vmax};
         end
     endgenerate
@@ -262,7 +263,6 @@ module cube4_com #(
     wire [DIM_W-1:0]  r0_j;
     wire [PB_W-1:0]   r0_pb;
     wire [P*IW-1:0]   ipos, f1_ipos;
-    wire [P*LANE_W-1:0] tpos;
     wire [P-1:0]      keep_5;
     wire [IW-1:0]     f1_j;
     wire              f1_dxf, f1_dyf;
@@ -286,11 +286,11 @@ module cube4_com #(
         .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM)
     ) u_seq (
         .clk(clk), .rst(rst), .cfg(cfg),
-        .in_valid(c_valid), .in_ready(c_ready), .in_hdr(seq_hdr),
+        .in_valid(c_valid), .in_ready(c_ready), .in_hdr(c_hdr),
         .take(take), .credit(credit), .hazard(hazard), .step(step), .step_c(step_c),
         .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb), .sop(sop), .first(first), .dxb(dxb), .dyb(dyb),
         .ipos(ipos), .tpos(tpos), .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),
-        .pos_sp(pos_sp), .pos_pb(pos_pb), .fresh(fresh), .stx(stx), .sty(sty), .nx_in(nx_in),
+        .pos_sp(pos_sp), .pos_pb(pos_pb), .fresh(fresh), .run0(run0), .stx(stx), .sty(sty), .nx_in(nx_in),
         .v_s(v_s), .sp_fly(sp_fly), .sp_wr(sp_wr), .pb_rd(pb_rd), .pb_wr(pb_wr),
         .dxb4(dxb4), .dyb4(dyb4), .dkb4(dkb4), .t0_4(t0_4), .fresh_4(fresh_4),
         .keep_5(keep_5), .fin_5(fin_t5), .cnt_6(cnt_6), .cnt_7(cnt_7),
@@ -328,15 +328,13 @@ module cube4_com #(
                 eoss_s  <= {eoss_s[NS-1:1], r0_eoss};
                 eoss11  <= eoss_s[NS];
             end
-            reg  [P-1:0] r0_run;
-            always @(posedge clk) r0_run <= run_lane;
             localparam integer RX_W = P + P * LANE_W + 2 * DIM_W;   // {rok, tpos, stx, sty} S1 .. S11
             reg  [RX_W-1:0] rx_s [1:11];
             reg  [SP_W-1:0] sp11;
             reg             v11;
             integer kx;
             always @(posedge clk) begin
-                rx_s[1] <= {r0_run & ~soon_0, tpos, stx, sty};
+                rx_s[1] <= {run0 & ~soon_0, tpos, stx, sty};
                 for (kx = 2; kx <= 11; kx = kx + 1) rx_s[kx] <= rx_s[kx-1];
                 sp11 <= sp_wr;
                 v11  <= rst ? 1'b0 : v_s[NS];
@@ -429,7 +427,7 @@ module cube4_com #(
             assign rep_end = '0;
             assign com_m   = '0;
             assign rok11   = '0;
-            wire unused_rep = ^{fin_t5, rep, run_lane};
+            wire unused_rep = ^{fin_t5, rep, run0};
         end
     endgenerate
 

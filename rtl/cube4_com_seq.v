@@ -43,6 +43,8 @@
 //   f1_*      S1 registers: ipos, j [IW], the next sample's steps dxf, dyf
 //   pos_sp, pos_pb   in   R0's slot and partial beam (walk / rect)
 //   fresh     in   S0: the lane's ray starts (its previous sample is outside)
+//   run0      in   S0: the lane's ray runs (the beat schedule's run bit at the
+//             lane's position, ANDed with inside; all ones otherwise)
 //   stx, sty  in   S0: stepx(m), stepy(m) [DIM_W]
 //   nx_in     in   S1: the lane's next sample is inside
 //   v_s       out  the valid bits of S1 .. S10
@@ -80,6 +82,7 @@ module cube4_com_seq #(
     output wire [P*IW-1:0] ipos, output wire [P*LANE_W-1:0] tpos,
     output reg  [P*IW-1:0] f1_ipos, output reg [IW-1:0] f1_j, output reg f1_dxf, output reg f1_dyf,
     input  wire [SP_W-1:0] pos_sp, input wire [PB_W-1:0] pos_pb, input wire [P-1:0] fresh,
+    input  wire [P-1:0] run0,
     input  wire [DIM_W-1:0] stx, input wire [DIM_W-1:0] sty, input wire [P-1:0] nx_in,
     output reg  [NS:1] v_s,
     output wire [(NS-1)*SP_W-1:0] sp_fly, output wire [SP_W-1:0] sp_wr,
@@ -134,7 +137,7 @@ module cube4_com_seq #(
         for (q = 0; q < P; q = q + 1) begin : g_pos
             wire [LANE_W-1:0] t = lane_pos(q, r0_skew, cfg_flip_i, cfg_i_r1);
             assign t0_d[q]  = (t == '0);
-            assign ins_d[q] = r0_lane_valid[q] && r0_lane_inside[q];
+            assign ins_d[q] = r0_lane_valid[q] && r0_lane_inside[q] && run0[q];
             assign cnt_d[q] = ins_d[q] && r0_lane_keep[q];   // the sample counts
             assign ipos[q*IW +: IW] = pbp + IW'(t);
             assign tpos[q*LANE_W +: LANE_W] = t;

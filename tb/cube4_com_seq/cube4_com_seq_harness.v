@@ -64,6 +64,7 @@ module cube4_com_seq_harness #(
 );
     `CUBE4_HARNESS_VIEW
     wire [P-1:0] fin_5 = '0;     // (the beat schedule's countdown: cube4_com's)
+    wire [P-1:0] run0  = '1;     // (the beat schedule's run bits: cube4_com's)
     cube4_com_seq #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_seq (.*);
     cube4_stream_check #(.NAME("com_seq.in (shaded headers)"), .DATA_W(HDR_W)) u_chk_in (
         .clk(clk), .rst(rst), .valid(in_valid), .ready(in_ready), .data(in_hdr));
