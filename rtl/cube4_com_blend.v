@@ -30,6 +30,10 @@
 //   acc5       in   S5: {C_R, C_G, C_B, T}, ACC_W + 1 bits each, Q0.ACC_W
 //                   (0 .. 2^ACC_W; T starts at 2^ACC_W)
 //   a5         in   S5: the sample's A, Q0.ALPHA_W
+//   t5         in   S5: T's factor in T * A: ONE in X-ray, else acc5's T (the
+//                   caller forms it from selects of its own, so that the
+//                   multiplier's operand has logic and control registers of
+//                   its own, placed by it alone)
 //   c7         in   S7: the sample's {R', G', B'}, Q0.8 each
 //   cnt7       in   S7: the sample counts
 //   mode_xray  in   X-ray (else composite); static within a frame
@@ -55,7 +59,8 @@ module cube4_com_blend #(
     localparam integer CMP_W = 4 * CW
 ) (
     input  wire clk,
-    input  wire [CMP_W-1:0] acc5, input wire [ALPHA_W-1:0] a5, input wire [23:0] c7,
+    input  wire [CMP_W-1:0] acc5, input wire [ALPHA_W-1:0] a5, input wire [CW-1:0] t5,
+    input  wire [23:0] c7,
     input  wire cnt7, input wire mode_xray, input wire [CW-1:0] depth_t, input wire [CW-1:0] tau,
     output reg  [CMP_W-1:0] acc_q, output wire [CMP_W-1:0] pix,
     output reg  added_q, output reg passed_q,
@@ -84,7 +89,19 @@ module cube4_com_blend #(
 
     // S6: T * A (X-ray: 2^F * A); cube4_mul's operand registers take S5's
     // values, its product register is S7's
-    wire [CW-1:0] t_mul_d = mode_xray ? ONE : acc5[0 +: CW];
+    wire [CW-1:0] t_mul_d = t5;
+`ifndef SYNTHESIS
+    // (t5 is the caller's: ONE in X-ray, else acc5's T; the caller registers the
+    // mode with S5's selects, so in every cycle it is the mode of the cycle
+    // before, which is the mode whenever S5 holds a beat: the mode changes
+    // between frames only)
+    reg xray_q;
+    always @(posedge clk) begin
+        xray_q <= mode_xray;
+        if (t5 !== (xray_q ? ONE : acc5[0 +: CW]) && !$isunknown({xray_q, acc5[0 +: CW]}))
+            $fatal(1, "cube4_com_blend: t5 %h is not T's factor %h", t5, xray_q ? ONE : acc5[0 +: CW]);
+    end
+`endif
     wire signed [TA_W+1:0] ta_p;
     cube4_mul #(.A_W(CW + 1), .B_W(ALPHA_W + 1)) u_ta (
         .clk (clk), .en (1'b1), .a ($signed({1'b0, t_mul_d})), .b ($signed({1'b0, a5})), .p (ta_p));

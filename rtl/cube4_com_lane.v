@@ -162,6 +162,20 @@ module cube4_com_lane #(
     wire [AC_W-1:0] prev    = (dxb_v & ((t0_v & prevb_sh) | (~t0_v & back_sh))) | (~dxb_v & back5);
     wire [AC_W-1:0] fresh_w = (ext_v & min_v & FRESH_MIN) | (~ext_v & FRESH_CMP);
     wire [AC_W-1:0] acc_in  = (fresh_v & fresh_w) | (~fresh_v & prev);
+    // T's factor in T * A (cube4_com_blend t5): ONE in X-ray and for a fresh
+    // composite ray, zero for a fresh extremum ray (fresh_w's T bits), else
+    // prev's T; from control registers of its own (t_one, t_keep and the X-step
+    // selects), so the multiplier's operand is logic of its own beside it,
+    // not acc_in's (which the lane's S6 registers also take)
+    wire [4*CW-1:0] tctl;
+    cube4_prim_spread #(.W(4), .D(CW), .COPIES(1)) u_tctl (
+        .clk(clk), .rst(1'b0),
+        .d({dxb4, t0_4, mode_xray || (fresh_4 && !mode_ext), !mode_xray && !fresh_4}), .q(tctl));
+    wire [CW-1:0] t_keep = tctl[0 +: CW], t_one = tctl[CW +: CW];
+    wire [CW-1:0] t_t0   = tctl[2*CW +: CW], t_dxb = tctl[3*CW +: CW];
+    wire [CW-1:0] t_prev = (t_dxb & ((t_t0 & prevb_sh[0 +: CW]) | (~t_t0 & back_sh[0 +: CW])))
+                         | (~t_dxb & back5[0 +: CW]);
+    wire [CW-1:0] t5     = (t_keep & t_prev) | (t_one & ONE);
 
     // ---- S6 .. S11: the datapaths (their S11 registers) ----
     wire cnt6_t, cnt7_t;                // the counts, without a ray done before (TERM)
@@ -173,13 +187,13 @@ module cube4_com_lane #(
         if (COMPOSITING != 0) begin : g_blend
             wire [CMP_W-1:0] acc_c_q;
             cube4_com_blend #(.ALPHA_W(ALPHA_W), .ACC_W(ACC_W)) u_blend (
-                .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend),
+                .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend), .t5(t5),
                 .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt7_t), .mode_xray(mode_xray), .depth_t(depth_t),
                 .tau(term_tau), .acc_q(acc_c_q), .pix(pix_c), .added_q(added_c), .passed_q(passed_c),
                 .done_q(done_c), .done_x_q(done_x));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
-            wire unused_blend = ^{mode_xray, cnt7_t, a5_blend, depth_t};
+            wire unused_blend = ^{mode_xray, cnt7_t, a5_blend, depth_t, t5};
             assign acc_c = '0;
             assign pix_c = '0;
             assign {added_c, passed_c, done_c, done_x} = 4'b0000;
