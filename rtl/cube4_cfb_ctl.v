@@ -97,15 +97,19 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
     assign skew_out = use_prev ? pskew_q : skew_pas;
     wire              emit_d = in_run ? (!fr_q || pend_q) : in_flush;
     wire [M_W-1:0]    mout_d = (in_run && fr_q) ? m - 1'b1 : m;   // flush: m stays
-    wire [DIM_W-1:0]  jout_d = use_prev ? p_jl : j - 1'b1;
+    wire [DIM_W-1:0]  jout_c = j - 1'b1;                  // the row below this pass's beam
+    wire [DIM_W-1:0]  jout_d = use_prev ? p_jl : jout_c;
     // the emitted row holds samples (TJ0 .. TJL); inside: not below J_IN, and not
     // the last sample row when wy > 0 (the box's high-face rule, numerics.md 4)
-    wire [DIM_W-1:0]    tj0_out = use_prev ? p_tj0 : e_tj0;
-    wire [DIM_W-1:0]    tjl_out = use_prev ? p_tjl : e_tjl;
+    // (each candidate's compares, selected after them, so that the state's
+    // use_prev is not in series with the compares)
     wire [WEIGHT_W-1:0] wy_out  = use_prev ? pwy_q : wy;
-    assign rowv  = (jout_d >= tj0_out) && (jout_d <= tjl_out);
-    assign rowin = (jout_d >= (use_prev ? p_jin : cur[RT_JIN +: DIM_W]))
-                   && !((jout_d == tjl_out) && (wy_out != '0));
+    wire rowv_p  = (p_jl >= p_tj0) && (p_jl <= p_tjl);
+    wire rowv_c  = (jout_c >= e_tj0) && (jout_c <= e_tjl);
+    wire rowin_p = (p_jl >= p_jin) && !((p_jl == p_tjl) && (pwy_q != '0));
+    wire rowin_c = (jout_c >= cur[RT_JIN +: DIM_W]) && !((jout_c == e_tjl) && (wy != '0));
+    assign rowv  = use_prev ? rowv_p : rowv_c;
+    assign rowin = use_prev ? rowin_p : rowin_c;
     assign rd    = in_run && (lower_mem || upper_mem) && (j >= e_tj0) && (j <= e_tjl);
     assign fields = {emit_d, emit_d && sopp_q, in_flush && last_pb && e_last, use_prev,
                      in_run, in_run && lower_mem, in_run && upper_mem, in_run && (r != '0),
