@@ -1,6 +1,7 @@
 """Unit testbench of rtl/cube4_com_blend.v: one lane's composite / X-ray step, bit for bit.
 
-Every cycle a new sample enters at S5 (acc5 = the ray's {C_R, C_G, C_B, T}, a5 = its A),
+Every cycle a new sample enters at S5 (acc5 = the ray's {C_R, C_G, C_B, T}, a5 = its A,
+t5 = T's factor in T·A as cube4_com_lane forms it: 2^ACC_W in X-ray, else T),
 with its colour and its "counts" flag two cycles later (c7, cnt7: S7); six edges later acc_q and pix must equal the golden step (``cube4.model.composite``
 or ``cube4.model.xray`` on the same values: w, the rounding, X-ray's saturation) and
 the pixel {C_R, C_G, C_B, 2^ACC_W - T}, and termination's flags on the new word
@@ -70,6 +71,7 @@ async def test_blend(dut):
             await FallingEdge(dut.clk)
             if t < N:
                 dut.acc5.value = pack_fields([*acc[:, t], trans[t]], cw)
+                dut.t5.value = (1 << acc_w) if mode == "xray" else int(trans[t])   # T's factor (the lane's)
                 dut.a5.value = int(rgba[3, t])
             if 2 <= t <= N + 1:
                 dut.c7.value = pack_fields(rgba[:3, t - 2], 8)
