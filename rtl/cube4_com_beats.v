@@ -14,8 +14,8 @@
 //     nx_in   the ray runs the next slice too (not bit last) and its next
 //             sample (m+1, j+dyf, i+dxf) is inside the box (cube4_com_walk's
 //             rule: the last column / row is outside when wx / wy > 0)
-//   The running lanes' INSIDE is the caller's (cube4_com ANDs bit run into
-//   the header). The steps and phases of the beat's slice m come with it
+//   Whether a lane's ray runs is the caller's (cube4_com registers bit run
+//   at R0 and ANDs each lane's into inside at S0, cube4_com_seq run0). The steps and phases of the beat's slice m come with it
 //   (c_geo: cube4_com_steps, where the beats leave SHA in cube4_top) through
 //   the skid buffers, and R0 registers them on every cycle: neither the take
 //   nor the hazard reaches them, and no logic of them lies on the route from
@@ -101,7 +101,7 @@ module cube4_com_beats #(
         end
     endgenerate
     always @(posedge clk) s1_last <= last_0;
-    wire unused_run = ^in_bits[0 +: P];   // (ANDed into the header's INSIDE by cube4_com)
+    wire unused_run = ^in_bits[0 +: P];   // (ANDed into inside at S0 by cube4_com)
 
     // ---- the steps and phases of the beat's slice: decided where the beat left
     // SHA (cube4_com_steps), they come with it through the skid buffers (c_geo);

@@ -159,7 +159,11 @@ module cube4_com_lane #(
     wire [AC_W-1:0] min_v   = ctl[0 +: AC_W],      ext_v = ctl[AC_W +: AC_W];
     wire [AC_W-1:0] fresh_v = ctl[2*AC_W +: AC_W], t0_v  = ctl[3*AC_W +: AC_W];
     wire [AC_W-1:0] dxb_v   = ctl[4*AC_W +: AC_W];
-    wire [AC_W-1:0] prev    = (dxb_v & ((t0_v & prevb_sh) | (~t0_v & back_sh))) | (~dxb_v & back5);
+    // prev = dxb ? (t0 ? prevb_sh : back_sh) : back5, bit by bit with each bit's selects
+    function automatic [AC_W-1:0] prev_of(input [AC_W-1:0] dxb, input [AC_W-1:0] t0);
+        prev_of = (dxb & ((t0 & prevb_sh) | (~t0 & back_sh))) | (~dxb & back5);
+    endfunction
+    wire [AC_W-1:0] prev    = prev_of(dxb_v, t0_v);
     wire [AC_W-1:0] fresh_w = (ext_v & min_v & FRESH_MIN) | (~ext_v & FRESH_CMP);
     wire [AC_W-1:0] acc_in  = (fresh_v & fresh_w) | (~fresh_v & prev);
     // T's factor in T * A (cube4_com_blend t5): ONE in X-ray and for a fresh
@@ -173,8 +177,9 @@ module cube4_com_lane #(
         .d({dxb4, t0_4, mode_xray || (fresh_4 && !mode_ext), !mode_xray && !fresh_4}), .q(tctl));
     wire [CW-1:0] t_keep = tctl[0 +: CW], t_one = tctl[CW +: CW];
     wire [CW-1:0] t_t0   = tctl[2*CW +: CW], t_dxb = tctl[3*CW +: CW];
-    wire [CW-1:0] t_prev = (t_dxb & ((t_t0 & prevb_sh[0 +: CW]) | (~t_t0 & back_sh[0 +: CW])))
-                         | (~t_dxb & back5[0 +: CW]);
+    wire [AC_W-1:0] t_prev_w = prev_of(AC_W'(t_dxb), AC_W'(t_t0));   // (its T bits are used)
+    wire [CW-1:0] t_prev = t_prev_w[0 +: CW];
+    wire unused_t_prev = ^t_prev_w[AC_W-1:CW];   // (the word above T: acc_in's)
     wire [CW-1:0] t5     = (t_keep & t_prev) | (t_one & ONE);
 
     // ---- S6 .. S11: the datapaths (their S11 registers) ----
