@@ -243,9 +243,10 @@ module cube4_com #(
     generate
         if (BEATS != 0) begin : g_run
             // the bits come by position t in the partial beam; lane q holds t = tpos[q]
-            // (S0): R0 registers them as they come, S0 takes each lane's, so neither the
-            // skew's lane positions nor the bits' multiplexer lies between COM's input
-            // skid and R0
+            // (S0, a register of its own, cube4_com_seq T_R0): R0 registers the bits as
+            // they come, S0 takes each lane's, so neither the skew's lane positions nor
+            // the bits' multiplexer lies between COM's input skid and R0, and only the
+            // multiplexer lies between R0 and S1
             reg [P-1:0] r0_runp;
             always @(posedge clk) r0_runp <= c_bits[0 +: P];
             genvar qr;
@@ -283,7 +284,7 @@ module cube4_com #(
     wire              eop_o;
     cube4_com_seq #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .SP_W(SP_W),
-        .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM)
+        .COMPOSITING(COMPOSITING), .EXTREMUM(EXTREMUM), .T_R0(BEATS != 0 ? 1 : 0)
     ) u_seq (
         .clk(clk), .rst(rst), .cfg(cfg),
         .in_valid(c_valid), .in_ready(c_ready), .in_hdr(c_hdr),

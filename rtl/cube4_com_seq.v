@@ -21,6 +21,12 @@
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: as cube4_com (1..64, 2..2048, 4..12, 0..3).
 //   SP_W    the slice-buffer slot's width (cube4_com).   1..22.  Default 13.
 //   COMPOSITING, EXTREMUM: as cube4_com (the mode registers).  0..1.
+//   T_R0    where the lanes' positions t are formed.  0..1.  Default 0.
+//           0: at S0, from R0's skew (the input comes straight from SHA);
+//           1: at R0, from in_hdr's skew, one register per lane (BEATS: the
+//           input is a skid buffer's registers, and the lanes' run, fresh,
+//           last and soon bits are picked by t at S0, so t must come from a
+//           register beside them, not through lane_pos from R0's one skew).
 //
 // Latency
 //   Stages R0, S1 .. S10 move on every cycle, each with a valid bit (v_s[k]:
@@ -69,6 +75,7 @@ module cube4_com_seq #(
     `CUBE4_SLICE_PARAMS,
     parameter integer SP_W     = 13,
     parameter integer COMPOSITING = 1, parameter integer EXTREMUM = 1,
+    parameter integer T_R0     = 0,
     localparam integer BX_W = DIM_W + 1,
     localparam integer NS   = 10                 // stages S1 .. S10
 ) (
@@ -135,7 +142,20 @@ module cube4_com_seq #(
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
-            wire [LANE_W-1:0] t = lane_pos(q, r0_skew, cfg_flip_i, cfg_i_r1);
+            wire [LANE_W-1:0] t;
+            if (T_R0 != 0) begin : g_t_r0
+                reg [LANE_W-1:0] r0_t;       // R0: lane_pos of the header it registers
+                always @(posedge clk) r0_t <= lane_pos(q, in_hdr[HDR_SKEW +: LANE_W], cfg_flip_i, cfg_i_r1);
+                assign t = r0_t;
+`ifndef SYNTHESIS
+                always @(posedge clk) begin
+                    if (!rst && step && (r0_t != lane_pos(q, r0_skew, cfg_flip_i, cfg_i_r1)))
+                        $fatal(1, "cube4_com_seq: lane %0d's registered position differs from R0's skew", q);
+                end
+`endif
+            end else begin : g_t_s0
+                assign t = lane_pos(q, r0_skew, cfg_flip_i, cfg_i_r1);
+            end
             assign t0_d[q]  = (t == '0);
             assign ins_d[q] = r0_lane_valid[q] && r0_lane_inside[q] && run0[q];
             assign cnt_d[q] = ins_d[q] && r0_lane_keep[q];   // the sample counts

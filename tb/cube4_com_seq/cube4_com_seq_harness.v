@@ -11,8 +11,9 @@
 //   a cube4_stream_check on the input stream.
 //
 // Parameters: P, MAX_DIM, MAX_SS_LOG2, WEIGHT_W as cube4_com_seq
-//   (CUBE4_UNIT_PARAMS); the slot width as cube4_com derives it without
-//   rectangles.
+//   (CUBE4_UNIT_PARAMS); T_R0 as cube4_com_seq (0..1, default 0; 1: the lanes'
+//   positions registered at R0, as BEATS builds it); the slot width as
+//   cube4_com derives it without rectangles.
 //
 // Latency: that of cube4_com_seq (the ports connect straight to it).
 //
@@ -21,6 +22,7 @@
 // =============================================================================
 module cube4_com_seq_harness #(
     `CUBE4_UNIT_PARAMS
+    parameter  integer T_R0  = 0,
     localparam integer SP_W  = (MAX_DIM * NBMAX > 1) ? $clog2(MAX_DIM * NBMAX) : 1,
     localparam integer BX_W  = DIM_W + 1
 ) (
@@ -65,7 +67,7 @@ module cube4_com_seq_harness #(
     `CUBE4_HARNESS_VIEW
     wire [P-1:0] fin_5 = '0;     // (the beat schedule's countdown: cube4_com's)
     wire [P-1:0] run0  = '1;     // (the beat schedule's run bits: cube4_com's)
-    cube4_com_seq #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_seq (.*);
+    cube4_com_seq #(`CUBE4_SLICE_PASS, .SP_W(SP_W), .T_R0(T_R0)) u_seq (.*);
     cube4_stream_check #(.NAME("com_seq.in (shaded headers)"), .DATA_W(HDR_W)) u_chk_in (
         .clk(clk), .rst(rst), .valid(in_valid), .ready(in_ready), .data(in_hdr));
 endmodule

@@ -188,7 +188,9 @@ async def test_sequencer(dut):
                       clip_kind, ss, gap, pushes, len(frame.pixels))
 
 
-BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5}]
+# T_R0 = 1: the lanes' positions registered at R0 (the BEATS builds'), at a P that is
+# not a power of two (lane_pos wraps by P)
+BUILDS = [{"P": 1, "MAX_SS_LOG2": 1}, {"P": 5}, {"P": 3, "T_R0": 1}]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))  # P = 1: make regress (make test runs the top at P = 1)
