@@ -138,21 +138,24 @@ module cube4_gra_beats
 
     // the input passes a skid buffer first (cube4_gra_beats_in): the choice of the
     // next step starts at registers (the head beat's place against the row, decided
-    // a cycle ahead), and in_ready is a register (not the choice's result)
+    // a cycle ahead, and its partial beam as bit words, decoded as it entered), and
+    // in_ready is a register (not the choice's result)
     wire              s_valid, s_ready, s_eoss;
     wire [HDR_W-1:0]  s_hdr;
     wire [PV-1:0]     s_sample;
     wire              s_eq0, s_gt0, s_eq1, s_gt1;    // the head against {w, r}, {w, r + 1}
+    wire [NBX-1:0]    in_oh, in_below;               // the head's partial beam: bit pb, bits below it
     wire              row_mv;                        // the row moves on to {nx_w, nx_r}
     wire [M_W-1:0]    nx_w;
     wire [DIM_W-1:0]  nx_r, nx_r1;
-    cube4_gra_beats_in #(.DATA_W (1 + HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W)) u_in (
+    cube4_gra_beats_in #(.DATA_W (1 + HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W), .PB_W (PB_W), .NBX (NBX)) u_in (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_eoss, in_hdr, in_sample}),
         .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_eoss, s_hdr, s_sample}),
         .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
         .w (w), .r (r), .r1 (r1), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1), .home (start),
-        .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1));
+        .in_pb (in_hdr[HDR_PB +: PB_W]),
+        .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1), .oh (in_oh), .below (in_below));
     wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
     wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
     wire              in_eop = s_hdr[HDR_CTRL + CTRL_EOP];
@@ -228,14 +231,6 @@ module cube4_gra_beats
             if (oh[b]) enc = enc | PB_W'(b);
         end
     endfunction
-    function automatic [NBX-1:0] upto(input [PB_W-1:0] pb);       // bits 0 .. pb
-        integer b;
-        for (b = 0; b < NBX; b = b + 1) upto[b] = (PB_W'(b) <= pb);
-    endfunction
-    function automatic [NBX-1:0] below(input [PB_W-1:0] pb);      // bits 0 .. pb - 1
-        integer b;
-        for (b = 0; b < NBX; b = b + 1) below[b] = (PB_W'(b) < pb);
-    endfunction
     // gm's and nx_gm's lowest bits are registers kept with them (g_oh, x_oh), so
     // the choice and what it decides start at flip-flops, not at a carry chain
     // over gm; the second lowest bits (g2_oh, x2_oh) are what g_oh takes when a
@@ -246,9 +241,7 @@ module cube4_gra_beats
     wire [NBX-1:0]  x2_oh = low_oh(nx_gm & ~x_oh);
     wire [PB_W-1:0] g_pb = enc(g_oh);
     wire [PB_W-1:0] x_pb = enc(x_oh);
-    wire [NBX-1:0]  in_upto = upto(in_pb);
-    wire [NBX-1:0]  in_below = below(in_pb);
-    wire [NBX-1:0]  in_oh = in_upto & ~in_below;
+    wire [NBX-1:0]  in_upto = in_oh | in_below;             // bits 0 .. in_pb
     wire g_any   = act && !tail && |gm;
     wire g_first = g_any && (!in_row || |(gm & in_below));  // a generated step comes first (g_pb < in_pb)
     wire start   = !act && s_valid;                         // a frame's first beat waits
@@ -281,8 +274,8 @@ module cube4_gra_beats
     // input's beat, the row's generated step, the next row's input or generated step),
     // side by side with the choice, which then picks one
     wire [PB_W-1:0]  row_pb1 = row_pb + 1'b1;
-    wire pg_in  = s_cur[in_pb],  pg_gen = |(s_cur & g_oh),  pg_inx = nx_s[in_pb],  pg_genx = |(nx_s & x_oh);
-    wire bg_in  = prev_s[in_pb], bg_gen = |(prev_s & g_oh), bg_inx = acc_s[in_pb], bg_genx = |(acc_s & x_oh);
+    wire pg_in  = |(s_cur & in_oh),  pg_gen = |(s_cur & g_oh),  pg_inx = |(nx_s & in_oh),  pg_genx = |(nx_s & x_oh);
+    wire bg_in  = |(prev_s & in_oh), bg_gen = |(prev_s & g_oh), bg_inx = |(acc_s & in_oh), bg_genx = |(acc_s & x_oh);
     wire ld_pg = !ld_tail && w_pos && ((ld_in && pg_in) || (ld_gen && pg_gen) || (ld_in_x && pg_inx)
                                        || (ld_gen_x && pg_genx));
     wire ld_bg = !ld_tail && (ld_nx ? !r_ones && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))

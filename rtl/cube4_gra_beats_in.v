@@ -20,11 +20,17 @@
 //   (home: to {0, 0}) they are compared again against the new row, and a
 //   beat that enters takes its flags against the row of the next cycle.
 //   The entries' pointers shadow the skid's (both move on its push and pop).
+//   Each entry also keeps its beat's partial beam as bit words, decoded as it
+//   enters (oh: bit pb; below: bits 0 .. pb - 1), so that the source's choice
+//   takes them from flip-flops through one multiplexer, not through the
+//   skid's multiplexer and a compare with every bit position.
 //
 // Parameters
 //   DATA_W   the payload (any format).                1..4096.
 //   M_W      bits of a slice.                         1..16.
 //   DIM_W    bits of a row.                           1..16.
+//   PB_W     bits of a partial beam.                  1..8.
+//   NBX      bits of a row word (partial beams 0 .. NBX - 1).  1..256.
 //
 // Latency: as cube4_skid (one cycle; in_ready is a register). The flags of
 //   the head are registers selected by a register (the read pointer).
@@ -35,14 +41,19 @@
 //   mv, nx_w, nx_r, nx_r1  it moves on to {nx_w, nx_r} this cycle (nx_r1 =
 //                 nx_r + 1)
 //   home          it is set to {0, 0} this cycle (a frame's start)
+//   in_pb         the partial beam of in_data (below NBX)
 //   eq0, gt0, eq1, gt1   out  the head's place (valid with out_valid)
+//   oh, below     out  the head's partial beam pb as bit words [NBX]: bit pb;
+//                 bits 0 .. pb - 1 (valid with out_valid)
 //
 // Bit growth and rounding: none (compares only).
 // =============================================================================
 module cube4_gra_beats_in #(
     parameter integer DATA_W = 8,
     parameter integer M_W    = 8,
-    parameter integer DIM_W  = 8
+    parameter integer DIM_W  = 8,
+    parameter integer PB_W   = 4,
+    parameter integer NBX    = 16
 ) (
     `CUBE4_STREAM_PORTS(DATA_W),
     input  wire [M_W-1:0]   in_m,
@@ -55,12 +66,16 @@ module cube4_gra_beats_in #(
     input  wire [DIM_W-1:0] nx_r,
     input  wire [DIM_W-1:0] nx_r1,
     input  wire             home,
-    output wire             eq0, output wire gt0, output wire eq1, output wire gt1
+    input  wire [PB_W-1:0]  in_pb,
+    output wire             eq0, output wire gt0, output wire eq1, output wire gt1,
+    output wire [NBX-1:0]   oh, output wire [NBX-1:0] below
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_gra_beats_in", "DATA_W", DATA_W, 1, 4096)
         `CUBE4_RANGE(g_bad_m_w, "cube4_gra_beats_in", "M_W", M_W, 1, 16)
         `CUBE4_RANGE(g_bad_dim_w, "cube4_gra_beats_in", "DIM_W", DIM_W, 1, 16)
+        `CUBE4_RANGE(g_bad_pb_w, "cube4_gra_beats_in", "PB_W", PB_W, 1, 8)
+        `CUBE4_RANGE(g_bad_nbx, "cube4_gra_beats_in", "NBX", NBX, 1, 256)
     endgenerate
     localparam integer KW = M_W + DIM_W;
 
@@ -87,9 +102,20 @@ module cube4_gra_beats_in #(
         next_place = h ? place(key, '0, '0, DIM_W'(1)) : (m ? place(key, mw, mr, mr1) : now);
     endfunction
 
+    // a partial beam's bit words
+    function automatic [NBX-1:0] bit_of(input [PB_W-1:0] pb);      // bit pb
+        integer b;
+        for (b = 0; b < NBX; b = b + 1) bit_of[b] = (PB_W'(b) == pb);
+    endfunction
+    function automatic [NBX-1:0] below_of(input [PB_W-1:0] pb);    // bits 0 .. pb - 1
+        integer b;
+        for (b = 0; b < NBX; b = b + 1) below_of[b] = (PB_W'(b) < pb);
+    endfunction
+
     reg            wp, rp;                 // the skid's pointers, shadowed
     reg  [KW-1:0]  key [0:1];
     reg  [3:0]     pl  [0:1];
+    reg  [NBX-1:0] e_oh [0:1], e_below [0:1];
     wire [KW-1:0]  in_key = {in_m, in_j};
     wire [3:0]     in_pl  = next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1);
     always @(posedge clk) begin
@@ -106,8 +132,10 @@ module cube4_gra_beats_in #(
         for (e = 0; e < 2; e = e + 1) begin : g_entry
             always @(posedge clk) begin
                 if (push && wp == (e == 1)) begin
-                    key[e] <= in_key;
-                    pl[e]  <= in_pl;
+                    key[e]     <= in_key;
+                    pl[e]      <= in_pl;
+                    e_oh[e]    <= bit_of(in_pb);
+                    e_below[e] <= below_of(in_pb);
                 end else begin
                     pl[e]  <= next_place(key[e], pl[e], home, mv, nx_w, nx_r, nx_r1);
                 end
@@ -115,5 +143,7 @@ module cube4_gra_beats_in #(
         end
     endgenerate
     assign {eq0, gt0, eq1, gt1} = pl[rp];
+    assign oh    = e_oh[rp];
+    assign below = e_below[rp];
 endmodule
 `default_nettype wire

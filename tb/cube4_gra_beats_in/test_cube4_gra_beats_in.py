@@ -8,9 +8,11 @@ nx_r + 1 come in as the source gives them (r1, nx_r1). Checked every
 cycle: the beats come out in order, none lost or extra, data held while not taken;
 with out_valid, the head's flags are its key against the row of that cycle: eq0 =
 key == {w, r}, gt0 = key > {w, r}, eq1 and gt1 against {w, r + 1} (r + 1 in DIM_W bits,
-so r = 2^DIM_W - 1 compares with {w, 0}). M_W = 4 and DIM_W = 3 put equal keys and the
-wrap within reach. With the entries' flags kept (not compared again) on mv, the check
-fails ("beat N: flags RTL ..., model ..."; tried).
+so r = 2^DIM_W - 1 compares with {w, 0}); the head's partial beam pb (random, below NBX)
+as bit words: oh = bit pb, below = bits 0 .. pb - 1. M_W = 4 and DIM_W = 3 put equal keys
+and the wrap within reach. With the entries' flags kept (not compared again) on mv, the
+check fails ("beat N: flags RTL ..., model ..."; tried); with below decoded as bits
+0 .. pb, "beat N: pb ... bit words" (tried).
 """
 
 from __future__ import annotations
@@ -33,19 +35,20 @@ def place(key: tuple[int, int], w: int, r: int, dim_w: int) -> tuple[int, int, i
 
 @cocotb.test()
 async def test_places(dut):
-    data_w, m_w, dim_w = top_params(dut, "DATA_W", "M_W", "DIM_W")
+    data_w, m_w, dim_w, nbx = top_params(dut, "DATA_W", "M_W", "DIM_W", "NBX")
     rng = np.random.default_rng(cocotb.RANDOM_SEED)
     start_clock(dut)
     d = dut
     d.in_valid.value, d.out_ready.value, d.mv.value, d.home.value = 0, 0, 0, 0
     d.w.value, d.r.value, d.nx_w.value, d.nx_r.value, d.in_data.value, d.in_m.value, d.in_j.value = 0, 0, 0, 0, 0, 0, 0
+    d.in_pb.value = 0
     d.r1.value, d.nx_r1.value = 1, 1
     d.rst.value = 1
     for _ in range(3):
         await RisingEdge(d.clk)
     await FallingEdge(d.clk)
     d.rst.value = 0
-    model: deque[tuple[int, tuple[int, int]]] = deque()
+    model: deque[tuple[int, tuple[int, int], int]] = deque()
     w = r = 0
     sent = got = checked = 0
     held = None
@@ -53,6 +56,7 @@ async def test_places(dut):
         key = (int(rng.integers(0, 1 << m_w)), int(rng.integers(0, 1 << dim_w)))
         if rng.random() < 0.5 and w < (1 << m_w) and cyc % 7:      # keys near the row, often
             key = (w, (r + int(rng.integers(-1, 3))) % (1 << dim_w))
+        pb = int(rng.integers(0, nbx))
         data = (sent << (m_w + dim_w)) | (key[0] << dim_w) | key[1]
         valid, ready = rng.random() < 0.6, rng.random() < 0.55
         if cyc >= 5990:                                           # the drain
@@ -64,6 +68,7 @@ async def test_places(dut):
             nx = (w, (r + 1) % (1 << dim_w)) if r + 1 < (1 << dim_w) else ((w + 1) % (1 << m_w), 0)
         d.in_valid.value, d.out_ready.value = int(valid), int(ready)
         d.in_data.value, d.in_m.value, d.in_j.value = data & ((1 << data_w) - 1), key[0], key[1]
+        d.in_pb.value = pb
         d.w.value, d.r.value, d.mv.value, d.home.value = w, r, int(mv), int(home)
         d.r1.value = (r + 1) % (1 << dim_w)                       # (the source's registers)
         d.nx_w.value, d.nx_r.value = nx
@@ -74,7 +79,7 @@ async def test_places(dut):
         if ov:
             od = int(d.out_data.value)
             assert model, f"out_valid with nothing in (beat {got})"
-            want_data, want_key = model[0]
+            want_data, want_key, want_pb = model[0]
             assert od == want_data, f"beat {got}: RTL {od:#x}, model {want_data:#x}"
             if held is not None:
                 assert held == od, "out_data changed while out_ready was low"
@@ -82,6 +87,9 @@ async def test_places(dut):
             want = place(want_key, w, r, dim_w)
             assert flags == want, (f"beat {got} key {want_key} against row ({w}, {r}): flags RTL {flags}, "
                                    f"model {want}")
+            words = (int(d.oh.value), int(d.below.value))
+            assert words == (1 << want_pb, (1 << want_pb) - 1), (
+                f"beat {got}: pb {want_pb} bit words (oh, below) RTL {words[0]:#x}, {words[1]:#x}")
             checked += 1
         else:
             assert not model, f"{len(model)} beats held and out_valid low (beat {got})"
@@ -91,7 +99,7 @@ async def test_places(dut):
             model.popleft()
             got += 1
         if pushed:
-            model.append((data & ((1 << data_w) - 1), key))
+            model.append((data & ((1 << data_w) - 1), key, pb))
             sent += 1
         w, r = (0, 0) if home else (nx if mv else (w, r))
         await RisingEdge(d.clk)
@@ -101,7 +109,7 @@ async def test_places(dut):
     dut._log.info("cube4_gra_beats_in: %d beats, %d places checked", got, checked)
 
 
-BUILDS = [dict(DATA_W=24, M_W=4, DIM_W=3), dict(DATA_W=90, M_W=9, DIM_W=8)]
+BUILDS = [dict(DATA_W=24, M_W=4, DIM_W=3, PB_W=3, NBX=6), dict(DATA_W=90, M_W=9, DIM_W=8, PB_W=5, NBX=17)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))
