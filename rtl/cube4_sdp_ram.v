@@ -41,7 +41,9 @@
 //           distributed RAM (LUTs) where the technology has it, so the read
 //           register is a flip-flop of the fabric (ECP5: 0.5 ns from clock
 //           to data, not a DP16KD's 4.1 ns). Not with IN_REG or OUT_REG = 1.
-//           Behaviour as DIST = 0.  0..1.  Default 0.
+//           Behaviour as DIST = 0; a read of the word written in the
+//           same cycle returns the old word on every form (the distributed
+//           RAM reads before the edge that writes).  0..1.  Default 0.
 //   AW      address width (derived; not to be set).
 //
 // Latency
@@ -49,7 +51,8 @@
 //   it holds while rd_en = 0). Write: visible to a read one cycle later. A
 //   read of the word being written in the same cycle returns the old word
 //   here; on a device that is not promised (ECP5 DP16KD, whose two ports
-//   then collide), so no caller reads a word in the cycle it is written.
+//   then collide), so no caller reads a word in the cycle it is written,
+//   except with DIST = 1 (above).
 //   IN_REG = 1: the same, one cycle after the inputs (one register stage).
 //   WR_REG = 1: a write is visible to a read two cycles after its inputs (a
 //   read in the cycle after them returns the old word).

@@ -83,16 +83,18 @@ module cube4_tri_beam #(
     reg [TRI_C_W-1:0] s2_ctl;
     wire [2*PV-1:0]   s2_prev;   // previous row, from the beam buffers
 
+    // (distributed RAM, its read register in the fabric: the word feeds s3's
+    // multiplexers and the lanes' x-lerps in the next cycle, and at P = 1, where
+    // a lane's buffer is MAX_DIM words deep, a block RAM's clock-to-data would
+    // take most of that cycle; the read of the word written at the same edge
+    // returns the old word, the row before this one, on every form of DIST)
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_beam_buf
-            reg [2*VW-1:0] bbuf [0:BBMAX-1];
-            reg [2*VW-1:0] rd_q;
-            always @(posedge clk) begin
-                rd_q <= bbuf[s1_pb];   // read first: the row before this one
-                if (s1_v && s1_bbwe) bbuf[s1_pb] <= s1_pair_sh[q*2*VW +: 2*VW];
-            end
-            assign s2_prev[q*2*VW +: 2*VW] = rd_q;
+            cube4_sdp_ram #(.DATA_W (2 * VW), .DEPTH (BBMAX), .DIST (1)) u_bbuf (
+                .clk (clk), .rd_en (1'b1), .out_en (1'b0), .rd_addr (s1_pb),
+                .rd_data (s2_prev[q*2*VW +: 2*VW]),
+                .wr_en (s1_v && s1_bbwe), .wr_addr (s1_pb), .wr_data (s1_pair_sh[q*2*VW +: 2*VW]));
         end
     endgenerate
 
