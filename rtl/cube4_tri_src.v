@@ -12,7 +12,15 @@
 //     later stages need, as one word (CUBE4_TRI_LAYOUT, TRI_C_*);
 //   * slice buffers (only when MAX_SS_LOG2 > 0): two slices of raw words per
 //     lane, by slice parity, written by the beat that reads the slice from
-//     memory, replayed for the S sample slices between two voxel slices;
+//     memory, replayed for the S sample slices between two voxel slices.
+//     Each is a block RAM read through its output register
+//     (cube4_sdp_ram OUT_REG = 2): the read is addressed by the input's tag
+//     as the beat is taken (a register of the voxel memory's), its word is
+//     in the read register at s0 and in the output register at s1, so no
+//     block RAM's clock-to-data lies in s1's selects. A beat read at the
+//     edge that writes its slot (the beat before it, in s0, wrote that
+//     slot: a slice of one beat) takes the word written (a bypass; on a
+//     block RAM the read of a word written at the same edge is undefined);
 //   * each slice from memory (tag LMEM / UMEM) or from its slice buffer; the
 //     upper slice realigned to the lower slice's lanes (its skew differs by
 //     the k step: cube4_ring_shift, one hop, down unless FLIP_K), and zero
@@ -109,6 +117,7 @@ module cube4_tri_src #(
 
     // ------------------------------------- s1: slice buffers and source select
     wire [PV-1:0]     s1_sb_lower, s1_sb_upper;  // slice-buffer words for the s1 beat
+    wire [SB_W-1:0]   in_sb = in_tag[TAG_SB +: SB_W];
     wire              s1_k0odd = s1_f[0], s1_uuse = s1_f[1], s1_umem = s1_f[2], s1_lmem = s1_f[3];
     assign {s1_ywrap, s1_bbwe} = s1_f[5:4];
 
@@ -116,30 +125,41 @@ module cube4_tri_src #(
     generate
         if (MAX_SS_LOG2 > 0) begin : g_slice_buf
             // Two slices per lane, by parity. Written at s0 by the beat that
-            // reads the slice from memory; read at s0 (data at s1) by later passes.
+            // reads the slice from memory; read as a beat is taken (the word
+            // at s1, through the read and output registers) by later passes.
+            wire wr_lo = s0_v && s0_lmem;   // lower slice, parity k0
+            wire wr_up = s0_v && s0_umem;   // upper slice, parity k0 + 1
+            wire wr0 = (wr_lo && !s0_k0odd) || (wr_up && s0_k0odd);
+            wire wr1 = (wr_lo && s0_k0odd) || (wr_up && !s0_k0odd);
+            // the bypass: the read at this edge meets s0's write of the same slot
+            // (the same for every lane); s0's words are s1_data a cycle later
+            reg  [1:0]  byp0_q, byp1_q;     // {s1, s0} of each buffer's flag
+            reg  [PV-1:0] byp_d;            // the words written, at s1
+            wire same = (in_sb == s0_sb);
+            always @(posedge clk) begin
+                byp0_q <= {byp0_q[0], wr0 && same};
+                byp1_q <= {byp1_q[0], wr1 && same};
+                byp_d  <= s1_data;
+            end
             for (q = 0; q < P; q = q + 1) begin : g_lane
-                reg [VW-1:0] sbuf0 [0:(1 << SB_W)-1];
-                reg [VW-1:0] sbuf1 [0:(1 << SB_W)-1];
-                reg [VW-1:0] rd0_q, rd1_q;
                 wire [VW-1:0] d = s0_data[q*VW +: VW];
-                wire wr_lo = s0_v && s0_lmem;   // lower slice, parity k0
-                wire wr_up = s0_v && s0_umem;   // upper slice, parity k0 + 1
-                always @(posedge clk) begin
-                    if ((wr_lo && !s0_k0odd) || (wr_up && s0_k0odd)) sbuf0[s0_sb] <= d;
-                    if ((wr_lo && s0_k0odd) || (wr_up && !s0_k0odd)) sbuf1[s0_sb] <= d;
-                end
-                always @(posedge clk) begin
-                    rd0_q <= sbuf0[s0_sb];
-                    rd1_q <= sbuf1[s0_sb];
-                end
-                assign s1_sb_lower[q*VW +: VW] = s1_k0odd ? rd1_q : rd0_q;
-                assign s1_sb_upper[q*VW +: VW] = s1_k0odd ? rd0_q : rd1_q;
+                wire [VW-1:0] out0, out1;
+                cube4_sdp_ram #(.DATA_W (VW), .DEPTH (1 << SB_W), .OUT_REG (2)) u_sbuf0 (
+                    .clk (clk), .rd_en (1'b1), .out_en (1'b1), .rd_addr (in_sb), .rd_data (out0),
+                    .wr_en (wr0), .wr_addr (s0_sb), .wr_data (d));
+                cube4_sdp_ram #(.DATA_W (VW), .DEPTH (1 << SB_W), .OUT_REG (2)) u_sbuf1 (
+                    .clk (clk), .rd_en (1'b1), .out_en (1'b1), .rd_addr (in_sb), .rd_data (out1),
+                    .wr_en (wr1), .wr_addr (s0_sb), .wr_data (d));
+                wire [VW-1:0] w0 = byp0_q[1] ? byp_d[q*VW +: VW] : out0;
+                wire [VW-1:0] w1 = byp1_q[1] ? byp_d[q*VW +: VW] : out1;
+                assign s1_sb_lower[q*VW +: VW] = s1_k0odd ? w1 : w0;
+                assign s1_sb_upper[q*VW +: VW] = s1_k0odd ? w0 : w1;
             end
         end else begin : g_no_slice_buf
             // S = 1 only: every pass reads its own slice, the upper slice is unused.
             assign s1_sb_lower = '0;
             assign s1_sb_upper = '0;
-            wire unused_sb = ^{s0_sb, s0_k0odd, s0_umem, s0_lmem, s1_k0odd};
+            wire unused_sb = ^{in_sb, s0_sb, s0_k0odd, s0_umem, s0_lmem, s1_k0odd};
         end
     endgenerate
 

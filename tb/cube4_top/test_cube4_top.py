@@ -99,6 +99,28 @@ def test_short_slices(p):
             assert formula < res["cycles"] <= formula * slow_slice_factor(trav.nj, trav.ni, p), (label, res["cycles"])
 
 
+@pytest.mark.parametrize("p", sweep([5, 1], quick=(0,)))
+def test_one_beat_slices_supersampled(p):
+    """Supersampled slices of one beat (NJ = 1, NI <= P): each sample slice's beat reads the
+    slice buffers' slot that the beat before it, one slice back, wrote at the edge of the
+    read (TRI's slice buffers are read as a beat is taken, cube4_tri_src); the frames stay
+    bit-exact, with stalls too. Without the slice buffers' bypass P = 5, S = 4 fails here
+    ("rays differ"; tried)."""
+    rng = np.random.default_rng(41 + p)
+    for s, dims, view, stall in [(4, (min(p, 4), 1, 5), (0.2, 0.3, 1.0), False),
+                                 (2, (p, 1, 6), (0.2, 0.3, 1.0), False),
+                                 (4, (min(p, 4), 1, 5), (0.1, -0.2, 1.0), True)]:
+        cfg = Cube4Config(pipelines=p, supersample=s)
+        nx, ny, nz = dims
+        vol = rng.integers(0, 256, size=(nz, ny, nx))
+        trav = make_traversal(dims, view, cfg.weight_bits, s)
+        assert trav.nj * -(-trav.ni // p) == 1, (dims, view, trav.nj, trav.ni)
+        lut, rmap = random_tables(rng, cfg)
+        job = FrameJob(trav, lut, rmap, stall=60 if stall else 0, stall_out=90 if stall else 0)
+        res = render_frames(vol, [job], cfg, max_dim=64)[0]
+        check(vol, trav, cfg, lut, rmap, res, f"P={p} S={s} {dims} view {view}: one beat per slice")
+
+
 @pytest.mark.parametrize("p", sweep([1, 4, 5, 8], quick=(0, 2)))
 @pytest.mark.parametrize("name", ["sphere:64", "ml:64", "head:64"])
 def test_phantoms(name, p):
