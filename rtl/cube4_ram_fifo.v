@@ -63,6 +63,7 @@ module cube4_ram_fifo #(
     reg  [PTR_W-1:0] wr_q, rd_q;
     reg  [CNT_W-1:0] cnt_q;                // items in the RAM, written and not read
     reg              full_q;               // cnt_q = DEPTH, counting this cycle's read
+    reg              nz_q;                 // cnt_q != 0
     wire             push = in_valid && in_ready;
     assign in_ready = !full_q;
     // ==== the register queue: q[0] (the head) .. q[QN-1]; the reads in flight ====
@@ -71,24 +72,31 @@ module cube4_ram_fifo #(
     reg  [L-1:0]      fly;                 // fly[k]: a read was issued k + 1 edges ago
     wire              pop  = out_valid && out_ready;
     wire [2:0]        in_fly = (L == 2) ? 3'(fly[0]) + 3'(fly[L-1]) : 3'(fly[0]);
-    wire              rd   = (cnt_q != '0) && (nq + in_fly < 3'(QN));   // before this cycle's pop
+    wire              rd   = nz_q && (nq + in_fly < 3'(QN));   // before this cycle's pop
     wire [DATA_W-1:0] rd_data;
     cube4_sdp_ram #(.DATA_W(DATA_W), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) u_ram (
         .clk(clk), .rd_en((OUT_REG != 0) ? (rd || fly[0]) : rd), .out_en(1'b0), .rd_addr(rd_q), .rd_data(rd_data),
         .wr_en(push), .wr_addr(wr_q), .wr_data(in_data));
     wire [CNT_W-1:0] cnt_n = cnt_q + CNT_W'(push) - CNT_W'(rd);
+    // the flags of cnt_n from compares of cnt_q, the read choosing between them last (so
+    // neither the adder nor a compare after it lies between rd and the flags that rd
+    // reads in the next cycle): a read needs cnt_q != 0, a push !full_q
+    wire nz_n   = rd ? !((cnt_q == CNT_W'(1)) && !push) : !((cnt_q == '0) && !push);
+    wire full_n = !rd && (full_q || ((cnt_q == CNT_W'(DEPTH - 1)) && push));
     always @(posedge clk) begin
         if (rst) begin
             wr_q   <= '0;
             rd_q   <= '0;
             cnt_q  <= '0;
             full_q <= 1'b0;
+            nz_q   <= 1'b0;
             fly    <= '0;
         end else begin
             if (push) wr_q <= wr_q + 1'b1;
             if (rd)   rd_q <= rd_q + 1'b1;
             cnt_q  <= cnt_n;
-            full_q <= (cnt_n == CNT_W'(DEPTH));
+            full_q <= full_n;
+            nz_q   <= nz_n;
             fly    <= (L == 2) ? L'({fly[0], rd}) : L'(rd);
         end
     end
@@ -108,5 +116,11 @@ module cube4_ram_fifo #(
     end
     assign out_valid = (nq != '0);
     assign out_data  = q[0];
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && (nz_q != (cnt_q != '0) || full_q != (cnt_q == CNT_W'(DEPTH))))
+            $fatal(1, "cube4_ram_fifo: the count's flags (nz %b, full %b) disagree with the count %0d", nz_q, full_q, cnt_q);
+    end
+`endif
 endmodule
 `default_nettype wire
