@@ -37,7 +37,9 @@
 //   fields       in   [TAG_W - 4P] the beat's tag fields (cube4_cfb_ctl)
 //   use_prev, skew_out, p_ilo, p_iin, p_ihi, rowv, rowin, rd   in  the
 //                emitted row's and the read row's (cube4_cfb_ctl)
-//   rt_cur       in   [RECT_W] pass m's rectangle (I_LO, I_IN, I_HI)
+//   rt_cur       in   [RECT_W] pass m's rectangle (I_LO, I_IN, I_HI; with
+//                RECTS = 0 the box, whose I_HI = NI the unit registers on
+//                every edge: stable from a cycle before the frame's first beat)
 //   pbp          in   [IW] pb * P (cube4_cfb_trav)
 //   t1           in   [P*LANE_W] s1: the read row's lane positions (cube4_cfb_addr)
 //   advance      out  [CFB_ADV_N] the stages move (copies);  busy  out  idle is
@@ -68,11 +70,28 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
             rem_of = (b <= pbp_v) ? {REM_W{1'b0}} : (diff > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(diff);
         end
     endfunction
-    wire [REM_W-1:0] hi_rd_d  = rem_of(cur[RT_IHI +: DIM_W], pbp);
+    // I_HI: without rectangles (RECTS = 0) every pass's is NI (cube4_cfb_box), a
+    // view constant: the unit reads it from a kept register of its own, so that
+    // synthesis merges none of its compares with another unit's of NI (COM's)
+    wire [DIM_W-1:0] ihi_cur, ihi_prev;
+    generate
+    if (RECTS != 0) begin : g_ihi_rects
+        assign ihi_cur  = cur[RT_IHI +: DIM_W];
+        assign ihi_prev = p_ihi;
+    end else begin : g_ihi_box
+        wire [DIM_W-1:0] ihi_q;
+        cube4_prim_reg_copies #(.W(DIM_W), .RESET(0), .ENABLE(0)) u_ihi (
+            .clk(clk), .rst(rst), .en(1'b1), .d(cur[RT_IHI +: DIM_W]), .q(ihi_q));
+        assign ihi_cur  = ihi_q;
+        assign ihi_prev = ihi_q;
+        wire unused_ihi = ^p_ihi;
+    end
+    endgenerate
+    wire [REM_W-1:0] hi_rd_d  = rem_of(ihi_cur, pbp);
     wire [REM_W-1:0] lo_rd_d  = rem_of(cur[RT_ILO +: DIM_W], pbp);
     // (the emitted row's: both candidates' remainders, selected after them, so
     // that the state's use_prev is not in series with the subtraction)
-    wire [REM_W-1:0] hi_out_d = use_prev ? rem_of(p_ihi, pbp) : hi_rd_d;
+    wire [REM_W-1:0] hi_out_d = use_prev ? rem_of(ihi_prev, pbp) : hi_rd_d;
     wire [REM_W-1:0] lo_out_d = use_prev ? rem_of(p_ilo, pbp) : lo_rd_d;
     wire [REM_W-1:0] in_out_d = use_prev ? rem_of(p_iin, pbp) : rem_of(cur[RT_IIN +: DIM_W], pbp);
     wire [P*LANE_W-1:0] tout_d;       // lane positions t of the emitted row

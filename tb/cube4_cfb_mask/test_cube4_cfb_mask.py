@@ -74,6 +74,12 @@ async def play(dut, bench, trav, p: int, aw: int, table: list[dict], rects, off:
     beats = [beat_inputs(trav, p, aw, st, table, bench.rng, off["F1"]) for st in cfb_walk(trav, p, rects)]
     want = [expected(trav, p, b, off) for b in beats if b["issue"]]
     got, k, s1, quiet = [], 0, None, 0
+    # the first entry an edge before the first beat: with RECTS = 0 it is the box, a view
+    # constant the unit registers (cube4_cfb_box's NI, as the view registers are stable
+    # before a frame starts)
+    if beats:
+        dut.rt_cur.value = rect_word(beats[0]["_e"], layout)
+        await FallingEdge(dut.clk)
     while quiet < 20:
         await FallingEdge(dut.clk)
         b = beats[k] if k < len(beats) else None
