@@ -43,16 +43,19 @@
 //
 // Latency
 //   A beat issued at an edge (its fields into the tables' reads) has its
-//   decisions at the fifth edge after (cube4_ray_table's read), registered
-//   at the sixth (S6; what needs no ray table word, each position's column
-//   and block bit, m + 1 and m + LAG + 1, is registered at S5 beside the
-//   word), and its group and row words written into the output
-//   FIFOs at the seventh (cube4_credit_fifo, credit-based: a beat is issued
-//   only with an entry reserved in each). RATE beats a cycle (a row's
-//   last group may hold one). A ray's next beat comes a slice (NJ NB beats)
-//   or more after its last (the steps only grow), and its started bit is
-//   written six cycles after that beat's issue; a slice of fewer than
-//   8 RATE + 2 beats waits for the pipeline to drain before its next slice.
+//   decisions at the sixth edge after (cube4_ray_table's read with
+//   OUT_STAGE: its block RAMs' words go into flip-flops before the lanes'
+//   picks), registered at the seventh (S7; what needs no ray table word,
+//   each position's column and block bit, m + 1 and m + LAG + 1, is
+//   registered at S6 beside the word), and its group and row words written
+//   into the output FIFOs at the eighth (cube4_credit_fifo, credit-based: a
+//   beat is issued only with an entry reserved in each). RATE beats a cycle
+//   (a row's last group may hold one). A ray's next beat comes a slice
+//   (NJ NB beats) or more after its last (the steps only grow), and its
+//   started bit's write is issued six cycles after that beat's issue, so a
+//   read issued seven or more cycles after it sees the bit; a slice of fewer
+//   than 8 RATE + 2 beats (fewer than nine cycles) waits for the pipeline to
+//   drain before its next slice.
 //
 // Ports
 //   start, busy   a frame (its registers stable from start until busy falls)
@@ -97,7 +100,7 @@ module cube4_cfb_decide #(
         `CUBE4_RANGE(g_bad_lag, "cube4_cfb_decide", "LAG", LAG, 2, 7)
         `CUBE4_RANGE(g_bad_rate, "cube4_cfb_decide", "RATE", RATE, 1, 2)
     endgenerate
-    localparam integer ND = 5;               // stages from issue to the decisions (the tables' read)
+    localparam integer ND = 6;               // stages from issue to the decisions (the tables' read)
     localparam integer NW = NBMAX;
     localparam integer LN = 4 * P + 1;       // a beat's {a, soon, last, fresh, run}
     genvar q, r;
@@ -111,7 +114,7 @@ module cube4_cfb_decide #(
     reg [DIM_W-1:0]  stx, sty;
     reg              have_st;              // this slice's steps are taken
     reg [ND:1]       v;                    // the decision pipeline's valid bits
-    reg              v6;                   // S6's valid bit (the decisions registered)
+    reg              v7;                   // S7's valid bit (the decisions registered)
     reg              tiny;                 // NJ NB < 8 RATE + 2: drain between slices
     wire             credit_ln, credit_bm;
     wire             first_beat = (j == '0) && (pb == '0);
@@ -156,7 +159,7 @@ module cube4_cfb_decide #(
                     if (m + 1'b1 == nm) issuing <= 1'b0;
                 end
             end
-            if (!issuing && v == '0 && !v6 && !bm_valid && !ln_valid) active <= 1'b0;
+            if (!issuing && v == '0 && !v7 && !bm_valid && !ln_valid) active <= 1'b0;
         end
     end
     assign busy = active;
@@ -216,13 +219,15 @@ module cube4_cfb_decide #(
             assign rep_en_r[q] = (q < P) && rep_en[q % P];
         end
     endgenerate
-    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(EW), .RATE(RATE)) u_end (
+    // (OUT_STAGE: each block RAM's word into a flip-flop before the lanes' picks;
+    // the words at S6 = ND)
+    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(EW), .RATE(RATE), .OUT_STAGE(1)) u_end (
         .clk(clk), .sx(sx), .sy(sy),
         .tab_we(tab_we), .tab_addr(tab_addr), .tab_data(tab_word),
         .rd_j(j), .rd_pb(pb), .rd_tpos(ident), .rd_stx(stx), .rd_sty(sty), .rd_data(end_d),
         .wr_valid(rep_valid), .wr_j(rep_j), .wr_pb(rep_pb), .wr_stx(rep_stx), .wr_sty(rep_sty),
         .wr_en(rep_en_r), .wr_data(rep_word));
-    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(1), .RATE(RATE)) u_started (
+    cube4_ray_table #(`CUBE4_SLICE_PASS, .DATA_W(1), .RATE(RATE), .OUT_STAGE(1)) u_started (
         .clk(clk), .sx(sx), .sy(sy),
         .tab_we(tab_we), .tab_addr(tab_addr), .tab_data('0),
         .rd_j(j), .rd_pb(pb), .rd_tpos(ident), .rd_stx(stx), .rd_sty(sty), .rd_data(started_d),
@@ -241,103 +246,103 @@ module cube4_cfb_decide #(
     cube4_sdp_ram #(.DATA_W(NBK), .DEPTH(1 << (2 * BK_W))) u_blk (
         .clk(clk), .rd_en(1'b1), .out_en(1'b0), .rd_addr(blk_ra), .rd_data(blk_q),
         .wr_en(blk_we), .wr_addr(blk_addr), .wr_data(blk_data));
-    reg [NBK-1:0] blk_s3, blk_s4;
-    always @(posedge clk) {blk_s4, blk_s3} <= {blk_s3, blk_q};
+    reg [NBK-1:0] blk_s3, blk_s4, blk_s5;
+    always @(posedge clk) {blk_s5, blk_s4, blk_s3} <= {blk_s4, blk_s3, blk_q};
     wire unused_vk = ^{vk[BLOCK_LOG2-1:0], vj[BLOCK_LOG2-1:0]};
 
-    // ==== S4 -> S5: what does not need the ray table: each position's column,
+    // ==== S5 -> S6: what does not need the ray table: each position's column,
     // whether its sample may count (the block table's bit), and m + 1, m + LAG + 1 ====
-    wire [IW-1:0]      pbp4 = IW'(pb_s[ND-1]) * IW'(P);
-    reg  [RATE*P-1:0]  val5, occ5;
-    reg  [M_W:0]       m1_5, ml_5;         // m + 1, m + LAG + 1 of S5's beat
+    wire [IW-1:0]      pbp5 = IW'(pb_s[ND-1]) * IW'(P);
+    reg  [RATE*P-1:0]  val6, occ6;
+    reg  [M_W:0]       m1_6, ml_6;         // m + 1, m + LAG + 1 of S6's beat
     always @(posedge clk) begin
-        m1_5 <= {1'b0, m_s[ND-1]} + 1'b1;
-        ml_5 <= {1'b0, m_s[ND-1]} + (M_W + 1)'(LAG + 1);
+        m1_6 <= {1'b0, m_s[ND-1]} + 1'b1;
+        ml_6 <= {1'b0, m_s[ND-1]} + (M_W + 1)'(LAG + 1);
     end
     generate
         for (q = 0; q < RATE * P; q = q + 1) begin : g_col
-            wire [IW-1:0]    i   = pbp4 + IW'(q);
+            wire [IW-1:0]    i   = pbp5 + IW'(q);
             wire             val = (i < IW'(ni)) && ((q / P == 0) || ({1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P)
                                                         < {1'b0, nb}));
             wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i));
             wire [BK_W-1:0]  ib  = BK_W'(vi >> BLOCK_LOG2);
             always @(posedge clk) begin
-                val5[q] <= val;
-                occ5[q] <= val && blk_s4[ib];
+                val6[q] <= val;
+                occ6[q] <= val && blk_s5[ib];
             end
             wire unused_vi = ^vi[BLOCK_LOG2-1:0];
         end
     endgenerate
 
-    // ==== S5: each beat's positions' decisions (beat r: partial beam pb + r) ====
-    wire [RATE*P-1:0]  run5, fresh5, last5, soon5;
+    // ==== S6: each beat's positions' decisions (beat r: partial beam pb + r) ====
+    wire [RATE*P-1:0]  run6, fresh6, last6, soon6;
     generate
         for (q = 0; q < RATE * P; q = q + 1) begin : g_pos
             wire [M_W-1:0]   e   = end_d[q*EW +: M_W];
             wire             td  = end_d[q*EW + M_W];
-            assign run5[q]   = val5[q] && (started_d[q] || occ5[q]) && (m_s[ND] < e);
-            assign fresh5[q] = run5[q] && !started_d[q];
-            assign last5[q]  = run5[q] && !td && (m1_5 >= {1'b0, e});
-            assign soon5[q]  = run5[q] && !td && (ml_5 >= {1'b0, e});
-            assign set_started[q] = v[ND] && occ5[q] && !started_d[q];
+            assign run6[q]   = val6[q] && (started_d[q] || occ6[q]) && (m_s[ND] < e);
+            assign fresh6[q] = run6[q] && !started_d[q];
+            assign last6[q]  = run6[q] && !td && (m1_6 >= {1'b0, e});
+            assign soon6[q]  = run6[q] && !td && (ml_6 >= {1'b0, e});
+            assign set_started[q] = v[ND] && occ6[q] && !started_d[q];
         end
     endgenerate
 
-    // ==== S6: the decisions registered; each beat of the group in A, may count ====
-    reg                row_end6;
-    reg  [PB_W-1:0]    pb6;
-    reg  [RATE*P-1:0]  run6, occ6, fresh6, last6, soon6;
+    // ==== S7: the decisions registered; each beat of the group in A, may count ====
+    reg                row_end7;
+    reg  [PB_W-1:0]    pb7;
+    reg  [RATE*P-1:0]  run7, occ7, fresh7, last7, soon7;
     always @(posedge clk) begin
-        if (rst || start) v6 <= 1'b0;
-        else              v6 <= v[ND];
-        row_end6 <= row_end[ND];
-        pb6      <= pb_s[ND];
-        {run6, occ6, fresh6, last6, soon6} <= {run5, occ5, fresh5, last5, soon5};
+        if (rst || start) v7 <= 1'b0;
+        else              v7 <= v[ND];
+        row_end7 <= row_end[ND];
+        pb7      <= pb_s[ND];
+        {run7, occ7, fresh7, last7, soon7} <= {run6, occ6, fresh6, last6, soon6};
     end
-    wire [RATE-1:0] a6, o6;
+    wire [RATE-1:0] a7, o7;
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_beat
-            assign a6[r] = run6[r*P +: P] != '0;
-            assign o6[r] = occ6[r*P +: P] != '0;
+            assign a7[r] = run7[r*P +: P] != '0;
+            assign o7[r] = occ7[r*P +: P] != '0;
         end
     endgenerate
 
-    // ==== the outputs: a group's bits, a row's words (credit FIFOs, written at S7) ====
-    reg  [NW-1:0] row_a, row_o;            // the row so far (S6's beats not yet in)
-    wire [NW-1:0] a_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, a6}) << pb6;
-    wire [NW-1:0] o_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, o6}) << pb6;
+    // ==== the outputs: a group's bits, a row's words (credit FIFOs, written at S8) ====
+    reg  [NW-1:0] row_a, row_o;            // the row so far (S7's beats not yet in)
+    wire [NW-1:0] a_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, a7}) << pb7;
+    wire [NW-1:0] o_add = NW'({{(NW > RATE ? NW - RATE : 0){1'b0}}, o7}) << pb7;
     wire [NW-1:0] a_now = row_a | a_add;
     wire [NW-1:0] o_now = row_o | o_add;
     always @(posedge clk) begin
-        if (rst || start || (v6 && row_end6)) begin
+        if (rst || start || (v7 && row_end7)) begin
             row_a <= '0;
             row_o <= '0;
-        end else if (v6) begin
+        end else if (v7) begin
             row_a <= a_now;
             row_o <= o_now;
         end
     end
-    reg  [NW-1:0]      bm_a7, bm_o7;
+    reg  [NW-1:0]      bm_a8, bm_o8;
     wire [RATE*LN-1:0] ln_w;
-    reg  [RATE*LN-1:0] ln7;
+    reg  [RATE*LN-1:0] ln8;
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_ln
-            assign ln_w[r*LN +: LN] = {a6[r], soon6[r*P +: P], last6[r*P +: P], fresh6[r*P +: P], run6[r*P +: P]};
+            assign ln_w[r*LN +: LN] = {a7[r], soon7[r*P +: P], last7[r*P +: P], fresh7[r*P +: P], run7[r*P +: P]};
         end
     endgenerate
     always @(posedge clk) begin
-        bm_a7 <= a_now;
-        bm_o7 <= o_now;
-        ln7   <= ln_w;
+        bm_a8 <= a_now;
+        bm_o8 <= o_now;
+        ln8   <= ln_w;
     end
     wire unused_cr_ln, unused_cr_bm;
     cube4_credit_fifo #(.DATA_W(RATE * LN), .DEPTH(16)) u_ln (
-        .clk(clk), .rst(rst || start), .take(issue), .give(v6 && (a6 == '0)), .credit(credit_ln),
-        .credit_d(unused_cr_ln), .push_d(v6 && (a6 != '0)), .in_data(ln7), .out_valid(ln_valid),
+        .clk(clk), .rst(rst || start), .take(issue), .give(v7 && (a7 == '0)), .credit(credit_ln),
+        .credit_d(unused_cr_ln), .push_d(v7 && (a7 != '0)), .in_data(ln8), .out_valid(ln_valid),
         .out_ready(ln_ready), .out_data(ln_bits));
     cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
-        .clk(clk), .rst(rst || start), .take(issue), .give(v6 && !row_end6), .credit(credit_bm),
-        .credit_d(unused_cr_bm), .push_d(v6 && row_end6), .in_data({bm_o7, bm_a7}),
+        .clk(clk), .rst(rst || start), .take(issue), .give(v7 && !row_end7), .credit(credit_bm),
+        .credit_d(unused_cr_bm), .push_d(v7 && row_end7), .in_data({bm_o8, bm_a8}),
         .out_valid(bm_valid), .out_ready(bm_ready), .out_data({bm_occ, bm_a}));
 endmodule
 `default_nettype wire

@@ -33,13 +33,18 @@
 //           then RATE sub-banks of 1/RATE the depth, word w in sub-bank
 //           w mod RATE: the same bits, any RATE consecutive words in one read.
 //                                                  1..2.   Default 1.
+//   OUT_STAGE  1: each sub-bank's word (past the bypass below) is registered
+//           as it leaves its block RAM, and the lanes' picks run a stage
+//           later: rd_data at S6, no logic between a block RAM and a
+//           flip-flop but the bypass. 0: rd_data at S5.  0..1.  Default 0.
 //   ROWS_W, COLS_W, STOP_AW: the layout (derived, CUBE4_STOP_LAYOUT).
 //
 // Latency
 //   Read: stages move on every cycle. The beat's fields (S0) are registered
 //   into S1; S1 -> S2 Q; S2: R and the banks' read addresses (into
 //   cube4_sdp_ram with OUT_REG: the word at S4); S4 -> S5 each lane's word:
-//   rd_data is a register, 5 edges after its fields. With P a power of two
+//   rd_data is a register, 5 edges after its fields (6 with OUT_STAGE: S5
+//   holds each sub-bank's word, S5 -> S6 each lane's). With P a power of two
 //   (Q and R are bits of B) each sub-bank's address is formed at S1 and
 //   registered: the same access at S2, its address from a flip-flop, not
 //   from a sum.
@@ -58,7 +63,8 @@
 //             (bank b at [b*DATA_W +: DATA_W]) at address {by, word}
 //   rd_j, rd_pb, rd_tpos, rd_stx, rd_sty   S0: the reading beat's row, partial
 //             beam, its lanes' positions t [LANE_W] and the slice's steps
-//   rd_data   out  S5: beat r's lane q's ray's word at [(r*P + q)*DATA_W +: DATA_W]
+//   rd_data   out  S5 (S6 with OUT_STAGE): beat r's lane q's ray's word at
+//             [(r*P + q)*DATA_W +: DATA_W]
 //   wr_valid, wr_j, wr_pb, wr_stx, wr_sty   S0: a writing beat's fields
 //   wr_en, wr_data   S0: per beat r and position t (not lane) whether to write
 //             its ray's word and the word, at bit r*P + t and word
@@ -72,6 +78,7 @@ module cube4_ray_table #(
     `CUBE4_SLICE_PARAMS,
     parameter integer DATA_W = 8,
     parameter integer RATE   = 1,
+    parameter integer OUT_STAGE = 0,
     `CUBE4_STOP_LAYOUT
 ) (
     input  wire clk,
@@ -87,6 +94,7 @@ module cube4_ray_table #(
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_ray_table", "DATA_W", DATA_W, 1, 64)
         `CUBE4_RANGE(g_bad_rate, "cube4_ray_table", "RATE", RATE, 1, 2)
+        `CUBE4_RANGE(g_bad_out_stage, "cube4_ray_table", "OUT_STAGE", OUT_STAGE, 0, 1)
     endgenerate
     localparam integer LW    = (P > 1) ? $clog2(P) : 0;
     localparam integer K     = DIM_W + LW;
@@ -180,14 +188,17 @@ module cube4_ray_table #(
         {wd2, wd1} <= {wd1, wr_data};
     end
     // ==== the read: each lane's bank carried to S4 ====
-    reg  [P*LANE_W-1:0] t1, t2, sel3, sel4;
+    reg  [P*LANE_W-1:0] t1, t2, sel3, sel4, sel5;
     always @(posedge clk) begin
         t1 <= rd_tpos;
         t2 <= t1;
         sel4 <= sel3;
+        sel5 <= sel4;
     end
+    // the picks' stage: S4 -> S5, or (OUT_STAGE) S5 -> S6
+    wire [P*LANE_W-1:0] sel_o = (OUT_STAGE != 0) ? sel5 : sel4;
     // per bank b and beat r of the read: the word, from sub-bank (its word mod RATE)
-    wire [RATE*P*DATA_W-1:0] rd4;          // beat r, bank b at [(r*P + b)*DATA_W]
+    wire [RATE*P*DATA_W-1:0] rd4;          // beat r, bank b at [(r*P + b)*DATA_W] (the picks' stage)
     genvar r, sb;
     generate
         for (b = 0; b < P; b = b + 1) begin : g_bank
@@ -196,8 +207,9 @@ module cube4_ray_table #(
             // the first beat's word in this bank; beat r's is r words on
             wire [COLS_W-1:0] ww = w2[1] + COLS_W'((32'(b) < 32'(r2[1])) ? 1 : 0);
             wire [COLS_W-1:0] wr = w2[0] + COLS_W'((32'(b) < 32'(r2[0])) ? 1 : 0);
-            reg  [RL_W-1:0]   par3, par4;      // the read's first word mod RATE, to S4
-            always @(posedge clk) {par4, par3} <= {par3, RL_W'(32'(wr) & (RATE - 1))};
+            reg  [RL_W-1:0]   par3, par4, par5;   // the read's first word mod RATE, to S4 (S5)
+            always @(posedge clk) {par5, par4, par3} <= {par4, par3, RL_W'(32'(wr) & (RATE - 1))};
+            wire [RL_W-1:0]   par_o = (OUT_STAGE != 0) ? par5 : par4;
             wire [DATA_W-1:0] sub_q [0:RATE-1];
             for (sb = 0; sb < RATE; sb = sb + 1) begin : g_sub
                 // the beats whose words fall in this sub-bank, and those words
@@ -245,11 +257,18 @@ module cube4_ray_table #(
                     hit4 <= hit3;
                     hd4  <= hd3;
                 end
-                assign sub_q[sb] = hit4 ? hd4 : q4;
+                wire [DATA_W-1:0] word4 = hit4 ? hd4 : q4;
+                if (OUT_STAGE != 0) begin : g_stage
+                    reg [DATA_W-1:0] word5;
+                    always @(posedge clk) word5 <= word4;
+                    assign sub_q[sb] = word5;
+                end else begin : g_direct
+                    assign sub_q[sb] = word4;
+                end
             end
             // beat r's word is in sub-bank (first word + r) mod RATE
             for (r = 0; r < RATE; r = r + 1) begin : g_out
-                wire [RL_W-1:0] at = RL_W'((32'(par4) + r) & (RATE - 1));
+                wire [RL_W-1:0] at = RL_W'((32'(par_o) + r) & (RATE - 1));
                 assign rd4[(r*P + b)*DATA_W +: DATA_W] = sub_q[at];
             end
         end
@@ -261,20 +280,20 @@ module cube4_ray_table #(
         end
     endgenerate
 
-    // ==== S4 -> S5: each beat's lanes' words ====
-    reg [RATE*P*DATA_W-1:0] word5;
+    // ==== S4 -> S5 (OUT_STAGE: S5 -> S6): each beat's lanes' words ====
+    reg [RATE*P*DATA_W-1:0] word_q;
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_beat5
             for (q = 0; q < P; q = q + 1) begin : g_lane
                 wire [DATA_W-1:0] pick;
                 cube4_mux #(.N(P), .W(DATA_W)) u_pick (
-                    .words(rd4[r*P*DATA_W +: P*DATA_W]), .sel(sel4[q*LANE_W +: LANE_W]), .word(pick));
+                    .words(rd4[r*P*DATA_W +: P*DATA_W]), .sel(sel_o[q*LANE_W +: LANE_W]), .word(pick));
                 always @(posedge clk) begin
-                    word5[(r*P + q)*DATA_W +: DATA_W] <= pick;
+                    word_q[(r*P + q)*DATA_W +: DATA_W] <= pick;
                 end
             end
         end
     endgenerate
-    assign rd_data = word5;
+    assign rd_data = word_q;
 endmodule
 `default_nettype wire

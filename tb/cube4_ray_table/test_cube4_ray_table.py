@@ -19,8 +19,10 @@ RAM does not promise: the unit passes the new word around the banks. Without tha
 203, model 171" and P = 1 with "read 23 beat 0 lane 0 (by 20, bx 8): RTL 111, model 132".
 
 RATE = 2 reads the beats pb and pb + 1 and writes both; every lane of both is checked.
-Seeded from COCOTB_RANDOM_SEED; P = 5 with RATE = 2 runs in make test, the others (P = 1,
-3, 8, 16; DATA_W 1 to 12; RATE 1 and 2) in make regress.
+OUT_STAGE = 1 (the words a stage later, the decisions' tables) is read from the build and
+checked at its latency. Seeded from COCOTB_RANDOM_SEED; P = 5 with RATE = 2 and P = 8 with
+RATE = 2 and OUT_STAGE = 1 run in make test, the others (P = 1, 3, 8, 16; DATA_W 1 to 12;
+RATE 1 and 2; OUT_STAGE 0 and 1) in make regress.
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ from cube4.memory import stop_layout, stop_table
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
-READ_LATENCY = 5        # edges from a read's fields to rd_data
+READ_LATENCY = 5        # edges from a read's fields to rd_data (one more with OUT_STAGE)
 VIEWS = 4
 BEATS = 400             # read beats per view
 
@@ -49,7 +51,9 @@ class TB:
     def __init__(self, dut) -> None:
         self.dut = dut
         self.log = dut._log
-        self.p, self.max_dim, self.data_w, self.rate = top_params(dut, "P", "MAX_DIM", "DATA_W", "RATE")
+        self.p, self.max_dim, self.data_w, self.rate, out_stage = top_params(
+            dut, "P", "MAX_DIM", "DATA_W", "RATE", "OUT_STAGE")
+        self.latency = READ_LATENCY + out_stage
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.rows_w, self.cols_w = stop_layout(self.p, self.max_dim)
         self.rows, self.cols = 1 << self.rows_w, (1 << self.cols_w) * self.p
@@ -130,11 +134,11 @@ class TB:
         await self.host_write()
         pending: list = []                   # (read number, beat, expected words), oldest first
         prev_read = None
-        for n in range(BEATS + READ_LATENCY):
+        for n in range(BEATS + self.latency):
             await FallingEdge(self.dut.clk)
-            if pending and pending[0][0] == n - READ_LATENCY:
+            if pending and pending[0][0] == n - self.latency:
                 _, b, want = pending.pop(0)
-                self.check(n - READ_LATENCY, b, want)
+                self.check(n - self.latency, b, want)
             if n >= BEATS:
                 self.dut.wr_valid.value = 0
                 continue
@@ -166,10 +170,10 @@ async def test_reads_and_writes(dut):
     assert tb.checked > VIEWS * BEATS * tb.p * tb.rate // 4
 
 
-BUILDS = [dict(P=1, MAX_DIM=16, DATA_W=8, RATE=1), dict(P=5, MAX_DIM=16, DATA_W=8, RATE=2),
-          dict(P=8, MAX_DIM=32, DATA_W=9, RATE=1), dict(P=3, MAX_DIM=8, DATA_W=1, RATE=2),
-          dict(P=16, MAX_DIM=32, DATA_W=12, RATE=1), dict(P=8, MAX_DIM=32, DATA_W=9, RATE=2),
-          dict(P=1, MAX_DIM=16, DATA_W=8, RATE=2)]
+BUILDS = [dict(P=1, MAX_DIM=16, DATA_W=8, RATE=1, OUT_STAGE=0), dict(P=5, MAX_DIM=16, DATA_W=8, RATE=2, OUT_STAGE=0),
+          dict(P=8, MAX_DIM=32, DATA_W=9, RATE=1, OUT_STAGE=1), dict(P=3, MAX_DIM=8, DATA_W=1, RATE=2, OUT_STAGE=1),
+          dict(P=16, MAX_DIM=32, DATA_W=12, RATE=1, OUT_STAGE=0), dict(P=8, MAX_DIM=32, DATA_W=9, RATE=2, OUT_STAGE=1),
+          dict(P=1, MAX_DIM=16, DATA_W=8, RATE=2, OUT_STAGE=1)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(1, 5), ids=param_id))
