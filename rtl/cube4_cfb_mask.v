@@ -38,8 +38,9 @@
 //   use_prev, skew_out, p_ilo, p_iin, p_ihi, rowv, rowin, rd   in  the
 //                emitted row's and the read row's (cube4_cfb_ctl)
 //   rt_cur       in   [RECT_W] pass m's rectangle (I_LO, I_IN, I_HI; with
-//                RECTS = 0 the box, whose I_HI = NI the unit registers on
-//                every edge: stable from a cycle before the frame's first beat)
+//                RECTS = 0 the box, whose I_HI = NI the unit reads through
+//                registers loaded on every edge: stable from a cycle before
+//                the frame's first beat, as cfg's NB)
 //   pbp          in   [IW] pb * P (cube4_cfb_trav)
 //   t1           in   [P*LANE_W] s1: the read row's lane positions (cube4_cfb_addr)
 //   advance      out  [CFB_ADV_N] the stages move (copies);  busy  out  idle is
@@ -70,28 +71,42 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
             rem_of = (b <= pbp_v) ? {REM_W{1'b0}} : (diff > IW'(P + 1)) ? REM_W'(P + 1) : REM_W'(diff);
         end
     endfunction
-    // I_HI: without rectangles (RECTS = 0) every pass's is NI (cube4_cfb_box), a
-    // view constant: the unit reads it from a kept register of its own, so that
-    // synthesis merges none of its compares with another unit's of NI (COM's)
-    wire [DIM_W-1:0] ihi_cur, ihi_prev;
+    // I_HI's remainders. Without rectangles (RECTS = 0) every pass's I_HI is NI
+    // (cube4_cfb_box), a view constant, and pbp = pb P: the remainder is P + 1
+    // below the last partial beam L = (NB - 1) P (NI - pbp >= NI - L + P > P),
+    // NI - L in it (1 .. P: NB = ceil(NI / P)) and 0 past it (pbp >= L + P >=
+    // NI). L and NI - L are kept registers of the unit's own (loaded on every
+    // edge: stable from a cycle before the frame's first beat), so one compare
+    // of pbp with L takes the place of a subtraction and its compares, and
+    // synthesis merges none of them with another unit's of NI (COM's).
+    wire [REM_W-1:0] hi_rd_d, hi_prev_d;
     generate
     if (RECTS != 0) begin : g_ihi_rects
-        assign ihi_cur  = cur[RT_IHI +: DIM_W];
-        assign ihi_prev = p_ihi;
+        assign hi_rd_d   = rem_of(cur[RT_IHI +: DIM_W], pbp);
+        assign hi_prev_d = rem_of(p_ihi, pbp);
     end else begin : g_ihi_box
-        wire [DIM_W-1:0] ihi_q;
-        cube4_prim_reg_copies #(.W(DIM_W), .RESET(0), .ENABLE(0)) u_ihi (
-            .clk(clk), .rst(rst), .en(1'b1), .d(cur[RT_IHI +: DIM_W]), .q(ihi_q));
-        assign ihi_cur  = ihi_q;
-        assign ihi_prev = ihi_q;
+        wire [IW-1:0]    last_d = IW'(cfg_nb - 1'b1) * IW'(P);
+        wire [IW-1:0]    last_q;
+        wire [REM_W-1:0] rlast_q;
+        cube4_prim_reg_copies #(.W(IW + REM_W), .RESET(0), .ENABLE(0)) u_last (
+            .clk(clk), .rst(rst), .en(1'b1),
+            .d({last_d, REM_W'(IW'(cur[RT_IHI +: DIM_W]) - last_d)}), .q({last_q, rlast_q}));
+        assign hi_rd_d   = (pbp == last_q) ? rlast_q : (pbp < last_q) ? REM_W'(P + 1) : {REM_W{1'b0}};
+        assign hi_prev_d = hi_rd_d;
         wire unused_ihi = ^p_ihi;
+`ifndef SYNTHESIS
+        always @(posedge clk) begin
+            if (!rst && issue && hi_rd_d != rem_of(cur[RT_IHI +: DIM_W], pbp))
+                $fatal(1, "cube4_cfb_mask: the box's I_HI remainder %0d differs from rem_of %0d (pbp %0d)",
+                       hi_rd_d, rem_of(cur[RT_IHI +: DIM_W], pbp), pbp);
+        end
+`endif
     end
     endgenerate
-    wire [REM_W-1:0] hi_rd_d  = rem_of(ihi_cur, pbp);
     wire [REM_W-1:0] lo_rd_d  = rem_of(cur[RT_ILO +: DIM_W], pbp);
     // (the emitted row's: both candidates' remainders, selected after them, so
     // that the state's use_prev is not in series with the subtraction)
-    wire [REM_W-1:0] hi_out_d = use_prev ? rem_of(ihi_prev, pbp) : hi_rd_d;
+    wire [REM_W-1:0] hi_out_d = use_prev ? hi_prev_d : hi_rd_d;
     wire [REM_W-1:0] lo_out_d = use_prev ? rem_of(p_ilo, pbp) : lo_rd_d;
     wire [REM_W-1:0] in_out_d = use_prev ? rem_of(p_iin, pbp) : rem_of(cur[RT_IIN +: DIM_W], pbp);
     wire [P*LANE_W-1:0] tout_d;       // lane positions t of the emitted row
