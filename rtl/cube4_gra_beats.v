@@ -331,9 +331,11 @@ module cube4_gra_beats
     end
     // a frame starts at row 0 of slice 0, and reads row 1's (zero: slice -1)
     assign t_re = row_end || start;
-    wire [RW-1:0]    rd_row = start ? RW'(1) : nn_r[RW-1:0];   // (rows below MAX_DIM)
+    // (the read at start is of slice -1, whose word is zero by t_zero: the RAM's
+    // address is (nn_w, nn_r) in every cycle, flip-flops, and only the registers
+    // beside it take start)
     wire [M_W-1:0]   rd_w   = start ? '0 : nn_w;
-    assign t_ra = {~rd_w[0], rd_row};                         // slice rd_w - 1's parity
+    assign t_ra = {~nn_w[0], nn_r[RW-1:0]};                   // slice nn_w - 1's parity (rows below MAX_DIM)
     reg             t_zero;          // the word read is zero (slice -1)
     reg             t_by;            // it is t_bd: the word written in that cycle, or row NJ's
     reg [TW-1:0]    t_bd;
