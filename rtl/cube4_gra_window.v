@@ -210,44 +210,19 @@ module cube4_gra_window #(
         nbm1_q <= cfg_nb - 1'b1;
         ni_r_q <= LANE_W'(IW'(cfg_ni) + IW'(P - 1) - IW'(cfg_nb) * IW'(P));
     end
-    // The compares of a beat's fields (its partial beam pb and skew) per lane:
-    // in the beat build (BEATS) made as the beat enters h1, from c_meta, and
-    // registered with it, so that the selects below take flip-flops; in the
-    // others made from h1's fields.
-    localparam integer FL_W = 3 * P + 2;  // {pb = 0, pb = NB - 1, t = 0, t = P - 1, t < r}
-    wire [PB_W-1:0]   f_pb;
-    wire [LANE_W-1:0] f_skew;
-    wire [P-1:0]      f_lt, f_top, f_zero;
-    wire [FL_W-1:0]   h1_fl;
+    wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
+    wire              h1_pb_zero = (h1_pb == '0);
+    wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
+    reg  [1:0]        h1_edge;            // {last, first} partial beam of the walk (c_edge)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
-            wire [LANE_W-1:0] t = lane_pos(q, f_skew, cfg_flip_i, cfg_i_r1);
-            assign f_lt[q]   = (t < ni_r_q);
-            assign f_top[q]  = ({1'b0, t} == PL - 1'b1);    // i + 1 is in the next beat
-            assign f_zero[q] = (t == '0);                   // i - 1 is in the previous beat
-        end
-        if (BEATS != 0) begin : g_fl_reg
-            assign f_pb   = c_meta[HDR_PB +: PB_W];
-            assign f_skew = c_meta[HDR_SKEW +: LANE_W];
-            reg [FL_W-1:0] fl_q;
-            always @(posedge clk) begin
-                if (step) fl_q <= {f_pb == '0, NB_W'(f_pb) == nbm1_q, f_zero, f_top, f_lt};
-            end
-            assign h1_fl = fl_q;
-            wire unused_h1 = ^{h1_pb, h1_skew};
-        end else begin : g_fl_h1
-            assign f_pb   = h1_pb;
-            assign f_skew = h1_skew;
-            assign h1_fl  = {f_pb == '0, NB_W'(f_pb) == nbm1_q, f_zero, f_top, f_lt};
+            wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
+            assign hi_ok_d[q]  = !h1_pb_last || (t < ni_r_q);
+            assign lo_ok_d[q]  = !h1_pb_zero || (t != '0);
+            assign hi_new_d[q] = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
+            assign lo_old_d[q] = (t == '0);                  // i - 1 is in the previous beat
         end
     endgenerate
-    wire              h1_pb_zero = h1_fl[3*P + 1];
-    wire              h1_pb_last = h1_fl[3*P];
-    wire [P-1:0]      hi_ok_d  = ~{P{h1_pb_last}} | h1_fl[0 +: P];
-    wire [P-1:0]      lo_ok_d  = ~{P{h1_pb_zero}} | ~h1_fl[2*P +: P];
-    wire [P-1:0]      hi_new_d = h1_fl[P +: P];
-    wire [P-1:0]      lo_old_d = h1_fl[2*P +: P];
-    reg  [1:0]        h1_edge;            // {last, first} partial beam of the walk (c_edge)
     always @(posedge clk) begin
         if (step) begin
             h1_edge   <= edge_in;
