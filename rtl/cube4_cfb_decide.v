@@ -259,11 +259,32 @@ module cube4_cfb_decide #(
         m1_6 <= {1'b0, m_s[ND-1]} + 1'b1;
         ml_6 <= {1'b0, m_s[ND-1]} + (M_W + 1)'(LAG + 1);
     end
+    // Each position's column i = (pb + r) P + t is inside (i < NI) where its
+    // partial beam lies below the last one, L = NB - 1, or is L with t below
+    // the remainder NI - L P (1 .. P: NB = ceil(NI / P)). L and the remainder
+    // are kept registers of the unit's own (view constants, loaded on every
+    // edge: stable from a cycle after start, the first beat at S5 six or more
+    // edges later), so the test is a compare of pb with L, not of i with NI on
+    // a carry chain synthesis may share with another unit's compares of NI
+    // (COM's).
+    localparam integer RW = $clog2(P + 1);
+    wire [NB_W-1:0] lpb_q;
+    wire [RW-1:0]   lrem_q;
+    cube4_prim_reg_copies #(.W(NB_W + RW), .RESET(0), .ENABLE(0)) u_last (
+        .clk(clk), .rst(rst), .en(1'b1),
+        .d({NB_W'(nb - 1'b1), RW'(IW'(ni) - IW'(NB_W'(nb - 1'b1)) * IW'(P))}), .q({lpb_q, lrem_q}));
     generate
         for (q = 0; q < RATE * P; q = q + 1) begin : g_col
             wire [IW-1:0]    i   = pbp5 + IW'(q);
-            wire             val = (i < IW'(ni)) && ((q / P == 0) || ({1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P)
-                                                        < {1'b0, nb}));
+            wire [NB_W:0]    pbr = {1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P);
+            wire             val = (pbr < {1'b0, lpb_q}) || ((pbr == {1'b0, lpb_q}) && (RW'(q % P) < lrem_q));
+`ifndef SYNTHESIS
+            always @(posedge clk) begin
+                if (!rst && v[ND-1] && val != ((i < IW'(ni)) && ((q / P == 0) || (pbr < {1'b0, nb}))))
+                    $fatal(1, "cube4_cfb_decide: position %0d's inside bit %0d differs from i < NI (pb %0d, NI %0d)",
+                           q, val, pb_s[ND-1], ni);
+            end
+`endif
             wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i));
             wire [BK_W-1:0]  ib  = BK_W'(vi >> BLOCK_LOG2);
             always @(posedge clk) begin
