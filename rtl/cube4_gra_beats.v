@@ -128,10 +128,12 @@ module cube4_gra_beats
     reg [NBX-1:0]     s_cur;         // S(w - 1, r): the plane words of this row count
     reg [NBX-1:0]     acc_c, acc_s;  // C(w, r), S(w, r) so far
     reg [NBX-1:0]     prev_s;        // S(w, r - 1): the beam words count
+    reg [NBX-1:0]     prev_c;        // C(w, r - 1) (0 in row 0)
     reg               row_any;       // a step of this row is loaded
     reg [PB_W-1:0]    row_pb;        // its partial beam (the last)
     reg               sy_q [0:1], osy_q [0:1];   // SY, OSY of slice w by w's parity
     reg [NBX-1:0]     s_nj [0:1];    // S(w, NJ) by w's parity
+    reg [NBX-1:0]     l_nj [0:1];    // L(w, NJ) by w's parity (L: the row table)
     reg [NBX-1:0]     nb_mask;       // bits below NB
     reg               nx_ok;         // nx_gm, nx_s hold the next row's (its second cycle on)
     reg [NBX-1:0]     nx_gm, nx_s;   // G(w, r + 1), S(w - 1, r + 1)
@@ -294,14 +296,20 @@ module cube4_gra_beats
     wire           wm1_odd = ~ld_w[0];                // (w - 1) mod 2
 
     // ------------------------------------------------------------ the row table
-    // word {S, C} of row r of slice w at {w mod 2, r}; read one row ahead
-    localparam integer TW = 2 * NBX;
+    // word {S, C, L} of row r of slice w at {w mod 2, r}; read one row ahead.
+    // L = low_oh((C(w, r - 1) | C(w, r)) & nb_mask) (C(w, -1) = 0) is the
+    // lowest step of row_gm below while the word is n_c's (c_cur then holds
+    // C(w, r - 1), or r_nj masks it for r = 0), formed as the word is written,
+    // so that a row that ends in its first cycle takes the next row's lowest
+    // step g_oh from the word read, not through a carry chain over it (a
+    // simulation check holds it to low_oh(row_gm))
+    localparam integer TW = 3 * NBX;
     wire [RW:0]     t_ra;            // {parity, row} read
     wire [TW-1:0]   t_rd;
     wire            t_re;
     wire            t_we = row_end && act && !r_nj;
     wire [RW:0]     t_wa = {w[0], r[RW-1:0]};
-    wire [TW-1:0]   t_wd = {acc_s, acc_c};
+    wire [TW-1:0]   t_wd = {acc_s, acc_c, low_oh((prev_c | acc_c) & nb_mask)};
     // (distributed RAM: the word read goes into the row's next steps, gm, in the cycle after)
     cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW), .DIST (1)) u_rows (
         .clk (clk), .rd_en (t_re), .out_en (1'b0), .rd_addr (t_ra), .rd_data (t_rd),
@@ -344,13 +352,17 @@ module cube4_gra_beats
         if (t_re) begin
             t_zero <= (rd_w == '0);
             t_by   <= rd_nj || (t_we && (t_wa == t_ra));
-            t_bd   <= rd_nj ? {s_nj[~rd_w[0]], {NBX{1'b0}}} : t_wd;
+            t_bd   <= rd_nj ? {s_nj[~rd_w[0]], {NBX{1'b0}}, l_nj[~rd_w[0]]} : t_wd;
         end
-        if (row_end && act && r_nj) s_nj[w[0]] <= acc_s;
+        if (row_end && act && r_nj) begin
+            s_nj[w[0]] <= acc_s;
+            l_nj[w[0]] <= low_oh(prev_c & nb_mask);   // row NJ's C is zero
+        end
     end
     wire [TW-1:0]  t_word = t_zero ? '0 : (t_by ? t_bd : t_rd);
-    wire [NBX-1:0] n_c = t_word[0 +: NBX];                     // C(w', r' + 1) of the row after
-    wire [NBX-1:0] n_s = t_word[NBX +: NBX];
+    wire [NBX-1:0] n_l = t_word[0 +: NBX];                     // low_oh(row_gm)
+    wire [NBX-1:0] n_c = t_word[NBX +: NBX];                   // C(w', r' + 1) of the row after
+    wire [NBX-1:0] n_s = t_word[2*NBX +: NBX];
     wire [NBX-1:0] row_gm = ((r_nj ? '0 : c_cur) | n_c) & nb_mask;   // G of the next row, as it ends
     generate
         for (q = 0; q < NBX; q = q + 1) begin : g_nb
@@ -395,6 +407,7 @@ module cube4_gra_beats
                 c_cur   <= '0;
                 s_cur   <= '0;
                 prev_s  <= '0;
+                prev_c  <= '0;
                 acc_c   <= '0;
                 acc_s   <= '0;
                 row_any <= 1'b0;
@@ -443,10 +456,11 @@ module cube4_gra_beats
                     w_one   <= r_nj ? w_zero : w_one;                                  // nx_w == 1
                     w       <= nx_w;
                     prev_s  <= r_nj ? '0 : acc_s;
+                    prev_c  <= r_nj ? '0 : acc_c;
                     c_cur   <= n_c;
                     s_cur   <= n_s;
                     gm      <= row_gm & ~(ld_nx ? ld_upto : '0);
-                    g_oh    <= ld_nx ? x_oh_ld : low_oh(row_gm);   // (ld_nx: row_gm = nx_gm)
+                    g_oh    <= ld_nx ? x_oh_ld : n_l;   // (ld_nx: row_gm = nx_gm; n_l = low_oh(row_gm))
                 end
             end
             if (ld_tl) begin
@@ -534,6 +548,8 @@ module cube4_gra_beats
         if (pos_ld[0] != i0_mv || pos_mv[0] != i1_mv || pos_step[0] != step)
             $fatal(1, "cube4_gra_beats: the position buffers' read/load/step (%b%b%b) are not i0_mv, i1_mv, step (%b%b%b)",
                    pos_ld[0], pos_mv[0], pos_step[0], i0_mv, i1_mv, step);
+        if (!rst && act && n_l != low_oh(row_gm))
+            $fatal(1, "cube4_gra_beats: the row table's L %0h is not the next row's lowest step (row_gm %0h)", n_l, row_gm);
         if (!rst && mg && row_gm != nx_gm)   // (what g_oh's load from x_oh at a row end relies on)
             $fatal(1, "cube4_gra_beats: the next row's steps %0h at a loading row end are not nx_gm %0h", row_gm, nx_gm);
     end
