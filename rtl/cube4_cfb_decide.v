@@ -250,9 +250,10 @@ module cube4_cfb_decide #(
     always @(posedge clk) {blk_s5, blk_s4, blk_s3} <= {blk_s4, blk_s3, blk_q};
     wire unused_vk = ^{vk[BLOCK_LOG2-1:0], vj[BLOCK_LOG2-1:0]};
 
-    // ==== S5 -> S6: what does not need the ray table: each position's column,
-    // whether its sample may count (the block table's bit), and m + 1, m + LAG + 1 ====
-    wire [IW-1:0]      pbp5 = IW'(pb_s[ND-1]) * IW'(P);
+    // ==== S5 -> S6: what does not need the ray table: each position's column
+    // (its block at S5, from S4's beat), whether its sample may count (the block
+    // table's bit), and m + 1, m + LAG + 1 ====
+    wire [IW-1:0]      pbp4 = IW'(pb_s[ND-2]) * IW'(P);
     reg  [RATE*P-1:0]  val6, occ6;
     reg  [M_W:0]       m1_6, ml_6;         // m + 1, m + LAG + 1 of S6's beat
     always @(posedge clk) begin
@@ -275,23 +276,27 @@ module cube4_cfb_decide #(
         .d({NB_W'(nb - 1'b1), RW'(IW'(ni) - IW'(NB_W'(nb - 1'b1)) * IW'(P))}), .q({lpb_q, lrem_q}));
     generate
         for (q = 0; q < RATE * P; q = q + 1) begin : g_col
-            wire [IW-1:0]    i   = pbp5 + IW'(q);
             wire [NB_W:0]    pbr = {1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P);
             wire             val = (pbr < {1'b0, lpb_q}) || ((pbr == {1'b0, lpb_q}) && (RW'(q % P) < lrem_q));
 `ifndef SYNTHESIS
+            wire [IW-1:0] i = IW'(pb_s[ND-1]) * IW'(P) + IW'(q);
             always @(posedge clk) begin
                 if (!rst && v[ND-1] && val != ((i < IW'(ni)) && ((q / P == 0) || (pbr < {1'b0, nb}))))
                     $fatal(1, "cube4_cfb_decide: position %0d's inside bit %0d differs from i < NI (pb %0d, NI %0d)",
                            q, val, pb_s[ND-1], ni);
             end
 `endif
-            wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i));
-            wire [BK_W-1:0]  ib  = BK_W'(vi >> BLOCK_LOG2);
+            // the position's block along i, from S4's beat into an S5 register
+            // (the column's two adds ahead of the block bit's multiplexer)
+            wire [IW-1:0]    i4  = pbp4 + IW'(q);
+            wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i4));
+            reg  [BK_W-1:0]  ib5;
             always @(posedge clk) begin
+                ib5     <= BK_W'(vi >> BLOCK_LOG2);
                 val6[q] <= val;
-                occ6[q] <= val && blk_s5[ib];
+                occ6[q] <= val && blk_s5[ib5];
             end
-            wire unused_vi = ^vi[BLOCK_LOG2-1:0];
+            wire unused_vi = ^{vi[BLOCK_LOG2-1:0], i4};   // (i4's bits above DIM_W: positions past the row)
         end
     endgenerate
 
