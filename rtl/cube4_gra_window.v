@@ -202,8 +202,17 @@ module cube4_gra_window #(
     // (0 <= r < P, exact modulo 2^LANE_W); i > 0 where pb > 0 or t > 0. So the
     // flags are compares of h1's fields with registered view constants, with
     // no sum of the position on the path.
-    wire [PB_W-1:0]   h1_pb   = h1_meta[HDR_PB +: PB_W];
-    wire [LANE_W-1:0] h1_skew = h1_meta[HDR_SKEW +: LANE_W];
+    // (the flags read h1's fields from a kept copy of their own, loaded with
+    // h1_meta: the header's register serves the centre's outputs, and a route
+    // from it across GRA to the flags' compares limited the beat build)
+    localparam integer FK_W = PB_W + LANE_W + 2;
+    wire [FK_W-1:0]   h1_fk;
+    cube4_prim_reg_copies #(.W(FK_W), .RESET(0)) u_h1_fk (
+        .clk(clk), .rst(rst), .en(step),
+        .d({c_meta[HDR_PB +: PB_W], c_meta[HDR_SKEW +: LANE_W], c_meta[HDR_CTRL + CTRL_SX], c_meta[HDR_CTRL + CTRL_OSX]}),
+        .q(h1_fk));
+    wire [PB_W-1:0]   h1_pb   = h1_fk[FK_W-1 -: PB_W];
+    wire [LANE_W-1:0] h1_skew = h1_fk[2 +: LANE_W];
     reg  [NB_W-1:0]   nbm1_q;             // NB - 1
     reg  [LANE_W-1:0] ni_r_q;             // r: the last partial beam's last lane position
     always @(posedge clk) begin
@@ -230,8 +239,15 @@ module cube4_gra_window #(
     end
     localparam integer CSEL_W = 4 * P;    // {lo_same, lo_old, hi_same, hi_new} per lane
     localparam integer RSEL_W = 6 * P;    // {b_self, b_same, b_old, f_self, f_same, f_new} per lane
-    wire              h1_dxf = h1_meta[HDR_CTRL + CTRL_SX];    // X-step of slice m (h1's)
-    wire              h1_dxb = h1_meta[HDR_CTRL + CTRL_OSX];   // old X-step
+    wire              h1_dxf = h1_fk[1];                       // X-step of slice m (h1's)
+    wire              h1_dxb = h1_fk[0];                       // old X-step
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && h1_v && h1_fk != {h1_meta[HDR_PB +: PB_W], h1_meta[HDR_SKEW +: LANE_W],
+                                      h1_meta[HDR_CTRL + CTRL_SX], h1_meta[HDR_CTRL + CTRL_OSX]})
+            $fatal(1, "cube4_gra_window: the flags' copy of h1's fields %0h differs from h1_meta's", h1_fk);
+    end
+`endif
     // h1's last partial beam: its own flag (RECTS), or a gap before the incoming beat (BEATS)
     wire              h1_last = (BEATS != 0) ? edge_in[1] : h1_edge[1];
     wire [P-1:0]      hi_okx = hi_ok_d & ~(hi_new_d & {P{h1_last}});
