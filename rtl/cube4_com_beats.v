@@ -128,7 +128,24 @@ module cube4_com_beats #(
     // the box (as cube4_com_walk, numerics.md 4), S1 ----
     // (CUBE4_NEXT_INSIDE: compares with NI, NJ and their n - 1, n - 2 registers)
     `CUBE4_NEXT_INSIDE
-    wire j_ok = next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2);
+    // (j's compares with NJ, NJ - 1, NJ - 2 are made at R0, from r0_j, into S1
+    // registers of the unit's own: S1's j register serves other units, and a
+    // route from it across COM into the compares limited the beat build)
+    wire [IW-1:0] r0_jx = IW'(r0_j);
+    reg           f1_jlt0, f1_jlt1, f1_jeq1, f1_jeq2;
+    always @(posedge clk) begin
+        f1_jlt0 <= r0_jx < nj_0;
+        f1_jlt1 <= r0_jx < nj_1;
+        f1_jeq1 <= r0_jx == nj_1;
+        f1_jeq2 <= r0_jx == nj_2;
+    end
+    wire j_ok = (f1_dyf ? f1_jlt1 : f1_jlt0) && !(f1_wyn && (f1_dyf ? f1_jeq2 : f1_jeq1));
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && v_fly[1] && j_ok != next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2))
+            $fatal(1, "cube4_com_beats: j_ok %0d differs from next_inside of f1_j %0d", j_ok, f1_j);
+    end
+`endif
     generate
         for (q = 0; q < P; q = q + 1) begin : g_next
             assign nx_in[q] = !s1_last[q] && j_ok
