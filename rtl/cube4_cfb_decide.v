@@ -261,23 +261,23 @@ module cube4_cfb_decide #(
         ml_6 <= {1'b0, m_s[ND-1]} + (M_W + 1)'(LAG + 1);
     end
     // Each position's column i = (pb + r) P + t is inside (i < NI) where its
-    // partial beam lies below the last one, L = NB - 1, or is L with t below
-    // the remainder NI - L P (1 .. P: NB = ceil(NI / P)). L and the remainder
+    // partial beam lies below the last one, L, or is L with t below the
+    // remainder (CUBE4_LAST_BEAM_FUNCTIONS). L and the remainder
     // are kept registers of the unit's own (view constants, loaded on every
     // edge: stable from a cycle after start, the first beat at S5 six or more
     // edges later), so the test is a compare of pb with L, not of i with NI on
     // a carry chain synthesis may share with another unit's compares of NI
     // (COM's).
-    localparam integer RW = $clog2(P + 1);
-    wire [NB_W-1:0] lpb_q;
-    wire [RW-1:0]   lrem_q;
-    cube4_prim_reg_copies #(.W(NB_W + RW), .RESET(0), .ENABLE(0)) u_last (
+    `CUBE4_LAST_BEAM_FUNCTIONS
+    wire [NB_W-1:0]   lpb_q;
+    wire [LANE_W:0]   lrem_q;
+    cube4_prim_reg_copies #(.W(NB_W + LANE_W + 1), .RESET(0), .ENABLE(0)) u_last (
         .clk(clk), .rst(rst), .en(1'b1),
-        .d({NB_W'(nb - 1'b1), RW'(IW'(ni) - IW'(NB_W'(nb - 1'b1)) * IW'(P))}), .q({lpb_q, lrem_q}));
+        .d({row_last_pb(nb), row_last_rem(ni, nb)}), .q({lpb_q, lrem_q}));
     generate
         for (q = 0; q < RATE * P; q = q + 1) begin : g_col
             wire [NB_W:0]    pbr = {1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P);
-            wire             val = (pbr < {1'b0, lpb_q}) || ((pbr == {1'b0, lpb_q}) && (RW'(q % P) < lrem_q));
+            wire             val = (pbr < {1'b0, lpb_q}) || ((pbr == {1'b0, lpb_q}) && ((LANE_W + 1)'(q % P) < lrem_q));
 `ifndef SYNTHESIS
             wire [IW-1:0] i = IW'(pb_s[ND-1]) * IW'(P) + IW'(q);
             always @(posedge clk) begin

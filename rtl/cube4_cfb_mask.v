@@ -59,6 +59,7 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     wire [RECT_W-1:0] cur = `CUBE4_CFB_ENTRY(rt_cur);
     `CUBE4_VIEW_FIELDS(cfg);
     `CUBE4_LANE_FUNCTIONS
+    `CUBE4_LAST_BEAM_FUNCTIONS
     localparam integer REM_W = $clog2(P + 2);               // 0 .. P + 1
     localparam integer F_W   = P + TAG_W;
     wire unused_rt = ^cur;   // the fields besides I_LO, I_IN, I_HI
@@ -72,11 +73,12 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
         end
     endfunction
     // I_HI's remainders. Without rectangles (RECTS = 0) every pass's I_HI is NI
-    // (cube4_cfb_box), a view constant, and pbp = pb P: the remainder is P + 1
-    // below the last partial beam L = (NB - 1) P (NI - pbp >= NI - L + P > P),
-    // NI - L in it (1 .. P: NB = ceil(NI / P)) and 0 past it (pbp >= L + P >=
-    // NI). L and NI - L are kept registers of the unit's own (loaded on every
-    // edge: stable from a cycle before the frame's first beat), so one compare
+    // (cube4_cfb_box), a view constant, and pbp = pb P: with L the last partial
+    // beam (CUBE4_LAST_BEAM_FUNCTIONS) the remainder is P + 1 below L P
+    // (NI - pbp >= NI - L P + P > P), row_last_rem in it (1 .. P) and 0 past it
+    // (pbp >= L P + P >= NI). L P and row_last_rem are kept registers of the
+    // unit's own (loaded on every edge: stable from a cycle before the frame's
+    // first beat; a simulation check holds them to I_HI's), so one compare
     // of pbp with L takes the place of a subtraction and its compares, and
     // synthesis merges none of them with another unit's of NI (COM's).
     wire [REM_W-1:0] hi_rd_d, hi_prev_d;
@@ -85,12 +87,12 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
         assign hi_rd_d   = rem_of(cur[RT_IHI +: DIM_W], pbp);
         assign hi_prev_d = rem_of(p_ihi, pbp);
     end else begin : g_ihi_box
-        wire [IW-1:0]    last_d = IW'(cfg_nb - 1'b1) * IW'(P);
+        wire [IW-1:0]    last_d = IW'(row_last_pb(cfg_nb)) * IW'(P);
         wire [IW-1:0]    last_q;
         wire [REM_W-1:0] rlast_q;
         cube4_prim_reg_copies #(.W(IW + REM_W), .RESET(0), .ENABLE(0)) u_last (
             .clk(clk), .rst(rst), .en(1'b1),
-            .d({last_d, REM_W'(IW'(cur[RT_IHI +: DIM_W]) - last_d)}), .q({last_q, rlast_q}));
+            .d({last_d, REM_W'(row_last_rem(cfg_ni, cfg_nb))}), .q({last_q, rlast_q}));
         assign hi_rd_d   = (pbp == last_q) ? rlast_q : (pbp < last_q) ? REM_W'(P + 1) : {REM_W{1'b0}};
         assign hi_prev_d = hi_rd_d;
         wire unused_ihi = ^p_ihi;

@@ -694,6 +694,20 @@
         end \
     endfunction
 
+// A row's last partial beam (cube4_cfb_decide, cube4_cfb_mask, cube4_gra_window;
+// needs P, DIM_W, NB_W, LANE_W, IW): a row of NI columns has NB = ceil(NI / P)
+// partial beams, the last L = NB - 1, and L holds the remainder NI - L P of them
+// (1 .. P). A column i = pb P + t (0 <= t < P) is inside the row (i < NI) where
+// pb < L, or pb = L and t < the remainder: so a unit tests i < NI as a compare of
+// pb with L, both view constants, and no sum of the position is on the path.
+`define CUBE4_LAST_BEAM_FUNCTIONS \
+    function automatic [NB_W-1:0] row_last_pb(input [NB_W-1:0] nb_v); \
+        row_last_pb = nb_v - 1'b1; \
+    endfunction \
+    function automatic [LANE_W:0] row_last_rem(input [DIM_W-1:0] ni_v, input [NB_W-1:0] nb_v); \
+        row_last_rem = (LANE_W + 1)'(IW'(ni_v) - IW'(row_last_pb(nb_v)) * IW'(P)); \
+    endfunction
+
 // The traversal's steps along an axis (cube4_cfb_trav, cube4_cfb_bctl; needs
 // CUBE4_LANE_FUNCTIONS and ADDR_W): r_step moves c mod P by +/-1 (down: -1);
 // a_step moves the axis's address term A(c) with it (+/- LIN within a P-block,

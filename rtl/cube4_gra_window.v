@@ -197,9 +197,9 @@ module cube4_gra_window #(
     // registers, with the X-steps folded in (i + dxf: from the next beat,
     // from this beat's neighbour, or the lane itself; i - dxb likewise), so
     // no single X-step flip-flop drives the selects of every lane.
-    // With i = pb * P + t and NB = ceil(NI / P): i + 1 < NI holds in every
-    // partial beam but the last, and in the last where t < r = NI - 1 - (NB - 1) * P
-    // (0 <= r < P, exact modulo 2^LANE_W); i > 0 where pb > 0 or t > 0. So the
+    // With i = pb * P + t: i + 1 < NI holds in every partial beam but the last,
+    // L, and in L where t < r = row_last_rem - 1 (CUBE4_LAST_BEAM_FUNCTIONS;
+    // 0 <= r < P); i > 0 where pb > 0 or t > 0. So the
     // flags are compares of h1's fields with registered view constants, with
     // no sum of the position on the path.
     // (the flags read h1's fields from a kept copy of their own, loaded with
@@ -213,11 +213,14 @@ module cube4_gra_window #(
         .q(h1_fk));
     wire [PB_W-1:0]   h1_pb   = h1_fk[FK_W-1 -: PB_W];
     wire [LANE_W-1:0] h1_skew = h1_fk[2 +: LANE_W];
-    reg  [NB_W-1:0]   nbm1_q;             // NB - 1
+    `CUBE4_LAST_BEAM_FUNCTIONS
+    reg  [NB_W-1:0]   nbm1_q;             // L
     reg  [LANE_W-1:0] ni_r_q;             // r: the last partial beam's last lane position
+    wire [LANE_W:0]   ni_rem = row_last_rem(cfg_ni, cfg_nb) - 1'b1;   // 0 .. P - 1
+    wire              unused_ni_rem = ni_rem[LANE_W];
     always @(posedge clk) begin
-        nbm1_q <= cfg_nb - 1'b1;
-        ni_r_q <= LANE_W'(IW'(cfg_ni) + IW'(P - 1) - IW'(cfg_nb) * IW'(P));
+        nbm1_q <= row_last_pb(cfg_nb);
+        ni_r_q <= ni_rem[LANE_W-1:0];
     end
     wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
     wire              h1_pb_zero = (h1_pb == '0);
