@@ -139,7 +139,7 @@ module cube4_com_beats #(
         f1_jeq1 <= r0_jx == nj_1;
         f1_jeq2 <= r0_jx == nj_2;
     end
-    wire j_ok = (f1_dyf ? f1_jlt1 : f1_jlt0) && !(f1_wyn && (f1_dyf ? f1_jeq2 : f1_jeq1));
+    wire j_ok = next_inside_of(f1_dyf, f1_wyn, f1_jlt0, f1_jlt1, f1_jeq1, f1_jeq2);
 `ifndef SYNTHESIS
     always @(posedge clk) begin
         if (!rst && v_fly[1] && j_ok != next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2))

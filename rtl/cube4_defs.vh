@@ -655,13 +655,18 @@
 // bits for n >= 1 and x < 2^IW - 1 (n - 2 wraps where n = 1, and still
 // agrees); positions stay below MAX_DIM + P - 1 < 2^IW - 2, and a frame with
 // NI or NJ = 0 has no beats.
-// CUBE4_NEXT_INSIDE declares the function and the registers ni_0 .. ni_2,
+// CUBE4_NEXT_INSIDE declares the function, its rule from the four compares
+// made elsewhere (next_inside_of: x < n0, x < n1, x == n1, x == n2; a unit
+// that registers the compares a stage early) and the registers ni_0 .. ni_2,
 // nj_0 .. nj_2 (NI, NJ and their n - 1, n - 2, loaded every clk edge). Needs
 // IW (CUBE4_GEOMETRY), clk, and cfg_ni, cfg_nj (CUBE4_VIEW_FIELDS).
 `define CUBE4_NEXT_INSIDE \
+    function automatic next_inside_of(input d, input w, input lt0, input lt1, input eq1, input eq2); \
+        next_inside_of = (d ? lt1 : lt0) && !(w && (d ? eq2 : eq1)); \
+    endfunction \
     function automatic next_inside(input [IW-1:0] x, input d, input w, input [IW-1:0] n0, \
                                    input [IW-1:0] n1, input [IW-1:0] n2); \
-        next_inside = (d ? (x < n1) : (x < n0)) && !(w && (d ? (x == n2) : (x == n1))); \
+        next_inside = next_inside_of(d, w, x < n0, x < n1, x == n1, x == n2); \
     endfunction \
     reg [IW-1:0] ni_0, ni_1, ni_2, nj_0, nj_1, nj_2; \
     always @(posedge clk) begin \
