@@ -28,7 +28,8 @@
 //     p3      wx, wy
 //     p4 .. p7  cube4_plane's c0 .. c3
 //     p8      each lane's max(min(E, E_H), 0)
-//     p9      f
+//     p9      f (the low 8 bits of the shift, or 256 where a mask of the
+//             bits at 8 + FALL_SH and above finds one set)
 //
 // Ports
 //   cfg                           view registers (PH0_*, VIEW_*, SS_LOG2, CUT_*, FALL_*)
@@ -98,20 +99,43 @@ module cube4_sha_slab #(
         .in_wx(p3_wx), .in_wy(p3_wy), .c0_t(unused_t), .e(e), .e_h(e_h));
 
     // ---- p8: max(min(E, E_H), 0); p9: f ----
+    // f saturates where d >> FALL_SH >= 256, that is where d has a bit at
+    // 8 + FALL_SH or above: an AND with a mask of those bits and an OR of the
+    // result, beside the shift (whose low 8 bits alone are f otherwise), not a
+    // compare of the shifted word on a carry chain after the shifter (47 bits:
+    // the SLAB build's critical path). The mask and the shift's FALL_SH are
+    // registers of the unit's own, loaded together on every edge (a view
+    // constant: stable long before a frame's first beat reaches p8).
+    localparam integer DW = EW - 1;                 // d >= 0: EW - 1 bits
+    reg  [DW-1:0] sat_mask;                         // the bits of d at 8 + FALL_SH and above
+    reg  [5:0]    fall_sh;                          // FALL_SH
+    always @(posedge clk) begin
+        sat_mask <= {DW{1'b1}} << (7'd8 + {1'b0, cfg_fall_sh});
+        fall_sh  <= cfg_fall_sh;
+    end
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
             wire signed [EW-1:0] el = e[q*EW +: EW];
             wire signed [EW-1:0] eh = e_h[q*EW +: EW];
             wire signed [EW-1:0] mn = (el < eh) ? el : eh;
-            reg  [EW-2:0]        p8_d;          // >= 0
+            reg  [DW-1:0]        p8_d;          // >= 0
             reg  [FALL_W-1:0]    p9_f;
-            wire [EW-2:0]        sh = p8_d >> cfg_fall_sh;
+            wire [DW-1:0]        sh  = p8_d >> fall_sh;
+            wire                 sat = |(p8_d & sat_mask);
             always @(posedge clk) begin
                 p8_d <= mn[EW-1] ? '0 : mn[EW-2:0];
                 p9_f <= !cfg_fall_on ? FALL_W'(256)
-                      : (sh >= (EW-1)'(256)) ? FALL_W'(256) : FALL_W'(sh);
+                      : sat ? FALL_W'(256) : {1'b0, sh[FALL_W-2:0]};
             end
+`ifndef SYNTHESIS
+            always @(posedge clk) begin
+                if (sat != (sh >= DW'(256)))
+                    $fatal(1, "cube4_sha_slab: lane %0d's saturation %0d differs from d >> FALL_SH >= 256 (d %0d, FALL_SH %0d)",
+                           q, sat, p8_d, fall_sh);
+            end
+`endif
+            wire unused_sh = ^sh[DW-1:FALL_W-1];
             assign fall[q*FALL_W +: FALL_W] = p9_f;
         end
     endgenerate
