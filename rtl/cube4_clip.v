@@ -65,11 +65,12 @@ module cube4_clip #(
     // ---- c0 .. c3 (+ combinational): each lane's E and E_H ----
     wire [P*LANE_W-1:0] c0_t;
     wire [P*EW-1:0]     e, e_h;
+    wire [P-1:0]        unused_near;      // (the slab's falloff alone needs it)
     cube4_plane #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .FAR(SLAB)
     ) u_plane (
         .clk(clk), .cfg(cfg), .in_m(in_m), .in_j(in_j), .in_pb(in_pb), .in_skew(in_skew),
-        .in_wx(in_wx), .in_wy(in_wy), .c0_t(c0_t), .e(e), .e_h(e_h));
+        .in_wx(in_wx), .in_wy(in_wy), .c0_t(c0_t), .e(e), .e_h(e_h), .e_near(unused_near));
 
     // ---- c0: window along j and m; the beat's regions ----
     reg                   c0_wjm;                     // j and m inside the window

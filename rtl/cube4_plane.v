@@ -8,6 +8,7 @@
 //   section 12), and with FAR = 1 the slab's far face's:
 //     E   = CUT_A * (i * 2^W + wx) + CUT_B * (j * 2^W + wy) + CUT_C * (m * 2^(W - g)) + CUT_D
 //     E_H = CUT_T - E
+//     e_near = E < E_H (FAR = 1; 2 E < CUT_T, that is E < H = ceil(CUT_T / 2))
 //   (g = log2 S: every coordinate in units of 2^-W voxel), lane q holding
 //   i = pb * P + t, t = lane_pos(q, skew). Golden twin: golden/cube4/clip.py
 //   plane_value. One definition for the two places that need it: cube4_clip
@@ -20,7 +21,10 @@
 //   in registers, formed from the (static) coefficient a cycle before, so
 //   the lane's position only selects (no multiplier after the position's
 //   logic). E_H likewise from CUT_T - CUT_D, registered from the static
-//   registers.
+//   registers, and e_near as a compare of the lane's CUT_A * t * 2^W with the
+//   beat's H - (E less it), formed likewise from H - CUT_D: so the caller's
+//   min(E, E_H) selects by a bit made beside E's and E_H's sums, not by a
+//   compare of them after the sums (the SLAB build's path).
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 as cube4_tri (derived widths and the
@@ -47,6 +51,7 @@
 //   in_wx, in_wy   the beat's resampling weights, Q0.W
 //   c0_t  [P*LANE_W]  each lane's t, registered at c0
 //   e, e_h [P*CUT_E_W]  lane q's E and E_H, signed (combinational from c3)
+//   e_near [P]       lane q's E < E_H (combinational from c3; 0 with FAR = 0)
 //
 // Bit growth and rounding
 //   None: exact integers. i * 2^W + wx and m * 2^(W - g) are below
@@ -55,7 +60,9 @@
 //   over the box and CUT_T + |E| < 2^47 (golden/cube4/clip.py
 //   cut_coefficients, slab_coefficients), so neither wraps in CUT_E_W bits.
 //   c2's two halves are sums modulo 2^CUT_E_W, so their sum at c3 is exact
-//   even where a half alone would not fit.
+//   even where a half alone would not fit. e_near's terms are CUT_E_W + 2 bits
+//   (|H - E| < 2^46 + 2^47 and CUT_A * t * 2^W below 2^(AT_W + W - 1)), so
+//   its compare is exact wherever E and E_H are.
 // =============================================================================
 module cube4_plane #(
     parameter integer P        = 8, parameter integer MAX_DIM     = 256,
@@ -69,7 +76,8 @@ module cube4_plane #(
     input  wire [LANE_W-1:0] in_skew,
     input  wire [WEIGHT_W-1:0] in_wx, input wire [WEIGHT_W-1:0] in_wy,
     output wire [P*LANE_W-1:0] c0_t,
-    output wire [P*CUT_E_W-1:0] e, output wire [P*CUT_E_W-1:0] e_h
+    output wire [P*CUT_E_W-1:0] e, output wire [P*CUT_E_W-1:0] e_h,
+    output wire [P-1:0] e_near
 );
     generate
         `CUBE4_RANGE(g_bad_far, "cube4_plane", "FAR", FAR, 0, 1)
@@ -145,8 +153,39 @@ module cube4_plane #(
             for (q = 0; q < P; q = q + 1) begin : g_eh
                 assign e_h[q*EW +: EW] = c3_tbase - (EW'(c3_at[q]) <<< WEIGHT_W);
             end
+            // e_near: E < CUT_T - E <=> E < H = ceil(CUT_T / 2) = (CUT_T + 1) >>> 1
+            // <=> CUT_A * t * 2^W < H - (E less it): H - CUT_D, less the CUT_C
+            // term (c2), less the CUT_A and CUT_B terms (c3), in HW bits
+            localparam integer HW = EW + 2;
+            reg  signed [HW-1:0] hd_q, c2_hcd, c3_hbase;
+            wire signed [HW-1:0] t_w = HW'($signed(cfg_cut_t));   // (the view fields are unsigned)
+            wire signed [HW-1:0] d_w = HW'($signed(cfg_cut_d));
+            always @(posedge clk) begin
+                hd_q     <= ((t_w + HW'(1)) >>> 1) - d_w;
+                c2_hcd   <= hd_q - HW'(c1_c);
+                c3_hbase <= c2_hcd - HW'(c2_ab);
+            end
+            for (q = 0; q < P; q = q + 1) begin : g_near
+                assign e_near[q] = (HW'(c3_at[q]) <<< WEIGHT_W) < c3_hbase;
+            end
+`ifndef SYNTHESIS
+            // e_near is E < E_H wherever E + E_H is the CUT_T c3 was formed
+            // from (every sample: cfg changes only between frames; the cycles
+            // around a change, when the idle pipeline mixes two views, skipped)
+            reg [EW-1:0] t_s1, t_s2, t_s3;
+            always @(posedge clk) {t_s3, t_s2, t_s1} <= {t_s2, t_s1, cfg_cut_t};
+            for (q = 0; q < P; q = q + 1) begin : g_near_check
+                wire signed [EW-1:0] eq = e[q*EW +: EW], ehq = e_h[q*EW +: EW];
+                always @(posedge clk) begin
+                    if (eq + ehq == t_s3 && e_near[q] != (eq < ehq))
+                        $fatal(1, "cube4_plane: lane %0d's e_near %0d differs from E < E_H (E %0d, E_H %0d)",
+                               q, e_near[q], eq, ehq);
+                end
+            end
+`endif
         end else begin : g_no_far
-            assign e_h = '0;
+            assign e_h  = '0;
+            assign e_near = '0;
         end
     endgenerate
 

@@ -27,7 +27,8 @@
 //             registers); the beat's fields ride along
 //     p3      wx, wy
 //     p4 .. p7  cube4_plane's c0 .. c3
-//     p8      each lane's max(min(E, E_H), 0)
+//     p8      each lane's max(min(E, E_H), 0) (the min chosen by cube4_plane's
+//             e_near, formed beside E and E_H)
 //     p9      f (the low 8 bits of the shift, or 256 where a mask of the
 //             bits at 8 + FALL_SH and above finds one set)
 //
@@ -92,11 +93,12 @@ module cube4_sha_slab #(
     assign {f_m, f_j, f_pb, f_skew} = p3_f;
     wire [P*LANE_W-1:0] unused_t;
     wire [P*EW-1:0]     e, e_h;
+    wire [P-1:0]        e_near;               // E < E_H
     cube4_plane #(
         .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .FAR(1)
     ) u_plane (
         .clk(clk), .cfg(cfg), .in_m(f_m), .in_j(f_j), .in_pb(f_pb), .in_skew(f_skew),
-        .in_wx(p3_wx), .in_wy(p3_wy), .c0_t(unused_t), .e(e), .e_h(e_h));
+        .in_wx(p3_wx), .in_wy(p3_wy), .c0_t(unused_t), .e(e), .e_h(e_h), .e_near(e_near));
 
     // ---- p8: max(min(E, E_H), 0); p9: f ----
     // f saturates where d >> FALL_SH >= 256, that is where d has a bit at
@@ -113,12 +115,12 @@ module cube4_sha_slab #(
         sat_mask <= {DW{1'b1}} << (7'd8 + {1'b0, cfg_fall_sh});
         fall_sh  <= cfg_fall_sh;
     end
-    genvar q;
+    genvar ln;
     generate
-        for (q = 0; q < P; q = q + 1) begin : g_lane
-            wire signed [EW-1:0] el = e[q*EW +: EW];
-            wire signed [EW-1:0] eh = e_h[q*EW +: EW];
-            wire signed [EW-1:0] mn = (el < eh) ? el : eh;
+        for (ln = 0; ln < P; ln = ln + 1) begin : g_lane
+            wire signed [EW-1:0] el = e[ln*EW +: EW];
+            wire signed [EW-1:0] eh = e_h[ln*EW +: EW];
+            wire signed [EW-1:0] mn = e_near[ln] ? el : eh;   // min(E, E_H)
             reg  [DW-1:0]        p8_d;          // >= 0
             reg  [FALL_W-1:0]    p9_f;
             wire [DW-1:0]        sh  = p8_d >> fall_sh;
@@ -132,11 +134,11 @@ module cube4_sha_slab #(
             always @(posedge clk) begin
                 if (sat != (sh >= DW'(256)))
                     $fatal(1, "cube4_sha_slab: lane %0d's saturation %0d differs from d >> FALL_SH >= 256 (d %0d, FALL_SH %0d)",
-                           q, sat, p8_d, fall_sh);
+                           ln, sat, p8_d, fall_sh);
             end
 `endif
             wire unused_sh = ^sh[DW-1:FALL_W-1];
-            assign fall[q*FALL_W +: FALL_W] = p9_f;
+            assign fall[ln*FALL_W +: FALL_W] = p9_f;
         end
     endgenerate
     wire unused_cfg = ^{unused_t, cfg};
