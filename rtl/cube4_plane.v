@@ -169,15 +169,19 @@ module cube4_plane #(
                 assign e_near[q] = (HW'(c3_at[q]) <<< WEIGHT_W) < c3_hbase;
             end
 `ifndef SYNTHESIS
-            // e_near is E < E_H wherever E + E_H is the CUT_T c3 was formed
-            // from (every sample: cfg changes only between frames; the cycles
-            // around a change, when the idle pipeline mixes two views, skipped)
+            // e_near is E < E_H wherever E_H is CUT_T - E without wrap, for the
+            // CUT_T c3 was formed from: every sample of a slab (the host's
+            // bounds). Skipped: the cycles around a view change, when the idle
+            // pipeline mixes two views, and frames without a slab, whose CUT_T
+            // (CUT_T_NONE, 2^47 - 1) wraps E_H only where E < 0 (samples the
+            // cut plane drops) and whose falloff is off (FALL_ON = 0)
             reg [EW-1:0] t_s1, t_s2, t_s3;
             always @(posedge clk) {t_s3, t_s2, t_s1} <= {t_s2, t_s1, cfg_cut_t};
             for (q = 0; q < P; q = q + 1) begin : g_near_check
                 wire signed [EW-1:0] eq = e[q*EW +: EW], ehq = e_h[q*EW +: EW];
                 always @(posedge clk) begin
-                    if (eq + ehq == t_s3 && e_near[q] != (eq < ehq))
+                    if ($signed({t_s3[EW-1], t_s3}) - $signed({eq[EW-1], eq}) == $signed({ehq[EW-1], ehq})
+                        && e_near[q] != (eq < ehq))
                         $fatal(1, "cube4_plane: lane %0d's e_near %0d differs from E < E_H (E %0d, E_H %0d)",
                                q, e_near[q], eq, ehq);
                 end
