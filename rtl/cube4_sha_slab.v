@@ -105,16 +105,20 @@ module cube4_sha_slab #(
     // 8 + FALL_SH or above: an AND with a mask of those bits and an OR of the
     // result, beside the shift (whose low 8 bits alone are f otherwise), not a
     // compare of the shifted word on a carry chain after the shifter (47 bits:
-    // the SLAB build's critical path). The mask and the shift's FALL_SH are
-    // registers of the unit's own, loaded together on every edge (a view
-    // constant: stable long before a frame's first beat reaches p8).
+    // the SLAB build's critical path). The mask and the shifts' FALL_SH are
+    // registers of the unit's own, loaded on every edge (a view constant:
+    // stable long before a frame's first beat reaches p8). FALL_SH selects in
+    // every stage of every lane's shifter: one kept copy per lane
+    // (cube4_prim_copies), so that no one register drives all P shifters
+    // across the unit (a placed SLAB build's path, 0.9 ns of logic and 5.8 ns
+    // of route from one FALL_SH register).
     localparam integer DW = EW - 1;                 // d >= 0: EW - 1 bits
-    reg  [DW-1:0] sat_mask;                         // the bits of d at 8 + FALL_SH and above
-    reg  [5:0]    fall_sh;                          // FALL_SH
-    always @(posedge clk) begin
+    reg  [DW-1:0]  sat_mask;                        // the bits of d at 8 + FALL_SH and above
+    wire [P*6-1:0] fall_sh;                         // FALL_SH, lane q's copy at [q*6 +: 6]
+    always @(posedge clk)
         sat_mask <= {DW{1'b1}} << (7'd8 + {1'b0, cfg_fall_sh});
-        fall_sh  <= cfg_fall_sh;
-    end
+    cube4_prim_copies #(.N(P), .W(6), .RESET(0)) u_fall_sh (
+        .clk(clk), .rst(1'b0), .d(cfg_fall_sh), .q(fall_sh));
     genvar ln;
     generate
         for (ln = 0; ln < P; ln = ln + 1) begin : g_lane
@@ -123,7 +127,7 @@ module cube4_sha_slab #(
             wire signed [EW-1:0] mn = e_near[ln] ? el : eh;   // min(E, E_H)
             reg  [DW-1:0]        p8_d;          // >= 0
             reg  [FALL_W-1:0]    p9_f;
-            wire [DW-1:0]        sh  = p8_d >> fall_sh;
+            wire [DW-1:0]        sh  = p8_d >> fall_sh[ln*6 +: 6];
             wire                 sat = |(p8_d & sat_mask);
             always @(posedge clk) begin
                 p8_d <= mn[EW-1] ? '0 : mn[EW-2:0];
@@ -134,7 +138,7 @@ module cube4_sha_slab #(
             always @(posedge clk) begin
                 if (sat != (sh >= DW'(256)))
                     $fatal(1, "cube4_sha_slab: lane %0d's saturation %0d differs from d >> FALL_SH >= 256 (d %0d, FALL_SH %0d)",
-                           ln, sat, p8_d, fall_sh);
+                           ln, sat, p8_d, fall_sh[ln*6 +: 6]);
             end
 `endif
             wire unused_sh = ^sh[DW-1:FALL_W-1];
