@@ -263,7 +263,7 @@ module cube4_cfb #(
         end else begin : g_fixed
             wire unused_adv_bits = advance[CFB_ADV_BITS];   // (the beat's bits: BEATS = 1 only)
             // ==== control and traversal of the fixed, box and rectangle schedules ====
-            wire              go, pass_done, beat, row, flush_row;
+            wire              go, pass_done, pass_next, row, flush_row;
             wire [M_W-1:0]    m;
             wire [DIM_W-1:0]  j;
             wire [PB_W-1:0]   pb;
@@ -280,7 +280,7 @@ module cube4_cfb #(
                 .lower_mem(lower_mem), .upper_mem(upper_mem), .skew_pas(skew_pas), .skew_vrt(skew_vrt),
                 .wx(wx), .wy(wy), .wz(wz), .steps(steps),
                 .idle(idle), .go(go), .next_pass(next_pass), .pass_done(pass_done),
-                .beat(beat), .row(row), .flush_row(flush_row), .issue(issue), .fields(fields),
+                .pass_next(pass_next), .row(row), .flush_row(flush_row), .issue(issue), .fields(fields),
                 .use_prev(use_prev), .skew_out(skew_out), .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi),
                 .rowv(rowv), .rowin(rowin), .rd(rd));
             cube4_cfb_trav #(
@@ -288,7 +288,7 @@ module cube4_cfb #(
                 .RECTS(RECTS)
             ) u_trav (
                 .clk(clk), .rst(rst), .cfg(cfg), .cfg_addr(cfg_addr), .rt_cur(rt_cur), .rt_nxt(rt_nxt),
-                .idle(idle), .next_pass(next_pass), .beat(beat), .row(row), .flush_row(flush_row),
+                .idle(idle), .advance(advance[CFB_ADV_CTL]), .pass_next(pass_next), .row(row), .flush_row(flush_row),
                 .m(m), .k0_odd(k0_odd), .r(r), .j(j), .pb(pb), .sb(sb), .pbp(pbp), .pbx(pbx), .aj(aj), .ak(ak),
                 .last_pb(last_pb), .last_j(last_j), .last_pass(last_pass),
                 .lower_mem(lower_mem), .upper_mem(upper_mem),

@@ -33,8 +33,13 @@
 //   m, k0_odd, r, j, pb, sb, last_pb, last_j, lower_mem, upper_mem,
 //   skew_pas, skew_vrt   in  the traversal unit's (cube4_cfb_trav)
 //   wx, wy, wz [W] (Q0.W), steps [4]   in  the template's (cube4_cfb_tmpl)
-//   idle, go, next_pass, pass_done, beat, row, flush_row   out  the state's
+//   idle, go, next_pass, pass_done, row, flush_row   out  the state's
 //                moves (cube4_cfb_trav, _tmpl, _rect)
+//   pass_next    out  the state's beat ends its pass and a next pass follows:
+//                next_pass without advance, for the traversal's row
+//                registers, whose next value it selects while advance is only
+//                their enable (so advance, which comes from the request
+//                stream's ready, does not pass through their next-value logic)
 //   issue        out  the state describes a beat
 //   fields       out  [TAG_W - 4P] the beat's tag fields (CUBE4_TAG_LAYOUT)
 //   use_prev     out  the emitted row is the last row of a pass before
@@ -85,9 +90,10 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
     wire run_out  = run_end && !e_empty;                          // ... that emits a row
     assign idle      = (state_q == ST_IDLE);
     assign go        = start && !busy;
-    assign pass_done = advance && ((run_end && (e_empty || !cur[RT_FLUSH])) || (in_flush && last_pb));
-    assign next_pass = pass_done && !e_last;
-    assign beat      = advance && !idle;
+    wire   pass_end  = (run_end && (e_empty || !cur[RT_FLUSH])) || (in_flush && last_pb);
+    assign pass_done = advance && pass_end;
+    assign pass_next = pass_end && !e_last;
+    assign next_pass = advance && pass_next;
     assign row       = in_run && last_pb && !last_j && !e_empty;
     assign flush_row = run_out;
 
@@ -144,7 +150,7 @@ module cube4_cfb_ctl #(`CUBE4_CFB_PARAMS) (
                 fr_q     <= 1'b0;
                 if (cur[RT_FLUSH]) state_q <= ST_FLUSH;
             end
-            if (pass_done) begin
+            if (pass_end) begin                  // pass_done (under advance)
                 pend_q  <= in_run && !e_empty;   // no flush: the next pass's first beam emits it
                 fr_q    <= 1'b1;
                 state_q <= e_last ? ST_DRAIN : ST_RUN;

@@ -22,8 +22,13 @@
 //
 // Latency
 //   Registers; every output is a register or combinational from them and cfg.
-//   The pass counters load while idle (not in reset) and step at next_pass;
-//   the row counters load while idle and at next_pass, and step with beat.
+//   The pass counters load while idle (not in reset) and step at next_pass
+//   (advance and pass_next); the row counters load while idle and at
+//   next_pass, and step with a beat (advance, not idle). Their next value is
+//   chosen by idle and pass_next alone, and advance is only their enable: it
+//   comes from the request stream's ready, a long way from here, so it
+//   passes one gate to the registers' enables, none of their next-value logic
+//   (a placed SLAB build's path, the skid's ready through four gates of it).
 //   last_pass is a register kept with the pass counters (set from the counters'
 //   next values), so that the box's FLUSH and LAST, and with them pass_done
 //   and next_pass, start at a flop rather than behind k0's compare.
@@ -33,8 +38,10 @@
 //                the pass counters hold while rst is high)
 //   cfg, cfg_addr  in  view and address registers (cube4_defs.vh)
 //   rt_cur, rt_nxt in  [RECT_W] pass m's entry, the next pass's (CUBE4_RECT_LAYOUT)
-//   idle         in   the control unit is idle;  next_pass  it enters the next pass
-//   beat         in   a beat leaves the state (advance, not idle)
+//   idle         in   the control unit is idle
+//   advance      in   the state's beat leaves (cube4_cfb_mask; a beat when not idle)
+//   pass_next    in   that beat ends the pass and a next pass follows (next_pass
+//                = advance and pass_next: cube4_cfb_ctl)
 //   row          in   the beat ends a row that is not the pass's last
 //   flush_row    in   the beat ends the pass and a flush beam follows (slots)
 //   m [M_W], k0_odd, r [CFB_R_W], j [DIM_W], pb [PB_W], sb [SB_W]   out  counters
@@ -102,7 +109,7 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
                 ak_q  <= cfg_k_a0;
                 rk0_q <= cfg_k_r0;
                 lp_q  <= (cfg_nk == DIM_W'(1));   // k0 = 0 = NK - 1, r = 0
-            end else if (next_pass) begin
+            end else if (advance && pass_next) begin
                 m_q <= m_q + 1'b1;
                 if (any_read) begin
                     rk_q <= r_step(rk_q, cfg_flip_k);
@@ -127,38 +134,42 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
     wire [PB_W-1:0]  e_pbl = cur[RT_PBL +: PB_W];
     wire [DIM_W-1:0] n_j0  = nxt[RT_J0 +: DIM_W];
     wire [PB_W-1:0]  n_pb0 = nxt[RT_PB0 +: PB_W];
+    wire row_en = idle || advance;      // the enable (a beat, or idle)
+    wire row_ld = idle || pass_next;    // the next value: the next pass's first, or a step
     always @(posedge clk) begin
-        if (idle || next_pass) begin
-            j_q   <= n_j0;
-            lj_q  <= (n_j0 == nxt[RT_JL +: DIM_W]);
-            pb_q  <= n_pb0;
-            lpb_q <= (n_pb0 == nxt[RT_PBL +: PB_W]);
-            sb_q  <= nxt[RT_SB0 +: SB_W];
-            pbp_q <= nxt[RT_PBP0 +: IW];
-            pbx_q <= nxt[RT_PBX0 +: ADDR_W];
-            rj_q  <= nxt[RT_RJ0 +: LANE_W];
-            aj_q  <= nxt[RT_AJ0 +: ADDR_W];
-        end else if (beat) begin
-            if (!lpb_q) begin
-                pb_q  <= pb_q + 1'b1;
-                lpb_q <= (pb_q + 1'b1 == e_pbl);
-                pbp_q <= pbp_q + IW'(P);
-                pbx_q <= cfg_flip_i ? pbx_q - cfg_i_pb : pbx_q + cfg_i_pb;
-                sb_q  <= sb_q + 1'b1;
+        if (row_en) begin
+            if (row_ld) begin
+                j_q   <= n_j0;
+                lj_q  <= (n_j0 == nxt[RT_JL +: DIM_W]);
+                pb_q  <= n_pb0;
+                lpb_q <= (n_pb0 == nxt[RT_PBL +: PB_W]);
+                sb_q  <= nxt[RT_SB0 +: SB_W];
+                pbp_q <= nxt[RT_PBP0 +: IW];
+                pbx_q <= nxt[RT_PBX0 +: ADDR_W];
+                rj_q  <= nxt[RT_RJ0 +: LANE_W];
+                aj_q  <= nxt[RT_AJ0 +: ADDR_W];
             end else begin
-                pb_q  <= e_pb0;
-                lpb_q <= (e_pb0 == e_pbl);
-                pbp_q <= cur[RT_PBP0 +: IW];
-                pbx_q <= cur[RT_PBX0 +: ADDR_W];
+                if (!lpb_q) begin
+                    pb_q  <= pb_q + 1'b1;
+                    lpb_q <= (pb_q + 1'b1 == e_pbl);
+                    pbp_q <= pbp_q + IW'(P);
+                    pbx_q <= cfg_flip_i ? pbx_q - cfg_i_pb : pbx_q + cfg_i_pb;
+                    sb_q  <= sb_q + 1'b1;
+                end else begin
+                    pb_q  <= e_pb0;
+                    lpb_q <= (e_pb0 == e_pbl);
+                    pbp_q <= cur[RT_PBP0 +: IW];
+                    pbx_q <= cur[RT_PBX0 +: ADDR_W];
+                end
+                if (row) begin
+                    j_q  <= j_q + 1'b1;
+                    lj_q <= (j_q + 1'b1 == e_jl);
+                    sb_q <= sb_q + cur[RT_SBROW +: SB_W];
+                    rj_q <= r_step(rj_q, cfg_flip_j);
+                    aj_q <= a_step(aj_q, rj_q, cfg_flip_j, cfg_j_lin, cfg_j_blk);
+                end
+                if (flush_row) sb_q <= cur[RT_SB0 +: SB_W];   // the flush beam's slots
             end
-            if (row) begin
-                j_q  <= j_q + 1'b1;
-                lj_q <= (j_q + 1'b1 == e_jl);
-                sb_q <= sb_q + cur[RT_SBROW +: SB_W];
-                rj_q <= r_step(rj_q, cfg_flip_j);
-                aj_q <= a_step(aj_q, rj_q, cfg_flip_j, cfg_j_lin, cfg_j_blk);
-            end
-            if (flush_row) sb_q <= cur[RT_SB0 +: SB_W];   // the flush beam's slots
         end
     end
 

@@ -889,7 +889,7 @@
 // clk, rst and the register buses (declared once for the unit and its harness).
 `define CUBE4_CFB_TRAV_PORTS \
     input  wire [RECT_W-1:0] rt_cur, input wire [RECT_W-1:0] rt_nxt, \
-    input  wire idle, input wire next_pass, input wire beat, input wire row, input wire flush_row, \
+    input  wire idle, input wire advance, input wire pass_next, input wire row, input wire flush_row, \
     output wire [M_W-1:0] m, output wire k0_odd, output wire [CFB_R_W-1:0] r, \
     output wire [DIM_W-1:0] j, output wire [PB_W-1:0] pb, output wire [SB_W-1:0] sb, \
     output wire [IW-1:0] pbp, output wire [ADDR_W-1:0] pbx, \
@@ -907,7 +907,7 @@
     input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz, \
     input  wire [3:0] steps, \
     output wire idle, output wire go, output wire next_pass, output wire pass_done, \
-    output wire beat, output wire row, output wire flush_row, \
+    output wire pass_next, output wire row, output wire flush_row, \
     output wire issue, output wire [CFB_F1_W-1:0] fields, \
     output wire use_prev, output wire [LANE_W-1:0] skew_out, \
     output wire [DIM_W-1:0] p_ilo, output wire [DIM_W-1:0] p_iin, output wire [DIM_W-1:0] p_ihi, \

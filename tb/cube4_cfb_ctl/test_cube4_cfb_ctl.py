@@ -7,7 +7,8 @@ them: the traversal unit's counters and skews (``read_terms``), the template of 
 the unit advances under a seeded random advance (stalls). On every cycle its outputs must
 be the state's:
 
-* the moves: beat = advance, row, flush_row, pass_done and next_pass at the state's end;
+* the moves: row, flush_row, pass_done and next_pass at the state's end, pass_next
+  (the end without advance);
 * the beat: issue (not an empty pass), the read-side tag fields (in_run, reads, slot, pb,
   k0 odd), the read flag; sop on the frame's first emitted row, eop on the last flush beat;
 * the emitted row (``SliceRects.emitted``' order): emit, its pass, row, skew, Y-last flag,
@@ -91,8 +92,8 @@ async def play(dut, bench, trav, p: int, aw: int, table: list[dict], rects, off:
         adv = int(bench.rng.random() >= stall)
         dut.advance.value = adv
         await ReadOnly()
-        moves = {n: int(getattr(dut, n).value) for n in ("beat", "row", "flush_row", "pass_done", "next_pass", "issue")}
-        want = {"beat": adv, "row": int(st.row), "flush_row": int(st.kind == "run" and st.pass_end),
+        moves = {n: int(getattr(dut, n).value) for n in ("pass_next", "row", "flush_row", "pass_done", "next_pass", "issue")}
+        want = {"pass_next": int(st.pass_done and not st.last), "row": int(st.row), "flush_row": int(st.kind == "run" and st.pass_end),
                 "pass_done": adv & st.pass_done, "next_pass": adv & st.pass_done & (not st.last),
                 "issue": int(st.kind != "empty")}
         if st.kind in ("empty", "drain"):

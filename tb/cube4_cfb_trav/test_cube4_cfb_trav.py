@@ -2,7 +2,7 @@
 
 The states of golden frames (``cube4_sim.cfb_walk``: the passes, rows and partial beams of
 ``cube4.slices`` walks, flush beams, empty passes, the drain beat) are played into the
-unit's strobes (beat, row, flush_row, next_pass) with seeded random stalls between them,
+unit's strobes (advance, row, flush_row, pass_next) with seeded random stalls between them,
 the pass's rectangle-table entries (``cube4.memory.rect_table``) on rt_cur / rt_nxt as the
 table reader gives them. Before each advance the unit's outputs must be those of the state:
 
@@ -90,7 +90,10 @@ async def play(dut, bench, trav, p: int, aw: int, words: list[int], rects, gap: 
         await FallingEdge(dut.clk)
         dut.idle.value = 0
         dut.rt_cur.value, dut.rt_nxt.value = entry(st.m), entry(st.m + 1)
-        dut.beat.value = dut.next_pass.value = 0
+        dut.advance.value = 0
+        # pass_next is the state's own (it does not wait for advance): a stall must hold
+        # the counters even where it is set
+        dut.pass_next.value = int(st.pass_done and not st.last)
         while bench.rng.random() < gap:          # a stall: nothing moves
             await ReadOnly()
             held = {n: int(getattr(dut, n).value) for n in OUTS}
@@ -103,12 +106,11 @@ async def play(dut, bench, trav, p: int, aw: int, words: list[int], rects, gap: 
         else:
             assert int(dut.m.value) == st.m, f"{st}: m {int(dut.m.value)}"
         await FallingEdge(dut.clk)
-        dut.beat.value = 1
+        dut.advance.value = 1
         dut.row.value = int(st.row)
         dut.flush_row.value = int(st.kind == "run" and st.pass_end)
-        dut.next_pass.value = int(st.pass_done and not st.last)
     await FallingEdge(dut.clk)
-    dut.beat.value = dut.next_pass.value = dut.row.value = dut.flush_row.value = 0
+    dut.advance.value = dut.pass_next.value = dut.row.value = dut.flush_row.value = 0
     dut.idle.value = 1
     dut.rt_cur.value = dut.rt_nxt.value = entry(0)
     await bench.cycles(2)
@@ -128,7 +130,7 @@ async def test_trav(dut):
     p, md, aw, w = (int(getattr(dut, n).value) for n in ("P", "MAX_DIM", "ADDR_W", "WEIGHT_W"))
     ss_max = 1 << int(dut.MAX_SS_LOG2.value)
     bench = UnitBench(dut)
-    await bench.reset({"idle": 1, "beat": 0, "next_pass": 0, "row": 0, "flush_row": 0})
+    await bench.reset({"idle": 1, "advance": 0, "pass_next": 0, "row": 0, "flush_row": 0})
     total = 0
     for n, (direction, dims) in enumerate(VIEWS):
         gap = (0.0, 0.3, 0.6)[n % 3]
