@@ -114,6 +114,7 @@ module cube4_gra_beats
     reg               w_in;          // w < cmp_m (a register: loaded with w and cmp_m's next values)
     reg [M_W-1:0]     w;             // the slice being stepped
     reg [M_W-1:0]     w_last1;       // the last input beat's slice + 1 (with ended)
+    reg               w_last;        // w == w_last1 (with ended; a register: loaded with w and w_last1's next values)
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
     reg [DIM_W-1:0]   r1_q, r2_q;    // r + 1, r + 2 (DIM_W bits; registers, loaded with r)
     reg [M_W-1:0]     w1_q;          // w + 1 (loaded with w)
@@ -262,7 +263,7 @@ module cube4_gra_beats
     wire ld_i    = ld_in || ld_in_x;                         // an input beat
     wire ld_s    = ld_i || ld_gen || ld_gen_x;               // a step of a row
     wire ld_tail = ld_tl || ld_tl_x;                         // a window step
-    wire last_row = (w == w_last1) && r_nj;
+    wire last_row = w_last && r_nj;
     wire ld      = ld_s || ld_tail;
     assign s_ready = ld_i;
 
@@ -483,6 +484,23 @@ module cube4_gra_beats
         else       w_in <= w_mv ? (cm_ld ? (w1_x < im1_x) : (w1_x < cm_x))
                                 : (cm_ld ? (w_x < im1_x) : (w_x < cm_x));
     end
+    // w == w_last1 for the next cycle alike: w or w + 1 against w_last1 or in_m + 1 (the
+    // frame's EOP beat loads), in M_W bits as w_last1 is; read only with ended, which
+    // start clears and the EOP beat sets (so start's w = 0 needs no compare of its own).
+    // It keeps the compare out of row_mv, in front of w_in and the row's registers.
+    wire [M_W-1:0] im1  = in_m + 1'b1;
+    wire           wl_ld = ld_i && in_eop;                   // w_last1 loads in_m + 1
+    always @(posedge clk) begin
+        if (start) w_last <= 1'b0;
+        else       w_last <= w_mv ? (wl_ld ? (w1_q == im1) : (w1_q == w_last1))
+                                  : (wl_ld ? (w == im1) : (w == w_last1));
+    end
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && act && ended && (w_last != (w == w_last1)))
+            $fatal(1, "cube4_gra_beats: w_last %0d differs from w == w_last1 (w %0d, w_last1 %0d)", w_last, w, w_last1);
+    end
+`endif
     always @(posedge clk) begin
         // the next row's steps, for a row end that loads (valid in a row's second cycle on)
         nx_gm <= (c_cur | n_c) & nb_mask;
