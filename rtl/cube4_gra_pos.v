@@ -9,7 +9,11 @@
 //   A step at walk position (w, r, pb) brings X = (w, r, pb) and the centre
 //   C = (w - 1, r - 1, pb) with the six neighbours of cube4_gra_lines:
 //     plane A {r, pb}      X of the step at (w - 1, r, pb): P1 = (w - 1, r)
-//     plane B {r - 1, pb}  C of that step: P2b1 = (w - 2, r - 1)
+//     plane B {r, pb}      C of that step (its centre, row r - 1): P2b1 =
+//                          (w - 2, r - 1), at the step's row as plane A (a
+//                          row's address is r mod 2^RW for both: r - 1 would
+//                          map the rows one to one alike, with a subtractor
+//                          in front of the read and of the bypass compare)
 //     beam {pb}            X, P1, C, P2b1 of the step at (w, r - 1, pb):
 //                          B1, C, P1b2, P2b2
 //   Each is read in the cycle the step's position loads (ld: a block RAM's
@@ -23,7 +27,7 @@
 //   output register (0.7 ns on the ECP5), not in the caller's arithmetic. The caller says, registered
 //   with its step, which words are this frame's neighbours (pg, pgb, bg);
 //   the others read as zero. Plane A holds rows 0 .. NJ - 1 (row NJ is
-//   outside the volume), plane B rows 0 .. NJ - 1 (the centre's row), a
+//   outside the volume), plane B rows 1 .. NJ (the centre's row + 1), a
 //   dead step (one that only moves the window) writes nothing. The buffers
 //   keep a beat's header without its position (PB, J, M: the top fields),
 //   which C's header takes from the step's own, (w - 1, r - 1, pb), where a
@@ -110,10 +114,8 @@ module cube4_gra_pos #(
                                                                          : {VOXEL_W{1'b0}};
         end
     endgenerate
-    wire [RW-1:0]   ld_r1 = ld_r[RW-1:0] - 1'b1;   // the centre's row (plane B)
-    wire [RW-1:0]   i0_r1 = i0_r[RW-1:0] - 1'b1;
     wire [PAW-1:0]  ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
-    wire [PAW-1:0]  ra_b = {ld_r1, ld_pb},        wa_b = {i0_r1, i0_pb};
+    wire [PAW-1:0]  ra_b = ra_a,                  wa_b = wa_a;   // (plane B: at the step's row too)
     // the groups' writes: plane A (X at its own position), plane B (C at the
     // centre's position), the beam buffer's four fields; a dead step writes nothing
     wire wa_ok = !dead && (i0_r < nj);            // (registers: each copy of step ANDs them)
