@@ -488,7 +488,7 @@ module cube4_gra_beats
     // frame's EOP beat loads), in M_W bits as w_last1 is; read only with ended, which
     // start clears and the EOP beat sets (so start's w = 0 needs no compare of its own).
     // It keeps the compare out of row_mv, in front of w_in and the row's registers.
-    wire [M_W-1:0] im1  = in_m + 1'b1;
+    wire [M_W-1:0] im1  = im1_x[M_W-1:0];                    // in_m + 1, as w_last1 loads it
     wire           wl_ld = ld_i && in_eop;                   // w_last1 loads in_m + 1
     always @(posedge clk) begin
         if (start) w_last <= 1'b0;

@@ -116,8 +116,8 @@ module cube4_gra_pos #(
     endgenerate
     wire [PAW-1:0]  ra_a = {ld_r[RW-1:0], ld_pb}, wa_a = {i0_r[RW-1:0], i0_pb};
     wire [PAW-1:0]  ra_b = ra_a,                  wa_b = wa_a;   // (plane B: at the step's row too)
-    // the groups' writes: plane A (X at its own position), plane B (C at the
-    // centre's position), the beam buffer's four fields; a dead step writes nothing
+    // the groups' writes: plane A (X at its own position), plane B (C, at the
+    // step's row as plane A), the beam buffer's four fields; a dead step writes nothing
     wire wa_ok = !dead && (i0_r < nj);            // (registers: each copy of step ANDs them)
     wire wb_ok = !dead && (i0_r != '0);
     wire [GRA_POS_G-1:0] we = step & {{(GRA_POS_G - 2){!dead}}, wb_ok, wa_ok};
