@@ -349,15 +349,20 @@ module cube4_gra_beats
     reg             t_by;            // it is t_bd: the word written in that cycle, or row NJ's
     reg [TW-1:0]    t_bd;
     wire            rd_nj = start ? (cfg_nj == DIM_W'(1)) : nn_nj;
+    // row NJ's word {S, C, L} as its row ends (its C is zero): kept in s_nj / l_nj by
+    // the slice's parity; with NJ = 1 the read at that row end is of this very word
+    // (the row after the next one is row NJ of the next slice, whose rows read this
+    // slice's), so it is taken from here, not from the register it is written to
+    wire [TW-1:0]   nj_wd  = {acc_s, {NBX{1'b0}}, low_oh(prev_c & nb_mask)};
     always @(posedge clk) begin
         if (t_re) begin
             t_zero <= (rd_w == '0);
             t_by   <= rd_nj || (t_we && (t_wa == t_ra));
-            t_bd   <= rd_nj ? {s_nj[~rd_w[0]], {NBX{1'b0}}, l_nj[~rd_w[0]]} : t_wd;
+            t_bd   <= rd_nj ? (r_nj ? nj_wd : {s_nj[~rd_w[0]], {NBX{1'b0}}, l_nj[~rd_w[0]]}) : t_wd;
         end
         if (row_end && act && r_nj) begin
-            s_nj[w[0]] <= acc_s;
-            l_nj[w[0]] <= low_oh(prev_c & nb_mask);   // row NJ's C is zero
+            s_nj[w[0]] <= nj_wd[2*NBX +: NBX];
+            l_nj[w[0]] <= nj_wd[0 +: NBX];
         end
     end
     wire [TW-1:0]  t_word = t_zero ? '0 : (t_by ? t_bd : t_rd);

@@ -75,6 +75,26 @@ def slab_frame(p: int, direction) -> BeatFrame:
     return _run(vol, trav, cfg, lut, rmap, "composite", True, None, True)
 
 
+def thin_frame(p: int, ny: int, seed: int = 0) -> BeatFrame:
+    """A volume ``ny`` rows deep along j (NJ = ny) with scattered opaque voxels, seen
+    z-major: a slice's rows follow each other within a few cycles, many of them without
+    a running beat, so GRA's row table is read in the cycle a row's word is written
+    (NJ = 1) and in the cycle after (NJ = 2)."""
+    from cube4.config import Cube4Config
+    from cube4.view import make_traversal
+    rng = np.random.default_rng(seed + 7 * ny)
+    vol = rng.integers(0, 40, size=(9, ny, 13))
+    hit = rng.random(vol.shape) < 0.12
+    vol[hit] = rng.integers(100, 256, size=int(hit.sum()))
+    cfg = Cube4Config(pipelines=p)
+    lut = np.zeros((256, 4), dtype=np.int64)
+    lut[:, :3] = rng.integers(0, 256, size=(256, 3))
+    lut[60:, 3] = (1 << cfg.alpha_bits) - 1
+    rmap = rng.integers(0, 1024, size=(cfg.rmap_entries, 2))
+    trav = make_traversal((13, ny, 9), (0.2, -0.1, 1.0), cfg.weight_bits, 1)
+    return _run(vol, trav, cfg, lut, rmap, "composite", True, None, True)
+
+
 def view_frame(vol_spec: str, scene_name: str, p: int) -> BeatFrame:
     """A built-in scene's own view of a volume at P = p through the host (its empty-space
     box, the block table of the whole volume): the first pass's frame (S = 1 scenes)."""

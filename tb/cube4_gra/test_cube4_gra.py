@@ -261,10 +261,12 @@ def beats_lag() -> int:
 async def test_beat_walks(dut):
     """Beat-schedule frames (BEATS = 1): the front end's sample beats in (golden frames:
     opaque slabs whose rays end, so beats run as GRA's neighbours only; sparse shaded
-    volumes with and without termination), every beat out in order with its header, the
-    gradients bit for bit against the golden gradient of the zero-filled slices, random
-    gaps and stalls, frames back to back, a reset in mid-frame, nothing extra."""
-    from cube4_sim.beat_frames import slab_frame, sparse_frame
+    volumes with and without termination; volumes one and two rows deep, NJ = 1 and 2,
+    whose row table is read as a row's word is written and one cycle after), every beat
+    out in order with its header, the gradients bit for bit against the golden gradient
+    of the zero-filled slices, random gaps and stalls, frames back to back, a reset in
+    mid-frame, nothing extra."""
+    from cube4_sim.beat_frames import slab_frame, sparse_frame, thin_frame
     from cube4_testutil import sparse_case
     p, vw = int(dut.P.value), int(dut.VOXEL_W.value)
     geo = Geometry(p, int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value))
@@ -273,9 +275,15 @@ async def test_beat_walks(dut):
     seeds = [sd for sd in range(60) if sparse_case(sd)[6] and sparse_case(sd)[5] == "composite"][:6]
     cases = [("slab", (0.2, -0.1, 1.0)), ("slab", (1.0, 1.0, 1.0)), ("slab", (-1.0, 0.3, 0.5))]
     cases += [("sparse", sd) for sd in seeds]
+    cases += [("thin", 1), ("thin", 2)]     # the row table read as its word is written, and one cycle after
     frames = 0
     for n, (kind, arg) in enumerate(cases):
-        bf = slab_frame(p, arg) if kind == "slab" else sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2)
+        if kind == "slab":
+            bf = slab_frame(p, arg)
+        elif kind == "thin":
+            bf = thin_frame(p, arg)
+        else:
+            bf = sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2)
         if max(bf.trav.dims) > int(dut.MAX_DIM.value):
             continue
         inputs, outputs = beat_walk_frame(bf, p, geo, vw)
