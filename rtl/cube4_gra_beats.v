@@ -303,7 +303,11 @@ module cube4_gra_beats
     // C(w, r - 1), or r_nj masks it for r = 0), formed as the word is written,
     // so that a row that ends in its first cycle takes the next row's lowest
     // step g_oh from the word read, not through a carry chain over it (a
-    // simulation check holds it to low_oh(row_gm))
+    // simulation check holds it to low_oh(row_gm)).
+    // A row's word is written one edge after its row end, from registers
+    // (t_we_q, t_wa_q, t_wd_q), so the row end (a decision over gm) reaches a
+    // flip-flop, not the distributed RAM's write enable; a read at the row end's
+    // edge or at the next one takes the word through the bypass (t_by, t_bd).
     localparam integer TW = 3 * NBX;
     wire [RW:0]     t_ra;            // {parity, row} read
     wire [TW-1:0]   t_rd;
@@ -311,10 +315,18 @@ module cube4_gra_beats
     wire            t_we = row_end && act && !r_nj;
     wire [RW:0]     t_wa = {w[0], r[RW-1:0]};
     wire [TW-1:0]   t_wd = {acc_s, acc_c, low_oh((prev_c | acc_c) & nb_mask)};
+    reg             t_we_q;          // the write, one edge late
+    reg [RW:0]      t_wa_q;
+    reg [TW-1:0]    t_wd_q;
+    always @(posedge clk) begin
+        t_we_q <= !rst && t_we;
+        t_wa_q <= t_wa;
+        t_wd_q <= t_wd;
+    end
     // (distributed RAM: the word read goes into the row's next steps, gm, in the cycle after)
     cube4_sdp_ram #(.DATA_W (TW), .DEPTH (2 << RW), .DIST (1)) u_rows (
         .clk (clk), .rd_en (t_re), .out_en (1'b0), .rd_addr (t_ra), .rd_data (t_rd),
-        .wr_en (t_we), .wr_addr (t_wa), .wr_data (t_wd));
+        .wr_en (t_we_q), .wr_addr (t_wa_q), .wr_data (t_wd_q));
     // the row after the next one: rows 0 .. NJ of slice w read slice w - 1's
     // rows; the word of row NJ and of slice -1 is zero (n_zero)
     assign nx_r  = r_nj ? '0 : r1;                             // the next row
@@ -346,9 +358,15 @@ module cube4_gra_beats
     wire [M_W-1:0]   rd_w   = start ? '0 : nn_w;
     assign t_ra = {~nn_w[0], nn_r[RW-1:0]};                   // slice nn_w - 1's parity (rows below MAX_DIM)
     reg             t_zero;          // the word read is zero (slice -1)
-    reg             t_by;            // it is t_bd: the word written in that cycle, or row NJ's
+    reg             t_by;            // it is t_bd: a word the RAM does not hold yet, or row NJ's
     reg [TW-1:0]    t_bd;
     wire            rd_nj = start ? (cfg_nj == DIM_W'(1)) : nn_nj;
+    // the words not in the RAM at the read: the row end's of this edge (t_wd), the
+    // write of this edge (t_wd_q); the choice between them is by address alone
+    // (registers), not by the row end (a simulation check below holds that the
+    // two never both match with only the older one written)
+    wire            by_new = (t_wa == t_ra);
+    wire            by_old = (t_wa_q == t_ra);
     // row NJ's word {S, C, L} as its row ends (its C is zero): kept in s_nj / l_nj by
     // the slice's parity; with NJ = 1 the read at that row end is of this very word
     // (the row after the next one is row NJ of the next slice, whose rows read this
@@ -357,8 +375,9 @@ module cube4_gra_beats
     always @(posedge clk) begin
         if (t_re) begin
             t_zero <= (rd_w == '0);
-            t_by   <= rd_nj || (t_we && (t_wa == t_ra));
-            t_bd   <= rd_nj ? (r_nj ? nj_wd : {s_nj[~rd_w[0]], {NBX{1'b0}}, l_nj[~rd_w[0]]}) : t_wd;
+            t_by   <= rd_nj || (t_we && by_new) || (t_we_q && by_old);
+            t_bd   <= rd_nj ? (r_nj ? nj_wd : {s_nj[~rd_w[0]], {NBX{1'b0}}, l_nj[~rd_w[0]]})
+                            : (by_new ? t_wd : t_wd_q);
         end
         if (row_end && act && r_nj) begin
             s_nj[w[0]] <= nj_wd[2*NBX +: NBX];
@@ -573,6 +592,8 @@ module cube4_gra_beats
                    pos_ld[0], pos_mv[0], pos_step[0], i0_mv, i1_mv, step);
         if (!rst && act && n_l != low_oh(row_gm))
             $fatal(1, "cube4_gra_beats: the row table's L %0h is not the next row's lowest step (row_gm %0h)", n_l, row_gm);
+        if (!rst && t_re && !rd_nj && rd_w != '0 && by_new && !t_we && by_old && t_we_q)
+            $fatal(1, "cube4_gra_beats: the row table's read at %0h takes the row end's word, not the write before it", t_ra);
         if (!rst && mg && row_gm != nx_gm)   // (what g_oh's load from x_oh at a row end relies on)
             $fatal(1, "cube4_gra_beats: the next row's steps %0h at a loading row end are not nx_gm %0h", row_gm, nx_gm);
     end
