@@ -48,6 +48,11 @@
 //                                   (e.g. Q0.8); 1.0 is not representable, and
 //                                   y = a exactly when w = 0
 //   y    out  [DATA_W-1:0]          interpolated sample: same format as a
+//   y_next out [DATA_W-1:0]         the value y takes at the next clock edge with
+//                                   en = 1 (LATENCY >= 1; y itself with LATENCY 0):
+//                                   a caller that needs a function of y one cycle
+//                                   after it (cube4_tri_lane: two lerps' difference,
+//                                   the next lerp's operand) registers it from here
 //
 // Bit growth and rounding
 //   b - a              : sQ, DATA_W + 1 bits (exact).
@@ -76,7 +81,8 @@ module cube4_lerp #(
     input  wire [DATA_W-1:0]   b,
     input  wire [DATA_W:0]     d,
     input  wire [WEIGHT_W-1:0] w,
-    output wire [DATA_W-1:0]   y
+    output wire [DATA_W-1:0]   y,
+    output wire [DATA_W-1:0]   y_next
 );
 
     // ---- parameter checks (stop elaboration on illegal values) ----
@@ -161,6 +167,7 @@ module cube4_lerp #(
     wire [SUM_W-1:0]  sum    = prod_s1[SUM_W-1:0] + a_half;
     wire unused_sign = prod_s1[PROD_W-1];   // (PROD_W = SUM_W + 1: the sum is exact modulo 2^SUM_W)
     wire [DATA_W-1:0] y_comb = sum[WEIGHT_W +: DATA_W];
+    assign y_next = y_comb;
 
     // ---- optional output register (LATENCY >= 1) ----
     generate

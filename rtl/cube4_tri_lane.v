@@ -16,7 +16,12 @@
 //   the lane forms them from the cell one cycle before s4 (pre_vals,
 //   pre_nvals) and registers them with s4 (cube4_lerp DIFF_IN), so each
 //   x-lerp's multiplier loads its operand from a register of its own lane,
-//   not through a subtractor from the beam buffer's registers.
+//   not through a subtractor from the beam buffer's registers. The y- and
+//   z-lerps' differences too: each is registered beside the two results it
+//   is the difference of, from the earlier lerps' next values (cube4_lerp
+//   y_next), so every multiplier of the lane loads a register, not the
+//   output of a carry chain (a difference formed from the results' registers
+//   in front of its MULT18X18D was a critical path of the beat build).
 //
 // Parameters
 //   VOXEL_W   voxel / sample width.                1..16.  Default 8.
@@ -98,6 +103,7 @@ module cube4_tri_lane #(
             // (value index 2, 0, 3, 1 of vals, with nvals at i + 1); 4, 5 y of
             // the lower and the upper slice (x results 0, 1 and 2, 3); 6 z (4, 5)
             wire [7*CW-1:0] y;
+            wire [7*CW-1:0] yn;          // each step's next y (cube4_lerp y_next)
             for (n = 0; n < 7; n = n + 1) begin : g_lerp
                 localparam integer IX = (((n % 2) != 0) ? 0 : 2) + n / 2;
                 wire [CW-1:0] a, b;
@@ -114,19 +120,31 @@ module cube4_tri_lane #(
                 end else begin : g_yz
                     assign a = y[(2*n-8)*CW +: CW];
                     assign b = y[(2*n-7)*CW +: CW];
-                    assign d = '0;
+                    if (LBL == 0) begin : g_d
+                        // b - a of the results a and b as they are loaded (the
+                        // lerps move every cycle: d_q is b - a in a and b's cycle)
+                        reg [CW:0] d_q;
+                        always @(posedge clk) d_q <= {1'b0, yn[(2*n-7)*CW +: CW]} - {1'b0, yn[(2*n-8)*CW +: CW]};
+                        assign d = d_q;
+                    end else begin : g_no_d
+                        assign d = '0;
+                    end
                 end
                 if (LBL != 0) begin : g_pick
                     cube4_pick #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT)) u_pick (
                         .clk(clk), .en(1'b1), .a(a), .b(b), .w(w), .y(y[n*CW +: CW]));
+                    assign yn[n*CW +: CW] = '0;        // (no difference of picks is formed)
                     wire unused_d = ^d;
                 end else begin : g_mix
                     cube4_lerp #(.DATA_W(CW), .WEIGHT_W(WEIGHT_W), .LATENCY(LERP_LAT),
-                                 .DIFF_IN((n < 4) ? 1 : 0)) u_lerp (
-                        .clk(clk), .en(1'b1), .a(a), .b(b), .d(d), .w(w), .y(y[n*CW +: CW]));
+                                 .DIFF_IN(1)) u_lerp (
+                        .clk(clk), .en(1'b1), .a(a), .b(b), .d(d), .w(w), .y(y[n*CW +: CW]),
+                        .y_next(yn[n*CW +: CW]));
                 end
             end
             assign sample[OFF +: CW] = FLIP ^ y[6*CW +: CW];
+            // (the z-lerp's next value: nothing follows it; a label channel's picks form no difference)
+            wire unused_yn = (LBL != 0) ? ^yn : ^yn[6*CW +: CW];
         end
     endgenerate
 endmodule

@@ -25,7 +25,8 @@ module cube4_lerp_vclk #(
     input  wire [DATA_W-1:0]   a,
     input  wire [DATA_W-1:0]   b,
     input  wire [WEIGHT_W-1:0] w,
-    output wire [DATA_W-1:0]   y
+    output wire [DATA_W-1:0]   y,
+    output wire [DATA_W-1:0]   y_next
 );
 
     cube4_sim_clock #(
@@ -45,7 +46,8 @@ module cube4_lerp_vclk #(
         .b   (b),
         .d   ({(DATA_W + 1){1'b0}}),   // (DIFF_IN = 0: b - a formed inside)
         .w   (w),
-        .y   (y)
+        .y   (y),
+        .y_next (y_next)
     );
 
 endmodule

@@ -12,7 +12,9 @@ drives a, b, w, en on each falling edge, so inputs are stable around the
 rising edge and y is sampled half a cycle after it.
 A Python model of the pipeline (LATENCY stages that shift only when en = 1)
 tells which input vector y should hold; with LATENCY > 0, en is toggled at
-random and y must hold its value across every stalled edge.
+random and y must hold its value across every stalled edge. y_next, read once the
+inputs of a cycle are driven, must be what y shows after the next enabled edge (with
+LATENCY 0, y itself).
 
 Random stimulus: each cocotb test seeds its own generator from cocotb's
 per-test seed (derived from COCOTB_RANDOM_SEED and the test name). A failing
@@ -33,7 +35,7 @@ import cocotb
 import numpy as np
 import pytest
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge
+from cocotb.triggers import FallingEdge, ReadOnly
 
 from cube4.fixed import lerp
 
@@ -113,6 +115,8 @@ class TB:
         driven: int | None = None  # vector index on the inputs (None: filler)
         prev_en = 0
         prev_y: int | None = None
+        prev_yn: int | None = None   # y_next after the last drive: y after an enabled edge
+        next_checks = 0
         sent = 0
         checked = 0
         held_checks = 0
@@ -143,6 +147,13 @@ class TB:
                             "lerp(a=%d, b=%d, w=%d) = %d expected %d",
                             a[shown], b[shown], w[shown], y, expected[shown],
                         )
+            # 1b. y_next (read after the last drive) is what an enabled edge loaded into y
+            if prev_yn is not None and (lat == 0 or prev_en == 1):
+                next_checks += 1
+                if y != prev_yn:
+                    mismatches += 1
+                    if mismatches <= MAX_MISMATCH_LOGS:
+                        self.log.error("y = %d after an enabled edge, y_next was %d", y, prev_yn)
             prev_y = y
 
             # 2. drive the next cycle.
@@ -158,6 +169,8 @@ class TB:
             if lat > 0 and en:
                 stages = [driven, *stages[:-1]]
             prev_en = en
+            await ReadOnly()
+            prev_yn = self.dut.y_next.value.to_unsigned()
 
             if self.cycles - cycles0 > 100 * (n + lat + 10):
                 raise AssertionError(f"timeout: {checked} of {n} results seen")
@@ -165,11 +178,12 @@ class TB:
         wall = time.perf_counter() - t0
         cycles = self.cycles - cycles0
         self.log.info(
-            "%d vectors, %d stall-hold checks, %d cycles in %.3f s wall = %.0f cycles/s",
-            n, held_checks, cycles, wall, cycles / wall if wall > 0 else float("inf"),
+            "%d vectors, %d stall-hold checks, %d y_next checks, %d cycles in %.3f s wall = %.0f cycles/s",
+            n, held_checks, next_checks, cycles, wall, cycles / wall if wall > 0 else float("inf"),
         )
         assert mismatches == 0, f"{mismatches} mismatches against cube4.fixed.lerp (see log)"
         assert checked == n
+        assert next_checks >= n, f"only {next_checks} y_next checks for {n} vectors"
 
     def corner_vectors(self):
         """a, b in {0, max, 2 random}; w in {0, 1, half, max}: every combination.
