@@ -1095,6 +1095,58 @@ def test_beat_frames_vgrad(p):
     beat_frames(p, shaded=True, vgrad=True, gmod=True)
 
 
+def test_beat_frames_thin():
+    """Frames one and two rows deep (NJ = 1, 2: crop boxes of one volume, rows along y and
+    along x) through the shaded beat build, P = 8: GRA's row table is read as a row's word
+    is written and in the cycle after (NJ = 1 failed here before the row NJ word was taken
+    as written). Their rays run to their stops: the host lets rays end early only in frames
+    of TERM_MIN_ROWS rows or more (the decisions' wait for COM's reports deadlocks in
+    thinner ones), as the last frame here, with random stalls. Each frame's rays are the
+    golden beat-schedule frame's bit for bit and its plane the fixed schedule's."""
+    import copy
+
+    import cube4.beats as beats
+    from cube4.host import crop_volume
+    from cube4.model import render_frame
+
+    p = 8
+    rng = np.random.default_rng(808)
+    cfg = Cube4Config(pipelines=p)
+    vol = rng.integers(0, 64, size=(9, 6, 12))
+    hit = rng.random(vol.shape) < 0.3
+    vol[hit] = rng.integers(64, 256, size=int(hit.sum()))
+    boxes = [((12, 1, 9), (0, 2, 0), (1.0, 1.0, 1.0)), ((12, 2, 9), (0, 3, 0), (1.0, 1.0, 1.0)),
+             ((10, 6, 1), (1, 0, 6), (1.0, 0.4, -0.7)), ((10, 6, 2), (1, 0, 4), (-1.0, 0.4, 0.7)),
+             ((12, 6, 9), (0, 0, 0), (0.3, -0.45, 1.0))]
+    jobs, gold = [], []
+    for n, (dims, origin, direction) in enumerate(boxes):
+        trav = make_traversal(dims, direction, cfg.weight_bits, 1, origin=origin)
+        terminate = trav.nj >= beats.TERM_MIN_ROWS
+        lut, rmap = random_tables(rng, cfg)
+        lut[:64] = 0
+        if terminate:
+            lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
+        bits = beats.BlockTable.of(vol, beats.BLOCK).bits(lut, "composite")
+        sched = beats.BeatSchedule(trav, p, beats.frame_occupancy(bits, beats.BLOCK, trav), terminate=terminate,
+                                   gra=True)
+        rule = beats.TerminationRule("composite", 0, 1 << cfg.acc_bits, int(vol.min()), int(vol.max()),
+                                     enabled=terminate, value_bits=cfg.voxel_bits)
+        jobs.append(FrameJob(trav, lut, rmap, mode="composite", beats=(copy.deepcopy(sched), rule, bits),
+                             stall=(0, 40)[n % 2], stall_out=(0, 30)[n % 2]))
+        gold.append((sched, rule))
+    assert sorted({j.trav.nj for j in jobs})[:2] == [1, 2], "the frames must include NJ = 1 and NJ = 2"
+    build = {"BEATS": 1, "SHADING": 1, "VGRAD": 0, "GMOD": 1, "SLAB": 1}   # (test_beat_frames_shaded's build)
+    results = render_frames(vol, jobs, cfg, max_dim=32, build=build)
+    for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
+        label = f"thin frame {n}: NJ = {job.trav.nj}, NI = {job.trav.ni}{' terminated' if rule.enabled else ''}"
+        frame = check(vol, job.trav, cfg, job.lut, job.rmap, res, label, mode="composite", beats=(sched, rule))
+        fixed = render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, mode="composite",
+                             shading=True)
+        assert (frame.baseplane == fixed.baseplane).all(), f"{label}: differs from the fixed schedule"
+        assert fixed.baseplane.any(), f"{label}: an empty image (the frame would test nothing)"
+        print(f"{label}: {res['cycles']} cycles")
+
+
 def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, zout: bool = False,
                 slab: bool = False, labels: bool = False) -> None:
     """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
