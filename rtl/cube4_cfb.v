@@ -59,8 +59,10 @@
 //              per-axis address terms and the lanes' skews
 //     u_tmpl   cube4_cfb_tmpl: the template (phases, weights, X/Y steps)
 //     u_steps, u_skip, u_bctl  (BEATS = 1) in place of u_ctl and u_trav: the
-//              slices' steps, the decisions and walk, the walk's beats as
-//              the state (through u_wskid, a cube4_skid: one cycle); u_steps
+//              slices' steps (through u_sskid, a cube4_skid: the decisions'
+//              take of a slice's steps reaches a register, not the steps'
+//              counters), the decisions and walk, the walk's beats as the
+//              state (through u_wskid, a cube4_skid: one cycle); u_steps
 //              and u_skip start an edge after u_bctl takes the frame (two
 //              register copies of go)
 //     u_rect   cube4_cfb_rect (RECTS = 1): the rectangle table, one pass ahead
@@ -182,13 +184,23 @@ module cube4_cfb #(
             // flip-flops (a copy each), not through the busy logic across the units
             wire [1:0] go_q;
             cube4_prim_copies #(.N(2), .W(1)) u_go (.clk(clk), .rst(rst), .d(go), .q(go_q));
-            wire st_valid, st_ready;
-            wire [DIM_W-1:0] st_x, st_y;
+            wire s0_valid, s0_ready;
+            wire [DIM_W-1:0] s0_x, s0_y;
             cube4_cfb_steps #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
             ) u_steps (
                 .clk(clk), .rst(rst), .cfg(cfg), .start(go_q[0]),
-                .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y));
+                .st_valid(s0_valid), .st_ready(s0_ready), .st_x(s0_x), .st_y(s0_y));
+            // the steps a slice ahead of the decisions, which take one a slice: the
+            // skid's ready is a register (the steps hold two items there from the
+            // frame's second cycle on, so the decisions never wait for one); a
+            // frame's start empties it with the steps (go_q[0])
+            wire st_valid, st_ready;
+            wire [DIM_W-1:0] st_x, st_y;
+            cube4_skid #(.DATA_W(2 * DIM_W)) u_sskid (
+                .clk(clk), .rst(rst || go_q[0]),
+                .in_valid(s0_valid), .in_ready(s0_ready), .in_data({s0_x, s0_y}),
+                .out_valid(st_valid), .out_ready(st_ready), .out_data({st_x, st_y}));
             wire w_valid, w_ready, w_read, w_leave, w_tok, w_eor, w_eos, w_last;
             wire [M_W-1:0]   w_m;
             wire [DIM_W-1:0] w_j;

@@ -146,6 +146,7 @@ module cube4_gra_window #(
     wire [1:0]        edge_in = (RECTS != 0 || BEATS != 0) ? c_edge : 2'b00;  // (lines: i +/- 1 lie in the frame's beams)
     wire              unused_edge = ^c_edge;                       // (lines: constant zero)
     reg [META_W-1:0]  h1_meta, h2_meta;
+    reg [META_W-1:0]  h1_mx;     // h1_meta with the flags' fields from their second kept copy (below)
     reg [PV-1:0]      h1_c, h2_c, h3_c, h1_f, h2_f, h1_b, h2_b, h3_b;
     reg [P*DW-1:0]    h1_gj, h2_gj;
 
@@ -170,7 +171,7 @@ module cube4_gra_window #(
     always @(posedge clk) begin
         if (step) begin
             h1_meta <= c_meta;
-            h2_meta <= h1_meta;
+            h2_meta <= h1_mx;
             h1_c    <= c;
             h2_c    <= h1_c;
             h3_c    <= h2_c;
@@ -204,13 +205,25 @@ module cube4_gra_window #(
     // no sum of the position on the path.
     // (the flags read h1's fields from a kept copy of their own, loaded with
     // h1_meta: the header's register serves the centre's outputs, and a route
-    // from it across GRA to the flags' compares limited the beat build)
+    // from it across GRA to the flags' compares limited the beat build. The
+    // header's fields on their way to h2_meta are a second kept copy: a plain
+    // register of the same input would be merged into the flags' copy, which
+    // then drove both ends again)
     localparam integer FK_W = PB_W + LANE_W + 2;
-    wire [FK_W-1:0]   h1_fk;
-    cube4_prim_reg_copies #(.W(FK_W), .RESET(0)) u_h1_fk (
-        .clk(clk), .rst(rst), .en(step),
-        .d({c_meta[HDR_PB +: PB_W], c_meta[HDR_SKEW +: LANE_W], c_meta[HDR_CTRL + CTRL_SX], c_meta[HDR_CTRL + CTRL_OSX]}),
-        .q(h1_fk));
+    wire [FK_W-1:0]   fk_d = {c_meta[HDR_PB +: PB_W], c_meta[HDR_SKEW +: LANE_W], c_meta[HDR_CTRL + CTRL_SX],
+                              c_meta[HDR_CTRL + CTRL_OSX]};
+    wire [2*FK_W-1:0] h1_fk2;
+    cube4_prim_reg_copies #(.COPIES(2), .W(FK_W), .RESET(0)) u_h1_fk (
+        .clk(clk), .rst(rst), .en({2{step}}), .d({2{fk_d}}), .q(h1_fk2));
+    wire [FK_W-1:0]   h1_fk  = h1_fk2[0 +: FK_W];        // the flags'
+    wire [FK_W-1:0]   h1_fkm = h1_fk2[FK_W +: FK_W];     // h2_meta's
+    always @(*) begin
+        h1_mx = h1_meta;
+        h1_mx[HDR_PB +: PB_W]       = h1_fkm[FK_W-1 -: PB_W];
+        h1_mx[HDR_SKEW +: LANE_W]   = h1_fkm[2 +: LANE_W];
+        h1_mx[HDR_CTRL + CTRL_SX]   = h1_fkm[1];
+        h1_mx[HDR_CTRL + CTRL_OSX]  = h1_fkm[0];
+    end
     wire [PB_W-1:0]   h1_pb   = h1_fk[FK_W-1 -: PB_W];
     wire [LANE_W-1:0] h1_skew = h1_fk[2 +: LANE_W];
     `CUBE4_LAST_BEAM_FUNCTIONS
@@ -246,9 +259,10 @@ module cube4_gra_window #(
     wire              h1_dxb = h1_fk[0];                       // old X-step
 `ifndef SYNTHESIS
     always @(posedge clk) begin
-        if (!rst && h1_v && h1_fk != {h1_meta[HDR_PB +: PB_W], h1_meta[HDR_SKEW +: LANE_W],
-                                      h1_meta[HDR_CTRL + CTRL_SX], h1_meta[HDR_CTRL + CTRL_OSX]})
-            $fatal(1, "cube4_gra_window: the flags' copy of h1's fields %0h differs from h1_meta's", h1_fk);
+        if (!rst && h1_v && (h1_fk != {h1_meta[HDR_PB +: PB_W], h1_meta[HDR_SKEW +: LANE_W],
+                                       h1_meta[HDR_CTRL + CTRL_SX], h1_meta[HDR_CTRL + CTRL_OSX]}
+                             || h1_fkm != h1_fk))
+            $fatal(1, "cube4_gra_window: the copies of h1's fields %0h, %0h differ from h1_meta's", h1_fk, h1_fkm);
     end
 `endif
     // h1's last partial beam: its own flag (RECTS), or a gap before the incoming beat (BEATS)
