@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .beats import LAG, TERM_MIN_ROWS, BeatSchedule, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
+from .beats import LAG, TERM_MIN_ROWS, BeatSchedule, BeatStats, BlockTable, TerminationRule, frame_occupancy, schedule_stats as beat_stats
 from .clip import Clip, crop_regions, cut_coefficients, slab_coefficients
 from .config import Cube4Config, resolve_build
 from .cycles import frame_cycles, has_falloff, has_gmod, rect_frame_cycles
@@ -312,7 +312,9 @@ def tau_fixed(tau: float, cfg: Cube4Config) -> int:
 
 def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) -> list:
     """Each pass's (BeatSchedule, TerminationRule) within its empty-space box
-    (None: the pass has no frame); the block table is the whole volume's."""
+    (None: the pass has no frame); the block table is the whole volume's. MIP and MinIP
+    with depth out end no ray: the passed depth is the held sample's slice, the last of
+    equal values, which a later sample equal to the volume's extreme still moves (numerics.md §21)."""
     unknown = set(opts) - {"block", "lag", "tau", "terminate"}
     if unknown:
         raise ValueError(f"beat_skip: unknown keys {sorted(unknown)}")
@@ -322,7 +324,7 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
                           value_bits=cfg.voxel_bits if sc.labels is not None else None)
     bits = table.bits(vp.lut, sc.mode)
     table_s = time.perf_counter() - t0
-    terminate = bool(opts.get("terminate", True))
+    terminate = bool(opts.get("terminate", True)) and not (is_extremum(sc.mode) and sc.depth_threshold is not None)
     out = []
     for plan in vp.plans:
         if plan.trav is None:
@@ -344,8 +346,9 @@ def beat_schedules(vol: np.ndarray, vp: ViewPlan, cfg: Cube4Config, opts: dict) 
 
 
 def beat_view_stats(frames: list) -> dict:
-    """The beats the view's frames ran and skipped (after they ran), and the front end's walk."""
-    tot: dict = {}
+    """The beats the view's frames ran and skipped (after they ran), and the front end's walk
+    (all zero where no frame ran: nothing in the view can change a ray)."""
+    tot: dict = BeatStats(0, 0, 0, 0, 0).as_dict()
     for fr in frames:
         if fr is None:
             continue
