@@ -21,7 +21,8 @@ from cube4.config import Cube4Config
 from cube4.cycles import frame_cycles
 from cube4.errors import UserError
 from cube4.model import render_frame
-from cube4.scene import parse_scene
+from cube4.builds import FULL_BUILD
+from cube4.scene import SKIP_DEFAULT, parse_scene, with_schedule
 from cube4.view import make_traversal
 
 def skipped_baseplane(vol, trav, cfg, lut, rmap, mode, shading, clip):
@@ -144,7 +145,14 @@ def test_scene_key_must_be_a_bool():
     assert parse_scene({"render": {"skip": "beats", "tau": 0.01}}).tau == 0.01
     with pytest.raises(UserError, match="render.tau"):
         parse_scene({"render": {"skip": "beats", "tau": 0.9}})
-    assert make_scene().skip is True
+    sc = make_scene()       # [render] skip left out: the beat schedule at S = 1, else the box
+    assert sc.skip == SKIP_DEFAULT and sc.schedule == "beats"
+    assert dataclasses.replace(sc, supersample=4).schedule is True
+    assert with_schedule(sc, whole=False).skip is True and with_schedule(sc).skip == "beats"
+    assert with_schedule(sc, build=FULL_BUILD).skip is True
+    assert with_schedule(dataclasses.replace(sc, skip=False), build={"BEATS": 1}).skip is False
+    with pytest.raises(UserError, match="render.skip must be true"):
+        parse_scene({"render": {"skip": SKIP_DEFAULT}})     # the default has no spelling of its own
 
 
 def test_cli_no_skip_and_stats(tmp_path):

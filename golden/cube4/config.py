@@ -105,13 +105,13 @@ def scene_build(scenes) -> dict:
         b["ZOUT"] |= int(sc.depth_threshold is not None)
         # depth in: COM's stop table; the beat schedule ends each ray at the geometry's stop
         # through the ray table instead (BeatSchedule.limit_stop), with no unit of its own
-        b["ZIN"] |= int(sc.geometry is not None and sc.skip != "beats")
+        b["ZIN"] |= int(sc.geometry is not None and sc.schedule != "beats")
         b["GMOD"] |= int(sc.gmod is not None)
         b["LABELS"] |= int(sc.labels is not None)
         b["VGRAD"] |= int(sc.voxel_gradients)
         b["PLW"] |= int(sc.path_weighted)
-        b["RECTS"] |= int(sc.skip == "rects")
-        b["BEATS"] |= int(sc.skip == "beats")
+        b["RECTS"] |= int(sc.schedule == "rects")
+        b["BEATS"] |= int(sc.schedule == "beats")
     _one_gradient_source(scenes)
     return b
 

@@ -27,7 +27,7 @@ from .model import PIXEL_DTYPE, Frame, render_frame
 from .modes import is_extremum
 from .pathlen import weighted_columns
 from .progress import Progress
-from .scene import Scene, crop_box
+from .scene import Scene, crop_box, with_schedule
 from .skip import SkipPlan, find_box, plan_box
 from .slices import SliceRects, plan_rects
 from .subpixel import Pass, fine_origin, interleave, passes
@@ -145,7 +145,7 @@ def schedules(vol_box: np.ndarray, scene: Scene, cfg: Cube4Config, pss: list[Pas
     view, it does not depend on the phase), or the whole traversed box when the scene asks
     for the fixed schedule ([render] skip = false)."""
     box, table_s = ((0, 0, 0), tuple(pss[0].trav.dims)), 0.0        # the fixed schedule: the whole box
-    if scene.skip:
+    if scene.schedule:
         box, table_s = find_box(vol_box, pss[0].trav, lut, scene.mode, cfg.pipelines, frame_clip(scene, pss[0].trav),
                                 labelled=scene.labels is not None)
     return [plan_box(ps.trav, box, frame_clip(scene, ps.trav), table_s if n == 0 else 0.0)
@@ -371,7 +371,9 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     ``keep_streams``: the frame keeps the model's intermediate streams; ``beat_skip``:
     each frame skips beats and ends rays (cube4.beats; keys block, lag, tau, terminate;
     stats ``beats``); ``schedules``: a list that receives each pass's (BeatSchedule,
-    TerminationRule) after the frame (None for a pass without a frame)."""
+    TerminationRule) after the frame (None for a pass without a frame). A scene that leaves
+    [render] skip out runs its default schedule on cfg.build (``scene.with_schedule``)."""
+    scene = with_schedule(scene, None if cfg.build is None else dict(cfg.build))
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     trav, _ = setup_view(dims, scene, cfg)
@@ -385,8 +387,8 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     vp = plan_view(vol, scene, cfg)
     box_vol = crop_volume(memory_volume(vol, scene, cfg), trav)
     results, streams, depths = {}, {}, {}
-    rects = rects or scene.skip == "rects"
-    if beat_skip is None and scene.skip == "beats":
+    rects = rects or scene.schedule == "rects"
+    if beat_skip is None and scene.schedule == "beats":
         beat_skip = {"tau": tau_fixed(scene.tau, cfg), "terminate": scene.terminate}
     frame_rects = pass_rects(vol, vp) if rects else [None] * len(vp.plans)
     geo = scene_geometry(scene, vp.cam)

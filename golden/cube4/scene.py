@@ -31,6 +31,32 @@ SLAB_FALLOFF_MIN = 0.125  # [slab] falloff: 0 (a hard slab) or at least this man
 PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_bits")
 
 
+#: [render] skip left out: the scene runs the schedule ``default_schedule`` chooses
+SKIP_DEFAULT = "default"
+
+
+def default_schedule(scene: "Scene", build: dict | None = None, whole: bool = True) -> bool | str:
+    """The schedule of a scene that leaves [render] skip out: beat skipping and ray
+    termination ("beats", exact: tau as the scene says, 0 unless it sets one) wherever
+    the beat build runs it, the box (True) elsewhere. The beat build (BEATS = 1) runs S = 1
+    only (builds.py's rule: S > 1 is not built on the beat schedule yet), and the beat
+    schedule renders the volume whole, not in bricks. ``build``: the build the render
+    uses when one is given (None: the scene's own smallest, which then has BEATS = 1)."""
+    if scene.supersample != 1 or not whole:
+        return True
+    if build is not None and not build.get("BEATS"):
+        return True
+    return "beats"
+
+
+def with_schedule(scene: "Scene", build: dict | None = None, whole: bool = True) -> "Scene":
+    """The scene with its schedule written out: a scene that leaves [render] skip out gets
+    ``default_schedule``'s for this render (the build it runs on, whole or in bricks)."""
+    if scene.skip != SKIP_DEFAULT:
+        return scene
+    return replace(scene, skip=default_schedule(scene, build, whole))
+
+
 @dataclass(frozen=True)
 class Light:
     direction: np.ndarray  # unit vector: the direction the light travels (volume axes)
@@ -60,9 +86,10 @@ class Scene:
     #                                  slabs (cube4.clip); None: the box alone is traversed
     cut: tuple | None = None  # [cut]: (normal, point), volume coordinates
     slab: tuple | None = None  # [slab]: (normal, center, thickness, falloff), volume coordinates, voxels
-    skip: bool | str = True  # [render] skip: only the box that can change a ray (cube4.skip); "rects":
-    #                          and within it each slice's rectangle (cube4.slices; S = 1); "beats":
-    #                          within it only the beats that can change a ray, and rays end (cube4.beats)
+    skip: bool | str = SKIP_DEFAULT  # [render] skip: true, only the box that can change a ray
+    #                          (cube4.skip); "rects": and within it each slice's rectangle (cube4.slices;
+    #                          S = 1); "beats": within it only the beats that can change a ray, and rays
+    #                          end (cube4.beats); left out (SKIP_DEFAULT): ``schedule`` says which
     tau: float = 0.0  # [render] tau: with skip = "beats", a ray ends at transmittance <= tau (0: exact)
     terminate: bool = True  # [render] terminate: with skip = "beats", rays that can change no more end
     preview: int = 1  # [render] preview: render the volume at 1/preview of its resolution (cube4.levels)
@@ -81,6 +108,12 @@ class Scene:
     # [labels] and [[label]]: each label's transfer function and visibility (cube4.labels); the
     # volume then comes with a label map, and what render_frame reads are its memory words
     labels: object = None
+
+    @property
+    def schedule(self) -> bool | str:
+        """The schedule the scene runs: its [render] skip, or where the scene leaves that
+        out, ``default_schedule`` for a render of the whole volume on the scene's own build."""
+        return default_schedule(self) if self.skip == SKIP_DEFAULT else self.skip
 
     @property
     def shaded(self) -> bool:
@@ -169,8 +202,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     subpixel = rnd.get("subpixel", 1)
     if not isinstance(subpixel, int) or isinstance(subpixel, bool) or not 1 <= subpixel <= MAX_Q:
         raise UserError(f"scene: render.subpixel must be an integer in 1..{MAX_Q}, got {shown(subpixel)}")
-    skip = rnd.get("skip", True)
-    if not isinstance(skip, bool) and skip not in ("rects", "beats"):
+    skip = rnd.get("skip", SKIP_DEFAULT)
+    if "skip" in rnd and not isinstance(skip, bool) and skip not in ("rects", "beats"):
         raise UserError(f"scene: render.skip must be true, false, \"rects\" or \"beats\", got {shown(skip)}")
     tau = _num(rnd, "tau", 0.0, 0.0, 0.5, "render.")
     terminate = rnd.get("terminate", True)

@@ -300,7 +300,7 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
               golden_wall_s=res.wall_s, formula_cycles=int(res.stats["predicted_cycles"]),
               baseplane_sha=_sha(res.frame.baseplane), subpixel=scene.subpixel, filter=scene.filter,
               gradient=scene.gradient, path_weights=scene.path_weighted, preview=scene.preview,
-              tau=scene.tau if scene.skip == "beats" else None, build=build_name(resolve_build(cfg, [scene])))
+              tau=scene.tau if scene.schedule == "beats" else None, build=build_name(resolve_build(cfg, [scene])))
     # (the build's options; its word widths are the row's S, W, F .. columns)
     if row.tau is not None:     # the beat schedule: its cycles are measured, the golden walk's beats stand in
         row.formula_cycles = int(res.stats["beats"]["walk_beats"])

@@ -81,7 +81,7 @@ def views(scene) -> list:
 def measure(vol_spec: str, scene_name: str, check_images: bool) -> list[dict]:
     vol = load_volume(vol_spec)
     nz, ny, nx = vol.shape
-    base_scene = load_scene(scene_name)
+    base_scene = dataclasses.replace(load_scene(scene_name), skip=True)     # the box (and its rectangles)
     rows = []
     for sc in views(base_scene):
         cfg = config_for(sc, P)
@@ -124,7 +124,7 @@ def beat_rows(vol_spec: str, scene_name: str) -> list[dict]:
         _, fixed, st = golden_view(vol, dataclasses.replace(sc, skip=False), cfg)
         _, free, st_free = golden_view(vol, sc, cfg, beat_skip={"terminate": False})
         _, ended, st_end = golden_view(vol, sc, cfg, beat_skip={})
-        _, boxed, st_box = golden_view(vol, sc, cfg)
+        _, boxed, st_box = golden_view(vol, dataclasses.replace(sc, skip=True), cfg)
         az, el = angles_from_direction(sc.direction)
         rows.append({
             "volume": vol_spec, "dims": [nx, ny, nz], "scene": scene_name, "mode": sc.mode,
@@ -178,7 +178,7 @@ def rtl_goal_frame(rects: bool = False) -> dict:
     vol = load_volume(vol_spec)
     sc = load_scene(scene_name)
     cfg = config_for(sc, P)
-    res = render(vol, dataclasses.replace(sc, skip="rects") if rects else sc, cfg, "rtl",
+    res = render(vol, dataclasses.replace(sc, skip="rects" if rects else True), cfg, "rtl",
                  progress=sys.stderr.isatty())
     gold = render(vol, dataclasses.replace(sc, skip=False), cfg, "golden")
     return {"cycles": res.stats["cycles"], "predicted_cycles": res.stats["predicted_cycles"],

@@ -23,7 +23,7 @@ from cube4.errors import UserError
 from cube4.geometry import composite_over, stop_slices
 from cube4.host import (assemble_view, beat_schedules, build_memory, depth_threshold, pass_rects, plan_view,
                         scene_geometry, schedule_stats, setup_view, tau_fixed, trav_stats, view_stats)
-from cube4.scene import Scene
+from cube4.scene import Scene, with_schedule
 
 from .dram_core import DATA_W, DramRun, core_info
 from .rtl import FrameJob, baseplane_from_pixels, depth_from_pixels, frame_rects, render_frames
@@ -39,8 +39,10 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
+    # a scene that leaves [render] skip out: its default schedule on cfg.build
+    scenes = [with_schedule(sc, None if cfg.build is None else dict(cfg.build)) for sc in scenes]
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
-    if build.get("BEATS") and any(sc.skip != "beats" for sc in scenes):
+    if build.get("BEATS") and any(sc.schedule != "beats" for sc in scenes):
         raise UserError("a build with BEATS = 1 runs the beat schedule only: render the other scenes "
                         "separately, or give them --beats")
     scenes = [resolve_geometry(sc, setup_view(dims, sc, cfg)[1]) for sc in scenes]   # depth in: its image
@@ -49,11 +51,11 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     jobs, owners = [], []
     geos = [scene_geometry(vp.scene, vp.cam) for vp in vps]
     for nv, vp in enumerate(vps):
-        rects = pass_rects(vol, vp) if vp.scene.skip == "rects" else [None] * len(vp.plans)
+        rects = pass_rects(vol, vp) if vp.scene.schedule == "rects" else [None] * len(vp.plans)
         # the beat schedule: each pass's block table bits and stops, and termination's rule
         beat_frames = (beat_schedules(vol, vp, cfg, {"tau": tau_fixed(vp.scene.tau, cfg),
                                                      "terminate": vp.scene.terminate})
-                       if vp.scene.skip == "beats" else [None] * len(vp.plans))
+                       if vp.scene.schedule == "beats" else [None] * len(vp.plans))
         geo = geos[nv]
         for n, (ps, plan) in enumerate(zip(vp.passes, vp.plans)):
             if plan.trav is not None:       # a pass in which nothing can change a ray runs no frame
@@ -101,12 +103,12 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
             stats["rect_com_waits"] = sum(r.com_waits(cfg.pipelines) for r in rs)
         outs_v = [out for _, out in ran.values()]
         stats.update(_cycle_stats(outs_v, nx * ny * nz / cfg.pipelines))
-        if vp.scene.skip == "beats":
+        if vp.scene.schedule == "beats":
             stats["beats"] = rtl_beat_stats([(job.beats[0], out) for job, out in ran.values()])
         stats["build"] = dict(build)
         if dram is not None:
             # (the golden model predicts no beat frame: its cycles depend on when rays end)
-            stats["dram"] = dram_stats(outs_v, None if vp.scene.skip == "beats" else stats.get("predicted_cycles"), dram)
+            stats["dram"] = dram_stats(outs_v, None if vp.scene.schedule == "beats" else stats.get("predicted_cycles"), dram)
         sim_s = sum(o["sim_wall_s"] for o in outs_v)
         wall = sim_s + (run_s - sim_total) / len(scenes) + time.perf_counter() - t1
         stats["wall_s"] = wall

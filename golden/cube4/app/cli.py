@@ -5,7 +5,7 @@
                  [--compare-to reference|reference-point] [--dims NX,NY,NZ] [--dtype T] [--voxel-bits V]
                  [--view AZ,EL ... | --orbit N]
                  [--bricks BX,BY,BZ] [--board-dim N] [--workers N | --scheduler tcp://HOST:PORT]
-                 [--no-skip | --rects | --beats [--tau T | --no-terminate]] [--preview F] [--preset default|quality] [--gradient gra|central|sobel]
+                 [--no-skip | --box | --rects | --beats] [--tau T | --no-terminate] [--preview F] [--preset default|quality] [--gradient gra|central|sobel]
                  [--path-weights | --no-path-weights]
     cube4 volumes | cube4 scenes      list the built-ins
 
@@ -38,7 +38,8 @@ from ..bricks import BRICK_MODES, MIN_BOARD_DIM, LocalExecutor, brick_renderer, 
 from ..config import MAX_DIM, MAX_PIPELINES, Cube4Config, parse_build, resolve_build
 from ..errors import UserError
 from ..host import config_for, image_metrics
-from ..scene import PRESETS, Scene, label_scene_checks, apply_preset, builtin_scene_names, load_scene, with_view
+from ..scene import (PRESETS, SKIP_DEFAULT, Scene, label_scene_checks, apply_preset, builtin_scene_names, load_scene,
+                     with_schedule, with_view)
 from ..vgrad import GRADIENTS
 from ..values import int_text, real_text, shown
 from ..view import POLE_Z, angles_from_direction, direction_from_angles, make_camera, up_from_angles
@@ -151,18 +152,22 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--no-skip", action="store_true",
                    help="traverse the whole volume (the fixed schedule) instead of only the box that can change "
                         "a ray; the image is the same, --stats compares the cycles")
+    r.add_argument("--box", action="store_true",
+                   help="traverse only the box that can change a ray, every beat of it ([render] skip = true); "
+                        "the image is the same, --stats compares the cycles")
     r.add_argument("--rects", action="store_true",
                    help="within the box, each sample slice traverses only its own rectangle (slice "
                         "rectangles; S = 1); the image is the same, --stats compares the cycles")
     r.add_argument("--beats", action="store_true",
                    help="within the box, run only the beats (partial beams) that can change a ray, and end "
-                        "rays that can change no more (beat skipping and ray termination; golden engine); "
-                        "the image is the same, --stats gives the beats skipped by cause")
+                        "rays that can change no more (beat skipping and ray termination): the default of a "
+                        "scene that leaves [render] skip out, at S = 1, rendered whole; the image is the same, "
+                        "--stats gives the beats skipped by cause")
     r.add_argument("--tau", type=float, metavar="T",
-                   help="with --beats: end a ray once its transmittance is at most T (0 <= T <= 0.5; "
+                   help="on the beat schedule: end a ray once its transmittance is at most T (0 <= T <= 0.5; "
                         "default 0, exact): error against run time")
     r.add_argument("--no-terminate", action="store_true",
-                   help="with --beats: no ray ends early (beat skipping alone; [render] terminate = false), "
+                   help="on the beat schedule: no ray ends early (beat skipping alone; [render] terminate = false), "
                         "for comparison")
     r.add_argument("--preview", type=_int_arg, metavar="F",
                    help="render the volume at 1/F of its resolution (F = 2 or 4; [render] preview): about F³ "
@@ -326,7 +331,9 @@ def _parse_inputs(args: argparse.Namespace) -> RenderRun:
     the build (one line for the first thing wrong)."""
     out, bp, st, bg = _check_options(args)
     scenes = _resolve_scenes(args)
-    run = RenderRun(out, bp, st, bg, scenes, bricks=_brick_options(args, scenes[0]))
+    bricks = _brick_options(args, scenes[0])
+    scenes = _scheduled(args, scenes, bricks is None)
+    run = RenderRun(out, bp, st, bg, scenes, bricks=bricks)
     check_destinations(run.destinations())
     run.cfg = _hardware(args, scenes)
     return run
@@ -349,12 +356,12 @@ def _check_options(args: argparse.Namespace) -> tuple[Path, Path | None, Path | 
 def _resolve_scenes(args: argparse.Namespace) -> list[Scene]:
     """The scene, one per view (--view, --orbit), each with the command line's changes."""
     scenes = _views(args, load_scene(args.scene))
-    if sum(bool(f) for f in (args.no_skip, args.rects, args.beats)) > 1:
-        raise UserError("--no-skip, --rects and --beats exclude each other")
-    if args.tau is not None and not args.beats:
-        raise UserError("--tau needs --beats (ray termination)")
-    if args.no_terminate and not args.beats:
-        raise UserError("--no-terminate needs --beats")
+    if sum(bool(f) for f in (args.no_skip, args.box, args.rects, args.beats)) > 1:
+        raise UserError("--no-skip, --box, --rects and --beats exclude each other")
+    if args.tau is not None and (args.no_skip or args.box or args.rects):
+        raise UserError("--tau needs the beat schedule (ray termination), not --no-skip, --box or --rects")
+    if args.no_terminate and (args.no_skip or args.box or args.rects):
+        raise UserError("--no-terminate needs the beat schedule, not --no-skip, --box or --rects")
     if args.no_terminate and args.tau is not None:
         raise UserError("--no-terminate and --tau exclude each other")
     if args.tau is not None and not 0.0 <= args.tau <= 0.5:
@@ -370,15 +377,30 @@ def _resolve_scenes(args: argparse.Namespace) -> list[Scene]:
         raise UserError(f"scene {scenes[0].name} classifies labels: give their map with --labels "
                         "(or [labels] map in the scene)")
     if labels is not None:      # the changes of the command line, checked as the scene's own
-        label_scene_checks(scenes[0].mode, scenes[0].skip, scenes[0].path_weighted, scenes[0].preview)
+        label_scene_checks(scenes[0].mode, scenes[0].schedule, scenes[0].path_weighted, scenes[0].preview)
+    return scenes
+
+
+def _scheduled(args: argparse.Namespace, scenes: list[Scene], whole: bool) -> list[Scene]:
+    """The scenes with their schedules written out (a scene that leaves [render] skip out:
+    the beat schedule where the build and a whole-volume render run it, else the box;
+    ``cube4.scene.default_schedule``); --tau and --no-terminate need the beat schedule."""
+    asked = scenes[0].skip
+    build = parse_build(args.build)
+    scenes = [with_schedule(sc, build, whole) for sc in scenes]
+    if (args.tau is not None or args.no_terminate) and scenes[0].skip != "beats":
+        flag = "--tau" if args.tau is not None else "--no-terminate"
+        why = (f"the scene sets [render] skip = {str(asked).lower()}" if asked != SKIP_DEFAULT else
+               "this render runs the box (S > 1, bricks, or a build without BEATS)")
+        raise UserError(f"{flag} needs the beat schedule (--beats): {why}")
     return scenes
 
 
 def _changed(scene: Scene, args: argparse.Namespace) -> Scene:
-    """A scene with --no-skip or --rects, then --preset, then --gradient and
+    """A scene with --no-skip, --box, --rects or --beats, then --preset, then --gradient and
     --path-weights over the preset."""
-    if args.no_skip or args.rects or args.beats:
-        scene = replace(scene, skip="rects" if args.rects else "beats" if args.beats else False)
+    if args.no_skip or args.box or args.rects or args.beats:
+        scene = replace(scene, skip="rects" if args.rects else "beats" if args.beats else bool(args.box))
     if args.tau is not None:
         scene = replace(scene, tau=args.tau)
     if args.no_terminate:
