@@ -57,10 +57,12 @@ def test_ecp5_columns_only_from_the_builds_own_run(tmp_path):
              "cut": False, "build": VGRAD, "widths": SS4, "gradient": "central", "cycles": 137700,
              "cycles_full": None, "cycles_fixed": 200000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3},
             {"scene": "head", "volume": "head:64", "mode": "composite", "shaded": True, "crop": None, "cut": False,
-             "build": dict(FULL_BUILD), "widths": dict(scenes.DEFAULT_WIDTHS), "gradient": "gra", "cycles": 137700,
+             "build": dict(FULL_BUILD), "widths": dict(scenes.DEFAULT_WIDTHS), "gradient": "gra", "schedule": "beats",
+             "cycles": 137700,
              "cycles_full": 137700, "cycles_fixed": 200000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3}]
     text = scenes.scenes_table(rows, recs).splitlines()
     assert "| not measured | — |" in text[2] and "| 1.000 | 1.000 |" in text[3]
+    assert "| box | 137,700 |" in text[2] and "| beats (RTL) | 137,700 |" in text[3]
     lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
     assert "1 of 2 builds placed and routed" in lines and "- full: 137.7 MHz: full at P = 8" in lines
     assert "--widths MAX_SS_LOG2=2 --md reports/fpga/" in lines

@@ -14,10 +14,14 @@ supersampling's MAX_SS_LOG2). For every distinct build and the full one:
   cube4_reports.fmax finds each build's), "not measured" for a build never placed and
   routed, with the command that measures it;
 
-and for every scene: cycles per frame on its build and on the full build (the cycle
-formula of ``cube4.cycles``, which tb/cube4_top holds every build to), the frame
+and for every scene: cycles per frame on its build and on the full build, the frame
 time at the build's measured Fmax, and the golden engine's image error against the
-float64 reference (PSNR over premultiplied RGBA), with what the smaller build saves.
+float64 reference (PSNR over premultiplied RGBA), with what the smaller build saves. A
+scene runs its default schedule (``Scene.schedule``): at S = 1 the beat schedule, whose
+cycles depend on the content and are measured, through the RTL on the scene's build (its
+base plane checked against the golden engine's); at S > 1 the box, whose cycles are the
+formula of ``cube4.cycles`` (which tb/cube4_top holds every build to). The full build
+(no BEATS) runs the box. The mode matrix runs every scene's box schedule.
 
     python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (minutes)
     python -m cube4_reports.scenes --place       # and place and route every build not measured yet
@@ -110,18 +114,36 @@ def scene_rows(names: list[str]) -> list[dict]:
         mp = image_metrics(gold.image, render(vol, scene, cfg, "reference-point").image)
         plans = plan_view(vol, scene, cfg).plans
         own = schedule_stats(plans, cfg, build)
-        # a scene with voxel gradients does not run on the full build (it has GRA instead)
+        cycles = own["predicted_cycles"]
+        if scene.schedule == "beats":
+            cycles = beat_cycles(vol, scene, cfg, gold.frame.baseplane, name)
+        # the full build runs the box; a scene with voxel gradients does not run on it (it has GRA instead)
         full = None if build["VGRAD"] else schedule_stats(plans, cfg, FULL_BUILD)
         rows.append({"scene": name, "volume": spec, "mode": scene.mode, "shaded": scene.shaded,
                      "crop": None if scene.crop is None else [list(c) for c in scene.crop],
                      "cut": scene.cut is not None, "build": build, "widths": cfg.widths(), "gradient": scene.gradient,
-                     "cycles": own["predicted_cycles"], "cycles_full": None if full is None else full["predicted_cycles"],
+                     "schedule": "beats" if scene.schedule == "beats" else "box",
+                     "cycles": cycles, "cycles_full": None if full is None else full["predicted_cycles"],
                      "cycles_fixed": own["fixed_schedule_cycles"],
                      "psnr_db": m["psnr"] if np.isfinite(m["psnr"]) else None, "rmse": m["rmse"],
                      "psnr_point_db": mp["psnr"] if np.isfinite(mp["psnr"]) else None,
                      "truth_k": ref.stats["truth_k"], "truth_change": ref.stats["truth_change"],
                      "image_sha": image_digest(gold.image)})
     return rows
+
+
+def beat_cycles(vol: np.ndarray, scene, cfg: Cube4Config, golden_base: np.ndarray, name: str) -> int:
+    """A frame of the beat schedule through the RTL (``cube4_sim``'s engine) on the scene's
+    build: its cycles, measured (they depend on the samples: termination), its base plane
+    the golden engine's bit for bit (else the report stops)."""
+    from cube4_sim.engine import register
+
+    register()
+    progress(TAG, f"{name}: the beat schedule through the RTL ...")
+    res = render(vol, scene, cfg, "rtl")
+    if not np.array_equal(res.frame.baseplane, golden_base):
+        raise RuntimeError(f"scene {name}: the RTL's base plane differs from the golden engine's")
+    return int(res.stats["cycles"])
 
 
 # every mode (and unshaded compositing) applied to every built-in scene's volume and transfer function
@@ -159,7 +181,7 @@ def mode_matrix(names: list[str]) -> list[dict]:
         for label, kw in MODE_VARIANTS:
             if refuses(base, kw):
                 continue
-            scene = dataclasses.replace(base, **kw)
+            scene = dataclasses.replace(base, **kw, skip=True)      # the box schedule: its cycles' formula
             cfg = config_for(scene, pipelines=P)
             build = scene_build([scene])
             progress(TAG, f"{name} as {label} ...")
@@ -270,15 +292,16 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
         what += ", crop" if s["crop"] else ""
         what += ", cut plane" if s["cut"] else ""
         what += f", gradient {s['gradient']}" if s.get("gradient", "gra") != "gra" else ""
-        out.append([s["scene"], s["volume"], what, rec["name"], fmt_int(s["cycles"]),
+        sched = "beats (RTL)" if s.get("schedule") == "beats" else "box"
+        out.append([s["scene"], s["volume"], what, rec["name"], sched, fmt_int(s["cycles"]),
                     "—" if s["cycles_full"] is None else fmt_int(s["cycles_full"]),
                     fmt_int(s["cycles_fixed"]), t, t_full, pct_change(logic_nand2(rec["gates"]), logic_nand2(full["gates"])),
                     _db(s["psnr_db"]), _db(s.get("psnr_point_db")),
                     "—" if s.get("truth_k") is None else f"{s['truth_k']}", f"`{s.get('image_sha', '—')}`"])
-    head = ["scene", "volume", "mode", "smallest build", "cycles / frame", "on the full build",
+    head = ["scene", "volume", "mode", "smallest build", "schedule", "cycles / frame", "on the full build",
             "fixed schedule", "ms / frame at its Fmax", "on the full build", "NAND2 vs full", "PSNR dB vs area truth",
             "PSNR dB vs point truth", "truth k", "image"]
-    return md_table(head, out, "llll" + "r" * 9 + "l")
+    return md_table(head, out, "lllll" + "r" * 9 + "l")
 
 
 def _db(x: float | None) -> str:
@@ -300,9 +323,13 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
         "the median seed's figures), read from its results committed under reports/ (the section "
         "\"Place and route\" names each run and its RTL commit); \"not measured\" where a build was never placed "
         "and routed, and its frame times are blank: no build borrows another's clock. "
-        "Cycles: the formula of "
-        "docs/architecture.md for the build with the empty-space box's dims (docs/numerics.md §15; "
-        "tb/cube4_top checks it for every build), and the fixed schedule's on the smallest build. Error: the golden "
+        "Cycles: a scene runs its default schedule: at S = 1 the beat schedule (beat skipping and ray "
+        "termination, docs/numerics.md §19; a BEATS = 1 build), its cycles measured through the RTL on the scene's "
+        "build (they depend on the samples), its base plane the golden engine's bit for bit; at S > 1 the box "
+        "(the beat build runs S = 1 only), its cycles the formula of docs/architecture.md for the build with the "
+        "empty-space box's dims (docs/numerics.md §15; tb/cube4_top checks it for every build). The full build "
+        "(no BEATS) runs the box, by the formula; the fixed schedule's cycles are the formula's on the smallest "
+        "build. Error: the golden "
         "engine (bit-identical to the RTL) against the float64 reference, 256² image: against the area truth "
         "(each pixel the mean over its square, k × k rays where the picture is not flat, k the column \"truth k\"; "
         "docs/numerics.md §10) and against the point-sampled one (one ray through each pixel's centre).",
@@ -330,15 +357,18 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
                   f"against {fmt_int(buffer_bits(full['gates']))}.", ""]
     lines += place_lines(recs, meta)
     lines += ["## Scenes", "", scenes_table(rows, recs), "",
-              "A frame traverses only the box that can change a ray (within a crop box, if the scene has one): "
-              "its cycles follow that box's dims. A build without GRA "
+              "schedule: \"beats (RTL)\" the beat schedule, cycles measured through the RTL; \"box\" the box "
+              "that can change a ray (within a crop box, if the scene has one), whose cycles follow that box's "
+              "dims. A build without GRA "
               "has no slice of GRA delay at the end of a frame (NJ·NB + NB + 2 cycles fewer). "
               "image: the first 12 hex digits of the SHA-256 of the golden engine's image (the RGBA array "
               "as rendered, before it is written as a file); a scene's picture changed exactly when its digest did.", ""]
     if matrix:
         lines += ["## Every scene in every mode", "",
                   "Each built-in scene's volume, view, transfer function (and crop box or cut plane) in each "
-                  "mode (of the five crop-mode scenes, head_crop_inverted_cross): PSNR against the point-sampled reference, cycles per frame on the smallest build for that mode, and "
+                  "mode (of the five crop-mode scenes, head_crop_inverted_cross), on the box schedule (`[render] skip "
+                  "= true`, whose cycles are the formula's): PSNR against the point-sampled reference, cycles per "
+                  "frame on the smallest build for that mode, and "
                   "the NAND2 equivalents that build saves against the full one. A transfer function made for "
                   "compositing is not what one would pick for MIP or MinIP (MinIP of a volume in air is empty: "
                   "∞ dB, both images black), so the error figures say how the hardware follows the reference, "
