@@ -79,7 +79,20 @@ def test_a_build_that_does_not_fit_says_so_and_is_not_placed_again(tmp_path):
     assert scenes.builds_table(recs).splitlines()[3].endswith("| does not fit |")
     lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
     assert "does not fit the ECP5-85F: EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2) at P = 8" in lines
-    assert lines.count("python -m cube4_reports.fpga") == 1          # only the full build is left to measure
+    # the largest P that fits: not measured yet, its command; the full build left to measure
+    assert "  - the largest P that fits: not measured yet; P = 4: `python -m cube4_reports.fpga --p 4 " in lines
+    assert "--md reports/fpga/e0k0g1_max_ss_log22_p4.md`" in lines
+    assert lines.count("python -m cube4_reports.fpga") == 2
+    # measured at P = 4 (it fits) and at P = 2: the table and the lines give P = 4's
+    f4 = tmp_path / "fpga_y4.json"
+    f4.write_text(json.dumps({"seeds": [1, 2, 3], "rtl_commit": "abc1234", "max_dim": 128, "results": [
+        {"p": p, "fmax_median": mhz, "fits": True, "build": VGRAD, "widths": SS4} for p, mhz in ((4, 141.3), (2, 150.0))]}))
+    recs = [scenes.ecp5({k: v for k, v in r.items() if k != "fpga"}, fmax.load([f, f4])) for r in recs]
+    assert recs[1]["fit"].p == 4 and recs[0]["fit"] is None
+    assert scenes.builds_table(recs).splitlines()[3].endswith("| does not fit (P = 4: 141.3) |")
+    lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
+    assert "  - the largest P that fits: 141.3 MHz: EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2) at P = 4" in lines
+    assert scenes.build_records(recs)[1]["fit"]["p"] == 4
 
 
 def test_another_build_needs_its_own_report(capsys):

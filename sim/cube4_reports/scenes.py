@@ -230,8 +230,34 @@ def place_args(build: dict, widths: dict) -> list[str]:
             + ["--md", f"reports/fpga/{name}.md"])
 
 
-def place_command(build: dict, widths: dict) -> str:
-    return "python -m cube4_reports.fpga " + " ".join(place_args(build, widths))
+def place_command(build: dict, widths: dict, p: int = P) -> str:
+    args = place_args(build, widths)
+    if p != P:      # a smaller P: its own report beside the P = 8 one
+        args[args.index("--p") + 1] = str(p)
+        args[-1] = args[-1].replace(".md", f"_p{p}.md")
+    return "python -m cube4_reports.fpga " + " ".join(args)
+
+
+#: the smaller P a build that does not fit at P tries, largest first
+SMALLER_P = (4, 2, 1)
+
+
+def largest_fit(measured: list[fmax_store.Measured], build: dict, widths: dict) -> fmax_store.Measured | None:
+    """For a build that does not fit at P = 8: its place and route at the largest smaller P
+    that fits, None if no smaller P was measured (or none fits)."""
+    for p in SMALLER_P:
+        m = fmax_store.lookup(measured, p, build, widths)
+        if m is not None and m.fits:
+            return m
+    return None
+
+
+def ecp5(rec: dict, measured: list[fmax_store.Measured]) -> dict:
+    """A build record with its place and route at P (``fpga``; None: never placed and routed)
+    and, where it does not fit at P, at the largest smaller P that does (``fit``)."""
+    f = fmax_store.lookup(measured, P, rec["build"], rec["widths"])
+    fit = largest_fit(measured, rec["build"], rec["widths"]) if f is not None and not f.fits else None
+    return {**rec, "fpga": f, "fit": fit}
 
 
 def run_builds(builds: list[tuple[dict, dict]], measured: list[fmax_store.Measured]) -> list[dict]:
@@ -240,8 +266,7 @@ def run_builds(builds: list[tuple[dict, dict]], measured: list[fmax_store.Measur
     for b, w in builds:
         progress(TAG, f"build {full_name(b, w)}: generic gates at P = {P} ...")
         g = gates.gates_for_p(P, MAX_DIM, b, w)
-        out.append({"build": b, "widths": w, "name": full_name(b, w), "gates": g,
-                    "fpga": fmax_store.lookup(measured, P, b, w)})
+        out.append(ecp5({"build": b, "widths": w, "name": full_name(b, w), "gates": g}, measured))
     return out
 
 
@@ -270,10 +295,20 @@ def builds_table(recs: list[dict]) -> str:
                      fmt_int(g["total"]["ffs"]), fmt_int(buffer_bits(g)), pct_change(buffer_bits(g), buffer_bits(fg)),
                      fmt_int(f.luts) if f and f.luts else "—", str(f.dsps) if f and f.dsps is not None else "—",
                      str(f.ebrs) if f and f.ebrs is not None else "—",
-                     ("does not fit" if not f.fits else f"{f.fmax_mhz:.1f}") if f else "not measured"])
+                     fmax_cell(r)])
     head = ["build", *[gates.UNIT_LABEL[u] for u in UNIT_COLS], "NAND2 eq. (logic)", "vs full",
             "FFs", "buffer bits", "vs full", "LUTs", "DSPs", "EBRs", "Fmax MHz"]
     return md_table(head, rows)
+
+
+def fmax_cell(r: dict) -> str:
+    """A build's Fmax at P = 8, or where it does not fit there, at the largest P that fits."""
+    f, fit = r["fpga"], r.get("fit")
+    if f is None:
+        return "not measured"
+    if f.fits:
+        return f"{f.fmax_mhz:.1f}"
+    return f"does not fit (P = {fit.p}: {fit.fmax_mhz:.1f})" if fit else "does not fit"
 
 
 def scenes_table(rows: list[dict], recs: list[dict]) -> str:
@@ -384,8 +419,13 @@ def place_lines(recs: list[dict], meta: dict) -> list[str]:
     lines = ["## Place and route", "",
              f"{len(done)} of {len(recs)} builds placed and routed at P = {P} (RTL of this report: "
              f"{meta.get('rtl_commit', 'unknown')}; a run on an older RTL says so)."]
-    if done:
-        lines += [""] + [f"- {r['name']}: {r['fpga'].note()}" for r in done]
+    lines += [""] if done else []
+    for r in done:
+        lines.append(f"- {r['name']}: {r['fpga'].note()}")
+        if not r["fpga"].fits:
+            lines.append(f"  - the largest P that fits: {r['fit'].note()}" if r.get("fit") else
+                         f"  - the largest P that fits: not measured yet; P = 4: "
+                         f"`{place_command(r['build'], r['widths'], 4)}`")
     if todo:
         lines += ["", "Not measured yet (`python -m cube4_reports.scenes --place` runs them all, about "
                   "40 min each here; or one at a time):", ""]
@@ -431,8 +471,8 @@ def rewrite(t0: float) -> None:
     except (OSError, ValueError, KeyError, TypeError):
         raise fpga.UserError(f"{path} is not a run of this version: rerun make scenes") from None
     measured = fmax_store.load()
-    recs = [{"build": b["build"], "widths": b["widths"], "name": full_name(b["build"], b["widths"]),
-             "gates": b["gates"], "fpga": fmax_store.lookup(measured, P, b["build"], b["widths"])} for b in builds]
+    recs = [ecp5({"build": b["build"], "widths": b["widths"], "name": full_name(b["build"], b["widths"]),
+                  "gates": b["gates"]}, measured) for b in builds]
     write_report(TAG, {**data, "builds": build_records(recs)}, path, render_markdown(rows, recs, meta, matrix),
                  DOC_REPORTS / "scenes.md", t0)
 
@@ -445,7 +485,9 @@ def build_records(recs: list[dict]) -> list[dict]:
              "units": {u: r["gates"]["units"][u]["nand2_total"] for u in gates.UNITS},
              "fpga": None if r["fpga"] is None else
              {"fmax_mhz": r["fpga"].fmax_mhz, "luts": r["fpga"].luts, "ffs": r["fpga"].ffs,
-              "dsps": r["fpga"].dsps, "ebrs": r["fpga"].ebrs, "source": r["fpga"].note()}}
+              "dsps": r["fpga"].dsps, "ebrs": r["fpga"].ebrs, "source": r["fpga"].note()},
+             "fit": None if r.get("fit") is None else {"p": r["fit"].p, "fmax_mhz": r["fit"].fmax_mhz,
+                                                       "source": r["fit"].note()}}
             for r in recs]
 
 
@@ -463,8 +505,7 @@ def run(args: argparse.Namespace) -> None:
     if args.place:
         place_missing(recs)
         measured = fmax_store.load()
-        for r in recs:
-            r["fpga"] = fmax_store.lookup(measured, P, r["build"], r["widths"])
+        recs = [ecp5(r, measured) for r in recs]
     meta = {"git": git_describe(), "rtl_digest": design_digest(), "rtl_commit": last_commit()}
     report = {"p": P, "max_dim": MAX_DIM, "scenes": rows, "modes": matrix, "builds": build_records(recs), **meta}
     write_report(TAG, report, BUILD_REPORTS / "scenes.json", render_markdown(rows, recs, meta, matrix),
