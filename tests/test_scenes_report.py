@@ -63,6 +63,11 @@ def test_ecp5_columns_only_from_the_builds_own_run(tmp_path):
     text = scenes.scenes_table(rows, recs).splitlines()
     assert "| not measured | — |" in text[2] and "| 1.000 | 1.000 |" in text[3]
     assert "| box | 137,700 |" in text[2] and "| beats (RTL) | 137,700 |" in text[3]
+    assert scenes.beats_against_box(rows)[0].startswith(
+        "On the beat schedule 0 of 1 scenes take fewer cycles than the box on the full build")
+    rows[1]["cycles"] = 137600
+    assert "1 of 1 scenes take fewer" in scenes.beats_against_box(rows)[0]
+    assert scenes.beats_against_box(rows[:1]) == []
     lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
     assert "1 of 2 builds placed and routed" in lines and "- full: 137.7 MHz: full at P = 8" in lines
     assert "--widths MAX_SS_LOG2=2 --md reports/fpga/" in lines

@@ -339,6 +339,24 @@ def scenes_table(rows: list[dict], recs: list[dict]) -> str:
     return md_table(head, out, "lllll" + "r" * 9 + "l")
 
 
+def beats_against_box(rows: list[dict]) -> list[str]:
+    """One paragraph: how the scenes on the beat schedule compare with the box on the full
+    build (their cycles against "on the full build"), as measured."""
+    pairs = [(s["scene"], s["cycles"] / s["cycles_full"]) for s in rows
+             if s.get("schedule") == "beats" and s.get("cycles_full")]
+    if not pairs:
+        return []
+    fewer = [n for n, r in pairs if r < 1]
+    more = sorted(((n, r) for n, r in pairs if r > 1), key=lambda x: -x[1])
+    best = min(pairs, key=lambda x: x[1])
+    text = (f"On the beat schedule {len(fewer)} of {len(pairs)} scenes take fewer cycles than the box on the "
+            f"full build (the most: {best[0]}, {best[1]:.2f}×)")
+    if more:
+        text += (f"; {len(more)} take more ({', '.join(f'{n} {r:.2f}×' for n, r in more)}); the beats a frame "
+                 "ran and skipped: `cube4 render VOLUME --scene SCENE --engine rtl --stats s.json` (key beats)")
+    return [text + ".", ""]
+
+
 def _db(x: float | None) -> str:
     return "∞" if x is None else f"{x:.2f}"
 
@@ -391,7 +409,7 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
                   f"(the goal: at most 0.5×), and {fmt_int(buffer_bits(mip['gates']))} bits of buffers "
                   f"against {fmt_int(buffer_bits(full['gates']))}.", ""]
     lines += place_lines(recs, meta)
-    lines += ["## Scenes", "", scenes_table(rows, recs), "",
+    lines += ["## Scenes", "", scenes_table(rows, recs), "", *beats_against_box(rows),
               "schedule: \"beats (RTL)\" the beat schedule, cycles measured through the RTL; \"box\" the box "
               "that can change a ray (within a crop box, if the scene has one), whose cycles follow that box's "
               "dims. A build without GRA "
