@@ -150,6 +150,7 @@ def test_scene_key_must_be_a_bool():
     assert dataclasses.replace(sc, supersample=4).schedule is True
     assert with_schedule(sc, whole=False).skip is True and with_schedule(sc).skip == "beats"
     assert with_schedule(sc, build=FULL_BUILD).skip is True
+    assert with_schedule(sc, supersample=2).skip is True    # S from the configuration
     assert with_schedule(dataclasses.replace(sc, skip=False), build={"BEATS": 1}).skip is False
     with pytest.raises(UserError, match="render.skip must be true"):
         parse_scene({"render": {"skip": SKIP_DEFAULT}})     # the default has no spelling of its own

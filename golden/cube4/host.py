@@ -373,7 +373,7 @@ def golden_view(vol: np.ndarray, scene: Scene, cfg: Cube4Config, keep_streams: b
     stats ``beats``); ``schedules``: a list that receives each pass's (BeatSchedule,
     TerminationRule) after the frame (None for a pass without a frame). A scene that leaves
     [render] skip out runs its default schedule on cfg.build (``scene.with_schedule``)."""
-    scene = with_schedule(scene, None if cfg.build is None else dict(cfg.build))
+    scene = with_schedule(scene, None if cfg.build is None else dict(cfg.build), supersample=cfg.supersample)
     nz, ny, nx = vol.shape
     dims = (nx, ny, nz)
     trav, _ = setup_view(dims, scene, cfg)

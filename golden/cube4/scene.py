@@ -35,26 +35,29 @@ PRECISION_KEYS = ("voxel_bits", "weight_bits", "alpha_bits", "acc_bits", "rmap_b
 SKIP_DEFAULT = "default"
 
 
-def default_schedule(scene: "Scene", build: dict | None = None, whole: bool = True) -> bool | str:
+def default_schedule(scene: "Scene", build: dict | None = None, whole: bool = True,
+                     supersample: int | None = None) -> bool | str:
     """The schedule of a scene that leaves [render] skip out: beat skipping and ray
     termination ("beats", exact: tau as the scene says, 0 unless it sets one) wherever
     the beat build runs it, the box (True) elsewhere. The beat build (BEATS = 1) runs S = 1
     only (builds.py's rule: S > 1 is not built on the beat schedule yet), and the beat
     schedule renders the volume whole, not in bricks. ``build``: the build the render
-    uses when one is given (None: the scene's own smallest, which then has BEATS = 1)."""
-    if scene.supersample != 1 or not whole:
+    uses when one is given (None: the scene's own smallest, which then has BEATS = 1);
+    ``supersample``: the render's S where its configuration sets it (None: the scene's)."""
+    if (scene.supersample if supersample is None else supersample) != 1 or not whole:
         return True
     if build is not None and not build.get("BEATS"):
         return True
     return "beats"
 
 
-def with_schedule(scene: "Scene", build: dict | None = None, whole: bool = True) -> "Scene":
+def with_schedule(scene: "Scene", build: dict | None = None, whole: bool = True,
+                  supersample: int | None = None) -> "Scene":
     """The scene with its schedule written out: a scene that leaves [render] skip out gets
-    ``default_schedule``'s for this render (the build it runs on, whole or in bricks)."""
+    ``default_schedule``'s for this render (the build it runs on, whole or in bricks, its S)."""
     if scene.skip != SKIP_DEFAULT:
         return scene
-    return replace(scene, skip=default_schedule(scene, build, whole))
+    return replace(scene, skip=default_schedule(scene, build, whole, supersample))
 
 
 @dataclass(frozen=True)

@@ -152,6 +152,8 @@ class Variant:
             return replace(scene, **dict(self.value))
         if self.varied == "tau":
             return replace(scene, skip="beats", tau=float(self.value))
+        if self.varied == "supersample":    # the scene's S (its default schedule follows it: the box at S > 1)
+            return replace(scene, supersample=self.value)
         return replace(scene, **{self.varied: self.value}) if self.varied in SCENE_SWEEPS else scene
 
 

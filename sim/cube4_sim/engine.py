@@ -40,7 +40,8 @@ def render_rtl(vol: np.ndarray, scenes: list[Scene], cfg: Cube4Config, progress:
     dims = (nx, ny, nz)
     t0 = time.perf_counter()
     # a scene that leaves [render] skip out: its default schedule on cfg.build
-    scenes = [with_schedule(sc, None if cfg.build is None else dict(cfg.build)) for sc in scenes]
+    scenes = [with_schedule(sc, None if cfg.build is None else dict(cfg.build), supersample=cfg.supersample)
+              for sc in scenes]
     build = resolve_build(cfg, scenes)      # before any simulation: one line if a scene needs more
     if build.get("BEATS") and any(sc.schedule != "beats" for sc in scenes):
         raise UserError("a build with BEATS = 1 runs the beat schedule only: render the other scenes "
