@@ -213,9 +213,8 @@ module cube4_com #(
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
     wire [GEO_W-1:0]          c_geo;          // BEATS: the beat's steps and phases, with it
-    wire                      c_nx_valid;     // BEATS: the skid holds a second beat
-    wire                      c_e_rd;         // BEATS: the skid's read pointer, its entries' headers
-    wire [HDR_W-1:0]          c_e0_hdr, c_e1_hdr;
+    wire                      c_nx_valid;     // BEATS: the skid holds a second beat; its header
+    wire [HDR_W-1:0]          c_nx_hdr;
     generate
         if (BEATS != 0) begin : g_in_skid
             cube4_skid_peek #(.DATA_W(IN_W + GEO_W)) u_in (
@@ -224,21 +223,17 @@ module cube4_com #(
                 .in_data({in_geo, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
                 .out_valid(c_valid), .out_ready(c_ready),
                 .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}),
-                .nx_valid(c_nx_valid), .nx_data(c_nx), .e_data(c_e), .e_rd(c_e_rd));
-            localparam integer EW = IN_W + GEO_W;
-            wire [EW-1:0]   c_nx;
-            wire [2*EW-1:0] c_e;
-            assign c_e0_hdr = c_e[IN_W - HDR_W +: HDR_W];
-            assign c_e1_hdr = c_e[EW + IN_W - HDR_W +: HDR_W];
-            wire unused_nx = ^{c_nx, c_e[2*EW-1:EW+IN_W], c_e[EW+IN_W-HDR_W-1:EW], c_e[EW-1:IN_W],
-                               c_e[IN_W-HDR_W-1:0]};
+                .nx_valid(c_nx_valid), .nx_data(c_nx));
+            wire [IN_W+GEO_W-1:0] c_nx;
+            assign c_nx_hdr = c_nx[IN_W - HDR_W +: HDR_W];
+            wire unused_nx = ^{c_nx[IN_W+GEO_W-1:IN_W], c_nx[IN_W-HDR_W-1:0]};
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};
             assign in_ready = c_ready;
             assign c_geo = '0;
-            assign {c_nx_valid, c_e_rd, c_e0_hdr, c_e1_hdr} = '0;
-            wire unused_geo = ^{in_geo, c_geo, c_nx_valid, c_e_rd, c_e0_hdr, c_e1_hdr};
+            assign {c_nx_valid, c_nx_hdr} = '0;
+            wire unused_geo = ^{in_geo, c_geo, c_nx_valid, c_nx_hdr};
         end
     endgenerate
 
@@ -315,8 +310,7 @@ module cube4_com #(
             ) u_beats (
                 .clk(clk), .rst(rst), .cfg(cfg), .in_bits(c_bits), .tpos(tpos),
                 .c_geo(c_geo),
-                .in_valid(c_valid), .in_hdr(c_hdr), .nx_valid(c_nx_valid), .e_rd(c_e_rd),
-                .e0_hdr(c_e0_hdr), .e1_hdr(c_e1_hdr),
+                .in_valid(c_valid), .in_hdr(c_hdr), .nx_valid(c_nx_valid), .nx_hdr(c_nx_hdr),
                 .sk_hdr(in_hdr), .take(take), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),

@@ -18,11 +18,9 @@
 //     base(x) = step && pos_sp == x  ||  v_fly[k] && sp_fly[k] == x (k = 1 .. 8)
 //   and the beat offered then is: the head (not taken), the skid's second
 //   item (taken, two held), or the item entering the skid now (taken with
-//   one held, or none held). The compares run from registers: each of the
-//   skid's two entries (not the head and second item, which a multiplexer
-//   by the read pointer makes of them), the header entering it, R0 .. S8;
-//   the read pointer and take only choose among them at the register's
-//   input (the head is entry rd, the second item the other).
+//   one held, or none held). The three compares run from registers (the
+//   skid's entries, the header entering it, R0 .. S8), and take only
+//   chooses among them at the register's input.
 //   Exact: the register equals cube4_com_slot's hazard of the head in every
 //   cycle the skid offers one (cube4_com_beats checks that in simulation).
 //
@@ -32,11 +30,8 @@
 //   hazard: a register, the rule for the beat offered in its cycle.
 //
 // Ports
-//   hd_valid           in   the skid offers a beat (out_valid): entry rd's
-//   nx_valid           in   the skid holds a second beat: the other entry's
-//   rd                 in   the skid's read pointer (a register)
-//   e0_hdr, e1_hdr     in   the headers in the skid's entries 0 and 1 (any
-//                           value in an entry that holds no beat)
+//   hd_valid, hd_hdr   in   the skid offers a beat; its header (out_valid, out_data)
+//   nx_valid, nx_hdr   in   the skid holds a second beat; its header
 //   in_hdr             in   the header at the skid's input (it enters at this
 //                           edge if offered and taken; it counts only then)
 //   take               in   the head enters R0 at this edge
@@ -52,8 +47,8 @@ module cube4_com_ahead #(
     parameter integer SP_W = 13
 ) (
     input  wire clk, input wire rst,
-    input  wire hd_valid, input wire nx_valid, input wire rd,
-    input  wire [HDR_W-1:0] e0_hdr, input wire [HDR_W-1:0] e1_hdr,
+    input  wire hd_valid, input wire [HDR_W-1:0] hd_hdr,
+    input  wire nx_valid, input wire [HDR_W-1:0] nx_hdr,
     input  wire [HDR_W-1:0] in_hdr,
     input  wire take,
     input  wire step, input wire [SP_W-1:0] pos_sp,
@@ -75,24 +70,19 @@ module cube4_com_ahead #(
         end
     endfunction
 
-    // the slots {j, pb} of the two entries and the entering one; every compare
-    // per entry, the read pointer choosing after them
-    wire [SP_W-1:0] s_e0 = SP_W'({e0_hdr[HDR_J +: RW], e0_hdr[HDR_PB +: PB_W]});
-    wire [SP_W-1:0] s_e1 = SP_W'({e1_hdr[HDR_J +: RW], e1_hdr[HDR_PB +: PB_W]});
+    // the slots {j, pb} of the head, the second item and the entering one
+    wire [SP_W-1:0] s_hd = SP_W'({hd_hdr[HDR_J +: RW], hd_hdr[HDR_PB +: PB_W]});
+    wire [SP_W-1:0] s_nx = SP_W'({nx_hdr[HDR_J +: RW], nx_hdr[HDR_PB +: PB_W]});
     wire [SP_W-1:0] s_in = SP_W'({in_hdr[HDR_J +: RW], in_hdr[HDR_PB +: PB_W]});
-    wire b_e0 = base(s_e0, step, pos_sp, v_fly, sp_fly);
-    wire b_e1 = base(s_e1, step, pos_sp, v_fly, sp_fly);
-    wire eq01 = (s_e0 == s_e1);                                  // the second item against the head
-    wire hz_hd = rd ? b_e1 : b_e0;                               // the head stays
-    wire hz_nx = (rd ? b_e0 : b_e1) || eq01;                     // taken: the second
-    wire in_hd = rd ? (s_e1 == s_in) : (s_e0 == s_in);           // the entering one against the head
-    wire hz_in = base(s_in, step, pos_sp, v_fly, sp_fly) || (take && in_hd);  // the entering one
+    wire hz_hd = base(s_hd, step, pos_sp, v_fly, sp_fly);                         // the head stays
+    wire hz_nx = base(s_nx, step, pos_sp, v_fly, sp_fly) || (s_hd == s_nx);      // taken: the second
+    wire hz_in = base(s_in, step, pos_sp, v_fly, sp_fly) || (take && s_hd == s_in);  // the entering one
     reg  hz_q;
     always @(posedge clk) begin
         if (rst) hz_q <= 1'b0;
         else     hz_q <= take ? (nx_valid ? hz_nx : hz_in) : (hd_valid ? hz_hd : hz_in);
     end
     assign hazard = hz_q;
-    wire unused_hdr = ^{e0_hdr, e1_hdr, in_hdr};   // (the fields besides J and PB)
+    wire unused_hdr = ^{hd_hdr, nx_hdr, in_hdr};   // (the fields besides J and PB)
 endmodule
 `default_nettype wire

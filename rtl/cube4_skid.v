@@ -30,14 +30,11 @@ module cube4_skid #(
 );
     wire              unused_nx_valid;
     wire [DATA_W-1:0] unused_nx_data;
-    wire [2*DATA_W-1:0] unused_e_data;
-    wire              unused_e_rd;
     cube4_skid_peek #(.DATA_W (DATA_W)) u_skid (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data (in_data),
         .out_valid (out_valid), .out_ready (out_ready), .out_data (out_data),
-        .nx_valid (unused_nx_valid), .nx_data (unused_nx_data),
-        .e_data (unused_e_data), .e_rd (unused_e_rd));
-    wire unused_nx = ^{unused_nx_valid, unused_nx_data, unused_e_data, unused_e_rd};
+        .nx_valid (unused_nx_valid), .nx_data (unused_nx_data));
+    wire unused_nx = ^{unused_nx_valid, unused_nx_data};
 endmodule
 `default_nettype wire

@@ -20,12 +20,10 @@
 //   The free flags and the read pointer are register copies
 //   (cube4_prim_copies), one per 64 data bits, so the multiplexer's select,
 //   where a consumer's decisions start, drives 64 loads, not DATA_W.
-//   The entry behind the head is visible too (nx_valid, nx_data), and the
-//   two entries themselves with the read pointer (e_data, e_rd): a consumer
+//   The entry behind the head is visible too (nx_valid, nx_data): a consumer
 //   can decide one cycle ahead what it will do with the item after the one
-//   it is offered, from each entry's registers, choosing by the pointer
-//   after its own logic (cube4_com_ahead: COM's read-after-write rule as a
-//   register). cube4_skid is this buffer without those ports.
+//   it is offered (cube4_com_ahead: COM's read-after-write rule as a
+//   register). cube4_skid is this buffer without those two ports.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
@@ -45,9 +43,6 @@
 //                            out_data; that item (a 2:1 multiplexer after the
 //                            entries, as out_data's; any value while nx_valid
 //                            is 0)
-//   e_data, e_rd       out   the entries' registers {entry 1, entry 0} and the
-//                            read pointer (a register): out_data is entry e_rd,
-//                            nx_data the other (any value where none is held)
 //
 // Bit growth and rounding: none (storage only).
 // =============================================================================
@@ -55,8 +50,7 @@ module cube4_skid_peek #(
     parameter integer DATA_W = 8
 ) (
     `CUBE4_STREAM_PORTS(DATA_W),
-    output wire nx_valid, output wire [DATA_W-1:0] nx_data,
-    output wire [2*DATA_W-1:0] e_data, output wire e_rd
+    output wire nx_valid, output wire [DATA_W-1:0] nx_data
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_skid_peek", "DATA_W", DATA_W, 1, 4096)
@@ -113,8 +107,6 @@ module cube4_skid_peek #(
             end
             assign out_data[LO +: W] = free_q[3*g + 2] ? d1_q : d0_q;
             assign nx_data[LO +: W]  = free_q[3*g + 2] ? d0_q : d1_q;
-            assign e_data[LO +: W]          = d0_q;
-            assign e_data[DATA_W + LO +: W] = d1_q;
         end
     endgenerate
 
@@ -128,7 +120,6 @@ module cube4_skid_peek #(
     assign in_ready = ready_q;
     assign out_valid = nonempty_q;
     assign nx_valid  = full_q;
-    assign e_rd      = rp_q;
 
 endmodule
 `default_nettype wire
