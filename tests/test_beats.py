@@ -199,6 +199,31 @@ def test_decided_cycles():
         beats.decided_cycles(sched, 0)
 
 
+@pytest.mark.parametrize("direction", [(0.0, 0.0, 1.0), (0.6, -0.35, 1.0), (1.0, 1.0, 1.0)])
+def test_gra_cycles(direction):
+    """GRA's beat source: where every beat runs, each slice's NJ rows of NB steps, row NJ
+    (the previous slice's centres: NB steps, none in slice 0) and two window steps, and
+    slice M after the last; on a sparse frame never fewer cycles than the beats that came
+    in, and one more a row where a row has no step."""
+    from cube4.view import make_traversal
+
+    trav = make_traversal((21, 11, 9), direction, 8, 1)
+    sched = beats.BeatSchedule(trav, 8, np.ones((trav.num_sample_slices, trav.nj, trav.ni), dtype=bool),
+                               terminate=False)
+    sched.reported = sched.M - 1        # no ray ends: every report is "running"
+    m, nj, nb = sched.M, sched.NJ, sched.NB
+    assert nb >= 2 and all(sched.run_beats(k).all() for k in range(m))
+    got = beats.gra_cycles(sched)
+    assert got[0] == nj * nb + 1 + 2 and (got[1:] == (nj + 1) * nb + 2).all(), got
+    _, _, sparse = frames(3)
+    rows = beats.walk_rows(sparse)
+    per = beats.gra_cycles(sparse, rows)
+    came = sum(int((r[2] | r[4]).sum()) for r in rows)
+    assert len(per) == sparse.M + 1 and per.sum() >= came + 2 * (sparse.M + 1)
+    st = beats.schedule_stats(sparse)
+    assert st.as_dict()["gra_cycles"] == per.sum()
+
+
 def test_tau_bounds_the_change():
     """τ > 0 ends rays whose transmittance is at or below τ: some rays change, none by
     more than τ in any channel (what the ray would still have gathered is at most T)."""

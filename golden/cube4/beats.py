@@ -418,10 +418,11 @@ class BeatStats:
     stop_s: float = 0.0     # host: the rays' stops (per view)
     ray_samples: int = 0    # samples of running rays (a schedule packing them into full beats: /P beats)
     decided: dict = field(default_factory=dict)   # rate -> decided_cycles
+    gra_cycles: int = 0     # GRA's beat source's cycles (gra_cycles summed; builds with GRA)
 
     def as_dict(self) -> dict:
         d = {k: getattr(self, k) for k in ("box_beats", "run_beats", "skipped_empty", "skipped_terminated",
-                                           "walk_beats", "table_s", "stop_s", "ray_samples")}
+                                           "walk_beats", "table_s", "stop_s", "ray_samples", "gra_cycles")}
         d["decided_cycles"] = {str(r): c for r, c in self.decided.items()}
         return d
 
@@ -475,6 +476,37 @@ def walker_cycles(sched: BeatSchedule, rows: list | None = None) -> np.ndarray:
     return out
 
 
+def gra_cycles(sched: BeatSchedule, rows: list | None = None) -> np.ndarray:
+    """(M + 1,): the cycles per slice of GRA's beat source (``cube4_gra_beats``) when it
+    never waits for its input or output: the steps of slice w, rows r = 0 … NJ, are the
+    sample beats that came in for (w, r) (the walk emits one for every beat it walks,
+    ``walk_rows``, or ``rows`` already taken from it) with the steps the centres of slice
+    w − 1 need, C(w − 1, r − 1) ∪ C(w − 1, r); a row of n ≥ 2 steps takes n cycles, of one
+    step two, of none one; each slice ends with two window steps; slice M (last) steps what
+    the last slice's centres need. A lower bound on the cycles of a frame through a build
+    with GRA, as ``walker_cycles`` is for every build: the two units step at most once a
+    cycle each. Against the box (a frame in which every beat runs) it adds row NJ and the
+    two window steps to each slice, NB + 2 cycles: what makes the beat schedule slower
+    than the box on small frames that skip little (docs/architecture.md)."""
+    nothing = np.zeros(sched.NB, dtype=bool)
+    came = {}
+    for m, j, reads, _, cover, *_ in (rows if rows is not None else walk_rows(sched)):
+        w, r = (m, j - 1) if j > 0 else (m - 1, sched.NJ - 1)
+        if w >= 0:
+            came[w, r] = reads | cover
+
+    def c(w: int, r: int) -> np.ndarray:
+        return came.get((w, r), nothing) if 0 <= r < sched.NJ else nothing
+
+    out = np.zeros(sched.M + 1, dtype=np.int64)
+    for w in range(sched.M + 1):
+        for r in range(sched.NJ + 1):
+            n = int((c(w, r) | c(w - 1, r - 1) | c(w - 1, r)).sum())
+            out[w] += n if n >= 2 else 2 if n == 1 else 1
+        out[w] += 2
+    return out
+
+
 def walk_beats(sched: BeatSchedule) -> int:
     """The front end's beats of a frame (``slice_walks`` summed): the figure for a front
     end that passes over a skipped beat in no cycle."""
@@ -512,4 +544,5 @@ def schedule_stats(sched: BeatSchedule, table_s: float = 0.0) -> BeatStats:
         run_free = run
     samples = sum(int(sched.running(m).sum()) for m in range(sched.M))
     decided = {r: decided_cycles(sched, r, walker) for r in DECIDE_RATES}
-    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s, sched.stop_s, samples, decided)
+    return BeatStats(box, run, box - run_free, run_free - run, walk, table_s, sched.stop_s, samples, decided,
+                     int(gra_cycles(sched, rows).sum()))

@@ -352,8 +352,11 @@ def beats_against_box(rows: list[dict]) -> list[str]:
     text = (f"On the beat schedule {len(fewer)} of {len(pairs)} scenes take fewer cycles than the box on the "
             f"full build (the most: {best[0]}, {best[1]:.2f}×)")
     if more:
-        text += (f"; {len(more)} take more ({', '.join(f'{n} {r:.2f}×' for n, r in more)}); the beats a frame "
-                 "ran and skipped: `cube4 render VOLUME --scene SCENE --engine rtl --stats s.json` (key beats)")
+        text += (f"; {len(more)} take more ({', '.join(f'{n} {r:.2f}×' for n, r in more)}): frames that skip "
+                 "little, where GRA's beat source costs row NJ and two window steps a slice more than the box "
+                 "([docs/architecture.md](../docs/architecture.md), \"Small frames\"); the beats a frame "
+                 "ran and skipped: `cube4 render VOLUME --scene SCENE --engine rtl --stats s.json` (key beats); "
+                 "GRA's steps: the same with `--engine golden` (beats.gra_cycles)")
     return [text + ".", ""]
 
 

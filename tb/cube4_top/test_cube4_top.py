@@ -1159,7 +1159,9 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     weights change its plane). Each frame's rays are the
     golden beat-schedule frame's bit for bit, and its base plane the fixed schedule's, with
     random stalls on every stream and a reset in mid-frame; the beats that ran
-    (cube4_top's count) are the golden frame's. Depth in on every third frame (a surface's
+    (cube4_top's count) are the golden frame's, and an unstalled frame takes more cycles
+    than the walker's and, with GRA, than GRA's beat source's (beats.walker_cycles,
+    beats.gra_cycles: each steps at most once a cycle). Depth in on every third frame (a surface's
     stop slices: the ray table's stops, no stop table in COM), which changes some frame's
     plane. ``gmod``: the build modulates by the
     gradient's magnitude (GMOD = 1), each shaded frame with its own table (the factors are
@@ -1281,7 +1283,14 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
                                  shading=job.rmap is not None, vgrad=vgrad)
             assert (plain.baseplane != fixed.baseplane).any(), f"{label}: the path weights changed nothing"
         box = job.trav.num_sample_slices * job.trav.nj * -(-job.trav.ni // p)
-        print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}")
+        rows = beats.walk_rows(ran)
+        walker = int(beats.walker_cycles(ran, rows).sum())
+        gra = int(beats.gra_cycles(ran, rows).sum()) if build["SHADING"] and not vgrad else 0
+        print(f"{label}: {res['cycles']} cycles, the fixed schedule's beats {box}, "
+              f"the walker's cycles {walker}, GRA's {gra or '(no GRA)'}")
+        if not (job.stall or job.stall_out or job.reset_after_cycles):
+            # the walk and GRA's beat source step at most once a cycle: lower bounds
+            assert res["cycles"] > max(walker, gra), (label, res["cycles"], walker, gra)
     assert not gmod or modulated, "the modulation changed no frame: the test would not see it"
     assert stopped, "the stop slices changed no frame: the test would not see depth in"
     assert not zout or len(zs) > 1, "depth out: the rays' first slices are all equal"
