@@ -211,7 +211,8 @@ module cube4_cfb #(
                 .BLOCK_LOG2(BLOCK_LOG2), .RATE(RATE)
             ) u_skip (
                 .clk(clk), .rst(rst), .start(go_q[1]), .busy(busy_s),
-                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(M_W'(cfg_nk)), .sx(cfg_sx), .sy(cfg_sy),
+                // S = 1: the beat control (cube4_cfb_bctl) runs S = 1 frames only
+                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(M_W'(cfg_nk)), .ss_log2(2'd0), .sx(cfg_sx), .sy(cfg_sy),
                 .bi_base(blk_base[0 +: DIM_W]), .bi_flip(cfg_flip_i),
                 .bj_base(blk_base[DIM_W +: DIM_W]), .bj_flip(cfg_flip_j),
                 .bk_base(blk_base[2*DIM_W +: DIM_W]), .bk_flip(cfg_flip_k),

@@ -32,8 +32,10 @@
 //   report it), any other row a token that only moves the address unit's
 //   row on (cube4_cfb_bctl: every row ends with a beat that carries EOR).
 //   The last beat carries LAST.
-//   S = 1 (every pass reads its own voxel slice): the passes of S > 1 that
-//   read a voxel slice for the slice buffers read more, not here yet.
+//   With S > 1 a pass that reads a voxel slice for the slice buffers (pass 0
+//   and each pass k0 S + 1: beats.BeatSchedule.reads_slice) reads every beat
+//   of its rows, reads(k) = NB ones for k = (m, j) of such a pass: the passes
+//   that replay the slice may run any of its beats.
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2: the geometry (cube4_defs.vh; 1..64,
@@ -60,6 +62,7 @@
 //   busy     out  a frame is under way (from start to its LAST beat's transfer)
 //   nj, nb, nm    rows NJ [DIM_W] 1..MAX_DIM, partial beams NB [NB_W]
 //             1..NBMAX, sample slices M [M_W] >= 1
+//   ss_log2  log2 S [2], 0 .. MAX_SS_LOG2
 //   nbr_en   in   E with the neighbour term
 //   bm_valid, bm_ready, bm_a, bm_occ   the next row's bitmaps [NBMAX] (bit pb,
 //             zero at pb >= NB), rows j = 0 .. NJ - 1 of slices 0 .. M - 1 in order
@@ -85,6 +88,7 @@ module cube4_cfb_beats #(
     input  wire clk, input wire rst,
     input  wire start, output wire busy,
     input  wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm,
+    input  wire [1:0] ss_log2,
     input  wire nbr_en,
     input  wire bm_valid, output wire bm_ready,
     input  wire [NBMAX-1:0] bm_a, input wire [NBMAX-1:0] bm_occ,
@@ -241,6 +245,8 @@ module cube4_cfb_beats #(
     reg [M_W-1:0]   f_m;
     reg [DIM_W-1:0] f_j;
     reg             f_first, f_lastm;  // slice 0 (no slice before), the last slice (none after)
+    reg             f_full;            // a pass that reads a voxel slice for the slice buffers (S > 1)
+    wire [2:0]      s_m1 = 3'((1 << ss_log2) - 1);     // S - 1
     always @(posedge clk) begin
         if (rst || start) begin
             f_kind <= K_NONE;
@@ -250,6 +256,7 @@ module cube4_cfb_beats #(
             f_j     <= in_frame ? gj : '0;
             f_first <= (g == '0);
             f_lastm <= g_last;
+            f_full  <= (ss_log2 != 2'd0) && ((g == '0) || ((3'(g) & s_m1) == 3'd1));
         end
     end
     // the slots of slices m - 1, m, m + 1 (zero outside the frame)
@@ -266,6 +273,7 @@ module cube4_cfb_beats #(
     reg [NW-1:0]    w_any  [0:2];          // A of slices m - 1, m, m + 1, ORed
     reg [NW-1:0]    w_a    [0:2];          // A of slice m
     reg [NW-1:0]    w_o    [0:2];          // OCC of slice m
+    reg [1:0]       w_full;                // rows k + 1, k: their pass reads whole rows (f_full)
     integer k;
     always @(posedge clk) begin
         if (rst || start) begin
@@ -275,6 +283,7 @@ module cube4_cfb_beats #(
             for (k = 1; k < 3; k = k + 1) w_kind[k] <= w_kind[k-1];
         end
         if (adv) begin
+            w_full <= {w_full[0], f_full};
             w_m[0] <= f_m;  w_j[0] <= f_j;
             w_any[0] <= r_p | r_c | r_n;  w_a[0] <= r_c;  w_o[0] <= r_o;
             for (k = 1; k < 3; k = k + 1) begin
@@ -302,6 +311,7 @@ module cube4_cfb_beats #(
     reg [DIM_W-1:0] e_j;
     reg [NW-1:0]    e1, e2;                // E(k), E(k - 1)
     reg [NW-1:0]    a1, a2;                // A(k), A(k - 1)
+    reg             e_full;                // row k reads all its beats
     always @(posedge clk) begin
         if (rst || start) begin
             e_kind <= K_NONE;
@@ -319,10 +329,11 @@ module cube4_cfb_beats #(
         if (adv) begin
             e_m <= (w_kind[1] == K_FLUSH) ? nm : w_m[1];
             e_j <= w_j[1];
+            e_full <= (w_kind[1] == K_ROW) && w_full[1];
         end
     end
     wire [NW-1:0] either = e1 | e2;
-    wire [NW-1:0] reads  = (either | (either << 1)) & nbmask;
+    wire [NW-1:0] reads  = (e_full ? '1 : (either | (either << 1))) & nbmask;
     wire [NW-1:0] walks  = reads | ((either >> 1) & nbmask);   // and the cover (pb - 1), no reads
 
     // ==== a queue of two rows between the pipeline and the emitter (the pipeline's

@@ -5,11 +5,12 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   The decisions of the beat schedule (docs/numerics.md section 19, "Runs";
-//   docs/architecture.md "The front end's plan"), S = 1, RATE beats a cycle: for
+//   docs/architecture.md "The front end's plan"), RATE beats a cycle: for
 //   every beat (m, j, pb) of the frame, in order, and each position t of it
 //   (i = pb P + t < NI), the ray (by, bx) = (j - sty(m) + SY, i - stx(m) + SX)
 //     occ    its sample may count: the block table's bit of the sample's
-//            first voxel, in the volume's blocks of 2^BLOCK_LOG2 voxels
+//            first voxel (voxel slice floor(m / S), S = 2^ss_log2), in the
+//            volume's blocks of 2^BLOCK_LOG2 voxels
 //     run    first <= m < end: (started or occ) and m < end
 //     fresh  run and not started (m is the ray's first slice)
 //     last   run and m + 1 >= stop (the ray's last slice by its stop)
@@ -59,7 +60,8 @@
 //
 // Ports
 //   start, busy   a frame (its registers stable from start until busy falls)
-//   ni, nj, nb, nm   NI, NJ [DIM_W], NB [NB_W], M [M_W]
+//   ni, nj, nb, nm   NI, NJ [DIM_W], NB [NB_W], M [M_W] (sample slices)
+//   ss_log2       log2 S [2], 0 .. MAX_SS_LOG2
 //   sx, sy        SX, SY [DIM_W]
 //   bi_base, bi_flip, bj_base, bj_flip, bk_base, bk_flip   the frame's axes
 //                 i, j, k in the volume: voxel c = base + x (flip 0) or
@@ -109,6 +111,8 @@ module cube4_cfb_decide #(
     // ==== issue: (m, j, pb) in order, a slice's steps, the reports it needs ====
     reg              active, issuing;
     reg [M_W-1:0]    m;
+    reg [DIM_W-1:0]  kv;                   // m's voxel slice, floor(m / S)
+    reg [2:0]        kr;                   // m mod S (S <= 8)
     reg [DIM_W-1:0]  j;
     reg [PB_W-1:0]   pb;
     reg [DIM_W-1:0]  stx, sty;
@@ -142,6 +146,8 @@ module cube4_cfb_decide #(
             issuing <= 1'b1;
             have_st <= 1'b0;
             m <= '0;
+            kv <= '0;
+            kr <= '0;
             j <= '0;
             pb <= '0;
         end else begin
@@ -155,6 +161,13 @@ module cube4_cfb_decide #(
                 if (last_pb) j <= last_j ? '0 : j + 1'b1;
                 if (last_pb && last_j) begin
                     m <= m + 1'b1;
+                    // the voxel slice moves on after S sample slices
+                    if (kr == 3'((1 << ss_log2) - 1)) begin
+                        kr <= '0;
+                        kv <= kv + 1'b1;
+                    end else begin
+                        kr <= kr + 1'b1;
+                    end
                     have_st <= 1'b0;
                     if (m + 1'b1 == nm) issuing <= 1'b0;
                 end
@@ -238,7 +251,7 @@ module cube4_cfb_decide #(
     function automatic [DIM_W-1:0] vol_coord(input [DIM_W-1:0] base, input flip, input [DIM_W-1:0] x);
         vol_coord = flip ? base - x : base + x;
     endfunction
-    wire [DIM_W-1:0] vk = vol_coord(bk_base, bk_flip, DIM_W'(m));
+    wire [DIM_W-1:0] vk = vol_coord(bk_base, bk_flip, kv);
     wire [DIM_W-1:0] vj = vol_coord(bj_base, bj_flip, j);
     reg  [2*BK_W-1:0] blk_ra;
     always @(posedge clk) blk_ra <= {BK_W'(vk >> BLOCK_LOG2), BK_W'(vj >> BLOCK_LOG2)};

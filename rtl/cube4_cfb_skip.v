@@ -5,7 +5,7 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   The beat schedule's front end without its reads (docs/architecture.md
-//   "The front end's plan"; S = 1): cube4_cfb_decide decides every beat a
+//   "The front end's plan"; S = 2^ss_log2): cube4_cfb_decide decides every beat a
 //   slice or two ahead, cube4_cfb_beats walks the voxel beats of each slice
 //   from the decisions' bitmaps, and the position bits of the beats that
 //   hold a running ray wait between the two in a cube4_ram_fifo (3P bits a
@@ -77,7 +77,7 @@ module cube4_cfb_skip #(
     endgenerate
     cube4_cfb_decide #(`CUBE4_SLICE_PASS, .BLOCK_LOG2(BLOCK_LOG2), .LAG(LAG), .RATE(RATE)) u_decide (
         .clk(clk), .rst(rst), .start(start), .busy(busy_d),
-        .ni(ni), .nj(nj), .nb(nb), .nm(nm), .sx(sx), .sy(sy),
+        .ni(ni), .nj(nj), .nb(nb), .nm(nm), .ss_log2(ss_log2), .sx(sx), .sy(sy),
         .bi_base(bi_base), .bi_flip(bi_flip), .bj_base(bj_base), .bj_flip(bj_flip),
         .bk_base(bk_base), .bk_flip(bk_flip),
         .st_valid(st_valid), .st_ready(st_ready), .st_x(st_x), .st_y(st_y),
@@ -98,7 +98,7 @@ module cube4_cfb_skip #(
     wire [PB_W-1:0]  e_pb;
     cube4_cfb_beats #(`CUBE4_SLICE_PASS) u_walk (
         .clk(clk), .rst(rst), .start(start), .busy(busy_w),
-        .nj(nj), .nb(nb), .nm(nm), .nbr_en(nbr_en),
+        .nj(nj), .nb(nb), .nm(nm), .ss_log2(ss_log2), .nbr_en(nbr_en),
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .out_valid(e_valid), .out_ready(e_ready), .out_m(e_m), .out_j(e_j), .out_pb(e_pb),
         .out_read(e_read), .out_leave(e_leave), .out_in_a(e_in_a), .out_tok(e_tok), .out_eor(e_eor), .out_eos(e_eos),

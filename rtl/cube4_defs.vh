@@ -420,6 +420,7 @@
 `define CUBE4_DECIDE_IN_PORTS \
     input  wire start, output wire busy, \
     input  wire [DIM_W-1:0] ni, input wire [DIM_W-1:0] nj, input wire [NB_W-1:0] nb, input wire [M_W-1:0] nm, \
+    input  wire [1:0] ss_log2, \
     input  wire [DIM_W-1:0] sx, input wire [DIM_W-1:0] sy, \
     input  wire [DIM_W-1:0] bi_base, input wire bi_flip, \
     input  wire [DIM_W-1:0] bj_base, input wire bj_flip, \

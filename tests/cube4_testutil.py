@@ -96,11 +96,12 @@ SKIP_MODES = ["composite", "xray", "mip", "minip"]
 SKIP_THRESHOLD = 60     # values below it are empty (above it for MinIP)
 
 
-def sparse_case(seed: int):
+def sparse_case(seed: int, supersample: int | None = None):
     """A volume of faint noise (all below the threshold) with one dense blob, the LUT that
-    makes the noise empty, and a view, mode, S, shading and (every fourth) cut plane."""
+    makes the noise empty, and a view, mode, S (``supersample``, or by the seed), shading
+    and (every fourth) cut plane."""
     rng = np.random.default_rng(seed)
-    S = (1, 2, 4)[seed % 3]
+    S = supersample or (1, 2, 4)[seed % 3]
     cfg = Cube4Config(pipelines=4, supersample=S)
     nx, ny, nz = (int(n) for n in rng.integers(6, 16, size=3))
     vol = rng.integers(0, SKIP_THRESHOLD - 20, size=(nz, ny, nx))

@@ -49,8 +49,9 @@ schedule's, bit for bit, at τ = 0.
 **The walk.** The front end reads, for a running beat, the voxel beats its samples
 interpolate: rows j and j + 1 and partial beams pb and pb + 1 (the beam-extension
 neighbour) of both voxel slices. A pass that reads a voxel slice for the slice buffers
-(S > 1) reads what every pass that uses that slice may run, as far as it knows then (the
-rays' intervals with the reports so far). Each walked voxel beat emits the sample beat of
+(S > 1: pass 0 and each pass k0·S + 1, as the fixed schedule) walks all of its rows, for
+the passes that replay the slice may run any of its beats; the other passes walk their
+running beats alone. Each walked voxel beat emits the sample beat of
 the row below (its lanes valid where that beat runs), so COM sees, before each running
 sample beat, the row above at its partial beam (through which its beam buffer brings the
 partial results of a Y-step). COM's X-step hop takes the lane at t = 0's partial result
@@ -356,24 +357,19 @@ class BeatSchedule:
         f[:, 1:] |= f[:, :-1].copy()
         return f[:, :self.NB]
 
-    def _end_known(self, m: int) -> np.ndarray:
-        """(rows, cols): the rays' ends as the front end knows them when it walks slice m
-        (COM's reports of slices up to m − lag − 1)."""
-        late = (self.done > m - self.lag - 1) & (self.done < self.M)
-        return np.where(late, self.stop, self.end)
+    def reads_slice(self, m: int) -> bool:
+        """Does pass m read a voxel slice for the slice buffers (S > 1: pass 0 slice 0,
+        pass k0·S + 1 slice k0 + 1; the fixed schedule's passes that read the memory)?"""
+        S = self.trav.supersample
+        return S > 1 and (m == 0 or m % S == 1)
 
     def walk(self, m: int) -> np.ndarray:
-        """(nj + 1, nb): the front end's beats of slice m (call after the frame)."""
-        S = self.trav.supersample
+        """(nj + 1, nb): the front end's beats of slice m (call after the frame). A pass
+        that reads a voxel slice for the slice buffers (``reads_slice``) walks all of its
+        rows: the passes that replay the slice may run any of its beats."""
         f = self.footprint(self.run_beats(m))
-        if S > 1 and (m == 0 or m % S == 1):
-            # the pass that reads voxel slice k for the slice buffers reads what the
-            # passes that use it may run, as far as it knows now
-            k = 0 if m == 0 else m // S + 1
-            for u in range(max(0, (k - 1) * S + 1), min(self.M, k * S + S)):
-                maybe = self._end_known(m) > u
-                maybe &= self.first <= u
-                f |= self.footprint(self._beats_of(self._lanes_of(maybe, u)))
+        if self.reads_slice(m):
+            f[:self.NJ] = True
         return f
 
 

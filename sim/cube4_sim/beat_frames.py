@@ -3,8 +3,8 @@
 to the end, so that the schedule holds every slice's decisions and COM's reports.
 
 * ``sparse_frame``: a sparse volume (``cube4_testutil.sparse_case``: a faint background,
-  one dense blob, every mode, seven views, cut planes) at S = 1, its LUT made nearly
-  opaque on request (COM's reports then end rays), termination on or off.
+  one dense blob, every mode, seven views, cut planes) at S = 1 or the S asked for, its
+  LUT made nearly opaque on request (COM's reports then end rays), termination on or off.
 * ``slab_frame``: a nearly opaque slab in front of a dense block (tests/test_beats.py
   ``opaque_slab``), shaded, with termination: rays end in the slab and many beats run
   only as GRA's neighbours of running ones.
@@ -58,11 +58,11 @@ def beat_frame(vol, trav, cfg, lut, rmap, mode: str, clip=None, terminate: bool 
     return _run(vol, trav, cfg, lut, rmap, mode, False, clip, terminate, keep=True, tau=tau)
 
 
-def sparse_frame(seed: int, p: int, opaque: bool, terminate: bool) -> BeatFrame:
+def sparse_frame(seed: int, p: int, opaque: bool, terminate: bool, supersample: int = 1) -> BeatFrame:
+    """The sparse case ``seed`` at P = p and S = ``supersample``."""
     from cube4_testutil import sparse_case
-    vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(seed)
-    trav = dataclasses.replace(trav, supersample=1)
-    cfg = dataclasses.replace(cfg, pipelines=p, supersample=1)
+    vol, trav, cfg, lut, rmap, mode, shading, clip = sparse_case(seed, supersample)
+    cfg = dataclasses.replace(cfg, pipelines=p)
     if opaque and mode in ("composite", "xray"):
         lut = lut.copy()
         lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1

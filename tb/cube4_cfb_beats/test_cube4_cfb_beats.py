@@ -5,7 +5,11 @@ nearly opaque slab in front of a dense block (tests/test_beats.py ``opaque_slab`
 rays end in the slab, and hundreds of beats run only as GRA's neighbours of running ones),
 then sparse volumes (``cube4_testutil.sparse_case``: a faint background, one dense blob,
 every mode, S = 1, seven views, cut planes), with the LUT made nearly opaque in every
-other frame so that COM's reports end rays, and with termination off in every third. The
+other frame so that COM's reports end rays, and with termination off in every third; in a
+build with MAX_SS_LOG2 = 2, four more at S = 2 and 4, whose passes 0 and k0·S + 1 read all
+their rows (``BeatSchedule.reads_slice``; without that rule, tried, P = 1 fails with
+"beat 0: RTL (m, j, pb, read, leave, in_a, tok, eor, eos, last) = (0, 0, 0, 0, 0, 0, 1, 1,
+0, 0), golden (0, 0, 0, 1, 0, 0, 0, 0, 0, 0)" in the first frame at S = 2). The
 bench writes each slice's bitmaps (``BeatSchedule.active_beats``: A; the beats that may
 count: OCC) through bm_*, rows in order with random gaps, and takes the walk with random
 ready. Expected (``cube4_sim.beat_frames.expected_walk``): the golden front end's rows
@@ -27,7 +31,7 @@ to land, not only to be taken, and the count is not checked.)
 The neighbour term matters: with it dropped from E (tried, not kept), P = 4 fails with
 "beat 636: RTL (m, j, pb, read, leave, last) = (7, 1, 1, 1, 0, 0), golden (7, 1, 1, 1, 1,
 0)" (before the A bit joined the beat) in the first slab frame (P = 1 at beat 2541 alike). Seeded from COCOTB_RANDOM_SEED;
-P = 4 and 1 in make test, 8 and 5 (MAX_DIM 64) in make regress.
+P = 1 (MAX_SS_LOG2 = 2) in make test, 4 (MAX_SS_LOG2 = 2), 8 and 5 (MAX_DIM 64) in make regress.
 """
 
 from __future__ import annotations
@@ -72,13 +76,13 @@ class TB:
     def __init__(self, dut) -> None:
         self.dut = dut
         self.log = dut._log
-        self.p, self.max_dim = top_params(dut, "P", "MAX_DIM")
+        self.p, self.max_dim, self.ss = top_params(dut, "P", "MAX_DIM", "MAX_SS_LOG2")
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         start_clock(dut)
 
     async def reset(self) -> None:
         d = self.dut
-        for name in ("start", "nj", "nb", "nm", "nbr_en", "bm_valid", "bm_a", "bm_occ", "out_ready"):
+        for name in ("start", "nj", "nb", "nm", "ss_log2", "nbr_en", "bm_valid", "bm_a", "bm_occ", "out_ready"):
             getattr(d, name).value = 0
         d.rst.value = 1
         for _ in range(3):
@@ -92,6 +96,7 @@ class TB:
         rows = [(bits_of(a), bits_of(o)) for m in range(sched.M)
                 for a, o in zip(sched.active_beats(m), sched._beats_of(sched.sample_occ(m)))]
         d.nj.value, d.nb.value, d.nm.value = sched.NJ, sched.NB, sched.M
+        d.ss_log2.value = sched.trav.supersample.bit_length() - 1
         d.nbr_en.value = int(sched.neighbours)
         await FallingEdge(d.clk)
         d.start.value = 1
@@ -136,10 +141,14 @@ async def test_walk(dut):
     tb = TB(dut)
     await tb.reset()
     seeds = [s for s in range(200) if s % 3 == 0][:FRAMES]
-    cases = [("slab", d) for d in SLAB_VIEWS] + [("sparse", s) for s in seeds] + [("thin", 0)]
-    for n, (kind, seed) in enumerate(cases):
+    cases = [("slab", d, 1) for d in SLAB_VIEWS] + [("sparse", s, 1) for s in seeds] + [("thin", 0, 1)]
+    if tb.ss >= 2:      # S = 2 and 4: the passes that read a voxel slice walk all their rows
+        cases += [("sparse", s, (2, 4)[n % 2]) for n, s in enumerate((1, 4, 8, 13))]
+    read_rows = 0
+    for n, (kind, seed, ss) in enumerate(cases):
         sched = (slab_frame(tb.p, seed) if kind == "slab" else thin_frame(tb.p) if kind == "thin"
-                 else sparse_frame(seed, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2)).sched
+                 else sparse_frame(seed, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2, supersample=ss)).sched
+        read_rows += sum(sched.NJ for m in range(sched.M) if sched.reads_slice(m))
         if sched.NJ > tb.max_dim or sched.NB > -(-tb.max_dim // tb.p):
             continue
         gap, stall = ((0.0, 0.0), (0.3, 0.4), (0.6, 0.2), (0.0, 0.0), (0.1, 0.7))[n % 5]
@@ -154,12 +163,14 @@ async def test_walk(dut):
             assert cycles == formula, f"{cycles} edges, formula {formula} (walker {walker})"
         st = beats.schedule_stats(sched)
         near = sum(int((sched.run_beats(m) & ~sched.active_beats(m)).sum()) for m in range(sched.M))
-        tb.log.info("%s %s: %d slices of %dx%d beats, %d run (%d as GRA's neighbours), %d walked (%d beats out, "
-                    "%d edges) bit-exact", kind, seed, sched.M, sched.NJ, sched.NB, st.run_beats, near,
+        tb.log.info("%s %s S=%d: %d slices of %dx%d beats, %d run (%d as GRA's neighbours), %d walked (%d beats "
+                    "out, %d edges) bit-exact", kind, seed, ss, sched.M, sched.NJ, sched.NB, st.run_beats, near,
                     st.walk_beats, len(got), cycles)
+    assert read_rows > 0 or tb.ss < 2, "no pass read a voxel slice whole: S > 1 was not tested"
 
 
-BUILDS = [dict(P=4, MAX_DIM=32), dict(P=1, MAX_DIM=32), dict(P=8, MAX_DIM=32), dict(P=5, MAX_DIM=64)]
+BUILDS = [dict(P=4, MAX_DIM=32, MAX_SS_LOG2=2), dict(P=1, MAX_DIM=32, MAX_SS_LOG2=2), dict(P=8, MAX_DIM=32),
+          dict(P=5, MAX_DIM=64)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(1,), ids=param_id))

@@ -2,7 +2,10 @@
 
 Each frame is a golden one (``cube4_sim.beat_frames``): two of a nearly opaque slab in
 front of a dense block (rays end in the slab) and sparse volumes at S = 1 in every mode,
-opaque in every other frame, termination off in every third. The bench plays the host and
+opaque in every other frame, termination off in every third; in a build with MAX_SS_LOG2
+= 2 three more at S = 2 and 4 (a sample slice's blocks are those of voxel slice
+floor(m / S): with m's own, tried, P = 4 fails with "ln beat 2 (m=10, j=0, pb=2): RTL run
+0xc, golden 0x3" in the first frame at S = 2). The bench plays the host and
 COM around the unit:
 
 * the host writes the block table for the view (the volume's block bits with the frame's
@@ -28,8 +31,8 @@ beat 872 (m=15, j=14, pb=0): RTL run 0x3, golden 0x1"; without the wait for COM'
 (com_m), with "ln beat 746 (m=8, j=5, pb=1): RTL run 0xf, golden 0x1" in the second slab
 frame, whose reports come up to five slices late (both at RATE = 2; "ln beat" counts the
 beats that hold a running ray). Seeded from COCOTB_RANDOM_SEED;
-P = 4 deciding two beats a cycle (RATE = 2) in make test; P = 1, 4, 8 at RATE 1 and P = 1,
-5 (MAX_DIM 64) at RATE 2 in make regress.
+P = 4 deciding two beats a cycle (RATE = 2, MAX_SS_LOG2 = 2) in make test; P = 1, 4, 8 at
+RATE 1 and P = 1, 5 (MAX_DIM 64) at RATE 2 in make regress.
 """
 
 from __future__ import annotations
@@ -59,8 +62,8 @@ class TB:
         start_clock(dut)
 
     def idle(self) -> None:
-        for name in ("start", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m", "bm_ready",
-                     "ln_ready"):
+        for name in ("start", "ss_log2", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m",
+                     "bm_ready", "ln_ready"):
             getattr(self.dut, name).value = 0
 
     async def reset(self) -> None:
@@ -75,6 +78,7 @@ class TB:
         d, s = self.dut, bf.sched
         host = HostCom(d, bf, self.p, self.max_dim, self.geo.m_w, LAG, self.rng, delay)
         await host.load()
+        d.ss_log2.value = bf.trav.supersample.bit_length() - 1
         d.start.value = 1
         await FallingEdge(d.clk)
         d.start.value = 0
@@ -130,11 +134,13 @@ async def test_decisions(dut):
     tb = TB(dut)
     await tb.reset()
     seeds = [s for s in range(200) if s % 3 == 0][:7]
-    cases = [("slab", v) for v in SLAB_VIEWS] + [("sparse", s) for s in seeds]
+    cases = [("slab", v, 1) for v in SLAB_VIEWS] + [("sparse", s, 1) for s in seeds]
+    if tb.ss >= 2:      # S = 2 and 4: a sample slice's blocks are its voxel slice's
+        cases += [("sparse", s, ss) for s, ss in ((1, 2), (4, 4), (13, 4))]
     nbmax = -(-tb.max_dim // tb.p)
-    for n, (kind, arg) in enumerate(cases):
+    for n, (kind, arg, ss) in enumerate(cases):
         bf = (slab_frame(tb.p, arg) if kind == "slab"
-              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2, supersample=ss))
         s = bf.sched
         if s.NJ > tb.max_dim or s.NB > nbmax:
             continue
@@ -144,12 +150,12 @@ async def test_decisions(dut):
         lane, rows = await tb.frame(bf, stall, delay)
         compare(lane, rows, bf, tb.p)
         ended = int((s.done < s.M).sum())
-        tb.log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f, report delay <= %d: "
-                    "%d beats and %d rows bit-exact", kind, arg, s.M, s.NJ, s.NB, ended, stall, delay, len(lane),
+        tb.log.info("%s %s S=%d: %d slices of %dx%d beats, %d rays reported done, stall %.1f, report delay <= %d: "
+                    "%d beats and %d rows bit-exact", kind, arg, ss, s.M, s.NJ, s.NB, ended, stall, delay, len(lane),
                     len(rows))
 
 
-BUILDS = [dict(P=4, MAX_DIM=32, RATE=2), dict(P=1, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=1),
+BUILDS = [dict(P=4, MAX_DIM=32, RATE=2, MAX_SS_LOG2=2), dict(P=1, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=1),
           dict(P=5, MAX_DIM=64, RATE=2), dict(P=4, MAX_DIM=32, RATE=1), dict(P=1, MAX_DIM=32, RATE=2)]
 
 

@@ -1,7 +1,8 @@
 """Testbench for rtl/cube4_cfb_skip.v: the beat schedule's front end without its reads.
 
 cube4_cfb_decide, cube4_ram_fifo and cube4_cfb_beats together, on the golden frames of
-``cube4_sim.beat_frames`` (two nearly opaque slabs, sparse volumes in every mode at S = 1):
+``cube4_sim.beat_frames`` (two nearly opaque slabs, sparse volumes in every mode at S = 1,
+and in a build with MAX_SS_LOG2 = 2 three more at S = 2 and 4):
 the bench plays the host (block table, ray table, the frame's axes, each slice's steps)
 and COM (the reports of slice d once the walk has given slice d's last beat, EOS, a
 random delay later, ``com_m`` counting them), and takes the walk with random ready. Expected, beat for
@@ -11,8 +12,8 @@ on every beat whose leaving sample beat holds a running ray, that beat's positio
 zero on the others; nothing after LAST. The units' own testbenches cover each alone; here
 the decisions run ahead of the walk through the bitmaps' four slots and the bits' queue,
 and no frame may stall for good. Seeded from COCOTB_RANDOM_SEED; P = 8 deciding two beats a
-cycle (RATE = 2) in make test; P = 1, 4, 8 at RATE 1 and P = 1, 5 (MAX_DIM 64) at RATE 2 in
-make regress.
+cycle (RATE = 2, MAX_SS_LOG2 = 2) in make test; P = 1, 4, 8 at RATE 1 and P = 1, 5 (MAX_DIM
+64) at RATE 2 in make regress.
 """
 
 from __future__ import annotations
@@ -46,7 +47,8 @@ class TB:
 
     async def reset(self) -> None:
         d = self.dut
-        for name in ("start", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m", "out_ready"):
+        for name in ("start", "ss_log2", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m",
+                     "out_ready"):
             getattr(d, name).value = 0
         d.rst.value = 1
         for _ in range(3):
@@ -59,6 +61,7 @@ class TB:
         d = self.dut
         host = HostCom(d, bf, self.p, self.max_dim, self.geo.m_w, LAG, self.rng, delay)
         await host.load()
+        d.ss_log2.value = bf.trav.supersample.bit_length() - 1
         d.start.value = 1
         await FallingEdge(d.clk)
         d.start.value = 0
@@ -101,19 +104,21 @@ async def test_front_end(dut):
     tb = TB(dut)
     await tb.reset()
     seeds = [s for s in range(200) if s % 3 == 0][:6]
-    cases = [("slab", v) for v in SLAB_VIEWS] + [("sparse", s) for s in seeds]
+    cases = [("slab", v, 1) for v in SLAB_VIEWS] + [("sparse", s, 1) for s in seeds]
+    if tb.ss >= 2:
+        cases += [("sparse", s, ss) for s, ss in ((1, 2), (4, 4), (13, 4))]
     nbmax = -(-tb.max_dim // tb.p)
-    for n, (kind, arg) in enumerate(cases):
+    for n, (kind, arg, ss) in enumerate(cases):
         bf = (slab_frame(tb.p, arg) if kind == "slab"
-              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2, supersample=ss))
         s = bf.sched
         if s.NJ > tb.max_dim or s.NB > nbmax:
             continue
         stall, slices = ((0.0, 0.0), (0.1, 1.0), (0.4, 0.3), (0.2, 0.05))[n % 4]
         got, _ = await tb.frame(bf, stall, int(slices * s.NJ * s.NB))
         compare(got, expected_front(bf, tb.p, LAG))
-        tb.log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d walk beats bit-exact",
-                    kind, arg, s.M, s.NJ, s.NB, int((s.done < s.M).sum()), stall, len(got))
+        tb.log.info("%s %s S=%d: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d walk beats "
+                    "bit-exact", kind, arg, ss, s.M, s.NJ, s.NB, int((s.done < s.M).sum()), stall, len(got))
 
 
 MEASURE = os.environ.get("CUBE4_SKIP_MEASURE")
@@ -135,7 +140,7 @@ async def test_measure(dut):
         json.dump({"cycles": cycles, "walk_beats": sum(1 for b in got if not b[5])}, f)   # no tokens
 
 
-BUILDS = [dict(P=4, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=2), dict(P=1, MAX_DIM=32, RATE=1),
+BUILDS = [dict(P=4, MAX_DIM=32, RATE=1), dict(P=8, MAX_DIM=32, RATE=2, MAX_SS_LOG2=2), dict(P=1, MAX_DIM=32, RATE=1),
           dict(P=5, MAX_DIM=64, RATE=2), dict(P=1, MAX_DIM=32, RATE=2), dict(P=8, MAX_DIM=32, RATE=1)]
 
 
