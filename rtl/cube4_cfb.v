@@ -38,12 +38,14 @@
 //   golden/cube4/slices.py SliceRects.beats.
 //   The table is read one pass ahead (the next entry is always ready).
 //
-//   Beat skipping and ray termination (BEATS = 1, S = 1 only; numerics.md
-//   section 19): cube4_cfb_skip decides every beat (the block table, the ray
+//   Beat skipping and ray termination (BEATS = 1; numerics.md section 19):
+//   cube4_cfb_skip decides every beat (the block table, the ray
 //   table's stops and COM's reports) and walks the voxel beats the running
 //   sample beats read; cube4_cfb_bctl turns its beats into requests in place
 //   of the control and traversal units, with the box as every pass's
-//   rectangle, and cube4_cfb_steps gives the decisions each slice's steps.
+//   rectangle, and cube4_cfb_steps gives the decisions each slice's steps;
+//   with S > 1 the passes that read a voxel slice walk all their rows (the
+//   others replay the slices from TRI's slice buffers, as the fixed schedule).
 //   Request beats per frame: the walk's beats but its tokens, and the drain
 //   beat, a push beat after each slice's last beat and after each sample
 //   slice's last; each carries its emitted beat's position bits, EOS and
@@ -77,7 +79,7 @@
 //   WEIGHT_W     resampling weight width W (Q0.W).          4..12.  Default 8.
 //   MAX_SS_LOG2  log2 of the largest supersampling S.       0..3.   Default 0.
 //   RECTS        1: slice rectangles (a frame needs S = 1). 0..1.   Default 0.
-//   BEATS        1: the beat schedule (a frame needs S = 1; RECTS = 0). 0..1.
+//   BEATS        1: the beat schedule (RECTS = 0).               0..1.
 //                Default 0.
 //   RATE         BEATS = 1: beats decided a cycle (cube4_cfb_decide). 1..2.
 //                Default 2.
@@ -206,13 +208,15 @@ module cube4_cfb #(
             wire [DIM_W-1:0] w_j;
             wire [PB_W-1:0]  w_pb;
             wire [4*P-1:0]   w_bits;
+            // the frame's sample slices M = (NK - 1) S + 1 and log2 S (0 without MAX_SS_LOG2)
+            wire [1:0]     beat_ssl = (MAX_SS_LOG2 > 0) ? cfg_ss_log2 : 2'd0;
+            wire [M_W-1:0] beat_nm  = (MAX_SS_LOG2 > 0) ? (M_W'(cfg_nk - 1'b1) << beat_ssl) + 1'b1 : M_W'(cfg_nk);
             cube4_cfb_skip #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
                 .BLOCK_LOG2(BLOCK_LOG2), .RATE(RATE)
             ) u_skip (
                 .clk(clk), .rst(rst), .start(go_q[1]), .busy(busy_s),
-                // S = 1: the beat control (cube4_cfb_bctl) runs S = 1 frames only
-                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(M_W'(cfg_nk)), .ss_log2(2'd0), .sx(cfg_sx), .sy(cfg_sy),
+                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(beat_nm), .ss_log2(beat_ssl), .sx(cfg_sx), .sy(cfg_sy),
                 .bi_base(blk_base[0 +: DIM_W]), .bi_flip(cfg_flip_i),
                 .bj_base(blk_base[DIM_W +: DIM_W]), .bj_flip(cfg_flip_j),
                 .bk_base(blk_base[2*DIM_W +: DIM_W]), .bk_flip(cfg_flip_k),
@@ -251,12 +255,11 @@ module cube4_cfb #(
                 .in_tok(b_tok),
                 .in_eor(b_eor), .in_eos(b_eos), .in_last(b_last), .in_bits(b_bits),
                 .advance(advance[CFB_ADV_CTL]), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
-                .idle(idle), .next_pass(next_pass),
+                .idle(idle), .next_pass(next_pass), .r(r),
                 .issue(issue), .fields(fields), .use_prev(use_prev), .skew_out(skew_out),
                 .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi), .rowv(rowv), .rowin(rowin), .rd(rd),
                 .pbp(pbp), .skew_rd(skew_rd), .aj(aj), .ak(ak), .pbx(pbx),
                 .x_bits(x_bits), .x_eos(x_eos), .x_eoss(x_eoss));
-            assign r = '0;
             cube4_cfb_box #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2), .ADDR_W(ADDR_W)
             ) u_box (

@@ -6,7 +6,7 @@
 // Purpose
 //   The control and traversal of cube4_cfb on the beat schedule (BEATS = 1;
 //   docs/numerics.md section 19, docs/architecture.md "The front end's
-//   plan"; S = 1): in place of cube4_cfb_ctl and cube4_cfb_trav, it turns the
+//   plan"): in place of cube4_cfb_ctl and cube4_cfb_trav, it turns the
 //   walk's beats (cube4_cfb_skip: voxel beat (m, j, pb) of sample slice m,
 //   rows and slices in order, partial beams rising within a row, every row
 //   ending with a beat that carries EOR) into the fields of the request beat
@@ -16,8 +16,15 @@
 //     the row     j and its terms c_j mod P, A_j and j * NB step at each
 //                 row's last beat (EOR); the walk's tokens (rows that read
 //                 nothing) only step them and issue nothing
-//     the slice   m, c_k mod P, A_k and the template (next_pass) step at each
-//                 slice's last beat (EOS); then row 0 again
+//     the slice   m, r = m mod S, the template (next_pass) step at each
+//                 slice's last beat (EOS); then row 0 again. As the fixed
+//                 schedule's traversal (cube4_cfb_trav): a pass reads the
+//                 memory where it reads a voxel slice (pass 0 its lower
+//                 slice, LMEM; with S > 1 each pass k0 S + 1 its upper slice
+//                 k0 + 1, UMEM), the others replay the slices from TRI's
+//                 slice buffers (K0ODD their parity); c_k mod P and A_k of
+//                 the next slice to read step after a pass that read, the
+//                 lower slice's residue (the pass's skew) when r wraps
 //     the beat    pb from the walk; pb * I_PB from cube4_mul (two stages
 //                 before the state, so the product meets its beat)
 //   The emitted row (as cube4_cfb_ctl): the row below, j - 1, or at row 0
@@ -34,8 +41,9 @@
 //   sample slice m - 1: it carries EOSS (x_eoss), and a push beat follows
 //   it, so that GRA and COM see each sample slice end without waiting for
 //   the next beat (numerics.md section 19, lag).
-//   A beat reads when the walk says so, except in the flush row (m = M),
-//   which reads nothing. Tokens issue nothing; after LAST one drain beat
+//   A beat needs its voxel beat (BBWE; from the memory in a pass that reads
+//   one, else from the slice buffers) when the walk says it reads, except in
+//   the flush row (m = M), which reads nothing. Tokens issue nothing; after LAST one drain beat
 //   pushes TRI's beam-extension delay empty, as the fixed schedule's, and
 //   after each slice's last beat (EOS) one such beat pushes it too: TRI
 //   gives a sample beat when the next beat comes, and the next may wait for
@@ -43,7 +51,8 @@
 //   loop the push beat opens; numerics.md section 19, lag).
 //
 // Parameters (CUBE4_CFB_PARAMS; ranges as cube4_cfb)
-//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (a frame of beats has S = 1), ADDR_W.
+//   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2, ADDR_W. (With MAX_SS_LOG2 = 0 the
+//   view's log2 S is taken as 0.)
 //
 // Latency
 //   Two register stages in front of the state: a (the walk's beat, the
@@ -55,8 +64,8 @@
 // Ports
 //   clk, rst     clock, synchronous active-high reset (the state and the
 //                stages' valid bits)
-//   cfg, cfg_addr  in  view and address registers (NJ, NK, NB, NI, the flips,
-//                residues and address terms)
+//   cfg, cfg_addr  in  view and address registers (NJ, NK, NB, NI, log2 S,
+//                the flips, residues and address terms)
 //   start, busy  in   start a frame (taken while not busy); cube4_cfb's busy
 //   go           out  start && !busy (the walk starts with it)
 //   in_valid/in_ready   the walk's beats: in_pb [PB_W], in_read, in_leave,
@@ -64,7 +73,8 @@
 //                fresh, run} of the leaving beat, cube4_cfb_skip)
 //   advance      in   the stages move (cube4_cfb_mask)
 //   wx, wy, wz [W] (Q0.W), steps [4]  in  the template's (cube4_cfb_tmpl)
-//   idle, next_pass  out  the template's controls (and cube4_cfb_mask's idle)
+//   idle, next_pass, r [CFB_R_W]  out  the template's controls (r = m mod S:
+//                its wz; idle also cube4_cfb_mask's)
 //   issue, fields [CFB_F1_W], use_prev, skew_out, p_ilo, p_iin, p_ihi,
 //   rowv, rowin, rd   out  the state's beat (CUBE4_CFB_MASK_PORTS)
 //   pbp [IW]     out  pb * P;  skew_rd [LANE_W], aj, ak, pbx [ADDR_W]  out
@@ -88,7 +98,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     input  wire advance,
     input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz,
     input  wire [3:0] steps,
-    output wire idle, output wire next_pass,
+    output wire idle, output wire next_pass, output wire [CFB_R_W-1:0] r,
     output wire issue, output wire [CFB_F1_W-1:0] fields,
     output wire use_prev, output wire [LANE_W-1:0] skew_out,
     output wire [DIM_W-1:0] p_ilo, output wire [DIM_W-1:0] p_iin, output wire [DIM_W-1:0] p_ihi,
@@ -157,8 +167,11 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     reg              j0_q;         // j_q = 0: the emitted row is the previous slice's last
     reg              lsl_q;        // m_q = M - 1
     reg              fl_q;         // m_q = M: the flush row
-    reg [LANE_W-1:0] rj_q, rk_q;
+    reg [LANE_W-1:0] rj_q, rk_q;  // rk_q, ak_q: the next voxel slice to read
     reg [ADDR_W-1:0] aj_q, ak_q;
+    reg [LANE_W-1:0] rk0_q;        // c_k mod P of the pass's lower voxel slice k0
+    reg              k0o_q;        // k0 mod 2 (the slice buffers' parity)
+    reg [CFB_R_W-1:0] r_q;         // m mod S
     reg [SB_W-1:0]   sbrow_q;      // j * NB
     reg              sopp_q;       // no sample beat emitted yet
     // the previous slice, for the row emitted in row 0 and the flush row
@@ -168,13 +181,20 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
 
     wire run_take   = take && in_run;
     wire emit       = in_run && !(j0_q && m_q == '0);   // (tokens do not issue; no slice -1)
-    wire reads      = in_run && b_read && !fl_q;
+    wire reads      = in_run && b_read && !fl_q;        // the beat's voxel beat is needed
+    // the pass (as cube4_cfb_trav): log2 S, which slice it reads from the memory
+    wire [1:0] ssl       = (MAX_SS_LOG2 > 0) ? cfg_ss_log2 : 2'd0;
+    wire [CFB_R_W-1:0] ss_m1 = CFB_R_W'((1 << ssl) - 1);
+    wire       last_r    = (r_q == ss_m1);
+    wire       lower_mem = (ssl == 2'd0) || (m_q == '0);
+    wire       upper_mem = (ssl != 2'd0) && (r_q == CFB_R_W'(1));
+    wire       any_read  = lower_mem || upper_mem;
     wire slice_step = run_take && b_eos;
     wire b_eoss     = b_eor && ((j0_q && m_q != '0) || fl_q);   // the row emits its sample slice's last beat
     wire row_step   = run_take && b_eor && !b_eos;
     assign next_pass = slice_step;
-    wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk_q);   // S = 1: the read slice is the pass's
-    wire [DIM_W-1:0]  nk_m1    = cfg_nk - 1'b1;
+    wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk0_q);  // the pass's lower slice
+    wire [M_W-1:0]    nm_m1    = M_W'(cfg_nk - 1'b1) << ssl;   // M - 1 = (NK - 1) S
 
     always @(posedge clk) begin
         if (rst) begin
@@ -195,12 +215,15 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
             m_q     <= '0;
             j_q     <= '0;
             j0_q    <= 1'b1;
-            lsl_q   <= (cfg_nk == DIM_W'(1));
+            lsl_q   <= (cfg_nk == DIM_W'(1));           // M = 1
             fl_q    <= 1'b0;
             rj_q    <= cfg_j_r0;
             aj_q    <= cfg_j_a0;
             rk_q    <= cfg_k_r0;
             ak_q    <= cfg_k_a0;
+            rk0_q   <= cfg_k_r0;
+            k0o_q   <= 1'b0;
+            r_q     <= '0;
             sbrow_q <= '0;
             sopp_q  <= 1'b1;
         end else begin
@@ -220,15 +243,24 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
                 psteps_q <= steps;
                 pskew_q  <= r_step(skew_pas, cfg_flip_j);   // the virtual row NJ
                 m_q      <= m_q + 1'b1;
-                lsl_q    <= (DIM_W'(m_q) + 1'b1 == nk_m1);
+                lsl_q    <= (m_q + 1'b1 == nm_m1);
                 fl_q     <= lsl_q;
                 j_q      <= '0;
                 j0_q     <= 1'b1;
                 rj_q     <= cfg_j_r0;
                 aj_q     <= cfg_j_a0;
                 sbrow_q  <= '0;
-                rk_q     <= r_step(rk_q, cfg_flip_k);
-                ak_q     <= a_step(ak_q, rk_q, cfg_flip_k, cfg_k_lin, cfg_k_blk);
+                if (any_read) begin
+                    rk_q <= r_step(rk_q, cfg_flip_k);
+                    ak_q <= a_step(ak_q, rk_q, cfg_flip_k, cfg_k_lin, cfg_k_blk);
+                end
+                if (last_r) begin
+                    r_q   <= '0;
+                    k0o_q <= !k0o_q;
+                    rk0_q <= r_step(rk0_q, cfg_flip_k);
+                end else begin
+                    r_q <= r_q + 1'b1;
+                end
             end
         end
     end
@@ -236,22 +268,24 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     // ==== the state's beat ====
     assign issue    = (in_run && b_v && !b_token) || in_drain;
     assign use_prev = j0_q;
+    assign r        = r_q;                             // the template's wz = r / S
     assign skew_out = j0_q ? pskew_q : skew_pas;
     wire [M_W-1:0]      mout   = j0_q ? m_q - 1'b1 : m_q;
     wire [DIM_W-1:0]    jout   = j0_q ? cfg_nj - 1'b1 : j_q - 1'b1;
     wire [WEIGHT_W-1:0] wy_out = j0_q ? pwy_q : wy;
     assign rowv  = emit && b_leave;
     assign rowin = !(j0_q && (wy_out != '0));      // the box's high-face rule on row NJ - 1
-    assign rd    = reads;
+    assign rd    = reads && any_read;
     assign {p_ilo, p_iin, p_ihi} = {{DIM_W{1'b0}}, {DIM_W{1'b0}}, cfg_ni};
     assign fields = {emit, emit && sopp_q, in_run && b_last, j0_q,
-                     reads, reads, 1'b0, 1'b0,                 // BBWE, LMEM, UMEM, UUSE
-                     m_q[0], sbrow_q + SB_W'(b_pb), b_pb,
+                     reads, reads && lower_mem, reads && upper_mem,   // BBWE, LMEM, UMEM
+                     in_run && (r_q != '0),                    // UUSE
+                     k0o_q, sbrow_q + SB_W'(b_pb), b_pb,
                      j0_q ? pwx_q : wx, wy_out, j0_q ? pwz_q : wz,
                      mout, jout, skew_out, j0_q,               // YLAST: the emitted row is NJ - 1
                      j0_q ? psteps_q : steps};
     assign pbp     = IW'(b_pb) * IW'(P);
-    assign skew_rd = skew_pas;
+    assign skew_rd = add_p(rj_q, rk_q);               // the slice read
     assign aj      = aj_q;
     assign ak      = ak_q;
     assign pbx     = cfg_flip_i ? cfg_i_a0 - pb_term : pb_term;

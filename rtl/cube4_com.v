@@ -51,7 +51,7 @@
 //               that holds something, ray termination (term_*), its state
 //               in the buffer word (CUBE4_TERM_CNT_W bits: live, a countdown,
 //               done) and the reports (rep_*, com_m).
-//               Needs RECTS, ZIN = 0, MAX_SS_LOG2 = 0.  0..1. Default 0.
+//               Needs RECTS, ZIN = 0.                  0..1. Default 0.
 //   LAG         (after the build's list) BEATS: slices between a report and
 //               the decisions' use of it (cube4_cfb_decide's LAG).  2..7.
 //               Default CUBE4_BEAT_LAG (4).
@@ -166,8 +166,8 @@ module cube4_com #(
             $error("cube4_com: PLW = 1 needs COMPOSITING = 1 (only the blending modes are weighted)");
         end
         `CUBE4_RANGE(g_bad_lag, "cube4_com", "LAG", LAG, 2, 7)
-        if (BEATS != 0 && (RECTS != 0 || ZIN != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
-            $error("cube4_com: BEATS = 1 needs RECTS = 0, ZIN = 0 and MAX_SS_LOG2 = 0 (not built; depth in: the ray table's stops)");
+        if (BEATS != 0 && (RECTS != 0 || ZIN != 0)) begin : g_beats_alone
+            $error("cube4_com: BEATS = 1 needs RECTS = 0 and ZIN = 0 (not built; depth in: the ray table's stops)");
         end
         if (COMPOSITING == 0 && EXTREMUM == 0) begin : g_no_mode
             $error("cube4_com: COMPOSITING = 0 and EXTREMUM = 0 leave no rendering mode");

@@ -37,8 +37,8 @@
 //                                                  Defaults 256, 0.
 //   RECTS    1: slice rectangles (cube4_gra_walk). 0..1.      Default 0.
 //   BEATS    1: the beat schedule (cube4_gra_beats; every input beat leaves
-//            as a centre, in order, with its header). Needs RECTS = 0,
-//            MAX_SS_LOG2 = 0.                      0..1.      Default 0.
+//            as a centre, in order, with its header). Needs RECTS = 0.
+//                                                  0..1.      Default 0.
 //   LABELS   1: each sample carries its label (LABEL_W bits above the value,
 //            numerics.md section 24): the source's lines hold whole samples,
 //            the window and the arithmetic read the values, and the centre's
@@ -101,8 +101,8 @@ module cube4_gra #(
         if (LABELS != 0 && RECTS != 0) begin : g_labels_rects
             $error("cube4_gra: LABELS = 1 needs RECTS = 0");
         end
-        if (BEATS != 0 && (RECTS != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
-            $error("cube4_gra: BEATS = 1 needs RECTS = 0 and MAX_SS_LOG2 = 0");
+        if (BEATS != 0 && RECTS != 0) begin : g_beats_alone
+            $error("cube4_gra: BEATS = 1 needs RECTS = 0");
         end
     endgenerate
 

@@ -45,8 +45,9 @@
 //
 // Parameters
 //   P, VOXEL_W, WEIGHT_W, MAX_DIM, MAX_SS_LOG2 as cube4_gra (derived widths:
-//   cube4_defs.vh CUBE4_GEOMETRY, CUBE4_GRA_LAYOUT). S = 1 (the beat
-//   schedule's frames).
+//   cube4_defs.vh CUBE4_GEOMETRY, CUBE4_GRA_LAYOUT). Any S: the steps run
+//   over sample slices; where S > 1 the window's k neighbours are chosen by
+//   whether a voxel slice lies between (dk_f, dk_b, as cube4_gra_walk).
 //
 // Latency
 //   An input beat passes a skid buffer (cube4_gra_beats_in: one cycle;
@@ -291,7 +292,11 @@ module cube4_gra_beats
     // gm's lowest bit after the step: the second lowest where the step passed the lowest
     wire [NBX-1:0] g_oh_ld = (ld_gen || (g_oh & in_oh) != '0) ? g2_oh : g_oh;
     wire [NBX-1:0] x_oh_ld = (ld_gen_x || (x_oh & in_oh) != '0) ? x2_oh : x_oh;
-    wire [3:0] ld_flags = {1'b1, 1'b1,                     // dk_f, dk_b (S = 1)
+    // dk_f, dk_b: the centre slice w - 1 and the slice after / before it lie between
+    // other voxel slices (as cube4_gra_walk; always with S = 1)
+    wire [M_W-1:0] ss_mask = (MAX_SS_LOG2 > 0) ? M_W'((1 << cfg_ss_log2) - 1) : '0;
+    wire [3:0] ld_flags = {(ld_w & ss_mask) == '0,           // dk_f of centre slice w - 1
+                           ((ld_w - 1'b1) & ss_mask) == '0,  // dk_b
                            ld_nx ? r_zero : r_one,         // j_first (centre row 0): ld_r == 1
                            w_one};                         // m_first (centre slice 0): ld_w == 1
     wire           wm1_odd = ~ld_w[0];                // (w - 1) mod 2
@@ -606,7 +611,7 @@ module cube4_gra_beats
             wire unused_credit = ^credit[GRA_STEPS-2:GRA_POS_G];   // (more copies than groups)
         end
     endgenerate
-    wire unused_cfg    = ^{cfg_ss_log2, s_hdr[HDR_CTRL + CTRL_SOP]};
+    wire unused_cfg    = ^{s_hdr[HDR_CTRL + CTRL_SOP]};
 
 endmodule
 `default_nettype wire

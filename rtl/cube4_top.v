@@ -47,8 +47,8 @@
 //   PLW = 1 with COMPOSITING = 0 (only the blending modes are weighted);
 //   RECTS = 1 with PLW = 1 or MAX_SS_LOG2 > 0; SLAB = 1 with CLIP = 0;
 //   ZIN = 1 with RECTS = 1; GMOD = 1 with SHADING = 0 or RECTS = 1;
-//   LABELS = 1 with VGRAD, PLW or RECTS = 1; BEATS = 1 with RECTS, ZIN = 1
-//   or MAX_SS_LOG2 > 0.
+//   LABELS = 1 with VGRAD, PLW or RECTS = 1; BEATS = 1 with RECTS or
+//   ZIN = 1.
 //   RECTS        1: slice rectangles (numerics.md section 18): CFB walks each
 //                slice's entry of the table (rect_*), GRA and COM follow the
 //                rectangles; every frame needs its table (the whole box for the
@@ -217,8 +217,8 @@ module cube4_top #(
         if (LABELS != 0 && (VGRAD != 0 || PLW != 0 || RECTS != 0)) begin : g_labels_alone
             $error("cube4_top: LABELS = 1 needs VGRAD = 0 and PLW = 0 and RECTS = 0 (labels run without voxel gradients, path weights and rectangles)");
         end
-        if (BEATS != 0 && (RECTS != 0 || ZIN != 0 || MAX_SS_LOG2 != 0)) begin : g_beats_alone
-            $error("cube4_top: BEATS = 1 needs RECTS = 0 and ZIN = 0 and MAX_SS_LOG2 = 0 (the beat schedule runs with S = 1, without rectangles, and depth in through the ray table's stops: S > 1 is not built yet)");
+        if (BEATS != 0 && (RECTS != 0 || ZIN != 0)) begin : g_beats_alone
+            $error("cube4_top: BEATS = 1 needs RECTS = 0 and ZIN = 0 (the beat schedule runs without rectangles, and depth in through the ray table's stops)");
         end
         if (ZIN != 0 && RECTS != 0) begin : g_zin_rects
             $error("cube4_top: ZIN = 1 needs RECTS = 0 (depth in runs on the fixed and box schedules)");

@@ -381,15 +381,16 @@ def test_detailed_timing_option_is_part_of_the_seed_key(monkeypatch, tmp_path):
 # ------------------------------------------------------------------ builds named whole
 def test_widths_option_names_the_build_and_its_folder():
     """--widths: cube4_top's word widths beside the build options; checked by the build's rules
-    (the beat build has no S > 1), part of the synthesis key and of the folder."""
+    (the rectangle build has no S > 1), part of the synthesis key and of the folder."""
     from cube4.builds import complete_build
     assert fpga.parse_widths_arg("", complete_build({})) == ()
     assert fpga.parse_widths_arg("max_ss_log2=2, WEIGHT_W=6", complete_build({})) == (("MAX_SS_LOG2", 2), ("WEIGHT_W", 6))
     for text, msg in (("FOO=1", "NAME=V pairs"), ("WEIGHT_W=x", "NAME=V pairs"), ("ACC_W=8,ACC_W=9", "twice")):
         with pytest.raises(UserError, match=msg):
             fpga.parse_widths_arg(text, complete_build({}))
-    with pytest.raises(UserError, match="S > 1 is not built yet"):
-        fpga.parse_widths_arg("MAX_SS_LOG2=2", complete_build({"BEATS": 1, "EXTREMUM": 0, "CLIP": 0, "PLW": 0}))
+    with pytest.raises(UserError, match="rectangles run with S = 1"):
+        fpga.parse_widths_arg("MAX_SS_LOG2=2", complete_build({"RECTS": 1, "EXTREMUM": 0, "CLIP": 0, "PLW": 0}))
+    assert fpga.parse_widths_arg("MAX_SS_LOG2=2", complete_build({"BEATS": 1, "PLW": 0})) == (("MAX_SS_LOG2", 2),)
     base, ss = cfg_of(), fpga.BuildConfig(p=8, max_dim=16, depth=64, freq=100.0, widths=(("MAX_SS_LOG2", 2),))
     assert ss.params()["MAX_SS_LOG2"] == 2 and base.params()["MAX_SS_LOG2"] == fpga.TOP_DEFAULTS["MAX_SS_LOG2"]
     assert ss.synth_key("d") != base.synth_key("d") and ss.workdir().name == "p8_d16_w64_max_ss_log22"

@@ -114,9 +114,8 @@ RULES: tuple[Rule, ...] = (
     Rule({"GMOD": 1}, {"SHADING": (1,), "RECTS": (0,)}, "the gradient comes with shading; not with rectangles"),
     Rule({"LABELS": 1}, {"VGRAD": (0,), "PLW": (0,), "RECTS": (0,)},
          "labels run without voxel gradients, path weights and rectangles"),
-    Rule({"BEATS": 1}, {"RECTS": (0,), "ZIN": (0,), "MAX_SS_LOG2": (0,)},
-         "the beat schedule runs with S = 1, without rectangles, and depth in through the ray "
-         "table's stops: S > 1 is not built yet"),
+    Rule({"BEATS": 1}, {"RECTS": (0,), "ZIN": (0,)},
+         "the beat schedule runs without rectangles, and depth in through the ray table's stops"),
 )
 
 

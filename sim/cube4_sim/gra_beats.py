@@ -203,7 +203,8 @@ def beat_schedule_beats(bf, p: int, lag: int) -> list[WalkBeat]:
     out = []
     for n, (m, j, pb, leave) in enumerate(order):
         cj = nj - 1 - (j + 1) if fj else j + 1
-        ck = nk - 1 - m if fk else m
+        k0 = m // trav.supersample          # the sample slice's lower voxel slice
+        ck = nk - 1 - k0 if fk else k0
         skew = (cj + ck + sum(int(o) for o in trav.origin)) % p
         pos = lane_positions(skew, pb, p, ni, fi)
         valid = (pos < ni) & bool(leave)

@@ -54,7 +54,10 @@ module cube4_cfb_harness #(
     output wire                  req_eos,
     output wire                  req_eoss,
     output wire                  tag_lower_mem,
-    output wire                  tag_upper_mem
+    output wire                  tag_upper_mem,
+    output wire                  tag_bbwe,
+    output wire                  tag_uuse,
+    output wire                  tag_k0odd
 );
     wire [TAG_W-1:0]  tag;
     wire [RECT_W-1:0] rect_data = `CUBE4_RECT_PACK;
@@ -112,5 +115,8 @@ module cube4_cfb_harness #(
     assign tag_eop       = tag[TAG_EOP];
     assign tag_lower_mem = tag[TAG_LMEM];
     assign tag_upper_mem = tag[TAG_UMEM];
+    assign tag_bbwe      = tag[TAG_BBWE];
+    assign tag_uuse      = tag[TAG_UUSE];
+    assign tag_k0odd     = tag[TAG_K0ODD];
 endmodule
 `default_nettype wire

@@ -58,6 +58,16 @@ def expected_lanes(trav, p: int, k: int, j: int, pb: int, i_range=None) -> tuple
     return addr, vox
 
 
+def slice_read(m: int, s: int) -> tuple[bool, bool, int]:
+    """Pass m's read from the memory (as cube4_cfb_trav): its lower voxel slice (pass 0,
+    or every pass at S = 1), its upper slice (pass k0·S + 1, S > 1), and which slice."""
+    if s == 1:
+        return True, False, m
+    if m == 0:
+        return True, False, 0
+    return False, m % s == 1, m // s + 1
+
+
 async def reset(dut):
     Clock(dut.clk, 10, unit="ns").start(start_high=False)
     dut.rst.value = 1
@@ -216,9 +226,14 @@ async def test_beats(dut):
     nearly opaque every other frame, termination off every third) through the whole CFB:
     the bench plays the host (the view's registers, the block table, the ray table's
     stops) and COM (each slice's reports a random delay after the walk's EOS), and takes
-    the requests with random ready. Every request beat, in order: the walk's beat
-    (cube4_sim.beat_frames.expected_requests, tokens issue nothing) with its reads checked
-    lane by lane against the memory layout (``cube4.memory``, as test_addresses), the
+    the requests with random ready; in a build with MAX_SS_LOG2 = 2 three more frames at
+    S = 2 and 4. Every request beat, in order: the walk's beat
+    (cube4_sim.beat_frames.expected_requests, tokens issue nothing), the voxel beat it
+    needs (BBWE) and where from: the memory in a pass that reads a voxel slice (pass 0 its
+    lower slice, LMEM; with S > 1 pass k0·S + 1 its upper slice k0 + 1, UMEM), the slice
+    buffers in the others (the slices' parity K0ODD, UUSE where m mod S > 0), with its
+    reads checked lane by lane against the memory layout (``cube4.memory``, as
+    test_addresses) at that slice, the
     sample beat it emits (EMIT where the leaving beat runs, and at each slice's last beat
     and the frame's, with EOP; its slice and row: the row below, or the previous slice's
     last), its position bits and EOS; a push beat after each slice's last beat, one drain
@@ -232,11 +247,13 @@ async def test_beats(dut):
         getattr(dut, name).value = 0
     await reset(dut)
     seeds = [sd for sd in range(200) if sd % 3 == 0][:6]
-    cases = [("slab", v) for v in SLAB_VIEWS] + [("sparse", sd) for sd in seeds]
+    cases = [("slab", v, 1) for v in SLAB_VIEWS] + [("sparse", sd, 1) for sd in seeds]
+    if int(dut.MAX_SS_LOG2.value) >= 2:
+        cases += [("sparse", sd, ss) for sd, ss in ((1, 2), (4, 4), (13, 4))]
     frames = 0
-    for n, (kind, arg) in enumerate(cases):
+    for n, (kind, arg, ss) in enumerate(cases):
         bf = (slab_frame(p, arg) if kind == "slab"
-              else sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+              else sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2, supersample=ss))
         s, trav = bf.sched, bf.trav
         if max(trav.dims) > max_dim:
             continue
@@ -262,18 +279,26 @@ async def test_beats(dut):
             if valid:
                 beat = (int(dut.req_addr.value), int(dut.req_rden.value), int(dut.tag_m.value),
                         int(dut.tag_j.value), int(dut.tag_pb.value), int(dut.tag_emit.value),
-                        int(dut.tag_eop.value), int(dut.tag_lower_mem.value), int(dut.req_bits.value),
-                        int(dut.req_eos.value))
+                        int(dut.tag_eop.value), int(dut.req_bits.value), int(dut.req_eos.value),
+                        (int(dut.tag_bbwe.value), int(dut.tag_lower_mem.value), int(dut.tag_upper_mem.value),
+                         int(dut.tag_uuse.value), int(dut.tag_k0odd.value)))
                 if held is not None:
                     assert beat == held, "request changed while stalled"
                 held = None if ready else beat
             if valid and ready:
                 assert got < len(want), f"{kind} {arg}: more than {len(want)} request beats"
-                k, j, pb, reads, emit, _leave, row, eop, eos, bits, care = want[got]
-                addr_v, rden, tm, tj, tpb, temit, teop, lmem, rbits, reos = beat
-                where = f"{kind} {arg} view {trav.direction} beat {got} (k={k}, j={j}, pb={pb})"
-                assert (temit, teop, lmem, reos) == (emit, eop, reads, eos), \
-                    f"{where}: (emit, eop, reads, eos) = {(temit, teop, lmem, reos)}, golden {(emit, eop, reads, eos)}"
+                m, j, pb, need, emit, _leave, row, eop, eos, bits, care = want[got]
+                addr_v, rden, tm, tj, tpb, temit, teop, rbits, reos, src = beat
+                where = f"{kind} {arg} S={ss} view {trav.direction} beat {got} (m={m}, j={j}, pb={pb})"
+                assert (temit, teop, reos) == (emit, eop, eos), \
+                    f"{where}: (emit, eop, eos) = {(temit, teop, reos)}, golden {(emit, eop, eos)}"
+                lower, upper, k = slice_read(m, ss) if need else (False, False, None)
+                if need:        # (a beat that needs nothing: only BBWE and the memory's flags count)
+                    want_src = (1, int(lower), int(upper), int(m % ss != 0), (m // ss) % 2)
+                else:
+                    want_src = (0, 0, 0) + src[3:]
+                assert src == want_src, f"{where}: (BBWE, LMEM, UMEM, UUSE, K0ODD) {src}, golden {want_src}"
+                reads = need and (lower or upper)
                 if emit:
                     assert (tm, tj, tpb) == (*row, pb), f"{where}: emits ({tm}, {tj}, {tpb}), golden {(*row, pb)}"
                 assert rbits & care == bits & care, f"{where}: bits {rbits:#x}, golden {bits:#x} (mask {care:#x})"
@@ -297,8 +322,8 @@ async def test_beats(dut):
             await RisingEdge(dut.clk)
             assert not int(dut.req_valid.value), "a request after the drain beat"
         frames += 1
-        dut._log.info("%s %s: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d requests "
-                      "in %d cycles as specified", kind, arg, s.M, s.NJ, s.NB, int((s.done < s.M).sum()),
+        dut._log.info("%s %s S=%d: %d slices of %dx%d beats, %d rays reported done, stall %.1f: %d requests "
+                      "in %d cycles as specified", kind, arg, ss, s.M, s.NJ, s.NB, int((s.done < s.M).sum()),
                       stall, got, cycle)
     assert frames >= 4, f"only {frames} frames fit MAX_DIM = {max_dim}"
 
@@ -327,10 +352,12 @@ def test_cube4_cfb_rects(p):
     )
 
 
-@pytest.mark.parametrize("params", sweep([dict(P=8, RATE=2), dict(P=1, RATE=1), dict(P=5, RATE=2)], quick=(0,),
+@pytest.mark.parametrize("params", sweep([dict(P=8, RATE=2, MAX_SS_LOG2=2), dict(P=1, RATE=1), dict(P=5, RATE=2, MAX_SS_LOG2=2)],
+                                         quick=(0,),
                                          ids=lambda d: "-".join(f"{k}{v}" for k, v in d.items())))
 def test_cube4_cfb_beats(params):
-    """The beat build (BEATS = 1, S = 1): the walk's beats into requests (test_beats)."""
+    """The beat build (BEATS = 1): the walk's beats into requests (test_beats), S = 1 and,
+    with MAX_SS_LOG2 = 2, S = 2 and 4."""
     run_test(
         top="cube4_cfb_harness",
         sources=[*rtl_sources(), HERE / "cube4_cfb_harness.v"],

@@ -334,7 +334,8 @@ def sparse_volume(rng, dims, vw: int, thick: bool = False) -> np.ndarray:
 async def test_beat_pixel_stream(dut):
     """BEATS = 1: golden frames of the beat schedule (sparse volumes, a LUT that is zero
     below the blob's values; every mode of the build, the views with their windows and
-    cut planes, S = 1; termination in every other frame, at tau = 0 with an opaque LUT or
+    cut planes, S = 1, and with MAX_SS_LOG2 = 2 one frame at S = 2 and one at S = 4;
+    termination in every other frame, at tau = 0 with an opaque LUT or
     at a random tau > 0): COM takes the sample beats the front end emits
     (beat_frames.expected_requests: the running beats with their lanes valid, the cover,
     the row above and each slice's marker with none), with each beat's position bits
@@ -352,7 +353,8 @@ async def test_beat_pixel_stream(dut):
     blend_ends = 0          # composite frames that terminated so far
     for n, (direction, gap, stall, mode, clip_kind, phase) in enumerate(VIEWS * 2):
         mode = modes[(n // 2) % len(modes)]   # each mode with termination off and on
-        trav = make_traversal(dims, direction, cfg.weight_bits, 1, phase=phase)
+        ss = {3: 2, 6: 4}.get(n, 1) if int(dut.MAX_SS_LOG2.value) >= 2 else 1
+        trav = make_traversal(dims, direction, cfg.weight_bits, ss, phase=phase)
         terminate = n % 2 == 1
         # every other composite frame that terminates: a threshold tau > 0 (half of T or
         # more) on the random LUT and a thick blob, so rays end at their first samples
@@ -369,7 +371,8 @@ async def test_beat_pixel_stream(dut):
         if terminate and not tau:       # rays end (COM reports them done)
             lut[lut[:, 3] > 0, 3] = (1 << aw) - 1
         clip = random_clip(trav, clip_kind, bench.rng)
-        bf = beat_frame(vol, trav, cfg, lut, rmap, mode, clip, terminate=terminate, tau=tau)
+        bf = beat_frame(vol, trav, replace(cfg, supersample=ss), lut, rmap, mode, clip,
+                        terminate=terminate, tau=tau)
         reqs = [w for w in expected_requests(bf, p, BEAT_LAG) if w[4]]
         order = [(w[6][0], w[6][1], w[2], w[5]) for w in reqs]
         frame = bf.frame
@@ -414,8 +417,8 @@ async def test_beat_pixel_stream(dut):
         assert int(dut.com_m.value) == trav.num_sample_slices, f"com_m {int(dut.com_m.value)} after the frame"
         frames += 1
         box = trav.num_sample_slices * trav.nj * -(-trav.ni // p)
-        bench.log.info("dims %s view %s %s clip %s tau %d gap %.1f stall %.1f: %d of %d beats in (%d run), %d pixel "
-                       "beats, %d finished rays bit-exact, %d rays reported done", dims, direction, mode, clip_kind,
+        bench.log.info("dims %s S=%d view %s %s clip %s tau %d gap %.1f stall %.1f: %d of %d beats in (%d run), %d "
+                       "pixel beats, %d finished rays bit-exact, %d rays reported done", dims, ss, direction, mode, clip_kind,
                        tau if terminate else -1, gap, stall, len(reqs), box, sum(w[5] for w in reqs), len(got), len(frame.pixels), len(reps))
     assert frames >= 8
 
@@ -450,9 +453,9 @@ RECT_BUILDS = [dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
                dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1)]
 
 
-# beat-schedule builds (BEATS = 1, S = 1, PLW = 0): P = 8 in make test; 1, 5 and the
-# extremum alone in make regress
-BEAT_BUILDS = [dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1),
+# beat-schedule builds (BEATS = 1, PLW = 0): P = 8 (MAX_SS_LOG2 = 2: S = 2 and 4 too) in
+# make test; 1, 5 and the extremum alone in make regress
+BEAT_BUILDS = [dict(P=8, ALPHA_W=16, ACC_W=24, COMPOSITING=1, EXTREMUM=1, MAX_SS_LOG2=2),
                dict(P=1, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
                dict(P=5, ALPHA_W=12, ACC_W=16, COMPOSITING=1, EXTREMUM=1),
                dict(P=3, ALPHA_W=16, ACC_W=8, COMPOSITING=0, EXTREMUM=1)]

@@ -25,7 +25,8 @@ every beat against the golden model:
   path weights' m = M - 1, wx(m + 1) > 0, wy(m + 1) > 0 (``Traversal.weights``);
 * S4: col1 = the beat before it is the row above at the same partial beam.
 
-Every beat offered must be taken and checked (the count is compared). With the steps
+With MAX_SS_LOG2 = 2 one frame runs at S = 2 and one at S = 4 (the last slice M − 1 =
+(NK − 1)·S). Every beat offered must be taken and checked (the count is compared). With the steps
 frozen at their frame's first slice (tried, not kept), P = 5 fails with "beat 156 (m=3,
 j=3, pb=0) R0 (slot, pb, stx, sty): RTL (24, 0, 0, 0), golden (24, 0, 0, 1)".
 """
@@ -53,7 +54,7 @@ VIEWS = [(0.3, -0.45, 1.0), (-0.6, 0.25, -1.0), (1.0, 0.4, -0.7), (0.5, 1.0, 0.5
 def frame_beats(bench, trav, p: int, terminate: bool):
     """A golden beat frame of a sparse volume: its emitted sample beats (a BeatSchedule in
     their order) and each beat's position bits."""
-    cfg = Cube4Config(pipelines=p)
+    cfg = Cube4Config(pipelines=p, supersample=trav.supersample)
     nx, ny, nz = trav.dims
     vol = bench.rng.integers(0, 64, size=(nz, ny, nx))
     vol[nz // 4: nz // 2 + 2, ny // 4: ny // 2 + 2, nx // 4: nx // 2 + 2] = bench.rng.integers(64, 256)
@@ -172,26 +173,27 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
 
 @cocotb.test()
 async def test_beats(dut):
-    p, max_dim = int(dut.P.value), int(dut.MAX_DIM.value)
-    geo = Geometry(p, max_dim, 0)
+    p, max_dim, ss_log2 = int(dut.P.value), int(dut.MAX_DIM.value), int(dut.MAX_SS_LOG2.value)
+    geo = Geometry(p, max_dim, ss_log2)
     iw = clog2(max_dim + 2 * p + 1)   # cube4_defs.vh IW
     bench = UnitBench(dut)
     await bench.reset({"q_push": 0, "step": 0, "v_fly": 0, "in_valid": 0, "nx_valid": 0, "take": 0})
     dims = (max(20, 2 * p + 3), 16, 12)
     frames = 0
     for n, direction in enumerate(VIEWS * 2):
-        trav = make_traversal(dims, direction, int(dut.WEIGHT_W.value), 1, phase=(n * 37 % 256, n * 91 % 256))
+        ss = {3: 2, 6: 4}.get(n, 1) if ss_log2 >= 2 else 1     # S = 2 and 4 on two frames
+        trav = make_traversal(dims, direction, int(dut.WEIGHT_W.value), ss, phase=(n * 37 % 256, n * 91 % 256))
         sched, bits = frame_beats(bench, trav, p, terminate=n % 2 == 1)
         bench.set_view(trav, p)
         await bench.cycles(2)
         gap = (0.0, 0.3, 0.6, 0.1)[n % 4]
         beats = await play(dut, bench, trav, sched, bits, p, geo, iw, gap)
         frames += 1
-        dut._log.info("view %s gap %.1f: %d beats right", direction, gap, beats)
+        dut._log.info("view %s S=%d gap %.1f: %d beats right", direction, ss, gap, beats)
     assert frames == 2 * len(VIEWS)
 
 
-BUILDS = [{"P": 5}, {"P": 1}, {"P": 8}]
+BUILDS = [{"P": 5, "MAX_SS_LOG2": 2}, {"P": 1}, {"P": 8}]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))

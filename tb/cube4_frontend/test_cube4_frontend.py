@@ -189,7 +189,8 @@ def check_beat_frame(beats: dict[str, np.ndarray], bf, p: int, log) -> None:
         got = (int(beats["m"][r]), int(beats["j"][r]), int(beats["pb"][r]))
         assert got == (m, j, pb), f"{where}: RTL (m, j, pb) = {got}"
         cj = nj - 1 - (j + 1) if fj else j + 1
-        ck = nk - 1 - m if fk else m
+        k0 = m // trav.supersample          # the sample slice's lower voxel slice
+        ck = nk - 1 - k0 if fk else k0
         assert int(beats["skew"][r]) == (cj + ck) % p, f"{where}: skew {beats['skew'][r]}"
         pos = lane_positions(int(beats["skew"][r]), pb, p, ni, fi)
         valid = (pos < ni) & bool(leave)
@@ -702,27 +703,31 @@ def _run(params: dict, testcase, extra_env: dict | None = None) -> None:
 async def test_beat_views(dut):
     """A beat build (BEATS = 1): golden frames of the beat schedule (beat_frames: two
     nearly opaque slabs, shaded, rays ending in them; sparse volumes in every mode, their
-    LUT nearly opaque every other frame, termination off every third) through CFB, the
-    memory and TRI with stalls on every port: every sample beat as check_beat_frame."""
+    LUT nearly opaque every other frame, termination off every third; with MAX_SS_LOG2 = 2
+    three more at S = 2 and 4, whose passes between the reading ones take their voxels
+    from TRI's slice buffers) through CFB, the memory and TRI with stalls on every port:
+    every sample beat as check_beat_frame."""
     tb = TB(dut)
     if not tb.beats:
         return
     await tb.reset()
     seeds = [sd for sd in range(200) if sd % 3 == 0][:6]
-    cases = [("slab", v) for v in ((0.2, -0.1, 1.0), (1.0, 1.0, 1.0))] + [("sparse", sd) for sd in seeds]
+    cases = [("slab", v, 1) for v in ((0.2, -0.1, 1.0), (1.0, 1.0, 1.0))] + [("sparse", sd, 1) for sd in seeds]
+    if tb.max_ss_log2 >= 2:
+        cases += [("sparse", sd, ss) for sd, ss in ((1, 2), (4, 4), (13, 4))]
     stall_sets = [(0, 0, 0), (70, 70, 70), (0, 0, 200), (200, 0, 0), (0, 200, 30)]
     frames = 0
-    for n, (kind, arg) in enumerate(cases):
+    for n, (kind, arg, ss) in enumerate(cases):
         bf = (slab_frame(tb.p, arg) if kind == "slab"
-              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2))
+              else sparse_frame(arg, tb.p, opaque=n % 2 == 0, terminate=n % 3 != 2, supersample=ss))
         if max(bf.trav.dims) > tb.max_dim:
             continue
         stalls = stall_sets[n % len(stall_sets)]
         beats, cycles = await tb.beat_frame(bf, stalls, delay=(0, 40, 400)[n % 3])
         check_beat_frame(beats, bf, tb.p, tb.log)
         frames += 1
-        tb.log.info("%s %s: %d slices of %dx%d beats, stalls %s: %d sample beats in %d cycles bit-exact",
-                    kind, arg, bf.sched.M, bf.sched.NJ, bf.sched.NB, stalls, len(beats["m"]), cycles)
+        tb.log.info("%s %s S=%d: %d slices of %dx%d beats, stalls %s: %d sample beats in %d cycles bit-exact",
+                    kind, arg, ss, bf.sched.M, bf.sched.NJ, bf.sched.NB, stalls, len(beats["m"]), cycles)
     assert frames >= 4, f"only {frames} frames fit MAX_DIM = {tb.max_dim}"
 
 
@@ -780,9 +785,9 @@ def test_cube4_frontend_cycles_128():
               f"efficiency {r['efficiency']:.5f}, {r['sim_cycles_per_s'] / 1e6:.2f} M cycles/s simulated")
 
 
-#: beat builds (BEATS = 1, S = 1, no GRA behind the front end yet): P = 8 in make test,
+#: beat builds (BEATS = 1; S = 2 and 4 too with MAX_SS_LOG2 = 2): P = 8 in make test,
 #: P = 1 and 5 in make regress
-BEAT_BUILDS = [dict(P=8, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, BEATS=1),
+BEAT_BUILDS = [dict(P=8, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=2, BEATS=1),
                dict(P=1, VOXEL_W=8, MAX_DIM=32, MAX_SS_LOG2=0, BEATS=1),
                dict(P=5, VOXEL_W=12, MAX_DIM=32, MAX_SS_LOG2=0, BEATS=1)]
 

@@ -262,10 +262,11 @@ async def test_beat_walks(dut):
     """Beat-schedule frames (BEATS = 1): the front end's sample beats in (golden frames:
     opaque slabs whose rays end, so beats run as GRA's neighbours only; sparse shaded
     volumes with and without termination; volumes one and two rows deep, NJ = 1 and 2,
-    whose row table is read as a row's word is written and one cycle after), every beat
-    out in order with its header, the gradients bit for bit against the golden gradient
-    of the zero-filled slices, random gaps and stalls, frames back to back, a reset in
-    mid-frame, nothing extra."""
+    whose row table is read as a row's word is written and one cycle after; with
+    MAX_SS_LOG2 = 2 three sparse frames at S = 2 and 4, whose k neighbours lie between
+    voxel slices or not), every beat out in order with its header, the gradients bit for
+    bit against the golden gradient of the zero-filled slices, random gaps and stalls,
+    frames back to back, a reset in mid-frame, nothing extra."""
     from cube4_sim.beat_frames import slab_frame, sparse_frame, thin_frame
     from cube4_testutil import sparse_case
     p, vw = int(dut.P.value), int(dut.VOXEL_W.value)
@@ -276,6 +277,11 @@ async def test_beat_walks(dut):
     cases = [("slab", (0.2, -0.1, 1.0)), ("slab", (1.0, 1.0, 1.0)), ("slab", (-1.0, 0.3, 0.5))]
     cases += [("sparse", sd) for sd in seeds]
     cases += [("thin", 1), ("thin", 2)]     # the row table read as its word is written, and one cycle after
+    ss = {}
+    if int(dut.MAX_SS_LOG2.value) >= 2:     # S = 2 and 4 (the seeds' own shaded composite frames)
+        more = [sd for sd in range(60, 200) if sparse_case(sd)[6] and sparse_case(sd)[5] == "composite"][:3]
+        ss = dict(zip(more, (2, 4, 4)))
+        cases += [("sparse", sd) for sd in more]
     frames = 0
     for n, (kind, arg) in enumerate(cases):
         if kind == "slab":
@@ -283,19 +289,19 @@ async def test_beat_walks(dut):
         elif kind == "thin":
             bf = thin_frame(p, arg)
         else:
-            bf = sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2)
+            bf = sparse_frame(arg, p, opaque=n % 2 == 0, terminate=n % 3 != 2, supersample=ss.get(arg, 1))
         if max(bf.trav.dims) > int(dut.MAX_DIM.value):
             continue
         inputs, outputs = beat_walk_frame(bf, p, geo, vw)
         await play_walk(bench, bf.trav, p, inputs, outputs, n, n == 4, geo, vw)
         frames += 1
         running = sum(int(b.any()) for _, b, *_ in outputs)
-        bench.log.info("%s %s: %d beats in and out (%d running) of %d in the box, bit-exact",
-                       kind, arg, len(outputs), running, bf.sched.M * bf.sched.NJ * bf.sched.NB)
+        bench.log.info("%s %s S=%d: %d beats in and out (%d running) of %d in the box, bit-exact",
+                       kind, arg, bf.trav.supersample, len(outputs), running, bf.sched.M * bf.sched.NJ * bf.sched.NB)
     assert frames >= 6, f"only {frames} frames fit"
 
 
-BEAT_BUILDS = [dict(P=8, VOXEL_W=8), dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=12)]
+BEAT_BUILDS = [dict(P=8, VOXEL_W=8, MAX_SS_LOG2=2), dict(P=1, VOXEL_W=8), dict(P=5, VOXEL_W=12, MAX_SS_LOG2=2)]
 
 
 @pytest.mark.parametrize("build", sweep(BEAT_BUILDS, quick=(0,), ids=param_id))

@@ -1147,9 +1147,15 @@ def test_beat_frames_thin():
         print(f"{label}: {res['cycles']} cycles")
 
 
+#: frames of beat_frames at S > 1 (the others at S = 1): view (1, 1, 1), the 45° view
+#: (1, -1, 0), the frame reset in mid-frame and one more at S = 4, one at S = 2
+BEAT_FRAME_S = {1: 4, 2: 4, 4: 2, 6: 4, 8: 4}
+
+
 def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, zout: bool = False,
                 slab: bool = False, labels: bool = False) -> None:
-    """The beat schedule through the RTL (BEATS = 1, unshaded, S = 1): a sparse volume
+    """The beat schedule through the RTL (BEATS = 1, unshaded; S = 1, and S = 4 on the
+    frames of BEAT_FRAME_S, 2 on one: MAX_SS_LOG2 = 2): a sparse volume
     (a faint background, a dense blob; a LUT that is zero below the blob's values), views
     of every class and every mode, with ray termination in every other frame (its LUT
     opaque where it counts at tau = 0; on some composite frames a random tau > 0 with the
@@ -1184,7 +1190,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     from cube4.pathlen import path_weighted, weighted_columns
 
     rng = np.random.default_rng(800 + p)
-    cfg = Cube4Config(pipelines=p)
+    cfg = Cube4Config(pipelines=p, supersample=4)    # the build: MAX_SS_LOG2 = 2
     nx, ny, nz = 24, 20, 16
     vol = rng.integers(0, 64, size=(nz, ny, nx))
     vol[5:11, 6:14, 8:17] = rng.integers(64, 256, size=(6, 8, 9))
@@ -1206,7 +1212,8 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
         tau = int(rng.integers(1 << (cfg.acc_bits - 1), 1 << cfg.acc_bits)) \
             if terminate and mode == "composite" and n % 3 == 1 else 0
         box = n % 3 == 0      # a crop box whose faces cut the blob (the weights' faces through it)
-        trav = make_traversal((10, 10, 8) if box else (nx, ny, nz), direction, cfg.weight_bits, 1,
+        ss = BEAT_FRAME_S.get(n, 1)   # S = 4 on (1, 1, 1), the 45° view and the reset frame; 2 on one
+        trav = make_traversal((10, 10, 8) if box else (nx, ny, nz), direction, cfg.weight_bits, ss,
                               phase=(n * 37 % 256, n * 91 % 256), origin=(10, 8, 7) if box else (0, 0, 0))
         lut, rmap = random_tables(rng, cfg)
         rmap = rmap if shaded and mode == "composite" else None
@@ -1245,7 +1252,7 @@ def beat_frames(p: int, shaded: bool, vgrad: bool = False, gmod: bool = False, z
     modulated = stopped = falloff = 0
     zs: set[int] = set()
     for n, (job, (sched, rule), res) in enumerate(zip(jobs, gold, results)):
-        label = (f"beats P={p} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
+        label = (f"beats P={p} S={job.trav.supersample} view {n} {job.mode}{' shaded' if job.rmap is not None else ''}"
                  f"{' (voxel gradients)' if vgrad else ''}{' terminated' if rule.enabled else ''}"
                  f"{f' at tau {rule.tau}' if rule.tau else ''}"
                  f"{' path-weighted' if path_weighted(job.lut, job.mode) else ''}"
