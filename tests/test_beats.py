@@ -285,11 +285,10 @@ def test_scenes_are_bit_exact(spec, scene, extra):
 
 def test_cli_beats_and_stats(tmp_path):
     """--beats gives the same base plane as --no-skip and --stats the beats by cause; a
-    scene that leaves [render] skip out runs the beat schedule at S = 1 (--tau then works
-    without --beats) and the box with the quality preset (S = 4), in bricks and on a build
-    without BEATS; --tau with --box or where the render runs the box, --beats with the
-    quality preset on the RTL (S = 4: its build is not built yet), a τ out of range or in
-    bricks are one line each."""
+    scene that leaves [render] skip out runs the beat schedule (--tau then works without
+    --beats), with the quality preset (S = 4) too, and the box in bricks and on a build
+    without BEATS; --tau with --box or where the render runs the box, a τ out of range or
+    in bricks are one line each."""
     import json
     import subprocess
     import sys
@@ -314,14 +313,16 @@ def test_cli_beats_and_stats(tmp_path):
     assert np.array_equal(run("--tau", "0.05")[1], b_tau)
     boxed, b_box = run("--box")
     assert np.array_equal(b_box, b_off) and "beats" not in boxed and boxed["skip"]
-    for extra in (("--preset", "quality"), ("--bricks", "2,1,1"), ("--build", "full")):
-        st, _ = run(*extra)     # the box: S = 4, bricks, a build without BEATS
+    for extra in (("--bricks", "2,1,1"), ("--build", "full")):
+        st, _ = run(*extra)     # the box: bricks, a build without BEATS
         assert "beats" not in st and st.get("skip", "bricks" in st), extra
+    quality, b_quality = run("--preset", "quality")      # S = 4 (q = 2, path weights): the beat schedule
+    assert quality["beats"]["skipped_empty"] > 0
+    assert np.array_equal(b_quality, run("--preset", "quality", "--no-skip")[1])
     for extra, msg in ((("--box", "--tau", "0.1"), "--tau needs the beat schedule (ray termination), not"),
-                       (("--preset", "quality", "--no-terminate"), "--no-terminate needs the beat schedule (--beats): "
-                                                                   "this render runs the box"),
+                       (("--bricks", "2,1,1", "--no-terminate"), "--no-terminate needs the beat schedule (--beats): "
+                                                                 "this render runs the box"),
                        (("--box", "--beats"), "--no-skip, --box, --rects and --beats exclude each other"),
-                       (("--beats", "--engine", "rtl", "--preset", "quality"), "and MAX_SS_LOG2 = 0 (the beat schedule"),
                        (("--beats", "--bricks", "2,1,1"), "does not run in bricks"),
                        (("--beats", "--tau", "0.7"), "--tau must be in 0..0.5")):
         r = run(*extra, check=False)

@@ -171,14 +171,14 @@ def test_window_counts_only_its_samples():
 
 def test_scene_builds_and_build_errors():
     head = load_scene("head")
-    # a scene that leaves [render] skip out runs the beat schedule at S = 1 (BEATS = 1), the box at S > 1
+    # a scene that leaves [render] skip out runs the beat schedule (BEATS = 1), at every S
     assert scene_build([head]) == {"SHADING": 1, "COMPOSITING": 1, "EXTREMUM": 0, "CLIP": 0, "VGRAD": 0,
                                    "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0, "BEATS": 1}
     assert scene_build([replace(head, skip=True)])["BEATS"] == 0
-    assert scene_build([replace(head, supersample=2)])["BEATS"] == 0
+    assert scene_build([replace(head, supersample=2)])["BEATS"] == 1
     assert scene_build([load_scene("mri_mip")]) == {"SHADING": 0, "COMPOSITING": 0, "EXTREMUM": 1, "CLIP": 0,
                                                     "VGRAD": 0, "PLW": 0, "SLAB": 0, "ZOUT": 0, "ZIN": 0, "GMOD": 0, "LABELS": 0, "RECTS": 0, "BEATS": 1}
-    assert scene_build([load_scene("head_quality")])["BEATS"] == 0      # S = 4: the box
+    assert scene_build([load_scene("head_quality")])["BEATS"] == 1      # S = 4 too
     assert scene_build([load_scene("ml")])["PLW"] == 1               # path-weighted
     assert scene_build([replace(load_scene("ml"), mode="mip")])["PLW"] == 0
     assert scene_build([load_scene("head_cut")])["CLIP"] == 1

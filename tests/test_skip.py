@@ -145,12 +145,12 @@ def test_scene_key_must_be_a_bool():
     assert parse_scene({"render": {"skip": "beats", "tau": 0.01}}).tau == 0.01
     with pytest.raises(UserError, match="render.tau"):
         parse_scene({"render": {"skip": "beats", "tau": 0.9}})
-    sc = make_scene()       # [render] skip left out: the beat schedule at S = 1, else the box
+    sc = make_scene()       # [render] skip left out: the beat schedule, rendered whole (at every S)
     assert sc.skip == SKIP_DEFAULT and sc.schedule == "beats"
-    assert dataclasses.replace(sc, supersample=4).schedule is True
+    assert dataclasses.replace(sc, supersample=4).schedule == "beats"
     assert with_schedule(sc, whole=False).skip is True and with_schedule(sc).skip == "beats"
     assert with_schedule(sc, build=FULL_BUILD).skip is True
-    assert with_schedule(sc, supersample=2).skip is True    # S from the configuration
+    assert with_schedule(sc, supersample=2).skip == "beats"    # S from the configuration: any
     assert with_schedule(dataclasses.replace(sc, skip=False), build={"BEATS": 1}).skip is False
     with pytest.raises(UserError, match="render.skip must be true"):
         parse_scene({"render": {"skip": SKIP_DEFAULT}})     # the default has no spelling of its own

@@ -39,12 +39,13 @@ def default_schedule(scene: "Scene", build: dict | None = None, whole: bool = Tr
                      supersample: int | None = None) -> bool | str:
     """The schedule of a scene that leaves [render] skip out: beat skipping and ray
     termination ("beats", exact: tau as the scene says, 0 unless it sets one) wherever
-    the beat build runs it, the box (True) elsewhere. The beat build (BEATS = 1) runs S = 1
-    only (builds.py's rule: S > 1 is not built on the beat schedule yet), and the beat
-    schedule renders the volume whole, not in bricks. ``build``: the build the render
-    uses when one is given (None: the scene's own smallest, which then has BEATS = 1);
-    ``supersample``: the render's S where its configuration sets it (None: the scene's)."""
-    if (scene.supersample if supersample is None else supersample) != 1 or not whole:
+    the beat build runs it, the box (True) elsewhere: the beat schedule renders the volume
+    whole, not in bricks, on a build with BEATS = 1. ``build``: the build the render uses
+    when one is given (None: the scene's own smallest, which then has BEATS = 1);
+    ``supersample``: the render's S where its configuration sets it (None: the scene's;
+    every S runs on the beat schedule)."""
+    del supersample         # (any S: the beat build runs them all)
+    if not whole:
         return True
     if build is not None and not build.get("BEATS"):
         return True

@@ -97,7 +97,7 @@ def thin_frame(p: int, ny: int, seed: int = 0) -> BeatFrame:
 
 def view_frame(vol_spec: str, scene_name: str, p: int) -> BeatFrame:
     """A built-in scene's own view of a volume at P = p through the host (its empty-space
-    box, the block table of the whole volume): the first pass's frame (S = 1 scenes)."""
+    box, the block table of the whole volume): the first pass's frame."""
     from cube4.app.volumes import load_volume
     from cube4.host import config_for, golden_view
     from cube4.scene import load_scene
@@ -105,8 +105,6 @@ def view_frame(vol_spec: str, scene_name: str, p: int) -> BeatFrame:
     got: list = []
     golden_view(vol, sc, config_for(sc, p), beat_skip={}, schedules=got)
     sched = got[0][0]
-    if sched.trav.supersample != 1:
-        raise ValueError(f"{scene_name}: the front end's units run S = 1 frames, not S = {sched.trav.supersample}")
     return BeatFrame(sched, sched.trav, sched.block_bits)
 
 

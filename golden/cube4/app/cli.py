@@ -161,7 +161,7 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--beats", action="store_true",
                    help="within the box, run only the beats (partial beams) that can change a ray, and end "
                         "rays that can change no more (beat skipping and ray termination): the default of a "
-                        "scene that leaves [render] skip out, at S = 1, rendered whole; the image is the same, "
+                        "scene that leaves [render] skip out, rendered whole; the image is the same, "
                         "--stats gives the beats skipped by cause")
     r.add_argument("--tau", type=float, metavar="T",
                    help="on the beat schedule: end a ray once its transmittance is at most T (0 <= T <= 0.5; "
@@ -391,7 +391,7 @@ def _scheduled(args: argparse.Namespace, scenes: list[Scene], whole: bool) -> li
     if (args.tau is not None or args.no_terminate) and scenes[0].skip != "beats":
         flag = "--tau" if args.tau is not None else "--no-terminate"
         why = (f"the scene sets [render] skip = {str(asked).lower()}" if asked != SKIP_DEFAULT else
-               "this render runs the box (S > 1, bricks, or a build without BEATS)")
+               "this render runs the box (bricks, or a build without BEATS)")
         raise UserError(f"{flag} needs the beat schedule (--beats): {why}")
     return scenes
 
