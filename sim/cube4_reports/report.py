@@ -115,7 +115,7 @@ SHORT = {"supersample": "S", "weight_bits": "W", "acc_bits": "F", "pipelines": "
          "filter": "warp", "gradient": "grad", "path_weights": "pw", "preview": "preview", "tau": "beats τ"}
 #: sweeps of a scene key (the render's, not the hardware's configuration); "tau" renders
 #: with beat skipping and ray termination at that threshold (skip = "beats", cube4.beats),
-#: on the beat build (BEATS = 1) where one exists for the configuration (S = 1)
+#: on the beat build (BEATS = 1) where one exists for the configuration
 SCENE_SWEEPS = ("subpixel", "filter", "gradient", "path_weights", "preview", "tau")
 #: the cycles source of a "tau" row with no beat build (its cycles: the golden schedule's beats)
 BEATS_SOURCE = "golden beat walk (no build)"
@@ -152,7 +152,7 @@ class Variant:
             return replace(scene, **dict(self.value))
         if self.varied == "tau":
             return replace(scene, skip="beats", tau=float(self.value))
-        if self.varied == "supersample":    # the scene's S (its default schedule follows it: the box at S > 1)
+        if self.varied == "supersample":    # the scene's S (its default schedule: the beat schedule at every S)
             return replace(scene, supersample=self.value)
         return replace(scene, **{self.varied: self.value}) if self.varied in SCENE_SWEEPS else scene
 
@@ -310,8 +310,7 @@ def golden_row(vol: np.ndarray, volume: str, scene: Scene, variant: Variant, cfg
 
 
 def has_build(scene: Scene, cfg: Cube4Config) -> bool:
-    """Whether the RTL has a build for this scene at these widths (the beat schedule runs
-    with S = 1 only: cube4.builds.RULES)."""
+    """Whether the RTL has a build for this scene at these widths (cube4.builds.RULES)."""
     try:
         check_build(resolve_build(cfg, [scene]), cfg.widths())
     except UserError:
@@ -457,7 +456,7 @@ def write_markdown(path: Path, rows: list[Row], meta: dict) -> None:
               "bit_exact: the RTL base plane equals the golden one. "
               "`preview`: the scene rendered from its ½ or ¼ level (docs/numerics.md §20) through the RTL, its error "
               "against the whole volume's truth. `beats τ`: beat skipping and ray termination at transmittance τ "
-              "(docs/numerics.md §19) on the beat build (BEATS = 1, S = 1); where a configuration has no such "
+              "(docs/numerics.md §19) on the beat build (BEATS = 1); where a configuration has no such "
               f"build its cycles are the front end's beats in the golden schedule (source `{BEATS_SOURCE}`), "
               "with no frame time. build: the build that runs the row (cube4.builds; the scene's smallest). "
               "The classification features on real content, each on the build its scene gets: "

@@ -17,11 +17,11 @@ supersampling's MAX_SS_LOG2). For every distinct build and the full one:
 and for every scene: cycles per frame on its build and on the full build, the frame
 time at the build's measured Fmax, and the golden engine's image error against the
 float64 reference (PSNR over premultiplied RGBA), with what the smaller build saves. A
-scene runs its default schedule (``Scene.schedule``): at S = 1 the beat schedule, whose
-cycles depend on the content and are measured, through the RTL on the scene's build (its
-base plane checked against the golden engine's); at S > 1 the box, whose cycles are the
-formula of ``cube4.cycles`` (which tb/cube4_top holds every build to). The full build
-(no BEATS) runs the box. The mode matrix runs every scene's box schedule.
+scene runs its default schedule (``Scene.schedule``): the beat schedule, whose cycles
+depend on the content and are measured, through the RTL on the scene's build (its base
+plane checked against the golden engine's). The full build (no BEATS) runs the box, whose
+cycles are the formula of ``cube4.cycles`` (which tb/cube4_top holds every build to). The
+mode matrix runs every scene's box schedule.
 
     python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (minutes)
     python -m cube4_reports.scenes --place       # and place and route every build not measured yet
@@ -379,10 +379,10 @@ def render_markdown(rows: list[dict], recs: list[dict], meta: dict, matrix: list
         "the median seed's figures), read from its results committed under reports/ (the section "
         "\"Place and route\" names each run and its RTL commit); \"not measured\" where a build was never placed "
         "and routed, and its frame times are blank: no build borrows another's clock. "
-        "Cycles: a scene runs its default schedule: at S = 1 the beat schedule (beat skipping and ray "
+        "Cycles: a scene runs its default schedule: the beat schedule (beat skipping and ray "
         "termination, docs/numerics.md §19; a BEATS = 1 build), its cycles measured through the RTL on the scene's "
-        "build (they depend on the samples), its base plane the golden engine's bit for bit; at S > 1 the box "
-        "(the beat build runs S = 1 only), its cycles the formula of docs/architecture.md for the build with the "
+        "build (they depend on the samples), its base plane the golden engine's bit for bit; a scene that sets "
+        "the box runs it by the formula of docs/architecture.md for the build with the "
         "empty-space box's dims (docs/numerics.md §15; tb/cube4_top checks it for every build). The full build "
         "(no BEATS) runs the box, by the formula; the fixed schedule's cycles are the formula's on the smallest "
         "build. Error: the golden "
