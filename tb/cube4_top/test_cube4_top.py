@@ -552,9 +552,9 @@ def test_subpixel_passes(p, q):
 
 @pytest.mark.parametrize(("p", "q"), sweep([(8, 2), (5, 3)], quick=(0,)))
 def test_subpixel_beats(p, q):
-    """The q×q passes of a view on the beat schedule (BEATS = 1): each pass its own beat
-    frame (its box's block occupancy and rays' stops), the head phantom's shaded scene
-    with its LUT made opaque where it counts, so rays end (τ = 0); random stalls on some
+    """The q×q passes of a view on the beat schedule (BEATS = 1) at S = 4: each pass its
+    own beat frame (its box's block occupancy and rays' stops), the head phantom's shaded
+    scene with its LUT made opaque where it counts, so rays end (τ = 0); random stalls on some
     passes and a reset in mid-frame on one. Every pass is the golden beat frame bit for
     bit, the beats that ran are the golden frame's, some ray ended early, and the
     interleaved plane equals the fixed schedule's."""
@@ -564,9 +564,9 @@ def test_subpixel_beats(p, q):
     from cube4.model import render_frame
     from cube4.scene import load_scene
 
-    cfg = Cube4Config(pipelines=p)
+    cfg = Cube4Config(pipelines=p, supersample=4)
     vol = load_volume("head:24", voxel_bits=cfg.voxel_bits)
-    vp = plan_view(vol, dataclasses.replace(load_scene("head"), subpixel=q, skip="beats"), cfg)
+    vp = plan_view(vol, dataclasses.replace(load_scene("head"), subpixel=q, skip="beats", supersample=4), cfg)
     lut = vp.lut.copy()
     lut[lut[:, 3] > 0, 3] = (1 << cfg.alpha_bits) - 1
     vp = dataclasses.replace(vp, lut=lut)
@@ -586,7 +586,7 @@ def test_subpixel_beats(p, q):
     results = render_frames(vol, jobs, cfg, max_dim=32, build={"BEATS": 1, "SHADING": 1, "VGRAD": 0, "GMOD": 1, "SLAB": 1})
     ended = 0
     for job, (sched, rule), res in zip(jobs, gold, results):
-        label = f"beats P={p} q={q} phase {job.trav.phase_x, job.trav.phase_y}"
+        label = f"beats P={p} S=4 q={q} phase {job.trav.phase_x, job.trav.phase_y}"
         check(vol, job.trav, cfg, job.lut, job.rmap, res, label, clip=job.clip, beats=(sched, rule))
         ran = copy.deepcopy(sched)
         render_frame(crop_volume(vol, job.trav), job.trav, cfg, job.lut, job.rmap, clip=job.clip, beats=ran, done=rule)
