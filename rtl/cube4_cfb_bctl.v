@@ -250,17 +250,8 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
                 rj_q     <= cfg_j_r0;
                 aj_q     <= cfg_j_a0;
                 sbrow_q  <= '0;
-                if (any_read) begin
-                    rk_q <= r_step(rk_q, cfg_flip_k);
-                    ak_q <= a_step(ak_q, rk_q, cfg_flip_k, cfg_k_lin, cfg_k_blk);
-                end
-                if (last_r) begin
-                    r_q   <= '0;
-                    k0o_q <= !k0o_q;
-                    rk0_q <= r_step(rk0_q, cfg_flip_k);
-                end else begin
-                    r_q <= r_q + 1'b1;
-                end
+                `CUBE4_PASS_NEXT
+                if (last_r) k0o_q <= !k0o_q;
             end
         end
     end

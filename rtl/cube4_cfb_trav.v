@@ -111,17 +111,11 @@ module cube4_cfb_trav #(`CUBE4_CFB_PARAMS) (
                 lp_q  <= (cfg_nk == DIM_W'(1));   // k0 = 0 = NK - 1, r = 0
             end else if (advance && pass_next) begin
                 m_q <= m_q + 1'b1;
-                if (any_read) begin
-                    rk_q <= r_step(rk_q, cfg_flip_k);
-                    ak_q <= a_step(ak_q, rk_q, cfg_flip_k, cfg_k_lin, cfg_k_blk);
-                end
+                `CUBE4_PASS_NEXT
                 if (last_r) begin
-                    r_q   <= '0;
-                    k0_q  <= k0_inc;
-                    rk0_q <= r_step(rk0_q, cfg_flip_k);
-                    lp_q  <= (k0_inc == cfg_nk - 1'b1);
+                    k0_q <= k0_inc;
+                    lp_q <= (k0_inc == cfg_nk - 1'b1);
                 end else begin
-                    r_q  <= r_q + 1'b1;
                     lp_q <= 1'b0;                        // r_q + 1 <= S - 1 is not 0
                 end
             end

@@ -741,6 +741,23 @@
         add_p = mod_p($signed({3'b000, a}) + $signed({3'b000, b})); \
     endfunction
 
+// The pass's slice terms at a pass's end (cube4_cfb_trav, cube4_cfb_bctl; needs
+// CUBE4_STEP_FUNCTIONS, the view's fields and the registers rk_q, ak_q (the next
+// voxel slice to read), rk0_q (the pass's lower slice), r_q (m mod S) and the flags
+// any_read (the pass read a voxel slice) and last_r (r = S - 1)): the slice to read
+// steps after a pass that read one; r wraps at S, and then the lower slice steps.
+`define CUBE4_PASS_NEXT \
+    if (any_read) begin \
+        rk_q <= r_step(rk_q, cfg_flip_k); \
+        ak_q <= a_step(ak_q, rk_q, cfg_flip_k, cfg_k_lin, cfg_k_blk); \
+    end \
+    if (last_r) begin \
+        r_q   <= '0; \
+        rk0_q <= r_step(rk0_q, cfg_flip_k); \
+    end else begin \
+        r_q <= r_q + 1'b1; \
+    end
+
 // ---------------------------------------------------------------- parameter checks
 // A parameter outside its range stops elaboration (in a generate region):
 //   "<module>: NAME = value is out of range LO..HI"
