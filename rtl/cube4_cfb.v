@@ -208,15 +208,14 @@ module cube4_cfb #(
             wire [DIM_W-1:0] w_j;
             wire [PB_W-1:0]  w_pb;
             wire [4*P-1:0]   w_bits;
-            // the frame's sample slices M = (NK - 1) S + 1 and log2 S (0 without MAX_SS_LOG2)
-            wire [1:0]     beat_ssl = (MAX_SS_LOG2 > 0) ? cfg_ss_log2 : 2'd0;
-            wire [M_W-1:0] beat_nm  = (MAX_SS_LOG2 > 0) ? (M_W'(cfg_nk - 1'b1) << beat_ssl) + 1'b1 : M_W'(cfg_nk);
+            // the frame's sample slices M = (NK - 1) S + 1 and log2 S
+            `CUBE4_VIEW_SLICES;
             cube4_cfb_skip #(
                 .P(P), .MAX_DIM(MAX_DIM), .WEIGHT_W(WEIGHT_W), .MAX_SS_LOG2(MAX_SS_LOG2),
                 .BLOCK_LOG2(BLOCK_LOG2), .RATE(RATE)
             ) u_skip (
                 .clk(clk), .rst(rst), .start(go_q[1]), .busy(busy_s),
-                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(beat_nm), .ss_log2(beat_ssl), .sx(cfg_sx), .sy(cfg_sy),
+                .ni(cfg_ni), .nj(cfg_nj), .nb(cfg_nb), .nm(view_m_last + 1'b1), .ss_log2(view_ssl), .sx(cfg_sx), .sy(cfg_sy),
                 .bi_base(blk_base[0 +: DIM_W]), .bi_flip(cfg_flip_i),
                 .bj_base(blk_base[DIM_W +: DIM_W]), .bj_flip(cfg_flip_j),
                 .bk_base(blk_base[2*DIM_W +: DIM_W]), .bk_flip(cfg_flip_k),

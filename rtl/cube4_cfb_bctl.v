@@ -183,7 +183,8 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     wire emit       = in_run && !(j0_q && m_q == '0);   // (tokens do not issue; no slice -1)
     wire reads      = in_run && b_read && !fl_q;        // the beat's voxel beat is needed
     // the pass (as cube4_cfb_trav): log2 S, which slice it reads from the memory
-    wire [1:0] ssl       = (MAX_SS_LOG2 > 0) ? cfg_ss_log2 : 2'd0;
+    `CUBE4_VIEW_SLICES;
+    wire [1:0] ssl       = view_ssl;
     wire [CFB_R_W-1:0] ss_m1 = CFB_R_W'((1 << ssl) - 1);
     wire       last_r    = (r_q == ss_m1);
     wire       lower_mem = (ssl == 2'd0) || (m_q == '0);
@@ -194,7 +195,6 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     wire row_step   = run_take && b_eor && !b_eos;
     assign next_pass = slice_step;
     wire [LANE_W-1:0] skew_pas = add_p(rj_q, rk0_q);  // the pass's lower slice
-    wire [M_W-1:0]    nm_m1    = M_W'(cfg_nk - 1'b1) << ssl;   // M - 1 = (NK - 1) S
 
     always @(posedge clk) begin
         if (rst) begin
@@ -243,7 +243,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
                 psteps_q <= steps;
                 pskew_q  <= r_step(skew_pas, cfg_flip_j);   // the virtual row NJ
                 m_q      <= m_q + 1'b1;
-                lsl_q    <= (m_q + 1'b1 == nm_m1);
+                lsl_q    <= (m_q + 1'b1 == view_m_last);
                 fl_q     <= lsl_q;
                 j_q      <= '0;
                 j0_q     <= 1'b1;

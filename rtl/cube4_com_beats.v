@@ -117,8 +117,8 @@ module cube4_com_beats #(
     assign phn_x = nx[PH_W-1:0];
     assign phn_y = ny[PH_W-1:0];
     wire unused_carry = ^{nx[PH_W], ny[PH_W]};      // (the next slice's steps are its own beats')
-    // M - 1 = (NK - 1) S (log2 S taken as 0 without MAX_SS_LOG2)
-    wire [M_W-1:0] m_last = M_W'(cfg_nk - 1'b1) << ((MAX_SS_LOG2 > 0) ? cfg_ss_log2 : 2'd0);
+    `CUBE4_VIEW_SLICES;
+    wire [M_W-1:0] m_last = view_m_last;
     always @(posedge clk) begin
         f1_klast <= (r0_m == m_last);
         f1_wxn   <= ((phn_x >> cfg_ss_log2) != '0);

@@ -741,6 +741,13 @@
         add_p = mod_p($signed({3'b000, a}) + $signed({3'b000, b})); \
     endfunction
 
+// The frame's log2 S and last sample slice M - 1 = (NK - 1) S from the view's
+// fields (after CUBE4_VIEW_FIELDS; the beat schedule's units): log2 S is taken as 0
+// in a build without supersampling (MAX_SS_LOG2 = 0), so its logic is S = 1's.
+`define CUBE4_VIEW_SLICES \
+    wire [1:0]     view_ssl    = (MAX_SS_LOG2 > 0) ? cfg_ss_log2 : 2'd0; \
+    wire [M_W-1:0] view_m_last = M_W'(cfg_nk - 1'b1) << view_ssl
+
 // The pass's slice terms at a pass's end (cube4_cfb_trav, cube4_cfb_bctl; needs
 // CUBE4_STEP_FUNCTIONS, the view's fields and the registers rk_q, ak_q (the next
 // voxel slice to read), rk0_q (the pass's lower slice), r_q (m mod S) and the flags

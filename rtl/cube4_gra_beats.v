@@ -294,7 +294,9 @@ module cube4_gra_beats
     wire [NBX-1:0] x_oh_ld = (ld_gen_x || (x_oh & in_oh) != '0) ? x2_oh : x_oh;
     // dk_f, dk_b: the centre slice w - 1 and the slice after / before it lie between
     // other voxel slices (as cube4_gra_walk; always with S = 1)
-    wire [M_W-1:0] ss_mask = (MAX_SS_LOG2 > 0) ? M_W'((1 << cfg_ss_log2) - 1) : '0;
+    `CUBE4_VIEW_SLICES;
+    wire [M_W-1:0] ss_mask = M_W'((1 << view_ssl) - 1);
+    wire unused_m_last = ^view_m_last;
     wire [3:0] ld_flags = {(ld_w & ss_mask) == '0,           // dk_f of centre slice w - 1
                            ((ld_w - 1'b1) & ss_mask) == '0,  // dk_b
                            ld_nx ? r_zero : r_one,         // j_first (centre row 0): ld_r == 1
