@@ -148,6 +148,7 @@ module cube4_gra_beats
     wire [HDR_W-1:0]  s_hdr;
     wire [PV-1:0]     s_sample;
     wire              s_eq0, s_gt0, s_eq1, s_gt1;    // the head against {w, r}, {w, r + 1}
+    wire              s_mge, s_mgt, s_meq, s_meq1;   // its slice m: m >= w, m > w, m == w, m + 1 == w
     wire [NBX-1:0]    in_oh, in_below;               // the head's partial beam: bit pb, bits below it
     wire              row_mv;                        // the row moves on to {nx_w, nx_r}
     wire [M_W-1:0]    nx_w;
@@ -159,7 +160,8 @@ module cube4_gra_beats
         .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
         .w (w), .r (r), .r1 (r1), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1), .home (start),
         .in_pb (in_hdr[HDR_PB +: PB_W]),
-        .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1), .oh (in_oh), .below (in_below));
+        .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1),
+        .m_ge (s_mge), .m_gt (s_mgt), .m_eq (s_meq), .m_eq1 (s_meq1), .oh (in_oh), .below (in_below));
     wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
     wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
     wire              in_eop = s_hdr[HDR_CTRL + CTRL_EOP];
@@ -505,27 +507,39 @@ module cube4_gra_beats
         end
     end
     // w < cmp_m for the next cycle: the four compares of w or w + 1 (the row moves on to
-    // the next slice) with cmp_m or in_m + 1 (the slice's EOSS beat loads), from registers,
-    // and the two choices select one
-    wire [M_W:0] w_x = {1'b0, w}, w1_x = w_x + 1'b1, cm_x = {1'b0, cmp_m}, im1_x = {1'b0, in_m} + 1'b1;
+    // the next slice) with cmp_m or in_m + 1 (the slice's EOSS beat loads), and the two
+    // choices select one. Against in_m + 1 they are the head's slice flags, kept in the
+    // skid's entries (w + 1 < in_m + 1: m > w; w < in_m + 1: m >= w, in M_W + 1 bits),
+    // so neither the skid's multiplexer nor an adder lies before the choice.
+    wire [M_W:0] w_x = {1'b0, w}, w1_x = w_x + 1'b1, cm_x = {1'b0, cmp_m};
     wire         w_mv  = row_mv && r_nj;                     // w moves on to w + 1
     wire         cm_ld = ld_i && s_eoss;                     // cmp_m loads in_m + 1
     always @(posedge clk) begin
         if (start) w_in <= 1'b0;
-        else       w_in <= w_mv ? (cm_ld ? (w1_x < im1_x) : (w1_x < cm_x))
-                                : (cm_ld ? (w_x < im1_x) : (w_x < cm_x));
+        else       w_in <= w_mv ? (cm_ld ? s_mgt : (w1_x < cm_x))
+                                : (cm_ld ? s_mge : (w_x < cm_x));
     end
     // w == w_last1 for the next cycle alike: w or w + 1 against w_last1 or in_m + 1 (the
-    // frame's EOP beat loads), in M_W bits as w_last1 is; read only with ended, which
+    // frame's EOP beat loads), in M_W bits as w_last1 is (w + 1 == in_m + 1: m == w;
+    // w == in_m + 1: m + 1 == w, the head's flags); read only with ended, which
     // start clears and the EOP beat sets (so start's w = 0 needs no compare of its own).
     // It keeps the compare out of row_mv, in front of w_in and the row's registers.
-    wire [M_W-1:0] im1  = im1_x[M_W-1:0];                    // in_m + 1, as w_last1 loads it
     wire           wl_ld = ld_i && in_eop;                   // w_last1 loads in_m + 1
     always @(posedge clk) begin
         if (start) w_last <= 1'b0;
-        else       w_last <= w_mv ? (wl_ld ? (w1_q == im1) : (w1_q == w_last1))
-                                  : (wl_ld ? (w == im1) : (w == w_last1));
+        else       w_last <= w_mv ? (wl_ld ? s_meq : (w1_q == w_last1))
+                                  : (wl_ld ? s_meq1 : (w == w_last1));
     end
+`ifndef SYNTHESIS
+    // the head's slice flags are the compares they stand for
+    wire [M_W:0] im1_x = {1'b0, in_m} + 1'b1;
+    always @(posedge clk) begin
+        if (!rst && s_valid && act
+            && {s_mgt, s_mge, s_meq, s_meq1} != {w1_x < im1_x, w_x < im1_x, w1_q == im1_x[M_W-1:0], w == im1_x[M_W-1:0]})
+            $fatal(1, "cube4_gra_beats: the head's slice flags %b are not its slice %0d against w %0d",
+                   {s_mgt, s_mge, s_meq, s_meq1}, in_m, w);
+    end
+`endif
 `ifndef SYNTHESIS
     always @(posedge clk) begin
         if (!rst && act && ended && (w_last != (w == w_last1)))

@@ -24,6 +24,11 @@
 //   enters (oh: bit pb; below: bits 0 .. pb - 1), so that the source's choice
 //   takes them from flip-flops through one multiplexer, not through the
 //   skid's multiplexer and a compare with every bit position.
+//   Its slice m against the row's slice w follows the row alike (the source's
+//   w_in and w_last, which load from w or w + 1 against m + 1, take these
+//   flags instead of an adder and a compare behind the skid's multiplexer):
+//     m_ge  m >= w       m_gt  m > w
+//     m_eq  m == w       m_eq1 m + 1 == w  (M_W bits, as the source's w + 1)
 //
 // Parameters
 //   DATA_W   the payload (any format).                1..4096.
@@ -43,6 +48,8 @@
 //   home          it is set to {0, 0} this cycle (a frame's start)
 //   in_pb         the partial beam of in_data (below NBX)
 //   eq0, gt0, eq1, gt1   out  the head's place (valid with out_valid)
+//   m_ge, m_gt, m_eq, m_eq1  out  the head's slice against w (valid with
+//                 out_valid)
 //   oh, below     out  the head's partial beam pb as bit words [NBX]: bit pb;
 //                 bits 0 .. pb - 1 (valid with out_valid)
 //
@@ -68,6 +75,7 @@ module cube4_gra_beats_in #(
     input  wire             home,
     input  wire [PB_W-1:0]  in_pb,
     output wire             eq0, output wire gt0, output wire eq1, output wire gt1,
+    output wire             m_ge, output wire m_gt, output wire m_eq, output wire m_eq1,
     output wire [NBX-1:0]   oh, output wire [NBX-1:0] below
 );
     generate
@@ -86,19 +94,24 @@ module cube4_gra_beats_in #(
     wire push = in_valid && in_ready;
     wire pop  = out_valid && out_ready;
 
-    // {eq0, gt0, eq1, gt1} of a key against the row {rw, rr} (rr1 = rr + 1)
-    function automatic [3:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr,
-                                   input [DIM_W-1:0] rr1);
+    // {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} of a key {m, j} against the
+    // row {rw, rr} (rr1 = rr + 1)
+    localparam integer PLW = 8;
+    function automatic [PLW-1:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr,
+                                       input [DIM_W-1:0] rr1);
         reg [KW-1:0] k0, k1;
+        reg [M_W-1:0] km;
         begin
             k0 = {rw, rr};
             k1 = {rw, rr1};
-            place = {key == k0, key > k0, key == k1, key > k1};
+            km = key[KW-1 -: M_W];
+            place = {key == k0, key > k0, key == k1, key > k1,
+                     km >= rw, km > rw, km == rw, M_W'(km + 1'b1) == rw};
         end
     endfunction
     // a key's place in the next cycle, from its place now (kept while the row stays)
-    function automatic [3:0] next_place(input [KW-1:0] key, input [3:0] now, input h, input m,
-                                        input [M_W-1:0] mw, input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1);
+    function automatic [PLW-1:0] next_place(input [KW-1:0] key, input [PLW-1:0] now, input h, input m,
+                                            input [M_W-1:0] mw, input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1);
         next_place = h ? place(key, '0, '0, DIM_W'(1)) : (m ? place(key, mw, mr, mr1) : now);
     endfunction
 
@@ -114,10 +127,10 @@ module cube4_gra_beats_in #(
 
     reg            wp, rp;                 // the skid's pointers, shadowed
     reg  [KW-1:0]  key [0:1];
-    reg  [3:0]     pl  [0:1];
+    reg  [PLW-1:0] pl  [0:1];
     reg  [NBX-1:0] e_oh [0:1], e_below [0:1];
     wire [KW-1:0]  in_key = {in_m, in_j};
-    wire [3:0]     in_pl  = next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1);
+    wire [PLW-1:0] in_pl  = next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1);
     always @(posedge clk) begin
         if (rst) begin
             wp <= 1'b0;
@@ -142,7 +155,7 @@ module cube4_gra_beats_in #(
             end
         end
     endgenerate
-    assign {eq0, gt0, eq1, gt1} = pl[rp];
+    assign {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} = pl[rp];
     assign oh    = e_oh[rp];
     assign below = e_below[rp];
 endmodule

@@ -203,20 +203,20 @@ module cube4_gra_window #(
     // 0 <= r < P); i > 0 where pb > 0 or t > 0. So the
     // flags are compares of h1's fields with registered view constants, with
     // no sum of the position on the path.
-    // (the flags read h1's fields from a kept copy of their own, loaded with
-    // h1_meta: the header's register serves the centre's outputs, and a route
-    // from it across GRA to the flags' compares limited the beat build. The
-    // header's fields on their way to h2_meta are a second kept copy: a plain
-    // register of the same input would be merged into the flags' copy, which
+    // (the flags read h1's fields from kept copies of their own, one per lane,
+    // loaded with h1_meta: the header's register serves the centre's outputs,
+    // and a route from it across GRA to the flags' compares limited the beat
+    // build, as did one copy's route to the selects of every lane. The
+    // header's fields on their way to h2_meta are a copy of their own: a plain
+    // register of the same input would be merged into a lane's copy, which
     // then drove both ends again)
     localparam integer FK_W = PB_W + LANE_W + 2;
     wire [FK_W-1:0]   fk_d = {c_meta[HDR_PB +: PB_W], c_meta[HDR_SKEW +: LANE_W], c_meta[HDR_CTRL + CTRL_SX],
                               c_meta[HDR_CTRL + CTRL_OSX]};
-    wire [2*FK_W-1:0] h1_fk2;
-    cube4_prim_reg_copies #(.COPIES(2), .W(FK_W), .RESET(0)) u_h1_fk (
-        .clk(clk), .rst(rst), .en({2{step}}), .d({2{fk_d}}), .q(h1_fk2));
-    wire [FK_W-1:0]   h1_fk  = h1_fk2[0 +: FK_W];        // the flags'
-    wire [FK_W-1:0]   h1_fkm = h1_fk2[FK_W +: FK_W];     // h2_meta's
+    wire [(P+1)*FK_W-1:0] h1_fkc;
+    cube4_prim_reg_copies #(.COPIES(P + 1), .W(FK_W), .RESET(0)) u_h1_fk (
+        .clk(clk), .rst(rst), .en({(P + 1){step}}), .d({(P + 1){fk_d}}), .q(h1_fkc));
+    wire [FK_W-1:0]   h1_fkm = h1_fkc[P*FK_W +: FK_W];   // h2_meta's (copies 0 .. P - 1: the lanes')
     always @(*) begin
         h1_mx = h1_meta;
         h1_mx[HDR_PB +: PB_W]       = h1_fkm[FK_W-1 -: PB_W];
@@ -224,8 +224,6 @@ module cube4_gra_window #(
         h1_mx[HDR_CTRL + CTRL_SX]   = h1_fkm[1];
         h1_mx[HDR_CTRL + CTRL_OSX]  = h1_fkm[0];
     end
-    wire [PB_W-1:0]   h1_pb   = h1_fk[FK_W-1 -: PB_W];
-    wire [LANE_W-1:0] h1_skew = h1_fk[2 +: LANE_W];
     `CUBE4_LAST_BEAM_FUNCTIONS
     reg  [NB_W-1:0]   nbm1_q;             // L
     reg  [LANE_W-1:0] ni_r_q;             // r: the last partial beam's last lane position
@@ -235,13 +233,19 @@ module cube4_gra_window #(
         nbm1_q <= row_last_pb(cfg_nb);
         ni_r_q <= ni_rem[LANE_W-1:0];
     end
-    wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
-    wire              h1_pb_zero = (h1_pb == '0);
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
+    wire [P-1:0]      h1_dxf, h1_dxb;     // X-step of slice m (h1's), old X-step, each lane's copy
     reg  [1:0]        h1_edge;            // {last, first} partial beam of the walk (c_edge)
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
+            wire [FK_W-1:0]   fk      = h1_fkc[q*FK_W +: FK_W];   // the lane's copy of h1's fields
+            wire [PB_W-1:0]   h1_pb   = fk[FK_W-1 -: PB_W];
+            wire [LANE_W-1:0] h1_skew = fk[2 +: LANE_W];
+            wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
+            wire              h1_pb_zero = (h1_pb == '0);
             wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
+            assign h1_dxf[q] = fk[1];
+            assign h1_dxb[q] = fk[0];
             assign hi_ok_d[q]  = !h1_pb_last || (t < ni_r_q);
             assign lo_ok_d[q]  = !h1_pb_zero || (t != '0);
             assign hi_new_d[q] = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
@@ -255,14 +259,11 @@ module cube4_gra_window #(
     end
     localparam integer CSEL_W = 4 * P;    // {lo_same, lo_old, hi_same, hi_new} per lane
     localparam integer RSEL_W = 6 * P;    // {b_self, b_same, b_old, f_self, f_same, f_new} per lane
-    wire              h1_dxf = h1_fk[1];                       // X-step of slice m (h1's)
-    wire              h1_dxb = h1_fk[0];                       // old X-step
 `ifndef SYNTHESIS
     always @(posedge clk) begin
-        if (!rst && h1_v && (h1_fk != {h1_meta[HDR_PB +: PB_W], h1_meta[HDR_SKEW +: LANE_W],
-                                       h1_meta[HDR_CTRL + CTRL_SX], h1_meta[HDR_CTRL + CTRL_OSX]}
-                             || h1_fkm != h1_fk))
-            $fatal(1, "cube4_gra_window: the copies of h1's fields %0h, %0h differ from h1_meta's", h1_fk, h1_fkm);
+        if (!rst && h1_v && h1_fkc != {(P + 1){h1_meta[HDR_PB +: PB_W], h1_meta[HDR_SKEW +: LANE_W],
+                                                h1_meta[HDR_CTRL + CTRL_SX], h1_meta[HDR_CTRL + CTRL_OSX]}})
+            $fatal(1, "cube4_gra_window: the copies of h1's fields %0h differ from h1_meta's", h1_fkc);
     end
 `endif
     // h1's last partial beam: its own flag (RECTS), or a gap before the incoming beat (BEATS)
@@ -272,8 +273,8 @@ module cube4_gra_window #(
     wire [P-1:0]      hi_n = hi_okx & hi_new_d, hi_s = hi_okx & ~hi_new_d;
     wire [P-1:0]      lo_o = lo_okx & lo_old_d, lo_s = lo_okx & ~lo_old_d;
     wire [CSEL_W-1:0] csel_d = {lo_s, lo_o, hi_s, hi_n};
-    wire [RSEL_W-1:0] rsel_d = {{P{!h1_dxb}}, lo_s & {P{h1_dxb}}, lo_o & {P{h1_dxb}},
-                                {P{!h1_dxf}}, hi_s & {P{h1_dxf}}, hi_n & {P{h1_dxf}}};
+    wire [RSEL_W-1:0] rsel_d = {~h1_dxb, lo_s & h1_dxb, lo_o & h1_dxb,
+                                ~h1_dxf, hi_s & h1_dxf, hi_n & h1_dxf};
     wire [CSEL_W-1:0] csel_q;             // the centre's row
     wire [RSEL_W-1:0] rsel_q;             // the forward and backward rows
     // (kept registers: the P equal X-step bits of rsel stay P registers)

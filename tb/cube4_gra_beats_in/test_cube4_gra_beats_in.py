@@ -8,11 +8,13 @@ nx_r + 1 come in as the source gives them (r1, nx_r1). Checked every
 cycle: the beats come out in order, none lost or extra, data held while not taken;
 with out_valid, the head's flags are its key against the row of that cycle: eq0 =
 key == {w, r}, gt0 = key > {w, r}, eq1 and gt1 against {w, r + 1} (r + 1 in DIM_W bits,
-so r = 2^DIM_W - 1 compares with {w, 0}); the head's partial beam pb (random, below NBX)
-as bit words: oh = bit pb, below = bits 0 .. pb - 1. M_W = 4 and DIM_W = 3 put equal keys
-and the wrap within reach. With the entries' flags kept (not compared again) on mv, the
-check fails ("beat N: flags RTL ..., model ..."; tried); with below decoded as bits
-0 .. pb, "beat N: pb ... bit words" (tried).
+so r = 2^DIM_W - 1 compares with {w, 0}); its slice m against w: m_ge = m >= w,
+m_gt = m > w, m_eq = m == w, m_eq1 = m + 1 == w in M_W bits (so m = 2^M_W - 1 is w = 0's);
+the head's partial beam pb (random, below NBX) as bit words: oh = bit pb, below = bits
+0 .. pb - 1. M_W = 4 and DIM_W = 3 put equal keys and the wrap within reach. With the
+entries' flags kept (not compared again) on mv, the check fails ("beat N: flags RTL ...,
+model ..."; tried); with below decoded as bits 0 .. pb, "beat N: pb ... bit words"
+(tried); with m_eq1 as m == w + 1, "beat N ... flags" (tried).
 """
 
 from __future__ import annotations
@@ -28,9 +30,14 @@ from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock, top_params
 
 
-def place(key: tuple[int, int], w: int, r: int, dim_w: int) -> tuple[int, int, int, int]:
+def place(key: tuple[int, int], w: int, r: int, m_w: int, dim_w: int) -> tuple[int, ...]:
     r1 = (r + 1) % (1 << dim_w)
-    return int(key == (w, r)), int(key > (w, r)), int(key == (w, r1)), int(key > (w, r1))
+    m = key[0]
+    return (int(key == (w, r)), int(key > (w, r)), int(key == (w, r1)), int(key > (w, r1)),
+            int(m >= w), int(m > w), int(m == w), int((m + 1) % (1 << m_w) == w))
+
+
+FLAGS = ("eq0", "gt0", "eq1", "gt1", "m_ge", "m_gt", "m_eq", "m_eq1")
 
 
 @cocotb.test()
@@ -56,6 +63,8 @@ async def test_places(dut):
         key = (int(rng.integers(0, 1 << m_w)), int(rng.integers(0, 1 << dim_w)))
         if rng.random() < 0.5 and w < (1 << m_w) and cyc % 7:      # keys near the row, often
             key = (w, (r + int(rng.integers(-1, 3))) % (1 << dim_w))
+            if rng.random() < 0.3:                                # slices beside w (and their wrap)
+                key = ((w + int(rng.choice((-1, 1)))) % (1 << m_w), key[1])
         pb = int(rng.integers(0, nbx))
         data = (sent << (m_w + dim_w)) | (key[0] << dim_w) | key[1]
         valid, ready = rng.random() < 0.6, rng.random() < 0.55
@@ -83,8 +92,8 @@ async def test_places(dut):
             assert od == want_data, f"beat {got}: RTL {od:#x}, model {want_data:#x}"
             if held is not None:
                 assert held == od, "out_data changed while out_ready was low"
-            flags = tuple(int(getattr(d, n).value) for n in ("eq0", "gt0", "eq1", "gt1"))
-            want = place(want_key, w, r, dim_w)
+            flags = tuple(int(getattr(d, n).value) for n in FLAGS)
+            want = place(want_key, w, r, m_w, dim_w)
             assert flags == want, (f"beat {got} key {want_key} against row ({w}, {r}): flags RTL {flags}, "
                                    f"model {want}")
             words = (int(d.oh.value), int(d.below.value))
