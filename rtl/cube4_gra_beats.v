@@ -51,8 +51,9 @@
 //
 // Latency
 //   An input beat passes a skid buffer (cube4_gra_beats_in: one cycle;
-//   in_ready is its register; the head's place against the row comes with
-//   it), so the choice of the next step starts at registers; the
+//   in_ready is its register; the head's place against the row, and its
+//   slice against the row's, come with it), so the choice of the next step
+//   and the slice flags w_in and w_last start at registers; the
 //   choice computes what each candidate position decides (its plane and beam
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
 //   The input register i0 holds the next step's position with its sample

@@ -201,22 +201,34 @@ module cube4_gra_window #(
     // With i = pb * P + t: i + 1 < NI holds in every partial beam but the last,
     // L, and in L where t < r = row_last_rem - 1 (CUBE4_LAST_BEAM_FUNCTIONS;
     // 0 <= r < P); i > 0 where pb > 0 or t > 0. So the
-    // flags are compares of h1's fields with registered view constants, with
-    // no sum of the position on the path.
-    // (the flags read h1's fields from kept copies of their own, one per lane,
+    // flags are h1's fields against registered view constants, with no sum of
+    // the position on the path.
+    // The flags read h1's fields from kept copies of their own, one per lane,
     // loaded with h1_meta: the header's register serves the centre's outputs,
     // and a route from it across GRA to the flags' compares limited the beat
-    // build, as did one copy's route to the selects of every lane. The
-    // header's fields on their way to h2_meta are a copy of their own: a plain
+    // build, as did one copy's route to the selects of every lane. A lane's
+    // copy holds the partial beam as its two compares (pb == L, pb == 0, taken
+    // as it loads) and the skew, which picks the lane's position flags from a
+    // table of view constants (t < r, t == P - 1, t == 0 for each skew), so
+    // no lane position is computed between the copy and the selects. The
+    // header's fields on their way to h2_meta are a copy of their own (a plain
     // register of the same input would be merged into a lane's copy, which
-    // then drove both ends again)
-    localparam integer FK_W = PB_W + LANE_W + 2;
-    wire [FK_W-1:0]   fk_d = {c_meta[HDR_PB +: PB_W], c_meta[HDR_SKEW +: LANE_W], c_meta[HDR_CTRL + CTRL_SX],
+    // then drove both ends again).
+    `CUBE4_LAST_BEAM_FUNCTIONS
+    reg  [NB_W-1:0]   nbm1_q;             // L
+    always @(posedge clk) nbm1_q <= row_last_pb(cfg_nb);
+    localparam integer FK_W = PB_W + LANE_W + 2;     // {pb, skew, dxf, dxb}: h2_meta's
+    localparam integer FL_W = 2 + LANE_W + 2;        // {pb == L, pb == 0, skew, dxf, dxb}: a lane's
+    wire [PB_W-1:0]   pb_d = c_meta[HDR_PB +: PB_W];
+    wire [FK_W-1:0]   fk_d = {pb_d, c_meta[HDR_SKEW +: LANE_W], c_meta[HDR_CTRL + CTRL_SX],
                               c_meta[HDR_CTRL + CTRL_OSX]};
-    wire [(P+1)*FK_W-1:0] h1_fkc;
-    cube4_prim_reg_copies #(.COPIES(P + 1), .W(FK_W), .RESET(0)) u_h1_fk (
-        .clk(clk), .rst(rst), .en({(P + 1){step}}), .d({(P + 1){fk_d}}), .q(h1_fkc));
-    wire [FK_W-1:0]   h1_fkm = h1_fkc[P*FK_W +: FK_W];   // h2_meta's (copies 0 .. P - 1: the lanes')
+    wire [FL_W-1:0]   fl_d = {NB_W'(pb_d) == nbm1_q, pb_d == '0, fk_d[LANE_W+1:0]};
+    wire [P*FL_W-1:0] h1_flc;
+    wire [FK_W-1:0]   h1_fkm;
+    cube4_prim_reg_copies #(.COPIES(P), .W(FL_W), .RESET(0)) u_h1_fk (
+        .clk(clk), .rst(rst), .en({P{step}}), .d({P{fl_d}}), .q(h1_flc));
+    cube4_prim_reg_copies #(.COPIES(1), .W(FK_W), .RESET(0)) u_h1_fkm (
+        .clk(clk), .rst(rst), .en(step), .d(fk_d), .q(h1_fkm));
     always @(*) begin
         h1_mx = h1_meta;
         h1_mx[HDR_PB +: PB_W]       = h1_fkm[FK_W-1 -: PB_W];
@@ -224,32 +236,37 @@ module cube4_gra_window #(
         h1_mx[HDR_CTRL + CTRL_SX]   = h1_fkm[1];
         h1_mx[HDR_CTRL + CTRL_OSX]  = h1_fkm[0];
     end
-    `CUBE4_LAST_BEAM_FUNCTIONS
-    reg  [NB_W-1:0]   nbm1_q;             // L
-    reg  [LANE_W-1:0] ni_r_q;             // r: the last partial beam's last lane position
-    wire [LANE_W:0]   ni_rem = row_last_rem(cfg_ni, cfg_nb) - 1'b1;   // 0 .. P - 1
+    wire [LANE_W:0]   ni_rem = row_last_rem(cfg_ni, cfg_nb) - 1'b1;   // r: L's last lane position, 0 .. P - 1
+    wire [LANE_W-1:0] ni_r   = ni_rem[LANE_W-1:0];
     wire              unused_ni_rem = ni_rem[LANE_W];
-    always @(posedge clk) begin
-        nbm1_q <= row_last_pb(cfg_nb);
-        ni_r_q <= ni_rem[LANE_W-1:0];
-    end
+    localparam integer NSK = 1 << LANE_W;            // every skew the field holds
     wire [P-1:0]      hi_ok_d, lo_ok_d, hi_new_d, lo_old_d;
     wire [P-1:0]      h1_dxf, h1_dxb;     // X-step of slice m (h1's), old X-step, each lane's copy
     reg  [1:0]        h1_edge;            // {last, first} partial beam of the walk (c_edge)
+    genvar sk;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_pos
-            wire [FK_W-1:0]   fk      = h1_fkc[q*FK_W +: FK_W];   // the lane's copy of h1's fields
-            wire [PB_W-1:0]   h1_pb   = fk[FK_W-1 -: PB_W];
-            wire [LANE_W-1:0] h1_skew = fk[2 +: LANE_W];
-            wire              h1_pb_last = (NB_W'(h1_pb) == nbm1_q);
-            wire              h1_pb_zero = (h1_pb == '0);
-            wire [LANE_W-1:0] t = lane_pos(q, h1_skew, cfg_flip_i, cfg_i_r1);
-            assign h1_dxf[q] = fk[1];
-            assign h1_dxb[q] = fk[0];
-            assign hi_ok_d[q]  = !h1_pb_last || (t < ni_r_q);
-            assign lo_ok_d[q]  = !h1_pb_zero || (t != '0);
-            assign hi_new_d[q] = ({1'b0, t} == PL - 1'b1);   // i + 1 is in the next beat
-            assign lo_old_d[q] = (t == '0);                  // i - 1 is in the previous beat
+            wire [FL_W-1:0]   fl      = h1_flc[q*FL_W +: FL_W];   // the lane's copy of h1's fields
+            wire              h1_pb_last = fl[FL_W-1];
+            wire              h1_pb_zero = fl[FL_W-2];
+            wire [LANE_W-1:0] h1_skew = fl[2 +: LANE_W];
+            // the lane's position t = lane_pos(q, skew) as flags, for each skew (view
+            // constants, a register behind the view as nbm1_q)
+            reg  [NSK-1:0]    tab_lt, tab_last, tab_zero;   // t < r, t == P - 1, t == 0
+            for (sk = 0; sk < NSK; sk = sk + 1) begin : g_sk
+                wire [LANE_W-1:0] ts = lane_pos(q, LANE_W'(sk), cfg_flip_i, cfg_i_r1);
+                always @(posedge clk) begin
+                    tab_lt[sk]   <= (ts < ni_r);
+                    tab_last[sk] <= ({1'b0, ts} == PL - 1'b1);
+                    tab_zero[sk] <= (ts == '0);
+                end
+            end
+            assign h1_dxf[q] = fl[1];
+            assign h1_dxb[q] = fl[0];
+            assign hi_ok_d[q]  = !h1_pb_last || tab_lt[h1_skew];
+            assign lo_ok_d[q]  = !h1_pb_zero || !tab_zero[h1_skew];
+            assign hi_new_d[q] = tab_last[h1_skew];          // i + 1 is in the next beat
+            assign lo_old_d[q] = tab_zero[h1_skew];          // i - 1 is in the previous beat
         end
     endgenerate
     always @(posedge clk) begin
@@ -260,10 +277,29 @@ module cube4_gra_window #(
     localparam integer CSEL_W = 4 * P;    // {lo_same, lo_old, hi_same, hi_new} per lane
     localparam integer RSEL_W = 6 * P;    // {b_self, b_same, b_old, f_self, f_same, f_new} per lane
 `ifndef SYNTHESIS
+    wire [PB_W-1:0]   h1_pb = h1_meta[HDR_PB +: PB_W];
+    wire [FK_W-1:0]   h1_fk = {h1_pb, h1_meta[HDR_SKEW +: LANE_W], h1_meta[HDR_CTRL + CTRL_SX],
+                               h1_meta[HDR_CTRL + CTRL_OSX]};
+    // (the flags' compares and table, taken at a load and a view register behind,
+    // are checked where they count: a step with a centre of this frame in h1)
+    wire              h1_cur = h1_v && h1_live && h1_meta[META_W-1] && step;
     always @(posedge clk) begin
-        if (!rst && h1_v && h1_fkc != {(P + 1){h1_meta[HDR_PB +: PB_W], h1_meta[HDR_SKEW +: LANE_W],
-                                                h1_meta[HDR_CTRL + CTRL_SX], h1_meta[HDR_CTRL + CTRL_OSX]}})
-            $fatal(1, "cube4_gra_window: the copies of h1's fields %0h differ from h1_meta's", h1_fkc);
+        if (!rst && h1_v && h1_fkm != h1_fk)
+            $fatal(1, "cube4_gra_window: the header's copy of h1's fields %0h differs from h1_meta's", h1_fkm);
+        if (!rst && h1_cur && h1_flc != {P{NB_W'(h1_pb) == nbm1_q, h1_pb == '0, h1_fk[LANE_W+1:0]}})
+            $fatal(1, "cube4_gra_window: the lanes' partial beam flags %0h are not h1's (pb %0d)", h1_flc, h1_pb);
+    end
+    for (q = 0; q < P; q = q + 1) begin : g_tab_check
+        wire [LANE_W-1:0] t = lane_pos(q, h1_fk[2 +: LANE_W], cfg_flip_i, cfg_i_r1);
+        always @(posedge clk) begin
+            if (!rst && h1_v && h1_flc[q*FL_W +: LANE_W + 2] != h1_fk[LANE_W+1:0])
+                $fatal(1, "cube4_gra_window: lane %0d's copy of h1's fields %0h differs from h1_meta's", q,
+                       h1_flc[q*FL_W +: FL_W]);
+            if (!rst && h1_cur && {g_pos[q].tab_lt[h1_fk[2 +: LANE_W]], hi_new_d[q], lo_old_d[q]}
+                                  != {t < ni_r, {1'b0, t} == PL - 1'b1, t == '0})
+                $fatal(1, "cube4_gra_window: lane %0d's position flags at skew %0d are not lane_pos %0d's",
+                       q, h1_fk[2 +: LANE_W], t);
+        end
     end
 `endif
     // h1's last partial beam: its own flag (RECTS), or a gap before the incoming beat (BEATS)
