@@ -32,10 +32,13 @@
 //     nextpnr times the block from clock to data in 0.7 ns instead of 4.1 ns
 //     (speed grade 8), and Yosys infers no block RAM with that register. The
 //     slice is the block's shape for the depth: 1024 x 18 up to 1024 words,
-//     2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1. Shallower RAMs are left to
-//     Yosys (distributed RAM), their output register in the fabric: a block
-//     RAM each would waste the part's EBRs; so are deeper ones (the output
-//     register in the fabric after Yosys's bank multiplexer).
+//     2048 x 9, 4096 x 4, 8192 x 2, 16384 x 1. Shallower RAMs are distributed
+//     RAM (ram_style "distributed": left to itself, Yosys makes a 64-word RAM
+//     a DP16KD, whose 4.3 ns from clock to data then ends at the fabric's
+//     read register across the die), their read and output registers in the
+//     fabric: a block RAM each would waste the part's EBRs. Deeper ones are
+//     left to Yosys (the output register in the fabric after its bank
+//     multiplexer).
 //     sim/hdl/ecp5/DP16KD.v models the primitive for simulation. A read
 //     of the word written at the same edge is undefined on the device (the
 //     model returns the old word); cube4_sdp_ram's callers make none.
@@ -54,6 +57,8 @@ module cube4_sdp_ram
     localparam integer EBR_MIN_AW = 7;                  // block RAM from 128 words (OUT_REG > 0) ...
     localparam integer EBR_MAX_AW = 14;                 // ... to 16384 (one DP16KD deep)
     localparam integer USE_EBR = (OUT_REG != 0 && AW >= EBR_MIN_AW && AW <= EBR_MAX_AW) ? 1 : 0;
+    // with OUT_REG, shallower than a block RAM: distributed RAM, as DIST = 1
+    localparam integer USE_DIST = (DIST == 1 || (OUT_REG != 0 && AW < EBR_MIN_AW)) ? 1 : 0;
     // DIST = 1: distributed RAM (TRELLIS_DPR16X4, asynchronous read), its read register in the fabric
     // slice width: 4, 2, 1 bits from 4096, 8192, 16384 words on; else the
     // word (18 bits with IN_REG, so that the register copies have slices;
@@ -118,14 +123,23 @@ module cube4_sdp_ram
                     .clk(clk), .a_en(1'b0), .a_we(we), .a_addr(wa), .a_wd(wd[LO +: W]), .a_rd(unused_a_rd),
                     .b_en(re), .b_oe(oe), .b_addr(ra), .b_rd(rd_data[LO +: W]));
                 wire unused_a = ^unused_a_rd;
-            end else if (DIST == 1) begin : g_dist
+            end else if (USE_DIST == 1) begin : g_dist
                 (* ram_style = "distributed" *) reg [W-1:0] mem [0:(1 << AW)-1];
                 reg [W-1:0] rd_q;
                 always @(posedge clk) begin
                     if (we) mem[wa] <= wd[LO +: W];
                     if (re) rd_q <= mem[ra];
                 end
-                assign rd_data[LO +: W] = rd_q;
+                if (OUT_REG != 0) begin : g_out_reg
+                    wire oe = (OUT_REG == 2) ? out_en : re;
+                    reg [W-1:0] out_q;
+                    always @(posedge clk) begin
+                        if (oe) out_q <= rd_q;
+                    end
+                    assign rd_data[LO +: W] = out_q;
+                end else begin : g_no_out_reg
+                    assign rd_data[LO +: W] = rd_q;
+                end
             end else begin : g_infer
                 reg [W-1:0] mem [0:(1 << AW)-1];
                 reg [W-1:0] rd_q;

@@ -145,6 +145,8 @@ PARAM_SETS = [
     {"DATA_W": 74, "DEPTH": 2048, "OUT_REG": 2},                # 2048 x 9, out_en (GRA's plane A)
     {"DATA_W": 20, "DEPTH": 6145, "WR_REG": 1, "OUT_REG": 2},   # stacks: the bank choice with out_en
     {"DATA_W": 30, "DEPTH": 16, "OUT_REG": 2},                  # distributed RAM, out_en (GRA's beam)
+    {"DATA_W": 34, "DEPTH": 64, "OUT_REG": 1},                  # distributed RAM, 64 words (the front end's beat bits)
+    {"DATA_W": 40, "DEPTH": 16, "IN_REG": 1, "OUT_REG": 1},     # distributed RAM, copies (COM's beam buffer)
 ]
 
 
@@ -153,7 +155,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11, 14, 15, 16), ids=_param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11, 14, 15, 16, 18, 19), ids=_param_id))
 def test_cube4_sdp_ram(params, form):
     run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))
