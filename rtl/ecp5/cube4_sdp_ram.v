@@ -59,6 +59,7 @@ module cube4_sdp_ram
     localparam integer USE_EBR = (OUT_REG != 0 && AW >= EBR_MIN_AW && AW <= EBR_MAX_AW) ? 1 : 0;
     // with OUT_REG, shallower than a block RAM: distributed RAM, as DIST = 1
     localparam integer USE_DIST = (DIST == 1 || (OUT_REG != 0 && AW < EBR_MIN_AW)) ? 1 : 0;
+    localparam RAM_STYLE = (USE_DIST == 1) ? "distributed" : "auto";     // Yosys's ram_style
     // DIST = 1: distributed RAM (TRELLIS_DPR16X4, asynchronous read), its read register in the fabric
     // slice width: 4, 2, 1 bits from 4096, 8192, 16384 words on; else the
     // word (18 bits with IN_REG, so that the register copies have slices;
@@ -123,25 +124,10 @@ module cube4_sdp_ram
                     .clk(clk), .a_en(1'b0), .a_we(we), .a_addr(wa), .a_wd(wd[LO +: W]), .a_rd(unused_a_rd),
                     .b_en(re), .b_oe(oe), .b_addr(ra), .b_rd(rd_data[LO +: W]));
                 wire unused_a = ^unused_a_rd;
-            end else if (USE_DIST == 1) begin : g_dist
-                (* ram_style = "distributed" *) reg [W-1:0] mem [0:(1 << AW)-1];
-                reg [W-1:0] rd_q;
-                always @(posedge clk) begin
-                    if (we) mem[wa] <= wd[LO +: W];
-                    if (re) rd_q <= mem[ra];
-                end
-                if (OUT_REG != 0) begin : g_out_reg
-                    wire oe = (OUT_REG == 2) ? out_en : re;
-                    reg [W-1:0] out_q;
-                    always @(posedge clk) begin
-                        if (oe) out_q <= rd_q;
-                    end
-                    assign rd_data[LO +: W] = out_q;
-                end else begin : g_no_out_reg
-                    assign rd_data[LO +: W] = rd_q;
-                end
-            end else begin : g_infer
-                reg [W-1:0] mem [0:(1 << AW)-1];
+            end else begin : g_fabric
+                // distributed RAM (USE_DIST) or Yosys's choice ("auto": a DP16KD
+                // without its output register, or distributed RAM)
+                (* ram_style = RAM_STYLE *) reg [W-1:0] mem [0:(1 << AW)-1];
                 reg [W-1:0] rd_q;
                 always @(posedge clk) begin
                     if (we) mem[wa] <= wd[LO +: W];
