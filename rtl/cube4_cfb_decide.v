@@ -121,9 +121,18 @@ module cube4_cfb_decide #(
     reg              v7;                   // S7's valid bit (the decisions registered)
     reg              tiny;                 // NJ NB < 8 RATE + 2: drain between slices
     wire             credit_ln, credit_bm;
-    wire             first_beat = (j == '0) && (pb == '0);
-    wire             last_pb    = ({1'b0, NB_W'(pb)} + (NB_W + 1)'(RATE) >= {1'b0, nb});   // the row's last group
-    wire             last_j     = (j == nj - 1'b1);
+    // Where the beat stands in its slice, as registers kept with j and pb (set
+    // at start for (0, 0), stepped at an issue from compares of the registers
+    // as they stand), so that the issue and the counters' enables start at
+    // flops, not behind pb's carry chain
+    reg              first_beat;           // j = 0 and pb = 0
+    reg              last_pb;              // pb + RATE >= NB: the row's last group
+    reg              last_j;               // j = NJ - 1
+    wire [NB_W:0]    pb_r  = {1'b0, NB_W'(pb)} + (NB_W + 1)'(RATE);
+    wire             lpb_0 = (NB_W + 1)'(RATE) >= {1'b0, nb};            // pb = 0
+    wire             lpb_n = pb_r + (NB_W + 1)'(RATE) >= {1'b0, nb};    // pb + RATE
+    wire             lj_0  = (nj == DIM_W'(1));                          // j = 0
+    wire             lj_n  = (j + 1'b1 == nj - 1'b1);                    // j + 1
     // reports_ok: m <= com_q + LAG, com_q being com_m a cycle late (a read a cycle
     // after the last write). Its compares are made a cycle ahead, from com_m, for
     // m as it stands and for m + 1 (m moves on by one at a slice's last issue:
@@ -150,6 +159,9 @@ module cube4_cfb_decide #(
             kr <= '0;
             j <= '0;
             pb <= '0;
+            first_beat <= 1'b1;
+            last_pb <= lpb_0;
+            last_j <= lj_0;
         end else begin
             if (st_valid && st_ready) begin
                 have_st <= 1'b1;
@@ -158,7 +170,12 @@ module cube4_cfb_decide #(
             end
             if (issue) begin
                 pb <= last_pb ? '0 : pb + PB_W'(RATE);
-                if (last_pb) j <= last_j ? '0 : j + 1'b1;
+                last_pb <= last_pb ? lpb_0 : lpb_n;
+                first_beat <= last_pb && last_j;
+                if (last_pb) begin
+                    j <= last_j ? '0 : j + 1'b1;
+                    last_j <= last_j ? lj_0 : lj_n;
+                end
                 if (last_pb && last_j) begin
                     m <= m + 1'b1;
                     // the voxel slice moves on after S sample slices
@@ -182,6 +199,12 @@ module cube4_cfb_decide #(
         ok_m1 <= {1'b0, M_W'(m + 1'b1)} <= com_lag;
     end
 `ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && !start && active && issuing
+            && ({first_beat, last_pb, last_j} != {(j == '0) && (pb == '0), pb_r >= {1'b0, nb}, j == nj - 1'b1}))
+            $fatal(1, "cube4_cfb_decide: the flags {first, last pb, last j} %b differ from j %0d, pb %0d (NJ %0d, NB %0d)",
+                   {first_beat, last_pb, last_j}, j, pb, nj, nb);
+    end
     reg [M_W-1:0] com_q;                   // the compare the registers stand for
     always @(posedge clk) com_q <= (rst || start) ? '0 : com_m;
     always @(posedge clk) begin
