@@ -106,7 +106,9 @@
 //                                   (Q1.W), lane residues J_R0, K_R0, I_R1, I_RT,
 //                                   the starting phases PH0_X/Y (W + log2 S bits)
 //   cfg_addr         in   [9*ADDR_W] address start values and strides
-//   req_valid/ready                 memory request handshake
+//   req_valid/ready                 memory request handshake; req_ready
+//                                   [CFB_ADV_N] equal copies, one per group
+//                                   of the stall enable's loads (cube4_cfb_mask)
 //   req_addr         out  [P*ADDR_W] word address per bank (lane q at q*ADDR_W)
 //   req_rden         out  [P]       read bank q (0: padding or no read this beat)
 //   req_tag          out  [TAG_W]   the beat's control bits (CUBE4_TAG_LAYOUT)
@@ -142,7 +144,7 @@ module cube4_cfb #(
     `CUBE4_BEATS_IN_PORTS,
     output wire [4*P-1:0] req_bits, output wire req_eos, output wire req_eoss,   // BEATS = 1: with each request
     // memory request stream; the tag travels with the beat to cube4_tri
-    output wire req_valid, input wire req_ready, output wire [TAG_W-1:0] req_tag,
+    output wire req_valid, input wire [CFB_ADV_N-1:0] req_ready, output wire [TAG_W-1:0] req_tag,
     output wire [P*ADDR_W-1:0] req_addr,
     output wire [P-1:0] req_rden
 );

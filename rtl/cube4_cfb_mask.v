@@ -26,9 +26,9 @@
 //   that describes it. All stages move under advance = the output register
 //   is free or taken by req_ready; req_valid never depends on req_ready.
 //   advance comes as CFB_ADV_N equal copies, each from its own copy of the
-//   output register's valid bit (cube4_prim_reg_copies), one per group of
-//   its loads (CUBE4_CFB_LAYOUT), so no one net reaches the stages, the
-//   address unit and the control's counters.
+//   output register's valid bit (cube4_prim_reg_copies) and its own copy of
+//   req_ready, one per group of its loads (CUBE4_CFB_LAYOUT), so no one net
+//   reaches the stages, the address unit and the control's counters.
 //
 // Ports (past clk, rst and the register buses: CUBE4_CFB_MASK_PORTS)
 //   clk, rst     clock, synchronous active-high reset (the valid bits only)
@@ -45,7 +45,9 @@
 //   t1           in   [P*LANE_W] s1: the read row's lane positions (cube4_cfb_addr)
 //   advance      out  [CFB_ADV_N] the stages move (copies);  busy  out  idle is
 //                low or s1, s2 hold a beat
-//   req_valid / req_ready   the request handshake
+//   req_valid / req_ready   the request handshake; req_ready [CFB_ADV_N]
+//                equal copies, copy c into advance c (the front end's are
+//                register copies of its skids' ready)
 //   req_rden     out  [P] bank q reads;  req_tag  out  [TAG_W] the tag
 //
 // Bit growth and rounding: none (compares in IW bits, clamped remainders).
@@ -135,7 +137,13 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     reg           v1_q, v2_q;
     wire [CFB_ADV_N-1:0] v_cp;            // the output register's valid bit, a copy per advance
     reg [F_W-1:0] f2_q, f_q;
-    assign advance = ~v_cp | {CFB_ADV_N{req_ready}};
+    assign advance = ~v_cp | req_ready;
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && req_ready != '0 && req_ready != '1)
+            $fatal(1, "cube4_cfb_mask: the copies of req_ready differ (%b)", req_ready);
+    end
+`endif
     wire   adv     = advance[CFB_ADV_MASK];
     cube4_prim_reg_copies #(.COPIES(CFB_ADV_N), .W(1), .RESET(1)) u_v (
         .clk(clk), .rst(rst), .en(advance), .d({CFB_ADV_N{v2_q}}), .q(v_cp));

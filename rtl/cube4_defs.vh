@@ -876,17 +876,20 @@
 // CFB_ADV_BITS the beat's bits beside the stages (BEATS), CFB_ADV_ADDR the
 // address unit, CFB_ADV_MASK the mask's own stages), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
 // fields it holds at a constant, CFB_BOX_CONST (SBROW = 1, the rest 0).
+// CUBE4_CFB_ADV_N is CFB_ADV_N, for the front end, which gives CFB its
+// request's ready as that many equal copies (one per advance).
 // CUBE4_CFB_PASS passes the build parameters on to a unit by name.
 // CUBE4_CFB_ENTRY(e): a table entry as a unit reads it; without rectangles
 // (RECTS = 0) the box's constant fields are constants, so that synthesis sees
 // them past the units' boundaries. CUBE4_ADDR_FIELDS(bus): one wire
 // cfg_<name> per address register, read from the address bus (module body).
+`define CUBE4_CFB_ADV_N 4
 `define CUBE4_CFB_BITS(W, POS) ((((RECT_W)'(1) << (W)) - (RECT_W)'(1)) << (POS))
 `define CUBE4_CFB_LAYOUT \
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_RECT_LAYOUT, \
     localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
     localparam integer CFB_F1_W = TAG_W - 4 * P, \
-    localparam integer CFB_ADV_N = 4, localparam integer CFB_ADV_CTL = 0, localparam integer CFB_ADV_BITS = 1, \
+    localparam integer CFB_ADV_N = `CUBE4_CFB_ADV_N, localparam integer CFB_ADV_CTL = 0, localparam integer CFB_ADV_BITS = 1, \
     localparam integer CFB_ADV_ADDR = 2, localparam integer CFB_ADV_MASK = 3, \
     localparam [RECT_W-1:0] CFB_BOX_CONST = (RECT_W)'(1) << RT_SBROW, \
     localparam [RECT_W-1:0] CFB_BOX_FIXED = `CUBE4_CFB_BITS(1, RT_EMPTY) | `CUBE4_CFB_BITS(DIM_W, RT_J0) \
@@ -944,7 +947,7 @@
     input  wire rowv, input wire rowin, input wire rd, \
     input  wire [RECT_W-1:0] rt_cur, input wire [IW-1:0] pbp, input wire [P*LANE_W-1:0] t1, \
     output wire [CFB_ADV_N-1:0] advance, output wire busy, \
-    output wire req_valid, input wire req_ready, \
+    output wire req_valid, input wire [CFB_ADV_N-1:0] req_ready, \
     output wire [P-1:0] req_rden, output wire [TAG_W-1:0] req_tag
 
 // The voxel memory's ports (cube4_voxel_mem on chip, cube4_dram_fetch in front of a

@@ -85,7 +85,12 @@ module cube4_frontend #(
 );
     // ---- CFB ----
     wire                unused_cfb_busy;   // the frame ends at the last sample, not the last request
-    wire                c_req_valid, c_req_ready;   // CFB's request, into u_req_skid
+    // CFB's request, into u_req_skid; its ready as CFB_ADV_N equal copies, one
+    // per group of CFB's stall enable's loads (cube4_cfb_mask), each from
+    // register copies of its own (the skids' in_ready_cp)
+    localparam integer ADV_N = `CUBE4_CFB_ADV_N;
+    wire                c_req_valid;
+    wire [ADV_N-1:0]    c_req_ready;
     wire [P*ADDR_W-1:0] c_req_addr;
     wire [P-1:0]        c_req_rden;
     wire [TAG_W-1:0]    c_req_tag;
@@ -122,20 +127,30 @@ module cube4_frontend #(
 
     // CFB's requests pass a skid buffer: CFB advances on the skid's registered
     // ready, so the memory's ready (and what feeds it) never reaches CFB's
-    // traversal counters in the same cycle. One cycle of latency.
-    wire s_req_valid, s_req_ready;
-    cube4_skid #(
-        .DATA_W (P * ADDR_W + P + TAG_W)
+    // traversal counters in the same cycle. One cycle of latency. Its ready in
+    // ADV_N + 1 register copies: copy 0 this side's handshake, copy 1 + c
+    // CFB's advance c.
+    wire             s_req_valid, s_req_ready;
+    wire [ADV_N:0]   s_ready_cp;
+    wire             unused_req_nx_valid;
+    wire [P*ADDR_W+P+TAG_W-1:0] unused_req_nx_data;
+    cube4_skid_peek #(
+        .DATA_W  (P * ADDR_W + P + TAG_W),
+        .READY_N (ADV_N + 1)
     ) u_req_skid (
-        .clk       (clk),
-        .rst       (rst),
-        .in_valid  (s_req_valid),
-        .in_ready  (s_req_ready),
-        .in_data   ({c_req_addr, c_req_rden, c_req_tag}),
-        .out_valid (mem_req_valid),
-        .out_ready (mem_req_ready),
-        .out_data  ({mem_req_addr, mem_req_rden, mem_req_tag})
+        .clk         (clk),
+        .rst         (rst),
+        .in_valid    (s_req_valid),
+        .in_ready    (s_req_ready),
+        .in_data     ({c_req_addr, c_req_rden, c_req_tag}),
+        .out_valid   (mem_req_valid),
+        .out_ready   (mem_req_ready),
+        .out_data    ({mem_req_addr, mem_req_rden, mem_req_tag}),
+        .nx_valid    (unused_req_nx_valid),
+        .nx_data     (unused_req_nx_data),
+        .in_ready_cp (s_ready_cp)
     );
+    wire unused_req_nx = ^{unused_req_nx_valid, unused_req_nx_data, s_ready_cp[0]};
 
     // ---- TRI ----
     cube4_tri #(
@@ -172,19 +187,24 @@ module cube4_frontend #(
         if (BEATS != 0) begin : g_bits
             wire emits = c_req_tag[TAG_EMIT];
             wire k_ready, b_valid;
+            wire [ADV_N:0] k_ready_cp;
             // the request forks to the memory's skid buffer and, its bits, to the
             // FIFO's skid beside it (CFB advances on registers beside it), and they
             // leave through its skid beside TRI's output, which the sample beat's
-            // departure pops (cube4_skid_fifo: its block RAM lies elsewhere)
-            assign s_req_valid = c_req_valid && (!emits || k_ready);
-            assign c_req_ready = s_req_ready && (!emits || k_ready);
-            cube4_skid_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1)) u_bits (
+            // departure pops (cube4_skid_fifo: its block RAM lies elsewhere). Every
+            // request waits for room in the FIFO, one that emits no sample beat
+            // too: CFB's ready is then two registers' AND per copy, not a function
+            // of the request's tag
+            assign s_req_valid = c_req_valid && k_ready;
+            assign c_req_ready = s_ready_cp[ADV_N:1] & k_ready_cp[ADV_N:1];
+            cube4_skid_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1),
+                              .READY_N (ADV_N + 1)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (c_req_valid && s_req_ready && emits), .in_ready (k_ready),
                 .in_data ({c_req_eoss, c_req_eos, c_req_bits}),
                 .out_valid (b_valid), .out_ready (smp_valid && smp_ready),
-                .out_data ({smp_eoss, smp_eos, smp_bits}));
-            wire unused_bits = b_valid;
+                .out_data ({smp_eoss, smp_eos, smp_bits}), .in_ready_cp (k_ready_cp));
+            wire unused_bits = ^{b_valid, k_ready_cp[0]};
 `ifndef SYNTHESIS
             // a sample beat always finds its bits: they wait beside the memory and TRI
             always @(posedge clk) begin
@@ -196,8 +216,9 @@ module cube4_frontend #(
 `endif
         end else begin : g_no_bits
             assign s_req_valid = c_req_valid;
-            assign c_req_ready = s_req_ready;
+            assign c_req_ready = s_ready_cp[ADV_N:1];
             assign {smp_eoss, smp_eos, smp_bits} = '0;
+            wire unused_s_ready = s_req_ready;   // (the bits FIFO's fork only)
             wire unused_bits = ^{c_req_bits, c_req_eos, c_req_eoss};
         end
     endgenerate

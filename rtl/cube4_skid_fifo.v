@@ -23,6 +23,8 @@
 //            RAM (cube4_sync_fifo).                         0..1.     Default 0.
 //   OUT_REG  RAM = 1: the RAM's output register (cube4_ram_fifo OUT_REG).
 //            0..1.                                                      Default 0.
+//   READY_N  copies of in_ready (in_ready_cp; the front skid's,
+//            cube4_skid_peek).                              1..16.    Default 1.
 //
 // Latency
 //   Into an empty queue an item is on out_valid Q + 2 edges after the edge
@@ -35,6 +37,7 @@
 // Ports
 //   clk, rst                     clock, synchronous active-high reset (empties it)
 //   in_valid/in_ready/in_data    items in (any format, DATA_W bits); in_ready a register
+//   in_ready_cp  out  [READY_N]  copies of in_ready (copy 0 is in_ready)
 //   out_valid/out_ready/out_data items out, in order; out_valid and out_data
 //                                the back skid's (registers through its 2:1 select)
 //
@@ -44,9 +47,11 @@ module cube4_skid_fifo #(
     parameter integer DATA_W  = 8,
     parameter integer DEPTH   = 64,
     parameter integer RAM     = 0,
-    parameter integer OUT_REG = 0
+    parameter integer OUT_REG = 0,
+    parameter integer READY_N = 1
 ) (
-    `CUBE4_STREAM_PORTS(DATA_W)
+    `CUBE4_STREAM_PORTS(DATA_W),
+    output wire [READY_N-1:0] in_ready_cp
 );
     generate
         `CUBE4_RANGE(g_bad_ram, "cube4_skid_fifo", "RAM", RAM, 0, 1)
@@ -57,10 +62,14 @@ module cube4_skid_fifo #(
     wire              k_valid, k_ready, f_valid, f_ready;
     wire [DATA_W-1:0] k_data, f_data;
     // beside the producer
-    cube4_skid #(.DATA_W (DATA_W)) u_in (
+    wire              unused_nx_valid;
+    wire [DATA_W-1:0] unused_nx_data;
+    cube4_skid_peek #(.DATA_W (DATA_W), .READY_N (READY_N)) u_in (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data (in_data),
-        .out_valid (k_valid), .out_ready (k_ready), .out_data (k_data));
+        .out_valid (k_valid), .out_ready (k_ready), .out_data (k_data),
+        .nx_valid (unused_nx_valid), .nx_data (unused_nx_data), .in_ready_cp (in_ready_cp));
+    wire unused_nx = ^{unused_nx_valid, unused_nx_data};
     generate
         if (RAM != 0) begin : g_ram
             cube4_ram_fifo #(.DATA_W (DATA_W), .DEPTH (DEPTH), .OUT_REG (OUT_REG)) u_q (

@@ -24,9 +24,14 @@
 //   can decide one cycle ahead what it will do with the item after the one
 //   it is offered (cube4_com_ahead: COM's read-after-write rule as a
 //   register). cube4_skid is this buffer without those two ports.
+//   in_ready is kept as READY_N register copies (cube4_prim_copies), all
+//   equal: copy 0 is in_ready, the others go to a producer whose stall
+//   enable reaches loads far apart (the front end's CFB: one per group of
+//   its advance's loads), so no one register drives them all.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
+//   READY_N       copies of in_ready (in_ready_cp).  Range 1..16.  Default 1.
 //
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
@@ -38,6 +43,7 @@
 //   clk, rst                 clock, synchronous active-high reset (empties it)
 //   in_valid/in_ready/in_data   input stream  (in_data: any format, DATA_W bits);
 //                            in_ready is a register
+//   in_ready_cp    out  [READY_N] copies of in_ready (copy 0 is in_ready)
 //   out_valid/out_ready/out_data output stream (same format)
 //   nx_valid, nx_data  out   the buffer holds a second item, behind the head on
 //                            out_data; that item (a 2:1 multiplexer after the
@@ -47,13 +53,16 @@
 // Bit growth and rounding: none (storage only).
 // =============================================================================
 module cube4_skid_peek #(
-    parameter integer DATA_W = 8
+    parameter integer DATA_W  = 8,
+    parameter integer READY_N = 1
 ) (
     `CUBE4_STREAM_PORTS(DATA_W),
-    output wire nx_valid, output wire [DATA_W-1:0] nx_data
+    output wire nx_valid, output wire [DATA_W-1:0] nx_data,
+    output wire [READY_N-1:0] in_ready_cp
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_skid_peek", "DATA_W", DATA_W, 1, 4096)
+        `CUBE4_RANGE(g_bad_ready_n, "cube4_skid_peek", "READY_N", READY_N, 1, 16)
     endgenerate
 
     reg              nonempty_q;     // at least one entry holds an item
@@ -110,14 +119,11 @@ module cube4_skid_peek #(
         end
     endgenerate
 
-    // in_ready: a register holding !full_q
+    // in_ready: a register holding !full_q, in READY_N kept copies
     wire full_d = (push && !pop) ? nonempty_q : ((pop && !push) ? 1'b0 : full_q);
-    reg  ready_q;
-    always @(posedge clk) begin
-        if (rst) ready_q <= 1'b1;
-        else     ready_q <= !full_d;
-    end
-    assign in_ready = ready_q;
+    cube4_prim_copies #(.N(READY_N), .RST_VAL(64'd1)) u_ready (
+        .clk(clk), .rst(rst), .d(!full_d), .q(in_ready_cp));
+    assign in_ready = in_ready_cp[0];
     assign out_valid = nonempty_q;
     assign nx_valid  = full_q;
 

@@ -389,8 +389,10 @@ module cube4_top #(
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
-                .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}));
-            wire unused_bits = ^{b_valid, smp_eos};
+                .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}),
+                .in_ready_cp (unused_ready_cp));
+            wire unused_ready_cp;       // (k_ready is its copy)
+            wire unused_bits = ^{b_valid, smp_eos, unused_ready_cp};
 `ifndef SYNTHESIS
             // a beat leaving SHA always finds its bits: they left the front end with
             // it and wait at most a few cycles (the skid, the FIFO's read), while the

@@ -64,7 +64,7 @@ module cube4_tri_cell_harness #(
         .clk(clk), .rst(rst), .start(start), .busy(unused_busy), .cfg(cfg), .cfg_addr(`CUBE4_ADDR_PACK),
         .rect_we(1'b0), .rect_addr({M_W{1'b0}}), .rect_data({RECT_W{1'b0}}),   // the fixed schedule
         `CUBE4_BEATS_IN_NONE, .req_bits(unused_bits), .req_eos(unused_eos), .req_eoss(unused_eoss),
-        .req_valid(c_valid), .req_ready(c_ready), .req_addr(c_req[TAG_W + P +: P * ADDR_W]),
+        .req_valid(c_valid), .req_ready({`CUBE4_CFB_ADV_N{c_ready}}), .req_addr(c_req[TAG_W + P +: P * ADDR_W]),
         .req_rden(c_req[TAG_W +: P]), .req_tag(c_req[0 +: TAG_W]));
     cube4_sim_stall #(.DATA_W(REQ_W), .STREAM(0)) u_stall_req (
         .clk(clk), .rst(rst), .seed(seed), .stall(stall_req), .in_valid(c_valid), .in_ready(c_ready),

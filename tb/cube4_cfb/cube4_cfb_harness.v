@@ -100,7 +100,7 @@ module cube4_cfb_harness #(
         .req_eos   (req_eos),
         .req_eoss  (req_eoss),
         .req_valid (req_valid),
-        .req_ready (req_ready),
+        .req_ready ({`CUBE4_CFB_ADV_N{req_ready}}),   // its copies, one per advance
         .req_addr  (req_addr),
         .req_rden  (req_rden),
         .req_tag   (tag)

@@ -23,7 +23,7 @@ module cube4_cfb_mask_harness #(
 );
     `CUBE4_HARNESS_VIEW
     cube4_stream_check #(.NAME ("cfb_mask.req"), .DATA_W (P + TAG_W)) u_chk_req (
-        .clk (clk), .rst (rst), .valid (req_valid), .ready (req_ready), .data ({req_rden, req_tag}));
+        .clk (clk), .rst (rst), .valid (req_valid), .ready (&req_ready), .data ({req_rden, req_tag}));
     cube4_cfb_mask #(`CUBE4_CFB_PASS) u_mask (.*);
 endmodule
 `default_nettype wire

@@ -92,7 +92,7 @@ async def play(dut, bench, trav, p: int, aw: int, table: list[dict], rects, off:
             dut.rt_cur.value = rect_word(b["_e"], layout)
         dut.t1.value = 0 if s1 is None else pack_lanes(s1["_t_rd"], max(1, (p - 1).bit_length()))
         ready = int(b is None or bench.rng.random() >= stall)
-        dut.req_ready.value = ready
+        dut.req_ready.value = ready * ((1 << len(dut.req_ready)) - 1)   # its equal copies
         await ReadOnly()
         if ready and int(dut.req_valid.value):
             got.append((int(dut.req_rden.value), int(dut.req_tag.value)))

@@ -10,13 +10,15 @@ Checked against a Python deque, every cycle:
 * full rate: with in_valid and out_ready high, one item in and one out on every cycle;
 * random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
 * the entry behind the head: nx_valid exactly when two items are held, nx_data the second
-  (the one out_data offers after the head), after every edge.
+  (the one out_data offers after the head), after every edge;
+* in_ready's copies (in_ready_cp, READY_N of them) all equal in_ready after every edge
+  ("in_ready_cp ... with in_ready ...": tried by loading copy 1 with full_d instead).
 
 The data registers and the read pointer's copies are kept per group of 64 bits: DATA_W =
 130 has three groups, each of whose bits the words below set (the sent count in the top
 bits); a group whose pointer copy missed a pop returns the other entry's bits there
 ("item N: RTL ..., model ...": tried by tying copy 2's select to copy 0's inverse).
-DATA_W 130 in make test; 1 and 64 in make regress.
+DATA_W 130 with three ready copies in make test; 1 and 64 in make regress.
 """
 
 from __future__ import annotations
@@ -55,6 +57,9 @@ class TB(QueueTB):
             assert int(d.nx_data.value) == held[1], \
                 f"nx_data = {int(d.nx_data.value):#x}, the second item is {held[1]:#x}"
         self.peeks += len(held) >= 2
+        n, cp = len(d.in_ready_cp), int(d.in_ready_cp.value)
+        assert cp == int(d.in_ready.value) * ((1 << n) - 1), \
+            f"in_ready_cp = {cp:#b} with in_ready {int(d.in_ready.value)} ({n} copies)"
         return flow
 
 
@@ -81,7 +86,7 @@ async def test_skid(dut):
                   tb.data_w, tb.q.got, tb.peeks)
 
 
-BUILDS = [dict(DATA_W=130), dict(DATA_W=1), dict(DATA_W=64)]
+BUILDS = [dict(DATA_W=130, READY_N=3), dict(DATA_W=1), dict(DATA_W=64)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))

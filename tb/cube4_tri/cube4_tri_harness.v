@@ -103,7 +103,7 @@ module cube4_tri_harness #(
         .req_eos   (unused_eos),
         .req_eoss  (unused_eoss),
         .req_valid (c_req_valid),
-        .req_ready (c_req_ready),
+        .req_ready ({`CUBE4_CFB_ADV_N{c_req_ready}}),   // its copies, one per advance
         .req_addr  (c_req[TAG_W + P +: P * ADDR_W]),
         .req_rden  (c_req[TAG_W +: P]),
         .req_tag   (c_req[0 +: TAG_W])
