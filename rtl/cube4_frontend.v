@@ -178,7 +178,7 @@ module cube4_frontend #(
     );
 
     // ---- BEATS = 1: each emitted beat's position bits and EOS wait beside the
-    // memory and TRI in a FIFO (a request that emits waits for its room), and
+    // memory and TRI in a FIFO (every request waits for room in it), and
     // leave with its sample beat. The FIFO is cube4_ram_fifo (OUT_REG): the
     // sample stream's ready, a register at the far end of the die (cube4_top's
     // skid buffer), reaches only its register queue, not the RAM's read
