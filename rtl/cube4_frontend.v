@@ -26,8 +26,8 @@
 //   (after the build's list)
 //   BITS_DEPTH   BEATS = 1: emitted beats in flight between the CFB and
 //                TRI's output (a power of two, the RAM of their bits' FIFO,
-//                whose register queue and two skid buffers hold 8 more; the
-//                requests wait beyond it).
+//                whose register queue and two skid buffers hold 8 more;
+//                every request, one that emits no beat too, waits beyond it).
 //                                                      4..1024. Default 64.
 //   Derived widths and the layouts of cfg, cfg_addr, the memory tag and the
 //   sample header: cube4_defs.vh.

@@ -7,7 +7,8 @@
 //   Two-entry skid buffer for a valid/ready stream whose in_ready is a
 //   register: cube4_skid_peek (which documents the buffer: its entries, the
 //   free flags and read-pointer copies per 64 data bits, full throughput)
-//   without the ports that show the entry behind the head.
+//   without the ports that show the entry behind the head and in_ready's
+//   copies.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.

@@ -5,8 +5,8 @@
 // -----------------------------------------------------------------------------
 // Purpose
 //   A first-in first-out queue whose two ends lie far apart on the die: a skid
-//   buffer (cube4_skid) beside the producer, the queue, and a skid buffer
-//   beside the consumer. in_ready is the front skid's register and out_ready
+//   buffer (cube4_skid_peek, its ready in READY_N copies) beside the
+//   producer, the queue, and a skid buffer (cube4_skid) beside the consumer. in_ready is the front skid's register and out_ready
 //   moves only the back skid's pointers, so neither end's handshake reaches
 //   the queue's count, its RAM's read enable or the other end in the same
 //   cycle: each route across the die starts and ends at a register. The

@@ -23,11 +23,12 @@
 //   The entry behind the head is visible too (nx_valid, nx_data): a consumer
 //   can decide one cycle ahead what it will do with the item after the one
 //   it is offered (cube4_com_ahead: COM's read-after-write rule as a
-//   register). cube4_skid is this buffer without those two ports.
+//   register).
 //   in_ready is kept as READY_N register copies (cube4_prim_copies), all
 //   equal: copy 0 is in_ready, the others go to a producer whose stall
 //   enable reaches loads far apart (the front end's CFB: one per group of
 //   its advance's loads), so no one register drives them all.
+//   cube4_skid is this buffer without nx_valid, nx_data and the copies.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.

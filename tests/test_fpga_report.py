@@ -286,7 +286,7 @@ def test_last_commit_matches_git():
 @pytest.mark.parametrize("name, unit", [
     ("u_com.g_lane[3].s9_wc_TRELLIS_FF_Q", "COM"),
     ("u_frontend.u_tri.g_lerp[0].u_x_l0", "TRI"),
-    ("u_frontend.u_req_skid.ready_q", "front end"),
+    ("u_frontend.u_req_skid.u_ready.u_copies.g_copy[2].q_q", "front end"),
     ("genblk13.g_gra.u_gra.u_x_p1.g_one_bank.u_ram", "GRA"),   # a unit inside a generate block
     ("g_gra.u_gra.win_q", "GRA"),
     ("sha_skew_LUT4_Z", None),                                  # a top-level net's name

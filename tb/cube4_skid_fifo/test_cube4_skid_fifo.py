@@ -11,7 +11,8 @@ Checked against a Python deque, every cycle:
 * full rate: with in_valid and out_ready high, an item enters and one leaves on every
   cycle (from empty after the first Q + 3 cycles; from full after the pops' room has
   passed the three registered readies back to the input: 3 cycles, 4 with block RAM);
-* random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra.
+* random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
+* in_ready's copies (in_ready_cp, READY_N) all equal in_ready after every edge.
 
 With either skid buffer replaced by wires the latency check fails ("an item into an empty
 queue is out after 1 edges, Q + 2 = 2"; tried for each). Both queue kinds in make test,
@@ -39,6 +40,14 @@ class TB(QueueTB):
         # back skid's registered ready, the queue's (block RAM: the read that makes room is
         # decided a cycle before its pop) and the front skid's
         self.from_full = 4 if ram else 3
+
+    async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
+        flow = await super().cycle(valid, ready)
+        d = self.dut
+        n, cp = len(d.in_ready_cp), int(d.in_ready_cp.value)
+        assert cp == int(d.in_ready.value) * ((1 << n) - 1), \
+            f"in_ready_cp = {cp:#b} with in_ready {int(d.in_ready.value)} ({n} copies)"
+        return flow
 
 
 @cocotb.test()
@@ -70,7 +79,7 @@ async def test_fifo(dut):
                   tb.data_w, tb.depth, tb.q.got, first_in)
 
 
-BUILDS = [dict(DATA_W=25, DEPTH=64, RAM=0), dict(DATA_W=34, DEPTH=64, RAM=1, OUT_REG=1),
+BUILDS = [dict(DATA_W=25, DEPTH=64, RAM=0), dict(DATA_W=34, DEPTH=64, RAM=1, OUT_REG=1, READY_N=5),
           dict(DATA_W=1, DEPTH=2, RAM=0), dict(DATA_W=70, DEPTH=4, RAM=1)]
 
 
