@@ -128,23 +128,30 @@ module cube4_cfb_decide #(
     reg              first_beat;           // j = 0 and pb = 0
     reg              last_pb;              // pb + RATE >= NB: the row's last group
     reg              last_j;               // j = NJ - 1
+    reg              last_beat;            // last_pb and last_j: the slice's last group
     wire [NB_W:0]    pb_r  = {1'b0, NB_W'(pb)} + (NB_W + 1)'(RATE);
     wire             lpb_0 = (NB_W + 1)'(RATE) >= {1'b0, nb};            // pb = 0
     wire             lpb_n = pb_r + (NB_W + 1)'(RATE) >= {1'b0, nb};    // pb + RATE
     wire             lj_0  = (nj == DIM_W'(1));                          // j = 0
     wire             lj_n  = (j + 1'b1 == nj - 1'b1);                    // j + 1
+    // the flags' next values at an issue
+    wire             lpb_nx = last_pb ? lpb_0 : lpb_n;
+    wire             lj_nx  = last_pb ? (last_j ? lj_0 : lj_n) : last_j;
     // reports_ok: m <= com_q + LAG, com_q being com_m a cycle late (a read a cycle
-    // after the last write). Its compares are made a cycle ahead, from com_m, for
-    // m as it stands and for m + 1 (m moves on by one at a slice's last issue:
-    // m_adv), so the issue starts at registers, not at a carry chain
-    reg              ok_m, ok_m1;          // m <= com_q + LAG, m + 1 <= com_q + LAG
-    reg              m_adv;                // m moved on at the last edge
+    // after the last write): a register, set from com_m's compares with m as it
+    // stands and with m + 1, chosen by whether m moves on at this edge (a
+    // slice's last issue), so the issue starts at registers, not at a carry chain
+    reg              reports_ok;
     wire [M_W:0]     com_lag = {1'b0, com_m} + (M_W + 1)'(LAG);
-    wire             reports_ok = m_adv ? ok_m1 : ok_m;
-    wire             drained    = !tiny || !first_beat || (v == '0);
+    wire             m_adv   = issue && last_beat;                    // m moves on at this edge
+    // v == 0 (no beat in the decisions' pipeline), a register: v's next value is
+    // {v[ND-1:1], issue}
+    reg              v_none;
+    wire             drained    = !tiny || !first_beat || v_none;
     wire             steps_ok   = !first_beat || have_st;
-    wire             issue = active && issuing && credit_ln && credit_bm && reports_ok && drained && steps_ok;
-    assign st_ready = active && issuing && first_beat && !have_st;
+    // (issuing implies active: set together at start, active cleared only after it)
+    wire             issue = issuing && credit_ln && credit_bm && reports_ok && drained && steps_ok;
+    assign st_ready = issuing && first_beat && !have_st;
     always @(posedge clk) begin
         if (rst) begin
             active  <= 1'b0;
@@ -162,6 +169,7 @@ module cube4_cfb_decide #(
             first_beat <= 1'b1;
             last_pb <= lpb_0;
             last_j <= lj_0;
+            last_beat <= lpb_0 && lj_0;
         end else begin
             if (st_valid && st_ready) begin
                 have_st <= 1'b1;
@@ -170,13 +178,12 @@ module cube4_cfb_decide #(
             end
             if (issue) begin
                 pb <= last_pb ? '0 : pb + PB_W'(RATE);
-                last_pb <= last_pb ? lpb_0 : lpb_n;
-                first_beat <= last_pb && last_j;
-                if (last_pb) begin
-                    j <= last_j ? '0 : j + 1'b1;
-                    last_j <= last_j ? lj_0 : lj_n;
-                end
-                if (last_pb && last_j) begin
+                last_pb <= lpb_nx;
+                last_j <= lj_nx;
+                last_beat <= lpb_nx && lj_nx;
+                first_beat <= last_beat;
+                if (last_pb) j <= last_j ? '0 : j + 1'b1;
+                if (last_beat) begin
                     m <= m + 1'b1;
                     // the voxel slice moves on after S sample slices
                     if (kr == 3'((1 << ss_log2) - 1)) begin
@@ -194,16 +201,21 @@ module cube4_cfb_decide #(
     end
     assign busy = active;
     always @(posedge clk) begin
-        m_adv <= !(rst || start) && issue && last_pb && last_j;
-        ok_m  <= (rst || start) || ({1'b0, m} <= com_lag);          // (at start: m = 0, com_q = 0)
-        ok_m1 <= {1'b0, M_W'(m + 1'b1)} <= com_lag;
+        // (at start: m = 0, com_q = 0)
+        reports_ok <= (rst || start) || (m_adv ? ({1'b0, M_W'(m + 1'b1)} <= com_lag) : ({1'b0, m} <= com_lag));
+        v_none     <= (rst || start) || ((v[ND-1:1] == '0) && !issue);
     end
 `ifndef SYNTHESIS
     always @(posedge clk) begin
         if (!rst && !start && active && issuing
-            && ({first_beat, last_pb, last_j} != {(j == '0) && (pb == '0), pb_r >= {1'b0, nb}, j == nj - 1'b1}))
-            $fatal(1, "cube4_cfb_decide: the flags {first, last pb, last j} %b differ from j %0d, pb %0d (NJ %0d, NB %0d)",
-                   {first_beat, last_pb, last_j}, j, pb, nj, nb);
+            && ({first_beat, last_pb, last_j, last_beat}
+                != {(j == '0) && (pb == '0), pb_r >= {1'b0, nb}, j == nj - 1'b1, (pb_r >= {1'b0, nb}) && (j == nj - 1'b1)}))
+            $fatal(1, "cube4_cfb_decide: the flags {first, last pb, last j, last beat} %b differ from j %0d, pb %0d (NJ %0d, NB %0d)",
+                   {first_beat, last_pb, last_j, last_beat}, j, pb, nj, nb);
+        if (!rst && issuing && !active)
+            $fatal(1, "cube4_cfb_decide: issuing without active");
+        if (!rst && !start && active && v_none != (v == '0))
+            $fatal(1, "cube4_cfb_decide: v_none %0d with v %b", v_none, v);
     end
     reg [M_W-1:0] com_q;                   // the compare the registers stand for
     always @(posedge clk) com_q <= (rst || start) ? '0 : com_m;
