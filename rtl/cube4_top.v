@@ -383,9 +383,11 @@ module cube4_top #(
             // (cube4_skid_fifo; block RAM behind GRA, registers otherwise)
             assign smp_valid    = s_valid && k_ready;
             assign s_ready      = smp_ready && k_ready;
-            // (with block RAM its output register: OUT_REG, as the front end's bits FIFO)
+            // (its read through a register, OUT_REG: block RAM's output register, or
+            // a skid after the distributed RAM's asynchronous read, which with the
+            // route to the back skid was the unshaded beat build's longest path)
             cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM ((SHADING != 0 && VGRAD == 0) ? 1 : 0),
-                              .OUT_REG ((SHADING != 0 && VGRAD == 0) ? 1 : 0)) u_bits (
+                              .OUT_REG (1)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
