@@ -255,7 +255,8 @@ module cube4_cfb #(
                 .in_valid(b_valid), .in_ready(b_ready), .in_pb(b_pb), .in_read(b_read), .in_leave(b_leave),
                 .in_tok(b_tok),
                 .in_eor(b_eor), .in_eos(b_eos), .in_last(b_last), .in_bits(b_bits),
-                .advance(advance[CFB_ADV_CTL]), .wx(wx), .wy(wy), .wz(wz), .steps(steps),
+                .advance(advance[CFB_ADV_CTL]), .advance_step(advance[CFB_ADV_STEP]),
+                .wx(wx), .wy(wy), .wz(wz), .steps(steps),
                 .idle(idle), .next_pass(next_pass), .r(r),
                 .issue(issue), .fields(fields), .use_prev(use_prev), .skew_out(skew_out),
                 .p_ilo(p_ilo), .p_iin(p_iin), .p_ihi(p_ihi), .rowv(rowv), .rowin(rowin), .rd(rd),
@@ -278,7 +279,7 @@ module cube4_cfb #(
             assign {req_eoss, req_eos, req_bits} = x_q;
             assign busy = mask_busy || busy_s || b_valid;
         end else begin : g_fixed
-            wire unused_adv_bits = advance[CFB_ADV_BITS];   // (the beat's bits: BEATS = 1 only)
+            wire unused_adv_bits = ^{advance[CFB_ADV_BITS], advance[CFB_ADV_STEP]};   // (BEATS = 1 only)
             // ==== control and traversal of the fixed, box and rectangle schedules ====
             wire              go, pass_done, pass_next, row, flush_row;
             wire [M_W-1:0]    m;

@@ -59,7 +59,10 @@
 //   multiplier's operand registers) and b (the state, the product). Both
 //   move under mv = the state is empty or taken (advance, cube4_cfb_mask's
 //   stall enable); in_ready = mv. The state's outputs are combinational
-//   from registers, and the three stages of cube4_cfb_mask follow.
+//   from registers, and the three stages of cube4_cfb_mask follow. The
+//   slice and row counters and the template's step (next_pass) take the
+//   beat by advance_step, an equal copy of advance (CFB_ADV_STEP), so that
+//   neither net reaches all of the unit's registers.
 //
 // Ports
 //   clk, rst     clock, synchronous active-high reset (the state and the
@@ -72,6 +75,7 @@
 //                in_tok, in_eor, in_eos, in_last, in_bits [4P] ({soon, last,
 //                fresh, run} of the leaving beat, cube4_cfb_skip)
 //   advance      in   the stages move (cube4_cfb_mask)
+//   advance_step in   an equal copy of advance for the counters (above)
 //   wx, wy, wz [W] (Q0.W), steps [4]  in  the template's (cube4_cfb_tmpl)
 //   idle, next_pass, r [CFB_R_W]  out  the template's controls (r = m mod S:
 //                its wz; idle also cube4_cfb_mask's)
@@ -95,7 +99,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     input  wire in_read, input wire in_leave, input wire in_tok, input wire in_eor, input wire in_eos,
     input  wire in_last,
     input  wire [4*P-1:0] in_bits,
-    input  wire advance,
+    input  wire advance, input wire advance_step,
     input  wire [WEIGHT_W-1:0] wx, input wire [WEIGHT_W-1:0] wy, input wire [WEIGHT_W-1:0] wz,
     input  wire [3:0] steps,
     output wire idle, output wire next_pass, output wire [CFB_R_W-1:0] r,
@@ -179,7 +183,13 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
     reg [3:0]          psteps_q;
     reg [LANE_W-1:0]   pskew_q;
 
-    wire run_take   = take && in_run;
+    wire run_take   = b_v && advance_step && in_run;   // take, from the counters' copy
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && advance != advance_step)
+            $fatal(1, "cube4_cfb_bctl: advance and its copy advance_step differ");
+    end
+`endif
     wire emit       = in_run && !(j0_q && m_q == '0);   // (tokens do not issue; no slice -1)
     wire reads      = in_run && b_read && !fl_q;        // the beat's voxel beat is needed
     // the pass (as cube4_cfb_trav): log2 S, which slice it reads from the memory
@@ -227,7 +237,7 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
             sbrow_q <= '0;
             sopp_q  <= 1'b1;
         end else begin
-            if (take && issue && emit) sopp_q <= 1'b0;
+            if (run_take && issue && emit) sopp_q <= 1'b0;
             if (row_step) begin
                 j_q     <= j_q + 1'b1;
                 j0_q    <= 1'b0;

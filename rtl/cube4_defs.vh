@@ -872,9 +872,11 @@
 // cube4_cfb's) and CUBE4_CFB_LAYOUT: the layouts past the geometry and the
 // view registers', CFB_R_W (bits of m mod S), CFB_F1_W (the tag without its
 // lane masks), CFB_ADV_N copies of the beat pipeline's advance (cube4_cfb_mask:
-// one per group of its loads, CFB_ADV_CTL the control and traversal,
-// CFB_ADV_BITS the beat's bits beside the stages (BEATS), CFB_ADV_ADDR the
-// address unit, CFB_ADV_MASK the mask's own stages), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
+// one per group of its loads, CFB_ADV_CTL the control and traversal (on the
+// beat schedule its two stages and state), CFB_ADV_BITS the beat's bits
+// beside the stages (BEATS), CFB_ADV_ADDR the address unit, CFB_ADV_MASK the
+// mask's own stages, CFB_ADV_STEP the beat control's slice and row counters
+// and the template's step (BEATS)), and the box's entry (cube4_cfb_box): CFB_BOX_FIXED marks the
 // fields it holds at a constant, CFB_BOX_CONST (SBROW = 1, the rest 0).
 // CUBE4_CFB_ADV_N is CFB_ADV_N, for the front end, which gives CFB its
 // request's ready as that many equal copies (one per advance).
@@ -883,14 +885,14 @@
 // (RECTS = 0) the box's constant fields are constants, so that synthesis sees
 // them past the units' boundaries. CUBE4_ADDR_FIELDS(bus): one wire
 // cfg_<name> per address register, read from the address bus (module body).
-`define CUBE4_CFB_ADV_N 4
+`define CUBE4_CFB_ADV_N 5
 `define CUBE4_CFB_BITS(W, POS) ((((RECT_W)'(1) << (W)) - (RECT_W)'(1)) << (POS))
 `define CUBE4_CFB_LAYOUT \
     `CUBE4_ADDR_LAYOUT, `CUBE4_TAG_LAYOUT, `CUBE4_RECT_LAYOUT, \
     localparam integer CFB_R_W  = (MAX_SS_LOG2 > 0) ? MAX_SS_LOG2 : 1, \
     localparam integer CFB_F1_W = TAG_W - 4 * P, \
     localparam integer CFB_ADV_N = `CUBE4_CFB_ADV_N, localparam integer CFB_ADV_CTL = 0, localparam integer CFB_ADV_BITS = 1, \
-    localparam integer CFB_ADV_ADDR = 2, localparam integer CFB_ADV_MASK = 3, \
+    localparam integer CFB_ADV_ADDR = 2, localparam integer CFB_ADV_MASK = 3, localparam integer CFB_ADV_STEP = 4, \
     localparam [RECT_W-1:0] CFB_BOX_CONST = (RECT_W)'(1) << RT_SBROW, \
     localparam [RECT_W-1:0] CFB_BOX_FIXED = `CUBE4_CFB_BITS(1, RT_EMPTY) | `CUBE4_CFB_BITS(DIM_W, RT_J0) \
         | `CUBE4_CFB_BITS(DIM_W, RT_JIN) | `CUBE4_CFB_BITS(PB_W, RT_PB0) | `CUBE4_CFB_BITS(2 * DIM_W, RT_ILO) \
