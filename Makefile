@@ -62,7 +62,7 @@ comma := ,
 # Parameter sets linted in addition to each module's defaults (generate
 # branches are only checked when elaborated). Sets are space-separated;
 # parameters within a set are comma-separated.
-LINT_SETS_cube4_lerp        := LATENCY=0 LATENCY=1 LATENCY=2 LATENCY=3 \
+LINT_SETS_cube4_lerp        := LATENCY=0 LATENCY=1 LATENCY=2 LATENCY=3 LATENCY=4 \
                                DATA_W=1,WEIGHT_W=1,LATENCY=1 DATA_W=16,WEIGHT_W=12,LATENCY=3
 LINT_SETS_cube4_mul         := A_W=2,B_W=2 A_W=17,B_W=9 A_W=25 A_W=32,B_W=32
 LINT_SETS_cube4_round_shift := SHIFT=0 IN_W=2,SHIFT=1 IN_W=64,SHIFT=63
@@ -83,7 +83,7 @@ LINT_SETS_cube4_tri_src     := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=16,MAX_DIM=2048,M
 LINT_SETS_cube4_tri_beam    := P=1 P=5,MAX_SS_LOG2=2,VGRAD=1 P=2,MAX_DIM=2 P=64,VOXEL_W=16,VGRAD=1,MAX_DIM=128 P=5,LABELS=1
 LINT_SETS_cube4_tri_meta    := P=1 P=5,MAX_SS_LOG2=2 P=16,WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 P=64,MAX_DIM=64
 LINT_SETS_cube4_tri_lane    := VGRAD=1 VOXEL_W=1,WEIGHT_W=4 VOXEL_W=16,WEIGHT_W=12,VGRAD=1 LABELS=1 VOXEL_W=16,WEIGHT_W=12,LABELS=1
-LINT_SETS_cube4_pick        := LATENCY=1 LATENCY=3 DATA_W=1,WEIGHT_W=1,LATENCY=2 DATA_W=16,WEIGHT_W=12,LATENCY=3
+LINT_SETS_cube4_pick        := LATENCY=1 LATENCY=3 LATENCY=4 DATA_W=1,WEIGHT_W=1,LATENCY=2 DATA_W=16,WEIGHT_W=12,LATENCY=3
 LINT_SETS_cube4_clip        := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3 \
                                SLAB=1 P=1,SLAB=1 P=5,MAX_SS_LOG2=2,SLAB=1
 LINT_SETS_cube4_plane       := $(subst $(comma)ADDR_W=24,,$(FE_SETS)) FAR=1 P=1,FAR=1 WEIGHT_W=12,MAX_DIM=2048,MAX_SS_LOG2=3,FAR=1

@@ -805,7 +805,8 @@
 //   CUBE4_TRI_PARAMS  the build parameters the top and its stages share, with the
 //                     geometry, tag, word and TRI layouts derived from them
 //   CUBE4_TRI_LAYOUT  (needs CUBE4_GEOMETRY and WEIGHT_W)
-//     TRI_LERP_LAT    stages of one lerp (cube4_lerp: b - a, the multiply, the add;
+//     TRI_LERP_LAT    stages of one lerp (cube4_lerp LATENCY 4: b - a, the multiply,
+//                     the product's fabric register, the add;
 //                     CUBE4_TRI_LERP_LAT where no geometry is in scope)
 //     TRI_CLIP_LAT    cube4_clip's latency from its fields to KEEP
 //     TRI_C_*         a beat's fields that ride s0 .. s3 as one word, LSB first:
@@ -848,7 +849,7 @@
     localparam integer GM_N   = 2 * (VOXEL_W + 5) * (1 << GM_MB) + 1, \
     localparam integer GMA_W  = $clog2(GM_N), \
     localparam integer GMF_W  = 9
-`define CUBE4_TRI_LERP_LAT 3
+`define CUBE4_TRI_LERP_LAT 4
 `define CUBE4_TRI_LAYOUT \
     localparam integer TRI_LERP_LAT = `CUBE4_TRI_LERP_LAT, \
     localparam integer TRI_CLIP_LAT = 5, \

@@ -13,7 +13,7 @@
 // Parameters
 //   DATA_W    width of the samples a, b, y.          Range 1..19.  Default 8.
 //   WEIGHT_W  width of the weight w.                  Range 1..12.  Default 8.
-//   LATENCY   clock cycles from inputs to y.          Range 0..3.   Default 0.
+//   LATENCY   clock cycles from inputs to y.          Range 0..4.   Default 0.
 //               0: combinational (clk and en unused).
 //               1: y registered.
 //               2: (b - a) * w and a registered, then y registered.
@@ -21,8 +21,12 @@
 //                  y: the multiplier is a cube4_mul (a DSP with its own
 //                  registers on an FPGA), a register on each side and no
 //                  other logic in series.
+//               4: as 3, with the product and a registered once more in
+//                  the fabric: the route out of the hard multiplier is a
+//                  cycle of its own, not in series with the add (and a
+//                  caller's logic on y_next, cube4_tri_lane's differences).
 //   DIFF_IN   1: the caller gives b - a (d), formed before the register a
-//             comes from (so with LATENCY 3 the multiplier's operand
+//             comes from (so with LATENCY 3, 4 the multiplier's operand
 //             register loads from a register, no subtractor in between);
 //             b is not used. 0: b - a is formed here, d is not used.
 //                                                    Range 0..1.   Default 0.
@@ -89,7 +93,7 @@ module cube4_lerp #(
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_lerp", "DATA_W", DATA_W, 1, 19)
         `CUBE4_RANGE(g_bad_weight_w, "cube4_lerp", "WEIGHT_W", WEIGHT_W, 1, 12)
-        `CUBE4_RANGE(g_bad_latency, "cube4_lerp", "LATENCY", LATENCY, 0, 3)
+        `CUBE4_RANGE(g_bad_latency, "cube4_lerp", "LATENCY", LATENCY, 0, 4)
         `CUBE4_RANGE(g_bad_diff_in, "cube4_lerp", "DIFF_IN", DIFF_IN, 0, 1)
     endgenerate
 
@@ -99,7 +103,8 @@ module cube4_lerp #(
     // ---- difference and product ----
     // LATENCY 3: the product is a cube4_mul (b - a and w into its operand
     // registers, its product register is the stage-1 register): on an FPGA a
-    // hard multiplier with its own registers. LATENCY 0..2: inferred here,
+    // hard multiplier with its own registers; LATENCY 4 registers that
+    // product (and a) once more in the fabric. LATENCY 0..2: inferred here,
     // with the product register for LATENCY 2. Both operands are extended to
     // PROD_W bits so the product is formed at the width it needs; the true
     // product fits PROD_W signed bits, so the modulo-2^PROD_W multiply is exact.
@@ -117,7 +122,7 @@ module cube4_lerp #(
     wire signed [PROD_W-1:0] prod_s1;
 
     generate
-        if (LATENCY == 3) begin : g_mul3
+        if (LATENCY >= 3) begin : g_mul3
             reg [DATA_W-1:0] a_q0, a_q1;
             always @(posedge clk) begin
                 if (en) begin
@@ -128,9 +133,22 @@ module cube4_lerp #(
             wire signed [PROD_W:0] p_full;     // one bit more than the product needs
             cube4_mul #(.A_W(DIFF_W), .B_W(WEIGHT_W + 1)) u_mul (
                 .clk (clk), .en (en), .a (diff_c), .b ($signed({1'b0, w})), .p (p_full));
-            assign a_s1    = a_q1;
-            assign prod_s1 = p_full[PROD_W-1:0];
             wire unused_p = p_full[PROD_W];
+            if (LATENCY == 4) begin : g_prod_reg
+                reg        [DATA_W-1:0] a_q2;
+                reg signed [PROD_W-1:0] p_q2;
+                always @(posedge clk) begin
+                    if (en) begin
+                        a_q2 <= a_q1;
+                        p_q2 <= p_full[PROD_W-1:0];
+                    end
+                end
+                assign a_s1    = a_q2;
+                assign prod_s1 = p_q2;
+            end else begin : g_prod_dsp
+                assign a_s1    = a_q1;
+                assign prod_s1 = p_full[PROD_W-1:0];
+            end
         end else begin : g_mul_inferred
             wire signed [PROD_W-1:0] diff_ext = {{WEIGHT_W{diff_c[DIFF_W-1]}}, diff_c};
             wire signed [PROD_W-1:0] w_ext    = $signed({{DIFF_W{1'b0}}, w});

@@ -14,7 +14,7 @@
 // Parameters
 //   DATA_W    width of a, b, y.                       1..16.  Default 4.
 //   WEIGHT_W  width of the weight w.                  1..12.  Default 8.
-//   LATENCY   clock cycles from inputs to y (as      0..3.   Default 0.
+//   LATENCY   clock cycles from inputs to y (as      0..4.   Default 0.
 //             cube4_lerp's: a, b and w are taken together).
 //
 // Latency
@@ -42,7 +42,7 @@ module cube4_pick #(
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_pick", "DATA_W", DATA_W, 1, 16)
         `CUBE4_RANGE(g_bad_weight_w, "cube4_pick", "WEIGHT_W", WEIGHT_W, 1, 12)
-        `CUBE4_RANGE(g_bad_latency, "cube4_pick", "LATENCY", LATENCY, 0, 3)
+        `CUBE4_RANGE(g_bad_latency, "cube4_pick", "LATENCY", LATENCY, 0, 4)
     endgenerate
 
     wire [DATA_W-1:0] y_comb = w[WEIGHT_W-1] ? b : a;

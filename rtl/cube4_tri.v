@@ -53,12 +53,12 @@
 //   Derived widths and the layouts of cfg, in_tag and out_hdr: cube4_defs.vh.
 //
 // Latency
-//   Fixed 14-stage pipeline (s0 .. s13) that moves on every cycle and carries a valid bit
+//   Fixed 17-stage pipeline (s0 .. s16) that moves on every cycle and carries a valid bit
 //   per stage (no stall enable): s0 input, s1 slice-buffer select, s2 beam
 //   buffer, s3 beam-extension hold (a beat waits there for the next beat, so
 //   the drain beat pushes out the last one), s4, then x-lerps, y-lerps and
-//   the z-lerp, TRI_LERP_LAT = 3 stages each (b - a, the multiply (b - a) * w,
-//   then the rounding add; the x-lerps' b - a is formed in the lanes from
+//   the z-lerp, TRI_LERP_LAT = 4 stages each (b - a, the multiply (b - a) * w,
+//   the product again in the fabric, then the rounding add; the x-lerps' b - a is formed in the lanes from
 //   s3's cell and registered with s4: cube4_tri_lane). The results are written into the output FIFO
 //   (cube4_credit_fifo, 32 entries), which is on out_* one cycle after the
 //   z-lerp's register. A beat enters s0 only when the FIFO has an entry
@@ -113,7 +113,7 @@ module cube4_tri #(
 
     localparam integer VW = WORD_W;
     localparam integer PV = P * VW;
-    localparam integer FIFO_DEPTH = 32;     // >= 18 cycles from s0 to the FIFO's read
+    localparam integer FIFO_DEPTH = 32;     // >= 21 cycles from s0 to the FIFO's read
 
     // Credit-based flow control (see Latency): the output FIFO's credit.
     wire credit;

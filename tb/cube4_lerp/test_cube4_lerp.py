@@ -256,16 +256,19 @@ PARAM_SETS = [
     {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 1},
     {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 1},  # smallest legal widths (exhaustive)
     {"DATA_W": 19, "WEIGHT_W": 12, "LATENCY": 2},  # largest legal widths (a gradient component at V = 16)
-    {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3},    # the TRI configuration
+    {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3},    # the multiplier's own registers only
     {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 3},
     {"DATA_W": 16, "WEIGHT_W": 12, "LATENCY": 3},
-    {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3, "DIFF_IN": 1},   # TRI's x-lerps
+    {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 3, "DIFF_IN": 1},
     {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 3, "DIFF_IN": 1},   # (exhaustive)
     {"DATA_W": 12, "WEIGHT_W": 4, "LATENCY": 0, "DIFF_IN": 1},
+    {"DATA_W": 8, "WEIGHT_W": 8, "LATENCY": 4, "DIFF_IN": 1},   # TRI's lerps
+    {"DATA_W": 1, "WEIGHT_W": 1, "LATENCY": 4, "DIFF_IN": 1},   # (exhaustive)
+    {"DATA_W": 16, "WEIGHT_W": 12, "LATENCY": 4},
 ]
 
 
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10, 15), ids=param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(9, 10, 15, 18), ids=param_id))
 def test_cube4_lerp(params):
     run_rtl(__file__, params)
 
@@ -288,7 +291,7 @@ def test_cube4_lerp_verilog_clock():
 
 @pytest.mark.parametrize(
     "params",
-    [{"DATA_W": 0}, {"DATA_W": 20}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 4}, {"DIFF_IN": 2}],
+    [{"DATA_W": 0}, {"DATA_W": 20}, {"WEIGHT_W": 0}, {"WEIGHT_W": 13}, {"LATENCY": 5}, {"DIFF_IN": 2}],
     ids=param_id,
 )
 def test_cube4_lerp_illegal_params(params):

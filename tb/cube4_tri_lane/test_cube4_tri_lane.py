@@ -33,7 +33,7 @@ from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import param_id, run_rtl, start_clock
 
 N = 400
-LAT = 3          # TRI_LERP_LAT (rtl/cube4_defs.vh)
+LAT = 4          # TRI_LERP_LAT (rtl/cube4_defs.vh)
 WX_LEAD, WY_DELAY, WZ_DELAY, OUT_DELAY = 1, LAT - 1, 2 * LAT - 1, 3 * LAT
 
 

@@ -34,7 +34,7 @@ from cube4_sim.beats import BeatSchedule, Geometry
 from cube4_sim.sweeps import sweep
 from cube4_sim.unit_bench import check_headers, param_id, random_clip, run_rtl, start_clock
 
-LAT, CLIP_LAT = 3, 5       # TRI_LERP_LAT, TRI_CLIP_LAT (rtl/cube4_defs.vh)
+LAT, CLIP_LAT = 4, 5       # TRI_LERP_LAT, TRI_CLIP_LAT (rtl/cube4_defs.vh)
 NL = 3 * LAT
 TAIL = 30
 # (direction, window / cut plane, gap probability)
