@@ -534,12 +534,14 @@ module cube4_top #(
         .out_valid (x_valid), .out_ready (x_ready));
     assign sha_take = x_valid && x_ready;
 
-    // BEATS = 1: SHA's beat and its bits pass a skid buffer into COM (which takes
-    // them through its own: two register stages on the route across the die).
-    // The steps and phases of the beat's slice (cube4_com_steps) are decided
-    // here, where the beat leaves SHA, and go with it, so no logic of them lies
-    // on that route (the beat schedule's cycles are measured, so the cycle of
-    // latency changes no prediction)
+    // SHA's beat (BEATS = 1: and its bits) pass a skid buffer into COM (which
+    // takes them through its own: two register stages on the route across the
+    // die; COM's input ready, its output FIFO's credit and its walk's hazard,
+    // reaches SHA's output FIFO from the skid's register, not across the die in
+    // one cycle: one cycle more a frame, in golden/cube4/cycles.py's fill).
+    // BEATS = 1: the steps and phases of the beat's slice (cube4_com_steps) are
+    // decided here, where the beat leaves SHA, and go with it, so no logic of
+    // them lies on that route
     localparam integer GEO_W = `CUBE4_GEO_W;     // cube4_com_steps' q_geo
     localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
     wire [HDR_W-1:0]          c_hdr;
@@ -560,11 +562,15 @@ module cube4_top #(
                 .in_data ({x_geo, sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
                 .out_data ({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
-        end else begin : g_com_direct
-            assign com_in_valid = x_valid;
-            assign x_ready      = com_in_ready;
-            assign {c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss} =
-                   {sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss};
+        end else begin : g_com_fixed
+            localparam integer XF_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W;
+            cube4_skid #(.DATA_W (XF_W)) u_com_skid (
+                .clk (clk), .rst (rst),
+                .in_valid (x_valid), .in_ready (x_ready),
+                .in_data ({sha_hdr, sha_rgba, sha_sample, sha_fall}),
+                .out_valid (com_in_valid), .out_ready (com_in_ready),
+                .out_data ({c_hdr, c_rgba, c_sample, c_fall}));
+            assign {c_bits, c_eoss} = {com_bits, com_eoss};     // (constants: no beats)
             assign x_geo = '0;
             assign c_geo = '0;
             wire unused_geo = ^x_geo;
