@@ -165,7 +165,7 @@ module cube4_cfb #(
 
     // ==== what the control gives the template, the address unit and the lane masks ====
     wire              idle, next_pass, issue;
-    wire [CFB_ADV_N-1:0] advance;       // copies: CFB_ADV_CTL, _BITS, _ADDR (CUBE4_CFB_LAYOUT)
+    wire [CFB_ADV_N-1:0] advance;       // copies: CFB_ADV_CTL, _BITS, _ADDR, _MASK, _STEP (CUBE4_CFB_LAYOUT)
     wire [CFB_F1_W-1:0] fields;
     wire              use_prev, rowv, rowin, rd;
     wire [LANE_W-1:0] skew_out, skew_rd;

@@ -212,8 +212,8 @@ module cube4_cfb_bctl #(`CUBE4_CFB_PARAMS) (
         end else begin
             case (state_q)
                 ST_IDLE:  if (go) state_q <= ST_RUN;
-                ST_RUN:   if (run_take && b_last) state_q <= ST_DRAIN;
-                          else if (run_take && (b_eos || b_eoss)) state_q <= ST_PUSH;
+                ST_RUN:   if (take && b_last) state_q <= ST_DRAIN;
+                          else if (take && (b_eos || b_eoss)) state_q <= ST_PUSH;
                 ST_DRAIN: if (advance) state_q <= ST_IDLE;    // one beat
                 ST_PUSH:  if (advance) state_q <= ST_RUN;     // one beat
                 default:  state_q <= ST_IDLE;

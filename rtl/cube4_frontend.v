@@ -35,7 +35,7 @@
 // Latency
 //   A frame: (M * NJ + 1) * NB + 1 request beats (M = (NK-1) * S + 1 passes,
 //   NB = ceil(NI / P)), i.e. NI*NJ*NK/P cycles plus padding of the last
-//   partial beam, one flush beam and the pipeline fill (22 cycles in
+//   partial beam, one flush beam and the pipeline fill (26 cycles in
 //   tb/cube4_frontend, whose harness adds a cycle on the request and on the
 //   response path), when no port stalls. With slice rectangles (RECTS = 1):
 //   SliceRects.beats request beats plus one cycle per empty slice before the

@@ -18,8 +18,9 @@ Checked against a Python deque, every cycle:
 * in_ready's copies (in_ready_cp, READY_N) all equal in_ready after every edge.
 
 With either skid buffer replaced by wires the latency check fails ("an item into an empty
-queue is out after 1 edges, Q + 2 = 2"; tried for each). Both queue kinds in make test,
-the smallest of each in make regress.
+queue is out after 1 edges, Q + 2 = 2"; tried for each). The two queues cube4_top and the
+front end use (distributed RAM with its output skid, block RAM) in make test; the plain
+distributed-RAM queue and the smallest of each in make regress.
 """
 
 from __future__ import annotations
