@@ -11,9 +11,7 @@
 //   the queue's count, its RAM's read enable or the other end in the same
 //   cycle: each route across the die starts and ends at a register. The
 //   queue is in block RAM behind a register queue (cube4_ram_fifo) or in
-//   distributed RAM (cube4_sync_fifo; with OUT_REG its asynchronous read into
-//   a skid buffer beside it, so that read does not share a cycle with the
-//   route to the consumer's skid). The beat schedule's position bits
+//   distributed RAM (cube4_sync_fifo). The beat schedule's position bits
 //   wait in two of them (cube4_frontend: beside the memory and TRI;
 //   cube4_top: beside GRA and SHA).
 //
@@ -23,20 +21,18 @@
 //            RAM = 0: 2..1024.                                          Default 64.
 //   RAM      1: the queue in block RAM (cube4_ram_fifo), 0: in distributed
 //            RAM (cube4_sync_fifo).                         0..1.     Default 0.
-//   OUT_REG  RAM = 1: the RAM's output register (cube4_ram_fifo OUT_REG);
-//            RAM = 0: a skid buffer (cube4_skid) after the distributed
-//            RAM's read.                                    0..1.     Default 0.
+//   OUT_REG  RAM = 1: the RAM's output register (cube4_ram_fifo OUT_REG).
+//            0..1.                                                      Default 0.
 //   READY_N  copies of in_ready (in_ready_cp; the front skid's,
 //            cube4_skid_peek).                              1..16.    Default 1.
 //
 // Latency
 //   Into an empty queue an item is on out_valid Q + 2 edges after the edge
-//   that took it: one per skid buffer and the queue's Q (cube4_sync_fifo:
-//   OUT_REG, it is on its output right after the edge that wrote it, then
-//   in the skid after it; cube4_ram_fifo: L + 1, L = 1 + OUT_REG, its RAM's
-//   read and its register queue). Full rate: one item in and one out per
-//   cycle. It holds DEPTH + 4 items (RAM = 0, OUT_REG = 1: DEPTH + 6;
-//   RAM = 1: DEPTH + L + 6, the register queue's L + 2 as well).
+//   that took it: one per skid buffer and the queue's Q (cube4_sync_fifo: 0,
+//   it is on its output right after the edge that wrote it; cube4_ram_fifo:
+//   L + 1, L = 1 + OUT_REG, its RAM's read and its register queue). Full
+//   rate: one item in and one out per cycle. It holds DEPTH + 4 items
+//   (RAM = 1: DEPTH + L + 6, the register queue's L + 2 as well).
 //
 // Ports
 //   clk, rst                     clock, synchronous active-high reset (empties it)
@@ -59,7 +55,9 @@ module cube4_skid_fifo #(
 );
     generate
         `CUBE4_RANGE(g_bad_ram, "cube4_skid_fifo", "RAM", RAM, 0, 1)
-        `CUBE4_RANGE(g_bad_out_reg, "cube4_skid_fifo", "OUT_REG", OUT_REG, 0, 1)
+        if (RAM == 0 && OUT_REG != 0) begin : g_bad_out_reg
+            $error("cube4_skid_fifo: OUT_REG = 1 needs RAM = 1 (the block RAM's output register)");
+        end
     endgenerate
     wire              k_valid, k_ready, f_valid, f_ready;
     wire [DATA_W-1:0] k_data, f_data;
@@ -77,18 +75,6 @@ module cube4_skid_fifo #(
             cube4_ram_fifo #(.DATA_W (DATA_W), .DEPTH (DEPTH), .OUT_REG (OUT_REG)) u_q (
                 .clk (clk), .rst (rst),
                 .in_valid (k_valid), .in_ready (k_ready), .in_data (k_data),
-                .out_valid (f_valid), .out_ready (f_ready), .out_data (f_data));
-        end else if (OUT_REG != 0) begin : g_regs_out
-            wire              r_valid, r_ready;
-            wire [DATA_W-1:0] r_data;
-            cube4_sync_fifo #(.DATA_W (DATA_W), .DEPTH (DEPTH)) u_q (
-                .clk (clk), .rst (rst),
-                .in_valid (k_valid), .in_ready (k_ready), .in_data (k_data),
-                .out_valid (r_valid), .out_ready (r_ready), .out_data (r_data));
-            // the read lands in registers beside the RAM
-            cube4_skid #(.DATA_W (DATA_W)) u_rd (
-                .clk (clk), .rst (rst),
-                .in_valid (r_valid), .in_ready (r_ready), .in_data (r_data),
                 .out_valid (f_valid), .out_ready (f_ready), .out_data (f_data));
         end else begin : g_regs
             cube4_sync_fifo #(.DATA_W (DATA_W), .DEPTH (DEPTH)) u_q (

@@ -349,17 +349,20 @@ module cube4_top #(
 
     // BEATS = 1: each sample beat's bits into a FIFO as it leaves the front end
     // (it waits for room), out as the beat enters COM (GRA and SHA keep the order
-    // and count). GRA holds a slice and two rows of beats (cube4_gra_beats: a
-    // centre leaves at its X-step), so with GRA (shading, not VGRAD) the FIFO is in block RAM,
+    // and count; the beat waits at SHA's output until its bits are there). GRA
+    // holds a slice and two rows of beats (cube4_gra_beats: a centre leaves at
+    // its X-step), so with GRA (shading, not VGRAD) the FIFO is
     // (MAX_DIM + 2) * NBMAX beats and 128 for the pipelines, rounded up to a
-    // power of two; never full while a beat waits in GRA for the next ones. The
-    // bits wait packed (3P bits a beat, CUBE4_RAY_BITS_FUNCTIONS).
+    // power of two; never full while a beat waits in GRA for the next ones;
+    // otherwise 64. The bits wait packed (3P bits a beat,
+    // CUBE4_RAY_BITS_FUNCTIONS).
     `CUBE4_RAY_BITS_FUNCTIONS
     localparam integer BITS_DEPTH = (SHADING != 0 && VGRAD == 0) ? (1 << $clog2((MAX_DIM + 2) * NBMAX + 128)) : 64;
     wire [4*P-1:0] com_bits;
     wire           com_eoss;       // the beat is the last of its sample slice
     wire           com_in_take;
     wire           sha_take;       // SHA's beat leaves (its bits leave their FIFO with it)
+    wire           com_bits_valid; // the bits of SHA's beat are at their FIFO's output
     generate
         if (BEATS != 0) begin : g_bits
             // the front end's sample beats pass a skid buffer: its ready (TRI's FIFO
@@ -383,29 +386,19 @@ module cube4_top #(
             // (cube4_skid_fifo; block RAM behind GRA, registers otherwise)
             assign smp_valid    = s_valid && k_ready;
             assign s_ready      = smp_ready && k_ready;
-            // (its read through a register, OUT_REG: block RAM's output register, or
-            // a skid after the distributed RAM's asynchronous read, which with the
-            // route to the back skid was the unshaded beat build's longest path)
-            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM ((SHADING != 0 && VGRAD == 0) ? 1 : 0),
-                              .OUT_REG (1)) u_bits (
+            // (the RAM's word through its output register, OUT_REG: at 64 words,
+            // without GRA, the vendor layer makes it distributed RAM read into
+            // flip-flops, whose asynchronous read with the route to the back skid
+            // was the unshaded beat build's longest path)
+            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
                 .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}),
                 .in_ready_cp (unused_ready_cp));
             wire unused_ready_cp;       // (k_ready is its copy)
-            wire unused_bits = ^{b_valid, smp_eos, unused_ready_cp};
-`ifndef SYNTHESIS
-            // a beat leaving SHA always finds its bits: they left the front end with
-            // it and wait at most a few cycles (the skid, the FIFO's read), while the
-            // beat passes GRA and SHA
-            always @(posedge clk) begin
-                if (!rst && sha_take && !b_valid) begin
-                    $error("cube4_top: a beat left SHA before its position bits reached their FIFO");
-                    $fatal(1, "cube4_top: beat bits out of step");
-                end
-            end
-`endif
+            wire unused_bits = ^{smp_eos, unused_ready_cp};
+            assign com_bits_valid = b_valid;
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;
             assign fe_smp_ready = smp_ready;
@@ -413,6 +406,7 @@ module cube4_top #(
                    {fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss};
             assign com_bits     = '0;
             assign com_eoss     = 1'b0;
+            assign com_bits_valid = 1'b1;
             wire unused_bits = ^{smp_bits, smp_eos, smp_eoss, com_in_take, sha_take, blk_we, blk_addr, blk_data, com_m,
                                  com_rep_valid, com_rep_j, com_rep_pb, com_rep_stx, com_rep_sty,
                                  com_rep_en, com_rep_end};
@@ -556,9 +550,14 @@ module cube4_top #(
             cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
                 .clk (clk), .rst (rst), .cfg (cfg),
                 .q_push (x_valid && x_ready), .q_hdr (sha_hdr), .q_eoss (com_eoss), .q_geo (x_geo));
+            // the beat leaves SHA with its bits: a join of the two streams (a beat
+            // that left SHA without GRA (unshaded, VGRAD) can be ahead of its
+            // bits, which pass three registers and the FIFO's RAM read)
+            wire xk_ready;
+            assign x_ready = xk_ready && com_bits_valid;
             cube4_skid #(.DATA_W (XC_W)) u_com_skid (
                 .clk (clk), .rst (rst),
-                .in_valid (x_valid), .in_ready (x_ready),
+                .in_valid (x_valid && com_bits_valid), .in_ready (xk_ready),
                 .in_data ({x_geo, sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
                 .out_data ({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
@@ -571,6 +570,7 @@ module cube4_top #(
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
                 .out_data ({c_hdr, c_rgba, c_sample, c_fall}));
             assign {c_bits, c_eoss} = {com_bits, com_eoss};     // (constants: no beats)
+            wire unused_bits_valid = com_bits_valid;
             assign x_geo = '0;
             assign c_geo = '0;
             wire unused_geo = ^x_geo;

@@ -4,23 +4,19 @@ Checked against a Python deque, every cycle:
 
 * items come out in order, none lost, none duplicated, data held while out_ready is low;
 * latency: into an empty queue an item is on out_valid Q + 2 edges after the edge that
-  took it (Q = OUT_REG for the distributed-RAM queue, L + 1 for the block-RAM one,
-  L = 1 + OUT_REG);
-* capacity: with out_ready low for long, it takes exactly DEPTH + 4 items (distributed RAM
-  with OUT_REG: DEPTH + 6; block RAM: DEPTH + L + 6), then in_ready stays low; nothing is
-  lost when it drains;
+  took it (Q = 0 for the distributed-RAM queue, L + 1 for the block-RAM one, L = 1 + OUT_REG);
+* capacity: with out_ready low for long, it takes exactly DEPTH + 4 items (block RAM:
+  DEPTH + L + 6), then in_ready stays low; nothing is lost when it drains;
 * in_ready is a register: within a cycle it does not follow out_ready;
 * full rate: with in_valid and out_ready high, an item enters and one leaves on every
   cycle (from empty after the first Q + 3 cycles; from full after the pops' room has
-  passed the registered readies back to the input: 3 cycles, 4 with block RAM or the
-  distributed RAM's output skid);
+  passed the three registered readies back to the input: 3 cycles, 4 with block RAM);
 * random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
 * in_ready's copies (in_ready_cp, READY_N) all equal in_ready after every edge.
 
 With either skid buffer replaced by wires the latency check fails ("an item into an empty
-queue is out after 1 edges, Q + 2 = 2"; tried for each). The two queues cube4_top and the
-front end use (distributed RAM with its output skid, block RAM) in make test; the plain
-distributed-RAM queue and the smallest of each in make regress.
+queue is out after 1 edges, Q + 2 = 2"; tried for each). Both queue kinds in make test,
+the smallest of each in make regress.
 """
 
 from __future__ import annotations
@@ -38,13 +34,12 @@ class TB(QueueTB):
         super().__init__(dut)
         self.depth, ram, out_reg = top_params(dut, "DEPTH", "RAM", "OUT_REG")
         lat = 1 + out_reg
-        self.q_lat = lat + 1 if ram else out_reg              # the queue's own edges
-        self.cap = self.depth + 4 + (lat + 2 if ram else 2 * out_reg)
+        self.q_lat = lat + 1 if ram else 0                    # the queue's own edges
+        self.cap = self.depth + 4 + (lat + 2 if ram else 0)
         # cycles from full until the first item enters at full rate: the pops' room passes the
         # back skid's registered ready, the queue's (block RAM: the read that makes room is
-        # decided a cycle before its pop; distributed RAM with OUT_REG: its output skid's) and
-        # the front skid's
-        self.from_full = 4 if ram or out_reg else 3
+        # decided a cycle before its pop) and the front skid's
+        self.from_full = 4 if ram else 3
 
     async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
         flow = await super().cycle(valid, ready)
@@ -84,8 +79,7 @@ async def test_fifo(dut):
                   tb.data_w, tb.depth, tb.q.got, first_in)
 
 
-BUILDS = [dict(DATA_W=25, DEPTH=64, RAM=0, OUT_REG=1), dict(DATA_W=34, DEPTH=64, RAM=1, OUT_REG=1, READY_N=5),
-          dict(DATA_W=25, DEPTH=64, RAM=0),
+BUILDS = [dict(DATA_W=25, DEPTH=64, RAM=0), dict(DATA_W=34, DEPTH=64, RAM=1, OUT_REG=1, READY_N=5),
           dict(DATA_W=1, DEPTH=2, RAM=0), dict(DATA_W=70, DEPTH=4, RAM=1)]
 
 
