@@ -118,6 +118,8 @@ module cube4_lerp #(
             wire unused_d = ^d;
         end
     endgenerate
+    wire        [DATA_W-1:0] a_m;        // the product and its a, before the product register
+    wire signed [PROD_W-1:0] prod_m;
     wire        [DATA_W-1:0] a_s1;
     wire signed [PROD_W-1:0] prod_s1;
 
@@ -133,41 +135,31 @@ module cube4_lerp #(
             wire signed [PROD_W:0] p_full;     // one bit more than the product needs
             cube4_mul #(.A_W(DIFF_W), .B_W(WEIGHT_W + 1)) u_mul (
                 .clk (clk), .en (en), .a (diff_c), .b ($signed({1'b0, w})), .p (p_full));
+            assign a_m    = a_q1;
+            assign prod_m = p_full[PROD_W-1:0];
             wire unused_p = p_full[PROD_W];
-            if (LATENCY == 4) begin : g_prod_reg
-                reg        [DATA_W-1:0] a_q2;
-                reg signed [PROD_W-1:0] p_q2;
-                always @(posedge clk) begin
-                    if (en) begin
-                        a_q2 <= a_q1;
-                        p_q2 <= p_full[PROD_W-1:0];
-                    end
-                end
-                assign a_s1    = a_q2;
-                assign prod_s1 = p_q2;
-            end else begin : g_prod_dsp
-                assign a_s1    = a_q1;
-                assign prod_s1 = p_full[PROD_W-1:0];
-            end
         end else begin : g_mul_inferred
             wire signed [PROD_W-1:0] diff_ext = {{WEIGHT_W{diff_c[DIFF_W-1]}}, diff_c};
             wire signed [PROD_W-1:0] w_ext    = $signed({{DIFF_W{1'b0}}, w});
-            wire signed [PROD_W-1:0] prod     = diff_ext * w_ext;
-            if (LATENCY == 2) begin : g_stage1_reg
-                reg        [DATA_W-1:0] a_q;
-                reg signed [PROD_W-1:0] prod_q;
-                always @(posedge clk) begin
-                    if (en) begin
-                        a_q    <= a;
-                        prod_q <= prod;
-                    end
+            assign a_m    = a;
+            assign prod_m = diff_ext * w_ext;
+        end
+        // LATENCY 2: the inferred product's register; 4: the hard multiplier's
+        // product registered again in the fabric
+        if (LATENCY == 2 || LATENCY == 4) begin : g_stage1_reg
+            reg        [DATA_W-1:0] a_q;
+            reg signed [PROD_W-1:0] prod_q;
+            always @(posedge clk) begin
+                if (en) begin
+                    a_q    <= a_m;
+                    prod_q <= prod_m;
                 end
-                assign a_s1    = a_q;
-                assign prod_s1 = prod_q;
-            end else begin : g_stage1_comb
-                assign a_s1    = a;
-                assign prod_s1 = prod;
             end
+            assign a_s1    = a_q;
+            assign prod_s1 = prod_q;
+        end else begin : g_stage1_comb
+            assign a_s1    = a_m;
+            assign prod_s1 = prod_m;
         end
     endgenerate
 
