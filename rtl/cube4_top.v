@@ -74,7 +74,8 @@
 //                the front end's sample beats pass a skid buffer (one cycle);
 //                COM takes each beat's position bits (a FIFO beside GRA and
 //                SHA, between two skid buffers: in block RAM, a slice and two
-//                rows of beats deep, with shading) and each beat's slice steps
+//                rows of beats deep, with shading; the beat waits at SHA's
+//                output for its bits) and each beat's slice steps
 //                (cube4_com_steps, where the beat leaves SHA, through two skid
 //                buffers), ends the rays and reports
 //                the done ones back (view registers BB_*, NBR, TERM, TAU,
@@ -383,7 +384,7 @@ module cube4_top #(
             // they leave through its skid beside SHA's output, which the beat's
             // departure (sha_take) pops: the FIFO's ready and GRA's, registers at
             // either end of the die, each reach only the logic beside them
-            // (cube4_skid_fifo; block RAM behind GRA, registers otherwise)
+            // (cube4_skid_fifo; block RAM behind GRA, distributed RAM otherwise)
             assign smp_valid    = s_valid && k_ready;
             assign s_ready      = smp_ready && k_ready;
             // (the RAM's word through its output register, OUT_REG: at 64 words,
