@@ -106,7 +106,6 @@ def test_another_build_needs_its_own_report(capsys):
 
 
 def test_md_only_rewrites_from_the_last_run_with_the_fpga_results_of_now(tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(scenes, "BUILD_REPORTS", tmp_path)
     monkeypatch.setattr(scenes, "DOC_REPORTS", tmp_path / "docs")
     monkeypatch.setattr(fmax, "REPORTS", tmp_path / "store")
     assert scenes.main(["--md-only"]) == 2 and "run make scenes first" in capsys.readouterr().err
@@ -116,7 +115,8 @@ def test_md_only_rewrites_from_the_last_run_with_the_fpga_results_of_now(tmp_pat
     row = {"scene": "head", "volume": "head:64", "mode": "composite", "shaded": True, "crop": None, "cut": False,
            "build": full, "widths": dict(scenes.DEFAULT_WIDTHS), "gradient": "gra", "cycles": 137700,
            "cycles_full": 137700, "cycles_fixed": 200000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3}
-    (tmp_path / "scenes.json").write_text(json.dumps({"p": 8, "max_dim": 128, "scenes": [row], "modes": [],
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "scenes.json").write_text(json.dumps({"p": 8, "max_dim": 128, "scenes": [row], "modes": [],
                                                       "builds": scenes.build_records(recs), "git": "abc",
                                                       "rtl_digest": "d", "rtl_commit": "abc1234"}))
     assert scenes.main(["--md-only"]) == 0

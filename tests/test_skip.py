@@ -221,9 +221,10 @@ def test_skip_flag_and_streams():
         render_golden_view(big, dataclasses.replace(sparse, subpixel=2), cfg, keep_streams=True)
 
 
-def test_skipping_report_rows():
+def test_skipping_report_rows(tmp_path):
     """make skipping's measurement on a small volume: four views, images identical, the
-    cycles of both schedules, and its Markdown."""
+    cycles of both schedules, and its Markdown; --md-only rewrites it from the run's JSON
+    beside it (committed under reports/, so that a clone can)."""
     from cube4_reports import skipping
 
     rows = skipping.measure("sphere:24", "default", True)
@@ -241,6 +242,13 @@ def test_skipping_report_rows():
     dram = skipping.write_md(rows, None, {"git": "test"}, None, [dict(frame, schedule="box")])
     line = next(x for x in dram.splitlines() if x.startswith("| box |"))
     assert line.startswith("| box | 1,000 | 2,000 | 0.500 |") and "| 10 / 20 / 970 | DIFFERENT |" in line
+    with pytest.raises(SystemExit, match="run make skipping first"):
+        skipping.main(["--md-only", "--out", str(tmp_path)])
+    run = {"meta": {"git": "test"}, "rows": rows, "rtl": None, "rtl_rects": None, "rtl_dram": None,
+           "front_end": [], "beats": [], "taus": [], "blocks": [], "rtl_beats": []}
+    (tmp_path / "skipping.json").write_text(json.dumps(run))
+    assert skipping.main(["--md-only", "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "skipping.md").read_text() == text
 
 
 @pytest.mark.parametrize("d", VIEWS)

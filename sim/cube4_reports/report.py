@@ -14,7 +14,8 @@ S, weight bits W, accumulator bits F, pipelines p) and every volume/scene pair i
   (its options, word widths and P; cube4_reports.fmax reads the place-and-route results
   committed under reports/), or says the build was not measured: no Fmax is borrowed.
 
-Outputs: ``<out>/error_vs_runtime.{md,csv,png}`` and build/reports/error_vs_runtime.json;
+Outputs: ``<out>/error_vs_runtime.{md,csv,png,json}`` (the JSON: the run's rows, from which
+``--tables-only`` rewrites the rest; committed beside the tables so that a clone can);
 the Verilator/cocotb output goes to build/reports/error_vs_runtime.log.
 
 ``--no-rtl`` takes the cycles from the formula of docs/architecture.md with the empty-space box's dims instead (marked
@@ -956,10 +957,9 @@ def run(quick: bool, use_rtl: bool, out_dir: Path, term: TextIO) -> tuple[list[R
 
 
 def json_path(out_dir: Path) -> Path:
-    """The run's data: build/reports/ for the default --out, else beside the tables (so
-    that a trial run elsewhere does not replace the data behind reports/)."""
-    same = out_dir.resolve() == DEFAULT_OUT.resolve()
-    return REPORTS_BUILD / f"{STEM}.json" if same else out_dir / f"{STEM}.json"
+    """The run's data, beside its tables (committed under reports/ with them, so that
+    ``--tables-only`` works on a clone)."""
+    return out_dir / f"{STEM}.json"
 
 
 def write_outputs(rows: list[Row], meta: dict, out_dir: Path) -> list[Path]:
@@ -1006,11 +1006,10 @@ def _parser() -> argparse.ArgumentParser:
                     help="no Verilator: cycles from the formula of docs/architecture.md with the empty-space box's dims (marked 'formula')")
     ap.add_argument("--tables-only", action="store_true",
                     help="render nothing: rewrite the tables and plot from the last run into --out "
-                         "(build/reports/error_vs_runtime.json) with the builds' Fmax as measured now (reports/fpga*.json)")
+                         "(error_vs_runtime.json in --out) with the builds' Fmax as measured now (reports/fpga*.json)")
     ap.add_argument("--out", default=str(DEFAULT_OUT),
                     help="folder for error_vs_runtime.{md,csv,png} (default: reports/ of the repository, "
-                         "with the data in build/reports/error_vs_runtime.json; elsewhere the JSON goes "
-                         "into the folder too)")
+                         "with the run's data beside them in error_vs_runtime.json)")
     return ap
 
 

@@ -23,11 +23,12 @@ plane checked against the golden engine's). The full build (no BEATS) runs the b
 cycles are the formula of ``cube4.cycles`` (which tb/cube4_top holds every build to). The
 mode matrix runs every scene's box schedule.
 
-    python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (minutes)
+    python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (hours here)
     python -m cube4_reports.scenes --place       # and place and route every build not measured yet
                                                  # (3 seeds each, about 40 min a build), then the report
 
-Results: build/reports/scenes.json and reports/scenes.md; --place writes each build's
+Results: reports/scenes.json (the run, from which --md-only rewrites the Markdown) and
+reports/scenes.md; --place writes each build's
 place and route to reports/fpga/<build>.{md,json}.
 """
 
@@ -52,7 +53,7 @@ from cube4.app.labelmaps import with_labels
 from . import fmax as fmax_store
 from . import fpga, gates
 from .markdown import fmt_int, git_describe, last_commit, md_table
-from .synth import BUILD_REPORTS, DOC_REPORTS, cli_main, design_digest, progress, write_report
+from .synth import DOC_REPORTS, cli_main, design_digest, progress, write_report
 
 TAG = "scenes"
 P = 8
@@ -469,7 +470,7 @@ def place_missing(recs: list[dict]) -> None:
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.scenes", description=__doc__.splitlines()[0])
     ap.add_argument("--md-only", action="store_true",
-                    help="render nothing: rewrite scenes.md from the last run (build/reports/scenes.json) with "
+                    help="render nothing: rewrite scenes.md from the last run (reports/scenes.json) with "
                          "each build's place and route as measured now")
     ap.add_argument("--place", action="store_true",
                     help="place and route each build not measured yet (P = 8, seeds 1, 2, 3; about 40 min a "
@@ -478,9 +479,9 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
 
 
 def rewrite(t0: float) -> None:
-    """--md-only: scenes.md from the last run's build/reports/scenes.json, each build's ECP5
+    """--md-only: scenes.md from the last run's reports/scenes.json, each build's ECP5
     figures and frame times as measured now (cube4_reports.fmax)."""
-    path = BUILD_REPORTS / "scenes.json"
+    path = DOC_REPORTS / "scenes.json"
     try:
         data = json.loads(path.read_text())
         rows, matrix, builds = data["scenes"], data["modes"], data["builds"]
@@ -529,7 +530,7 @@ def run(args: argparse.Namespace) -> None:
         recs = [ecp5(r, measured) for r in recs]
     meta = {"git": git_describe(), "rtl_digest": design_digest(), "rtl_commit": last_commit()}
     report = {"p": P, "max_dim": MAX_DIM, "scenes": rows, "modes": matrix, "builds": build_records(recs), **meta}
-    write_report(TAG, report, BUILD_REPORTS / "scenes.json", render_markdown(rows, recs, meta, matrix),
+    write_report(TAG, report, DOC_REPORTS / "scenes.json", render_markdown(rows, recs, meta, matrix),
                  DOC_REPORTS / "scenes.md", t0)
 
 

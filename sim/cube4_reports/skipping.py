@@ -1,5 +1,6 @@
 """Empty-space skipping on real content: ``make skipping`` (``python -m
-cube4_reports.skipping``) writes reports/skipping.md and build/reports/skipping.json.
+cube4_reports.skipping``) writes reports/skipping.md and reports/skipping.json (the run's
+figures, from which ``--md-only`` rewrites the Markdown).
 
 For each volume and a scene a user would pick, at several views, the box schedule of
 ``cube4.skip``: the box, its share of the voxels, the cycles per frame it takes (the
@@ -540,14 +541,14 @@ def parse_args(argv):
     ap.add_argument("--no-images", action="store_true", help="do not render both schedules to compare images")
     ap.add_argument("--no-beats", action="store_true", help="leave out beat skipping and ray termination")
     ap.add_argument("--md-only", action="store_true",
-                    help="rewrite skipping.md from the last run's build/reports/skipping.json (e.g. after a "
+                    help="rewrite skipping.md from the last run's skipping.json in --out (e.g. after a "
                          "build's Fmax was measured: reports/fpga*.json)")
-    ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md")
+    ap.add_argument("--out", default=str(REPO_ROOT / "reports"), help="folder for skipping.md and skipping.json")
     return ap.parse_args(argv)
 
 
 def write_reports(dest: Path, data: dict) -> None:
-    """skipping.md from a run's figures (``data``: what build/reports/skipping.json holds)."""
+    """skipping.md from a run's figures (``data``: what skipping.json holds)."""
     dest.mkdir(parents=True, exist_ok=True)
     md = write_md(data["rows"], data["rtl"], data["meta"], data["rtl_rects"], data["rtl_dram"])
     if data["beats"]:
@@ -559,7 +560,7 @@ def write_reports(dest: Path, data: dict) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    saved = REPO_ROOT / "build" / "reports" / "skipping.json"
+    saved = Path(args.out) / "skipping.json"
     if args.md_only:
         if not saved.exists():
             raise SystemExit(f"skipping: --md-only needs {saved} (run make skipping first)")
