@@ -98,6 +98,29 @@ def test_a_build_that_does_not_fit_says_so_and_is_not_placed_again(tmp_path):
     lines = "\n".join(scenes.place_lines(recs, {"rtl_commit": "abc1234"}))
     assert "  - the largest P that fits: 141.3 MHz: EXTREMUM=0, CLIP=0, VGRAD=1 (MAX_SS_LOG2=2) at P = 4" in lines
     assert scenes.build_records(recs)[1]["fit"]["p"] == 4
+    # measured at P = 4 (no fit): the next P to try is 2; at 4, 2 and 1 (none fits): it fits at no P
+    def smaller(ps):
+        g = tmp_path / f"fpga_n{len(ps)}.json"
+        g.write_text(json.dumps({"seeds": [1, 2, 3], "rtl_commit": "abc1234", "max_dim": 128, "results": [
+            {"p": p, "fmax_median": None, "fits": False, "build": VGRAD, "widths": SS4} for p in ps]}))
+        return [scenes.ecp5({k: v for k, v in r.items() if k not in ("fpga", "fit")}, fmax.load([f, g]))
+                for r in recs]
+    recs4 = smaller((4,))
+    assert recs4[1]["next_p"] == 2 and not recs4[1]["fits_no_p"]
+    lines = "\n".join(scenes.place_lines(recs4, {"rtl_commit": "abc1234"}))
+    assert "  - the largest P that fits: not measured yet; P = 2: `python -m cube4_reports.fpga --p 2 " in lines
+    assert "--md reports/fpga/e0k0g1_max_ss_log22_p2.md`" in lines
+    assert scenes.builds_table(recs4).splitlines()[3].endswith("| does not fit |")
+    recs_all = smaller((4, 2, 1))
+    assert recs_all[1]["fits_no_p"] and not recs_all[0]["fits_no_p"]
+    assert scenes.builds_table(recs_all).splitlines()[3].endswith("| fits at no P |")
+    lines = "\n".join(scenes.place_lines(recs_all, {"rtl_commit": "abc1234"}))
+    assert "  - fits at no P: P = 4, 2, 1 placed and routed too" in lines and "--p 2 " not in lines
+    assert scenes.build_records(recs_all)[1]["fits_no_p"] is True
+    row = {"scene": "head_quality", "volume": "head:64", "mode": "composite", "shaded": True, "crop": None,
+           "cut": False, "build": VGRAD, "widths": SS4, "gradient": "central", "cycles": 1000, "cycles_full": None,
+           "cycles_fixed": 2000, "psnr_db": 40.0, "psnr_point_db": 39.0, "truth_k": 3}
+    assert "| fits at no P | — |" in scenes.scenes_table([row], recs_all).splitlines()[2]
 
 
 def test_another_build_needs_its_own_report(capsys):
