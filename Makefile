@@ -14,7 +14,7 @@
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
-#   make scenes  every built-in scene on the smallest build it needs: gates, cycles, error, each build's measured ECP5 figures (reports/scenes.md; SCENES_ARGS=--place places and routes the builds not measured yet, ~40 min each)
+#   make scenes  every built-in scene on the smallest build it needs: gates, cycles, error, each build's measured ECP5 figures (reports/scenes.md; ~32 min; SCENES_ARGS=--place places and routes the builds not measured yet, ~40 min each)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
 #   make skipping empty-space skipping on real content: box, rectangles, beats and ray termination vs n^3/P (reports/skipping.md; ~5 min)
 #   make labels  label resampling rules on a real segmentation (Colin27 + AAL): pictures and PSNR (reports/labels.md; ~3 min, LABELS_ARGS=--rtl)

@@ -23,7 +23,7 @@ plane checked against the golden engine's). The full build (no BEATS) runs the b
 cycles are the formula of ``cube4.cycles`` (which tb/cube4_top holds every build to). The
 mode matrix runs every scene's box schedule.
 
-    python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (hours here)
+    python -m cube4_reports.scenes               # gates, cycles, error; ECP5 from reports/ (~32 min here)
     python -m cube4_reports.scenes --place       # and place and route every build not measured yet
                                                  # (3 seeds each, about 40 min a build), then the report
 
