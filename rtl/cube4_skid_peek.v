@@ -95,21 +95,10 @@ module cube4_skid_peek #(
             else if (pop && !push) full_q <= 1'b0;
         end
     end
-    // nonempty: one register, or VALID_N kept copies (cube4_prim_copies)
+    // nonempty: a register in VALID_N kept copies (cube4_prim_copies)
     wire nonempty_d = (push && !pop) ? 1'b1 : ((pop && !push) ? full_q : nonempty_q);
-    generate
-        if (VALID_N > 1) begin : g_valid_cp
-            cube4_prim_copies #(.N(VALID_N), .RST_VAL(64'd0)) u_valid (
-                .clk(clk), .rst(rst), .d(nonempty_d), .q(out_valid_cp));
-        end else begin : g_valid_one
-            reg ne_q;
-            always @(posedge clk) begin
-                if (rst) ne_q <= 1'b0;
-                else     ne_q <= nonempty_d;
-            end
-            assign out_valid_cp = ne_q;
-        end
-    endgenerate
+    cube4_prim_copies #(.N(VALID_N), .RST_VAL(64'd0)) u_valid (
+        .clk(clk), .rst(rst), .d(nonempty_d), .q(out_valid_cp));
     assign nonempty_q = out_valid_cp[0];
 
     // Entry e is free when it holds no unread item. A push writes entry wp_q,
