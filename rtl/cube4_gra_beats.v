@@ -256,8 +256,9 @@ module cube4_gra_beats
     // The choice is formed without i0_take (t_*: what loads if i0 takes a step), and
     // the loads (ld_*) are t_* with i0_take. What a load writes (the i0 fields, the
     // row's words) is formed from t_*: under a load i0_take is 1 and t_* are ld_*, so
-    // the step's fields do not wait for i0_take (i0_v .. i2_v and the credit); only
-    // the enables and the row end's choices (ld_nx, ld_in_x) do.
+    // the step's fields do not wait for i0_take (i0_v .. i2_v and the credit), and
+    // they load on i0_take alone, not on the choice; only i0_v, the row's registers'
+    // enables and the row end's choices (ld_nx, ld_in_x) take both.
     wire t_in    = in_row && !g_first;
     wire t_gen   = g_first && (in_row || pass);
     wire t_tl    = tail;
@@ -571,13 +572,13 @@ module cube4_gra_beats
             sy_q[in_m[0]]  <= in_sy;
             osy_q[in_m[0]] <= in_osy;
         end
-        // the input's head beat loads whenever i0 takes a step (a load enable of
-        // i0's registers, not the choice of step: i0_word keeps it only with i0_in)
+        // the input's head beat and the step's fields load whenever i0 takes a step
+        // (a load enable of i0's registers, not the choice of step: i0_word keeps
+        // the sample only with i0_in; where the choice loads no step, i0_v falls
+        // and the fields are not read)
         if (i0_take) begin
             i0_sample <= s_sample;
             i0_hdr    <= s_hdr;
-        end
-        if (ld) begin
             i0_in     <= t_i;
             i0_dead   <= t_tail;
             i0_fend   <= t_tl && tail_n && fin;
