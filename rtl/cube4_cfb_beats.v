@@ -218,11 +218,25 @@ module cube4_cfb_beats #(
     // NJ - 1, written, with every row before it, before any read of it, unless
     // NJ = 1; then the slices counted are those landed (wm of now), so the
     // read never meets the write of its own word
+    // (wm or wm + 1 against need or need_g: four compares of registers, and the walk's
+    // advance (g_mv) and the bitmaps' take (wm_mv), the late ones, choose at the last
+    // multiplexer, as for bm_ready; wm < nm, so wm + 1 fits M_W bits)
     reg            nj_one;
     always @(posedge clk) nj_one <= (nj == DIM_W'(1));
-    wire [M_W-1:0] wm_d   = (rst || start) ? '0 : ((wm_mv && !nj_one) ? wm + 1'b1 : wm);
-    wire [M_W-1:0] need_d = (rst || start) ? need0 : (g_mv ? need_g : need);
-    always @(posedge clk) wm_gt <= (wm_d > need_d);
+    wire           wm_up = wm_mv && !nj_one;
+    wire [M_W:0]   wm1_x = wm_x + 1'b1;
+    wire gt_n0 = (wm_x > {1'b0, need}),   gt_n1 = (wm1_x > {1'b0, need});
+    wire gt_g0 = (wm_x > {1'b0, need_g}), gt_g1 = (wm1_x > {1'b0, need_g});
+    always @(posedge clk) begin
+        if (rst || start) wm_gt <= 1'b0;                       // wm = 0 is not above need0
+        else              wm_gt <= g_mv ? (wm_up ? gt_g1 : gt_g0) : (wm_up ? gt_n1 : gt_n0);
+    end
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && !start && !nj_one && wm_gt != (wm > need))   // (NJ = 1: the wm before)
+            $fatal(1, "cube4_cfb_beats: wm_gt %b is not wm > need (wm %0d, need %0d)", wm_gt, wm, need);
+    end
+`endif
 `ifndef SYNTHESIS
     // no fetch (of slice g: the slots of g - 1, g, g + 1) reads a row in the edge
     // that row's bitmaps land in its slot

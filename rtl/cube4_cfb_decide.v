@@ -298,9 +298,9 @@ module cube4_cfb_decide #(
     always @(posedge clk) {blk_s5, blk_s4, blk_s3} <= {blk_s4, blk_s3, blk_q};
     wire unused_vk = ^{vk[BLOCK_LOG2-1:0], vj[BLOCK_LOG2-1:0]};
 
-    // ==== S5 -> S6: what does not need the ray table: each position's column
-    // (its block at S5, from S4's beat), whether its sample may count (the block
-    // table's bit), and m + 1, m + LAG + 1 ====
+    // ==== S4 -> S6: what does not need the ray table: each position's column
+    // (inside the row and its block at S5, from S4's beat), whether its sample
+    // may count (the block table's bit), and m + 1, m + LAG + 1 ====
     wire [IW-1:0]      pbp4 = IW'(pb_s[ND-2]) * IW'(P);
     reg  [RATE*P-1:0]  val6, occ6;
     reg  [M_W:0]       m1_6, ml_6;         // m + 1, m + LAG + 1 of S6's beat
@@ -312,7 +312,7 @@ module cube4_cfb_decide #(
     // partial beam lies below the last one, L, or is L with t below the
     // remainder (CUBE4_LAST_BEAM_FUNCTIONS). L and the remainder
     // are kept registers of the unit's own (view constants, loaded on every
-    // edge: stable from a cycle after start, the first beat at S5 six or more
+    // edge: stable from a cycle after start, the first beat at S4 five or more
     // edges later), so the test is a compare of pb with L, not of i with NI on
     // a carry chain synthesis may share with another unit's compares of NI
     // (COM's).
@@ -324,26 +324,31 @@ module cube4_cfb_decide #(
         .d({row_last_pb(nb), row_last_rem(ni, nb)}), .q({lpb_q, lrem_q}));
     generate
         for (q = 0; q < RATE * P; q = q + 1) begin : g_col
-            wire [NB_W:0]    pbr = {1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P);
-            wire             val = (pbr < {1'b0, lpb_q}) || ((pbr == {1'b0, lpb_q}) && ((LANE_W + 1)'(q % P) < lrem_q));
-`ifndef SYNTHESIS
-            wire [IW-1:0] i = IW'(pb_s[ND-1]) * IW'(P) + IW'(q);
-            always @(posedge clk) begin
-                if (!rst && v[ND-1] && val != ((i < IW'(ni)) && ((q / P == 0) || (pbr < {1'b0, nb}))))
-                    $fatal(1, "cube4_cfb_decide: position %0d's inside bit %0d differs from i < NI (pb %0d, NI %0d)",
-                           q, val, pb_s[ND-1], ni);
-            end
-`endif
-            // the position's block along i, from S4's beat into an S5 register
-            // (the column's two adds ahead of the block bit's multiplexer)
+            // the position's inside bit and its block along i, from S4's beat
+            // into S5 registers (the compare with L and the column's two adds
+            // ahead of the block bit's multiplexer)
+            wire [NB_W:0]    pbr4 = {1'b0, NB_W'(pb_s[ND-2])} + (NB_W + 1)'(q / P);
+            wire             val4 = (pbr4 < {1'b0, lpb_q})
+                                 || ((pbr4 == {1'b0, lpb_q}) && ((LANE_W + 1)'(q % P) < lrem_q));
             wire [IW-1:0]    i4  = pbp4 + IW'(q);
             wire [DIM_W-1:0] vi  = vol_coord(bi_base, bi_flip, DIM_W'(i4));
             reg  [BK_W-1:0]  ib5;
+            reg              val5;
             always @(posedge clk) begin
                 ib5     <= BK_W'(vi >> BLOCK_LOG2);
-                val6[q] <= val;
-                occ6[q] <= val && blk_s5[ib5];
+                val5    <= val4;
+                val6[q] <= val5;
+                occ6[q] <= val5 && blk_s5[ib5];
             end
+`ifndef SYNTHESIS
+            wire [NB_W:0] pbr = {1'b0, NB_W'(pb_s[ND-1])} + (NB_W + 1)'(q / P);
+            wire [IW-1:0] i   = IW'(pb_s[ND-1]) * IW'(P) + IW'(q);
+            always @(posedge clk) begin
+                if (!rst && v[ND-1] && val5 != ((i < IW'(ni)) && ((q / P == 0) || (pbr < {1'b0, nb}))))
+                    $fatal(1, "cube4_cfb_decide: position %0d's inside bit %0d differs from i < NI (pb %0d, NI %0d)",
+                           q, val5, pb_s[ND-1], ni);
+            end
+`endif
             wire unused_vi = ^{vi[BLOCK_LOG2-1:0], i4};   // (i4's bits above DIM_W: positions past the row)
         end
     endgenerate

@@ -223,11 +223,12 @@ module cube4_com #(
                 .in_data({in_geo, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss}),
                 .out_valid(c_valid), .out_ready(c_ready),
                 .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}),
-                .nx_valid(c_nx_valid), .nx_data(c_nx), .in_ready_cp(unused_ready_cp));
+                .nx_valid(c_nx_valid), .nx_data(c_nx), .in_ready_cp(unused_ready_cp),
+                .out_valid_cp(unused_valid_cp));
             wire [IN_W+GEO_W-1:0] c_nx;
-            wire unused_ready_cp;       // (in_ready is its copy)
+            wire unused_ready_cp, unused_valid_cp;   // (in_ready, c_valid are their copies)
             assign c_nx_hdr = c_nx[IN_W - HDR_W +: HDR_W];
-            wire unused_nx = ^{c_nx[IN_W+GEO_W-1:IN_W], c_nx[IN_W-HDR_W-1:0], unused_ready_cp};
+            wire unused_nx = ^{c_nx[IN_W+GEO_W-1:IN_W], c_nx[IN_W-HDR_W-1:0], unused_ready_cp, unused_valid_cp};
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};

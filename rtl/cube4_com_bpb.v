@@ -34,8 +34,11 @@
 //   address), word a1 at S3 (the RAM's output register); written at the end of
 //   S11 (wr_en, wr_sp, given at S10; wr_data acc_q is S11's register). Beam
 //   buffer: read at S2 (pb_rd), written with a1 at the end of S3 (v2, pb_wr
-//   given at S2); a2 at S4. S4: a1 registered, back selected; S5: s5_back,
-//   back_sh, prevb_sh registered words and their ring hops (combinational).
+//   given at S2); a2 at S4. S4: a1 registered, back selected; S5: s5_back
+//   and back_sh, a registered word and its ring hop (combinational); prevb_sh
+//   the previous beat's back hopped as it is registered (the hop from the
+//   neighbour lane's register ahead of S5's, not on the route from S5 into
+//   the lane's blend and its T·A multiplier).
 //   The last beat's words load under the copies of v2 (prim copies: v3 per
 //   lane, then COPIES per register), so they hold across bubbles.
 //
@@ -85,7 +88,7 @@ module cube4_com_bpb #(
     // ---- S4: a1, the previous beat's a1, and a2, per lane ----
     // The last beat's words load under v_s[4] as a tree of copies: v3 (one per
     // lane), then COPIES per register (cube4_prim_reg_en).
-    wire [PA-1:0] a1, a2, back, s5_prevb;
+    wire [PA-1:0] a1, a2, back, lastb_all, lastb_sh, s5_prevb;
     wire [P-1:0]  v3;
     cube4_prim_copies #(.N(P)) u_v3 (.clk(clk), .rst(rst), .d(v2), .q(v3));
     genvar q;
@@ -97,12 +100,13 @@ module cube4_com_bpb #(
             always @(posedge clk) begin
                 s4_a1_q    <= a1_ram[LO +: AC_W];
                 s5_back_q  <= back[LO +: AC_W];
-                s5_prevb_q <= lastb;        // the back of the last beat before this one
+                s5_prevb_q <= lastb_sh[LO +: AC_W];   // the back of the last beat before this one, hopped
             end
             cube4_prim_reg_en #(.W(AC_W), .COPIES(COPIES)) u_prev_a1 (
                 .clk(clk), .rst(rst), .en_d(v3[q]), .d(s4_a1_q), .q(prev_a1));
             cube4_prim_reg_en #(.W(AC_W), .COPIES(COPIES)) u_lastb (
                 .clk(clk), .rst(rst), .en_d(v3[q]), .d(back[LO +: AC_W]), .q(lastb));
+            assign lastb_all[LO +: AC_W] = lastb;
             // the row above at the same partial beam is the previous beat (NB = 1,
             // or a rectangle one partial beam wide): its beam-buffer write comes too late
             if (RECTS != 0) begin : g_col1
@@ -132,6 +136,9 @@ module cube4_com_bpb #(
 
     // ---- S5: the X-step hop (the lane at t = 0 takes the previous beat) ----
     cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_bsh (.down(cfg_flip_i), .x(s5_back),    .y(back_sh));
-    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(s5_prevb),   .y(prevb_sh));
+    // (the previous beat's back: hopped at S4, from its registers, into S5's; cfg_flip_i
+    // holds through a frame)
+    cube4_ring_shift #(.P(P), .DATA_W(AC_W)) u_psh (.down(cfg_flip_i), .x(lastb_all),  .y(lastb_sh));
+    assign prevb_sh = s5_prevb;
 endmodule
 `default_nettype wire

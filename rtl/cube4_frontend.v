@@ -148,9 +148,11 @@ module cube4_frontend #(
         .out_data    ({mem_req_addr, mem_req_rden, mem_req_tag}),
         .nx_valid    (unused_req_nx_valid),
         .nx_data     (unused_req_nx_data),
-        .in_ready_cp (s_ready_cp)
+        .in_ready_cp (s_ready_cp),
+        .out_valid_cp (unused_req_valid_cp)
     );
-    wire unused_req_nx = ^{unused_req_nx_valid, unused_req_nx_data, s_ready_cp[0]};
+    wire unused_req_valid_cp;   // (mem_req_valid is its copy)
+    wire unused_req_nx = ^{unused_req_nx_valid, unused_req_nx_data, s_ready_cp[0], unused_req_valid_cp};
 
     // ---- TRI ----
     cube4_tri #(
@@ -203,8 +205,10 @@ module cube4_frontend #(
                 .in_valid (c_req_valid && s_req_ready && emits), .in_ready (k_ready),
                 .in_data ({c_req_eoss, c_req_eos, c_req_bits}),
                 .out_valid (b_valid), .out_ready (smp_valid && smp_ready),
-                .out_data ({smp_eoss, smp_eos, smp_bits}), .in_ready_cp (k_ready_cp));
-            wire unused_bits = ^{b_valid, k_ready_cp[0]};
+                .out_data ({smp_eoss, smp_eos, smp_bits}), .in_ready_cp (k_ready_cp),
+                .out_valid_cp (b_valid_cp));
+            wire b_valid_cp;            // (b_valid is its copy)
+            wire unused_bits = ^{b_valid, k_ready_cp[0], b_valid_cp};
 `ifndef SYNTHESIS
             // a sample beat always finds its bits: they wait beside the memory and TRI
             always @(posedge clk) begin

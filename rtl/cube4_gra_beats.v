@@ -253,16 +253,32 @@ module cube4_gra_beats
     wire g_first = g_any && (!in_row || |(gm & in_below));  // a generated step comes first (g_pb < in_pb)
     wire start   = !act && s_valid;                         // a frame's first beat waits
     wire pass    = act && !tail && (in_after || ended || w_in);   // the input has passed this row
-    wire ld_in   = i0_take && in_row && !g_first;
-    wire ld_gen  = i0_take && g_first && (in_row || pass);
-    wire ld_tl   = i0_take && tail;
+    // The choice is formed without i0_take (t_*: what loads if i0 takes a step), and
+    // the loads (ld_*) are t_* with i0_take. What a load writes (the i0 fields, the
+    // row's words) is formed from t_*: under a load i0_take is 1 and t_* are ld_*, so
+    // the step's fields do not wait for i0_take (i0_v .. i2_v and the credit), and
+    // they load on i0_take alone, not on the choice; only i0_v, the row's registers'
+    // enables and the row end's choices (ld_nx, ld_in_x) take both.
+    wire t_in    = in_row && !g_first;
+    wire t_gen   = g_first && (in_row || pass);
+    wire t_tl    = tail;
     wire row_end = pass && !g_any;                           // the row ends (no step of it this cycle)
     // a row end that loads: the next row's first step, or a slice's first window step
-    wire mg      = row_end && i0_take && nx_ok && !r_nj;
+    wire t_mg    = row_end && nx_ok && !r_nj;
     wire x_first = (nx_gm != '0) && (!in_nx || |(nx_gm & in_below));
-    wire ld_in_x  = mg && in_nx && !x_first;
-    wire ld_gen_x = mg && x_first && (in_nx || in_aft1 || ended || w_in);
-    wire ld_tl_x  = row_end && i0_take && r_nj;
+    wire t_in_x  = t_mg && in_nx && !x_first;
+    wire t_gen_x = t_mg && x_first && (in_nx || in_aft1 || ended || w_in);
+    wire t_tl_x  = row_end && r_nj;
+    wire t_nx    = t_in_x || t_gen_x;                        // a step of the next row
+    wire t_i     = t_in || t_in_x;                           // an input beat
+    wire t_tail  = t_tl || t_tl_x;                           // a window step
+    wire ld_in    = i0_take && t_in;
+    wire ld_gen   = i0_take && t_gen;
+    wire ld_tl    = i0_take && t_tl;
+    wire mg       = i0_take && t_mg;
+    wire ld_in_x  = i0_take && t_in_x;
+    wire ld_gen_x = i0_take && t_gen_x;
+    wire ld_tl_x  = i0_take && t_tl_x;
     wire ld_nx   = ld_in_x || ld_gen_x;                      // a step of the next row
     wire ld_i    = ld_in || ld_in_x;                         // an input beat
     wire ld_s    = ld_i || ld_gen || ld_gen_x;               // a step of a row
@@ -271,30 +287,30 @@ module cube4_gra_beats
     wire ld      = ld_s || ld_tail;
     assign s_ready = ld_i;
 
-    // the step being loaded: slice ld_w, row ld_r, partial beam ld_pb
+    // the step being loaded: slice ld_w, row ld_r, partial beam ld_pb (t_*: as loaded)
     wire [M_W-1:0]   ld_w  = w;
-    wire [DIM_W-1:0] ld_r  = ld_nx ? r1 : r;
-    wire [PB_W-1:0]  ld_pb = ld_i ? in_pb : (ld_nx ? x_pb : g_pb);
+    wire [DIM_W-1:0] ld_r  = t_nx ? r1 : r;
+    wire [PB_W-1:0]  ld_pb = t_i ? in_pb : (t_nx ? x_pb : g_pb);
     wire             w_pos = (ld_w != '0);
-    wire [NBX-1:0]   ld_bit = ld_i ? in_oh : (ld_nx ? x_oh : g_oh);     // 1 << ld_pb
+    wire [NBX-1:0]   ld_bit = t_i ? in_oh : (t_nx ? x_oh : g_oh);       // 1 << ld_pb
     // what the step's partial beam decides, for each place it may come from (the
     // input's beat, the row's generated step, the next row's input or generated step),
     // side by side with the choice, which then picks one
     wire [PB_W-1:0]  row_pb1 = row_pb + 1'b1;
     wire pg_in  = |(s_cur & in_oh),  pg_gen = |(s_cur & g_oh),  pg_inx = |(nx_s & in_oh),  pg_genx = |(nx_s & x_oh);
     wire bg_in  = |(prev_s & in_oh), bg_gen = |(prev_s & g_oh), bg_inx = |(acc_s & in_oh), bg_genx = |(acc_s & x_oh);
-    wire ld_pg = !ld_tail && w_pos && ((ld_in && pg_in) || (ld_gen && pg_gen) || (ld_in_x && pg_inx)
-                                       || (ld_gen_x && pg_genx));
-    wire ld_bg = !ld_tail && (ld_nx ? !r_ones && ((ld_in_x && bg_inx) || (ld_gen_x && bg_genx))
-                                    : !r_zero && ((ld_in && bg_in) || (ld_gen && bg_gen)));
-    wire ld_gap = ld_tail || ld_nx || !row_any || (ld_i ? (in_pb != row_pb1) : (g_pb != row_pb1));
+    wire ld_pg = !t_tail && w_pos && ((t_in && pg_in) || (t_gen && pg_gen) || (t_in_x && pg_inx)
+                                      || (t_gen_x && pg_genx));
+    wire ld_bg = !t_tail && (t_nx ? !r_ones && ((t_in_x && bg_inx) || (t_gen_x && bg_genx))
+                                  : !r_zero && ((t_in && bg_in) || (t_gen && bg_gen)));
+    wire ld_gap = t_tail || t_nx || !row_any || (t_i ? (in_pb != row_pb1) : (g_pb != row_pb1));
     // the steps of a row the step passes: the bits up to its partial beam (an
     // input beat: none of gm / nx_gm lie below it), or its own bit (a generated
     // step: the lowest)
-    wire [NBX-1:0] ld_upto = ld_i ? in_upto : (ld_nx ? x_oh : g_oh);
+    wire [NBX-1:0] ld_upto = t_i ? in_upto : (t_nx ? x_oh : g_oh);
     // gm's lowest bit after the step: the second lowest where the step passed the lowest
-    wire [NBX-1:0] g_oh_ld = (ld_gen || (g_oh & in_oh) != '0) ? g2_oh : g_oh;
-    wire [NBX-1:0] x_oh_ld = (ld_gen_x || (x_oh & in_oh) != '0) ? x2_oh : x_oh;
+    wire [NBX-1:0] g_oh_ld = (t_gen || (g_oh & in_oh) != '0) ? g2_oh : g_oh;
+    wire [NBX-1:0] x_oh_ld = (t_gen_x || (x_oh & in_oh) != '0) ? x2_oh : x_oh;
     // dk_f, dk_b: the centre slice w - 1 and the slice after / before it lie between
     // other voxel slices (as cube4_gra_walk; always with S = 1)
     `CUBE4_VIEW_SLICES;
@@ -302,7 +318,7 @@ module cube4_gra_beats
     wire unused_m_last = ^view_m_last;
     wire [3:0] ld_flags = {(ld_w & ss_mask) == '0,           // dk_f of centre slice w - 1
                            ((ld_w - 1'b1) & ss_mask) == '0,  // dk_b
-                           ld_nx ? r_zero : r_one,         // j_first (centre row 0): ld_r == 1
+                           t_nx ? r_zero : r_one,          // j_first (centre row 0): ld_r == 1
                            w_one};                         // m_first (centre slice 0): ld_w == 1
     wire           wm1_odd = ~ld_w[0];                // (w - 1) mod 2
 
@@ -556,25 +572,25 @@ module cube4_gra_beats
             sy_q[in_m[0]]  <= in_sy;
             osy_q[in_m[0]] <= in_osy;
         end
-        // the input's head beat loads whenever i0 takes a step (a load enable of
-        // i0's registers, not the choice of step: i0_word keeps it only with i0_in)
+        // the input's head beat and the step's fields load whenever i0 takes a step
+        // (a load enable of i0's registers, not the choice of step: i0_word keeps
+        // the sample only with i0_in; where the choice loads no step, i0_v falls
+        // and the fields are not read)
         if (i0_take) begin
             i0_sample <= s_sample;
             i0_hdr    <= s_hdr;
-        end
-        if (ld) begin
-            i0_in     <= ld_i;
-            i0_dead   <= ld_tail;
-            i0_fend   <= ld_tl && tail_n && fin;
+            i0_in     <= t_i;
+            i0_dead   <= t_tail;
+            i0_fend   <= t_tl && tail_n && fin;
             i0_gap    <= ld_gap;
             i0_w      <= ld_w;
             i0_r      <= ld_r;
             i0_pb     <= ld_pb;
             i0_pg     <= ld_pg;
             i0_bg     <= ld_bg;
-            i0_pgb    <= ld_pg && (ld_nx ? !r_ones : !r_zero);   // ld_r != 0
+            i0_pgb    <= ld_pg && (t_nx ? !r_ones : !r_zero);    // ld_r != 0
             i0_flags  <= ld_flags;
-            i0_ylast  <= ld_nx ? r1_nj : r_nj;                    // ld_r == NJ
+            i0_ylast  <= t_nx ? r1_nj : r_nj;                     // ld_r == NJ
             i0_dyf    <= sy_q[wm1_odd];                          // SY(w - 1): the centre's slice
             i0_dyb    <= osy_q[wm1_odd];                         // OSY(w - 1)
         end

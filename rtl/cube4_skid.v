@@ -7,8 +7,8 @@
 //   Two-entry skid buffer for a valid/ready stream whose in_ready is a
 //   register: cube4_skid_peek (which documents the buffer: its entries, the
 //   free flags and read-pointer copies per 64 data bits, full throughput)
-//   without the ports that show the entry behind the head and in_ready's
-//   copies.
+//   without the ports that show the entry behind the head and the copies of
+//   in_ready and out_valid.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
@@ -29,13 +29,14 @@ module cube4_skid #(
 ) (
     `CUBE4_STREAM_PORTS(DATA_W)
 );
-    wire              unused_nx_valid, unused_ready_cp;
+    wire              unused_nx_valid, unused_ready_cp, unused_valid_cp;
     wire [DATA_W-1:0] unused_nx_data;
     cube4_skid_peek #(.DATA_W (DATA_W)) u_skid (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data (in_data),
         .out_valid (out_valid), .out_ready (out_ready), .out_data (out_data),
-        .nx_valid (unused_nx_valid), .nx_data (unused_nx_data), .in_ready_cp (unused_ready_cp));
-    wire unused_nx = ^{unused_nx_valid, unused_nx_data, unused_ready_cp};
+        .nx_valid (unused_nx_valid), .nx_data (unused_nx_data), .in_ready_cp (unused_ready_cp),
+        .out_valid_cp (unused_valid_cp));
+    wire unused_nx = ^{unused_nx_valid, unused_nx_data, unused_ready_cp, unused_valid_cp};
 endmodule
 `default_nettype wire

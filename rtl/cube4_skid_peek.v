@@ -28,11 +28,17 @@
 //   equal: copy 0 is in_ready, the others go to a producer whose stall
 //   enable reaches loads far apart (the front end's CFB: one per group of
 //   its advance's loads), so no one register drives them all.
+//   out_valid is kept alike as VALID_N register copies: copy 0 is out_valid
+//   and drives the buffer's own state, the others go to a consumer whose
+//   handshake lies far from the buffer's entries (cube4_top: the beat's bits
+//   into SHA's output, beside it), so that the route to them starts at a
+//   register of their own.
 //   cube4_skid is this buffer without nx_valid, nx_data and the copies.
 //
 // Parameters
 //   DATA_W        width of the payload.  Range 1..4096.  Default 8.
 //   READY_N       copies of in_ready (in_ready_cp).  Range 1..16.  Default 1.
+//   VALID_N       copies of out_valid (out_valid_cp).  Range 1..16.  Default 1.
 //
 // Latency
 //   1 cycle from an accepted input to out_valid. Order is kept; nothing is
@@ -46,6 +52,7 @@
 //                            in_ready is a register
 //   in_ready_cp    out  [READY_N] copies of in_ready (copy 0 is in_ready)
 //   out_valid/out_ready/out_data output stream (same format)
+//   out_valid_cp   out  [VALID_N] copies of out_valid (copy 0 is out_valid)
 //   nx_valid, nx_data  out   the buffer holds a second item, behind the head on
 //                            out_data; that item (a 2:1 multiplexer after the
 //                            entries, as out_data's; any value while nx_valid
@@ -55,18 +62,21 @@
 // =============================================================================
 module cube4_skid_peek #(
     parameter integer DATA_W  = 8,
-    parameter integer READY_N = 1
+    parameter integer READY_N = 1,
+    parameter integer VALID_N = 1
 ) (
     `CUBE4_STREAM_PORTS(DATA_W),
     output wire nx_valid, output wire [DATA_W-1:0] nx_data,
-    output wire [READY_N-1:0] in_ready_cp
+    output wire [READY_N-1:0] in_ready_cp,
+    output wire [VALID_N-1:0] out_valid_cp
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_skid_peek", "DATA_W", DATA_W, 1, 4096)
         `CUBE4_RANGE(g_bad_ready_n, "cube4_skid_peek", "READY_N", READY_N, 1, 16)
+        `CUBE4_RANGE(g_bad_valid_n, "cube4_skid_peek", "VALID_N", VALID_N, 1, 16)
     endgenerate
 
-    reg              nonempty_q;     // at least one entry holds an item
+    wire             nonempty_q;     // at least one entry holds an item (copy 0 of out_valid_cp)
     reg              full_q;         // both entries hold items
     reg              wp_q;           // write pointer
     wire             rp_q;           // read pointer (copy 0 of g_grp's copies)
@@ -77,20 +87,19 @@ module cube4_skid_peek #(
 
     always @(posedge clk) begin
         if (rst) begin
-            nonempty_q <= 1'b0;
             full_q     <= 1'b0;
             wp_q       <= 1'b0;
         end else begin
             if (push) wp_q <= !wp_q;
-            if (push && !pop) begin
-                nonempty_q <= 1'b1;
-                full_q     <= nonempty_q;
-            end else if (pop && !push) begin
-                full_q     <= 1'b0;
-                nonempty_q <= full_q;
-            end
+            if (push && !pop)      full_q <= nonempty_q;
+            else if (pop && !push) full_q <= 1'b0;
         end
     end
+    // nonempty: a register in VALID_N kept copies (cube4_prim_copies)
+    wire nonempty_d = (push && !pop) ? 1'b1 : ((pop && !push) ? full_q : nonempty_q);
+    cube4_prim_copies #(.N(VALID_N), .RST_VAL(64'd0)) u_valid (
+        .clk(clk), .rst(rst), .d(nonempty_d), .q(out_valid_cp));
+    assign nonempty_q = out_valid_cp[0];
 
     // Entry e is free when it holds no unread item. A push writes entry wp_q,
     // which is free (a push needs !full_q). A pop and a push never hit the

@@ -391,15 +391,21 @@ module cube4_top #(
             // without GRA, the vendor layer makes it distributed RAM read into
             // flip-flops, whose asynchronous read with the route to the back skid
             // was the unshaded beat build's longest path)
-            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1)) u_bits (
+            // (its valid in two copies: copy 1, com_bits_valid, reaches SHA's output
+            // and COM's skid alone, not the back skid's own state, so that it lies
+            // beside them: from the back skid's register into SHA's output FIFO
+            // across the die was the unshaded beat build's longest path)
+            wire [1:0] b_valid_cp;
+            cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1),
+                              .VALID_N (2)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
                 .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}),
-                .in_ready_cp (unused_ready_cp));
+                .in_ready_cp (unused_ready_cp), .out_valid_cp (b_valid_cp));
             wire unused_ready_cp;       // (k_ready is its copy)
-            wire unused_bits = ^{smp_eos, unused_ready_cp};
-            assign com_bits_valid = b_valid;
+            wire unused_bits = ^{smp_eos, unused_ready_cp, b_valid, b_valid_cp[0]};
+            assign com_bits_valid = b_valid_cp[1];
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;
             assign fe_smp_ready = smp_ready;

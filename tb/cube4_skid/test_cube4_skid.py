@@ -12,13 +12,15 @@ Checked against a Python deque, every cycle:
 * the entry behind the head: nx_valid exactly when two items are held, nx_data the second
   (the one out_data offers after the head), after every edge;
 * in_ready's copies (in_ready_cp, READY_N of them) all equal in_ready after every edge
-  ("in_ready_cp ... with in_ready ...": tried by loading copy 1 with full_d instead).
+  ("in_ready_cp ... with in_ready ...": tried by loading copy 1 with full_d instead), and
+  out_valid's (out_valid_cp, VALID_N) out_valid.
 
 The data registers and the read pointer's copies are kept per group of 64 bits: DATA_W =
 130 has three groups, each of whose bits the words below set (the sent count in the top
 bits); a group whose pointer copy missed a pop returns the other entry's bits there
 ("item N: RTL ..., model ...": tried by tying copy 2's select to copy 0's inverse).
-DATA_W 130 with three ready copies in make test; 1 and 64 in make regress.
+DATA_W 130 with three ready copies and two valid copies in make test; 1 and 64 in make
+regress.
 """
 
 from __future__ import annotations
@@ -60,6 +62,9 @@ class TB(QueueTB):
         n, cp = len(d.in_ready_cp), int(d.in_ready_cp.value)
         assert cp == int(d.in_ready.value) * ((1 << n) - 1), \
             f"in_ready_cp = {cp:#b} with in_ready {int(d.in_ready.value)} ({n} copies)"
+        n, cp = len(d.out_valid_cp), int(d.out_valid_cp.value)
+        assert cp == int(d.out_valid.value) * ((1 << n) - 1), \
+            f"out_valid_cp = {cp:#b} with out_valid {int(d.out_valid.value)} ({n} copies)"
         return flow
 
 
@@ -86,7 +91,7 @@ async def test_skid(dut):
                   tb.data_w, tb.q.got, tb.peeks)
 
 
-BUILDS = [dict(DATA_W=130, READY_N=3), dict(DATA_W=1), dict(DATA_W=64)]
+BUILDS = [dict(DATA_W=130, READY_N=3, VALID_N=2), dict(DATA_W=1), dict(DATA_W=64)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))

@@ -12,7 +12,8 @@ Checked against a Python deque, every cycle:
   cycle (from empty after the first Q + 3 cycles; from full after the pops' room has
   passed the three registered readies back to the input: 3 cycles, 4 with block RAM);
 * random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
-* in_ready's copies (in_ready_cp, READY_N) all equal in_ready after every edge.
+* in_ready's copies (in_ready_cp, READY_N) all equal in_ready after every edge, and
+  out_valid's (out_valid_cp, VALID_N) out_valid.
 
 With either skid buffer replaced by wires the latency check fails ("an item into an empty
 queue is out after 1 edges, Q + 2 = 2"; tried for each). Both queue kinds in make test,
@@ -47,6 +48,9 @@ class TB(QueueTB):
         n, cp = len(d.in_ready_cp), int(d.in_ready_cp.value)
         assert cp == int(d.in_ready.value) * ((1 << n) - 1), \
             f"in_ready_cp = {cp:#b} with in_ready {int(d.in_ready.value)} ({n} copies)"
+        n, cp = len(d.out_valid_cp), int(d.out_valid_cp.value)
+        assert cp == int(d.out_valid.value) * ((1 << n) - 1), \
+            f"out_valid_cp = {cp:#b} with out_valid {int(d.out_valid.value)} ({n} copies)"
         return flow
 
 
@@ -79,7 +83,7 @@ async def test_fifo(dut):
                   tb.data_w, tb.depth, tb.q.got, first_in)
 
 
-BUILDS = [dict(DATA_W=25, DEPTH=64, RAM=0), dict(DATA_W=34, DEPTH=64, RAM=1, OUT_REG=1, READY_N=5),
+BUILDS = [dict(DATA_W=25, DEPTH=64, RAM=0), dict(DATA_W=34, DEPTH=64, RAM=1, OUT_REG=1, READY_N=5, VALID_N=2),
           dict(DATA_W=1, DEPTH=2, RAM=0), dict(DATA_W=70, DEPTH=4, RAM=1)]
 
 
