@@ -217,6 +217,8 @@ module cube4_com #(
     wire [HDR_W-1:0]          c_nx_hdr;
     generate
         if (BEATS != 0) begin : g_in_skid
+            wire [IN_W+GEO_W-1:0] c_nx;
+            wire unused_ready_cp, unused_valid_cp;   // (in_ready, c_valid are their copies)
             cube4_skid_peek #(.DATA_W(IN_W + GEO_W)) u_in (
                 .clk(clk), .rst(rst),
                 .in_valid(in_valid), .in_ready(in_ready),
@@ -225,8 +227,6 @@ module cube4_com #(
                 .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}),
                 .nx_valid(c_nx_valid), .nx_data(c_nx), .in_ready_cp(unused_ready_cp),
                 .out_valid_cp(unused_valid_cp));
-            wire [IN_W+GEO_W-1:0] c_nx;
-            wire unused_ready_cp, unused_valid_cp;   // (in_ready, c_valid are their copies)
             assign c_nx_hdr = c_nx[IN_W - HDR_W +: HDR_W];
             wire unused_nx = ^{c_nx[IN_W+GEO_W-1:IN_W], c_nx[IN_W-HDR_W-1:0], unused_ready_cp, unused_valid_cp};
         end else begin : g_in_direct

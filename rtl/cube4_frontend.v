@@ -134,6 +134,7 @@ module cube4_frontend #(
     wire [ADV_N:0]   s_ready_cp;
     wire             unused_req_nx_valid;
     wire [P*ADDR_W+P+TAG_W-1:0] unused_req_nx_data;
+    wire             unused_req_valid_cp;   // (mem_req_valid is its copy)
     cube4_skid_peek #(
         .DATA_W  (P * ADDR_W + P + TAG_W),
         .READY_N (ADV_N + 1)
@@ -151,7 +152,6 @@ module cube4_frontend #(
         .in_ready_cp (s_ready_cp),
         .out_valid_cp (unused_req_valid_cp)
     );
-    wire unused_req_valid_cp;   // (mem_req_valid is its copy)
     wire unused_req_nx = ^{unused_req_nx_valid, unused_req_nx_data, s_ready_cp[0], unused_req_valid_cp};
 
     // ---- TRI ----
@@ -199,6 +199,7 @@ module cube4_frontend #(
             // of the request's tag
             assign s_req_valid = c_req_valid && k_ready;
             assign c_req_ready = s_ready_cp[ADV_N:1] & k_ready_cp[ADV_N:1];
+            wire b_valid_cp;            // (b_valid is its copy)
             cube4_skid_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1),
                               .READY_N (ADV_N + 1)) u_bits (
                 .clk (clk), .rst (rst),
@@ -207,7 +208,6 @@ module cube4_frontend #(
                 .out_valid (b_valid), .out_ready (smp_valid && smp_ready),
                 .out_data ({smp_eoss, smp_eos, smp_bits}), .in_ready_cp (k_ready_cp),
                 .out_valid_cp (b_valid_cp));
-            wire b_valid_cp;            // (b_valid is its copy)
             wire unused_bits = ^{b_valid, k_ready_cp[0], b_valid_cp};
 `ifndef SYNTHESIS
             // a sample beat always finds its bits: they wait beside the memory and TRI
