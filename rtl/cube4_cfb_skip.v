@@ -8,8 +8,8 @@
 //   "The front end's plan"; S = 2^ss_log2): cube4_cfb_decide decides every beat a
 //   slice or two ahead, cube4_cfb_beats walks the voxel beats of each slice
 //   from the decisions' bitmaps, and the position bits of the beats that
-//   hold a running ray wait between the two in a cube4_ram_fifo (3P bits a
-//   beat, CUBE4_RAY_BITS_FUNCTIONS; a = run != 0). Each walk
+//   hold a running ray wait between the two in a cube4_ram_fifo (3P + 1 bits a
+//   beat: the packed bits, CUBE4_RAY_BITS_FUNCTIONS, and a = run != 0). Each walk
 //   beat leaves with the position bits {soon, last, fresh, run} of the
 //   sample beat that leaves with it (zero when none leaves, or when it runs
 //   as GRA's neighbour only).
@@ -61,7 +61,10 @@ module cube4_cfb_skip #(
     wire            bm_valid, bm_ready;
     wire [NBMAX-1:0] bm_a, bm_occ;
     localparam integer LN = 4 * P + 1;     // a beat's {a, soon, last, fresh, run}
-    localparam integer QN = 3 * P;         // a beat in the queue: its packed bits (a = run != 0)
+    // a beat in the queue: {a, its packed bits}; a (= run != 0) is carried as a bit of
+    // its own, so that the queue's head says which beats it holds from a register,
+    // not from an OR of the unpacked run bits
+    localparam integer QN = 3 * P + 1;
     `CUBE4_RAY_BITS_FUNCTIONS
     wire            ln_valid, ln_ready, q_valid, q_ready;
     wire [RATE*LN-1:0] ln_bits, q_bits;
@@ -69,10 +72,8 @@ module cube4_cfb_skip #(
     genvar r;
     generate
         for (r = 0; r < RATE; r = r + 1) begin : g_pack
-            wire [4*P-1:0] q_b = ray_bits_unpack(q_packed[r*QN +: QN]);
-            assign ln_packed[r*QN +: QN] = ray_bits_pack(ln_bits[r*LN +: 4*P]);
-            assign q_bits[r*LN +: LN]    = {q_b[0 +: P] != '0, q_b};
-            wire unused_ln_a = ln_bits[r*LN + 4*P];     // (a = run != 0)
+            assign ln_packed[r*QN +: QN] = {ln_bits[r*LN + 4*P], ray_bits_pack(ln_bits[r*LN +: 4*P])};
+            assign q_bits[r*LN +: LN]    = {q_packed[r*QN + QN - 1], ray_bits_unpack(q_packed[r*QN +: QN - 1])};
         end
     endgenerate
     cube4_cfb_decide #(`CUBE4_SLICE_PASS, .BLOCK_LOG2(BLOCK_LOG2), .LAG(LAG), .RATE(RATE)) u_decide (

@@ -203,7 +203,7 @@ module cube4_com #(
 
     // ==== the input: on the beat schedule through a skid buffer (cube4_skid_peek),
     // so R0 starts at its registers, in_ready is a register, and the slot compare
-    // (hazard) is a register decided a cycle ahead from its entries (cube4_com_ahead); otherwise straight in (the fixed, box and rectangle schedules,
+    // (hazard) is a register decided a cycle ahead from compares each beat keeps while it waits (cube4_com_ahead); otherwise straight in (the fixed, box and rectangle schedules,
     // whose cycles the golden model predicts) ====
     localparam integer IN_W = HDR_W + P * (24 + ALPHA_W) + P * VOXEL_W + P * FALL_W + 4 * P + 1;
     wire                      c_valid, c_ready, c_eoss;
@@ -213,8 +213,7 @@ module cube4_com #(
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
     wire [GEO_W-1:0]          c_geo;          // BEATS: the beat's steps and phases, with it
-    wire                      c_nx_valid;     // BEATS: the skid holds a second beat; its header
-    wire [HDR_W-1:0]          c_nx_hdr;
+    wire                      c_nx_valid;     // BEATS: the skid holds a second beat
     generate
         if (BEATS != 0) begin : g_in_skid
             wire [IN_W+GEO_W-1:0] c_nx;
@@ -227,15 +226,14 @@ module cube4_com #(
                 .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}),
                 .nx_valid(c_nx_valid), .nx_data(c_nx), .in_ready_cp(unused_ready_cp),
                 .out_valid_cp(unused_valid_cp));
-            assign c_nx_hdr = c_nx[IN_W - HDR_W +: HDR_W];
-            wire unused_nx = ^{c_nx[IN_W+GEO_W-1:IN_W], c_nx[IN_W-HDR_W-1:0], unused_ready_cp, unused_valid_cp};
+            wire unused_nx = ^{c_nx, unused_ready_cp, unused_valid_cp};   // (the look-ahead keeps its own compares)
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};
             assign in_ready = c_ready;
             assign c_geo = '0;
-            assign {c_nx_valid, c_nx_hdr} = '0;
-            wire unused_geo = ^{in_geo, c_geo, c_nx_valid, c_nx_hdr};
+            assign c_nx_valid = 1'b0;
+            wire unused_geo = ^{in_geo, c_geo, c_nx_valid};
         end
     endgenerate
 
@@ -312,7 +310,7 @@ module cube4_com #(
             ) u_beats (
                 .clk(clk), .rst(rst), .cfg(cfg), .in_bits(c_bits), .tpos(tpos),
                 .c_geo(c_geo),
-                .in_valid(c_valid), .in_hdr(c_hdr), .nx_valid(c_nx_valid), .nx_hdr(c_nx_hdr),
+                .in_valid(c_valid), .in_hdr(c_hdr), .nx_valid(c_nx_valid),
                 .sk_hdr(in_hdr), .take(take), .step(step), .v_fly(v_s[9:1]), .sp_fly(sp_fly),
                 .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
                 .f1_ipos(f1_ipos), .f1_j(f1_j), .f1_dxf(f1_dxf), .f1_dyf(f1_dyf),

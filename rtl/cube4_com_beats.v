@@ -43,7 +43,7 @@
 //   c_geo     in   [GEO_W] the offered beat's {stx, sty, ph_x, ph_y}
 //                  (cube4_com_steps' q_geo, come with the beat)
 //   in_valid, in_hdr   in   COM's input skid offers a beat; its header
-//   nx_valid, nx_hdr   in   the skid holds a second beat; its header
+//   nx_valid  in   the skid holds a second beat
 //   sk_hdr    in   the header at the skid's input
 //   take      in   the offered beat enters R0 at this edge
 //   step, v_fly, sp_fly   R0, S1 .. S9 hold a beat; S1 .. S9's slots
@@ -67,7 +67,7 @@ module cube4_com_beats #(
     input  wire [VIEW_W-1:0] cfg,
     input  wire [4*P-1:0] in_bits, input wire [P*LANE_W-1:0] tpos,
     input  wire [GEO_W-1:0] c_geo, input wire in_valid, input wire [HDR_W-1:0] in_hdr,
-    input  wire nx_valid, input wire [HDR_W-1:0] nx_hdr, input wire [HDR_W-1:0] sk_hdr, input wire take,
+    input  wire nx_valid, input wire [HDR_W-1:0] sk_hdr, input wire take,
     input  wire step, input wire [9:1] v_fly, input wire [9*SP_W-1:0] sp_fly,
     input  wire [M_W-1:0] r0_m, input wire [DIM_W-1:0] r0_j, input wire [PB_W-1:0] r0_pb,
     input  wire [P*IW-1:0] f1_ipos, input wire [IW-1:0] f1_j, input wire f1_dxf, input wire f1_dyf,
@@ -161,7 +161,7 @@ module cube4_com_beats #(
         .r0_m(r0_m), .r0_j(r0_j), .r0_pb(r0_pb),
         .pos_sp(pos_sp), .pos_pb(pos_pb), .hazard(hz_now), .col1_4(col1_4));
     cube4_com_ahead #(`CUBE4_SLICE_PASS, .SP_W(SP_W)) u_ahead (
-        .clk(clk), .rst(rst), .hd_valid(in_valid), .hd_hdr(in_hdr), .nx_valid(nx_valid), .nx_hdr(nx_hdr),
+        .clk(clk), .rst(rst), .hd_valid(in_valid), .hd_hdr(in_hdr), .nx_valid(nx_valid),
         .in_hdr(sk_hdr), .take(take), .step(step), .pos_sp(pos_sp),
         .v_fly(v_fly[8:1]), .sp_fly(sp_fly[0 +: 8*SP_W]), .hazard(hazard));
     wire unused_hz = hz_now;             // (synthesis: the check's only)

@@ -2,7 +2,7 @@
 register decided a cycle ahead of the beat it is for.
 
 The bench plays COM's input around it: a model of the input skid (two entries: the head
-it offers, hd_valid and hd_hdr; the second item, nx_valid and nx_hdr; the header at its
+it offers, hd_valid and hd_hdr; whether it holds a second item, nx_valid; the header at its
 input, in_hdr, which enters at the edge when the skid has room and the producer offers
 one, seeded random; random bits when nothing enters, which must not matter), and R0 ..
 S9, which move on every cycle (R0 the beat taken, S k S k-1; step, pos_sp, v_fly and
@@ -74,7 +74,6 @@ class TB:
             d.hd_valid.value = int(head is not None)
             d.hd_hdr.value = head if head is not None else self.new_beat(few)
             d.nx_valid.value = int(len(skid) == 2)
-            d.nx_hdr.value = skid[1] if len(skid) == 2 else self.new_beat(few)
             d.in_hdr.value = incoming
             d.take.value = int(take)
             d.step.value = int(stages[0] is not None)
@@ -101,8 +100,6 @@ class TB:
             d.hd_valid.value, d.nx_valid.value, d.take.value = int(head is not None), int(len(skid) == 2), int(take)
             if head is not None:
                 d.hd_hdr.value = head
-            if len(skid) == 2:
-                d.nx_hdr.value = skid[1]
             d.step.value = int(stages[0] is not None)
             d.pos_sp.value = stages[0] or 0
             d.v_fly.value = sum(1 << (k - 1) for k in range(1, 9) if stages[k] is not None)

@@ -21,7 +21,6 @@ module cube4_com_beats_harness #(
     input  wire                in_valid,
     input  wire [HDR_W-1:0]    in_hdr,
     input  wire                nx_valid,
-    input  wire [HDR_W-1:0]    nx_hdr,
     input  wire [HDR_W-1:0]    sk_hdr,
     input  wire                take,
     input  wire                step,

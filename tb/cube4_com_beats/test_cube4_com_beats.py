@@ -5,7 +5,7 @@ volumes, a LUT zero below the blob's values, views of every class, termination i
 other frame) the sample beats the front end emits (``expected_requests``: the running
 beats, the cover, the row above and each slice's marker) are offered with their position
 bits through a model of COM's input skid (two entries: the head offered, in_valid and
-in_hdr; the second, nx_valid and nx_hdr; the header at its input, sk_hdr, random when no
+in_hdr; the second, nx_valid; the header at its input, sk_hdr, random when no
 beat enters), beats entering it with seeded random gaps, taken (take) only when the golden
 read-after-write rule allows (no beat of the same slot {j, pb} in R0 .. S9), and played
 through R0 and S1 as cube4_com_seq gives them. Each beat enters the input queue (q_push,
@@ -129,7 +129,6 @@ async def play(dut, bench, trav, sched, bits, p: int, geo: Geometry, iw: int, ga
         rnd = lambda: int(bench.rng.integers(0, 1 << geo.hdr_w))   # noqa: E731
         dut.in_valid.value, dut.take.value = int(offering), int(take)
         dut.nx_valid.value = int(held == 2)
-        dut.nx_hdr.value = hdrs[k + 1] if held == 2 else rnd()
         dut.sk_hdr.value = hdrs[ins] if enter else rnd()
         dut.in_hdr.value = hdrs[k] if offering else rnd()
         dut.in_bits.value = int(bits[k]) if offering else int(bench.rng.integers(0, 1 << (4 * p)))
