@@ -22,8 +22,9 @@
 //   where a consumer's decisions start, drives 64 loads, not DATA_W.
 //   The entry behind the head is visible too (nx_valid, nx_data): a consumer
 //   can decide one cycle ahead what it will do with the item after the one
-//   it is offered (cube4_com_ahead: COM's read-after-write rule as a
-//   register).
+//   it is offered (cube4_com_ahead, COM's read-after-write rule as a
+//   register, takes nx_valid: whether a beat waits behind the head; it keeps
+//   its own compares of each beat, so no user reads nx_data now).
 //   in_ready is kept as READY_N register copies (cube4_prim_copies), all
 //   equal: copy 0 is in_ready, the others go to a producer whose stall
 //   enable reaches loads far apart (the front end's CFB: one per group of
