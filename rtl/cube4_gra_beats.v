@@ -58,8 +58,11 @@
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
 //   The input register i0 holds the next step's position with its sample
 //   beat (an input beat) or none (a step the centres need, or a trailing
-//   step); it moves on to i1 when i1 is free or moves on, and that move
-//   reads the position buffers at i0's position (from registers). i1 moves
+//   step); it moves on to ia when ia is free or moves on, and ia to i1 when
+//   i1 is free or moves on: that move reads the position buffers at ia's
+//   position (from registers; i0's lie beside the choice, ia's beside the
+//   buffers, so no route from the choice runs to the buffers' addresses
+//   across the die). i1 moves
 //   on to i2 when i2 is free or steps, and the words read for it load into
 //   registers with it (cube4_gra_pos OUT_STAGE = 1: the block RAMs'
 //   clock-to-data ends at a flip-flop). The interface shows i2 as X,
@@ -180,7 +183,7 @@ module cube4_gra_beats
     reg               i0_pgb;        // plane B's (the centre's row is a row)
     reg [3:0]         i0_flags;      // {dk_f, dk_b, j_first, m_first} of the centre
     reg               i0_ylast, i0_dyf, i0_dyb;
-    // the step's fields as one word, which moves on i0 -> i1 -> i2; a generated
+    // the step's fields as one word, which moves on i0 -> ia -> i1 -> i2; a generated
     // step's sample and header are zero (the samples of beats that do not run),
     // formed here from the register i0_in, not as i0 loads (where the choice of
     // step would reach every bit's reset)
@@ -189,9 +192,17 @@ module cube4_gra_beats
     wire [HDR_W-1:0] i0_hdr_in = {HDR_W{i0_in}} & i0_hdr;
     wire [SW-1:0] i0_word = {i0_in, i0_dead, i0_fend, i0_gap, i0_smp_in, i0_hdr_in, i0_w, i0_r, i0_pb,
                              i0_pg, i0_bg, i0_pgb, i0_flags, i0_ylast, i0_dyf, i0_dyb};
-    // i1: one register stage after i0, whose position reads the position buffers
+    // ia: one register stage after i0, whose position reads the position buffers
     // as it moves on (from registers: neither the choice nor its fan-out reaches
-    // the block RAMs' addresses and the bypass registers' enables)
+    // the block RAMs' addresses and the bypass registers' enables, and i0, which
+    // the choice loads, feeds only ia, so it lies beside the choice)
+    reg               ia_v;
+    reg [SW-1:0]      ia_word;
+    localparam integer W_PB = 10;                       // ia_word's pb, r (i0_word's order)
+    localparam integer W_R  = W_PB + PB_W;
+    wire [PB_W-1:0]   ia_pb = ia_word[W_PB +: PB_W];
+    wire [DIM_W-1:0]  ia_r  = ia_word[W_R +: DIM_W];
+    // i1: one register stage after ia, the step whose words are being read
     reg               i1_v;
     reg [SW-1:0]      i1_word;
     // i2: the step, one register stage after i1, with the words i1 read (their
@@ -214,7 +225,8 @@ module cube4_gra_beats
     assign sop  = 1'b0;
     assign fend = i2_fend;
     wire i1_mv   = i1_v && (!i2_v || step);               // i1 moves on to i2 (its words load)
-    wire i0_mv   = i0_v && (!i1_v || i1_mv);              // i0 moves on to i1 (its buffers' read)
+    wire ia_mv   = ia_v && (!i1_v || i1_mv);              // ia moves on to i1 (its buffers' read)
+    wire i0_mv   = i0_v && (!ia_v || ia_mv);              // i0 moves on to ia
     wire i0_take = !i0_v || i0_mv;
 
     // ------------------------------------------------------------ the next step
@@ -427,12 +439,15 @@ module cube4_gra_beats
             ended  <= 1'b0;
             tail   <= 1'b0;
             i0_v   <= 1'b0;
+            ia_v   <= 1'b0;
             i1_v   <= 1'b0;
             i2_v   <= 1'b0;
         end else begin
             if (ld)         i0_v <= 1'b1;
             else if (i0_mv) i0_v <= 1'b0;
-            if (i0_mv)      i1_v <= 1'b1;
+            if (i0_mv)      ia_v <= 1'b1;
+            else if (ia_mv) ia_v <= 1'b0;
+            if (ia_mv)      i1_v <= 1'b1;
             else if (i1_mv) i1_v <= 1'b0;
             if (i1_mv)      i2_v <= 1'b1;
             else if (step)  i2_v <= 1'b0;
@@ -597,24 +612,25 @@ module cube4_gra_beats
     end
 
     always @(posedge clk) begin
-        if (i0_mv) i1_word <= i0_word;
+        if (i0_mv) ia_word <= i0_word;
+        if (ia_mv) i1_word <= ia_word;
         if (i1_mv) i2_word <= i1_word;
     end
     wire [META_W-1:0] x_meta = {i2_in, i2_hdr};
 
     // ---- position buffers (cube4_gra_pos): read as a step's position moves on
-    // from i0 to i1, their words registered as it moves on to i2, written when
+    // from ia to i1, their words registered as it moves on to i2, written when
     // it steps from i2 ----
     // Each group of its registers takes its read, load and step from a credit
     // copy of its own (copies 0 .. GRA_POS_G-1: the delay lines' in the other
     // builds, unused by this source otherwise; not step's), so no one net
-    // reaches the hundreds of enables and bypass choices (as i0_mv, i1_mv, step)
+    // reaches the hundreds of enables and bypass choices (as ia_mv, i1_mv, step)
     wire [GRA_POS_G-1:0] pos_cr = credit[GRA_POS_G-1:0];
     wire [GRA_POS_G-1:0] pos_step = {GRA_POS_G{i2_v}} & pos_cr;
     wire [GRA_POS_G-1:0] pos_mv   = {GRA_POS_G{i1_v}} & ({GRA_POS_G{!i2_v}} | pos_cr);
-    wire [GRA_POS_G-1:0] pos_ld   = {GRA_POS_G{i0_v}} & ({GRA_POS_G{!i1_v || !i2_v}} | pos_cr);
+    wire [GRA_POS_G-1:0] pos_ld   = {GRA_POS_G{ia_v}} & ({GRA_POS_G{!i1_v || !i2_v}} | pos_cr);
     cube4_gra_pos #(.OUT_STAGE (1), `CUBE4_GRA_PASS) u_pos (
-        .clk (clk), .ld (pos_ld), .ld_r (i0_r), .ld_pb (i0_pb), .mv (pos_mv),
+        .clk (clk), .ld (pos_ld), .ld_r (ia_r), .ld_pb (ia_pb), .mv (pos_mv),
         .step (pos_step), .dead (i2_dead), .i0_w (i2_w), .i0_r (i2_r), .i0_pb (i2_pb), .nj (cfg_nj),
         .in_beat (i2_in), .sample (i2_sample), .lane_valid (i2_lane_valid), .x (x), .x_meta (x_meta), .pg (i2_pg), .pgb (i2_pgb), .bg (i2_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
@@ -625,9 +641,11 @@ module cube4_gra_beats
     always @(posedge clk) begin
         if (!rst && act && g_oh != low_oh(gm))
             $fatal(1, "cube4_gra_beats: g_oh %0h is not gm's lowest bit (gm %0h)", g_oh, gm);
-        if (pos_ld[0] != i0_mv || pos_mv[0] != i1_mv || pos_step[0] != step)
-            $fatal(1, "cube4_gra_beats: the position buffers' read/load/step (%b%b%b) are not i0_mv, i1_mv, step (%b%b%b)",
-                   pos_ld[0], pos_mv[0], pos_step[0], i0_mv, i1_mv, step);
+        if (pos_ld[0] != ia_mv || pos_mv[0] != i1_mv || pos_step[0] != step)
+            $fatal(1, "cube4_gra_beats: the position buffers' read/load/step (%b%b%b) are not ia_mv, i1_mv, step (%b%b%b)",
+                   pos_ld[0], pos_mv[0], pos_step[0], ia_mv, i1_mv, step);
+        if (!rst && i0_v && (i0_word[W_PB +: PB_W] != i0_pb || i0_word[W_R +: DIM_W] != i0_r))
+            $fatal(1, "cube4_gra_beats: the word's fields at W_PB, W_R are not i0's pb %0d and r %0d", i0_pb, i0_r);
         if (!rst && act && n_l != low_oh(row_gm))
             $fatal(1, "cube4_gra_beats: the row table's L %0h is not the next row's lowest step (row_gm %0h)", n_l, row_gm);
         if (!rst && t_re && !rd_nj && rd_w != '0 && by_new && !t_we && by_old && t_we_q)

@@ -97,16 +97,27 @@ module cube4_gra_beats_in #(
     // {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} of a key {m, j} against the
     // row {rw, rr} (rr1 = rr + 1)
     localparam integer PLW = 8;
+    // Each compare is a pair of carry chains, a <= b and a >= b (a < b + 1/2 and
+    // b < a + 1/2: a bit below the LSB tells them apart from each other and from
+    // a plain compare, so synthesis keeps them as two chains), and equality is
+    // their AND: one LUT after the chains, not a tree of LUTs over the bits
+    // before the choices the flags go through (m + 1 == w is m == w - 1, whose
+    // w - 1 comes from registers).
+    function automatic [1:0] le_ge_k(input [KW-1:0] a, input [KW-1:0] b);     // {a <= b, a >= b}
+        le_ge_k = {{a, 1'b0} < {b, 1'b1}, {b, 1'b0} < {a, 1'b1}};
+    endfunction
+    function automatic [1:0] le_ge_m(input [M_W-1:0] a, input [M_W-1:0] b);
+        le_ge_m = {{a, 1'b0} < {b, 1'b1}, {b, 1'b0} < {a, 1'b1}};
+    endfunction
     function automatic [PLW-1:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr,
                                        input [DIM_W-1:0] rr1);
-        reg [KW-1:0] k0, k1;
-        reg [M_W-1:0] km;
+        reg [1:0] c0, c1, cm, cm1;       // {<=, >=} against {rw, rr}, {rw, rr1}, rw, rw - 1
         begin
-            k0 = {rw, rr};
-            k1 = {rw, rr1};
-            km = key[KW-1 -: M_W];
-            place = {key == k0, key > k0, key == k1, key > k1,
-                     km >= rw, km > rw, km == rw, M_W'(km + 1'b1) == rw};
+            c0  = le_ge_k(key, {rw, rr});
+            c1  = le_ge_k(key, {rw, rr1});
+            cm  = le_ge_m(key[KW-1 -: M_W], rw);
+            cm1 = le_ge_m(key[KW-1 -: M_W], M_W'(rw - 1'b1));
+            place = {&c0, !c0[1], &c1, !c1[1], cm[0], !cm[1], &cm, &cm1};
         end
     endfunction
     // a key's place in the next cycle, from its place now (kept while the row stays)
