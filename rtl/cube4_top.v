@@ -378,6 +378,7 @@ module cube4_top #(
                 .out_valid (s_valid), .out_ready (s_ready),
                 .out_data ({smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss}));
             wire k_ready, b_valid;
+            wire [1:0] k_ready_cp;   // copies of k_ready (u_bits)
             wire [3*P-1:0] com_packed;
             assign com_bits     = ray_bits_unpack(com_packed);
             // the beat forks to GRA and, its bits, to the FIFO's skid beside it, and
@@ -386,7 +387,7 @@ module cube4_top #(
             // either end of the die, each reach only the logic beside them
             // (cube4_skid_fifo; block RAM behind GRA, distributed RAM otherwise)
             assign smp_valid    = s_valid && k_ready;
-            assign s_ready      = smp_ready && k_ready;
+            assign s_ready      = smp_ready && k_ready_cp[1];
             // (the RAM's word through its output register, OUT_REG: at 64 words,
             // without GRA, the vendor layer makes it distributed RAM read into
             // flip-flops, whose asynchronous read with the route to the back skid
@@ -396,15 +397,18 @@ module cube4_top #(
             // beside them: from the back skid's register into SHA's output FIFO
             // across the die was the unshaded beat build's longest path)
             wire [1:0] b_valid_cp;
+            // (its ready in two copies: copy 0, k_ready, gates the beat to GRA;
+            // copy 1 pops the sample skid and lies beside it: copy 0 across the
+            // die into that skid's pointers was the default beat build's longest
+            // path on one placement)
             cube4_skid_fifo #(.DATA_W (3 * P + 1), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1),
-                              .VALID_N (2)) u_bits (
+                              .READY_N (2), .VALID_N (2)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
                 .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}),
-                .in_ready_cp (unused_ready_cp), .out_valid_cp (b_valid_cp));
-            wire unused_ready_cp;       // (k_ready is its copy)
-            wire unused_bits = ^{smp_eos, unused_ready_cp, b_valid, b_valid_cp[0]};
+                .in_ready_cp (k_ready_cp), .out_valid_cp (b_valid_cp));
+            wire unused_bits = ^{smp_eos, k_ready_cp[0], b_valid, b_valid_cp[0]};
             assign com_bits_valid = b_valid_cp[1];
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;
