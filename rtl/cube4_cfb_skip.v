@@ -26,9 +26,9 @@
 //
 // Latency
 //   As its units, and one cycle: the walk's beats pass a skid buffer (u_eskid,
-//   a cube4_skid), then one register-free join (out_valid is the skid's valid
-//   and, where the leaving beat holds a running ray, the queue's valid: both
-//   registers).
+//   a cube4_skid), the queue's items one too (u_qskid), then one register-free
+//   join (out_valid is the walk skid's valid and, where the leaving beat holds
+//   a running ray, the queue skid's valid: both registers).
 //
 // Ports
 //   As cube4_cfb_decide's inputs (the frame, the steps, the tables, COM's
@@ -89,9 +89,20 @@ module cube4_cfb_skip #(
         .bm_valid(bm_valid), .bm_ready(bm_ready), .bm_a(bm_a), .bm_occ(bm_occ),
         .ln_valid(ln_valid), .ln_ready(ln_ready), .ln_bits(ln_bits));
     // (the block RAMs' word through their output registers: OUT_REG)
+    // (its items pass a skid buffer beside the join: the join's pop, logic of the
+    // walk skid's head, reaches the skid's few state flip-flops, not the enables of
+    // the queue's register queue (4 RATE QN flip-flops) across the die, the default
+    // beat build's longest path on one placement; the queue's pop is the skid's
+    // ready, a register)
+    wire            r_valid, r_ready;
+    wire [RATE*QN-1:0] r_packed;
     cube4_ram_fifo #(.DATA_W(RATE * QN), .DEPTH(LN_DEPTH), .OUT_REG(1)) u_queue (
         .clk(clk), .rst(rst || start),
         .in_valid(ln_valid), .in_ready(ln_ready), .in_data(ln_packed),
+        .out_valid(r_valid), .out_ready(r_ready), .out_data(r_packed));
+    cube4_skid #(.DATA_W(RATE * QN)) u_qskid (
+        .clk(clk), .rst(rst || start),
+        .in_valid(r_valid), .in_ready(r_ready), .in_data(r_packed),
         .out_valid(q_valid), .out_ready(q_ready), .out_data(q_packed));
     wire e_valid, e_ready, e_leave, e_in_a, e_read, e_tok, e_eor, e_eos, e_last;
     wire [M_W-1:0]   e_m;
