@@ -548,7 +548,7 @@ module cube4_top #(
     // decided here, where the beat leaves SHA, and go with it, so no logic of
     // them lies on that route
     localparam integer GEO_W = `CUBE4_GEO_W;     // cube4_com_steps' q_geo
-    localparam integer XC_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
+    localparam integer XC_W = P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;
     wire [PV-1:0]             c_sample;
@@ -569,9 +569,23 @@ module cube4_top #(
             cube4_skid #(.DATA_W (XC_W)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid && com_bits_valid), .in_ready (xk_ready),
-                .in_data ({x_geo, sha_hdr, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
+                .in_data ({x_geo, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
-                .out_data ({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+                .out_data ({c_geo, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+            // the header passes a skid of its own beside it, with the same valid and
+            // ready (so the same state in every cycle): COM compares the entering
+            // header's slot with its stages (cube4_com_ahead) into a register, and
+            // the header's entries, apart from the wide skid of the samples and
+            // colours, lie beside COM (from that skid's entry across the die into
+            // those compares was the crop beat build's longest path on one placement)
+            wire hk_ready, hk_valid;
+            cube4_skid #(.DATA_W (HDR_W)) u_com_hdr_skid (
+                .clk (clk), .rst (rst),
+                .in_valid (x_valid && com_bits_valid), .in_ready (hk_ready),
+                .in_data (sha_hdr),
+                .out_valid (hk_valid), .out_ready (com_in_ready),
+                .out_data (c_hdr));
+            wire unused_hk = ^{hk_ready, hk_valid};     // (xk_ready and com_in_valid)
         end else begin : g_com_fixed
             localparam integer XF_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W;
             cube4_skid #(.DATA_W (XF_W)) u_com_skid (
