@@ -572,19 +572,27 @@ module cube4_top #(
                 .in_data ({x_geo, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
                 .out_data ({c_geo, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
-            // the header passes a skid of its own beside it, with the same valid and
-            // ready (so the same state in every cycle): COM compares the entering
-            // header's slot with its stages (cube4_com_ahead) into a register, and
-            // the header's entries, apart from the wide skid of the samples and
-            // colours, lie beside COM (from that skid's entry across the die into
-            // those compares was the crop beat build's longest path on one placement)
+            // the header passes a skid of its own with the same valid and ready (so the
+            // same count in every cycle), whose head is a register (cube4_skid_oreg): COM
+            // compares the entering header's slot with its stages into a register
+            // (cube4_com_ahead), and the head's flip-flops, which load as COM takes, lie
+            // beside COM; the wide skid's entries lie toward SHA (from them, or from a
+            // skid's read pointer, across the die into those compares was a beat
+            // build's longest path)
             wire hk_ready, hk_valid;
-            cube4_skid #(.DATA_W (HDR_W)) u_com_hdr_skid (
+            cube4_skid_oreg #(.DATA_W (HDR_W)) u_com_hdr_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid && com_bits_valid), .in_ready (hk_ready),
                 .in_data (sha_hdr),
                 .out_valid (hk_valid), .out_ready (com_in_ready),
                 .out_data (c_hdr));
+`ifndef SYNTHESIS
+            always @(posedge clk) begin
+                if (!rst && {hk_ready, hk_valid} != {xk_ready, com_in_valid})
+                    $fatal(1, "cube4_top: the COM header skid's ready/valid %b differ from the COM skid's %b",
+                           {hk_ready, hk_valid}, {xk_ready, com_in_valid});
+            end
+`endif
             wire unused_hk = ^{hk_ready, hk_valid};     // (xk_ready and com_in_valid)
         end else begin : g_com_fixed
             localparam integer XF_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W;

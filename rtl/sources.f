@@ -11,6 +11,7 @@ cube4_lerp.v
 cube4_pick.v
 cube4_skid_peek.v
 cube4_skid.v
+cube4_skid_oreg.v
 cube4_credit_fifo.v
 cube4_ring_shift.v
 cube4_mul.v
