@@ -193,6 +193,23 @@ class QueueTB:
             await self.cycle(False, True)
             n += 1
 
+    async def skid_checks(self) -> None:
+        """A two-entry skid buffer's stream (cube4_skid_peek, cube4_skid_oreg), from reset:
+        latency one edge, capacity two (then in_ready low), one item in and one out a cycle
+        at full rate from full, a drain, then random traffic with nothing left over."""
+        d = self.dut
+        await self.cycle(True, False)
+        assert int(d.out_valid.value), "an item is not on out_valid one edge after the edge that took it"
+        await self.cycle(False, True)
+        held = await self.fill(6)
+        assert held == 2, f"the buffer took {held} items, not 2"
+        assert not int(d.in_ready.value), "in_ready high with two items held"
+        flow = [await self.cycle(True, True) for _ in range(64)]
+        assert all(q for _, q in flow), "not one item out a cycle at full rate"
+        assert all(p for p, _ in flow[1:]), "not one item in a cycle at full rate"
+        await self.drain()
+        await self.random_traffic(3000, 8)
+
     async def random_traffic(self, cycles: int, tail: int) -> None:
         """Random valid (0.6) and ready (0.55) for ``cycles``, then ``tail`` cycles of
         draining; nothing may be left in the model or on out_valid."""

@@ -72,20 +72,7 @@ class TB(QueueTB):
 async def test_skid(dut):
     tb = TB(dut)
     await tb.reset()
-    # latency: one edge
-    await tb.cycle(True, False)
-    assert int(dut.out_valid.value), "an item is not on out_valid one edge after the edge that took it"
-    await tb.cycle(False, True)
-    # capacity: two items, then in_ready low
-    held = await tb.fill(6)
-    assert held == 2, f"the buffer took {held} items, not 2"
-    assert not int(dut.in_ready.value), "in_ready high with two items held"
-    # full rate, from full and then on
-    flow = [await tb.cycle(True, True) for _ in range(64)]
-    assert all(q for _, q in flow), "not one item out a cycle at full rate"
-    assert all(p for p, _ in flow[1:]), "not one item in a cycle at full rate"
-    await tb.drain()
-    await tb.random_traffic(3000, 8)
+    await tb.skid_checks()
     assert tb.peeks > 300, f"only {tb.peeks} cycles with a second item"
     dut._log.info("cube4_skid_peek DATA_W=%d: %d items in order, the second item checked in %d cycles",
                   tb.data_w, tb.q.got, tb.peeks)
