@@ -30,7 +30,7 @@ from pathlib import Path
 import cocotb
 import numpy as np
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 
 from cube4.memory import top_regs
 from cube4.view import Traversal
@@ -131,8 +131,9 @@ class QueueTB:
     cube4_skid_fifo): a seeded generator, a QueueCheck, the clock; reset, random words
     and one cycle of driven valid and ready with its transfers checked."""
 
-    def __init__(self, dut, empty_only_when_low: bool = False) -> None:
+    def __init__(self, dut, empty_only_when_low: bool = False, ready_is_register: bool = False) -> None:
         self.dut = dut
+        self.ready_is_register = ready_is_register
         (self.data_w,) = top_params(dut, "DATA_W")
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.q = QueueCheck(dut, empty_only_when_low=empty_only_when_low)
@@ -156,9 +157,18 @@ class QueueTB:
         return w & ((1 << self.data_w) - 1)
 
     async def drive(self, valid: bool, ready: bool, data: int) -> None:
-        """The cycle's inputs (a bench may check between them, as cube4_skid's)."""
+        """The cycle's inputs; with ``ready_is_register`` the other out_ready first, and
+        in_ready must not follow out_ready within the cycle."""
         d = self.dut
-        d.in_valid.value, d.in_data.value, d.out_ready.value = int(valid), data, int(ready)
+        if not self.ready_is_register:
+            d.in_valid.value, d.in_data.value, d.out_ready.value = int(valid), data, int(ready)
+            return
+        d.in_valid.value, d.in_data.value, d.out_ready.value = int(valid), data, int(not ready)
+        await Timer(1, "ns")
+        ready_other = int(d.in_ready.value)
+        d.out_ready.value = int(ready)
+        await Timer(1, "ns")
+        assert int(d.in_ready.value) == ready_other, "in_ready follows out_ready within a cycle"
 
     async def cycle(self, valid: bool, ready: bool) -> tuple[bool, bool]:
         """One cycle: drive, record the transfers of the coming edge; (pushed, popped)."""
