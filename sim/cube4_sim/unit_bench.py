@@ -127,8 +127,8 @@ class QueueCheck:
 
 
 class QueueTB:
-    """The bench of a queue with one stream in and one out (cube4_skid, cube4_ram_fifo,
-    cube4_skid_fifo): a seeded generator, a QueueCheck, the clock; reset, random words
+    """The bench of a queue with one stream in and one out (cube4_skid, cube4_skid_oreg,
+    cube4_ram_fifo, cube4_skid_fifo): a seeded generator, a QueueCheck, the clock; reset, random words
     and one cycle of driven valid and ready with its transfers checked."""
 
     def __init__(self, dut, empty_only_when_low: bool = False, ready_is_register: bool = False) -> None:
