@@ -51,8 +51,10 @@
 //
 // Latency
 //   An input beat passes a skid buffer (cube4_gra_beats_in: one cycle;
-//   in_ready is its register; the head's place against the row, and its
-//   slice against the row's, come with it), so the choice of the next step
+//   in_ready is its register; the head's place against the row, its slice
+//   against the row's, and its end-of-slice and end-of-frame bits come with
+//   it, in registers of a head slot, not behind the skid's read pointer),
+//   so the choice of the next step
 //   and the slice flags w_in and w_last start at registers; the
 //   choice computes what each candidate position decides (its plane and beam
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
@@ -146,8 +148,9 @@ module cube4_gra_beats
 
     // the input passes a skid buffer first (cube4_gra_beats_in): the choice of the
     // next step starts at registers (the head beat's place against the row, decided
-    // a cycle ahead, and its partial beam as bit words, decoded as it entered), and
-    // in_ready is a register (not the choice's result)
+    // a cycle ahead, its partial beam as bit words, decoded as it entered, and its
+    // EOSS and EOP bits: the head slot's registers, which no read pointer selects),
+    // and in_ready is a register (not the choice's result)
     wire              s_valid, s_ready, s_eoss;
     wire [HDR_W-1:0]  s_hdr;
     wire [PV-1:0]     s_sample;
@@ -157,18 +160,20 @@ module cube4_gra_beats
     wire              row_mv;                        // the row moves on to {nx_w, nx_r}
     wire [M_W-1:0]    nx_w;
     wire [DIM_W-1:0]  nx_r, nx_r1;
-    cube4_gra_beats_in #(.DATA_W (1 + HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W), .PB_W (PB_W), .NBX (NBX)) u_in (
+    wire              s_eop;                         // the head is the frame's last beat
+    cube4_gra_beats_in #(.DATA_W (HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W), .PB_W (PB_W), .NBX (NBX), .CW (2)) u_in (
         .clk (clk), .rst (rst),
-        .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_eoss, in_hdr, in_sample}),
-        .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_eoss, s_hdr, s_sample}),
+        .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_hdr, in_sample}),
+        .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_hdr, s_sample}),
         .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
         .w (w), .r (r), .r1 (r1), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1), .home (start),
         .in_pb (in_hdr[HDR_PB +: PB_W]),
         .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1),
-        .m_ge (s_mge), .m_gt (s_mgt), .m_eq (s_meq), .m_eq1 (s_meq1), .oh (in_oh), .below (in_below));
+        .m_ge (s_mge), .m_gt (s_mgt), .m_eq (s_meq), .m_eq1 (s_meq1), .oh (in_oh), .below (in_below),
+        .in_ctl ({in_eoss, in_hdr[HDR_CTRL + CTRL_EOP]}), .ctl ({s_eoss, s_eop}));
     wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
     wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
-    wire              in_eop = s_hdr[HDR_CTRL + CTRL_EOP];
+    wire              in_eop = s_eop;              // (kept in the input's head slot: a register)
     wire              in_sy  = s_hdr[HDR_CTRL + CTRL_SY];
     wire              in_osy = s_hdr[HDR_CTRL + CTRL_OSY];
 

@@ -19,11 +19,19 @@
 //   moves on (mv: to {nx_w, nx_r}, the source's next row) or a frame starts
 //   (home: to {0, 0}) they are compared again against the new row, and a
 //   beat that enters takes its flags against the row of the next cycle.
-//   The entries' pointers shadow the skid's (both move on its push and pop).
-//   Each entry also keeps its beat's partial beam as bit words, decoded as it
-//   enters (oh: bit pb; below: bits 0 .. pb - 1), so that the source's choice
-//   takes them from flip-flops through one multiplexer, not through the
-//   skid's multiplexer and a compare with every bit position.
+//   The flags are kept in two slots of registers of their own, not in the
+//   skid's entries behind a multiplexer: the head slot (h_*) holds the head
+//   beat's, the back slot (b_*) the beat behind it. A pop moves the back
+//   slot's beat (or, where none waits, the entering one) into the head slot,
+//   so the head's flags are flip-flops that feed the choice directly, with
+//   no read pointer between them and the choice that pops them. The back
+//   slot loads the entering beat whenever it holds none (its enable a
+//   register), as the skid's entries do.
+//   Each slot also keeps its beat's partial beam as bit words, decoded as it
+//   enters (oh: bit pb; below: bits 0 .. pb - 1), and CW control bits of
+//   the beat (in_ctl: the source's end of slice and end of frame), so that
+//   the source's choice takes them from flip-flops, not through the skid's
+//   multiplexer and a compare with every bit position.
 //   Its slice m against the row's slice w follows the row alike (the source's
 //   w_in and w_last, which load from w or w + 1 against m + 1, take these
 //   flags instead of an adder and a compare behind the skid's multiplexer):
@@ -36,9 +44,13 @@
 //   DIM_W    bits of a row.                           1..16.
 //   PB_W     bits of a partial beam.                  1..8.
 //   NBX      bits of a row word (partial beams 0 .. NBX - 1).  1..256.
+//   CW       control bits kept with the flags (in_ctl). 1..8.
 //
-// Latency: as cube4_skid (one cycle; in_ready is a register). The flags of
-//   the head are registers selected by a register (the read pointer).
+// Latency: as cube4_skid (one cycle; in_ready is a register). The head's
+//   flags, bit words and control bits are registers (the head slot);
+//   out_valid is the head slot's valid register, and out_data the skid's
+//   entry at its read pointer (a simulation check holds the skid's valid
+//   and ready to the slots').
 //
 // Ports
 //   in_*, out_*   the stream (cube4_skid); in_m, in_j the key of in_data
@@ -47,6 +59,7 @@
 //                 nx_r + 1)
 //   home          it is set to {0, 0} this cycle (a frame's start)
 //   in_pb         the partial beam of in_data (below NBX)
+//   in_ctl        [CW] control bits of in_data (any meaning; ctl shows the head's)
 //   eq0, gt0, eq1, gt1   out  the head's place (valid with out_valid)
 //   m_ge, m_gt, m_eq, m_eq1  out  the head's slice against w (valid with
 //                 out_valid)
@@ -60,7 +73,8 @@ module cube4_gra_beats_in #(
     parameter integer M_W    = 8,
     parameter integer DIM_W  = 8,
     parameter integer PB_W   = 4,
-    parameter integer NBX    = 16
+    parameter integer NBX    = 16,
+    parameter integer CW     = 1
 ) (
     `CUBE4_STREAM_PORTS(DATA_W),
     input  wire [M_W-1:0]   in_m,
@@ -74,9 +88,11 @@ module cube4_gra_beats_in #(
     input  wire [DIM_W-1:0] nx_r1,
     input  wire             home,
     input  wire [PB_W-1:0]  in_pb,
+    input  wire [CW-1:0]    in_ctl,
     output wire             eq0, output wire gt0, output wire eq1, output wire gt1,
     output wire             m_ge, output wire m_gt, output wire m_eq, output wire m_eq1,
-    output wire [NBX-1:0]   oh, output wire [NBX-1:0] below
+    output wire [NBX-1:0]   oh, output wire [NBX-1:0] below,
+    output wire [CW-1:0]    ctl
 );
     generate
         `CUBE4_RANGE(g_bad_data_w, "cube4_gra_beats_in", "DATA_W", DATA_W, 1, 4096)
@@ -84,15 +100,17 @@ module cube4_gra_beats_in #(
         `CUBE4_RANGE(g_bad_dim_w, "cube4_gra_beats_in", "DIM_W", DIM_W, 1, 16)
         `CUBE4_RANGE(g_bad_pb_w, "cube4_gra_beats_in", "PB_W", PB_W, 1, 8)
         `CUBE4_RANGE(g_bad_nbx, "cube4_gra_beats_in", "NBX", NBX, 1, 256)
+        `CUBE4_RANGE(g_bad_cw, "cube4_gra_beats_in", "CW", CW, 1, 8)
     endgenerate
     localparam integer KW = M_W + DIM_W;
 
+    wire skid_valid;
     cube4_skid #(.DATA_W(DATA_W)) u_skid (
         .clk(clk), .rst(rst),
         .in_valid(in_valid), .in_ready(in_ready), .in_data(in_data),
-        .out_valid(out_valid), .out_ready(out_ready), .out_data(out_data));
+        .out_valid(skid_valid), .out_ready(out_ready), .out_data(out_data));
     wire push = in_valid && in_ready;
-    wire pop  = out_valid && out_ready;
+    wire pop  = out_valid && out_ready;      // (out_valid: the head slot's h_v)
 
     // {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} of a key {m, j} against the
     // row {rw, rr} (rr1 = rr + 1)
@@ -136,38 +154,49 @@ module cube4_gra_beats_in #(
         for (b = 0; b < NBX; b = b + 1) below_of[b] = (PB_W'(b) < pb);
     endfunction
 
-    reg            wp, rp;                 // the skid's pointers, shadowed
-    reg  [KW-1:0]  key [0:1];
-    reg  [PLW-1:0] pl  [0:1];
-    reg  [NBX-1:0] e_oh [0:1], e_below [0:1];
+    // a slot: {key, flags, bit words, control bits}; the flags move with the row
+    localparam integer SLW = KW + PLW + 2 * NBX + CW;
+    function automatic [SLW-1:0] moved(input [SLW-1:0] sl, input h, input m, input [M_W-1:0] mw,
+                                       input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1);
+        moved = {sl[SLW-1 -: KW], next_place(sl[SLW-1 -: KW], sl[SLW-KW-1 -: PLW], h, m, mw, mr, mr1),
+                 sl[2*NBX+CW-1:0]};
+    endfunction
     wire [KW-1:0]  in_key = {in_m, in_j};
-    wire [PLW-1:0] in_pl  = next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1);
+    wire [SLW-1:0] in_sl  = {in_key, next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1),
+                             bit_of(in_pb), below_of(in_pb), in_ctl};
+    reg            h_v, b_v;                // the head slot holds the head beat, the back slot the one behind
+    reg  [SLW-1:0] h_sl, b_sl;
+    wire [SLW-1:0] h_mv = moved(h_sl, home, mv, nx_w, nx_r, nx_r1);
+    wire [SLW-1:0] b_mv = moved(b_sl, home, mv, nx_w, nx_r, nx_r1);
     always @(posedge clk) begin
         if (rst) begin
-            wp <= 1'b0;
-            rp <= 1'b0;
+            h_v <= 1'b0;
+            b_v <= 1'b0;
         end else begin
-            if (push) wp <= !wp;
-            if (pop)  rp <= !rp;
+            h_v <= pop ? (b_v || push) : (h_v || push);
+            b_v <= !pop && (b_v || (push && h_v));
         end
+        // the head slot: the back slot's beat or the entering one when the head
+        // leaves or none is there, its own moved on otherwise
+        h_sl <= (pop && b_v) ? b_mv : ((pop || !h_v) ? in_sl : h_mv);
+        // the back slot: the entering beat whenever it holds none that stays
+        b_sl <= (b_v && !pop) ? b_mv : in_sl;
     end
-    genvar e;
-    generate
-        for (e = 0; e < 2; e = e + 1) begin : g_entry
-            always @(posedge clk) begin
-                if (push && wp == (e == 1)) begin
-                    key[e]     <= in_key;
-                    pl[e]      <= in_pl;
-                    e_oh[e]    <= bit_of(in_pb);
-                    e_below[e] <= below_of(in_pb);
-                end else begin
-                    pl[e]  <= next_place(key[e], pl[e], home, mv, nx_w, nx_r, nx_r1);
-                end
-            end
-        end
-    endgenerate
-    assign {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} = pl[rp];
-    assign oh    = e_oh[rp];
-    assign below = e_below[rp];
+    assign out_valid = h_v;
+    assign {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} = h_sl[SLW-KW-1 -: PLW];
+    assign oh    = h_sl[2*NBX+CW-1 -: NBX];
+    assign below = h_sl[NBX+CW-1 -: NBX];
+    assign ctl   = h_sl[CW-1:0];
+`ifndef SYNTHESIS
+    // the slots follow the skid's own state (from the first reset on)
+    reg reset_seen;
+    initial reset_seen = 1'b0;
+    always @(posedge clk) begin
+        if (rst) reset_seen <= 1'b1;
+        if (!rst && reset_seen && (skid_valid != h_v || in_ready == b_v))
+            $fatal(1, "cube4_gra_beats_in: the slots' valid (%b, %b) are not the skid's (out_valid %b, in_ready %b)",
+                   h_v, b_v, skid_valid, in_ready);
+    end
+`endif
 endmodule
 `default_nettype wire

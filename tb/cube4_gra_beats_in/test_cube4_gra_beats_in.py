@@ -11,7 +11,9 @@ key == {w, r}, gt0 = key > {w, r}, eq1 and gt1 against {w, r + 1} (r + 1 in DIM_
 so r = 2^DIM_W - 1 compares with {w, 0}); its slice m against w: m_ge = m >= w,
 m_gt = m > w, m_eq = m == w, m_eq1 = m + 1 == w in M_W bits (so m = 2^M_W - 1 is w = 0's);
 the head's partial beam pb (random, below NBX) as bit words: oh = bit pb, below = bits
-0 .. pb - 1. M_W = 4 and DIM_W = 3 put equal keys and the wrap within reach. With the
+0 .. pb - 1; its CW control bits (random in_ctl) as ctl. The flags live in two slots of
+registers (head, back) that follow the skid; the test drives both the head leaving with a
+beat behind it and with one entering in the same cycle. M_W = 4 and DIM_W = 3 put equal keys and the wrap within reach. With the
 entries' flags kept (not compared again) on mv, the check fails ("beat N: flags RTL ...,
 model ..."; tried); with below decoded as bits 0 .. pb, "beat N: pb ... bit words"
 (tried); with m_eq1 as m == w + 1, "beat N ... flags" (tried).
@@ -42,20 +44,20 @@ FLAGS = ("eq0", "gt0", "eq1", "gt1", "m_ge", "m_gt", "m_eq", "m_eq1")
 
 @cocotb.test()
 async def test_places(dut):
-    data_w, m_w, dim_w, nbx = top_params(dut, "DATA_W", "M_W", "DIM_W", "NBX")
+    data_w, m_w, dim_w, nbx, cw = top_params(dut, "DATA_W", "M_W", "DIM_W", "NBX", "CW")
     rng = np.random.default_rng(cocotb.RANDOM_SEED)
     start_clock(dut)
     d = dut
     d.in_valid.value, d.out_ready.value, d.mv.value, d.home.value = 0, 0, 0, 0
     d.w.value, d.r.value, d.nx_w.value, d.nx_r.value, d.in_data.value, d.in_m.value, d.in_j.value = 0, 0, 0, 0, 0, 0, 0
-    d.in_pb.value = 0
+    d.in_pb.value, d.in_ctl.value = 0, 0
     d.r1.value, d.nx_r1.value = 1, 1
     d.rst.value = 1
     for _ in range(3):
         await RisingEdge(d.clk)
     await FallingEdge(d.clk)
     d.rst.value = 0
-    model: deque[tuple[int, tuple[int, int], int]] = deque()
+    model: deque[tuple[int, tuple[int, int], int, int]] = deque()
     w = r = 0
     sent = got = checked = 0
     held = None
@@ -66,6 +68,7 @@ async def test_places(dut):
             if rng.random() < 0.3:                                # slices beside w (and their wrap)
                 key = ((w + int(rng.choice((-1, 1)))) % (1 << m_w), key[1])
         pb = int(rng.integers(0, nbx))
+        ctl = int(rng.integers(0, 1 << cw))
         data = (sent << (m_w + dim_w)) | (key[0] << dim_w) | key[1]
         valid, ready = rng.random() < 0.6, rng.random() < 0.55
         if cyc >= 5990:                                           # the drain
@@ -77,7 +80,7 @@ async def test_places(dut):
             nx = (w, (r + 1) % (1 << dim_w)) if r + 1 < (1 << dim_w) else ((w + 1) % (1 << m_w), 0)
         d.in_valid.value, d.out_ready.value = int(valid), int(ready)
         d.in_data.value, d.in_m.value, d.in_j.value = data & ((1 << data_w) - 1), key[0], key[1]
-        d.in_pb.value = pb
+        d.in_pb.value, d.in_ctl.value = pb, ctl
         d.w.value, d.r.value, d.mv.value, d.home.value = w, r, int(mv), int(home)
         d.r1.value = (r + 1) % (1 << dim_w)                       # (the source's registers)
         d.nx_w.value, d.nx_r.value = nx
@@ -88,7 +91,7 @@ async def test_places(dut):
         if ov:
             od = int(d.out_data.value)
             assert model, f"out_valid with nothing in (beat {got})"
-            want_data, want_key, want_pb = model[0]
+            want_data, want_key, want_pb, want_ctl = model[0]
             assert od == want_data, f"beat {got}: RTL {od:#x}, model {want_data:#x}"
             if held is not None:
                 assert held == od, "out_data changed while out_ready was low"
@@ -99,6 +102,7 @@ async def test_places(dut):
             words = (int(d.oh.value), int(d.below.value))
             assert words == (1 << want_pb, (1 << want_pb) - 1), (
                 f"beat {got}: pb {want_pb} bit words (oh, below) RTL {words[0]:#x}, {words[1]:#x}")
+            assert int(d.ctl.value) == want_ctl, f"beat {got}: ctl RTL {int(d.ctl.value):#x}, model {want_ctl:#x}"
             checked += 1
         else:
             assert not model, f"{len(model)} beats held and out_valid low (beat {got})"
@@ -108,7 +112,7 @@ async def test_places(dut):
             model.popleft()
             got += 1
         if pushed:
-            model.append((data & ((1 << data_w) - 1), key, pb))
+            model.append((data & ((1 << data_w) - 1), key, pb, ctl))
             sent += 1
         w, r = (0, 0) if home else (nx if mv else (w, r))
         await RisingEdge(d.clk)
@@ -118,7 +122,7 @@ async def test_places(dut):
     dut._log.info("cube4_gra_beats_in: %d beats, %d places checked", got, checked)
 
 
-BUILDS = [dict(DATA_W=24, M_W=4, DIM_W=3, PB_W=3, NBX=6), dict(DATA_W=90, M_W=9, DIM_W=8, PB_W=5, NBX=17)]
+BUILDS = [dict(DATA_W=24, M_W=4, DIM_W=3, PB_W=3, NBX=6, CW=2), dict(DATA_W=90, M_W=9, DIM_W=8, PB_W=5, NBX=17, CW=3)]
 
 
 @pytest.mark.parametrize("params", sweep(BUILDS, quick=(0,), ids=param_id))
