@@ -161,26 +161,25 @@ module cube4_gra_beats
     wire [M_W-1:0]    nx_w;
     wire [DIM_W-1:0]  nx_r, nx_r1;
     wire              s_eop;                         // the head is the frame's last beat
-    cube4_gra_beats_in #(.DATA_W (HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W), .PB_W (PB_W), .NBX (NBX), .CW (2)) u_in (
+    wire              in_sy, in_osy;                 // its SY, OSY
+    wire [M_W-1:0]    in_m;                          // its slice
+    wire [PB_W-1:0]   in_pb;                         // its partial beam
+    wire              d_pop;                         // the data of the beat in i0 move on with it
+    cube4_gra_beats_in #(.DATA_W (HDR_W + PV), .M_W (M_W), .DIM_W (DIM_W), .PB_W (PB_W), .NBX (NBX), .CW (4)) u_in (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_hdr, in_sample}),
-        .out_valid (s_valid), .out_ready (s_ready), .out_data ({s_hdr, s_sample}),
+        .out_valid (s_valid), .out_ready (s_ready), .d_pop (d_pop), .d_data ({s_hdr, s_sample}),
         .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
         .w (w), .r (r), .r1 (r1), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1), .home (start),
         .in_pb (in_hdr[HDR_PB +: PB_W]),
         .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1),
         .m_ge (s_mge), .m_gt (s_mgt), .m_eq (s_meq), .m_eq1 (s_meq1), .oh (in_oh), .below (in_below),
-        .in_ctl ({in_eoss, in_hdr[HDR_CTRL + CTRL_EOP]}), .ctl ({s_eoss, s_eop}));
-    wire [M_W-1:0]    in_m   = s_hdr[HDR_M +: M_W];
-    wire [PB_W-1:0]   in_pb  = s_hdr[HDR_PB +: PB_W];
+        .in_ctl ({in_eoss, in_hdr[HDR_CTRL + CTRL_EOP], in_hdr[HDR_CTRL + CTRL_SY], in_hdr[HDR_CTRL + CTRL_OSY]}),
+        .ctl ({s_eoss, s_eop, in_sy, in_osy}), .m (in_m), .pb (in_pb));
     wire              in_eop = s_eop;              // (kept in the input's head slot: a register)
-    wire              in_sy  = s_hdr[HDR_CTRL + CTRL_SY];
-    wire              in_osy = s_hdr[HDR_CTRL + CTRL_OSY];
 
     // i0: the next step
     reg               i0_v, i0_in, i0_dead, i0_fend, i0_gap;
-    reg [PV-1:0]      i0_sample;
-    reg [HDR_W-1:0]   i0_hdr;
     reg [M_W-1:0]     i0_w;
     reg [DIM_W-1:0]   i0_r;
     reg [PB_W-1:0]    i0_pb;
@@ -190,11 +189,12 @@ module cube4_gra_beats
     reg               i0_ylast, i0_dyf, i0_dyb;
     // the step's fields as one word, which moves on i0 -> ia -> i1 -> i2; a generated
     // step's sample and header are zero (the samples of beats that do not run),
-    // formed here from the register i0_in, not as i0 loads (where the choice of
-    // step would reach every bit's reset)
+    // formed here from the register i0_in; an input beat's sample and header are
+    // the input's data queue's oldest (u_in), which pops as i0 moves on (d_pop), so
+    // the choice that loads i0 drives no data register
     localparam integer SW = 14 + PV + HDR_W + M_W + DIM_W + PB_W;
-    wire [PV-1:0]    i0_smp_in = {PV{i0_in}} & i0_sample;
-    wire [HDR_W-1:0] i0_hdr_in = {HDR_W{i0_in}} & i0_hdr;
+    wire [PV-1:0]    i0_smp_in = {PV{i0_in}} & s_sample;
+    wire [HDR_W-1:0] i0_hdr_in = {HDR_W{i0_in}} & s_hdr;
     wire [SW-1:0] i0_word = {i0_in, i0_dead, i0_fend, i0_gap, i0_smp_in, i0_hdr_in, i0_w, i0_r, i0_pb,
                              i0_pg, i0_bg, i0_pgb, i0_flags, i0_ylast, i0_dyf, i0_dyb};
     // ia: one register stage after i0, whose position reads the position buffers
@@ -233,6 +233,7 @@ module cube4_gra_beats
     wire ia_mv   = ia_v && (!i1_v || i1_mv);              // ia moves on to i1 (its buffers' read)
     wire i0_mv   = i0_v && (!ia_v || ia_mv);              // i0 moves on to ia
     wire i0_take = !i0_v || i0_mv;
+    assign d_pop = i0_mv && i0_in;                        // i0's input beat's data move on with it
 
     // ------------------------------------------------------------ the next step
     // the input's beat is in this row, or beyond it
@@ -592,13 +593,10 @@ module cube4_gra_beats
             sy_q[in_m[0]]  <= in_sy;
             osy_q[in_m[0]] <= in_osy;
         end
-        // the input's head beat and the step's fields load whenever i0 takes a step
-        // (a load enable of i0's registers, not the choice of step: i0_word keeps
-        // the sample only with i0_in; where the choice loads no step, i0_v falls
-        // and the fields are not read)
+        // the step's fields load whenever i0 takes a step (a load enable of i0's
+        // registers, not the choice of step: where the choice loads no step, i0_v
+        // falls and the fields are not read)
         if (i0_take) begin
-            i0_sample <= s_sample;
-            i0_hdr    <= s_hdr;
             i0_in     <= t_i;
             i0_dead   <= t_tail;
             i0_fend   <= t_tl && tail_n && fin;
@@ -667,7 +665,6 @@ module cube4_gra_beats
             wire unused_credit = ^credit[GRA_STEPS-2:GRA_POS_G];   // (more copies than groups)
         end
     endgenerate
-    wire unused_cfg    = ^{s_hdr[HDR_CTRL + CTRL_SOP]};
 
 endmodule
 `default_nettype wire

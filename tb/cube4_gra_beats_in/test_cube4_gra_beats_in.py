@@ -2,10 +2,13 @@
 comes with its place against the row the source steps.
 
 Random beats (a random key {m, j} in the payload with a serial number) through random
-valid and ready (seeded from COCOTB_RANDOM_SEED), while the row {w, r} stays, moves on
+valid and ready (seeded from COCOTB_RANDOM_SEED), each beat's data popped from the data
+queue (d_pop) at random after it was taken, as the source does (at most one beat taken
+and not popped: a beat is taken only while none waits or the one waiting pops), while the row {w, r} stays, moves on
 to a random {nx_w, nx_r} (mv) or goes home to {0, 0} (home) at random; r + 1 and
 nx_r + 1 come in as the source gives them (r1, nx_r1). Checked every
-cycle: the beats come out in order, none lost or extra, data held while not taken;
+cycle: the beats come out in order, none lost or extra; the data queue's head (d_data)
+is the oldest beat taken and not popped, held until it pops;
 with out_valid, the head's flags are its key against the row of that cycle: eq0 =
 key == {w, r}, gt0 = key > {w, r}, eq1 and gt1 against {w, r + 1} (r + 1 in DIM_W bits,
 so r = 2^DIM_W - 1 compares with {w, 0}); its slice m against w: m_ge = m >= w,
@@ -59,8 +62,8 @@ async def test_places(dut):
     d.rst.value = 0
     model: deque[tuple[int, tuple[int, int], int, int]] = deque()
     w = r = 0
-    sent = got = checked = 0
-    held = None
+    sent = got = checked = popped_n = 0
+    taken: deque[int] = deque()                                   # beats taken, their data not popped
     for cyc in range(6000):
         key = (int(rng.integers(0, 1 << m_w)), int(rng.integers(0, 1 << dim_w)))
         if rng.random() < 0.5 and w < (1 << m_w) and cyc % 7:      # keys near the row, often
@@ -71,14 +74,16 @@ async def test_places(dut):
         ctl = int(rng.integers(0, 1 << cw))
         data = (sent << (m_w + dim_w)) | (key[0] << dim_w) | key[1]
         valid, ready = rng.random() < 0.6, rng.random() < 0.55
+        dpop = bool(taken) and rng.random() < 0.6
         if cyc >= 5990:                                           # the drain
-            valid, ready = False, True
+            valid, ready, dpop = False, True, bool(taken)
+        ready = ready and (not taken or dpop)                     # (the source's i0_take)
         home = rng.random() < 0.02
         mv = not home and rng.random() < 0.3
         nx = (int(rng.integers(0, 1 << m_w)), int(rng.integers(0, 1 << dim_w)))
         if rng.random() < 0.7:
             nx = (w, (r + 1) % (1 << dim_w)) if r + 1 < (1 << dim_w) else ((w + 1) % (1 << m_w), 0)
-        d.in_valid.value, d.out_ready.value = int(valid), int(ready)
+        d.in_valid.value, d.out_ready.value, d.d_pop.value = int(valid), int(ready), int(dpop)
         d.in_data.value, d.in_m.value, d.in_j.value = data & ((1 << data_w) - 1), key[0], key[1]
         d.in_pb.value, d.in_ctl.value = pb, ctl
         d.w.value, d.r.value, d.mv.value, d.home.value = w, r, int(mv), int(home)
@@ -88,13 +93,12 @@ async def test_places(dut):
         await ReadOnly()
         pushed = valid and bool(int(d.in_ready.value))
         ov = bool(int(d.out_valid.value))
+        if taken:
+            dd = int(d.d_data.value)
+            assert dd == taken[0], f"beat {popped_n}: d_data RTL {dd:#x}, model {taken[0]:#x}"
         if ov:
-            od = int(d.out_data.value)
             assert model, f"out_valid with nothing in (beat {got})"
             want_data, want_key, want_pb, want_ctl = model[0]
-            assert od == want_data, f"beat {got}: RTL {od:#x}, model {want_data:#x}"
-            if held is not None:
-                assert held == od, "out_data changed while out_ready was low"
             flags = tuple(int(getattr(d, n).value) for n in FLAGS)
             want = place(want_key, w, r, m_w, dim_w)
             assert flags == want, (f"beat {got} key {want_key} against row ({w}, {r}): flags RTL {flags}, "
@@ -103,13 +107,16 @@ async def test_places(dut):
             assert words == (1 << want_pb, (1 << want_pb) - 1), (
                 f"beat {got}: pb {want_pb} bit words (oh, below) RTL {words[0]:#x}, {words[1]:#x}")
             assert int(d.ctl.value) == want_ctl, f"beat {got}: ctl RTL {int(d.ctl.value):#x}, model {want_ctl:#x}"
+            assert (int(d.m.value), int(d.pb.value)) == (want_key[0], want_pb), (
+                f"beat {got}: m, pb RTL {int(d.m.value)}, {int(d.pb.value)}, model {want_key[0]}, {want_pb}")
             checked += 1
         else:
             assert not model, f"{len(model)} beats held and out_valid low (beat {got})"
-        popped = ov and ready
-        held = None if (popped or not ov) else od
-        if popped:
-            model.popleft()
+        if dpop:
+            taken.popleft()
+            popped_n += 1
+        if ov and ready:
+            taken.append(model.popleft()[0])
             got += 1
         if pushed:
             model.append((data & ((1 << data_w) - 1), key, pb, ctl))
@@ -119,6 +126,7 @@ async def test_places(dut):
         await FallingEdge(d.clk)
     await ReadOnly()
     assert not model and not int(d.out_valid.value), f"{len(model)} beats never came out"
+    assert not taken and popped_n == got, f"{len(taken)} beats' data never popped"
     dut._log.info("cube4_gra_beats_in: %d beats, %d places checked", got, checked)
 
 
