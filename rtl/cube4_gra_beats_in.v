@@ -93,15 +93,10 @@ module cube4_gra_beats_in #(
     parameter integer NBX    = 16,
     parameter integer CW     = 1
 ) (
-    input  wire              clk,
-    input  wire              rst,
-    input  wire              in_valid,
-    output wire              in_ready,
-    input  wire [DATA_W-1:0] in_data,
-    output wire              out_valid,
-    input  wire              out_ready,
-    input  wire              d_pop,
-    output wire [DATA_W-1:0] d_data,
+    input  wire clk, input wire rst,
+    input  wire in_valid, output wire in_ready, input wire [DATA_W-1:0] in_data,   // the beats
+    output wire out_valid, input wire out_ready,                                 // the head slot
+    input  wire d_pop, output wire [DATA_W-1:0] d_data,                          // the data queue
     input  wire [M_W-1:0]   in_m,
     input  wire [DIM_W-1:0] in_j,
     input  wire [M_W-1:0]   w,
