@@ -52,9 +52,10 @@
 // Latency
 //   An input beat passes a skid buffer (cube4_gra_beats_in: one cycle;
 //   in_ready is its register; the head's place against the row, its slice
-//   against the row's, and its end-of-slice and end-of-frame bits come with
-//   it, in registers of a head slot, not behind the skid's read pointer),
-//   so the choice of the next step
+//   against the row's, its slice and partial beam, and its EOSS, EOP, SY
+//   and OSY bits come with it, in registers of a head slot, not behind a
+//   read pointer; its sample and header wait in a queue of their own that
+//   pops as i0 moves on to ia), so the choice of the next step
 //   and the slice flags w_in and w_last start at registers; the
 //   choice computes what each candidate position decides (its plane and beam
 //   words' bits, its gap, the row bits it passes) beside the choice itself.
@@ -148,9 +149,9 @@ module cube4_gra_beats
 
     // the input passes a skid buffer first (cube4_gra_beats_in): the choice of the
     // next step starts at registers (the head beat's place against the row, decided
-    // a cycle ahead, its partial beam as bit words, decoded as it entered, and its
-    // EOSS and EOP bits: the head slot's registers, which no read pointer selects),
-    // and in_ready is a register (not the choice's result)
+    // a cycle ahead, its partial beam as bit words, decoded as it entered, its slice,
+    // partial beam and EOSS, EOP, SY, OSY bits: the head slot's registers, which no
+    // read pointer selects), and in_ready is a register (not the choice's result)
     wire              s_valid, s_ready, s_eoss;
     wire [HDR_W-1:0]  s_hdr;
     wire [PV-1:0]     s_sample;
