@@ -26,9 +26,10 @@
 //   that describes it. All stages move under advance = the output register
 //   is free or taken by req_ready; req_valid never depends on req_ready.
 //   advance comes as CFB_ADV_N equal copies, each from its own copy of the
-//   output register's valid bit (cube4_prim_reg_copies) and its own copy of
-//   req_ready, one per group of its loads (CUBE4_CFB_LAYOUT), so no one net
-//   reaches the stages, the address unit and the control's counters.
+//   output register's valid bit and its own copy of req_ready, one per group
+//   of its loads (CUBE4_CFB_LAYOUT), so no one net reaches the stages, the
+//   address unit and the control's counters; each valid copy's next value
+//   is logic of its own, not its advance net (cube4_prim_valid_copies).
 //
 // Ports (past clk, rst and the register buses: CUBE4_CFB_MASK_PORTS)
 //   clk, rst     clock, synchronous active-high reset (the valid bits only)
@@ -137,7 +138,6 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     reg           v1_q, v2_q;
     wire [CFB_ADV_N-1:0] v_cp;            // the output register's valid bit, a copy per advance
     reg [F_W-1:0] f2_q, f_q;
-    assign advance = ~v_cp | req_ready;
 `ifndef SYNTHESIS
     always @(posedge clk) begin
         if (!rst && req_ready != '0 && req_ready != '1)
@@ -145,8 +145,10 @@ module cube4_cfb_mask #(`CUBE4_CFB_PARAMS) (
     end
 `endif
     wire   adv     = advance[CFB_ADV_MASK];
-    cube4_prim_reg_copies #(.COPIES(CFB_ADV_N), .W(1), .RESET(1)) u_v (
-        .clk(clk), .rst(rst), .en(advance), .d({CFB_ADV_N{v2_q}}), .q(v_cp));
+    // advance[c] = ~v_cp[c] | req_ready[c]; each copy's own next value is logic
+    // beside it, not the advance net that reaches copy c's loads
+    cube4_prim_valid_copies #(.COPIES(CFB_ADV_N)) u_v (
+        .clk(clk), .rst(rst), .d(v2_q), .ready(req_ready), .q(v_cp), .adv(advance));
     always @(posedge clk) begin
         if (rst) begin
             v1_q <= 1'b0;
