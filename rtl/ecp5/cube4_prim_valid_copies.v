@@ -16,19 +16,8 @@
 //
 // Parameters, latency, ports, bit growth: as rtl/cube4_prim_valid_copies.v.
 // =============================================================================
-module cube4_prim_valid_copies #(
-    parameter integer COPIES = 1
-) (
-    input  wire              clk,
-    input  wire              rst,
-    input  wire              d,
-    input  wire [COPIES-1:0] ready,
-    output wire [COPIES-1:0] q,
-    output wire [COPIES-1:0] adv
-);
-    generate
-        `CUBE4_RANGE(g_bad_copies, "cube4_prim_valid_copies", "COPIES", COPIES, 1, 64)
-    endgenerate
+module cube4_prim_valid_copies
+`include "cube4_prim_valid_copies_if.vh"
 
     genvar c;
     generate
