@@ -217,7 +217,7 @@ module cube4_com #(
     generate
         if (BEATS != 0) begin : g_in_skid
             wire [IN_W+GEO_W-1:0] c_nx;
-            wire unused_ready_cp, unused_valid_cp;   // (in_ready, c_valid are their copies)
+            wire unused_ready_cp, unused_ready_nx, unused_valid_cp;   // (in_ready, c_valid are their copies)
             cube4_skid_peek #(.DATA_W(IN_W + GEO_W)) u_in (
                 .clk(clk), .rst(rst),
                 .in_valid(in_valid), .in_ready(in_ready),
@@ -225,8 +225,8 @@ module cube4_com #(
                 .out_valid(c_valid), .out_ready(c_ready),
                 .out_data({c_geo, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}),
                 .nx_valid(c_nx_valid), .nx_data(c_nx), .in_ready_cp(unused_ready_cp),
-                .out_valid_cp(unused_valid_cp));
-            wire unused_nx = ^{c_nx, unused_ready_cp, unused_valid_cp};   // (the look-ahead keeps its own compares)
+                .in_ready_nx(unused_ready_nx), .out_valid_cp(unused_valid_cp));
+            wire unused_nx = ^{c_nx, unused_ready_cp, unused_ready_nx, unused_valid_cp};   // (the look-ahead keeps its own compares)
         end else begin : g_in_direct
             assign {c_valid, c_hdr, c_rgba, c_sample, c_fall, c_bits, c_eoss}
                  = {in_valid, in_hdr, in_rgba, in_sample, in_fall, in_bits, in_eoss};

@@ -86,8 +86,8 @@ module cube4_frontend #(
     // ---- CFB ----
     wire                unused_cfb_busy;   // the frame ends at the last sample, not the last request
     // CFB's request, into u_req_skid; its ready as CFB_ADV_N equal copies, one
-    // per group of CFB's stall enable's loads (cube4_cfb_mask), each from
-    // register copies of its own (the skids' in_ready_cp)
+    // per group of CFB's stall enable's loads (cube4_cfb_mask), each a
+    // register of its own (u_cfb_ready, below)
     localparam integer ADV_N = `CUBE4_CFB_ADV_N;
     wire                c_req_valid;
     wire [ADV_N-1:0]    c_req_ready;
@@ -127,17 +127,16 @@ module cube4_frontend #(
 
     // CFB's requests pass a skid buffer: CFB advances on the skid's registered
     // ready, so the memory's ready (and what feeds it) never reaches CFB's
-    // traversal counters in the same cycle. One cycle of latency. Its ready in
-    // ADV_N + 1 register copies: copy 0 this side's handshake, copy 1 + c
-    // CFB's advance c.
-    wire             s_req_valid, s_req_ready;
-    wire [ADV_N:0]   s_ready_cp;
+    // traversal counters in the same cycle. One cycle of latency. CFB's ready
+    // is a register of its own in ADV_N copies (u_cfb_ready): the skid's
+    // next ready (in_ready_nx), with BEATS = 1 ANDed with the bits FIFO's.
+    wire             s_req_valid, s_req_ready, s_ready_nx;
+    wire             unused_req_ready_cp;   // (s_req_ready is its copy)
     wire             unused_req_nx_valid;
     wire [P*ADDR_W+P+TAG_W-1:0] unused_req_nx_data;
     wire             unused_req_valid_cp;   // (mem_req_valid is its copy)
     cube4_skid_peek #(
-        .DATA_W  (P * ADDR_W + P + TAG_W),
-        .READY_N (ADV_N + 1)
+        .DATA_W  (P * ADDR_W + P + TAG_W)
     ) u_req_skid (
         .clk         (clk),
         .rst         (rst),
@@ -149,10 +148,28 @@ module cube4_frontend #(
         .out_data    ({mem_req_addr, mem_req_rden, mem_req_tag}),
         .nx_valid    (unused_req_nx_valid),
         .nx_data     (unused_req_nx_data),
-        .in_ready_cp (s_ready_cp),
+        .in_ready_cp (unused_req_ready_cp),
+        .in_ready_nx (s_ready_nx),
         .out_valid_cp (unused_req_valid_cp)
     );
-    wire unused_req_nx = ^{unused_req_nx_valid, unused_req_nx_data, s_ready_cp[0], unused_req_valid_cp};
+    wire unused_req_nx = ^{unused_req_nx_valid, unused_req_nx_data, unused_req_ready_cp, unused_req_valid_cp};
+
+    // CFB's ready: every request waits for room in the request skid and (BEATS
+    // = 1) the bits FIFO, so CFB's ready is the AND of both buffers' in_ready,
+    // registered here as the AND of their next values, ADV_N copies: each
+    // copy one flip-flop beside its group of CFB's loads, no logic between
+    // (the AND of two copies, one beside each buffer, was a LUT routed across
+    // the die into CFB's beat stages on the crop beat build)
+    wire k_ready, k_ready_nx;           // the bits FIFO's ready and its next value (1 without BEATS)
+    cube4_prim_copies #(.N (ADV_N), .RST_VAL (64'd1)) u_cfb_ready (
+        .clk (clk), .rst (rst), .d (s_ready_nx && k_ready_nx), .q (c_req_ready));
+`ifndef SYNTHESIS
+    always @(posedge clk) begin
+        if (!rst && c_req_ready != {ADV_N{s_req_ready && k_ready}})
+            $fatal(1, "cube4_frontend: CFB's ready %b is not the buffers' (%b, %b)",
+                   c_req_ready, s_req_ready, k_ready);
+    end
+`endif
 
     // ---- TRI ----
     cube4_tri #(
@@ -188,27 +205,25 @@ module cube4_frontend #(
     generate
         if (BEATS != 0) begin : g_bits
             wire emits = c_req_tag[TAG_EMIT];
-            wire k_ready, b_valid;
-            wire [ADV_N:0] k_ready_cp;
+            wire b_valid;
+            wire unused_k_ready_cp;     // (k_ready is its copy)
             // the request forks to the memory's skid buffer and, its bits, to the
             // FIFO's skid beside it (CFB advances on registers beside it), and they
             // leave through its skid beside TRI's output, which the sample beat's
             // departure pops (cube4_skid_fifo: its block RAM lies elsewhere). Every
             // request waits for room in the FIFO, one that emits no sample beat
-            // too: CFB's ready is then two registers' AND per copy, not a function
+            // too: CFB's ready is then a register (u_cfb_ready), not a function
             // of the request's tag
             assign s_req_valid = c_req_valid && k_ready;
-            assign c_req_ready = s_ready_cp[ADV_N:1] & k_ready_cp[ADV_N:1];
             wire b_valid_cp;            // (b_valid is its copy)
-            cube4_skid_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1),
-                              .READY_N (ADV_N + 1)) u_bits (
+            cube4_skid_fifo #(.DATA_W (4 * P + 2), .DEPTH (BITS_DEPTH), .RAM (1), .OUT_REG (1)) u_bits (
                 .clk (clk), .rst (rst),
                 .in_valid (c_req_valid && s_req_ready && emits), .in_ready (k_ready),
                 .in_data ({c_req_eoss, c_req_eos, c_req_bits}),
                 .out_valid (b_valid), .out_ready (smp_valid && smp_ready),
-                .out_data ({smp_eoss, smp_eos, smp_bits}), .in_ready_cp (k_ready_cp),
-                .out_valid_cp (b_valid_cp));
-            wire unused_bits = ^{b_valid, k_ready_cp[0], b_valid_cp};
+                .out_data ({smp_eoss, smp_eos, smp_bits}), .in_ready_cp (unused_k_ready_cp),
+                .in_ready_nx (k_ready_nx), .out_valid_cp (b_valid_cp));
+            wire unused_bits = ^{b_valid, unused_k_ready_cp, b_valid_cp};
 `ifndef SYNTHESIS
             // a sample beat always finds its bits: they wait beside the memory and TRI
             always @(posedge clk) begin
@@ -220,7 +235,8 @@ module cube4_frontend #(
 `endif
         end else begin : g_no_bits
             assign s_req_valid = c_req_valid;
-            assign c_req_ready = s_ready_cp[ADV_N:1];
+            assign k_ready     = 1'b1;
+            assign k_ready_nx  = 1'b1;
             assign {smp_eoss, smp_eos, smp_bits} = '0;
             wire unused_s_ready = s_req_ready;   // (the bits FIFO's fork only)
             wire unused_bits = ^{c_req_bits, c_req_eos, c_req_eoss};

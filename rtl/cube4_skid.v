@@ -29,14 +29,14 @@ module cube4_skid #(
 ) (
     `CUBE4_STREAM_PORTS(DATA_W)
 );
-    wire              unused_nx_valid, unused_ready_cp, unused_valid_cp;
+    wire              unused_nx_valid, unused_ready_cp, unused_ready_nx, unused_valid_cp;
     wire [DATA_W-1:0] unused_nx_data;
     cube4_skid_peek #(.DATA_W (DATA_W)) u_skid (
         .clk (clk), .rst (rst),
         .in_valid (in_valid), .in_ready (in_ready), .in_data (in_data),
         .out_valid (out_valid), .out_ready (out_ready), .out_data (out_data),
         .nx_valid (unused_nx_valid), .nx_data (unused_nx_data), .in_ready_cp (unused_ready_cp),
-        .out_valid_cp (unused_valid_cp));
-    wire unused_nx = ^{unused_nx_valid, unused_nx_data, unused_ready_cp, unused_valid_cp};
+        .in_ready_nx (unused_ready_nx), .out_valid_cp (unused_valid_cp));
+    wire unused_nx = ^{unused_nx_valid, unused_nx_data, unused_ready_cp, unused_ready_nx, unused_valid_cp};
 endmodule
 `default_nettype wire

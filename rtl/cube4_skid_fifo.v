@@ -41,6 +41,8 @@
 //   clk, rst                     clock, synchronous active-high reset (empties it)
 //   in_valid/in_ready/in_data    items in (any format, DATA_W bits); in_ready a register
 //   in_ready_cp  out  [READY_N]  copies of in_ready (copy 0 is in_ready)
+//   in_ready_nx  out  in_ready after the next edge (the front skid's,
+//                     combinational; cube4_skid_peek)
 //   out_valid_cp out  [VALID_N]  copies of out_valid (copy 0 is out_valid)
 //   out_valid/out_ready/out_data items out, in order; out_valid and out_data
 //                                the back skid's (registers through its 2:1 select)
@@ -57,6 +59,7 @@ module cube4_skid_fifo #(
 ) (
     `CUBE4_STREAM_PORTS(DATA_W),
     output wire [READY_N-1:0] in_ready_cp,
+    output wire in_ready_nx,
     output wire [VALID_N-1:0] out_valid_cp
 );
     generate
@@ -75,7 +78,7 @@ module cube4_skid_fifo #(
         .in_valid (in_valid), .in_ready (in_ready), .in_data (in_data),
         .out_valid (k_valid), .out_ready (k_ready), .out_data (k_data),
         .nx_valid (unused_nx_valid), .nx_data (unused_nx_data), .in_ready_cp (in_ready_cp),
-        .out_valid_cp (unused_k_valid_cp));
+        .in_ready_nx (in_ready_nx), .out_valid_cp (unused_k_valid_cp));
     wire unused_nx = ^{unused_nx_valid, unused_nx_data, unused_k_valid_cp};
     generate
         if (RAM != 0) begin : g_ram
@@ -91,14 +94,14 @@ module cube4_skid_fifo #(
         end
     endgenerate
     // beside the consumer
-    wire              unused_o_nx_valid, unused_o_ready_cp;
+    wire              unused_o_nx_valid, unused_o_ready_cp, unused_o_ready_nx;
     wire [DATA_W-1:0] unused_o_nx_data;
     cube4_skid_peek #(.DATA_W (DATA_W), .VALID_N (VALID_N)) u_out (
         .clk (clk), .rst (rst),
         .in_valid (f_valid), .in_ready (f_ready), .in_data (f_data),
         .out_valid (out_valid), .out_ready (out_ready), .out_data (out_data),
         .nx_valid (unused_o_nx_valid), .nx_data (unused_o_nx_data), .in_ready_cp (unused_o_ready_cp),
-        .out_valid_cp (out_valid_cp));
-    wire unused_o_nx = ^{unused_o_nx_valid, unused_o_nx_data, unused_o_ready_cp};
+        .in_ready_nx (unused_o_ready_nx), .out_valid_cp (out_valid_cp));
+    wire unused_o_nx = ^{unused_o_nx_valid, unused_o_nx_data, unused_o_ready_cp, unused_o_ready_nx};
 endmodule
 `default_nettype wire

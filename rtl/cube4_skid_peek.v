@@ -34,6 +34,12 @@
 //   handshake lies far from the buffer's entries (cube4_top: the beat's bits
 //   into SHA's output, beside it), so that the route to them starts at a
 //   register of their own.
+//   in_ready_nx is the value in_ready takes at the next edge (the copies'
+//   input, combinational): a producer that joins this buffer's ready with
+//   another's registers the AND of both next values in copies of its own
+//   (cube4_frontend: CFB's ready), one register and no LUT between it and
+//   its loads, where the AND of two copies would be a LUT between registers
+//   placed beside two buffers.
 //   cube4_skid is this buffer without nx_valid, nx_data and the copies.
 //
 // Parameters
@@ -52,6 +58,7 @@
 //   in_valid/in_ready/in_data   input stream  (in_data: any format, DATA_W bits);
 //                            in_ready is a register
 //   in_ready_cp    out  [READY_N] copies of in_ready (copy 0 is in_ready)
+//   in_ready_nx    out  in_ready after the next edge (combinational; 1 in reset)
 //   out_valid/out_ready/out_data output stream (same format)
 //   out_valid_cp   out  [VALID_N] copies of out_valid (copy 0 is out_valid)
 //   nx_valid, nx_data  out   the buffer holds a second item, behind the head on
@@ -69,6 +76,7 @@ module cube4_skid_peek #(
     `CUBE4_STREAM_PORTS(DATA_W),
     output wire nx_valid, output wire [DATA_W-1:0] nx_data,
     output wire [READY_N-1:0] in_ready_cp,
+    output wire in_ready_nx,
     output wire [VALID_N-1:0] out_valid_cp
 );
     generate
@@ -134,7 +142,8 @@ module cube4_skid_peek #(
     wire full_d = (push && !pop) ? nonempty_q : ((pop && !push) ? 1'b0 : full_q);
     cube4_prim_copies #(.N(READY_N), .RST_VAL(64'd1)) u_ready (
         .clk(clk), .rst(rst), .d(!full_d), .q(in_ready_cp));
-    assign in_ready = in_ready_cp[0];
+    assign in_ready    = in_ready_cp[0];
+    assign in_ready_nx = rst || !full_d;
     assign out_valid = nonempty_q;
     assign nx_valid  = full_q;
 

@@ -397,6 +397,7 @@ module cube4_top #(
             // beside them: from the back skid's register into SHA's output FIFO
             // across the die was the unshaded beat build's longest path)
             wire [1:0] b_valid_cp;
+            wire       k_ready_nx;   // (k_ready_cp are its registers)
             // (its ready in two copies: copy 0, k_ready, gates the beat to GRA;
             // copy 1 pops the sample skid and lies beside it: copy 0 across the
             // die into that skid's pointers was the default beat build's longest
@@ -407,8 +408,8 @@ module cube4_top #(
                 .in_valid (s_valid && smp_ready), .in_ready (k_ready),
                 .in_data ({smp_eoss, ray_bits_pack(smp_bits)}),
                 .out_valid (b_valid), .out_ready (sha_take), .out_data ({com_eoss, com_packed}),
-                .in_ready_cp (k_ready_cp), .out_valid_cp (b_valid_cp));
-            wire unused_bits = ^{smp_eos, k_ready_cp[0], b_valid, b_valid_cp[0]};
+                .in_ready_cp (k_ready_cp), .in_ready_nx (k_ready_nx), .out_valid_cp (b_valid_cp));
+            wire unused_bits = ^{smp_eos, k_ready_cp[0], k_ready_nx, b_valid, b_valid_cp[0]};
             assign com_bits_valid = b_valid_cp[1];
         end else begin : g_no_bits
             assign smp_valid    = fe_smp_valid;

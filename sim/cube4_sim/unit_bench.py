@@ -129,11 +129,13 @@ class QueueCheck:
 class QueueTB:
     """The bench of a queue with one stream in and one out (cube4_skid, cube4_skid_oreg,
     cube4_ram_fifo, cube4_skid_fifo): a seeded generator, a QueueCheck, the clock; reset, random words
-    and one cycle of driven valid and ready with its transfers checked."""
+    and one cycle of driven valid and ready with its transfers checked; a queue with the
+    port in_ready_nx (in_ready's next value) has it checked against in_ready after each edge."""
 
     def __init__(self, dut, empty_only_when_low: bool = False, ready_is_register: bool = False) -> None:
         self.dut = dut
         self.ready_is_register = ready_is_register
+        self.has_ready_nx = hasattr(dut, "in_ready_nx")
         (self.data_w,) = top_params(dut, "DATA_W")
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.q = QueueCheck(dut, empty_only_when_low=empty_only_when_low)
@@ -176,8 +178,12 @@ class QueueTB:
         await self.drive(valid, ready, data)
         await ReadOnly()
         flow = self.q.observe(valid, ready, data)
+        nx = int(self.dut.in_ready_nx.value) if self.has_ready_nx else None
         await RisingEdge(self.dut.clk)
         await FallingEdge(self.dut.clk)
+        if nx is not None:
+            assert int(self.dut.in_ready.value) == nx, \
+                f"in_ready = {int(self.dut.in_ready.value)} after an edge with in_ready_nx = {nx}"
         return flow
 
     async def edges_to_out(self) -> int:

@@ -11,6 +11,8 @@ Checked against a Python deque, every cycle:
 * random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
 * the entry behind the head: nx_valid exactly when two items are held, nx_data the second
   (the one out_data offers after the head), after every edge;
+* in_ready_nx before each edge is in_ready after it (QueueTB; "in_ready = ... after an
+  edge with in_ready_nx = ...": tried with cube4_skid_peek's in_ready_nx = !full_q);
 * in_ready's copies (in_ready_cp, READY_N of them) all equal in_ready after every edge
   ("in_ready_cp ... with in_ready ...": tried by loading copy 1 with full_d instead), and
   out_valid's (out_valid_cp, VALID_N) out_valid.

@@ -12,6 +12,8 @@ Checked against a Python deque, every cycle:
   cycle (from empty after the first Q + 3 cycles; from full after the pops' room has
   passed the three registered readies back to the input: 3 cycles, 4 with block RAM);
 * random valid and ready (seeded from COCOTB_RANDOM_SEED), then a drain with nothing extra;
+* in_ready_nx before each edge is in_ready after it (QueueTB; "in_ready = ... after an
+  edge with in_ready_nx = ...": tried with cube4_skid_peek's in_ready_nx = !full_q);
 * in_ready's copies (in_ready_cp, READY_N) all equal in_ready after every edge, and
   out_valid's (out_valid_cp, VALID_N) out_valid.
 
