@@ -227,7 +227,7 @@ module cube4_cfb #(
                 .rep_valid(rep_valid), .rep_j(rep_j), .rep_pb(rep_pb), .rep_stx(rep_stx), .rep_sty(rep_sty),
                 .rep_en(rep_en), .rep_end(rep_end), .com_m(com_m),
                 .nbr_en(nbr_en),
-                .out_valid(w_valid), .out_ready(w_ready), .out_m(w_m), .out_j(w_j), .out_pb(w_pb),
+                .out_valid(w_valid), .out_ready(w_ready), .out_ready_q(w_ready_q), .out_m(w_m), .out_j(w_j), .out_pb(w_pb),
                 .out_read(w_read), .out_leave(w_leave), .out_tok(w_tok), .out_eor(w_eor), .out_eos(w_eos),
                 .out_last(w_last),
                 .out_bits(w_bits));
@@ -239,12 +239,19 @@ module cube4_cfb #(
             wire b_valid, b_ready, b_read, b_leave, b_tok, b_eor, b_eos, b_last;
             wire [PB_W-1:0] b_pb;
             wire [4*P-1:0]  b_bits;
-            cube4_skid #(.DATA_W(WB_W)) u_wskid (
+            // (its ready in two copies: w_ready to the walk skid's side of u_skip's
+            // join, w_ready_q to the queue's)
+            wire             w_ready_q, unused_w_r0, unused_w_nv, unused_w_rn, unused_w_vc;
+            wire [WB_W-1:0]  unused_w_nx;
+            cube4_skid_peek #(.DATA_W(WB_W), .READY_N(2)) u_wskid (
                 .clk(clk), .rst(rst),
                 .in_valid(w_valid), .in_ready(w_ready),
                 .in_data({w_pb, w_read, w_leave, w_tok, w_eor, w_eos, w_last, w_bits}),
                 .out_valid(b_valid), .out_ready(b_ready),
-                .out_data({b_pb, b_read, b_leave, b_tok, b_eor, b_eos, b_last, b_bits}));
+                .out_data({b_pb, b_read, b_leave, b_tok, b_eor, b_eos, b_last, b_bits}),
+                .nx_valid(unused_w_nv), .nx_data(unused_w_nx), .in_ready_cp({w_ready_q, unused_w_r0}),
+                .in_ready_nx(unused_w_rn), .out_valid_cp(unused_w_vc));
+            wire unused_wskid = ^{unused_w_r0, unused_w_nv, unused_w_nx, unused_w_rn, unused_w_vc};
             wire [4*P-1:0] x_bits;
             wire           x_eos, x_eoss;
             cube4_cfb_bctl #(

@@ -48,7 +48,7 @@ class TB:
     async def reset(self) -> None:
         d = self.dut
         for name in ("start", "ss_log2", "st_valid", "blk_we", "tab_we", "rep_valid", "rep_en", "com_m",
-                     "out_ready"):
+                     "out_ready", "out_ready_q"):
             getattr(d, name).value = 0
         d.rst.value = 1
         for _ in range(3):
@@ -70,6 +70,7 @@ class TB:
             host.drive(cycle, walked)           # the steps; COM's reports behind the walk's slice ends
             ready = after is not None or self.rng.random() >= stall
             d.out_ready.value = int(ready)
+            d.out_ready_q.value = int(ready)    # (a register copy of out_ready in cube4_cfb)
             await ReadOnly()
             host.taken()
             if ready and int(d.out_valid.value):
