@@ -107,10 +107,10 @@ def test_one_beat_slices_supersampled(p):
     bit-exact, with stalls too. Without the slice buffers' bypass P = 5, S = 4 fails here
     ("rays differ"; tried)."""
     rng = np.random.default_rng(41 + p)
+    cfg = Cube4Config(pipelines=p, supersample=4)   # one build (MAX_SS_LOG2 = 2) for S = 4 and S = 2
     for s, dims, view, stall in [(4, (min(p, 4), 1, 5), (0.2, 0.3, 1.0), False),
                                  (2, (p, 1, 6), (0.2, 0.3, 1.0), False),
                                  (4, (min(p, 4), 1, 5), (0.1, -0.2, 1.0), True)]:
-        cfg = Cube4Config(pipelines=p, supersample=s)
         nx, ny, nz = dims
         vol = rng.integers(0, 256, size=(nz, ny, nx))
         trav = make_traversal(dims, view, cfg.weight_bits, s)
@@ -1111,7 +1111,7 @@ def test_beat_frames_thin():
 
     p = 8
     rng = np.random.default_rng(808)
-    cfg = Cube4Config(pipelines=p)
+    cfg = Cube4Config(pipelines=p, supersample=4)    # MAX_SS_LOG2 = 2, as the shaded build; frames at S = 1
     vol = rng.integers(0, 64, size=(9, 6, 12))
     hit = rng.random(vol.shape) < 0.3
     vol[hit] = rng.integers(64, 256, size=int(hit.sum()))
