@@ -371,34 +371,12 @@ module cube4_top #(
             // GRA's ready and the bits FIFO's room across the die (cycles are measured
             // on this schedule: the cycle it adds changes no prediction)
             wire s_valid, s_ready;
-            cube4_skid #(.DATA_W (PW + 4 * P + 2)) u_smp_skid (
+            cube4_skid #(.DATA_W (HDR_W + PW + 4 * P + 2)) u_smp_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (fe_smp_valid), .in_ready (fe_smp_ready),
-                .in_data ({fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss}),
+                .in_data ({fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss}),
                 .out_valid (s_valid), .out_ready (s_ready),
-                .out_data ({smp_sample, smp_bits, smp_eos, smp_eoss}));
-            // the header passes a skid of its own with the same valid and ready (so the
-            // same count in every cycle), whose head is a register (cube4_skid_oreg):
-            // GRA's beat input compares the entering beat's slice and row with the row
-            // it steps (cube4_gra_beats_in), and the head's flip-flops, which load as
-            // GRA takes, lie beside those compares (from the wide skid's entries
-            // through its read pointer's multiplexer into them was the crop beat
-            // build's longest path on one placement)
-            wire sh_ready, sh_valid;
-            cube4_skid_oreg #(.DATA_W (HDR_W)) u_smp_hdr_skid (
-                .clk (clk), .rst (rst),
-                .in_valid (fe_smp_valid), .in_ready (sh_ready),
-                .in_data (fe_smp_hdr),
-                .out_valid (sh_valid), .out_ready (s_ready),
-                .out_data (smp_hdr));
-`ifndef SYNTHESIS
-            always @(posedge clk) begin
-                if (!rst && {sh_ready, sh_valid} != {fe_smp_ready, s_valid})
-                    $fatal(1, "cube4_top: the sample header skid's ready/valid %b differ from the sample skid's %b",
-                           {sh_ready, sh_valid}, {fe_smp_ready, s_valid});
-            end
-`endif
-            wire unused_sh = ^{sh_ready, sh_valid};     // (fe_smp_ready and s_valid)
+                .out_data ({smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss}));
             wire k_ready, b_valid;
             wire [1:0] k_ready_cp;   // copies of k_ready (u_bits)
             wire [3*P-1:0] com_packed;
