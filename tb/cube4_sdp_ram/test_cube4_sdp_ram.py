@@ -1,6 +1,9 @@
 """Testbench for rtl/cube4_sdp_ram.v and its ECP5 form rtl/ecp5/cube4_sdp_ram.v.
 
-Both forms run the same cocotb tests against a Python model of the RAM: read latency
+Both forms run the same cocotb tests against a Python model of the RAM, every parameter set at
+once: tb/cube4_sdp_ram/cube4_sdp_ram_sets.v instantiates the RAM once per set (PARAM_SETS,
+packed into its parameters), one build per form, and each instance is checked against a model
+of its own on every edge: read latency
 1 + IN_REG + (OUT_REG > 0), the read register and the output register advancing with the
 (registered, with IN_REG) read enable (OUT_REG = 2: the output register with out_en, driven
 at random in every set, so a form that loads it with the read enable fails there and one
@@ -23,6 +26,10 @@ checked. Seeded per test from COCOTB_RANDOM_SEED.
 """
 
 from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -60,51 +67,78 @@ class RamModel:
         return self.out_q if self.out_reg else self.rd_q
 
 
-class TB:
-    """Drives cube4_sdp_ram and checks rd_data against RamModel after every edge."""
+class Lane:
+    """One instance of the harness: its parameters, its model and its stimulus."""
 
-    def __init__(self, dut) -> None:
-        self.dut = dut
-        self.data_w = int(dut.DATA_W.value)
-        self.depth = int(dut.DEPTH.value)
-        self.model = RamModel(self.depth, int(dut.IN_REG.value), int(dut.WR_REG.value), int(dut.OUT_REG.value))
-        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
+    def __init__(self, params: dict, rng: np.random.Generator) -> None:
+        self.data_w = params["DATA_W"]
+        self.depth = params["DEPTH"]
+        self.model = RamModel(self.depth, params.get("IN_REG", 0), params.get("WR_REG", 0),
+                              params.get("OUT_REG", 0))
+        self.rng = rng
+        self.written: list[int] = []    # recent write addresses, to read back
+        self.checks = 0
 
     def word(self) -> int:
         return int(self.rng.integers(0, 1 << min(self.data_w, 62))) | (
             int(self.rng.integers(0, 2)) << (self.data_w - 1))
 
+    def inputs(self, re_prob: float) -> tuple[int, int, int, int, int, int]:
+        """This edge's (re, oe, ra, we, wa, wd)."""
+        rng, written = self.rng, self.written
+        wa = int(rng.integers(0, self.depth))
+        if written and rng.random() < 0.2:
+            wa = written[-1]            # the same address twice in a row
+        if written and rng.random() < 0.8:
+            ra = written[int(rng.integers(max(0, len(written) - 16), len(written)))]
+        else:
+            ra = int(rng.integers(0, self.depth))
+        re = int(rng.random() < re_prob)
+        oe = int(rng.random() < 0.6)
+        we = int(rng.random() < 0.5)
+        wd = self.word()
+        if we:
+            written.append(wa)
+        return re, oe, ra, we, wa, wd
+
+
+class TB:
+    """Drives every instance of cube4_sdp_ram_sets and checks each one's rd_data against its
+    RamModel after every edge."""
+
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        sets = json.loads(os.environ["CUBE4_SDP_RAM_SETS"])
+        self.dw_max = int(dut.DW_MAX.value)
+        self.aw_max = int(dut.AW_MAX.value)
+        rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        self.lanes = [Lane(p, rng) for p in sets]
+        Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
+
     async def run(self, cycles: int, re_prob: float) -> int:
-        dut, rng, m = self.dut, self.rng, self.model
-        checks = 0
-        written: list[int] = []         # recent write addresses, to read back
+        """The fewest checks any instance made."""
+        dut, dw, aw = self.dut, self.dw_max, self.aw_max
         await FallingEdge(dut.clk)
         for c in range(cycles):
-            wa = int(rng.integers(0, self.depth))
-            if written and rng.random() < 0.2:
-                wa = written[-1]        # the same address twice in a row
-            if written and rng.random() < 0.8:
-                ra = written[int(rng.integers(max(0, len(written) - 16), len(written)))]
-            else:
-                ra = int(rng.integers(0, self.depth))
-            re = int(rng.random() < re_prob)
-            oe = int(rng.random() < 0.6)
-            we = int(rng.random() < 0.5)
-            wd = self.word()
-            if we:
-                written.append(wa)
+            ins = [lane.inputs(re_prob) for lane in self.lanes]
+            packed = [0] * 6
+            for k, values in enumerate(ins):
+                for i, (v, w) in enumerate(zip(values, (1, 1, aw, 1, aw, dw))):
+                    packed[i] |= v << (k * w)
+            re, oe, ra, we, wa, wd = packed
             dut.rd_en.value, dut.out_en.value, dut.rd_addr.value = re, oe, ra
             dut.wr_en.value, dut.wr_addr.value, dut.wr_data.value = we, wa, wd
             await FallingEdge(dut.clk)
-            m.edge(re, oe, ra, we, wa, wd)
-            want = m.rd_data()
-            if want is not None:
-                got = int(dut.rd_data.value)
-                assert got == want, (f"cycle {c}: rd_data = {got:#x}, expected {want:#x} "
-                                     f"(DEPTH={self.depth}, DATA_W={self.data_w})")
-                checks += 1
-        return checks
+            rd = int(dut.rd_data.value)
+            for k, (lane, values) in enumerate(zip(self.lanes, ins)):
+                lane.model.edge(*values)
+                want = lane.model.rd_data()
+                if want is not None:
+                    got = (rd >> (k * dw)) & ((1 << dw) - 1)
+                    assert got == want, (f"cycle {c}: set {k} rd_data = {got:#x}, expected {want:#x} "
+                                         f"(DEPTH={lane.depth}, DATA_W={lane.data_w})")
+                    lane.checks += 1
+        return min(lane.checks for lane in self.lanes)
 
 
 @cocotb.test()
@@ -121,7 +155,6 @@ async def ram_random_stalls(dut):
 
 # ---------------------------------------------------------------- pytest half
 from cube4_sim import run_test  # noqa: E402
-from cube4_sim.sweeps import sweep
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (block RAM 1024 x 18 .. 16384 x 1, distributed RAM below
@@ -150,12 +183,32 @@ PARAM_SETS = [
 ]
 
 
-def _param_id(params: dict) -> str:
-    return "-".join(f"{k}{v}" for k, v in params.items())
+HARNESS = Path(__file__).resolve().parent / "cube4_sdp_ram_sets.v"
+FIELDS = ("DATA_W", "DEPTH", "IN_REG", "WR_REG", "OUT_REG", "DIST")
+
+
+def harness_params(sets: list[dict]) -> dict:
+    """cube4_sdp_ram_sets's parameters for ``sets``: each field packed 32 bits per instance."""
+    n = len(sets)
+    params: dict = {"N": n}
+    for f in FIELDS:
+        packed = sum(s.get(f, 0) << (32 * k) for k, s in enumerate(sets))
+        params[f + "S"] = f"{32 * n}'h{packed:x}"
+    params["DW_MAX"] = max(s["DATA_W"] for s in sets)
+    params["AW_MAX"] = max(max(s["DEPTH"] - 1, 1).bit_length() for s in sets)
+    return params
+
+
+def test_harness_params():
+    p = harness_params([{"DATA_W": 20, "DEPTH": 100, "OUT_REG": 1}, {"DATA_W": 3, "DEPTH": 16384, "IN_REG": 1}])
+    assert p["N"] == 2 and p["DW_MAX"] == 20 and p["AW_MAX"] == 14
+    assert p["DATA_WS"] == "64'h300000014" and p["IN_REGS"] == "64'h100000000"
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(1, 7, 8, 11, 14, 15, 16, 18, 19), ids=_param_id))
-def test_cube4_sdp_ram(params, form):
-    run_test(top="cube4_sdp_ram", sources=form_sources(form), params=params, test_module=__file__,
-             build_args=form_build_args(form))
+def test_cube4_sdp_ram(form):
+    """Every parameter set at once: one build of the harness per form."""
+    run_test(top="cube4_sdp_ram_sets", sources=[*form_sources(form), HARNESS],
+             params=harness_params(PARAM_SETS), test_module=__file__,
+             build_args=form_build_args(form),
+             extra_env={"CUBE4_SDP_RAM_SETS": json.dumps(PARAM_SETS)})
