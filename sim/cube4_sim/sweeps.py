@@ -29,3 +29,20 @@ def sweep(sets: Sequence, quick: Iterable[int], ids: Callable | None = None) -> 
     return [pytest.param(*(s if isinstance(s, tuple) else (s,)), id=None if ids is None else ids(s),
                          marks=() if n in quick else (regress,))
             for n, s in enumerate(sets)]
+
+
+def packed_sets(sets: Sequence[dict], fields: Sequence[str], defaults: dict | None = None) -> dict:
+    """The parameters of a harness that instantiates a unit once per parameter set, in one
+    build (tb/cube4_sdp_ram/cube4_sdp_ram_sets.v): ``N``, each field's values packed 32 bits
+    per instance as a Verilog literal (``<FIELD>S``, instance k's at bits [32 k +: 32]), and
+    the ports' strides ``DW_MAX`` (the widest ``DATA_W``) and ``AW_MAX`` (the widest
+    address, $clog2(DEPTH), at least 1). A field a set leaves out takes ``defaults``, else 0."""
+    defaults = defaults or {}
+    n = len(sets)
+    params: dict = {"N": n}
+    for f in fields:
+        packed = sum(int(s.get(f, defaults.get(f, 0))) << (32 * k) for k, s in enumerate(sets))
+        params[f + "S"] = f"{32 * n}'h{packed:x}"
+    params["DW_MAX"] = max(s["DATA_W"] for s in sets)
+    params["AW_MAX"] = max(max(s["DEPTH"] - 1, 1).bit_length() for s in sets)
+    return params

@@ -1,7 +1,8 @@
 """Testbench for rtl/cube4_dual_read_ram.v and its ECP5 form rtl/ecp5/cube4_dual_read_ram.v.
 
 Both forms run the same cocotb tests against a Python model of the RAM (the module's
-header, 'Latency'): two read ports of latency 1 + OUT_REG whose registers advance with
+header, 'Latency'), every parameter set at once (tb/cube4_dual_read_ram/cube4_dual_read_ram_sets.v
+instantiates the RAM once per set, one build per form; each instance has a model of its own): two read ports of latency 1 + OUT_REG whose registers advance with
 rd_en, a write seen one edge later, port 1 reading the word written at the same edge
 returning the old word, and port 0 not reading in a cycle with wr_en (both its registers
 keep their words). The ECP5 form puts each slice in a column of one to four DP16KD
@@ -20,6 +21,10 @@ checked. Seeded per test from COCOTB_RANDOM_SEED.
 """
 
 from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -52,63 +57,97 @@ class DualReadModel:
         return self.out_q[port] if self.out_reg else self.rd_q[port]
 
 
-class TB:
-    """Drives cube4_dual_read_ram and checks both read ports after every edge."""
+class Lane:
+    """One instance of the harness: its parameters, its model and its stimulus."""
 
-    def __init__(self, dut) -> None:
-        self.dut = dut
-        self.data_w = int(dut.DATA_W.value)
-        self.depth = int(dut.DEPTH.value)
-        self.model = DualReadModel(int(dut.OUT_REG.value))
-        self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
+    def __init__(self, params: dict, rng: np.random.Generator) -> None:
+        self.data_w = params["DATA_W"]
+        self.depth = params["DEPTH"]
+        self.model = DualReadModel(params.get("OUT_REG", 1))
+        self.rng = rng
+        self.written: list[int] = []
+        self.burst = 0                  # writes left in the current burst
+        self.checks = self.held = 0
 
     def word(self) -> int:
         return int(self.rng.integers(0, 1 << min(self.data_w, 62))) | (
             int(self.rng.integers(0, 2)) << (self.data_w - 1))
 
-    def read_addr(self, written: list[int]) -> int:
-        rng = self.rng
+    def read_addr(self) -> int:
+        rng, written = self.rng, self.written
         if written and rng.random() < 0.8:
             return written[int(rng.integers(max(0, len(written) - 16), len(written)))]
         return int(rng.integers(0, self.depth))
 
+    def inputs(self, re_prob: float) -> tuple[int, tuple[int, int], int, int, int]:
+        """This edge's (re, (ra0, ra1), we, wa, wd)."""
+        rng = self.rng
+        if self.burst == 0 and rng.random() < 0.05:
+            self.burst = int(rng.integers(1, 24))
+        we = int(self.burst > 0 or rng.random() < 0.2)
+        self.burst = max(0, self.burst - 1)
+        wa = int(rng.integers(0, self.depth))
+        if self.written and rng.random() < 0.2:
+            wa = self.written[-1]
+        ra = (self.read_addr(), self.read_addr())
+        re = int(rng.random() < re_prob)
+        wd = self.word()
+        if we:
+            self.written.append(wa)
+        return re, ra, we, wa, wd
+
+    def check(self, c: int, values: tuple, got: tuple[int, int]) -> None:
+        """Applies this edge to the model and checks both ports against it."""
+        m = self.model
+        re, ra, we = values[0], values[1], values[2]
+        before = m.rd_q[0]
+        m.edge(*values)
+        if we and re and before is not None and m.mem.get(ra[0]) != before:
+            self.held += 1              # a port-0 read a write suppressed would differ
+        for port in (0, 1):
+            want = m.rd_data(port)
+            if want is not None:
+                assert got[port] == want, (f"cycle {c}: rd{port}_data = {got[port]:#x}, expected {want:#x} "
+                                           f"(DEPTH={self.depth}, DATA_W={self.data_w})")
+                self.checks += 1
+
+
+class TB:
+    """Drives every instance of cube4_dual_read_ram_sets and checks both read ports of each
+    against its model after every edge."""
+
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        sets = json.loads(os.environ["CUBE4_DUAL_READ_RAM_SETS"])
+        self.dw_max = int(dut.DW_MAX.value)
+        self.aw_max = int(dut.AW_MAX.value)
+        rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        self.lanes = [Lane(p, rng) for p in sets]
+        Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
+
     async def run(self, cycles: int, re_prob: float) -> tuple[int, int]:
-        """Returns the checks made and the checked port-0 words read across a write."""
-        dut, rng, m = self.dut, self.rng, self.model
-        checks = held = 0
-        written: list[int] = []
-        burst = 0                      # writes left in the current burst
+        """The fewest checks any instance made and the fewest checked port-0 words read
+        across a write."""
+        dut, dw, aw = self.dut, self.dw_max, self.aw_max
+        mask = (1 << dw) - 1
         await FallingEdge(dut.clk)
         for c in range(cycles):
-            if burst == 0 and rng.random() < 0.05:
-                burst = int(rng.integers(1, 24))
-            we = int(burst > 0 or rng.random() < 0.2)
-            burst = max(0, burst - 1)
-            wa = int(rng.integers(0, self.depth))
-            if written and rng.random() < 0.2:
-                wa = written[-1]
-            ra = (self.read_addr(written), self.read_addr(written))
-            re = int(rng.random() < re_prob)
-            wd = self.word()
-            if we:
-                written.append(wa)
-            dut.rd_en.value = re
-            dut.rd0_addr.value, dut.rd1_addr.value = ra
+            ins = [lane.inputs(re_prob) for lane in self.lanes]
+            re = ra0 = ra1 = we = wa = wd = 0
+            for k, (r, (a0, a1), w, a, d) in enumerate(ins):
+                re |= r << k
+                we |= w << k
+                ra0 |= a0 << (k * aw)
+                ra1 |= a1 << (k * aw)
+                wa |= a << (k * aw)
+                wd |= d << (k * dw)
+            dut.rd_en.value, dut.rd0_addr.value, dut.rd1_addr.value = re, ra0, ra1
             dut.wr_en.value, dut.wr_addr.value, dut.wr_data.value = we, wa, wd
             await FallingEdge(dut.clk)
-            before = m.rd_q[0]
-            m.edge(re, ra, we, wa, wd)
-            if we and re and before is not None and m.mem.get(ra[0]) != before:
-                held += 1              # a port-0 read a write suppressed would differ
-            for port, sig in ((0, dut.rd0_data), (1, dut.rd1_data)):
-                want = m.rd_data(port)
-                if want is not None:
-                    got = int(sig.value)
-                    assert got == want, (f"cycle {c}: rd{port}_data = {got:#x}, expected {want:#x} "
-                                         f"(DEPTH={self.depth}, DATA_W={self.data_w})")
-                    checks += 1
-        return checks, held
+            rd0, rd1 = int(dut.rd0_data.value), int(dut.rd1_data.value)
+            for k, (lane, values) in enumerate(zip(self.lanes, ins)):
+                lane.check(c, values, ((rd0 >> (k * dw)) & mask, (rd1 >> (k * dw)) & mask))
+        return min(lane.checks for lane in self.lanes), min(lane.held for lane in self.lanes)
 
 
 @cocotb.test()
@@ -127,7 +166,7 @@ async def dual_read_random_stalls(dut):
 
 # ---------------------------------------------------------------- pytest half
 from cube4_sim import run_test  # noqa: E402
-from cube4_sim.sweeps import sweep
+from cube4_sim.sweeps import packed_sets  # noqa: E402
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (one block 1024 x 18 .. 16384 x 1 per slice; inferred
@@ -145,12 +184,13 @@ PARAM_SETS = [
 ]
 
 
-def _param_id(params: dict) -> str:
-    return "-".join(f"{k}{v}" for k, v in params.items())
+HARNESS = Path(__file__).resolve().parent / "cube4_dual_read_ram_sets.v"
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 7), ids=_param_id))
-def test_cube4_dual_read_ram(params, form):
-    run_test(top="cube4_dual_read_ram", sources=form_sources(form), params=params,
-             test_module=__file__, build_args=form_build_args(form))
+def test_cube4_dual_read_ram(form):
+    """Every parameter set at once: one build of the harness per form."""
+    run_test(top="cube4_dual_read_ram_sets", sources=[*form_sources(form), HARNESS],
+             params=packed_sets(PARAM_SETS, ("DATA_W", "DEPTH", "OUT_REG"), defaults={"OUT_REG": 1}),
+             test_module=__file__, build_args=form_build_args(form),
+             extra_env={"CUBE4_DUAL_READ_RAM_SETS": json.dumps(PARAM_SETS)})

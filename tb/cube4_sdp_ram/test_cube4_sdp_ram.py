@@ -155,6 +155,7 @@ async def ram_random_stalls(dut):
 
 # ---------------------------------------------------------------- pytest half
 from cube4_sim import run_test  # noqa: E402
+from cube4_sim.sweeps import packed_sets  # noqa: E402
 from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: E402
 
 # the shapes of the ECP5 form (block RAM 1024 x 18 .. 16384 x 1, distributed RAM below
@@ -187,20 +188,8 @@ HARNESS = Path(__file__).resolve().parent / "cube4_sdp_ram_sets.v"
 FIELDS = ("DATA_W", "DEPTH", "IN_REG", "WR_REG", "OUT_REG", "DIST")
 
 
-def harness_params(sets: list[dict]) -> dict:
-    """cube4_sdp_ram_sets's parameters for ``sets``: each field packed 32 bits per instance."""
-    n = len(sets)
-    params: dict = {"N": n}
-    for f in FIELDS:
-        packed = sum(s.get(f, 0) << (32 * k) for k, s in enumerate(sets))
-        params[f + "S"] = f"{32 * n}'h{packed:x}"
-    params["DW_MAX"] = max(s["DATA_W"] for s in sets)
-    params["AW_MAX"] = max(max(s["DEPTH"] - 1, 1).bit_length() for s in sets)
-    return params
-
-
-def test_harness_params():
-    p = harness_params([{"DATA_W": 20, "DEPTH": 100, "OUT_REG": 1}, {"DATA_W": 3, "DEPTH": 16384, "IN_REG": 1}])
+def test_packed_sets():
+    p = packed_sets([{"DATA_W": 20, "DEPTH": 100, "OUT_REG": 1}, {"DATA_W": 3, "DEPTH": 16384, "IN_REG": 1}], FIELDS)
     assert p["N"] == 2 and p["DW_MAX"] == 20 and p["AW_MAX"] == 14
     assert p["DATA_WS"] == "64'h300000014" and p["IN_REGS"] == "64'h100000000"
 
@@ -209,6 +198,6 @@ def test_harness_params():
 def test_cube4_sdp_ram(form):
     """Every parameter set at once: one build of the harness per form."""
     run_test(top="cube4_sdp_ram_sets", sources=[*form_sources(form), HARNESS],
-             params=harness_params(PARAM_SETS), test_module=__file__,
+             params=packed_sets(PARAM_SETS, FIELDS), test_module=__file__,
              build_args=form_build_args(form),
              extra_env={"CUBE4_SDP_RAM_SETS": json.dumps(PARAM_SETS)})
