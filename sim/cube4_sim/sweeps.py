@@ -46,3 +46,26 @@ def packed_sets(sets: Sequence[dict], fields: Sequence[str], defaults: dict | No
     params["DW_MAX"] = max(s["DATA_W"] for s in sets)
     params["AW_MAX"] = max(max(s["DEPTH"] - 1, 1).bit_length() for s in sets)
     return params
+
+
+def pack_rows(rows: Sequence[Sequence[int]], widths: Sequence[int]) -> list[int]:
+    """The port words of such a harness: ``rows[k]`` holds instance k's value of each port,
+    and port i's word holds them at a stride of ``widths[i]`` bits (instance k's at bit
+    k * widths[i]), as ``packed_sets``' harness lays its ports out."""
+    return [sum(int(row[i]) << (k * w) for k, row in enumerate(rows)) for i, w in enumerate(widths)]
+
+
+def set_lanes(dut, env_name: str, make_lane: Callable) -> tuple[int, int, list]:
+    """The cocotb side of such a harness: its strides ``DW_MAX``, ``AW_MAX`` and one lane per
+    parameter set, ``make_lane(params, rng)``, the sets read from the JSON list in environment
+    variable ``env_name`` (which the pytest half passes) and one generator seeded from
+    cocotb's seed shared by all lanes."""
+    import json
+    import os
+
+    import cocotb
+    import numpy as np
+
+    sets = json.loads(os.environ[env_name])
+    rng = np.random.default_rng(cocotb.RANDOM_SEED)
+    return int(dut.DW_MAX.value), int(dut.AW_MAX.value), [make_lane(p, rng) for p in sets]

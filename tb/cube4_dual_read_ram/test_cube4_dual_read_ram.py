@@ -23,7 +23,6 @@ checked. Seeded per test from COCOTB_RANDOM_SEED.
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import cocotb
@@ -31,6 +30,8 @@ import numpy as np
 import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
+
+from cube4_sim.sweeps import pack_rows, set_lanes
 
 CLK_PERIOD_NS = 10
 
@@ -118,11 +119,7 @@ class TB:
 
     def __init__(self, dut) -> None:
         self.dut = dut
-        sets = json.loads(os.environ["CUBE4_DUAL_READ_RAM_SETS"])
-        self.dw_max = int(dut.DW_MAX.value)
-        self.aw_max = int(dut.AW_MAX.value)
-        rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        self.lanes = [Lane(p, rng) for p in sets]
+        self.dw_max, self.aw_max, self.lanes = set_lanes(dut, "CUBE4_DUAL_READ_RAM_SETS", Lane)
         Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
 
     async def run(self, cycles: int, re_prob: float) -> tuple[int, int]:
@@ -133,14 +130,8 @@ class TB:
         await FallingEdge(dut.clk)
         for c in range(cycles):
             ins = [lane.inputs(re_prob) for lane in self.lanes]
-            re = ra0 = ra1 = we = wa = wd = 0
-            for k, (r, (a0, a1), w, a, d) in enumerate(ins):
-                re |= r << k
-                we |= w << k
-                ra0 |= a0 << (k * aw)
-                ra1 |= a1 << (k * aw)
-                wa |= a << (k * aw)
-                wd |= d << (k * dw)
+            re, ra0, ra1, we, wa, wd = pack_rows([(r, a0, a1, w, a, d) for r, (a0, a1), w, a, d in ins],
+                                                 (1, aw, aw, 1, aw, dw))
             dut.rd_en.value, dut.rd0_addr.value, dut.rd1_addr.value = re, ra0, ra1
             dut.wr_en.value, dut.wr_addr.value, dut.wr_data.value = we, wa, wd
             await FallingEdge(dut.clk)

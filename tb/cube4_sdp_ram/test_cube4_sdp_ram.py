@@ -28,7 +28,6 @@ checked. Seeded per test from COCOTB_RANDOM_SEED.
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import cocotb
@@ -36,6 +35,8 @@ import numpy as np
 import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
+
+from cube4_sim.sweeps import pack_rows, set_lanes
 
 CLK_PERIOD_NS = 10
 
@@ -108,11 +109,7 @@ class TB:
 
     def __init__(self, dut) -> None:
         self.dut = dut
-        sets = json.loads(os.environ["CUBE4_SDP_RAM_SETS"])
-        self.dw_max = int(dut.DW_MAX.value)
-        self.aw_max = int(dut.AW_MAX.value)
-        rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        self.lanes = [Lane(p, rng) for p in sets]
+        self.dw_max, self.aw_max, self.lanes = set_lanes(dut, "CUBE4_SDP_RAM_SETS", Lane)
         Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
 
     async def run(self, cycles: int, re_prob: float) -> int:
@@ -121,11 +118,7 @@ class TB:
         await FallingEdge(dut.clk)
         for c in range(cycles):
             ins = [lane.inputs(re_prob) for lane in self.lanes]
-            packed = [0] * 6
-            for k, values in enumerate(ins):
-                for i, (v, w) in enumerate(zip(values, (1, 1, aw, 1, aw, dw))):
-                    packed[i] |= v << (k * w)
-            re, oe, ra, we, wa, wd = packed
+            re, oe, ra, we, wa, wd = pack_rows(ins, (1, 1, aw, 1, aw, dw))
             dut.rd_en.value, dut.out_en.value, dut.rd_addr.value = re, oe, ra
             dut.wr_en.value, dut.wr_addr.value, dut.wr_data.value = we, wa, wd
             await FallingEdge(dut.clk)
