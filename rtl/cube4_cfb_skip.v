@@ -26,7 +26,7 @@
 //
 // Latency
 //   As its units, and one cycle: the walk's beats pass a skid buffer (u_eskid,
-//   a cube4_skid), the queue's items one too (u_qskid), then one register-free
+//   a cube4_skid_peek), the queue's items one too (u_qskid), then one register-free
 //   join (out_valid is the walk skid's valid and, where the leaving beat holds
 //   a running ray, the queue skid's valid: both registers).
 //
