@@ -814,7 +814,7 @@
 //                     flags, wz, wy, wx, emit; TRI_C_W bits
 // cube4_sha_slab's latency from a beat's fields to its falloff weights (cube4_sha
 // carries the beat that long at least when it builds the unit)
-`define CUBE4_SLAB_LAT 10
+`define CUBE4_SLAB_LAT 9
 // The beat schedule's lag (BEATS = 1; golden/cube4/beats.py LAG, numerics.md section 19):
 // the decisions of slice m use COM's reports of slices up to m - LAG - 1. With GRA between
 // the front end and COM it must be 4: COM finishes slice d once GRA has stepped slice

@@ -38,7 +38,7 @@
 //   CARRY_SAMPLE 1: the sample rides along to out_sample; 0: out_sample = 0. 0..1. Default 1.
 //   SLAB        1 (with COMPOSITING = 1, FALL): the slab's falloff weights
 //               (cube4_sha_slab), out_fall carried beside the beat; SHA then
-//               has at least SLAB_LAT + 1 = 11 stages. 0..1. Default 0.
+//               has at least SLAB_LAT + 1 = 10 stages. 0..1. Default 0.
 //   GMOD        1 (with SHADING): gradient-magnitude modulation (numerics.md
 //               section 23): cube4_sha_gm's factors fa, fs of each lane's |g|^2
 //               from the table written through gm_*; two more stages (m1, m2)

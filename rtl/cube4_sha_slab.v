@@ -21,13 +21,10 @@
 //   layout: cube4_defs.vh).
 //
 // Latency
-//   `CUBE4_SLAB_LAT = 10 register stages from the fields to f, no enable (SHA's
+//   `CUBE4_SLAB_LAT = 9 register stages from the fields to f, no enable (SHA's
 //   pipeline moves on every cycle):
 //     p1, p2  m * VIEW_X and m * VIEW_Y (cube4_mul's operand and product
 //             registers); the beat's fields ride along
-//     pr      the products' low PHASE_W bits in fabric registers (the
-//             MULT18X18D's output reaches the phase adder from a register
-//             placed beside it, not across the die)
 //     p3      wx, wy
 //     p4 .. p7  cube4_plane's c0 .. c3
 //     p8      each lane's max(min(E, E_H), 0) (the min chosen by cube4_plane's
@@ -38,7 +35,7 @@
 // Ports
 //   cfg                           view registers (PH0_*, VIEW_*, SS_LOG2, CUT_*, FALL_*)
 //   in_m, in_j, in_pb, in_skew    the beat's header fields
-//   fall  [P*FALL_W]              lane q's f, 0 .. 256 (Q1.8), 10 cycles later
+//   fall  [P*FALL_W]              lane q's f, 0 .. 256 (Q1.8), 9 cycles later
 //
 // Bit growth and rounding
 //   The phase products are exact (M_W + W + 2 bits), of which the low
@@ -63,29 +60,25 @@ module cube4_sha_slab #(
     localparam integer FLD_W = M_W + DIM_W + PB_W + LANE_W;
     localparam integer PR_W = M_W + WEIGHT_W + 3;     // {0, m} * {0, VIEW}, signed
 
-    // ---- p1, p2, pr: the phase products; the fields ride along ----
+    // ---- p1, p2: the phase products; the fields ride along ----
     wire signed [PR_W-1:0] p2_px, p2_py;
     cube4_mul #(.A_W(M_W + 1), .B_W(WEIGHT_W + 2)) u_mul_x (
         .clk(clk), .en(1'b1), .a($signed({1'b0, in_m})), .b($signed({1'b0, cfg_view_x})), .p(p2_px));
     cube4_mul #(.A_W(M_W + 1), .B_W(WEIGHT_W + 2)) u_mul_y (
         .clk(clk), .en(1'b1), .a($signed({1'b0, in_m})), .b($signed({1'b0, cfg_view_y})), .p(p2_py));
-    reg [FLD_W-1:0] p1_f, p2_f, pr_f, p3_f;
-    reg [PW-1:0]    pr_px, pr_py;
+    reg [FLD_W-1:0] p1_f, p2_f, p3_f;
     always @(posedge clk) begin
-        p1_f  <= {in_m, in_j, in_pb, in_skew};
-        p2_f  <= p1_f;
-        pr_f  <= p2_f;
-        p3_f  <= pr_f;
-        pr_px <= p2_px[PW-1:0];
-        pr_py <= p2_py[PW-1:0];
+        p1_f <= {in_m, in_j, in_pb, in_skew};
+        p2_f <= p1_f;
+        p3_f <= p2_f;
     end
     wire unused_p = ^{p2_px[PR_W-1:PW], p2_py[PR_W-1:PW]};
 
     // ---- p3: the slice's weights, ((PH0 + m * VIEW) mod 2^(W + g)) >> g ----
     wire [3:0]    wg   = WEIGHT_W[3:0] + {2'b00, cfg_ss_log2};
     wire [PW-1:0] mask = ~({PW{1'b1}} << wg);
-    wire [PW-1:0] phx  = (cfg_ph0_x + pr_px) & mask;
-    wire [PW-1:0] phy  = (cfg_ph0_y + pr_py) & mask;
+    wire [PW-1:0] phx  = (cfg_ph0_x + p2_px[PW-1:0]) & mask;
+    wire [PW-1:0] phy  = (cfg_ph0_y + p2_py[PW-1:0]) & mask;
     reg  [WEIGHT_W-1:0] p3_wx, p3_wy;
     always @(posedge clk) begin
         p3_wx <= WEIGHT_W'(phx >> cfg_ss_log2);

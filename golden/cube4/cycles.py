@@ -21,9 +21,9 @@ FILL_CYCLES_UNSHADED = 42
 #: same way and checked by tb/cube4_top's voxel-gradient test.
 FILL_CYCLES_VGRAD = 54
 #: The slab's falloff unit (SLAB = 1 with COMPOSITING = 1, rtl/cube4_sha_slab.v) makes SHA at
-#: least 11 stages: a build without shading (3 stages) takes this many cycles more; a shaded
+#: least 10 stages: a build without shading (3 stages) takes this many cycles more; a shaded
 #: SHA is longer already. Checked by tb/cube4_top's slab test.
-FALL_EXTRA_UNSHADED = 8
+FALL_EXTRA_UNSHADED = 7
 #: Gradient-magnitude modulation (GMOD = 1, shaded builds only) adds two SHA stages (m1, m2:
 #: rtl/cube4_sha.v): a frame takes this many cycles more. Checked by tb/cube4_top's test.
 GM_EXTRA = 2
