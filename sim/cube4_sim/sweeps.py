@@ -10,6 +10,8 @@ cost; see docs/simulation.md, "Test time".
 
 from __future__ import annotations
 
+import json
+import os
 from collections.abc import Callable, Iterable, Sequence
 
 import pytest
@@ -59,10 +61,7 @@ def set_lanes(dut, env_name: str, make_lane: Callable) -> tuple[int, int, list]:
     """The cocotb side of such a harness: its strides ``DW_MAX``, ``AW_MAX`` and one lane per
     parameter set, ``make_lane(params, rng)``, the sets read from the JSON list in environment
     variable ``env_name`` (which the pytest half passes) and one generator seeded from
-    cocotb's seed shared by all lanes."""
-    import json
-    import os
-
+    cocotb's seed shared by all lanes (imported here: only a simulation has one)."""
     import cocotb
     import numpy as np
 
