@@ -13,6 +13,7 @@
 #   make demo    render the demo volume through the simulated RTL, compared to the reference
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
+#   make fpga-status  the builds the reports need and where each one's Fmax stands: today's rtl/, older, never (reports/fpga_status.md; seconds)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, cycles, error, each build's measured ECP5 figures (reports/scenes.md; ~32 min; SCENES_ARGS=--place places and routes the builds not measured yet, ~40 min each)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
@@ -182,7 +183,7 @@ LINT_SETS_cube4_top         := P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
                                P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32,MAX_SS_LOG2=2 P=5,BEATS=1,PLW=0,EXTREMUM=0
 
 
-.PHONY: help setup lint lint-full sim bench test regress simspeed demo report bricks gates fpga scenes skipping labels dram board clean
+.PHONY: help setup lint lint-full sim bench test regress simspeed demo report bricks gates fpga fpga-status scenes skipping labels dram board clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -295,6 +296,11 @@ gates: setup
 
 fpga: setup
 	$(PY) -m cube4_reports.fpga $(FPGA_ARGS)
+
+# Which builds the reports' frame times need and where each one's place and route stands (on
+# today's rtl/ or an older one, or never), with the command that measures it; reads JSON only.
+fpga-status: setup
+	$(PY) -m cube4_reports.fpga_status --md reports/fpga_status.md
 
 # Empty-space skipping on real content (docs/reports.md); SKIPPING_ARGS="--no-rtl" leaves out the RTL frame.
 skipping: setup
