@@ -192,7 +192,7 @@ def table(rows: list[Status]) -> str:
     for s in rows:
         m = s.measured
         fmax = ("—" if m is None else "does not fit" if not m.fits else
-                f"{m.fmax_mhz:.1f}" + (" (below 130)" if s.below_goal else ""))
+                f"{m.fmax_mhz:.1f}" + (f" (below {GOAL_MHZ:.0f})" if s.below_goal else ""))
         seeds = ", ".join(f"{f:.1f}" for f in m.fmax_seeds) if m is not None and m.fits else ""
         body.append([fmax_store.build_label(s.need.build, s.need.widths), str(s.need.p), fmax, seeds,
                      m.rtl if m else "", s.age, ", ".join(f"{u} ({k})" for u, k in sorted(s.need.users.items())),
