@@ -36,15 +36,13 @@ from cube4.errors import UserError
 
 from . import fmax as fmax_store
 from .markdown import REPO_ROOT, _git, md_table
+from .report import BEATS_SOURCE as NO_BUILD_SOURCE     # rows whose cycles no build runs
+from .scenes import P, SMALLER_P                          # the reports' P; the smaller P a build tries
+from .scenes import place_command as scenes_place_command
 
 #: the Fmax every build should reach at P = 8 where it fits (issue 56)
 GOAL_MHZ = 130.0
-#: the P the reports run their builds at, and the smaller P a build that does not fit tries
-P = 8
-SMALLER_P = (4, 2, 1)
 REPORTS = REPO_ROOT / "reports"
-#: the error report's rows whose cycles no build runs (cube4_reports.report.BEATS_SOURCE)
-NO_BUILD_SOURCE = "golden beat walk (no build)"
 
 
 @dataclass
@@ -149,7 +147,6 @@ def rtl_age(commit: str, head_tree: str) -> str:
 
 def place_command(n: Need) -> str:
     """The command that places and routes ``n`` (cube4_reports.scenes' naming of its report)."""
-    from .scenes import place_command as scenes_place_command      # scenes imports cube4.app
     return scenes_place_command(n.build, n.widths, n.p)
 
 
