@@ -371,21 +371,9 @@ module cube4_cfb_decide #(
     reg                row_end7;
     reg  [PB_W-1:0]    pb7;
     reg  [RATE*P-1:0]  run7, occ7, fresh7, last7, soon7;
-    // whether S7's group gives its line FIFO reservation back (no ray runs in
-    // any of its beats) or pushes: registered from S6's decisions, so the
-    // OR of RATE * P run bits lies before this register, not on the route
-    // from it into the FIFO's reservations (a beat build's longest path)
-    reg                give7, push7;
     always @(posedge clk) begin
-        if (rst || start) begin
-            v7    <= 1'b0;
-            give7 <= 1'b0;
-            push7 <= 1'b0;
-        end else begin
-            v7    <= v[ND];
-            give7 <= v[ND] && (run6 == '0);
-            push7 <= v[ND] && (run6 != '0);
-        end
+        if (rst || start) v7 <= 1'b0;
+        else              v7 <= v[ND];
         row_end7 <= row_end[ND];
         pb7      <= pb_s[ND];
         {run7, occ7, fresh7, last7, soon7} <= {run6, occ6, fresh6, last6, soon6};
@@ -428,8 +416,8 @@ module cube4_cfb_decide #(
     end
     wire unused_cr_ln, unused_cr_bm;
     cube4_credit_fifo #(.DATA_W(RATE * LN), .DEPTH(16)) u_ln (
-        .clk(clk), .rst(rst || start), .take(issue), .give(give7), .credit(credit_ln),
-        .credit_d(unused_cr_ln), .push_d(push7), .in_data(ln8), .out_valid(ln_valid),
+        .clk(clk), .rst(rst || start), .take(issue), .give(v7 && (a7 == '0)), .credit(credit_ln),
+        .credit_d(unused_cr_ln), .push_d(v7 && (a7 != '0)), .in_data(ln8), .out_valid(ln_valid),
         .out_ready(ln_ready), .out_data(ln_bits));
     cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
         .clk(clk), .rst(rst || start), .take(issue), .give(v7 && !row_end7), .credit(credit_bm),

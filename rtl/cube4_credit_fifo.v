@@ -38,15 +38,6 @@
 //              cycles from a `take` to the first cycle its item could be read
 //              (the pipeline's stages + 2, + 1 with IN_REG).
 //   IN_REG     1: in_data registered before the memory.  0..1.  Default 0.
-//   READY_N    copies of out_ready the consumer keeps (all equal).  1..16.
-//              Default 1. The read side has 2 + ceil(DATA_W / 64) loads of
-//              out_ready (the occupancy and out_valid, the reservations, each
-//              64-bit group's read pointer): with READY_N >= 3 the first two
-//              take copies 0 and 1 and the groups share copies 2 .. READY_N-1
-//              in turn; with fewer, copy 0 serves every load but the
-//              reservations (copy 1 when there is one). A consumer far away
-//              keeps its ready register in copies, so that each copy can lie
-//              beside its loads and no one route crosses to all of them.
 //
 // Latency
 //   An item pushed at a clock edge is on out_valid/out_data right after that
@@ -68,16 +59,14 @@
 //   push_d          in   in_data of the next cycle is an item: it is stored
 //                        then. Each push uses the reservation of its item.
 //   in_data         in   [DATA_W] any format
-//   out_valid/out_ready/out_data   output stream (same format); out_ready
-//                   is [READY_N] equal copies
+//   out_valid/out_ready/out_data   output stream (same format)
 //
 // Bit growth and rounding: none (storage only).
 // =============================================================================
 module cube4_credit_fifo #(
     parameter integer DATA_W        = 8,
     parameter integer DEPTH         = 16,
-    parameter integer IN_REG        = 0,
-    parameter integer READY_N       = 1
+    parameter integer IN_REG        = 0
 ) (
     input  wire                     clk,
     input  wire                     rst,
@@ -88,7 +77,7 @@ module cube4_credit_fifo #(
     input  wire                     push_d,
     input  wire [DATA_W-1:0]        in_data,
     output wire                     out_valid,
-    input  wire [READY_N-1:0]       out_ready,
+    input  wire                     out_ready,
     output wire [DATA_W-1:0]        out_data
 );
     localparam integer AW = (DEPTH > 1) ? $clog2(DEPTH) : 1;
@@ -98,7 +87,6 @@ module cube4_credit_fifo #(
             $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
         end
         `CUBE4_RANGE(g_bad_in_reg, "cube4_credit_fifo", "IN_REG", IN_REG, 0, 1)
-        `CUBE4_RANGE(g_bad_ready_n, "cube4_credit_fifo", "READY_N", READY_N, 1, 16)
     endgenerate
 
     localparam integer GW   = 64;                            // bits per group (the last may be fewer)
@@ -134,14 +122,9 @@ module cube4_credit_fifo #(
     // the FIFO.
     localparam integer NNE = NGRP + 2;
     wire [NNE-1:0] ne_q;                // copies of nonempty
-    // which copy of out_ready load k (as ne_q's index) takes (READY_N above)
-    function automatic integer rdy_of(input integer k);
-        if (READY_N >= 3) rdy_of = (k < 2) ? k : 2 + (k - 2) % (READY_N - 2);
-        else              rdy_of = (k == 1) ? READY_N - 1 : 0;
-    endfunction
     // ---- occupancy of the memory: pushes - reads (push[0] is the reference copy) ----
     reg  [AW:0] cnt_q;                  // items stored in the memory
-    wire        rd = ne_q[0] && out_ready[rdy_of(0)];   // an item leaves
+    wire        rd = ne_q[0] && out_ready;          // an item leaves
     // (rd selects between two sums of registers, after them)
     wire [AW:0] cnt_p = cnt_q + {{AW{1'b0}}, push[0]};
     wire [AW:0] cnt_d = rd ? cnt_p - 1'b1 : cnt_p;
@@ -163,7 +146,7 @@ module cube4_credit_fifo #(
     wire [AW:0] res_p1 = res_q + 1'b1;
     wire [AW:0] res_m1 = res_q - 1'b1;
     wire [AW:0] res_m2 = res_q - (AW + 1)'(2);
-    wire        rd_r   = ne_q[1] && out_ready[rdy_of(1)];   // rd, from copy 1
+    wire        rd_r   = ne_q[1] && out_ready;              // rd, from copy 1
     wire        dn_one = give ^ rd_r;                       // give + rd = 1
     wire        dn_two = give && rd_r;                      // give + rd = 2
     wire [AW:0] res_d  = take ? (dn_two ? res_m1 : (dn_one ? res_q : res_p1))
@@ -194,7 +177,7 @@ module cube4_credit_fifo #(
             localparam integer LO = g * GW;
             localparam integer W  = (DATA_W - LO < GW) ? DATA_W - LO : GW;
             reg [AW-1:0] wp_q, rp_q;
-            wire rd_g = ne_q[2 + g] && out_ready[rdy_of(2 + g)];   // rd, from copy 2 + g
+            wire rd_g = ne_q[2 + g] && out_ready;           // rd, from copy 2 + g
             (* keep *)
             always @(posedge clk) begin
                 if (rst) begin

@@ -36,9 +36,6 @@
 //   RMAP_BITS   cube-map resolution R = 2^RMAP_BITS. 2..6.  Default 5.
 //   SHADING     1: shading by the reflectance map; 0: classification only. 0..1. Default 1.
 //   CARRY_SAMPLE 1: the sample rides along to out_sample; 0: out_sample = 0. 0..1. Default 1.
-//   OUT_READY_N copies of out_ready the consumer keeps as registers, each for
-//               its own loads in the output FIFO (cube4_credit_fifo's
-//               READY_N). 1..16. Default 1.
 //   SLAB        1 (with COMPOSITING = 1, FALL): the slab's falloff weights
 //               (cube4_sha_slab), out_fall carried beside the beat; SHA then
 //               has at least SLAB_LAT + 1 = 10 stages. 0..1. Default 0.
@@ -79,7 +76,6 @@
 //                               0 when SHADING = 0)
 //   out_sample [P*VOXEL_W]      the beat's sample values, unchanged (CARRY_SAMPLE = 1; else 0)
 //   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
-//   out_ready [OUT_READY_N]     equal copies of the consumer's ready
 //   out_fall  [P*FALL_W]        the slab's falloff weight f of each lane, 0 .. 256
 //                               (cube4_sha_slab; FALL = 1, else 256)
 //   cfg                         view registers (read by cube4_sha_slab only)
@@ -95,7 +91,6 @@
 // =============================================================================
 module cube4_sha #(
     `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
-    parameter integer OUT_READY_N = 1,
     `CUBE4_GM_LAYOUT,
     localparam integer LBL_W  = (LABELS != 0) ? 4 : 0,     // (CUBE4_WORD_LAYOUT's)
     localparam integer SMP_W  = VOXEL_W + LBL_W,           // a sample: {label, value}
@@ -113,7 +108,7 @@ module cube4_sha #(
     input  wire [P*SMP_W-1:0]   in_sample,
     input  wire [P*GRAD_W-1:0]  in_gi, input wire [P*GRAD_W-1:0] in_gj, input wire [P*GRAD_W-1:0] in_gk,
     // shaded stream out: RGBA and the reflectance-map entry used
-    output wire out_valid, input  wire [OUT_READY_N-1:0] out_ready, output wire [HDR_W-1:0] out_hdr,
+    output wire out_valid, input  wire out_ready, output wire [HDR_W-1:0] out_hdr,
     output wire [P*(24+ALPHA_W)-1:0] out_rgba,
     output wire [P*RI_W-1:0] out_idx,
     output wire [P*VOXEL_W-1:0] out_sample,
@@ -122,7 +117,6 @@ module cube4_sha #(
     generate
         `CUBE4_BUILD_CHECKS("cube4_sha")
         `CUBE4_RANGE(g_bad_carry, "cube4_sha", "CARRY_SAMPLE", CARRY_SAMPLE, 0, 1)
-        `CUBE4_RANGE(g_bad_ready_n, "cube4_sha", "OUT_READY_N", OUT_READY_N, 1, 16)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -563,14 +557,14 @@ module cube4_sha #(
     wire unused_credit_d;
     generate
         if (FALL != 0) begin : g_fifo_fall
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .READY_N(OUT_READY_N)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_fall, e_meta, e_rgba, e_idx, e_s}),
                 .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
             assign {out_fall, out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
         end else begin : g_fifo
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .READY_N(OUT_READY_N)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),

@@ -9,28 +9,21 @@
 //   and synthesis removes it. Testbenches drive hold at random to stall every
 //   internal port.
 //
-// Parameters
-//   READY_N   copies of ready passed through (a consumer's register copies,
-//             cube4_skid_peek's in_ready_cp), each held alike.  1 or more.
-//             Default 1.
-// Latency: 0 cycles.
+// Parameters: none.  Latency: 0 cycles.
 //
 // Ports
 //   hold                     in   block transfers this cycle
-//   in_valid / in_ready      producer side (in_ready [READY_N])
-//   out_valid / out_ready    consumer side (out_ready [READY_N]; data passes
-//                            outside this module)
+//   in_valid / in_ready      producer side
+//   out_valid / out_ready    consumer side (data passes outside this module)
 // =============================================================================
-module cube4_stream_hold #(
-    parameter integer READY_N = 1
-) (
-    input  wire               hold,
-    input  wire               in_valid,
-    output wire [READY_N-1:0] in_ready,
-    output wire               out_valid,
-    input  wire [READY_N-1:0] out_ready
+module cube4_stream_hold (
+    input  wire hold,
+    input  wire in_valid,
+    output wire in_ready,
+    output wire out_valid,
+    input  wire out_ready
 );
     assign out_valid = in_valid && !hold;
-    assign in_ready  = out_ready & {READY_N{!hold}};
+    assign in_ready  = out_ready && !hold;
 endmodule
 `default_nettype wire

@@ -495,18 +495,7 @@ module cube4_top #(
         .out_valid (sha_in_valid), .out_ready (sha_in_ready));
 
     // ---------------------------------------------------------------- SHA
-    // SHA's beat as it leaves (BEATS = 0: into COM's skid whole)
-    localparam integer XF_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W;
-    // SHA's output FIFO reads on the ready of COM's skid. BEATS = 0: that skid
-    // keeps its ready in SHA_READY_N register copies, one per load of the
-    // FIFO's read side (its occupancy, its reservations, and its groups of 64
-    // bits of the beat, up to 16 copies), so that each copy can lie beside its
-    // loads and no one route crosses from the skid to all of them (one ready
-    // register's route into the reservations was the full build's longest
-    // path at P = 8). BEATS = 1: the ready is a join with the bits' FIFO, one net
-    localparam integer SHA_READY_N = (BEATS != 0) ? 1 : ((2 + (XF_W + 63) / 64 > 16) ? 16 : 2 + (XF_W + 63) / 64);
     wire                       sha_valid, sha_ready, com_in_valid, com_in_ready;
-    wire [SHA_READY_N-1:0]     sha_ready_cp;    // copy 0 is sha_ready
     wire [HDR_W-1:0]           sha_hdr;
     wire [P*(24+ALPHA_W)-1:0]  sha_rgba;
     wire [P*RI_W-1:0]          unused_sha_idx;
@@ -515,8 +504,7 @@ module cube4_top #(
 
     cube4_sha #(
         `CUBE4_BUILD_PASS,
-        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0),
-        .OUT_READY_N (SHA_READY_N)
+        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0)
     ) u_sha (
         .clk       (clk),
         .rst       (rst),
@@ -538,7 +526,7 @@ module cube4_top #(
         .in_gj     (gra_gj),
         .in_gk     (gra_gk),
         .out_valid (sha_valid),
-        .out_ready (sha_ready_cp),
+        .out_ready (sha_ready),
         .out_hdr   (sha_hdr),
         .out_rgba  (sha_rgba),
         .out_idx   (unused_sha_idx),
@@ -547,12 +535,9 @@ module cube4_top #(
     );
 
     wire x_valid, x_ready;          // SHA's stream after the debug hold
-    wire [SHA_READY_N-1:0] x_ready_cp;  // copy 0 is x_ready
-    cube4_stream_hold #(.READY_N (SHA_READY_N)) u_hold_sha (
-        .hold (dbg_hold[0]), .in_valid (sha_valid), .in_ready (sha_ready_cp),
-        .out_valid (x_valid), .out_ready (x_ready_cp));
-    assign sha_ready = sha_ready_cp[0];
-    assign x_ready   = x_ready_cp[0];
+    cube4_stream_hold u_hold_sha (
+        .hold (dbg_hold[0]), .in_valid (sha_valid), .in_ready (sha_ready),
+        .out_valid (x_valid), .out_ready (x_ready));
     assign sha_take = x_valid && x_ready;
 
     // SHA's beat (BEATS = 1: and its bits) pass a skid buffer into COM (which
@@ -581,7 +566,7 @@ module cube4_top #(
             // that left SHA without GRA (unshaded, VGRAD) can be ahead of its
             // bits, which pass three registers and the FIFO's RAM read)
             wire xk_ready;
-            assign x_ready_cp = xk_ready && com_bits_valid;   // (SHA_READY_N = 1)
+            assign x_ready = xk_ready && com_bits_valid;
             cube4_skid #(.DATA_W (XC_W)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid && com_bits_valid), .in_ready (xk_ready),
@@ -611,19 +596,13 @@ module cube4_top #(
 `endif
             wire unused_hk = ^{hk_ready, hk_valid};     // (xk_ready and com_in_valid)
         end else begin : g_com_fixed
-            wire             skid_ready, unused_nx_valid, unused_ready_nx;
-            wire [XF_W-1:0]  unused_nx_data;
-            wire [0:0]       unused_valid_cp;
-            cube4_skid_peek #(.DATA_W (XF_W), .READY_N (SHA_READY_N)) u_com_skid (
+            localparam integer XF_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W;
+            cube4_skid #(.DATA_W (XF_W)) u_com_skid (
                 .clk (clk), .rst (rst),
-                .in_valid (x_valid), .in_ready (skid_ready),
+                .in_valid (x_valid), .in_ready (x_ready),
                 .in_data ({sha_hdr, sha_rgba, sha_sample, sha_fall}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
-                .out_data ({c_hdr, c_rgba, c_sample, c_fall}),
-                .nx_valid (unused_nx_valid), .nx_data (unused_nx_data),
-                .in_ready_cp (x_ready_cp), .in_ready_nx (unused_ready_nx),
-                .out_valid_cp (unused_valid_cp));
-            wire unused_skid = ^{skid_ready, unused_nx_valid, unused_nx_data, unused_ready_nx, unused_valid_cp};
+                .out_data ({c_hdr, c_rgba, c_sample, c_fall}));
             assign {c_bits, c_eoss} = {com_bits, com_eoss};     // (constants: no beats)
             wire unused_bits_valid = com_bits_valid;
             assign x_geo = '0;
@@ -695,7 +674,7 @@ module cube4_top #(
                 .data ({gra_hdr, gra_sample, gra_gi, gra_gj, gra_gk}));
         end
     endgenerate
-    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (XF_W)) u_chk_sha (
+    cube4_stream_check #(.NAME ("top.shaded"), .DATA_W (HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W)) u_chk_sha (
         .clk (clk), .rst (rst), .valid (sha_valid), .ready (sha_ready),
         .data ({sha_hdr, sha_rgba, sha_sample, sha_fall}));
     cube4_stream_check #(

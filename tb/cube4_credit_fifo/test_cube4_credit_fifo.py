@@ -39,25 +39,21 @@ class TB:
         self.dut = dut
         self.log = dut._log
         # IN_REG = 1: the push is one edge later
-        self.data_w, self.depth, self.in_reg, self.ready_n = top_params(dut, "DATA_W", "DEPTH", "IN_REG", "READY_N")
+        self.data_w, self.depth, self.in_reg = top_params(dut, "DATA_W", "DEPTH", "IN_REG")
         self.credit_next: int | None = None
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.expected: deque[int] = deque()
         self.received = 0
         self.takes = 0
         start_clock(dut)
-        self.log.info("cube4_credit_fifo DATA_W=%d DEPTH=%d READY_N=%d", self.data_w, self.depth, self.ready_n)
-
-    def _ready(self, ready: int) -> None:
-        """The consumer's ready: READY_N equal copies."""
-        self.dut.out_ready.value = ((1 << self.ready_n) - 1) if ready else 0
+        self.log.info("cube4_credit_fifo DATA_W=%d DEPTH=%d", self.data_w, self.depth)
 
     def _idle_inputs(self) -> None:
         self.dut.take.value = 0
         self.dut.give.value = 0
         self.dut.push_d.value = 0
         self.dut.in_data.value = 0
-        self._ready(0)
+        self.dut.out_ready.value = 0
 
     async def reset(self) -> None:
         self._idle_inputs()
@@ -132,7 +128,7 @@ class TB:
             self.dut.give.value = give
             self.dut.push_d.value = self._push_next(pipe)
             self.dut.in_data.value = data if push else self._word()
-            self._ready(ready)
+            self.dut.out_ready.value = ready
             takes.append(int(take))
             self.takes += int(take)
             await self._edge()
@@ -156,7 +152,7 @@ class TB:
             self.dut.give.value = give
             self.dut.push_d.value = self._push_next(pipe)
             self.dut.in_data.value = data
-            self._ready(1)
+            self.dut.out_ready.value = 1
             await self._edge()
         assert not self.expected, f"{len(self.expected)} items never came out"
         assert int(self.dut.out_valid.value) == 0, "out_valid with nothing pushed"
@@ -207,7 +203,7 @@ PARAM_SETS = [
     {"DATA_W": 5, "DEPTH": 4},
     {"DATA_W": 140, "DEPTH": 32},
     {"DATA_W": 5, "DEPTH": 4, "IN_REG": 1},
-    {"DATA_W": 140, "DEPTH": 16, "IN_REG": 1, "READY_N": 4},   # (3 groups: 5 loads on 4 copies)
+    {"DATA_W": 140, "DEPTH": 16, "IN_REG": 1},
 ]
 
 
