@@ -427,7 +427,8 @@ def run_test(
         build_args: extra Verilator arguments.
         defines: Verilog defines (``-D``).
         includes: include directories besides ``rtl/`` and ``sim/hdl/`` (always searched).
-        seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random).
+        seed: cocotb random seed (default: ``COCOTB_RANDOM_SEED`` or random); a failure's
+            message names it, so ``COCOTB_RANDOM_SEED=<seed>`` reproduces the run.
         plusargs: simulator plusargs (``+NAME=value``), read by ``$value$plusargs``.
         quiet_logs: write the Verilator/C++ build output and the simulator's
             output to ``build.log`` and ``sim.log`` in the build directory
@@ -532,6 +533,8 @@ def run_test(
     if private_results:
         name += f".{os.getpid()}"
     results = build_dir / f"{name}.results.xml"
+    if seed is None:
+        seed = int(os.environ.get("COCOTB_RANDOM_SEED") or int.from_bytes(os.urandom(4), "little") >> 1)
     exit_status: object = 0
     try:
         runner.test(
@@ -567,7 +570,8 @@ def run_test(
         raise SimulationError(f"{top}: no cocotb test ran (test_module={module_name}, testcase={testcase})")
     if num_failed:
         raise SimulationError(
-            f"{top}: {num_failed} of {num_tests} cocotb tests failed ({log_hint}; results {results})"
+            f"{top}: {num_failed} of {num_tests} cocotb tests failed ({log_hint}; results {results}); "
+            f"reproduce with COCOTB_RANDOM_SEED={seed}"
         )
     if exit_status not in (0, None):
         raise SimulationError(f"{top}: all tests passed but the simulator exited with status {exit_status}")
