@@ -45,11 +45,14 @@
 //   Bitmaps: a row is taken when bm_valid && bm_ready and written into its
 //   slot at the edge after; slice m's rows may be taken once the walk
 //   fetches slice m - 2 (four slots, slice mod 4), and the walk fetches slice
-//   m's rows once slice m + 1 is written whole (or is past the frame). The walk: a row is fetched (its three slots read at one
-//   address), enters a window of three rows, its E is registered, and its
-//   reads are formed from two registered E words, and the row waits in a
-//   queue of two rows for the emitter: a row fetched at an edge is in the
-//   emitter five edges later (its first beat offered in the cycle after).
+//   m's rows once slice m + 1 is written whole (or is past the frame). The
+//   walk: a row is fetched (its words of slices m - 1, m, m + 1 read at one
+//   row, one from each copy of the slots, through the RAMs' read and output
+//   registers: two fetches), enters a window of three rows, its E is
+//   registered, and its reads are formed from two registered E words, and
+//   the row waits in a queue of two rows for the emitter: a row fetched at
+//   an edge is in the emitter six edges later (its first beat offered in
+//   the cycle after).
 //   The pipeline moves one row per edge while the queue has room (its
 //   registered count: the emitter's last bit does not reach the pipeline's
 //   enable). The emitter takes one cycle per
@@ -106,10 +109,18 @@ module cube4_cfb_beats #(
     reg active;                            // between start and the flush row's last beat
     assign busy = active;
 
-    // ==== the bitmaps: four slots, slice mod 4, one {A, OCC} word per row; a row's
+    // ==== the bitmaps: four slots, slice mod 4, one {A, OCC} word per row, kept in
+    // three copies, one for each slice a fetch reads (slice m - 1: A; m: {OCC, A};
+    // m + 1: A), each a RAM of the four slots' rows (word {slot, row}) read at one
+    // word per fetch, so no multiplexer among slots lies behind the RAMs. A row's
     // write lands one edge after its take (cube4_sdp_ram WR_REG: the write enable,
     // address and word pass registers, copies of them per 36 bits, so the take's
-    // compares reach a few flip-flops, not every cell of the four slots) ====
+    // compares reach a few flip-flops, not every cell of the copies). The read
+    // passes the RAM's read register and its output register (OUT_REG = 1: on the
+    // ECP5 a block RAM with its output register from 128 words on, distributed RAM
+    // with fabric registers below), so the slots' size, 8 MAX_DIM^2 / P bits, costs
+    // block RAMs, not distributed RAM and its read multiplexers, and a fetched row's
+    // words come out one fetch after its place (f_*, then f2_*) ====
     reg [M_W-1:0]   wm;                    // the slice being written
     reg [DIM_W-1:0] wj;
     reg [M_W-1:0]   g;                     // the slice being fetched (nm: past the frame)
@@ -156,17 +167,20 @@ module cube4_cfb_beats #(
             if (wm_mv) wm <= wm + 1'b1;
         end
     end
-    wire [2*NW-1:0] slot_q [0:3];
+    wire [NW-1:0]   slot_p, slot_n;        // A of slices g - 1, g + 1 (two fetches after the read)
+    wire [2*NW-1:0] slot_c;                // {OCC, A} of slice g
     wire            adv;                   // the walk's pipeline moves
+    wire [RW+1:0]   slot_wa = {wm[1:0], RW'(wj)};
+    cube4_sdp_ram #(.DATA_W(NW), .DEPTH(4 << RW), .WR_REG(1), .OUT_REG(1)) u_slot_p (
+        .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr({g[1:0] - 2'd1, RW'(gj)}), .rd_data(slot_p),
+        .wr_en(bm_take), .wr_addr(slot_wa), .wr_data(bm_a));
+    cube4_sdp_ram #(.DATA_W(2 * NW), .DEPTH(4 << RW), .WR_REG(1), .OUT_REG(1)) u_slot_c (
+        .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr({g[1:0], RW'(gj)}), .rd_data(slot_c),
+        .wr_en(bm_take), .wr_addr(slot_wa), .wr_data({bm_occ, bm_a}));
+    cube4_sdp_ram #(.DATA_W(NW), .DEPTH(4 << RW), .WR_REG(1), .OUT_REG(1)) u_slot_n (
+        .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr({g[1:0] + 2'd1, RW'(gj)}), .rd_data(slot_n),
+        .wr_en(bm_take), .wr_addr(slot_wa), .wr_data(bm_a));
     genvar s;
-    generate
-        for (s = 0; s < 4; s = s + 1) begin : g_slot
-            // (distributed RAM: the word read goes into the walk's row words in the cycle after)
-            cube4_sdp_ram #(.DATA_W(2 * NW), .DEPTH(MAX_DIM), .WR_REG(1), .DIST(1)) u_slot (
-                .clk(clk), .rd_en(adv), .out_en(1'b0), .rd_addr(RW'(gj)), .rd_data(slot_q[s]),
-                .wr_en(bm_take && (wm[1:0] == 2'(s))), .wr_addr(RW'(wj)), .wr_data({bm_occ, bm_a}));
-        end
-    endgenerate
 
     // ==== the fetch: rows of the frame, then the flush row and the tail ====
     wire in_frame = g_in;
@@ -273,12 +287,21 @@ module cube4_cfb_beats #(
             f_full  <= (ss_log2 != 2'd0) && ((g == '0) || ((3'(g) & s_m1) == 3'd1));
         end
     end
+    // the place one fetch on, beside the slots' output registers
+    reg [1:0]       f2_kind;
+    reg [M_W-1:0]   f2_m;
+    reg [DIM_W-1:0] f2_j;
+    reg             f2_first, f2_lastm, f2_full;
+    always @(posedge clk) begin
+        if (rst || start) f2_kind <= K_NONE;
+        else if (adv)     f2_kind <= f_kind;
+        if (adv) {f2_m, f2_j, f2_first, f2_lastm, f2_full} <= {f_m, f_j, f_first, f_lastm, f_full};
+    end
     // the slots of slices m - 1, m, m + 1 (zero outside the frame)
-    wire [1:0]    fm2 = f_m[1:0];
-    wire [NW-1:0] r_p = (f_kind != K_ROW || f_first) ? '0 : slot_q[fm2 - 2'd1][NW-1:0];
-    wire [NW-1:0] r_c = (f_kind != K_ROW) ? '0 : slot_q[fm2][NW-1:0];
-    wire [NW-1:0] r_n = (f_kind != K_ROW || f_lastm) ? '0 : slot_q[fm2 + 2'd1][NW-1:0];
-    wire [NW-1:0] r_o = (f_kind != K_ROW) ? '0 : slot_q[fm2][2*NW-1:NW];
+    wire [NW-1:0] r_p = (f2_kind != K_ROW || f2_first) ? '0 : slot_p;
+    wire [NW-1:0] r_c = (f2_kind != K_ROW) ? '0 : slot_c[NW-1:0];
+    wire [NW-1:0] r_n = (f2_kind != K_ROW || f2_lastm) ? '0 : slot_n;
+    wire [NW-1:0] r_o = (f2_kind != K_ROW) ? '0 : slot_c[2*NW-1:NW];
 
     // ==== the window: rows k + 1 (0), k (1), k - 1 (2); E of row k ====
     reg [1:0]       w_kind [0:2];
@@ -293,12 +316,12 @@ module cube4_cfb_beats #(
         if (rst || start) begin
             for (k = 0; k < 3; k = k + 1) w_kind[k] <= K_NONE;
         end else if (adv) begin
-            w_kind[0] <= f_kind;
+            w_kind[0] <= f2_kind;
             for (k = 1; k < 3; k = k + 1) w_kind[k] <= w_kind[k-1];
         end
         if (adv) begin
-            w_full <= {w_full[0], f_full};
-            w_m[0] <= f_m;  w_j[0] <= f_j;
+            w_full <= {w_full[0], f2_full};
+            w_m[0] <= f2_m;  w_j[0] <= f2_j;
             w_any[0] <= r_p | r_c | r_n;  w_a[0] <= r_c;  w_o[0] <= r_o;
             for (k = 1; k < 3; k = k + 1) begin
                 w_m[k] <= w_m[k-1];  w_j[k] <= w_j[k-1];

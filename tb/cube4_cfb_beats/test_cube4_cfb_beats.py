@@ -21,11 +21,11 @@ the others a token for the address unit's row counter); EOR on each row's last b
 on each slice's, LAST on the frame's, and
 nothing after it (the bench keeps ready high for 40 more cycles).
 
-Cycles: every frame without gaps or stalls with NJ > 1 takes exactly NJ·min(2, M) + 6 +
+Cycles: every frame without gaps or stalls with NJ > 1 takes exactly NJ·min(2, M) + 7 +
 walker_cycles edges from start to its last beat's transfer: the rows of two slices written
-(an edge a row) before the first fetch, an edge to fetch, five to the emitter, then one
-cycle per beat and one per row that reads nothing (``beats.walker_cycles``). (A row's
-bitmaps land in their slot an edge after the take; with NJ = 1 the walk waits for a slice
+(an edge a row) before the first fetch, an edge to fetch, six to the emitter (two of them
+the slots' read and output registers), then one cycle per beat and one per row that reads
+nothing (``beats.walker_cycles``). (A row's bitmaps land in their slot an edge after the take; with NJ = 1 the walk waits for a slice
 to land, not only to be taken, and the count is not checked.)
 
 The neighbour term matters: with it dropped from E (tried, not kept), P = 4 fails with
@@ -159,7 +159,7 @@ async def test_walk(dut):
         compare(got, want, tb.log)
         if gap == 0 and stall == 0 and sched.NJ > 1:
             walker = int(beats.walker_cycles(sched).sum())
-            formula = sched.NJ * min(2, sched.M) + 6 + walker
+            formula = sched.NJ * min(2, sched.M) + 7 + walker
             assert cycles == formula, f"{cycles} edges, formula {formula} (walker {walker})"
         st = beats.schedule_stats(sched)
         near = sum(int((sched.run_beats(m) & ~sched.active_beats(m)).sum()) for m in range(sched.M))

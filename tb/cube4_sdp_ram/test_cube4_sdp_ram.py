@@ -168,6 +168,7 @@ PARAM_SETS = [
     {"DATA_W": 9, "DEPTH": 4096, "OUT_REG": 1},                 # 2 deep 2048 x 9 (the ray table)
     {"DATA_W": 34, "DEPTH": 3000, "OUT_REG": 1},                # 4 x (2 deep 2048 x 9)
     {"DATA_W": 9, "DEPTH": 5000, "WR_REG": 1, "OUT_REG": 1},    # 3 deep 2048 x 9, write copies
+    {"DATA_W": 32, "DEPTH": 512, "WR_REG": 1, "OUT_REG": 1},    # 1024 x 18, write copies (the walk's slots)
     {"DATA_W": 32, "DEPTH": 256, "DIST": 1},                    # distributed RAM by choice (GRA's row table)
     {"DATA_W": 74, "DEPTH": 2048, "OUT_REG": 2},                # 2048 x 9, out_en (GRA's plane A)
     {"DATA_W": 20, "DEPTH": 6145, "WR_REG": 1, "OUT_REG": 2},   # stacks: the bank choice with out_en
