@@ -414,8 +414,13 @@ def test_results_as_written_are_what_the_frame_times_read(tmp_path, monkeypatch)
     build = (("BEATS", 1), ("EXTREMUM", 0), ("CLIP", 0), ("PLW", 0))
     cfg = fpga.BuildConfig(p=8, max_dim=16, depth=64, freq=125.0, seeds=(1, 2, 3), build=build)
     runs = [run_of(2, 90.0, tmp_path), run_of(3, 70.0, tmp_path), run_of(1, 80.0, tmp_path)]
-    recs = fpga.result_records([fpga.combine(cfg, {"LUT4": 5}, 1.0, runs)], cfg)
+    cfg.workdir().mkdir(parents=True, exist_ok=True)
+    (cfg.workdir() / "yosys.log").write_text("Top module:  \\cube4_top\nUsed module:     \\cube4_skid\n")
+    recs = fpga.result_records([fpga.combine(cfg, {"LUT4": 5}, 1.0, runs)], [cfg])
     f = tmp_path / "fpga_t.json"
     f.write_text(json.dumps({"seeds": [1, 2, 3], "speed": 8, "max_dim": 16, "rtl_commit": "abc1234", "results": recs}))
     m = fmax.lookup(fmax.load([f]), 8, complete_build(dict(build)), fpga.TOP_DEFAULTS)
     assert m.fmax_mhz == 80.0 and sorted(m.fmax_seeds) == [70.0, 80.0, 90.0] and m.luts == recs[0]["luts"]
+    # the files its synthesis read (make fpga-status: current while rtl/ changes elsewhere)
+    assert {"rtl/cube4_top.v", "rtl/cube4_skid.v", "rtl/cube4_defs.vh"} <= set(m.files)
+    assert "rtl/cube4_cfb_beats.v" not in m.files

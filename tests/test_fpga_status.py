@@ -96,3 +96,21 @@ def test_comment_only_changes_keep_a_result_current(monkeypatch):
     assert fs.rtl_age("comment", "tree-HEAD") == "as now but comments"
     assert fs.rtl_age("logic", "tree-HEAD") == "4 commits to rtl/ since"
     assert fs.rtl_age("HEAD", "tree-HEAD") == "as now"
+
+
+def test_a_change_in_files_a_build_does_not_read_keeps_it_current(monkeypatch):
+    """rtl/ changed only in another build's module: current for a build whose list of files
+    lacks it; a build that reads it (or one with no list) is not."""
+    diffs = {("logic", "--unified=0"): "--- a/rtl/b.v\n+++ b/rtl/b.v\n@@ -3 +3 @@\n-    assign a = b;\n+    assign a = c;\n",
+             ("logic", "--no-renames"): "rtl/b.v\n"}
+
+    def fake_git(*args):
+        if args[0] == "rev-parse":
+            return "tree-" + args[-1].split("^")[0]
+        if args[0] == "diff":
+            return diffs[args[2] if args[1] == "--unified=0" else args[3], args[1]]
+        return "1"                                            # rev-list --count
+    monkeypatch.setattr(fs, "_git", fake_git)
+    assert fs.rtl_age("logic", "tree-HEAD", ("rtl/a.v", "rtl/x.vh")) == "as now in the files it reads"
+    assert fs.rtl_age("logic", "tree-HEAD", ("rtl/a.v", "rtl/b.v")) == "1 commit to rtl/ since"
+    assert fs.rtl_age("logic", "tree-HEAD") == "1 commit to rtl/ since"

@@ -58,6 +58,7 @@ class Measured:
     ebrs: int | None = None
     fits: bool = True
     speed: int = SPEED
+    files: tuple[str, ...] = ()  # the rtl/ files the build reads (cube4_reports.fpga_files; () unknown)
 
     def note(self) -> str:
         """'113.1 MHz: BEATS=1, .. at P = 8, median of 3 seeds, RTL 605bf4b (reports/fpga_beats.json)'."""
@@ -113,6 +114,7 @@ def read_results(path: Path) -> list[Measured]:
             max_dim=int(data.get("max_dim", 0)),
             rtl=str(data.get("rtl_commit", "unknown")) + (" with uncommitted changes" if data.get("rtl_modified") else ""),
             source=_rel(path), finished=str(data.get("finished", "")),
+            files=tuple(str(f) for f in r.get("rtl_files") or ()),
             **{k: int(r[k]) for k in ("luts", "ffs", "dsps", "ebrs") if r.get(k) is not None}))
     return out
 

@@ -53,7 +53,7 @@ from pathlib import Path
 from cube4 import cycles
 from cube4.builds import build_tag, check_build, complete_build, parse_options
 
-from . import fpga_memory, gates
+from . import fpga_files, fpga_memory, gates
 from .markdown import fmt_int, git_describe, git_state, last_commit, md_table, rtl_commit
 from .synth import (BUILD_REPORTS, DOC_REPORTS, SYNTH_DIR, TOP, TOP_DEFAULTS, UserError, addr_bits,
                     check_max_dim, chparam_args, cli_main, design_digest, key_hash, last_error, parse_int_list,
@@ -821,11 +821,22 @@ RESULT_KEYS = ("p", "fmax_mhz", "fmax_median", "fmax_min", "fmax_max", "fmax_see
                "ebrs", "dpr16x4", "fits", "critical_path", "wall_s")
 
 
-def result_records(results: list[dict], cfg: BuildConfig) -> list[dict]:
+def result_records(results: list[dict], cfgs: list[BuildConfig]) -> list[dict]:
     """The JSON's results: each names its build whole (every option and the word widths),
-    which cube4_reports.fmax matches on."""
-    return [{**{k: r[k] for k in RESULT_KEYS}, "build": complete_build(dict(cfg.build)), "widths": cfg.word_widths()}
-            for r in results]
+    which cube4_reports.fmax matches on, and the rtl/ files its synthesis read
+    (cube4_reports.fpga_files: make fpga-status keeps the result current while rtl/
+    changes elsewhere)."""
+    by_p = {c.p: c for c in cfgs}
+    out = []
+    for r in results:
+        cfg = by_p[r["p"]]
+        rec = {**{k: r[k] for k in RESULT_KEYS}, "build": complete_build(dict(cfg.build)), "widths": cfg.word_widths()}
+        try:
+            rec["rtl_files"] = fpga_files.synth_files(cfg.workdir())
+        except UserError as e:       # (no list: make fpga-status then compares the whole of rtl/)
+            progress(TAG, f"P={cfg.p}: the files it read are not recorded: {e}")
+        out.append(rec)
+    return out
 
 
 def nextpnr_version() -> str:
@@ -889,7 +900,7 @@ def run(args: argparse.Namespace) -> None:
     board = None if (args.quick or other) else fpga_memory.board_record()
     memory = [] if (args.no_memory or args.quick or other) else fpga_memory.measure_all(
         results, board, digest, args.reuse)
-    named = result_records(results, cfgs[0])
+    named = result_records(results, cfgs)
     report = {"part": PART, "speed": args.speed, "max_dim": max_dim, "depth": depth, "seeds": list(seeds),
               "rtl_commit": last_commit(), "rtl_modified": git_state()["rtl_dirty"],
               "finished": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M"),

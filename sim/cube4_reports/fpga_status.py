@@ -9,8 +9,10 @@ with, for each, the place and route it has (reports/fpga*.json, reports/fpga/*.j
 - its Fmax (median of its seeds), or "does not fit" (the scenes report then reads the largest
   smaller P that fits, listed as a build of its own), or "not measured";
 - the RTL it ran on: "as now" when rtl/ at that commit is the tree of rtl/ at HEAD, "as now
-  but comments" when the two differ in comment and blank lines only, else how many commits
-  have changed rtl/ since;
+  but comments" when the two differ in comment and blank lines only, "as now in the files it
+  reads" when rtl/ has changed since only in files that build does not read (the result's
+  list of them, cube4_reports.fpga_files: another build's module, say), else how many
+  commits have changed rtl/ since;
 - against the 130 MHz goal of a build at P = 8 (issue 56: every build reaches it where it fits);
 - the command that places and routes it (three seeds), its report and JSON in reports/fpga/.
 
@@ -122,17 +124,25 @@ def rtl_tree(commit: str) -> str:
     return _git("rev-parse", "--verify", "--quiet", f"{commit}^{{commit}}:rtl") if commit else ""
 
 
-def comments_only(commit: str) -> bool:
-    """Whether rtl/ at ``commit`` and at HEAD differ in comments and blank lines only (every
-    changed line, either side, empty or a `//` comment): the same logic."""
-    diff = _git("diff", "--unified=0", commit, "HEAD", "--", "rtl")
+def comments_only(commit: str, paths: tuple[str, ...] = ("rtl",)) -> bool:
+    """Whether rtl/ (or ``paths`` in it) at ``commit`` and at HEAD differ in comments and
+    blank lines only (every changed line, either side, empty or a `//` comment): the same
+    logic."""
+    diff = _git("diff", "--unified=0", commit, "HEAD", "--", *paths)
     changed = [ln[1:].strip() for ln in diff.splitlines()
                if ln[:1] in "+-" and not ln.startswith(("+++", "---"))]
     return bool(diff) and all(not t or t.startswith("//") for t in changed)
 
 
-def rtl_age(commit: str, head_tree: str) -> str:
-    """'as now', 'as now but comments', 'N commits to rtl/ since', or 'unknown'."""
+def changed_files(commit: str) -> set[str]:
+    """The files of rtl/ that differ between ``commit`` and HEAD (both names of a rename)."""
+    return set(_git("diff", "--no-renames", "--name-only", commit, "HEAD", "--", "rtl").split())
+
+
+def rtl_age(commit: str, head_tree: str, files: tuple[str, ...] = ()) -> str:
+    """'as now', 'as now but comments', 'as now in the files it reads' (``files``: the rtl/
+    files the build reads; rtl/ changed elsewhere only), 'as now but comments in the files
+    it reads', 'N commits to rtl/ since', or 'unknown'."""
     c = commit.split()[0]
     tree = rtl_tree(c)
     if not tree or " with uncommitted changes" in commit:
@@ -141,6 +151,12 @@ def rtl_age(commit: str, head_tree: str) -> str:
         return "as now"
     if comments_only(c):
         return "as now but comments"
+    if files:
+        read = sorted(changed_files(c) & set(files))
+        if not read:
+            return "as now in the files it reads"
+        if comments_only(c, tuple(read)):
+            return "as now but comments in the files it reads"
     n = _git("rev-list", "--count", f"{c}..HEAD", "--", "rtl")
     return f"{n} commit{'s' if n != '1' else ''} to rtl/ since" if n else "other"
 
@@ -180,7 +196,7 @@ def statuses(needs: dict, measured: list) -> list[Status]:
     out = []
     for n in needs.values():
         m = fmax_store.lookup(measured, n.p, n.build, n.widths)
-        out.append(Status(n, m, rtl_age(m.rtl, head_tree) if m else ""))
+        out.append(Status(n, m, rtl_age(m.rtl, head_tree, m.files) if m else ""))
     return sorted(out, key=lambda s: (s.need.p != P, -s.need.p, fmax_store.build_label(s.need.build, s.need.widths)))
 
 
@@ -205,7 +221,7 @@ def summary(rows: list[Status]) -> str:
     nofit = sum(s.state == "does not fit" for s in rows)
     below = [s for s in rows if s.below_goal]
     return (f"{len(rows)} builds: {now} placed and routed on today's rtl/ (or one that differs in comments "
-            f"only), {older} on an older rtl/ "
+            f"only, or only in files the build does not read), {older} on an older rtl/ "
             f"(or with uncommitted changes), {none} never; {nofit} of the measured do not fit the ECP5-85F at "
             f"their P. Below {GOAL_MHZ:.0f} MHz at P = {P}: "
             + (", ".join(f"{fmax_store.build_label(s.need.build, s.need.widths)} "
@@ -222,7 +238,9 @@ def markdown(rows: list[Status]) -> str:
         "reports/skipping.md turn cycles into milliseconds with (their JSON), each looked up among the "
         "committed place-and-route results (reports/fpga*.json, reports/fpga/*.json) as those reports look "
         "it up; 'rtl/ since': whether rtl/ at the run's commit is today's tree ('as now but comments': "
-        "it differs in comment and blank lines only). Each run's own report names its paths and seeds.",
+        "it differs in comment and blank lines only; 'in the files it reads': rtl/ has changed since only "
+        "in files that build does not read, by the list of files its synthesis read, "
+        "`python -m cube4_reports.fpga_files`). Each run's own report names its paths and seeds.",
         "",
         summary(rows),
         "",
