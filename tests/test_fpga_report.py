@@ -191,6 +191,11 @@ def test_reuse_is_per_seed(tmp_path, monkeypatch):
     fpga.place_and_route(cfg, 1, "new rtl", 10.0, reuse=True)
     fpga.place_and_route(cfg, 2, "digest", 10.0, reuse=False)
     assert ran == [1, 2, 3, 1, 2]
+    # a run stopped at its time limit (exit status -1) is run again, not reused
+    stopped = json.loads((cfg.seed_dir(3) / "result.json").read_text())
+    (cfg.seed_dir(3) / "result.json").write_text(json.dumps({**stopped, "rc": -1}))
+    fpga.place_and_route(cfg, 3, "digest", 10.0, reuse=True)
+    assert ran == [1, 2, 3, 1, 2, 3]
 
 
 def test_build_all_largest_p_first_synth_before_its_seeds(tmp_path, monkeypatch):

@@ -358,7 +358,8 @@ def place_and_route(cfg: BuildConfig, seed: int, digest: str, timeout_s: float, 
     """nextpnr with one seed (or, with reuse, that seed's earlier run); one progress line."""
     sd, key = cfg.seed_dir(seed), cfg.key(digest, seed)
     cached = sd / "result.json"
-    if reuse and cached_key(cached) == key:
+    # (a run stopped at its time limit, exit status -1, runs again: this limit may let it finish)
+    if reuse and cached_key(cached) == key and json.loads(cached.read_text()).get("rc") != -1:
         old = json.loads(cached.read_text())
         progress(TAG, f"P={cfg.p} seed {seed}: reusing the nextpnr outputs in {rel(sd)} "
                       "(same RTL, parameters and flow)")
