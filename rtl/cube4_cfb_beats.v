@@ -118,9 +118,9 @@ module cube4_cfb_beats #(
     // compares reach a few flip-flops, not every cell of the copies). The read
     // passes the RAM's read register and its output register (OUT_REG = 1: on the
     // ECP5 a block RAM with its output register from 128 words on, distributed RAM
-    // with fabric registers below), so the slots' size, 8 MAX_DIM^2 / P bits, costs
-    // block RAMs, not distributed RAM and its read multiplexers, and a fetched row's
-    // words come out one fetch after its place (f_*, then f2_*) ====
+    // with fabric registers below), so the copies (4 MAX_DIM words of NBMAX, 2 NBMAX
+    // and NBMAX bits) cost block RAMs, not distributed RAM and its read multiplexers,
+    // and a fetched row's words come out one fetch after its place (f_*, then f2_*) ====
     reg [M_W-1:0]   wm;                    // the slice being written
     reg [DIM_W-1:0] wj;
     reg [M_W-1:0]   g;                     // the slice being fetched (nm: past the frame)

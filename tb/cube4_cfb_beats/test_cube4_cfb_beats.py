@@ -25,8 +25,9 @@ Cycles: every frame without gaps or stalls with NJ > 1 takes exactly NJ·min(2, 
 walker_cycles edges from start to its last beat's transfer: the rows of two slices written
 (an edge a row) before the first fetch, an edge to fetch, six to the emitter (two of them
 the slots' read and output registers), then one cycle per beat and one per row that reads
-nothing (``beats.walker_cycles``). (A row's bitmaps land in their slot an edge after the take; with NJ = 1 the walk waits for a slice
-to land, not only to be taken, and the count is not checked.)
+nothing (``beats.walker_cycles``). (A row's bitmaps land in their slot an edge after the
+take; with NJ = 1 the walk waits for a slice to land, not only to be taken, and the count
+is not checked.)
 
 The neighbour term matters: with it dropped from E (tried, not kept), P = 4 fails with
 "beat 636: RTL (m, j, pb, read, leave, last) = (7, 1, 1, 1, 0, 0), golden (7, 1, 1, 1, 1,
