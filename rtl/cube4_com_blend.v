@@ -143,9 +143,8 @@ module cube4_com_blend #(
 
     // S9: w * C' per channel (cube4_mul: its operand registers take S8's w
     // and C', its product register is S10's)
-    wire [3*WC_W-1:0]     s10_wc;
-    reg  [3*WC_W-1:0]     s10_cin;    // {C, 2^7} per channel: C * 2^8 + the rounding half
-    reg  [3*(WC_W+1)-1:0] s10_dsat;   // C * 2^8 + 2^7 - (ONE + 1) * 2^8, signed
+    wire [3*WC_W-1:0] s10_wc;
+    reg  [3*CW-1:0]   s10_c;      // C per channel
     genvar ch;
     generate
         for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // channel ch = B, G, R for 0, 1, 2
@@ -155,33 +154,25 @@ module cube4_com_blend #(
                 .b ($signed({1'b0, s8_c[8 * ch +: 8]})), .p (wc_p));
             assign s10_wc[ch*WC_W +: WC_W] = wc_p[WC_W-1:0];   // 0 <= w * C' < 2^WC_W
             wire unused_wc = ^wc_p[WC_W +: 2];
-            always @(posedge clk) begin
-                s10_cin[ch*WC_W +: WC_W] <= {s9_cc[ch*CW +: CW], 8'h80};
-                s10_dsat[ch*(WC_W+1) +: WC_W+1] <= (WC_W+1)'({1'b0, s9_cc[ch*CW +: CW], 8'h80})
-                                                 - (WC_W+1)'({1'b0, ONE}) * (WC_W+1)'(256);
-            end
+            always @(posedge clk) s10_c[ch*CW +: CW] <= s9_cc[ch*CW +: CW];
         end
     endgenerate
 
     // S10: C += round_shift(w * C', 8) (X-ray: at most 2^F), in one add:
-    // C + floor((wc + 2^7) / 2^8) = floor((C * 2^8 + 2^7 + wc) / 2^8) (the sum
-    // needs CW + 1 bits). The X-ray's sum >= ONE, i.e. C * 2^8 + 2^7 + wc >=
-    // ONE * 2^8, is the sign of a second add beside the first, s10_dsat + wc,
-    // with s10_dsat in [-2^WC_W, 2^7] (C <= ONE) and wc in [0, 2^WC_W): it
-    // fits WC_W + 2 signed bits and nothing wraps (no compare after the add).
-    // The X-ray's channel is then ONE (a sum of exactly ONE is ONE either way),
-    // and "the channel is ONE" is that sign, for termination (done_x_q)
+    // C + floor((wc + 2^7) / 2^8) = C + wc[WC_W-1:8] + wc[7] (wc[7] the adder's
+    // carry in). C <= ONE = 2^F and wc < 2^(F+9) give sum < 2^(F+2): it fits
+    // CW + 1 bits, and sum >= ONE is its top two bits (ONE is bit F), one LUT
+    // after the add. The X-ray's channel is then ONE (a sum of exactly ONE is
+    // ONE either way), and "the channel is ONE" is that compare, for
+    // termination (done_x_q)
     wire [3*CW-1:0] c_out;
     wire [2:0]      c_one;          // X-ray: the channel is ONE
     generate
         for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
-            wire [WC_W:0] sum_x = {1'b0, s10_cin[ch*WC_W +: WC_W]} + {1'b0, s10_wc[ch*WC_W +: WC_W]};
-            wire [CW:0]   sum   = sum_x[WC_W:8];
-            wire unused_frac = ^sum_x[7:0];
-            wire signed [WC_W+1:0] sat_x = $signed({s10_dsat[ch*(WC_W+1) + WC_W], s10_dsat[ch*(WC_W+1) +: WC_W+1]})
-                                         + $signed({2'b00, s10_wc[ch*WC_W +: WC_W]});
-            wire over = !sat_x[WC_W+1];    // sum >= ONE
-            wire unused_sat = ^{sat_x[WC_W:0], sum[CW]};
+            wire [WC_W-1:0] wc  = s10_wc[ch*WC_W +: WC_W];
+            wire [CW:0]     sum = {1'b0, s10_c[ch*CW +: CW]} + {1'b0, wc[WC_W-1:8]} + (CW+1)'(wc[7]);
+            wire unused_frac = ^wc[6:0];
+            wire over = sum[CW] || sum[CW-1];    // sum >= ONE
             assign c_out[ch*CW +: CW] = (mode_xray && over) ? ONE : sum[CW-1:0];
             assign c_one[ch] = over;
         end
