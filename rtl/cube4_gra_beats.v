@@ -126,6 +126,7 @@ module cube4_gra_beats
     reg [DIM_W-1:0]   r;             // its row, 0 .. NJ
     reg [DIM_W-1:0]   r1_q, r2_q;    // r + 1, r + 2 (DIM_W bits; registers, loaded with r)
     reg [M_W-1:0]     w1_q;          // w + 1 (loaded with w)
+    reg [M_W-1:0]     wm1_q;         // w - 1 (M_W bits; loaded with w)
     wire [DIM_W-1:0]  r1 = r1_q;     // r + 1
     reg               r_nj;          // r == NJ (a register: r moves at start and at row_mv)
     reg               r1_nj;         // r + 1 == NJ
@@ -159,7 +160,7 @@ module cube4_gra_beats
     wire              s_mge, s_mgt, s_meq, s_meq1;   // its slice m: m >= w, m > w, m == w, m + 1 == w
     wire [NBX-1:0]    in_oh, in_below;               // the head's partial beam: bit pb, bits below it
     wire              row_mv;                        // the row moves on to {nx_w, nx_r}
-    wire [M_W-1:0]    nx_w;
+    wire [M_W-1:0]    nx_w, nx_wm1;
     wire [DIM_W-1:0]  nx_r, nx_r1;
     wire              s_eop;                         // the head is the frame's last beat
     wire              in_sy, in_osy;                 // its SY, OSY
@@ -171,7 +172,8 @@ module cube4_gra_beats
         .in_valid (in_valid), .in_ready (in_ready), .in_data ({in_hdr, in_sample}),
         .out_valid (s_valid), .out_ready (s_ready), .d_pop (d_pop), .d_data ({s_hdr, s_sample}),
         .in_m (in_hdr[HDR_M +: M_W]), .in_j (in_hdr[HDR_J +: DIM_W]),
-        .w (w), .r (r), .r1 (r1), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1), .home (start),
+        .w (w), .r (r), .r1 (r1), .wm1 (wm1_q), .mv (row_mv), .nx_w (nx_w), .nx_r (nx_r), .nx_r1 (nx_r1),
+        .nx_wm1 (nx_wm1), .home (start),
         .in_pb (in_hdr[HDR_PB +: PB_W]),
         .eq0 (s_eq0), .gt0 (s_gt0), .eq1 (s_eq1), .gt1 (s_gt1),
         .m_ge (s_mge), .m_gt (s_mgt), .m_eq (s_meq), .m_eq1 (s_meq1), .oh (in_oh), .below (in_below),
@@ -336,7 +338,7 @@ module cube4_gra_beats
     wire [M_W-1:0] ss_mask = M_W'((1 << view_ssl) - 1);
     wire unused_m_last = ^view_m_last;
     wire [3:0] ld_flags = {(ld_w & ss_mask) == '0,           // dk_f of centre slice w - 1
-                           ((ld_w - 1'b1) & ss_mask) == '0,  // dk_b
+                           (wm1_q & ss_mask) == '0,          // dk_b (ld_w - 1)
                            t_nx ? r_zero : r_one,          // j_first (centre row 0): ld_r == 1
                            w_one};                         // m_first (centre slice 0): ld_w == 1
     wire           wm1_odd = ~ld_w[0];                // (w - 1) mod 2
@@ -377,6 +379,7 @@ module cube4_gra_beats
     assign nx_r  = r_nj ? '0 : r1;                             // the next row
     assign nx_r1 = r_nj ? DIM_W'(1) : r2_q;                    // nx_r + 1
     assign nx_w  = r_nj ? w1_q : w;                            // and its slice
+    assign nx_wm1 = r_nj ? w : wm1_q;                          // nx_w - 1
     wire   nx_nj = r_nj ? (cfg_nj == '0) : r1_nj;              // nx_r == NJ
     assign row_mv = row_end && !(ended && last_row);         // (as the row end below)
     // the row after the next one, (nn_w, nn_r), in registers that move with the row (so
@@ -466,6 +469,7 @@ module cube4_gra_beats
                 cmp_m   <= '0;
                 w       <= '0;
                 w1_q    <= M_W'(1);
+                wm1_q   <= {M_W{1'b1}};
                 r       <= '0;
                 r1_q    <= DIM_W'(1);
                 r2_q    <= DIM_W'(2);
@@ -521,6 +525,7 @@ module cube4_gra_beats
                     r1_q    <= nx_r1;
                     r2_q    <= r_nj ? DIM_W'(2) : r2_q + 1'b1;
                     w1_q    <= r_nj ? w1_q + 1'b1 : w1_q;
+                    wm1_q   <= nx_wm1;
                     r_nj    <= nx_nj;
                     r1_nj   <= r_nj ? (cfg_nj == DIM_W'(1)) : (r + DIM_W'(2) == cfg_nj);   // nx_r + 1 == NJ
                     r_zero  <= r_nj || r_ones;                                         // nx_r == 0
@@ -581,6 +586,8 @@ module cube4_gra_beats
 `endif
 `ifndef SYNTHESIS
     always @(posedge clk) begin
+        if (!rst && act && wm1_q != w - 1'b1)
+            $fatal(1, "cube4_gra_beats: wm1_q %0d is not w - 1 (w %0d)", wm1_q, w);
         if (!rst && act && ended && (w_last != (w == w_last1)))
             $fatal(1, "cube4_gra_beats: w_last %0d differs from w == w_last1 (w %0d, w_last1 %0d)", w_last, w, w_last1);
     end

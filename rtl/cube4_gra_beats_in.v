@@ -20,7 +20,8 @@
 //     eq0  key == {w, r}        gt0  key >  {w, r}
 //     eq1  key == {w, r + 1}    gt1  key >  {w, r + 1}
 //   (r + 1 in DIM_W bits, as the source computes it, which gives it: r1 and
-//   nx_r1 come from its registers, so no adder lies before the compares).
+//   nx_r1 come from its registers, so no adder lies before the compares;
+//   likewise w - 1 and nx_w - 1, wm1 and nx_wm1, for m_eq1).
 //   Each of the two
 //   slots keeps its key and its flags; the flags follow the row: when it
 //   moves on (mv: to {nx_w, nx_r}, the source's next row) or a frame starts
@@ -69,9 +70,10 @@
 //   out_valid, out_ready   the head slot's beat; a transfer takes it
 //   d_pop         the queue's oldest beat leaves (the caller took it)
 //   d_data        out  the queue's oldest beat's in_data
-//   w, r, r1      the row being stepped and r + 1 (the source's registers)
-//   mv, nx_w, nx_r, nx_r1  it moves on to {nx_w, nx_r} this cycle (nx_r1 =
-//                 nx_r + 1)
+//   w, r, r1, wm1 the row being stepped, r + 1 and w - 1 (M_W bits; the
+//                 source's registers)
+//   mv, nx_w, nx_r, nx_r1, nx_wm1  it moves on to {nx_w, nx_r} this cycle
+//                 (nx_r1 = nx_r + 1, nx_wm1 = nx_w - 1)
 //   home          it is set to {0, 0} this cycle (a frame's start)
 //   in_pb         the partial beam of in_data (below NBX)
 //   in_ctl        [CW] control bits of in_data (any meaning; ctl shows the head's)
@@ -102,10 +104,12 @@ module cube4_gra_beats_in #(
     input  wire [M_W-1:0]   w,
     input  wire [DIM_W-1:0] r,
     input  wire [DIM_W-1:0] r1,
+    input  wire [M_W-1:0]   wm1,
     input  wire             mv,
     input  wire [M_W-1:0]   nx_w,
     input  wire [DIM_W-1:0] nx_r,
     input  wire [DIM_W-1:0] nx_r1,
+    input  wire [M_W-1:0]   nx_wm1,
     input  wire             home,
     input  wire [PB_W-1:0]  in_pb,
     input  wire [CW-1:0]    in_ctl,
@@ -130,14 +134,14 @@ module cube4_gra_beats_in #(
     wire pop  = out_valid && out_ready;      // (out_valid: the head slot's h_v)
 
     // {eq0, gt0, eq1, gt1, m_ge, m_gt, m_eq, m_eq1} of a key {m, j} against the
-    // row {rw, rr} (rr1 = rr + 1)
+    // row {rw, rr} (rr1 = rr + 1, rwm1 = rw - 1)
     localparam integer PLW = 8;
     // Each compare is a pair of carry chains, a <= b and a >= b (a < b + 1/2 and
     // b < a + 1/2: a bit below the LSB tells them apart from each other and from
     // a plain compare, so synthesis keeps them as two chains), and equality is
     // their AND: one LUT after the chains, not a tree of LUTs over the bits
     // before the choices the flags go through (m + 1 == w is m == w - 1, whose
-    // w - 1 comes from registers).
+    // w - 1 comes from registers: the caller's wm1, nx_wm1).
     function automatic [1:0] le_ge_k(input [KW-1:0] a, input [KW-1:0] b);     // {a <= b, a >= b}
         le_ge_k = {{a, 1'b0} < {b, 1'b1}, {b, 1'b0} < {a, 1'b1}};
     endfunction
@@ -145,20 +149,22 @@ module cube4_gra_beats_in #(
         le_ge_m = {{a, 1'b0} < {b, 1'b1}, {b, 1'b0} < {a, 1'b1}};
     endfunction
     function automatic [PLW-1:0] place(input [KW-1:0] key, input [M_W-1:0] rw, input [DIM_W-1:0] rr,
-                                       input [DIM_W-1:0] rr1);
+                                       input [DIM_W-1:0] rr1, input [M_W-1:0] rwm1);
         reg [1:0] c0, c1, cm, cm1;       // {<=, >=} against {rw, rr}, {rw, rr1}, rw, rw - 1
         begin
             c0  = le_ge_k(key, {rw, rr});
             c1  = le_ge_k(key, {rw, rr1});
             cm  = le_ge_m(key[KW-1 -: M_W], rw);
-            cm1 = le_ge_m(key[KW-1 -: M_W], M_W'(rw - 1'b1));
+            cm1 = le_ge_m(key[KW-1 -: M_W], rwm1);
             place = {&c0, !c0[1], &c1, !c1[1], cm[0], !cm[1], &cm, &cm1};
         end
     endfunction
     // a key's place in the next cycle, from its place now (kept while the row stays)
     function automatic [PLW-1:0] next_place(input [KW-1:0] key, input [PLW-1:0] now, input h, input mvd,
-                                            input [M_W-1:0] mw, input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1);
-        next_place = h ? place(key, '0, '0, DIM_W'(1)) : (mvd ? place(key, mw, mr, mr1) : now);
+                                            input [M_W-1:0] mw, input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1,
+                                            input [M_W-1:0] mwm1);
+        next_place = h ? place(key, '0, '0, DIM_W'(1), {M_W{1'b1}})
+                       : (mvd ? place(key, mw, mr, mr1, mwm1) : now);
     endfunction
 
     // a partial beam's bit words
@@ -175,17 +181,18 @@ module cube4_gra_beats_in #(
     localparam integer LOW = 2 * NBX + PB_W + CW;         // the bits below the flags
     localparam integer SLW = KW + PLW + LOW;
     function automatic [SLW-1:0] moved(input [SLW-1:0] sl, input h, input mvd, input [M_W-1:0] mw,
-                                       input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1);
-        moved = {sl[SLW-1 -: KW], next_place(sl[SLW-1 -: KW], sl[SLW-KW-1 -: PLW], h, mvd, mw, mr, mr1),
+                                       input [DIM_W-1:0] mr, input [DIM_W-1:0] mr1, input [M_W-1:0] mwm1);
+        moved = {sl[SLW-1 -: KW], next_place(sl[SLW-1 -: KW], sl[SLW-KW-1 -: PLW], h, mvd, mw, mr, mr1, mwm1),
                  sl[LOW-1:0]};
     endfunction
     wire [KW-1:0]  in_key = {in_m, in_j};
-    wire [SLW-1:0] in_sl  = {in_key, next_place(in_key, place(in_key, w, r, r1), home, mv, nx_w, nx_r, nx_r1),
+    wire [SLW-1:0] in_sl  = {in_key, next_place(in_key, place(in_key, w, r, r1, wm1), home, mv, nx_w, nx_r, nx_r1,
+                                                nx_wm1),
                              bit_of(in_pb), below_of(in_pb), in_pb, in_ctl};
     reg            h_v, b_v;                // the head slot holds the head beat, the back slot the one behind
     reg  [SLW-1:0] h_sl, b_sl;
-    wire [SLW-1:0] h_mv = moved(h_sl, home, mv, nx_w, nx_r, nx_r1);
-    wire [SLW-1:0] b_mv = moved(b_sl, home, mv, nx_w, nx_r, nx_r1);
+    wire [SLW-1:0] h_mv = moved(h_sl, home, mv, nx_w, nx_r, nx_r1, nx_wm1);
+    wire [SLW-1:0] b_mv = moved(b_sl, home, mv, nx_w, nx_r, nx_r1, nx_wm1);
     always @(posedge clk) begin
         if (rst) begin
             h_v <= 1'b0;

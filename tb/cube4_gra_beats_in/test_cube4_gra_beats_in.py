@@ -53,6 +53,7 @@ async def test_places(dut):
     d = dut
     d.in_valid.value, d.out_ready.value, d.mv.value, d.home.value = 0, 0, 0, 0
     d.w.value, d.r.value, d.nx_w.value, d.nx_r.value, d.in_data.value, d.in_m.value, d.in_j.value = 0, 0, 0, 0, 0, 0, 0
+    d.wm1.value, d.nx_wm1.value = (1 << m_w) - 1, (1 << m_w) - 1
     d.in_pb.value, d.in_ctl.value = 0, 0
     d.r1.value, d.nx_r1.value = 1, 1
     d.rst.value = 1
@@ -88,7 +89,9 @@ async def test_places(dut):
         d.in_pb.value, d.in_ctl.value = pb, ctl
         d.w.value, d.r.value, d.mv.value, d.home.value = w, r, int(mv), int(home)
         d.r1.value = (r + 1) % (1 << dim_w)                       # (the source's registers)
+        d.wm1.value = (w - 1) % (1 << m_w)
         d.nx_w.value, d.nx_r.value = nx
+        d.nx_wm1.value = (nx[0] - 1) % (1 << m_w)
         d.nx_r1.value = (nx[1] + 1) % (1 << dim_w)
         await ReadOnly()
         pushed = valid and bool(int(d.in_ready.value))
