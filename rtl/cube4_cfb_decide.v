@@ -414,14 +414,14 @@ module cube4_cfb_decide #(
         bm_o8 <= o_now;
         ln8   <= ln_w;
     end
-    wire unused_cr_ln, unused_cr_bm;
+    wire unused_cr_ln, unused_cr_bm, unused_vcp_ln, unused_vcp_bm;
     cube4_credit_fifo #(.DATA_W(RATE * LN), .DEPTH(16)) u_ln (
         .clk(clk), .rst(rst || start), .take(issue), .give(v7 && (a7 == '0)), .credit(credit_ln),
         .credit_d(unused_cr_ln), .push_d(v7 && (a7 != '0)), .in_data(ln8), .out_valid(ln_valid),
-        .out_ready(ln_ready), .out_data(ln_bits));
+        .out_ready(ln_ready), .out_data(ln_bits), .out_valid_cp(unused_vcp_ln));
     cube4_credit_fifo #(.DATA_W(2 * NW), .DEPTH(16)) u_bm (
         .clk(clk), .rst(rst || start), .take(issue), .give(v7 && !row_end7), .credit(credit_bm),
         .credit_d(unused_cr_bm), .push_d(v7 && row_end7), .in_data({bm_o8, bm_a8}),
-        .out_valid(bm_valid), .out_ready(bm_ready), .out_data({bm_occ, bm_a}));
+        .out_valid(bm_valid), .out_ready(bm_ready), .out_data({bm_occ, bm_a}), .out_valid_cp(unused_vcp_bm));
 endmodule
 `default_nettype wire

@@ -521,21 +521,23 @@ module cube4_com #(
     // that ran through samples that added nothing leaves the base plane's zero)
     wire [P-1:0] fin_q = (BEATS != 0) ? (fin_o & live) : fin_o;
     wire [OUT_W+OZ_W-1:0] fifo_out;
-    wire unused_credit_d;
+    wire unused_credit_d, unused_valid_cp;
     generate
         if (ZOUT != 0) begin : g_fifo_z
             cube4_credit_fifo #(.DATA_W(OUT_W + OZ_W), .DEPTH(FIFO_DEPTH)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(give),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(push_d), .in_data({pix_zd, fin_q, m_o, by_o, bx_o, eop_o, pix_d}),
-                .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
+                .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out),
+                .out_valid_cp(unused_valid_cp));
             assign {pix_z, pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
         end else begin : g_fifo
             cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(give),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(push_d), .in_data({fin_q, m_o, by_o, bx_o, eop_o, pix_d}),
-                .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out));
+                .out_valid(pix_valid), .out_ready(pix_ready), .out_data(fifo_out),
+                .out_valid_cp(unused_valid_cp));
             assign {pix_mask, pix_m, pix_by, pix_bx, pix_eop, pix_rgba} = fifo_out;
             assign pix_z = '0;
             wire unused_zd = ^pix_zd;

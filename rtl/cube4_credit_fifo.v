@@ -38,6 +38,11 @@
 //              cycles from a `take` to the first cycle its item could be read
 //              (the pipeline's stages + 2, + 1 with IN_REG).
 //   IN_REG     1: in_data registered before the memory.  0..1.  Default 0.
+//   VALID_N    copies of out_valid (out_valid_cp), each a flip-flop of its
+//              own: for a consumer far from the FIFO that ANDs out_valid with
+//              its ready itself (so that AND is not the FIFO's own read, one
+//              gate beside the FIFO, whose output would then cross the die
+//              to it).                                  1..4.     Default 1.
 //
 // Latency
 //   An item pushed at a clock edge is on out_valid/out_data right after that
@@ -60,13 +65,15 @@
 //                        then. Each push uses the reservation of its item.
 //   in_data         in   [DATA_W] any format
 //   out_valid/out_ready/out_data   output stream (same format)
+//   out_valid_cp    out  [VALID_N] copies of out_valid (copy 0 is out_valid)
 //
 // Bit growth and rounding: none (storage only).
 // =============================================================================
 module cube4_credit_fifo #(
     parameter integer DATA_W        = 8,
     parameter integer DEPTH         = 16,
-    parameter integer IN_REG        = 0
+    parameter integer IN_REG        = 0,
+    parameter integer VALID_N       = 1
 ) (
     input  wire                     clk,
     input  wire                     rst,
@@ -78,7 +85,8 @@ module cube4_credit_fifo #(
     input  wire [DATA_W-1:0]        in_data,
     output wire                     out_valid,
     input  wire                     out_ready,
-    output wire [DATA_W-1:0]        out_data
+    output wire [DATA_W-1:0]        out_data,
+    output wire [VALID_N-1:0]       out_valid_cp
 );
     localparam integer AW = (DEPTH > 1) ? $clog2(DEPTH) : 1;
     generate
@@ -87,6 +95,7 @@ module cube4_credit_fifo #(
             $error("cube4_credit_fifo: DEPTH = %0d must be a power of two in 4..64", DEPTH);
         end
         `CUBE4_RANGE(g_bad_in_reg, "cube4_credit_fifo", "IN_REG", IN_REG, 0, 1)
+        `CUBE4_RANGE(g_bad_valid_n, "cube4_credit_fifo", "VALID_N", VALID_N, 1, 4)
     endgenerate
 
     localparam integer GW   = 64;                            // bits per group (the last may be fewer)
@@ -119,8 +128,8 @@ module cube4_credit_fifo #(
     // kept copies (cube4_prim_copies): [0] out_valid and the occupancy, [1]
     // the reservations, [2 + g] group g's read pointer; each ANDs its own
     // copy with out_ready, so no one net carries "an item leaves" across
-    // the FIFO.
-    localparam integer NNE = NGRP + 2;
+    // the FIFO; [2 + NGRP + k - 1] out_valid_cp's copy k (k >= 1).
+    localparam integer NNE = NGRP + 1 + VALID_N;
     wire [NNE-1:0] ne_q;                // copies of nonempty
     // ---- occupancy of the memory: pushes - reads (push[0] is the reference copy) ----
     reg  [AW:0] cnt_q;                  // items stored in the memory
@@ -196,6 +205,23 @@ module cube4_credit_fifo #(
         end
     endgenerate
     assign out_valid = ne_q[0];
+    generate
+        if (VALID_N > 1) begin : g_valid_cp
+            assign out_valid_cp = {ne_q[NNE-1 : NGRP+2], ne_q[0]};
+        end else begin : g_valid_one
+            assign out_valid_cp = ne_q[0];
+        end
+    endgenerate
+`ifndef SYNTHESIS
+    // the copies load the same value and reset alike: after a reset they agree
+    reg reset_seen;
+    initial reset_seen = 1'b0;
+    always @(posedge clk) begin
+        if (rst) reset_seen <= 1'b1;
+        else if (reset_seen && out_valid_cp != {VALID_N{out_valid}})
+            $fatal(1, "cube4_credit_fifo: out_valid_cp %b differs from out_valid %b", out_valid_cp, out_valid);
+    end
+`endif
     assign out_data  = rd_data;
 
 endmodule

@@ -272,11 +272,12 @@ module cube4_gra #(
     endgenerate
     cube4_prim_copies #(.N(GRA_STEPS), .RST_VAL(64'd1)) u_credit (
         .clk(clk), .rst(rst), .d(credit_d), .q(credit));
+    wire unused_valid_cp;
     cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(1)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(1'b0),
         .credit(unused_credit), .credit_d(credit_d),
         .push_d(push_d), .in_data(fifo_in),
-        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out), .out_valid_cp(unused_valid_cp));
     assign {out_hdr, out_sample, out_gi, out_gj, out_gk} = fifo_out;
 
 endmodule

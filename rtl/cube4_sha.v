@@ -36,6 +36,8 @@
 //   RMAP_BITS   cube-map resolution R = 2^RMAP_BITS. 2..6.  Default 5.
 //   SHADING     1: shading by the reflectance map; 0: classification only. 0..1. Default 1.
 //   CARRY_SAMPLE 1: the sample rides along to out_sample; 0: out_sample = 0. 0..1. Default 1.
+//   VALID_N     copies of out_valid (out_valid_cp: the output FIFO's, each a
+//               flip-flop of its own, for a consumer far away).  1..4.  Default 1.
 //   SLAB        1 (with COMPOSITING = 1, FALL): the slab's falloff weights
 //               (cube4_sha_slab), out_fall carried beside the beat; SHA then
 //               has at least SLAB_LAT + 1 = 10 stages. 0..1. Default 0.
@@ -78,6 +80,7 @@
 //   out_hdr   [HDR_W]           the beat's header, unchanged (cube4_defs.vh)
 //   out_fall  [P*FALL_W]        the slab's falloff weight f of each lane, 0 .. 256
 //                               (cube4_sha_slab; FALL = 1, else 256)
+//   out_valid_cp [VALID_N]      copies of out_valid (copy 0 is out_valid)
 //   cfg                         view registers (read by cube4_sha_slab only)
 //
 // Bit growth and rounding
@@ -90,7 +93,7 @@
 //   1) x 10 bits, A' = round_shift(A fa, 8) <= A: no saturation.
 // =============================================================================
 module cube4_sha #(
-    `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
+    `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1, parameter integer VALID_N = 1,
     `CUBE4_GM_LAYOUT,
     localparam integer LBL_W  = (LABELS != 0) ? 4 : 0,     // (CUBE4_WORD_LAYOUT's)
     localparam integer SMP_W  = VOXEL_W + LBL_W,           // a sample: {label, value}
@@ -112,11 +115,13 @@ module cube4_sha #(
     output wire [P*(24+ALPHA_W)-1:0] out_rgba,
     output wire [P*RI_W-1:0] out_idx,
     output wire [P*VOXEL_W-1:0] out_sample,
-    output wire [P*FALL_W-1:0]  out_fall
+    output wire [P*FALL_W-1:0]  out_fall,
+    output wire [VALID_N-1:0]   out_valid_cp      // copies of out_valid (copy 0 is out_valid)
 );
     generate
         `CUBE4_BUILD_CHECKS("cube4_sha")
         `CUBE4_RANGE(g_bad_carry, "cube4_sha", "CARRY_SAMPLE", CARRY_SAMPLE, 0, 1)
+        `CUBE4_RANGE(g_bad_valid_n, "cube4_sha", "VALID_N", VALID_N, 1, 4)
     endgenerate
 
     localparam integer VW     = VOXEL_W;
@@ -557,18 +562,20 @@ module cube4_sha #(
     wire unused_credit_d;
     generate
         if (FALL != 0) begin : g_fifo_fall
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .VALID_N(VALID_N)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_fall, e_meta, e_rgba, e_idx, e_s}),
-                .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
+                .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out),
+                .out_valid_cp(out_valid_cp));
             assign {out_fall, out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
         end else begin : g_fifo
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .VALID_N(VALID_N)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),
-                .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
+                .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out),
+                .out_valid_cp(out_valid_cp));
             assign {out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
             assign out_fall = e_fall;
         end

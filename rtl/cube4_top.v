@@ -502,9 +502,17 @@ module cube4_top #(
     wire [PV-1:0]              sha_sample;
     wire [P*FALL_W-1:0]        sha_fall;
 
+    // SHA's output valid in two copies with beats: copy 1 pops the bits' FIFO
+    // (sha_take, below), so that AND is not SHA's FIFO's own read: as one
+    // gate beside SHA it sent COM's ready across the die to SHA and back to
+    // the bits' FIFO beside COM in one cycle, on one placement the default
+    // beat build's longest path
+    localparam integer SHA_VN = (BEATS != 0) ? 2 : 1;
+    wire [SHA_VN-1:0]          sha_valid_cp;
     cube4_sha #(
         `CUBE4_BUILD_PASS,
-        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0)
+        .CARRY_SAMPLE((EXTREMUM != 0 || PLW != 0) ? 1 : 0),
+        .VALID_N     (SHA_VN)
     ) u_sha (
         .clk       (clk),
         .rst       (rst),
@@ -531,14 +539,19 @@ module cube4_top #(
         .out_rgba  (sha_rgba),
         .out_idx   (unused_sha_idx),
         .out_sample(sha_sample),
-        .out_fall  (sha_fall)
+        .out_fall  (sha_fall),
+        .out_valid_cp (sha_valid_cp)
     );
 
     wire x_valid, x_ready;          // SHA's stream after the debug hold
     cube4_stream_hold u_hold_sha (
         .hold (dbg_hold[0]), .in_valid (sha_valid), .in_ready (sha_ready),
         .out_valid (x_valid), .out_ready (x_ready));
-    assign sha_take = x_valid && x_ready;
+    wire xb_valid, unused_xb_ready;  // SHA's valid copy SHA_VN - 1 after the same hold
+    cube4_stream_hold u_hold_sha_b (
+        .hold (dbg_hold[0]), .in_valid (sha_valid_cp[SHA_VN-1]), .in_ready (unused_xb_ready),
+        .out_valid (xb_valid), .out_ready (x_ready));
+    assign sha_take = xb_valid && x_ready;
 
     // SHA's beat (BEATS = 1: and its bits) pass a skid buffer into COM (which
     // takes them through its own: two register stages on the route across the

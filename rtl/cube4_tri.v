@@ -191,12 +191,12 @@ module cube4_tri #(
     // beat that leaves without being emitted gives its entry back.
     localparam integer OUT_W = PV + HDR_W;
     wire [OUT_W-1:0] fifo_out;
-    wire unused_credit_d;
+    wire unused_credit_d, unused_valid_cp;
     cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(give),
         .credit(credit), .credit_d(unused_credit_d),
         .push_d(push_d), .in_data({l_hdr, l_sample}),
-        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out));
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(fifo_out), .out_valid_cp(unused_valid_cp));
     assign {out_hdr, out_sample} = fifo_out;
 endmodule
 `default_nettype wire

@@ -9,13 +9,14 @@ random. Checked on every cycle:
 * the items come out in order, none lost, none duplicated (a FIFO overrun would
   overwrite an unread item and show as a wrong word);
 * credit is the credit_d of the cycle before; out_valid holds while out_ready is low;
+  every copy of out_valid (out_valid_cp, VALID_N of them) is out_valid;
 * with out_ready low for a long time the FIFO fills to exactly DEPTH items and the
   credit drops; nothing is lost when it drains;
 * full rate: with L + 2 <= DEPTH (L + 3 with IN_REG = 1), input valid and out_ready high, a take happens on
   every cycle (the credit never drops), which is what TRI, GRA, SHA and COM size
   their FIFOs for.
 
-The testbench reads DATA_W, DEPTH and IN_REG from the DUT (DATA_W > 64 has several write
+The testbench reads DATA_W, DEPTH, IN_REG and VALID_N from the DUT (DATA_W > 64 has several write
 enable copies inside).
 """
 
@@ -39,7 +40,7 @@ class TB:
         self.dut = dut
         self.log = dut._log
         # IN_REG = 1: the push is one edge later
-        self.data_w, self.depth, self.in_reg = top_params(dut, "DATA_W", "DEPTH", "IN_REG")
+        self.data_w, self.depth, self.in_reg, self.valid_n = top_params(dut, "DATA_W", "DEPTH", "IN_REG", "VALID_N")
         self.credit_next: int | None = None
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         self.expected: deque[int] = deque()
@@ -100,6 +101,9 @@ class TB:
             take = valid and credit
             ready = 0 if cyc < ready_low_until else int(self.rng.random() < p_ready)
             out_valid = int(self.dut.out_valid.value)
+            copies = int(self.dut.out_valid_cp.value)
+            assert copies == out_valid * ((1 << self.valid_n) - 1), \
+                f"cycle {cyc}: out_valid_cp {copies:b}, out_valid {out_valid}"
             if out_valid:
                 word = int(self.dut.out_data.value)
                 if held is not None:
@@ -203,7 +207,7 @@ PARAM_SETS = [
     {"DATA_W": 5, "DEPTH": 4},
     {"DATA_W": 140, "DEPTH": 32},
     {"DATA_W": 5, "DEPTH": 4, "IN_REG": 1},
-    {"DATA_W": 140, "DEPTH": 16, "IN_REG": 1},
+    {"DATA_W": 140, "DEPTH": 16, "IN_REG": 1, "VALID_N": 3},
 ]
 
 

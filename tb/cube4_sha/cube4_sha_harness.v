@@ -13,7 +13,8 @@
 //   unit only (SLAB = 1).
 //
 // Parameters: as cube4_sha (P 1..64, VOXEL_W 1..16, ALPHA_W 8..16,
-//   RMAP_BITS 2..6, SHADING 0..1, CARRY_SAMPLE 0..1, SLAB 0..1, MAX_DIM 2..2048, MAX_SS_LOG2 0..3).
+//   RMAP_BITS 2..6, SHADING 0..1, CARRY_SAMPLE 0..1, VALID_N 1..4, SLAB 0..1, MAX_DIM 2..2048,
+//   MAX_SS_LOG2 0..3).
 //
 // Latency: that of cube4_sha (the ports connect straight to it).
 //
@@ -24,10 +25,10 @@
 //   lut_*, rmap_*   in   table writes (cube4_sha)
 //   in_*            in   gradient stream (cube4_gra's format)
 //   out_*           out  shaded stream (cube4_sha's format, with out_idx and
-//                        out_sample)
+//                        out_sample; out_valid_cp: out_valid's copies)
 // =============================================================================
 module cube4_sha_harness #(
-    `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1,
+    `CUBE4_BUILD_PARAMS, parameter integer CARRY_SAMPLE = 1, parameter integer VALID_N = 1,
     `CUBE4_GM_LAYOUT,
     localparam integer GRAD_W = VOXEL_W + 5,
     localparam integer SMP_W  = VOXEL_W + ((LABELS != 0) ? 4 : 0),   // a sample: {label, value}
@@ -55,7 +56,8 @@ module cube4_sha_harness #(
     output wire [RGBA_W-1:0]         out_rgba,
     output wire [P*RI_W-1:0]         out_idx,
     output wire [P*VOXEL_W-1:0]      out_sample,
-    output wire [P*FALL_W-1:0]       out_fall
+    output wire [P*FALL_W-1:0]       out_fall,
+    output wire [VALID_N-1:0]        out_valid_cp
 );
     cube4_sim_clock u_clock (.clk (clk));
 
@@ -63,7 +65,8 @@ module cube4_sha_harness #(
 
     cube4_sha #(
         `CUBE4_BUILD_PASS,
-        .CARRY_SAMPLE(CARRY_SAMPLE)
+        .CARRY_SAMPLE(CARRY_SAMPLE),
+        .VALID_N     (VALID_N)
     ) u_sha (.*);
 
     cube4_stream_check #(
