@@ -43,8 +43,10 @@
 //   added_q    out  S11: the sample added something (w > 0)
 //   passed_q   out  S11: the new T <= depth_t
 //   tau        in   termination's threshold on T (static)
-//   done_q     out  S11: the new T <= tau (composite termination)
-//   done_x_q   out  S11: the new T = 0 and every channel ONE (X-ray's)
+//   done       out  S11: the new word is done by the mode's termination rule:
+//                   composite T <= tau; X-ray T = 0 and every channel ONE. One
+//                   LUT after S11 registers of its own (the T compare, and per
+//                   channel "is ONE" at the end of its add's carry chain)
 //
 // Bit growth and rounding
 //   T * A: (F+1) x AW bits; round_shift by AW (half up) gives w <= T (F+1 bits).
@@ -64,7 +66,7 @@ module cube4_com_blend #(
     input  wire cnt7, input wire mode_xray, input wire [CW-1:0] depth_t, input wire [CW-1:0] tau,
     output reg  [CMP_W-1:0] acc_q, output wire [CMP_W-1:0] pix,
     output reg  added_q, output reg passed_q,
-    output reg  done_q, output reg done_x_q
+    output wire done
 );
     generate
         `CUBE4_RANGE(g_bad_alpha_w, "cube4_com_blend", "ALPHA_W", ALPHA_W, 8, 16)
@@ -164,9 +166,9 @@ module cube4_com_blend #(
     // CW + 1 bits, and sum >= ONE is its top two bits (ONE is bit F), one LUT
     // after the add. The X-ray's channel is then ONE (a sum of exactly ONE is
     // ONE either way), and "the channel is ONE" is that compare, for
-    // termination (done_x_q)
+    // termination (one_q)
     wire [3*CW-1:0] c_out;
-    wire [2:0]      c_one;          // X-ray: the channel is ONE
+    wire [2:0]      c_one;          // termination's part per channel (below)
     generate
         for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
             wire [WC_W-1:0] wc  = s10_wc[ch*WC_W +: WC_W];
@@ -174,20 +176,27 @@ module cube4_com_blend #(
             wire unused_frac = ^wc[6:0];
             wire over = sum[CW] || sum[CW-1];    // sum >= ONE
             assign c_out[ch*CW +: CW] = (mode_xray && over) ? ONE : sum[CW-1:0];
-            assign c_one[ch] = over;
+            assign c_one[ch] = over || !mode_xray;
         end
     endgenerate
 
     // S11: the new partial result (the slice buffer's write word, beside the
     // sums), and the pixel {R, G, B, A = 1 - T} from it
     always @(posedge clk) acc_q <= {c_out, s10_t};
-    // termination's rule on the S11 word, registered with it (the word's compares
-    // would sit between acc_q and the slice buffer's write otherwise):
-    // composite T <= tau; X-ray T = 0 and every channel ONE
+    // termination's rule on the S11 word, in registers beside the ones it reads
+    // (the word's compares would sit between acc_q and the slice buffer's write
+    // otherwise): t_q the mode's compare on T (composite T <= tau, X-ray T = 0),
+    // one_q[ch] "channel ch is ONE" (always 1 in composite), each at the end of
+    // its own carry chain: one flip-flop taking the three chains' ends was this
+    // unit's longest route (a DSP's product, the add, across to the other
+    // channels). done is their AND, one LUT after S11.
+    reg       t_q;
+    reg [2:0] one_q;
     always @(posedge clk) begin
-        done_q   <= s10_t <= tau;
-        done_x_q <= (s10_t == '0) && (&c_one);
+        t_q   <= mode_xray ? (s10_t == '0) : (s10_t <= tau);
+        one_q <= c_one;
     end
+    assign done = t_q && (&one_q);
     assign pix = {acc_q[CW +: 3*CW], ONE - acc_q[0 +: CW]};
 endmodule
 `default_nettype wire

@@ -185,7 +185,7 @@ module cube4_com_lane #(
     // ---- S6 .. S11: the datapaths (their S11 registers) ----
     wire cnt6_t, cnt7_t;                // the counts, without a ray done before (TERM)
     wire added_c, passed_c, take_e;     // S11: the datapaths' depth-out flags
-    wire done_c, done_x, done_e;        // S11: termination's rule on their words
+    wire done_c, done_e;                // S11: termination's rule on their words
     wire [AC_W-1:0]  acc_c, acc_e;       // S11: the blending, the extremum word
     wire [CMP_W-1:0] pix_c, pix_e;
     generate
@@ -195,13 +195,13 @@ module cube4_com_lane #(
                 .clk(clk), .acc5(acc_in[CMP_W-1:0]), .a5(a5_blend), .t5(t5),
                 .c7(s7_rgba[ALPHA_W +: 24]), .cnt7(cnt7_t), .mode_xray(mode_xray), .depth_t(depth_t),
                 .tau(term_tau), .acc_q(acc_c_q), .pix(pix_c), .added_q(added_c), .passed_q(passed_c),
-                .done_q(done_c), .done_x_q(done_x));
+                .done(done_c));
             assign acc_c = AC_W'(acc_c_q);
         end else begin : g_no_blend
             wire unused_blend = ^{mode_xray, cnt7_t, a5_blend, depth_t, t5};
             assign acc_c = '0;
             assign pix_c = '0;
-            assign {added_c, passed_c, done_c, done_x} = 4'b0000;
+            assign {added_c, passed_c, done_c} = 3'b000;
         end
         if (EXTREMUM != 0) begin : g_ext
             wire [EXT_W-1:0] acc_e_q;
@@ -284,7 +284,7 @@ module cube4_com_lane #(
             assign cnt6_t = cnt_6 && !dead_s[0];
             assign cnt7_t = cnt_7 && !dead_s[1];
             // the rule on the S11 word, from the datapaths' registered flags
-            wire dead11 = term_en && (ext ? done_e : (mode_xray ? done_x : done_c));
+            wire dead11 = term_en && (ext ? done_e : done_c);
             assign rep = rok11 && dead11 && (fresh_s[5] || !dead_s[5]);
             // (a fresh word's state is 0; c11 = 1 ends the ray here)
             wire counting = (c11 > CNT_W'(1)) && (c11 <= CNT_W'(LAG));
@@ -297,7 +297,7 @@ module cube4_com_lane #(
             assign cnt6_t = cnt_6;
             assign cnt7_t = cnt_7;
             assign acc_n = acc_m;
-            wire unused_term = ^{term_en, term_tau, term_vmin, term_vmax, rok11, done_c, done_x, done_e};
+            wire unused_term = ^{term_en, term_tau, term_vmin, term_vmax, rok11, done_c, done_e};
         end
     endgenerate
     // ---- depth out (ZOUT = 1; numerics.md section 21): the ray's two slice

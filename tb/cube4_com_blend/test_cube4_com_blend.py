@@ -5,7 +5,7 @@ t5 = T's factor in T·A as cube4_com_lane forms it: 2^ACC_W in X-ray, else T),
 with its colour and its "counts" flag two cycles later (c7, cnt7: S7); six edges later acc_q and pix must equal the golden step (``cube4.model.composite``
 or ``cube4.model.xray`` on the same values: w, the rounding, X-ray's saturation) and
 the pixel {C_R, C_G, C_B, 2^ACC_W - T}, and termination's flags on the new word
-(done_q, done_x_q: ``cube4.beats.TerminationRule.dead`` of composite with a random τ,
+(done: ``cube4.beats.TerminationRule.dead`` of composite with a random τ,
 and of X-ray). The partial results are random but legal
 (composite: C <= 2^ACC_W - T per channel, as numerics.md section 7 guarantees; X-ray:
 anything up to 2^ACC_W, with many values at 0 and 2^ACC_W), A and the colours random
@@ -85,7 +85,7 @@ async def test_blend(dut):
                 assert got == want, (f"{mode} sample {k}: acc_q {got:#x}, golden {want:#x} (C {acc[:, k]}, "
                                      f"T {trans[k]}, RGBA {rgba[:, k]}, counts {count[k]})")
                 assert pix == want_pix, f"{mode} sample {k}: pix {pix:#x}, golden {want_pix:#x}"
-                done = int((dut.done_x_q if mode == "xray" else dut.done_q).value)
+                done = int(dut.done.value)
                 assert done == int(exp_done[k]), f"{mode} sample {k}: done {done}, golden {int(exp_done[k])} (tau {tau})"
                 dones += done
                 checked += 1
