@@ -195,10 +195,14 @@ module cube4_gra_beats
     // formed here from the register i0_in; an input beat's sample and header are
     // the input's data queue's oldest (u_in), which pops as i0 moves on (d_pop), so
     // the choice that loads i0 drives no data register
-    localparam integer SW = 14 + PV + HDR_W + M_W + DIM_W + PB_W;
+    // (i0_rok: the row's bounds {r != 0, r < NJ} the position buffers' writes
+    // take, formed here from registers, so that the step's write enables are
+    // registers ANDed with step's copies, no compare between)
+    localparam integer SW = 16 + PV + HDR_W + M_W + DIM_W + PB_W;
     wire [PV-1:0]    i0_smp_in = {PV{i0_in}} & s_sample;
     wire [HDR_W-1:0] i0_hdr_in = {HDR_W{i0_in}} & s_hdr;
-    wire [SW-1:0] i0_word = {i0_in, i0_dead, i0_fend, i0_gap, i0_smp_in, i0_hdr_in, i0_w, i0_r, i0_pb,
+    wire [1:0]       i0_rok = {i0_r != '0, i0_r < cfg_nj};
+    wire [SW-1:0] i0_word = {i0_rok, i0_in, i0_dead, i0_fend, i0_gap, i0_smp_in, i0_hdr_in, i0_w, i0_r, i0_pb,
                              i0_pg, i0_bg, i0_pgb, i0_flags, i0_ylast, i0_dyf, i0_dyb};
     // ia: one register stage after i0, whose position reads the position buffers
     // as it moves on (from registers: neither the choice nor its fan-out reaches
@@ -217,6 +221,7 @@ module cube4_gra_beats
     // block RAMs' clock-to-data ends at a register: cube4_gra_pos OUT_STAGE)
     reg               i2_v;
     reg [SW-1:0]      i2_word;
+    wire [1:0]        i2_rok;
     wire              i2_in, i2_dead, i2_fend, i2_gap;
     wire [PV-1:0]     i2_sample;
     wire [HDR_W-1:0]  i2_hdr;
@@ -226,7 +231,7 @@ module cube4_gra_beats
     wire              i2_pg, i2_bg, i2_pgb;
     wire [3:0]        i2_flags;
     wire              i2_ylast, i2_dyf, i2_dyb;
-    assign {i2_in, i2_dead, i2_fend, i2_gap, i2_sample, i2_hdr, i2_w, i2_r, i2_pb,
+    assign {i2_rok, i2_in, i2_dead, i2_fend, i2_gap, i2_sample, i2_hdr, i2_w, i2_r, i2_pb,
             i2_pg, i2_bg, i2_pgb, i2_flags, i2_ylast, i2_dyf, i2_dyb} = i2_word;
     wire [P-1:0]      i2_lane_valid = i2_hdr[HDR_LVALID +: P];
     assign step = i2_v && credit[GRA_STEPS-1];
@@ -642,7 +647,7 @@ module cube4_gra_beats
     wire [GRA_POS_G-1:0] pos_ld   = {GRA_POS_G{ia_v}} & ({GRA_POS_G{!i1_v || !i2_v}} | pos_cr);
     cube4_gra_pos #(.OUT_STAGE (1), `CUBE4_GRA_PASS) u_pos (
         .clk (clk), .ld (pos_ld), .ld_r (ia_r), .ld_pb (ia_pb), .mv (pos_mv),
-        .step (pos_step), .dead (i2_dead), .i0_w (i2_w), .i0_r (i2_r), .i0_pb (i2_pb), .nj (cfg_nj),
+        .step (pos_step), .dead (i2_dead), .i0_w (i2_w), .i0_r (i2_r), .i0_pb (i2_pb), .row_ok (i2_rok),
         .in_beat (i2_in), .sample (i2_sample), .lane_valid (i2_lane_valid), .x (x), .x_meta (x_meta), .pg (i2_pg), .pgb (i2_pgb), .bg (i2_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
@@ -655,6 +660,8 @@ module cube4_gra_beats
         if (pos_ld[0] != ia_mv || pos_mv[0] != i1_mv || pos_step[0] != step)
             $fatal(1, "cube4_gra_beats: the position buffers' read/load/step (%b%b%b) are not ia_mv, i1_mv, step (%b%b%b)",
                    pos_ld[0], pos_mv[0], pos_step[0], ia_mv, i1_mv, step);
+        if (!rst && i2_v && i2_rok != {i2_r != '0, i2_r < cfg_nj})
+            $fatal(1, "cube4_gra_beats: i2's row bounds %b are not row %0d's (NJ %0d)", i2_rok, i2_r, cfg_nj);
         if (!rst && i0_v && (i0_word[W_PB +: PB_W] != i0_pb || i0_word[W_R +: DIM_W] != i0_r))
             $fatal(1, "cube4_gra_beats: the word's fields at W_PB, W_R are not i0's pb %0d and r %0d", i0_pb, i0_r);
         if (!rst && act && n_l != low_oh(row_gm))

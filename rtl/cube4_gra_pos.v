@@ -56,10 +56,13 @@
 //                                    loads (read)
 //   mv [GRA_POS_G]                   (OUT_STAGE = 1) the position read moves
 //                                    on to the step: its words load
-//   step [GRA_POS_G], dead, i0_w, i0_r, i0_pb, nj   the loaded step steps
-//                                    (write), its position (slice [M_W],
-//                                    row, partial beam), whether it writes
-//                                    (!dead), NJ
+//   step [GRA_POS_G], dead, i0_w, i0_r, i0_pb, row_ok [2]   the loaded step
+//                                    steps (write), its position (slice
+//                                    [M_W], row, partial beam), whether it
+//                                    writes (!dead), and its row's bounds
+//                                    {i0_r != 0, i0_r < NJ} (plane B's write,
+//                                    plane A's), formed by the caller (beat
+//                                    source: registers, ahead of the step)
 //     ld, mv and step come as GRA_POS_G equal copies, one per group of
 //     registers (cube4_defs.vh CUBE4_GRA_LAYOUT: plane A; plane B; the beam
 //     buffer's X, P1 with its meta, C, P2b1): each copy's load enables and
@@ -88,7 +91,7 @@ module cube4_gra_pos #(
     input  wire [GRA_POS_G-1:0] mv,
     input  wire [GRA_POS_G-1:0] step, input wire dead, input wire [M_W-1:0] i0_w, input wire [DIM_W-1:0] i0_r,
     input  wire [PB_W-1:0] i0_pb,
-    input  wire [DIM_W-1:0] nj,
+    input  wire [1:0] row_ok,
     input  wire in_beat, input wire [P*VOXEL_W-1:0] sample, input wire [P-1:0] lane_valid,
     output wire [P*VOXEL_W-1:0] x, input wire [GRA_META_W-1:0] x_meta,
     input  wire pg, input wire pgb, input wire bg,
@@ -118,8 +121,8 @@ module cube4_gra_pos #(
     wire [PAW-1:0]  ra_b = ra_a,                  wa_b = wa_a;   // (plane B: at the step's row too)
     // the groups' writes: plane A (X at its own position), plane B (C, at the
     // step's row as plane A), the beam buffer's four fields; a dead step writes nothing
-    wire wa_ok = !dead && (i0_r < nj);            // (registers: each copy of step ANDs them)
-    wire wb_ok = !dead && (i0_r != '0);
+    wire wa_ok = !dead && row_ok[0];              // (registers: each copy of step ANDs them)
+    wire wb_ok = !dead && row_ok[1];
     wire [GRA_POS_G-1:0] we = step & {{(GRA_POS_G - 2){!dead}}, wb_ok, wa_ok};
     wire [AWD-1:0] a_w;                           // the words read, with the writes since
     wire [PV-1:0]  b_w;

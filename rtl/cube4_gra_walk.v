@@ -215,7 +215,8 @@ module cube4_gra_walk
     // into i0, written when it steps ----
     cube4_gra_pos #(`CUBE4_GRA_PASS) u_pos (
         .clk (clk), .ld ({GRA_POS_G{ld}}), .ld_r (ld_r), .ld_pb (ld_pb), .mv ({GRA_POS_G{1'b0}}),
-        .step ({GRA_POS_G{step}}), .dead (i0_dead), .i0_w (i0_w), .i0_r (i0_r), .i0_pb (i0_pb), .nj (cfg_nj),
+        .step ({GRA_POS_G{step}}), .dead (i0_dead), .i0_w (i0_w), .i0_r (i0_r), .i0_pb (i0_pb),
+        .row_ok ({i0_r != '0, i0_r < cfg_nj}),
         .in_beat (i0_in), .sample (i0_sample), .lane_valid (i0_lane_valid), .x (x), .x_meta (x_meta), .pg (i0_pg), .pgb (i0_pgb), .bg (i0_bg),
         .p1 (p1), .p2b1 (p2b1), .b1 (b1), .c_meta (c_meta), .c (c),
         .p1b2 (p1b2), .p2b2 (p2b2));
