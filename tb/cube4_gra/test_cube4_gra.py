@@ -262,7 +262,9 @@ async def test_beat_walks(dut):
     """Beat-schedule frames (BEATS = 1): the front end's sample beats in (golden frames:
     opaque slabs whose rays end, so beats run as GRA's neighbours only; sparse shaded
     volumes with and without termination; volumes one and two rows deep, NJ = 1 and 2,
-    whose row table is read as a row's word is written and one cycle after; with
+    whose row table is read as a row's word is written and one cycle after, and one
+    MAX_DIM rows deep, whose row NJ (the flush row) has row 0's plane address, so the
+    planes' writes must keep to their rows (plane A 0 .. NJ - 1, plane B 1 .. NJ); with
     MAX_SS_LOG2 = 2 three sparse frames at S = 2 and 4, whose k neighbours lie between
     voxel slices or not), every beat out in order with its header, the gradients bit for
     bit against the golden gradient of the zero-filled slices, random gaps and stalls,
@@ -277,6 +279,7 @@ async def test_beat_walks(dut):
     cases = [("slab", (0.2, -0.1, 1.0)), ("slab", (1.0, 1.0, 1.0)), ("slab", (-1.0, 0.3, 0.5))]
     cases += [("sparse", sd) for sd in seeds]
     cases += [("thin", 1), ("thin", 2)]     # the row table read as its word is written, and one cycle after
+    cases += [("thin", int(dut.MAX_DIM.value))]   # NJ = MAX_DIM: row NJ's plane address is row 0's
     ss = {}
     if int(dut.MAX_SS_LOG2.value) >= 2:     # S = 2 and 4 (the seeds' own shaded composite frames)
         more = [sd for sd in range(60, 200) if sparse_case(sd)[6] and sparse_case(sd)[5] == "composite"][:3]
