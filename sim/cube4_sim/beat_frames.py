@@ -79,7 +79,8 @@ def thin_frame(p: int, ny: int, seed: int = 0) -> BeatFrame:
     """A volume ``ny`` rows deep along j (NJ = ny) with scattered opaque voxels, seen
     z-major: a slice's rows follow each other within a few cycles, many of them without
     a running beat, so GRA's row table is read in the cycle a row's word is written
-    (NJ = 1) and in the cycle after (NJ = 2)."""
+    (NJ = 1) and in the cycle after (NJ = 2); at NJ = MAX_DIM (a power of two) the
+    flush row NJ has row 0's address in GRA's position buffers' planes."""
     from cube4.config import Cube4Config
     from cube4.view import make_traversal
     rng = np.random.default_rng(seed + 7 * ny)
