@@ -15,10 +15,11 @@
 //   {stepx, stepy, ph_x, ph_y} (cur) and the next slice's (nxt: cur advanced
 //   by VIEW, a phase accumulator per axis), so a beat's q_geo is a choice
 //   among registers by registers (first_q, eoss_q): nothing of the beat that
-//   passes reaches q_geo, only the state's next values. It sits where the
-//   beats leave SHA (cube4_top, at the push into the skid buffer before COM),
-//   so the beat's q_geo goes through the skid buffers to COM with it and no
-//   logic of it lies on the route between the two.
+//   passes reaches q_geo, only the state's next values. It sits at COM's
+//   input (cube4_top: the state moves as COM takes a beat from the skid
+//   buffer after SHA, and q_geo enters COM's own skid with the beat), so its
+//   clock enable is COM's take, beside COM, not the push into that skid
+//   buffer, whose ready and SHA's output FIFO lie apart.
 //
 // Parameters
 //   P, MAX_DIM, WEIGHT_W, MAX_SS_LOG2 (CUBE4_SLICE_PARAMS; ranges as cube4_com).

@@ -559,22 +559,24 @@ module cube4_top #(
     // reaches SHA's output FIFO from the skid's register, not across the die in
     // one cycle: one cycle more a frame, in golden/cube4/cycles.py's fill).
     // BEATS = 1: the steps and phases of the beat's slice (cube4_com_steps) are
-    // decided here, where the beat leaves SHA, and go with it, so no logic of
-    // them lies on that route
+    // decided as COM takes the beat from the skid (its state moves at COM's
+    // take, its registers beside COM's input, q_geo a choice among them); at
+    // the push into the skid, where SHA's output FIFO and the skid's ready meet
+    // across the die, their clock enable was a slab beat build's longest path
     localparam integer GEO_W = `CUBE4_GEO_W;     // cube4_com_steps' q_geo
-    localparam integer XC_W = P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1 + GEO_W;
+    localparam integer XC_W = P * (24 + ALPHA_W) + PV + P * FALL_W + 4 * P + 1;
     wire [HDR_W-1:0]          c_hdr;
     wire [P*(24+ALPHA_W)-1:0] c_rgba;
     wire [PV-1:0]             c_sample;
     wire [P*FALL_W-1:0]       c_fall;
     wire [4*P-1:0]            c_bits;
     wire                      c_eoss;
-    wire [GEO_W-1:0]          x_geo, c_geo;
+    wire [GEO_W-1:0]          c_geo;
     generate
         if (BEATS != 0) begin : g_com_skid
             cube4_com_steps #(`CUBE4_SLICE_PASS) u_steps (
                 .clk (clk), .rst (rst), .cfg (cfg),
-                .q_push (x_valid && x_ready), .q_hdr (sha_hdr), .q_eoss (com_eoss), .q_geo (x_geo));
+                .q_push (com_in_take), .q_hdr (c_hdr), .q_eoss (c_eoss), .q_geo (c_geo));
             // the beat leaves SHA with its bits: a join of the two streams (a beat
             // that left SHA without GRA (unshaded, VGRAD) can be ahead of its
             // bits, which pass three registers and the FIFO's RAM read)
@@ -583,9 +585,9 @@ module cube4_top #(
             cube4_skid #(.DATA_W (XC_W)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid && com_bits_valid), .in_ready (xk_ready),
-                .in_data ({x_geo, sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
+                .in_data ({sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
                 .out_valid (com_in_valid), .out_ready (com_in_ready),
-                .out_data ({c_geo, c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+                .out_data ({c_rgba, c_sample, c_fall, c_bits, c_eoss}));
             // the header passes a skid of its own with the same valid and ready (so the
             // same count in every cycle), whose head is a register (cube4_skid_oreg): COM
             // compares the entering header's slot with its stages into a register
@@ -618,9 +620,7 @@ module cube4_top #(
                 .out_data ({c_hdr, c_rgba, c_sample, c_fall}));
             assign {c_bits, c_eoss} = {com_bits, com_eoss};     // (constants: no beats)
             wire unused_bits_valid = com_bits_valid;
-            assign x_geo = '0;
             assign c_geo = '0;
-            wire unused_geo = ^x_geo;
         end
     endgenerate
 
