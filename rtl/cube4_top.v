@@ -76,8 +76,8 @@
 //                SHA, between two skid buffers: in block RAM, a slice and two
 //                rows of beats deep, with shading; the beat waits at SHA's
 //                output for its bits) and each beat's slice steps
-//                (cube4_com_steps, where the beat leaves SHA, through two skid
-//                buffers), ends the rays and reports
+//                (cube4_com_steps at COM's input, moved as COM takes the beat
+//                from the skid buffer after SHA), ends the rays and reports
 //                the done ones back (view registers BB_*, NBR, TERM, TAU,
 //                VMIN, VMAX). Every frame needs both tables.   0..1. Default 0.
 //   LABELS       1: label volumes (numerics.md section 24): each memory word
