@@ -370,13 +370,24 @@ module cube4_top #(
             // and the front end's bits FIFO pop on it) is a register, not the AND of
             // GRA's ready and the bits FIFO's room across the die (cycles are measured
             // on this schedule: the cycle it adds changes no prediction)
+            // (its valid in two copies: copy 0 drives the skid's own state and the
+            // bits FIFO's push beside it, copy 1 GRA's take; with one register the
+            // AND of it and GRA's ready was one LUT beside GRA that both GRA's
+            // enables and the skid's pointers took, across the die: a crop beat
+            // build's longest path on one placement)
             wire s_valid, s_ready;
-            cube4_skid #(.DATA_W (HDR_W + PW + 4 * P + 2)) u_smp_skid (
+            wire [1:0] s_valid_cp;
+            wire s_nx_valid, s_ready_cp, s_ready_nx;
+            wire [HDR_W+PW+4*P+1:0] s_nx_data;
+            cube4_skid_peek #(.DATA_W (HDR_W + PW + 4 * P + 2), .VALID_N (2)) u_smp_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (fe_smp_valid), .in_ready (fe_smp_ready),
                 .in_data ({fe_smp_hdr, fe_smp_sample, fe_smp_bits, fe_smp_eos, fe_smp_eoss}),
                 .out_valid (s_valid), .out_ready (s_ready),
-                .out_data ({smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss}));
+                .out_data ({smp_hdr, smp_sample, smp_bits, smp_eos, smp_eoss}),
+                .nx_valid (s_nx_valid), .nx_data (s_nx_data), .in_ready_cp (s_ready_cp),
+                .in_ready_nx (s_ready_nx), .out_valid_cp (s_valid_cp));
+            wire unused_smp_skid = ^{s_nx_valid, s_nx_data, s_ready_cp, s_ready_nx, s_valid_cp[0]};
             wire k_ready, b_valid;
             wire [1:0] k_ready_cp;   // copies of k_ready (u_bits)
             wire [3*P-1:0] com_packed;
@@ -386,7 +397,7 @@ module cube4_top #(
             // departure (sha_take) pops: the FIFO's ready and GRA's, registers at
             // either end of the die, each reach only the logic beside them
             // (cube4_skid_fifo; block RAM behind GRA, distributed RAM otherwise)
-            assign smp_valid    = s_valid && k_ready;
+            assign smp_valid    = s_valid_cp[1] && k_ready;
             assign s_ready      = smp_ready && k_ready_cp[1];
             // (the RAM's word through its output register, OUT_REG: at 64 words,
             // without GRA, the vendor layer makes it distributed RAM read into
@@ -496,6 +507,7 @@ module cube4_top #(
 
     // ---------------------------------------------------------------- SHA
     wire                       sha_valid, sha_ready, com_in_valid, com_in_ready;
+    wire                       com_skid_valid;  // the skid before COM: its own valid (copy 0; COM's in_valid is copy 1)
     wire [HDR_W-1:0]           sha_hdr;
     wire [P*(24+ALPHA_W)-1:0]  sha_rgba;
     wire [P*RI_W-1:0]          unused_sha_idx;
@@ -582,12 +594,24 @@ module cube4_top #(
             // bits, which pass three registers and the FIFO's RAM read)
             wire xk_ready;
             assign x_ready = xk_ready && com_bits_valid;
-            cube4_skid #(.DATA_W (XC_W)) u_com_skid (
+            // (its valid in two copies: copy 0 drives the skid's own state, copy 1 is
+            // COM's in_valid and its take, com_in_take, beside COM: with one register
+            // the AND of it and COM's ready was one LUT beside COM that both COM's
+            // enables and the skid's pointers took, across the die: the crop beat
+            // build's longest path on one placement)
+            wire [1:0] xk_valid_cp;
+            wire xk_nx_valid, xk_ready_cp, xk_ready_nx;
+            wire [XC_W-1:0] xk_nx_data;
+            cube4_skid_peek #(.DATA_W (XC_W), .VALID_N (2)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid && com_bits_valid), .in_ready (xk_ready),
                 .in_data ({sha_rgba, sha_sample, sha_fall, com_bits, com_eoss}),
-                .out_valid (com_in_valid), .out_ready (com_in_ready),
-                .out_data ({c_rgba, c_sample, c_fall, c_bits, c_eoss}));
+                .out_valid (com_skid_valid), .out_ready (com_in_ready),
+                .out_data ({c_rgba, c_sample, c_fall, c_bits, c_eoss}),
+                .nx_valid (xk_nx_valid), .nx_data (xk_nx_data), .in_ready_cp (xk_ready_cp),
+                .in_ready_nx (xk_ready_nx), .out_valid_cp (xk_valid_cp));
+            assign com_in_valid = xk_valid_cp[1];
+            wire unused_com_skid = ^{xk_nx_valid, xk_nx_data, xk_ready_cp, xk_ready_nx, xk_valid_cp[0]};
             // the header passes a skid of its own with the same valid and ready (so the
             // same count in every cycle), whose head is a register (cube4_skid_oreg): COM
             // compares the entering header's slot with its stages into a register
@@ -604,20 +628,32 @@ module cube4_top #(
                 .out_data (c_hdr));
 `ifndef SYNTHESIS
             always @(posedge clk) begin
-                if (!rst && {hk_ready, hk_valid} != {xk_ready, com_in_valid})
+                if (!rst && {hk_ready, hk_valid} != {xk_ready, com_skid_valid})
                     $fatal(1, "cube4_top: the COM header skid's ready/valid %b differ from the COM skid's %b",
-                           {hk_ready, hk_valid}, {xk_ready, com_in_valid});
+                           {hk_ready, hk_valid}, {xk_ready, com_skid_valid});
+                if (!rst && com_in_valid != com_skid_valid)
+                    $fatal(1, "cube4_top: the COM skid's valid copies differ (%b, %b)",
+                           com_skid_valid, com_in_valid);
             end
 `endif
-            wire unused_hk = ^{hk_ready, hk_valid};     // (xk_ready and com_in_valid)
+            wire unused_hk = ^{hk_ready, hk_valid, com_skid_valid};     // (xk_ready and com_in_valid)
         end else begin : g_com_fixed
             localparam integer XF_W = HDR_W + P * (24 + ALPHA_W) + PV + P * FALL_W;
-            cube4_skid #(.DATA_W (XF_W)) u_com_skid (
+            // (its valid in two copies, as with beats: copy 1 is COM's)
+            wire [1:0] xf_valid_cp;
+            wire xf_nx_valid, xf_ready_cp, xf_ready_nx;
+            wire [XF_W-1:0] xf_nx_data;
+            cube4_skid_peek #(.DATA_W (XF_W), .VALID_N (2)) u_com_skid (
                 .clk (clk), .rst (rst),
                 .in_valid (x_valid), .in_ready (x_ready),
                 .in_data ({sha_hdr, sha_rgba, sha_sample, sha_fall}),
-                .out_valid (com_in_valid), .out_ready (com_in_ready),
-                .out_data ({c_hdr, c_rgba, c_sample, c_fall}));
+                .out_valid (com_skid_valid), .out_ready (com_in_ready),
+                .out_data ({c_hdr, c_rgba, c_sample, c_fall}),
+                .nx_valid (xf_nx_valid), .nx_data (xf_nx_data), .in_ready_cp (xf_ready_cp),
+                .in_ready_nx (xf_ready_nx), .out_valid_cp (xf_valid_cp));
+            assign com_in_valid = xf_valid_cp[1];
+            wire unused_com_skid = ^{xf_nx_valid, xf_nx_data, xf_ready_cp, xf_ready_nx, xf_valid_cp[0],
+                                     com_skid_valid};
             assign {c_bits, c_eoss} = {com_bits, com_eoss};     // (constants: no beats)
             wire unused_bits_valid = com_bits_valid;
             assign c_geo = '0;
