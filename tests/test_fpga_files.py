@@ -23,6 +23,33 @@ def test_module_names_strip_parameterised_copies():
     assert ff.module_names(LOG) == {"cube4_top", "cube4_frontend", "cube4_skid", "cube4_sdp_ram"}
 
 
+# the hierarchy pass lists the tree as it derives modules: the first listing names every
+# module the top's text mentions (both branches of a generate), the last what is built;
+# after flattening, a later pass lists the top alone
+LOG_DERIVED = """
+82.1. Analyzing design hierarchy..
+Top module:  \\cube4_top
+Used module:     \\cube4_com
+Used module:         \\cube4_com_walk
+Used module:         \\cube4_com_beats
+
+82.7. Analyzing design hierarchy..
+Top module:  \\cube4_top
+Used module:     $paramod$77aa\\cube4_com
+Used module:         $paramod$12bc\\cube4_com_beats
+Removing unused module `\\cube4_com_walk'.
+
+83.50.1. Analyzing design hierarchy..
+Top module:  \\cube4_top
+"""
+
+
+def test_module_names_are_the_last_listing_of_the_tree():
+    assert ff.module_names(LOG_DERIVED) == {"cube4_top", "cube4_com", "cube4_com_beats"}
+    # a build without submodules: its top
+    assert ff.module_names("Top module:  \\cube4_skid\n") == {"cube4_skid"}
+
+
 def test_files_map_modules_to_their_files_with_every_header(tmp_path: Path):
     rtl = tmp_path / "rtl"
     (rtl / "ecp5").mkdir(parents=True)

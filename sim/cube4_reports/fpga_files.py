@@ -14,7 +14,8 @@ hierarchy pass with the result's parameters (a few seconds; no synthesis)::
 
     python -m cube4_reports.fpga_files reports/fpga/full_p8.json [...]
 
-(each JSON is rewritten with "rtl_files" in the results that lacked it).
+(each JSON is rewritten with "rtl_files" in the results that lacked it; ``--again``: in
+every result, for lists found before only the hierarchy's last listing was read).
 """
 
 from __future__ import annotations
@@ -39,11 +40,24 @@ TAG = "fpga-files"
 _MODULE_LINE = re.compile(r"^(?:Top|Used) module:\s+(\S+)", re.M)
 
 
+def last_listing(log: str) -> str:
+    """The last listing of the design's tree in a Yosys log ("Top module:" and the "Used
+    module:" lines under it), the one with submodules if any has them. The hierarchy pass
+    lists the tree each time it derives more modules: the first listings name every module
+    the top's text mentions, the generate branches its parameters leave out among them;
+    the last one names what the build elaborates (later passes, after flattening, list the
+    top alone)."""
+    blocks = [b for b in re.split(r"^(?=Top module:)", log, flags=re.M) if b.startswith("Top module:")]
+    blocks = [b.split("\n\n", 1)[0] for b in blocks]
+    with_used = [b for b in blocks if "Used module:" in b]
+    return (with_used or blocks or [""])[-1]
+
+
 def module_names(log: str) -> set[str]:
     """The design's modules in a Yosys log of the hierarchy pass (parameterised copies by
-    their module's name)."""
+    their module's name): those of its last listing (last_listing)."""
     out = set()
-    for tok in _MODULE_LINE.findall(log):
+    for tok in _MODULE_LINE.findall(last_listing(log)):
         name = tok.lstrip("\\")
         if name.startswith("$paramod"):
             parts = name.split("\\")
@@ -127,13 +141,15 @@ def result_params(data: dict, r: dict) -> dict[str, int]:
             "DEPTH": depth, "ADDR_W": addr_bits(depth), **{k: int(v) for k, v in r["build"].items()}}
 
 
-def backfill(path: Path) -> int:
-    """Add "rtl_files" to each result of one fpga JSON that lacks it; the count added."""
+def backfill(path: Path, again: bool = False) -> int:
+    """Add "rtl_files" to each result of one fpga JSON that lacks it (with ``again``, to
+    every result: a list found before module_names read the last listing only names
+    more files than the build reads); the count given."""
     data = json.loads(path.read_text())
     commit = str(data.get("rtl_commit", "")).split()[0]
     if not commit or data.get("rtl_modified"):
         raise UserError(f"{path}: its run was not on a committed rtl/ (rtl_commit {commit or 'missing'})")
-    todo = [r for r in data.get("results", []) if isinstance(r, dict) and "rtl_files" not in r
+    todo = [r for r in data.get("results", []) if isinstance(r, dict) and (again or "rtl_files" not in r)
             and isinstance(r.get("build"), dict) and isinstance(r.get("widths"), dict)]
     if not todo:
         return 0
@@ -151,13 +167,15 @@ def backfill(path: Path) -> int:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m cube4_reports.fpga_files", description=__doc__.splitlines()[0])
     ap.add_argument("json", nargs="+", type=Path, help="results of python -m cube4_reports.fpga (rewritten)")
+    ap.add_argument("--again", action="store_true",
+                    help="find the list again for results that have one (each at its run's rtl/ commit)")
     args = ap.parse_args(argv)
 
     def run() -> None:
         for p in args.json:
             if not p.is_file():
                 raise UserError(f"{p}: no such file")
-            n = backfill(p)
+            n = backfill(p, args.again)
             progress(TAG, f"{p}: {n} result{'s' if n != 1 else ''} given their files")
     return cli_main(TAG, run)
 
