@@ -113,6 +113,7 @@ module cube4_cfb_decide #(
     reg [M_W-1:0]    m;
     reg [DIM_W-1:0]  kv;                   // m's voxel slice, floor(m / S)
     reg [2:0]        kr;                   // m mod S (S <= 8)
+    reg              k_adv;                // the last edge issued a slice's last beat: kv, kr move on
     reg [DIM_W-1:0]  j;
     reg [PB_W-1:0]   pb;
     reg [DIM_W-1:0]  stx, sty;
@@ -185,20 +186,28 @@ module cube4_cfb_decide #(
                 if (last_pb) j <= last_j ? '0 : j + 1'b1;
                 if (last_beat) begin
                     m <= m + 1'b1;
-                    // the voxel slice moves on after S sample slices
-                    if (kr == 3'((1 << ss_log2) - 1)) begin
-                        kr <= '0;
-                        kv <= kv + 1'b1;
-                    end else begin
-                        kr <= kr + 1'b1;
-                    end
                     have_st <= 1'b0;
                     if (m + 1'b1 == nm) issuing <= 1'b0;
+                end
+            end
+            // the voxel slice moves on after S sample slices, at the edge after the
+            // slice's last issue (k_adv): the next slice's first issue waits a cycle
+            // for its steps anyway (have_st is cleared with the last issue), so kv
+            // is read no earlier, and the issue's AND reaches only k_adv, beside it,
+            // not kv's and kr's enables (across the die: a crop beat build's longest
+            // path on one placement)
+            if (k_adv) begin
+                if (kr == 3'((1 << ss_log2) - 1)) begin
+                    kr <= '0;
+                    kv <= kv + 1'b1;
+                end else begin
+                    kr <= kr + 1'b1;
                 end
             end
             if (!issuing && v == '0 && !v7 && !bm_valid && !ln_valid) active <= 1'b0;
         end
     end
+    always @(posedge clk) k_adv <= !(rst || start) && issue && last_beat;
     assign busy = active;
     always @(posedge clk) begin
         // (at start: m = 0, com_q = 0)
@@ -214,6 +223,8 @@ module cube4_cfb_decide #(
                    {first_beat, last_pb, last_j, last_beat}, j, pb, nj, nb);
         if (!rst && issuing && !active)
             $fatal(1, "cube4_cfb_decide: issuing without active");
+        if (!rst && !start && issue && k_adv)
+            $fatal(1, "cube4_cfb_decide: an issue in the cycle after a slice's last (kv is not yet moved on)");
         if (!rst && !start && active && v_none != (v == '0))
             $fatal(1, "cube4_cfb_decide: v_none %0d with v %b", v_none, v);
     end
