@@ -144,13 +144,34 @@ module cube4_com_walk #(
     // ---- per lane: fresh ray (S0) and next sample inside (S1) ----
     // (CUBE4_NEXT_INSIDE: compares with NI, NJ and their n - 1, n - 2 registers,
     // no adder before them)
+    // (the row's compares with NJ, NJ - 1, NJ - 2 are registers made from R0's
+    // row, as cube4_com_beats' (f1_j is R0's row a cycle later): from S1's
+    // registers to the sequencer's finished rays, across COM, only the rule's
+    // LUTs, no carry chain: f1_j's compares into `fin_s` were a full build's
+    // longest path on one placement)
     `CUBE4_NEXT_INSIDE
+    reg f1_jlt0, f1_jlt1, f1_jeq1, f1_jeq2;
+    wire [IW-1:0] r0_jx = IW'(r0_j);
     always @(posedge clk) begin
         f1_last <= (r0_m == m_last);
         f1_wxn  <= wxn_nz;
         f1_wyn  <= wyn_nz;
+        f1_jlt0 <= r0_jx < nj_0;
+        f1_jlt1 <= r0_jx < nj_1;
+        f1_jeq1 <= r0_jx == nj_1;
+        f1_jeq2 <= r0_jx == nj_2;
     end
-    wire j_ok = !f1_last && next_inside(f1_j, f1_dyf, f1_wyn, nj_0, nj_1, nj_2);
+    wire j_ok = !f1_last && next_inside_of(f1_dyf, f1_wyn, f1_jlt0, f1_jlt1, f1_jeq1, f1_jeq2);
+`ifndef SYNTHESIS
+    reg [IW-1:0] r0_jx_q;
+    always @(posedge clk) begin
+        r0_jx_q <= r0_jx;
+        if (!rst && (f1_j != r0_jx_q))
+            $fatal(1, "cube4_com_walk: S1's row %0d is not R0's %0d a cycle later", f1_j, r0_jx_q);
+    end
+`else
+    wire unused_f1_j = ^f1_j;
+`endif
     genvar q;
     generate
         for (q = 0; q < P; q = q + 1) begin : g_lane
