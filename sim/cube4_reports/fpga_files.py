@@ -10,7 +10,7 @@ current for its build when rtl/ has changed since only in files that build does 
 
 For a result from before the list was recorded, this module finds it again at the run's
 own RTL commit: rtl/ of that commit, read as synthesis reads it, elaborated by Yosys's
-hierarchy pass with the result's parameters (a few seconds; no synthesis)::
+hierarchy pass with the result's parameters (under a minute a build here; no synthesis)::
 
     python -m cube4_reports.fpga_files reports/fpga/full_p8.json [...]
 
