@@ -25,3 +25,22 @@ def test_summary_adds_builds_and_simulations_per_top(tmp_path):
 def test_missing_records_are_one_line(tmp_path):
     with pytest.raises(SystemExit, match="does not exist"):
         timings.load(tmp_path / "none.jsonl")
+
+
+def test_compare_uses_the_builds_both_runs_made(tmp_path):
+    new = [{"test": "a", "top": "t", "build": "t_1", "build_s": 30.0, "sim_s": 10.0},
+           {"test": "b", "top": "t", "build": "t_1", "build_s": 0.5, "sim_s": 6.0},
+           {"test": "c", "top": "u", "build": "u_9", "build_s": 99.0, "sim_s": 99.0}]
+    old = [{"test": "a", "top": "t", "build": "t_1", "build_s": 20.0, "sim_s": 8.0},
+           {"test": "d", "top": "v", "build": "v_3", "build_s": 5.0, "sim_s": 1.0}]
+    text = timings.compare(new, old)
+    assert text.startswith("1 builds in both runs (1 only in this one, 1 only in the other)")
+    assert "build 30 s against 20 s (x1.52)" in text and "simulation 16 s against 8 s (x2.00)" in text
+    assert timings.compare(new, [old[1]]).startswith("no build in common")
+
+
+def test_main_prints_the_comparison(tmp_path, capsys):
+    path = tmp_path / "t.jsonl"
+    path.write_text(json.dumps({"test": "a", "top": "t", "build": "t_1", "build_s": 4.0, "sim_s": 2.0}) + "\n")
+    assert timings.main([str(path), "--against", str(path)]) == 0
+    assert "build 4 s against 4 s (x1.00)" in capsys.readouterr().out

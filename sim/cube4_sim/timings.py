@@ -7,7 +7,10 @@ costs only its up-to-date check). This sums them::
     rm -f build/sim/timings.jsonl && make test && python -m cube4_sim.timings
 
 Seconds are wall time per worker: with two workers they add up to about twice the run's
-wall time."""
+wall time. ``--against OLD.jsonl`` compares two runs on the builds they share (a build
+directory is named after its parameters, not its sources): the same builds taking longer
+in both their compiles and their simulations is a slower machine, not a grown suite.
+reports/test_timings.jsonl keeps a fresh clone's records as such a baseline."""
 
 from __future__ import annotations
 
@@ -51,12 +54,40 @@ def summary(records: list[dict], top_n: int = 12) -> str:
     return "\n".join(lines)
 
 
+def _totals(records: list[dict]) -> dict[str, list[float]]:
+    """Per build directory: [build seconds, simulation seconds]."""
+    out: dict[str, list[float]] = defaultdict(lambda: [0.0, 0.0])
+    for r in records:
+        out[r["build"]][0] += r["build_s"]
+        out[r["build"]][1] += r["sim_s"]
+    return out
+
+
+def compare(new: list[dict], old: list[dict]) -> str:
+    """Two runs on the builds both made: their build and simulation seconds and the ratios."""
+    a, b = _totals(new), _totals(old)
+    common = sorted(set(a) & set(b))
+    if not common:
+        return "no build in common: the runs cannot be compared"
+    nb, ns = sum(a[k][0] for k in common), sum(a[k][1] for k in common)
+    ob, os_ = sum(b[k][0] for k in common), sum(b[k][1] for k in common)
+    ratio = lambda x, y: f"x{x / y:.2f}" if y > 0 else "-"   # noqa: E731
+    return (f"{len(common)} builds in both runs ({len(a) - len(common)} only in this one, "
+            f"{len(b) - len(common)} only in the other): build {nb:.0f} s against {ob:.0f} s "
+            f"({ratio(nb, ob)}), simulation {ns:.0f} s against {os_:.0f} s ({ratio(ns, os_)})")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m cube4_sim.timings", description=__doc__.split("\n\n")[0])
     ap.add_argument("path", nargs="?", type=Path, default=TIMINGS, help=f"the records (default {TIMINGS})")
     ap.add_argument("--top", type=int, default=12, help="how many of the slowest builds to list")
+    ap.add_argument("--against", type=Path, metavar="OLD",
+                    help="another run's records: compare the builds both made")
     args = ap.parse_args(argv)
-    print(summary(load(args.path), args.top))
+    records = load(args.path)
+    print(summary(records, args.top))
+    if args.against is not None:
+        print("\n" + compare(records, load(args.against)))
     return 0
 
 
