@@ -119,11 +119,21 @@ module cube4_com_beats #(
     wire unused_carry = ^{nx[PH_W], ny[PH_W]};      // (the next slice's steps are its own beats')
     `CUBE4_VIEW_SLICES;
     wire [M_W-1:0] m_last = view_m_last;
+    // (wx(m+1) > 0, phn_x >= 2^g, by CUBE4_PHASE_NEXT_NZ's compares of ph_x, without the adder)
+    `CUBE4_PHASE_NEXT_NZ
     always @(posedge clk) begin
         f1_klast <= (r0_m == m_last);
-        f1_wxn   <= ((phn_x >> cfg_ss_log2) != '0);
-        f1_wyn   <= ((phn_y >> cfg_ss_log2) != '0);
+        f1_wxn   <= phase_next_nz(ph_x, ph_thr_x);
+        f1_wyn   <= phase_next_nz(ph_y, ph_thr_y);
     end
+`ifndef SYNTHESIS
+    reg [1:0] f1_wn_ref;                // the flags from phn_x, phn_y themselves
+    always @(posedge clk) begin
+        f1_wn_ref <= {(phn_x >> cfg_ss_log2) != '0, (phn_y >> cfg_ss_log2) != '0};
+        if (!rst && v_fly[1] && {f1_wxn, f1_wyn} != f1_wn_ref)
+            $fatal(1, "cube4_com_beats: S1's weight flags %b differ from the phases' %b", {f1_wxn, f1_wyn}, f1_wn_ref);
+    end
+`endif
 
     // ---- per lane: the ray runs the next slice and its next sample is inside
     // the box (as cube4_com_walk, numerics.md 4), S1 ----

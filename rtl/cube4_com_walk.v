@@ -26,7 +26,9 @@
 //   pos_*, fresh, stx, sty, phases: combinational from R0 (S0) and this
 //   unit's registers; the counters load under step_c[0], the template under
 //   step_c[1] (R0's valid-bit copies). nx_in and f1_*: from S1 registers
-//   (one edge after S0). hazard: a register (the count for the next cycle).
+//   (one edge after S0; f1_wxn, f1_wyn from ph_x, ph_y by compares with
+//   thresholds of the frame, CUBE4_PHASE_NEXT_NZ, registered from cfg every
+//   clock). hazard: a register (the count for the next cycle).
 //
 // Ports
 //   step_c    R0 holds a beat (copies for the counters, the template)
@@ -119,16 +121,23 @@ module cube4_com_walk #(
     reg  [DIM_W-1:0] stx_q, sty_q;      // stepx(m), stepy(m)
     assign ph_x = sop ? cfg_ph0_x : phx_q;
     assign ph_y = sop ? cfg_ph0_y : phy_q;
-    wire [PH_W:0]    ph_one  = {{PH_W{1'b0}}, 1'b1} << (WEIGHT_W[3:0] + {2'b00, cfg_ss_log2});
-    wire [PH_W:0]    phx_sum = {1'b0, ph_x} + (PH_W + 1)'(cfg_view_x);
-    wire [PH_W:0]    phy_sum = {1'b0, ph_y} + (PH_W + 1)'(cfg_view_y);
-    wire [PH_W-1:0]  phx_add = (phx_sum >= ph_one) ? PH_W'(phx_sum - ph_one) : phx_sum[PH_W-1:0];
-    wire [PH_W-1:0]  phy_add = (phy_sum >= ph_one) ? PH_W'(phy_sum - ph_one) : phy_sum[PH_W-1:0];
-    assign phn_x = first ? phx_add : phx_q;
-    assign phn_y = first ? phy_add : phy_q;
-    // wx(m+1) = phase >> g, and phase < 2^(W+g): every bit above g is a weight bit
-    wire wxn_nz = ((phn_x >> cfg_ss_log2) != '0);   // wx(m+1) > 0
-    wire wyn_nz = ((phn_y >> cfg_ss_log2) != '0);
+    `CUBE4_PHASE_FUNCTIONS
+    `CUBE4_PHASE_NEXT_NZ
+    wire [PH_W:0]    ph_one  = phase_one({1'b0, cfg_ss_log2});
+    wire [PH_W:0]    phx_add = phase_advance(ph_x, cfg_view_x, ph_one);
+    wire [PH_W:0]    phy_add = phase_advance(ph_y, cfg_view_y, ph_one);
+    wire unused_carry = ^{phx_add[PH_W], phy_add[PH_W]};
+    reg  [PH_W:0]    ph_g1;             // 2^g: a phase's weight is not 0
+    always @(posedge clk) ph_g1 <= {{PH_W{1'b0}}, 1'b1} << cfg_ss_log2;
+    assign phn_x = first ? phx_add[PH_W-1:0] : phx_q;
+    assign phn_y = first ? phy_add[PH_W-1:0] : phy_q;
+    // wx(m+1) > 0: the weight is the phase >> g, so phn_x >= 2^g; at a
+    // slice's first beat from ph_x (a register: PH0 at sop, else phx_q) by
+    // CUBE4_PHASE_NEXT_NZ's compares, without the adder
+    wire wxn_nz = !first ? ({1'b0, phx_q} >= ph_g1)
+                         : (sop ? phase_next_nz(cfg_ph0_x, ph_thr_x) : phase_next_nz(phx_q, ph_thr_x));
+    wire wyn_nz = !first ? ({1'b0, phy_q} >= ph_g1)
+                         : (sop ? phase_next_nz(cfg_ph0_y, ph_thr_y) : phase_next_nz(phy_q, ph_thr_y));
     assign stx = !first ? stx_q : (sop ? {DIM_W{1'b0}} : stx_q + DIM_W'(dxb));
     assign sty = !first ? sty_q : (sop ? {DIM_W{1'b0}} : sty_q + DIM_W'(dyb));
     wire [M_W-1:0] m_last = M_W'(cfg_nk - 1'b1) << cfg_ss_log2;
@@ -164,10 +173,14 @@ module cube4_com_walk #(
     wire j_ok = !f1_last && next_inside_of(f1_dyf, f1_wyn, f1_jlt0, f1_jlt1, f1_jeq1, f1_jeq2);
 `ifndef SYNTHESIS
     reg [IW-1:0] r0_jx_q;
+    reg [1:0]    f1_wn_ref;             // the weights' flags from phn_x, phn_y themselves
     always @(posedge clk) begin
         r0_jx_q <= r0_jx;
         if (!rst && (f1_j != r0_jx_q))
             $fatal(1, "cube4_com_walk: S1's row %0d is not R0's %0d a cycle later", f1_j, r0_jx_q);
+        f1_wn_ref <= {(phn_x >> cfg_ss_log2) != '0, (phn_y >> cfg_ss_log2) != '0};
+        if (!rst && v_fly[1] && {f1_wxn, f1_wyn} != f1_wn_ref)
+            $fatal(1, "cube4_com_walk: S1's weight flags %b differ from the phases' %b", {f1_wxn, f1_wyn}, f1_wn_ref);
     end
 `else
     wire unused_f1_j = ^f1_j;

@@ -646,6 +646,49 @@
         end \
     endfunction
 
+// The weight of the phase after ph is not 0, phase_advance(ph)[PHASE_W-1:0]
+// >= g1 (a weight is phase >> g; numerics.md section 8), as compares of ph
+// with three thresholds of the frame, so that no adder, wrap or shift lies
+// before a unit's weight flag (they were the full build's longest path at
+// P = 1 and 2). With one = 2^(W+g), g1 = 2^g:
+//   ph + VIEW >= one + g1,  or  g1 <= ph + VIEW < one
+//   <=>  ph >= t_c,  or  t_a <= ph < t_b,
+//   t_a = g1 - VIEW, t_b = one - VIEW, t_c = one + g1 - VIEW, each clipped
+//   at 0, in PHASE_W + 1 bits (one + g1 < 2^(PHASE_W+1)).
+// CUBE4_PHASE_NEXT_NZ declares phase_thr3 ({t_c, t_b, t_a}), phase_next_nz
+// and the registers ph_thr_x, ph_thr_y (the thresholds of VIEW_X, VIEW_Y),
+// loaded every clk edge from cfg (stable in a frame). Needs
+// CUBE4_PHASE_FUNCTIONS, clk, cfg_view_x, cfg_view_y and cfg_ss_log2.
+`define CUBE4_PHASE_NEXT_NZ \
+    function automatic [PHASE_W:0] phase_thr(input [PHASE_W:0] x, input [WEIGHT_W:0] view); \
+        reg [PHASE_W+1:0] d; \
+        begin \
+            d = {1'b0, x} - {{(PHASE_W - WEIGHT_W + 1){1'b0}}, view}; \
+            phase_thr = d[PHASE_W+1] ? {(PHASE_W + 1){1'b0}} : d[PHASE_W:0]; \
+        end \
+    endfunction \
+    function automatic [3*PHASE_W+2:0] phase_thr3(input [WEIGHT_W:0] view, input [1:0] ssl); \
+        reg [PHASE_W:0] one, g1; \
+        begin \
+            one = phase_one({1'b0, ssl}); \
+            g1  = {{PHASE_W{1'b0}}, 1'b1} << ssl; \
+            phase_thr3 = {phase_thr(one + g1, view), phase_thr(one, view), phase_thr(g1, view)}; \
+        end \
+    endfunction \
+    function automatic phase_next_nz(input [PHASE_W-1:0] ph, input [3*PHASE_W+2:0] thr); \
+        reg [PHASE_W:0] p; \
+        begin \
+            p = {1'b0, ph}; \
+            phase_next_nz = (p >= thr[2*PHASE_W+2 +: PHASE_W+1]) \
+                         || (p < thr[PHASE_W+1 +: PHASE_W+1] && p >= thr[0 +: PHASE_W+1]); \
+        end \
+    endfunction \
+    reg [3*PHASE_W+2:0] ph_thr_x, ph_thr_y; \
+    always @(posedge clk) begin \
+        ph_thr_x <= phase_thr3(cfg_view_x, cfg_ss_log2); \
+        ph_thr_y <= phase_thr3(cfg_view_y, cfg_ss_log2); \
+    end
+
 // ---------------------------------------------------------------- the next sample inside
 // A ray's next sample along an axis, x + d (d its X- or Y-step, 0 or 1), lies
 // inside: x + d < n, and not the last column (row) n - 1 of a template whose

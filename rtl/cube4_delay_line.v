@@ -94,9 +94,18 @@ module cube4_delay_line #(
     // the block RAMs; an increment of pos would wait for that net)
     wire [AW-1:0] inc = ptr_q + 1'b1;
     wire [AW-1:0] nxt = last ? {AW{1'b0}} : (clear ? AW'(1) : inc);
-    // (x + 1) mod L, and (RA + 1) mod L (the read address after a clear, L > RA)
-    wire [AW-1:0] ra_inc = ({1'b0, ra_q} + 1'b1 == len) ? {AW{1'b0}} : ra_q + 1'b1;
+    // (x + 1) mod L, and (RA + 1) mod L (the read address after a clear, L > RA).
+    // ra_end_q says ra_q = L - 1 (kept with ra_q, a step ahead: ra_q + 1 = L - 1
+    // against a register of L - 2), so the address's next value is its
+    // increment and a multiplexer, no compare in series: the compare after the
+    // increment, back into ra_q, limited a full build at P = 1 on one placement
+    reg           ra_end_q;
+    reg  [AW:0]   lenm2_q;              // L - 2 (len is constant from a clear)
+    always @(posedge clk) lenm2_q <= len - (AW + 1)'(2);
+    wire [AW-1:0] ra_inc = ra_end_q ? {AW{1'b0}} : ra_q + 1'b1;
     wire [AW-1:0] ra_clr = (len == (AW + 1)'(RA + 1)) ? {AW{1'b0}} : AW'(RA + 1);
+    wire          ra_end_n = clear ? ({1'b0, ra_clr} + 1'b1 == len)
+                                   : (ra_end_q ? (len == (AW + 1)'(1)) : ({1'b0, ra_q} == lenm2_q));
 
     genvar k;
     wire [RB-1:0] l_d;
@@ -110,13 +119,28 @@ module cube4_delay_line #(
         .clk(clk), .rst(rst), .d(l_d), .q(l_c));
     always @(posedge clk) begin
         if (rst) begin
-            ptr_q <= {AW{1'b0}};
-            ra_q  <= {AW{1'b0}};
+            ptr_q    <= {AW{1'b0}};
+            ra_q     <= {AW{1'b0}};
+            ra_end_q <= 1'b0;
         end else if (step) begin
-            ptr_q <= nxt;
-            ra_q  <= clear ? ra_clr : ra_inc;
+            ptr_q    <= nxt;
+            ra_q     <= clear ? ra_clr : ra_inc;
+            ra_end_q <= ra_end_n;
         end
     end
+`ifndef SYNTHESIS
+    // ra_end_q against the compare it stands for, from the first clear on,
+    // where the RAM is read (L > RB; below, ra_q wanders unused, and wraps
+    // at 2^AW where the compare would not)
+    reg cleared_q;
+    always @(posedge clk) begin
+        if (rst) cleared_q <= 1'b0;
+        else if (step && clear) cleared_q <= 1'b1;
+        if (!rst && cleared_q && step && !clear && 32'(len) > RB
+            && ra_end_q != ({1'b0, ra_q} + 1'b1 == len))
+            $fatal(1, "cube4_delay_line: ra_end_q %0d, but ra_q %0d and L %0d", ra_end_q, ra_q, len);
+    end
+`endif
     // Step b writes position pos(b) (the word lands one cycle later) and reads
     // position pos(b + RA) (= ra_q; a word written at step b + RA - L <= b - 2
     // when L > RB, so it has landed before the read); dout for step
