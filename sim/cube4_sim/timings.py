@@ -71,7 +71,8 @@ def compare(new: list[dict], old: list[dict]) -> str:
         return "no build in common: the runs cannot be compared"
     nb, ns = sum(a[k][0] for k in common), sum(a[k][1] for k in common)
     ob, os_ = sum(b[k][0] for k in common), sum(b[k][1] for k in common)
-    ratio = lambda x, y: f"x{x / y:.2f}" if y > 0 else "-"   # noqa: E731
+    def ratio(x: float, y: float) -> str:
+        return f"x{x / y:.2f}" if y > 0 else "-"
     return (f"{len(common)} builds in both runs ({len(a) - len(common)} only in this one, "
             f"{len(b) - len(common)} only in the other): build {nb:.0f} s against {ob:.0f} s "
             f"({ratio(nb, ob)}), simulation {ns:.0f} s against {os_:.0f} s ({ratio(ns, os_)})")
