@@ -2,7 +2,8 @@
 `make regress`.
 
 `make test` (the suite every change passes, about ten minutes here) runs each unit at the
-parameter sets that cover its options, P = 1 and one P >= 5; the rest of a sweep carries the
+parameter sets that cover its options at one P >= 5 (the whole top's main builds at P = 1
+too: docs/simulation.md lists which); the rest of a sweep carries the
 pytest marker ``regress`` and runs in `make regress` (before RTL lands). Each Verilator
 build costs tens of seconds to a minute or more of compilation, so a sweep's size is its
 cost; see docs/simulation.md, "Test time".

@@ -22,7 +22,7 @@ model is then held against the float64 reference on each frame's base-plane grid
 
 The builds are those tb/cube4_top builds too (the full build at P = 1 and 5 with
 MAX_DIM = 64, the voxel-gradient builds), and VOXEL_W = 12, S = 8 builds at MAX_DIM = 32
-(the q x q and brick cases).
+(the q x q and brick cases: P = 5 in `make test`, P = 1 in `make regress`).
 """
 
 from __future__ import annotations
@@ -47,9 +47,13 @@ from cube4.model import render_frame  # noqa: E402
 from cube4.reference import reference_baseplane  # noqa: E402
 from cube4_sim.golden_check import assert_frame_matches_golden  # noqa: E402
 from cube4_sim.rtl import FrameJob, baseplane_from_pixels, render_frames  # noqa: E402
+from cube4_sim.sweeps import regress  # noqa: E402
 
 #: the pipelines of the runs: P = 1 and one P >= 5 (the reference is checked at the second)
 PIPELINES = (1, 5)
+#: the case builds of their own (not tb/cube4_top's): `make test` runs them at the second
+#: P only, P = 1 in `make regress` (cube4_sim.sweeps)
+OWN_BUILDS = ("wide",)
 #: stalls of the n-th frame of a run: (internal streams, pixel port), probability / 256
 STALLS = [(60, 0), (0, 90), (120, 60), (30, 40)]
 #: VGRAD build per P (those of tb/cube4_top's voxel-gradient test)
@@ -182,8 +186,15 @@ def run_bricks(case: OptionCase, cfg, build: dict, p: int) -> None:
               f"(max |dA| {diff[..., 3].max():.0f} LSB)")
 
 
-@pytest.mark.parametrize("p", PIPELINES)
-@pytest.mark.parametrize("case_fn", CASES, ids=[f.__name__ for f in CASES])
+def option_runs() -> list:
+    """(case, P) for every case at every P of PIPELINES; P = 1 of the cases on builds of
+    their own marked ``regress``."""
+    return [pytest.param(fn, p, id=f"{fn.__name__}-{p}",
+                         marks=(regress,) if p != PIPELINES[-1] and fn().build in OWN_BUILDS else ())
+            for fn in CASES for p in PIPELINES]
+
+
+@pytest.mark.parametrize(("case_fn", "p"), option_runs())
 def test_stiff_option(case_fn, p):
     case = case_fn()
     cfg = case_config(case, p)
