@@ -189,8 +189,8 @@ def run_bricks(case: OptionCase, cfg, build: dict, p: int) -> None:
 def option_runs() -> list:
     """(case, P) for every case at every P of PIPELINES; P = 1 of the cases on builds of
     their own marked ``regress``."""
-    return [pytest.param(fn, p, id=f"{fn.__name__}-{p}",
-                         marks=(regress,) if p != PIPELINES[-1] and fn().build in OWN_BUILDS else ())
+    own = {fn: fn().build in OWN_BUILDS for fn in CASES}
+    return [pytest.param(fn, p, id=f"{fn.__name__}-{p}", marks=(regress,) if own[fn] and p != PIPELINES[-1] else ())
             for fn in CASES for p in PIPELINES]
 
 
