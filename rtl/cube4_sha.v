@@ -48,11 +48,12 @@
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
-//   5 + (RMAP_BITS + 1) + 4 stages (input; LUT read and |g|; the three |g|
+//   5 + (RMAP_BITS + 1) + 5 stages (input; LUT read and |g|; the three |g|
 //   comparisons; face; numerators; one stage per quotient bit of the
-//   division; reflectance-map read; its output register; C * D; shading),
-//   15 at RMAP_BITS = 5: a beat is on out_* 14 cycles after it entered the
-//   input register when the output FIFO was empty; 2 more with GMOD (m1, m2). SHADING = 0: 4 stages
+//   division; reflectance-map read; its output register; C * D; shading;
+//   the output FIFO's input register), 16 at RMAP_BITS = 5: a beat is on
+//   out_* 15 cycles after it entered the input register when the output
+//   FIFO was empty; 2 more with GMOD (m1, m2). SHADING = 0: 4 stages
 //   (input; LUT read; its register; the output FIFO), 11 with FALL. The stages move on every
 //   cycle and carry a valid bit (no stall enable); the last one is the
 //   memory of the output FIFO (cube4_credit_fifo), and a beat
@@ -145,7 +146,8 @@ module cube4_sha #(
     //   d2     the read word in the RAM's output register (OUT_REG)
     //   d3     the multipliers' operand registers (C, D)
     //   e1     C * D (the multipliers' product registers)
-    //   e2     round_shift(C * D, 8) + P, min 255: written into the output FIFO
+    //   e2     round_shift(C * D, 8) + P, min 255: into the output FIFO's input
+//          register (IN_REG = 1), then its memory
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
@@ -157,9 +159,13 @@ module cube4_sha #(
     localparam integer GM_LAT   = `CUBE4_GM_LAT;
     localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 5 + 2 * GM : 3;
     localparam integer NST      = (FALL != 0 && NST_SH < SLAB_LAT + 1) ? SLAB_LAT + 1 : NST_SH;
-    // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the
-    // FIFO's read)
-    localparam integer FIFO_DEPTH = (NST + 2 <= 16) ? 16 : 32;
+    // The shaded build's FIFO registers its input (IN_REG = 1): e2's rounding
+    // add and saturation end at a flip-flop beside them, and the route to the
+    // FIFO's memory (often across the die from the multiplier) has a cycle of
+    // its own; one stage more. FIFO entries: a reservation lasts NST + 2 +
+    // FIFO_IN_REG cycles (a, the stages, the input register, the FIFO's read).
+    localparam integer FIFO_IN_REG = (SHADING != 0) ? 1 : 0;
+    localparam integer FIFO_DEPTH  = (NST + 2 + FIFO_IN_REG <= 16) ? 16 : 32;
 
     wire credit;                        // the output FIFO has an entry for one more beat
     assign in_ready = credit;
@@ -556,13 +562,15 @@ module cube4_sha #(
         end
     endgenerate
 
-    // ---- e2: the output FIFO's memory; stage e1 holds a beat: push at e2 ----
+    // ---- e2: the output FIFO (its input register when shaded, then its memory);
+    //      stage e1 holds a beat: push_d at e1 ----
     localparam integer OUT_W = META_W + P * LUT_W + P * RI_W + P * VW + FW;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
     generate
         if (FALL != 0) begin : g_fifo_fall
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .VALID_N(VALID_N)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(FIFO_IN_REG),
+                                .VALID_N(VALID_N)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_fall, e_meta, e_rgba, e_idx, e_s}),
@@ -570,7 +578,8 @@ module cube4_sha #(
                 .out_valid_cp(out_valid_cp));
             assign {out_fall, out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
         end else begin : g_fifo
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .VALID_N(VALID_N)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(FIFO_IN_REG),
+                                .VALID_N(VALID_N)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),
