@@ -25,10 +25,11 @@
 //   it is offered (cube4_com_ahead, COM's read-after-write rule as a
 //   register, takes nx_valid: whether a beat waits behind the head; it keeps
 //   its own compares of each beat, so no user reads nx_data now).
-//   in_ready is kept as READY_N register copies (cube4_prim_copies), all
+//   in_ready is kept as READY_N register copies (cube4_prim_lut_copies), all
 //   equal: copy 0 is in_ready, the others go to a producer whose stall
 //   enable reaches loads far apart (the front end's CFB: one per group of
-//   its advance's loads), so no one register drives them all.
+//   its advance's loads), so no one register drives them all; each copy's
+//   next value is a LUT of its own, shared with no other logic.
 //   out_valid is kept alike as VALID_N register copies: copy 0 is out_valid
 //   and drives the buffer's own state, the others go to a consumer whose
 //   handshake lies far from the buffer's entries (cube4_top: the beat's bits
@@ -138,10 +139,14 @@ module cube4_skid_peek #(
         end
     endgenerate
 
-    // in_ready: a register holding !full_q, in READY_N kept copies
+    // in_ready: a register holding !full_q, in READY_N kept copies, each
+    // taking !full_d from a LUT of its own (cube4_prim_lut_copies: {D, C, B, A}
+    // = {nonempty_q, full_q, out_ready, in_valid}, INIT 16'hCD0F): a copy far
+    // from the buffer (beside its producer) then takes in_valid and out_ready
+    // into its own LUT, not through full_q's next-value LUT beside the buffer
     wire full_d = (push && !pop) ? nonempty_q : ((pop && !push) ? 1'b0 : full_q);
-    cube4_prim_copies #(.N(READY_N), .RST_VAL(64'd1)) u_ready (
-        .clk(clk), .rst(rst), .d(!full_d), .q(in_ready_cp));
+    cube4_prim_lut_copies #(.COPIES(READY_N), .INIT(32'hCD0F), .RESET(1), .RST_VAL(1)) u_ready (
+        .clk(clk), .rst(rst), .in({READY_N{nonempty_q, full_q, out_ready, in_valid}}), .q(in_ready_cp));
     assign in_ready    = in_ready_cp[0];
     assign in_ready_nx = rst || !full_d;
     assign out_valid = nonempty_q;

@@ -1,0 +1,59 @@
+`default_nettype none
+`include "cube4_defs.vh"
+// =============================================================================
+// cube4_prim_lut_copies
+// -----------------------------------------------------------------------------
+// Purpose
+//   COPIES kept flip-flops, copy c loading a four-input function of its own
+//   inputs {d, c, b, a} = in[4c +: 4]:
+//     q[c] <= (RESET && rst) ? RST_VAL : INIT[{d, c, b, a}]
+//   (INIT is a LUT4's truth table: bit k is the value at {d, c, b, a} = k).
+//   For a flag whose copies reach loads far apart and whose next value is
+//   logic of inputs that come from other places: each copy's next value is
+//   logic of its own beside it, never a net synthesis shares between the
+//   copies or with the flag's other users, so no route runs from a copy to
+//   a LUT placed among another copy's loads and back. Synthesis merges equal
+//   logic (ABC maps the inferred functions anew), so the ECP5 form (rtl/ecp5/)
+//   instantiates each copy's LUT4; this generic form is the simulation's
+//   and the gate count's. Users: cube4_prim_valid_copies (a pipeline
+//   register's valid bit), cube4_skid_peek (its in_ready copies).
+//
+// Parameters
+//   COPIES   copies.                                          1..64. Default 1.
+//   INIT     the function's truth table, as a LUT4's INIT.     0..65535. Default 0.
+//   RESET    1: synchronous reset to RST_VAL (the flip-flop's
+//            own set/reset); 0: no reset (a caller may take rst
+//            as one of the four inputs).                      0..1.  Default 0.
+//   RST_VAL  reset value.                                     0..1.  Default 0.
+//
+// Latency: 1 cycle (q[c] is the function of in[4c +: 4] at the last clock edge).
+//
+// Ports
+//   clk, rst   clock, synchronous active-high reset (with RESET = 1)
+//   in    in   [4*COPIES]  copy c's inputs {d, c, b, a} at bits [4c +: 4]
+//   q     out  [COPIES]    copy c
+//
+// Bit growth and rounding: none.
+// =============================================================================
+module cube4_prim_lut_copies
+`include "cube4_prim_lut_copies_if.vh"
+
+    genvar k;
+    generate
+        for (k = 0; k < COPIES; k = k + 1) begin : g_copy
+            localparam [15:0] TABLE = INIT[15:0];
+            wire nx = TABLE[in[4*k +: 4]];
+            reg  q_q;
+            if (RESET == 1) begin : g_rst
+                (* keep *)              // one copy per group of loads: never merged
+                always @(posedge clk) q_q <= rst ? RST_VAL[0] : nx;
+            end else begin : g_no_rst
+                (* keep *)
+                always @(posedge clk) q_q <= nx;
+                wire unused_rst = rst;
+            end
+            assign q[k] = q_q;
+        end
+    endgenerate
+endmodule
+`default_nettype wire
