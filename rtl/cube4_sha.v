@@ -44,16 +44,16 @@
 //   GMOD        1 (with SHADING): gradient-magnitude modulation (numerics.md
 //               section 23): cube4_sha_gm's factors fa, fs of each lane's |g|^2
 //               from the table written through gm_*; two more stages (m1, m2)
-//               after d2 modulate D and P, and A' = round_shift(A fa, 8). 0..1. Default 0.
+//               after dr modulate D and P, and A' = round_shift(A fa, 8). 0..1. Default 0.
 //   MAX_DIM, MAX_SS_LOG2 and the derived widths as cube4_gra; GRAD_W = VOXEL_W + 5.
 //
 // Latency
-//   5 + (RMAP_BITS + 1) + 5 stages (input; LUT read and |g|; the three |g|
+//   5 + (RMAP_BITS + 1) + 6 stages (input; LUT read and |g|; the three |g|
 //   comparisons; face; numerators; one stage per quotient bit of the
-//   division; reflectance-map read; its output register; C * D; shading;
-//   the output FIFO's input register), 16 at RMAP_BITS = 5: a beat is on
-//   out_* 15 cycles after it entered the input register when the output
-//   FIFO was empty; 2 more with GMOD (m1, m2). SHADING = 0: 4 stages
+//   division; reflectance-map read; its output register; its fabric
+//   register; C * D; shading; the output FIFO's input register), 17 at
+//   RMAP_BITS = 5: a beat is on out_* 16 cycles after it entered the input
+//   register when the output FIFO was empty; 2 more with GMOD (m1, m2). SHADING = 0: 4 stages
 //   (input; LUT read; its register; the output FIFO), 11 with FALL. The stages move on every
 //   cycle and carry a valid bit (no stall enable); the last one is the
 //   memory of the output FIFO (cube4_credit_fifo), and a beat
@@ -144,20 +144,23 @@ module cube4_sha #(
     //   c0..cR restoring division, one quotient bit per stage, for u and v at once
     //   d      reflectance-map read (address: face and the quotients, min(R-1, q))
     //   d2     the read word in the RAM's output register (OUT_REG)
+    //   dr     that word (or the zero gradient's entry) in fabric registers
+    //          beside the RAM: the route to the multipliers, often across
+    //          the die, starts at a flip-flop, not at the banks' select
     //   d3     the multipliers' operand registers (C, D)
     //   e1     C * D (the multipliers' product registers)
     //   e2     round_shift(C * D, 8) + P, min 255: into the output FIFO's input
-//          register (IN_REG = 1), then its memory
+    //          register (IN_REG = 1), then its memory
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    // stages after a: b1, bc, b2, b3, c*, d, d2, d3, e1, e2 (SHADING = 0: b1, e1, then the FIFO);
+    // stages after a: b1, bc, b2, b3, c*, d, d2, dr, d3, e1, e2 (SHADING = 0: b1, e1, then the FIFO);
     // with the slab's falloff (FALL) at least the falloff unit's latency before e1
     localparam integer FALL     = (SLAB != 0 && COMPOSITING != 0) ? 1 : 0;
     localparam integer SLAB_LAT = `CUBE4_SLAB_LAT;   // cube4_sha_slab's latency
     localparam integer GM       = (GMOD != 0 && SHADING != 0) ? 1 : 0;   // the modulation's two stages m1, m2
     localparam integer GM_LAT   = `CUBE4_GM_LAT;
-    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 5 + 2 * GM : 3;
+    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 6 + 2 * GM : 3;
     localparam integer NST      = (FALL != 0 && NST_SH < SLAB_LAT + 1) ? SLAB_LAT + 1 : NST_SH;
     // The shaded build's FIFO registers its input (IN_REG = 1): e2's rounding
     // add and saturation end at a flip-flop beside them, and the route to the
@@ -236,9 +239,9 @@ module cube4_sha #(
         if (rmap_we && rmap_addr == RMAP_ZERO) rmap_zero <= rmap_data;
     end
 
-    // gradient-magnitude modulation's factors of each lane (GM = 1): fs at d2 (the
+    // gradient-magnitude modulation's factors of each lane (GM = 1): fs at dr (the
     // modulation's operands at m1), fa at m2 (A's operand at d3)
-    wire [P*GMF_W-1:0] gm_fs_d2, gm_fa_m2;
+    wire [P*GMF_W-1:0] gm_fs_dr, gm_fa_m2;
 
     genvar q, it;
     generate
@@ -355,27 +358,31 @@ module cube4_sha #(
                 reg             d_zero, d2_zero;
                 wire [19:0]     d2_dp = d2_zero ? rmap_zero : dp_all[q*20 +: 20];
                 reg [RI_W-1:0]  d2_idx;
+                reg [19:0]      dr_dp;             // dr: d2's word in fabric registers
+                reg [RI_W-1:0]  dr_idx;
                 always @(posedge clk) begin
                     d_idx   <= idx;
                     d2_idx  <= d_idx;
                     d_zero  <= zero_n;
                     d2_zero <= d_zero;
+                    dr_dp   <= d2_dp;
+                    dr_idx  <= d2_idx;
                 end
                 // GM = 1: m1, m2 modulate D and P by the lane's fs (cube4_sha_gm):
                 //   D' = 256 + round_shift((D - 256) fs, 8),  P' = round_shift(P fs, 8)
                 // (cube4_mul: operand registers m1, products m2); D' and P' then
-                // take D's and P's places at d3. Without: d2's word goes on to d3.
+                // take D's and P's places at d3. Without: dr's word goes on to d3.
                 wire [9:0]      dd_d3, pp_d3;       // D and P, one stage before d3
                 wire [RI_W-1:0] idx_d3;             // the index, one stage before d3
                 if (GM != 0) begin : g_gm
-                    wire [GMF_W-1:0] fs_d2 = gm_fs_d2[q*GMF_W +: GMF_W];
+                    wire [GMF_W-1:0] fs_dr = gm_fs_dr[q*GMF_W +: GMF_W];
                     wire signed [20:0] dm, pm;        // 11 x 10 bits
                     cube4_mul #(.A_W(11), .B_W(10)) u_dm (
-                        .clk(clk), .en(1'b1), .a($signed({1'b0, d2_dp[19:10]}) - 11'sd256),
-                        .b($signed({1'b0, fs_d2})), .p(dm));
+                        .clk(clk), .en(1'b1), .a($signed({1'b0, dr_dp[19:10]}) - 11'sd256),
+                        .b($signed({1'b0, fs_dr})), .p(dm));
                     cube4_mul #(.A_W(11), .B_W(10)) u_pm (
-                        .clk(clk), .en(1'b1), .a($signed({1'b0, d2_dp[9:0]})),
-                        .b($signed({1'b0, fs_d2})), .p(pm));
+                        .clk(clk), .en(1'b1), .a($signed({1'b0, dr_dp[9:0]})),
+                        .b($signed({1'b0, fs_dr})), .p(pm));
                     // -256 <= round_shift((D - 256) fs, 8) <= 767: D' in 0 .. 1023; P' in 0 .. 1023
                     wire signed [20:0] dr = (dm + 21'sd128) >>> 8;
                     wire signed [20:0] pr = (pm + 21'sd128) >>> 8;
@@ -384,14 +391,14 @@ module cube4_sha #(
                     wire unused_r = ^{dr[20:10], pr[20:10]};
                     reg [RI_W-1:0] m1_idx, m2_idx;
                     always @(posedge clk) begin
-                        m1_idx <= d2_idx;
+                        m1_idx <= dr_idx;
                         m2_idx <= m1_idx;
                     end
                     assign idx_d3 = m2_idx;
                 end else begin : g_no_gm
-                    assign dd_d3  = d2_dp[19:10];
-                    assign pp_d3  = d2_dp[9:0];
-                    assign idx_d3 = d2_idx;
+                    assign dd_d3  = dr_dp[19:10];
+                    assign pp_d3  = dr_dp[9:0];
+                    assign idx_d3 = dr_idx;
                 end
                 // d3: the multipliers' operand registers (D, C); P and the index ride along
                 reg [RI_W-1:0]  d3_idx;
@@ -412,9 +419,9 @@ module cube4_sha #(
 
                 // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
                 // registers are d3's (C from the shift register's stage before
-                // d_alpha's, D from d2's word or D'): the block RAM's word
-                // reaches the multiplier through d2, the RAM's output register;
-                // the product register is e1's
+                // d_alpha's, D from dr's word or D'): the block RAM's word
+                // reaches the multiplier through d2, the RAM's output register,
+                // and dr, a fabric register beside it; the product register is e1's
                 wire [23:0] d_col_d = lut_q[(NST-5)*LUT_W + ALPHA_W +: 24];   // C one stage early
                 wire unused_col = ^lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];       // (its copy at d3: not needed)
                 wire [3*18-1:0]   e1_cd;
@@ -504,20 +511,20 @@ module cube4_sha #(
     endgenerate
 
     // ---- gradient-magnitude modulation (GM = 1): cube4_sha_gm from stage a's gradient,
-    // its factors (stage GM_LAT) carried to d2 (fs) and m2 (fa) ----
+    // its factors (stage GM_LAT) carried to dr (fs) and m2 (fa) ----
     generate
         if (GM != 0) begin : g_gmod
             localparam integer FW2 = P * GMF_W;
-            localparam integer D2  = 6 + NDIV;        // stage d2 (a = 0)
+            localparam integer DR  = 7 + NDIV;        // stage dr (a = 0)
             wire [FW2-1:0] fa7, fs7;
             cube4_sha_gm #(.P(P), .VOXEL_W(VOXEL_W)) u_gm (
                 .clk(clk), .gm_we(gm_we), .gm_addr(gm_addr), .gm_data(gm_data),
                 .in_gi(a_gi), .in_gj(a_gj), .in_gk(a_gk), .fa(fa7), .fs(fs7));
-            if (D2 < GM_LAT) begin : g_late
-                $error("cube4_sha: the modulation's factors come at stage %0d, after d2 (%0d)", GM_LAT, D2);
+            if (DR < GM_LAT) begin : g_late
+                $error("cube4_sha: the modulation's factors come at stage %0d, after dr (%0d)", GM_LAT, DR);
             end
-            // fs: NSF = D2 - GM_LAT (>= 2: NDIV >= 3) more stages; fa: two more (m1, m2)
-            localparam integer NSF = D2 - GM_LAT;
+            // fs: NSF = DR - GM_LAT (>= 3: NDIV >= 3) more stages; fa: two more (m1, m2)
+            localparam integer NSF = DR - GM_LAT;
             localparam integer NSA = NSF + 2;
             reg  [NSF*FW2-1:0]     fs_sr;
             reg  [NSA*FW2-1:0]     fa_sr;
@@ -527,12 +534,12 @@ module cube4_sha #(
                 fs_sr <= fs_q[NSF*FW2-1:0];
                 fa_sr <= fa_q[NSA*FW2-1:0];
             end
-            assign gm_fs_d2 = fs_q[NSF*FW2 +: FW2];
+            assign gm_fs_dr = fs_q[NSF*FW2 +: FW2];
             assign gm_fa_m2 = fa_q[NSA*FW2 +: FW2];
         end else begin : g_no_gmod
-            assign gm_fs_d2 = '0;
+            assign gm_fs_dr = '0;
             assign gm_fa_m2 = '0;
-            wire unused_gm = ^{gm_we, gm_addr, gm_data, gm_fs_d2, gm_fa_m2};
+            wire unused_gm = ^{gm_we, gm_addr, gm_data, gm_fs_dr, gm_fa_m2};
         end
     endgenerate
 

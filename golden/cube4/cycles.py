@@ -13,13 +13,13 @@ from __future__ import annotations
 #: Pipeline fill of cube4_top: cycles beyond the stream terms, measured at 128³, P = 8
 #: (``cube4 render sphere:128 --engine rtl --stats``); tb/cube4_top's phantom tests check the formula
 #: against the RTL for P = 1, 4, 5, 8.
-FILL_CYCLES = 61
+FILL_CYCLES = 62
 #: The same for a build without shading: no GRA (whose last slice waits for the slice after it)
 #: and a 3-stage SHA; measured the same way and checked by tb/cube4_top's build tests.
 FILL_CYCLES_UNSHADED = 42
 #: The same for a build with voxel gradients (VGRAD = 1): no GRA, the shaded SHA; measured the
 #: same way and checked by tb/cube4_top's voxel-gradient test.
-FILL_CYCLES_VGRAD = 55
+FILL_CYCLES_VGRAD = 56
 #: The slab's falloff unit (SLAB = 1 with COMPOSITING = 1, rtl/cube4_sha_slab.v) makes SHA at
 #: least 10 stages: a build without shading (3 stages) takes this many cycles more; a shaded
 #: SHA is longer already. Checked by tb/cube4_top's slab test.
