@@ -12,11 +12,11 @@
 //   logic of inputs that come from other places: each copy's next value is
 //   logic of its own beside it, never a net synthesis shares between the
 //   copies or with the flag's other users, so no route runs from a copy to
-//   a LUT placed among another copy's loads and back. Synthesis merges equal
-//   logic (ABC maps the inferred functions anew), so the ECP5 form (rtl/ecp5/)
-//   instantiates each copy's LUT4; this generic form is the simulation's
-//   and the gate count's. Users: cube4_prim_valid_copies (a pipeline
-//   register's valid bit), cube4_skid_peek (its in_ready copies).
+//   a LUT placed among another copy's loads and back: each copy's function
+//   is a cube4_prim_lut4 (on the ECP5 an instantiated, kept LUT4, which ABC
+//   neither merges nor builds from other nets). Users:
+//   cube4_prim_valid_copies (a pipeline register's valid bit),
+//   cube4_skid_peek (its in_ready copies).
 //
 // Parameters
 //   COPIES   copies.                                          1..64. Default 1.
@@ -35,14 +35,30 @@
 //
 // Bit growth and rounding: none.
 // =============================================================================
-module cube4_prim_lut_copies
-`include "cube4_prim_lut_copies_if.vh"
+module cube4_prim_lut_copies #(
+    parameter integer COPIES  = 1,
+    parameter integer INIT    = 0,
+    parameter integer RESET   = 0,
+    parameter integer RST_VAL = 0
+) (
+    input  wire                clk,
+    input  wire                rst,
+    input  wire [4*COPIES-1:0] in,
+    output wire [COPIES-1:0]   q
+);
+    generate
+        `CUBE4_RANGE(g_bad_copies, "cube4_prim_lut_copies", "COPIES", COPIES, 1, 64)
+        `CUBE4_RANGE(g_bad_init, "cube4_prim_lut_copies", "INIT", INIT, 0, 65535)
+        `CUBE4_RANGE(g_bad_reset, "cube4_prim_lut_copies", "RESET", RESET, 0, 1)
+        `CUBE4_RANGE(g_bad_rst_val, "cube4_prim_lut_copies", "RST_VAL", RST_VAL, 0, 1)
+    endgenerate
 
     genvar k;
     generate
         for (k = 0; k < COPIES; k = k + 1) begin : g_copy
-            localparam [15:0] TABLE = INIT[15:0];
-            wire nx = TABLE[in[4*k +: 4]];
+            wire nx;
+            cube4_prim_lut4 #(.INIT(INIT)) u_nx (
+                .a(in[4*k]), .b(in[4*k + 1]), .c(in[4*k + 2]), .d(in[4*k + 3]), .z(nx));
             reg  q_q;
             if (RESET == 1) begin : g_rst
                 (* keep *)              // one copy per group of loads: never merged

@@ -4,6 +4,7 @@
 # (the vendor layer) is replaced by that counterpart. Include directory: rtl/.
 cube4_round_shift.v
 cube4_prim_reg_copies.v
+cube4_prim_lut4.v
 cube4_prim_lut_copies.v
 cube4_prim_valid_copies.v
 cube4_prim_copies.v

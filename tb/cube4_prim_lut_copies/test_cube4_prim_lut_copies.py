@@ -1,4 +1,4 @@
-"""Testbench of rtl/cube4_prim_lut_copies.v and its ECP5 form (rtl/ecp5/).
+"""Testbench of rtl/cube4_prim_lut_copies.v, with cube4_prim_lut4 in both of its forms.
 
 A cocotb clock drives the primitive directly. Every cycle the bench sets each copy's four
 inputs at random (seeded from COCOTB_RANDOM_SEED; each copy its own inputs, so that a copy
@@ -6,9 +6,9 @@ which took another copy's inputs fails), with a reset now and then, and checks e
 after the clock edge against the truth table: q[c] = INIT[{d, c, b, a}] of copy c's inputs
 at the edge, or RST_VAL under a reset with RESET = 1 (with RESET = 0 the reset is not
 read). It also checks that every one of the sixteen input words reached every copy. The
-ECP5 form (each copy's next value an instantiated LUT4) runs with the primitive's model
-(sim/hdl/ecp5/LUT4.v): both forms equal to the table means the simulations of the design
-(generic forms) stand for the synthesized one.
+ECP5 form (each copy's cube4_prim_lut4 an instantiated LUT4, rtl/ecp5/) runs with the
+primitive's model (sim/hdl/ecp5/LUT4.v): both forms equal to the table means the
+simulations of the design (generic forms) stand for the synthesized one.
 """
 
 from __future__ import annotations
