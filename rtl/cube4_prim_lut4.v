@@ -22,15 +22,8 @@
 //
 // Bit growth and rounding: none.
 // =============================================================================
-module cube4_prim_lut4 #(
-    parameter integer INIT = 0
-) (
-    input  wire a, input wire b, input wire c, input wire d,
-    output wire z
-);
-    generate
-        `CUBE4_RANGE(g_bad_init, "cube4_prim_lut4", "INIT", INIT, 0, 65535)
-    endgenerate
+module cube4_prim_lut4
+`include "cube4_prim_lut4_if.vh"
     localparam [15:0] TABLE = INIT[15:0];
     assign z = TABLE[{d, c, b, a}];
 endmodule

@@ -53,23 +53,16 @@ module cube4_prim_lut_copies #(
         `CUBE4_RANGE(g_bad_rst_val, "cube4_prim_lut_copies", "RST_VAL", RST_VAL, 0, 1)
     endgenerate
 
+    // copy k: its function (cube4_prim_lut4), then its kept flip-flop (cube4_prim_reg_copies)
+    wire [COPIES-1:0] nx;
     genvar k;
     generate
         for (k = 0; k < COPIES; k = k + 1) begin : g_copy
-            wire nx;
             cube4_prim_lut4 #(.INIT(INIT)) u_nx (
-                .a(in[4*k]), .b(in[4*k + 1]), .c(in[4*k + 2]), .d(in[4*k + 3]), .z(nx));
-            reg  q_q;
-            if (RESET == 1) begin : g_rst
-                (* keep *)              // one copy per group of loads: never merged
-                always @(posedge clk) q_q <= rst ? RST_VAL[0] : nx;
-            end else begin : g_no_rst
-                (* keep *)
-                always @(posedge clk) q_q <= nx;
-                wire unused_rst = rst;
-            end
-            assign q[k] = q_q;
+                .a(in[4*k]), .b(in[4*k + 1]), .c(in[4*k + 2]), .d(in[4*k + 3]), .z(nx[k]));
         end
     endgenerate
+    cube4_prim_reg_copies #(.COPIES(COPIES), .W(1), .RESET(RESET), .RST_VAL(64'(RST_VAL)), .ENABLE(0)) u_q (
+        .clk(clk), .rst(rst), .en({COPIES{1'b1}}), .d(nx), .q(q));
 endmodule
 `default_nettype wire

@@ -12,15 +12,8 @@
 //
 // Parameters, latency, ports: as rtl/cube4_prim_lut4.v.
 // =============================================================================
-module cube4_prim_lut4 #(
-    parameter integer INIT = 0
-) (
-    input  wire a, input wire b, input wire c, input wire d,
-    output wire z
-);
-    generate
-        `CUBE4_RANGE(g_bad_init, "cube4_prim_lut4", "INIT", INIT, 0, 65535)
-    endgenerate
+module cube4_prim_lut4
+`include "cube4_prim_lut4_if.vh"
     // Z = INIT[{D, C, B, A}]
     (* keep *)
     LUT4 #(.INIT(INIT[15:0])) u_lut (.A(a), .B(b), .C(c), .D(d), .Z(z));
