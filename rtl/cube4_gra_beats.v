@@ -272,10 +272,18 @@ module cube4_gra_beats
     reg  [NBX-1:0]  x_oh;                                        // low_oh(nx_gm)
     wire [NBX-1:0]  g2_oh = low_oh(gm & ~g_oh);
     wire [NBX-1:0]  x2_oh = low_oh(nx_gm & ~x_oh);
+    // whether gm and nx_gm hold a step are registers too (g_nz, x_nz), loaded with
+    // g_oh and x_oh: the row end (no step of the row left) is decided from a
+    // flip-flop, not from an OR over gm's NBX bits in front of the choice; the
+    // values they take are ORs of registers beside it (g2_nz, x2_nz)
+    reg             g_nz;                                        // gm != 0
+    reg             x_nz;                                        // nx_gm != 0
+    wire            g2_nz = |(gm & ~g_oh);                       // g2_oh != 0
+    wire            x2_nz = |(nx_gm & ~x_oh);                    // x2_oh != 0
     wire [PB_W-1:0] g_pb = enc(g_oh);
     wire [PB_W-1:0] x_pb = enc(x_oh);
     wire [NBX-1:0]  in_upto = in_oh | in_below;             // bits 0 .. in_pb
-    wire g_any   = act && !tail && |gm;
+    wire g_any   = act && !tail && g_nz;
     wire g_first = g_any && (!in_row || |(gm & in_below));  // a generated step comes first (g_pb < in_pb)
     wire start   = !act && s_valid;                         // a frame's first beat waits
     wire pass    = act && !tail && (in_after || ended || w_in);   // the input has passed this row
@@ -291,7 +299,7 @@ module cube4_gra_beats
     wire row_end = pass && !g_any;                           // the row ends (no step of it this cycle)
     // a row end that loads: the next row's first step, or a slice's first window step
     wire t_mg    = row_end && nx_ok && !r_nj;
-    wire x_first = (nx_gm != '0) && (!in_nx || |(nx_gm & in_below));
+    wire x_first = x_nz && (!in_nx || |(nx_gm & in_below));
     wire t_in_x  = t_mg && in_nx && !x_first;
     wire t_gen_x = t_mg && x_first && (in_nx || in_aft1 || ended || w_in);
     wire t_tl_x  = row_end && r_nj;
@@ -335,8 +343,12 @@ module cube4_gra_beats
     // step: the lowest)
     wire [NBX-1:0] ld_upto = t_i ? in_upto : (t_nx ? x_oh : g_oh);
     // gm's lowest bit after the step: the second lowest where the step passed the lowest
-    wire [NBX-1:0] g_oh_ld = (t_gen || (g_oh & in_oh) != '0) ? g2_oh : g_oh;
-    wire [NBX-1:0] x_oh_ld = (t_gen_x || (x_oh & in_oh) != '0) ? x2_oh : x_oh;
+    wire           g_pass  = t_gen || (g_oh & in_oh) != '0;
+    wire           x_pass  = t_gen_x || (x_oh & in_oh) != '0;
+    wire [NBX-1:0] g_oh_ld = g_pass ? g2_oh : g_oh;
+    wire [NBX-1:0] x_oh_ld = x_pass ? x2_oh : x_oh;
+    wire           g_nz_ld = g_pass ? g2_nz : g_nz;             // g_oh_ld != 0
+    wire           x_nz_ld = x_pass ? x2_nz : x_nz;             // x_oh_ld != 0
     // dk_f, dk_b: the centre slice w - 1 and the slice after / before it lie between
     // other voxel slices (as cube4_gra_walk; always with S = 1)
     `CUBE4_VIEW_SLICES;
@@ -486,6 +498,7 @@ module cube4_gra_beats
                 w_one   <= 1'b0;
                 gm      <= '0;
                 g_oh    <= '0;
+                g_nz    <= 1'b0;
                 c_cur   <= '0;
                 s_cur   <= '0;
                 prev_s  <= '0;
@@ -502,6 +515,7 @@ module cube4_gra_beats
                 // the steps of this row up to ld_pb are passed
                 gm   <= gm & ~ld_upto;
                 g_oh <= g_oh_ld;
+                g_nz <= g_nz_ld;
             end
             nx_ok <= !(start || row_end);
             if (ld_i) begin
@@ -525,6 +539,7 @@ module cube4_gra_beats
                 if (ended && last_row) begin
                     gm     <= '0;
                     g_oh   <= '0;
+                    g_nz   <= 1'b0;
                 end else begin
                     r       <= nx_r;
                     r1_q    <= nx_r1;
@@ -544,6 +559,7 @@ module cube4_gra_beats
                     s_cur   <= n_s;
                     gm      <= row_gm & ~(ld_nx ? ld_upto : '0);
                     g_oh    <= ld_nx ? x_oh_ld : n_l;   // (ld_nx: row_gm = nx_gm; n_l = low_oh(row_gm))
+                    g_nz    <= ld_nx ? x_nz_ld : |n_l;
                 end
             end
             if (ld_tl) begin
@@ -601,6 +617,7 @@ module cube4_gra_beats
         // the next row's steps, for a row end that loads (valid in a row's second cycle on)
         nx_gm <= (c_cur | n_c) & nb_mask;
         x_oh  <= low_oh((c_cur | n_c) & nb_mask);
+        x_nz  <= |((c_cur | n_c) & nb_mask);
         nx_s  <= n_s;
         if (ld_i) begin
             sy_q[in_m[0]]  <= in_sy;
@@ -657,6 +674,9 @@ module cube4_gra_beats
     always @(posedge clk) begin
         if (!rst && act && g_oh != low_oh(gm))
             $fatal(1, "cube4_gra_beats: g_oh %0h is not gm's lowest bit (gm %0h)", g_oh, gm);
+        if (!rst && act && (g_nz != (gm != '0) || x_nz != (nx_gm != '0)))
+            $fatal(1, "cube4_gra_beats: g_nz %0d, x_nz %0d are not gm != 0, nx_gm != 0 (gm %0h, nx_gm %0h)",
+                   g_nz, x_nz, gm, nx_gm);
         if (pos_ld[0] != ia_mv || pos_mv[0] != i1_mv || pos_step[0] != step)
             $fatal(1, "cube4_gra_beats: the position buffers' read/load/step (%b%b%b) are not ia_mv, i1_mv, step (%b%b%b)",
                    pos_ld[0], pos_mv[0], pos_step[0], ia_mv, i1_mv, step);
