@@ -14,6 +14,7 @@
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
 #   make fpga-status  the builds the reports need and where each one's Fmax stands: today's rtl/, older, never (reports/fpga_status.md; seconds)
+#   make fpga-todo    place and route every build fpga-status lists as not measured on today's rtl/, and the full build at P = 1, 2, 4, 8: two builds at a time, seeds one after another, stopped runs resumed (reports/fpga/; ~35 min a P = 8 build)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, cycles, error, each build's measured ECP5 figures (reports/scenes.md; ~32 min; SCENES_ARGS=--place places and routes the builds not measured yet, ~40 min each)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
@@ -184,7 +185,7 @@ LINT_SETS_cube4_top         := P=16,VOXEL_W=12,ACC_W=24,ALPHA_W=16,RMAP_BITS=6 \
                                P=5,DRAM=1,VOXEL_W=12,DRAM_AW=32,MAX_SS_LOG2=2 P=5,BEATS=1,PLW=0,EXTREMUM=0
 
 
-.PHONY: help setup lint lint-full sim bench test regress simspeed demo report bricks gates fpga fpga-status scenes skipping labels dram board clean
+.PHONY: help setup lint lint-full sim bench test regress simspeed demo report bricks gates fpga fpga-status fpga-todo scenes skipping labels dram board clean
 
 help:
 	@sed -n '3,/^# See /p' Makefile | sed 's/^# \{0,1\}//'
@@ -302,6 +303,11 @@ fpga: setup
 # today's rtl/ or an older one, or never), with the command that measures it; reads JSON only.
 fpga-status: setup
 	$(PY) -m cube4_reports.fpga_status --md reports/fpga_status.md
+
+# Place and route what fpga-status lists as not measured on today's rtl/ (with the full build at
+# P = 1, 2, 4, 8); FPGA_TODO_ARGS="--list" prints the runs, "--lanes 1" runs one build at a time.
+fpga-todo: setup
+	$(PY) -m cube4_reports.fpga_todo --full $(FPGA_TODO_ARGS)
 
 # Empty-space skipping on real content (docs/reports.md); SKIPPING_ARGS="--no-rtl" leaves out the RTL frame.
 skipping: setup
