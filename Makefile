@@ -14,7 +14,7 @@
 #   make gates   Yosys gate count per unit in NAND2 equivalents, beside Teramac (reports/gates.md; minutes)
 #   make fpga    ECP5-85F synth + place & route, P = 1..16, nextpnr seeds 1,2,3 two at a time: LUTs, median Fmax, frames/s (reports/fpga.md; ~80 min, longer when a seed runs to the one-hour nextpnr limit)
 #   make fpga-status  the builds the reports need and where each one's Fmax stands: today's rtl/, older, never (reports/fpga_status.md; seconds)
-#   make fpga-todo    place and route every build fpga-status lists as not measured on today's rtl/, and the full build at P = 1, 2, 4, 8: two builds at a time, seeds one after another, stopped runs resumed (reports/fpga/; ~35 min a P = 8 build)
+#   make fpga-todo    place and route every build fpga-status lists as not measured on today's rtl/, and the full build at P = 1, 2, 4, 8: two builds at a time, seeds one after another, stopped runs resumed (reports/fpga/; 35–60 min a P = 8 build)
 #   make report  image error against the float64 reference beside run time, per S, W, F, p (minutes; reports/)
 #   make scenes  every built-in scene on the smallest build it needs: gates, cycles, error, each build's measured ECP5 figures (reports/scenes.md; ~32 min; SCENES_ARGS=--place places and routes the builds not measured yet, ~40 min each)
 #   make bricks  bricks: overhead beside Teramac Table 1, bricked vs monolithic, wall time on Dask, seed 004's seams (reports/bricks.md; minutes)
