@@ -3,7 +3,11 @@ synthesis, no place and route)."""
 
 import pytest
 
+from cube4.builds import FULL_BUILD
+from cube4.config import Cube4Config
+from cube4_reports import fmax as fmax_store
 from cube4_reports import fpga_todo as ft
+from cube4_reports.markdown import last_commit
 
 CMD = ("python -m cube4_reports.fpga --p 8 --seeds 1,2,3 --max-dim 128 --depth 1024 --no-budget --no-memory "
        "--build EXTREMUM=0,CLIP=0,PLW=0,BEATS=1 --md reports/fpga/e0k0w0b1.md")
@@ -19,17 +23,31 @@ def test_a_status_command_becomes_a_job():
         ft.job_from_command("python -m cube4_reports.scenes --md x.md")
 
 
+def test_full_jobs_skip_the_p_measured_on_todays_rtl():
+    def run(p, rtl):
+        return fmax_store.Measured(fmax_mhz=150.0, p=p, build=fmax_store.complete_build(FULL_BUILD),
+                                   widths=Cube4Config(pipelines=p).widths(), seeds=(1, 2, 3),
+                                   fmax_seeds=(150.0,) * 3, max_dim=128, rtl=rtl, source="reports/fpga/x.json",
+                                   finished="2026-12-07 10:00", fits=True)
+    jobs = ft.full_jobs([run(4, last_commit()), run(2, "0000000")])     # P = 4 current, P = 2 on an unknown RTL
+    assert [j.name for j in jobs] == ["full_p1", "full_p2", "full_p8"]
+    for j in jobs:
+        p = j.name[len("full_p"):]
+        assert j.args[j.args.index("--p") + 1] == p and j.args[-2:] == ("--md", f"reports/fpga/full_p{p}.md")
+        assert "--build" not in j.args and "--widths" not in j.args
+
+
 def test_the_full_build_at_p8_runs_once_under_either_name(monkeypatch):
     full8 = ft.Job("full_p8", ("--p", "8", "--seeds", "1,2,3", "--md", "reports/fpga/full_p8.md"))
     full4 = ft.Job("full_p4", ("--p", "4", "--seeds", "1,2,3", "--md", "reports/fpga/full_p4.md"))
-    monkeypatch.setattr(ft, "full_jobs", lambda: [full8, full4])
+    monkeypatch.setattr(ft, "full_jobs", lambda measured: [full8, full4])
 
     class Row:                    # fpga_status rows: the full build at P = 8 (as "full"), a beat build, one current
         def __init__(self, cmd, current=False):
             self.need, self.current = cmd, current
     rows = [Row("python -m cube4_reports.fpga --p 8 --seeds 1,2,3 --md reports/fpga/full.md"), Row(CMD),
             Row(CMD.replace("e0k0w0b1", "mip"), current=True)]
-    monkeypatch.setattr(ft.fpga_status, "collect", lambda: rows)
+    monkeypatch.setattr(ft.fpga_status, "collect", lambda measured=None: rows)
     monkeypatch.setattr(ft.fpga_status, "place_command", lambda need: need)
     assert [j.name for j in ft.todo(full=True)] == ["full_p8", "full_p4", "e0k0w0b1"]
     assert [j.name for j in ft.todo(full=False)] == ["full", "e0k0w0b1"]

@@ -69,24 +69,26 @@ def job_from_command(cmd: str) -> Job:
     return Job(Path(md).stem, tuple(words[3:]))
 
 
-def full_jobs() -> list[Job]:
-    """The full build at each of FULL_P not measured on today's rtl/ (``--full``)."""
-    measured = fmax_store.load()
-    head_tree = fpga_status.rtl_tree("HEAD")
+def full_jobs(measured: list) -> list[Job]:
+    """The full build at each of FULL_P not measured on today's rtl/ (``--full``), looked up
+    and named as fpga_status does, its report full_p<P>.md at every P (docs/reports.md reads
+    the four side by side; fpga_status names P = 8's full.md, the same run)."""
+    needs = {p: fpga_status.Need(p, dict(FULL_BUILD), Cube4Config(pipelines=p).widths()) for p in FULL_P}
     out = []
-    for p in FULL_P:
-        m = fmax_store.lookup(measured, p, dict(FULL_BUILD), Cube4Config(pipelines=p).widths())
-        if m is not None and fpga_status.rtl_age(m.rtl, head_tree, m.files).startswith("as now"):
-            continue
-        out.append(Job(f"full_p{p}", ("--p", str(p), "--seeds", "1,2,3", "--max-dim", "128", "--depth", "1024",
-                                      "--no-budget", "--no-memory", "--md", f"reports/fpga/full_p{p}.md")))
-    return out
+    for s in fpga_status.statuses(needs, measured):
+        if not s.current:
+            job = job_from_command(fpga_status.place_command(s.need))
+            args = list(job.args)
+            args[args.index("--md") + 1] = f"reports/fpga/full_p{s.need.p}.md"
+            out.append(Job(f"full_p{s.need.p}", tuple(args)))
+    return sorted(out, key=lambda j: int(j.name.rsplit("_p", 1)[1]))
 
 
 def todo(full: bool) -> list[Job]:
     """The runs still to do, in fpga_status's order (P = 8 first), the full build's first."""
-    jobs = full_jobs() if full else []
-    for s in fpga_status.collect():
+    measured = fmax_store.load()
+    jobs = full_jobs(measured) if full else []
+    for s in fpga_status.collect(measured):
         if not s.current:
             jobs.append(job_from_command(fpga_status.place_command(s.need)))
     seen, out = set(), []
