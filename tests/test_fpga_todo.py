@@ -105,3 +105,16 @@ def test_one_lane_runs_one_at_a_time(monkeypatch, tmp_path):
     jobs = [ft.Job(n, ("--md", f"{n}.md")) for n in "xyz"]
     ended = ft.run(lambda: jobs, lanes=1, timeout=10, start=lambda cmd, **kw: FakeProc(cmd, 2, 0), poll_s=0)
     assert [j.name for j, _ in ended] == ["x", "y", "z"] and FakeProc.most == 1
+
+
+def test_only_runs_the_named_builds_in_the_named_order(monkeypatch, capsys):
+    jobs = [ft.Job(n, ("--p", "8", "--md", f"reports/fpga/{n}.md")) for n in ("e0k0w0", "e0k0w0b1", "e0w0b1")]
+    assert [j.name for j in ft.only(jobs, ["e0w0b1", "e0k0w0b1"])] == ["e0w0b1", "e0k0w0b1"]
+    with pytest.raises(ft.UserError, match="full_p8"):
+        ft.only(jobs, ["e0w0b1", "full_p8"])       # measured already, or no such build
+    monkeypatch.setattr(ft, "todo", lambda full: jobs)
+    assert ft.main(["--only", "e0w0b1,e0k0w0", "--list"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert [line.split()[-1] for line in out] == ["reports/fpga/e0w0b1.md", "reports/fpga/e0k0w0.md"]
+    assert ft.main(["--only", "nosuch", "--list"]) == 1
+    assert "not among the runs still to do: nosuch" in capsys.readouterr().err

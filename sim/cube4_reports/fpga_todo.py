@@ -15,6 +15,7 @@ brings the next smaller P it needs (fpga_status: the largest P that fits), which
     python -m cube4_reports.fpga_todo --list            # what would run, in order
     python -m cube4_reports.fpga_todo                   # run it all, two builds at a time
     python -m cube4_reports.fpga_todo --full --lanes 2 --timeout 2400
+    python -m cube4_reports.fpga_todo --only e0k0w0b1,e0w0b1   # just these, in this order
 
 Each run writes its report and JSON in reports/fpga/, its netlist and nextpnr logs in
 build/synth/fpga/, and its progress in build/fpga_todo/<report name>.log. Afterwards refresh the tables that read them:
@@ -100,6 +101,16 @@ def todo(full: bool) -> list[Job]:
     return out
 
 
+def only(jobs: list[Job], names: list[str]) -> list[Job]:
+    """The jobs named (report stems, as ``--list`` shows them), in the order named. A name
+    that is not on the list (unknown, or already measured on today's rtl/) is an error."""
+    by_name = {j.name: j for j in jobs}
+    missing = [n for n in names if n not in by_name]
+    if missing:
+        raise UserError(f"not among the runs still to do: {', '.join(missing)} (see --list)")
+    return [by_name[n] for n in names]
+
+
 def same_run(job: Job) -> tuple[str, ...]:
     """A job's arguments without its report's name: two jobs with the same are one run."""
     a = list(job.args)
@@ -158,6 +169,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                     help=f"also the full build at P = {', '.join(map(str, FULL_P))} where not measured on today's rtl/")
     ap.add_argument("--lanes", type=int, default=2, help="builds placed and routed at a time (default 2)")
     ap.add_argument("--timeout", type=int, default=3600, help="time limit per nextpnr run in seconds (default 3600)")
+    ap.add_argument("--only", default="",
+                    help="comma-separated report names (as --list shows them): run just these, in this order")
     return ap.parse_args(argv)
 
 
@@ -166,8 +179,19 @@ def main(argv: list[str] | None = None) -> int:
     if args.lanes < 1:
         print("fpga_todo: --lanes must be at least 1", file=sys.stderr)
         return 2
-    try:
+    names = [n.strip() for n in args.only.split(",") if n.strip()]
+
+    def still_to_do() -> list[Job]:
         jobs = todo(args.full)
+        if not names:
+            return jobs
+        left = {j.name for j in jobs}          # a named run measured meanwhile drops out
+        return only(jobs, [n for n in names if n in left])
+
+    try:
+        if names:
+            only(todo(args.full), names)       # every name must be a run still to do
+        jobs = still_to_do()
         if args.list:
             for j in jobs:
                 print(" ".join(["python", "-m", "cube4_reports.fpga", *j.args]))
@@ -175,7 +199,7 @@ def main(argv: list[str] | None = None) -> int:
         if not jobs:
             progress(TAG, "every build is measured on today's rtl/")
             return 0
-        ended = run(lambda: todo(args.full), args.lanes, args.timeout)
+        ended = run(still_to_do, args.lanes, args.timeout)
     except UserError as e:
         print(f"fpga_todo: {e}", file=sys.stderr)
         return 1
