@@ -49,9 +49,10 @@
 // Latency
 //   A sample beat leaves NJ*NB + NB + 2 beats after it entered (the plane and
 //   beam delays and the window), plus the source's input register, the
-//   arithmetic's three register stages, the output FIFO's input register
-//   (IN_REG = 1: gk's two subtractions end at a flip-flop beside them) and
-//   its memory (with RECTS = 1 the hold register and one more). The source
+//   arithmetic's four register stages (the last the view products in fabric
+//   flip-flops after their multipliers', cube4_mul OUT_FF = 1) and the
+//   output FIFO's memory, which stores gk's two subtractions after them
+//   (with RECTS = 1 the hold register and one more before it). The source
 //   and the window move on GRA's step (a beat is taken or a flush step
 //   runs), which needs a credit of the output FIFO (an entry reserved for
 //   the gradient beat the step may produce); the credit comes as GRA_STEPS
@@ -141,7 +142,7 @@ module cube4_gra #(
 
     // the values of the source's samples (the window and the arithmetic read
     // them), and the centre's labels (LABELS), which follow the centre through
-    // the window's two step registers (h1, h2: its s) and the arithmetic's three
+    // the window's two step registers (h1, h2: its s) and the arithmetic's four
     genvar q;
     wire [P*LBL_W+(1-LABELS)-1:0] c_lbl;
     generate
@@ -195,9 +196,9 @@ module cube4_gra #(
 
     generate
         if (LABELS != 0) begin : g_label
-            // h1, h2 as the window's centre registers (on step), then g1 .. g3 as
+            // h1, h2 as the window's centre registers (on step), then g1 .. g4 as
             // the arithmetic's (every cycle): the labels of the sample in a_s
-            reg [P*LBL_W-1:0] l_h1, l_h2, l_g1, l_g2, l_g3;
+            reg [P*LBL_W-1:0] l_h1, l_h2, l_g1, l_g2, l_g3, l_g4;
             always @(posedge clk) begin
                 if (step) begin
                     l_h1 <= c_lbl;
@@ -206,9 +207,10 @@ module cube4_gra #(
                 l_g1 <= l_h2;
                 l_g2 <= l_g1;
                 l_g3 <= l_g2;
+                l_g4 <= l_g3;
             end
             for (q = 0; q < P; q = q + 1) begin : g_lane
-                assign a_smp[q*SMP_W +: SMP_W] = {l_g3[q*LBL_W +: LBL_W], a_s[q*VOXEL_W +: VOXEL_W]};
+                assign a_smp[q*SMP_W +: SMP_W] = {l_g4[q*LBL_W +: LBL_W], a_s[q*VOXEL_W +: VOXEL_W]};
             end
         end else begin : g_no_label
             assign a_smp = a_s;
@@ -217,8 +219,9 @@ module cube4_gra #(
     endgenerate
 
     // ------------------------------------------------------------ output
-    // the FIFO's input register (IN_REG = 1), then its memory: push_d one
-    // cycle before the FIFO stores the item
+    // the FIFO's memory (gk's subtractions after the arithmetic's g4, whose
+    // products are fabric flip-flops: cube4_gra_arith): push_d one cycle
+    // before the FIFO stores the item
     localparam integer OUT_W = HDR_W + PS + 3 * P * GRAD_W;
     localparam integer EOP_BIT = OUT_W - HDR_W + HDR_CTRL + CTRL_EOP;   // the header's EOP in an item
     wire [OUT_W-1:0] fifo_out;
@@ -237,43 +240,45 @@ module cube4_gra #(
             // last beat may be one outside the rectangles): each beat waits in
             // hold_q until the next one comes (then it is pushed) or the frame
             // ends (then it is pushed with EOP). push_d says so one cycle before
-            // g4_q holds the beat, which the FIFO stores.
-            reg               g3_v, g1_end, g2_end, g3_end, hold_v;
-            reg [OUT_W-1:0]   hold_q, g4_q;
+            // g5_q holds the beat, which the FIFO stores.
+            reg               g4_v, g1_end, g2_end, g3_end, g4_end, hold_v;
+            reg [OUT_W-1:0]   hold_q, g5_q;
             always @(posedge clk) begin
                 if (rst) begin
-                    g3_v   <= 1'b0;
+                    g4_v   <= 1'b0;
                     g1_end <= 1'b0;
                     g2_end <= 1'b0;
                     g3_end <= 1'b0;
+                    g4_end <= 1'b0;
                     hold_v <= 1'b0;
                 end else begin
-                    g3_v   <= push_v;
+                    g4_v   <= push_v;
                     g1_end <= step && fend;
                     g2_end <= g1_end;
                     g3_end <= g2_end;
-                    if (g3_v)        hold_v <= 1'b1;
-                    else if (g3_end) hold_v <= 1'b0;
+                    g4_end <= g3_end;
+                    if (g4_v)        hold_v <= 1'b1;
+                    else if (g4_end) hold_v <= 1'b0;
                 end
             end
             always @(posedge clk) begin
-                if (g3_v) begin
+                if (g4_v) begin
                     hold_q          <= item;
                     hold_q[EOP_BIT] <= 1'b0;
                 end
-                if (g3_v || g3_end) begin
-                    g4_q          <= hold_q;
-                    g4_q[EOP_BIT] <= g3_end;
+                if (g4_v || g4_end) begin
+                    g5_q          <= hold_q;
+                    g5_q[EOP_BIT] <= g4_end;
                 end
             end
-            assign push_d  = (g3_v || g3_end) && hold_v;
-            assign fifo_in = g4_q;
+            assign push_d  = (g4_v || g4_end) && hold_v;
+            assign fifo_in = g5_q;
         end
     endgenerate
     cube4_prim_copies #(.N(GRA_STEPS), .RST_VAL(64'd1)) u_credit (
         .clk(clk), .rst(rst), .d(credit_d), .q(credit));
     wire unused_valid_cp;
-    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(1)) u_fifo (
+    cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(0)) u_fifo (
         .clk(clk), .rst(rst), .take(take), .give(1'b0),
         .credit(unused_credit), .credit_d(credit_d),
         .push_d(push_d), .in_data(fifo_in),

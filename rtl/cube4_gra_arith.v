@@ -24,13 +24,16 @@
 //   GRAD_W  VOXEL_W + 5 (derived; signed)
 //
 // Latency
-//   Three register stages with no clock enable, loaded on every cycle:
+//   Four register stages with no clock enable, loaded on every cycle:
 //   g1 the differences (their carry chains end at g1's flip-flops); g2 the
 //   multipliers' operand registers (cube4_mul, fed from g1's flip-flops) and
-//   G'; g3 the products. out_* are g3 with gk's two subtractions after it
-//   (the caller registers them: GRA's output FIFO's input register). A beat
-//   given with in_v in cycle t is on out_* in cycle t + 3; out_v_d = 1 in
-//   cycle t + 2 says so a cycle ahead (the FIFO's push_d).
+//   G'; g3 the products (the multipliers' own output registers); g4 the
+//   products again, in flip-flops in the fabric (cube4_mul OUT_FF = 1: the
+//   route from a multiplier placed far away ends at a flip-flop, not at the
+//   subtractions). out_* are g4 with gk's two subtractions after it (the
+//   caller stores them: GRA's output FIFO's memory). A beat given with in_v
+//   in cycle t is on out_* in cycle t + 4; out_v_d = 1 in cycle t + 3 says
+//   so a cycle ahead (the FIFO's push_d).
 //
 // Ports (P lanes; lane q of a W-bit field at [q*W +: W])
 //   in_v         in   a real centre (GRA's take)
@@ -84,21 +87,23 @@ module cube4_gra_arith #(
     `CUBE4_VIEW_FIELDS(cfg);
     genvar q;
 
-    reg               g1_v, g2_v;
-    reg [HDR_W-1:0]   g1_hdr, g2_hdr, g3_hdr;
-    reg [PV-1:0]      g1_s, g2_s, g3_s;
-    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj, g2_gr, g3_gi, g3_gj;
-    reg [P*GX_W-1:0]  g3_gpre;
+    reg               g1_v, g2_v, g3_v;
+    reg [HDR_W-1:0]   g1_hdr, g2_hdr, g3_hdr, g4_hdr;
+    reg [PV-1:0]      g1_s, g2_s, g3_s, g4_s;
+    reg [P*DW-1:0]    g1_gi, g1_gj, g1_gr, g2_gi, g2_gj, g2_gr, g3_gi, g3_gj, g4_gi, g4_gj;
+    reg [P*GX_W-1:0]  g3_gpre, g4_gpre;
     always @(posedge clk) begin
         if (rst) begin
             g1_v <= 1'b0;
             g2_v <= 1'b0;
+            g3_v <= 1'b0;
         end else begin
             g1_v <= in_v;
             g2_v <= g1_v;
+            g3_v <= g2_v;
         end
     end
-    assign out_v_d = g2_v;
+    assign out_v_d = g3_v;
 
     wire [P*DW-1:0]     gi_d, gr_d;
     wire [P*GX_W-1:0]   gpre_d;
@@ -107,31 +112,32 @@ module cube4_gra_arith #(
             // g1: the differences
             assign gi_d[q*DW +: DW] = $signed({1'b0, in_hi[q*VW +: VW]})  - $signed({1'b0, in_lo[q*VW +: VW]});
             assign gr_d[q*DW +: DW] = $signed({1'b0, in_fwd[q*VW +: VW]}) - $signed({1'b0, in_back[q*VW +: VW]});
-            // g2 -> g3: VIEW_X * gi, VIEW_Y * gj (operand registers at g2, products at g3)
+            // g2 -> g4: VIEW_X * gi, VIEW_Y * gj (operand registers at g2, products at
+            // g3 in the multipliers and at g4 in the fabric)
             wire signed [MP_W-1:0] px, py;
             wire signed [DW-1:0]   gi_a = g1_gi[q*DW +: DW];
             wire signed [DW-1:0]   gj_a = g1_gj[q*DW +: DW];
             wire signed [MB_W-1:0] vx_b = {1'b0, cfg_view_x};
             wire signed [MB_W-1:0] vy_b = {1'b0, cfg_view_y};
-            cube4_mul #(.A_W(DW), .B_W(MB_W)) u_px (
+            cube4_mul #(.A_W(DW), .B_W(MB_W), .OUT_FF(1)) u_px (
                 .clk (clk), .en (1'b1), .a (gi_a), .b (vx_b), .p (px));
-            cube4_mul #(.A_W(DW), .B_W(MB_W)) u_py (
+            cube4_mul #(.A_W(DW), .B_W(MB_W), .OUT_FF(1)) u_py (
                 .clk (clk), .en (1'b1), .a (gj_a), .b (vy_b), .p (py));
             // g2 -> g3: G' (a shift and a constant)
             wire signed [DW-1:0]     gr1  = g2_gr[q*DW +: DW];
             wire signed [GRAD_W-1:0] gr_e = {{(GRAD_W - DW){gr1[DW-1]}}, gr1};
             wire signed [GRAD_W-1:0] gr_s = gr_e <<< cfg_ss_log2;
             assign gpre_d[q*GX_W +: GX_W] = {gr_s, GK_LOW};
-            // after g3: gk = floor((G' - VIEW_X * gi - VIEW_Y * gj) / 2^W)
+            // after g4: gk = floor((G' - VIEW_X * gi - VIEW_Y * gj) / 2^W)
             wire signed [GX_W-1:0] px_e = GX_W'(px);
             wire signed [GX_W-1:0] py_e = GX_W'(py);
-            wire signed [GX_W-1:0] dif  = $signed(g3_gpre[q*GX_W +: GX_W]) - px_e - py_e;
+            wire signed [GX_W-1:0] dif  = $signed(g4_gpre[q*GX_W +: GX_W]) - px_e - py_e;
             assign out_gk[q*GRAD_W +: GRAD_W] = dif[GX_W-1 -: GRAD_W];
             wire unused_dif = ^dif[WEIGHT_W-1:0];   // the fraction the floor drops
-            wire signed [DW-1:0] gi3 = g3_gi[q*DW +: DW];
-            wire signed [DW-1:0] gj3 = g3_gj[q*DW +: DW];
-            assign out_gi[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gi3[DW-1]}}, gi3};
-            assign out_gj[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gj3[DW-1]}}, gj3};
+            wire signed [DW-1:0] gi4 = g4_gi[q*DW +: DW];
+            wire signed [DW-1:0] gj4 = g4_gj[q*DW +: DW];
+            assign out_gi[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gi4[DW-1]}}, gi4};
+            assign out_gj[q*GRAD_W +: GRAD_W] = {{(GRAD_W - DW){gj4[DW-1]}}, gj4};
         end
     endgenerate
 
@@ -151,9 +157,14 @@ module cube4_gra_arith #(
         g3_gi   <= g2_gi;
         g3_gj   <= g2_gj;
         g3_gpre <= gpre_d;
+        g4_hdr  <= g3_hdr;
+        g4_s    <= g3_s;
+        g4_gi   <= g3_gi;
+        g4_gj   <= g3_gj;
+        g4_gpre <= g3_gpre;
     end
-    assign out_hdr    = g3_hdr;
-    assign out_sample = g3_s;
+    assign out_hdr    = g4_hdr;
+    assign out_sample = g4_s;
 
 endmodule
 `default_nettype wire

@@ -22,17 +22,24 @@
 //   (The ECP5 form uses one MULT18X18D for A_W, B_W <= 18; wider products
 //   fall back to this form there.) Unsigned operands are passed with a zero
 //   bit on top.
+//   OUT_FF  1: one more register after the product, a flip-flop in the fabric
+//           (both forms; rtl/cube4_mul_if.vh): a hard multiplier placed far
+//           from its consumers (the DSP sites are few and fixed) then ends its
+//           route at a flip-flop the placer can put anywhere on the way, and
+//           the consumer's logic starts at that flip-flop, not at the DSP.
+//           0..1.  Default 0.
 //
 // Latency
-//   2 cycles from a, b to p; both stages advance only when en = 1 (stall
-//   enable; tie to 1 in a free-running pipeline). No reset: data registers.
+//   2 + OUT_FF cycles from a, b to p; every stage advances only when en = 1
+//   (stall enable; tie to 1 in a free-running pipeline). No reset: data
+//   registers.
 //
 // Ports (any fixed-point split: sQm.f times sQn.g is sQ(m+n).(f+g))
 //   clk  in   1 bit
 //   en   in   1 bit            stall enable of both stages
 //   a    in   signed [A_W-1:0]
 //   b    in   signed [B_W-1:0]
-//   p    out  signed [A_W+B_W-1:0]   a * b two cycles earlier (en cycles)
+//   p    out  signed [A_W+B_W-1:0]   a * b 2 + OUT_FF cycles earlier (en cycles)
 //
 // Bit growth and rounding
 //   |a * b| <= 2^(A_W-1) * 2^(B_W-1) = 2^(A_W+B_W-2), so the product fits
@@ -53,7 +60,7 @@ module cube4_mul
             p_q <= a_e * b_e;
         end
     end
-    assign p = p_q;
+    assign p_core = p_q;
 
 endmodule
 `default_nettype wire

@@ -51,7 +51,8 @@
 //   5 + (RMAP_BITS + 1) + 6 stages (input; LUT read and |g|; the three |g|
 //   comparisons; face; numerators; one stage per quotient bit of the
 //   division; reflectance-map read; its output register; its fabric
-//   register; C * D; shading; the output FIFO's input register), 17 at
+//   register; C * D's operands; C * D; the products in fabric flip-flops,
+//   the shading after them into the output FIFO's memory), 17 at
 //   RMAP_BITS = 5: a beat is on out_* 16 cycles after it entered the input
 //   register when the output FIFO was empty; 2 more with GMOD (m1, m2). SHADING = 0: 4 stages
 //   (input; LUT read; its register; the output FIFO), 11 with FALL. The stages move on every
@@ -149,26 +150,23 @@ module cube4_sha #(
     //          the die, starts at a flip-flop, not at the banks' select
     //   d3     the multipliers' operand registers (C, D)
     //   e1     C * D (the multipliers' product registers)
-    //   e2     round_shift(C * D, 8) + P, min 255: into the output FIFO's input
-    //          register (IN_REG = 1), then its memory
+    //   e2     C * D in fabric flip-flops (cube4_mul OUT_FF = 1: the route from
+    //          a multiplier placed far away ends at a flip-flop); then
+    //          round_shift(C * D, 8) + P, min 255, into the output FIFO's memory
     // Every stage moves on every cycle and carries a valid bit; the beat's
     // fields ride along.
     localparam integer NDIV = RB + 1;            // quotient bits: q in 0 .. R
-    // stages after a: b1, bc, b2, b3, c*, d, d2, dr, d3, e1, e2 (SHADING = 0: b1, e1, then the FIFO);
-    // with the slab's falloff (FALL) at least the falloff unit's latency before e1
+    // stages after a: b1, bc, b2, b3, c*, d, d2, dr, d3, e1, e2, then the FIFO's memory
+    // (SHADING = 0: b1, e1, then the FIFO); with the slab's falloff (FALL) at least the
+    // falloff unit's latency before the last stage (e1 without shading)
     localparam integer FALL     = (SLAB != 0 && COMPOSITING != 0) ? 1 : 0;
     localparam integer SLAB_LAT = `CUBE4_SLAB_LAT;   // cube4_sha_slab's latency
     localparam integer GM       = (GMOD != 0 && SHADING != 0) ? 1 : 0;   // the modulation's two stages m1, m2
     localparam integer GM_LAT   = `CUBE4_GM_LAT;
-    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 6 + 2 * GM : 3;
+    localparam integer NST_SH   = (SHADING != 0) ? 4 + NDIV + 7 + 2 * GM : 3;
     localparam integer NST      = (FALL != 0 && NST_SH < SLAB_LAT + 1) ? SLAB_LAT + 1 : NST_SH;
-    // The shaded build's FIFO registers its input (IN_REG = 1): e2's rounding
-    // add and saturation end at a flip-flop beside them, and the route to the
-    // FIFO's memory (often across the die from the multiplier) has a cycle of
-    // its own; one stage more. FIFO entries: a reservation lasts NST + 2 +
-    // FIFO_IN_REG cycles (a, the stages, the input register, the FIFO's read).
-    localparam integer FIFO_IN_REG = (SHADING != 0) ? 1 : 0;
-    localparam integer FIFO_DEPTH  = (NST + 2 + FIFO_IN_REG <= 16) ? 16 : 32;
+    // FIFO entries: a reservation lasts NST + 2 cycles (a, the stages, the FIFO's read).
+    localparam integer FIFO_DEPTH  = (NST + 2 <= 16) ? 16 : 32;
 
     wire credit;                        // the output FIFO has an entry for one more beat
     assign in_ready = credit;
@@ -225,8 +223,8 @@ module cube4_sha #(
             wire unused_val = ^a_val;
         end
     endgenerate
-    wire [META_W-1:0]  e_meta = st_meta_q[(NST-2)*META_W +: META_W];   // stage e1
-    wire [P*LUT_W-1:0] e_rgba;          // e2's results, written into the FIFO
+    wire [META_W-1:0]  e_meta = st_meta_q[(NST-2)*META_W +: META_W];   // the last stage (e2; e1 unshaded)
+    wire [P*LUT_W-1:0] e_rgba;          // the last stage's results, written into the FIFO
     wire [P*RI_W-1:0]  e_idx;
 
     // per lane: the classification table's word (stage 2), the reflectance
@@ -265,6 +263,7 @@ module cube4_sha #(
                 assign idx_all[q*RI_W +: RI_W]  = '0;
                 wire unused_grad = ^{a_gi[q*GW +: GW], a_gj[q*GW +: GW], a_gk[q*GW +: GW]};
             end else begin : g_shade
+                localparam integer E1 = NST - 2;    // stage e1 (C * D in the multipliers)
                 // b1: |g|; |g| < 2^(GW-1): no overflow
                 wire signed [GW-1:0] gi = a_gi[q*GW +: GW];
                 wire signed [GW-1:0] gj = a_gj[q*GW +: GW];
@@ -410,65 +409,73 @@ module cube4_sha #(
                 // the sample's LUT entry rides along from stage 2 to d3 (stage
                 // k's entry in bits [(k-2)*LUT_W +: LUT_W]: the RAM's output
                 // register, then a packed shift register)
-                reg  [(NST-4)*LUT_W-1:0] lut_sr;
-                wire [(NST-3)*LUT_W-1:0] lut_q = {lut_sr, lut_2};
+                reg  [(E1-3)*LUT_W-1:0] lut_sr;
+                wire [(E1-2)*LUT_W-1:0] lut_q = {lut_sr, lut_2};
                 always @(posedge clk) begin
-                    lut_sr <= lut_q[(NST-4)*LUT_W-1:0];
+                    lut_sr <= lut_q[(E1-3)*LUT_W-1:0];
                 end
-                wire [ALPHA_W-1:0] d_alpha = lut_q[(NST-4)*LUT_W +: ALPHA_W];
+                wire [ALPHA_W-1:0] d_alpha = lut_q[(E1-3)*LUT_W +: ALPHA_W];
 
                 // e1: C * D, 8 x 10 bits, exact: a cube4_mul whose operand
                 // registers are d3's (C from the shift register's stage before
                 // d_alpha's, D from dr's word or D'): the block RAM's word
                 // reaches the multiplier through d2, the RAM's output register,
-                // and dr, a fabric register beside it; the product register is e1's
-                wire [23:0] d_col_d = lut_q[(NST-5)*LUT_W + ALPHA_W +: 24];   // C one stage early
-                wire unused_col = ^lut_q[(NST-4)*LUT_W + ALPHA_W +: 24];       // (its copy at d3: not needed)
-                wire [3*18-1:0]   e1_cd;
-                reg  [17:0]       e1_ppx;    // P * 2^8 + the rounding half 2^7
-                wire [ALPHA_W-1:0] e1_a;     // A, or A' = round_shift(A fa, 8) with GM
-                reg  [RI_W-1:0]   e1_idx;
+                // and dr, a fabric register beside it; the product register is e1's,
+                // and the product is then registered again at e2 in fabric
+                // flip-flops (OUT_FF = 1), where the shading's add starts
+                wire [23:0] d_col_d = lut_q[(E1-4)*LUT_W + ALPHA_W +: 24];   // C one stage early
+                wire unused_col = ^lut_q[(E1-3)*LUT_W + ALPHA_W +: 24];       // (its copy at d3: not needed)
+                wire [3*18-1:0]   e2_cd;
+                reg  [17:0]       e1_ppx, e2_ppx;    // P * 2^8 + the rounding half 2^7
+                wire [ALPHA_W-1:0] e2_a;     // A, or A' = round_shift(A fa, 8) with GM
+                reg  [RI_W-1:0]   e1_idx, e2_idx;
                 genvar ch;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_mul   // ch = 0, 1, 2: R, G, B
                     wire signed [19:0] cd_p;
-                    cube4_mul #(.A_W(9), .B_W(11)) u_cd (
+                    cube4_mul #(.A_W(9), .B_W(11), .OUT_FF(1)) u_cd (
                         .clk (clk), .en (1'b1), .a ($signed({1'b0, d_col_d[8 * (2 - ch) +: 8]})),
                         .b ($signed({1'b0, dd_d3})), .p (cd_p));
-                    assign e1_cd[18*ch +: 18] = cd_p[17:0];    // < 255 * 1023 < 2^18
+                    assign e2_cd[18*ch +: 18] = cd_p[17:0];    // < 255 * 1023 < 2^18
                     wire unused_cd = ^cd_p[19:18];
                 end
                 always @(posedge clk) begin
                     e1_ppx <= {d3_pp, 8'h80};
                     e1_idx <= d3_idx;
+                    e2_ppx <= e1_ppx;
+                    e2_idx <= e1_idx;
                 end
                 if (GM != 0) begin : g_gm_a
                     // A' = round_shift(A fa, 8) <= A: operand registers d3 (A one stage
-                    // early), product e1
+                    // early), product e1, and e2 in fabric flip-flops (OUT_FF = 1)
                     wire signed [ALPHA_W+10:0] am;
-                    cube4_mul #(.A_W(ALPHA_W + 1), .B_W(10)) u_am (
-                        .clk(clk), .en(1'b1), .a($signed({1'b0, lut_q[(NST-5)*LUT_W +: ALPHA_W]})),
+                    cube4_mul #(.A_W(ALPHA_W + 1), .B_W(10), .OUT_FF(1)) u_am (
+                        .clk(clk), .en(1'b1), .a($signed({1'b0, lut_q[(E1-4)*LUT_W +: ALPHA_W]})),
                         .b($signed({1'b0, gm_fa_m2[q*GMF_W +: GMF_W]})), .p(am));
                     wire [ALPHA_W+10:0] ar = ($unsigned(am) + (ALPHA_W + 11)'(128)) >> 8;
-                    assign e1_a = ar[ALPHA_W-1:0];
+                    assign e2_a = ar[ALPHA_W-1:0];
                     wire unused_ar = ^{ar[ALPHA_W+10:ALPHA_W], d_alpha};
                 end else begin : g_no_gm_a
-                    reg [ALPHA_W-1:0] e1_a_q;
-                    always @(posedge clk) e1_a_q <= d_alpha;
-                    assign e1_a = e1_a_q;
+                    reg [ALPHA_W-1:0] e1_a_q, e2_a_q;
+                    always @(posedge clk) begin
+                        e1_a_q <= d_alpha;
+                        e2_a_q <= e1_a_q;
+                    end
+                    assign e2_a = e2_a_q;
                 end
 
-                // e2: shade, col = min(round_shift(C * D, 8) + P, 255), the rounding in
-                // the one add: round_shift(x, 8) + P = floor((x + P * 2^8 + 2^7) / 2^8)
+                // after e2, into the FIFO's memory: shade, col = min(round_shift(C * D, 8)
+                // + P, 255), the rounding in the one add: round_shift(x, 8) + P =
+                // floor((x + P * 2^8 + 2^7) / 2^8)
                 wire [23:0] col_d;
                 for (ch = 0; ch < 3; ch = ch + 1) begin : g_ch
                     // < 2^18 + 2^18; the sum / 2^8 < 2^11 (rs < 2^10, P < 2^10)
-                    wire [18:0] sum_x = {1'b0, e1_ppx} + {1'b0, e1_cd[18*ch +: 18]};
+                    wire [18:0] sum_x = {1'b0, e2_ppx} + {1'b0, e2_cd[18*ch +: 18]};
                     wire [10:0] sum   = sum_x[18:8];
                     wire unused_frac = ^sum_x[7:0];
                     assign col_d[8 * (2 - ch) +: 8] = (sum > 11'd255) ? 8'd255 : sum[7:0];
                 end
-                assign e_rgba[q*LUT_W +: LUT_W] = {col_d, e1_a};
-                assign e_idx[q*RI_W +: RI_W]    = e1_idx;
+                assign e_rgba[q*LUT_W +: LUT_W] = {col_d, e2_a};
+                assign e_idx[q*RI_W +: RI_W]    = e2_idx;
             end
         end
         if (SHADING == 0) begin : g_no_rmap
@@ -569,15 +576,14 @@ module cube4_sha #(
         end
     endgenerate
 
-    // ---- e2: the output FIFO (its input register when shaded, then its memory);
-    //      stage e1 holds a beat: push_d at e1 ----
+    // ---- the output FIFO's memory stores the last stage's results (NST - 1: e2
+    //      shaded, e1 unshaded); push_d from the stage before it ----
     localparam integer OUT_W = META_W + P * LUT_W + P * RI_W + P * VW + FW;
     wire [OUT_W-1:0] fifo_out;
     wire unused_credit_d;
     generate
         if (FALL != 0) begin : g_fifo_fall
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(FIFO_IN_REG),
-                                .VALID_N(VALID_N)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .VALID_N(VALID_N)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_fall, e_meta, e_rgba, e_idx, e_s}),
@@ -585,8 +591,7 @@ module cube4_sha #(
                 .out_valid_cp(out_valid_cp));
             assign {out_fall, out_hdr, out_rgba, out_idx, out_sample} = fifo_out;
         end else begin : g_fifo
-            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .IN_REG(FIFO_IN_REG),
-                                .VALID_N(VALID_N)) u_fifo (
+            cube4_credit_fifo #(.DATA_W(OUT_W), .DEPTH(FIFO_DEPTH), .VALID_N(VALID_N)) u_fifo (
                 .clk(clk), .rst(rst), .take(take), .give(1'b0),
                 .credit(credit), .credit_d(unused_credit_d),
                 .push_d(st_v[NST-2]), .in_data({e_meta, e_rgba, e_idx, e_s}),
@@ -596,7 +601,7 @@ module cube4_sha #(
             assign out_fall = e_fall;
         end
     endgenerate
-    wire unused_st_v = st_v[NST-1];     // e1's valid bit: the FIFO's push copies are its copies
+    wire unused_st_v = st_v[NST-1];     // the last stage's valid bit: the FIFO's push copies are its copies
 
 endmodule
 `default_nettype wire

@@ -14,8 +14,10 @@
 //   nextpnr time the block as registered; latency stays 2). SRIA/SRIB are
 //   left unconnected (tying them makes an unroutable net). Operands wider
 //   than 18 bits fall back to the generic shape (registers in the fabric).
-//   Simulation of this form uses the behavioural model of the primitive in
-//   sim/hdl/ecp5/MULT18X18D.v (tb/cube4_mul checks both forms agree).
+//   OUT_FF = 1 adds the fabric register of rtl/cube4_mul_if.vh after P (the
+//   same in both forms). Simulation of this form uses the behavioural model
+//   of the primitive in sim/hdl/ecp5/MULT18X18D.v (tb/cube4_mul checks both
+//   forms agree).
 //
 // Parameters, latency, ports, bit growth: as rtl/cube4_mul.v.
 // =============================================================================
@@ -100,7 +102,7 @@ module cube4_mul
         .P24(p36[24]), .P25(p36[25]), .P26(p36[26]), .P27(p36[27]), .P28(p36[28]), .P29(p36[29]),
         .P30(p36[30]), .P31(p36[31]), .P32(p36[32]), .P33(p36[33]), .P34(p36[34]), .P35(p36[35])
             );
-            assign p = p36[P_W-1:0];
+            assign p_core = p36[P_W-1:0];
             if (P_W < 36) begin : g_unused
                 wire unused_p = ^p36[35:P_W];    // the product fits P_W bits
             end
@@ -117,7 +119,7 @@ module cube4_mul
                     p_q <= a_e * b_e;
                 end
             end
-            assign p = p_q;
+            assign p_core = p_q;
         end
     endgenerate
 

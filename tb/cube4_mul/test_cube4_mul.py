@@ -3,12 +3,12 @@
 Both forms run the same cocotb test against the Python product a * b: the generic form
 (registers in the fabric) from rtl/sources.f, the ECP5 form (a MULT18X18D with its
 input and output registers) with the primitive's behavioural model
-(sim/hdl/ecp5/MULT18X18D.v). Both equal to the product at latency 2 means the two forms
-agree, so the simulations of the whole design (generic forms) stand for the netlist
-synthesis builds (vendor forms).
+(sim/hdl/ecp5/MULT18X18D.v). Both equal to the product at latency 2 (3 with OUT_FF = 1,
+the fabric register after the product) means the two forms agree, so the simulations of
+the whole design (generic forms) stand for the netlist synthesis builds (vendor forms).
 
 Cycle discipline: the TB drives a, b, en on each falling edge and reads p there; a
-model of the two stages (advancing only with en = 1) says what p holds. Operands are
+model of the 2 + OUT_FF stages (advancing only with en = 1) says what p holds. Operands are
 random over the full signed range plus the corners (most negative times most negative,
 the largest product), with random en (stalls) in one test and en = 1 in the other; p
 must hold across every stalled edge. Seeded per test from COCOTB_RANDOM_SEED.
@@ -26,13 +26,14 @@ CLK_PERIOD_NS = 10
 
 
 class TB:
-    """Drives cube4_mul and checks p against a two-stage model of a * b."""
+    """Drives cube4_mul and checks p against a (2 + OUT_FF)-stage model of a * b."""
 
     def __init__(self, dut) -> None:
         self.dut = dut
         self.a_w = int(dut.A_W.value)
         self.b_w = int(dut.B_W.value)
         self.p_w = self.a_w + self.b_w
+        self.stages = 2 + int(dut.OUT_FF.value)
         self.rng = np.random.default_rng(cocotb.RANDOM_SEED)
         Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start(start_high=False)
 
@@ -51,8 +52,9 @@ class TB:
     async def run(self, vectors: list[tuple[int, int]], en_prob: float) -> int:
         """Drive every vector (held until an enabled edge takes it); returns the checks made."""
         dut = self.dut
-        stage1 = stage2 = None          # the model: operands taken, product registered
-        checks, pending = 0, list(vectors) + [(0, 0)] * 3
+        # the model: operands taken (stage 1), then the product in stages 2 .. self.stages
+        stages = [None] * self.stages
+        checks, pending = 0, list(vectors) + [(0, 0)] * (self.stages + 1)
         await FallingEdge(dut.clk)
         while pending:
             en = 1 if self.rng.random() < en_prob else 0
@@ -62,11 +64,13 @@ class TB:
             dut.en.value = en
             await FallingEdge(dut.clk)
             if en:
-                stage2, stage1 = (stage1[0] * stage1[1] if stage1 else None), (a, b)
+                prod = stages[0][0] * stages[0][1] if stages[0] else None
+                stages = [(a, b), prod] + stages[1:-1]
                 pending.pop(0)
-            if stage2 is not None:
+            if stages[-1] is not None:
                 got = self.read_p()
-                assert got == stage2, f"p = {got}, expected {stage2} (A_W={self.a_w}, B_W={self.b_w})"
+                assert got == stages[-1], (f"p = {got}, expected {stages[-1]} (A_W={self.a_w}, B_W={self.b_w}, "
+                                           f"OUT_FF={self.stages - 2})")
                 checks += 1
         return checks
 
@@ -92,8 +96,10 @@ from cube4_sim.sources import RTL_FORMS, form_build_args, form_sources  # noqa: 
 
 # widths the design uses (COM's T * A and w * C', GRA's view products, the lerps),
 # the ECP5 form's fall-back beyond 18 bits, and the smallest
-PARAM_SETS = [{"A_W": 18, "B_W": 18}, {"A_W": 18, "B_W": 13}, {"A_W": 9, "B_W": 11},
-              {"A_W": 25, "B_W": 9}, {"A_W": 2, "B_W": 2}]
+# (OUT_FF = 1: SHA's C * D and GRA's view products, and the fall-back with it)
+PARAM_SETS = [{"A_W": 18, "B_W": 18}, {"A_W": 18, "B_W": 13}, {"A_W": 9, "B_W": 11, "OUT_FF": 1},
+              {"A_W": 9, "B_W": 11}, {"A_W": 25, "B_W": 9, "OUT_FF": 1}, {"A_W": 25, "B_W": 9},
+              {"A_W": 2, "B_W": 2}]
 
 
 def _param_id(params: dict) -> str:
@@ -101,7 +107,7 @@ def _param_id(params: dict) -> str:
 
 
 @pytest.mark.parametrize("form", RTL_FORMS)
-@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0,), ids=_param_id))
+@pytest.mark.parametrize("params", sweep(PARAM_SETS, quick=(0, 2), ids=_param_id))
 def test_cube4_mul(params, form):
     run_test(top="cube4_mul", sources=form_sources(form), params=params, test_module=__file__,
              build_args=form_build_args(form))
