@@ -36,7 +36,7 @@
 //
 // Ports (any fixed-point split: sQm.f times sQn.g is sQ(m+n).(f+g))
 //   clk  in   1 bit
-//   en   in   1 bit            stall enable of both stages
+//   en   in   1 bit            stall enable of every stage
 //   a    in   signed [A_W-1:0]
 //   b    in   signed [B_W-1:0]
 //   p    out  signed [A_W+B_W-1:0]   a * b 2 + OUT_FF cycles earlier (en cycles)

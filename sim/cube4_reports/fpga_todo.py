@@ -189,9 +189,9 @@ def main(argv: list[str] | None = None) -> int:
         return only(jobs, [n for n in names if n in left])
 
     try:
+        jobs = todo(args.full)
         if names:
-            only(todo(args.full), names)       # every name must be a run still to do
-        jobs = still_to_do()
+            jobs = only(jobs, names)           # every name must be a run still to do
         if args.list:
             for j in jobs:
                 print(" ".join(["python", "-m", "cube4_reports.fpga", *j.args]))
